@@ -1,0 +1,28 @@
+# Two commands do all set-up on a fresh machine:
+#   make test   create .venv if missing, install tribodyn with its test extras, run pytest
+#   make run    same set-up, then run the main job on the bundled paper case
+PYTHON ?= python3
+VENV   ?= .venv
+PY      = $(VENV)/bin/python
+OUT    ?= results
+STAMP   = $(VENV)/.installed
+
+.PHONY: test run bench clean
+
+$(STAMP): pyproject.toml
+	test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e ".[test]"
+	touch $(STAMP)
+
+test: $(STAMP)
+	$(PY) -m pytest -q
+
+run: $(STAMP)
+	$(VENV)/bin/tribodyn run -o $(OUT)
+
+bench: $(STAMP)
+	for b in benchmarks/bench_*.py; do echo "== $$b"; $(PY) $$b; done
+
+clean:
+	rm -rf $(VENV) $(OUT) .pytest_cache build src/*.egg-info

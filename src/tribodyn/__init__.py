@@ -1,0 +1,23 @@
+"""tribodyn — tribo-dynamics of coated cam–flat-tappet contacts.
+
+Valvetrain multi-body dynamics drive a transient mixed-EHL line-contact solver that
+predicts pressure, film, asperity load, friction and power loss over the cam cycle for
+uncoated and coated (DLC, WC-C) tappets. Method after Andreou et al., Appl. Sci. 13 (2023)
+7815. All quantities are SI.
+"""
+
+from ._validation import InputError
+from .contact.dry import DryContactResult, solve_dry_contact
+from .physics.asperity import Roughness, greenwood_tripp
+from .physics.elasticity import DeformationOperator
+from .physics.hertz import hertz_line_contact
+from .physics.lubricant import Lubricant
+from .physics.materials import Body, Coating, Material, reduced_modulus
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Body", "Coating", "DeformationOperator", "DryContactResult", "InputError", "Lubricant",
+    "Material", "Roughness", "greenwood_tripp", "hertz_line_contact", "reduced_modulus",
+    "solve_dry_contact", "__version__",
+]

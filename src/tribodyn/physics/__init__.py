@@ -1,0 +1,1 @@
+"""Pure physics: materials, rheology, asperity contact, elasticity, friction, regimes."""

@@ -1,0 +1,58 @@
+"""Reference solutions for the elastic line contact of a cylinder on a plane (Hertz).
+
+With E' the reduced modulus (1/E' = ½Σ(1−ν²)/E), load w per unit length and radius R
+(Johnson, *Contact Mechanics*, 1985, §4.3, written with E' = 2E*)::
+
+    b   = √(8 w R / (π E'))          half-width                 [m]
+    p_h = √(w E' / (2π R))           peak pressure              [Pa]
+    p(x) = p_h √(1 − x²/b²)          |x| ≤ b
+
+Log-kernel identity used to validate the discrete kernel (P = √(1−X²), |X| ≤ 1)::
+
+    (1/π) ∫_{−1}^{1} ln|X − s| √(1 − s²) ds = X²/2 − (1/4 + ln 2 / 2)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validation import check_positive
+
+__all__ = ["HertzLineContact", "hertz_line_contact", "log_kernel_identity"]
+
+
+@dataclass(frozen=True)
+class HertzLineContact:
+    load: float
+    radius: float
+    reduced_modulus: float
+    half_width: float
+    max_pressure: float
+
+    @property
+    def mean_pressure(self) -> float:
+        return math.pi / 4.0 * self.max_pressure
+
+    def pressure(self, x) -> np.ndarray:
+        """Hertz pressure p(x) [Pa]; zero outside the contact."""
+        r = 1.0 - (np.asarray(x, dtype=float) / self.half_width) ** 2
+        return self.max_pressure * np.sqrt(np.clip(r, 0.0, None))
+
+
+def hertz_line_contact(load: float, radius: float, reduced_modulus: float) -> HertzLineContact:
+    """Hertz solution for load per unit length [N/m], radius [m], reduced modulus E' [Pa]."""
+    w = check_positive("load", load, "N/m")
+    r = check_positive("radius", radius, "m")
+    e = check_positive("reduced_modulus", reduced_modulus, "Pa")
+    b = math.sqrt(8.0 * w * r / (math.pi * e))
+    ph = math.sqrt(w * e / (2.0 * math.pi * r))
+    return HertzLineContact(w, r, e, b, ph)
+
+
+def log_kernel_identity(X) -> np.ndarray:
+    """Right-hand side X²/2 − (1/4 + ln2/2) of the log-kernel identity (|X| ≤ 1)."""
+    X = np.asarray(X, dtype=float)
+    return 0.5 * X**2 - (0.25 + 0.5 * math.log(2.0))

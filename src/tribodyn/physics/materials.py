@@ -1,0 +1,114 @@
+"""Elastic materials, coatings and contacting bodies.
+
+Conventions (DESIGN.md, paper Eq. 10):
+
+* plane-strain compliance of one body  c = (1 − ν²)/E            [1/Pa]
+* reduced modulus of a pair            1/E' = ½ (c₁ + c₂)         [Pa]   (so E' = 2E*)
+* half-plane surface compliance FRF    g̃(m) = 2c/|m|  per body,  Σ = 4/(E'|m|)  (Eq. 12)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .._validation import InputError, check_positive, check_range
+
+__all__ = ["Material", "Coating", "Body", "reduced_modulus", "STEEL", "DLC", "WCC"]
+
+
+@dataclass(frozen=True)
+class Material:
+    """Isotropic linear-elastic material.
+
+    Parameters
+    ----------
+    E : Young's modulus [Pa], > 0.
+    nu : Poisson's ratio [-], in (−1, 0.5).
+    """
+
+    E: float
+    nu: float
+
+    def __post_init__(self):
+        object.__setattr__(self, "E", check_positive("E", self.E, "Pa"))
+        object.__setattr__(self, "nu", check_range("nu", self.nu, -1.0, 0.5, lo_open=True,
+                                                   hi_open=True))
+
+    @property
+    def compliance(self) -> float:
+        """Plane-strain compliance (1 − ν²)/E [1/Pa]."""
+        return (1.0 - self.nu**2) / self.E
+
+    @property
+    def shear_modulus(self) -> float:
+        """μ = E / (2(1 + ν)) [Pa]."""
+        return self.E / (2.0 * (1.0 + self.nu))
+
+
+@dataclass(frozen=True)
+class Coating(Material):
+    """A uniform elastic layer perfectly bonded to a substrate.
+
+    Parameters
+    ----------
+    E, nu : elastic constants of the coating [Pa], [-].
+    thickness : layer thickness h_c [m], > 0.
+    """
+
+    thickness: float
+
+    def __post_init__(self):
+        super().__post_init__()
+        object.__setattr__(self, "thickness", check_positive("thickness", self.thickness, "m"))
+
+    @property
+    def material(self) -> Material:
+        return Material(self.E, self.nu)
+
+
+@dataclass(frozen=True)
+class Body:
+    """A contacting body: a substrate material with an optional coating on its surface."""
+
+    material: Material
+    coating: Coating | None = None
+
+    def __post_init__(self):
+        if not isinstance(self.material, Material) or isinstance(self.material, Coating):
+            raise InputError(f"material must be a Material (got {type(self.material).__name__})")
+        if self.coating is not None and not isinstance(self.coating, Coating):
+            raise InputError(f"coating must be a Coating or None (got {type(self.coating).__name__})")
+
+    @property
+    def surface(self) -> Material:
+        """The material at the surface (coating if present): governs asperity contact."""
+        return self.coating.material if self.coating is not None else self.material
+
+    @property
+    def is_coated(self) -> bool:
+        return self.coating is not None
+
+
+def _as_bodies(bodies) -> tuple[Body, ...]:
+    bodies = tuple(bodies)
+    if len(bodies) != 2 or not all(isinstance(b, Body) for b in bodies):
+        raise InputError("bodies must be a pair (Body, Body)")
+    return bodies
+
+
+def reduced_modulus(bodies, *, surface: bool = False) -> float:
+    """Reduced modulus E' of a pair: 1/E' = ½[(1−ν₁²)/E₁ + (1−ν₂²)/E₂] [Pa].
+
+    ``surface=False`` uses the substrate (bulk) materials, as Hertz theory for a thin
+    coating; ``surface=True`` uses the surface materials (the coating where present),
+    as for asperity-scale contact (Greenwood–Tripp, paper Eq. 6).
+    """
+    b1, b2 = _as_bodies(bodies)
+    m1, m2 = (b1.surface, b2.surface) if surface else (b1.material, b2.material)
+    return 2.0 / (m1.compliance + m2.compliance)
+
+
+# The paper's Table 6 (moduli printed as "MPa": they are GPa, DESIGN.md errata).
+STEEL = Material(E=210e9, nu=0.3)
+DLC = Material(E=185e9, nu=0.3)
+WCC = Material(E=175e9, nu=0.3)

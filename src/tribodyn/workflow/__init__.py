@@ -1,0 +1,1 @@
+"""Studies built from the solvers: coating studies, the cam-cycle study, sweeps."""

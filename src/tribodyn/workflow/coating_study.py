@@ -1,0 +1,40 @@
+"""Coating-modulus studies of a single line contact (paper Figs. 5 and 6).
+
+The paper's conditions: coating 5 µm, w = 633 N over the 12 mm cam width, u = 15.31 m/s
+(EHL); coating/steel modulus ratios 0.25 … 4. The paper does not give the radius of
+curvature: R = 10 mm is assumed here and stated on every figure.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..contact.dry import DryContactResult, solve_dry_contact
+from ..physics.materials import STEEL, Body, Coating, Material
+
+__all__ = ["PAPER_FIG5", "DryCoatingCase", "dry_coating_study"]
+
+#: Conditions of the paper's Figs. 5/6 (radius assumed).
+PAPER_FIG5 = dict(load_total=633.0, width=0.012, radius=0.010, thickness=5e-6,
+                  ratios=(0.25, 0.5, 1.0, 2.0, 4.0), entrainment_speed=15.31)
+
+
+@dataclass
+class DryCoatingCase:
+    label: str
+    ratio: float | None
+    result: DryContactResult
+
+
+def dry_coating_study(ratios=PAPER_FIG5["ratios"], *, thickness=PAPER_FIG5["thickness"],
+                      load_total=PAPER_FIG5["load_total"], width=PAPER_FIG5["width"],
+                      radius=PAPER_FIG5["radius"], substrate: Material = STEEL,
+                      coating_nu: float = 0.3, n: int = 1024) -> list[DryCoatingCase]:
+    """Dry pressure for a steel cam on a coated steel tappet, one case per modulus ratio."""
+    w = load_total / width
+    cases = []
+    for ratio in ratios:
+        coat = Coating(E=substrate.E * ratio, nu=coating_nu, thickness=thickness)
+        res = solve_dry_contact(w, radius, (Body(substrate), Body(substrate, coat)), n=n)
+        cases.append(DryCoatingCase(f"E_c/E_s = {ratio:g}", ratio, res))
+    return cases
