@@ -8,6 +8,8 @@ from pathlib import Path
 import typer
 from rich.console import Console
 
+from .topography.cli import topography_command
+
 app = typer.Typer(add_completion=False, no_args_is_help=True,
                   help="Tribo-dynamics of coated cam–flat-tappet contacts.")
 console = Console()
@@ -34,6 +36,9 @@ def run(out: Path = typer.Option(Path("results"), "-o", "--out", help="output fo
         console.print(f"{c.label:16s} b = {r.half_width * 1e6:7.2f} µm  "
                       f"p_max = {r.max_pressure / 1e6:7.1f} MPa  converged={r.converged}")
     console.print(f"wrote {path} in {time.perf_counter() - t0:.1f} s")
+
+
+app.command("topography")(topography_command)
 
 
 def main():  # pragma: no cover

@@ -1,0 +1,39 @@
+"""Measured surface topography → Greenwood–Tripp roughness parameters (η, σ, β).
+
+Reads instrument files through SurfaceTopography, fills, levels and band-pass filters
+them, and estimates summit density η and mean summit radius β in two ways side by side:
+8-neighbour summits with local curvature, and McCool's spectral moments. Two surfaces
+(cam and tappet) combine into the pair's composite parameters. Results carry the band and
+sampling, on which η and β strongly depend.
+
+>>> from tribodyn.topography import analyse_surface, synthetic_surface
+>>> r = analyse_surface(synthetic_surface(seed=1), band=(2e-6, 25e-6))
+>>> roughness = r.to_roughness()            # tribodyn.Roughness(η, σ, β)
+>>> print(r.toml_block())                   # doctest: +SKIP
+"""
+
+from .analysis import analyse_pair, analyse_surface, composite_roughness
+from .errors import BandLimitError, InsufficientDataError, TopographyError, TopographyReadError
+from .filtering import PAPER_BAND, Band, Sampling, prepare_topography
+from .height_statistics import HeightStatistics, height_statistics
+from .reading import read_topography, write_topography
+from .results import AsperityParameters, PairAnalysis, SurfaceAnalysis
+from .spectral_moments import SpectralMoments, mccool_parameters
+from .summits import SummitStatistics, summit_statistics
+from .synthetic import synthetic_moments, synthetic_surface
+
+__all__ = [
+    "PAPER_BAND", "AsperityParameters", "Band", "BandLimitError", "HeightStatistics",
+    "InsufficientDataError", "PairAnalysis", "Sampling", "SpectralMoments",
+    "SummitStatistics", "SurfaceAnalysis", "TopographyError", "TopographyReadError",
+    "analyse_pair", "analyse_surface", "composite_roughness", "height_statistics",
+    "mccool_parameters", "plot_height_distribution", "prepare_topography", "read_topography",
+    "summit_statistics", "synthetic_moments", "synthetic_surface", "write_topography",
+]
+
+
+def __getattr__(name):  # matplotlib only when the figure is wanted
+    if name == "plot_height_distribution":
+        from .figure import plot_height_distribution
+        return plot_height_distribution
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,0 +1,289 @@
+"""Measured topography → Greenwood–Tripp roughness parameters (orchestration).
+
+``analyse_surface`` reads (or takes) a map, fills, levels and band-pass filters it
+(:mod:`.filtering`), then computes on the same filtered map
+
+* σ, Ssk, Sku of the heights (:mod:`.height_statistics`);
+* η, β from 8-neighbour summits with 3-point mean curvature (:mod:`.summits`; second
+  derivatives from SurfaceTopography's ``derivative``);
+* η, β, α from the direction-averaged profile spectral moments (:mod:`.spectral_moments`;
+  power-spectrum moments for periodic maps, spectral derivatives of the mirror-stitched
+  map for filtered non-periodic ones, see ``profile_moments``).
+
+Non-periodic maps lose a margin of one λ_s along each edge before summits and moments are
+evaluated (filter end effects), see ``analysis_margin``.
+
+``composite_roughness`` combines two analyses (cam and tappet) into the pair's equivalent
+surface (:mod:`.composite`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from .composite import composite_moments, sum_on_common_grid
+from .errors import InsufficientDataError
+from .filtering import PAPER_BAND, Band, Sampling, prepare_topography
+from .height_statistics import height_statistics
+from .reading import read_topography
+from .results import PairAnalysis, SurfaceAnalysis
+from .spectral_moments import (MIN_ALPHA_ISOTROPIC, SpectralMoments, isotropic_profile_moments,
+                               mccool_parameters)
+from .summits import summit_statistics
+
+__all__ = ["analyse_surface", "analyse_pair", "composite_roughness", "analyse_filtered",
+           "analysis_margin", "analysis_region", "mean_curvature_field", "profile_moments",
+           "MIN_PIXELS_PER_WAVELENGTH"]
+
+#: Shortest filtered wavelength, in pixels, above which 8-neighbour summit statistics are
+#: treated as converged (Gaussian S-filter; see the tests and ``summits`` docstring).
+MIN_PIXELS_PER_WAVELENGTH = 16.0
+#: Summit-vs-spectral deviation above which a note is added.
+NOTE_DEVIATION = 0.10
+#: ηβσ of an isotropic Gaussian surface is at least 0.0204·√1.5 (McCool).
+MIN_ETA_BETA_SIGMA = 0.375 / (6.0 * np.sqrt(3.0 * np.pi)) * np.sqrt(MIN_ALPHA_ISOTROPIC)
+
+
+def analysis_margin(band: Band | None, pixel_size, periodic: bool) -> tuple[int, int]:
+    """Pixels excluded along each edge of a map before summits and moments are evaluated.
+
+    Periodic maps: none. Non-periodic maps: the curvature stencil's border (1) or, after
+    band-pass filtering, one short-wavelength cutoff λ_s, the reach of the filter's end
+    effects at the mirror-stitched edges (the Gaussian S-filter kernel has a standard
+    deviation of 0.19 λ_s). Without the margin, summits and curvature near the edges are
+    biased by O(λ_s/L).
+    """
+    if periodic:
+        return 0, 0
+    if band is None or band.kind == "none":
+        return 1, 1
+    return tuple(max(1, int(np.ceil(band.short_wavelength / p - 1e-9))) for p in pixel_size)
+
+
+def analysis_region(shape, margin) -> np.ndarray:
+    """Boolean mask of the analysed points: all but ``margin`` = (wx, wy) edge pixels."""
+    (nx, ny), (wx, wy) = shape, margin
+    if nx - 2 * wx < 3 or ny - 2 * wy < 3:
+        raise InsufficientDataError(
+            f"the map ({nx} × {ny} points) is too small for the band: excluding "
+            f"{wx} × {wy} edge pixels (one λ_s) leaves no interior to analyse")
+    region = np.zeros((nx, ny), dtype=bool)
+    region[wx:nx - wx, wy:ny - wy] = True
+    return region
+
+
+def mean_curvature_field(topography, region=None) -> np.ndarray:
+    """κ = −(h_xx + h_yy)/2 [1/m] on the map's grid (SurfaceTopography's 3-point
+    stencils); NaN outside ``region`` and on the border of non-periodic maps."""
+    d2x, d2y = topography.derivative(2, interpolation="disable")
+    kappa = -0.5 * (np.asarray(d2x) + np.asarray(d2y))
+    if not topography.is_periodic:
+        full = np.full(topography.nb_grid_pts, np.nan)
+        full[1:-1, 1:-1] = kappa
+        kappa = full
+    if region is not None:
+        kappa = np.where(region, kappa, np.nan)
+    return kappa
+
+
+def profile_moments(topography, band: Band | None = None, region=None
+                    ) -> tuple[SpectralMoments, float]:
+    """Direction-averaged profile moments and the slope anisotropy max/min(m2x, m2y).
+
+    All derivatives are spectral (exact for the band-limited field):
+
+    * periodic map: areal moments of the power spectrum (``moment_power_spectrum``,
+      ``integrate_psd``), M_n = (2π)⁻² ∫ |q|ⁿ C²ᴰ d²q;
+    * non-periodic, band-pass filtered map: the map is mirror-stitched again, which
+      reproduces the smooth periodic field the filter produced; ∂h/∂x, ∂h/∂y and ∇²h are
+      obtained with SurfaceTopography's Fourier ``filter`` (transfer functions iq_x, iq_y,
+      −|q|²) and M2 = ⟨|∇h|²⟩, M4 = ⟨(∇²h)²⟩ are averaged over ``region`` (Parseval's
+      identity restricted to the analysed interior, like the summit count);
+      M0 = ⟨h²⟩ of the map;
+    * non-periodic, unfiltered map: power-spectrum moments with SurfaceTopography's
+      default Hann window.
+    """
+    if topography.is_periodic or band is None or band.kind == "none":
+        m0 = topography.moment_power_spectrum(order=0, reliable=False)
+        m2x = topography.integrate_psd(lambda qx, qy: qx**2, reliable=False)
+        m2y = topography.integrate_psd(lambda qx, qy: qy**2, reliable=False)
+        m4 = topography.moment_power_spectrum(order=4, reliable=False)
+    else:
+        nx, ny = topography.nb_grid_pts
+        region = np.ones((nx, ny), dtype=bool) if region is None else region
+        stitched = topography.mirror_stitch()
+
+        def interior_mean_square(transfer, isotropic):  # ⟨(F⁻¹[T(q) ĥ])²⟩ over region
+            field = stitched.filter(filter_function=transfer, isotropic=isotropic).heights()
+            return float(np.mean(np.asarray(field)[:nx, :ny][region] ** 2))
+
+        m0 = float(np.mean(np.asarray(topography.heights()) ** 2))
+        m2x = interior_mean_square(lambda qx, qy: 1j * qx, False)   # ∂h/∂x
+        m2y = interior_mean_square(lambda qx, qy: 1j * qy, False)   # ∂h/∂y
+        m4 = interior_mean_square(lambda q: -q * q, True)            # ∇²h
+    moments = isotropic_profile_moments(m0, m2x + m2y, m4)
+    return moments, float(max(m2x, m2y) / min(m2x, m2y))
+
+
+def analyse_filtered(topography, band: Band, sampling: Sampling, name: str = "surface",
+                     source: dict | None = None) -> SurfaceAnalysis:
+    """Analyse a map that is already levelled and filtered (heights in m)."""
+    heights = np.asarray(topography.heights(), dtype=float)
+    hstats = height_statistics(heights)
+    region = analysis_region(heights.shape, analysis_margin(band, topography.pixel_size,
+                                                            topography.is_periodic))
+    sstats = summit_statistics(heights, mean_curvature_field(topography, region),
+                               topography.pixel_size, topography.is_periodic)
+    moments, anisotropy = profile_moments(topography, band, region)
+    mccool = mccool_parameters(moments)
+    result = SurfaceAnalysis(name=name, sampling=sampling, band=band, heights=hstats,
+                             moments=moments, summit_stats=sstats, mccool=mccool,
+                             slope_anisotropy=anisotropy, source=source, topography=topography)
+    return _with_notes(result)
+
+
+def _deviation(a: float, b: float) -> float:
+    return a / b - 1.0
+
+
+def _sampling_note(band: Band, sampling: Sampling) -> str:
+    dx = max(sampling.pixel_size)
+    if band.kind == "none":
+        return ("no short-wavelength filter: the 8-neighbour summit estimates depend on the "
+                "pixel size and the instrument's noise; prefer a band with λ_s ≥ "
+                f"{MIN_PIXELS_PER_WAVELENGTH:g} pixels")
+    ratio = band.short_wavelength / dx
+    text = f"λ_s spans {ratio:.3g} pixels"
+    if ratio < MIN_PIXELS_PER_WAVELENGTH * (1 - 1e-6):  # tolerate float32 pixel sizes
+        text += (f" (< {MIN_PIXELS_PER_WAVELENGTH:g}): the 8-neighbour summit η and β depend "
+                 "on the sampling and need not converge to the continuous-surface (McCool) "
+                 "values; the spectral estimates are sampling-independent")
+    else:
+        text += (f" (≥ {MIN_PIXELS_PER_WAVELENGTH:g}): summit statistics resolved")
+    return text
+
+
+def _with_notes(r: SurfaceAnalysis) -> SurfaceAnalysis:
+    notes = [_sampling_note(r.band, r.sampling)]
+    if r.band.clipped:
+        notes.append(f"band clipped to the measurement's range: {r.band.describe()}")
+    d_eta = _deviation(r.summits.asperity_density, r.spectral.asperity_density)
+    d_beta = _deviation(r.summits.summit_radius, r.spectral.summit_radius)
+    if max(abs(d_eta), abs(d_beta)) > NOTE_DEVIATION:
+        notes.append(f"summit vs spectral estimates differ by {d_eta:+.0%} (η) and "
+                     f"{d_beta:+.0%} (β)")
+    if r.slope_anisotropy > 1.5:
+        notes.append(f"anisotropic texture (mean-square slope ratio {r.slope_anisotropy:.2f} "
+                     "between x and y): McCool's formulas assume isotropy")
+    h = r.heights
+    if abs(h.skewness) > 0.5 or abs(h.kurtosis - 3.0) > 1.0:
+        notes.append(f"height distribution not Gaussian (Ssk = {h.skewness:.2f}, "
+                     f"Sku = {h.kurtosis:.2f}; Gaussian 0 and 3): Greenwood–Tripp's F_n assume "
+                     "Gaussian summit heights")
+    if r.summits.roughness_parameter < MIN_ETA_BETA_SIGMA:
+        notes.append(f"summit ηβσ = {r.summits.roughness_parameter:.3g} is below "
+                     f"{MIN_ETA_BETA_SIGMA:.3f}, the minimum for an isotropic Gaussian surface")
+    if r.summit_stats.count < 200:
+        notes.append(f"only {r.summit_stats.count} summits: η and β carry a statistical "
+                     f"uncertainty of order {1 / np.sqrt(r.summit_stats.count):.0%}")
+    return replace(r, notes=tuple(notes))
+
+
+def analyse_surface(source, band=PAPER_BAND, *, kind: str = "gaussian",
+                    detrend: str = "height", clip_band: bool = False,
+                    min_defined_fraction: float = 0.9, name: str | None = None,
+                    channel: int | None = None, physical_sizes=None,
+                    unit: str | None = None) -> SurfaceAnalysis:
+    """Greenwood–Tripp parameters of one surface.
+
+    Parameters
+    ----------
+    source : file name (any format SurfaceTopography reads) or a SurfaceTopography
+        ``Topography`` (e.g. from :func:`synthetic_surface`).
+    band : (λ_s, λ_L) [m] band-pass limits, default the paper's (0.25 µm, 250 µm);
+        ``None`` levels only. Must lie within the measurement's range (see ``clip_band``).
+    kind : ``"gaussian"`` (default, 50 % transmission at the cutoffs) or ``"step"``.
+    detrend : ``"height"`` (plane), ``"curvature"`` (2nd-order polynomial, curved parts)
+        or ``"center"``.
+    clip_band : narrow the band to the resolvable range instead of raising.
+    min_defined_fraction : smallest accepted share of defined (measured) points.
+    name : label (default: the file name, or "surface").
+    channel, physical_sizes, unit : passed to :func:`read_topography`.
+
+    Returns
+    -------
+    SurfaceAnalysis: σ, Ssk, Sku; η, β by summits and by McCool's spectral moments, with
+    band, sampling and notes. ``.to_roughness(method)`` gives tribodyn's ``Roughness``.
+
+    The 8-neighbour summit estimates match the continuous-surface (McCool) values only if
+    the shortest filtered wavelength spans many pixels (≳ 16); see the notes.
+    """
+    src = None
+    if isinstance(source, (str, Path)):
+        topo = read_topography(source, channel=channel, physical_sizes=physical_sizes,
+                               unit=unit)
+        src = topo.info.get("source")
+        name = Path(source).name if name is None else name
+    else:
+        topo = source
+        name = "surface" if name is None else name
+    filtered, applied, sampling = prepare_topography(
+        topo, band, kind=kind, detrend=detrend, clip_band=clip_band,
+        min_defined_fraction=min_defined_fraction)
+    return analyse_filtered(filtered, applied, sampling, name=name, source=src)
+
+
+def composite_roughness(first: SurfaceAnalysis, second: SurfaceAnalysis) -> PairAnalysis:
+    """Composite (equivalent-surface) parameters of a pair of analysed surfaces."""
+    from SurfaceTopography import Topography
+
+    moments = composite_moments(first.moments, second.moments)
+    notes = []
+    if first.band != second.band:
+        notes.append("the two surfaces were filtered with different bands")
+    summit_stats = sum_stats = None
+    ta, tb = first.topography, second.topography
+    combined = None
+    if ta is not None and tb is not None:
+        combined = sum_on_common_grid(ta.heights(), ta.pixel_size, ta.is_periodic,
+                                      tb.heights(), tb.pixel_size, tb.is_periodic)
+    if combined is None:
+        notes.append("no composite summit analysis: the maps have different pixel sizes "
+                     "(the spectral composite is used)")
+    else:
+        h, (dx, dy), periodic = combined
+        nx, ny = h.shape
+        t = Topography(h, (nx * dx, ny * dy), periodic=periodic, unit="m")
+        sum_stats = height_statistics(h)
+        band = max((first.band, second.band), key=lambda b: b.short_wavelength or 0.0)
+        region = analysis_region(h.shape, analysis_margin(band, (dx, dy), periodic))
+        summit_stats = summit_statistics(h, mean_curvature_field(t, region), (dx, dy),
+                                         periodic)
+        if (nx, ny) != tuple(ta.nb_grid_pts) or (nx, ny) != tuple(tb.nb_grid_pts):
+            notes.append(f"sum surface h₁ + h₂ on the common {nx} × {ny} grid")
+    pair = PairAnalysis(first=first, second=second, moments=moments,
+                        mccool=mccool_parameters(moments), summit_stats=summit_stats,
+                        sum_heights=sum_stats, notes=())
+    if pair.summits is not None:
+        d_eta = _deviation(pair.summits.asperity_density, pair.spectral.asperity_density)
+        d_beta = _deviation(pair.summits.summit_radius, pair.spectral.summit_radius)
+        if max(abs(d_eta), abs(d_beta)) > NOTE_DEVIATION:
+            notes.append(f"composite summit vs spectral estimates differ by {d_eta:+.0%} (η) "
+                         f"and {d_beta:+.0%} (β)")
+    return replace(pair, notes=tuple(notes))
+
+
+def analyse_pair(first, second, band=PAPER_BAND, **kwargs) -> PairAnalysis:
+    """Analyse two surfaces (e.g. cam and tappet) with the same settings and combine them.
+
+    ``first``/``second``: file names or ``Topography`` objects; other arguments as
+    :func:`analyse_surface` (``name`` is not accepted; file names label the surfaces).
+    """
+    a = analyse_surface(first, band, **kwargs, **({} if isinstance(first, (str, Path))
+                                                  else {"name": "surface 1"}))
+    b = analyse_surface(second, band, **kwargs, **({} if isinstance(second, (str, Path))
+                                                   else {"name": "surface 2"}))
+    return composite_roughness(a, b)

@@ -1,0 +1,149 @@
+"""Reading and writing areal topography files through SurfaceTopography.
+
+SurfaceTopography reads some 40 instrument formats (Wyko/Bruker ``.opd``, Zygo ``.datx``
+and MetroPro, Digital Surf ``.sur``, ISO 5436-2 ``.x3p``, Sensofar ``.plu``/``.plux``,
+Keyence, Alicona, Gwyddion, netCDF, …) and detects the format from the file contents.
+Everything returned here is converted to SI metres (lateral and height), so the
+analysis never sees instrument units.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .errors import TopographyReadError
+
+__all__ = ["read_topography", "write_topography", "supported_formats", "WRITERS"]
+
+_NO_MAGIC = ("hgt",)
+
+#: File suffix -> SurfaceTopography writer method (all write lateral size and unit).
+WRITERS = {".x3p": "to_x3p", ".nc": "to_netcdf", ".gwy": "to_gwy", ".txt": "to_matrix",
+           ".asc": "to_matrix"}
+
+
+def supported_formats() -> list[tuple[str, str]]:
+    """(identifier, name) of every format SurfaceTopography can read."""
+    from SurfaceTopography.IO import readers
+    return [(r.format(), r.name()) for r in readers]
+
+
+def read_topography(path, *, channel: int | None = None, physical_sizes=None,
+                    unit: str | None = None):
+    """Read an areal topography map and return it in metres.
+
+    Parameters
+    ----------
+    path : file name of any format SurfaceTopography reads (format detected from content).
+    channel : channel index for multi-channel files (default: the file's default channel,
+        the height channel for optical profilers).
+    physical_sizes : (Lx, Ly) in ``unit``; only for files without lateral calibration
+        (e.g. ``.npy``, bare text matrices).
+    unit : length unit of the file's numbers (``"m"``, ``"µm"``, ``"nm"``, …); only for
+        files that do not store one.
+
+    Returns
+    -------
+    SurfaceTopography ``Topography`` in ``"m"``, possibly with undefined (masked) points;
+    ``info["source"]`` holds the file name, format and channel.
+
+    Raises
+    ------
+    TopographyReadError
+        File missing, not a recognised format, damaged, a line scan instead of an areal
+        map, or lacking lateral size / unit information that was not supplied.
+    """
+    from SurfaceTopography import open_topography
+    from SurfaceTopography.Exceptions import (CannotDetectFileFormat, MetadataAlreadyFixedByFile,
+                                              ReadFileError, UnknownFileFormat)
+
+    path = Path(path)
+    if not path.is_file():
+        raise TopographyReadError(f"cannot read topography file '{path}': no such file")
+    try:
+        reader = open_topography(str(path))
+    except CannotDetectFileFormat:
+        names = ", ".join(f for f, _ in supported_formats())
+        raise TopographyReadError(
+            f"cannot read topography file '{path}': not a surface-topography format that "
+            f"SurfaceTopography recognises (readable formats: {names})") from None
+    except (ReadFileError, UnknownFileFormat, OSError, ValueError) as exc:
+        raise TopographyReadError(f"cannot read topography file '{path}': {exc}") from None
+
+    fmt = reader.name()
+    # Readers without file magic (e.g. NASA SRTM .hgt) accept almost any file.
+    if reader.format() in _NO_MAGIC and path.suffix.lower().lstrip(".") != reader.format():
+        names = ", ".join(f for f, _ in supported_formats())
+        raise TopographyReadError(
+            f"cannot read topography file '{path}': not a surface-topography format that "
+            f"SurfaceTopography recognises (readable formats: {names})")
+    channels = reader.channels
+    if channel is None:
+        ch = reader.default_channel
+    else:
+        if not 0 <= channel < len(channels):
+            raise TopographyReadError(
+                f"'{path}' has {len(channels)} channel(s) (0…{len(channels) - 1}); "
+                f"channel {channel} does not exist")
+        ch = channels[channel]
+    if ch.dim != 2:
+        raise TopographyReadError(
+            f"'{path}' ({fmt}) channel '{ch.name}' is a line scan (profile): an areal "
+            "(2-D) map is needed to identify summits")
+    if ch.nb_grid_pts is not None and min(ch.nb_grid_pts) < 3:
+        raise TopographyReadError(
+            f"'{path}' read as {fmt} has only {ch.nb_grid_pts[0]} × {ch.nb_grid_pts[1]} "
+            "points: not a usable topography map")
+
+    kwargs = {}
+    if physical_sizes is not None:
+        if ch.physical_sizes is not None:
+            raise TopographyReadError(
+                f"'{path}' already stores its lateral size {tuple(ch.physical_sizes)} "
+                f"{ch.unit}; do not pass physical_sizes")
+        kwargs["physical_sizes"] = tuple(float(s) for s in physical_sizes)
+    elif ch.physical_sizes is None:
+        raise TopographyReadError(
+            f"'{path}' ({fmt}) has no lateral calibration: give its size and unit "
+            "(physical_sizes and unit; CLI: --size LX LY --unit UNIT)")
+    if unit is not None:
+        if ch.unit is not None:
+            raise TopographyReadError(f"'{path}' already stores its unit ({ch.unit}); "
+                                      "do not pass unit")
+        kwargs["unit"] = unit
+    elif ch.unit is None:
+        raise TopographyReadError(f"'{path}' ({fmt}) does not store a length unit: give "
+                                  "unit (e.g. 'µm'; CLI: --unit)")
+    try:
+        topo = ch.topography(**kwargs)
+        topo = topo.to_unit("m")
+    except MetadataAlreadyFixedByFile as exc:
+        raise TopographyReadError(f"'{path}': {exc}") from None
+    except (ReadFileError, OSError, ValueError, KeyError) as exc:
+        raise TopographyReadError(f"cannot read topography data of '{path}': {exc}") from None
+    if topo.dim != 2:
+        raise TopographyReadError(f"'{path}' does not contain an areal map (dim={topo.dim})")
+    # Materialise once (later steps read the heights several times); Topography masks
+    # non-finite values as undefined.
+    from SurfaceTopography import Topography
+    heights = topo.heights()
+    info = {"source": {"file": str(path), "format": reader.format(), "channel": ch.name}}
+    return Topography(heights, tuple(float(s) for s in topo.physical_sizes),
+                      periodic=bool(topo.is_periodic), unit="m", info=info)
+
+
+def write_topography(topography, path) -> Path:
+    """Write a topography map with SurfaceTopography's writers, chosen by suffix.
+
+    ``.x3p`` (ISO 5436-2), ``.nc`` (netCDF), ``.gwy`` (Gwyddion) or ``.txt``/``.asc``
+    (text matrix with size and unit header). Lateral size and unit are stored, so the
+    file reads back with :func:`read_topography` unchanged.
+    """
+    path = Path(path)
+    method = WRITERS.get(path.suffix.lower())
+    if method is None:
+        raise TopographyReadError(f"cannot write '{path}': supported suffixes are "
+                                  f"{', '.join(sorted(WRITERS))}")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    getattr(topography, method)(str(path))
+    return path

@@ -1,0 +1,210 @@
+"""Result objects of the topography analysis (fields SI, units in ``UNITS``/``to_dict``).
+
+Every result carries the band and sampling it was computed with: summit density and
+radius depend strongly on both (η grows and β shrinks as shorter wavelengths are kept).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ..physics.asperity import Roughness
+from .._validation import InputError
+from .filtering import Band, Sampling
+from .height_statistics import HeightStatistics
+from .spectral_moments import McCoolParameters, SpectralMoments
+from .summits import SummitStatistics
+
+__all__ = ["METHODS", "AsperityParameters", "SurfaceAnalysis", "PairAnalysis"]
+
+#: Estimators of η and β: 8-neighbour summits, or McCool's spectral moments.
+METHODS = ("summits", "spectral")
+METHOD_LABELS = {"summits": "8-neighbour summits", "spectral": "spectral moments (McCool)"}
+
+
+@dataclass(frozen=True)
+class AsperityParameters:
+    """η [1/m²], σ [m], β [m] of one estimator, plus the summit-height mean/std [m]."""
+
+    method: str
+    asperity_density: float
+    rms: float
+    summit_radius: float
+    summit_height_mean: float
+    summit_height_std: float
+
+    UNITS = {"asperity_density": "1/m²", "rms": "m", "summit_radius": "m",
+             "summit_height_mean": "m", "summit_height_std": "m", "roughness_parameter": "-"}
+
+    @property
+    def roughness_parameter(self) -> float:
+        """ηβσ [-]."""
+        return self.asperity_density * self.summit_radius * self.rms
+
+    def to_roughness(self) -> Roughness:
+        return Roughness(asperity_density=self.asperity_density, rms=self.rms,
+                         summit_radius=self.summit_radius)
+
+    def to_dict(self) -> dict:
+        return {"method": self.method, "asperity_density": self.asperity_density,
+                "rms": self.rms, "summit_radius": self.summit_radius,
+                "roughness_parameter": self.roughness_parameter,
+                "summit_height_mean": self.summit_height_mean,
+                "summit_height_std": self.summit_height_std, "units": dict(self.UNITS)}
+
+
+def _summit_parameters(s: SummitStatistics, rms: float) -> AsperityParameters:
+    return AsperityParameters("summits", s.asperity_density, rms, s.summit_radius,
+                              s.summit_height_mean, s.summit_height_std)
+
+
+def _spectral_parameters(m: McCoolParameters, rms: float | None = None) -> AsperityParameters:
+    return AsperityParameters("spectral", m.asperity_density, m.rms if rms is None else rms,
+                              m.summit_radius, m.summit_height_mean, m.summit_height_std)
+
+
+def _check_method(method: str) -> str:
+    if method not in METHODS:
+        raise InputError(f"method must be one of {METHODS} (got {method!r})")
+    return method
+
+
+class _TomlMixin:
+    def to_roughness(self, method: str = "summits") -> Roughness:
+        """tribodyn ``Roughness`` (η, σ, β) from the chosen estimator."""
+        return self.parameters(method).to_roughness()
+
+    def toml_block(self, method: str = "summits") -> str:
+        """``[roughness]`` block for a case file, with band and sampling as comments."""
+        p = self.parameters(method)
+        lines = ["[roughness]",
+                 f"# {self.describe_source()}: {METHOD_LABELS[_check_method(method)]}, "
+                 f"ηβσ = {p.roughness_parameter:.4g}"]
+        lines += [f"# {line}" for line in self.describe_conditions()]
+        lines += [f"asperity_density = {p.asperity_density:.6g}  # η [1/m²]",
+                  f"rms = {p.rms:.6g}  # σ [m]",
+                  f"summit_radius = {p.summit_radius:.6g}  # β [m]"]
+        return "\n".join(lines) + "\n"
+
+
+@dataclass(frozen=True)
+class SurfaceAnalysis(_TomlMixin):
+    """Roughness parameters of one measured (or synthetic) surface.
+
+    ``summit_stats`` from 8-neighbour summits with 3-point curvature, ``mccool`` from the
+    spectral moments ``moments`` of the same filtered map; ``heights`` holds σ, Ssk, Sku.
+    ``slope_anisotropy`` = max/min of the mean-square slopes along x and y (1 = isotropic;
+    McCool's formulas assume isotropy). ``topography`` is the filtered map (m).
+    """
+
+    name: str
+    sampling: Sampling
+    band: Band
+    heights: HeightStatistics
+    moments: SpectralMoments
+    summit_stats: SummitStatistics
+    mccool: McCoolParameters
+    slope_anisotropy: float
+    notes: tuple[str, ...] = ()
+    source: dict | None = None
+    topography: object = field(default=None, repr=False, compare=False)
+
+    @property
+    def rms(self) -> float:
+        """σ, RMS height of the filtered map [m]."""
+        return self.heights.rms
+
+    @property
+    def summits(self) -> AsperityParameters:
+        return _summit_parameters(self.summit_stats, self.heights.rms)
+
+    @property
+    def spectral(self) -> AsperityParameters:
+        return _spectral_parameters(self.mccool)
+
+    def parameters(self, method: str = "summits") -> AsperityParameters:
+        return self.summits if _check_method(method) == "summits" else self.spectral
+
+    def describe_source(self) -> str:
+        return f"surface '{self.name}'"
+
+    def describe_conditions(self) -> list[str]:
+        return [f"band {self.band.describe()}", f"sampling {self.sampling.describe()}"]
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "source": self.source, "band": self.band.to_dict(),
+                "sampling": self.sampling.to_dict(), "heights": self.heights.to_dict(),
+                "moments": self.moments.to_dict(), "summits": self.summits.to_dict(),
+                "summit_count": self.summit_stats.count,
+                "summit_area": self.summit_stats.area,
+                "nonconvex_summit_fraction": self.summit_stats.nonconvex_fraction,
+                "spectral": self.spectral.to_dict(), "slope_anisotropy": self.slope_anisotropy,
+                "notes": list(self.notes)}
+
+
+@dataclass(frozen=True)
+class PairAnalysis(_TomlMixin):
+    """Composite roughness of a pair (cam and tappet), Greenwood–Tripp's equivalent surface.
+
+    σ = √(σ₁² + σ₂²). Spectral: moments of the sum surface are the sums of the moments
+    (independent surfaces), then McCool. Summits: 8-neighbour analysis of the sum surface
+    h₁ + h₂ on the common grid (``None`` if the two maps are sampled differently).
+    """
+
+    first: SurfaceAnalysis
+    second: SurfaceAnalysis
+    moments: SpectralMoments
+    mccool: McCoolParameters
+    summit_stats: SummitStatistics | None
+    sum_heights: HeightStatistics | None
+    notes: tuple[str, ...] = ()
+
+    @property
+    def rms(self) -> float:
+        """Composite σ = √(σ₁² + σ₂²) [m]."""
+        return (self.first.rms**2 + self.second.rms**2) ** 0.5
+
+    @property
+    def summits(self) -> AsperityParameters | None:
+        if self.summit_stats is None:
+            return None
+        return _summit_parameters(self.summit_stats, self.rms)
+
+    @property
+    def spectral(self) -> AsperityParameters:
+        return _spectral_parameters(self.mccool, self.rms)
+
+    def parameters(self, method: str = "summits") -> AsperityParameters:
+        if _check_method(method) == "spectral":
+            return self.spectral
+        if self.summit_stats is None:
+            raise InputError("no composite summit analysis (the two maps are sampled "
+                             "differently); use method='spectral'")
+        return self.summits
+
+    def describe_source(self) -> str:
+        return f"composite of '{self.first.name}' + '{self.second.name}'"
+
+    def describe_conditions(self) -> list[str]:
+        a, b = self.first, self.second
+        if a.band == b.band:
+            lines = [f"band {a.band.describe()}"]
+        else:
+            lines = [f"band {a.name}: {a.band.describe()}", f"band {b.name}: {b.band.describe()}"]
+        if a.sampling == b.sampling:
+            lines.append(f"sampling (both) {a.sampling.describe()}")
+        else:
+            lines += [f"sampling {a.name}: {a.sampling.describe()}",
+                      f"sampling {b.name}: {b.sampling.describe()}"]
+        return lines
+
+    def to_dict(self) -> dict:
+        return {"first": self.first.to_dict(), "second": self.second.to_dict(),
+                "composite": {
+                    "rms": self.rms, "moments": self.moments.to_dict(),
+                    "summits": None if self.summits is None else self.summits.to_dict(),
+                    "summit_count": None if self.summit_stats is None else self.summit_stats.count,
+                    "sum_surface_heights": (None if self.sum_heights is None
+                                            else self.sum_heights.to_dict()),
+                    "spectral": self.spectral.to_dict(), "notes": list(self.notes),
+                    "units": {"rms": "m"}}}
