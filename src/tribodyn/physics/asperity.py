@@ -6,6 +6,9 @@ Statistical functions of a Gaussian summit-height distribution (Greenwood & Trip
            = Γ(n+1) exp(−λ²/4) D_{−n−1}(λ) / √(2π)          (D: parabolic cylinder fn.)
     dF_n/dλ = −n F_{n−1}(λ)                                  (n ≥ 1)
 
+For λ < −12 the Gaussian-moment series E[(s − λ)^n] in powers of 1/λ² is used (the
+parabolic-cylinder product overflows there); it agrees with the integral to < 1e-12.
+
 Local asperity pressure and real-area fraction at a gap h (paper Eqs. 6 and 18, applied
 pointwise; E' = reduced modulus of the surface materials, 1/E' = ½Σ(1−ν²)/E)::
 
@@ -36,12 +39,36 @@ _PAPER_F52 = (0.000421, -0.008538, 0.07162, -0.3193, 0.802, -1.082, 0.6166)
 _PAPER_F2 = (-0.002, 0.028, -0.173, 0.526, -0.804, 0.5)
 
 
+_LAM_NEG = -12.0     # below: asymptotic series (exp(−λ²/4)·D_{−n−1}(λ) is 0·∞ for λ ≲ −38)
+_LAM_POS = 37.0      # above: F_n < φ(λ)/λ ≈ 1e-300, i.e. 0 in double precision
+
+
+def _negative_series(n: float, lam: np.ndarray) -> np.ndarray:
+    """F_n(λ) for λ ≪ 0: E[(s + |λ|)^n] = |λ|^n Σ_k C(n, 2k) (2k−1)!! |λ|^(−2k)
+    (Gaussian moments; the part of the integral below s = λ is < φ(λ) ~ e^(−72))."""
+    a = np.abs(lam)
+    total = np.ones_like(a)
+    coef, dfact = 1.0, 1.0
+    for k in range(1, 12):
+        coef *= (n - 2 * k + 2) * (n - 2 * k + 1) / ((2 * k - 1) * (2 * k))
+        dfact *= 2 * k - 1
+        total = total + coef * dfact * a ** (-2.0 * k)
+    return a**n * total
+
+
 def _exact(n: float, lam: np.ndarray) -> np.ndarray:
     if n == 0.0:
         return 0.5 * special.erfc(lam / math.sqrt(2.0))
-    d, _ = special.pbdv(-n - 1.0, lam)
-    # exp(−λ²/4)·D underflows cleanly to 0 for λ ≳ 38; both factors stay finite.
-    return math.gamma(n + 1.0) * np.exp(-0.25 * lam * lam) * d / _SQRT_2PI
+    lam = np.asarray(lam, dtype=float)
+    neg = lam < _LAM_NEG
+    far = lam > _LAM_POS
+    lam_c = np.where(neg | far, 0.0, lam)
+    d, _ = special.pbdv(-n - 1.0, lam_c)
+    out = math.gamma(n + 1.0) * np.exp(-0.25 * lam_c * lam_c) * d / _SQRT_2PI
+    out = np.where(far, 0.0, out)
+    if np.any(neg):
+        out = np.where(neg, _negative_series(n, lam), out)
+    return out
 
 
 def greenwood_tripp(n, lam, method: str = "exact"):

@@ -1,0 +1,239 @@
+"""Tribology models seen by the valvetrain dynamics.
+
+The dynamics asks a :class:`TribologyModel` two things about the cam–tappet contact:
+
+* ``friction(t, force, entrainment_speed, sliding_speed, radius)`` — the friction force
+  magnitude F_f ≥ 0 [N] over the whole cam width at contact force F [N], u_e, u_s [m/s],
+  R [m]. It acts on the bodies as the paper's frictional damping: it loads the cam with the
+  torque F_f (r_b + s), dissipates F_f u_s at the contact, and presses the tappet against
+  its bore, where μ_b F_f opposes the tappet velocity.
+* ``film(t, force, entrainment_speed, radius)`` → (h, dh/dF) — the lubricant film that acts
+  in series with the contact stiffness (implicit coupling): the elastic approach is
+  δ_el = δ_kin + h(t, F), δ_kin = s − x_tappet the kinematic interference. h is in m,
+  dh/dF ≤ 0 in m/N. Explicit models (the paper's choice) return no film.
+
+``t`` is the simulation time [s] from the start of the run (cam angle θ = θ₀ + ωt).
+All methods must accept arrays (broadcast together) as well as floats.
+
+Models here: :class:`Frictionless`, :class:`AnalyticTribology` (explicit default: film
+formula + Greenwood–Tripp boundary friction + viscous friction, per unit length × width),
+and :class:`FilmTableTribology`, the hook for the implicit coupling: a friction model plus
+a film law linearised about reference forces, h = h_k(t) + c_k(t)(F − F_k(t)), c_k ≤ 0,
+tabulated in time (what transient-EHL runs provide, iterated by waveform relaxation).
+"""
+
+from __future__ import annotations
+
+import bisect
+from abc import ABC, abstractmethod
+
+import numpy as np
+
+from .._validation import InputError, check_array, check_positive
+from ..physics.analytic_contact import analytic_contact
+from ..physics.asperity import Roughness
+from ..physics.lubricant import SAE_5W20, Lubricant
+from ..physics.materials import STEEL, Body
+
+__all__ = ["TribologyModel", "Frictionless", "AnalyticTribology", "FilmTableTribology",
+           "PAPER_ROUGHNESS_UNCOATED"]
+
+#: Paper Table 4, uncoated tappet: η = 8.3e9 m⁻², σ = 0.408 µm, β = 0.669 µm.
+PAPER_ROUGHNESS_UNCOATED = Roughness(asperity_density=8.3e9, rms=0.408e-6,
+                                     summit_radius=0.669e-6)
+
+
+class TribologyModel(ABC):
+    """Interface between the valvetrain dynamics and a contact tribology model."""
+
+    #: friction depends on time only through the cam angle θ mod 2π (and F): the dynamics
+    #: may then tabulate it over one revolution instead of calling it at every step.
+    periodic_in_cam_angle: bool = True
+    #: the model supplies a film law h(t, F) in series with the contact (implicit coupling).
+    has_film: bool = False
+    name: str = "tribology"
+
+    @abstractmethod
+    def friction(self, t, force, entrainment_speed, sliding_speed, radius):
+        """Friction force magnitude F_f ≥ 0 [N] over the cam width (vectorised)."""
+
+    def film(self, t, force, entrainment_speed, radius):
+        """(h [m], dh/dF [m/N], ≤ 0) of the film in series with the contact."""
+        return 0.0, 0.0
+
+    def report(self, t, force, entrainment_speed, sliding_speed, radius) -> dict:
+        """Optional extra outputs (arrays) for the presented cycle, e.g. central film."""
+        return {}
+
+
+class Frictionless(TribologyModel):
+    """No friction, no film (for verification against rigid-body/energy results)."""
+
+    name = "frictionless"
+
+    def friction(self, t, force, entrainment_speed, sliding_speed, radius):
+        return np.zeros(np.broadcast(t, force, entrainment_speed, sliding_speed,
+                                     radius).shape)
+
+
+class AnalyticTribology(TribologyModel):
+    """Explicit tribology (paper Section 2.1 "simple analytical tribology").
+
+    Evaluates :func:`tribodyn.physics.analytic_contact.analytic_contact` at the load per
+    unit length w = F/width and multiplies its friction (viscous, Eyring or Newtonian,
+    plus Greenwood–Tripp boundary friction τ₀A_a + ςW_a) by the width. No film compliance
+    (the paper's explicit approach).
+
+    Parameters
+    ----------
+    width : cam width [m] (paper Table 7: 0.012); must equal the valvetrain's cam_width.
+    bodies : (cam, tappet) bodies (default steel/steel).
+    lubricant : default SAE 5W-20 (paper Table 5).
+    roughness : Greenwood–Tripp roughness or None (default paper Table 4, uncoated).
+    boundary_shear_coefficient : ς (steel 0.185, DLC 0.44, WC-C 0.54; paper Table 6).
+    viscous_model, film_formula, limiting_shear : passed to ``analytic_contact``.
+    """
+
+    name = "analytic"
+
+    def __init__(self, width: float = 0.012, *, bodies=None, lubricant: Lubricant = SAE_5W20,
+                 roughness: Roughness | None = PAPER_ROUGHNESS_UNCOATED,
+                 boundary_shear_coefficient: float = 0.185, viscous_model: str = "eyring",
+                 film_formula: str = "moes", limiting_shear: bool = True):
+        self.width = check_positive("width", width, "m")
+        self.bodies = tuple(bodies) if bodies is not None else (Body(STEEL), Body(STEEL))
+        if not isinstance(lubricant, Lubricant):
+            raise InputError(f"lubricant must be a Lubricant (got {type(lubricant).__name__})")
+        self.lubricant = lubricant
+        self.roughness = roughness
+        self.kwargs = dict(boundary_shear_coefficient=boundary_shear_coefficient,
+                           viscous_model=viscous_model, film_formula=film_formula,
+                           limiting_shear=limiting_shear)
+
+    def _contact(self, force, ue, us, R):
+        w = np.maximum(np.asarray(force, dtype=float), 0.0) / self.width
+        # Very light loads give films of thousands of σ: Greenwood–Tripp underflows (and
+        # scipy's pbdv returns NaN for λ ≳ 10³); the asperity terms are exactly 0 there.
+        with np.errstate(under="ignore", invalid="ignore"):
+            c = analytic_contact(w, np.maximum(R, 1e-9), ue, us, self.bodies, self.lubricant,
+                                 self.roughness, **self.kwargs)
+        if self.roughness is not None:
+            far = np.asarray(c.central_film) > 38.0 * self.roughness.rms
+            for name in ("asperity_load", "boundary_friction"):
+                v = np.asarray(getattr(c, name), dtype=float)
+                setattr(c, name, np.where(far, 0.0, v))
+        return c
+
+    def friction(self, t, force, entrainment_speed, sliding_speed, radius):
+        c = self._contact(force, entrainment_speed, sliding_speed, radius)
+        f = c.friction * self.width
+        return np.where(np.asarray(force) > 0.0, f, 0.0)
+
+    def report(self, t, force, entrainment_speed, sliding_speed, radius) -> dict:
+        c = self._contact(force, entrainment_speed, sliding_speed, radius)
+        on = np.asarray(force) > 0.0
+        return {"central_film": c.central_film, "min_film": c.min_film,
+                "viscous_friction": np.where(on, c.viscous_friction * self.width, 0.0),
+                "boundary_friction": np.where(on, c.boundary_friction * self.width, 0.0),
+                "asperity_load": np.where(on, c.asperity_load * self.width, 0.0),
+                "regime": c.regime}
+
+
+class FilmTableTribology(TribologyModel):
+    """Hook for the implicit coupling: friction model + tabulated, linearised film law.
+
+    h(t, F) = h_k(t) + c_k(t) (F − F_k(t)),   dh/dF = c_k(t) ≤ 0
+
+    with h_k, c_k, F_k given at increasing times ``time`` [s] (simulation time of the
+    valvetrain run) and interpolated linearly. With ``period`` [s] (one engine cycle = one
+    cam revolution, 2π/ω) the table is used periodically, t ↦ time[0] + (t − time[0])
+    mod period, so a film history from the presented cycle also drives the first cycle.
+
+    Datum: the dynamics measures the tappet from static equilibrium, where it touches the
+    base circle at zero force. A film present there only shifts that datum, so give h_k
+    relative to the base-circle film (a steady film formula diverges at zero load anyway);
+    only changes of h along the cycle and the compliance c_k act on the motion.
+
+    Parameters
+    ----------
+    friction_model : the model supplying ``friction`` (e.g. :class:`AnalyticTribology`).
+    time : sample times [s], strictly increasing.
+    film : h_k [m] at those times (finite; may be ≤ 0 only if the user means it).
+    compliance : c_k [m/N] ≤ 0 (default 0: film independent of load).
+    reference_force : F_k [N] (default 0).
+    period : optional period [s] of the table.
+    """
+
+    has_film = True
+    name = "film-table"
+
+    def __init__(self, friction_model: TribologyModel, time, film, compliance=None,
+                 reference_force=None, *, period: float | None = None):
+        if not isinstance(friction_model, TribologyModel):
+            raise InputError("friction_model must be a TribologyModel (got "
+                             f"{type(friction_model).__name__})")
+        self.friction_model = friction_model
+        self.periodic_in_cam_angle = friction_model.periodic_in_cam_angle
+        t = check_array("time", np.atleast_1d(time), min_size=1)
+        if t.size > 1 and np.any(np.diff(t) <= 0.0):
+            raise InputError("time must be strictly increasing")
+        n = t.size
+
+        def arr(name, v, default):
+            a = np.full(n, default) if v is None else np.broadcast_to(
+                check_array(name, np.atleast_1d(v), min_size=1), (n,)).astype(float)
+            return a
+
+        self.time = t
+        self.h = arr("film", film, 0.0)
+        self.c = arr("compliance", compliance, 0.0)
+        if np.any(self.c > 0.0):
+            raise InputError("compliance must be <= 0 (film thickness cannot grow with load)")
+        self.Fk = arr("reference_force", reference_force, 0.0)
+        self.period = None if period is None else check_positive("period", period, "s")
+        self._t0 = float(t[0])
+        self._tl, self._hl, self._cl, self._fl = (t.tolist(), self.h.tolist(),
+                                                  self.c.tolist(), self.Fk.tolist())
+
+    def _wrap(self, t):
+        if self.period is None:
+            return t
+        return self._t0 + np.mod(np.asarray(t, dtype=float) - self._t0, self.period)
+
+    def friction(self, t, force, entrainment_speed, sliding_speed, radius):
+        return self.friction_model.friction(t, force, entrainment_speed, sliding_speed, radius)
+
+    def _scalar_film(self, t: float, force: float) -> tuple[float, float]:
+        tl = self._tl
+        if self.period is not None:
+            t = self._t0 + (t - self._t0) % self.period
+        k = bisect.bisect_right(tl, t) - 1
+        if k < 0:
+            i, a = 0, 0.0
+        elif k >= len(tl) - 1:
+            i, a = len(tl) - 1, 0.0
+        else:
+            i, a = k, (t - tl[k]) / (tl[k + 1] - tl[k])
+        j = min(i + 1, len(tl) - 1)
+        hk = self._hl[i] + a * (self._hl[j] - self._hl[i])
+        ck = self._cl[i] + a * (self._cl[j] - self._cl[i])
+        fk = self._fl[i] + a * (self._fl[j] - self._fl[i])
+        return hk + ck * (force - fk), ck
+
+    def film(self, t, force, entrainment_speed, radius):
+        if np.ndim(t) == 0 and np.ndim(force) == 0:
+            return self._scalar_film(float(t), float(force))
+        tt = self._wrap(t)
+        if self.time.size == 1:
+            hk, ck, fk = self.h[0], self.c[0], self.Fk[0]
+        else:
+            hk = np.interp(tt, self.time, self.h)
+            ck = np.interp(tt, self.time, self.c)
+            fk = np.interp(tt, self.time, self.Fk)
+        return hk + ck * (force - fk), ck * np.ones_like(np.asarray(force, dtype=float))
+
+    def report(self, t, force, entrainment_speed, sliding_speed, radius) -> dict:
+        out = dict(self.friction_model.report(t, force, entrainment_speed, sliding_speed,
+                                              radius))
+        out["series_film"] = self.film(t, force, entrainment_speed, radius)[0]
+        return out
