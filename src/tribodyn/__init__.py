@@ -8,6 +8,7 @@ uncoated and coated (DLC, WC-C) tappets. Method after Andreou et al., Appl. Sci.
 
 from ._validation import InputError
 from .contact.dry import DryContactResult, solve_dry_contact
+from .contact.ehl import EHLOptions, EHLResult, TransientEHL, solve_ehl
 from .physics.asperity import Roughness, greenwood_tripp
 from .physics.elasticity import DeformationOperator
 from .physics.hertz import hertz_line_contact
@@ -17,7 +18,7 @@ from .physics.materials import Body, Coating, Material, reduced_modulus
 __version__ = "0.1.0"
 
 __all__ = [
-    "Body", "Coating", "DeformationOperator", "DryContactResult", "InputError", "Lubricant",
-    "Material", "Roughness", "greenwood_tripp", "hertz_line_contact", "reduced_modulus",
-    "solve_dry_contact", "__version__",
+    "Body", "Coating", "DeformationOperator", "DryContactResult", "EHLOptions", "EHLResult",
+    "InputError", "Lubricant", "Material", "Roughness", "TransientEHL", "greenwood_tripp",
+    "hertz_line_contact", "reduced_modulus", "solve_dry_contact", "solve_ehl", "__version__",
 ]

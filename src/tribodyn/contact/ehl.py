@@ -1,0 +1,941 @@
+"""Mixed elastohydrodynamic line contact: steady and transient (paper Section 2.4, Eqs. 1–9).
+
+Equations (x in the frame of the contact point, u_e the mean entraining speed):
+
+* Reynolds (Eq. 1)      ∂/∂x(ρh³/(12μ) ∂p/∂x) − u_e ∂(ρh)/∂x − ∂(ρh)/∂t = 0
+* cavitation            p ≥ 0, Reynolds residual ≤ 0, p·residual = 0 (complementarity;
+                        the Reynolds exit condition p = dp/dx = 0, Eq. 4, emerges)
+* film (Eq. 9)          h = h₀ + x²/(2R) + V(x),  V = K (p + p_a)   (DC-FFT, coated or not)
+* asperities (Eq. 6)    p_a = (8√2/15)π(ηβσ)²√(σ/β) E' F_5/2(h/σ), local, load-carrying
+* load balance (Eq. 8)  ∫(p + p_a) dx = w
+* rheology              Roelands (or Barus) μ(p), Dowson–Higginson ρ(p)
+
+Discretisation: uniform grid (needed by DC-FFT), finite volumes with arithmetic-mean
+face coefficients, second-order upwind Couette term (first order next to the inlet),
+backward-difference (BDF1/BDF2) time derivative. Unknowns p_i and h₀ are found by a
+semismooth Newton method on min(p_i, −c_i R_i) = 0 with a dense Jacobian
+J = A_p + A_h S, S = ∂h/∂p = (I − K D_a)⁻¹ K (D_a = dp_a/dh; Woodbury on the asperity-
+active set), and an Armijo line search. Cold starts go through load continuation when
+the direct Newton iteration fails.
+
+Scaling: a = max(b, √(2R h_est)) (b: Hertz half-width; h_est: Moes central film) so
+that both elastic and rigid (inlet-dominated) contacts get a sufficient domain;
+P = p a/w, H = h R/a², X = x/a.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy import linalg
+
+from .._validation import InputError, check_nonnegative, check_positive, check_real
+from ..physics.asperity import Roughness
+from ..physics.elasticity import DeformationOperator, influence_coefficients
+from ..physics.friction import (BOUNDARY_SHEAR_STRENGTH, VISCOUS_MODELS,
+                                boundary_shear_stress, couette_shear_stress,
+                                limit_shear_stress)
+from ..physics.lubricant import Lubricant
+from ..physics.materials import _as_bodies, reduced_modulus
+from ..physics.regimes import hamrock_groups, moes_central
+
+__all__ = ["EHLResult", "EHLOptions", "solve_ehl", "TransientEHL"]
+_NONMONOTONE = 6
+_COARSEST = 128
+_MAX_KRYLOV = 30
+_MAX_KRYLOV_BEFORE_REFACTOR = 12
+
+
+# ----------------------------------------------------------------------------- options
+@dataclass(frozen=True)
+class EHLOptions:
+    """Numerical settings of the EHL solvers.
+
+    n : grid nodes (uniform).
+    inlet, outlet : domain extent upstream/downstream of the contact centre, in units of
+        the length scale a = max(b, √(2R h_est)).
+    tol : Newton tolerance on the scaled pressure/film update and residual.
+    max_iter : Newton iterations per solve.
+    elastic : False treats both bodies as rigid (hydrodynamic validation cases).
+    viscous_model, limiting_shear : friction laws (see physics.friction).
+    boundary_shear_strength, boundary_shear_coefficient : τ₀ and ς of Eq. 17.
+    time_order : 1 (backward Euler) or 2 (BDF2) for the transient term.
+    """
+
+    n: int = 512
+    inlet: float = 4.0
+    outlet: float = 1.75
+    tol: float = 1e-9
+    max_iter: int = 60
+    elastic: bool = True
+    viscous_model: str = "eyring"
+    limiting_shear: bool = True
+    boundary_shear_strength: float = BOUNDARY_SHEAR_STRENGTH
+    boundary_shear_coefficient: float = 0.185
+    time_order: int = 2
+
+    def __post_init__(self):
+        if int(self.n) < 32:
+            raise InputError(f"n must be >= 32 (got {self.n})")
+        for name in ("inlet", "outlet"):
+            v = check_positive(name, getattr(self, name))
+            if v < 1.0:
+                raise InputError(f"{name} must be >= 1 length scale (got {v:g})")
+        check_positive("tol", self.tol)
+        if int(self.max_iter) < 1:
+            raise InputError(f"max_iter must be >= 1 (got {self.max_iter})")
+        if self.viscous_model not in VISCOUS_MODELS:
+            raise InputError(f"viscous_model must be one of {VISCOUS_MODELS} "
+                             f"(got {self.viscous_model!r})")
+        check_nonnegative("boundary_shear_strength", self.boundary_shear_strength, "Pa")
+        check_nonnegative("boundary_shear_coefficient", self.boundary_shear_coefficient)
+        if self.time_order not in (1, 2):
+            raise InputError(f"time_order must be 1 or 2 (got {self.time_order})")
+
+
+# ----------------------------------------------------------------------------- result
+@dataclass
+class EHLResult:
+    """Line-contact EHL solution (per unit length, SI). Friction forces are magnitudes."""
+
+    x: np.ndarray                   #: node positions [m] (contact frame)
+    pressure: np.ndarray            #: hydrodynamic pressure p [Pa]
+    asperity_pressure: np.ndarray   #: Greenwood–Tripp asperity pressure p_a [Pa]
+    film: np.ndarray                #: film thickness h [m]
+    central_film: float             #: h at x = 0 [m]
+    min_film: float                 #: min h [m]
+    min_film_position: float        #: x of min h [m]
+    cavitation_position: float      #: outlet meniscus (p → 0) [m]
+    rigid_approach: float           #: h₀ (includes the 2-D elastic constant) [m]
+    load: float                     #: imposed w [N/m]
+    hydrodynamic_load: float        #: ∫p dx [N/m]
+    asperity_load: float            #: ∫p_a dx [N/m]
+    viscous_friction: float         #: ∫|τ_couette| dx [N/m]
+    rolling_friction: float         #: ∫(h/2)|dp/dx| dx, Poiseuille part of Eq. 16 [N/m]
+    boundary_friction: float        #: ∫(τ₀ A_a/A + ς p_a) dx [N/m]
+    entrainment_speed: float
+    sliding_speed: float
+    radius: float
+    converged: bool
+    iterations: int
+    message: str
+    time: float = 0.0
+    squeeze_velocity: float = 0.0   #: −dh₀/dt [m/s] (transient)
+    shear_stress: np.ndarray = field(default=None, repr=False)   #: viscous τ(x) [Pa]
+
+    @property
+    def friction(self) -> float:
+        """Viscous + boundary friction [N/m]."""
+        return self.viscous_friction + self.boundary_friction
+
+    @property
+    def friction_coefficient(self) -> float:
+        return self.friction / self.load
+
+    def totals(self, width: float) -> dict:
+        """Loads [N] and friction forces [N] over a contact width [m]."""
+        width = check_positive("width", width, "m")
+        return {k: getattr(self, k) * width for k in (
+            "load", "hydrodynamic_load", "asperity_load", "viscous_friction",
+            "rolling_friction", "boundary_friction", "friction")}
+
+
+# ----------------------------------------------------------------------------- helpers
+def _check_inputs(load, radius, entrainment_speed, sliding_speed):
+    w = check_positive("load", load, "N/m")
+    r = check_positive("radius", radius, "m")
+    ue = check_real("entrainment_speed", entrainment_speed, "m/s")
+    us = check_real("sliding_speed", sliding_speed, "m/s")
+    return w, r, ue, us
+
+
+def _check_models(bodies, lubricant, roughness):
+    bodies = _as_bodies(bodies)
+    if not isinstance(lubricant, Lubricant):
+        raise InputError(f"lubricant must be a Lubricant (got {type(lubricant).__name__})")
+    if roughness is not None and not isinstance(roughness, Roughness):
+        raise InputError(f"roughness must be a Roughness or None (got {type(roughness).__name__})")
+    return bodies
+
+
+def _length_scale(w, R, ue, e_bulk, lub: Lubricant, squeeze_film=None):
+    """a = max(b, √(2R h_est)); h_est from Moes (or the squeeze film when u_e ≈ 0)."""
+    b = math.sqrt(8.0 * w * R / (math.pi * e_bulk))
+    u = max(abs(ue), 1e-3)
+    W, U, G = hamrock_groups(w, R, u, lub.viscosity, lub.pressure_viscosity, e_bulk)
+    h_est = float(moes_central(W, U, G, R))
+    if squeeze_film is not None:
+        h_est = max(h_est, squeeze_film)
+    return max(b, math.sqrt(2.0 * R * h_est)), b, h_est
+
+
+class _Grid:
+    """Uniform grid in the contact frame with scaled influence matrix."""
+
+    def __init__(self, bodies, a, inlet, outlet, n, direction, elastic, w, R):
+        self.a, self.n, self.direction = a, n, direction
+        # upstream side is −x for u_e > 0; mirrored for u_e < 0; symmetric for pure squeeze
+        if direction > 0:
+            lo, hi = -inlet, outlet
+        elif direction < 0:
+            lo, hi = -outlet, inlet
+        else:
+            lo, hi = -inlet, inlet
+        self.X = np.linspace(lo, hi, n)
+        self.dX = self.X[1] - self.X[0]
+        self.x = self.X * a
+        self.i0 = int(np.argmin(np.abs(self.X)))
+        self.p_ref = w / a
+        self.h_ref = a * a / R
+        if elastic:
+            coef = influence_coefficients(bodies, self.dX * a, n) * (self.p_ref / self.h_ref)
+            self.K = linalg.toeplitz(coef)
+            self.Kop = DeformationOperator.from_coefficients(coef)
+        else:
+            self.K = None
+            self.Kop = None
+
+    def same_as(self, a, inlet, outlet, n, direction):
+        return (self.n == n and self.direction == direction
+                and abs(a / self.a - 1.0) < 0.02)
+
+
+@dataclass
+class _State:
+    P: np.ndarray
+    H: np.ndarray
+    H0: float
+
+
+# ----------------------------------------------------------------------------- core
+class _ReynoldsSystem:
+    """Scaled discrete system for one solve (one time level)."""
+
+    def __init__(self, grid: _Grid, w, R, ue, lub: Lubricant, roughness, e_surface,
+                 time_coef=0.0, f_old=None):
+        self.g = grid
+        self.lub = lub
+        self.rough = roughness
+        a, p_ref, h_ref = grid.a, grid.p_ref, grid.h_ref
+        self.u_scale = max(abs(ue), 1e-3)
+        self.ubar = ue / self.u_scale
+        self.lam = h_ref**2 * p_ref / (12.0 * lub.viscosity * a * self.u_scale)
+        self.geom = 0.5 * grid.X**2
+        # time term: c_t (f − f_old) with f = ρ̄H, c_t = a/(U Δt)·α₀
+        self.time_coef = time_coef * a / self.u_scale
+        self.f_old = f_old
+        self.h_floor = 1e-10 / h_ref
+        if roughness is not None:
+            self.ka = roughness.pressure_scale(e_surface) / p_ref
+            self.sig = roughness.rms / h_ref
+        n = grid.n
+        # upwind second-order stencil for d/dX (ρ̄H) at node i: Σ_k c_k f[i − s k]
+        s = 1 if self.ubar >= 0 else -1
+        self.s = s
+        idx = np.arange(n)
+        self.up1 = np.clip(idx - s, 0, n - 1)
+        self.up2 = np.clip(idx - 2 * s, 0, n - 1)
+        second = (idx - 2 * s >= 0) & (idx - 2 * s <= n - 1)
+        self.c0 = np.where(second, 1.5, 1.0)
+        self.c1 = np.where(second, -2.0, -1.0)
+        self.c2 = np.where(second, 0.5, 0.0)
+
+    # -- asperities
+    def asperity(self, H):
+        if self.rough is None:
+            z = np.zeros_like(H)
+            return z, z
+        from ..physics.asperity import greenwood_tripp, greenwood_tripp_derivative
+        lam = H / self.sig
+        m = self.rough.method
+        pa = self.ka * greenwood_tripp(2.5, lam, m)
+        dpa = self.ka / self.sig * greenwood_tripp_derivative(2.5, lam, m)
+        return pa, dpa
+
+    def film(self, P, H0, H_guess=None):
+        """H = H0 + X²/2 + K(P + Pa(H)): Newton on the local asperity feedback (Woodbury)."""
+        g = self.g
+        if g.K is None:                       # rigid bodies: asperities deform nothing
+            return H0 + self.geom
+        base = H0 + self.geom + g.K @ P
+        if self.rough is None:
+            return base
+        H = base.copy() if H_guess is None else H_guess.copy()
+        for _ in range(60):
+            pa, dpa = self.asperity(H)
+            r = H - base - g.K @ pa
+            if np.max(np.abs(r)) < 1e-13 * max(1.0, np.max(np.abs(H))):
+                break
+            H = H - self._solve_film_jacobian(dpa, r)
+        return H
+
+    def _solve_film_jacobian(self, dpa, r):
+        """(I − K D_a)⁻¹ r with D_a = diag(dpa), through the asperity-active set."""
+        g = self.g
+        act = np.flatnonzero(dpa != 0.0)
+        if act.size == 0:
+            return r
+        Da = dpa[act]
+        inner = np.eye(act.size) - g.K[np.ix_(act, act)] * Da[None, :]
+        y = linalg.solve(inner, r[act], check_finite=False)
+        return r + (g.K[:, act] * Da[None, :]) @ y
+
+    # -- residual and Jacobian
+    def evaluate(self, P, H, H0, want_jac=True):
+        g, lub = self.g, self.lub
+        n, dX = g.n, g.dX
+        p = P * g.p_ref
+        rho = lub.density_at(p) / lub.density
+        drho = lub.ddensity_dp(p) / lub.density * g.p_ref
+        lnmu = lub.log_viscosity_ratio(p)
+        dlnmu = lub.dlog_viscosity_dp(p) * g.p_ref
+        Hf = np.maximum(H, self.h_floor)
+        dHf = (H > self.h_floor).astype(float)
+        eps = self.lam * rho * Hf**3 * np.exp(-lnmu)
+        deps_dP = eps * (drho / rho - dlnmu)
+        deps_dH = 3.0 * eps / Hf * dHf
+        f = rho * H
+        df_dP = drho * H
+        df_dH = rho
+
+        R = np.zeros(n)
+        ef = 0.5 * (eps[1:] + eps[:-1])           # face i+½, i = 0..n−2
+        dP = np.diff(P)
+        flux = ef * dP                            # ε ∂P at faces
+        R[1:-1] = (flux[1:] - flux[:-1]) / dX**2
+        # upwind stencil Σ c_k f[i − s k] approximates s·df/dX, so −ū df/dX = −|ū| Σ …
+        cou = -abs(self.ubar) * (self.c0 * f + self.c1 * f[self.up1] + self.c2 * f[self.up2]) / dX
+        R[1:-1] += cou[1:-1]
+        if self.time_coef:
+            R[1:-1] -= self.time_coef * (f[1:-1] - self.f_old[1:-1])
+        pa, dpa = self.asperity(H)
+        load = dX * (np.sum(P) + np.sum(pa)) - 1.0
+        if not want_jac:
+            return R, load, eps, pa, dpa
+
+        # banded derivatives: A_P[i, i+d], A_H[i, i+d] for d = −2..2
+        AP = {d: np.zeros(n) for d in (-2, -1, 0, 1, 2)}
+        AH = {d: np.zeros(n) for d in (-2, -1, 0, 1, 2)}
+        i = np.arange(1, n - 1)
+        efp, efm = ef[i], ef[i - 1]               # faces i+½, i−½
+        AP[1][i] += efp / dX**2
+        AP[-1][i] += efm / dX**2
+        AP[0][i] += -(efp + efm) / dX**2
+        # through ε at nodes i−1, i, i+1
+        cp = (P[i + 1] - P[i]) / (2 * dX**2)
+        cm = (P[i] - P[i - 1]) / (2 * dX**2)
+        AP[1][i] += cp * deps_dP[i + 1]
+        AP[0][i] += (cp - cm) * deps_dP[i]
+        AP[-1][i] += -cm * deps_dP[i - 1]
+        AH[1][i] += cp * deps_dH[i + 1]
+        AH[0][i] += (cp - cm) * deps_dH[i]
+        AH[-1][i] += -cm * deps_dH[i - 1]
+        # Couette
+        s = self.s
+        for ck, off in ((self.c0, 0), (self.c1, -s), (self.c2, -2 * s)):
+            coef = -abs(self.ubar) * ck[i] / dX
+            valid = (i + off >= 0) & (i + off <= n - 1)
+            AP[off][i] += np.where(valid, coef * df_dP[np.clip(i + off, 0, n - 1)], 0.0)
+            AH[off][i] += np.where(valid, coef * df_dH[np.clip(i + off, 0, n - 1)], 0.0)
+        if self.time_coef:
+            AP[0][i] += -self.time_coef * df_dP[i]
+            AH[0][i] += -self.time_coef * df_dH[i]
+        return R, load, eps, pa, dpa, AP, AH
+
+    def sensitivity(self, dpa):
+        """S = ∂H/∂P and s0 = ∂H/∂H0 (identity film law + asperity feedback)."""
+        g = self.g
+        n = g.n
+        if g.K is None:
+            return None, np.ones(n)
+        act = np.flatnonzero(dpa != 0.0)
+        if self.rough is None or act.size == 0:
+            return g.K, np.ones(n)
+        # Woodbury: (I − K D)⁻¹ = I + K[:,a] D_a (I − K[a,a] D_a)⁻¹ E_aᵀ
+        Da = dpa[act]
+        inner = np.eye(act.size) - g.K[np.ix_(act, act)] * Da[None, :]
+        lu = linalg.lu_factor(inner, check_finite=False)
+        KaD = g.K[:, act] * Da[None, :]
+        S = g.K + KaD @ linalg.lu_solve(lu, g.K[act, :], check_finite=False)
+        s0 = 1.0 + KaD @ linalg.lu_solve(lu, np.ones(act.size), check_finite=False)
+        return S, s0
+
+
+def _band_apply(diags, v):
+    """y_i = Σ_d A_d[i] v[i+d] for a banded matrix stored by diagonals."""
+    n = v.size
+    y = diags[0] * v
+    for d, a in diags.items():
+        if d > 0:
+            y[: n - d] += a[: n - d] * v[d:]
+        elif d < 0:
+            y[-d:] += a[-d:] * v[: n + d]
+    return y
+
+
+class _Linearization:
+    """Newton system for (δP, δH₀) at one iterate, usable as a dense matrix (for LU) or
+    matrix-free (J·z costs one DC-FFT plus banded work, for preconditioned GMRES).
+
+    Rows: boundary nodes δP = −P; cavitated nodes δP_i = −P_i; free nodes
+    c_i[(A_P + A_H S) δP + A_H s₀ δH₀] = −c_i R_i; load row
+    ΔX[Σ δP + d_aᵀ(S δP + s₀ δH₀)] = −load residual.
+    """
+
+    def __init__(self, sysm: _ReynoldsSystem, P, c, cav, ev):
+        g = sysm.g
+        n = g.n
+        R, load, eps, pa, dpa, AP, AH = ev
+        self.n, self.dX, self.AP, self.AH, self.dpa = n, g.dX, AP, AH, dpa
+        self.S, self.s0 = sysm.sensitivity(dpa)
+        self.kop = g.Kop if self.S is g.K else None
+        self.col = np.zeros(n)
+        for d, v in AH.items():
+            rows = np.arange(max(0, -d), min(n, n - d))
+            self.col[rows] += v[rows] * self.s0[rows + d]
+        self.jhh = g.dX * float(np.dot(dpa, self.s0))
+        self.cav = cav.copy()
+        self.cav[0] = self.cav[-1] = True            # boundary rows behave as clamped rows
+        self.free = ~self.cav
+        self.c = c
+        rhs = -R.copy()
+        rhs[self.cav] = -P[self.cav]
+        rhs[self.free] *= c[self.free]
+        self.rhs = np.concatenate([rhs, [-load]])
+
+    def _sv(self, v):
+        if self.S is None:
+            return np.zeros_like(v)
+        if self.kop is not None:
+            return self.kop(v)
+        return self.S @ v
+
+    def matvec(self, z):
+        n = self.n
+        v, vh = z[:n], z[n]
+        sv = self._sv(v)
+        y = _band_apply(self.AP, v) + _band_apply(self.AH, sv) + self.col * vh
+        y[self.cav] = v[self.cav]
+        y[self.free] *= self.c[self.free]
+        load = self.dX * (np.sum(v) + np.dot(self.dpa, sv)) + self.jhh * vh
+        return np.concatenate([y, [load]])
+
+    def dense(self):
+        n = self.n
+        J = np.zeros((n + 1, n + 1))
+        idx = np.arange(n)
+        for d, v in self.AP.items():
+            rows = np.arange(max(0, -d), min(n, n - d))
+            J[rows, rows + d] += v[rows]
+        if self.S is not None:
+            for d, v in self.AH.items():
+                rows = np.arange(max(0, -d), min(n, n - d))
+                J[rows, :n] += v[rows, None] * self.S[rows + d, :]
+        J[:n, n] = self.col
+        J[n, :n] = self.dX * (1.0 + (self.dpa @ self.S if self.S is not None else 0.0))
+        J[n, n] = self.jhh
+        ic = idx[self.cav]
+        J[ic, :] = 0.0
+        J[ic, ic] = 1.0
+        J[idx[self.free], :] *= self.c[self.free][:, None]
+        return J
+
+
+def _gmres(lin: _Linearization, lu, rtol, max_it=None):
+    """Right-preconditioned GMRES for lin·x = rhs with an earlier LU as preconditioner,
+    started from the preconditioned solution. Returns (x, iterations) or (None, its)."""
+    max_it = max_it or _MAX_KRYLOV
+    b = lin.rhs
+    bn = float(np.linalg.norm(b))
+    if bn == 0.0:
+        return np.zeros_like(b), 0
+    prec = lambda v: linalg.lu_solve(lu, v, check_finite=False)  # noqa: E731
+    x0 = prec(b)
+    r0 = b - lin.matvec(x0)
+    beta = float(np.linalg.norm(r0))
+    if not np.isfinite(beta):
+        return None, 0
+    if beta <= rtol * bn:
+        return x0, 0
+    V = np.zeros((max_it + 1, b.size))
+    Hm = np.zeros((max_it + 1, max_it))
+    cs, sn = np.zeros(max_it), np.zeros(max_it)
+    gv = np.zeros(max_it + 1)
+    gv[0] = beta
+    V[0] = r0 / beta
+    for j in range(max_it):
+        w = lin.matvec(prec(V[j]))
+        for i in range(j + 1):
+            Hm[i, j] = np.dot(w, V[i])
+            w -= Hm[i, j] * V[i]
+        Hm[j + 1, j] = np.linalg.norm(w)
+        if Hm[j + 1, j] > 0.0:
+            V[j + 1] = w / Hm[j + 1, j]
+        for i in range(j):
+            t = cs[i] * Hm[i, j] + sn[i] * Hm[i + 1, j]
+            Hm[i + 1, j] = -sn[i] * Hm[i, j] + cs[i] * Hm[i + 1, j]
+            Hm[i, j] = t
+        den = math.hypot(Hm[j, j], Hm[j + 1, j])
+        if den == 0.0:
+            return None, j + 1
+        cs[j], sn[j] = Hm[j, j] / den, Hm[j + 1, j] / den
+        Hm[j, j] = den
+        Hm[j + 1, j] = 0.0
+        gv[j + 1] = -sn[j] * gv[j]
+        gv[j] = cs[j] * gv[j]
+        if abs(gv[j + 1]) <= rtol * bn or j == max_it - 1:
+            if abs(gv[j + 1]) > rtol * bn:
+                return None, j + 1
+            y = linalg.solve_triangular(Hm[: j + 1, : j + 1], gv[: j + 1], check_finite=False)
+            return x0 + prec(V[: j + 1].T @ y), j + 1
+    return None, max_it
+
+
+def _release(cav_std, prev_cav, release):
+    """Free `release` cavitated nodes ahead of each node that has just left the cavitated
+    set (the boundary is moving outward). The Reynolds LCP otherwise moves a free boundary
+    by one node per active-set update; nodes freed too far re-cavitate together in the
+    next update, so the boundary is found in O(log) iterations."""
+    cav = cav_std.copy()
+    if prev_cav is None or release <= 1:
+        return cav
+    n = cav.size
+    for j in np.flatnonzero(prev_cav & ~cav_std):
+        for d in (1, -1):
+            if 0 < j + d < n - 1 and cav_std[j + d] and not cav_std[j - d]:
+                k, cnt = j + d, 1
+                while cnt < release and 0 < k < n - 1 and cav[k]:
+                    cav[k] = False
+                    k += d
+                    cnt += 1
+    return cav
+
+
+def _newton(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None):
+    """Semismooth Newton on min(P_i, −c_i R_i) = 0 and the load balance, with a
+    non-monotone Armijo line search on |Φ|² + load residual² (c frozen within a search).
+    Iterates may dip below zero pressure; the min-function clamps them (δP_i = −P_i)
+    on the next iteration."""
+    g = sysm.g
+    dX = g.dX
+
+    def jacobi_scale(ev):
+        """c_i = 1/|J_ii| with J = A_P + A_H S (full Newton diagonal)."""
+        R, load, eps, pa, dpa, AP, AH = ev
+        S, _ = sysm.sensitivity(dpa)
+        n = R.size
+        diag = AP[0].copy()
+        for d, v in AH.items():
+            rows = np.arange(max(0, -d), min(n, n - d))
+            diag[rows] += v[rows] * (S[rows + d, rows] if S is not None else (d == 0))
+        diag = np.abs(diag)
+        diag[0], diag[-1] = diag[1], diag[-2]
+        return 1.0 / np.maximum(diag, 1e-300 + 1e-14 * diag.max())
+
+    def merit_of(ev, P, c=None):
+        """|Φ|² + load²; the scale c is frozen within a line search (c=given)."""
+        c = jacobi_scale(ev) if c is None else c
+        phi = np.minimum(P, -c * ev[0])
+        phi[0], phi[-1] = P[0], P[-1]
+        return float(np.dot(phi, phi) + ev[1] * ev[1]), c
+
+    P, H0 = np.maximum(st.P, 0.0), st.H0
+    H = sysm.film(P, H0, st.H)
+    ev = sysm.evaluate(P, H, H0)
+    m0, c = merit_of(ev, P)
+    msg = "maximum iterations reached"
+    ok = False
+    prev_cav, release = None, 1
+    history = [m0]          # non-monotone (Grippo–Lampariello–Lucidi) acceptance
+    n_lu = 0                # lu: LU of an earlier Newton matrix (direct solve or preconditioner)
+    gmres_tol = 1e-6
+    it = 0
+    for it in range(1, max_iter + 1):
+        R = ev[0]
+        cav_std = P < -c * R
+        cav_std[0] = cav_std[-1] = False
+        accepted = False
+        fresh_lu = False
+        for cav in ((_release(cav_std, prev_cav, release), cav_std) if release > 1
+                    else (cav_std,)):
+            lin = _Linearization(sysm, P, c, cav, ev)
+            delta = None
+            fresh_lu = lu is None
+            if lu is not None:
+                delta, nkry = _gmres(lin, lu, gmres_tol)
+                if delta is None or nkry > _MAX_KRYLOV_BEFORE_REFACTOR:
+                    lu = None
+            if delta is None:
+                try:
+                    lu = linalg.lu_factor(lin.dense(), check_finite=False)
+                    n_lu += 1
+                except (linalg.LinAlgError, ValueError):
+                    lu = None
+                    continue
+                delta = linalg.lu_solve(lu, lin.rhs, check_finite=False)
+                fresh_lu = True
+            if not np.all(np.isfinite(delta)):
+                lu = None
+                continue
+            dP, dH0 = delta[:-1], delta[-1]
+            step = 1.0
+            for _ in range(30):
+                Pn = P + step * dP
+                H0n = H0 + step * dH0
+                Hn = sysm.film(Pn, H0n, H)
+                evn = sysm.evaluate(Pn, Hn, H0n)
+                mn, _ = merit_of(evn, Pn, c)
+                if np.isfinite(mn) and mn <= (1.0 - 1e-4 * step) * max(history[-_NONMONOTONE:]):
+                    accepted = True
+                    break
+                step *= 0.5
+            if accepted:
+                break
+        if not accepted and lu is not None and not fresh_lu:
+            lu = None                  # Krylov direction from a stale preconditioner: retry
+            continue
+        if not accepted:
+            msg = f"line search failed (merit {m0:.2e})"
+            break
+        overshoot = prev_cav is not None and bool(np.any(~prev_cav & cav_std))
+        moved = prev_cav is not None and bool(np.any(prev_cav & ~cav_std))
+        release = 1 if overshoot else (2 * release if moved else 1)
+        prev_cav = cav_std
+        upd = step * max(np.max(np.abs(dP)) / max(np.max(np.abs(Pn)), 1e-30),
+                         abs(dH0) / max(abs(Hn[g.i0]), 1e-30))
+        m0, c = merit_of(evn, Pn)          # re-scale at the accepted point
+        P, H0, H, ev = Pn, H0n, Hn, evn
+        history.append(m0)
+        res = math.sqrt(max(m0, 0.0))
+        if upd < tol and res < 1e3 * tol:
+            ok = True
+            msg = f"converged in {it} Newton iterations (update {upd:.1e}, residual {res:.1e})"
+            break
+    _newton.last_lu = lu
+    if ok:
+        P = np.maximum(P, 0.0)        # cavitated nodes are exactly 0 up to round-off
+    return _State(P, H, H0), ok, it, msg
+
+
+# ----------------------------------------------------------------------------- post
+def _postprocess(sysm, st: _State, w, R, ue, us, opts: EHLOptions, lub, rough, ok, it, msg,
+                 time=0.0, squeeze_velocity=0.0):
+    g = sysm.g
+    x = g.x
+    p = st.P * g.p_ref
+    h = st.H * g.h_ref
+    pa, _ = sysm.asperity(st.H)
+    pa = pa * g.p_ref
+    dx = g.dX * g.a
+    mu = lub.viscosity_at(p)
+    hf = np.maximum(h, 1e-10)
+    tau = couette_shear_stress(mu, us, hf, opts.viscous_model, lub.eyring_stress)
+    if opts.limiting_shear:
+        tau = limit_shear_stress(tau, p, lub.limiting_shear_coefficient)
+    dpdx = np.gradient(p, dx)
+    f_visc = float(np.sum(np.abs(tau)) * dx)
+    f_roll = float(np.sum(0.5 * hf * np.abs(dpdx)) * dx)
+    if rough is not None:
+        area = rough.contact_area_fraction(h)
+        f_b = float(np.sum(boundary_shear_stress(pa, area, opts.boundary_shear_coefficient,
+                                                 opts.boundary_shear_strength)) * dx)
+    else:
+        f_b = 0.0
+    i_min = int(np.argmin(h))
+    # outlet meniscus: first zero-pressure node downstream of the peak; p ∝ (x_c − x)²
+    # near a Reynolds boundary, so √p is extrapolated linearly to zero
+    direction = 1 if g.direction >= 0 else -1
+    ipk = int(np.argmax(p))
+    x_cav = float("nan")
+    idx = np.arange(ipk, g.n) if direction > 0 else np.arange(ipk, -1, -1)
+    for k in range(1, idx.size):
+        if p[idx[k]] <= 0.0:
+            j1, j2 = idx[k - 1], idx[k - 2] if k >= 2 else idx[k - 1]
+            s1, s2 = math.sqrt(p[j1]), math.sqrt(max(p[j2], 0.0))
+            if s2 > s1 > 0 and j1 != j2:
+                x_cav = float(x[j1] + (x[j1] - x[j2]) * s1 / (s2 - s1))
+            else:
+                x_cav = float(x[idx[k]])
+            break
+    if not np.all(np.isfinite(p)) or not np.all(np.isfinite(h)):
+        ok = False
+        msg = "non-finite solution: " + msg
+    if ok and (p[1] > 1e-3 * p.max() or p[-2] > 1e-3 * p.max()):
+        msg += "; warning: pressure not negligible at a domain edge (enlarge inlet/outlet)"
+    return EHLResult(
+        x=x, pressure=p, asperity_pressure=pa, film=h, central_film=float(np.interp(0.0, x, h)),
+        min_film=float(h[i_min]), min_film_position=float(x[i_min]), cavitation_position=x_cav,
+        rigid_approach=float(st.H0 * g.h_ref), load=w, hydrodynamic_load=float(np.sum(p) * dx),
+        asperity_load=float(np.sum(pa) * dx), viscous_friction=f_visc, rolling_friction=f_roll,
+        boundary_friction=f_b, entrainment_speed=ue, sliding_speed=us, radius=R,
+        converged=bool(ok), iterations=int(it), message=msg, time=time,
+        squeeze_velocity=squeeze_velocity, shear_stress=tau,
+    )
+
+
+def _initial_state(grid: _Grid, sysm: _ReynoldsSystem, b, h_est):
+    """Hertz-like pressure over the Hertz width (or a smooth bump if rigid-dominated)."""
+    X = grid.X
+    bb = max(b / grid.a, 4 * grid.dX)
+    P = np.sqrt(np.clip(1.0 - (X / bb) ** 2, 0.0, None))
+    P /= np.sum(P) * grid.dX
+    H0 = h_est / grid.h_ref
+    if grid.K is not None:
+        H0 -= (grid.K @ P)[grid.i0]
+    H = sysm.film(P, H0)
+    return _State(P, H, H0)
+
+
+def solve_ehl(load, radius, entrainment_speed, sliding_speed, bodies, lubricant: Lubricant,
+              roughness: Roughness | None = None, *, options: EHLOptions | None = None,
+              **option_overrides) -> EHLResult:
+    """Steady mixed-EHL line contact.
+
+    Parameters
+    ----------
+    load : w, load per unit length [N/m], > 0 (carried by fluid + asperities).
+    radius : R, reduced radius of curvature [m], > 0.
+    entrainment_speed : u_e = (u₁ + u₂)/2 relative to the contact [m/s], ≠ 0 (either
+        sign: the inlet is on the side the flow comes from).
+    sliding_speed : u_s = u₁ − u₂ [m/s] (friction only).
+    bodies : pair of :class:`~tribodyn.Body` (coating allowed on either).
+    lubricant : :class:`~tribodyn.Lubricant`.
+    roughness : composite :class:`~tribodyn.Roughness` or None (smooth).
+    options / option_overrides : :class:`EHLOptions` fields (n, inlet, outlet, tol, …).
+    """
+    w, R, ue, us = _check_inputs(load, radius, entrainment_speed, sliding_speed)
+    bodies = _check_models(bodies, lubricant, roughness)
+    opts = options or EHLOptions()
+    if option_overrides:
+        opts = EHLOptions(**{**opts.__dict__, **option_overrides})
+    if ue == 0.0:
+        raise InputError("entrainment_speed must be non-zero for a steady film "
+                         "(pure squeeze needs TransientEHL)")
+    e_bulk = reduced_modulus(bodies)
+    e_surf = reduced_modulus(bodies, surface=True)
+    a, b, h_est = _length_scale(w, R, ue, e_bulk, lubricant)
+    direction = 1 if ue >= 0 else -1
+    n = int(opts.n)
+    # nested iteration: coarse grids first (cheap, robust), then the requested grid
+    levels = [n]
+    while levels[-1] // 2 >= _COARSEST and len(levels) < 4:
+        levels.append(levels[-1] // 2)
+    levels = levels[::-1]
+    st, total = None, 0
+    for k, nk in enumerate(levels):
+        grid = _Grid(bodies, a, opts.inlet, opts.outlet, nk, direction, opts.elastic, w, R)
+        sysm = _ReynoldsSystem(grid, w, R, ue, lubricant, roughness, e_surf)
+        if st is None:
+            st0 = _initial_state(grid, sysm, b if opts.elastic else 0.0, h_est)
+        else:
+            st0 = _interpolate_state(st, prev_grid, grid, sysm)
+        max_it = opts.max_iter * (2 if k == 0 and len(levels) > 1 else 1)
+        st, ok, it, msg = _newton(sysm, st0, opts.tol, max_it)
+        total += it
+        if not ok and k == 0:
+            st, ok, it2, msg = _continuation(bodies, w, R, ue, lubricant, roughness, opts,
+                                             grid, e_surf, b, h_est)
+            total += it2
+        prev_grid = grid
+    return _postprocess(sysm, st, w, R, ue, us, opts, lubricant, roughness, ok, total, msg)
+
+
+def _interpolate_state(st: _State, g_from: _Grid, g_to: _Grid, sysm) -> _State:
+    """Transfer a solution between grids of the same domain (dimensional h₀ is kept)."""
+    P = np.interp(g_to.X, g_from.X, st.P, left=0.0, right=0.0)
+    P *= g_from.p_ref / g_to.p_ref
+    H0 = st.H0 * g_from.h_ref / g_to.h_ref
+    return _State(P, sysm.film(P, H0), H0)
+
+
+def _continuation(bodies, w, R, ue, lub, rough, opts, grid, e_surf, b, h_est):
+    """Load continuation on a fixed grid: start light (nearly rigid), increase to w."""
+    total = 0
+    st = None
+    msg = "continuation failed"
+    frac_prev = 1.0
+    for frac in (0.05, 0.15, 0.35, 0.6, 0.8, 1.0):
+        wk = w * frac
+        # keep the grid in metres; rescale pressure to the current load
+        g = _Grid.__new__(_Grid)
+        g.__dict__.update(grid.__dict__)
+        g.p_ref = wk / grid.a
+        if grid.K is not None:
+            g.K = grid.K * frac
+        sysm = _ReynoldsSystem(g, wk, R, ue, lub, rough, e_surf)
+        if st is None:
+            st = _initial_state(g, sysm, b * math.sqrt(frac), h_est)
+        else:
+            st = _State(st.P * frac_prev / frac, st.H, st.H0)
+        st, ok, it, msg = _newton(sysm, st, opts.tol, opts.max_iter)
+        total += it
+        frac_prev = frac
+        if not ok:
+            return st, False, total, f"load continuation stalled at {frac:.0%} of the load: {msg}"
+    return st, True, total, msg + " (after load continuation)"
+
+
+class TransientEHL:
+    """Transient mixed-EHL line contact marched in time (full Eq. 1 with ∂(ρh)/∂t).
+
+    Each :meth:`step` advances from the current state to t + dt with the load, radius,
+    entrainment and sliding speed given at t + dt (implicit, BDF2 with variable steps;
+    BDF1 on the first step or after ``time_order=1``). The grid follows the contact
+    (length scale from the current load/radius/speed); it is kept — together with the
+    LU preconditioner of the Newton matrix — while the length scale changes by < 2 %,
+    otherwise the previous ρh(x) is interpolated onto the new grid. Entrainment may change
+    sign or vanish (pure squeeze): the squeeze term then carries the load.
+
+    Start with :meth:`start_steady` (steady solution at u_e ≠ 0) or :meth:`start_film`
+    (a given rigid-approach film and zero pressure, e.g. for squeeze tests).
+    A step that fails to converge is retried with sub-steps; if it still fails the result
+    says so (``converged=False``) and marching continues from the last iterate.
+    """
+
+    def __init__(self, bodies, lubricant: Lubricant, roughness: Roughness | None = None, *,
+                 options: EHLOptions | None = None, max_substeps: int = 3, **option_overrides):
+        self.bodies = _check_models(bodies, lubricant, roughness)
+        self.lub = lubricant
+        self.rough = roughness
+        opts = options or EHLOptions()
+        if option_overrides:
+            opts = EHLOptions(**{**opts.__dict__, **option_overrides})
+        self.opts = opts
+        self.max_substeps = int(max_substeps)
+        self.e_bulk = reduced_modulus(self.bodies)
+        self.e_surf = reduced_modulus(self.bodies, surface=True)
+        self.time = 0.0
+        self._grid = None
+        self._state = None
+        self._hist = []          # [(x, ρh, dt)] of the last two levels (dimensional)
+        self._lu = None
+        self.result: EHLResult | None = None
+
+    # -- starting states
+    def start_steady(self, load, radius, entrainment_speed, sliding_speed, time=0.0) -> EHLResult:
+        """Start from the steady solution at the given conditions."""
+        res = solve_ehl(load, radius, entrainment_speed, sliding_speed, self.bodies, self.lub,
+                        self.rough, options=self.opts)
+        w, R, ue, us = _check_inputs(load, radius, entrainment_speed, sliding_speed)
+        grid = self._make_grid(w, R, ue, None)
+        sysm = _ReynoldsSystem(grid, w, R, ue, self.lub, self.rough, self.e_surf)
+        P = np.interp(grid.x, res.x, res.pressure) / grid.p_ref
+        H0 = res.rigid_approach / grid.h_ref
+        st = _State(P, sysm.film(P, H0), H0)
+        self._commit(grid, st, sysm, None, time)
+        self.result = res
+        self.result.time = time
+        return res
+
+    def start_film(self, film, load, radius, entrainment_speed=0.0, sliding_speed=0.0,
+                   time=0.0):
+        """Start from an unloaded film h(x) = film + x²/(2R) (no pressure yet)."""
+        h0 = check_positive("film", film, "m")
+        w, R, ue, us = _check_inputs(load, radius, entrainment_speed, sliding_speed)
+        grid = self._make_grid(w, R, ue, h0)
+        sysm = _ReynoldsSystem(grid, w, R, ue, self.lub, self.rough, self.e_surf)
+        P = np.zeros(grid.n)
+        H0 = h0 / grid.h_ref
+        st = _State(P, sysm.film(P, H0), H0)
+        self._commit(grid, st, sysm, None, time)
+        self.result = None
+
+    # -- internals
+    def _make_grid(self, w, R, ue, film):
+        a, b, h_est = _length_scale(w, R, ue, self.e_bulk, self.lub, squeeze_film=film)
+        direction = int(np.sign(ue))
+        o = self.opts
+        g = self._grid
+        if g is not None and g.same_as(a, o.inlet, o.outlet, int(o.n), direction) \
+                and abs(g.p_ref * g.a / w - 1.0) < 1e-12 and abs(g.h_ref * R / g.a**2 - 1.0) < 1e-12:
+            return g
+        return _Grid(self.bodies, a, o.inlet, o.outlet, int(o.n), direction, o.elastic, w, R)
+
+    def _commit(self, grid, st, sysm, dt, time):
+        rho_h = self.lub.density_at(st.P * grid.p_ref) * st.H * grid.h_ref
+        self._hist = ([(grid.x, rho_h, dt, R_of(grid))] + self._hist)[:2]
+        self._grid, self._state, self.time = grid, st, time
+
+    def _old_on(self, grid, k):
+        """ρh of history level k (0: last) interpolated onto ``grid`` [kg/m²]."""
+        x_old, f_old, _, R_old = self._hist[k]
+        x = grid.x
+        f = np.interp(x, x_old, f_old)
+        rho0 = self.lub.density
+        for side, idx in ((x < x_old[0], 0), (x > x_old[-1], -1)):
+            if np.any(side):
+                xe = x_old[idx]
+                f[side] = f_old[idx] + rho0 * (x[side] ** 2 - xe**2) / (2.0 * R_old)
+        return f
+
+    def step(self, dt, load, radius, entrainment_speed, sliding_speed) -> EHLResult:
+        """Advance by dt [s] to the given conditions (load per unit length [N/m])."""
+        dt = check_positive("dt", dt, "s")
+        if self._state is None:
+            raise InputError("TransientEHL needs start_steady() or start_film() before step()")
+        w, R, ue, us = _check_inputs(load, radius, entrainment_speed, sliding_speed)
+        res = self._advance(dt, w, R, ue, us)
+        if not res.converged and self.max_substeps > 0:
+            # retry with sub-steps from the same starting state
+            saved = (self._grid, self._state, list(self._hist), self.time, self._lu)
+            w0 = self.result.load if self.result is not None else w
+            for k in range(1, self.max_substeps + 1):
+                m = 2**k
+                self._grid, self._state, self._hist, self.time, self._lu = \
+                    saved[0], saved[1], list(saved[2]), saved[3], saved[4]
+                ok = True
+                for j in range(1, m + 1):
+                    f = j / m
+                    sub = self._advance(dt / m, w0 + f * (w - w0), R, ue, us)
+                    ok = ok and sub.converged
+                if ok:
+                    sub.message += f" ({m} sub-steps)"
+                    return sub
+            res = sub
+        return res
+
+    def _advance(self, dt, w, R, ue, us) -> EHLResult:
+        o = self.opts
+        prev_grid, prev = self._grid, self._state
+        hc_prev = float(np.interp(0.0, prev_grid.x, prev.H * prev_grid.h_ref))
+        grid = self._make_grid(w, R, ue, hc_prev)
+        same = grid is prev_grid
+        # BDF coefficients for d(ρh)/dt
+        f1 = self._old_on(grid, 0)
+        use_bdf2 = o.time_order == 2 and len(self._hist) == 2 and self._hist[0][2] is not None
+        if use_bdf2:
+            r = dt / self._hist[0][2]
+            a0, a1, a2 = (1 + 2 * r) / (1 + r), -(1 + r), r * r / (1 + r)
+            f2 = self._old_on(grid, 1)
+            f_eff = -(a1 * f1 + a2 * f2) / a0
+        else:
+            a0, f_eff = 1.0, f1
+        rho_scale = self.lub.density * grid.h_ref
+        sysm = _ReynoldsSystem(grid, w, R, ue, self.lub, self.rough, self.e_surf,
+                               time_coef=a0 / dt, f_old=f_eff / rho_scale)
+        if same:
+            P0 = prev.P * (prev_grid.p_ref / grid.p_ref)
+            st0 = _State(P0, prev.H, prev.H0)
+            lu = self._lu
+        else:
+            P0 = np.interp(grid.x, prev_grid.x, prev.P * prev_grid.p_ref, left=0, right=0)
+            P0 /= grid.p_ref
+            H0 = prev.H0 * prev_grid.h_ref / grid.h_ref
+            st0 = _State(P0, sysm.film(P0, H0), H0)
+            lu = None
+        st, ok, it, msg = _newton(sysm, st0, o.tol, o.max_iter, lu=lu)
+        self._lu = _newton.last_lu if ok else None
+        t_new = self.time + dt
+        hc_new = float(np.interp(0.0, grid.x, st.H * grid.h_ref))
+        self._commit(grid, st, sysm, dt, t_new)
+        res = _postprocess(sysm, st, w, R, ue, us, o, self.lub, self.rough, ok, it, msg,
+                           time=t_new, squeeze_velocity=-(hc_new - hc_prev) / dt)
+        self.result = res
+        return res
+
+
+def _radius_of(grid: _Grid) -> float:
+    """Radius encoded in a grid's film scale h_ref = a²/R."""
+    return grid.a**2 / grid.h_ref
