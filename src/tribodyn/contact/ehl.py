@@ -855,7 +855,7 @@ class TransientEHL:
 
     def _commit(self, grid, st, sysm, dt, time):
         rho_h = self.lub.density_at(st.P * grid.p_ref) * st.H * grid.h_ref
-        self._hist = ([(grid.x, rho_h, dt, R_of(grid))] + self._hist)[:2]
+        self._hist = ([(grid.x, rho_h, dt, _radius_of(grid))] + self._hist)[:2]
         self._grid, self._state, self.time = grid, st, time
 
     def _old_on(self, grid, k):
