@@ -8,6 +8,7 @@ from pathlib import Path
 import typer
 from rich.console import Console
 
+from .cli_contact import contact_command
 from .topography.cli import topography_command
 
 app = typer.Typer(add_completion=False, no_args_is_help=True,
@@ -39,6 +40,7 @@ def run(out: Path = typer.Option(Path("results"), "-o", "--out", help="output fo
 
 
 app.command("topography")(topography_command)
+app.command("contact")(contact_command)
 
 
 def main():  # pragma: no cover

@@ -43,6 +43,8 @@ from ..physics.regimes import hamrock_groups, moes_central
 
 __all__ = ["EHLResult", "EHLOptions", "solve_ehl", "TransientEHL"]
 _NONMONOTONE = 6
+_TRACE = False
+_WATCHDOG = 100.0
 _COARSEST = 128
 _MAX_KRYLOV = 30
 _MAX_KRYLOV_BEFORE_REFACTOR = 12
@@ -53,7 +55,10 @@ _MAX_KRYLOV_BEFORE_REFACTOR = 12
 class EHLOptions:
     """Numerical settings of the EHL solvers.
 
-    n : grid nodes (uniform).
+    n : grid nodes (uniform); None (default) chooses n = 256 κ, κ = b/√(2R h_est) the
+        ratio of Hertz half-width to the rigid inlet length (κ ≈ 1 light load, ≈ 6 at
+        Moes M = 100), rounded up to a multiple of 128 and clipped to [512, 4096]; this
+        keeps h_c and h_min within 0.5 % of the grid-converged values.
     inlet, outlet : domain extent upstream/downstream of the contact centre, in units of
         the length scale a = max(b, √(2R h_est)).
     tol : Newton tolerance on the scaled pressure/film update and residual.
@@ -64,7 +69,7 @@ class EHLOptions:
     time_order : 1 (backward Euler) or 2 (BDF2) for the transient term.
     """
 
-    n: int = 512
+    n: int | None = None
     inlet: float = 4.0
     outlet: float = 1.75
     tol: float = 1e-9
@@ -77,8 +82,8 @@ class EHLOptions:
     time_order: int = 2
 
     def __post_init__(self):
-        if int(self.n) < 32:
-            raise InputError(f"n must be >= 32 (got {self.n})")
+        if self.n is not None and int(self.n) < 32:
+            raise InputError(f"n must be >= 32 or None for automatic (got {self.n})")
         for name in ("inlet", "outlet"):
             v = check_positive(name, getattr(self, name))
             if v < 1.0:
@@ -160,6 +165,12 @@ def _check_models(bodies, lubricant, roughness):
     return bodies
 
 
+def _auto_nodes(b, R, h_est) -> int:
+    """Default grid size n = 256 κ, κ = b/√(2R h_est), multiple of 128 in [512, 4096]."""
+    kappa = b / math.sqrt(2.0 * R * h_est)
+    return int(min(4096, max(512, 128 * math.ceil(256.0 * kappa / 128.0))))
+
+
 def _length_scale(w, R, ue, e_bulk, lub: Lubricant, squeeze_film=None):
     """a = max(b, √(2R h_est)); h_est from Moes (or the squeeze film when u_e ≈ 0)."""
     b = math.sqrt(8.0 * w * R / (math.pi * e_bulk))
@@ -172,9 +183,13 @@ def _length_scale(w, R, ue, e_bulk, lub: Lubricant, squeeze_film=None):
 
 
 class _Grid:
-    """Uniform grid in the contact frame with scaled influence matrix."""
+    """Uniform grid in the contact frame (metres) with the physical influence matrix.
 
-    def __init__(self, bodies, a, inlet, outlet, n, direction, elastic, w, R):
+    Holds geometry only; pressure/film scales belong to each solve, so a grid (and the LU
+    preconditioner built on it) survives changes of load and radius in a transient.
+    """
+
+    def __init__(self, bodies, a, inlet, outlet, n, direction, elastic):
         self.a, self.n, self.direction = a, n, direction
         # upstream side is −x for u_e > 0; mirrored for u_e < 0; symmetric for pure squeeze
         if direction > 0:
@@ -187,19 +202,11 @@ class _Grid:
         self.dX = self.X[1] - self.X[0]
         self.x = self.X * a
         self.i0 = int(np.argmin(np.abs(self.X)))
-        self.p_ref = w / a
-        self.h_ref = a * a / R
-        if elastic:
-            coef = influence_coefficients(bodies, self.dX * a, n) * (self.p_ref / self.h_ref)
-            self.K = linalg.toeplitz(coef)
-            self.Kop = DeformationOperator.from_coefficients(coef)
-        else:
-            self.K = None
-            self.Kop = None
+        self.coef = influence_coefficients(bodies, self.dX * a, n) if elastic else None
+        self.K = linalg.toeplitz(self.coef) if elastic else None      # [m/Pa]
 
-    def same_as(self, a, inlet, outlet, n, direction):
-        return (self.n == n and self.direction == direction
-                and abs(a / self.a - 1.0) < 0.02)
+    def same_as(self, a, n, direction):
+        return self.n == n and self.direction == direction and abs(a / self.a - 1.0) < 0.02
 
 
 @dataclass
@@ -218,7 +225,15 @@ class _ReynoldsSystem:
         self.g = grid
         self.lub = lub
         self.rough = roughness
-        a, p_ref, h_ref = grid.a, grid.p_ref, grid.h_ref
+        a = grid.a
+        self.p_ref = p_ref = w / a          # P = p a / w
+        self.h_ref = h_ref = a * a / R      # H = h R / a²
+        if grid.K is not None:
+            kscale = p_ref / h_ref
+            self.K = grid.K * kscale
+            self.Kop = DeformationOperator.from_coefficients(grid.coef * kscale)
+        else:
+            self.K = self.Kop = None
         self.u_scale = max(abs(ue), 1e-3)
         self.ubar = ue / self.u_scale
         self.lam = h_ref**2 * p_ref / (12.0 * lub.viscosity * a * self.u_scale)
@@ -257,15 +272,15 @@ class _ReynoldsSystem:
     def film(self, P, H0, H_guess=None):
         """H = H0 + X²/2 + K(P + Pa(H)): Newton on the local asperity feedback (Woodbury)."""
         g = self.g
-        if g.K is None:                       # rigid bodies: asperities deform nothing
+        if self.K is None:                       # rigid bodies: asperities deform nothing
             return H0 + self.geom
-        base = H0 + self.geom + g.K @ P
+        base = H0 + self.geom + self.K @ P
         if self.rough is None:
             return base
         H = base.copy() if H_guess is None else H_guess.copy()
         for _ in range(60):
             pa, dpa = self.asperity(H)
-            r = H - base - g.K @ pa
+            r = H - base - self.K @ pa
             if np.max(np.abs(r)) < 1e-13 * max(1.0, np.max(np.abs(H))):
                 break
             H = H - self._solve_film_jacobian(dpa, r)
@@ -278,19 +293,19 @@ class _ReynoldsSystem:
         if act.size == 0:
             return r
         Da = dpa[act]
-        inner = np.eye(act.size) - g.K[np.ix_(act, act)] * Da[None, :]
+        inner = np.eye(act.size) - self.K[np.ix_(act, act)] * Da[None, :]
         y = linalg.solve(inner, r[act], check_finite=False)
-        return r + (g.K[:, act] * Da[None, :]) @ y
+        return r + (self.K[:, act] * Da[None, :]) @ y
 
     # -- residual and Jacobian
     def evaluate(self, P, H, H0, want_jac=True):
         g, lub = self.g, self.lub
         n, dX = g.n, g.dX
-        p = P * g.p_ref
+        p = P * self.p_ref
         rho = lub.density_at(p) / lub.density
-        drho = lub.ddensity_dp(p) / lub.density * g.p_ref
+        drho = lub.ddensity_dp(p) / lub.density * self.p_ref
         lnmu = lub.log_viscosity_ratio(p)
-        dlnmu = lub.dlog_viscosity_dp(p) * g.p_ref
+        dlnmu = lub.dlog_viscosity_dp(p) * self.p_ref
         Hf = np.maximum(H, self.h_floor)
         dHf = (H > self.h_floor).astype(float)
         eps = self.lam * rho * Hf**3 * np.exp(-lnmu)
@@ -348,17 +363,17 @@ class _ReynoldsSystem:
         """S = ∂H/∂P and s0 = ∂H/∂H0 (identity film law + asperity feedback)."""
         g = self.g
         n = g.n
-        if g.K is None:
+        if self.K is None:
             return None, np.ones(n)
         act = np.flatnonzero(dpa != 0.0)
         if self.rough is None or act.size == 0:
-            return g.K, np.ones(n)
+            return self.K, np.ones(n)
         # Woodbury: (I − K D)⁻¹ = I + K[:,a] D_a (I − K[a,a] D_a)⁻¹ E_aᵀ
         Da = dpa[act]
-        inner = np.eye(act.size) - g.K[np.ix_(act, act)] * Da[None, :]
+        inner = np.eye(act.size) - self.K[np.ix_(act, act)] * Da[None, :]
         lu = linalg.lu_factor(inner, check_finite=False)
-        KaD = g.K[:, act] * Da[None, :]
-        S = g.K + KaD @ linalg.lu_solve(lu, g.K[act, :], check_finite=False)
+        KaD = self.K[:, act] * Da[None, :]
+        S = self.K + KaD @ linalg.lu_solve(lu, self.K[act, :], check_finite=False)
         s0 = 1.0 + KaD @ linalg.lu_solve(lu, np.ones(act.size), check_finite=False)
         return S, s0
 
@@ -390,7 +405,7 @@ class _Linearization:
         R, load, eps, pa, dpa, AP, AH = ev
         self.n, self.dX, self.AP, self.AH, self.dpa = n, g.dX, AP, AH, dpa
         self.S, self.s0 = sysm.sensitivity(dpa)
-        self.kop = g.Kop if self.S is g.K else None
+        self.kop = sysm.Kop if self.S is sysm.K else None
         self.col = np.zeros(n)
         for d, v in AH.items():
             rows = np.arange(max(0, -d), min(n, n - d))
@@ -430,16 +445,16 @@ class _Linearization:
             rows = np.arange(max(0, -d), min(n, n - d))
             J[rows, rows + d] += v[rows]
         if self.S is not None:
-            for d, v in self.AH.items():
-                rows = np.arange(max(0, -d), min(n, n - d))
-                J[rows, :n] += v[rows, None] * self.S[rows + d, :]
+            for d, v in self.AH.items():          # contiguous slices: no fancy-index copies
+                lo, hi = max(0, -d), min(n, n - d)
+                J[lo:hi, :n] += v[lo:hi, None] * self.S[lo + d:hi + d, :]
         J[:n, n] = self.col
         J[n, :n] = self.dX * (1.0 + (self.dpa @ self.S if self.S is not None else 0.0))
         J[n, n] = self.jhh
         ic = idx[self.cav]
         J[ic, :] = 0.0
         J[ic, ic] = 1.0
-        J[idx[self.free], :] *= self.c[self.free][:, None]
+        J[:n] *= np.where(self.free, self.c, 1.0)[:, None]
         return J
 
 
@@ -549,6 +564,7 @@ def _newton(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None):
     ok = False
     prev_cav, release = None, 1
     history = [m0]          # non-monotone (Grippo–Lampariello–Lucidi) acceptance
+    watchdog = 2            # full Newton steps allowed to raise the merit (warm starts)
     n_lu = 0                # lu: LU of an earlier Newton matrix (direct solve or preconditioner)
     gmres_tol = 1e-6
     it = 0
@@ -587,7 +603,11 @@ def _newton(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None):
                 Hn = sysm.film(Pn, H0n, H)
                 evn = sysm.evaluate(Pn, Hn, H0n)
                 mn, _ = merit_of(evn, Pn, c)
-                if np.isfinite(mn) and mn <= (1.0 - 1e-4 * step) * max(history[-_NONMONOTONE:]):
+                ref = max(history[-_NONMONOTONE:])
+                if np.isfinite(mn) and (mn <= (1.0 - 1e-4 * step) * ref or
+                                        (step == 1.0 and watchdog > 0 and mn <= _WATCHDOG * ref)):
+                    if not mn <= (1.0 - 1e-4 * step) * ref:
+                        watchdog -= 1      # a full step that raised the merit: limited budget
                     accepted = True
                     break
                 step *= 0.5
@@ -605,6 +625,8 @@ def _newton(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None):
         prev_cav = cav_std
         upd = step * max(np.max(np.abs(dP)) / max(np.max(np.abs(Pn)), 1e-30),
                          abs(dH0) / max(abs(Hn[g.i0]), 1e-30))
+        if _TRACE:
+            print(f"    it {it} step {step:.3g} merit {mn:.3e} upd {upd:.2e} ncav {int(cav_std.sum())} rel {release}")
         m0, c = merit_of(evn, Pn)          # re-scale at the accepted point
         P, H0, H, ev = Pn, H0n, Hn, evn
         history.append(m0)
@@ -624,10 +646,10 @@ def _postprocess(sysm, st: _State, w, R, ue, us, opts: EHLOptions, lub, rough, o
                  time=0.0, squeeze_velocity=0.0):
     g = sysm.g
     x = g.x
-    p = st.P * g.p_ref
-    h = st.H * g.h_ref
+    p = st.P * sysm.p_ref
+    h = st.H * sysm.h_ref
     pa, _ = sysm.asperity(st.H)
-    pa = pa * g.p_ref
+    pa = pa * sysm.p_ref
     dx = g.dX * g.a
     mu = lub.viscosity_at(p)
     hf = np.maximum(h, 1e-10)
@@ -667,7 +689,7 @@ def _postprocess(sysm, st: _State, w, R, ue, us, opts: EHLOptions, lub, rough, o
     return EHLResult(
         x=x, pressure=p, asperity_pressure=pa, film=h, central_film=float(np.interp(0.0, x, h)),
         min_film=float(h[i_min]), min_film_position=float(x[i_min]), cavitation_position=x_cav,
-        rigid_approach=float(st.H0 * g.h_ref), load=w, hydrodynamic_load=float(np.sum(p) * dx),
+        rigid_approach=float(st.H0 * sysm.h_ref), load=w, hydrodynamic_load=float(np.sum(p) * dx),
         asperity_load=float(np.sum(pa) * dx), viscous_friction=f_visc, rolling_friction=f_roll,
         boundary_friction=f_b, entrainment_speed=ue, sliding_speed=us, radius=R,
         converged=bool(ok), iterations=int(it), message=msg, time=time,
@@ -675,17 +697,25 @@ def _postprocess(sysm, st: _State, w, R, ue, us, opts: EHLOptions, lub, rough, o
     )
 
 
-def _initial_state(grid: _Grid, sysm: _ReynoldsSystem, b, h_est):
-    """Hertz-like pressure over the Hertz width (or a smooth bump if rigid-dominated)."""
-    X = grid.X
-    bb = max(b / grid.a, 4 * grid.dX)
-    P = np.sqrt(np.clip(1.0 - (X / bb) ** 2, 0.0, None))
-    P /= np.sum(P) * grid.dX
-    H0 = h_est / grid.h_ref
-    if grid.K is not None:
-        H0 -= (grid.K @ P)[grid.i0]
-    H = sysm.film(P, H0)
-    return _State(P, H, H0)
+def _initial_state(sysm: _ReynoldsSystem, b, h_est):
+    """Hertz-like pressure over the Hertz width (or a narrow bump if rigid); h₀ such that
+    the central film equals the film-formula estimate."""
+    g = sysm.g
+    bb = max(b / g.a, 4 * g.dX)
+    P = np.sqrt(np.clip(1.0 - (g.X / bb) ** 2, 0.0, None))
+    P /= np.sum(P) * g.dX
+    H0 = h_est / sysm.h_ref
+    if sysm.K is not None:
+        H0 -= (sysm.K @ P)[g.i0]
+    return _State(P, sysm.film(P, H0), H0)
+
+
+def _state_from_dimensional(sysm: _ReynoldsSystem, x, p, h0) -> _State:
+    """Scaled state on sysm's grid from a pressure p(x) [Pa] and rigid approach h₀ [m]."""
+    g = sysm.g
+    P = np.interp(g.x, x, p, left=0.0, right=0.0) / sysm.p_ref
+    H0 = h0 / sysm.h_ref
+    return _State(P, sysm.film(P, H0), H0)
 
 
 def solve_ehl(load, radius, entrainment_speed, sliding_speed, bodies, lubricant: Lubricant,
@@ -717,61 +747,45 @@ def solve_ehl(load, radius, entrainment_speed, sliding_speed, bodies, lubricant:
     e_surf = reduced_modulus(bodies, surface=True)
     a, b, h_est = _length_scale(w, R, ue, e_bulk, lubricant)
     direction = 1 if ue >= 0 else -1
-    n = int(opts.n)
+    n = int(opts.n) if opts.n is not None else _auto_nodes(b, R, h_est)
     # nested iteration: coarse grids first (cheap, robust), then the requested grid
     levels = [n]
     while levels[-1] // 2 >= _COARSEST and len(levels) < 4:
         levels.append(levels[-1] // 2)
     levels = levels[::-1]
-    st, total = None, 0
+    st, total, sysm = None, 0, None
     for k, nk in enumerate(levels):
-        grid = _Grid(bodies, a, opts.inlet, opts.outlet, nk, direction, opts.elastic, w, R)
-        sysm = _ReynoldsSystem(grid, w, R, ue, lubricant, roughness, e_surf)
+        grid = _Grid(bodies, a, opts.inlet, opts.outlet, nk, direction, opts.elastic)
+        prev, sysm = sysm, _ReynoldsSystem(grid, w, R, ue, lubricant, roughness, e_surf)
         if st is None:
-            st0 = _initial_state(grid, sysm, b if opts.elastic else 0.0, h_est)
+            st0 = _initial_state(sysm, b if opts.elastic else 0.0, h_est)
         else:
-            st0 = _interpolate_state(st, prev_grid, grid, sysm)
+            st0 = _state_from_dimensional(sysm, prev.g.x, st.P * prev.p_ref,
+                                          st.H0 * prev.h_ref)
         max_it = opts.max_iter * (2 if k == 0 and len(levels) > 1 else 1)
         st, ok, it, msg = _newton(sysm, st0, opts.tol, max_it)
         total += it
         if not ok and k == 0:
-            st, ok, it2, msg = _continuation(bodies, w, R, ue, lubricant, roughness, opts,
-                                             grid, e_surf, b, h_est)
+            st, ok, it2, msg = _continuation(sysm, w, R, ue, lubricant, roughness, opts, e_surf,
+                                             b, h_est)
             total += it2
-        prev_grid = grid
     return _postprocess(sysm, st, w, R, ue, us, opts, lubricant, roughness, ok, total, msg)
 
 
-def _interpolate_state(st: _State, g_from: _Grid, g_to: _Grid, sysm) -> _State:
-    """Transfer a solution between grids of the same domain (dimensional h₀ is kept)."""
-    P = np.interp(g_to.X, g_from.X, st.P, left=0.0, right=0.0)
-    P *= g_from.p_ref / g_to.p_ref
-    H0 = st.H0 * g_from.h_ref / g_to.h_ref
-    return _State(P, sysm.film(P, H0), H0)
-
-
-def _continuation(bodies, w, R, ue, lub, rough, opts, grid, e_surf, b, h_est):
-    """Load continuation on a fixed grid: start light (nearly rigid), increase to w."""
-    total = 0
-    st = None
+def _continuation(sysm_full, w, R, ue, lub, rough, opts, e_surf, b, h_est):
+    """Load continuation on the same grid: start light (nearly rigid), increase to w."""
+    total, st, prev = 0, None, None
     msg = "continuation failed"
-    frac_prev = 1.0
+    grid = sysm_full.g
     for frac in (0.05, 0.15, 0.35, 0.6, 0.8, 1.0):
-        wk = w * frac
-        # keep the grid in metres; rescale pressure to the current load
-        g = _Grid.__new__(_Grid)
-        g.__dict__.update(grid.__dict__)
-        g.p_ref = wk / grid.a
-        if grid.K is not None:
-            g.K = grid.K * frac
-        sysm = _ReynoldsSystem(g, wk, R, ue, lub, rough, e_surf)
+        sysm = _ReynoldsSystem(grid, w * frac, R, ue, lub, rough, e_surf)
         if st is None:
-            st = _initial_state(g, sysm, b * math.sqrt(frac), h_est)
+            st = _initial_state(sysm, b * math.sqrt(frac), h_est)
         else:
-            st = _State(st.P * frac_prev / frac, st.H, st.H0)
+            st = _state_from_dimensional(sysm, grid.x, st.P * prev.p_ref, st.H0 * prev.h_ref)
         st, ok, it, msg = _newton(sysm, st, opts.tol, opts.max_iter)
         total += it
-        frac_prev = frac
+        prev = sysm
         if not ok:
             return st, False, total, f"load continuation stalled at {frac:.0%} of the load: {msg}"
     return st, True, total, msg + " (after load continuation)"
@@ -804,42 +818,43 @@ class TransientEHL:
             opts = EHLOptions(**{**opts.__dict__, **option_overrides})
         self.opts = opts
         self.max_substeps = int(max_substeps)
+        self.result_before_load = None
         self.e_bulk = reduced_modulus(self.bodies)
         self.e_surf = reduced_modulus(self.bodies, surface=True)
         self.time = 0.0
         self._grid = None
-        self._state = None
-        self._hist = []          # [(x, ρh, dt)] of the last two levels (dimensional)
+        self._p = self._h = None       # dimensional state on the grid [Pa], [m]
+        self._h0 = 0.0                 # rigid approach [m]
+        self._hist = []                # [(x, ρh, dt, R)] of the last two time levels
         self._lu = None
         self.result: EHLResult | None = None
 
     # -- starting states
     def start_steady(self, load, radius, entrainment_speed, sliding_speed, time=0.0) -> EHLResult:
-        """Start from the steady solution at the given conditions."""
+        """Start from the steady solution at the given conditions (u_e ≠ 0)."""
         res = solve_ehl(load, radius, entrainment_speed, sliding_speed, self.bodies, self.lub,
                         self.rough, options=self.opts)
-        w, R, ue, us = _check_inputs(load, radius, entrainment_speed, sliding_speed)
+        w, R, ue, _ = _check_inputs(load, radius, entrainment_speed, sliding_speed)
         grid = self._make_grid(w, R, ue, None)
         sysm = _ReynoldsSystem(grid, w, R, ue, self.lub, self.rough, self.e_surf)
-        P = np.interp(grid.x, res.x, res.pressure) / grid.p_ref
-        H0 = res.rigid_approach / grid.h_ref
-        st = _State(P, sysm.film(P, H0), H0)
-        self._commit(grid, st, sysm, None, time)
+        st = _state_from_dimensional(sysm, res.x, res.pressure, res.rigid_approach)
+        self._grid, self._lu, self._hist = grid, None, []
+        self._commit(sysm, st, R, None, time)
+        res.time = time
         self.result = res
-        self.result.time = time
         return res
 
     def start_film(self, film, load, radius, entrainment_speed=0.0, sliding_speed=0.0,
                    time=0.0):
         """Start from an unloaded film h(x) = film + x²/(2R) (no pressure yet)."""
         h0 = check_positive("film", film, "m")
-        w, R, ue, us = _check_inputs(load, radius, entrainment_speed, sliding_speed)
+        w, R, ue, _ = _check_inputs(load, radius, entrainment_speed, sliding_speed)
         grid = self._make_grid(w, R, ue, h0)
         sysm = _ReynoldsSystem(grid, w, R, ue, self.lub, self.rough, self.e_surf)
         P = np.zeros(grid.n)
-        H0 = h0 / grid.h_ref
-        st = _State(P, sysm.film(P, H0), H0)
-        self._commit(grid, st, sysm, None, time)
+        st = _State(P, sysm.film(P, h0 / sysm.h_ref), h0 / sysm.h_ref)
+        self._grid, self._lu, self._hist = grid, None, []
+        self._commit(sysm, st, R, None, time)
         self.result = None
 
     # -- internals
@@ -847,19 +862,24 @@ class TransientEHL:
         a, b, h_est = _length_scale(w, R, ue, self.e_bulk, self.lub, squeeze_film=film)
         direction = int(np.sign(ue))
         o = self.opts
+        n = int(o.n) if o.n is not None else _auto_nodes(b, R, h_est)
         g = self._grid
-        if g is not None and g.same_as(a, o.inlet, o.outlet, int(o.n), direction) \
-                and abs(g.p_ref * g.a / w - 1.0) < 1e-12 and abs(g.h_ref * R / g.a**2 - 1.0) < 1e-12:
+        if g is not None and g.same_as(a, n, direction):
             return g
-        return _Grid(self.bodies, a, o.inlet, o.outlet, int(o.n), direction, o.elastic, w, R)
+        return _Grid(self.bodies, a, o.inlet, o.outlet, n, direction, o.elastic)
 
-    def _commit(self, grid, st, sysm, dt, time):
-        rho_h = self.lub.density_at(st.P * grid.p_ref) * st.H * grid.h_ref
-        self._hist = ([(grid.x, rho_h, dt, _radius_of(grid))] + self._hist)[:2]
-        self._grid, self._state, self.time = grid, st, time
+    def _commit(self, sysm, st: _State, R, dt, time):
+        self._p = st.P * sysm.p_ref
+        self._h = st.H * sysm.h_ref
+        self._h0 = st.H0 * sysm.h_ref
+        rho_h = self.lub.density_at(self._p) * self._h
+        self._hist = ([(sysm.g.x, rho_h, dt, R)] + self._hist)[:2]
+        self._grid = sysm.g
+        self.time = time
 
     def _old_on(self, grid, k):
-        """ρh of history level k (0: last) interpolated onto ``grid`` [kg/m²]."""
+        """ρh of history level k (0: last) on ``grid`` [kg/m²]; outside the old domain the
+        old film is continued with the old parabola (ambient density)."""
         x_old, f_old, _, R_old = self._hist[k]
         x = grid.x
         f = np.interp(x, x_old, f_old)
@@ -873,69 +893,58 @@ class TransientEHL:
     def step(self, dt, load, radius, entrainment_speed, sliding_speed) -> EHLResult:
         """Advance by dt [s] to the given conditions (load per unit length [N/m])."""
         dt = check_positive("dt", dt, "s")
-        if self._state is None:
+        if self._grid is None:
             raise InputError("TransientEHL needs start_steady() or start_film() before step()")
         w, R, ue, us = _check_inputs(load, radius, entrainment_speed, sliding_speed)
+        saved = self._snapshot()
         res = self._advance(dt, w, R, ue, us)
-        if not res.converged and self.max_substeps > 0:
-            # retry with sub-steps from the same starting state
-            saved = (self._grid, self._state, list(self._hist), self.time, self._lu)
-            w0 = self.result.load if self.result is not None else w
-            for k in range(1, self.max_substeps + 1):
-                m = 2**k
-                self._grid, self._state, self._hist, self.time, self._lu = \
-                    saved[0], saved[1], list(saved[2]), saved[3], saved[4]
-                ok = True
-                for j in range(1, m + 1):
-                    f = j / m
-                    sub = self._advance(dt / m, w0 + f * (w - w0), R, ue, us)
-                    ok = ok and sub.converged
-                if ok:
-                    sub.message += f" ({m} sub-steps)"
-                    return sub
-            res = sub
-        return res
+        if res.converged or self.max_substeps <= 0:
+            return res
+        # retry with sub-steps (conditions interpolated) from the same starting state
+        w0 = self.result_before_load if self.result_before_load is not None else w
+        for k in range(1, self.max_substeps + 1):
+            m = 2**k
+            self._restore(saved)
+            ok = True
+            for j in range(1, m + 1):
+                sub = self._advance(dt / m, w0 + j / m * (w - w0), R, ue, us)
+                ok = ok and sub.converged
+            if ok:
+                sub.message += f" ({m} sub-steps)"
+                return sub
+        return sub
+
+    def _snapshot(self):
+        self.result_before_load = self.result.load if self.result is not None else None
+        return (self._grid, self._p, self._h, self._h0, list(self._hist), self.time, self._lu)
+
+    def _restore(self, snap):
+        (self._grid, self._p, self._h, self._h0, hist, self.time, self._lu) = snap
+        self._hist = list(hist)
 
     def _advance(self, dt, w, R, ue, us) -> EHLResult:
         o = self.opts
-        prev_grid, prev = self._grid, self._state
-        hc_prev = float(np.interp(0.0, prev_grid.x, prev.H * prev_grid.h_ref))
+        prev_grid = self._grid
+        hc_prev = float(np.interp(0.0, prev_grid.x, self._h))
         grid = self._make_grid(w, R, ue, hc_prev)
         same = grid is prev_grid
-        # BDF coefficients for d(ρh)/dt
+        # variable-step BDF for d(ρh)/dt: (a0 f_n + a1 f_{n-1} + a2 f_{n-2})/dt
         f1 = self._old_on(grid, 0)
-        use_bdf2 = o.time_order == 2 and len(self._hist) == 2 and self._hist[0][2] is not None
-        if use_bdf2:
+        if o.time_order == 2 and len(self._hist) == 2 and self._hist[0][2] is not None:
             r = dt / self._hist[0][2]
             a0, a1, a2 = (1 + 2 * r) / (1 + r), -(1 + r), r * r / (1 + r)
-            f2 = self._old_on(grid, 1)
-            f_eff = -(a1 * f1 + a2 * f2) / a0
+            f_eff = -(a1 * f1 + a2 * self._old_on(grid, 1)) / a0
         else:
             a0, f_eff = 1.0, f1
-        rho_scale = self.lub.density * grid.h_ref
         sysm = _ReynoldsSystem(grid, w, R, ue, self.lub, self.rough, self.e_surf,
-                               time_coef=a0 / dt, f_old=f_eff / rho_scale)
-        if same:
-            P0 = prev.P * (prev_grid.p_ref / grid.p_ref)
-            st0 = _State(P0, prev.H, prev.H0)
-            lu = self._lu
-        else:
-            P0 = np.interp(grid.x, prev_grid.x, prev.P * prev_grid.p_ref, left=0, right=0)
-            P0 /= grid.p_ref
-            H0 = prev.H0 * prev_grid.h_ref / grid.h_ref
-            st0 = _State(P0, sysm.film(P0, H0), H0)
-            lu = None
-        st, ok, it, msg = _newton(sysm, st0, o.tol, o.max_iter, lu=lu)
+                               time_coef=a0 / dt)
+        sysm.f_old = f_eff / (self.lub.density * sysm.h_ref)
+        st0 = _state_from_dimensional(sysm, prev_grid.x, self._p, self._h0)
+        st, ok, it, msg = _newton(sysm, st0, o.tol, o.max_iter, lu=self._lu if same else None)
         self._lu = _newton.last_lu if ok else None
-        t_new = self.time + dt
-        hc_new = float(np.interp(0.0, grid.x, st.H * grid.h_ref))
-        self._commit(grid, st, sysm, dt, t_new)
+        self._commit(sysm, st, R, dt, self.time + dt)
+        hc_new = float(np.interp(0.0, grid.x, self._h))
         res = _postprocess(sysm, st, w, R, ue, us, o, self.lub, self.rough, ok, it, msg,
-                           time=t_new, squeeze_velocity=-(hc_new - hc_prev) / dt)
+                           time=self.time, squeeze_velocity=-(hc_new - hc_prev) / dt)
         self.result = res
         return res
-
-
-def _radius_of(grid: _Grid) -> float:
-    """Radius encoded in a grid's film scale h_ref = a²/R."""
-    return grid.a**2 / grid.h_ref

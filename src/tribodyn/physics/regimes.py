@@ -10,9 +10,11 @@ Conventions (DESIGN.md): E' with 1/E' = ½Σ(1−ν²)/E, u_e = mean entraining 
       IR  Ĥ = 4.9          PR  Ĥ = 1.66 g_V^(2/3)
       IE  Ĥ = 3.01 g_E^0.8 PE  Ĥ = 1.65 g_V^(3/4) g_E^(−1/4)
 
-  The regime is the mechanism predicting the largest film (each effect thickens it), so
-  the boundaries are where two asymptotes are equal: IR/IE at g_E ≈ 1.84, IR/PR at
-  g_V ≈ 5.07.
+  Elasticity thickens an isoviscous film (H_I = max(IR, IE)) but relieves a rigid
+  piezoviscous one (H_P = min(PR, PE); the PE asymptote is invalid as g_E → 0). The
+  regime is the active asymptote of the larger of H_I and H_P, so the boundaries are
+  where asymptotes are equal: IR/IE at g_E ≈ 1.84, IR/PR at g_V ≈ 5.07, PR/PE and IE/PE
+  where PE meets PR or IE.
 
 Film formulas return dimensional film thickness [m]; all accept numpy arrays.
 """
@@ -23,7 +25,7 @@ import numpy as np
 
 __all__ = [
     "hamrock_groups", "moes_groups", "greenwood_chart_groups", "regime_asymptotes",
-    "lubrication_regime", "pan_hamrock", "dowson_higginson_min", "dowson_toyoda_central",
+    "lubrication_regime", "film_parameter", "pan_hamrock", "dowson_higginson_min", "dowson_toyoda_central",
     "moes_central", "martin_rigid_isoviscous", "REGIMES",
 ]
 
@@ -65,12 +67,20 @@ def regime_asymptotes(gV, gE) -> dict:
     }
 
 
-def lubrication_regime(gV, gE):
-    """Regime label(s) 'IR', 'PR', 'IE' or 'PE' from (g_V, g_E): the largest asymptote."""
+def film_parameter(gV, gE):
+    """Chart estimate of Ĥ = h w/(μ₀u_eR): max(max(IR, IE), min(PR, PE))."""
     a = regime_asymptotes(gV, gE)
-    stack = np.stack([a[k] for k in REGIMES])
-    idx = np.argmax(stack, axis=0)
-    labels = np.asarray(REGIMES)[idx]
+    return np.maximum(np.maximum(a["IR"], a["IE"]), np.minimum(a["PR"], a["PE"]))
+
+
+def lubrication_regime(gV, gE):
+    """Regime label(s) 'IR', 'PR', 'IE' or 'PE' from (g_V, g_E) (see module docstring)."""
+    a = regime_asymptotes(gV, gE)
+    h_iso = np.maximum(a["IR"], a["IE"])
+    h_piezo = np.minimum(a["PR"], a["PE"])
+    iso_label = np.where(a["IR"] >= a["IE"], "IR", "IE")
+    piezo_label = np.where(a["PR"] <= a["PE"], "PR", "PE")
+    labels = np.where(h_piezo > h_iso, piezo_label, iso_label)
     return labels if labels.ndim else str(labels)
 
 

@@ -1,0 +1,282 @@
+"""Case files: the bundled paper case, validation messages, builders, TOML round trip."""
+
+import math
+import re
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tribodyn import EHLOptions, InputError, Lubricant, Roughness
+from tribodyn.config import (CASES_DIR, DEFAULT_CASE, Case, SurfaceSet, bundled_cases,
+                             load_case, to_toml)
+from tribodyn.valvetrain import (AccelerationCam, CircularArcCam, TabulatedCam,
+                                 ValvetrainParameters)
+
+ROUGH = "roughness = { asperity_density = 1e9, rms = 1e-7, summit_radius = 1e-6 }\n"
+
+
+@pytest.fixture(scope="module")
+def paper():
+    return load_case()
+
+
+def reject(text, *fragments, base_dir=None):
+    """Assert the TOML text is rejected and every fragment appears in the message."""
+    with pytest.raises(InputError) as ei:
+        Case.from_toml_string(text, base_dir=base_dir)
+    msg = str(ei.value)
+    for f in fragments:
+        assert f in msg, f"{f!r} not in:\n{msg}"
+    return msg
+
+
+# ----------------------------------------------------------------------------- bundled
+def test_bundled_case_loads_and_builds_everything(paper):
+    assert paper.name == "andreou2023"
+    assert paper.source == DEFAULT_CASE
+    cam = paper.cam()
+    assert isinstance(cam, AccelerationCam)
+    assert cam.min_radius_of_curvature > 0.0
+    assert isinstance(paper.lubricant(), Lubricant)
+    vp = paper.valvetrain_parameters()
+    assert isinstance(vp, ValvetrainParameters)
+    assert vp.cam_width == 0.012
+    assert isinstance(paper.ehl_options(), EHLOptions)
+    assert paper.cam_speed == pytest.approx(1500.0 * 2.0 * math.pi / 60.0)   # cam = engine/2
+    sets = paper.surface_sets()
+    assert [s.name for s in sets] == ["uncoated", "dlc_1um", "dlc_4um", "wcc_1um", "wcc_4um"]
+    assert all(isinstance(s, SurfaceSet) and isinstance(s.roughness, Roughness) for s in sets)
+    dyn = paper.dynamics_options()
+    assert dyn["engine_speed"] == 3000.0 and dyn["cycles"] == 2
+    trib = paper.analytic_tribology("wcc_4um")
+    assert trib.width == 0.012 and trib.kwargs["boundary_shear_coefficient"] == 0.54
+
+
+def test_paper_numbers(paper):
+    # Table 7
+    assert paper.engine.speed_rpm == 3000.0
+    c = paper.cam_config
+    assert (c.base_radius, c.max_lift, c.width) == (0.015, 0.0093, 0.012)
+    v = paper.valvetrain
+    assert (v.valve_mass, v.spring_mass, v.spring_rate) == (0.07, 0.036, 33750.0)
+    # assumed (DESIGN.md)
+    assert (v.tappet_mass, v.spring_preload, v.lash) == (0.040, 250.0, 0.0)
+    assert (c.ramp_height, c.ramp_angle_deg, c.event_angle_deg, c.nose_radius) == \
+        (0.2e-3, 20.0, 171.0, 3e-3)
+    # Table 5 (+ assumed density)
+    lub = paper.lubricant()
+    assert (lub.viscosity, lub.pressure_viscosity, lub.eyring_stress,
+            lub.limiting_shear_coefficient, lub.density) == (0.055, 1.05e-8, 2e6, 0.08, 850.0)
+    assert lub.viscosity_model == "roelands" and lub.compressible
+    # Table 6 (moduli in GPa)
+    m = paper.materials
+    assert (m["steel"].E, m["dlc"].E, m["wcc"].E) == (210e9, 185e9, 175e9)
+    assert all(x.nu == 0.3 for x in m.values())
+    assert (m["steel"].boundary_shear_coefficient, m["dlc"].boundary_shear_coefficient,
+            m["wcc"].boundary_shear_coefficient) == (0.185, 0.44, 0.54)
+    # Table 4 roughness, coatings on the tappet, steel cam
+    table4 = {"uncoated": (8.3e9, 0.408e-6, 0.669e-6), "dlc": (3.8e9, 0.358e-6, 0.332e-6),
+              "wcc": (2.7e9, 0.347e-6, 0.217e-6)}
+    expect = {"uncoated": (None, None, 0.185, "uncoated"),
+              "dlc_1um": (185e9, 1e-6, 0.44, "dlc"), "dlc_4um": (185e9, 4e-6, 0.44, "dlc"),
+              "wcc_1um": (175e9, 1e-6, 0.54, "wcc"), "wcc_4um": (175e9, 4e-6, 0.54, "wcc")}
+    for s in paper.surface_sets():
+        E, t, sig, rough_key = expect[s.name]
+        cam, tappet = s.bodies
+        assert cam.coating is None and cam.material.E == 210e9 and cam.material.nu == 0.3
+        assert tappet.material.E == 210e9
+        if E is None:
+            assert tappet.coating is None and s.coating_label == "uncoated"
+        else:
+            assert (tappet.coating.E, tappet.coating.nu, tappet.coating.thickness) == (E, 0.3, t)
+        assert s.boundary_shear_coefficient == sig
+        assert s.boundary_shear_strength == 2e6
+        r = s.roughness
+        assert (r.asperity_density, r.rms, r.summit_radius) == table4[rough_key]
+        assert r.method == "exact"
+    assert paper.surface_set("dlc_4um").coating_label == "DLC 4 µm"
+    assert paper.ehl_options("wcc_1um").boundary_shear_coefficient == 0.54
+    assert 0.0 < paper.numerics.crank_step_deg <= 1.0
+    assert paper.numerics.implicit_coupling is False
+
+
+def test_bundled_file_itself_holds_the_numbers_and_comments():
+    text = DEFAULT_CASE.read_text(encoding="utf-8")
+    raw = tomllib.loads(text)
+    assert raw["lubricant"]["viscosity"] == 0.055
+    assert raw["materials"]["wcc"]["E"] == 175e9
+    assert raw["surface_sets"][0]["roughness"]["asperity_density"] == 8.3e9
+    assert raw["valvetrain"]["tappet_mass"] == 0.040
+    for tag in ("Table 4", "Table 5", "Table 6", "Table 7", "ASSUMED", "ERRATUM"):
+        assert tag in text
+    for line in text.splitlines():            # every assumption is marked on its line
+        if re.match(r"\s*(tappet_mass|spring_preload|density|event_angle_deg|nose_radius)\s*=",
+                    line):
+            assert "ASSUMED" in line, line
+
+
+def test_empty_file_is_the_paper_case(paper):
+    d_default = Case.from_toml_string("").to_dict()
+    d_paper = paper.to_dict()
+    d_default.pop("case"), d_paper.pop("case")
+    assert d_default == d_paper
+
+
+def test_bundled_names(paper):
+    assert set(bundled_cases()) == {"andreou2023", "example_table_cam"}
+    assert load_case("andreou2023") == paper
+
+
+def test_example_table_cam():
+    case = load_case(CASES_DIR / "example_table_cam.toml")
+    cam = case.cam()
+    assert isinstance(cam, TabulatedCam)
+    assert case.cam_table_path == CASES_DIR / "example_cam_lift.csv"
+    assert cam.max_lift == pytest.approx(9.3e-3, rel=1e-6)
+    # same kinematics as the default cam it was sampled from
+    th = np.linspace(0.0, 2.0 * np.pi, 721)
+    assert np.max(np.abs(cam.lift(th) - AccelerationCam().lift(th))) < 1e-8
+    assert [s.coating_label for s in case.surface_sets()] == ["uncoated", "WC-C 4 µm"]
+    header = case.cam_table_path.read_text(encoding="utf-8").splitlines()[0]
+    assert header.startswith("#") and "AccelerationCam" in \
+        case.cam_table_path.read_text(encoding="utf-8")
+
+
+def test_other_cam_types():
+    case = Case.from_toml_string('[cam]\ntype = "circular_arc"\nflank_radius = 0.04\n')
+    assert isinstance(case.cam(), CircularArcCam)
+    assert case.cam().flank_radius == 0.04
+
+
+# ----------------------------------------------------------------------------- rejection
+def test_unknown_keys_are_rejected_with_dotted_path():
+    reject("[foo]\nx = 1\n", "foo: unknown key", "allowed: case, engine")
+    reject("[lubricant]\nviscosty = 0.05\n", "lubricant.viscosty: unknown key",
+           "did you mean 'viscosity'")
+    reject("[materials.dlc]\nE = 185e9\nnu = 0.3\nYoung = 1\n", "materials.dlc.Young")
+    reject("[[surface_sets]]\nname = 'a'\n"
+           "roughness = { asperity_density = 1e9, rms = 1e-7, summit_radius = 1e-6, x = 2 }\n",
+           "surface_sets[0].roughness.x: unknown key")
+    reject("[cam]\ntype = 'circular_arc'\nevent_angle_deg = 100\n",
+           "cam.event_angle_deg: unknown key for cam type 'circular_arc'")
+
+
+def test_out_of_range_values_name_the_key():
+    reject("[materials.steel]\nE = -2.1e11\nnu = 0.3\nboundary_shear_coefficient = 0.185\n",
+           "materials.steel.E: must be >= 1e+06 Pa", "(got -2.1e+11)")
+    reject("[materials.steel]\nE = 210e9\nnu = 0.5\nboundary_shear_coefficient = 0.185\n",
+           "materials.steel.nu: must be > -1 and < 0.5", "(got 0.5)")
+    reject("[numerics]\ncrank_step_deg = 0\n", "numerics.crank_step_deg: must be > 0",
+           "<= 5")
+    reject("[lubricant]\nviscosity = 1e-5\n", "lubricant.viscosity: must be > 6.31",
+           "Pa·s", "(got 1e-05)")
+    reject("[cam]\nbase_radius = 0.0\n", "cam.base_radius: must be > 0 m")
+    reject("[cam]\nnose_radius = -0.003\n", "cam.nose_radius: must be > 0 m")
+    reject("[cam]\ntype = 'circular_arc'\nnose_radius = 0.02\n",
+           "cam: nose_radius must be < base_radius")
+    reject("[valvetrain]\ntappet_radius = 0.01\n", "cam:", "tappet radius")
+    reject("[cam]\ntype = 'spline'\n", "cam.type: must be one of 'acceleration'",
+           "(got 'spline')")
+    reject("[numerics]\nn = 512.0\nviscous_model = 'foo'\n",
+           "numerics.n: must be an integer (got 512.0)", "numerics.viscous_model: must be "
+           "'eyring' or 'newtonian' (got 'foo')", "2 problems")
+    reject("[engine]\nspeed_rpm = '3000'\n", "engine.speed_rpm: must be a number")
+    reject("[lubricant]\nviscosity = nan\n", "lubricant.viscosity: must be a finite number")
+
+
+def test_coating_rules():
+    head = "[[surface_sets]]\nname = 'a'\ncoating = 'dlc'\n"
+    reject(head + "coating_thickness = 0\n" + ROUGH,
+           "surface_sets[0].coating_thickness: must be > 0 m")
+    reject(head + ROUGH, "surface_sets[0].coating_thickness: required when a coating is named")
+    reject("[[surface_sets]]\nname = 'a'\ncoating_thickness = 1e-6\n" + ROUGH,
+           "surface_sets[0].coating_thickness: given but no coating")
+    reject("[[surface_sets]]\nname = 'a'\n" + ROUGH + "[[surface_sets]]\nname = 'b'\n"
+           "coating = 'dcl'\ncoating_thickness = 1e-6\n" + ROUGH,
+           "surface_sets[1].coating: unknown material 'dcl'", "did you mean 'dlc'")
+    reject("[[surface_sets]]\nname = 'a'\n" + ROUGH + "[[surface_sets]]\nname = 'a'\n" + ROUGH,
+           "surface_sets[1].name: duplicate surface-set name 'a'")
+    reject("[cam]\nmaterial = 'iron'\n", "cam.material: unknown material 'iron'")
+    reject("[materials.x]\nE = 1e11\nnu = 0.3\n[[surface_sets]]\nname = 'a'\nsubstrate = 'x'\n"
+           + ROUGH + "[cam]\nmaterial = 'x'\n",
+           "surface_sets[0].boundary_shear_coefficient: required")
+    # "none" means uncoated
+    case = Case.from_toml_string("[[surface_sets]]\nname = 'a'\ncoating = 'none'\n" + ROUGH)
+    assert case.surface_sets()[0].tappet.coating is None
+
+
+def test_lift_table_problems(tmp_path):
+    rows = [(a, 0.0) for a in range(0, 360, 10)]
+    rows[20], rows[21] = rows[21], rows[20]                    # not monotonic
+    (tmp_path / "bad.csv").write_text("\n".join(f"{a},{s}" for a, s in rows))
+    msg = reject("[cam]\ntype = 'table'\npath = 'bad.csv'\n", "cam.path:",
+                 "non-monotonic lift table", base_dir=tmp_path)
+    assert "bad.csv" in msg
+    reject("[cam]\ntype = 'table'\npath = 'missing.csv'\n", "cam.path:",
+           "cannot read lift table", base_dir=tmp_path)
+    reject("[cam]\ntype = 'table'\n", "cam.path: required key is missing")
+
+
+def test_toml_syntax_error_and_missing_file(tmp_path):
+    with pytest.raises(InputError, match="TOML syntax error"):
+        Case.from_toml_string("[cam\n")
+    with pytest.raises(InputError, match="cannot read case file"):
+        load_case(tmp_path / "nope.toml")
+
+
+# ----------------------------------------------------------------------------- round trip
+def test_round_trip_is_lossless(paper):
+    text = paper.to_toml()
+    again = Case.from_toml_string(text)
+    assert again == paper
+    assert again.to_dict() == paper.to_dict()
+    assert again.to_toml() == text
+
+
+def test_round_trip_of_awkward_values(paper, tmp_path):
+    case = paper.updated({"lubricant.viscosity": 1.0 / 30.0,
+                          "case.description": 'quote " backslash \\ tab\t new\nline µ',
+                          "valvetrain.contact_stiffness": 3.3e8,
+                          "surface_sets[1].coating_thickness": 1.2345678901234567e-6})
+    assert case.lubricant_config.viscosity == 1.0 / 30.0
+    again = Case.from_toml_string(case.to_toml())
+    assert again == case and again.valvetrain.contact_stiffness == 3.3e8
+    path = case.write_toml(tmp_path / "c.toml")
+    assert load_case(path) == case
+
+
+def test_round_trip_of_table_cam(tmp_path):
+    case = load_case("example_table_cam")
+    again = Case.from_toml_string(case.to_toml(), base_dir=CASES_DIR)
+    assert again == case
+    moved = load_case(case.write_toml(tmp_path / "moved.toml"))   # absolute table path
+    assert moved.cam_table_path == case.cam_table_path
+
+
+def test_updated_validates(paper):
+    faster = paper.updated({"engine.speed_rpm": 2000})
+    assert faster.cam_speed == pytest.approx(2000 / 2 * 2 * math.pi / 60)
+    assert paper.engine.speed_rpm == 3000.0
+    with pytest.raises(InputError, match=r"surface_sets\[2\].coating_thickness"):
+        paper.updated({"surface_sets[2].coating_thickness": -1e-6})
+
+
+def test_to_toml_writer_handles_keys_and_floats():
+    text = to_toml({"a b": {"x": 1e-300, "y": float("inf"), "z": [1, 2.5], "s": "é"}})
+    assert tomllib.loads(text) == {"a b": {"x": 1e-300, "y": float("inf"), "z": [1, 2.5],
+                                           "s": "é"}}
+
+
+# ----------------------------------------------------------------------------- docs
+def test_docs_cover_every_key():
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "case-files.md").read_text(
+        encoding="utf-8")
+    from tribodyn import config as cfg
+    models = [cfg.CaseInfo, cfg.Engine, cfg.AccelerationCamConfig, cfg.CircularArcCamConfig,
+              cfg.TableCamConfig, cfg.Valvetrain, cfg.LubricantConfig, cfg.MaterialConfig,
+              cfg.RoughnessConfig, cfg.SurfaceSetConfig, cfg.Numerics]
+    missing = [f"{m.__name__}.{k}" for m in models for k in m.model_fields
+               if f"`{k}`" not in doc]
+    assert not missing, missing

@@ -1,0 +1,84 @@
+"""Transient EHL: relaxation after a load step, passage through zero entrainment."""
+
+import math
+
+import numpy as np
+import pytest
+
+from tribodyn import Body, Lubricant, Material, TransientEHL, solve_ehl
+from tribodyn.physics.regimes import hamrock_groups, moes_central
+
+STEEL = Material(210e9, 0.3)
+PAIR = (Body(STEEL), Body(STEEL))
+E_PRIME = 210e9 / 0.91
+R, MU0, G = 0.01, 0.04, 5000.0
+OIL = Lubricant(MU0, G / E_PRIME)
+
+
+def conditions(M, L):
+    U = (L / G) ** 4 / 2
+    W = M * math.sqrt(2 * U)
+    return W * E_PRIME * R, U * E_PRIME * R / MU0
+
+
+def test_load_step_relaxes_to_new_steady_state():
+    w, u = conditions(20, 10)
+    tr = TransientEHL(PAIR, OIL)
+    start = tr.start_steady(w, R, u, 0.5)
+    target = solve_ehl(1.5 * w, R, u, 0.5, PAIR, OIL)
+    b = math.sqrt(8 * w * R / (math.pi * E_PRIME))
+    dt = 0.05 * b / u
+    hc = []
+    for _ in range(120):
+        r = tr.step(dt, 1.5 * w, R, u, 0.5)
+        assert r.converged, r.message
+        assert r.hydrodynamic_load == pytest.approx(1.5 * w, rel=1e-9)
+        hc.append(r.central_film)
+    # the film first keeps its old thickness (the oil must be squeezed out) ...
+    assert hc[0] > 1.02 * target.central_film
+    # ... then relaxes to the new steady solution
+    assert r.central_film == pytest.approx(target.central_film, rel=2e-3)
+    assert r.min_film == pytest.approx(target.min_film, rel=2e-3)
+    assert start.central_film > target.central_film
+
+
+def test_passage_through_zero_entrainment_keeps_a_film():
+    """u_e ramps from +u to −u through zero at constant load (cam-nose-like); the steady
+    theory predicts h → 0 at u_e = 0, the squeeze term keeps the film finite."""
+    w = 4e4                       # N/m
+    R_ = 0.005
+    u0 = 1.0
+    oil = Lubricant(0.055, 1.05e-8)
+    tr = TransientEHL(PAIR, oil)
+    tr.start_steady(w, R_, u0, 3.0)
+    T = 2e-3                       # ramp duration [s]
+    nstep = 80
+    dt = T / nstep
+    hc, ue_hist = [], []
+    for k in range(1, nstep + 1):
+        ue = u0 * (1 - 2 * k / nstep)
+        r = tr.step(dt, w, R_, ue, 3.0)
+        assert r.converged, r.message
+        assert np.all(np.isfinite(r.film)) and np.all(np.isfinite(r.pressure))
+        hc.append(r.central_film)
+        ue_hist.append(ue)
+    hc = np.array(hc)
+    i0 = int(np.argmin(np.abs(ue_hist)))
+    assert ue_hist[i0] == pytest.approx(0.0, abs=1e-12)
+    # quasi-steady estimate at the smallest non-zero |u_e| of the ramp
+    W, U, Gg = hamrock_groups(w, R_, u0 * 2 / nstep, 0.055, 1.05e-8, E_PRIME)
+    h_qs = float(moes_central(W, U, Gg, R_))
+    assert hc[i0] > 2 * h_qs                        # squeeze film outlives the steady film
+    assert hc.min() > 0.0
+    # the film decreases through the reversal (oil is squeezed out, not created)
+    assert hc[i0] < hc[0]
+
+
+def test_transient_requires_a_start_and_positive_dt():
+    from tribodyn import InputError
+    tr = TransientEHL(PAIR, OIL)
+    with pytest.raises(InputError, match="start"):
+        tr.step(1e-6, 1e5, R, 1.0, 0.0)
+    tr.start_steady(1e5, R, 1.0, 0.0)
+    with pytest.raises(InputError, match="^dt must"):
+        tr.step(0.0, 1e5, R, 1.0, 0.0)

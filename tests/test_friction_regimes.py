@@ -1,0 +1,125 @@
+"""Friction laws, Greenwood chart and film formulas."""
+
+import math
+
+import numpy as np
+import pytest
+
+from tribodyn import Body, Lubricant, Material, Roughness, solve_ehl
+from tribodyn.physics.analytic_contact import analytic_contact
+from tribodyn.physics.friction import couette_shear_stress, limit_shear_stress
+from tribodyn.physics.regimes import (greenwood_chart_groups, lubrication_regime,
+                                      moes_central, moes_groups, pan_hamrock)
+
+STEEL = Material(210e9, 0.3)
+PAIR = (Body(STEEL), Body(STEEL))
+E_PRIME = 210e9 / 0.91
+
+
+def test_shear_laws():
+    mu, u, h = 0.05, 2.0, 1e-6
+    newt = couette_shear_stress(mu, u, h, "newtonian")
+    assert newt == pytest.approx(1e5)
+    # Eyring: τ_E asinh(τ_N/τ_E) → Newtonian at low stress, below it at high stress
+    assert couette_shear_stress(mu, u, h, "eyring", eyring_stress=1e9) == pytest.approx(newt, rel=1e-8)
+    ey = couette_shear_stress(1e3, u, h, "eyring", eyring_stress=2e6)
+    assert ey == pytest.approx(2e6 * math.asinh(2e9 / 2e6))
+    assert couette_shear_stress(mu, -u, h, "eyring") < 0          # sign follows sliding
+    assert limit_shear_stress(-5e7, 1e8, 0.08) == pytest.approx(-8e6)
+    assert limit_shear_stress(1e5, -1e8, 0.08) == 0.0
+
+
+def test_viscous_friction_rigid_isoviscous_newtonian():
+    """Couette friction of a rigid cylinder, no cap: F = μ u_s √(2R/h₀)[atan(x/√(2Rh₀))]."""
+    R, w, mu, u, us = 0.01, 1e3, 0.05, 1.0, 0.7
+    oil = Lubricant(mu, 0.0, compressible=False)
+    r = solve_ehl(w, R, u, us, PAIR, oil, elastic=False, viscous_model="newtonian",
+                  limiting_shear=False, n=2048, inlet=12)
+    h0 = r.min_film
+    s = math.sqrt(2 * R * h0)
+    exact = mu * us * math.sqrt(2 * R / h0) * (math.atan(r.x[-1] / s) - math.atan(r.x[0] / s))
+    assert r.viscous_friction == pytest.approx(exact, rel=5e-3)
+    assert r.boundary_friction == 0.0
+    assert r.friction_coefficient == pytest.approx(r.viscous_friction / w)
+
+
+def test_limiting_shear_caps_ehl_friction():
+    # heavy EHL at high sliding: the Newtonian shear in the Hertz zone exceeds Λp
+    R, G = 0.01, 5000.0
+    U = (10 / G) ** 4 / 2
+    W = 50 * math.sqrt(2 * U)
+    w, u = W * E_PRIME * R, U * E_PRIME * R / 0.04
+    oil = Lubricant(0.04, G / E_PRIME)
+    capped = solve_ehl(w, R, u, 5.0, PAIR, oil, viscous_model="newtonian")
+    eyring = solve_ehl(w, R, u, 5.0, PAIR, oil, viscous_model="eyring", limiting_shear=False)
+    free = solve_ehl(w, R, u, 5.0, PAIR, oil, viscous_model="newtonian", limiting_shear=False)
+    lam = oil.limiting_shear_coefficient
+    assert capped.viscous_friction <= lam * w * (1 + 1e-9)
+    assert capped.viscous_friction > 0.9 * lam * w          # the cap is active almost everywhere
+    assert free.viscous_friction > 10 * capped.viscous_friction
+    assert eyring.viscous_friction < free.viscous_friction
+    assert np.all(np.abs(capped.shear_stress) <= lam * capped.pressure + 1e-9)
+
+
+def test_boundary_friction_is_integral_of_local_law():
+    R, w, u = 0.01, 2e4, 0.5
+    oil = Lubricant(0.055, 1.05e-8)
+    rough = Roughness(asperity_density=5e10, rms=0.5e-6, summit_radius=2e-6)
+    r = solve_ehl(w, R, u, 1.0, PAIR, oil, rough, boundary_shear_coefficient=0.185)
+    assert r.converged, r.message
+    e_s = E_PRIME
+    ebs = 5e10 * 2e-6 * 0.5e-6
+    # independent recomputation of Eq. 6 and Eq. 17–18 on the returned film
+    from tribodyn import greenwood_tripp
+    lam = r.film / 0.5e-6
+    pa = 8 * math.sqrt(2) / 15 * math.pi * ebs**2 * math.sqrt(0.5 / 2.0) * e_s * greenwood_tripp(2.5, lam)
+    area = math.pi**2 * ebs**2 * greenwood_tripp(2.0, lam)
+    dx = r.x[1] - r.x[0]
+    assert np.allclose(r.asperity_pressure, pa, rtol=1e-10, atol=1e-6)
+    assert r.boundary_friction == pytest.approx(np.sum(2e6 * area + 0.185 * pa) * dx, rel=1e-10)
+    assert r.asperity_load == pytest.approx(np.sum(pa) * dx, rel=1e-10)
+    tot = r.totals(0.012)
+    assert tot["friction"] == pytest.approx((r.viscous_friction + r.boundary_friction) * 0.012)
+
+
+@pytest.mark.parametrize("gV, gE, regime", [
+    (1.0, 1.80, "IR"), (1.0, 1.90, "IE"), (5.0, 0.1, "IR"), (5.2, 0.1, "PR"),
+    (1e4, 1e2, "PE"), (1e3, 0.5, "PR"), (0.1, 50.0, "IE"),
+])
+def test_greenwood_chart_regimes(gV, gE, regime):
+    assert lubrication_regime(gV, gE) == regime
+
+
+def test_chart_groups_and_film_formulas():
+    W, U, G = 1e-4, 1e-11, 5000.0
+    gV, gE = greenwood_chart_groups(W, U, G)
+    assert gV == pytest.approx(G * W**1.5 / math.sqrt(U))
+    assert gE == pytest.approx(W / math.sqrt(U))
+    M, L = moes_groups(W, U, G)
+    assert M == pytest.approx(W / math.sqrt(2 * U))
+    assert L == pytest.approx(G * (2 * U) ** 0.25)
+    hc, hm = pan_hamrock(W, U, G, 0.01)
+    assert hc == pytest.approx(0.01 * 2.922 * W**-0.166 * U**0.692 * G**0.470)
+    assert hm == pytest.approx(0.01 * 1.714 * W**-0.128 * U**0.694 * G**0.568)
+
+
+def test_moes_asymptotes():
+    # rigid isoviscous (M → 0, G = 0): H → 3/M; elastic isoviscous (M → ∞): H → 2.621 M^(−1/5)
+    U = 1e-11
+    for M, expect in ((1e-3, lambda M: 3 / M), (1e4, lambda M: 2.621 * M**-0.2)):
+        W = M * math.sqrt(2 * U)
+        H = moes_central(W, U, 0.0, 1.0) / math.sqrt(2 * U)
+        assert H == pytest.approx(expect(M), rel=0.02)
+
+
+def test_analytic_contact_is_finite_everywhere_including_zero_entrainment():
+    oil = Lubricant(0.055, 1.05e-8)
+    rough = Roughness(8.3e9, 0.408e-6, 0.669e-6)
+    w = np.array([1.0, 2e4, 4e4, 4e4])
+    ue = np.array([5.0, 5.0, 0.0, -1.4])
+    r = analytic_contact(w, 0.01, ue, 3.0, PAIR, oil, rough)
+    for v in (r.central_film, r.min_film, r.viscous_friction, r.boundary_friction, r.asperity_load):
+        assert np.all(np.isfinite(v)) and np.all(v >= 0)
+    assert np.all(r.asperity_load <= w)
+    assert np.all(r.min_film <= r.central_film)
+    assert set(np.atleast_1d(r.regime)) <= {"IR", "PR", "IE", "PE"}
