@@ -99,7 +99,8 @@ def test_paper_numbers(paper):
     assert paper.surface_set("dlc_4um").coating_label == "DLC 4 µm"
     assert paper.ehl_options("wcc_1um").boundary_shear_coefficient == 0.54
     assert 0.0 < paper.numerics.crank_step_deg <= 1.0
-    assert paper.numerics.implicit_coupling is False
+    assert paper.numerics.implicit_coupling is True      # the comparison of Figs. 8–10
+    assert paper.numerics.n == 0                         # automatic EHL grid
 
 
 def test_bundled_file_itself_holds_the_numbers_and_comments():

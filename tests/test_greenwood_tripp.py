@@ -81,3 +81,14 @@ def test_asperity_pressure_and_area_formulae():
     d = 1e-12
     fd = (r.asperity_pressure(h + d, e) - r.asperity_pressure(h - d, e)) / (2 * d)
     assert r.asperity_pressure_derivative(h, e) == pytest.approx(fd, rel=1e-5)
+
+
+def test_interpolation_table_used_by_the_solvers():
+    from tribodyn.physics.asperity import greenwood_tripp_table
+    lam = np.linspace(-15.0, 36.9, 20001)
+    for n in (2.5, 2.0):
+        f, df = greenwood_tripp_table(n, lam)
+        assert np.max(np.abs(f / greenwood_tripp(n, lam) - 1)) < 1e-8
+        assert np.max(np.abs(df / greenwood_tripp_derivative(n, lam) - 1)) < 1e-6
+    f, df = greenwood_tripp_table(2.5, np.array([37.5, 1e3]))
+    assert np.all(f == 0) and np.all(df == 0)

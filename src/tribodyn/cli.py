@@ -2,12 +2,16 @@
 
 from __future__ import annotations
 
-import time
+import sys
 from pathlib import Path
+from typing import Optional
 
 import typer
 from rich.console import Console
+from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.table import Table
 
+from ._validation import InputError
 from .cli_contact import contact_command
 from .topography.cli import topography_command
 
@@ -22,25 +26,92 @@ def _main():
 
 
 @app.command()
-def run(out: Path = typer.Option(Path("results"), "-o", "--out", help="output folder")):
-    """Run the main job (currently: the dry coating study, paper Fig. 5)."""
-    from .plots import plot_dry_coating_study
-    from .workflow.coating_study import PAPER_FIG5, dry_coating_study
+def run(case: Optional[Path] = typer.Argument(
+            None, help="case file (TOML); default: the bundled paper case (andreou2023)"),
+        out: Path = typer.Option(Path("results"), "-o", "--out", help="output folder"),
+        workers: Optional[int] = typer.Option(
+            None, "--workers", "-j", help="processes (default: the case's numerics.workers; "
+                                          "0 there means one per CPU core)"),
+        implicit: Optional[bool] = typer.Option(
+            None, "--implicit/--no-implicit",
+            help="run the implicit dynamics for the comparison (default: from the case)"),
+        quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress bar")):
+    """Run the cam-cycle study: dynamics, transient EHL per surface set, figures, report.
 
-    t0 = time.perf_counter()
-    cases = dry_coating_study()
-    path = plot_dry_coating_study(cases, out / "fig05_dry_pressure.png",
-                                  radius=PAPER_FIG5["radius"], thickness=PAPER_FIG5["thickness"],
-                                  load_total=PAPER_FIG5["load_total"], width=PAPER_FIG5["width"])
-    for c in cases:
-        r = c.result
-        console.print(f"{c.label:16s} b = {r.half_width * 1e6:7.2f} µm  "
-                      f"p_max = {r.max_pressure / 1e6:7.1f} MPa  converged={r.converged}")
-    console.print(f"wrote {path} in {time.perf_counter() - t0:.1f} s")
+    Writes OUT/results.nc, summary.json, report.md, case.toml and the figures; the folder
+    is replaced only when everything has been written.
+    """
+    from .config import load_case
+    from .results_io import write_results
+    from .workflow.cycle import StudyError, run_cycle_study
+
+    try:
+        c = load_case(case)
+        if implicit is not None:
+            c = c.updated({"numerics.implicit_coupling": implicit})
+    except InputError as exc:
+        console.print(f"[red]error in the case:[/red] {exc}")
+        raise typer.Exit(2)
+    n_workers = workers if workers is not None else (c.numerics.workers or None)
+    console.print(f"case [bold]{c.name}[/bold]: {len(c.surface_set_names)} surface sets, "
+                  f"{c.engine_speed:g} rpm → {out}")
+    with Progress(TextColumn("{task.description:<24}"), BarColumn(),
+                  TextColumn("{task.percentage:>5.1f} %"), TimeElapsedColumn(),
+                  console=console, disable=quiet, transient=False) as bar:
+        tasks = {}
+
+        def progress(event, **info):
+            if event == "dynamics":
+                tasks["dyn"] = bar.add_task("valvetrain dynamics", total=1)
+            elif event == "set":
+                name = info["name"]
+                if "dyn" in tasks:
+                    bar.update(tasks["dyn"], completed=1)
+                if name not in tasks:
+                    tasks[name] = bar.add_task(f"EHL {name}", total=info["total"])
+                bar.update(tasks[name], completed=info["done"])
+
+        try:
+            study = run_cycle_study(c, workers=n_workers, progress=progress)
+        except StudyError as exc:
+            console.print(f"[red]study failed:[/red] {exc}")
+            raise typer.Exit(1)
+        if "dyn" in tasks:
+            bar.update(tasks["dyn"], completed=1)
+        t_write = bar.add_task("figures and report", total=1)
+        res = write_results(study, out)
+        bar.update(t_write, completed=1)
+
+    summ = res["summary"]
+    table = Table(title=f"{c.name}: per tappet surface (cam event)")
+    for col in ("surface", "min film µm", "max h_c µm", "film gain %", "max F_b N",
+                "max F_v N", "F_b vs uncoated %", "energy J/cycle", "failed steps"):
+        table.add_column(col, justify="right")
+    for v in summ["surface_sets"].values():
+        red = v["boundary_friction_reduction_vs_uncoated_pct"]
+        table.add_row(v["label"], f"{v['min_film_m'] * 1e6:.3f}",
+                      f"{v['max_central_film_m'] * 1e6:.2f}",
+                      f"{v['max_film_gain_vs_uncoated_pct']:+.2f}",
+                      f"{v['max_boundary_friction_N']:.3g}",
+                      f"{v['max_viscous_friction_N']:.3g}",
+                      "–" if red is None else f"{-red:+.1f}",
+                      f"{v['friction_energy_per_cycle_J']:.3f}", str(v["failed_steps"]))
+    console.print(table)
+    ie = summ["implicit_vs_explicit"]
+    if ie.get("max_contact_force_diff_pct") is not None:
+        console.print(f"implicit vs explicit: contact force differs by at most "
+                      f"{ie['max_contact_force_diff_pct']:.1f} % of its peak (at "
+                      f"{ie['max_contact_force_diff_crank_deg']:.1f}°), tappet velocity by "
+                      f"{ie['max_velocity_diff_pct']:.2f} %")
+    for w in summ["warnings"]:
+        console.print(f"[yellow]warning:[/yellow] {w}")
+    console.print(f"wrote {out}/results.nc, summary.json, report.md and "
+                  f"{len(res['figures'])} figures in {summ['runtime_s']:.1f} s "
+                  f"(+ writing)")
 
 
-app.command("topography")(topography_command)
 app.command("contact")(contact_command)
+app.command("topography")(topography_command)
 
 
 def main():  # pragma: no cover

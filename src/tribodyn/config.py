@@ -304,7 +304,12 @@ class SurfaceSetConfig(_Section):
 class Numerics(_Section):
     """``[numerics]``: solver settings."""
 
-    n: int = _q(512, "", "EHL grid nodes (uniform)", ge=32, le=65536)
+    n: int = _q(0, "", "EHL grid nodes (uniform); 0 = automatic from the contact "
+                       "(512…4096, keeps h_c, h_min within 0.5 % of grid convergence)",
+                ge=0, le=65536)
+    min_load: float = _q(5.0, "N", "contact force below which the EHL is not solved "
+                                   "(cam on the base circle: no load, no film)",
+                         gt=0.0, le=1e4)
     inlet: float = _q(4.0, "", "EHL domain upstream of the centre, in contact length scales",
                       ge=1.0, le=100.0)
     outlet: float = _q(1.75, "", "EHL domain downstream of the centre, in length scales",
@@ -330,9 +335,10 @@ class Numerics(_Section):
     dynamics_method: Literal["LSODA", "Radau", "BDF"] = _q("LSODA", "",
                                                            "stiff integrator (solve_ivp)")
     dynamics_rtol: float = _q(1e-6, "", "relative tolerance of the dynamics", gt=0.0, lt=0.1)
-    implicit_coupling: bool = _q(False, "", "couple the EHL film into the dynamics "
-                                            "(false: explicit, the paper's choice)")
-    coupling_iterations: int = _q(3, "", "dynamics ↔ EHL iterations of the implicit coupling",
+    implicit_coupling: bool = _q(True, "", "also run the implicit dynamics (numerical EHL "
+                                           "film and friction in the dynamics) for the "
+                                           "comparison with the explicit run")
+    coupling_iterations: int = _q(4, "", "dynamics ↔ EHL iterations of the implicit coupling",
                                   ge=1, le=100)
     workers: int = _q(1, "", "worker processes for the surface sets (0: one per CPU core)",
                       ge=0, le=4096)
@@ -642,7 +648,9 @@ class Case(_Section):
         """:class:`~tribodyn.EHLOptions` from ``[numerics]``; with a surface set (object or
         name), its ς and τ₀ of the boundary friction law."""
         n = self.numerics
-        kw = dict(n=n.n, inlet=n.inlet, outlet=n.outlet, tol=n.tol, max_iter=n.max_iter,
+        if 0 < n.n < 32:
+            raise InputError(f"numerics.n: must be 0 (automatic) or >= 32 (got {n.n})")
+        kw = dict(n=n.n or None, inlet=n.inlet, outlet=n.outlet, tol=n.tol, max_iter=n.max_iter,
                   viscous_model=n.viscous_model, limiting_shear=n.limiting_shear,
                   time_order=n.time_order)
         if surface_set is not None:

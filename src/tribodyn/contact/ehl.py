@@ -32,7 +32,8 @@ import numpy as np
 from scipy import linalg
 
 from .._validation import InputError, check_nonnegative, check_positive, check_real
-from ..physics.asperity import Roughness
+from ..physics.asperity import (Roughness, greenwood_tripp, greenwood_tripp_derivative,
+                                greenwood_tripp_table)
 from ..physics.elasticity import DeformationOperator, influence_coefficients
 from ..physics.friction import (BOUNDARY_SHEAR_STRENGTH, VISCOUS_MODELS,
                                 boundary_shear_stress, couette_shear_stress,
@@ -209,13 +210,6 @@ class _Grid:
         return self.n == n and self.direction == direction and abs(a / self.a - 1.0) < 0.02
 
 
-@dataclass
-class _State:
-    P: np.ndarray
-    H: np.ndarray
-    H0: float
-
-
 # ----------------------------------------------------------------------------- core
 class _ReynoldsSystem:
     """Scaled discrete system for one solve (one time level)."""
@@ -232,8 +226,12 @@ class _ReynoldsSystem:
             kscale = p_ref / h_ref
             self.K = grid.K * kscale
             self.Kop = DeformationOperator.from_coefficients(grid.coef * kscale)
+            ac = np.abs(grid.coef) * kscale
+            self.kcoef = grid.coef * kscale
+            self.krow = float(ac[0] + 2.0 * ac[1:].sum())     # bound on ‖K‖_∞
         else:
             self.K = self.Kop = None
+            self.kcoef, self.krow = None, 0.0
         self.u_scale = max(abs(ue), 1e-3)
         self.ubar = ue / self.u_scale
         self.lam = h_ref**2 * p_ref / (12.0 * lub.viscosity * a * self.u_scale)
@@ -257,50 +255,38 @@ class _ReynoldsSystem:
         self.c1 = np.where(second, -2.0, -1.0)
         self.c2 = np.where(second, 0.5, 0.0)
 
-    # -- asperities
+    # -- asperities and film
     def asperity(self, H):
+        """Scaled Greenwood–Tripp pressure Pa(H) and D = dPa/dH."""
         if self.rough is None:
             z = np.zeros_like(H)
             return z, z
-        from ..physics.asperity import greenwood_tripp, greenwood_tripp_derivative
         lam = H / self.sig
         m = self.rough.method
-        pa = self.ka * greenwood_tripp(2.5, lam, m)
-        dpa = self.ka / self.sig * greenwood_tripp_derivative(2.5, lam, m)
-        return pa, dpa
+        if m == "exact":
+            f, df = greenwood_tripp_table(2.5, lam)
+        else:
+            f, df = greenwood_tripp(2.5, lam, m), greenwood_tripp_derivative(2.5, lam, m)
+        return self.ka * f, self.ka / self.sig * df
 
-    def film(self, P, H0, H_guess=None):
-        """H = H0 + X²/2 + K(P + Pa(H)): Newton on the local asperity feedback (Woodbury)."""
-        g = self.g
-        if self.K is None:                       # rigid bodies: asperities deform nothing
+    def film(self, Q, H0):
+        """H = H0 + X²/2 + K Q: the surfaces deform under the total pressure Q = P + Pa."""
+        if self.K is None:
             return H0 + self.geom
-        base = H0 + self.geom + self.K @ P
-        if self.rough is None:
-            return base
-        H = base.copy() if H_guess is None else H_guess.copy()
-        for _ in range(60):
-            pa, dpa = self.asperity(H)
-            r = H - base - self.K @ pa
-            if np.max(np.abs(r)) < 1e-13 * max(1.0, np.max(np.abs(H))):
-                break
-            H = H - self._solve_film_jacobian(dpa, r)
-        return H
+        return H0 + self.geom + self.Kop(Q)
 
-    def _solve_film_jacobian(self, dpa, r):
-        """(I − K D_a)⁻¹ r with D_a = diag(dpa), through the asperity-active set."""
-        g = self.g
-        act = np.flatnonzero(dpa != 0.0)
-        if act.size == 0:
-            return r
-        Da = dpa[act]
-        inner = np.eye(act.size) - self.K[np.ix_(act, act)] * Da[None, :]
-        y = linalg.solve(inner, r[act], check_finite=False)
-        return r + (self.K[:, act] * Da[None, :]) @ y
+    # -- residual and banded derivatives
+    def evaluate(self, Q, H0):
+        """Residuals and banded derivatives at (Q, H0).
 
-    # -- residual and Jacobian
-    def evaluate(self, P, H, H0, want_jac=True):
+        Returns an :class:`_Eval` with the Reynolds residual R (interior rows), the load
+        residual ΔX ΣQ − 1, the fluid pressure P = Q − Pa(H), the film H, D = dPa/dH and
+        the diagonals of A_P = ∂R/∂P, A_H = ∂R/∂H (offsets −2…2)."""
         g, lub = self.g, self.lub
         n, dX = g.n, g.dX
+        H = self.film(Q, H0)
+        pa, dpa = self.asperity(H)
+        P = Q - pa
         p = P * self.p_ref
         rho = lub.density_at(p) / lub.density
         drho = lub.ddensity_dp(p) / lub.density * self.p_ref
@@ -317,20 +303,15 @@ class _ReynoldsSystem:
 
         R = np.zeros(n)
         ef = 0.5 * (eps[1:] + eps[:-1])           # face i+½, i = 0..n−2
-        dP = np.diff(P)
-        flux = ef * dP                            # ε ∂P at faces
+        flux = ef * np.diff(P)                    # ε ∂P at faces
         R[1:-1] = (flux[1:] - flux[:-1]) / dX**2
         # upwind stencil Σ c_k f[i − s k] approximates s·df/dX, so −ū df/dX = −|ū| Σ …
         cou = -abs(self.ubar) * (self.c0 * f + self.c1 * f[self.up1] + self.c2 * f[self.up2]) / dX
         R[1:-1] += cou[1:-1]
         if self.time_coef:
             R[1:-1] -= self.time_coef * (f[1:-1] - self.f_old[1:-1])
-        pa, dpa = self.asperity(H)
-        load = dX * (np.sum(P) + np.sum(pa)) - 1.0
-        if not want_jac:
-            return R, load, eps, pa, dpa
+        load = dX * np.sum(Q) - 1.0
 
-        # banded derivatives: A_P[i, i+d], A_H[i, i+d] for d = −2..2
         AP = {d: np.zeros(n) for d in (-2, -1, 0, 1, 2)}
         AH = {d: np.zeros(n) for d in (-2, -1, 0, 1, 2)}
         i = np.arange(1, n - 1)
@@ -338,8 +319,7 @@ class _ReynoldsSystem:
         AP[1][i] += efp / dX**2
         AP[-1][i] += efm / dX**2
         AP[0][i] += -(efp + efm) / dX**2
-        # through ε at nodes i−1, i, i+1
-        cp = (P[i + 1] - P[i]) / (2 * dX**2)
+        cp = (P[i + 1] - P[i]) / (2 * dX**2)      # through ε at nodes i−1, i, i+1
         cm = (P[i] - P[i - 1]) / (2 * dX**2)
         AP[1][i] += cp * deps_dP[i + 1]
         AP[0][i] += (cp - cm) * deps_dP[i]
@@ -347,7 +327,6 @@ class _ReynoldsSystem:
         AH[1][i] += cp * deps_dH[i + 1]
         AH[0][i] += (cp - cm) * deps_dH[i]
         AH[-1][i] += -cm * deps_dH[i - 1]
-        # Couette
         s = self.s
         for ck, off in ((self.c0, 0), (self.c1, -s), (self.c2, -2 * s)):
             coef = -abs(self.ubar) * ck[i] / dX
@@ -357,25 +336,19 @@ class _ReynoldsSystem:
         if self.time_coef:
             AP[0][i] += -self.time_coef * df_dP[i]
             AH[0][i] += -self.time_coef * df_dH[i]
-        return R, load, eps, pa, dpa, AP, AH
+        return _Eval(R, load, P, H, pa, dpa, AP, AH)
 
-    def sensitivity(self, dpa):
-        """S = ∂H/∂P and s0 = ∂H/∂H0 (identity film law + asperity feedback)."""
-        g = self.g
-        n = g.n
-        if self.K is None:
-            return None, np.ones(n)
-        act = np.flatnonzero(dpa != 0.0)
-        if self.rough is None or act.size == 0:
-            return self.K, np.ones(n)
-        # Woodbury: (I − K D)⁻¹ = I + K[:,a] D_a (I − K[a,a] D_a)⁻¹ E_aᵀ
-        Da = dpa[act]
-        inner = np.eye(act.size) - self.K[np.ix_(act, act)] * Da[None, :]
-        lu = linalg.lu_factor(inner, check_finite=False)
-        KaD = self.K[:, act] * Da[None, :]
-        S = self.K + KaD @ linalg.lu_solve(lu, self.K[act, :], check_finite=False)
-        s0 = 1.0 + KaD @ linalg.lu_solve(lu, np.ones(act.size), check_finite=False)
-        return S, s0
+
+@dataclass
+class _Eval:
+    R: np.ndarray
+    load: float
+    P: np.ndarray
+    H: np.ndarray
+    pa: np.ndarray
+    dpa: np.ndarray
+    AP: dict
+    AH: dict
 
 
 def _band_apply(diags, v):
@@ -391,51 +364,51 @@ def _band_apply(diags, v):
 
 
 class _Linearization:
-    """Newton system for (δP, δH₀) at one iterate, usable as a dense matrix (for LU) or
+    """Newton system for (δQ, δH₀) at one iterate, usable as a dense matrix (for LU) or
     matrix-free (J·z costs one DC-FFT plus banded work, for preconditioned GMRES).
 
-    Rows: boundary nodes δP = −P; cavitated nodes δP_i = −P_i; free nodes
-    c_i[(A_P + A_H S) δP + A_H s₀ δH₀] = −c_i R_i; load row
-    ΔX[Σ δP + d_aᵀ(S δP + s₀ δH₀)] = −load residual.
+    With H = H₀ + X²/2 + K Q and P = Q − Pa(H): δH = K δQ + δH₀, δP = δQ − D δH, so
+    δR = A_P δQ + B (K δQ + δH₀), B = A_H − A_P D (banded). Rows: boundary nodes δQ = 0;
+    cavitated nodes δP_i = −P_i, i.e. δQ_i − D_i (K δQ + δH₀)_i = −P_i; free nodes
+    c_i [A_P δQ + B K δQ + B 1 δH₀] = −c_i R_i; load row ΔX Σ δQ = −(ΔX ΣQ − 1).
     """
 
-    def __init__(self, sysm: _ReynoldsSystem, P, c, cav, ev):
+    def __init__(self, sysm: _ReynoldsSystem, c, cav, ev: _Eval):
         g = sysm.g
         n = g.n
-        R, load, eps, pa, dpa, AP, AH = ev
-        self.n, self.dX, self.AP, self.AH, self.dpa = n, g.dX, AP, AH, dpa
-        self.S, self.s0 = sysm.sensitivity(dpa)
-        self.kop = sysm.Kop if self.S is sysm.K else None
-        self.col = np.zeros(n)
-        for d, v in AH.items():
-            rows = np.arange(max(0, -d), min(n, n - d))
-            self.col[rows] += v[rows] * self.s0[rows + d]
-        self.jhh = g.dX * float(np.dot(dpa, self.s0))
+        self.n, self.dX, self.sysm = n, g.dX, sysm
+        self.rigid = sysm.K is None
+        self.AP = ev.AP
+        D = ev.dpa
+        self.D = D
+        self.B = {}
+        for d, v in ev.AH.items():
+            b = v.copy()
+            lo, hi = max(0, -d), min(n, n - d)
+            b[lo:hi] -= ev.AP[d][lo:hi] * D[lo + d:hi + d]
+            self.B[d] = b
+        self.col = sum(self.B.values())                # B·1
         self.cav = cav.copy()
-        self.cav[0] = self.cav[-1] = True            # boundary rows behave as clamped rows
-        self.free = ~self.cav
+        self.bnd = np.zeros(n, dtype=bool)
+        self.bnd[0] = self.bnd[-1] = True
+        self.cav[0] = self.cav[-1] = False
+        self.free = ~(self.cav | self.bnd)
         self.c = c
-        rhs = -R.copy()
-        rhs[self.cav] = -P[self.cav]
+        rhs = -ev.R.copy()
         rhs[self.free] *= c[self.free]
-        self.rhs = np.concatenate([rhs, [-load]])
-
-    def _sv(self, v):
-        if self.S is None:
-            return np.zeros_like(v)
-        if self.kop is not None:
-            return self.kop(v)
-        return self.S @ v
+        rhs[self.cav] = -ev.P[self.cav]
+        rhs[self.bnd] = -ev.P[self.bnd]
+        self.rhs = np.concatenate([rhs, [-ev.load]])
 
     def matvec(self, z):
         n = self.n
         v, vh = z[:n], z[n]
-        sv = self._sv(v)
-        y = _band_apply(self.AP, v) + _band_apply(self.AH, sv) + self.col * vh
-        y[self.cav] = v[self.cav]
+        dh = (np.zeros_like(v) if self.rigid else self.sysm.Kop(v)) + vh      # δH
+        y = _band_apply(self.AP, v) + _band_apply(self.B, dh - vh) + self.col * vh
         y[self.free] *= self.c[self.free]
-        load = self.dX * (np.sum(v) + np.dot(self.dpa, sv)) + self.jhh * vh
-        return np.concatenate([y, [load]])
+        y[self.cav] = v[self.cav] - self.D[self.cav] * dh[self.cav]
+        y[self.bnd] = v[self.bnd]
+        return np.concatenate([y, [self.dX * np.sum(v)]])
 
     def dense(self):
         n = self.n
@@ -444,17 +417,25 @@ class _Linearization:
         for d, v in self.AP.items():
             rows = np.arange(max(0, -d), min(n, n - d))
             J[rows, rows + d] += v[rows]
-        if self.S is not None:
-            for d, v in self.AH.items():          # contiguous slices: no fancy-index copies
+        K = self.sysm.K
+        if K is not None:
+            for d, v in self.B.items():           # contiguous slices: no fancy-index copies
                 lo, hi = max(0, -d), min(n, n - d)
-                J[lo:hi, :n] += v[lo:hi, None] * self.S[lo + d:hi + d, :]
+                J[lo:hi, :n] += v[lo:hi, None] * K[lo + d:hi + d, :]
         J[:n, n] = self.col
-        J[n, :n] = self.dX * (1.0 + (self.dpa @ self.S if self.S is not None else 0.0))
-        J[n, n] = self.jhh
-        ic = idx[self.cav]
-        J[ic, :] = 0.0
-        J[ic, ic] = 1.0
         J[:n] *= np.where(self.free, self.c, 1.0)[:, None]
+        ic = idx[self.cav]
+        if ic.size:
+            J[ic, :] = 0.0
+            if K is not None:
+                J[ic, :n] = -self.D[ic, None] * K[ic, :]
+            J[ic, ic] += 1.0
+            J[ic, n] = -self.D[ic]
+        for b in (0, n - 1):
+            J[b, :] = 0.0
+            J[b, b] = 1.0
+        J[n, :n] = self.dX
+        J[n, n] = 0.0
         return J
 
 
@@ -528,55 +509,68 @@ def _release(cav_std, prev_cav, release):
     return cav
 
 
+@dataclass
+class _State:
+    """Scaled solution: total pressure Q = P + Pa (the unknown), h₀, and derived P, H."""
+
+    Q: np.ndarray
+    H0: float
+    P: np.ndarray = None
+    H: np.ndarray = None
+
+
 def _newton(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None):
-    """Semismooth Newton on min(P_i, −c_i R_i) = 0 and the load balance, with a
-    non-monotone Armijo line search on |Φ|² + load residual² (c frozen within a search).
-    Iterates may dip below zero pressure; the min-function clamps them (δP_i = −P_i)
-    on the next iteration."""
+    # trial points of the line search may overflow (e.g. exp(αp)); they are rejected by
+    # their non-finite merit, and the accepted solution is checked for finiteness
+    with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
+        return _newton_impl(sysm, st, tol, max_iter, lu)
+
+
+def _newton_impl(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None):
+    """Semismooth Newton on min(P_i, −c_i R_i) = 0 and the load balance, unknowns (Q, H₀),
+    with a non-monotone Armijo line search on |Φ|² + load residual² (c frozen within a
+    search) and a small budget of full steps that may raise it (watchdog). Iterates may
+    dip below zero pressure; the min-function clamps them on the next iteration.
+    The Newton systems are solved by LU, or by GMRES preconditioned with an earlier LU."""
     g = sysm.g
-    dX = g.dX
+    n = g.n
 
     def jacobi_scale(ev):
-        """c_i = 1/|J_ii| with J = A_P + A_H S (full Newton diagonal)."""
-        R, load, eps, pa, dpa, AP, AH = ev
-        S, _ = sysm.sensitivity(dpa)
-        n = R.size
-        diag = AP[0].copy()
-        for d, v in AH.items():
-            rows = np.arange(max(0, -d), min(n, n - d))
-            diag[rows] += v[rows] * (S[rows + d, rows] if S is not None else (d == 0))
+        """c_i ≈ 1/|J_ii|, J = A_P + B K (only a scaling)."""
+        diag = ev.AP[0].copy()
+        if sysm.kcoef is not None:
+            for d, v in ev.AH.items():
+                rows = np.arange(max(0, -d), min(n, n - d))
+                diag[rows] += (v[rows] - ev.AP[d][rows] * ev.dpa[rows + d]) * sysm.kcoef[abs(d)]
         diag = np.abs(diag)
         diag[0], diag[-1] = diag[1], diag[-2]
         return 1.0 / np.maximum(diag, 1e-300 + 1e-14 * diag.max())
 
-    def merit_of(ev, P, c=None):
+    def merit_of(ev, c=None):
         """|Φ|² + load²; the scale c is frozen within a line search (c=given)."""
         c = jacobi_scale(ev) if c is None else c
-        phi = np.minimum(P, -c * ev[0])
-        phi[0], phi[-1] = P[0], P[-1]
-        return float(np.dot(phi, phi) + ev[1] * ev[1]), c
+        phi = np.minimum(ev.P, -c * ev.R)
+        phi[0], phi[-1] = ev.P[0], ev.P[-1]
+        return float(np.dot(phi, phi) + ev.load * ev.load), c
 
-    P, H0 = np.maximum(st.P, 0.0), st.H0
-    H = sysm.film(P, H0, st.H)
-    ev = sysm.evaluate(P, H, H0)
-    m0, c = merit_of(ev, P)
+    Q, H0 = st.Q.copy(), st.H0
+    ev = sysm.evaluate(Q, H0)
+    m0, c = merit_of(ev)
     msg = "maximum iterations reached"
     ok = False
-    prev_cav, release = None, 1
+    prev_cav, release, released_ok = None, 1, True
     history = [m0]          # non-monotone (Grippo–Lampariello–Lucidi) acceptance
     watchdog = 2            # full Newton steps allowed to raise the merit (warm starts)
-    n_lu = 0                # lu: LU of an earlier Newton matrix (direct solve or preconditioner)
     gmres_tol = 1e-6
     it = 0
     for it in range(1, max_iter + 1):
-        R = ev[0]
-        cav_std = P < -c * R
+        cav_std = ev.P < -c * ev.R
         cav_std[0] = cav_std[-1] = False
         accepted = False
         fresh_lu = False
         for cav in ((_release(cav_std, prev_cav, release), cav_std) if release > 1
                     else (cav_std,)):
-            lin = _Linearization(sysm, P, c, cav, ev)
+            lin = _Linearization(sysm, c, cav, ev)
             delta = None
             fresh_lu = lu is None
             if lu is not None:
@@ -586,7 +580,6 @@ def _newton(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None):
             if delta is None:
                 try:
                     lu = linalg.lu_factor(lin.dense(), check_finite=False)
-                    n_lu += 1
                 except (linalg.LinAlgError, ValueError):
                     lu = None
                     continue
@@ -595,14 +588,13 @@ def _newton(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None):
             if not np.all(np.isfinite(delta)):
                 lu = None
                 continue
-            dP, dH0 = delta[:-1], delta[-1]
+            dQ, dH0 = delta[:-1], delta[-1]
             step = 1.0
             for _ in range(30):
-                Pn = P + step * dP
+                Qn = Q + step * dQ
                 H0n = H0 + step * dH0
-                Hn = sysm.film(Pn, H0n, H)
-                evn = sysm.evaluate(Pn, Hn, H0n)
-                mn, _ = merit_of(evn, Pn, c)
+                evn = sysm.evaluate(Qn, H0n)
+                mn, _ = merit_of(evn, c)
                 ref = max(history[-_NONMONOTONE:])
                 if np.isfinite(mn) and (mn <= (1.0 - 1e-4 * step) * ref or
                                         (step == 1.0 and watchdog > 0 and mn <= _WATCHDOG * ref)):
@@ -621,29 +613,41 @@ def _newton(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None):
             break
         overshoot = prev_cav is not None and bool(np.any(~prev_cav & cav_std))
         moved = prev_cav is not None and bool(np.any(prev_cav & ~cav_std))
-        release = 1 if overshoot else (2 * release if moved else 1)
+        if overshoot:
+            released_ok = False    # near the boundary now: plain active-set updates finish
+        release = 2 * release if (moved and released_ok and not overshoot) else 1
         prev_cav = cav_std
-        upd = step * max(np.max(np.abs(dP)) / max(np.max(np.abs(Pn)), 1e-30),
-                         abs(dH0) / max(abs(Hn[g.i0]), 1e-30))
+        upd = step * max(np.max(np.abs(dQ)) / max(np.max(np.abs(Qn)), 1e-30),
+                         abs(dH0) / max(abs(evn.H[g.i0]), 1e-30))
         if _TRACE:
-            print(f"    it {it} step {step:.3g} merit {mn:.3e} upd {upd:.2e} ncav {int(cav_std.sum())} rel {release}")
-        m0, c = merit_of(evn, Pn)          # re-scale at the accepted point
-        P, H0, H, ev = Pn, H0n, Hn, evn
+            print(f"    it {it} step {step:.3g} merit {mn:.3e} upd {upd:.2e} "
+                  f"ncav {int(cav_std.sum())} rel {release}")
+        m0, c = merit_of(evn)          # re-scale at the accepted point
+        Q, H0, ev = Qn, H0n, evn
         history.append(m0)
         res = math.sqrt(max(m0, 0.0))
-        if upd < tol and res < 1e3 * tol:
+        # converged: update below tol, or residual at round-off with an update so small
+        # that the next (quadratic) one would be
+        if (upd < tol and res < 1e3 * tol) or (res < 1e-13 and upd < math.sqrt(tol)):
             ok = True
             msg = f"converged in {it} Newton iterations (update {upd:.1e}, residual {res:.1e})"
             break
     _newton.last_lu = lu
-    if ok:
-        P = np.maximum(P, 0.0)        # cavitated nodes are exactly 0 up to round-off
-    return _State(P, H, H0), ok, it, msg
+    P = np.maximum(ev.P, 0.0) if ok else ev.P   # cavitated nodes are 0 up to round-off
+    return _State(Q, H0, P, ev.H), ok, it, msg
 
 
 # ----------------------------------------------------------------------------- post
 def _postprocess(sysm, st: _State, w, R, ue, us, opts: EHLOptions, lub, rough, ok, it, msg,
                  time=0.0, squeeze_velocity=0.0):
+    # a non-converged last iterate may hold extreme pressures: evaluate quietly, flag below
+    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
+        return _postprocess_impl(sysm, st, w, R, ue, us, opts, lub, rough, ok, it, msg, time,
+                                 squeeze_velocity)
+
+
+def _postprocess_impl(sysm, st, w, R, ue, us, opts, lub, rough, ok, it, msg, time,
+                      squeeze_velocity):
     g = sysm.g
     x = g.x
     p = st.P * sysm.p_ref
@@ -681,7 +685,7 @@ def _postprocess(sysm, st: _State, w, R, ue, us, opts: EHLOptions, lub, rough, o
             else:
                 x_cav = float(x[idx[k]])
             break
-    if not np.all(np.isfinite(p)) or not np.all(np.isfinite(h)):
+    if not (np.all(np.isfinite(p)) and np.all(np.isfinite(h)) and np.isfinite(f_visc)):
         ok = False
         msg = "non-finite solution: " + msg
     if ok and (p[1] > 1e-3 * p.max() or p[-2] > 1e-3 * p.max()):
@@ -707,15 +711,14 @@ def _initial_state(sysm: _ReynoldsSystem, b, h_est):
     H0 = h_est / sysm.h_ref
     if sysm.K is not None:
         H0 -= (sysm.K @ P)[g.i0]
-    return _State(P, sysm.film(P, H0), H0)
+    return _State(P, H0)
 
 
-def _state_from_dimensional(sysm: _ReynoldsSystem, x, p, h0) -> _State:
-    """Scaled state on sysm's grid from a pressure p(x) [Pa] and rigid approach h₀ [m]."""
-    g = sysm.g
-    P = np.interp(g.x, x, p, left=0.0, right=0.0) / sysm.p_ref
-    H0 = h0 / sysm.h_ref
-    return _State(P, sysm.film(P, H0), H0)
+def _state_from_dimensional(sysm: _ReynoldsSystem, x, q, h0) -> _State:
+    """Scaled state on sysm's grid from a total pressure q(x) = p + p_a [Pa] and the
+    rigid approach h₀ [m]."""
+    Q = np.interp(sysm.g.x, x, q, left=0.0, right=0.0) / sysm.p_ref
+    return _State(Q, h0 / sysm.h_ref)
 
 
 def solve_ehl(load, radius, entrainment_speed, sliding_speed, bodies, lubricant: Lubricant,
@@ -760,7 +763,7 @@ def solve_ehl(load, radius, entrainment_speed, sliding_speed, bodies, lubricant:
         if st is None:
             st0 = _initial_state(sysm, b if opts.elastic else 0.0, h_est)
         else:
-            st0 = _state_from_dimensional(sysm, prev.g.x, st.P * prev.p_ref,
+            st0 = _state_from_dimensional(sysm, prev.g.x, st.Q * prev.p_ref,
                                           st.H0 * prev.h_ref)
         max_it = opts.max_iter * (2 if k == 0 and len(levels) > 1 else 1)
         st, ok, it, msg = _newton(sysm, st0, opts.tol, max_it)
@@ -782,7 +785,7 @@ def _continuation(sysm_full, w, R, ue, lub, rough, opts, e_surf, b, h_est):
         if st is None:
             st = _initial_state(sysm, b * math.sqrt(frac), h_est)
         else:
-            st = _state_from_dimensional(sysm, grid.x, st.P * prev.p_ref, st.H0 * prev.h_ref)
+            st = _state_from_dimensional(sysm, grid.x, st.Q * prev.p_ref, st.H0 * prev.h_ref)
         st, ok, it, msg = _newton(sysm, st, opts.tol, opts.max_iter)
         total += it
         prev = sysm
@@ -823,7 +826,7 @@ class TransientEHL:
         self.e_surf = reduced_modulus(self.bodies, surface=True)
         self.time = 0.0
         self._grid = None
-        self._p = self._h = None       # dimensional state on the grid [Pa], [m]
+        self._q = self._p = self._h = None   # total, fluid pressure [Pa], film [m] on the grid
         self._h0 = 0.0                 # rigid approach [m]
         self._hist = []                # [(x, ρh, dt, R)] of the last two time levels
         self._lu = None
@@ -837,7 +840,8 @@ class TransientEHL:
         w, R, ue, _ = _check_inputs(load, radius, entrainment_speed, sliding_speed)
         grid = self._make_grid(w, R, ue, None)
         sysm = _ReynoldsSystem(grid, w, R, ue, self.lub, self.rough, self.e_surf)
-        st = _state_from_dimensional(sysm, res.x, res.pressure, res.rigid_approach)
+        st = _state_from_dimensional(sysm, res.x, res.pressure + res.asperity_pressure,
+                                     res.rigid_approach)
         self._grid, self._lu, self._hist = grid, None, []
         self._commit(sysm, st, R, None, time)
         res.time = time
@@ -851,8 +855,9 @@ class TransientEHL:
         w, R, ue, _ = _check_inputs(load, radius, entrainment_speed, sliding_speed)
         grid = self._make_grid(w, R, ue, h0)
         sysm = _ReynoldsSystem(grid, w, R, ue, self.lub, self.rough, self.e_surf)
-        P = np.zeros(grid.n)
-        st = _State(P, sysm.film(P, h0 / sysm.h_ref), h0 / sysm.h_ref)
+        st = _State(np.zeros(grid.n), h0 / sysm.h_ref)
+        ev = sysm.evaluate(st.Q, st.H0)
+        st.P, st.H = ev.P, ev.H
         self._grid, self._lu, self._hist = grid, None, []
         self._commit(sysm, st, R, None, time)
         self.result = None
@@ -869,6 +874,10 @@ class TransientEHL:
         return _Grid(self.bodies, a, o.inlet, o.outlet, n, direction, o.elastic)
 
     def _commit(self, sysm, st: _State, R, dt, time):
+        if st.P is None:
+            ev = sysm.evaluate(st.Q, st.H0)
+            st.P, st.H = ev.P, ev.H
+        self._q = st.Q * sysm.p_ref
         self._p = st.P * sysm.p_ref
         self._h = st.H * sysm.h_ref
         self._h0 = st.H0 * sysm.h_ref
@@ -916,10 +925,11 @@ class TransientEHL:
 
     def _snapshot(self):
         self.result_before_load = self.result.load if self.result is not None else None
-        return (self._grid, self._p, self._h, self._h0, list(self._hist), self.time, self._lu)
+        return (self._grid, self._q, self._p, self._h, self._h0, list(self._hist), self.time,
+                self._lu)
 
     def _restore(self, snap):
-        (self._grid, self._p, self._h, self._h0, hist, self.time, self._lu) = snap
+        (self._grid, self._q, self._p, self._h, self._h0, hist, self.time, self._lu) = snap
         self._hist = list(hist)
 
     def _advance(self, dt, w, R, ue, us) -> EHLResult:
@@ -939,7 +949,7 @@ class TransientEHL:
         sysm = _ReynoldsSystem(grid, w, R, ue, self.lub, self.rough, self.e_surf,
                                time_coef=a0 / dt)
         sysm.f_old = f_eff / (self.lub.density * sysm.h_ref)
-        st0 = _state_from_dimensional(sysm, prev_grid.x, self._p, self._h0)
+        st0 = _state_from_dimensional(sysm, prev_grid.x, self._q, self._h0)
         st, ok, it, msg = _newton(sysm, st0, o.tol, o.max_iter, lu=self._lu if same else None)
         self._lu = _newton.last_lu if ok else None
         self._commit(sysm, st, R, dt, self.time + dt)

@@ -30,7 +30,8 @@ from scipy import special
 
 from .._validation import InputError, check_positive, check_real
 
-__all__ = ["greenwood_tripp", "greenwood_tripp_derivative", "Roughness"]
+__all__ = ["greenwood_tripp", "greenwood_tripp_derivative", "greenwood_tripp_table",
+           "Roughness"]
 
 _SQRT_2PI = math.sqrt(2.0 * math.pi)
 
@@ -61,11 +62,11 @@ def _exact(n: float, lam: np.ndarray) -> np.ndarray:
         return 0.5 * special.erfc(lam / math.sqrt(2.0))
     lam = np.asarray(lam, dtype=float)
     neg = lam < _LAM_NEG
-    far = lam > _LAM_POS
-    lam_c = np.where(neg | far, 0.0, lam)
-    d, _ = special.pbdv(-n - 1.0, lam_c)
-    out = math.gamma(n + 1.0) * np.exp(-0.25 * lam_c * lam_c) * d / _SQRT_2PI
-    out = np.where(far, 0.0, out)
+    mid = ~neg & (lam <= _LAM_POS)
+    out = np.zeros_like(lam)                         # λ > 37: F_n underflows to 0
+    lm = lam[mid]
+    d, _ = special.pbdv(-n - 1.0, lm)
+    out[mid] = math.gamma(n + 1.0) * np.exp(-0.25 * lm * lm) * d / _SQRT_2PI
     if np.any(neg):
         out = np.where(neg, _negative_series(n, lam), out)
     return out
@@ -121,6 +122,49 @@ def greenwood_tripp_derivative(n, lam, method: str = "exact"):
     else:
         raise InputError(f"method must be 'exact' or 'paper' (got {method!r})")
     return out if out.ndim else float(out)
+
+
+class _LogTable:
+    """Fast F_n(λ) and dF_n/dλ for the solvers: cubic Hermite interpolation of ln F_n on
+    −12 ≤ λ ≤ 37 (step 0.002) with the exact slope d ln F_n/dλ = −n F_{n−1}/F_n; the
+    exact asymptotic series below, 0 above. Relative error < 1e-8 in F_n and < 1e-6 in
+    dF_n/dλ, limited by scipy's parabolic-cylinder function (checked in tests)."""
+
+    def __init__(self, n: float):
+        from scipy.interpolate import CubicHermiteSpline
+        self.n = n
+        lam = np.linspace(_LAM_NEG, _LAM_POS, int(round((_LAM_POS - _LAM_NEG) / 0.002)) + 1)
+        f = _exact(n, lam)
+        fm1 = _exact(n - 1.0, lam) if n >= 1.0 else None
+        slope = -n * fm1 / f
+        self.spline = CubicHermiteSpline(lam, np.log(f), slope)
+
+    def __call__(self, lam):
+        lam = np.asarray(lam, dtype=float)
+        out = np.zeros_like(lam)
+        dout = np.zeros_like(lam)
+        neg = lam < _LAM_NEG
+        mid = ~neg & (lam <= _LAM_POS)
+        lm = lam[mid]
+        f = np.exp(self.spline(lm))
+        out[mid] = f
+        dout[mid] = f * self.spline(lm, 1)
+        if np.any(neg):
+            ln = lam[neg]
+            out[neg] = _negative_series(self.n, ln)
+            dout[neg] = -self.n * _negative_series(self.n - 1.0, ln)
+        return out, dout
+
+
+_TABLES: dict = {}
+
+
+def greenwood_tripp_table(n: float, lam):
+    """(F_n(λ), dF_n/dλ) from a cached interpolation table (n ≥ 1); for solvers."""
+    t = _TABLES.get(n)
+    if t is None:
+        t = _TABLES[n] = _LogTable(float(n))
+    return t(lam)
 
 
 @dataclass(frozen=True)
