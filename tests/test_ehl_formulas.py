@@ -70,3 +70,18 @@ def test_ehl_solution_structure():
     mid = abs(r.x) < 0.5 * b
     assert r.pressure[mid].max() == pytest.approx(ph, rel=0.1)
     assert r.film[mid].max() / r.film[mid].min() < 1.1       # parallel central film
+
+
+def test_two_grid_preconditioned_solution_equals_dense_solution(monkeypatch):
+    """Grids above 1024 nodes are solved by GMRES with a coarse-grid LU preconditioner;
+    the converged discrete solution must not depend on the linear solver."""
+    import tribodyn.contact.ehl as ehl
+    w, u, _, _ = conditions(50, 10)
+    oil = Lubricant(MU0, ALPHA)
+    fast = solve_ehl(w, R, u, 0.0, PAIR, oil, n=2048)
+    monkeypatch.setattr(ehl, "_N_DENSE", 4096)          # force dense LU on every level
+    dense = solve_ehl(w, R, u, 0.0, PAIR, oil, n=2048)
+    assert fast.converged and dense.converged
+    assert fast.central_film == pytest.approx(dense.central_film, rel=1e-8)
+    assert fast.min_film == pytest.approx(dense.min_film, rel=1e-8)
+    assert abs(fast.pressure - dense.pressure).max() < 1e-7 * dense.pressure.max()

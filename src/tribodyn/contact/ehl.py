@@ -49,6 +49,8 @@ _WATCHDOG = 100.0
 _COARSEST = 128
 _MAX_KRYLOV = 30
 _MAX_KRYLOV_BEFORE_REFACTOR = 12
+_MAX_KRYLOV_TWO_GRID = 200
+_N_DENSE = 1024          # finer grids are solved with the two-grid preconditioner
 
 
 # ----------------------------------------------------------------------------- options
@@ -204,7 +206,15 @@ class _Grid:
         self.x = self.X * a
         self.i0 = int(np.argmin(np.abs(self.X)))
         self.coef = influence_coefficients(bodies, self.dX * a, n) if elastic else None
-        self.K = linalg.toeplitz(self.coef) if elastic else None      # [m/Pa]
+        self.elastic = bool(elastic)
+        self._K = None
+
+    @property
+    def K(self):
+        """Dense influence matrix [m/Pa] (built on first use: only LU paths need it)."""
+        if self.elastic and self._K is None:
+            self._K = linalg.toeplitz(self.coef)
+        return self._K
 
     def same_as(self, a, n, direction):
         return self.n == n and self.direction == direction and abs(a / self.a - 1.0) < 0.02
@@ -222,15 +232,16 @@ class _ReynoldsSystem:
         a = grid.a
         self.p_ref = p_ref = w / a          # P = p a / w
         self.h_ref = h_ref = a * a / R      # H = h R / a²
-        if grid.K is not None:
-            kscale = p_ref / h_ref
-            self.K = grid.K * kscale
+        self.elastic = grid.elastic
+        self._K = None
+        if grid.elastic:
+            kscale = self.kscale = p_ref / h_ref
             self.Kop = DeformationOperator.from_coefficients(grid.coef * kscale)
             ac = np.abs(grid.coef) * kscale
             self.kcoef = grid.coef * kscale
             self.krow = float(ac[0] + 2.0 * ac[1:].sum())     # bound on ‖K‖_∞
         else:
-            self.K = self.Kop = None
+            self.Kop = None
             self.kcoef, self.krow = None, 0.0
         self.u_scale = max(abs(ue), 1e-3)
         self.ubar = ue / self.u_scale
@@ -255,6 +266,13 @@ class _ReynoldsSystem:
         self.c1 = np.where(second, -2.0, -1.0)
         self.c2 = np.where(second, 0.5, 0.0)
 
+    @property
+    def K(self):
+        """Scaled dense influence matrix (built on first use)."""
+        if self.elastic and self._K is None:
+            self._K = self.g.K * self.kscale
+        return self._K
+
     # -- asperities and film
     def asperity(self, H):
         """Scaled Greenwood–Tripp pressure Pa(H) and D = dPa/dH."""
@@ -271,7 +289,7 @@ class _ReynoldsSystem:
 
     def film(self, Q, H0):
         """H = H0 + X²/2 + K Q: the surfaces deform under the total pressure Q = P + Pa."""
-        if self.K is None:
+        if not self.elastic:
             return H0 + self.geom
         return H0 + self.geom + self.Kop(Q)
 
@@ -377,7 +395,7 @@ class _Linearization:
         g = sysm.g
         n = g.n
         self.n, self.dX, self.sysm = n, g.dX, sysm
-        self.rigid = sysm.K is None
+        self.rigid = not sysm.elastic
         self.AP = ev.AP
         D = ev.dpa
         self.D = D
@@ -440,14 +458,18 @@ class _Linearization:
 
 
 def _gmres(lin: _Linearization, lu, rtol, max_it=None):
-    """Right-preconditioned GMRES for lin·x = rhs with an earlier LU as preconditioner,
+    """Right-preconditioned GMRES for lin·x = rhs with an earlier LU (or any object with
+    a ``solve`` method) as preconditioner,
     started from the preconditioned solution. Returns (x, iterations) or (None, its)."""
     max_it = max_it or _MAX_KRYLOV
     b = lin.rhs
     bn = float(np.linalg.norm(b))
     if bn == 0.0:
         return np.zeros_like(b), 0
-    prec = lambda v: linalg.lu_solve(lu, v, check_finite=False)  # noqa: E731
+    if hasattr(lu, "solve"):              # a preconditioner object
+        prec = lu.solve
+    else:                                 # an LU factorisation from lu_factor
+        prec = lambda v: linalg.lu_solve(lu, v, check_finite=False)  # noqa: E731
     x0 = prec(b)
     r0 = b - lin.matvec(x0)
     beta = float(np.linalg.norm(r0))
@@ -519,36 +541,110 @@ class _State:
     H: np.ndarray = None
 
 
-def _newton(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None):
+def _jacobi_scale(sysm, ev):
+    """c_i ≈ 1/|J_ii|, J = A_P + B K (only a scaling of the rows)."""
+    n = sysm.g.n
+    diag = ev.AP[0].copy()
+    if sysm.kcoef is not None:
+        for d, v in ev.AH.items():
+            rows = np.arange(max(0, -d), min(n, n - d))
+            diag[rows] += (v[rows] - ev.AP[d][rows] * ev.dpa[rows + d]) * sysm.kcoef[abs(d)]
+    diag = np.abs(diag)
+    diag[0], diag[-1] = diag[1], diag[-2]
+    return 1.0 / np.maximum(diag, 1e-300 + 1e-14 * diag.max())
+
+
+def _cavitated(ev, c):
+    cav = ev.P < -c * ev.R
+    cav[0] = cav[-1] = False
+    return cav
+
+
+class _CoarseLevel:
+    """Dense LU of the Newton matrix at a coarse-grid solution, for preconditioning the
+    same problem on finer grids (two-grid)."""
+
+    def __init__(self, sysm, st: _State):
+        ev = sysm.evaluate(st.Q, st.H0)
+        c = _jacobi_scale(sysm, ev)
+        self.lin = _Linearization(sysm, c, _cavitated(ev, c), ev)
+        self.lu = linalg.lu_factor(self.lin.dense(), check_finite=False)
+        self.X = sysm.g.X
+        self._transfer = {}
+
+    def transfer(self, X):
+        """Prolongation P (linear interpolation) and restriction R (averaging, Pᵀ with
+        unit row sums) between this grid and the fine grid X (same domain)."""
+        key = (X.size, X[0], X[-1])
+        if key not in self._transfer:
+            from scipy import sparse
+            xc = self.X
+            j = np.clip(np.searchsorted(xc, X, side="right") - 1, 0, xc.size - 2)
+            t = (X - xc[j]) / (xc[j + 1] - xc[j])
+            rows = np.r_[np.arange(X.size), np.arange(X.size)]
+            P = sparse.csr_matrix((np.r_[1 - t, t], (rows, np.r_[j, j + 1])),
+                                  shape=(X.size, xc.size))
+            Rt = P.T.tocsr()
+            Rm = sparse.diags(1.0 / np.asarray(Rt.sum(axis=1)).ravel()) @ Rt
+            self._transfer[key] = (P, Rm.tocsr())
+        return self._transfer[key]
+
+
+class _TwoGridPreconditioner:
+    """M⁻¹ r = P J_c⁻¹ R r followed by one Jacobi sweep on the fine system.
+
+    Residuals are moved between grids unscaled (Reynolds rows are flux densities, the
+    same on every grid) and re-scaled with the coarse rows' scaling."""
+
+    def __init__(self, coarse: _CoarseLevel, lin: _Linearization, sysm):
+        self.coarse, self.lin = coarse, lin
+        self.P, self.R = coarse.transfer(sysm.g.X)
+        n = lin.n
+        diag = lin.AP[0].copy()
+        if sysm.kcoef is not None:
+            for d, v in lin.B.items():
+                rows = np.arange(max(0, -d), min(n, n - d))
+                diag[rows] += v[rows] * sysm.kcoef[abs(d)]
+        dsc = np.where(lin.free, lin.c * diag, 1.0)
+        if sysm.kcoef is not None:
+            dsc[lin.cav] = 1.0 - lin.D[lin.cav] * sysm.kcoef[0]
+        dsc[lin.bnd] = 1.0
+        self.dinv = 1.0 / np.where(np.abs(dsc) > 1e-12, dsc, 1.0)
+
+    def solve(self, r):
+        lin, cl = self.lin, self.coarse.lin
+        rf = r[:-1].copy()
+        rf[lin.free] /= lin.c[lin.free]
+        rc = self.R @ rf
+        rc[cl.free] *= cl.c[cl.free]
+        rc[cl.bnd] = 0.0
+        zc = linalg.lu_solve(self.coarse.lu, np.r_[rc, r[-1]], check_finite=False)
+        z = np.r_[self.P @ zc[:-1], zc[-1]]
+        z[:-1] += 0.8 * (r[:-1] - lin.matvec(z)[:-1]) * self.dinv
+        return z
+
+
+def _newton(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None, coarse=None):
     # trial points of the line search may overflow (e.g. exp(αp)); they are rejected by
     # their non-finite merit, and the accepted solution is checked for finiteness
     with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
-        return _newton_impl(sysm, st, tol, max_iter, lu)
+        return _newton_impl(sysm, st, tol, max_iter, lu, coarse)
 
 
-def _newton_impl(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None):
+def _newton_impl(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None, coarse=None):
     """Semismooth Newton on min(P_i, −c_i R_i) = 0 and the load balance, unknowns (Q, H₀),
     with a non-monotone Armijo line search on |Φ|² + load residual² (c frozen within a
     search) and a small budget of full steps that may raise it (watchdog). Iterates may
     dip below zero pressure; the min-function clamps them on the next iteration.
-    The Newton systems are solved by LU, or by GMRES preconditioned with an earlier LU."""
+    The Newton systems are solved by LU, by GMRES preconditioned with an earlier LU, or —
+    given a ``coarse`` level — by GMRES with the two-grid preconditioner (no dense matrix
+    on this grid; a dense LU only as fallback)."""
     g = sysm.g
     n = g.n
 
-    def jacobi_scale(ev):
-        """c_i ≈ 1/|J_ii|, J = A_P + B K (only a scaling)."""
-        diag = ev.AP[0].copy()
-        if sysm.kcoef is not None:
-            for d, v in ev.AH.items():
-                rows = np.arange(max(0, -d), min(n, n - d))
-                diag[rows] += (v[rows] - ev.AP[d][rows] * ev.dpa[rows + d]) * sysm.kcoef[abs(d)]
-        diag = np.abs(diag)
-        diag[0], diag[-1] = diag[1], diag[-2]
-        return 1.0 / np.maximum(diag, 1e-300 + 1e-14 * diag.max())
-
     def merit_of(ev, c=None):
         """|Φ|² + load²; the scale c is frozen within a line search (c=given)."""
-        c = jacobi_scale(ev) if c is None else c
+        c = _jacobi_scale(sysm, ev) if c is None else c
         phi = np.minimum(ev.P, -c * ev.R)
         phi[0], phi[-1] = ev.P[0], ev.P[-1]
         return float(np.dot(phi, phi) + ev.load * ev.load), c
@@ -564,8 +660,7 @@ def _newton_impl(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None):
     gmres_tol = 1e-6
     it = 0
     for it in range(1, max_iter + 1):
-        cav_std = ev.P < -c * ev.R
-        cav_std[0] = cav_std[-1] = False
+        cav_std = _cavitated(ev, c)
         accepted = False
         fresh_lu = False
         for cav in ((_release(cav_std, prev_cav, release), cav_std) if release > 1
@@ -573,7 +668,11 @@ def _newton_impl(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None):
             lin = _Linearization(sysm, c, cav, ev)
             delta = None
             fresh_lu = lu is None
-            if lu is not None:
+            if coarse is not None and lu is None:
+                delta, _ = _gmres(lin, _TwoGridPreconditioner(coarse, lin, sysm), gmres_tol,
+                                  _MAX_KRYLOV_TWO_GRID)
+                fresh_lu = True                 # nothing stale to refresh
+            if delta is None and lu is not None:
                 delta, nkry = _gmres(lin, lu, gmres_tol)
                 if delta is None or nkry > _MAX_KRYLOV_BEFORE_REFACTOR:
                     lu = None
@@ -709,8 +808,8 @@ def _initial_state(sysm: _ReynoldsSystem, b, h_est):
     P = np.sqrt(np.clip(1.0 - (g.X / bb) ** 2, 0.0, None))
     P /= np.sum(P) * g.dX
     H0 = h_est / sysm.h_ref
-    if sysm.K is not None:
-        H0 -= (sysm.K @ P)[g.i0]
+    if sysm.elastic:
+        H0 -= sysm.Kop(P)[g.i0]
     return _State(P, H0)
 
 
@@ -753,10 +852,10 @@ def solve_ehl(load, radius, entrainment_speed, sliding_speed, bodies, lubricant:
     n = int(opts.n) if opts.n is not None else _auto_nodes(b, R, h_est)
     # nested iteration: coarse grids first (cheap, robust), then the requested grid
     levels = [n]
-    while levels[-1] // 2 >= _COARSEST and len(levels) < 4:
+    while levels[-1] // 2 >= _COARSEST and (len(levels) < 4 or levels[-1] > _N_DENSE):
         levels.append(levels[-1] // 2)
     levels = levels[::-1]
-    st, total, sysm = None, 0, None
+    st, total, sysm, coarse = None, 0, None, None
     for k, nk in enumerate(levels):
         grid = _Grid(bodies, a, opts.inlet, opts.outlet, nk, direction, opts.elastic)
         prev, sysm = sysm, _ReynoldsSystem(grid, w, R, ue, lubricant, roughness, e_surf)
@@ -766,8 +865,11 @@ def solve_ehl(load, radius, entrainment_speed, sliding_speed, bodies, lubricant:
             st0 = _state_from_dimensional(sysm, prev.g.x, st.Q * prev.p_ref,
                                           st.H0 * prev.h_ref)
         max_it = opts.max_iter * (2 if k == 0 and len(levels) > 1 else 1)
-        st, ok, it, msg = _newton(sysm, st0, opts.tol, max_it)
+        st, ok, it, msg = _newton(sysm, st0, opts.tol, max_it,
+                                  coarse=coarse if nk > _N_DENSE else None)
         total += it
+        if ok and nk <= _N_DENSE and nk < n and levels[-1] > _N_DENSE:
+            coarse = _CoarseLevel(sysm, st)      # finest dense level preconditions the rest
         if not ok and k == 0:
             st, ok, it2, msg = _continuation(sysm, w, R, ue, lubricant, roughness, opts, e_surf,
                                              b, h_est)
