@@ -340,7 +340,7 @@ class Numerics(_Section):
                                            "comparison with the explicit run")
     coupling_iterations: int = _q(4, "", "dynamics ↔ EHL iterations of the implicit coupling",
                                   ge=1, le=100)
-    workers: int = _q(1, "", "worker processes for the surface sets (0: one per CPU core)",
+    workers: int = _q(0, "", "worker processes for the surface sets (0: one per CPU core)",
                       ge=0, le=4096)
 
 

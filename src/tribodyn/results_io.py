@@ -66,34 +66,41 @@ def _var(data, dims, key, table):
 
 
 def representative_points(study) -> np.ndarray:
-    """Six crank angles spanning the load–speed combinations of the event (Fig. 13):
-    peak force on the opening flank, peak u_e opening, first u_e reversal, maximum lift
-    (nose), second u_e reversal, peak u_e closing."""
+    """Six crank angles spanning distinct load–speed states of the event (Fig. 13):
+    the lightly loaded opening ramp, the fastest entrainment on the opening flank, the
+    first u_e reversal, the nose (maximum lift), the second reversal, and the fastest
+    entrainment on the closing flank."""
     inp = study.inputs
-    loaded = study.sets[0].loaded & (inp.contact_force > 0.05 * inp.contact_force.max())
+    F = inp.contact_force
+    loaded = study.sets[0].loaded & (F > 0.05 * F.max())
     idx = np.flatnonzero(loaded)
-    if idx.size < 6:
+    if idx.size < 12:
         return inp.crank_angle[np.linspace(0, inp.crank_angle.size - 1, 6).astype(int)]
     lift = np.interp(inp.crank_angle, study.dynamics.crank_angle, study.dynamics.cam_lift)
     i_nose = idx[np.argmax(lift[idx])]
-    open_, close = idx[idx < i_nose], idx[idx > i_nose]
+    opening, closing = idx[idx < i_nose], idx[idx > i_nose]
     ue = inp.entrainment_speed
     pts = []
-    if open_.size:
-        pts.append(open_[np.argmax(inp.contact_force[open_])])
-        pts.append(open_[np.argmax(ue[open_])])
-        pts.append(open_[np.argmin(np.abs(ue[open_]))])
+    if opening.size >= 3:
+        i_fast = opening[np.argmax(ue[opening])]
+        ramp = opening[opening < i_fast]
+        pts.append(ramp[len(ramp) // 2] if ramp.size else opening[0])
+        pts.append(i_fast)
+        after = opening[opening > i_fast]
+        pts.append(after[np.argmin(np.abs(ue[after]))] if after.size else opening[-1])
     pts.append(i_nose)
-    if close.size:
-        pts.append(close[np.argmin(np.abs(ue[close]))])
-        pts.append(close[np.argmax(ue[close])])
+    if closing.size >= 2:
+        i_fast_c = closing[np.argmax(ue[closing])]
+        before = closing[closing < i_fast_c]
+        pts.append(before[np.argmin(np.abs(ue[before]))] if before.size else closing[0])
+        pts.append(i_fast_c)
     pts = sorted(set(int(p) for p in pts))
-    while len(pts) < 6:                      # degenerate events: fill evenly
-        extra = idx[np.linspace(0, idx.size - 1, 8).astype(int)]
-        for e in extra:
-            if len(pts) < 6 and int(e) not in pts:
-                pts.append(int(e))
-        pts = sorted(pts)
+    fill = idx[np.linspace(0, idx.size - 1, 13).astype(int)]
+    for e in fill:                                 # degenerate events: fill evenly
+        if len(pts) >= 6:
+            break
+        if int(e) not in pts:
+            pts = sorted(pts + [int(e)])
     return inp.crank_angle[np.array(pts[:6])]
 
 
@@ -108,7 +115,8 @@ def study_to_dataset(study) -> xr.Dataset:
     ds.coords["crank_angle"] = xr.Variable("crank_angle", dyn.crank_angle,
                                            {"units": "deg", "long_name": "crank angle"})
     for k in _UNITS:
-        ds[k] = _var(getattr(dyn, k), "crank_angle", k, _UNITS)
+        name = "analytic_friction_power" if k == "friction_power" else k
+        ds[name] = _var(getattr(dyn, k), "crank_angle", k, _UNITS)
     if study.implicit is not None:
         for k in ("contact_force", "tappet_velocity", "tappet_acceleration", "valve_lift"):
             v = np.interp(dyn.crank_angle, study.implicit.crank_angle, getattr(study.implicit, k))
@@ -160,12 +168,16 @@ def study_to_dataset(study) -> xr.Dataset:
     for k in _EHL:
         ds[k] = _var(np.array([getattr(s, k) for s in sets]), ("surface_set", "ehl_crank"),
                      k, _EHL)
-    x = sets[0].x
-    ds.coords["x"] = xr.Variable("x", x, {"units": "m", "long_name": "position along the contact"})
-    ds["pressure"] = xr.Variable(("surface_set", "ehl_crank", "x"),
+    ds.coords["k"] = xr.Variable("k", np.arange(sets[0].x.shape[1]), {
+        "long_name": "profile sample index (each step's whole solver domain, uniform)"})
+    ds["profile_x"] = xr.Variable(("surface_set", "ehl_crank", "k"),
+                                  np.array([s.x for s in sets]),
+                                  {"units": "m", "long_name": "position along the contact "
+                                   "(positive in the direction of positive u_e)"})
+    ds["pressure"] = xr.Variable(("surface_set", "ehl_crank", "k"),
                                  np.array([s.pressure for s in sets]),
                                  {"units": "Pa", "long_name": "hydrodynamic pressure p(x)"})
-    ds["film"] = xr.Variable(("surface_set", "ehl_crank", "x"), np.array([s.film for s in sets]),
+    ds["film"] = xr.Variable(("surface_set", "ehl_crank", "k"), np.array([s.film for s in sets]),
                              {"units": "m", "long_name": "film thickness h(x)"})
     ds.coords["point"] = xr.Variable("point", np.arange(1, 7))
     ds["point_crank"] = xr.Variable("point", representative_points(study), {
@@ -191,6 +203,9 @@ def study_to_dataset(study) -> xr.Dataset:
 
 def _coating_studies(ds, study):
     if study.dry:
+        from .workflow.coating_study import PAPER_FIG5
+        ds.attrs["dry_coating_conditions"] = json.dumps(
+            {k: v for k, v in PAPER_FIG5.items() if k != "ratios"})
         half = max(1.3 * c.result.half_width for c in study.dry)
         xd = np.linspace(-half, half, 401)
         ds.coords["dry_x"] = xr.Variable("dry_x", xd, {"units": "m"})
@@ -340,7 +355,9 @@ def write_results(study, out_dir, *, figures=True, report=True) -> dict:
     written = {}
 
     def writer(tmp: Path):
-        ds.to_netcdf(tmp / "results.nc", engine="h5netcdf")
+        enc = {v: {"compression": "gzip", "compression_opts": 4}
+               for v in ("profile_x", "pressure", "film")}
+        ds.to_netcdf(tmp / "results.nc", engine="h5netcdf", encoding=enc)
         (tmp / "summary.json").write_text(json.dumps(summ, indent=2))
         study.case.write_toml(tmp / "case.toml")
         figs = {}

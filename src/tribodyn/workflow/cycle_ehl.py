@@ -23,8 +23,9 @@ from ..physics.lubricant import Lubricant
 
 __all__ = ["CycleInputs", "SetCycleResult", "ehl_along_cycle", "PROFILE_POINTS"]
 
-#: Number of points of the common x grid on which p(x), h(x) are stored for every step.
-PROFILE_POINTS = 241
+#: Number of points on which p(x), h(x) of every step are stored: the step's whole solver
+#: domain, resampled uniformly (its own x coordinate is stored with it).
+PROFILE_POINTS = 512
 
 
 @dataclass
@@ -75,23 +76,15 @@ class SetCycleResult:
     rolling_friction: np.ndarray
     friction_power: np.ndarray
     lambda_ratio: np.ndarray       #: h_min/σ
-    x: np.ndarray                  #: common profile grid [m]
-    pressure: np.ndarray           #: (crank, x) [Pa], NaN where unloaded / outside domain
-    film: np.ndarray               #: (crank, x) [m]
+    x: np.ndarray                  #: (crank, k) profile positions [m], NaN where unloaded
+    pressure: np.ndarray           #: (crank, k) [Pa], NaN where unloaded
+    film: np.ndarray               #: (crank, k) [m]
     failures: list = field(default_factory=list)   #: [(crank_deg, message)]
     runtime_s: float = 0.0
 
     @property
     def friction(self) -> np.ndarray:
         return self.viscous_friction + self.boundary_friction
-
-
-def _profile_grid(inp: CycleInputs, lub: Lubricant, e_bulk: float) -> np.ndarray:
-    """Common x grid covering ±2.5 of the largest Hertz half-width of the cycle."""
-    w = inp.contact_force / inp.width
-    b = np.sqrt(8.0 * w * inp.radius / (np.pi * e_bulk))
-    half = 2.5 * float(np.nanmax(b)) if np.any(w > 0) else 1e-4
-    return np.linspace(-half, half, PROFILE_POINTS)
 
 
 def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: Lubricant,
@@ -103,8 +96,6 @@ def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: 
     """
     import time as _time
 
-    from ..physics.materials import reduced_modulus
-
     t_start = _time.perf_counter()
     n = inp.crank_angle.size
     nan = np.full(n, np.nan)
@@ -115,9 +106,10 @@ def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: 
     loaded = inp.contact_force >= min_load
     converged = np.ones(n, dtype=bool)
     iterations = np.zeros(n, dtype=int)
-    xg = _profile_grid(inp, lubricant, reduced_modulus(bodies))
-    p_prof = np.full((n, xg.size), np.nan, dtype=np.float32)
-    h_prof = np.full((n, xg.size), np.nan, dtype=np.float32)
+    k = PROFILE_POINTS
+    x_prof = np.full((n, k), np.nan)
+    p_prof = np.full((n, k), np.nan, dtype=np.float32)
+    h_prof = np.full((n, k), np.nan, dtype=np.float32)
     failures = []
     l = inp.width
     tr = None
@@ -158,12 +150,13 @@ def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: 
             inp.sliding_speed[i])
         if roughness is not None:
             out["lambda_ratio"][i] = r.min_film / roughness.rms
-        inside = (xg >= r.x[0]) & (xg <= r.x[-1])
-        p_prof[i, inside] = np.interp(xg[inside], r.x, r.pressure)
-        h_prof[i, inside] = np.interp(xg[inside], r.x, r.film)
+        xs = np.linspace(r.x[0], r.x[-1], k)
+        x_prof[i] = xs
+        p_prof[i] = np.interp(xs, r.x, r.pressure)
+        h_prof[i] = np.interp(xs, r.x, r.film)
         if progress:
             progress(i + 1, n)
     return SetCycleResult(
         name=name, label=label, crank_angle=inp.crank_angle.copy(), loaded=loaded,
-        converged=converged, iterations=iterations, x=xg, pressure=p_prof, film=h_prof,
+        converged=converged, iterations=iterations, x=x_prof, pressure=p_prof, film=h_prof,
         failures=failures, runtime_s=_time.perf_counter() - t_start, **out)

@@ -1,0 +1,150 @@
+"""The main job: ``tribodyn run`` end to end on a reduced-resolution paper case."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+import xarray as xr
+from typer.testing import CliRunner
+
+from tribodyn.cli import app
+from tribodyn.config import load_case
+from tribodyn.results_io import write_atomic
+
+runner = CliRunner()
+
+# The paper case at reduced resolution: 4° crank steps, fixed 256-node EHL grid, one
+# coupling iteration, coarser dynamics output. Physics and inputs are unchanged.
+REDUCED = {"numerics.crank_step_deg": 4.0, "numerics.n": 256,
+           "numerics.coupling_iterations": 1, "numerics.output_step_deg": 1.0,
+           "numerics.workers": 1}
+
+
+@pytest.fixture(scope="module")
+def reduced_case_file(tmp_path_factory):
+    path = tmp_path_factory.mktemp("case") / "reduced.toml"
+    load_case().updated(REDUCED).write_toml(path)
+    return path
+
+
+@pytest.fixture(scope="module")
+def run_dir(reduced_case_file, tmp_path_factory):
+    out = tmp_path_factory.mktemp("run") / "results"
+    r = runner.invoke(app, ["run", str(reduced_case_file), "-o", str(out), "--quiet"])
+    assert r.exit_code == 0, r.output
+    return out
+
+
+def test_outputs_exist(run_dir):
+    for name in ("results.nc", "summary.json", "report.md", "case.toml"):
+        assert (run_dir / name).stat().st_size > 0
+    pngs = sorted(p.name for p in run_dir.glob("*.png"))
+    for key in ("fig05", "fig06", "fig08", "fig09", "fig10", "fig11", "fig12", "fig13",
+                "fig14", "fig15", "fig16", "fig17", "fig18"):
+        assert any(p.startswith(key) for p in pngs), key
+    report = (run_dir / "report.md").read_text()
+    assert "| claim | paper | tribodyn | why |" in report
+    for p in pngs:
+        assert f"]({p})" in report
+
+
+def test_summary_keys_and_physics(run_dir):
+    s = json.loads((run_dir / "summary.json").read_text())
+    assert set(s["surface_sets"]) == {"uncoated", "dlc_1um", "dlc_4um", "wcc_1um", "wcc_4um"}
+    keys = {"peak_contact_force_N", "min_film_m", "max_central_film_m",
+            "max_film_gain_vs_uncoated_pct", "max_boundary_friction_N",
+            "max_viscous_friction_N", "boundary_friction_reduction_vs_uncoated_pct",
+            "friction_energy_per_cycle_J", "mean_friction_power_W"}
+    for v in s["surface_sets"].values():
+        assert keys <= set(v)
+        assert 1e-8 <= v["min_film_m"] <= v["max_central_film_m"] <= 1e-5      # 0.01–10 µm
+        assert 0 < v["friction_energy_per_cycle_J"] < 100 and math.isfinite(
+            v["friction_energy_per_cycle_J"])
+        assert v["mean_friction_power_W"] > 0
+        assert 300 < v["peak_contact_force_N"] < 1000
+    assert {"max_contact_force_diff_pct", "max_velocity_diff_pct"} <= set(
+        s["implicit_vs_explicit"])
+    assert s["runtime_s"] > 0
+    # the coatings' lower (ηβσ)² cut the boundary friction (paper: WC-C > 95 % below steel)
+    assert s["surface_sets"]["wcc_4um"]["boundary_friction_reduction_vs_uncoated_pct"] > 80
+
+
+def test_dataset_contents(run_dir):
+    with xr.open_dataset(run_dir / "results.nc", engine="h5netcdf") as ds:
+        assert ds["central_film"].attrs["units"] == "m"
+        assert ds["contact_force"].attrs["units"] == "N"
+        ev = ds["in_event"].values.astype(bool)
+        F = ds["ehl_contact_force"].values
+        assert np.all(F[ev] > 0)                              # contact during the event
+        loaded = ds["loaded"].values.astype(bool)
+        hc = ds["central_film"].values
+        assert np.all(np.isfinite(hc[loaded]))                 # every loaded step has a film
+        assert np.all(np.isnan(hc[~loaded]))                   # NaN only where unloaded
+        assert np.all(ds["converged"].values[loaded] == 1)
+        h = hc[loaded & ev[None, :]]
+        assert np.all((h > 1e-8) & (h < 1e-5))
+        assert ds.attrs["case_toml"]
+
+
+def test_failing_steps_are_reported(tmp_path):
+    case = load_case().updated({**REDUCED, "numerics.max_iter": 1,
+                                "numerics.implicit_coupling": False})
+    path = tmp_path / "bad.toml"
+    case.write_toml(path)
+    out = tmp_path / "res"
+    r = runner.invoke(app, ["run", str(path), "-o", str(out), "--quiet"])
+    assert r.exit_code == 0, r.output
+    assert "did not converge" in r.output
+    s = json.loads((out / "summary.json").read_text())
+    assert all(v["failed_steps"] > 0 for v in s["surface_sets"].values())
+    assert any("did not converge" in w for w in s["warnings"])
+    report = (out / "report.md").read_text()
+    assert "failed step(s)" in report
+    with xr.open_dataset(out / "results.nc", engine="h5netcdf") as ds:
+        loaded = ds["loaded"].values.astype(bool)
+        conv = ds["converged"].values.astype(bool)
+        assert np.any(loaded & ~conv)
+        # failed steps keep their (finite) last iterate, flagged — no silent NaNs
+        assert np.all(np.isfinite(ds["central_film"].values[loaded]))
+        failures = json.loads(ds.attrs["ehl_failures"])
+        assert sum(len(v) for v in failures.values()) == int((loaded & ~conv).sum())
+
+
+def test_bad_case_leaves_previous_results_untouched(tmp_path):
+    out = tmp_path / "results"
+    out.mkdir()
+    (out / "summary.json").write_text('{"previous": true}')
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[lubricant]\nviscosity = -1.0\nbogus_key = 3\n")
+    r = runner.invoke(app, ["run", str(bad), "-o", str(out)])
+    assert r.exit_code == 2
+    assert "lubricant.viscosity" in r.output and "bogus_key" in r.output
+    assert json.loads((out / "summary.json").read_text()) == {"previous": True}
+
+
+def test_atomic_write_keeps_old_folder_when_writing_fails(tmp_path):
+    out = tmp_path / "results"
+    out.mkdir()
+    (out / "old.txt").write_text("keep me")
+
+    def failing(tmp):
+        (tmp / "results.nc").write_text("half")
+        raise RuntimeError("disk full")
+
+    with pytest.raises(RuntimeError):
+        write_atomic(out, failing)
+    assert (out / "old.txt").read_text() == "keep me"
+    assert not (out / "results.nc").exists()
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".results")]
+
+    write_atomic(out, lambda tmp: (tmp / "new.txt").write_text("new"))
+    assert (out / "new.txt").read_text() == "new" and not (out / "old.txt").exists()
+
+
+def test_python_module_entry_point():
+    import subprocess
+    import sys
+    r = subprocess.run([sys.executable, "-m", "tribodyn", "--help"], capture_output=True,
+                       text=True, timeout=120)
+    assert r.returncode == 0 and "run" in r.stdout and "contact" in r.stdout
