@@ -295,7 +295,7 @@ def test_composite_of_differently_sampled_maps_falls_back_to_spectral():
 def test_toml_block_round_trip(narrow_band):
     r = analyse_surface(narrow_band[0], band=(1.6e-6, 51.2e-6))
     block = r.toml_block()
-    data = tomllib.loads(block)["roughness"]
+    data = tomllib.loads(block)["surface_sets"]["roughness"]
     assert set(data) == {"asperity_density", "rms", "summit_radius"}
     assert data["asperity_density"] == pytest.approx(r.summits.asperity_density, rel=1e-5)
     assert data["rms"] == pytest.approx(r.rms, rel=1e-5)
@@ -326,7 +326,7 @@ def test_cli_json_and_figure(pair_files, tmp_path):
     assert comp["summits"]["units"]["asperity_density"] == "1/m²"
     assert out["first"]["band"]["short_wavelength"] == pytest.approx(1.6e-6)
     assert out["first"]["sampling"]["nb_grid_pts"] == [256, 256]
-    assert tomllib.loads(out["roughness_toml"])["roughness"]["rms"] == pytest.approx(
+    assert tomllib.loads(out["roughness_toml"])["surface_sets"]["roughness"]["rms"] == pytest.approx(
         comp["rms"], rel=1e-5)
     assert fig.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and fig.stat().st_size > 20_000
 
@@ -336,7 +336,7 @@ def test_cli_table_and_errors(pair_files, tmp_path):
     res = runner.invoke(app, ["topography", str(pair_files[0]), "--band", "1.6e-6", "12.8e-6",
                               "--method", "spectral"])
     assert res.exit_code == 0, res.output
-    assert "[roughness]" in res.stdout and "summit density" in res.stdout
+    assert "[surface_sets.roughness]" in res.stdout and "summit density" in res.stdout
     assert "band 1.6–12.8 µm" in res.stdout and "converge" in res.stdout
     res = runner.invoke(app, ["topography", str(pair_files[0])])   # paper band: 250 µm
     assert res.exit_code == 2 and "exceeds the measured length" in res.stderr
@@ -358,3 +358,13 @@ def test_height_distribution_figure(narrow_band, tmp_path):
     assert isinstance(pair, PairAnalysis)
     path = plot_height_distribution(pair, tmp_path / "fig7.png")
     assert path.read_bytes()[:4] == b"\x89PNG" and path.stat().st_size > 20_000
+
+
+def test_roughness_block_pastes_into_a_case_file(narrow_band):
+    from tribodyn.config import Case
+    r = analyse_surface(narrow_band[0], band=None)
+    text = ('[[surface_sets]]\nname = "measured"\ncoating = "wcc"\n'
+            'coating_thickness = 4e-6\n\n' + r.toml_block())
+    case = Case.from_toml_string(text)
+    rough = case.surface_set("measured").roughness
+    assert rough.rms == pytest.approx(r.rms, rel=1e-5)

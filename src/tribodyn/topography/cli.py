@@ -1,4 +1,4 @@
-"""``tribodyn topography FILE [FILE2]``: measured topography → ``[roughness]`` case block.
+"""``tribodyn topography FILE [FILE2]``: measured topography → case-file roughness block.
 
 Heavy imports (SurfaceTopography, matplotlib) happen inside the command, so the main CLI
 starts quickly.

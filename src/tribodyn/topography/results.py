@@ -75,9 +75,13 @@ class _TomlMixin:
         return self.parameters(method).to_roughness()
 
     def toml_block(self, method: str = "summits") -> str:
-        """``[roughness]`` block for a case file, with band and sampling as comments."""
+        """Roughness block for a case file, with band and sampling as comments.
+
+        Headed ``[surface_sets.roughness]``: pasted right below a ``[[surface_sets]]``
+        entry, TOML makes it that surface pair's ``roughness`` table."""
         p = self.parameters(method)
-        lines = ["[roughness]",
+        lines = ["[surface_sets.roughness]",
+                 "# paste below the [[surface_sets]] entry of this surface pair",
                  f"# {self.describe_source()}: {METHOD_LABELS[_check_method(method)]}, "
                  f"ηβσ = {p.roughness_parameter:.4g}"]
         lines += [f"# {line}" for line in self.describe_conditions()]
