@@ -4,21 +4,10 @@ import math
 
 import pytest
 
-from tribodyn import Body, Lubricant, Material, solve_ehl
+from tribodyn import Lubricant, solve_ehl
 from tribodyn.physics.regimes import moes_central, pan_hamrock
 
-STEEL = Material(210e9, 0.3)
-PAIR = (Body(STEEL), Body(STEEL))
-E_PRIME = 210e9 / 0.91
-R, MU0, G = 0.01, 0.04, 5000.0
-ALPHA = G / E_PRIME
-
-
-def conditions(M, L):
-    """Load per length and entrainment speed for Moes M, L (Hamrock groups, G = 5000)."""
-    U = (L / G) ** 4 / 2
-    W = M * math.sqrt(2 * U)
-    return W * E_PRIME * R, U * E_PRIME * R / MU0, W, U
+from ehl_cases import ALPHA, E_PRIME, G, MU0, PAIR, R, conditions
 
 
 # Pan & Hamrock fitted Roelands + Dowson–Higginson solutions; their h_c fit drifts above

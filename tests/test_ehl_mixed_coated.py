@@ -5,22 +5,12 @@ import math
 import numpy as np
 import pytest
 
-from tribodyn import Body, Coating, Lubricant, Material, Roughness, solve_ehl
+from tribodyn import Body, Coating, Roughness, solve_ehl
 
-STEEL = Material(210e9, 0.3)
-PAIR = (Body(STEEL), Body(STEEL))
-E_PRIME = 210e9 / 0.91
-R, MU0, G = 0.01, 0.04, 5000.0
-OIL = Lubricant(MU0, G / E_PRIME)
+from ehl_cases import E_PRIME, OIL, PAIR, R, STEEL, conditions
 
 
-def conditions(M, L):
-    U = (L / G) ** 4 / 2
-    W = M * math.sqrt(2 * U)
-    return W * E_PRIME * R, U * E_PRIME * R / MU0
-
-
-W_LOAD, U_E = conditions(20, 10)
+W_LOAD, U_E, _, _ = conditions(20, 10)
 
 
 @pytest.fixture(scope="module")

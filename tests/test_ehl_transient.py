@@ -5,24 +5,14 @@ import math
 import numpy as np
 import pytest
 
-from tribodyn import Body, Lubricant, Material, TransientEHL, solve_ehl
+from tribodyn import Lubricant, TransientEHL, solve_ehl
 from tribodyn.physics.regimes import hamrock_groups, moes_central
 
-STEEL = Material(210e9, 0.3)
-PAIR = (Body(STEEL), Body(STEEL))
-E_PRIME = 210e9 / 0.91
-R, MU0, G = 0.01, 0.04, 5000.0
-OIL = Lubricant(MU0, G / E_PRIME)
-
-
-def conditions(M, L):
-    U = (L / G) ** 4 / 2
-    W = M * math.sqrt(2 * U)
-    return W * E_PRIME * R, U * E_PRIME * R / MU0
+from ehl_cases import E_PRIME, OIL, PAIR, R, conditions
 
 
 def test_load_step_relaxes_to_new_steady_state():
-    w, u = conditions(20, 10)
+    w, u, _, _ = conditions(20, 10)
     tr = TransientEHL(PAIR, OIL)
     start = tr.start_steady(w, R, u, 0.5)
     target = solve_ehl(1.5 * w, R, u, 0.5, PAIR, OIL)

@@ -757,7 +757,7 @@ def _bounds_text(fi) -> str | None:
     if fi is None:
         return None
     unit = _unit_of(fi)
-    u = f" {unit}" if unit and not unit.startswith("deg") else (f"°" if unit else "")
+    u = f" {unit}" if unit and not unit.startswith("deg") else ("°" if unit else "")
     parts = []
     for m in fi.metadata:
         for attr, sym in (("gt", ">"), ("ge", ">="), ("lt", "<"), ("le", "<=")):

@@ -640,7 +640,6 @@ def _newton_impl(sysm: _ReynoldsSystem, st: _State, tol, max_iter, lu=None, coar
     given a ``coarse`` level — by GMRES with the two-grid preconditioner (no dense matrix
     on this grid; a dense LU only as fallback)."""
     g = sysm.g
-    n = g.n
 
     def merit_of(ev, c=None):
         """|Φ|² + load²; the scale c is frozen within a line search (c=given)."""

@@ -42,8 +42,8 @@ from functools import lru_cache
 import numpy as np
 from scipy import integrate, interpolate, linalg
 
-from .._validation import InputError, check_array, check_positive
-from .materials import Body, Coating, Material, _as_bodies
+from .._validation import InputError, check_positive
+from .materials import Coating, Material, _as_bodies
 
 __all__ = [
     "half_plane_frf", "coated_half_plane_frf", "pair_frf", "influence_coefficients",

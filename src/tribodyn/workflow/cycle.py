@@ -26,7 +26,7 @@ import numpy as np
 from ..physics.materials import reduced_modulus
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from ..valvetrain.tribology import FilmTableTribology
-from .coating_study import PAPER_FIG5, dry_coating_study, ehl_coating_study
+from .coating_study import dry_coating_study, ehl_coating_study
 from .coupling import FrictionCoefficientTable, ehl_tribology
 from .cycle_ehl import CycleInputs, SetCycleResult, ehl_along_cycle
 
@@ -228,7 +228,6 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None) -> Cycle
     if not dyn.converged:
         raise StudyError(f"valvetrain dynamics failed: {dyn.message}")
     inputs = CycleInputs.from_dynamics(dyn, n.crank_step_deg, case.width)
-    total = inputs.crank_angle.size
 
     if workers is None:
         workers = n.workers or os.cpu_count() or 1
