@@ -148,3 +148,14 @@ def test_python_module_entry_point():
     r = subprocess.run([sys.executable, "-m", "tribodyn", "--help"], capture_output=True,
                        text=True, timeout=120)
     assert r.returncode == 0 and "run" in r.stdout and "contact" in r.stdout
+
+
+def test_min_load_above_the_peak_force_is_a_clear_error(tmp_path):
+    case = load_case().updated({**REDUCED, "numerics.min_load": 5000.0})
+    path = tmp_path / "c.toml"
+    case.write_toml(path)
+    r = runner.invoke(app, ["run", str(path), "-o", str(tmp_path / "out"), "--quiet"])
+    assert r.exit_code == 1
+    text = " ".join(r.output.split())                   # the console wraps long lines
+    assert "numerics.min_load" in text and "peak contact force" in text
+    assert not (tmp_path / "out").exists()

@@ -17,8 +17,9 @@ ISO = Lubricant(viscosity=0.05, pressure_viscosity=0.0, compressible=False)
 @pytest.mark.parametrize("u_e", [1.0, -2.5])
 def test_martin_rigid_isoviscous(u_e):
     R, w, mu = 0.01, 1e3, 0.05
-    r = solve_ehl(w, R, u_e, 0.0, PAIR, ISO, elastic=False, n=1024, inlet=24, outlet=1.5)
+    r = solve_ehl(w, R, u_e, 0.0, PAIR, ISO, elastic=False)      # default domain and grid
     assert r.converged, r.message
+    assert r.inlet_load_deficit < 0.01
     h0 = r.min_film
     # Martin (1916), Reynolds exit: w = 4.894 μ u R / h₀ (half-Sommerfeld would be 4.0)
     assert w * h0 / (mu * abs(u_e) * R) == pytest.approx(4.894, rel=0.01)
@@ -54,7 +55,7 @@ def test_pure_squeeze_matches_closed_form():
     w = 3√2 π μ V (R/h)^(3/2)  ⇒  h(t) = (h_i^(−1/2) + k t/2)^(−2), k = w/(3√2 π μ R^(3/2))."""
     R, w, mu, h_i = 0.01, 1e3, 0.05, 2e-6
     k = w / (3 * math.sqrt(2) * math.pi * mu * R**1.5)
-    tr = TransientEHL(PAIR, ISO, elastic=False, inlet=8, n=512)
+    tr = TransientEHL(PAIR, ISO, elastic=False, inlet_rigid=8, n=512)
     tr.start_film(h_i, w, R)
     t_end = 6.0 / (k * math.sqrt(h_i))          # film falls to ~1/16 of h_i
     dt = t_end / 200
@@ -72,3 +73,13 @@ def test_pure_squeeze_matches_closed_form():
     V = -np.gradient(h, t)
     w_sq = 3 * math.sqrt(2) * math.pi * mu * V * (R / h) ** 1.5
     assert np.all(np.abs(w_sq[5:-5] / w - 1) < 0.02)
+
+
+def test_short_inlet_is_detected_and_reported():
+    """A truncated inlet loses load; the estimate tracks the true loss and is reported."""
+    R, w, mu = 0.01, 1e3, 0.05
+    short = solve_ehl(w, R, 1.0, 0.0, PAIR, ISO, elastic=False, inlet_rigid=6)
+    true_loss = 1 - w * short.min_film / (mu * R) / 4.894
+    assert true_loss > 0.02
+    assert short.inlet_load_deficit == pytest.approx(true_loss, rel=0.25)
+    assert "truncated inlet" in short.message

@@ -305,3 +305,33 @@ def test_solver_failure_is_reported_not_hidden():
     assert "film law" in r.message
     assert r.contact_force.size == 0                       # no NaN-filled arrays
     assert r.summary() == {"converged": False, "message": r.message}
+
+
+def test_time_dependent_friction_respects_start_angle():
+    """A friction law that depends on time (not only on the cam angle) must see the
+    simulation time also when the run starts at θ₀ ≠ 0: the cam work integrated with the
+    motion equals ∫ torque·ω dt for any start angle."""
+    import math
+
+    from tribodyn.valvetrain import AccelerationCam, ValvetrainParameters, simulate_valvetrain
+    from tribodyn.valvetrain.tribology import TribologyModel
+
+    class Pulsing(TribologyModel):
+        periodic_in_cam_angle = True
+        name = "pulsing"
+
+        def __init__(self, w):
+            self.w = w
+
+        def friction(self, t, force, ue, us, R):
+            return 0.05 * (1.0 + np.sin(self.w * np.asarray(t))) * np.maximum(force, 0.0)
+
+    cam = AccelerationCam()
+    w = 2 * math.pi * 1500 / 60
+    for theta0 in (0.0, math.radians(60)):
+        r = simulate_valvetrain(cam, ValvetrainParameters(), engine_speed=3000.0,
+                                tribology=Pulsing(w), start_angle=theta0)
+        assert r.converged, r.message
+        work_from_torque = np.trapezoid(r.cam_torque * w, r.time)
+        work_integrated = r.cam_work[-1] - r.cam_work[0]
+        assert work_integrated == pytest.approx(work_from_torque, rel=0.02)

@@ -86,15 +86,17 @@ def run(case: Optional[Path] = typer.Argument(
     for col in ("surface", "min film µm", "max h_c µm", "film gain %", "max F_b N",
                 "max F_v N", "F_b vs uncoated %", "energy J/cycle", "failed steps"):
         table.add_column(col, justify="right")
+    def num(v, scale=1.0, fmt=".3g"):
+        return "–" if v is None else format(v * scale, fmt)
+
     for v in summ["surface_sets"].values():
         red = v["boundary_friction_reduction_vs_uncoated_pct"]
-        table.add_row(v["label"], f"{v['min_film_m'] * 1e6:.3f}",
-                      f"{v['max_central_film_m'] * 1e6:.2f}",
-                      f"{v['max_film_gain_vs_uncoated_pct']:+.2f}",
-                      f"{v['max_boundary_friction_N']:.3g}",
-                      f"{v['max_viscous_friction_N']:.3g}",
-                      "–" if red is None else f"{-red:+.1f}",
-                      f"{v['friction_energy_per_cycle_J']:.3f}", str(v["failed_steps"]))
+        table.add_row(v["label"], num(v["min_film_m"], 1e6, ".3f"),
+                      num(v["max_central_film_m"], 1e6, ".2f"),
+                      num(v["max_film_gain_vs_uncoated_pct"], 1.0, "+.2f"),
+                      num(v["max_boundary_friction_N"]), num(v["max_viscous_friction_N"]),
+                      num(None if red is None else -red, 1.0, "+.1f"),
+                      num(v["friction_energy_per_cycle_J"], 1.0, ".3f"), str(v["failed_steps"]))
     console.print(table)
     ie = summ["implicit_vs_explicit"]
     if ie.get("max_contact_force_diff_pct") is not None:

@@ -305,15 +305,21 @@ class Numerics(_Section):
     """``[numerics]``: solver settings."""
 
     n: int = _q(0, "", "EHL grid nodes (uniform); 0 = automatic from the contact "
-                       "(512…4096, keeps h_c, h_min within 0.5 % of grid convergence)",
-                ge=0, le=65536)
+                       "(512…4096, keeps h_c, h_min within 0.5 % of grid convergence); "
+                       "at most 4096 (the transient steps factor dense matrices)",
+                ge=0, le=4096)
     min_load: float = _q(5.0, "N", "contact force below which the EHL is not solved "
                                    "(cam on the base circle: no load, no film)",
                          gt=0.0, le=1e4)
-    inlet: float = _q(4.0, "", "EHL domain upstream of the centre, in contact length scales",
+    inlet: float = _q(4.0, "", "EHL domain upstream of the centre, in Hertz half-widths",
                       ge=1.0, le=100.0)
-    outlet: float = _q(1.75, "", "EHL domain downstream of the centre, in length scales",
+    outlet: float = _q(1.75, "", "EHL domain downstream of the centre, in Hertz half-widths",
                        ge=1.0, le=100.0)
+    inlet_rigid: float = _q(20.0, "", "EHL domain upstream, in rigid inlet lengths "
+                                      "√(2R h) (light, hydrodynamic contacts)",
+                            ge=1.0, le=200.0)
+    outlet_rigid: float = _q(2.0, "", "EHL domain downstream, in rigid inlet lengths",
+                             ge=1.0, le=200.0)
     tol: float = _q(1e-9, "", "EHL Newton tolerance (scaled update and residual)", gt=0.0,
                     lt=1.0)
     max_iter: int = _q(60, "", "EHL Newton iterations per solve", ge=1, le=10000)
@@ -338,7 +344,7 @@ class Numerics(_Section):
     implicit_coupling: bool = _q(True, "", "also run the implicit dynamics (numerical EHL "
                                            "film and friction in the dynamics) for the "
                                            "comparison with the explicit run")
-    coupling_iterations: int = _q(4, "", "dynamics ↔ EHL iterations of the implicit coupling",
+    coupling_iterations: int = _q(6, "", "dynamics ↔ EHL iterations of the implicit coupling",
                                   ge=1, le=100)
     workers: int = _q(0, "", "worker processes for the surface sets (0: one per CPU core)",
                       ge=0, le=4096)
@@ -650,7 +656,8 @@ class Case(_Section):
         n = self.numerics
         if 0 < n.n < 32:
             raise InputError(f"numerics.n: must be 0 (automatic) or >= 32 (got {n.n})")
-        kw = dict(n=n.n or None, inlet=n.inlet, outlet=n.outlet, tol=n.tol, max_iter=n.max_iter,
+        kw = dict(n=n.n or None, inlet=n.inlet, outlet=n.outlet, inlet_rigid=n.inlet_rigid,
+                  outlet_rigid=n.outlet_rigid, tol=n.tol, max_iter=n.max_iter,
                   viscous_model=n.viscous_model, limiting_shear=n.limiting_shear,
                   time_order=n.time_order)
         if surface_set is not None:

@@ -1133,13 +1133,20 @@ def make_figures(ds, out_dir, *, only=None) -> dict[str, Path]:
     """Write the report figures of a cycle-study Dataset into ``out_dir``.
 
     Returns ``{file name: path}`` for the figures written (keys as in :data:`FIGURES`).
-    A figure whose variables are not in the Dataset (e.g. a study without the
+    Comparisons are made against the ``reference_set`` attribute (the first uncoated
+    set), which is plotted first. A figure whose variables are not in the Dataset (e.g. a study without the
     single-contact coating studies) is skipped; the explicit/implicit figures plot the
     explicit run alone, and say so, when the ``*_implicit`` variables are absent.
     ``only``: optional iterable of file names to restrict the output.
     """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
+    ref = ds.attrs.get("reference_set")
+    if ref is not None and "surface_set" in ds.dims:
+        names = [str(v) for v in ds["surface_set"].values]
+        if ref in names and names[0] != ref:      # the figures compare against index 0
+            k = names.index(ref)
+            ds = ds.isel(surface_set=[k] + [i for i in range(len(names)) if i != k])
     wanted = list(_MAKERS) if only is None else [n for n in _MAKERS if n in set(only)]
     written = {}
     with plt.rc_context({"font.size": 10, "axes.titlesize": _TITLE_SIZE,

@@ -80,7 +80,7 @@ def _claims(ds, summ):
     """Rows (claim, paper, tribodyn, explanation) of the comparison table."""
     ev = _event(ds)
     sets = summ["surface_sets"]
-    unc = str(ds.surface_set.values[0])
+    unc = str(ds.attrs.get("reference_set", ds.surface_set.values[0]))
     wcc4, dlc4 = _find(ds, "WC-C 4"), _find(ds, "DLC 4")
     wcc = wcc4 or _find(ds, "WC-C")
     dlc = dlc4 or _find(ds, "DLC")
@@ -240,7 +240,7 @@ def report_text(ds, summ, figures: dict) -> str:
               "max viscous friction | boundary friction vs uncoated | friction energy "
               "per cycle | mean friction power | min λ | failed steps |",
               "|---|---|---|---|---|---|---|---|---|---|---|"]
-    first = next(iter(summ["surface_sets"]))
+    first = summ.get("reference_set", next(iter(summ["surface_sets"])))
     for name, v in summ["surface_sets"].items():
         lines.append(
             f"| {v['label']} | {_fmt(v['min_film_m'] and v['min_film_m'] * 1e6, 'µm')} | "

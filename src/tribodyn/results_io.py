@@ -127,6 +127,7 @@ def study_to_dataset(study) -> xr.Dataset:
     ds.coords["ehl_crank"] = xr.Variable("ehl_crank", inp.crank_angle, {
         "units": "deg", "long_name": "crank angle of the transient-EHL samples"})
     ds.coords["surface_set"] = xr.Variable("surface_set", [s.name for s in sets])
+    ds.attrs["reference_set"] = sets[reference_index(study)].name
     ds["surface_label"] = xr.Variable("surface_set", [study.labels[s.name] for s in sets],
                                       {"long_name": "tappet surface"})
     ds["ehl_contact_force"] = xr.Variable("ehl_crank", inp.contact_force,
@@ -246,6 +247,15 @@ def _coating_studies(ds, study):
         ds.attrs["ehl_coating_conditions"] = json.dumps(e["conditions"])
 
 
+def reference_index(study) -> int:
+    """Index of the reference surface set for the "…_vs_uncoated" numbers: the first
+    uncoated set of the case, or the first set if every set is coated."""
+    for i, s in enumerate(study.case.surface_sets()):
+        if s.coating is None:
+            return i
+    return 0
+
+
 def event_mask(study) -> np.ndarray:
     """EHL samples inside the cam event (cam lift above the jump threshold): the lift
     event proper, without the base-circle ringing of a few newtons."""
@@ -266,12 +276,13 @@ def summary(study) -> dict:
     t = inp.time
     period = 2.0 * math.pi / study.case.cam_speed       # one engine cycle = one cam rev
     dt = np.gradient(t)
-    ref = study.sets[0]
+    ref = study.sets[reference_index(study)]
     ev = event_mask(study)
     ref_bf = np.nansum(np.where(ref.loaded & ev, ref.boundary_friction, 0.0) * dt)
     out = {"case": study.case.name, "engine_speed_rpm": float(study.case.engine_speed),
            "statistics_over": "cam event (lift > 10 µm) for films and forces; all loaded "
                               "samples for friction energy and power",
+           "reference_set": ref.name,
            "surface_sets": {}}
     for s in study.sets:
         L = s.loaded & ev
@@ -284,6 +295,7 @@ def summary(study) -> dict:
             "min_film_m": _finite(np.nanmin(s.min_film[L])) if L.any() else None,
             "max_central_film_m": _finite(np.nanmax(s.central_film[L])) if L.any() else None,
             "max_film_gain_vs_uncoated_pct": _finite(np.nanmax(gain)) if L.any() else None,
+            "mean_film_gain_vs_uncoated_pct": _finite(np.nanmean(gain)) if L.any() else None,
             "max_boundary_friction_N": _finite(np.nanmax(s.boundary_friction[L])) if L.any() else None,
             "max_viscous_friction_N": _finite(np.nanmax(s.viscous_friction[L])) if L.any() else None,
             "boundary_friction_reduction_vs_uncoated_pct":
@@ -306,6 +318,12 @@ def summary(study) -> dict:
             "max_velocity_diff_crank_deg": _finite(dyn.crank_angle[dv.argmax()]),
             "coupling_converged": bool(study.coupling.get("converged")),
             "coupling_iterations": len(study.coupling.get("history", [])),
+            "coupling_last_rms_force_change_N": _finite(
+                (study.coupling.get("history") or [{}])[-1].get("rms_force_change_N",
+                                                                float("nan"))),
+            "coupling_last_max_force_change_N": _finite(
+                (study.coupling.get("history") or [{}])[-1].get("max_force_change_N",
+                                                                float("nan"))),
         }
     else:
         out["implicit_vs_explicit"] = {"max_contact_force_diff_pct": None,

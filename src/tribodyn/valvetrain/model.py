@@ -68,7 +68,8 @@ class _FrictionTable:
     FORCES = (0.0, 2.0, 5.0, 10.0, 20.0, 40.0, 70.0, 100.0, 150.0, 200.0, 275.0, 350.0,
               450.0, 600.0, 800.0, 1100.0, 1500.0, 2000.0, 3000.0)
 
-    def __init__(self, model: TribologyModel, cam: CamProfile, cam_speed: float):
+    def __init__(self, model: TribologyModel, cam: CamProfile, cam_speed: float,
+                 start_angle: float = 0.0):
         two_pi = 2.0 * math.pi
         rb = cam.base_radius
         fine = np.linspace(0.0, two_pi, 7200, endpoint=False)          # 0.05°
@@ -84,7 +85,9 @@ class _FrictionTable:
         R = rb + s + s2
         ue = 0.5 * cam_speed * (rb + s + 2.0 * s2)
         us = cam_speed * (rb + s)
-        TT, FF = np.meshgrid(th / cam_speed, self.F, indexing="ij")
+        # simulation time of cam angle θ in the first revolution: t = (θ − θ₀)/ω mod 2π/ω
+        t_of = np.mod(th - start_angle, two_pi) / cam_speed
+        TT, FF = np.meshgrid(t_of, self.F, indexing="ij")
         tab = np.asarray(model.friction(TT, FF, ue[:, None], us[:, None], R[:, None]),
                          dtype=float)
         if not np.all(np.isfinite(tab)) or np.any(tab < 0.0):
@@ -169,7 +172,7 @@ class ValvetrainModel:
         self.inv_kcam = 0.0 if p.camshaft_stiffness is None else 1.0 / p.camshaft_stiffness
         self.has_film = bool(tribology.has_film)
         if tribology.periodic_in_cam_angle:
-            self.friction_fn = _FrictionTable(tribology, cam, self.w)
+            self.friction_fn = _FrictionTable(tribology, cam, self.w, self.theta0)
             self._tab = True
         else:
             self.friction_fn = None

@@ -46,20 +46,33 @@ class FrictionCoefficientTable(TribologyModel):
         return mu * np.maximum(np.asarray(force, dtype=float), 0.0)
 
 
+def _bridge(values, loaded):
+    """Fill non-finite values of loaded samples (failed steps) by linear interpolation
+    from their loaded neighbours, so a failed step does not reset the tables."""
+    v = np.array(values, dtype=float)
+    good = loaded & np.isfinite(v)
+    bad = loaded & ~good
+    if bad.any() and good.sum() >= 2:
+        idx = np.arange(v.size)
+        v[bad] = np.interp(idx[bad], idx[good], v[good])
+    return v
+
+
 def film_law_from_ehl(inputs, ehl, lubricant, e_prime: float):
     """(h_k, c_k, F_k) over the samples of ``inputs`` from a transient-EHL cycle result."""
     F = inputs.contact_force
-    loaded = ehl.loaded & np.isfinite(ehl.central_film)
+    loaded = ehl.loaded
+    hc = _bridge(ehl.central_film, loaded)
     h = np.zeros_like(F)
     c = np.zeros_like(F)
     start = None
     for i in range(F.size):
-        if not loaded[i]:
+        if not loaded[i] or not np.isfinite(hc[i]):
             start = None
             continue
         if start is None:
-            start = ehl.central_film[i]
-        h[i] = ehl.central_film[i] - start
+            start = hc[i]
+        h[i] = hc[i] - start
         w = F[i] / inputs.width
         u = max(abs(inputs.entrainment_speed[i]), 1e-3)
         R = inputs.radius[i]
@@ -68,14 +81,15 @@ def film_law_from_ehl(inputs, ehl, lubricant, e_prime: float):
         W2, _, _ = hamrock_groups(1.01 * w, R, u, lubricant.viscosity,
                                   lubricant.pressure_viscosity, e_prime)
         slope = np.log(moes_central(W2, U, G, R) / moes_central(W1, U, G, R)) / np.log(1.01)
-        c[i] = min(0.0, ehl.central_film[i] * slope / F[i])
+        c[i] = min(0.0, hc[i] * slope / F[i])
     return h, c, F
 
 
 def ehl_tribology(inputs, ehl, lubricant, e_prime: float, period: float) -> FilmTableTribology:
     """Tribology model of the implicit coupling from one transient-EHL cycle."""
-    loaded = ehl.loaded & np.isfinite(ehl.friction)
-    mu = np.where(loaded, ehl.friction / np.maximum(inputs.contact_force, 1e-12), 0.0)
+    ff = _bridge(ehl.friction, ehl.loaded)
+    mu = np.where(ehl.loaded & np.isfinite(ff),
+                  ff / np.maximum(inputs.contact_force, 1e-12), 0.0)
     friction = FrictionCoefficientTable(inputs.time, mu, period)
     h, c, F = film_law_from_ehl(inputs, ehl, lubricant, e_prime)
     return FilmTableTribology(friction, inputs.time, h, c, F, period=period)
