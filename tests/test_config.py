@@ -70,6 +70,9 @@ def test_paper_numbers(paper):
     assert (lub.viscosity, lub.pressure_viscosity, lub.eyring_stress,
             lub.limiting_shear_coefficient, lub.density) == (0.055, 1.05e-8, 2e6, 0.08, 850.0)
     assert lub.viscosity_model == "roelands" and lub.compressible
+    assert lub.limiting_shear_stress == 0.0                     # paper: τ_L = Λp only
+    assert paper.updated({"lubricant.limiting_shear_stress": 3e6}).lubricant() \
+        .limiting_shear_stress == 3e6
     # Table 6 (moduli in GPa)
     m = paper.materials
     assert (m["steel"].E, m["dlc"].E, m["wcc"].E) == (210e9, 185e9, 175e9)

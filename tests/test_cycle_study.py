@@ -85,6 +85,15 @@ def test_dataset_contents(run_dir):
         h = hc[loaded & ev[None, :]]
         assert np.all((h > 1e-8) & (h < 1e-5))
         assert ds.attrs["case_toml"]
+        sens = json.loads(ds.attrs["roughness_sensitivity"])
+    c = sens["cases"]
+    base, gauss, free = c["case roughness"], c["Gaussian ηβσ = 0.04"], c["no limiting-shear cap"]
+    assert all(v["converged"] for v in c.values())
+    # denser summits at equal σ, β: more asperity load and boundary friction
+    assert gauss["asperity_load_share"] > base["asperity_load_share"]
+    assert gauss["boundary_friction_N"] > base["boundary_friction_N"]
+    assert free["viscous_friction_N"] >= base["viscous_friction_N"]
+    assert free["central_film_m"] == pytest.approx(base["central_film_m"], rel=1e-9)
 
 
 def test_failing_steps_are_reported(tmp_path):

@@ -234,8 +234,11 @@ class LubricantConfig(_Section):
                                    ge=0.0, le=1e-6)
     density: float = _q(850.0, "kg/m³", "density ρ₀ at ambient pressure", gt=0.0, le=5000.0)
     eyring_stress: float = _q(2e6, "Pa", "Eyring stress τ_E", gt=0.0)
-    limiting_shear_coefficient: float = _q(0.08, "", "limiting shear stress τ_L = Λ p",
+    limiting_shear_coefficient: float = _q(0.08, "", "pressure slope Λ of the limiting shear "
+                                                     "stress τ_L = τ_L0 + Λ p",
                                            ge=0.0, le=1.0)
+    limiting_shear_stress: float = _q(0.0, "Pa", "intercept τ_L0 of the limiting shear stress "
+                                                 "(paper: 0)", ge=0.0, le=1e9)
     compressible: bool = _q(True, "", "Dowson–Higginson density (false: constant density)")
     viscosity_model: Literal["roelands", "barus"] = _q("roelands", "", "piezo-viscosity law")
 
@@ -599,6 +602,7 @@ class Case(_Section):
         return Lubricant(viscosity=c.viscosity, pressure_viscosity=c.pressure_viscosity,
                          density=c.density, eyring_stress=c.eyring_stress,
                          limiting_shear_coefficient=c.limiting_shear_coefficient,
+                         limiting_shear_stress=c.limiting_shear_stress,
                          compressible=c.compressible, viscosity_model=c.viscosity_model)
 
     def material(self, name: str) -> Material:

@@ -198,6 +198,13 @@ def _claims(ds, summ):
                         f"σ and β but ηβσ = 0.04 (asperity load share "
                         f"{a['asperity_load_share'] * 100:.2g} % → "
                         f"{b['asperity_load_share'] * 100:.2g} %).")
+        d = c.get("no limiting-shear cap")
+        if a and d and a.get("limiting_shear", True):
+            lam = (f" (Λ = {case.lubricant_config.limiting_shear_coefficient:g})"
+                   if case is not None else "")
+            sens_txt += (f" Without the limiting-shear cap{lam} the viscous friction there is "
+                         f"{d['viscous_friction_N']:.3g} N instead of "
+                         f"{a['viscous_friction_N']:.3g} N (μ {d['friction_coefficient']:.3f}).")
     rows.append((
         "Friction loss per cam revolution (measured, Winer et al. 1986)",
         "2–4 J (measurement, not a paper claim)",

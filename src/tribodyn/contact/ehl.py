@@ -799,7 +799,8 @@ def _postprocess_impl(sysm, st, w, R, ue, us, opts, lub, rough, ok, it, msg, tim
     hf = np.maximum(h, 1e-10)
     tau = couette_shear_stress(mu, us, hf, opts.viscous_model, lub.eyring_stress)
     if opts.limiting_shear:
-        tau = limit_shear_stress(tau, p, lub.limiting_shear_coefficient)
+        tau = limit_shear_stress(tau, p, lub.limiting_shear_coefficient,
+                                 lub.limiting_shear_stress)
     dpdx = np.gradient(p, dx)
     f_visc = float(np.sum(np.abs(tau)) * dx)
     f_roll = float(np.sum(0.5 * hf * np.abs(dpdx)) * dx)

@@ -94,7 +94,8 @@ def analytic_contact(load, radius, entrainment_speed, sliding_speed, bodies,
     tau = np.abs(couette_shear_stress(mu, us[..., None], hc[..., None], viscous_model,
                                       lubricant.eyring_stress))
     if limiting_shear:
-        tau = np.abs(limit_shear_stress(tau, p, lubricant.limiting_shear_coefficient))
+        tau = np.abs(limit_shear_stress(tau, p, lubricant.limiting_shear_coefficient,
+                                        lubricant.limiting_shear_stress))
     f_visc = b * np.sum(tau * wts, axis=-1)
 
     if roughness is not None:

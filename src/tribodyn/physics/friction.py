@@ -6,7 +6,9 @@ and film h:
 * ``"newtonian"`` (Eq. 16 as printed): τ = μ u_s / h
 * ``"eyring"``: τ = τ_E asinh(μ u_s / (τ_E h))         (τ_E: Eyring stress, 2 MPa)
 
-both capped by the limiting shear stress τ_L = Λ p (Λ = 0.08) unless disabled. The
+both capped by the limiting shear stress τ_L = τ_L0 + Λ p unless disabled (paper: Λ = 0.08,
+τ_L0 = 0; the intercept τ_L0 of Bair & Winer's linear law keeps a finite cap where the
+pressure vanishes). The
 Poiseuille part ±(h/2) dp/dx of Eq. 16 has opposite signs on the two surfaces; solvers
 report it separately as the rolling friction.
 
@@ -42,9 +44,12 @@ def couette_shear_stress(viscosity, sliding_speed, film, model: str = "eyring",
     return eyring_stress * np.arcsinh(rate_stress / eyring_stress)
 
 
-def limit_shear_stress(tau, pressure, coefficient: float) -> np.ndarray:
-    """Cap |τ| at the limiting shear stress Λ·max(p, 0), keeping the sign of τ."""
-    cap = coefficient * np.maximum(np.asarray(pressure, dtype=float), 0.0)
+def limit_shear_stress(tau, pressure, coefficient: float, intercept: float = 0.0) -> np.ndarray:
+    """Cap |τ| at the limiting shear stress τ_L0 + Λ·max(p, 0), keeping the sign of τ.
+
+    ``coefficient`` is Λ [-], ``intercept`` τ_L0 [Pa].
+    """
+    cap = intercept + coefficient * np.maximum(np.asarray(pressure, dtype=float), 0.0)
     tau = np.asarray(tau, dtype=float)
     return np.sign(tau) * np.minimum(np.abs(tau), cap)
 

@@ -43,9 +43,11 @@ class Lubricant:
     pressure_viscosity : α, pressure–viscosity coefficient [1/Pa], >= 0 (0: isoviscous).
     density : ρ₀ at ambient pressure [kg/m³] (paper: not given, 850 assumed).
     eyring_stress : τ_E, Eyring stress of the non-Newtonian shear law [Pa].
-    limiting_shear_coefficient : Λ, limiting shear stress τ_L = Λ p [-].
+    limiting_shear_coefficient : Λ, pressure slope of the limiting shear stress [-].
     compressible : use Dowson–Higginson (True) or constant density (False).
     viscosity_model : "roelands" (default, paper Eq. 3) or "barus".
+    limiting_shear_stress : τ_L0, intercept of the limiting shear stress
+        τ_L = τ_L0 + Λ p [Pa] (Bair & Winer's linear form; the paper uses Λ p only, τ_L0 = 0).
     """
 
     viscosity: float
@@ -55,6 +57,7 @@ class Lubricant:
     limiting_shear_coefficient: float = 0.08
     compressible: bool = True
     viscosity_model: str = "roelands"
+    limiting_shear_stress: float = 0.0
 
     def __post_init__(self):
         mu0 = check_positive("viscosity", self.viscosity, "Pa·s")
@@ -70,6 +73,9 @@ class Lubricant:
         object.__setattr__(self, "limiting_shear_coefficient",
                            check_nonnegative("limiting_shear_coefficient",
                                              self.limiting_shear_coefficient))
+        object.__setattr__(self, "limiting_shear_stress",
+                           check_nonnegative("limiting_shear_stress",
+                                             self.limiting_shear_stress, "Pa"))
         object.__setattr__(self, "compressible", bool(self.compressible))
         if self.viscosity_model not in ("roelands", "barus"):
             raise InputError("viscosity_model must be 'roelands' or 'barus' "

@@ -178,10 +178,11 @@ def _coating_studies_task(case, nose=None):
 
 
 def roughness_sensitivity(case, nose: dict) -> dict:
-    """Steady EHL at the most heavily loaded nose condition of the cycle for the first
-    surface set with (a) its case roughness and (b) the same σ, β but a summit density
+    """Steady EHL at the nose condition of the cycle (see :func:`_nose_condition`) for the
+    first surface set with (a) its case roughness, (b) the same σ, β but a summit density
     giving ηβσ = 0.04, typical of measured Gaussian surfaces (isotropic Gaussian surfaces
-    have ηβσ ≥ 0.025; the paper's Table 4 gives 2e-4…2.3e-3)."""
+    have ηβσ ≥ 0.025; the paper's Table 4 gives 2e-4…2.3e-3), and (c) the case roughness
+    without the limiting-shear cap (how much of the viscous friction the cap removes)."""
     from ..contact.ehl import solve_ehl
     from ..physics.asperity import Roughness
     s = case.surface_sets()[0]
@@ -190,11 +191,15 @@ def roughness_sensitivity(case, nose: dict) -> dict:
     r0 = s.roughness
     alt = Roughness(asperity_density=0.04 / (r0.rms * r0.summit_radius), rms=r0.rms,
                     summit_radius=r0.summit_radius, method=r0.method)
-    for label, rough in (("case roughness", r0), ("Gaussian ηβσ = 0.04", alt)):
+    opts = case.ehl_options(s)
+    variants = (("case roughness", r0, {}), ("Gaussian ηβσ = 0.04", alt, {}),
+                ("no limiting-shear cap", r0, {"limiting_shear": False}))
+    for label, rough, over in variants:
         r = solve_ehl(w, nose["radius"], nose["entrainment_speed"], nose["sliding_speed"],
-                      s.bodies, case.lubricant(), rough, options=case.ehl_options(s))
+                      s.bodies, case.lubricant(), rough, options=opts, **over)
         out["cases"][label] = {
             "eta_beta_sigma": rough.roughness_parameter,
+            "limiting_shear": bool(over.get("limiting_shear", opts.limiting_shear)),
             "central_film_m": r.central_film, "min_film_m": r.min_film,
             "asperity_load_share": r.asperity_load / w,
             "boundary_friction_N": r.boundary_friction * case.width,
@@ -204,7 +209,8 @@ def roughness_sensitivity(case, nose: dict) -> dict:
 
 
 def _nose_condition(inputs) -> dict:
-    """Highest-load sample with |u_e| above 0.5 m/s near the cam nose (smallest R)."""
+    """The cam-nose sample: among samples with F > F_max/2 and |u_e| > 0.5 m/s, the one
+    with the smallest radius of curvature R (``None`` if there is none)."""
     F = inputs.contact_force
     ok = (np.abs(inputs.entrainment_speed) > 0.5) & (F > 0.5 * F.max())
     if not ok.any():
