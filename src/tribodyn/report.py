@@ -208,7 +208,7 @@ def _claims(ds, summ):
     rows.append((
         "Friction loss per cam revolution (measured, Winer et al. 1986)",
         "2–4 J (measurement, not a paper claim)",
-        (f"{min(e):.2f}–{max(e):.2f} J" if max(e) - min(e) >= 0.005 else f"{max(e):.2f} J"),
+        (f"{min(e):.3g}–{max(e):.3g} J" if max(e) - min(e) >= 5e-4 else f"{max(e):.3g} J"),
         "Low, because with the Table 4 asperity parameters the contact is almost "
         "hydrodynamic even at λ ≈ 0.2 (μ ≈ 0.01). Table 4's ηβσ is one to two orders below "
         "what any Gaussian surface has (≥ 0.025 for isotropic ones); measured tappets give "
@@ -234,9 +234,9 @@ def report_text(ds, summ, figures: dict) -> str:
         "equilibrium (the second is presented), explicit analytic tribology (the paper's "
         "choice); transient mixed-EHL (Reynolds with Roelands and Dowson–Higginson, "
         "Reynolds cavitation, coated DC-FFT elasticity, Greenwood–Tripp asperities, Eyring "
-        "shear capped at Λp, boundary friction τ₀ + ς p_a) along the presented cycle for "
-        "each tappet surface; implicit dynamics with the numerical EHL for the comparison "
-        "of Figs. 8–10.", ""]
+        "shear capped at the limiting shear stress, boundary friction τ₀ + ς p_a) along the "
+        "presented cycle for each tappet surface; implicit dynamics with the numerical EHL "
+        "for the comparison of Figs. 8–10.", ""]
     if warnings:
         lines += ["## Warnings", ""] + [f"- {w}" for w in warnings] + [""]
 
