@@ -919,7 +919,7 @@ def solve_ehl(load, radius, entrainment_speed, sliding_speed, bodies, lubricant:
                                           st.H0 * prev.h_ref)
         max_it = opts.max_iter * (2 if k == 0 and len(levels) > 1 else 1)
         st, ok, it, msg, _ = _newton(sysm, st0, opts.tol, max_it,
-                                  coarse=coarse if nk > _N_DENSE else None)
+                                     coarse=coarse if nk > _N_DENSE else None)
         total += it
         if ok and nk <= _N_DENSE and nk < n and levels[-1] > _N_DENSE:
             coarse = _CoarseLevel(sysm, st)      # finest dense level preconditions the rest
