@@ -15,7 +15,6 @@ def test_load_step_relaxes_to_new_steady_state():
     w, u, _, _ = conditions(20, 10)
     tr = TransientEHL(PAIR, OIL)
     start = tr.start_steady(w, R, u, 0.5)
-    target = solve_ehl(1.5 * w, R, u, 0.5, PAIR, OIL)
     b = math.sqrt(8 * w * R / (math.pi * E_PRIME))
     dt = 0.05 * b / u
     hc = []
@@ -24,6 +23,9 @@ def test_load_step_relaxes_to_new_steady_state():
         assert r.converged, r.message
         assert r.hydrodynamic_load == pytest.approx(1.5 * w, rel=1e-9)
         hc.append(r.central_film)
+    # the steady solution of the same discrete problem (on the transient's grid)
+    target = solve_ehl(1.5 * w, R, u, 0.5, PAIR, OIL, n=r.x.size)
+    assert target.x[0] == pytest.approx(r.x[0], rel=1e-12)
     # the film first keeps its old thickness (the oil must be squeezed out) ...
     assert hc[0] > 1.02 * target.central_film
     # ... then relaxes to the new steady solution

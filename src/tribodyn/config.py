@@ -308,7 +308,7 @@ class Numerics(_Section):
     """``[numerics]``: solver settings."""
 
     n: int = _q(0, "", "EHL grid nodes (uniform); 0 = automatic from the contact "
-                       "(512…4096, keeps h_c, h_min within 0.5 % of grid convergence); "
+                       "(512…4096; steady solves refine until h_c, h_min change < 0.5 % on doubling); "
                        "at most 4096 (the transient steps factor dense matrices)",
                 ge=0, le=4096)
     min_load: float = _q(5.0, "N", "contact force below which the EHL is not solved "
@@ -318,8 +318,11 @@ class Numerics(_Section):
                       ge=1.0, le=100.0)
     outlet: float = _q(1.75, "", "EHL domain downstream of the centre, in Hertz half-widths",
                        ge=1.0, le=100.0)
-    inlet_rigid: float = _q(20.0, "", "EHL domain upstream, in rigid inlet lengths "
-                                      "√(2R h) (light, hydrodynamic contacts)",
+    inlet_truncation: float = _q(0.005, "", "EHL domain upstream at least as far as the "
+                                            "cut-off inlet loses this share of the load "
+                                            "(far-field estimate)", gt=0.0, le=0.1)
+    inlet_rigid: float = _q(4.0, "", "EHL domain upstream at least this many rigid inlet "
+                                     "lengths √(2R h) (squeeze films)",
                             ge=1.0, le=200.0)
     outlet_rigid: float = _q(2.0, "", "EHL domain downstream, in rigid inlet lengths",
                              ge=1.0, le=200.0)
@@ -660,7 +663,8 @@ class Case(_Section):
         n = self.numerics
         if 0 < n.n < 32:
             raise InputError(f"numerics.n: must be 0 (automatic) or >= 32 (got {n.n})")
-        kw = dict(n=n.n or None, inlet=n.inlet, outlet=n.outlet, inlet_rigid=n.inlet_rigid,
+        kw = dict(n=n.n or None, inlet=n.inlet, outlet=n.outlet,
+                  inlet_truncation=n.inlet_truncation, inlet_rigid=n.inlet_rigid,
                   outlet_rigid=n.outlet_rigid, tol=n.tol, max_iter=n.max_iter,
                   viscous_model=n.viscous_model, limiting_shear=n.limiting_shear,
                   time_order=n.time_order)
