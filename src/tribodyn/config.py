@@ -308,8 +308,9 @@ class Numerics(_Section):
     """``[numerics]``: solver settings."""
 
     n: int = _q(0, "", "EHL grid nodes (uniform); 0 = automatic from the contact "
-                       "(512…4096; steady solves refine until h_c, h_min change < 0.5 % on doubling); "
-                       "at most 4096 (the transient steps factor dense matrices)",
+                       "(512…4096; steady solves refine until h_c, h_min change < 0.5 % "
+                       "on doubling); at most 4096 (the transient steps factor dense "
+                       "matrices)",
                 ge=0, le=4096)
     min_load: float = _q(5.0, "N", "contact force below which the EHL is not solved "
                                    "(cam on the base circle: no load, no film)",

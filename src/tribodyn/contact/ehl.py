@@ -845,7 +845,7 @@ def _postprocess_impl(sysm, st, w, R, ue, us, opts, lub, rough, ok, it, msg, tim
         msg = "non-finite solution: " + msg
     # load lost to the truncated inlet: |dp/dx| x_in²/2 at the inlet node (exact for the
     # far field p ∝ |x|⁻³; on the rigid isoviscous cylinder it predicts the loss within
-    # 25 %); warn at twice the tolerance the domain was sized for
+    # 5 %); warn at twice the tolerance the domain was sized for
     deficit = 0.0
     ends = {1: [0], -1: [g.n - 1], 0: [0, g.n - 1]}[int(np.sign(g.direction))]
     for e in ends:
