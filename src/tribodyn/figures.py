@@ -916,17 +916,8 @@ def _fig15(ds, path):
     a.set_title("(a) central film thickness", fontsize=_TITLE_SIZE)
     _point_ticks(a, ds)
 
-    def fmt(j, lab):
-        g = gain[j][sel]
-        if j == 0 or not np.isfinite(g).any():
-            return lab + " (reference)"
-        return f"{lab}: max {_signed(np.nanmax(g), 2)} %, min {_signed(np.nanmin(g), 2)} %"
-    _cycle_lines(b, ds, gain, win, styles, label_fmt=fmt)
-    b.axhline(0, color="0.4", lw=0.8)
-    b.set_ylabel("h_c change vs uncoated [%]")
-    b.legend(fontsize=8, ncol=2, loc="best")
-    b.set_title("(b) film change relative to uncoated (paper claims up to +41 %)",
-                fontsize=_TITLE_SIZE)
+    _difference_panel(b, ds, gain, sel, win, styles, "%", 2, "h_c change vs uncoated [%]",
+                      "(b) film change relative to uncoated (paper claims up to +41 %)")
     return _finish(fig, path, FIGURES[path.name], f"cam event only; {_failure_note(ds)}")
 
 
@@ -935,6 +926,22 @@ def _log_floor(values, decades=4):
     if v.size == 0:
         return 1e-12
     return float(np.nanmax(v)) * 10.0 ** (-decades)
+
+
+def _difference_panel(ax, ds, diff, sel, win, styles, unit, digits, ylabel, title):
+    """Lower panel of Figs. 15 and 18: each set's difference to the reference set (index
+    0), labelled with its extremes over the event window ``sel``."""
+    def fmt(j, lab):
+        g = diff[j][sel]
+        if j == 0 or not np.isfinite(g).any():
+            return lab + " (reference)"
+        return (f"{lab}: max {_signed(np.nanmax(g), digits)} {unit}, "
+                f"min {_signed(np.nanmin(g), digits)} {unit}")
+    _cycle_lines(ax, ds, diff, win, styles, label_fmt=fmt)
+    ax.axhline(0, color="0.4", lw=0.8)
+    ax.set_ylabel(ylabel)
+    ax.legend(fontsize=8, ncol=2, loc="best")
+    ax.set_title(title, fontsize=_TITLE_SIZE)
 
 
 def _linear_and_log(ds, path, name, ylabel, sub, *, decades=4):
@@ -1013,16 +1020,8 @@ def _fig18(ds, path):
     a.set_title("(a) viscous (Couette) friction", fontsize=_TITLE_SIZE)
     _point_ticks(a, ds)
 
-    def fmt(j, lab):
-        g = d[j][sel]
-        if j == 0 or not np.isfinite(g).any():
-            return lab + " (reference)"
-        return f"{lab}: max {_signed(np.nanmax(g), 3)} N, min {_signed(np.nanmin(g), 3)} N"
-    _cycle_lines(b, ds, d, win, styles, label_fmt=fmt)
-    b.axhline(0, color="0.4", lw=0.8)
-    b.set_ylabel("F_v − F_v(uncoated) [N]")
-    b.legend(fontsize=8, ncol=2, loc="best")
-    b.set_title("(b) difference to uncoated (paper: WC-C up to +0.43 N)", fontsize=_TITLE_SIZE)
+    _difference_panel(b, ds, d, sel, win, styles, "N", 3, "F_v − F_v(uncoated) [N]",
+                      "(b) difference to uncoated (paper: WC-C up to +0.43 N)")
     return _finish(fig, path, FIGURES[path.name], f"cam event only; {_failure_note(ds)}")
 
 
