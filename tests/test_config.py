@@ -9,10 +9,21 @@ import numpy as np
 import pytest
 
 from tribodyn import EHLOptions, InputError, Lubricant, Roughness
-from tribodyn.config import (CASES_DIR, DEFAULT_CASE, Case, SurfaceSet, bundled_cases,
-                             load_case, to_toml)
-from tribodyn.valvetrain import (AccelerationCam, CircularArcCam, TabulatedCam,
-                                 ValvetrainParameters)
+from tribodyn.config import (
+    CASES_DIR,
+    DEFAULT_CASE,
+    Case,
+    SurfaceSet,
+    bundled_cases,
+    load_case,
+    to_toml,
+)
+from tribodyn.valvetrain import (
+    AccelerationCam,
+    CircularArcCam,
+    TabulatedCam,
+    ValvetrainParameters,
+)
 
 ROUGH = "roughness = { asperity_density = 1e9, rms = 1e-7, summit_radius = 1e-6 }\n"
 
@@ -61,7 +72,7 @@ def test_paper_numbers(paper):
     assert (c.base_radius, c.max_lift, c.width) == (0.015, 0.0093, 0.012)
     v = paper.valvetrain
     assert (v.valve_mass, v.spring_mass, v.spring_rate) == (0.07, 0.036, 33750.0)
-    # assumed (DESIGN.md)
+    # assumed (docs/conventions.md)
     assert (v.tappet_mass, v.spring_preload, v.lash) == (0.040, 250.0, 0.0)
     assert (c.ramp_height, c.ramp_angle_deg, c.event_angle_deg, c.nose_radius) == \
         (0.2e-3, 20.0, 171.0, 3e-3)

@@ -10,7 +10,7 @@ from typer.testing import CliRunner
 
 from tribodyn.cli import app
 from tribodyn.config import load_case
-from tribodyn.results_io import write_atomic
+from tribodyn.output import write_atomic
 
 runner = CliRunner()
 

@@ -3,7 +3,14 @@
 import numpy as np
 import pytest
 
-from tribodyn import Body, Coating, InputError, Material, reduced_modulus, solve_dry_contact
+from tribodyn import (
+    Body,
+    Coating,
+    InputError,
+    Material,
+    reduced_modulus,
+    solve_dry_contact,
+)
 from tribodyn.physics.hertz import hertz_line_contact
 
 STEEL = Material(210e9, 0.3)

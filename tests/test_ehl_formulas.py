@@ -3,11 +3,10 @@
 import math
 
 import pytest
+from ehl_cases import ALPHA, E_PRIME, MU0, PAIR, G, R, conditions
 
 from tribodyn import Lubricant, solve_ehl
 from tribodyn.physics.regimes import moes_central, pan_hamrock
-
-from ehl_cases import ALPHA, E_PRIME, G, MU0, PAIR, R, conditions
 
 
 # Pan & Hamrock fitted Roelands + Dowson–Higginson solutions; their h_c fit drifts above
@@ -64,11 +63,11 @@ def test_ehl_solution_structure():
 def test_two_grid_preconditioned_solution_equals_dense_solution(monkeypatch):
     """Grids above 1024 nodes are solved by GMRES with a coarse-grid LU preconditioner;
     the converged discrete solution must not depend on the linear solver."""
-    import tribodyn.contact.ehl as ehl
+    import tribodyn.contact.ehl.steady as steady
     w, u, _, _ = conditions(50, 10)
     oil = Lubricant(MU0, ALPHA)
     fast = solve_ehl(w, R, u, 0.0, PAIR, oil, n=2048)
-    monkeypatch.setattr(ehl, "_N_DENSE", 4096)          # force dense LU on every level
+    monkeypatch.setattr(steady, "_N_DENSE", 4096)          # force dense LU on every level
     dense = solve_ehl(w, R, u, 0.0, PAIR, oil, n=2048)
     assert fast.converged and dense.converged
     assert fast.central_film == pytest.approx(dense.central_film, rel=1e-8)

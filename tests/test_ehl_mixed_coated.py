@@ -4,11 +4,9 @@ import math
 
 import numpy as np
 import pytest
+from ehl_cases import E_PRIME, OIL, PAIR, STEEL, R, conditions
 
 from tribodyn import Body, Coating, Roughness, solve_ehl
-
-from ehl_cases import E_PRIME, OIL, PAIR, R, STEEL, conditions
-
 
 W_LOAD, U_E, _, _ = conditions(20, 10)
 

@@ -4,11 +4,10 @@ import math
 
 import numpy as np
 import pytest
+from ehl_cases import E_PRIME, OIL, PAIR, R, conditions
 
 from tribodyn import Lubricant, TransientEHL, solve_ehl
 from tribodyn.physics.regimes import hamrock_groups, moes_central
-
-from ehl_cases import E_PRIME, OIL, PAIR, R, conditions
 
 
 def test_load_step_relaxes_to_new_steady_state():

@@ -7,9 +7,14 @@ import pytest
 from scipy import integrate
 
 from tribodyn import Body, Coating, DeformationOperator, Material
-from tribodyn.physics.elasticity import (coated_half_plane_frf, dense_deformation,
-                                         half_plane_frf, influence_coefficients,
-                                         log_kernel_influence, pair_frf)
+from tribodyn.physics.elasticity import (
+    coated_half_plane_frf,
+    dense_deformation,
+    half_plane_frf,
+    influence_coefficients,
+    log_kernel_influence,
+    pair_frf,
+)
 from tribodyn.physics.hertz import log_kernel_identity
 
 STEEL = Material(210e9, 0.3)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from tribodyn.figures import FIGURES, make_figures
+from tribodyn.output.figures import FIGURES, make_figures
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 EXPLICIT_IMPLICIT = ("fig08_tappet_velocity.png", "fig09_contact_force.png",

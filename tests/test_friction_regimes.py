@@ -8,8 +8,12 @@ import pytest
 from tribodyn import Body, Lubricant, Material, Roughness, solve_ehl
 from tribodyn.physics.analytic_contact import analytic_contact
 from tribodyn.physics.friction import couette_shear_stress, limit_shear_stress
-from tribodyn.physics.regimes import (greenwood_chart_groups, lubrication_regime,
-                                      moes_groups, pan_hamrock)
+from tribodyn.physics.regimes import (
+    greenwood_chart_groups,
+    lubrication_regime,
+    moes_groups,
+    pan_hamrock,
+)
 
 STEEL = Material(210e9, 0.3)
 PAIR = (Body(STEEL), Body(STEEL))

@@ -18,11 +18,23 @@ from typer.testing import CliRunner
 
 from tribodyn import InputError, Roughness
 from tribodyn.cli import app
-from tribodyn.topography import (BandLimitError, InsufficientDataError, PairAnalysis,
-                                 SpectralMoments, TopographyReadError, analyse_pair,
-                                 analyse_surface, composite_roughness, mccool_parameters,
-                                 plot_height_distribution, read_topography, summit_statistics,
-                                 synthetic_moments, synthetic_surface, write_topography)
+from tribodyn.output.figures.topography import plot_height_distribution
+from tribodyn.topography import (
+    BandLimitError,
+    InsufficientDataError,
+    PairAnalysis,
+    SpectralMoments,
+    TopographyReadError,
+    analyse_pair,
+    analyse_surface,
+    composite_roughness,
+    mccool_parameters,
+    read_topography,
+    summit_statistics,
+    synthetic_moments,
+    synthetic_surface,
+    write_topography,
+)
 
 # SurfaceTopography's Fourier filter calls numpy.fft.irfftn in a form NumPy 2 deprecates.
 pytestmark = pytest.mark.filterwarnings("ignore:`axes` should not be `None`:DeprecationWarning")

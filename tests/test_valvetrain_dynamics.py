@@ -8,10 +8,19 @@ from scipy.integrate import solve_ivp
 from scipy.linalg import eigh
 
 from tribodyn import InputError
-from tribodyn.valvetrain import (AccelerationCam, FilmTableTribology, Frictionless,
-                                 TabulatedCam, TribologyModel, ValvetrainModel,
-                                 ValvetrainParameters, compare_results, jump_speed,
-                                 simulate_valvetrain, speed_sweep)
+from tribodyn.valvetrain import (
+    AccelerationCam,
+    FilmTableTribology,
+    Frictionless,
+    TabulatedCam,
+    TribologyModel,
+    ValvetrainModel,
+    ValvetrainParameters,
+    compare_results,
+    jump_speed,
+    simulate_valvetrain,
+    speed_sweep,
+)
 
 CAM = AccelerationCam()
 P0 = ValvetrainParameters()
@@ -313,7 +322,11 @@ def test_time_dependent_friction_respects_start_angle():
     motion equals ∫ torque·ω dt for any start angle."""
     import math
 
-    from tribodyn.valvetrain import AccelerationCam, ValvetrainParameters, simulate_valvetrain
+    from tribodyn.valvetrain import (
+        AccelerationCam,
+        ValvetrainParameters,
+        simulate_valvetrain,
+    )
     from tribodyn.valvetrain.tribology import TribologyModel
 
     class Pulsing(TribologyModel):

@@ -6,9 +6,14 @@ import numpy as np
 import pytest
 
 from tribodyn import InputError
-from tribodyn.valvetrain import (AccelerationCam, CircularArcCam, TabulatedCam,
-                                 flat_follower_kinematics, quasi_static_jump_speed,
-                                 rpm_to_cam_speed)
+from tribodyn.valvetrain import (
+    AccelerationCam,
+    CircularArcCam,
+    TabulatedCam,
+    flat_follower_kinematics,
+    quasi_static_jump_speed,
+    rpm_to_cam_speed,
+)
 
 W = 157.07963267948966          # 1500 rpm cam
 

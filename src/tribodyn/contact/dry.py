@@ -16,7 +16,7 @@ import numpy as np
 from .._validation import InputError, check_positive
 from ..physics.elasticity import DeformationOperator
 from ..physics.hertz import HertzLineContact, hertz_line_contact
-from ..physics.materials import _as_bodies, reduced_modulus
+from ..physics.materials import as_bodies, reduced_modulus
 
 __all__ = ["DryContactResult", "solve_dry_contact", "contact_edges"]
 
@@ -126,7 +126,7 @@ def solve_dry_contact(load: float, radius: float, bodies, *, n: int = 1024,
     """
     w = check_positive("load", load, "N/m")
     r = check_positive("radius", radius, "m")
-    bodies = _as_bodies(bodies)
+    bodies = as_bodies(bodies)
     n = int(n)
     if n < 32:
         raise InputError(f"n must be >= 32 (got {n})")

@@ -25,12 +25,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import paper
 from .asperity import Roughness
-from .friction import (BOUNDARY_SHEAR_STRENGTH, couette_shear_stress, limit_shear_stress)
+from .friction import BOUNDARY_SHEAR_STRENGTH, couette_shear_stress, limit_shear_stress
 from .lubricant import Lubricant
 from .materials import reduced_modulus
-from .regimes import (dowson_toyoda_central, greenwood_chart_groups, hamrock_groups,
-                      lubrication_regime, moes_central, pan_hamrock)
+from .regimes import (
+    dowson_toyoda_central,
+    greenwood_chart_groups,
+    hamrock_groups,
+    lubrication_regime,
+    moes_central,
+    pan_hamrock,
+)
 
 __all__ = ["AnalyticContact", "analytic_contact", "FILM_FORMULAS"]
 
@@ -61,7 +68,7 @@ class AnalyticContact:
 
 def analytic_contact(load, radius, entrainment_speed, sliding_speed, bodies,
                      lubricant: Lubricant, roughness: Roughness | None = None, *,
-                     boundary_shear_coefficient: float = 0.185,
+                     boundary_shear_coefficient: float = paper.STEEL["boundary_shear_coefficient"],
                      boundary_shear_strength: float = BOUNDARY_SHEAR_STRENGTH,
                      viscous_model: str = "eyring", limiting_shear: bool = True,
                      film_formula: str = "moes") -> AnalyticContact:

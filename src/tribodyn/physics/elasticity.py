@@ -16,7 +16,7 @@ pressure, m = |ω| the angular wavenumber [rad/m], ``~`` the Fourier transform i
 
   which reduces to 2(1 − ν²)/(E m) for coating = substrate.
 
-Space-domain kernel without the m = 0 singularity (DESIGN.md): write the coated FRF as
+Space-domain kernel without the m = 0 singularity (docs/conventions.md): write the coated FRF as
 C_s/m + r(m) with the regular remainder r(m) = G(mh)/m, G(0) = 0 (finite r at m = 0),
 G(∞) = C_c − C_s. Split G = (C_c − C_s)(1 − e^{−2t}) + G₂(t), t = mh. Then
 
@@ -43,7 +43,7 @@ import numpy as np
 from scipy import integrate, interpolate, linalg
 
 from .._validation import InputError, check_positive
-from .materials import Coating, Material, _as_bodies
+from .materials import Coating, Material, as_bodies
 
 __all__ = [
     "half_plane_frf", "coated_half_plane_frf", "pair_frf", "influence_coefficients",
@@ -101,7 +101,7 @@ def coated_half_plane_frf(m, coating: Coating | Material, substrate: Material,
 def pair_frf(m, bodies) -> np.ndarray:
     """Total FRF of a body pair: sum of the two bodies' surface FRFs."""
     total = 0.0
-    for b in _as_bodies(bodies):
+    for b in as_bodies(bodies):
         if b.coating is None:
             total = total + half_plane_frf(m, b.material)
         else:
@@ -214,7 +214,7 @@ def influence_coefficients(bodies, dx: float, n: int) -> np.ndarray:
     on node j is D_|i−j|; the sum of both bodies' normal displacements (positive =
     surfaces move apart).
     """
-    bodies = _as_bodies(bodies)
+    bodies = as_bodies(bodies)
     dx = check_positive("dx", dx, "m")
     if int(n) < 1:
         raise InputError(f"n must be >= 1 (got {n})")
@@ -248,7 +248,7 @@ class DeformationOperator:
     """
 
     def __init__(self, bodies, dx: float, n: int, coefficients: np.ndarray | None = None):
-        self.bodies = _as_bodies(bodies)
+        self.bodies = as_bodies(bodies)
         self.dx = check_positive("dx", dx, "m")
         self.n = int(n)
         self.coefficients = (influence_coefficients(self.bodies, self.dx, self.n)

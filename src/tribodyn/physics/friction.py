@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import paper
 from .._validation import InputError
 
 __all__ = ["VISCOUS_MODELS", "couette_shear_stress", "limit_shear_stress",
@@ -29,11 +30,11 @@ __all__ = ["VISCOUS_MODELS", "couette_shear_stress", "limit_shear_stress",
 
 VISCOUS_MODELS = ("newtonian", "eyring")
 #: τ₀ of Eq. 17 [Pa].
-BOUNDARY_SHEAR_STRENGTH = 2e6
+BOUNDARY_SHEAR_STRENGTH = paper.BOUNDARY_SHEAR_STRENGTH
 
 
 def couette_shear_stress(viscosity, sliding_speed, film, model: str = "eyring",
-                         eyring_stress: float = 2e6) -> np.ndarray:
+                         eyring_stress: float = paper.LUBRICANT["eyring_stress"]) -> np.ndarray:
     """Couette shear stress [Pa], signed like the sliding speed."""
     if model not in VISCOUS_MODELS:
         raise InputError(f"viscous model must be one of {VISCOUS_MODELS} (got {model!r})")

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import paper
 from .._validation import InputError, check_nonnegative, check_positive
 
 __all__ = ["Lubricant", "ROELANDS_P0", "ROELANDS_MU_INF", "SAE_5W20"]
@@ -52,9 +53,9 @@ class Lubricant:
 
     viscosity: float
     pressure_viscosity: float
-    density: float = 850.0
-    eyring_stress: float = 2e6
-    limiting_shear_coefficient: float = 0.08
+    density: float = paper.ASSUMED_DENSITY
+    eyring_stress: float = paper.LUBRICANT["eyring_stress"]
+    limiting_shear_coefficient: float = paper.LUBRICANT["limiting_shear_coefficient"]
     compressible: bool = True
     viscosity_model: str = "roelands"
     limiting_shear_stress: float = 0.0
@@ -129,4 +130,5 @@ class Lubricant:
 
 
 #: The paper's Table 5 lubricant (SAE 5W-20), with the assumed ρ₀ = 850 kg/m³.
-SAE_5W20 = Lubricant(viscosity=0.055, pressure_viscosity=1.05e-8)
+SAE_5W20 = Lubricant(viscosity=paper.LUBRICANT["viscosity"],
+                     pressure_viscosity=paper.LUBRICANT["pressure_viscosity"])

@@ -1,6 +1,6 @@
 """Elastic materials, coatings and contacting bodies.
 
-Conventions (DESIGN.md, paper Eq. 10):
+Conventions (docs/conventions.md, paper Eq. 10):
 
 * plane-strain compliance of one body  c = (1 − ν²)/E            [1/Pa]
 * reduced modulus of a pair            1/E' = ½ (c₁ + c₂)         [Pa]   (so E' = 2E*)
@@ -11,9 +11,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .. import paper
 from .._validation import InputError, check_positive, check_range
 
-__all__ = ["Material", "Coating", "Body", "reduced_modulus", "STEEL", "DLC", "WCC"]
+__all__ = ["Material", "Coating", "Body", "as_bodies", "reduced_modulus", "STEEL", "DLC", "WCC"]
 
 
 @dataclass(frozen=True)
@@ -89,7 +90,8 @@ class Body:
         return self.coating is not None
 
 
-def _as_bodies(bodies) -> tuple[Body, ...]:
+def as_bodies(bodies) -> tuple[Body, Body]:
+    """``bodies`` as a validated pair (Body, Body)."""
     bodies = tuple(bodies)
     if len(bodies) != 2 or not all(isinstance(b, Body) for b in bodies):
         raise InputError("bodies must be a pair (Body, Body)")
@@ -103,12 +105,12 @@ def reduced_modulus(bodies, *, surface: bool = False) -> float:
     coating; ``surface=True`` uses the surface materials (the coating where present),
     as for asperity-scale contact (Greenwood–Tripp, paper Eq. 6).
     """
-    b1, b2 = _as_bodies(bodies)
+    b1, b2 = as_bodies(bodies)
     m1, m2 = (b1.surface, b2.surface) if surface else (b1.material, b2.material)
     return 2.0 / (m1.compliance + m2.compliance)
 
 
-# The paper's Table 6 (moduli printed as "MPa": they are GPa, DESIGN.md errata).
-STEEL = Material(E=210e9, nu=0.3)
-DLC = Material(E=185e9, nu=0.3)
-WCC = Material(E=175e9, nu=0.3)
+# The paper's Table 6 (moduli printed as "MPa": they are GPa; docs/conventions.md).
+STEEL = Material(E=paper.STEEL["E"], nu=paper.STEEL["nu"])
+DLC = Material(E=paper.DLC["E"], nu=paper.DLC["nu"])
+WCC = Material(E=paper.WCC["E"], nu=paper.WCC["nu"])

@@ -1,6 +1,6 @@
 """Dimensionless groups, lubrication regimes (Greenwood chart) and line-contact film formulas.
 
-Conventions (DESIGN.md): E' with 1/E' = ½Σ(1−ν²)/E, u_e = mean entraining speed.
+Conventions (docs/conventions.md): E' with 1/E' = ½Σ(1−ν²)/E, u_e = mean entraining speed.
 
 * Hamrock groups   W' = w/(E'R),  U = μ₀|u_e|/(E'R),  G = αE'
 * Moes groups      M = W'(2U)^(−1/2),  L = G(2U)^(1/4)

@@ -13,7 +13,12 @@ sampling, on which η and β strongly depend.
 """
 
 from .analysis import analyse_pair, analyse_surface, composite_roughness
-from .errors import BandLimitError, InsufficientDataError, TopographyError, TopographyReadError
+from .errors import (
+    BandLimitError,
+    InsufficientDataError,
+    TopographyError,
+    TopographyReadError,
+)
 from .filtering import PAPER_BAND, Band, Sampling, prepare_topography
 from .height_statistics import HeightStatistics, height_statistics
 from .reading import read_topography, write_topography
@@ -27,13 +32,7 @@ __all__ = [
     "InsufficientDataError", "PairAnalysis", "Sampling", "SpectralMoments",
     "SummitStatistics", "SurfaceAnalysis", "TopographyError", "TopographyReadError",
     "analyse_pair", "analyse_surface", "composite_roughness", "height_statistics",
-    "mccool_parameters", "plot_height_distribution", "prepare_topography", "read_topography",
+    "mccool_parameters", "prepare_topography", "read_topography",
     "summit_statistics", "synthetic_moments", "synthetic_surface", "write_topography",
 ]
 
-
-def __getattr__(name):  # matplotlib only when the figure is wanted
-    if name == "plot_height_distribution":
-        from .figure import plot_height_distribution
-        return plot_height_distribution
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

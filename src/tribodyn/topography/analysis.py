@@ -30,8 +30,12 @@ from .filtering import PAPER_BAND, Band, Sampling, prepare_topography
 from .height_statistics import height_statistics
 from .reading import read_topography
 from .results import PairAnalysis, SurfaceAnalysis
-from .spectral_moments import (MIN_ALPHA_ISOTROPIC, SpectralMoments, isotropic_profile_moments,
-                               mccool_parameters)
+from .spectral_moments import (
+    MIN_ALPHA_ISOTROPIC,
+    SpectralMoments,
+    isotropic_profile_moments,
+    mccool_parameters,
+)
 from .summits import summit_statistics
 
 __all__ = ["analyse_surface", "analyse_pair", "composite_roughness", "analyse_filtered",

@@ -54,8 +54,12 @@ def read_topography(path, *, channel: int | None = None, physical_sizes=None,
         map, or lacking lateral size / unit information that was not supplied.
     """
     from SurfaceTopography import open_topography
-    from SurfaceTopography.Exceptions import (CannotDetectFileFormat, MetadataAlreadyFixedByFile,
-                                              ReadFileError, UnknownFileFormat)
+    from SurfaceTopography.Exceptions import (
+        CannotDetectFileFormat,
+        MetadataAlreadyFixedByFile,
+        ReadFileError,
+        UnknownFileFormat,
+    )
 
     path = Path(path)
     if not path.is_file():

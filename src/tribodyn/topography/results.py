@@ -8,8 +8,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from ..physics.asperity import Roughness
 from .._validation import InputError
+from ..physics.asperity import Roughness
 from .filtering import Band, Sampling
 from .height_statistics import HeightStatistics
 from .spectral_moments import McCoolParameters, SpectralMoments

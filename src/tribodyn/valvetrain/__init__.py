@@ -8,13 +8,22 @@ Public API::
 from .cams import AccelerationCam, CamProfile, CircularArcCam, TabulatedCam
 from .compare import compare_results
 from .dynamics import ValvetrainResult, simulate_valvetrain
-from .kinematics import (FlatFollowerKinematics, flat_follower_kinematics,
-                         quasi_static_jump_speed, rpm_to_cam_speed)
+from .kinematics import (
+                         FlatFollowerKinematics,
+                         flat_follower_kinematics,
+                         quasi_static_jump_speed,
+                         rpm_to_cam_speed,
+)
 from .model import ContactLawError, ValvetrainModel
 from .parameters import ValvetrainParameters
 from .sweep import SpeedSweepResult, jump_speed, speed_sweep
-from .tribology import (AnalyticTribology, FilmTableTribology, Frictionless,
-                        PAPER_ROUGHNESS_UNCOATED, TribologyModel)
+from .tribology import (
+                         PAPER_ROUGHNESS_UNCOATED,
+                         AnalyticTribology,
+                         FilmTableTribology,
+                         Frictionless,
+                         TribologyModel,
+)
 
 __all__ = [
     "AccelerationCam", "CamProfile", "CircularArcCam", "TabulatedCam",

@@ -2,7 +2,7 @@
 
 A profile is the lift s(θ) [m] of a flat follower above the base circle as a function of
 the cam angle θ [rad], periodic over one revolution, with s' = ds/dθ [m/rad] and
-s'' = d²s/dθ² [m/rad²]. For a flat follower (DESIGN.md conventions)::
+s'' = d²s/dθ² [m/rad²]. For a flat follower (docs/conventions.md)::
 
     radius of curvature   R = r_b + s + s''      (must stay > 0: convex cam)
     contact offset        e = s'                 (must stay below the tappet radius)
@@ -29,7 +29,14 @@ from abc import ABC, abstractmethod
 import numpy as np
 from scipy.interpolate import PPoly, make_interp_spline, make_splrep
 
-from .._validation import InputError, check_array, check_nonnegative, check_positive, check_range
+from .. import paper
+from .._validation import (
+    InputError,
+    check_array,
+    check_nonnegative,
+    check_positive,
+    check_range,
+)
 
 __all__ = ["CamProfile", "AccelerationCam", "CircularArcCam", "TabulatedCam"]
 
@@ -206,8 +213,8 @@ class AccelerationCam(CamProfile):
     tappet_radius : optional; if given, max |e| must stay below it.
     """
 
-    def __init__(self, base_radius: float = 0.015, max_lift: float = 9.3e-3, *,
-                 event_angle: float = math.radians(171.0), nose_radius: float = 3e-3,
+    def __init__(self, base_radius: float = paper.CAM_BASE_RADIUS,
+                 max_lift: float = paper.CAM_MAX_LIFT, *, event_angle: float = math.radians(171.0), nose_radius: float = 3e-3,
                  ramp_height: float = 0.2e-3, ramp_angle: float = math.radians(20.0),
                  pulse_share: float = 0.25, ramp_pulse_share: float = 0.5,
                  nose_angle: float = math.pi, tappet_radius: float | None = None):
@@ -363,8 +370,8 @@ class CircularArcCam(CamProfile):
     tappet_radius : optional check of max |e|.
     """
 
-    def __init__(self, base_radius: float = 0.015, max_lift: float = 9.3e-3, *,
-                 flank_radius: float = 0.030, nose_radius: float = 3e-3,
+    def __init__(self, base_radius: float = paper.CAM_BASE_RADIUS,
+                 max_lift: float = paper.CAM_MAX_LIFT, *, flank_radius: float = 0.030, nose_radius: float = 3e-3,
                  nose_angle: float = math.pi, tappet_radius: float | None = None):
         self.base_radius = rb = check_positive("base_radius", base_radius, "m")
         self.max_lift_design = L = check_positive("max_lift", max_lift, "m")

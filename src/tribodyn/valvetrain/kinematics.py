@@ -1,4 +1,4 @@
-"""Flat-follower kinematics over cam angle (DESIGN.md conventions).
+"""Flat-follower kinematics over cam angle (docs/conventions.md).
 
 For a cam turning at constant speed ω [rad/s] with lift law s(θ) and a flat-faced
 follower::

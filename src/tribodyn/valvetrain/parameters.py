@@ -18,7 +18,7 @@ valve seat             head, valve              linear + damping, unilateral
 =====================  =======================  ===========================================
 
 Paper values (Table 7): valve mass 0.07 kg, spring mass 0.036 kg, spring rate 33 750 N/m,
-cam width 12 mm. Everything else is assumed (DESIGN.md) and documented per field below.
+cam width 12 mm. Everything else is assumed (docs/conventions.md) and documented per field below.
 Unilateral joints phase their damping in over the first ``damping_force_ramp`` newtons of
 elastic force (a cubic step, as the IMPACT force of MSC Adams), so contact forces are
 continuous at closure and never tensile.
@@ -29,12 +29,13 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, fields
 
+from .. import paper
 from .._validation import InputError, check_nonnegative, check_positive, check_range
 
 __all__ = ["ValvetrainParameters", "STEEL_REDUCED_MODULUS", "PALMGREN_COEFFICIENT"]
 
-#: E' of the steel/steel pair, 1/E' = ½Σ(1−ν²)/E with E = 210 GPa, ν = 0.3 (DESIGN.md).
-STEEL_REDUCED_MODULUS = 210e9 / (1.0 - 0.3**2)
+#: E' of the steel/steel pair, 1/E' = ½Σ(1−ν²)/E with E = 210 GPa, ν = 0.3 (docs/conventions.md).
+STEEL_REDUCED_MODULUS = paper.STEEL["E"] / (1.0 - paper.STEEL["nu"] ** 2)
 
 #: Palmgren's line-contact approach for steel, δ = 3.84e-5 Q^0.9 / l^0.8 with δ, l in mm and
 #: Q in N (Palmgren, Ball and Roller Bearing Engineering, 3rd ed., 1959; Harris & Kotzalas,
@@ -93,10 +94,10 @@ class ValvetrainParameters:
     cam_width : axial contact length [m] (Table 7: 0.012).
     """
 
-    valve_mass: float = 0.07
+    valve_mass: float = paper.VALVE_MASS
     tappet_mass: float = 0.040
-    spring_mass: float = 0.036
-    spring_rate: float = 33750.0
+    spring_mass: float = paper.SPRING_MASS
+    spring_rate: float = paper.SPRING_RATE
     spring_preload: float = 250.0
     spring_masses: int = 8
     spring_damping_ratio: float = 0.02
@@ -115,7 +116,7 @@ class ValvetrainParameters:
     bore_friction_coefficient: float = 0.1
     bore_friction_velocity: float = 0.01
     tappet_radius: float = 0.0165
-    cam_width: float = 0.012
+    cam_width: float = paper.CAM_WIDTH
 
     def __post_init__(self):
         pos = {"valve_mass": "kg", "tappet_mass": "kg", "spring_mass": "kg",

@@ -29,6 +29,7 @@ from abc import ABC, abstractmethod
 
 import numpy as np
 
+from .. import paper
 from .._validation import InputError, check_array, check_positive
 from ..physics.analytic_contact import analytic_contact
 from ..physics.asperity import Roughness
@@ -39,8 +40,7 @@ __all__ = ["TribologyModel", "Frictionless", "AnalyticTribology", "FilmTableTrib
            "PAPER_ROUGHNESS_UNCOATED"]
 
 #: Paper Table 4, uncoated tappet: η = 8.3e9 m⁻², σ = 0.408 µm, β = 0.669 µm.
-PAPER_ROUGHNESS_UNCOATED = Roughness(asperity_density=8.3e9, rms=0.408e-6,
-                                     summit_radius=0.669e-6)
+PAPER_ROUGHNESS_UNCOATED = Roughness(**paper.ROUGHNESS["uncoated"])
 
 
 class TribologyModel(ABC):
@@ -96,9 +96,10 @@ class AnalyticTribology(TribologyModel):
 
     name = "analytic"
 
-    def __init__(self, width: float = 0.012, *, bodies=None, lubricant: Lubricant = SAE_5W20,
+    def __init__(self, width: float = paper.CAM_WIDTH, *, bodies=None, lubricant: Lubricant = SAE_5W20,
                  roughness: Roughness | None = PAPER_ROUGHNESS_UNCOATED,
-                 boundary_shear_coefficient: float = 0.185, viscous_model: str = "eyring",
+                 boundary_shear_coefficient: float = paper.STEEL["boundary_shear_coefficient"],
+                 viscous_model: str = "eyring",
                  film_formula: str = "moes", limiting_shear: bool = True):
         self.width = check_positive("width", width, "m")
         self.bodies = tuple(bodies) if bodies is not None else (Body(STEEL), Body(STEEL))

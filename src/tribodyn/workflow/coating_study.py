@@ -1,36 +1,70 @@
 """Coating-modulus studies of a single line contact (paper Figs. 5 and 6).
 
-The paper's conditions: coating 5 µm, w = 633 N over the 12 mm cam width, u = 15.31 m/s
-(EHL); coating/steel modulus ratios 0.25 … 4. The paper does not give the radius of
-curvature: R = 10 mm is assumed here and stated on every figure.
+The paper's conditions (:data:`tribodyn.paper.FIG5`): coating 5 µm, w = 633 N over the
+12 mm cam width, u = 15.31 m/s (EHL); coating/steel modulus ratios 0.25 … 4. The paper does
+not give the radius of curvature: R = 10 mm is assumed here and stated on every figure.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
+from .. import paper
 from ..contact.dry import DryContactResult, solve_dry_contact
-from ..contact.ehl import solve_ehl
+from ..contact.ehl import EHLResult, solve_ehl
 from ..physics.lubricant import SAE_5W20, Lubricant
-from ..physics.materials import DLC, STEEL, WCC, Body, Coating, Material
+from ..physics.materials import STEEL, Body, Coating, Material
 
-__all__ = ["PAPER_FIG5", "DryCoatingCase", "dry_coating_study", "ehl_coating_study"]
+__all__ = ["DryCoatingCase", "ModulusCase", "PairCase", "EHLCoatingStudy",
+           "dry_coating_study", "ehl_coating_study"]
 
-#: Conditions of the paper's Figs. 5/6 (radius assumed).
-PAPER_FIG5 = dict(load_total=633.0, width=0.012, radius=0.010, thickness=5e-6,
-                  ratios=(0.25, 0.5, 1.0, 2.0, 4.0), entrainment_speed=15.31)
+_FIG5 = paper.FIG5
 
 
 @dataclass
 class DryCoatingCase:
+    """One dry contact of Fig. 5: label, modulus ratio E_c/E_s, result."""
+
     label: str
     ratio: float | None
     result: DryContactResult
 
 
-def dry_coating_study(ratios=PAPER_FIG5["ratios"], *, thickness=PAPER_FIG5["thickness"],
-                      load_total=PAPER_FIG5["load_total"], width=PAPER_FIG5["width"],
-                      radius=PAPER_FIG5["radius"], substrate: Material = STEEL,
+@dataclass
+class ModulusCase:
+    """One smooth EHL contact of Fig. 6 with a coating of modulus ratio E_c/E_s."""
+
+    label: str
+    ratio: float
+    result: EHLResult
+
+
+@dataclass
+class PairCase:
+    """One smooth EHL contact of Fig. 6 with a real pair; ``material`` is the coating's
+    key in the case's ``[materials]`` (None: uncoated steel)."""
+
+    label: str
+    material: str | None
+    result: EHLResult
+
+
+@dataclass
+class EHLCoatingStudy:
+    """Fig. 6: smooth EHL for modulus ratios and for the real pairs, with the conditions."""
+
+    conditions: dict
+    ratios: list[ModulusCase] = field(default_factory=list)
+    pairs: list[PairCase] = field(default_factory=list)
+
+    @property
+    def results(self) -> list[EHLResult]:
+        return [c.result for c in self.ratios] + [c.result for c in self.pairs]
+
+
+def dry_coating_study(ratios=_FIG5["ratios"], *, thickness=_FIG5["thickness"],
+                      load_total=_FIG5["load_total"], width=_FIG5["width"],
+                      radius=_FIG5["radius"], substrate: Material = STEEL,
                       coating_nu: float = 0.3, n: int = 1024) -> list[DryCoatingCase]:
     """Dry pressure for a steel cam on a coated steel tappet, one case per modulus ratio."""
     w = load_total / width
@@ -43,37 +77,37 @@ def dry_coating_study(ratios=PAPER_FIG5["ratios"], *, thickness=PAPER_FIG5["thic
 
 
 def ehl_coating_study(lubricant: Lubricant = SAE_5W20, case=None, *,
-                      ratios=PAPER_FIG5["ratios"], thickness=PAPER_FIG5["thickness"],
-                      load_total=PAPER_FIG5["load_total"], width=PAPER_FIG5["width"],
-                      radius=PAPER_FIG5["radius"],
-                      entrainment_speed=PAPER_FIG5["entrainment_speed"],
-                      pair_thickness: float = 4e-6) -> dict:
+                      ratios=_FIG5["ratios"], thickness=_FIG5["thickness"],
+                      load_total=_FIG5["load_total"], width=_FIG5["width"],
+                      radius=_FIG5["radius"],
+                      entrainment_speed=_FIG5["entrainment_speed"],
+                      pair_thickness: float = paper.COATING_THICKNESS) -> EHLCoatingStudy:
     """Smooth EHL line contacts of the paper's Fig. 6 conditions.
 
-    ``"ratios"``: coating/steel modulus ratios with a ``thickness`` coating;
-    ``"pairs"``: the paper's real pairs (steel; DLC 185 GPa and WC-C 175 GPa,
-    ``pair_thickness``; materials from the case when given). Pure rolling (u_s = 0): the
-    pressure and film do not depend on sliding in this isothermal model.
+    ``ratios``: coating/steel modulus ratios with a ``thickness`` coating; ``pairs``: steel
+    and the coatings of the case's ``[materials]`` (the paper's DLC 185 GPa and WC-C 175 GPa
+    without a case), ``pair_thickness`` thick. Pure rolling (u_s = 0): the pressure and
+    film do not depend on sliding in this isothermal model.
     """
     w = load_total / width
-    out = {"ratios": [], "pairs": [], "conditions": dict(
+    out = EHLCoatingStudy(conditions=dict(
         load_total=load_total, width=width, radius=radius, thickness=thickness,
-        entrainment_speed=entrainment_speed, pair_thickness=pair_thickness)}
+        entrainment_speed=entrainment_speed, pair_thickness=pair_thickness))
+    steel = Body(STEEL)
     for ratio in ratios:
-        coat = Coating(E=STEEL.E * ratio, nu=0.3, thickness=thickness)
-        r = solve_ehl(w, radius, entrainment_speed, 0.0, (Body(STEEL), Body(STEEL, coat)),
-                      lubricant)
-        out["ratios"].append((f"E_c/E_s = {ratio:g}", ratio, r))
-    mats = [("steel (uncoated)", None), ("DLC", DLC), ("WC-C", WCC)]
+        coat = Coating(E=STEEL.E * ratio, nu=STEEL.nu, thickness=thickness)
+        r = solve_ehl(w, radius, entrainment_speed, 0.0, (steel, Body(STEEL, coat)), lubricant)
+        out.ratios.append(ModulusCase(f"E_c/E_s = {ratio:g}", ratio, r))
     if case is not None:
-        m = case.materials
-        mats = [("steel (uncoated)", None)] + [
-            (m[k].label or k, case.material(k)) for k in m if k not in ("steel",)]
-    for label, mat in mats:
-        tappet = Body(STEEL) if mat is None else Body(
-            STEEL, Coating(E=mat.E, nu=mat.nu, thickness=pair_thickness))
-        if mat is not None:
-            label = f"{label} {pair_thickness * 1e6:g} µm"
-        r = solve_ehl(w, radius, entrainment_speed, 0.0, (Body(STEEL), tappet), lubricant)
-        out["pairs"].append((label, r))
+        coatings = [(m.label or k, k, case.material(k)) for k, m in case.materials.items()
+                    if k != "steel"]
+    else:
+        coatings = [(v["label"], k, Material(v["E"], v["nu"]))
+                    for k, v in paper.MATERIALS.items() if k != "steel"]
+    r = solve_ehl(w, radius, entrainment_speed, 0.0, (steel, steel), lubricant)
+    out.pairs.append(PairCase("steel (uncoated)", None, r))
+    for label, key, mat in coatings:
+        tappet = Body(STEEL, Coating(E=mat.E, nu=mat.nu, thickness=pair_thickness))
+        r = solve_ehl(w, radius, entrainment_speed, 0.0, (steel, tappet), lubricant)
+        out.pairs.append(PairCase(f"{label} {pair_thickness * 1e6:g} µm", key, r))
     return out

@@ -20,12 +20,29 @@ presented cycle drives both simulated cycles (the tables are periodic in the cam
 
 from __future__ import annotations
 
+import math
+import time
+from dataclasses import dataclass, field
+
 import numpy as np
 
+from ..physics.materials import reduced_modulus
 from ..physics.regimes import hamrock_groups, moes_central
+from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from ..valvetrain.tribology import FilmTableTribology, TribologyModel
+from .cycle_ehl import CycleInputs, SetCycleResult, ehl_for_set
 
-__all__ = ["FrictionCoefficientTable", "film_law_from_ehl", "ehl_tribology"]
+__all__ = ["FrictionCoefficientTable", "film_law_from_ehl", "ehl_tribology",
+           "CouplingIteration", "CouplingResult", "run_coupling", "RELAXATION",
+           "COUPLING_RMS_TOL", "COUPLING_MAX_TOL"]
+
+#: Under-relaxation of the film/friction tables between coupling iterations.
+RELAXATION = 0.5
+#: Coupling converged: change of the contact force between iterations, relative to its
+#: peak, below these in RMS over the cam event and in maximum (the maximum sits at the
+#: valve-closing impact, whose timing is the last to settle).
+COUPLING_RMS_TOL = 5e-3
+COUPLING_MAX_TOL = 5e-2
 
 
 class FrictionCoefficientTable(TribologyModel):
@@ -93,3 +110,98 @@ def ehl_tribology(inputs, ehl, lubricant, e_prime: float, period: float) -> Film
     friction = FrictionCoefficientTable(inputs.time, mu, period)
     h, c, F = film_law_from_ehl(inputs, ehl, lubricant, e_prime)
     return FilmTableTribology(friction, inputs.time, h, c, F, period=period)
+
+
+@dataclass
+class CouplingIteration:
+    """Change of the contact force from one coupling iteration to the next [N]."""
+
+    iteration: int
+    rms_force_change_N: float
+    max_force_change_N: float
+
+
+@dataclass
+class CouplingResult:
+    """The implicit coupling of one surface set: the implicit dynamics (None if disabled
+    or failed), the per-iteration history, convergence, a message and the run time."""
+
+    converged: bool = False
+    message: str = "implicit coupling disabled"
+    history: list[CouplingIteration] = field(default_factory=list)
+    implicit: ValvetrainResult | None = None
+    runtime_s: float = 0.0
+
+    def to_dict(self) -> dict:
+        """JSON-ready summary (without the dynamics)."""
+        return {"converged": self.converged, "message": self.message,
+                "history": [vars(h) for h in self.history], "runtime_s": self.runtime_s}
+
+
+def _relax(new: FilmTableTribology, old: FilmTableTribology | None, theta: float, period):
+    if old is None:
+        return new
+    t = new.time
+
+    def mix(a, b_time, b):
+        return theta * a + (1.0 - theta) * np.interp(t, b_time, b)
+
+    mu = mix(new.friction_model.mu, old.time, old.friction_model.mu)
+    return FilmTableTribology(FrictionCoefficientTable(t, mu, period), t,
+                              mix(new.h, old.time, old.h), mix(new.c, old.time, old.c),
+                              mix(new.Fk, old.time, old.Fk), period=period)
+
+
+def run_coupling(case, surface_set, dynamics: ValvetrainResult, inputs: CycleInputs,
+                 first: SetCycleResult, progress=None) -> CouplingResult:
+    """Implicit coupling for one surface set, starting from its EHL (``first``) on the
+    explicit dynamics and their cycle ``inputs``. ``progress(label, i, n)`` receives the
+    EHL re-passes."""
+    t0 = time.perf_counter()
+    n = case.numerics
+    out = CouplingResult()
+    if not n.implicit_coupling:
+        return out
+    s = surface_set
+    lub = case.lubricant()
+    e_prime = reduced_modulus(s.bodies)
+    period = 2.0 * math.pi / case.cam_speed
+    ev = dynamics.event_mask()
+    f_peak = float(dynamics.contact_force.max())
+    prev, table, ehl, inp = dynamics, None, first, inputs
+    msg = f"not converged in {n.coupling_iterations} iterations"
+    for k in range(1, n.coupling_iterations + 1):
+        table = _relax(ehl_tribology(inp, ehl, lub, e_prime, period), table, RELAXATION,
+                       period)
+        new = simulate_valvetrain(case.cam(), case.valvetrain_parameters(), tribology=table,
+                                  **case.dynamics_options())
+        if not new.converged:
+            msg = f"implicit dynamics failed at iteration {k}: {new.message}"
+            break
+        d = new.contact_force - prev.contact_force
+        rms = float(np.sqrt(np.mean(d[ev] ** 2))) if ev.any() else float(np.abs(d).max())
+        mx = float(np.abs(d).max())
+        out.history.append(CouplingIteration(k, rms, mx))
+        out.implicit = new
+        prev = new
+        if rms < COUPLING_RMS_TOL * f_peak and mx < COUPLING_MAX_TOL * f_peak:
+            out.converged = True
+            msg = (f"converged in {k} iterations (last change of the contact force: RMS "
+                   f"{rms:.2f} N, max {mx:.1f} N)")
+            break
+        if k < n.coupling_iterations:
+            inp = CycleInputs.from_dynamics(new, n.crank_step_deg, case.width)
+            cb = None
+            if progress is not None:
+                label = f"implicit coupling {k + 1}"
+
+                def cb(i, m, label=label):
+                    progress(label, i, m)
+            ehl = ehl_for_set(case, s, inp, progress=cb)
+    if not out.converged and out.history:
+        last = out.history[-1]
+        msg += (f" (last change of the contact force: RMS {last.rms_force_change_N:.2f} N, "
+                f"max {last.max_force_change_N:.1f} N)")
+    out.message = msg
+    out.runtime_s = time.perf_counter() - t0
+    return out

@@ -19,9 +19,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..contact.ehl import EHLOptions, TransientEHL
+from ..contact.ehl.postprocess import shear_stress
 from ..physics.lubricant import Lubricant
 
-__all__ = ["CycleInputs", "SetCycleResult", "ehl_along_cycle", "PROFILE_POINTS"]
+__all__ = ["CycleInputs", "SetCycleResult", "ehl_along_cycle", "ehl_for_set",
+           "PROFILE_POINTS"]
 
 #: Number of points on which p(x), h(x) of every step are stored: the step's whole solver
 #: domain, resampled uniformly (its own x coordinate is stored with it).
@@ -72,6 +74,8 @@ class SetCycleResult:
     hydrodynamic_load: np.ndarray
     asperity_load: np.ndarray
     viscous_friction: np.ndarray
+    viscous_friction_newtonian: np.ndarray  #: the same film and pressure, Newtonian law
+    viscous_friction_eyring: np.ndarray     #: the same film and pressure, Eyring law
     boundary_friction: np.ndarray
     rolling_friction: np.ndarray
     friction_power: np.ndarray
@@ -101,6 +105,7 @@ def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: 
     nan = np.full(n, np.nan)
     out = {k: nan.copy() for k in ("central_film", "min_film", "max_pressure",
                                    "hydrodynamic_load", "asperity_load", "viscous_friction",
+                                   "viscous_friction_newtonian", "viscous_friction_eyring",
                                    "boundary_friction", "rolling_friction", "friction_power",
                                    "lambda_ratio")}
     loaded = inp.contact_force >= min_load
@@ -144,6 +149,11 @@ def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: 
         out["hydrodynamic_load"][i] = r.hydrodynamic_load * l
         out["asperity_load"][i] = r.asperity_load * l
         out["viscous_friction"][i] = r.viscous_friction * l
+        for law in ("newtonian", "eyring"):      # both laws on the same film (report)
+            tau = shear_stress(r.pressure, r.film, r.sliding_speed, lubricant, law,
+                               options.limiting_shear)
+            out[f"viscous_friction_{law}"][i] = float(np.sum(np.abs(tau))) * (
+                r.x[1] - r.x[0]) * l
         out["boundary_friction"][i] = r.boundary_friction * l
         out["rolling_friction"][i] = r.rolling_friction * l
         out["friction_power"][i] = (r.viscous_friction + r.boundary_friction) * l * abs(
@@ -160,3 +170,12 @@ def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: 
         name=name, label=label, crank_angle=inp.crank_angle.copy(), loaded=loaded,
         converged=converged, iterations=iterations, x=x_prof, pressure=p_prof, film=h_prof,
         failures=failures, runtime_s=_time.perf_counter() - t_start, **out)
+
+
+def ehl_for_set(case, surface_set, inputs: CycleInputs, progress=None) -> SetCycleResult:
+    """:func:`ehl_along_cycle` for one surface set of a case (its bodies, roughness and
+    friction law; the case's lubricant and numerics)."""
+    s = surface_set
+    return ehl_along_cycle(inputs, s.name, s.coating_label, s.bodies, case.lubricant(),
+                           s.roughness, case.ehl_options(s),
+                           min_load=case.numerics.min_load, progress=progress)

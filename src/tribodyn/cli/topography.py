@@ -141,9 +141,9 @@ def topography_command(
     (asperity_density, rms, summit_radius) to paste into a case file.
     """
     from .._validation import InputError
-    from .analysis import analyse_surface, composite_roughness
-    from .reading import write_topography
-    from .synthetic import synthetic_surface
+    from ..topography.analysis import analyse_surface, composite_roughness
+    from ..topography.reading import write_topography
+    from ..topography.synthetic import synthetic_surface
 
     console = Console()
     err = Console(stderr=True)
@@ -170,7 +170,7 @@ def topography_command(
         block = result.toml_block(method)
         fig_path = None
         if figure is not None:
-            from .figure import plot_height_distribution
+            from ..output.figures.topography import plot_height_distribution
             fig_path = plot_height_distribution(result, figure)
     except InputError as exc:
         err.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)

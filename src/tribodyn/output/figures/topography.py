@@ -8,10 +8,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..plots import plt, save_figure
-from .composite import sum_on_common_grid
-from .height_statistics import gaussian_pdf, height_statistics
-from .results import PairAnalysis, SurfaceAnalysis
+from ...topography.composite import sum_on_common_grid
+from ...topography.height_statistics import gaussian_pdf, height_statistics
+from ...topography.results import PairAnalysis, SurfaceAnalysis
+from .common import plt, save_figure
 
 __all__ = ["plot_height_distribution"]
 

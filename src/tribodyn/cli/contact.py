@@ -1,9 +1,10 @@
 """``tribodyn contact``: a quick single-point line-contact calculator (EHL or dry).
 
-The cam is steel and the tappet carries the coating (DESIGN.md). Everything not given on
-the command line comes from the paper's case (Tables 4–7), or from ``--case FILE`` /
+The cam is steel and the tappet carries the coating. Everything not given on the command
+line comes from the paper's case (Tables 4–7), or from ``--case FILE`` /
 ``--surface-set NAME``. The table shows engineering units (µm, MPa); ``--json`` prints
-SI values with the unit in each key name (``central_film_m``, ``friction_N``, …).
+SI values with the unit in each key name (``central_film_m``, ``friction_N``, …). The
+computation is :func:`tribodyn.workflow.point.solve_point`; this module parses options.
 
 Exit codes: 0 solved and converged, 1 solved but not converged (results still printed),
 2 bad input (message on stderr, no traceback).
@@ -11,6 +12,7 @@ Exit codes: 0 solved and converged, 1 solved but not converged (results still pr
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import re
@@ -23,16 +25,17 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
+from .. import paper
+from .._validation import InputError
+
 __all__ = ["contact_command", "compute_contact"]
 
-_DEFAULT_WIDTH = 0.012          # m, paper Table 7 (cam length)
 _LUB = "Lubricant (default: the paper's Table 5, or the case's)"
 _SURF = "Surfaces (cam: steel; tappet: coated or not)"
 _NUM = "Numerics"
 
 
 def _triple(text: str, option: str, names: str) -> tuple[float, float, float]:
-    from ._validation import InputError
     parts = [p for p in re.split(r"[,;\s]+", text.strip()) if p]
     try:
         vals = tuple(float(p) for p in parts)
@@ -46,17 +49,26 @@ def _triple(text: str, option: str, names: str) -> tuple[float, float, float]:
 
 def _prefixed(option: str, build):
     """Run ``build()``; re-raise an InputError with the option name in front."""
-    from ._validation import InputError
     try:
         return build()
     except InputError as exc:
-        raise InputError(f"{option}: {exc}") from None
+        msg = str(exc)
+        raise InputError(msg if msg.startswith(option) else f"{option}: {msg}") from None
 
 
-def _check_positive(option: str, value: float | None, unit: str) -> None:
-    from ._validation import InputError
-    if value is not None and not (math.isfinite(value) and value > 0.0):
-        raise InputError(f"{option} must be a finite number > 0 [{unit}] (got {value:g})")
+_OPTION_OF = {"coating": "--coating", "coating_material": "--coating-material",
+              "coating_thickness": "--coating-thickness", "roughness": "--roughness",
+              "surface_set": "--surface-set", "shear_coefficient": "--shear-coefficient",
+              "load_per_length": "--load-per-length", "radius": "--radius",
+              "width": "--width", "entrainment_speed": "--ue", "sliding_speed": "--us"}
+
+
+def _as_option(exc: InputError) -> InputError:
+    """The message with the API argument names replaced by the CLI option names."""
+    msg = str(exc)
+    for arg, opt in sorted(_OPTION_OF.items(), key=lambda kv: -len(kv[0])):
+        msg = re.sub(rf"(?<![\w-]){arg}(?![\w(])", opt, msg)
+    return InputError(msg)
 
 
 def compute_contact(*, load=None, load_per_length=None, width=None, radius=None, ue=None,
@@ -66,91 +78,40 @@ def compute_contact(*, load=None, load_per_length=None, width=None, radius=None,
                     density=None, eyring_stress=None, limiting_shear_coefficient=None,
                     viscosity_model=None, viscous_model=None, limiting_shear=None,
                     n=None) -> dict:
-    """Solve one contact and return the JSON-ready result dict (SI, units in the keys).
+    """Parse the options of ``tribodyn contact`` (strings as typed) and solve.
 
     Raises :class:`~tribodyn.InputError` naming the offending option on bad input.
     """
-    import dataclasses
+    from ..config import Case, load_case
+    from ..physics.asperity import Roughness
+    from ..physics.materials import Coating
+    from ..workflow.point import point_surfaces, solve_point
 
-    from ._validation import InputError
-    from .config import Case, load_case
-    from .contact.dry import solve_dry_contact
-    from .contact.ehl import solve_ehl
-    from .physics.asperity import Roughness
-    from .physics.hertz import hertz_line_contact
-    from .physics.materials import Body, Coating, reduced_modulus
-    from .physics.regimes import (greenwood_chart_groups, hamrock_groups, lubrication_regime,
-                                  moes_central, pan_hamrock)
-
-    # -- case and surfaces -----------------------------------------------------------------
     if case_file is not None:
         case = load_case(case_file)
     elif surface_set is not None:
         case = load_case()                       # the bundled paper case
     else:
         case = Case()                            # the paper's defaults
-    if surface_set is not None:
-        clash = [o for o, v in (("--coating", coating), ("--coating-material", coating_material),
-                                ("--coating-thickness", coating_thickness),
-                                ("--roughness", roughness)) if v is not None]
-        if clash:
-            raise InputError(f"--surface-set takes the coating and roughness from the case; "
-                             f"drop {', '.join(clash)}")
-        sset = _prefixed("--surface-set", lambda: case.surface_set(surface_set))
-        bodies, rough = sset.bodies, sset.roughness
-        sigma_b, tau0 = sset.boundary_shear_coefficient, sset.boundary_shear_strength
-        label = sset.coating_label
-    else:
-        cam_body = Body(case.material(case.cam_config.material))
-        substrate = case.material("steel") if "steel" in case.materials \
-            else case.material(case.cam_config.material)
-        sigma_mat = case.materials.get("steel")
-        sigma_b = sigma_mat.boundary_shear_coefficient if sigma_mat is not None else None
-        tau0 = case.surface_set_configs[0].boundary_shear_strength
-        if coating is not None and coating_material is not None:
-            raise InputError("give either --coating E,nu,thickness or --coating-material "
-                             "(not both)")
-        if coating_thickness is not None and coating_material is None:
-            raise InputError("--coating-thickness needs --coating-material")
-        coat = None
-        label = "uncoated"
-        if coating is not None:
-            E, nu, t = _triple(coating, "--coating", "E [Pa], nu [-], thickness [m]")
-            coat = _prefixed("--coating", lambda: Coating(E=E, nu=nu, thickness=t))
-            label = f"coating E = {E / 1e9:.4g} GPa, ν = {nu:g}, {t * 1e6:.3g} µm"
-        elif coating_material is not None:
-            key = coating_material.strip().lower().replace("-", "")
-            if key not in case.materials:
-                raise InputError(f"--coating-material must be one of "
-                                 f"{', '.join(case.materials)} (got {coating_material!r})")
-            m = case.materials[key]
-            if coating_thickness is None and key != "steel":
-                raise InputError("--coating-material needs --coating-thickness [m]")
-            if coating_thickness is not None:
-                coat = _prefixed("--coating-thickness",
-                                 lambda: Coating(E=m.E, nu=m.nu, thickness=coating_thickness))
-                label = f"{m.label or key} {coating_thickness * 1e6:.3g} µm"
-            if m.boundary_shear_coefficient is not None:
-                sigma_b = m.boundary_shear_coefficient
-        bodies = (cam_body, Body(substrate, coat))
-        rough = None
-        if roughness is not None:
-            eta, sig, beta = _triple(roughness, "--roughness",
-                                     "eta [1/m²], sigma [m], beta [m]")
-            rough = _prefixed("--roughness", lambda: Roughness(
-                asperity_density=eta, rms=sig, summit_radius=beta,
-                method=case.numerics.greenwood_tripp))
-    if shear_coefficient is not None:
-        if not (math.isfinite(shear_coefficient) and shear_coefficient >= 0.0):
-            raise InputError(f"--shear-coefficient must be a finite number >= 0 "
-                             f"(got {shear_coefficient:g})")
-        sigma_b = shear_coefficient
-    if sigma_b is None:
-        sigma_b = 0.185
+    coat = rough = None
+    if coating is not None:
+        E, nu, t = _triple(coating, "--coating", "E [Pa], nu [-], thickness [m]")
+        coat = _prefixed("--coating", lambda: Coating(E=E, nu=nu, thickness=t))
+    if roughness is not None:
+        eta, sig, beta = _triple(roughness, "--roughness", "eta [1/m²], sigma [m], beta [m]")
+        rough = _prefixed("--roughness", lambda: Roughness(
+            asperity_density=eta, rms=sig, summit_radius=beta,
+            method=case.numerics.greenwood_tripp))
+    try:
+        surfaces = point_surfaces(case, surface_set=surface_set, coating=coat,
+                                  coating_material=coating_material,
+                                  coating_thickness=coating_thickness, roughness=rough,
+                                  shear_coefficient=shear_coefficient)
+    except InputError as exc:
+        raise _as_option(exc) from None
 
-    # -- load and geometry -----------------------------------------------------------------
     if width is None:
-        width = case.cam_config.width if case_file is not None else _DEFAULT_WIDTH
+        width = case.cam_config.width if case_file is not None else paper.CAM_WIDTH
     _check_positive("--width", width, "m")
     if (load is None) == (load_per_length is None):
         raise InputError("give exactly one of --load [N, total over --width] and "
@@ -163,128 +124,38 @@ def compute_contact(*, load=None, load_per_length=None, width=None, radius=None,
     _check_positive("--radius", radius, "m")
     if n is not None and n < 32:
         raise InputError(f"--n must be >= 32 grid nodes (got {n})")
-
-    e_bulk = reduced_modulus(bodies)
-    e_surf = reduced_modulus(bodies, surface=True)
-    hz = hertz_line_contact(w, radius, e_bulk)
-    tappet = bodies[1]
-    out: dict = {
-        "mode": "dry" if dry else "ehl",
-        "case": None if case.source is None else str(case.source),
-        "surface_set": surface_set,
-        "surfaces": label,
-        "load_N": w * width,
-        "width_m": width,
-        "load_per_length_N_per_m": w,
-        "radius_m": radius,
-        "cam_E_Pa": bodies[0].material.E,
-        "cam_nu": bodies[0].material.nu,
-        "tappet_E_Pa": tappet.material.E,
-        "tappet_nu": tappet.material.nu,
-        "coating_E_Pa": tappet.coating.E if tappet.coating else None,
-        "coating_nu": tappet.coating.nu if tappet.coating else None,
-        "coating_thickness_m": tappet.coating.thickness if tappet.coating else None,
-        "reduced_modulus_Pa": e_bulk,
-        "surface_reduced_modulus_Pa": e_surf,
-        "hertz_half_width_m": hz.half_width,
-        "hertz_max_pressure_Pa": hz.max_pressure,
-    }
-
-    if dry:
-        res = solve_dry_contact(w, radius, bodies, n=1024 if n is None else n)
-        out.update({
-            "half_width_m": res.half_width,
-            "max_pressure_Pa": res.max_pressure,
-            "contact_center_m": res.contact_center,
-            "grid_points": res.x.size,
-            "converged": bool(res.converged),
-            "iterations": int(res.iterations),
-            "message": res.message,
-        })
-        return out
-
-    # -- EHL -------------------------------------------------------------------------------
-    if ue is None:
-        raise InputError("--ue [m/s] is required for an EHL calculation (or use --dry)")
-    if not math.isfinite(ue) or ue == 0.0:
-        raise InputError(f"--ue must be a finite, non-zero entrainment speed [m/s] "
-                         f"(got {ue:g}); a steady film needs entrainment")
-    if not math.isfinite(us):
-        raise InputError(f"--us must be a finite number [m/s] (got {us:g})")
-    base = case.lubricant()
-    over = {k: v for k, v in (("viscosity", viscosity),
-                              ("pressure_viscosity", pressure_viscosity),
-                              ("density", density), ("eyring_stress", eyring_stress),
-                              ("limiting_shear_coefficient", limiting_shear_coefficient),
-                              ("viscosity_model", viscosity_model)) if v is not None}
+    lub = opts = None
+    if not dry:
+        over = {k: v for k, v in (("viscosity", viscosity),
+                                  ("pressure_viscosity", pressure_viscosity),
+                                  ("density", density), ("eyring_stress", eyring_stress),
+                                  ("limiting_shear_coefficient", limiting_shear_coefficient),
+                                  ("viscosity_model", viscosity_model)) if v is not None}
+        try:
+            lub = dataclasses.replace(case.lubricant(), **over)
+        except InputError as exc:
+            msg = str(exc)
+            field = msg.split(" ", 1)[0]
+            opt = "--" + field.replace("_", "-") if field in over else "lubricant"
+            raise InputError(f"{opt}: {msg}") from None
+        if viscous_model is not None and viscous_model not in ("eyring", "newtonian"):
+            raise InputError(f"--viscous-model must be 'eyring' or 'newtonian' "
+                             f"(got {viscous_model!r})")
+        ov = {k: v for k, v in (("n", n), ("viscous_model", viscous_model),
+                                ("limiting_shear", limiting_shear)) if v is not None}
+        opts = _prefixed("numerics", lambda: dataclasses.replace(
+            case.ehl_options(surfaces), **ov))
     try:
-        lub = dataclasses.replace(base, **over)
+        return solve_point(case, surfaces, load_per_length=w, radius=radius, width=width,
+                           entrainment_speed=ue, sliding_speed=us, dry=dry, lubricant=lub,
+                           options=opts, n=n)
     except InputError as exc:
-        msg = str(exc)
-        field = msg.split(" ", 1)[0]
-        opt = "--" + field.replace("_", "-") if field in over else "lubricant"
-        raise InputError(f"{opt}: {msg}") from None
-    if viscous_model is not None and viscous_model not in ("eyring", "newtonian"):
-        raise InputError(f"--viscous-model must be 'eyring' or 'newtonian' "
-                         f"(got {viscous_model!r})")
-    o = case.ehl_options()
-    ov = dict(boundary_shear_coefficient=sigma_b, boundary_shear_strength=tau0)
-    if n is not None:
-        ov["n"] = n
-    if viscous_model is not None:
-        ov["viscous_model"] = viscous_model
-    if limiting_shear is not None:
-        ov["limiting_shear"] = limiting_shear
-    opts = _prefixed("numerics", lambda: dataclasses.replace(o, **ov))
+        raise _as_option(exc) from None
 
-    res = solve_ehl(w, radius, ue, us, bodies, lub, rough, options=opts)
-    W, U, G = hamrock_groups(w, radius, ue, lub.viscosity, lub.pressure_viscosity, e_bulk)
-    gV, gE = greenwood_chart_groups(W, U, G)
-    ph_c, ph_min = pan_hamrock(W, U, G, radius)
-    tot = res.totals(width)
-    out.update({
-        "entrainment_speed_m_per_s": ue,
-        "sliding_speed_m_per_s": us,
-        "asperity_density_per_m2": rough.asperity_density if rough else None,
-        "roughness_rms_m": rough.rms if rough else None,
-        "summit_radius_m": rough.summit_radius if rough else None,
-        "greenwood_tripp": rough.method if rough else None,
-        "boundary_shear_coefficient": sigma_b,
-        "boundary_shear_strength_Pa": tau0,
-        "viscosity_Pa_s": lub.viscosity,
-        "pressure_viscosity_per_Pa": lub.pressure_viscosity,
-        "density_kg_per_m3": lub.density,
-        "eyring_stress_Pa": lub.eyring_stress,
-        "limiting_shear_coefficient": lub.limiting_shear_coefficient,
-        "viscosity_model": lub.viscosity_model,
-        "viscous_model": opts.viscous_model,
-        "limiting_shear": opts.limiting_shear,
-        "grid_points": int(res.x.size),
-        "central_film_m": res.central_film,
-        "min_film_m": res.min_film,
-        "min_film_position_m": res.min_film_position,
-        "film_parameter_lambda": res.min_film / rough.rms if rough else None,
-        "max_pressure_Pa": float(res.pressure.max()),
-        "pan_hamrock_central_film_m": float(ph_c),
-        "pan_hamrock_min_film_m": float(ph_min),
-        "moes_central_film_m": float(moes_central(W, U, G, radius)),
-        "hydrodynamic_load_N": tot["hydrodynamic_load"],
-        "asperity_load_N": tot["asperity_load"],
-        "asperity_load_share": res.asperity_load / res.load,
-        "viscous_friction_N": tot["viscous_friction"],
-        "boundary_friction_N": tot["boundary_friction"],
-        "rolling_friction_N": tot["rolling_friction"],
-        "friction_N": tot["friction"],
-        "friction_coefficient": res.friction_coefficient,
-        "hamrock_W": float(W), "hamrock_U": float(U), "hamrock_G": float(G),
-        "greenwood_gV": float(gV),
-        "greenwood_gE": float(gE),
-        "regime": str(lubrication_regime(gV, gE)),
-        "converged": bool(res.converged),
-        "iterations": int(res.iterations),
-        "message": res.message,
-    })
-    return out
+
+def _check_positive(option: str, value: float | None, unit: str) -> None:
+    if value is not None and not (math.isfinite(value) and value > 0.0):
+        raise InputError(f"{option} must be a finite number > 0 [{unit}] (got {value:g})")
 
 
 # ----------------------------------------------------------------------------- printing
@@ -387,7 +258,7 @@ def contact_command(
                                                     help="Normal load per unit length [N/m] "
                                                          "(instead of --load)."),
     width: Optional[float] = typer.Option(None, "--width", help="Contact width \\[m] (default "
-                                          "0.012, the paper's cam width, or the case's)."),
+                                          f"{paper.CAM_WIDTH:g}, the paper's cam width, or the case's)."),
     radius: Optional[float] = typer.Option(None, "--radius",
                                            help="Reduced radius of curvature R \\[m]."),
     ue: Optional[float] = typer.Option(None, "--ue", help="Entrainment speed u_e \\[m/s] "
@@ -418,19 +289,20 @@ def contact_command(
                                                   "numerics and --surface-set."),
     shear_coefficient: Optional[float] = typer.Option(
         None, "--shear-coefficient", rich_help_panel=_SURF,
-        help="Boundary shear coefficient ς (default: of the coating, else steel 0.185)."),
+        help="Boundary shear coefficient ς (default: of the coating, else steel's, "
+             f"{paper.STEEL['boundary_shear_coefficient']:g})."),
     viscosity: Optional[float] = typer.Option(None, "--viscosity", rich_help_panel=_LUB,
-                                              help="μ₀ [Pa·s] (0.055)."),
+                                              help=f"μ₀ [Pa·s] ({paper.LUBRICANT['viscosity']:g})."),
     pressure_viscosity: Optional[float] = typer.Option(None, "--pressure-viscosity",
                                                        rich_help_panel=_LUB,
-                                                       help="α [1/Pa] (1.05e-8)."),
+                                                       help=f"α [1/Pa] ({paper.LUBRICANT['pressure_viscosity']:g})."),
     density: Optional[float] = typer.Option(None, "--density", rich_help_panel=_LUB,
-                                            help="ρ₀ \\[kg/m³] (850, assumed)."),
+                                            help=f"ρ₀ \\[kg/m³] ({paper.ASSUMED_DENSITY:g}, assumed)."),
     eyring_stress: Optional[float] = typer.Option(None, "--eyring-stress",
                                                   rich_help_panel=_LUB,
-                                                  help="τ_E [Pa] (2e6)."),
+                                                  help=f"τ_E [Pa] ({paper.LUBRICANT['eyring_stress']:g})."),
     limiting_shear_coefficient: Optional[float] = typer.Option(
-        None, "--limiting-shear-coefficient", rich_help_panel=_LUB, help="Λ (0.08)."),
+        None, "--limiting-shear-coefficient", rich_help_panel=_LUB, help=f"Λ ({paper.LUBRICANT['limiting_shear_coefficient']:g})."),
     viscosity_model: Optional[str] = typer.Option(None, "--viscosity-model",
                                                   rich_help_panel=_LUB,
                                                   help="roelands or barus."),
@@ -457,8 +329,6 @@ def contact_command(
 
     Exit code 1 if the solver did not converge, 2 on bad input.
     """
-    from ._validation import InputError
-
     err = Console(stderr=True)
     try:
         r = compute_contact(load=load, load_per_length=load_per_length, width=width,

@@ -1,4 +1,4 @@
-"""Command-line interface: ``tribodyn run``, ``tribodyn contact``, ``tribodyn topography``."""
+"""``tribodyn run``: the cam-cycle study of a case, with a progress bar and a summary table."""
 
 from __future__ import annotations
 
@@ -10,22 +10,14 @@ from rich.console import Console
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from ._validation import InputError
-from .cli_contact import contact_command
-from .topography.cli import topography_command
+from .._validation import InputError
 
-app = typer.Typer(add_completion=False, no_args_is_help=True,
-                  help="Tribo-dynamics of coated cam–flat-tappet contacts.")
+__all__ = ["run_command"]
+
 console = Console()
 
 
-@app.callback()
-def _main():
-    """tribodyn: cam–tappet tribo-dynamics with coated surfaces."""
-
-
-@app.command()
-def run(case: Optional[Path] = typer.Argument(
+def run_command(case: Optional[Path] = typer.Argument(
             None, help="case file (TOML); default: the bundled paper case (andreou2023)"),
         out: Path = typer.Option(Path("results"), "-o", "--out", help="output folder"),
         workers: Optional[int] = typer.Option(
@@ -40,9 +32,9 @@ def run(case: Optional[Path] = typer.Argument(
     Writes OUT/results.nc, summary.json, report.md, case.toml and the figures; the folder
     is replaced only when everything has been written.
     """
-    from .config import load_case
-    from .results_io import write_results
-    from .workflow.cycle import StudyError, run_cycle_study
+    from ..config import load_case
+    from ..output import write_results
+    from ..workflow.cycle import StudyError, run_cycle_study
 
     try:
         c = load_case(case)
@@ -109,15 +101,3 @@ def run(case: Optional[Path] = typer.Argument(
     console.print(f"wrote {out}/results.nc, summary.json, report.md and "
                   f"{len(res['figures'])} figures in {summ['runtime_s']:.1f} s "
                   f"(+ writing)")
-
-
-app.command("contact")(contact_command)
-app.command("topography")(topography_command)
-
-
-def main():  # pragma: no cover
-    app()
-
-
-if __name__ == "__main__":  # pragma: no cover
-    main()

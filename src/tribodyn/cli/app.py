@@ -1,0 +1,28 @@
+"""The ``tribodyn`` command-line application: ``run``, ``contact``, ``topography``."""
+
+from __future__ import annotations
+
+import typer
+
+from .contact import contact_command
+from .run import run_command
+from .topography import topography_command
+
+__all__ = ["app", "main"]
+
+app = typer.Typer(add_completion=False, no_args_is_help=True,
+                  help="Tribo-dynamics of coated cam–flat-tappet contacts.")
+
+
+@app.callback()
+def _main():
+    """tribodyn: cam–tappet tribo-dynamics with coated surfaces."""
+
+
+app.command("run")(run_command)
+app.command("contact")(contact_command)
+app.command("topography")(topography_command)
+
+
+def main():  # pragma: no cover
+    app()

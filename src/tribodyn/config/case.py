@@ -1,0 +1,485 @@
+"""The validated case: :class:`Case`, its builders of tribodyn objects, and loading.
+
+A case file describes one study: engine speed, cam, valvetrain, lubricant, materials, the
+surface sets to compare (uncoated, DLC, WC-C, …) and the numerical settings. Every key is
+in SI units unless its name says otherwise (``speed_rpm``, ``*_deg``); see
+``docs/case-files.md``. An empty file is the paper's case (bundled as
+``cases/andreou2023.toml``).
+
+Validation errors (unknown keys, values out of range, wrong types, cross-field rules such
+as a surface set naming an undefined material) raise :class:`~tribodyn.InputError` with
+one line per problem. The cam profile, lubricant and valvetrain parameters are built once
+during validation, so a case that loads can be run. Models are frozen; change a validated
+case with :meth:`Case.updated` (validates again).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import math
+import re
+import tomllib
+from pathlib import Path
+from typing import Annotated, Any, Optional
+
+import tomli_w
+from pydantic import (
+    Field,
+    PrivateAttr,
+    ValidationError,
+    ValidationInfo,
+    model_validator,
+)
+
+from .._validation import InputError
+from ..contact.ehl import EHLOptions
+from ..physics.asperity import Roughness
+from ..physics.friction import BOUNDARY_SHEAR_STRENGTH
+from ..physics.lubricant import Lubricant
+from ..physics.materials import Body, Coating, Material
+from ..valvetrain.cams import AccelerationCam, CamProfile, CircularArcCam, TabulatedCam
+from ..valvetrain.kinematics import rpm_to_cam_speed
+from ..valvetrain.parameters import ValvetrainParameters
+from .errors import CamTableError, Problems, format_validation_error
+from .schema import (
+    CAM_MODELS,
+    AccelerationCamConfig,
+    CamConfig,
+    CaseInfo,
+    Engine,
+    LubricantConfig,
+    MaterialConfig,
+    Numerics,
+    Section,
+    SurfaceSetConfig,
+    Valvetrain,
+    paper_materials,
+    paper_surface_sets,
+)
+
+__all__ = ["Case", "SurfaceSet", "load_case", "bundled_cases", "DEFAULT_CASE", "CASES_DIR",
+           "to_toml", "set_dotted"]
+
+#: Folder of the bundled case files.
+CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
+#: The bundled default case (the paper's).
+DEFAULT_CASE = CASES_DIR / "andreou2023.toml"
+
+
+@dataclasses.dataclass(frozen=True)
+class SurfaceSet:
+    """One surface set, ready for the solvers.
+
+    name : identifier from the case.
+    bodies : (cam, tappet) — the cam is uncoated, the tappet carries the coating.
+    roughness : composite Greenwood–Tripp roughness of the pair (None: smooth).
+    boundary_shear_coefficient : ς of Eq. 17 [-].
+    coating_label : display label, e.g. ``"DLC 4 µm"`` or ``"uncoated"``.
+    boundary_shear_strength : τ₀ of Eq. 17 [Pa].
+    coating_material : key of the coating in the case's ``[materials]`` (None: uncoated).
+    """
+
+    name: str
+    bodies: tuple[Body, Body]
+    roughness: Roughness | None
+    boundary_shear_coefficient: float
+    coating_label: str
+    boundary_shear_strength: float = BOUNDARY_SHEAR_STRENGTH
+    coating_material: str | None = None
+
+    @property
+    def cam(self) -> Body:
+        return self.bodies[0]
+
+    @property
+    def tappet(self) -> Body:
+        return self.bodies[1]
+
+    @property
+    def coating(self) -> Coating | None:
+        return self.bodies[1].coating
+
+
+
+class Case(Section):
+    """A validated case. Build it with :func:`load_case`, :meth:`from_toml_string` or
+    :meth:`from_dict`; every section has defaults (the paper's case)."""
+
+    case: CaseInfo = Field(default_factory=CaseInfo)
+    engine: Engine = Field(default_factory=Engine)
+    cam_config: CamConfig = Field(default_factory=AccelerationCamConfig, alias="cam")
+    valvetrain: Valvetrain = Field(default_factory=Valvetrain)
+    lubricant_config: LubricantConfig = Field(default_factory=LubricantConfig,
+                                              alias="lubricant")
+    materials: dict[Annotated[str, Field(min_length=1)], MaterialConfig] = Field(
+        default_factory=paper_materials, min_length=1)
+    surface_set_configs: list[SurfaceSetConfig] = Field(default_factory=paper_surface_sets,
+                                                        min_length=1, alias="surface_sets")
+    numerics: Numerics = Field(default_factory=Numerics)
+
+    _base_dir: Path = PrivateAttr(default_factory=Path.cwd)
+    _source: Optional[Path] = PrivateAttr(default=None)
+    _cam: Any = PrivateAttr(default=None)
+
+    # -- validation ---------------------------------------------------------------------
+    @model_validator(mode="after")
+    def _cross_check(self, info: ValidationInfo):
+        ctx = info.context or {}
+        self._base_dir = Path(ctx.get("base_dir") or Path.cwd())
+        self._source = ctx.get("source")
+        problems: list[tuple[str, str]] = []
+        known = ", ".join(self.materials)
+
+        def check_material(path, name):
+            if name not in self.materials:
+                hint = difflib.get_close_matches(name, list(self.materials), n=1)
+                more = f"; did you mean {hint[0]!r}?" if hint else ""
+                problems.append((path, f"unknown material {name!r} (defined in [materials]: "
+                                       f"{known}){more}"))
+                return False
+            return True
+
+        check_material("cam.material", self.cam_config.material)
+        seen: dict[str, int] = {}
+        for i, s in enumerate(self.surface_set_configs):
+            p = f"surface_sets[{i}]"
+            if s.name in seen:
+                problems.append((f"{p}.name", f"duplicate surface-set name {s.name!r} (also "
+                                              f"surface_sets[{seen[s.name]}])"))
+            seen.setdefault(s.name, i)
+            ok = check_material(f"{p}.substrate", s.substrate)
+            if s.coating is not None:
+                ok = check_material(f"{p}.coating", s.coating) and ok
+            if ok and s.boundary_shear_coefficient is None:
+                mat = s.coating if s.coating is not None else s.substrate
+                if self.materials[mat].boundary_shear_coefficient is None:
+                    problems.append((f"{p}.boundary_shear_coefficient",
+                                     f"required: material {mat!r} has no "
+                                     "boundary_shear_coefficient"))
+        for path, build in (("lubricant", self.lubricant),
+                            ("valvetrain", self.valvetrain_parameters),
+                            ("numerics", self.ehl_options)):
+            try:
+                build()
+            except InputError as exc:
+                problems.append((path, str(exc)))
+        try:
+            self._cam = self._build_cam()
+        except CamTableError as exc:
+            problems.append((exc.key, str(exc)))
+        except InputError as exc:
+            problems.append(("cam", str(exc)))
+        if problems:
+            raise Problems(problems)
+        return self
+
+    # -- construction -------------------------------------------------------------------
+    @classmethod
+    def from_dict(cls, data: dict, *, base_dir=None, source=None) -> "Case":
+        """Validate a (TOML-shaped) dict. Relative paths resolve against ``base_dir``
+        (default: the current folder)."""
+        if not isinstance(data, dict):
+            raise InputError(f"a case must be a table of sections (got {type(data).__name__})")
+        ctx = {"base_dir": Path(base_dir) if base_dir is not None else None,
+               "source": Path(source) if source is not None else None}
+        try:
+            return cls.model_validate(data, context=ctx)
+        except ValidationError as exc:
+            raise InputError(format_validation_error(exc, cls, source,
+                                                      variants={"cam": CAM_MODELS})) from None
+
+    @classmethod
+    def from_toml_string(cls, text: str, *, base_dir=None, source=None) -> "Case":
+        """Parse and validate TOML text (see :meth:`from_dict` for ``base_dir``)."""
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
+            where = f"{source}: " if source is not None else ""
+            raise InputError(f"{where}TOML syntax error: {exc}") from None
+        return cls.from_dict(data, base_dir=base_dir, source=source)
+
+    @classmethod
+    def from_toml(cls, path) -> "Case":
+        """Read and validate a case file; relative paths resolve against its folder."""
+        p = Path(path)
+        try:
+            text = p.read_text(encoding="utf-8")
+        except OSError as exc:
+            raise InputError(f"cannot read case file {str(p)!r}: {exc.strerror}") from None
+        except UnicodeDecodeError as exc:
+            raise InputError(f"case file {str(p)!r} is not UTF-8 text (byte {exc.start}: "
+                             f"{exc.reason}); save it as UTF-8 TOML") from None
+        return cls.from_toml_string(text, base_dir=p.resolve().parent, source=p)
+
+    def updated(self, changes: dict) -> "Case":
+        """A new case with some keys changed and everything validated again.
+
+        ``changes`` maps dotted key paths to values, e.g.
+        ``{"engine.speed_rpm": 2000, "surface_sets[1].coating_thickness": 2e-6}``.
+        """
+        data = self.to_dict()
+        for key, value in changes.items():
+            set_dotted(data, key, value)
+        new = Case.from_dict(data, base_dir=self._base_dir)
+        new._source = self._source
+        return new
+
+    def __eq__(self, other) -> bool:
+        """Equal keys (and the same resolved cam table file); how the case was read and
+        its cached objects do not matter."""
+        if not isinstance(other, Case):
+            return NotImplemented
+        return (self.model_dump() == other.model_dump()
+                and self.cam_table_path == other.cam_table_path)
+
+    __hash__ = None  # mutable containers inside: not hashable
+
+    # -- serialisation ------------------------------------------------------------------
+    def to_dict(self, *, resolve_paths: bool = False) -> dict:
+        """Plain dict of all keys (absent optional keys omitted: TOML has no null).
+        ``resolve_paths=True`` makes the cam table path absolute."""
+        d = self.model_dump(mode="python", exclude_none=True, by_alias=True)
+        d["cam"] = {"type": d["cam"].pop("type"), **d["cam"]}
+        if resolve_paths and self.cam_config.type == "table":
+            d["cam"]["path"] = str(self.cam_table_path)
+        return d
+
+    def to_toml(self, *, resolve_paths: bool = False) -> str:
+        """TOML text that reads back to an equal case (all keys written)."""
+        head = [f"# tribodyn case {self.case.name!r} (all keys, SI units unless the key "
+                "says otherwise)"]
+        return to_toml(self.to_dict(resolve_paths=resolve_paths), header=head)
+
+    def write_toml(self, path, *, resolve_paths: bool = True) -> Path:
+        """Write :meth:`to_toml` to ``path`` (cam table path made absolute by default, so
+        the file works from any folder)."""
+        p = Path(path)
+        p.write_text(self.to_toml(resolve_paths=resolve_paths), encoding="utf-8")
+        return p
+
+    # -- builders -----------------------------------------------------------------------
+    @property
+    def source(self) -> Optional[Path]:
+        """The file the case was read from (None if built in memory)."""
+        return self._source
+
+    @property
+    def name(self) -> str:
+        return self.case.name
+
+    @property
+    def engine_speed(self) -> float:
+        """Engine speed [rpm]."""
+        return self.engine.speed_rpm
+
+    @property
+    def cam_speed(self) -> float:
+        """Cam angular speed ω [rad/s] = engine speed / 2."""
+        return rpm_to_cam_speed(self.engine.speed_rpm)
+
+    @property
+    def width(self) -> float:
+        """Cam width (contact length) [m]."""
+        return self.cam_config.width
+
+    @property
+    def cam_table_path(self) -> Optional[Path]:
+        """Resolved path of the cam lift table (``type = "table"`` only)."""
+        if self.cam_config.type != "table":
+            return None
+        p = Path(self.cam_config.path).expanduser()
+        return p if p.is_absolute() else (self._base_dir / p)
+
+    def lubricant(self) -> Lubricant:
+        """The :class:`~tribodyn.Lubricant` of ``[lubricant]``."""
+        c = self.lubricant_config
+        return Lubricant(viscosity=c.viscosity, pressure_viscosity=c.pressure_viscosity,
+                         density=c.density, eyring_stress=c.eyring_stress,
+                         limiting_shear_coefficient=c.limiting_shear_coefficient,
+                         limiting_shear_stress=c.limiting_shear_stress,
+                         compressible=c.compressible, viscosity_model=c.viscosity_model)
+
+    def material(self, name: str) -> Material:
+        """The :class:`~tribodyn.Material` of ``[materials.<name>]``."""
+        if name not in self.materials:
+            raise InputError(f"unknown material {name!r} (defined: {', '.join(self.materials)})")
+        m = self.materials[name]
+        return Material(E=m.E, nu=m.nu)
+
+    def _build_cam(self) -> CamProfile:
+        c = self.cam_config
+        tr = self.valvetrain.tappet_radius
+        if c.type == "acceleration":
+            return AccelerationCam(c.base_radius, c.max_lift,
+                                   event_angle=math.radians(c.event_angle_deg),
+                                   nose_radius=c.nose_radius, ramp_height=c.ramp_height,
+                                   ramp_angle=math.radians(c.ramp_angle_deg),
+                                   pulse_share=c.pulse_share,
+                                   ramp_pulse_share=c.ramp_pulse_share,
+                                   nose_angle=math.radians(c.nose_angle_deg),
+                                   tappet_radius=tr)
+        if c.type == "circular_arc":
+            return CircularArcCam(c.base_radius, c.max_lift, flank_radius=c.flank_radius,
+                                  nose_radius=c.nose_radius,
+                                  nose_angle=math.radians(c.nose_angle_deg), tappet_radius=tr)
+        try:
+            cam = TabulatedCam.from_csv(self.cam_table_path, c.base_radius,
+                                        smoothing=c.smoothing, angle_unit=c.angle_unit,
+                                        lift_unit=c.lift_unit, tappet_radius=tr)
+        except InputError as exc:        # the table's own message, filed under cam.path
+            msg = str(exc)
+            if str(self.cam_table_path) not in msg:
+                msg = f"{self.cam_table_path}: {msg}"
+            raise CamTableError("path", msg) from None
+        if c.max_lift is not None and abs(cam.max_lift / c.max_lift - 1.0) > 0.01:
+            raise CamTableError("max_lift", f"{c.max_lift:g} m disagrees with the lift "
+                                             f"table's maximum {cam.max_lift:g} m by more "
+                                             "than 1 %")
+        return cam
+
+    def cam(self) -> CamProfile:
+        """The cam profile (built and checked during validation)."""
+        if self._cam is None:
+            self._cam = self._build_cam()
+        return self._cam
+
+    def valvetrain_parameters(self) -> ValvetrainParameters:
+        """:class:`~tribodyn.valvetrain.ValvetrainParameters` (cam_width = ``[cam] width``)."""
+        d = self.valvetrain.model_dump()
+        return ValvetrainParameters(**d, cam_width=self.cam_config.width)
+
+    def ehl_options(self, surface_set: "SurfaceSet | str | None" = None) -> EHLOptions:
+        """:class:`~tribodyn.EHLOptions` from ``[numerics]``; with a surface set (object or
+        name), its ς and τ₀ of the boundary friction law."""
+        n = self.numerics
+        if 0 < n.n < 32:
+            raise InputError(f"numerics.n: must be 0 (automatic) or >= 32 (got {n.n})")
+        kw = dict(n=n.n or None, inlet=n.inlet, outlet=n.outlet,
+                  inlet_truncation=n.inlet_truncation, inlet_rigid=n.inlet_rigid,
+                  outlet_rigid=n.outlet_rigid, tol=n.tol, max_iter=n.max_iter,
+                  viscous_model=n.viscous_model, limiting_shear=n.limiting_shear,
+                  time_order=n.time_order)
+        if surface_set is not None:
+            s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
+            kw.update(boundary_shear_coefficient=s.boundary_shear_coefficient,
+                      boundary_shear_strength=s.boundary_shear_strength)
+        return EHLOptions(**kw)
+
+    def surface_sets(self) -> list[SurfaceSet]:
+        """All surface sets as :class:`SurfaceSet` objects, in file order."""
+        return [self._build_set(s) for s in self.surface_set_configs]
+
+    def surface_set(self, name: str) -> SurfaceSet:
+        """One surface set by name."""
+        for s in self.surface_set_configs:
+            if s.name == name:
+                return self._build_set(s)
+        names = self.surface_set_names
+        hint = difflib.get_close_matches(name, names, n=1)
+        more = f"; did you mean {hint[0]!r}?" if hint else ""
+        raise InputError(f"unknown surface set {name!r} (defined: {', '.join(names)}){more}")
+
+    @property
+    def surface_set_names(self) -> list[str]:
+        return [s.name for s in self.surface_set_configs]
+
+    def _build_set(self, s: SurfaceSetConfig) -> SurfaceSet:
+        cam = Body(self.material(self.cam_config.material))
+        substrate = self.material(s.substrate)
+        if s.coating is None:
+            tappet = Body(substrate)
+            label = "uncoated"
+            mat = s.substrate
+        else:
+            cm = self.materials[s.coating]
+            tappet = Body(substrate, Coating(E=cm.E, nu=cm.nu, thickness=s.coating_thickness))
+            label = f"{cm.label or s.coating} {s.coating_thickness * 1e6:.3g} µm"
+            mat = s.coating
+        sigma = (s.boundary_shear_coefficient if s.boundary_shear_coefficient is not None
+                 else self.materials[mat].boundary_shear_coefficient)
+        r = s.roughness
+        rough = Roughness(asperity_density=r.asperity_density, rms=r.rms,
+                          summit_radius=r.summit_radius, method=self.numerics.greenwood_tripp)
+        return SurfaceSet(name=s.name, bodies=(cam, tappet), roughness=rough,
+                          boundary_shear_coefficient=float(sigma), coating_label=label,
+                          boundary_shear_strength=s.boundary_shear_strength,
+                          coating_material=s.coating)
+
+    def dynamics_options(self) -> dict:
+        """Keyword arguments of :func:`~tribodyn.valvetrain.simulate_valvetrain` from the
+        case (engine speed and ``[numerics]``)."""
+        n = self.numerics
+        return dict(engine_speed=self.engine.speed_rpm, cycles=n.cycles,
+                    output_step=n.output_step_deg, method=n.dynamics_method,
+                    rtol=n.dynamics_rtol, max_step=n.max_step_deg)
+
+    def analytic_tribology(self, surface_set: "SurfaceSet | str"):
+        """Explicit tribology of the dynamics for one surface set
+        (:class:`~tribodyn.valvetrain.AnalyticTribology` over the cam width)."""
+        from ..valvetrain.tribology import AnalyticTribology
+        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
+        n = self.numerics
+        model = AnalyticTribology(self.cam_config.width, bodies=s.bodies,
+                                  lubricant=self.lubricant(),
+                                  roughness=s.roughness,
+                                  boundary_shear_coefficient=s.boundary_shear_coefficient,
+                                  viscous_model=n.viscous_model, film_formula=n.film_formula,
+                                  limiting_shear=n.limiting_shear)
+        # τ₀ is not a constructor argument of AnalyticTribology; it is forwarded through
+        # the keyword arguments it passes to analytic_contact.
+        model.kwargs["boundary_shear_strength"] = s.boundary_shear_strength
+        return model
+
+
+# ----------------------------------------------------------------------------- loading
+def bundled_cases() -> dict[str, Path]:
+    """Name → path of the case files shipped with tribodyn."""
+    return {p.stem: p for p in sorted(CASES_DIR.glob("*.toml"))}
+
+
+def load_case(path=None) -> Case:
+    """Load and validate a case file.
+
+    ``path=None`` loads the bundled paper case; a bare name such as ``"andreou2023"`` or
+    ``"example_table_cam"`` that is not an existing file selects a bundled case.
+    """
+    if path is None:
+        return Case.from_toml(DEFAULT_CASE)
+    p = Path(path)
+    if not p.exists():
+        bundled = bundled_cases()
+        if p.stem in bundled and p.parent == Path(".") and p.suffix in ("", ".toml"):
+            return Case.from_toml(bundled[p.stem])
+    return Case.from_toml(p)
+
+
+
+def to_toml(data: dict, *, header: list[str] | None = None) -> str:
+    """TOML text of a case dict (``tomli-w``), with ``header`` lines as comments."""
+    lines = "".join(f"# {h.lstrip('# ')}\n" for h in (header or []))
+    return lines + ("\n" if lines else "") + tomli_w.dumps(data)
+
+
+def set_dotted(data: dict, key: str, value) -> None:
+    tokens = []
+    for part in key.split("."):
+        m = re.fullmatch(r"([^\[\]]+)((?:\[\d+\])*)", part)
+        if not m:
+            raise InputError(f"cannot parse key path {key!r}")
+        tokens.append(m.group(1))
+        tokens.extend(int(i) for i in re.findall(r"\[(\d+)\]", m.group(2)))
+    cur: Any = data
+    for t in tokens[:-1]:
+        try:
+            if isinstance(t, int):
+                cur = cur[t]
+            else:
+                cur = cur.setdefault(t, {})
+        except (IndexError, KeyError, TypeError, AttributeError):
+            raise InputError(f"key path {key!r} does not exist in the case") from None
+    last = tokens[-1]
+    try:
+        cur[last] = value
+    except (IndexError, TypeError):
+        raise InputError(f"key path {key!r} does not exist in the case") from None

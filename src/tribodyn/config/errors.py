@@ -1,0 +1,223 @@
+"""Readable messages for case-file problems.
+
+Pydantic validation errors become one line per problem: the dotted key path as it appears
+in the file (``surface_sets[2].coating_thickness``), the allowed range with its unit or the
+allowed choices, and the value given. Cross-field problems found by model validators are
+raised as :class:`Problems` with their own key paths.
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+from typing import Any, Union, get_args, get_origin
+
+from pydantic import BaseModel, ValidationError
+
+from .._validation import InputError
+
+__all__ = ["Problems", "CamTableError", "format_validation_error"]
+
+
+class Problems(ValueError):
+    """Cross-field problems found by a model validator: (relative key path, message)."""
+
+    def __init__(self, items: list[tuple[str, str]]):
+        super().__init__("; ".join(f"{p}: {m}" if p else m for p, m in items))
+        self.items = items
+
+
+class CamTableError(InputError):
+    """A lift-table problem, with the ``[cam]`` key it belongs to."""
+
+    def __init__(self, key: str, message: str):
+        super().__init__(message)
+        self.key = f"cam.{key}"
+
+
+
+def _unit_of(fi) -> str:
+    extra = fi.json_schema_extra if fi is not None else None
+    return extra.get("unit", "") if isinstance(extra, dict) else ""
+
+
+def _bounds_text(fi) -> str | None:
+    """'> 0 m', '>= 1e+06 Pa and <= 2e+12 Pa', from the field's constraints."""
+    if fi is None:
+        return None
+    unit = _unit_of(fi)
+    u = f" {unit}" if unit and not unit.startswith("deg") else ("°" if unit else "")
+    parts = []
+    for m in fi.metadata:
+        for attr, sym in (("gt", ">"), ("ge", ">="), ("lt", "<"), ("le", "<=")):
+            v = getattr(m, attr, None)
+            if v is not None:
+                parts.append(f"{sym} {_num(v)}{u}")
+    return " and ".join(parts) if parts else None
+
+
+def _num(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, int):
+        return str(v)
+    return f"{v:.6g}"
+
+
+def _given(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, float):
+        g = f"{v:.6g}"
+        return g if any(c in g for c in ".eni") else g + ".0"
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, str):
+        return repr(v)
+    if isinstance(v, dict):
+        return "a table"
+    if isinstance(v, list):
+        return "an array"
+    return repr(v)
+
+
+def _strip_optional(ann):
+    if get_origin(ann) is Union:
+        args = [a for a in get_args(ann) if a is not type(None)]
+        if len(args) == 1:
+            return args[0]
+    return ann
+
+
+def _fields_by_key(model) -> dict:
+    """Fields of a model keyed as they appear in the file (alias if any)."""
+    return {(fi.alias or name): fi for name, fi in model.model_fields.items()}
+
+
+def _resolve_loc(root, loc, variants) -> tuple[str, Any, Any]:
+    """Dotted path of ``loc`` plus the FieldInfo and the model owning the last key."""
+    path = ""
+    cur: Any = root
+    fi = None
+    owner = root
+    items = list(loc)
+    i = 0
+    while i < len(items):
+        item = items[i]
+        if isinstance(cur, type) and issubclass(cur, BaseModel):
+            owner = cur
+            fi = _fields_by_key(cur).get(item) if isinstance(item, str) else None
+            path = f"{path}.{item}" if path else str(item)
+            if fi is None:
+                cur = None
+            elif item in variants:
+                # a tagged union: the next location item is the tag
+                cur = None
+                if i + 1 < len(items) and items[i + 1] in variants[item]:
+                    cur = variants[item][items[i + 1]]
+                    i += 1
+            else:
+                cur = _strip_optional(fi.annotation)
+        elif get_origin(cur) is list:
+            path = f"{path}[{item}]"
+            cur = get_args(cur)[0]
+            fi = None
+        elif get_origin(cur) is dict:
+            key = str(item)
+            path = f"{path}.{key}" if re.fullmatch(r"[A-Za-z0-9_\-]+", key) else f'{path}."{key}"'
+            cur = get_args(cur)[1]
+            fi = None
+        else:
+            path = f"{path}.{item}" if path else str(item)
+            fi = None
+            cur = None
+        i += 1
+    return path, fi, owner
+
+
+def _allowed_keys(model) -> list[str]:
+    if isinstance(model, type) and issubclass(model, BaseModel):
+        return list(_fields_by_key(model))
+    return []
+
+
+def _error_lines(err: dict, root, variants) -> list[tuple[str, str]]:
+    typ, loc, ctx = err["type"], err["loc"], err.get("ctx") or {}
+    inp = err.get("input")
+    if typ == "value_error" and isinstance(ctx.get("error"), Problems):
+        prefix, _, _ = _resolve_loc(root, loc, variants)
+        return [(f"{prefix}.{p}" if prefix and p else (prefix or p), m)
+                for p, m in ctx["error"].items]
+    path, fi, owner = _resolve_loc(root, loc, variants)
+    got = f" (got {_given(inp)})"
+    if typ in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
+        b = _bounds_text(fi) or err["msg"]
+        return [(path, f"must be {b}{got}")]
+    if typ == "extra_forbidden":
+        allowed = _allowed_keys(owner)
+        hint = difflib.get_close_matches(str(loc[-1]), allowed, n=1)
+        more = f"; did you mean {hint[0]!r}?" if hint else ""
+        where = ""
+        for key, models in variants.items():
+            if owner in models.values():
+                tag = owner.model_fields["type"].annotation.__args__[0]
+                where = f" for {key} type {tag!r}"
+        return [(path, f"unknown key{where}{more} (allowed: {', '.join(allowed)})")]
+    if typ == "missing":
+        return [(path, "required key is missing")]
+    if typ == "literal_error":
+        return [(path, f"must be {ctx.get('expected')}{got}")]
+    if typ == "union_tag_invalid":
+        return [(f"{path}.type", f"must be one of {ctx.get('expected_tags')} "
+                                 f"(got {ctx.get('tag')!r})")]
+    if typ in ("union_tag_not_found", "model_type", "model_attributes_type", "dict_type"):
+        return [(path, f"must be a table{got}")]
+    if typ == "list_type":
+        return [(path, f"must be an array of tables ([[{path}]]){got}")]
+    if typ == "too_short":
+        return [(path, f"must have at least {ctx.get('min_length')} entr"
+                       f"{'y' if ctx.get('min_length') == 1 else 'ies'}")]
+    if typ in ("float_type", "float_parsing"):
+        return [(path, f"must be a number{_unit_hint(fi)}{got}")]
+    if typ in ("int_type", "int_parsing", "int_from_float"):
+        return [(path, f"must be an integer{got}")]
+    if typ == "bool_type":
+        return [(path, f"must be true or false{got}")]
+    if typ == "string_type":
+        return [(path, f"must be a string{got}")]
+    if typ == "finite_number":
+        return [(path, f"must be a finite number{got}")]
+    if typ == "string_too_short":
+        return [(path, f"must not be empty{got}")]
+    if typ == "string_too_long":
+        return [(path, f"must have at most {ctx.get('max_length')} characters{got}")]
+    if typ == "string_pattern_mismatch":
+        return [(path, "must start with a letter or digit and contain only letters, digits, "
+                       f"'_', '.', '+', '-'{got}")]
+    if typ == "value_error":
+        return [(path, f"{ctx.get('error', err['msg'])}")]
+    return [(path, f"{err['msg']}{got}")]
+
+
+def _unit_hint(fi) -> str:
+    u = _unit_of(fi)
+    return f" [{u}]" if u else ""
+
+
+def format_validation_error(exc: ValidationError, root, source=None, *, what="case",
+                            variants=None) -> str:
+    """Readable multi-line message: one ``dotted.key: problem (got value)`` per line.
+
+    root : the model class validated; what : how the message names it ("case", "sweep");
+    variants : {key: {tag: model}} of tagged unions (the ``[cam]`` types), so that keys
+    inside a variant are checked against that variant's fields."""
+    variants = variants or {}
+    lines: list[tuple[str, str]] = []
+    for err in exc.errors(include_url=False):
+        lines.extend(_error_lines(err, root, variants))
+    n = len(lines)
+    where = f" {source}" if source is not None else ""
+    head = f"invalid {what}{where}: {n} problem{'s' if n != 1 else ''}"
+    return head + "".join(f"\n  {p or '(top level)'}: {m}" for p, m in lines)
+
+

@@ -1,0 +1,327 @@
+"""Semismooth Newton solver of the discretised Reynolds complementarity system.
+
+Unknowns (Q, H₀); the cavitation condition P ≥ 0, R ≤ 0, P·R = 0 is written as
+min(P_i, −c_i R_i) = 0 (c_i: row scaling) and solved by a semismooth Newton method with a
+non-monotone Armijo line search. The Newton systems are solved by dense LU, by GMRES
+preconditioned with an earlier LU, or — above the dense limit — by GMRES with a two-grid
+preconditioner (coarse-grid LU + Jacobi smoothing).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import linalg
+
+from .reynolds import Linearization, ReynoldsSystem
+
+__all__ = ["State", "NewtonOutcome", "newton", "gmres", "CoarseLevel",
+           "TwoGridPreconditioner", "jacobi_scale", "cavitated"]
+
+_NONMONOTONE = 6
+_TRACE = False
+_WATCHDOG = 100.0
+_MAX_KRYLOV = 30
+_MAX_KRYLOV_BEFORE_REFACTOR = 12
+_MAX_KRYLOV_TWO_GRID = 200
+
+
+def gmres(lin: Linearization, lu, rtol, max_it=None):
+    """Right-preconditioned GMRES for lin·x = rhs with an earlier LU (or any object with
+    a ``solve`` method) as preconditioner,
+    started from the preconditioned solution. Returns (x, iterations) or (None, its)."""
+    max_it = max_it or _MAX_KRYLOV
+    b = lin.rhs
+    bn = float(np.linalg.norm(b))
+    if bn == 0.0:
+        return np.zeros_like(b), 0
+    if hasattr(lu, "solve"):              # a preconditioner object
+        prec = lu.solve
+    else:                                 # an LU factorisation from lu_factor
+        prec = lambda v: linalg.lu_solve(lu, v, check_finite=False)  # noqa: E731
+    x0 = prec(b)
+    r0 = b - lin.matvec(x0)
+    beta = float(np.linalg.norm(r0))
+    if not np.isfinite(beta):
+        return None, 0
+    if beta <= rtol * bn:
+        return x0, 0
+    V = np.zeros((max_it + 1, b.size))
+    Hm = np.zeros((max_it + 1, max_it))
+    cs, sn = np.zeros(max_it), np.zeros(max_it)
+    gv = np.zeros(max_it + 1)
+    gv[0] = beta
+    V[0] = r0 / beta
+    for j in range(max_it):
+        w = lin.matvec(prec(V[j]))
+        for i in range(j + 1):
+            Hm[i, j] = np.dot(w, V[i])
+            w -= Hm[i, j] * V[i]
+        Hm[j + 1, j] = np.linalg.norm(w)
+        if Hm[j + 1, j] > 0.0:
+            V[j + 1] = w / Hm[j + 1, j]
+        for i in range(j):
+            t = cs[i] * Hm[i, j] + sn[i] * Hm[i + 1, j]
+            Hm[i + 1, j] = -sn[i] * Hm[i, j] + cs[i] * Hm[i + 1, j]
+            Hm[i, j] = t
+        den = math.hypot(Hm[j, j], Hm[j + 1, j])
+        if den == 0.0:
+            return None, j + 1
+        cs[j], sn[j] = Hm[j, j] / den, Hm[j + 1, j] / den
+        Hm[j, j] = den
+        Hm[j + 1, j] = 0.0
+        gv[j + 1] = -sn[j] * gv[j]
+        gv[j] = cs[j] * gv[j]
+        if abs(gv[j + 1]) <= rtol * bn or j == max_it - 1:
+            if abs(gv[j + 1]) > rtol * bn:
+                return None, j + 1
+            y = linalg.solve_triangular(Hm[: j + 1, : j + 1], gv[: j + 1], check_finite=False)
+            return x0 + prec(V[: j + 1].T @ y), j + 1
+    return None, max_it
+
+
+def _release(cav_std, prev_cav, release):
+    """Free `release` cavitated nodes ahead of each node that has just left the cavitated
+    set (the boundary is moving outward). The Reynolds LCP otherwise moves a free boundary
+    by one node per active-set update; nodes freed too far re-cavitate together in the
+    next update, so the boundary is found in O(log) iterations."""
+    cav = cav_std.copy()
+    if prev_cav is None or release <= 1:
+        return cav
+    n = cav.size
+    for j in np.flatnonzero(prev_cav & ~cav_std):
+        for d in (1, -1):
+            if 0 < j + d < n - 1 and cav_std[j + d] and not cav_std[j - d]:
+                k, cnt = j + d, 1
+                while cnt < release and 0 < k < n - 1 and cav[k]:
+                    cav[k] = False
+                    k += d
+                    cnt += 1
+    return cav
+
+
+@dataclass
+class State:
+    """Scaled solution: total pressure Q = P + Pa (the unknown), h₀, and derived P, H."""
+
+    Q: np.ndarray
+    H0: float
+    P: np.ndarray = None
+    H: np.ndarray = None
+
+
+def jacobi_scale(sysm, ev):
+    """c_i ≈ 1/|J_ii|, J = A_P + B K (only a scaling of the rows)."""
+    n = sysm.g.n
+    diag = ev.AP[0].copy()
+    if sysm.kcoef is not None:
+        for d, v in ev.AH.items():
+            rows = np.arange(max(0, -d), min(n, n - d))
+            diag[rows] += (v[rows] - ev.AP[d][rows] * ev.dpa[rows + d]) * sysm.kcoef[abs(d)]
+    diag = np.abs(diag)
+    diag[0], diag[-1] = diag[1], diag[-2]
+    return 1.0 / np.maximum(diag, 1e-300 + 1e-14 * diag.max())
+
+
+def cavitated(ev, c):
+    cav = ev.P < -c * ev.R
+    cav[0] = cav[-1] = False
+    return cav
+
+
+class CoarseLevel:
+    """Dense LU of the Newton matrix at a coarse-grid solution, for preconditioning the
+    same problem on finer grids (two-grid)."""
+
+    def __init__(self, sysm, st: State):
+        ev = sysm.evaluate(st.Q, st.H0)
+        c = jacobi_scale(sysm, ev)
+        self.lin = Linearization(sysm, c, cavitated(ev, c), ev)
+        self.lu = linalg.lu_factor(self.lin.dense(), check_finite=False)
+        self.X = sysm.g.X
+        self._transfer = {}
+
+    def transfer(self, X):
+        """Prolongation P (linear interpolation) and restriction R (averaging, Pᵀ with
+        unit row sums) between this grid and the fine grid X (same domain)."""
+        key = (X.size, X[0], X[-1])
+        if key not in self._transfer:
+            from scipy import sparse
+            xc = self.X
+            j = np.clip(np.searchsorted(xc, X, side="right") - 1, 0, xc.size - 2)
+            t = (X - xc[j]) / (xc[j + 1] - xc[j])
+            rows = np.r_[np.arange(X.size), np.arange(X.size)]
+            P = sparse.csr_matrix((np.r_[1 - t, t], (rows, np.r_[j, j + 1])),
+                                  shape=(X.size, xc.size))
+            Rt = P.T.tocsr()
+            Rm = sparse.diags(1.0 / np.asarray(Rt.sum(axis=1)).ravel()) @ Rt
+            self._transfer[key] = (P, Rm.tocsr())
+        return self._transfer[key]
+
+
+class TwoGridPreconditioner:
+    """M⁻¹ r = P J_c⁻¹ R r followed by one Jacobi sweep on the fine system.
+
+    Residuals are moved between grids unscaled (Reynolds rows are flux densities, the
+    same on every grid) and re-scaled with the coarse rows' scaling."""
+
+    def __init__(self, coarse: CoarseLevel, lin: Linearization, sysm):
+        self.coarse, self.lin = coarse, lin
+        self.P, self.R = coarse.transfer(sysm.g.X)
+        n = lin.n
+        diag = lin.AP[0].copy()
+        if sysm.kcoef is not None:
+            for d, v in lin.B.items():
+                rows = np.arange(max(0, -d), min(n, n - d))
+                diag[rows] += v[rows] * sysm.kcoef[abs(d)]
+        dsc = np.where(lin.free, lin.c * diag, 1.0)
+        if sysm.kcoef is not None:
+            dsc[lin.cav] = 1.0 - lin.D[lin.cav] * sysm.kcoef[0]
+        dsc[lin.bnd] = 1.0
+        self.dinv = 1.0 / np.where(np.abs(dsc) > 1e-12, dsc, 1.0)
+
+    def solve(self, r):
+        lin, cl = self.lin, self.coarse.lin
+        rf = r[:-1].copy()
+        rf[lin.free] /= lin.c[lin.free]
+        rc = self.R @ rf
+        rc[cl.free] *= cl.c[cl.free]
+        rc[cl.bnd] = 0.0
+        zc = linalg.lu_solve(self.coarse.lu, np.r_[rc, r[-1]], check_finite=False)
+        z = np.r_[self.P @ zc[:-1], zc[-1]]
+        z[:-1] += 0.8 * (r[:-1] - lin.matvec(z)[:-1]) * self.dinv
+        return z
+
+
+@dataclass
+class NewtonOutcome:
+    """Result of :func:`newton`: the last iterate, whether it converged, the iteration
+    count, a message, and the LU factorisation of the last Newton matrix (or None) for
+    reuse as a preconditioner."""
+
+    state: State
+    converged: bool
+    iterations: int
+    message: str
+    lu: object = None
+
+
+def newton(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None
+           ) -> NewtonOutcome:
+    """Solve ``sysm`` from ``st`` (see :func:`_newton_impl`)."""
+    # trial points of the line search may overflow (e.g. exp(αp)); they are rejected by
+    # their non-finite merit, and the accepted solution is checked for finiteness
+    with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
+        return NewtonOutcome(*_newton_impl(sysm, st, tol, max_iter, lu, coarse))
+
+
+def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None):
+    """Semismooth Newton on min(P_i, −c_i R_i) = 0 and the load balance, unknowns (Q, H₀),
+    with a non-monotone Armijo line search on |Φ|² + load residual² (c frozen within a
+    search) and a small budget of full steps that may raise it (watchdog). Iterates may
+    dip below zero pressure; the min-function clamps them on the next iteration.
+    The Newton systems are solved by LU, by GMRES preconditioned with an earlier LU, or —
+    given a ``coarse`` level — by GMRES with the two-grid preconditioner (no dense matrix
+    on this grid; a dense LU only as fallback)."""
+    g = sysm.g
+
+    def merit_of(ev, c=None):
+        """|Φ|² + load²; the scale c is frozen within a line search (c=given)."""
+        c = jacobi_scale(sysm, ev) if c is None else c
+        phi = np.minimum(ev.P, -c * ev.R)
+        phi[0], phi[-1] = ev.P[0], ev.P[-1]
+        return float(np.dot(phi, phi) + ev.load * ev.load), c
+
+    Q, H0 = st.Q.copy(), st.H0
+    ev = sysm.evaluate(Q, H0)
+    m0, c = merit_of(ev)
+    msg = "maximum iterations reached"
+    ok = False
+    prev_cav, release, release_cap = None, 1, 1 << 30
+    history = [m0]          # non-monotone (Grippo–Lampariello–Lucidi) acceptance
+    watchdog = 2            # full Newton steps allowed to raise the merit (warm starts)
+    gmres_tol = 1e-6
+    it = 0
+    for it in range(1, max_iter + 1):
+        cav_std = cavitated(ev, c)
+        accepted = False
+        fresh_lu = False
+        for cav in ((_release(cav_std, prev_cav, release), cav_std) if release > 1
+                    else (cav_std,)):
+            lin = Linearization(sysm, c, cav, ev)
+            delta = None
+            fresh_lu = lu is None
+            if coarse is not None and lu is None:
+                delta, _ = gmres(lin, TwoGridPreconditioner(coarse, lin, sysm), gmres_tol,
+                                  _MAX_KRYLOV_TWO_GRID)
+                fresh_lu = True                 # nothing stale to refresh
+            if delta is None and lu is not None:
+                delta, nkry = gmres(lin, lu, gmres_tol)
+                if delta is None or nkry > _MAX_KRYLOV_BEFORE_REFACTOR:
+                    lu = None
+            if delta is None:
+                try:
+                    lu = linalg.lu_factor(lin.dense(), check_finite=False)
+                except (linalg.LinAlgError, ValueError):
+                    lu = None
+                    continue
+                delta = linalg.lu_solve(lu, lin.rhs, check_finite=False)
+                fresh_lu = True
+            if not np.all(np.isfinite(delta)):
+                lu = None
+                continue
+            dQ, dH0 = delta[:-1], delta[-1]
+            step = 1.0
+            for _ in range(30):
+                Qn = Q + step * dQ
+                H0n = H0 + step * dH0
+                evn = sysm.evaluate(Qn, H0n)
+                mn, _ = merit_of(evn, c)
+                ref = max(history[-_NONMONOTONE:])
+                if np.isfinite(mn) and (mn <= (1.0 - 1e-4 * step) * ref or
+                                        (step == 1.0 and watchdog > 0 and mn <= _WATCHDOG * ref)):
+                    if not mn <= (1.0 - 1e-4 * step) * ref:
+                        watchdog -= 1      # a full step that raised the merit: limited budget
+                    accepted = True
+                    break
+                step *= 0.5
+            if accepted:
+                break
+        if not accepted and lu is not None and not fresh_lu:
+            lu = None                  # Krylov direction from a stale preconditioner: retry
+            continue
+        if not accepted:
+            msg = f"line search failed (merit {m0:.2e})"
+            break
+        overshoot = prev_cav is not None and bool(np.any(~prev_cav & cav_std))
+        moved = prev_cav is not None and bool(np.any(prev_cav & ~cav_std))
+        if overshoot:
+            if release > 1:
+                # a released block overshot: later blocks at most half as large (no cycling)
+                release_cap = max(1, release // 2)
+            release = 1
+        elif moved:
+            release = min(2 * release, release_cap)
+        else:
+            release = 1
+        prev_cav = cav_std
+        upd = step * max(np.max(np.abs(dQ)) / max(np.max(np.abs(Qn)), 1e-30),
+                         abs(dH0) / max(abs(evn.H[g.i0]), 1e-30))
+        if _TRACE:
+            print(f"    it {it} step {step:.3g} merit {mn:.3e} upd {upd:.2e} "
+                  f"ncav {int(cav_std.sum())} rel {release}")
+        m0, c = merit_of(evn)          # re-scale at the accepted point
+        Q, H0, ev = Qn, H0n, evn
+        history.append(m0)
+        res = math.sqrt(max(m0, 0.0))
+        # converged: update below tol, or residual at round-off with an update so small
+        # that the next (quadratic) one would be
+        if (upd < tol and res < 1e3 * tol) or (res < 1e-13 and upd < math.sqrt(tol)):
+            ok = True
+            msg = f"converged in {it} Newton iterations (update {upd:.1e}, residual {res:.1e})"
+            break
+    P = np.maximum(ev.P, 0.0) if ok else ev.P   # cavitated nodes are 0 up to round-off
+    return State(Q, H0, P, ev.H), ok, it, msg, lu
+

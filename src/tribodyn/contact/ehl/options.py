@@ -1,0 +1,194 @@
+"""Options, inputs and result of the EHL line-contact solvers.
+
+:class:`EHLOptions` holds the numerical settings, :class:`EHLResult` the solution of one
+solve or time step; :class:`Conditions` and :class:`ContactModel` bundle what every solve
+needs (operating point; bodies, lubricant and roughness with their reduced moduli).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ... import paper
+from ..._validation import InputError, check_nonnegative, check_positive, check_real
+from ...physics.asperity import Roughness
+from ...physics.friction import BOUNDARY_SHEAR_STRENGTH, VISCOUS_MODELS
+from ...physics.lubricant import Lubricant
+from ...physics.materials import Body, as_bodies, reduced_modulus
+
+__all__ = ["EHLOptions", "EHLResult", "Conditions", "ContactModel"]
+
+
+@dataclass(frozen=True)
+class EHLOptions:
+    """Numerical settings of the EHL solvers.
+
+    n : grid nodes (uniform); None (default) sizes the grid so that its spacing is
+        s/46, s = √(2R h_est) the rigid inlet length (h_est: Moes central film), rounded
+        up to a multiple of 128 and clipped to [512, 4096]; in the elastic regime this is
+        n ≈ 265 κ, κ = b/s (κ ≈ 1 light load, ≈ 6 at Moes M = 100). A steady solve then
+        checks its result against the nested solution on half the nodes and doubles n
+        (up to 4096) while h_c or h_min differ by more than 1 %: with the scheme's
+        1.5–2nd order convergence, h_c and h_min then change by < 0.5 % when n doubles.
+    inlet, outlet : domain extent upstream/downstream of the contact centre in Hertz
+        half-widths b (elastic contacts) …
+    inlet_truncation : … and upstream at least as far as the truncated inlet loses this
+        share of the load. Far upstream p ≈ 16μ₀u_eR²/|x|³ (Reynolds with h ≈ x²/2R);
+        cutting the inlet at x_in costs ≈ 24μ₀|u_e|R²/(x_in² w) of the load (the same
+        estimate is reported as ``inlet_load_deficit``), so x_in = R√(24μ₀|u_e|/(ε w)).
+        This sets the domain of light, hydrodynamic contacts (x_in ≈ 22√(2R h₀) for the
+        rigid isoviscous cylinder at ε = 0.5 %).
+    inlet_rigid, outlet_rigid : … and in rigid inlet lengths s = √(2R h_est) (squeeze
+        films near u_e = 0, whose far-field pressure decays as |x|⁻⁴).
+    tol : Newton tolerance on the scaled pressure/film update and residual.
+    max_iter : Newton iterations per solve.
+    elastic : False treats both bodies as rigid (hydrodynamic validation cases).
+    viscous_model, limiting_shear : friction laws (see physics.friction).
+    boundary_shear_strength, boundary_shear_coefficient : τ₀ and ς of Eq. 17.
+    time_order : 1 (backward Euler) or 2 (BDF2) for the transient term.
+    """
+
+    n: int | None = None
+    inlet: float = 4.0
+    outlet: float = 1.75
+    inlet_truncation: float = 0.005
+    inlet_rigid: float = 4.0
+    outlet_rigid: float = 2.0
+    tol: float = 1e-9
+    max_iter: int = 60
+    elastic: bool = True
+    viscous_model: str = "eyring"
+    limiting_shear: bool = True
+    boundary_shear_strength: float = BOUNDARY_SHEAR_STRENGTH
+    boundary_shear_coefficient: float = paper.STEEL["boundary_shear_coefficient"]
+    time_order: int = 2
+
+    def __post_init__(self):
+        if self.n is not None and int(self.n) < 32:
+            raise InputError(f"n must be >= 32 or None for automatic (got {self.n})")
+        for name in ("inlet", "outlet", "inlet_rigid", "outlet_rigid"):
+            v = check_positive(name, getattr(self, name))
+            if v < 1.0:
+                raise InputError(f"{name} must be >= 1 length scale (got {v:g})")
+        if self.n is not None and int(self.n) > 65536:
+            raise InputError(f"n must be <= 65536 (got {self.n})")
+        t = check_positive("inlet_truncation", self.inlet_truncation)
+        if t > 0.1:
+            raise InputError(f"inlet_truncation must be in (0, 0.1] (got {t:g})")
+        check_positive("tol", self.tol)
+        if int(self.max_iter) < 1:
+            raise InputError(f"max_iter must be >= 1 (got {self.max_iter})")
+        if self.viscous_model not in VISCOUS_MODELS:
+            raise InputError(f"viscous_model must be one of {VISCOUS_MODELS} "
+                             f"(got {self.viscous_model!r})")
+        check_nonnegative("boundary_shear_strength", self.boundary_shear_strength, "Pa")
+        check_nonnegative("boundary_shear_coefficient", self.boundary_shear_coefficient)
+        if self.time_order not in (1, 2):
+            raise InputError(f"time_order must be 1 or 2 (got {self.time_order})")
+
+
+# ----------------------------------------------------------------------------- result
+@dataclass
+class EHLResult:
+    """Line-contact EHL solution (per unit length, SI). Friction forces are magnitudes."""
+
+    x: np.ndarray                   #: node positions [m] (contact frame)
+    pressure: np.ndarray            #: hydrodynamic pressure p [Pa]
+    asperity_pressure: np.ndarray   #: Greenwood–Tripp asperity pressure p_a [Pa]
+    film: np.ndarray                #: film thickness h [m]
+    central_film: float             #: h at x = 0 [m]
+    min_film: float                 #: min h [m]
+    min_film_position: float        #: x of min h [m]
+    cavitation_position: float      #: outlet meniscus (p → 0) [m]
+    rigid_approach: float           #: h₀ (includes the 2-D elastic constant) [m]
+    load: float                     #: imposed w [N/m]
+    hydrodynamic_load: float        #: ∫p dx [N/m]
+    asperity_load: float            #: ∫p_a dx [N/m]
+    viscous_friction: float         #: ∫|τ_couette| dx [N/m]
+    rolling_friction: float         #: ∫(h/2)|dp/dx| dx, Poiseuille part of Eq. 16 [N/m]
+    boundary_friction: float        #: ∫(τ₀ A_a/A + ς p_a) dx [N/m]
+    entrainment_speed: float
+    sliding_speed: float
+    radius: float
+    converged: bool
+    iterations: int
+    message: str
+    time: float = 0.0
+    squeeze_velocity: float = 0.0   #: −dh_c/dt, approach speed of the central film [m/s]
+    shear_stress: np.ndarray = field(default=None, repr=False)   #: viscous τ(x) [Pa]
+    inlet_load_deficit: float = 0.0  #: estimated share of w lost to the truncated inlet
+
+    @property
+    def friction(self) -> float:
+        """Viscous + boundary friction [N/m]."""
+        return self.viscous_friction + self.boundary_friction
+
+    @property
+    def friction_coefficient(self) -> float:
+        return self.friction / self.load
+
+    def totals(self, width: float) -> dict:
+        """Loads [N] and friction forces [N] over a contact width [m]."""
+        width = check_positive("width", width, "m")
+        return {k: getattr(self, k) * width for k in (
+            "load", "hydrodynamic_load", "asperity_load", "viscous_friction",
+            "rolling_friction", "boundary_friction", "friction")}
+
+
+# ----------------------------------------------------------------------------- helpers
+
+
+def with_overrides(opts: EHLOptions, overrides: dict) -> EHLOptions:
+    """A copy of ``opts`` with some fields replaced; unknown names are an error."""
+    unknown = sorted(set(overrides) - set(opts.__dict__))
+    if unknown:
+        raise InputError(f"unknown EHL option(s) {', '.join(unknown)}; valid: "
+                         f"{', '.join(sorted(opts.__dict__))}")
+    return EHLOptions(**{**opts.__dict__, **overrides})
+
+
+@dataclass(frozen=True)
+class Conditions:
+    """Operating point of one solve: w [N/m], R [m], u_e and u_s [m/s]."""
+
+    load: float
+    radius: float
+    entrainment_speed: float
+    sliding_speed: float
+
+    @classmethod
+    def checked(cls, load, radius, entrainment_speed, sliding_speed) -> "Conditions":
+        """Validated conditions (load and radius > 0, speeds finite)."""
+        return cls(check_positive("load", load, "N/m"), check_positive("radius", radius, "m"),
+                   check_real("entrainment_speed", entrainment_speed, "m/s"),
+                   check_real("sliding_speed", sliding_speed, "m/s"))
+
+
+@dataclass(frozen=True)
+class ContactModel:
+    """The physical model of a contact: bodies, lubricant, composite roughness (or None)
+    and the reduced moduli E' of the bulk (sizes the contact) and of the surface layer
+    (scales the asperity pressure)."""
+
+    bodies: tuple[Body, Body]
+    lubricant: Lubricant
+    roughness: Roughness | None
+    e_bulk: float = field(init=False)
+    e_surface: float = field(init=False)
+
+    def __post_init__(self):
+        object.__setattr__(self, "e_bulk", reduced_modulus(self.bodies))
+        object.__setattr__(self, "e_surface", reduced_modulus(self.bodies, surface=True))
+
+    @classmethod
+    def checked(cls, bodies, lubricant, roughness) -> "ContactModel":
+        """Validated model: two bodies, a Lubricant, a Roughness or None."""
+        bodies = as_bodies(bodies)
+        if not isinstance(lubricant, Lubricant):
+            raise InputError(f"lubricant must be a Lubricant (got {type(lubricant).__name__})")
+        if roughness is not None and not isinstance(roughness, Roughness):
+            raise InputError("roughness must be a Roughness or None "
+                             f"(got {type(roughness).__name__})")
+        return cls(bodies, lubricant, roughness)

@@ -1,0 +1,10 @@
+"""Output of a cycle study: the results Dataset, atomic writing, the report and figures.
+
+:mod:`.dataset` (study → xarray Dataset) · :mod:`.writer` (results folder, atomically) ·
+:mod:`.report` (report.md) · :mod:`.figures` (one module per figure family).
+"""
+
+from .dataset import study_to_dataset
+from .writer import write_atomic, write_results
+
+__all__ = ["study_to_dataset", "write_atomic", "write_results"]

@@ -1,0 +1,76 @@
+"""Report figures of a cam-cycle study, drawn from the results Dataset.
+
+:func:`make_figures` reads only the Dataset built by
+:func:`tribodyn.output.dataset.study_to_dataset` and writes one PNG per paper figure
+(Figs. 5, 6, 8–18 of Andreou et al. 2023) plus two summary figures (19: friction power and
+energy, 20: minimum film and λ). One module per family: :mod:`.coating` (5, 6),
+:mod:`.dynamics` (8–11), :mod:`.regimes` (12), :mod:`.profiles` (13, 14), :mod:`.cycle`
+(15–20); :mod:`.topography` draws the measured-surface figure (paper Fig. 7).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .coating import fig05, fig06
+from .common import EVENT_FRACTION, FIGURES, TITLE_SIZE, has, plt
+from .cycle import fig15, fig16, fig17, fig18, fig19, fig20
+from .dynamics import fig08, fig09, fig10, fig11
+from .profiles import fig13, fig14
+from .regimes import fig12
+
+__all__ = ["FIGURES", "EVENT_FRACTION", "make_figures"]
+
+_MAKERS = {
+    "fig05_dry_pressure.png": (fig05, ("dry_ratio", "dry_x", "dry_pressure")),
+    "fig06_ehl_pressure_film.png": (fig06, ("ehl_x",)),
+    "fig08_tappet_velocity.png": (fig08, ("crank_angle", "tappet_velocity", "contact_force")),
+    "fig09_contact_force.png": (fig09, ("crank_angle", "contact_force")),
+    "fig10_tappet_acceleration.png": (fig10, ("crank_angle", "tappet_acceleration",
+                                               "contact_force")),
+    "fig11_entrainment_speed.png": (fig11, ("entrainment_speed", "sliding_speed",
+                                             "radius_of_curvature", "contact_force")),
+    "fig12_greenwood_chart.png": (fig12, ("gV", "gE", "loaded", "ehl_contact_force")),
+    "fig13_pressure_film_points.png": (fig13, ("pressure", "film", "profile_x",
+                                                "point_crank", "loaded")),
+    "fig14_coatings_pressure_film.png": (fig14, ("pressure", "film", "profile_x", "loaded",
+                                                  "ehl_contact_force")),
+    "fig15_central_film.png": (fig15, ("central_film", "loaded")),
+    "fig16_boundary_load.png": (fig16, ("asperity_load", "loaded")),
+    "fig17_boundary_friction.png": (fig17, ("boundary_friction", "loaded")),
+    "fig18_viscous_friction.png": (fig18, ("viscous_friction", "loaded")),
+    "fig19_friction_power.png": (fig19, ("friction_power", "loaded")),
+    "fig20_min_film_lambda.png": (fig20, ("min_film", "lambda_ratio", "loaded")),
+}
+
+
+def make_figures(ds, out_dir, *, only=None) -> dict[str, Path]:
+    """Write the report figures of a cycle-study Dataset into ``out_dir``.
+
+    Returns ``{file name: path}`` for the figures written (keys as in :data:`FIGURES`).
+    Comparisons are made against the ``reference_set`` attribute (the first uncoated
+    set), which is plotted first. A figure whose variables are not in the Dataset (e.g. a study without the
+    single-contact coating studies) is skipped; the explicit/implicit figures plot the
+    explicit run alone, and say so, when the ``*_implicit`` variables are absent.
+    ``only``: optional iterable of file names to restrict the output.
+    """
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    ref = ds.attrs.get("reference_set")
+    if ref is not None and "surface_set" in ds.dims:
+        names = [str(v) for v in ds["surface_set"].values]
+        if ref in names and names[0] != ref:      # the figures compare against index 0
+            k = names.index(ref)
+            ds = ds.isel(surface_set=[k] + [i for i in range(len(names)) if i != k])
+    wanted = list(_MAKERS) if only is None else [n for n in _MAKERS if n in set(only)]
+    written = {}
+    with plt.rc_context({"font.size": 10, "axes.titlesize": TITLE_SIZE,
+                         "figure.dpi": 100, "savefig.dpi": 150}):
+        for name in wanted:
+            maker, needs = _MAKERS[name]
+            if not has(ds, *needs):
+                continue
+            path = maker(ds, out / name)
+            if path is not None:
+                written[name] = path
+    return written

@@ -1,0 +1,213 @@
+"""One line contact at one operating point: the computation behind ``tribodyn contact``.
+
+:func:`point_surfaces` builds the surfaces (a named surface set of a case, or a steel cam
+on a steel tappet with an optional coating and roughness); :func:`solve_point` solves the
+dry or lubricated contact and returns a JSON-ready dict in SI units with the unit in each
+key (``central_film_m``, ``friction_N``, …), with the Hertz values, the film formulas and
+the Greenwood-chart regime beside the numerical solution. Loads and friction forces are
+totals over ``width``.
+"""
+
+from __future__ import annotations
+
+from .. import paper
+from .._validation import InputError, check_positive, check_real
+from ..config import SurfaceSet
+from ..contact.dry import solve_dry_contact
+from ..contact.ehl import EHLOptions, solve_ehl
+from ..physics.asperity import Roughness
+from ..physics.hertz import hertz_line_contact
+from ..physics.lubricant import Lubricant
+from ..physics.materials import Body, Coating, reduced_modulus
+from ..physics.regimes import (
+    greenwood_chart_groups,
+    hamrock_groups,
+    lubrication_regime,
+    moes_central,
+    pan_hamrock,
+)
+
+__all__ = ["point_surfaces", "solve_point"]
+
+
+def point_surfaces(case, *, surface_set: str | None = None, coating: Coating | None = None,
+                   coating_material: str | None = None, coating_thickness: float | None = None,
+                   roughness: Roughness | None = None,
+                   shear_coefficient: float | None = None) -> SurfaceSet:
+    """The surfaces of one contact.
+
+    ``surface_set``: a set of ``case`` by name (exclusive with the other arguments).
+    Otherwise a steel tappet (``[materials.steel]`` of the case, or the cam's material)
+    under the case's cam, coated with ``coating`` (E, ν, thickness) or with the material
+    ``coating_material`` of the case ``coating_thickness`` thick, rough with ``roughness``
+    (None: smooth). ς is ``shear_coefficient``, else the coating material's, else the
+    steel's; τ₀ is the case's first surface set's.
+    """
+    if surface_set is not None:
+        clash = [k for k, v in (("coating", coating), ("coating_material", coating_material),
+                                ("coating_thickness", coating_thickness),
+                                ("roughness", roughness)) if v is not None]
+        if clash:
+            raise InputError(f"surface_set takes the coating and roughness from the case; "
+                             f"drop {', '.join(clash)}")
+        try:
+            s = case.surface_set(surface_set)
+        except InputError as exc:
+            raise InputError(f"surface_set: {exc}") from None
+        if shear_coefficient is not None:
+            from dataclasses import replace
+            s = replace(s, boundary_shear_coefficient=_shear(shear_coefficient))
+        return s
+    if coating is not None and coating_material is not None:
+        raise InputError("give either coating (E, nu, thickness) or coating_material "
+                         "(not both)")
+    if coating_thickness is not None and coating_material is None:
+        raise InputError("coating_thickness needs coating_material")
+    cam = Body(case.material(case.cam_config.material))
+    substrate = (case.material("steel") if "steel" in case.materials
+                 else case.material(case.cam_config.material))
+    steel = case.materials.get("steel")
+    sigma = steel.boundary_shear_coefficient if steel is not None else None
+    label, key = "uncoated", None
+    if coating is not None:
+        if not isinstance(coating, Coating):
+            raise InputError(f"coating must be a Coating (got {type(coating).__name__})")
+        label = (f"coating E = {coating.E / 1e9:.4g} GPa, ν = {coating.nu:g}, "
+                 f"{coating.thickness * 1e6:.3g} µm")
+    elif coating_material is not None:
+        key = coating_material.strip().lower().replace("-", "")
+        if key not in case.materials:
+            raise InputError(f"coating_material must be one of {', '.join(case.materials)} "
+                             f"(got {coating_material!r})")
+        m = case.materials[key]
+        if coating_thickness is None and key != "steel":
+            raise InputError("coating_material needs coating_thickness [m]")
+        if coating_thickness is not None:
+            coating = Coating(E=m.E, nu=m.nu, thickness=coating_thickness)
+            label = f"{m.label or key} {coating_thickness * 1e6:.3g} µm"
+        if m.boundary_shear_coefficient is not None:
+            sigma = m.boundary_shear_coefficient
+    if roughness is not None and not isinstance(roughness, Roughness):
+        raise InputError(f"roughness must be a Roughness (got {type(roughness).__name__})")
+    if shear_coefficient is not None:
+        sigma = _shear(shear_coefficient)
+    if sigma is None:
+        sigma = paper.STEEL["boundary_shear_coefficient"]
+    return SurfaceSet(name="", bodies=(cam, Body(substrate, coating)), roughness=roughness,
+                      boundary_shear_coefficient=float(sigma), coating_label=label,
+                      boundary_shear_strength=case.surface_set_configs[0]
+                      .boundary_shear_strength,
+                      coating_material=key if coating is not None else None)
+
+
+def _shear(v) -> float:
+    v = check_real("shear_coefficient", v)
+    if v < 0.0:
+        raise InputError(f"shear_coefficient must be a finite number >= 0 (got {v:g})")
+    return v
+
+
+def solve_point(case, surfaces: SurfaceSet, *, load_per_length, radius, width,
+                entrainment_speed=None, sliding_speed=0.0, dry=False,
+                lubricant: Lubricant | None = None, options: EHLOptions | None = None,
+                n: int | None = None) -> dict:
+    """Solve one contact (see the module docstring). ``lubricant`` and ``options``
+    default to the case's; ``n`` is the dry grid (default 1024)."""
+    w = check_positive("load_per_length", load_per_length, "N/m")
+    radius = check_positive("radius", radius, "m")
+    width = check_positive("width", width, "m")
+    bodies = surfaces.bodies
+    e_bulk = reduced_modulus(bodies)
+    hz = hertz_line_contact(w, radius, e_bulk)
+    tappet = bodies[1]
+    out: dict = {
+        "mode": "dry" if dry else "ehl",
+        "case": None if case.source is None else str(case.source),
+        "surface_set": surfaces.name or None,
+        "surfaces": surfaces.coating_label,
+        "load_N": w * width,
+        "width_m": width,
+        "load_per_length_N_per_m": w,
+        "radius_m": radius,
+        "cam_E_Pa": bodies[0].material.E,
+        "cam_nu": bodies[0].material.nu,
+        "tappet_E_Pa": tappet.material.E,
+        "tappet_nu": tappet.material.nu,
+        "coating_E_Pa": tappet.coating.E if tappet.coating else None,
+        "coating_nu": tappet.coating.nu if tappet.coating else None,
+        "coating_thickness_m": tappet.coating.thickness if tappet.coating else None,
+        "reduced_modulus_Pa": e_bulk,
+        "surface_reduced_modulus_Pa": reduced_modulus(bodies, surface=True),
+        "hertz_half_width_m": hz.half_width,
+        "hertz_max_pressure_Pa": hz.max_pressure,
+    }
+    if dry:
+        if entrainment_speed is not None or sliding_speed:
+            raise InputError("a dry contact takes no entrainment or sliding speed "
+                             "(drop --ue/--us, or drop --dry for an EHL solution)")
+        res = solve_dry_contact(w, radius, bodies, n=1024 if n is None else n)
+        out.update({"half_width_m": res.half_width, "max_pressure_Pa": res.max_pressure,
+                    "contact_center_m": res.contact_center, "grid_points": res.x.size,
+                    "converged": bool(res.converged), "iterations": int(res.iterations),
+                    "message": res.message})
+        return out
+
+    if entrainment_speed is None:
+        raise InputError("entrainment_speed (--ue) [m/s] is required for an EHL solution "
+                         "(or use --dry)")
+    ue = check_real("entrainment_speed", entrainment_speed, "m/s")
+    if ue == 0.0:
+        raise InputError("entrainment_speed (--ue) must be non-zero [m/s]: a steady film "
+                         "needs entrainment")
+    us = check_real("sliding_speed", sliding_speed, "m/s")
+    lub = lubricant or case.lubricant()
+    opts = options or case.ehl_options(surfaces)
+    rough = surfaces.roughness
+    res = solve_ehl(w, radius, ue, us, bodies, lub, rough, options=opts)
+    W, U, G = hamrock_groups(w, radius, ue, lub.viscosity, lub.pressure_viscosity, e_bulk)
+    gV, gE = greenwood_chart_groups(W, U, G)
+    ph_c, ph_min = pan_hamrock(W, U, G, radius)
+    tot = res.totals(width)
+    out.update({
+        "entrainment_speed_m_per_s": ue,
+        "sliding_speed_m_per_s": us,
+        "asperity_density_per_m2": rough.asperity_density if rough else None,
+        "roughness_rms_m": rough.rms if rough else None,
+        "summit_radius_m": rough.summit_radius if rough else None,
+        "greenwood_tripp": rough.method if rough else None,
+        "boundary_shear_coefficient": opts.boundary_shear_coefficient,
+        "boundary_shear_strength_Pa": opts.boundary_shear_strength,
+        "viscosity_Pa_s": lub.viscosity,
+        "pressure_viscosity_per_Pa": lub.pressure_viscosity,
+        "density_kg_per_m3": lub.density,
+        "eyring_stress_Pa": lub.eyring_stress,
+        "limiting_shear_coefficient": lub.limiting_shear_coefficient,
+        "viscosity_model": lub.viscosity_model,
+        "viscous_model": opts.viscous_model,
+        "limiting_shear": opts.limiting_shear,
+        "grid_points": int(res.x.size),
+        "central_film_m": res.central_film,
+        "min_film_m": res.min_film,
+        "min_film_position_m": res.min_film_position,
+        "film_parameter_lambda": res.min_film / rough.rms if rough else None,
+        "max_pressure_Pa": float(res.pressure.max()),
+        "pan_hamrock_central_film_m": float(ph_c),
+        "pan_hamrock_min_film_m": float(ph_min),
+        "moes_central_film_m": float(moes_central(W, U, G, radius)),
+        "hydrodynamic_load_N": tot["hydrodynamic_load"],
+        "asperity_load_N": tot["asperity_load"],
+        "asperity_load_share": res.asperity_load / res.load,
+        "viscous_friction_N": tot["viscous_friction"],
+        "boundary_friction_N": tot["boundary_friction"],
+        "rolling_friction_N": tot["rolling_friction"],
+        "friction_N": tot["friction"],
+        "friction_coefficient": res.friction_coefficient,
+        "hamrock_W": float(W), "hamrock_U": float(U), "hamrock_G": float(G),
+        "greenwood_gV": float(gV),
+        "greenwood_gE": float(gE),
+        "regime": str(lubrication_regime(gV, gE)),
+        "converged": bool(res.converged),
+        "iterations": int(res.iterations),
+        "message": res.message,
+    })
+    return out

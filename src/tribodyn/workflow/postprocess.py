@@ -1,0 +1,308 @@
+"""Analysis of a finished cycle study: event mask, representative points, Greenwood-chart
+regimes, surface-set roles, film-gain statistics and the summary (``summary.json``).
+
+Everything here is computed once from the study's arrays (no solver calls) and attached
+to the study as :class:`Analysis`, so the output layer only formats what the study already
+knows.
+
+Film-gain rule (:func:`film_gain_mask`): the gain of a coated set over the reference,
+100 (h_c,set/h_c,ref − 1) %, is evaluated only at EHL samples that are (a) inside the cam
+event (cam lift above the jump threshold, 10 µm), (b) loaded and converged in both sets,
+and (c) not within the first :data:`GAIN_SETTLE_STEPS` steps after the contact engages
+(each loaded event starts from a steady solution and its first steps carry the transient
+of that start). Reported: the gain at the representative points, the median and 95th
+percentile of |gain| over the admitted samples, and their maximum
+(``max_film_gain_vs_uncoated_pct``, the robust maximum under the rule).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .. import paper
+from ..physics.materials import reduced_modulus
+from ..physics.regimes import (
+    REGIMES,
+    greenwood_chart_groups,
+    hamrock_groups,
+    lubrication_regime,
+    moes_central,
+)
+
+__all__ = ["Analysis", "analyse", "surface_roles", "event_mask", "representative_points",
+           "film_gain_mask", "film_gain_statistics", "modulus_factor_for_gain",
+           "GAIN_SETTLE_STEPS", "FILM_GAIN_RULE"]
+
+#: Samples excluded from the film-gain statistics after each engagement of the contact.
+GAIN_SETTLE_STEPS = 5
+FILM_GAIN_RULE = (
+    "film gain 100·(h_c,set/h_c,reference − 1) % at EHL samples inside the cam event "
+    "(lift > 10 µm), loaded and converged in both sets, excluding the first "
+    f"{GAIN_SETTLE_STEPS} steps after each engagement; max = robust maximum over those "
+    "samples, median and p95 of |gain|, and the gain at the six representative points")
+
+
+@dataclass
+class Analysis:
+    """What the report and the figures need beyond the raw arrays of the study."""
+
+    roles: dict                      #: role → surface-set name ("reference", "wcc", "dlc")
+    in_event: np.ndarray             #: EHL samples inside the cam event
+    point_index: np.ndarray          #: indices of the six representative points
+    point_crank: np.ndarray          #: their crank angles [deg]
+    gV: np.ndarray                   #: Greenwood-chart viscosity group (NaN unloaded)
+    gE: np.ndarray                   #: elasticity group (NaN unloaded)
+    regime: np.ndarray               #: regime code (index into REGIMES; −1 unloaded)
+    film_gain: dict = field(default_factory=dict)      #: set → film-gain statistics
+    modulus_factor: list = field(default_factory=list)  #: E' factor for +41 % per point
+    summary: dict = field(default_factory=dict)         #: summary.json
+
+
+# ----------------------------------------------------------------------------- roles
+def surface_roles(case) -> dict:
+    """Surface sets by role: ``reference`` is the first uncoated set (the first set if all
+    are coated); for each coating material of the paper (keys ``dlc``, ``wcc`` in
+    ``[materials]``) the set with that coating whose thickness is nearest the paper's
+    4 µm. Chosen by material key, never by label text."""
+    sets = case.surface_sets()
+    roles = {"reference": next((s.name for s in sets if s.coating is None), sets[0].name)}
+    for key in paper.MATERIALS:
+        cands = [s for s in sets if s.coating_material == key]
+        if cands:
+            best = min(cands, key=lambda s: abs(math.log(s.coating.thickness
+                                                         / paper.COATING_THICKNESS)))
+            roles[key] = best.name
+    return roles
+
+
+# ----------------------------------------------------------------------------- masks
+def event_mask(dynamics, inputs) -> np.ndarray:
+    """EHL samples inside the cam event (cam lift above the jump threshold): the lift
+    event proper, without the base-circle ringing of a few newtons."""
+    lift = np.interp(inputs.crank_angle, dynamics.crank_angle, dynamics.cam_lift)
+    return lift > dynamics.jump_lift_threshold
+
+
+def representative_points(inputs, dynamics, loaded) -> np.ndarray:
+    """Indices of six EHL samples spanning distinct load–speed states of the event
+    (paper Fig. 13): the lightly loaded opening ramp, the fastest entrainment on the
+    opening flank, the first u_e reversal, the nose (maximum lift), the second reversal,
+    and the fastest entrainment on the closing flank."""
+    F = inputs.contact_force
+    loaded = loaded & (F > 0.05 * F.max())
+    idx = np.flatnonzero(loaded)
+    if idx.size < 12:
+        return np.linspace(0, inputs.crank_angle.size - 1, 6).astype(int)
+    lift = np.interp(inputs.crank_angle, dynamics.crank_angle, dynamics.cam_lift)
+    i_nose = idx[np.argmax(lift[idx])]
+    opening, closing = idx[idx < i_nose], idx[idx > i_nose]
+    ue = inputs.entrainment_speed
+    pts = []
+    if opening.size >= 3:
+        i_fast = opening[np.argmax(ue[opening])]
+        ramp = opening[opening < i_fast]
+        pts.append(ramp[len(ramp) // 2] if ramp.size else opening[0])
+        pts.append(i_fast)
+        after = opening[opening > i_fast]
+        pts.append(after[np.argmin(np.abs(ue[after]))] if after.size else opening[-1])
+    pts.append(i_nose)
+    if closing.size >= 2:
+        i_fast_c = closing[np.argmax(ue[closing])]
+        before = closing[closing < i_fast_c]
+        pts.append(before[np.argmin(np.abs(ue[before]))] if before.size else closing[0])
+        pts.append(i_fast_c)
+    pts = sorted(set(int(p) for p in pts))
+    for e in idx[np.linspace(0, idx.size - 1, 13).astype(int)]:   # degenerate events
+        if len(pts) >= 6:
+            break
+        if int(e) not in pts:
+            pts = sorted(pts + [int(e)])
+    return np.array(pts[:6], dtype=int)
+
+
+def chart(case, inputs, loaded_any):
+    """(g_V, g_E, regime code) per EHL sample with the bulk E' of the first surface set;
+    NaN / −1 where no set is loaded."""
+    lub = case.lubricant()
+    e_prime = reduced_modulus(case.surface_sets()[0].bodies)
+    w = np.maximum(inputs.contact_force, 1e-9) / inputs.width
+    W, U, G = hamrock_groups(w, inputs.radius,
+                             np.maximum(np.abs(inputs.entrainment_speed), 1e-3),
+                             lub.viscosity, lub.pressure_viscosity, e_prime)
+    gV, gE = greenwood_chart_groups(W, U, G)
+    code = np.array([REGIMES.index(r) for r in np.atleast_1d(lubrication_regime(gV, gE))])
+    return (np.where(loaded_any, gV, np.nan), np.where(loaded_any, gE, np.nan),
+            np.where(loaded_any, code, -1).astype(np.int8))
+
+
+# ----------------------------------------------------------------------------- film gain
+def _settled(loaded: np.ndarray, steps: int) -> np.ndarray:
+    """Loaded samples at least ``steps`` samples after the start of their loaded run."""
+    out = np.zeros_like(loaded, dtype=bool)
+    run = 0
+    for i, on in enumerate(loaded):
+        run = run + 1 if on else 0
+        out[i] = run > steps
+    return out
+
+
+def film_gain_mask(in_event, loaded_ref, loaded_set, converged_ref, converged_set,
+                   settle_steps: int = GAIN_SETTLE_STEPS) -> np.ndarray:
+    """Samples admitted to the film-gain statistics (see the module docstring)."""
+    both = np.asarray(loaded_ref, bool) & np.asarray(loaded_set, bool)
+    return (np.asarray(in_event, bool) & both & np.asarray(converged_ref, bool)
+            & np.asarray(converged_set, bool) & _settled(both, settle_steps))
+
+
+def film_gain_statistics(h_ref, h_set, mask, point_index) -> dict:
+    """Film gain [%] of ``h_set`` over ``h_ref``: robust maximum, mean, median and 95th
+    percentile of |gain| over the ``mask`` samples, and the gain at ``point_index``
+    (None where the sample is not admitted)."""
+    h_ref, h_set = np.asarray(h_ref, float), np.asarray(h_set, float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        gain = (h_set / h_ref - 1.0) * 100.0
+    ok = np.asarray(mask, bool) & np.isfinite(gain)
+    g = gain[ok]
+
+    def fin(v):
+        return float(v) if g.size and math.isfinite(v) else None
+
+    at = [float(gain[i]) if ok[i] else None for i in point_index]
+    return {"max_pct": fin(g.max()) if g.size else None,
+            "mean_pct": fin(g.mean()) if g.size else None,
+            "median_abs_pct": fin(np.median(np.abs(g))) if g.size else None,
+            "p95_abs_pct": fin(np.percentile(np.abs(g), 95)) if g.size else None,
+            "at_points_pct": at, "samples": int(g.size)}
+
+
+def modulus_factor_for_gain(load, radius, entrainment_speed, viscosity, pressure_viscosity,
+                            e_prime, gain=paper.CLAIMS["film_gain_pct"] / 100.0) -> float:
+    """Factor f by which E' must fall (E' → E'/f) for the Moes central film to rise by
+    ``gain`` at one operating point (w [N/m], R [m], u_e [m/s]; α kept). NaN if no factor
+    up to 10⁶ does it."""
+    u = max(abs(entrainment_speed), 1e-3)
+
+    def hc(f):
+        W, U, G = hamrock_groups(load, radius, u, viscosity, pressure_viscosity, e_prime / f)
+        return float(moes_central(W, U, G, radius))
+
+    h0 = hc(1.0)
+    fn = lambda f: hc(f) / h0 - (1.0 + gain)  # noqa: E731
+    if fn(1e6) < 0:
+        return float("nan")
+    return float(brentq(fn, 1.0, 1e6, xtol=1e-6, rtol=1e-8))
+
+
+# ----------------------------------------------------------------------------- analysis
+def _finite(v):
+    if v is None:
+        return None
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
+def analyse(study) -> Analysis:
+    """The :class:`Analysis` of a :class:`~tribodyn.workflow.cycle.CycleStudy`."""
+    case, dyn, inp = study.case, study.dynamics, study.inputs
+    roles = surface_roles(case)
+    ref = study.set(roles["reference"])
+    ev = event_mask(dyn, inp)
+    loaded_any = np.any([s.loaded for s in study.sets], axis=0)
+    pidx = representative_points(inp, dyn, ref.loaded)
+    gV, gE, regime = chart(case, inp, loaded_any)
+    gains = {}
+    for s in study.sets:
+        m = film_gain_mask(ev, ref.loaded, s.loaded, ref.converged, s.converged)
+        gains[s.name] = film_gain_statistics(ref.central_film, s.central_film, m, pidx)
+    lub = case.lubricant()
+    e_prime = reduced_modulus(case.surface_set(roles["reference"]).bodies)
+    factors = [modulus_factor_for_gain(inp.contact_force[i] / inp.width, inp.radius[i],
+                                       inp.entrainment_speed[i], lub.viscosity,
+                                       lub.pressure_viscosity, e_prime) for i in pidx]
+    an = Analysis(roles=roles, in_event=ev, point_index=pidx,
+                  point_crank=inp.crank_angle[pidx], gV=gV, gE=gE, regime=regime,
+                  film_gain=gains, modulus_factor=factors)
+    an.summary = summary(study, an)
+    return an
+
+
+def summary(study, an: Analysis) -> dict:
+    """The numbers users and scripts read (``summary.json``); totals over the cam width."""
+    dyn, inp = study.dynamics, study.inputs
+    period = 2.0 * math.pi / study.case.cam_speed       # one engine cycle = one cam rev
+    dt = np.gradient(inp.time)
+    ref = study.set(an.roles["reference"])
+    ev = an.in_event
+    ref_bf = np.nansum(np.where(ref.loaded & ev, ref.boundary_friction, 0.0) * dt)
+    out = {"case": study.case.name, "engine_speed_rpm": float(study.case.engine_speed),
+           "statistics_over": "cam event (lift > 10 µm) for films and forces; all loaded "
+                              "samples for friction energy and power",
+           "reference_set": ref.name, "roles": dict(an.roles),
+           "film_gain_rule": FILM_GAIN_RULE,
+           "representative_points_crank_deg": [float(c) for c in an.point_crank],
+           "surface_sets": {}}
+    for s in study.sets:
+        L = s.loaded & ev
+        any_l = bool(L.any())
+        bf = np.nansum(np.where(L, s.boundary_friction, 0.0) * dt)
+        energy = float(np.nansum(np.where(s.loaded, s.friction_power, 0.0) * dt))
+        by_law = {}
+        for law in ("newtonian", "eyring"):
+            p_law = ((getattr(s, f"viscous_friction_{law}") + s.boundary_friction)
+                     * np.abs(inp.sliding_speed))
+            by_law[law] = _finite(np.nansum(np.where(s.loaded, p_law, 0.0) * dt))
+        g = an.film_gain[s.name]
+        out["surface_sets"][s.name] = {
+            "label": study.labels[s.name],
+            "peak_contact_force_N": _finite(dyn.contact_force.max()),
+            "min_film_m": _finite(np.nanmin(s.min_film[L])) if any_l else None,
+            "max_central_film_m": _finite(np.nanmax(s.central_film[L])) if any_l else None,
+            "max_film_gain_vs_uncoated_pct": g["max_pct"],
+            "mean_film_gain_vs_uncoated_pct": g["mean_pct"],
+            "median_abs_film_gain_vs_uncoated_pct": g["median_abs_pct"],
+            "p95_abs_film_gain_vs_uncoated_pct": g["p95_abs_pct"],
+            "film_gain_at_points_pct": g["at_points_pct"],
+            "max_boundary_friction_N": _finite(np.nanmax(s.boundary_friction[L])) if any_l else None,
+            "max_viscous_friction_N": _finite(np.nanmax(s.viscous_friction[L])) if any_l else None,
+            "boundary_friction_reduction_vs_uncoated_pct":
+                _finite((1.0 - bf / ref_bf) * 100.0) if ref_bf > 0 else None,
+            "friction_energy_per_cycle_J": _finite(energy),
+            "friction_energy_per_cycle_newtonian_J": by_law["newtonian"],
+            "friction_energy_per_cycle_eyring_J": by_law["eyring"],
+            "mean_friction_power_W": _finite(energy / period),
+            "min_lambda": _finite(np.nanmin(s.lambda_ratio[L])) if any_l else None,
+            "failed_steps": len(s.failures),
+        }
+    out["implicit_vs_explicit"] = _implicit_vs_explicit(study)
+    out["dynamics"] = {k: v for k, v in dyn.summary().items() if k != "converged"}
+    out["warnings"] = list(study.warnings)
+    out["runtime_s"] = float(study.runtime_s)
+    return out
+
+
+def _implicit_vs_explicit(study) -> dict:
+    dyn, cp = study.dynamics, study.coupling
+    imp = cp.implicit
+    if imp is None:
+        return {"max_contact_force_diff_pct": None, "max_velocity_diff_pct": None,
+                "note": "implicit coupling disabled in the case"
+                if not study.case.numerics.implicit_coupling else cp.message}
+    fi = np.interp(dyn.crank_angle, imp.crank_angle, imp.contact_force)
+    vi = np.interp(dyn.crank_angle, imp.crank_angle, imp.tappet_velocity)
+    dF = np.abs(fi - dyn.contact_force)
+    dv = np.abs(vi - dyn.tappet_velocity)
+    last = cp.history[-1] if cp.history else None
+    return {
+        "max_contact_force_diff_pct": _finite(dF.max() / dyn.contact_force.max() * 100),
+        "max_contact_force_diff_crank_deg": _finite(dyn.crank_angle[dF.argmax()]),
+        "max_velocity_diff_pct": _finite(dv.max() / np.abs(dyn.tappet_velocity).max() * 100),
+        "max_velocity_diff_crank_deg": _finite(dyn.crank_angle[dv.argmax()]),
+        "coupling_converged": bool(cp.converged),
+        "coupling_iterations": len(cp.history),
+        "coupling_last_rms_force_change_N": _finite(last.rms_force_change_N) if last else None,
+        "coupling_last_max_force_change_N": _finite(last.max_force_change_N) if last else None,
+    }

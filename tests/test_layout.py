@@ -1,0 +1,106 @@
+"""Design checks of the package layout: the paper's numbers live in one module, and the
+layers import only downwards (physics → contact/valvetrain/topography → config → workflow
+→ output → cli)."""
+
+import ast
+from pathlib import Path
+
+import pytest
+
+from tribodyn import paper
+
+SRC = Path(__file__).resolve().parents[1] / "src" / "tribodyn"
+
+#: Numbers that are the paper's (Tables 4–7, Figs. 5/6): they must appear as literals only
+#: in tribodyn/paper.py (docstrings and comments may quote them).
+PAPER_NUMBERS = {
+    paper.STEEL["boundary_shear_coefficient"], paper.DLC["boundary_shear_coefficient"],
+    paper.WCC["boundary_shear_coefficient"], paper.CAM_WIDTH, paper.STEEL["E"],
+    paper.DLC["E"], paper.WCC["E"], paper.LUBRICANT["viscosity"],
+    paper.LUBRICANT["pressure_viscosity"], paper.FIG5["load_total"],
+    paper.FIG5["entrainment_speed"], paper.SPRING_RATE, paper.SPRING_MASS,
+    paper.CAM_MAX_LIFT, *(v for r in paper.ROUGHNESS.values() for v in r.values()),
+}
+
+
+#: Coincidences: the same number with another meaning (file, value): reason.
+COINCIDENCES = {
+    ("physics/regimes.py", 0.54): "exponent of G in Dowson & Higginson's film formula",
+    ("output/figures/cycle.py", 0.012): "share of the axis width within which labels merge",
+}
+
+
+def _modules():
+    return sorted(p for p in SRC.rglob("*.py"))
+
+
+def _numeric_literals(tree):
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) \
+                and not isinstance(node.value, bool):
+            yield node
+
+
+def test_paper_numbers_are_defined_once():
+    """The literals 0.185, 0.012, 210e9, … occur in code only in paper.py."""
+    found = []
+    for path in _modules():
+        if path.name == "paper.py" and path.parent == SRC:
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in _numeric_literals(tree):
+            rel = str(path.relative_to(SRC))
+            if float(node.value) in PAPER_NUMBERS and (rel, node.value) not in COINCIDENCES:
+                found.append(f"{path.relative_to(SRC)}:{node.lineno}: {node.value!r}")
+    assert not found, "paper numbers outside paper.py:\n" + "\n".join(found)
+
+
+def test_the_check_sees_a_literal(tmp_path):
+    """The scan above is able to fail: it finds 0.185 in a code line."""
+    tree = ast.parse("x = 0.185  # ς of steel\n")
+    assert [n.value for n in _numeric_literals(tree)] == [0.185]
+
+
+#: Layer of each top-level part; a module may import only from its own layer or below.
+LAYERS = {"paper": 0, "_validation": 0, "physics": 1, "contact": 2, "valvetrain": 2,
+          "topography": 2, "config": 3, "workflow": 4, "output": 5, "cli": 6,
+          "__init__": 6, "__main__": 7}
+
+
+def _part(module: str) -> str:
+    return module.split(".")[1] if module.count(".") >= 1 else "__init__"
+
+
+def _imports(path: Path):
+    rel = path.relative_to(SRC.parent).with_suffix("")
+    pkg = list(rel.parts[:-1]) if path.name != "__init__.py" else list(rel.parts[:-1])
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = pkg[: len(pkg) - node.level + 1]
+                mod = ".".join(base + ([node.module] if node.module else []))
+            else:
+                mod = node.module or ""
+            if mod.startswith("tribodyn"):
+                names = [mod] if node.module else [f"{mod}.{a.name}" for a in node.names]
+                yield from ((n, node.lineno) for n in names)
+        elif isinstance(node, ast.Import):
+            for a in node.names:
+                if a.name.startswith("tribodyn"):
+                    yield a.name, node.lineno
+
+
+@pytest.mark.parametrize("path", _modules(), ids=lambda p: str(p.relative_to(SRC)))
+def test_imports_only_downwards(path):
+    rel = ".".join(path.relative_to(SRC.parent).with_suffix("").parts)
+    own = LAYERS[_part(rel)] if path.parent != SRC else LAYERS.get(path.stem, 6)
+    bad = [f"line {ln}: {mod}" for mod, ln in _imports(path)
+           if mod.count(".") >= 1 and LAYERS.get(_part(mod), 0) > own]
+    assert not bad, f"{rel} imports upwards: {bad}"
+
+
+def test_the_layer_check_sees_an_import():
+    """config/case.py imports the EHL options (downwards); the check finds that import."""
+    mods = {m for m, _ in _imports(SRC / "config" / "case.py")}
+    assert any(m.startswith("tribodyn.contact.ehl") for m in mods)
