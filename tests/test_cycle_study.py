@@ -168,3 +168,47 @@ def test_min_load_above_the_peak_force_is_a_clear_error(tmp_path):
     text = " ".join(r.output.split())                   # the console wraps long lines
     assert "numerics.min_load" in text and "peak contact force" in text
     assert not (tmp_path / "out").exists()
+
+
+def _claims_table(report: str) -> dict:
+    """Rows of the report's claims table: claim → (paper, tribodyn, why)."""
+    rows = {}
+    lines = report.split("## The paper's claims beside tribodyn", 1)[1].splitlines()
+    for line in lines[4:]:
+        if not line.startswith("|"):
+            break
+        cells = [c.strip() for c in line.strip().strip("|").split(" | ")]
+        rows[cells[0]] = cells[1:]
+    return rows
+
+
+def _numbers(text: str) -> list[float]:
+    import re
+    return [float(m.replace("−", "-")) for m in re.findall(r"[−+-]?\d+(?:\.\d+)?(?:e[−+-]?\d+)?",
+                                                           text)]
+
+
+def test_report_claims_match_the_summary(run_dir):
+    """The claims table quotes the summary's numbers (parsed back and compared)."""
+    s = json.loads((run_dir / "summary.json").read_text())
+    sets = s["surface_sets"]
+    rows = _claims_table((run_dir / "report.md").read_text())
+    assert len(rows) >= 7
+    ours = rows["WC-C cuts boundary friction vs steel by"][1]
+    assert _numbers(ours)[0] == pytest.approx(
+        sets[s["roles"]["wcc"]]["boundary_friction_reduction_vs_uncoated_pct"], abs=0.05)
+    film = rows["Coatings raise the film thickness by up to"][1]
+    best = max(v["max_film_gain_vs_uncoated_pct"] for k, v in sets.items()
+               if k != s["reference_set"])
+    assert _numbers(film)[0] == pytest.approx(best, abs=0.005)
+    loss = _numbers(rows["Friction loss per cam revolution (measured, Winer et al. 1986)"][1])
+    energies = [v["friction_energy_per_cycle_J"] for v in sets.values()]
+    assert loss[0] == pytest.approx(min(energies), rel=2e-3)
+    assert loss[-1] == pytest.approx(max(energies), rel=2e-3)
+    law = _numbers(rows["Viscous law (Newtonian Eq. 16 vs Eyring, Table 5)"][1])
+    ref = sets[s["reference_set"]]
+    assert law[0] == pytest.approx(ref["friction_energy_per_cycle_eyring_J"], rel=2e-3)
+    assert law[1] == pytest.approx(ref["friction_energy_per_cycle_newtonian_J"], rel=2e-3)
+    imp = rows["Implicit vs explicit dynamics"][1]
+    assert _numbers(imp)[0] == pytest.approx(
+        s["implicit_vs_explicit"]["max_contact_force_diff_pct"], abs=0.05)

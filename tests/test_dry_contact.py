@@ -21,8 +21,25 @@ def _pair(coating=None):
     return (Body(STEEL), Body(STEEL, coating))
 
 
+def _flat(x):
+    """A starting pressure that is not the answer: uniform over the middle third."""
+    return (np.abs(x) < x[-1] / 3).astype(float)
+
+
+def _assert_complementarity(r, e_prime):
+    """Gap recomputed with the analytic log kernel (valid for homogeneous pairs): zero
+    where loaded, non-negative elsewhere, to 1e-4 of the Hertz approach scale b²/R."""
+    from independent import log_kernel_displacement
+    g = r.x**2 / (2 * R) + log_kernel_displacement(r.x, r.pressure, e_prime)
+    loaded = r.pressure > 0
+    g -= g[loaded].mean()
+    scale = r.half_width**2 / R
+    assert np.abs(g[loaded]).max() < 1e-4 * scale
+    assert g[~loaded].min() > -1e-4 * scale
+
+
 def test_hertz_at_default_grid():
-    r = solve_dry_contact(W, R, _pair())
+    r = solve_dry_contact(W, R, _pair(), initial_pressure=_flat)
     # Hertz computed here from the closed form, independent of the solver
     e = 210e9 / 0.91
     b = np.sqrt(8 * W * R / (np.pi * e))
@@ -41,10 +58,11 @@ def test_hertz_at_default_grid():
 
 @pytest.mark.parametrize("thickness", [1e-8, 1e-6, 1e-4, 1e-2])
 def test_identical_coating_is_hertz_for_any_thickness(thickness):
-    plain = solve_dry_contact(W, R, _pair())
-    r = solve_dry_contact(W, R, _pair(Coating(210e9, 0.3, thickness)))
+    plain = solve_dry_contact(W, R, _pair(), initial_pressure=_flat)
+    r = solve_dry_contact(W, R, _pair(Coating(210e9, 0.3, thickness)), initial_pressure=_flat)
     hz = hertz_line_contact(W, R, reduced_modulus(_pair()))
     assert r.converged
+    _assert_complementarity(r, 210e9 / 0.91)
     assert r.half_width == pytest.approx(hz.half_width, rel=1e-2)
     assert r.max_pressure == pytest.approx(hz.max_pressure, rel=1e-2)
     assert np.allclose(r.pressure, plain.pressure, rtol=0, atol=1e-9 * hz.max_pressure)
@@ -52,8 +70,10 @@ def test_identical_coating_is_hertz_for_any_thickness(thickness):
 
 @pytest.mark.parametrize("Ec, nuc", [(52.5e9, 0.25), (840e9, 0.2)])
 def test_thin_coating_gives_substrate_hertz(Ec, nuc):
-    r = solve_dry_contact(W, R, _pair(Coating(Ec, nuc, 1e-8)))
+    r = solve_dry_contact(W, R, _pair(Coating(Ec, nuc, 1e-8)), initial_pressure=_flat)
     hz = hertz_line_contact(W, R, reduced_modulus(_pair()))
+    assert r.converged
+    _assert_complementarity(r, 210e9 / 0.91)      # a 10 nm layer: the steel pair
     assert r.half_width == pytest.approx(hz.half_width, rel=1e-2)
     assert r.max_pressure == pytest.approx(hz.max_pressure, rel=1e-2)
 
@@ -62,7 +82,8 @@ def test_thin_coating_gives_substrate_hertz(Ec, nuc):
 def test_thick_coating_gives_coating_material_hertz(Ec, nuc):
     e_coat = 2.0 / (STEEL.compliance + Material(Ec, nuc).compliance)
     hz = hertz_line_contact(W, R, e_coat)
-    r = solve_dry_contact(W, R, _pair(Coating(Ec, nuc, 50 * hz.half_width)))
+    r = solve_dry_contact(W, R, _pair(Coating(Ec, nuc, 50 * hz.half_width)),
+                          initial_pressure=_flat)
     assert r.converged
     assert r.half_width == pytest.approx(hz.half_width, rel=1e-2)
     assert r.max_pressure == pytest.approx(hz.max_pressure, rel=1e-2)
@@ -78,8 +99,13 @@ def test_intermediate_coating_is_between_the_limits():
 
 
 def test_grid_convergence():
-    coarse = solve_dry_contact(W, R, _pair(Coating(60e9, 0.3, 10e-6)), n=1024)
-    fine = solve_dry_contact(W, R, _pair(Coating(60e9, 0.3, 10e-6)), n=4096)
+    soft = _pair(Coating(60e9, 0.3, 10e-6))
+    coarse = solve_dry_contact(W, R, soft, n=1024, initial_pressure=_flat)
+    fine = solve_dry_contact(W, R, soft, n=4096, initial_pressure=_flat)
+    assert coarse.converged and fine.converged
+    # the soft layer makes the contact wider than the (starting-state-free) steel Hertz
+    b_steel = hertz_line_contact(W, R, reduced_modulus(_pair())).half_width
+    assert fine.half_width > 1.02 * b_steel
     assert coarse.max_pressure == pytest.approx(fine.max_pressure, rel=2e-3)
     assert coarse.half_width == pytest.approx(fine.half_width, rel=2e-3)
 

@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 from ehl_cases import E_PRIME, OIL, PAIR, STEEL, R, conditions
+from independent import mass_flux_deviation
 
 from tribodyn import Body, Coating, Roughness, solve_ehl
 
@@ -16,10 +17,17 @@ def smooth():
     return solve_ehl(W_LOAD, R, U_E, 0.3, PAIR, OIL)
 
 
+def assert_reynolds(r):
+    """Steady mass flux constant over the pressurised zone (see test_ehl_formulas)."""
+    dev_max, dev_95 = mass_flux_deviation(r.x, r.pressure, r.film, r.entrainment_speed, OIL)
+    assert dev_max < 0.25 and dev_95 < 0.01, (dev_max, dev_95)
+
+
 @pytest.mark.parametrize("sigma", [1e-10, 1e-9])
 def test_vanishing_roughness_recovers_smooth_solution(smooth, sigma):
     r = solve_ehl(W_LOAD, R, U_E, 0.3, PAIR, OIL, Roughness(5e10, sigma, 2e-6))
     assert r.converged, r.message
+    assert_reynolds(r)
     assert r.asperity_load < 1e-12 * W_LOAD
     assert r.boundary_friction < 1e-12 * W_LOAD
     assert r.central_film == pytest.approx(smooth.central_film, rel=1e-9)
@@ -50,6 +58,7 @@ def test_intermediate_roughness_shares_load_and_is_monotone(smooth):
 def test_identical_coating_reproduces_uncoated(smooth):
     coated = (Body(STEEL), Body(STEEL, Coating(210e9, 0.3, 4e-6)))
     r = solve_ehl(W_LOAD, R, U_E, 0.3, coated, OIL)
+    assert_reynolds(r)
     assert r.central_film == pytest.approx(smooth.central_film, rel=1e-10)
     assert np.allclose(r.pressure, smooth.pressure, rtol=0, atol=1e-9 * smooth.pressure.max())
 
@@ -68,6 +77,7 @@ def test_soft_coating_widens_contact_and_thickens_film(smooth):
 def test_negative_entrainment_is_the_mirror_image(smooth):
     m = solve_ehl(W_LOAD, R, -U_E, 0.3, PAIR, OIL)
     assert m.converged, m.message
+    assert_reynolds(m)
     assert m.central_film == pytest.approx(smooth.central_film, rel=1e-10)
     assert m.min_film_position == pytest.approx(-smooth.min_film_position, rel=1e-10)
     p_mirror = np.interp(-smooth.x, m.x, m.pressure)

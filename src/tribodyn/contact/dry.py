@@ -109,7 +109,7 @@ def _cgm(op: DeformationOperator, geom: np.ndarray, w: float, dx: float, p: np.n
 
 def solve_dry_contact(load: float, radius: float, bodies, *, n: int = 1024,
                       domain: float = 1.6, tol: float = 1e-10, max_iter: int = 3000,
-                      max_domain_growth: int = 3) -> DryContactResult:
+                      max_domain_growth: int = 3, initial_pressure=None) -> DryContactResult:
     """Dry line contact of a steel or coated cylinder/plane pair.
 
     Parameters
@@ -123,6 +123,8 @@ def solve_dry_contact(load: float, radius: float, bodies, *, n: int = 1024,
     tol : convergence tolerance on the relative L1 pressure change per iteration.
     max_domain_growth : how many times the domain is enlarged (×1.5) when the contact
         reaches its edge before giving up (``converged=False``).
+    initial_pressure : optional callable p₀(x) [Pa] of the node positions [m] for the
+        starting pressure (scaled to the load); default: Hertz with the bulk E'.
     """
     w = check_positive("load", load, "N/m")
     r = check_positive("radius", radius, "m")
@@ -142,7 +144,12 @@ def solve_dry_contact(load: float, radius: float, bodies, *, n: int = 1024,
         dx = x[1] - x[0]
         op = DeformationOperator(bodies, dx, n)
         geom = x**2 / (2.0 * r)
-        p0 = hertz_line_contact(w, r, reduced_modulus(bodies)).pressure(x)
+        if initial_pressure is None:
+            p0 = hz.pressure(x)
+        else:
+            p0 = np.maximum(np.asarray(initial_pressure(x), dtype=float), 0.0)
+            if p0.shape != x.shape or not np.all(np.isfinite(p0)):
+                raise InputError("initial_pressure(x) must return finite values, one per node")
         if p0.sum() <= 0.0:
             p0 = np.ones(n)
         p0 *= w / (p0.sum() * dx)

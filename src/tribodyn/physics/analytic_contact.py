@@ -6,7 +6,7 @@ the explicit model): no Reynolds solution, only
 * Hertz half-width b and pressure p(x) = p_h √(1 − x²/b²) with the bulk reduced modulus,
 * central film h_c from a film formula (Moes by default: valid in all four regimes;
   Pan–Hamrock or Dowson–Toyoda on request) and h_min = h_c × (Pan–Hamrock h_min/h_c),
-  capped at h_c,
+  capped at h_c (h_min = h_c for an isoviscous lubricant, where that fit does not apply),
 * Greenwood–Tripp asperity pressure and area at h_c, uniform over the Hertz width
   (asperity load capped at the total load),
 * viscous friction ∫_{−b}^{b} τ(x) dx with the local Roelands viscosity μ(p(x)), the
@@ -88,7 +88,11 @@ def analytic_contact(load, radius, entrainment_speed, sliding_speed, bodies,
         hc = hc_ph
     else:
         hc = dowson_toyoda_central(W, U, G, R)
-    hmin = hc * np.minimum(hm_ph / hc_ph, 1.0)
+    # Pan–Hamrock's h_min/h_c is a piezoviscous-elastic fit (∝ G^0.098 → 0 as α → 0); for
+    # an isoviscous lubricant (G = 0) the film is taken flat, h_min = h_c (rigid limit)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = np.where(hc_ph > 0.0, hm_ph / hc_ph, 1.0)
+    hmin = hc * np.minimum(ratio, 1.0)
 
     b = np.sqrt(8.0 * w * R / (np.pi * e))
     ph = np.sqrt(w * e / (2.0 * np.pi * R))

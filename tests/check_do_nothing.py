@@ -1,0 +1,53 @@
+"""The do-nothing check: run the solver tests with each solver's iteration replaced by one
+that returns its starting state as converged (see tests/do_nothing.py), and list the tests
+that call that solver and still pass. A good suite lists none.
+
+    python tests/check_do_nothing.py              # dry, ehl and dynamics
+    python tests/check_do_nothing.py ehl          # one of them
+
+Prints one JSON object: per solver, the tests run, the tests that used the solver, and the
+names of those that still passed. Exit status 1 if any did.
+"""
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+#: the test files of each solver
+FILES = {
+    "dry": ["test_dry_contact.py"],
+    "ehl": ["test_ehl_formulas.py", "test_ehl_hydrodynamic.py", "test_ehl_mixed_coated.py",
+            "test_ehl_transient.py", "test_ehl_errors.py", "test_ehl_references.py"],
+    "dynamics": ["test_valvetrain_dynamics.py"],
+}
+
+
+def check(solver: str) -> dict:
+    with tempfile.TemporaryDirectory() as tmp:
+        report = Path(tmp) / "report.jsonl"
+        env = dict(os.environ, TRIBODYN_DO_NOTHING=solver,
+                   TRIBODYN_DO_NOTHING_REPORT=str(report),
+                   PYTHONPATH=os.pathsep.join([str(HERE), os.environ.get("PYTHONPATH", "")]))
+        cmd = [sys.executable, "-m", "pytest", "-q", "-p", "do_nothing", "-p",
+               "no:cacheprovider", "--timeout=600", *(str(HERE / f) for f in FILES[solver])]
+        subprocess.run(cmd, cwd=HERE.parent, env=env, capture_output=True, text=True)
+        rows = [json.loads(line) for line in report.read_text().splitlines()] \
+            if report.exists() else []
+    used = [r for r in rows if r["solver_called"]]
+    return {"tests": len(rows), "using_the_solver": len(used),
+            "still_pass": sorted(r["test"] for r in used if r["passed"])}
+
+
+def main(argv):
+    solvers = argv or list(FILES)
+    out = {s: check(s) for s in solvers}
+    print(json.dumps(out, indent=2))
+    return 1 if any(v["still_pass"] for v in out.values()) else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

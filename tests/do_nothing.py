@@ -1,0 +1,98 @@
+"""pytest plugin of the do-nothing check: replace one solver's iteration by one that returns
+its starting state and reports convergence, and record which tests still pass.
+
+A good solver test fails under this replacement, because it checks the answer, not the
+start. Enabled only with ``-p do_nothing`` and the environment variable
+``TRIBODYN_DO_NOTHING`` set to ``dry``, ``ehl`` or ``dynamics``; the outcome of every test
+that called the replaced iteration is appended (JSON lines) to the file named by
+``TRIBODYN_DO_NOTHING_REPORT``. Run all three with ``python tests/check_do_nothing.py``.
+"""
+
+import importlib
+import json
+import os
+
+import numpy as np
+import pytest
+
+_calls = {"n": 0}
+
+
+def _dry_nothing(op, geom, w, dx, p, tol, max_iter):
+    """The CGM of contact/dry.py, doing nothing: the starting pressure, 'converged'."""
+    _calls["n"] += 1
+    return p, None, True, 0, "converged (do-nothing)"
+
+
+def _newton_nothing(sysm, st, tol, max_iter, lu=None, coarse=None):
+    """The EHL Newton iteration doing nothing: the starting state, 'converged'."""
+    from tribodyn.contact.ehl.newton import NewtonOutcome, State
+    _calls["n"] += 1
+    ev = sysm.evaluate(st.Q, st.H0)
+    return NewtonOutcome(State(st.Q, st.H0, np.maximum(ev.P, 0.0), ev.H), True, 0,
+                         "converged (do-nothing)", None)
+
+
+class _Constant:
+    """A solve_ivp result that stays at the initial state, with no events."""
+
+    def __init__(self, t_eval, y0, n_events):
+        self.t = np.asarray(t_eval)
+        self.y = np.repeat(np.asarray(y0, float)[:, None], self.t.size, axis=1)
+        self.t_events = [np.array([]) for _ in range(n_events)]
+        self.y_events = [np.empty((0, len(y0))) for _ in range(n_events)]
+        self.status, self.message, self.success = 0, "do-nothing", True
+        self.nfev = self.njev = self.nlu = 0
+
+
+def _ivp_nothing(fun, t_span, y0, method="RK45", t_eval=None, events=None, **kw):
+    _calls["n"] += 1
+    n_events = 0 if events is None else (len(events) if isinstance(events, (list, tuple))
+                                         else 1)
+    return _Constant(t_eval if t_eval is not None else [t_span[0], t_span[1]], y0, n_events)
+
+
+#: solver → [(module, attribute, replacement)]: every place the iteration is looked up.
+PATCHES = {
+    "dry": [("tribodyn.contact.dry", "_cgm", _dry_nothing)],
+    "ehl": [("tribodyn.contact.ehl.steady", "newton", _newton_nothing),
+            ("tribodyn.contact.ehl.transient", "newton", _newton_nothing)],
+    "dynamics": [("tribodyn.valvetrain.dynamics", "solve_ivp", _ivp_nothing)],
+}
+
+
+def pytest_configure(config):
+    which = os.environ.get("TRIBODYN_DO_NOTHING")
+    if not which:
+        return
+    for mod, attr, fn in PATCHES[which]:
+        m = importlib.import_module(mod)
+        if not hasattr(m, attr):
+            raise RuntimeError(f"do-nothing check: {mod}.{attr} not found (update PATCHES)")
+        setattr(m, attr, fn)
+
+
+_fixture_uses_solver: set[str] = set()
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_fixture_setup(fixturedef, request):
+    before = _calls["n"]
+    yield
+    if _calls["n"] > before:
+        _fixture_uses_solver.add(fixturedef.argname)
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_setup(item):
+    _calls["n"] = 0
+
+
+def pytest_runtest_makereport(item, call):
+    path = os.environ.get("TRIBODYN_DO_NOTHING_REPORT")
+    if not path or call.when != "call":
+        return
+    used = _calls["n"] > 0 or bool(_fixture_uses_solver & set(item.fixturenames))
+    with open(path, "a", encoding="utf-8") as f:
+        f.write(json.dumps({"test": item.nodeid, "passed": call.excinfo is None,
+                            "solver_called": used}) + "\n")
