@@ -165,6 +165,86 @@ def test_missing_optional_parts_are_skipped(tmp_path):
     _check_pngs(paths, tmp_path)
 
 
-@pytest.mark.parametrize("name", ["fig99_unknown.png"])
-def test_unknown_names_are_ignored(tmp_path, name):
-    assert make_figures(synthetic_dataset(), tmp_path, only=[name]) == {}
+def test_unknown_names_are_an_error(tmp_path):
+    from tribodyn import InputError
+    with pytest.raises(InputError, match="fig99_unknown.png"):
+        make_figures(synthetic_dataset(), tmp_path, only=["fig99_unknown.png"])
+    assert not list(tmp_path.iterdir())
+
+
+# ----------------------------------------------------------------------------- content
+@pytest.fixture
+def drawn(monkeypatch, tmp_path):
+    """Draw figures but keep the matplotlib Figure objects instead of only the PNGs."""
+    from tribodyn.output.figures import common
+    figs = {}
+    save = common.save_figure
+
+    def keep(fig, path):
+        figs[path.name] = fig
+        fig.canvas.draw()                      # what the PNG shows, laid out
+        return save(fig, path)
+
+    monkeypatch.setattr(common, "save_figure", keep)
+    monkeypatch.setattr(common.plt, "close", lambda fig=None: None)
+
+    def draw(ds, name):
+        make_figures(ds, tmp_path, only=[name])
+        return figs[name]
+    return draw
+
+
+def _lines_by_label(ax):
+    return {ln.get_label(): ln for ln in ax.get_lines()}
+
+
+def test_central_film_figure_shows_the_films_and_their_differences(drawn):
+    """Fig. 15: each set's h_c in µm over the event, and the change against the reference
+    in % in the lower panel; the failed step is marked where it is."""
+    ds = synthetic_dataset()
+    fig = drawn(ds, "fig15_central_film.png")
+    top, bottom = fig.axes[0], fig.axes[1]
+    e = ds["ehl_crank"].values
+    hc = ds["central_film"].values
+    for i, label in enumerate(ds["surface_label"].values):
+        ln = _lines_by_label(top)[str(label)]
+        x, y = ln.get_data()
+        np.testing.assert_allclose(y, np.interp(x, e, hc[i]) * 1e6, rtol=1e-9)
+    ref = hc[0]
+    wcc = next(ln for lab, ln in _lines_by_label(bottom).items() if lab.startswith("WC-C"))
+    x, y = wcc.get_data()
+    ok = np.isfinite(y)
+    np.testing.assert_allclose(y[ok], (np.interp(x[ok], e, hc[2] / ref) - 1) * 100,
+                               rtol=1e-6)
+    assert "h_c" in top.get_ylabel() and "µm" in top.get_ylabel()
+    failed = np.flatnonzero((ds["converged"].values[2] == 0) & (ds["loaded"].values[2] == 1))
+    crosses = [ln for ln in top.get_lines() if ln.get_marker() == "x"]
+    assert crosses and crosses[0].get_xdata()[0] == pytest.approx(e[failed[0]])
+
+
+def test_contact_force_figure_shows_explicit_and_implicit(drawn):
+    ds = synthetic_dataset()
+    fig = drawn(ds, "fig09_contact_force.png")
+    ax = fig.axes[0]
+    lines = [ln for ln in ax.get_lines() if len(ln.get_xdata()) > 100]
+    ys = [np.asarray(ln.get_ydata()) for ln in lines]
+    ca = ds["crank_angle"].values
+    for name in ("contact_force", "contact_force_implicit"):
+        v = ds[name].values
+        assert any(np.allclose(y, np.interp(ln.get_xdata(), ca, v), rtol=1e-9)
+                   for ln, y in zip(lines, ys)), name
+
+
+def test_greenwood_chart_places_the_representative_points(drawn):
+    """Fig. 12: the six points sit at their (g_E, g_V) on logarithmic axes."""
+    ds = synthetic_dataset()
+    fig = drawn(ds, "fig12_greenwood_chart.png")
+    ax = fig.axes[0]
+    assert ax.get_xscale() == "log" and ax.get_yscale() == "log"
+    e = ds["ehl_crank"].values
+    idx = [int(np.argmin(np.abs(e - c))) for c in ds["point_crank"].values]
+    marks = np.vstack([np.column_stack(ln.get_data()) for ln in ax.get_lines()
+                       if ln.get_marker() == "o"])
+    for i in idx:
+        gE, gV = ds["gE"].values[i], ds["gV"].values[i]
+        assert np.min(np.hypot(np.log(marks[:, 0] / gE), np.log(marks[:, 1] / gV))) < 1e-9

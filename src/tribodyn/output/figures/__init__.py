@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..._validation import InputError
 from .coating import fig05, fig06
 from .common import EVENT_FRACTION, FIGURES, TITLE_SIZE, has, plt
 from .cycle import fig15, fig16, fig17, fig18, fig19, fig20
@@ -62,6 +63,11 @@ def make_figures(ds, out_dir, *, only=None) -> dict[str, Path]:
         if ref in names and names[0] != ref:      # the figures compare against index 0
             k = names.index(ref)
             ds = ds.isel(surface_set=[k] + [i for i in range(len(names)) if i != k])
+    if only is not None:
+        unknown = sorted(set(only) - set(_MAKERS))
+        if unknown:
+            raise InputError(f"unknown figure name(s) {', '.join(unknown)}; known: "
+                             f"{', '.join(_MAKERS)}")
     wanted = list(_MAKERS) if only is None else [n for n in _MAKERS if n in set(only)]
     written = {}
     with plt.rc_context({"font.size": 10, "axes.titlesize": TITLE_SIZE,
