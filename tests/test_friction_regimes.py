@@ -10,7 +10,9 @@ from tribodyn.physics.analytic_contact import analytic_contact
 from tribodyn.physics.friction import couette_shear_stress, limit_shear_stress
 from tribodyn.physics.regimes import (
     greenwood_chart_groups,
+    hamrock_groups,
     lubrication_regime,
+    moes_central,
     moes_groups,
     pan_hamrock,
 )
@@ -106,17 +108,45 @@ def test_greenwood_chart_regimes(gV, gE, regime):
     assert lubrication_regime(gV, gE) == regime
 
 
-def test_chart_groups_and_film_formulas():
-    W, U, G = 1e-4, 1e-11, 5000.0
+def test_chart_groups_from_the_dimensional_inputs():
+    """Johnson's groups written from the physical inputs (Johnson, Proc. IMechE 184 (1970);
+    Contact Mechanics, 1985, §13.6): g_V = α w^(3/2)/(R √(μ₀u)), g_E = w/√(μ₀ u E' R)."""
+    w, R, u, mu0, alpha, e = 4e4, 0.01, 2.0, 0.055, 1.05e-8, 2.3e11
+    W, U, G = hamrock_groups(w, R, u, mu0, alpha, e)
     gV, gE = greenwood_chart_groups(W, U, G)
-    assert gV == pytest.approx(G * W**1.5 / math.sqrt(U))
-    assert gE == pytest.approx(W / math.sqrt(U))
+    assert gV == pytest.approx(alpha * w**1.5 / (R * math.sqrt(mu0 * u)), rel=1e-12)
+    assert gE == pytest.approx(w / math.sqrt(mu0 * u * e * R), rel=1e-12)
     M, L = moes_groups(W, U, G)
-    assert M == pytest.approx(W / math.sqrt(2 * U))
-    assert L == pytest.approx(G * (2 * U) ** 0.25)
-    hc, hm = pan_hamrock(W, U, G, 0.01)
-    assert hc == pytest.approx(0.01 * 2.922 * W**-0.166 * U**0.692 * G**0.470)
-    assert hm == pytest.approx(0.01 * 1.714 * W**-0.128 * U**0.694 * G**0.568)
+    # Moes: M = w/(E'R) (2U)^(−1/2), L = αE' (2U)^(1/4)
+    assert M == pytest.approx(w / (e * R) / math.sqrt(2 * mu0 * u / (e * R)), rel=1e-12)
+    assert L == pytest.approx(alpha * e * (2 * mu0 * u / (e * R)) ** 0.25, rel=1e-12)
+
+
+@pytest.mark.parametrize("gV, gE, regime", [
+    # boundaries where Johnson's asymptotes meet: IR Ĥ = 4.9 = IE 3.01 g_E^0.8 at
+    # g_E = (4.9/3.01)^1.25 = 1.838; IR 4.9 = PR 1.66 g_V^(2/3) at g_V = (4.9/1.66)^1.5 = 5.07
+    (1.0, 1.70, "IR"), (1.0, 2.00, "IE"), (4.8, 0.5, "IR"), (5.4, 0.5, "PR"),
+    (1e5, 1e2, "PE"), (1e3, 2e4, "IE"),
+])
+def test_regime_boundaries_from_the_asymptotes(gV, gE, regime):
+    assert lubrication_regime(gV, gE) == regime
+
+
+def test_moes_formula_tends_to_its_asymptotes():
+    """Far into each regime Moes' interpolation tends to its published asymptotes
+    (Moes 1992; Venner & Lubrecht 2000): H_RI = 3/M, H_EI = 2.621 M^(−1/5),
+    H_RP = 1.287 L^(2/3), H_EP = 1.311 M^(−1/8) L^(3/4), H = (h/R)(2U)^(−1/2)."""
+    R, U = 0.01, 1e-11
+
+    def H(M, L):
+        W = M * math.sqrt(2 * U)
+        G = L / (2 * U) ** 0.25
+        return float(moes_central(W, U, G, R)) / R / math.sqrt(2 * U)
+
+    assert H(0.01, 0.0) == pytest.approx(3 / 0.01, rel=1e-3)           # rigid–isoviscous
+    assert H(1e4, 0.0) == pytest.approx(2.621 * 1e4**-0.2, rel=2e-2)    # elastic–isoviscous
+    assert H(0.05, 1e4) == pytest.approx(1.287 * 1e4**(2 / 3), rel=2e-2)  # rigid–piezoviscous
+    assert H(1e5, 30.0) == pytest.approx(1.311 * 1e5**-0.125 * 30**0.75, rel=2e-2)
 
 
 def test_analytic_contact_is_finite_everywhere_including_zero_entrainment():
