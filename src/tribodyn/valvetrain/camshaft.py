@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import paper
 from .._validation import InputError, check_nonnegative, check_positive, check_range
 from .cams import CamProfile
 
@@ -65,7 +66,7 @@ class Camshaft:
     lobe_position: float
     drive_stiffness: float
     drive_length: float
-    E: float = 210e9
+    E: float = paper.STEEL["E"]
     nu: float = 0.3
     density: float = 7850.0
     bearing_stiffness: float | None = None

@@ -52,8 +52,9 @@ class ValveGeometry:
     """Poppet valve: stem_diameter, stem_length (tip to stem end) [m], retainer_position
     (tip to collet groove) [m], retainer_mass (retainer + collets) [kg], head_mass [kg],
     head_stiffness [N/m], seat_stiffness (seat insert + seat contact) [N/m], E [Pa],
-    density [kg/m³], elements (stem bar elements), modes / cutoff [Hz] (Craig–Bampton),
-    damping_ratio (modal ζ)."""
+    density [kg/m³], elements (stem bar elements), modes / cutoff [Hz] (Craig–Bampton: k
+    modes, or all up to the cut-off when modes is None; default 5 kHz, well above the cam's
+    harmonics and the spring's first surge modes), damping_ratio (modal ζ)."""
 
     stem_diameter: float
     stem_length: float
@@ -65,8 +66,8 @@ class ValveGeometry:
     E: float = STEEL_E
     density: float = STEEL_DENSITY
     elements: int = 12
-    modes: int | None = 2
-    cutoff: float | None = None
+    modes: int | None = None
+    cutoff: float | None = 5000.0
     damping_ratio: float = 0.02
 
     def __post_init__(self):
@@ -138,8 +139,8 @@ class TappetGeometry:
     E: float = STEEL_E
     density: float = STEEL_DENSITY
     elements: int = 6
-    modes: int | None = 0
-    cutoff: float | None = None
+    modes: int | None = None
+    cutoff: float | None = 5000.0
     damping_ratio: float = 0.02
 
     def __post_init__(self):
@@ -247,7 +248,7 @@ class FlexibleValvetrain:
         """The same valvetrain with k fixed-interface modes in every FE body (None: all)."""
         return replace(self, valve=replace(self.valve, modes=k, cutoff=None),
                        tappet=replace(self.tappet, modes=k, cutoff=None),
-                       spring=replace(self.spring, modes=k))
+                       spring=replace(self.spring, modes=k, cutoff=None))
 
     # -- reduced bodies -------------------------------------------------------------------
     def max_spring_force(self, max_lift: float) -> float:
@@ -265,12 +266,12 @@ class FlexibleValvetrain:
                                      damping_ratio=v.damping_ratio, name="valve")
         ft = t.fe_model()
         bt = [ft.labels["face"]]
-        out["tappet"] = craig_bampton(ft.M, ft.K, bt, modes=t.modes or 0, cutoff=t.cutoff,
+        out["tappet"] = craig_bampton(ft.M, ft.K, bt, modes=t.modes, cutoff=t.cutoff,
                                       damping_ratio=t.damping_ratio, name="tappet")
         fs = s.fe_model()
         clash = s.clash_nodes(self.max_spring_force(max_lift))
         bs = [0] + [j for j in clash if 0 < j < fs.n - 1] + [fs.n - 1]
-        out["spring"] = craig_bampton(fs.M, fs.K, bs, modes=s.modes,
+        out["spring"] = craig_bampton(fs.M, fs.K, bs, modes=s.modes, cutoff=s.cutoff,
                                       damping_ratio=s.damping_ratio, name="spring")
         return out
 

@@ -59,7 +59,7 @@ class HelicalSpring:
     dead_coils : closed end coils at each end (their mass at the retainer end moves with it);
     shear_modulus G [Pa], density ρ [kg/m³];
     elements_per_coil : FE mesh of the continuum; modes : fixed-interface modes kept
-        (Craig–Bampton); damping_ratio : modal ζ of the surge modes;
+        (Craig–Bampton), or all up to ``cutoff`` [Hz] when modes is None; damping_ratio : modal ζ of the surge modes;
     clash_margin : coils whose static closing force is below clash_margin × the largest
         working force are kept as interface nodes (their clash is resolved exactly);
     clash_damping : damping of a closed coil contact [N·s/m].
@@ -75,7 +75,8 @@ class HelicalSpring:
     shear_modulus: float = 79.3e9
     density: float = 7850.0
     elements_per_coil: int = 2
-    modes: int | None = 4
+    modes: int | None = None
+    cutoff: float | None = 5000.0
     damping_ratio: float = 0.02
     clash_margin: float = 1.25
     clash_damping: float = 50.0
