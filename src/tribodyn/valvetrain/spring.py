@@ -295,3 +295,24 @@ class HelicalSpring:
         """Nodes of the elements that may close up to clash_margin × max_force."""
         close = np.nonzero(self.closing_forces() <= self.clash_margin * max_force)[0]
         return sorted({int(j) for j in close} | {int(j) + 1 for j in close})
+
+    def surge_frequencies(self, compression: float, count: int = 3) -> np.ndarray:
+        """Surge frequencies [Hz] of the spring held at both ends at a static compression
+        [m]: the tangent stiffness includes the clash contact of closed coils, so they rise
+        as coils close (the dead coil's mass is left out: both ends are fixed)."""
+        import scipy.linalg as sla
+        st = self.statics(compression)
+        k, m, g, _ = self._elements()
+        n = k.size + 1
+        kt = k + np.array([self.clash_force(st.compressions[j] - g[j])[1]
+                           for j in range(k.size)])
+        K = np.zeros((n, n))
+        M = np.zeros((n, n))
+        from .fe import MASS_MIXING
+        for j in range(k.size):
+            K[j:j + 2, j:j + 2] += kt[j] * np.array([[1.0, -1.0], [-1.0, 1.0]])
+            M[j:j + 2, j:j + 2] += m[j] * ((1 - MASS_MIXING) / 2 * np.eye(2)
+                                           + MASS_MIXING / 6 * np.array([[2.0, 1.0],
+                                                                          [1.0, 2.0]]))
+        w2 = sla.eigh(K[1:-1, 1:-1], M[1:-1, 1:-1], eigvals_only=True)
+        return np.sqrt(np.clip(w2[:count], 0.0, None)) / (2.0 * math.pi)
