@@ -19,7 +19,7 @@ from ..valvetrain.sweep import jump_speed
 __all__ = ["ModelComparison", "compare_lumped_flexible", "JUMP_SPEED_TOLERANCE"]
 
 #: resolution of the jump-speed bisection [rpm]
-JUMP_SPEED_TOLERANCE = 100.0
+JUMP_SPEED_TOLERANCE = 250.0
 
 
 @dataclass
@@ -44,9 +44,11 @@ def _row(r: ValvetrainResult) -> dict:
 
 def compare_lumped_flexible(case, tribology, flexible: ValvetrainResult, *,
                             jump_speeds: bool = True,
-                            high_rpm: float = 12000.0) -> ModelComparison:
+                            high_factor: float = 3.0) -> ModelComparison:
     """Run the lumped companion of a flexible ``case`` (same tribology and numerics) and
-    collect both models' numbers; ``flexible`` is the case's own (flexible) run."""
+    collect both models' numbers; ``flexible`` is the case's own (flexible) run. The jump
+    speed is searched up to ``high_factor`` × the case's engine speed (NaN with a message
+    if there is no jump up to there)."""
     out = ModelComparison()
     opts = case.dynamics_options()
     lumped = simulate_valvetrain(case.cam(), case.lumped_companion(), tribology=tribology,
@@ -65,7 +67,8 @@ def compare_lumped_flexible(case, tribology, flexible: ValvetrainResult, *,
             continue
         low = min(0.5 * case.engine_speed, 2000.0)
         try:
-            lo, hi = jump_speed(case.cam(), params, low=low, high=high_rpm,
+            lo, hi = jump_speed(case.cam(), params, low=low,
+                                high=high_factor * case.engine_speed,
                                 tolerance=JUMP_SPEED_TOLERANCE, tribology=tribology, **kw)
             out.rows[name]["jump_speed_rpm"] = 0.5 * (lo + hi)
         except (RuntimeError, ValueError) as exc:      # InputError is a ValueError
