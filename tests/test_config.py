@@ -140,7 +140,8 @@ def test_empty_file_is_the_paper_case(paper):
 
 
 def test_bundled_names(paper):
-    assert set(bundled_cases()) == {"andreou2023", "example_table_cam"}
+    assert set(bundled_cases()) == {"andreou2023", "andreou2023_flexible",
+                                    "example_table_cam"}
     assert load_case("andreou2023") == paper
 
 
@@ -290,7 +291,8 @@ def test_docs_cover_every_key():
         encoding="utf-8")
     from tribodyn import config as cfg
     models = [cfg.CaseInfo, cfg.Engine, cfg.AccelerationCamConfig, cfg.CircularArcCamConfig,
-              cfg.TableCamConfig, cfg.Valvetrain, cfg.LubricantConfig, cfg.MaterialConfig,
+              cfg.TableCamConfig, cfg.Valvetrain, cfg.ValveConfig, cfg.TappetConfig,
+              cfg.SpringConfig, cfg.CamshaftConfig, cfg.LubricantConfig, cfg.MaterialConfig,
               cfg.RoughnessConfig, cfg.SurfaceSetConfig, cfg.Numerics]
     missing = [f"{m.__name__}.{k}" for m in models for k in m.model_fields
                if f"`{k}`" not in doc]

@@ -35,7 +35,11 @@ from .schema import (
                    Numerics,
                    RoughnessConfig,
                    SurfaceSetConfig,
+                   CamshaftConfig,
+                   SpringConfig,
                    TableCamConfig,
+                   TappetConfig,
+                   ValveConfig,
                    Valvetrain,
 )
 
@@ -43,4 +47,5 @@ __all__ = ["Case", "SurfaceSet", "load_case", "bundled_cases", "DEFAULT_CASE", "
            "to_toml", "set_dotted", "format_validation_error", "CAM_MODELS", "CaseInfo",
            "Engine", "AccelerationCamConfig", "CircularArcCamConfig", "TableCamConfig",
            "Valvetrain", "LubricantConfig", "MaterialConfig", "RoughnessConfig",
-           "SurfaceSetConfig", "Numerics"]
+           "SurfaceSetConfig", "Numerics", "ValveConfig", "TappetConfig", "SpringConfig",
+           "CamshaftConfig"]

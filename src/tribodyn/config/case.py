@@ -38,12 +38,16 @@ from ..physics.asperity import Roughness
 from ..physics.friction import BOUNDARY_SHEAR_STRENGTH
 from ..physics.lubricant import Lubricant
 from ..physics.materials import Body, Coating, Material
+from ..valvetrain.camshaft import Camshaft
 from ..valvetrain.cams import AccelerationCam, CamProfile, CircularArcCam, TabulatedCam
+from ..valvetrain.flexible import FlexibleValvetrain, TappetGeometry, ValveGeometry
+from ..valvetrain.spring import HelicalSpring
 from ..valvetrain.kinematics import rpm_to_cam_speed
 from ..valvetrain.parameters import ValvetrainParameters
 from .errors import CamTableError, Problems, format_validation_error
 from .schema import (
     CAM_MODELS,
+    LUMPED_ONLY,
     AccelerationCamConfig,
     CamConfig,
     CaseInfo,
@@ -52,7 +56,10 @@ from .schema import (
     MaterialConfig,
     Numerics,
     Section,
+    SpringConfig,
     SurfaceSetConfig,
+    TappetConfig,
+    ValveConfig,
     Valvetrain,
     paper_materials,
     paper_surface_sets,
@@ -241,6 +248,9 @@ class Case(Section):
         ``resolve_paths=True`` makes the cam table path absolute."""
         d = self.model_dump(mode="python", exclude_none=True, by_alias=True)
         d["cam"] = {"type": d["cam"].pop("type"), **d["cam"]}
+        if self.valvetrain.model == "flexible":         # the bodies give these
+            for k in LUMPED_ONLY:
+                d["valvetrain"].pop(k, None)
         if resolve_paths and self.cam_config.type == "table":
             d["cam"]["path"] = str(self.cam_table_path)
         return d
@@ -326,7 +336,8 @@ class Case(Section):
         try:
             cam = TabulatedCam.from_csv(self.cam_table_path, c.base_radius,
                                         smoothing=c.smoothing, angle_unit=c.angle_unit,
-                                        lift_unit=c.lift_unit, tappet_radius=tr)
+                                        lift_unit=c.lift_unit, angle_column=c.angle_column,
+                                        lift_column=c.lift_column, tappet_radius=tr)
         except InputError as exc:        # the table's own message, filed under cam.path
             msg = str(exc)
             if str(self.cam_table_path) not in msg:
@@ -344,10 +355,43 @@ class Case(Section):
             self._cam = self._build_cam()
         return self._cam
 
-    def valvetrain_parameters(self) -> ValvetrainParameters:
-        """:class:`~tribodyn.valvetrain.ValvetrainParameters` (cam_width = ``[cam] width``)."""
-        d = self.valvetrain.model_dump()
+    def valvetrain_parameters(self):
+        """The valvetrain of the case: :class:`~tribodyn.valvetrain.ValvetrainParameters`
+        (``model = "lumped"``) or :class:`~tribodyn.valvetrain.flexible.FlexibleValvetrain`
+        (``"flexible"``); either runs in :func:`~tribodyn.valvetrain.simulate_valvetrain`."""
+        joints = self._joint_parameters()
+        if self.valvetrain.model == "lumped":
+            return joints
+        return self._flexible(joints)
+
+    def lumped_companion(self) -> ValvetrainParameters:
+        """The lumped model with the same masses, rate, preload and static compliances
+        (of a flexible case; a lumped case returns its own parameters)."""
+        vp = self.valvetrain_parameters()
+        return vp if isinstance(vp, ValvetrainParameters) else vp.lumped_equivalent()
+
+    @property
+    def valvetrain_model(self) -> str:
+        """``"lumped"`` or ``"flexible"``."""
+        return self.valvetrain.model
+
+    def _joint_parameters(self) -> ValvetrainParameters:
+        d = self.valvetrain.model_dump(exclude={"model", "valve", "tappet", "spring",
+                                                "camshaft"})
         return ValvetrainParameters(**d, cam_width=self.cam_config.width)
+
+    def _flexible(self, joints: ValvetrainParameters) -> FlexibleValvetrain:
+        v = self.valvetrain
+        vc = v.valve or ValveConfig()
+        tc = v.tappet or TappetConfig()
+        sc = v.spring or SpringConfig()
+        valve = ValveGeometry(**vc.model_dump())
+        tappet = TappetGeometry(**tc.model_dump(), radius=v.tappet_radius)
+        sd = sc.model_dump()
+        sd["pitches"] = None if sd["pitches"] is None else tuple(sd["pitches"])
+        spring = HelicalSpring(**sd)
+        cs = None if v.camshaft is None else Camshaft(**v.camshaft.model_dump())
+        return FlexibleValvetrain(valve, tappet, spring, joints, cs)
 
     def ehl_options(self, surface_set: "SurfaceSet | str | None" = None) -> EHLOptions:
         """:class:`~tribodyn.EHLOptions` from ``[numerics]``; with a surface set (object or

@@ -20,7 +20,8 @@ from ..valvetrain.parameters import ValvetrainParameters
 from .errors import Problems
 
 __all__ = ["CaseInfo", "Engine", "AccelerationCamConfig", "CircularArcCamConfig",
-           "TableCamConfig", "CAM_MODELS", "CamConfig", "Valvetrain", "LubricantConfig",
+           "TableCamConfig", "CAM_MODELS", "CamConfig", "Valvetrain", "ValveConfig",
+           "TappetConfig", "SpringConfig", "CamshaftConfig", "LUMPED_ONLY", "LubricantConfig",
            "MaterialConfig", "RoughnessConfig", "SurfaceSetConfig", "Numerics",
            "paper_materials", "paper_surface_sets"]
 
@@ -99,10 +100,17 @@ class TableCamConfig(_CamBase):
     type: Literal["table"]
     path: str = _q(..., "", "CSV lift table (cam angle, lift), relative to the case file",
                    min_length=1)
-    angle_unit: Literal["deg", "rad"] = _q("deg", "", "unit of the angle column")
-    lift_unit: Literal["mm", "m", "um", "in"] = _q("mm", "", "unit of the lift column")
-    smoothing: float = _q(0.0, "m", "allowed RMS deviation of the smoothing spline "
-                                    "(0: interpolate)", ge=0.0, lt=1e-3)
+    angle_unit: Literal["auto", "deg", "rad", "crank_deg"] = _q(
+        "auto", "", "unit of the angle column (auto: from the header, else degrees)")
+    lift_unit: Literal["auto", "mm", "m", "um", "in"] = _q(
+        "auto", "", "unit of the lift column (auto: from the header, else mm)")
+    angle_column: Optional[Union[int, str]] = _q(
+        None, "", "angle column: 1-based number or header name (needed with > 2 columns)")
+    lift_column: Optional[Union[int, str]] = _q(
+        None, "", "lift column: 1-based number or header name (needed with > 2 columns)")
+    smoothing: Optional[float] = _q(None, "m", "precision of the table: allowed RMS deviation "
+                                               "of the fit (absent: estimated from the "
+                                               "table)", ge=0.0, lt=1e-3)
     max_lift: Optional[float] = _q(None, "m", "optional check: the table's maximum lift must "
                                               "agree within 1 %", gt=0.0, lt=1.0)
 
@@ -123,9 +131,124 @@ CamConfig = Annotated[Union[Annotated[AccelerationCamConfig, Tag("acceleration")
                       Discriminator(_cam_tag)]
 
 
+# ------------------------------------------------------- flexible valvetrain bodies
+class _BodyModes(Section):
+    modes: Optional[int] = _q(None, "", "fixed-interface modes kept (Craig–Bampton); "
+                                        "absent: all modes up to `cutoff`", ge=0, le=400)
+    cutoff: float = _q(5000.0, "Hz", "keep the fixed-interface modes up to this frequency "
+                                     "(used when `modes` is absent)", gt=0.0, le=1e7)
+    damping_ratio: float = _q(0.02, "", "modal damping ratio ζ of the body's modes", ge=0.0,
+                              lt=1.0)
+
+
+class ValveConfig(_BodyModes):
+    """``[valvetrain.valve]`` (model = "flexible"): :class:`~tribodyn.valvetrain.flexible.
+    ValveGeometry`. Defaults: an ASSUMED valve of 0.07 kg total (Table 7)."""
+
+    stem_diameter: float = _q(5.5e-3, "m", "valve stem diameter", gt=0.0, lt=0.1)
+    stem_length: float = _q(0.105, "m", "stem length from the tip to the head", gt=0.0,
+                            lt=1.0)
+    retainer_position: float = _q(0.006, "m", "distance from the tip to the collet groove",
+                                  gt=0.0, lt=1.0)
+    retainer_mass: float = _q(0.0204, "kg", "spring retainer + collets", gt=0.0, lt=10.0)
+    head_mass: float = _q(0.030, "kg", "valve head", gt=0.0, lt=10.0)
+    head_stiffness: float = _q(5e8, "N/m", "head and fillet between stem end and seat face",
+                               gt=0.0)
+    seat_stiffness: float = _q(5e8, "N/m", "seat insert + seat contact", gt=0.0)
+    E: float = _q(paper.STEEL["E"], "Pa", "Young's modulus of the valve", ge=1e9, le=2e12)
+    density: float = _q(7850.0, "kg/m³", "density of the valve", gt=0.0, le=3e4)
+    elements: int = _q(12, "", "bar elements of the stem below the groove", ge=2, le=400)
+
+
+class TappetConfig(_BodyModes):
+    """``[valvetrain.tappet]`` (model = "flexible"): :class:`~tribodyn.valvetrain.flexible.
+    TappetGeometry`; radius = ``[valvetrain] tappet_radius``."""
+
+    model: Literal["fe", "lumped"] = _q("fe", "", "crown + skirt bars, or one rigid mass")
+    mass: Optional[float] = _q(None, "kg", "tappet mass (model = \"lumped\" only)", gt=0.0,
+                               lt=10.0)
+    crown_thickness: float = _q(3.5e-3, "m", "crown (disc) thickness", gt=0.0, lt=0.1)
+    skirt_length: float = _q(0.02, "m", "skirt (tube) length below the crown", gt=0.0,
+                             lt=0.5)
+    skirt_thickness: float = _q(1e-3, "m", "skirt wall thickness", gt=0.0, lt=0.1)
+    E: float = _q(paper.STEEL["E"], "Pa", "Young's modulus of the tappet", ge=1e9, le=2e12)
+    density: float = _q(7850.0, "kg/m³", "density of the tappet", gt=0.0, le=3e4)
+    elements: int = _q(6, "", "bar elements of the skirt", ge=1, le=400)
+
+    @model_validator(mode="after")
+    def _mass_rule(self):
+        if self.model == "lumped" and self.mass is None:
+            raise Problems([("mass", 'required with model = "lumped"')])
+        if self.model == "fe" and self.mass is not None:
+            raise Problems([("mass", 'only with model = "lumped" (the FE tappet\'s mass '
+                                     "follows from its geometry)")])
+        return self
+
+
+class SpringConfig(_BodyModes):
+    """``[valvetrain.spring]`` (model = "flexible"): :class:`~tribodyn.valvetrain.spring.
+    HelicalSpring`. Defaults: ASSUMED dimensions giving Table 7's rate and mass."""
+
+    wire_diameter: float = _q(3.7874e-3, "m", "wire diameter d", gt=0.0, lt=0.1)
+    mean_diameter: float = _q(21.596e-3, "m", "mean coil diameter D", gt=0.0, lt=0.5)
+    active_coils: float = _q(6.0, "", "number of active coils n_a", gt=0.0, le=100.0)
+    dead_coils: float = _q(1.0, "", "closed end coils at each end", ge=0.0, le=10.0)
+    free_length: float = _q(53.007e-3, "m", "free length", gt=0.0, lt=1.0)
+    installed_length: float = _q(45.600e-3, "m", "installed length (valve closed)", gt=0.0,
+                                 lt=1.0)
+    pitches: Optional[list[float]] = _q(None, "m", "free pitch of each active coil "
+                                                   "(progressive spring); absent: uniform")
+    shear_modulus: float = _q(79.3e9, "Pa", "shear modulus G of the wire", ge=1e9, le=1e12)
+    density: float = _q(7850.0, "kg/m³", "density of the wire", gt=0.0, le=3e4)
+    elements_per_coil: int = _q(2, "", "bar elements per active coil", ge=1, le=20)
+    clash_margin: float = _q(1.25, "", "coils closing below this × the largest static force "
+                                       "are resolved exactly", ge=1.0, le=100.0)
+    clash_damping: float = _q(50.0, "N·s/m", "damping of a closed coil contact", ge=0.0,
+                              le=1e6)
+
+
+class CamshaftConfig(Section):
+    """``[valvetrain.camshaft]`` (model = "flexible"; absent: rigid camshaft):
+    :class:`~tribodyn.valvetrain.camshaft.Camshaft`."""
+
+    diameter: float = _q(..., "m", "shaft diameter", gt=0.0, lt=1.0)
+    bearing_span: float = _q(..., "m", "distance between the two bearings next to the lobe",
+                             gt=0.0, lt=10.0)
+    lobe_position: float = _q(..., "m", "lobe distance from the nearer bearing (≤ span/2)",
+                              ge=0.0, lt=10.0)
+    drive_stiffness: float = _q(..., "N·m/rad", "torsional stiffness of the drive "
+                                                "(chain/belt, sprocket)", gt=0.0)
+    drive_length: float = _q(..., "m", "shaft length from the drive to the lobe", gt=0.0,
+                             lt=10.0)
+    E: float = _q(paper.STEEL["E"], "Pa", "Young's modulus of the shaft", ge=1e9, le=2e12)
+    nu: float = _q(0.3, "", "Poisson's ratio of the shaft", gt=-1.0, lt=0.5)
+    density: float = _q(7850.0, "kg/m³", "density of the shaft", gt=0.0, le=3e4)
+    bearing_stiffness: Optional[float] = _q(None, "N/m", "radial stiffness of each bearing "
+                                                         "(absent: rigid)", gt=0.0)
+    torsional_damping_ratio: float = _q(0.02, "", "damping ratio of the torsion mode",
+                                        ge=0.0, lt=1.0)
+    lobe_inertia: Optional[float] = _q(None, "kg·m²", "polar inertia of the lobe (absent: "
+                                                      "from the cam contour)", gt=0.0)
+
+
+#: [valvetrain] keys of the lumped model that the flexible bodies replace.
+LUMPED_ONLY = ("valve_mass", "tappet_mass", "spring_mass", "spring_rate", "spring_preload",
+               "spring_masses", "spring_damping_ratio", "seat_stiffness",
+               "camshaft_stiffness")
+
+
 class Valvetrain(Section):
     """``[valvetrain]``: mirrors :class:`~tribodyn.valvetrain.ValvetrainParameters`
-    (``cam_width`` comes from ``[cam] width``); defaults are its defaults."""
+    (``cam_width`` comes from ``[cam] width``); defaults are its defaults. ``model =
+    "flexible"`` adds the bodies ``valve``, ``tappet``, ``spring`` and ``camshaft``."""
+
+    model: Literal["lumped", "flexible"] = _q("lumped", "", "valvetrain model: lumped chain "
+                                                            "or Craig–Bampton bodies")
+    valve: Optional[ValveConfig] = _q(None, "", "flexible valve ([valvetrain.valve])")
+    tappet: Optional[TappetConfig] = _q(None, "", "flexible tappet ([valvetrain.tappet])")
+    spring: Optional[SpringConfig] = _q(None, "", "flexible spring ([valvetrain.spring])")
+    camshaft: Optional[CamshaftConfig] = _q(None, "", "camshaft compliance "
+                                                      "([valvetrain.camshaft]; absent: rigid)")
 
     valve_mass: float = _q(_VT_DEFAULTS["valve_mass"], "kg", "valve + retainer + collets",
                            gt=0.0)
@@ -174,6 +297,23 @@ class Valvetrain(Section):
     tappet_radius: float = _q(_VT_DEFAULTS["tappet_radius"], "m",
                               "radius of the tappet face (max contact offset must stay below)",
                               gt=0.0, lt=1.0)
+
+    @model_validator(mode="after")
+    def _model_rule(self):
+        problems = []
+        if self.model == "flexible":
+            for k in LUMPED_ONLY:
+                if k in self.model_fields_set:
+                    problems.append((k, 'only with model = "lumped" (the flexible bodies '
+                                        "give it: see [valvetrain.valve], "
+                                        "[valvetrain.spring], [valvetrain.camshaft])"))
+        else:
+            for k in ("valve", "tappet", "spring", "camshaft"):
+                if getattr(self, k) is not None:
+                    problems.append((k, 'only with model = "flexible"'))
+        if problems:
+            raise Problems(problems)
+        return self
 
 
 class LubricantConfig(Section):

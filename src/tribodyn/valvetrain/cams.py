@@ -13,8 +13,8 @@ Three profiles:
   (ramps, positive half-sine pulse, negative region down to the nose radius);
 * :class:`CircularArcCam` — the classic base/flank/nose circular-arc cam, exact from
   the support function of its arcs;
-* :class:`TabulatedCam` — a lift table (measured or from a supplier) smoothed by a
-  periodic quintic spline.
+* :class:`TabulatedCam` — a lift table (measured or from a supplier) fitted by a
+  periodic quintic spline that keeps the curvature jumps and smooths the noise.
 
 Each profile reports its minimum radius of curvature and maximum contact offset and
 refuses profiles with R ≤ 0 (or, when a tappet radius is given, |e| above it).
@@ -27,7 +27,6 @@ import math
 from abc import ABC, abstractmethod
 
 import numpy as np
-from scipy.interpolate import PPoly, make_interp_spline, make_splrep
 
 from .. import paper
 from .._validation import (
@@ -104,10 +103,22 @@ class CamProfile(ABC):
         R = self.base_radius + s + s2
         k = int(np.argmin(R))
         if not R[k] > 0.0:
+            g = self._check_grid()
+            Rg = self.radius_of_curvature(g)
+            bad = Rg <= 0.0
+            i = int(np.argmin(Rg))
+            a, b = i, i                                # the concave arc around the minimum
+            while bad[(a - 1) % g.size] and (i - a) < g.size:
+                a -= 1
+            while bad[(b + 1) % g.size] and (b - i) < g.size:
+                b += 1
+            arc = (f"concave from {math.degrees(g[a % g.size]):.2f}° to "
+                   f"{math.degrees(g[b % g.size]):.2f}° cam" if bad.any()
+                   else f"concave at {math.degrees(th[k] % TWO_PI):.2f}° cam")
             raise InputError(
                 f"{type(self).__name__}: radius of curvature R = r_b + s + s'' must be > 0 "
                 f"everywhere (got R = {R[k] * 1e3:.4g} mm at cam angle "
-                f"{math.degrees(th[k] % TWO_PI):.2f}°): the cam would be concave")
+                f"{math.degrees(th[k] % TWO_PI):.2f}°): the cam would be {arc}")
         if tappet_radius is not None:
             rt = check_positive("tappet_radius", tappet_radius, "m")
             j = int(np.argmax(np.abs(s1)))
@@ -453,27 +464,34 @@ class CircularArcCam(CamProfile):
 # Tabulated cam
 # --------------------------------------------------------------------------------------
 class TabulatedCam(CamProfile):
-    """Lift table (θ, s) over one revolution, smoothed by a periodic quintic spline.
+    """Lift table (θ, s), fitted robustly by a periodic quintic spline
+    (:mod:`tribodyn.valvetrain.cam_fit`): jumps of s'' (three-arc cams, ramps) are found
+    and kept as jumps (s, s' continuous), noise is smoothed to the table's precision.
 
     Parameters
     ----------
-    angle : cam angles θ [rad], strictly increasing, spanning one revolution: the first
-        and last point may be one period apart (then their lifts must agree: the table is
-        periodic), otherwise the wrap-around gap must not exceed twice the largest spacing.
+    angle : cam angles θ [rad], strictly increasing, at most one revolution: a full
+        revolution (the first and last point may be one period apart, then their lifts
+        must agree), or the lift event only — both ends on the base circle (lift within
+        the precision of 0, at most 10 µm) — the rest of the revolution is filled with the
+        base circle.
     lift : s [m] at those angles (≥ −10 µm; the base circle is s = 0).
     base_radius : r_b [m].
-    smoothing : allowed RMS deviation of the spline from the table [m] (0: interpolate).
-        Measured lift tables usually need ~0.1–1 µm to keep R = r_b + s + s'' clean.
+    smoothing : precision of the table, the RMS deviation allowed to the fit [m]
+        (None: estimated from the table's noise and its rounding ``quantum``).
+    quantum : rounding step of the lift values [m] (from the file's digits), or 0.
     tappet_radius : optional check of max |e|.
 
-    The spline is C⁴, so s'' and R are continuous; steps in s'' of the underlying profile
-    are smeared over about one table spacing.
+    ``curvature_jumps`` lists (θ [rad], R before, R after [m]) of the jumps found;
+    ``precision`` is the precision used [m].
     """
 
-    def __init__(self, angle, lift, base_radius: float, *, smoothing: float = 0.0,
-                 tappet_radius: float | None = None):
+    def __init__(self, angle, lift, base_radius: float, *, smoothing: float | None = None,
+                 quantum: float = 0.0, tappet_radius: float | None = None):
+        from .cam_fit import estimate_noise, fit_periodic_lift
         self.base_radius = check_positive("base_radius", base_radius, "m")
-        self.smoothing = check_nonnegative("smoothing", smoothing, "m")
+        self.smoothing = (None if smoothing is None
+                          else check_nonnegative("smoothing", smoothing, "m"))
         th = check_array("angle", angle, min_size=12)
         s = check_array("lift", lift, min_size=12)
         if th.shape != s.shape:
@@ -491,7 +509,7 @@ class TabulatedCam(CamProfile):
             raise InputError(f"angle must span at most one revolution (got "
                              f"{math.degrees(span):.6g}°)")
         if abs(span - TWO_PI) <= tol:
-            if abs(s[-1] - s[0]) > max(1e-9, 1e-6 * np.ptp(s)):
+            if abs(s[-1] - s[0]) > max(1e-9, 1e-6 * np.ptp(s), 3.0 * (smoothing or 0.0)):
                 raise InputError(
                     "lift table is not periodic: the lift at θ₀ + 360° must equal the lift at "
                     f"θ₀ (got {s[0] * 1e3:.6g} mm and {s[-1] * 1e3:.6g} mm)")
@@ -499,10 +517,25 @@ class TabulatedCam(CamProfile):
             dth = np.diff(th)
         gap = th[0] + TWO_PI - th[-1]
         if gap > 2.0 * dth.max() + tol:
-            raise InputError(
-                "lift table must cover one full revolution (the wrap-around gap of "
-                f"{math.degrees(gap):.4g}° exceeds twice the largest spacing "
-                f"{math.degrees(dth.max()):.4g}°); add the base circle (s = 0) explicitly")
+            # the lift event only: both ends on the base circle
+            zero = max(3.0 * (smoothing or 0.0), 3.0 * estimate_noise(s), quantum, 1e-8)
+            if max(abs(s[0]), abs(s[-1])) > min(zero, 1e-5):
+                raise InputError(
+                    f"lift table covers {math.degrees(span):.4g}° and does not end on the base "
+                    f"circle (lift {s[0] * 1e3:.4g} mm at the start, {s[-1] * 1e3:.4g} mm at "
+                    "the end): give a full revolution, or the event from base circle to "
+                    "base circle")
+            if span < math.radians(20.0):
+                raise InputError(f"lift event of {math.degrees(span):.3g}° is implausibly "
+                                 "short: check the angle unit")
+            h = float(np.median(dth))
+            k = int(math.floor(gap / h))
+            fill = th[-1] + gap * np.arange(1, k) / k
+            th = np.concatenate([th, fill])
+            s = np.concatenate([s, np.zeros(fill.size)])
+            self.event_only = True
+        else:
+            self.event_only = False
         if s.min() < -1e-5:
             raise InputError(f"lift must be >= 0 above the base circle (got min "
                              f"{s.min() * 1e3:.4g} mm)")
@@ -510,34 +543,34 @@ class TabulatedCam(CamProfile):
             raise InputError("lift must rise above the base circle somewhere (max lift is 0)")
         self.angle = th
         self.lift_table = s
-        # Periodic spline on [θ₀, θ₀ + 2π]: append the wrap point.
-        x = np.append(th, th[0] + TWO_PI)
-        y = np.append(s, s[0])
-        if self.smoothing > 0.0:
-            spl = make_splrep(x, y, k=5, s=th.size * self.smoothing**2, bc_type="periodic")
-        else:
-            spl = make_interp_spline(x, y, k=5, bc_type="periodic")
-        pp = PPoly.from_spline(spl)
-        # Keep only the pieces inside one period.
-        brk = pp.x
-        keep = np.nonzero(np.diff(brk) > 0.0)[0]
-        keep = keep[(brk[keep] >= x[0] - 1e-12) & (brk[keep + 1] <= x[-1] + 1e-12)]
-        self._x = brk[np.append(keep, keep[-1] + 1)]
-        self._c = pp.c[:, keep]                      # (6, pieces), highest power first
+        fit = fit_periodic_lift(th, s, self.base_radius, self.smoothing, quantum)
+        self.precision = fit.precision
+        self.fit_rms = fit.rms_residual
+        self._x = fit.breaks
+        self._c = fit.coeffs                         # (6, pieces), highest power first
         self._x0 = float(self._x[0])
         self._xlist = self._x[:-1].tolist()
         self._clist = [tuple(col) for col in self._c.T]
+        rb = self.base_radius
+        self.curvature_jumps = []
+        for a, _ in fit.jumps:
+            lo = self.derivatives(np.array([a - 1e-7]))
+            hi = self.derivatives(np.array([a + 1e-7]))
+            self.curvature_jumps.append((a, float(rb + lo[0][0] + lo[2][0]),
+                                         float(rb + hi[0][0] + hi[2][0])))
         self.check(tappet_radius)
 
     @classmethod
-    def from_csv(cls, path, base_radius: float, *, smoothing: float = 0.0,
-                 angle_unit: str = "deg", lift_unit: str = "mm",
-                 tappet_radius: float | None = None) -> "TabulatedCam":
-        """Read a two-column CSV (cam angle, lift; default degrees and mm); see
-        :func:`tribodyn.valvetrain.cam_table.read_lift_table`."""
-        from .cam_table import read_lift_table
-        th, s = read_lift_table(path, angle_unit=angle_unit, lift_unit=lift_unit)
-        return cls(th, s, base_radius, smoothing=smoothing, tappet_radius=tappet_radius)
+    def from_csv(cls, path, base_radius: float, *, smoothing: float | None = None,
+                 angle_unit: str = "auto", lift_unit: str = "auto", angle_column=None,
+                 lift_column=None, tappet_radius: float | None = None) -> "TabulatedCam":
+        """Read a lift table (CSV; units from the header or the arguments); see
+        :func:`tribodyn.valvetrain.cam_table.load_lift_table`."""
+        from .cam_table import load_lift_table
+        t = load_lift_table(path, angle_unit=angle_unit, lift_unit=lift_unit,
+                            angle_column=angle_column, lift_column=lift_column)
+        return cls(t.angle, t.lift, base_radius, smoothing=smoothing, quantum=t.quantum,
+                   tappet_radius=tappet_radius)
 
     def _breakpoints(self):
         return self._x[:-1] % TWO_PI

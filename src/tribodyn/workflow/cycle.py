@@ -35,6 +35,7 @@ from .coating_study import (
 )
 from .coupling import CouplingResult, run_coupling
 from .cycle_ehl import CycleInputs, SetCycleResult, ehl_for_set
+from .model_comparison import ModelComparison, compare_lumped_flexible
 from .postprocess import Analysis, analyse, surface_roles
 from .sensitivity import RoughnessSensitivity, nose_condition, roughness_sensitivity
 
@@ -58,6 +59,7 @@ class CycleStudy:
     dry: list[DryCoatingCase] = field(default_factory=list)       #: Fig. 5 cases
     ehl_coating: EHLCoatingStudy | None = None                     #: Fig. 6 results
     sensitivity: RoughnessSensitivity | None = None                #: at the cam nose
+    model_comparison: ModelComparison | None = None    #: lumped vs flexible (flexible cases)
     analysis: Analysis | None = None
     runtime_s: float = 0.0
     timings: dict = field(default_factory=dict)
@@ -208,6 +210,13 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None) -> Cycle
         study.warnings.append(f"implicit coupling: {coupling.message}")
     if dyn.jump:
         study.warnings.append(f"contact loss (jump) during the event at {dyn.jumps}")
+    if case.valvetrain_model == "flexible":
+        t0 = time.perf_counter()
+        report("dynamics")
+        study.model_comparison = compare_lumped_flexible(case, case.analytic_tribology(ref),
+                                                         dyn)
+        study.warnings += study.model_comparison.messages
+        timings["lumped_vs_flexible_s"] = time.perf_counter() - t0
     study.runtime_s = time.perf_counter() - t_start
     study.analyse()
     report("done", runtime_s=study.runtime_s)

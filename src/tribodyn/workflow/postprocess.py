@@ -281,6 +281,8 @@ def summary(study, an: Analysis) -> dict:
     out["dynamics"] = {k: v for k, v in dyn.summary().items() if k != "converged"}
     out["warnings"] = list(study.warnings)
     out["runtime_s"] = float(study.runtime_s)
+    if getattr(study, "model_comparison", None) is not None:
+        out["lumped_vs_flexible"] = study.model_comparison.to_dict()
     return out
 
 

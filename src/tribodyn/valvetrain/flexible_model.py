@@ -1,0 +1,419 @@
+"""Equations of motion of the flexible valvetrain (Craig–Bampton bodies + joints).
+
+Coordinates q (deviations from static equilibrium on the base circle, +x = valve
+opening): the boundary DOFs of the reduced bodies — tappet face (index 0), valve seat
+face (index 1), valve groove, spring top, clash nodes, spring bottom — then the bodies' fixed-interface modal coordinates, then the camshaft twist φ
+(lobe lag) when the camshaft is flexible. State y = [q, q̇, W_cam, D] as in
+:class:`~tribodyn.valvetrain.model.ValvetrainModel`, which this class mirrors (same
+``evaluate`` outputs, so :func:`~tribodyn.valvetrain.simulate_valvetrain` runs either).
+
+    M q̈ = −K q − C q̇ + Σ_joints g_j (F_j − F_j,static)
+
+M, K, C are block-diagonal from the reduced bodies (plus J, k_t, c_t for φ). Each joint has
+a deformation δ_j(q, t), a gradient g_j = −∂δ_j/∂q and a force F_j(δ, δ̇) ≥ 0:
+
+* cam contact δ = s(θ_l) − x_face, θ_l = θ₀ + ωt − φ; elastic law δ_el = C P^0.9 (Palmgren) or
+  P/k, plus P·c_bend (camshaft bending) and the film h(t, P) in series, as the lumped model;
+  damping c_c g(P) δ̇; bore friction μ_b F_f tanh(ẋ/v_r) on the face;
+* tappet–valve δ = x_face − x_groove − lash (stiffness: crown, shim, tip and the stem above
+  the groove in series); valve seat δ = F₀/k_seat − x_seat;
+* spring seat δ = x_groove − x_top + F₀/k_ss, spring support δ = x_bottom + F₀/k_sp (damping
+  β k with the spring's β = 2ζ/ω₁);
+* coil clash on spring elements between boundary nodes: Palmgren law of the wire overlap
+  (:class:`~tribodyn.valvetrain.spring.HelicalSpring`).
+
+Energy: T = ½q̇ᵀMq̇ (+ ½J((ω − φ̇)² − ω²)); U = ½qᵀKq + f_sᵀq + Σ[Φ_j(δ) − Φ_j(δ_s)] (+ ½k_tφ²),
+f_s the static joint forces on the nodes; the drive work W_cam = ∫T_d ω dt (rigid
+camshaft: ∫(F_c ω s' + F_f u_s) dt) and the dissipation are integrated with the motion.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._validation import InputError
+from .cams import CamProfile
+from .flexible import FlexibleValvetrain
+from .model import _PALMGREN_EXP, ContactLawError, _FrictionTable, smooth_step
+from .tribology import TribologyModel
+
+__all__ = ["FlexibleValvetrainModel"]
+
+
+class FlexibleValvetrainModel:
+    """Right-hand side, Jacobian, forces and energies of the flexible valvetrain."""
+
+    def __init__(self, cam: CamProfile, flex: FlexibleValvetrain, cam_speed: float,
+                 tribology: TribologyModel, start_angle: float = 0.0):
+        if not isinstance(flex, FlexibleValvetrain):
+            raise InputError("flex must be a FlexibleValvetrain")
+        self.cam, self.flex, self.w, self.trib = cam, flex, float(cam_speed), tribology
+        self.p = p = flex.joints
+        self.theta0 = float(start_angle)
+        s0 = cam.scalar_derivatives(self.theta0)[0]
+        if abs(s0) > 1e-9:
+            raise InputError(f"start_angle must be on the base circle (lift there is "
+                             f"{s0 * 1e3:.4g} mm)")
+        bodies = flex.reduced_bodies(cam.max_lift)
+        self.bodies = bodies
+        spring = flex.spring
+        self.F0 = F0 = spring.preload
+        st = spring.statics(spring.installed_compression)
+        # ---- global numbering: boundary DOFs first, then modes, then φ ---------------
+        names = ["face", "seat", "groove"]
+        tb, vb, sb = bodies["tappet"], bodies["valve"], bodies["spring"]
+        spring_nodes = sb.boundary
+        names += [f"s{j}" for j in spring_nodes]
+        idx = {nm: i for i, nm in enumerate(names)}
+        nb = len(names)
+        gmap = {"tappet": [idx["face"]],
+                "valve": [idx["seat"], idx["groove"]],
+                "spring": [idx[f"s{j}"] for j in spring_nodes]}
+        k = nb
+        for name, body in (("tappet", tb), ("valve", vb), ("spring", sb)):
+            nm = body.n - len(body.boundary)
+            gmap[name] = gmap[name] + list(range(k, k + nm))
+            k += nm
+        self.cs = cs = flex.camshaft
+        self.iphi = k if cs is not None else None
+        n = k + (1 if cs is not None else 0)
+        self.n = n
+        self.idx = idx
+        self.gmap = gmap
+        M = np.zeros((n, n))
+        K = np.zeros((n, n))
+        C = np.zeros((n, n))
+        for name, body in (("tappet", tb), ("valve", vb), ("spring", sb)):
+            g = gmap[name]
+            M[np.ix_(g, g)] += body.M
+            K[np.ix_(g, g)] += body.K
+            C[np.ix_(g, g)] += body.C
+        if cs is not None:
+            J = cs.inertia(cam, p.cam_width)
+            kt = cs.torsional_stiffness
+            M[k, k], K[k, k] = J, kt
+            C[k, k] = 2.0 * cs.torsional_damping_ratio * math.sqrt(kt * J)
+            self.J, self.kt, self.ct = J, kt, C[k, k]
+            self.c_bend = cs.bending_compliance
+        else:
+            self.J = self.kt = self.ct = 0.0
+            self.c_bend = 0.0
+        self.M, self.K, self.C = M, K, C
+        self.Minv = np.linalg.inv(M)
+        self.MinvK = self.Minv @ K
+        self.MinvC = self.Minv @ C
+        self.i_face, self.i_seat = idx["face"], idx["seat"]
+        self.i_under, self.i_tip = idx["face"], idx["groove"]
+        self.i_groove = idx["groove"]
+        self.k_tv = flex.tappet_valve_stiffness
+        self.i_top = idx[f"s{spring_nodes[0]}"]
+        self.i_bot = idx[f"s{spring_nodes[-1]}"]
+        # ---- joints --------------------------------------------------------------------
+        self.d_seat = F0 / flex.valve.seat_stiffness
+        self.d_ss = F0 / p.spring_seat_stiffness
+        self.d_sp = F0 / p.spring_support_stiffness
+        w1 = 2.0 * math.pi * (sb.interior_frequencies[0] if sb.interior_frequencies.size
+                              else spring.surge_frequency())
+        self.beta_s = 2.0 * spring.damping_ratio / w1
+        kel, _, gel, _ = spring._elements()
+        self.clash = []                   # (global a, global b, element j, Δ_static, g, Q_s)
+        pos = {j: i for i, j in enumerate(spring_nodes)}
+        for j in range(kel.size):
+            if j in pos and j + 1 in pos:
+                Qs = spring.clash_force(st.compressions[j] - gel[j])[0]
+                self.clash.append((idx[f"s{j}"], idx[f"s{j + 1}"], j,
+                                   float(st.compressions[j]), float(gel[j]), Qs))
+        self.internal_clash = [j for j in range(kel.size)
+                               if not (j in pos and j + 1 in pos)]
+        self.static_compressions = st.compressions
+        self.spring_gaps = gel
+        fs = np.zeros(n)                  # static joint forces on the nodes
+        fs[self.i_seat] += F0
+        fs[self.i_groove] -= F0
+        fs[self.i_top] += F0
+        fs[self.i_bot] -= F0
+        for a, b, _, _, _, Qs in self.clash:
+            fs[a] -= Qs
+            fs[b] += Qs
+        self.f_static = fs
+        # contact law δ_el = C z + z^γ (c_bend) ; P = z^γ
+        if p.contact_stiffness is None:
+            self.gamma = 1.0 / _PALMGREN_EXP
+            self.Cc = p.contact_compliance_coefficient
+        else:
+            self.gamma = 1.0
+            self.Cc = 1.0 / p.contact_stiffness
+        self.has_film = bool(tribology.has_film)
+        if tribology.periodic_in_cam_angle:
+            self.friction_fn = _FrictionTable(tribology, cam, self.w, self.theta0)
+        else:
+            self.friction_fn = None
+        self._Kl = K.tolist()
+
+    # -- contact law (as the lumped model, with the camshaft bending in series) ----------
+    def film(self, t: float, force: float, ue: float, R: float) -> tuple[float, float]:
+        if not self.has_film:
+            return 0.0, 0.0
+        h, hF = self.trib.film(t, force, ue, R)
+        h, hF = float(h), float(hF)
+        if not (math.isfinite(h) and math.isfinite(hF)) or hF > 0.0:
+            raise ContactLawError(f"film law returned h = {h:g} m, dh/dF = {hF:g} m/N at "
+                                  f"t = {t:.6g} s (need finite, dh/dF <= 0)")
+        return h, hF
+
+    def elastic_contact(self, t, dk, ue=0.0, R=1.0):
+        """Elastic contact force P [N], dP/dδ_kin [N/m] and film h [m]."""
+        C, g, ikc = self.Cc, self.gamma, self.c_bend
+        if not self.has_film and ikc == 0.0:
+            if dk <= 0.0:
+                return 0.0, 0.0, 0.0
+            z = dk / C
+            return z ** g, g * z ** (g - 1.0) / C, 0.0
+        h0 = self.film(t, 0.0, ue, R)[0]
+        if dk + h0 <= 0.0:
+            return 0.0, 0.0, h0
+        lo, hi = 0.0, (dk + h0) / C
+        z = hi
+        tol = 1e-13 * max(dk + h0, 1e-9)
+        for _ in range(60):
+            P = z ** g
+            h, hF = self.film(t, P, ue, R)
+            phi = C * z + P * ikc - h - dk
+            if phi > 0.0:
+                hi = z
+            else:
+                lo = z
+            dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
+            dphi = C + dPdz * (ikc - hF)
+            if abs(phi) <= tol:
+                return P, dPdz / dphi, h
+            zn = z - phi / dphi
+            z = zn if lo < zn < hi else 0.5 * (lo + hi)
+        raise ContactLawError(f"contact/film law did not converge at t = {t:.6g} s")
+
+    def contact_potential(self, P: float) -> float:
+        if P <= 0.0:
+            return 0.0
+        if self.gamma == 1.0:
+            u = 0.5 * self.Cc * P * P
+        else:
+            e = 1.0 / self.gamma
+            u = self.Cc * e / (1.0 + e) * P ** (1.0 + e)
+        return u + 0.5 * self.c_bend * P * P
+
+    def lobe_angle(self, t: float, y) -> float:
+        """Lobe angle θ₀ + ωt − φ [rad]."""
+        th = self.theta0 + self.w * t
+        return th - y[self.iphi] if self.iphi is not None else th
+
+    # -- forces --------------------------------------------------------------------------
+    def evaluate(self, t: float, y, jac: bool = False) -> dict:
+        p, n, w = self.p, self.n, self.w
+        q = np.asarray(y[:n], dtype=float)
+        v = np.asarray(y[n:2 * n], dtype=float)
+        ql, vl = q.tolist(), v.tolist()
+        iphi = self.iphi
+        phi = ql[iphi] if iphi is not None else 0.0
+        phid = vl[iphi] if iphi is not None else 0.0
+        th = self.theta0 + w * t - phi
+        wl = w - phid
+        s, s1, s2 = self.cam.scalar_derivatives(th)
+        rb = self.cam.base_radius
+        R = rb + s + s2
+        ue = 0.5 * wl * (rb + s + 2.0 * s2)
+        us = wl * (rb + s)
+        ramp = p.damping_force_ramp
+        fj = [0.0] * n
+        elems = []                          # (gradient dict, k, c) for the Jacobian
+        diss = 0.0
+        # cam contact
+        i_f = self.i_face
+        xf, vf = ql[i_f], vl[i_f]
+        dk = s - xf
+        dkd = wl * s1 - vf
+        P, dPdk, hfilm = self.elastic_contact(t, dk, ue, R)
+        gc, dgc = smooth_step(P, ramp)
+        Fc = P + p.contact_damping * gc * dkd
+        on_c = Fc > 0.0
+        if not on_c:
+            Fc = 0.0
+        fj[i_f] += Fc
+        if iphi is not None:
+            fj[iphi] += Fc * s1
+        diss += (Fc - P) * dkd
+        if Fc > 0.0:
+            Ff = (self.friction_fn(th, Fc) if self.friction_fn is not None
+                  else float(self.trib.friction(t, Fc, ue, us, R)))
+        else:
+            Ff = 0.0
+        if iphi is not None:
+            fj[iphi] += Ff * (rb + s)
+        th_v = math.tanh(vf / p.bore_friction_velocity)
+        Fb = p.bore_friction_coefficient * Ff * th_v
+        fj[i_f] -= Fb
+        diss += Fb * vf + Ff * us
+        if jac and on_c:
+            gvec = {i_f: -1.0}
+            if iphi is not None:
+                gvec[iphi] = -s1
+            elems.append((gvec, dPdk * (1.0 + p.contact_damping * dgc * dkd),
+                          p.contact_damping * gc))
+        if jac:
+            cb = p.bore_friction_coefficient * Ff * (1.0 - th_v * th_v) / p.bore_friction_velocity
+            elems.append(({i_f: 1.0}, 0.0, cb))
+
+        def joint(a, b, d, dd, k, c, static):
+            """Compressive joint between nodes a (pushed −x) and b (pushed +x; None:
+            ground) with deformation d (total) and rate dd; returns the force."""
+            nonlocal diss
+            E = k * d if d > 0.0 else 0.0
+            gg, dg = smooth_step(E, ramp)
+            F = E + c * gg * dd
+            if F <= 0.0:
+                F = 0.0
+            df = F - static
+            if a is not None:
+                fj[a] -= df
+            if b is not None:
+                fj[b] += df
+            diss += (F - E) * dd
+            if jac and F > 0.0:
+                gv = {}
+                if a is not None:
+                    gv[a] = 1.0
+                if b is not None:
+                    gv[b] = gv.get(b, 0.0) - 1.0
+                elems.append((gv, (k * (1.0 + c * dg * dd) if d > 0.0 else 0.0), c * gg))
+            return F
+
+        i_u, i_t, i_s, i_g = self.i_under, self.i_tip, self.i_seat, self.i_groove
+        Ftv = joint(i_u, i_t, ql[i_u] - ql[i_t] - p.lash, vl[i_u] - vl[i_t],
+                    self.k_tv, p.tappet_valve_damping, 0.0)
+        Fs = joint(None, i_s, self.d_seat - ql[i_s], -vl[i_s],
+                   self.flex.valve.seat_stiffness, p.seat_damping, self.F0)
+        kss, ksp = p.spring_seat_stiffness, p.spring_support_stiffness
+        i_top, i_bot = self.i_top, self.i_bot
+        Fss = joint(i_g, i_top, ql[i_g] - ql[i_top] + self.d_ss, vl[i_g] - vl[i_top],
+                    kss, self.beta_s * kss, self.F0)
+        Fsp = joint(i_bot, None, ql[i_bot] + self.d_sp, vl[i_bot], ksp, self.beta_s * ksp,
+                    self.F0)
+        sp = self.flex.spring
+        cdamp = sp.clash_damping
+        for a, b, _, d0, g, Qs in self.clash:
+            ov = d0 + ql[a] - ql[b] - g
+            Q, dQ = sp.clash_force(ov)
+            dd = vl[a] - vl[b]
+            gg, dg = smooth_step(Q, ramp)
+            F = Q + cdamp * gg * dd
+            if F <= 0.0:
+                F = 0.0
+            fj[a] -= F - Qs
+            fj[b] += F - Qs
+            diss += (F - Q) * dd
+            if jac and F > 0.0:
+                elems.append(({a: 1.0, b: -1.0}, dQ * (1.0 + cdamp * dg * dd), cdamp * gg))
+        fjv = np.array(fj)
+        acc = self.Minv @ fjv - self.MinvK @ q - self.MinvC @ v
+        diss += float(v @ (self.C @ v))
+        if iphi is not None:
+            Td = self.kt * phi + self.ct * phid
+            cam_power = Td * w
+        else:
+            cam_power = Fc * w * s1 + Ff * us
+        accl = acc.tolist()
+        # output order: acc[0] tappet face, acc[1] valve seat face; Fseg[0] spring force on
+        # the valve (spring seat), Fseg[-1] support force on the head
+        out = dict(theta=th, s=s, s1=s1, s2=s2, R=R, ue=ue, us=us, dk=dk, P=P, Fc=Fc, Ff=Ff,
+                   Fb=Fb, Ftv=Ftv, Fs=Fs, Fseg=[Fss, Fsp], acc=accl, film=hfilm,
+                   cam_power=cam_power, dissipation_rate=diss)
+        if jac:
+            out["elements"] = elems
+        return out
+
+    # -- ODE interface -----------------------------------------------------------------
+    def rhs(self, t, y):
+        n = self.n
+        f = self.evaluate(t, y)
+        dy = np.empty(2 * n + 2)
+        dy[:n] = y[n:2 * n]
+        dy[n:2 * n] = f["acc"]
+        dy[2 * n] = f["cam_power"]
+        dy[2 * n + 1] = f["dissipation_rate"]
+        return dy
+
+    def jacobian(self, t, y):
+        """∂ẏ/∂y from the bodies' K, C and each active joint's k g gᵀ, c g gᵀ (friction's
+        force dependence and the accumulator rows omitted, as in the lumped model)."""
+        n = self.n
+        f = self.evaluate(t, y, jac=True)
+        K = self.K.copy()
+        C = self.C.copy()
+        for gv, k, c in f["elements"]:
+            items = list(gv.items())
+            for i, gi in items:
+                for j, gj in items:
+                    K[i, j] += k * gi * gj
+                    C[i, j] += c * gi * gj
+        J = np.zeros((2 * n + 2, 2 * n + 2))
+        J[:n, n:2 * n] = np.eye(n)
+        J[n:2 * n, :n] = -self.Minv @ K
+        J[n:2 * n, n:2 * n] = -self.Minv @ C
+        return J
+
+    # -- energy ------------------------------------------------------------------------
+    def energy(self, t: float, y, evaluated: dict | None = None) -> tuple[float, float]:
+        """(kinetic, elastic) energy [J] relative to the static equilibrium state."""
+        n, p = self.n, self.p
+        q = np.asarray(y[:n], dtype=float)
+        v = np.asarray(y[n:2 * n], dtype=float)
+        T = 0.5 * float(v @ (self.M @ v))
+        if self.iphi is not None:       # rotation of the lobe relative to ω: J(φ̇² − 2ωφ̇)/2
+            T -= self.J * self.w * v[self.iphi]
+        f = self.evaluate(t, y) if evaluated is None else evaluated
+        U = 0.5 * float(q @ (self.K @ q)) + float(self.f_static @ q)
+        U += self.contact_potential(f["P"])
+
+        def pot(k, d, d0):
+            return 0.5 * k * (max(d, 0.0) ** 2 - max(d0, 0.0) ** 2)
+
+        U += pot(self.k_tv, q[self.i_under] - q[self.i_tip] - p.lash, -p.lash)
+        U += pot(self.flex.valve.seat_stiffness, self.d_seat - q[self.i_seat], self.d_seat)
+        U += pot(p.spring_seat_stiffness, q[self.i_groove] - q[self.i_top] + self.d_ss,
+                 self.d_ss)
+        U += pot(p.spring_support_stiffness, q[self.i_bot] + self.d_sp, self.d_sp)
+        sp = self.flex.spring
+        c = sp._palmgren_c
+        e = _PALMGREN_EXP
+
+        def clash_pot(ov):                      # ∫ Q dδ, Q = (δ/C)^(1/e)
+            return 0.0 if ov <= 0.0 else C_pot(ov)
+
+        def C_pot(ov):
+            return (ov / c) ** (1.0 / e) * ov * e / (1.0 + e)
+
+        for a, b, _, d0, g, _ in self.clash:
+            U += clash_pot(d0 + q[a] - q[b] - g) - clash_pot(d0 - g)
+        return T, U
+
+    def static_state(self) -> np.ndarray:
+        return np.zeros(2 * self.n + 2)
+
+    # -- diagnostics -----------------------------------------------------------------------
+    def physical_spring(self, y) -> np.ndarray:
+        """Displacements of all spring FE nodes [m] (recovered through T)."""
+        sb = self.bodies["spring"]
+        return sb.T @ np.asarray(y)[self.gmap["spring"]]
+
+    def unresolved_clash(self, Y) -> float:
+        """Largest wire overlap [m] of an element reduced into the modes (its clash is
+        not modelled) over the columns of Y; ≤ 0 when none closed."""
+        if not self.internal_clash:
+            return -math.inf
+        U = self.bodies["spring"].T @ np.asarray(Y)[self.gmap["spring"]]
+        worst = -math.inf
+        for j in self.internal_clash:
+            ov = self.static_compressions[j] + U[j] - U[j + 1] - self.spring_gaps[j]
+            worst = max(worst, float(np.max(ov)))
+        return worst
