@@ -23,6 +23,8 @@ __all__ = ["TransientEHL", "GRID_SLACK", "GRID_MARGIN"]
 GRID_SLACK = 1.3
 #: … and builds new grids this much longer than required, so that they last.
 GRID_MARGIN = 1.1
+#: Automatic grid: an event keeps the node count its steady start settled on.
+EVENT_NODES_FROM_START = True
 
 
 class TransientEHL:
@@ -71,7 +73,8 @@ class TransientEHL:
                         self.rough, options=self.opts)
         cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
         self._grid = None
-        self._n_event = res.x.size if self.opts.n is None else None
+        self._n_event = (res.x.size if self.opts.n is None and EVENT_NODES_FROM_START
+                         else None)
         grid = self._make_grid(cond, None)
         sysm = ReynoldsSystem(grid, cond, self.model)
         st = state_from_dimensional(sysm, res.x, res.pressure + res.asperity_pressure,
@@ -202,6 +205,15 @@ class TransientEHL:
         (self._grid, self._q, self._p, self._h, self._h0, hist, self.time, self._lu,
          self._hc_hist, self.result) = snap
         self._hist = list(hist)
+
+    def checkpoint(self):
+        """An opaque copy of the marching state (for :meth:`rollback`), e.g. to redo a step
+        with sub-steps when a time-error estimate is too large."""
+        return self._snapshot()
+
+    def rollback(self, checkpoint):
+        """Return to a state saved by :meth:`checkpoint`."""
+        self._restore(checkpoint)
 
     def _advance(self, dt, cond: Conditions) -> EHLResult:
         o = self.opts
