@@ -237,6 +237,9 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None,
                     else:
                         os.environ[k] = v
     timings["ehl_and_coupling_s"] = time.perf_counter() - t0
+    for name, r in results.items():                 # inside the tasks (their own clocks)
+        timings[f"ehl_pass_{name}_s"] = r.runtime_s
+    timings["coupling_s"] = coupling.runtime_s
 
     study = CycleStudy(case=case, dynamics=dyn, inputs=inputs,
                        sets=[results[s.name] for s in sets],

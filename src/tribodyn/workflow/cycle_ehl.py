@@ -119,14 +119,10 @@ MAX_SUBSTEPS = 8
 
 
 class _Marcher:
-    """Marches one loaded event of the transient EHL sample by sample, with time-error
-    control and the start at the engagement.
+    """Marches one loaded event of the transient EHL sample by sample with time-error
+    control. The event starts from the steady solution at its first loaded sample (as
+    in tribodyn 0.1: the implicit coupling measures the film from that start).
 
-    * Start: where the force crosses ``min_load`` between the previous (unloaded) sample
-      and this one, the event starts from the steady solution at the crossing
-      (F = min_load, the other conditions interpolated) and marches to the sample, so the
-      engagement does not depend on where the samples fall; at the first sample of the
-      cycle it starts there.
     * Each step's local error is estimated from the central film against its quadratic
       extrapolation from the three previous levels (Milne's device for BDF2 with constant
       steps: e ≈ (2/11)|h − h_pred|/h; after a start, with fewer levels, the linear
@@ -149,37 +145,10 @@ class _Marcher:
         inp = self.inp
         F = inp.contact_force
         t_i = float(inp.time[i])
-        t0 = self._crossing(i) if i > 0 else None
-        if t0 is not None:
-            F0, ue, us, R = inp.at(t0)
-            r = self.tr.start_steady(self.min_load / inp.width, R, ue, us, time=t0)
-            self.levels = [(t0, r.central_film)]
-            self.t = t0
-            return self.advance(i)
         F_i, ue, us, R = F[i], inp.entrainment_speed[i], inp.sliding_speed[i], inp.radius[i]
         r = self.tr.start_steady(F_i / inp.width, R, ue, us, time=t_i)
         self.levels, self.t, self.substeps = [(t_i, r.central_film)], t_i, 1
         return r
-
-    def _crossing(self, i):
-        """Time at which the force first reaches min_load after sample i − 1 (linear
-        between the finest data points), or None if it is there already at i − 1."""
-        inp = self.inp
-        t_a, t_b = float(inp.time[i - 1]), float(inp.time[i])
-        if inp.fine is not None:
-            tt, FF = inp.fine[0], inp.fine[1]
-            k = np.flatnonzero((tt > t_a) & (tt <= t_b))
-            tt = np.r_[t_a, tt[k]]
-            FF = np.r_[inp.contact_force[i - 1], FF[k]]
-        else:
-            tt, FF = np.array([t_a, t_b]), inp.contact_force[i - 1:i + 1]
-        up = np.flatnonzero((FF[:-1] < self.min_load) & (FF[1:] >= self.min_load))
-        if FF[0] >= self.min_load or not up.size:
-            return None
-        j = up[0]
-        f = (self.min_load - FF[j]) / (FF[j + 1] - FF[j])
-        t0 = float(tt[j] + f * (tt[j + 1] - tt[j]))
-        return t0 if t_b - t0 > 1e-6 * (t_b - t_a) else None
 
     def _error(self, t, h) -> float:
         lv = self.levels
