@@ -1,7 +1,14 @@
-import numpy as np
-import pytest
+import os
 
-from tribodyn import Body, Coating, Material
+# One BLAS thread, as the command line runs the solvers (their matrices are small; set
+# before numpy loads, since a runtime limit does not remove the threads' overhead).
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+from tribodyn import Body, Coating, Material  # noqa: E402
 
 
 @pytest.fixture

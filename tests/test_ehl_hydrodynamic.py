@@ -23,7 +23,14 @@ def test_martin_rigid_isoviscous(u_e):
     h0 = r.min_film
     # Martin (1916), Reynolds exit: w = 4.894 μ u R / h₀ (half-Sommerfeld would be 4.0)
     assert w * h0 / (mu * abs(u_e) * R) == pytest.approx(4.894, rel=0.01)
-    # cavitation at x = 0.4751 √(2R h₀) downstream (sign follows the flow)
+    # cavitation at x = 0.4751 √(2R h₀) downstream (sign follows the flow); the meniscus
+    # converges with the grid spacing (the default grid, sized for the films, places it
+    # within 3 %), so it is checked on 1024 nodes over the same domain
+    assert r.cavitation_position * np.sign(u_e) / math.sqrt(2 * R * h0) == pytest.approx(
+        0.4751, rel=0.04)
+    r = solve_ehl(w, R, u_e, 0.0, PAIR, ISO, elastic=False, n=1024)
+    assert r.converged, r.message
+    h0 = r.min_film
     assert r.cavitation_position * np.sign(u_e) / math.sqrt(2 * R * h0) == pytest.approx(
         0.4751, rel=0.02)
     # the Reynolds exit condition emerges: p and dp/dx vanish at the meniscus
@@ -80,7 +87,9 @@ def test_inlet_truncation_sizes_the_domain_and_is_reported():
     equals ``inlet_truncation``; the reported estimate tracks the true loss (Martin)."""
     R, w, mu = 0.01, 1e3, 0.05
     for eps in (0.005, 0.05):
-        r = solve_ehl(w, R, 1.0, 0.0, PAIR, ISO, elastic=False, inlet_truncation=eps)
+        # a fine grid, so that the film's discretisation error (0.3 % on the default
+        # grid) does not mask the truncation loss
+        r = solve_ehl(w, R, 1.0, 0.0, PAIR, ISO, elastic=False, inlet_truncation=eps, n=2048)
         true_loss = 1 - w * r.min_film / (mu * R) / 4.894
         assert r.inlet_load_deficit == pytest.approx(eps, rel=0.1)
         assert r.inlet_load_deficit == pytest.approx(true_loss, rel=0.1)

@@ -22,8 +22,11 @@ def test_load_step_relaxes_to_new_steady_state():
         assert r.converged, r.message
         assert r.hydrodynamic_load == pytest.approx(1.5 * w, rel=1e-9)
         hc.append(r.central_film)
-    # the steady solution of the same discrete problem (on the transient's grid)
-    target = solve_ehl(1.5 * w, R, u, 0.5, PAIR, OIL, n=r.x.size)
+    # the steady solution of the same discrete problem (on the transient's grid, whose
+    # extent in Hertz half-widths b at the new load is given explicitly)
+    b1 = math.sqrt(8 * 1.5 * w * R / (math.pi * E_PRIME))
+    target = solve_ehl(1.5 * w, R, u, 0.5, PAIR, OIL, n=r.x.size, inlet=-r.x[0] / b1,
+                       outlet=r.x[-1] / b1)
     assert target.x[0] == pytest.approx(r.x[0], rel=1e-12)
     # the film first keeps its old thickness (the oil must be squeezed out) ...
     assert hc[0] > 1.02 * target.central_film

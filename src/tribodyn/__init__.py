@@ -6,14 +6,25 @@ uncoated and coated (DLC, WC-C) tappets. Method after Andreou et al., Appl. Sci.
 7815. All quantities are SI.
 """
 
-from ._validation import InputError
-from .contact.dry import DryContactResult, solve_dry_contact
-from .contact.ehl import EHLOptions, EHLResult, TransientEHL, solve_ehl
-from .physics.asperity import Roughness, greenwood_tripp
-from .physics.elasticity import DeformationOperator
-from .physics.hertz import hertz_line_contact
-from .physics.lubricant import Lubricant
-from .physics.materials import Body, Coating, Material, reduced_modulus
+import os as _os
+import sys as _sys
+
+if "numpy" not in _sys.modules:
+    # The solvers' dense matrices are small (a few hundred nodes): multi-threaded BLAS
+    # costs several times the single-threaded time on them, and a runtime limit does not
+    # remove that overhead. Imported before numpy, tribodyn therefore asks for one BLAS
+    # thread unless the environment says otherwise.
+    for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        _os.environ.setdefault(_var, "1")
+
+from ._validation import InputError  # noqa: E402
+from .contact.dry import DryContactResult, solve_dry_contact  # noqa: E402
+from .contact.ehl import EHLOptions, EHLResult, TransientEHL, solve_ehl  # noqa: E402
+from .physics.asperity import Roughness, greenwood_tripp  # noqa: E402
+from .physics.elasticity import DeformationOperator  # noqa: E402
+from .physics.hertz import hertz_line_contact  # noqa: E402
+from .physics.lubricant import Lubricant  # noqa: E402
+from .physics.materials import Body, Coating, Material, reduced_modulus  # noqa: E402
 
 __version__ = "0.1.0"
 

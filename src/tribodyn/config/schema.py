@@ -399,10 +399,10 @@ class SurfaceSetConfig(Section):
 class Numerics(Section):
     """``[numerics]``: solver settings."""
 
-    n: int = _q(0, "", "EHL grid nodes (uniform); 0 = automatic from the contact "
-                       "(512…4096; steady solves refine until h_c, h_min change < 0.5 % "
-                       "on doubling); at most 4096 (the transient steps factor dense "
-                       "matrices)",
+    n: int = _q(0, "", "EHL grid nodes (uniform); 0 = automatic (384 nodes over the "
+                       "domain sized from the contact; steady solves double them while "
+                       "h_c, h_min change > 1 % from half the nodes); at most 4096 (the "
+                       "transient steps factor dense matrices)",
                 ge=0, le=4096)
     min_load: float = _q(5.0, "N", "contact force below which the EHL is not solved "
                                    "(cam on the base circle: no load, no film)",
@@ -423,8 +423,10 @@ class Numerics(Section):
                     lt=1.0)
     max_iter: int = _q(60, "", "EHL Newton iterations per solve", ge=1, le=10000)
     time_order: Literal[1, 2] = _q(2, "", "EHL time discretisation: 1 backward Euler, 2 BDF2")
-    crank_step_deg: float = _q(1.0, "deg (crank)", "time step of the transient EHL along the "
-                                                   "cycle", gt=0.0, le=5.0)
+    crank_step_deg: float = _q(1.0, "deg (crank)", "sample step of the transient EHL along "
+                                                   "the cycle (steps with a large estimated "
+                                                   "time error are subdivided)",
+                               gt=0.0, le=5.0)
     viscous_model: Literal["eyring", "newtonian"] = _q("eyring", "", "viscous friction law")
     limiting_shear: bool = _q(True, "", "cap viscous shear at Λp")
     greenwood_tripp: Literal["exact", "paper"] = _q(
@@ -443,9 +445,11 @@ class Numerics(Section):
     implicit_coupling: bool = _q(True, "", "also run the implicit dynamics (numerical EHL "
                                            "film and friction in the dynamics) for the "
                                            "comparison with the explicit run")
-    coupling_iterations: int = _q(6, "", "dynamics ↔ EHL iterations of the implicit coupling",
+    coupling_iterations: int = _q(6, "", "dynamics ↔ EHL iterations of the implicit coupling "
+                                         "(Anderson-accelerated)",
                                   ge=1, le=100)
-    workers: int = _q(0, "", "worker processes for the surface sets (0: one per CPU core)",
+    workers: int = _q(0, "", "worker processes for the surface sets, the coupling chain and "
+                             "the single-contact studies (0: one per CPU core)",
                       ge=0, le=4096)
 
 

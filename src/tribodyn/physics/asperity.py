@@ -138,6 +138,22 @@ class _LogTable:
         fm1 = _exact(n - 1.0, lam) if n >= 1.0 else None
         slope = -n * fm1 / f
         self.spline = CubicHermiteSpline(lam, np.log(f), slope)
+        self._lam0, self._step = float(lam[0]), float(lam[1] - lam[0])
+        self._y, self._dy = np.log(f), slope * self._step
+
+    def _hermite(self, lm):
+        """ln F_n and its λ-derivative: the same cubic Hermite spline, evaluated directly
+        on the uniform grid (faster than the generic piecewise polynomial)."""
+        u = (lm - self._lam0) / self._step
+        k = np.minimum(u.astype(np.intp), self._y.size - 2)
+        t = u - k
+        y0, y1, d0, d1 = self._y[k], self._y[k + 1], self._dy[k], self._dy[k + 1]
+        t2 = t * t
+        a = 2.0 * (y0 - y1) + d0 + d1             # ln F = y0 + d0 t + b t² + a t³
+        b = 3.0 * (y1 - y0) - 2.0 * d0 - d1
+        val = y0 + t * (d0 + t * (b + t * a))
+        der = (d0 + t * (2.0 * b + 3.0 * a * t)) / self._step
+        return val, der
 
     def __call__(self, lam):
         lam = np.asarray(lam, dtype=float)
@@ -145,10 +161,15 @@ class _LogTable:
         dout = np.zeros_like(lam)
         neg = lam < _LAM_NEG
         mid = ~neg & (lam <= _LAM_POS)
+        if mid.all():
+            val, der = self._hermite(lam)
+            out = np.exp(val)
+            return out, out * der
         lm = lam[mid]
-        f = np.exp(self.spline(lm))
+        val, der = self._hermite(lm)
+        f = np.exp(val)
         out[mid] = f
-        dout[mid] = f * self.spline(lm, 1)
+        dout[mid] = f * der
         if np.any(neg):
             ln = lam[neg]
             out[neg] = _negative_series(self.n, ln)

@@ -114,6 +114,27 @@ _XI_LO, _XI_HI, _PER_DECADE = 1e-4, 2e2, 40
 _T_MAX = 40.0          # G₂ ~ t² e^{−2t}: negligible beyond t = 40
 
 
+def _remainder_integrand(coating: Material, substrate: Material):
+    """f(t) = [G(t) + g∞ expm1(−2t)]/t for scalar t > 0 (math-module floats: quadrature
+    calls it ~10⁵ times per table), the same arithmetic as :func:`_coated_G`."""
+    lam, kap = _layer_constants(coating, substrate)
+    cc, cs = 2.0 * coating.compliance, 2.0 * substrate.compliance
+    r = cs / cc
+    g_inf = 2.0 * (coating.compliance - substrate.compliance)
+    const = (1.0 - lam * kap) - r * (1.0 - lam) * (1.0 - kap)
+    a1, lk = (1.0 - lam) * (1.0 - kap), lam * kap
+
+    def f(t):
+        e1 = math.expm1(-2.0 * t)
+        th = 1.0 + e1
+        q = 2.0 * e1 + e1 * e1
+        den = a1 - (lam + kap) * e1 - 4.0 * kap * t * t * th + lk * q
+        num = (const + 4.0 * t * kap * th - lk * q
+               - r * (-(lam + kap) * e1 - 4.0 * kap * t * t * th + lk * q))
+        return (cc * num / den + g_inf * e1) / t
+    return f
+
+
 class _RemainderTable:
     """Q₂(ξ) = (1/π)∫₀^∞ G₂(t) sin(tξ)/t² dt for one coating/substrate pair.
 
@@ -127,8 +148,7 @@ class _RemainderTable:
         self.g_inf = 2.0 * (coating.compliance - substrate.compliance)
         g_inf = self.g_inf
 
-        def f(t):
-            return (_coated_G(t, coating, substrate) + g_inf * np.expm1(-2.0 * t)) / t
+        f = _remainder_integrand(coating, substrate)
 
         self.q_inf = 0.5 * float(f(1e-8))          # Q₂(ξ → ∞) = f(0)/2
         xi = np.logspace(np.log10(_XI_LO), np.log10(_XI_HI),
@@ -137,7 +157,8 @@ class _RemainderTable:
         for i, x in enumerate(xi):
             # ∫₀^T f(t) sin(xt)/t dt; first piece (one half-period) has a regular integrand.
             ta = min(_T_MAX, math.pi / x)
-            a, _ = integrate.quad(lambda t: f(t) * (x * np.sinc(x * t / math.pi)), 0.0, ta,
+            # quad samples inside (0, ta): sin(xt)/t needs no t = 0 limit
+            a, _ = integrate.quad(lambda t: f(t) * math.sin(x * t) / t, 0.0, ta,
                                   limit=200, epsabs=0.0, epsrel=1e-12)
             b = 0.0
             if ta < _T_MAX:

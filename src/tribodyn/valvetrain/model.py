@@ -42,6 +42,7 @@ from .tribology import TribologyModel
 __all__ = ["ValvetrainModel", "ContactLawError", "smooth_step"]
 
 _PALMGREN_EXP = 0.9
+_HUGE = float("inf")
 
 
 class ContactLawError(RuntimeError):
@@ -186,9 +187,9 @@ class ValvetrainModel:
     def film(self, t: float, force: float, ue: float, R: float) -> tuple[float, float]:
         if not self.has_film:
             return 0.0, 0.0
-        h, hF = self.trib.film(t, force, ue, R)
+        h, hF = self.trib.film(float(t), float(force), ue, R)
         h, hF = float(h), float(hF)
-        if not (math.isfinite(h) and math.isfinite(hF)) or hF > 0.0:
+        if not (-_HUGE < h < _HUGE and -_HUGE < hF <= 0.0):     # finite, dh/dF <= 0
             raise ContactLawError(f"film law returned h = {h:g} m, dh/dF = {hF:g} m/N at "
                                   f"t = {t:.6g} s, F = {force:.6g} N (need finite, dh/dF <= 0)")
         return h, hF

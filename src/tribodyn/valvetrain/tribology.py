@@ -222,6 +222,8 @@ class FilmTableTribology(TribologyModel):
         return hk + ck * (force - fk), ck
 
     def film(self, t, force, entrainment_speed, radius):
+        if type(t) is float and type(force) is float:       # the dynamics' hot path
+            return self._scalar_film(t, force)
         if np.ndim(t) == 0 and np.ndim(force) == 0:
             return self._scalar_film(float(t), float(force))
         tt = self._wrap(t)

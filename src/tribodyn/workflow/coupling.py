@@ -34,10 +34,13 @@ from .cycle_ehl import CycleInputs, SetCycleResult, ehl_for_set
 
 __all__ = ["FrictionCoefficientTable", "film_law_from_ehl", "ehl_tribology",
            "CouplingIteration", "CouplingResult", "run_coupling", "RELAXATION",
+           "ANDERSON_MEMORY", "AndersonMixer",
            "COUPLING_RMS_TOL", "COUPLING_MAX_TOL"]
 
-#: Under-relaxation of the film/friction tables between coupling iterations.
+#: Mixing of the film/friction tables between coupling iterations (Anderson β) …
 RELAXATION = 0.5
+#: … and the number of earlier iterations the Anderson step combines.
+ANDERSON_MEMORY = 2
 #: Coupling converged: change of the contact force between iterations, relative to its
 #: peak, below these in RMS over the cam event and in maximum (the maximum sits at the
 #: valve-closing impact, whose timing is the last to settle).
@@ -152,6 +155,47 @@ def _relax(new: FilmTableTribology, old: FilmTableTribology | None, theta: float
                               mix(new.Fk, old.time, old.Fk), period=period)
 
 
+class AndersonMixer:
+    """Anderson acceleration (Walker & Ni, SIAM J. Numer. Anal. 49 (2011) 1715) of the
+    fixed point x = G(x) of the film/friction tables, with mixing β and memory m:
+
+        f_k = G(x_k) − x_k,  γ = argmin |f_k − ΔF γ|,
+        x_{k+1} = x_k + β f_k − (ΔX + β ΔF) γ
+
+    (ΔX, ΔF: differences of the last m iterates and residuals). With m = 0 it is the
+    under-relaxed iteration x_{k+1} = x_k + β f_k. The components (h_k, c_k, F_k, μ_k) are
+    scaled by their largest magnitudes so that they weigh alike."""
+
+    def __init__(self, beta: float = RELAXATION, memory: int = ANDERSON_MEMORY):
+        self.beta, self.m = float(beta), int(memory)
+        self.x, self.f = [], []
+
+    def __call__(self, x, gx):
+        f = gx - x
+        self.x.append(x)
+        self.f.append(f)
+        self.x, self.f = self.x[-(self.m + 1):], self.f[-(self.m + 1):]
+        new = x + self.beta * f
+        if len(self.f) > 1:
+            dF = np.diff(np.array(self.f), axis=0).T
+            dX = np.diff(np.array(self.x), axis=0).T
+            gamma, *_ = np.linalg.lstsq(dF, f, rcond=1e-10)
+            if np.all(np.isfinite(gamma)):
+                new = new - (dX + self.beta * dF) @ gamma
+        return new
+
+
+def _pack(table: FilmTableTribology):
+    return np.concatenate([table.h, table.c, table.Fk, table.friction_model.mu])
+
+
+def _unpack(v, like: FilmTableTribology, period) -> FilmTableTribology:
+    n = like.time.size
+    h, c, F, mu = (v[k * n:(k + 1) * n] for k in range(4))
+    return FilmTableTribology(FrictionCoefficientTable(like.time, np.maximum(mu, 0.0), period),
+                              like.time, h, np.minimum(c, 0.0), F, period=period)
+
+
 def run_coupling(case, surface_set, dynamics: ValvetrainResult, inputs: CycleInputs,
                  first: SetCycleResult, progress=None) -> CouplingResult:
     """Implicit coupling for one surface set, starting from its EHL (``first``) on the
@@ -169,10 +213,20 @@ def run_coupling(case, surface_set, dynamics: ValvetrainResult, inputs: CycleInp
     ev = dynamics.event_mask()
     f_peak = float(dynamics.contact_force.max())
     prev, table, ehl, inp = dynamics, None, first, inputs
+    mixer, scale = AndersonMixer(), None
     msg = f"not converged in {n.coupling_iterations} iterations"
     for k in range(1, n.coupling_iterations + 1):
-        table = _relax(ehl_tribology(inp, ehl, lub, e_prime, period), table, RELAXATION,
-                       period)
+        g = ehl_tribology(inp, ehl, lub, e_prime, period)
+        if table is None:
+            table = g
+        else:
+            if g.time.size != table.time.size or np.any(g.time != table.time):
+                g = _relax(g, table, 1.0, period)         # onto the same samples
+            if scale is None:
+                n_t = g.time.size
+                scale = np.repeat([max(np.abs(v).max(), 1e-300) for v in
+                                   (g.h, g.c, g.Fk, g.friction_model.mu)], n_t)
+            table = _unpack(scale * mixer(_pack(table) / scale, _pack(g) / scale), g, period)
         new = simulate_valvetrain(case.cam(), case.valvetrain_parameters(), tribology=table,
                                   **case.dynamics_options())
         if not new.converged:

@@ -19,9 +19,9 @@ Everything returned is in memory; writing results is :mod:`tribodyn.output`.
 from __future__ import annotations
 
 import os
-import queue as queue_module
 import time
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -89,39 +89,49 @@ class CycleStudy:
 
 
 # ----------------------------------------------------------------------------- workers
+#: BLAS/OpenMP thread settings of worker processes: the solvers' dense matrices are small,
+#: and multi-threaded BLAS on them costs several times the single-threaded time.
+_THREAD_ENV = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+
+
 def _limit_threads():
-    """One BLAS thread per process: the solvers' matrices are small, and oversubscribed
-    BLAS threads are much slower than one."""
+    """One BLAS thread per process (a runtime limit; see :func:`_pool_context` for the
+    start-up setting that also avoids the threads' start-up costs)."""
     from threadpoolctl import threadpool_limits
     threadpool_limits(1)
 
 
-def _queue_progress(queue, name):
-    """Progress callback of a worker: every tenth sample to the parent's queue."""
-    if queue is None:
-        return None
-
-    def cb(i, n, name=name):
-        if i % 10 == 0 or i == n:
-            queue.put((name, i, n))
-    return cb
+def _blas_single_threaded() -> bool:
+    from threadpoolctl import threadpool_info
+    return all(i.get("num_threads", 1) <= 1 for i in threadpool_info())
 
 
-def _set_task(case, name, inputs, queue=None) -> SetCycleResult:
+def _pool_context():
+    """Start method of the local process pool: fork when this process already runs
+    single-threaded BLAS (the command line sets it before numpy loads), else a fresh
+    interpreter per worker with one BLAS thread set in its environment (a runtime limit
+    does not remove the threaded BLAS's overhead on small matrices)."""
+    import multiprocessing as mp
+    methods = mp.get_all_start_methods()
+    if "fork" in methods and _blas_single_threaded():
+        return mp.get_context("fork")
+    return mp.get_context("forkserver" if "forkserver" in methods else "spawn")
+
+
+def _set_task(case, name, inputs) -> SetCycleResult:
+    """EHL along the cycle for one surface set (a picklable top-level task)."""
     _limit_threads()
-    return ehl_for_set(case, case.surface_set(name), inputs, _queue_progress(queue, name))
+    return ehl_for_set(case, case.surface_set(name), inputs)
 
 
-def _coupling_task(case, name, dynamics, inputs, queue=None, first=None):
+def _coupling_task(case, name, dynamics, inputs, first=None):
     """Reference set: its EHL on the explicit dynamics (unless given as ``first``), then
     the implicit coupling iterations. Returns (first, CouplingResult)."""
     _limit_threads()
     s = case.surface_set(name)
     if first is None:
-        first = ehl_for_set(case, s, inputs, _queue_progress(queue, name))
-    progress = None if queue is None else (
-        lambda label, i, m: (i % 10 == 0 or i == m) and queue.put((label, i, m)))
-    return first, run_coupling(case, s, dynamics, inputs, first, progress)
+        first = ehl_for_set(case, s, inputs)
+    return first, run_coupling(case, s, dynamics, inputs, first)
 
 
 def _coating_studies_task(case, reference: str, nose):
@@ -133,15 +143,30 @@ def _coating_studies_task(case, reference: str, nose):
     return dry, ehl, sens
 
 
+@contextmanager
+def _single_blas_thread():
+    from threadpoolctl import threadpool_limits
+    with threadpool_limits(1):
+        yield
+
+
 # ----------------------------------------------------------------------------- driver
-def run_cycle_study(case, *, workers: int | None = None, progress=None) -> CycleStudy:
+def run_cycle_study(case, *, workers: int | None = None, progress=None,
+                    executor: Executor | None = None) -> CycleStudy:
     """Run the whole study for a validated :class:`~tribodyn.config.Case`.
 
+    The surface sets, the coupling chain (reference set, then the implicit iterations)
+    and the single-contact studies are independent tasks, submitted to ``executor`` (any
+    :class:`concurrent.futures.Executor`, e.g. a Dask client's ``get_executor()``; every
+    task is a picklable top-level function with picklable arguments) or, by default, to
+    a local process pool of ``workers`` processes (``workers=1``: in this process).
+
     ``progress(event, **info)`` receives ``("dynamics", …)``, ``("set", name=, done=,
-    total=)`` and ``("done", …)`` events (the CLI drives a progress bar with them).
+    total=)`` (done = 0 when a set is submitted, = total when its result is in) and
+    ``("done", …)`` events (the CLI drives a progress bar with them); it runs in this
+    process only.
     """
     t_start = time.perf_counter()
-    _limit_threads()
     n = case.numerics
     report = progress or (lambda *a, **k: None)
     timings = {}
@@ -162,40 +187,61 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None) -> Cycle
             f"no EHL sample carries numerics.min_load = {n.min_load:g} N: the peak contact "
             f"force is {inputs.contact_force.max():.1f} N (lower numerics.min_load)")
     nose = nose_condition(inputs)
+    total = inputs.crank_angle.size
 
     if workers is None:
         workers = n.workers or os.cpu_count() or 1
     workers = max(1, min(int(workers), len(sets) + 1))
     t0 = time.perf_counter()
     results = {}
-    if workers == 1:
-        def cb_for(name):
-            return lambda i, m: report("set", name=name, done=i, total=m)
-        # serial: in-process, with per-step progress
-        for s in sets:
-            results[s.name] = ehl_for_set(case, s, inputs, cb_for(s.name))
-        _, coupling = _coupling_task(case, ref_name, dyn, inputs, first=results[ref_name])
-        coating = _coating_studies_task(case, ref_name, nose)
+    if executor is None and workers == 1:
+        # serial, in this process
+        with _single_blas_thread():
+            for s in sets:
+                report("set", name=s.name, done=0, total=total)
+                results[s.name] = ehl_for_set(case, s, inputs)
+                report("set", name=s.name, done=total, total=total)
+            _, coupling = _coupling_task(case, ref_name, dyn, inputs, first=results[ref_name])
+            coating = _coating_studies_task(case, ref_name, nose)
     else:
-        import multiprocessing as mp
-        ctx = mp.get_context("fork" if "fork" in mp.get_all_start_methods() else "spawn")
-        manager = ctx.Manager()
-        queue = manager.Queue()          # progress messages from the workers
-        with manager, ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
-            fut_c = pool.submit(_coupling_task, case, ref_name, dyn, inputs, queue)
-            futs = {s.name: pool.submit(_set_task, case, s.name, inputs, queue)
+        own = executor is None
+        pool = executor
+        if own:
+            ctx = _pool_context()
+            saved = {k: os.environ.get(k) for k in _THREAD_ENV}
+            os.environ.update({k: "1" for k in _THREAD_ENV})
+            pool = ProcessPoolExecutor(max_workers=workers, mp_context=ctx)
+        try:
+            # the coupling chain is the longest task: submitted first
+            fut_c = pool.submit(_coupling_task, case, ref_name, dyn, inputs)
+            futs = {pool.submit(_set_task, case, s.name, inputs): s.name
                     for s in sets if s.name != ref_name}
             fut_coat = pool.submit(_coating_studies_task, case, ref_name, nose)
-            pending = [fut_c, fut_coat, *futs.values()]
-            while any(not f.done() for f in pending):
-                _drain(queue, report)
-                time.sleep(0.05)
-            _drain(queue, report)
-            results[ref_name], coupling = fut_c.result()
-            for name, f in futs.items():
-                results[name] = f.result()
-            coating = fut_coat.result()
+            futs[fut_c] = ref_name
+            for s in sets:
+                report("set", name=s.name, done=0, total=total)
+            for f in as_completed([*futs, fut_coat]):
+                if f is fut_coat:
+                    coating = f.result()
+                    continue
+                name = futs[f]
+                if f is fut_c:
+                    results[name], coupling = f.result()
+                else:
+                    results[name] = f.result()
+                report("set", name=name, done=total, total=total)
+        finally:
+            if own:
+                pool.shutdown(wait=True, cancel_futures=True)
+                for k, v in saved.items():
+                    if v is None:
+                        os.environ.pop(k, None)
+                    else:
+                        os.environ[k] = v
     timings["ehl_and_coupling_s"] = time.perf_counter() - t0
+    for name, r in results.items():                 # inside the tasks (their own clocks)
+        timings[f"ehl_pass_{name}_s"] = r.runtime_s
+    timings["coupling_s"] = coupling.runtime_s
 
     study = CycleStudy(case=case, dynamics=dyn, inputs=inputs,
                        sets=[results[s.name] for s in sets],
@@ -221,12 +267,3 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None) -> Cycle
     study.analyse()
     report("done", runtime_s=study.runtime_s)
     return study
-
-
-def _drain(queue, report):
-    while True:
-        try:
-            name, i, m = queue.get_nowait()
-        except queue_module.Empty:
-            return
-        report("set", name=name, done=i, total=m)

@@ -14,11 +14,12 @@ P = (F_v + F_b) u_s [W]; films [m]; pressures [Pa].
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..contact.ehl import EHLOptions, TransientEHL
+from ..contact.ehl import EHLOptions, EHLResult, TransientEHL
 from ..contact.ehl.postprocess import shear_stress
 from ..physics.lubricant import Lubricant
 
@@ -41,6 +42,19 @@ class CycleInputs:
     sliding_speed: np.ndarray     #: [m/s]
     radius: np.ndarray            #: radius of curvature [m]
     width: float                  #: cam width [m]
+    #: the dynamics' own output (time, F, u_e, u_s, R) at its finer output step, for
+    #: conditions between the samples (sub-steps); None: interpolate the samples
+    fine: tuple | None = None
+
+    def at(self, t: float) -> tuple[float, float, float, float]:
+        """(F [N], u_e, u_s [m/s], R [m]) at time t [s] (linear interpolation of the
+        finest data available)."""
+        if self.fine is not None:
+            tt, *cols = self.fine
+        else:
+            tt, cols = self.time, (self.contact_force, self.entrainment_speed,
+                                   self.sliding_speed, self.radius)
+        return tuple(float(np.interp(t, tt, c)) for c in cols)
 
     @classmethod
     def from_dynamics(cls, res, crank_step_deg: float, width: float) -> "CycleInputs":
@@ -53,9 +67,12 @@ class CycleInputs:
         def at(v):
             return np.interp(crank, res.crank_angle, v)
 
+        fine = (np.asarray(res.time, float), np.maximum(res.contact_force, 0.0),
+                np.asarray(res.entrainment_speed, float), np.asarray(res.sliding_speed, float),
+                np.asarray(res.radius_of_curvature, float))
         return cls(crank, at(res.time), np.maximum(at(res.contact_force), 0.0),
                    at(res.entrainment_speed), at(res.sliding_speed),
-                   at(res.radius_of_curvature), float(width))
+                   at(res.radius_of_curvature), float(width), fine)
 
 
 @dataclass
@@ -85,10 +102,97 @@ class SetCycleResult:
     film: np.ndarray               #: (crank, k) [m]
     failures: list = field(default_factory=list)   #: [(crank_deg, message)]
     runtime_s: float = 0.0
+    #: solver steps taken to reach each sample (1: the sample step itself; more where the
+    #: time-error control or an engagement subdivided it; 0 where unloaded)
+    substeps: np.ndarray = None
 
     @property
     def friction(self) -> np.ndarray:
         return self.viscous_friction + self.boundary_friction
+
+
+#: Time-error control: a step whose estimated local error of the central film exceeds this
+#: share is repeated in sub-steps (BDF2: error ∝ Δt³) …
+TIME_TOL = 2e-3
+#: … at most this many (they share the step's end conditions by interpolation).
+MAX_SUBSTEPS = 8
+
+
+class _Marcher:
+    """Marches one loaded event of the transient EHL sample by sample with time-error
+    control. The event starts from the steady solution at its first loaded sample (as
+    in tribodyn 0.1: the implicit coupling measures the film from that start).
+
+    * Each step's local error is estimated from the central film against its quadratic
+      extrapolation from the three previous levels (Milne's device for BDF2 with constant
+      steps: e ≈ (2/11)|h − h_pred|/h; after a start, with fewer levels, the linear
+      extrapolation, |h − h_pred|/(3h), or |Δh|/(2h)). A step with
+      e > TIME_TOL is repeated in m = ⌈(e/TIME_TOL)^(1/3)⌉ ≤ MAX_SUBSTEPS sub-steps with
+      the conditions interpolated from the dynamics' output.
+    """
+
+    def __init__(self, tr: TransientEHL, inp: CycleInputs, min_load: float):
+        self.tr, self.inp, self.min_load = tr, inp, float(min_load)
+        self.levels = []           # (t, h_c) of the last accepted levels
+        self.t = None
+        self.substeps = 0
+
+    def _args(self, t):
+        F, ue, us, R = self.inp.at(t)
+        return (max(F, self.min_load) / self.inp.width, R, ue, us)
+
+    def start(self, i) -> EHLResult:
+        inp = self.inp
+        F = inp.contact_force
+        t_i = float(inp.time[i])
+        F_i, ue, us, R = F[i], inp.entrainment_speed[i], inp.sliding_speed[i], inp.radius[i]
+        r = self.tr.start_steady(F_i / inp.width, R, ue, us, time=t_i)
+        self.levels, self.t, self.substeps = [(t_i, r.central_film)], t_i, 1
+        return r
+
+    def _error(self, t, h) -> float:
+        lv = self.levels
+        if not (np.isfinite(h) and h > 0.0):
+            return np.inf
+        if len(lv) == 1:
+            return abs(h - lv[0][1]) / (2.0 * h)
+        if len(lv) == 2:
+            (t1, h1), (t0, h0) = lv
+            pred = h1 + (t - t1) / (t1 - t0) * (h1 - h0)
+            return abs(h - pred) / (3.0 * h)
+        (t2, h2), (t1, h1), (t0, h0) = lv
+        pred = (h0 * (t - t1) * (t - t2) / ((t0 - t1) * (t0 - t2))
+                + h1 * (t - t0) * (t - t2) / ((t1 - t0) * (t1 - t2))
+                + h2 * (t - t0) * (t - t1) / ((t2 - t0) * (t2 - t1)))
+        return (2.0 / 11.0) * abs(h - pred) / h
+
+    def _step(self, t):
+        r = self.tr.step(t - self.t, *self._args(t))
+        self.t = t
+        return r
+
+    def _accept(self, t, r):
+        self.levels = [(t, r.central_film), *self.levels][:3]
+
+    def advance(self, i) -> EHLResult:
+        t_end = float(self.inp.time[i])
+        t_start = self.t
+        cp = self.tr.checkpoint()
+        r = self._step(t_end)
+        err = self._error(t_end, r.central_film) if r.converged else 0.0
+        m = 1
+        if err > TIME_TOL:
+            m = int(min(MAX_SUBSTEPS, max(2, math.ceil((err / TIME_TOL) ** (1.0 / 3.0)))))
+            self.tr.rollback(cp)
+            self.t = t_start
+            for j in range(1, m + 1):
+                t = t_start + (t_end - t_start) * j / m
+                r = self._step(t)
+                self._accept(t, r)
+        else:
+            self._accept(t_end, r)
+        self.substeps = m
+        return r
 
 
 def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: Lubricant,
@@ -111,6 +215,7 @@ def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: 
     loaded = inp.contact_force >= min_load
     converged = np.ones(n, dtype=bool)
     iterations = np.zeros(n, dtype=int)
+    substeps = np.zeros(n, dtype=np.int16)
     k = PROFILE_POINTS
     x_prof = np.full((n, k), np.nan)
     p_prof = np.full((n, k), np.nan, dtype=np.float32)
@@ -118,20 +223,20 @@ def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: 
     failures = []
     l = inp.width
     tr = None
+    march = None
     for i in range(n):
         if not loaded[i]:
             tr = None                       # the event ended: the next one starts afresh
             if progress:
                 progress(i + 1, n)
             continue
-        w = inp.contact_force[i] / l
-        args = (w, inp.radius[i], inp.entrainment_speed[i], inp.sliding_speed[i])
         try:
             if tr is None:
                 tr = TransientEHL(bodies, lubricant, roughness, options=options)
-                r = tr.start_steady(*args, time=inp.time[i])
+                march = _Marcher(tr, inp, min_load)
+                r = march.start(i)
             else:
-                r = tr.step(inp.time[i] - inp.time[i - 1], *args)
+                r = march.advance(i)
         except Exception as exc:            # a step that raises is reported, not fatal
             converged[i] = False
             failures.append((float(inp.crank_angle[i]), f"{type(exc).__name__}: {exc}"))
@@ -139,6 +244,7 @@ def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: 
             if progress:
                 progress(i + 1, n)
             continue
+        substeps[i] = march.substeps
         converged[i] = r.converged
         iterations[i] = r.iterations
         if not r.converged:
@@ -169,7 +275,7 @@ def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: 
     return SetCycleResult(
         name=name, label=label, crank_angle=inp.crank_angle.copy(), loaded=loaded,
         converged=converged, iterations=iterations, x=x_prof, pressure=p_prof, film=h_prof,
-        failures=failures, runtime_s=_time.perf_counter() - t_start, **out)
+        failures=failures, runtime_s=_time.perf_counter() - t_start, substeps=substeps, **out)
 
 
 def ehl_for_set(case, surface_set, inputs: CycleInputs, progress=None) -> SetCycleResult:

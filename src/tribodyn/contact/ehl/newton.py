@@ -14,7 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy import linalg
+from scipy.linalg import lapack
 
+from .kernels import jacobi_diagonal
 from .reynolds import Linearization, ReynoldsSystem
 
 __all__ = ["State", "NewtonOutcome", "newton", "gmres", "CoarseLevel",
@@ -24,8 +26,21 @@ _NONMONOTONE = 6
 _TRACE = False
 _WATCHDOG = 100.0
 _MAX_KRYLOV = 30
-_MAX_KRYLOV_BEFORE_REFACTOR = 12
+_MAX_KRYLOV_BEFORE_REFACTOR = 20
 _MAX_KRYLOV_TWO_GRID = 200
+
+
+def _lu_solver(lu):
+    """v ↦ LU⁻¹ v for a factorisation from ``lu_factor`` (LAPACK getrs, no wrapper)."""
+    getrs = _GETRS
+    fac, piv = lu
+
+    def solve(v):
+        return getrs(fac, piv, v)[0]
+    return solve
+
+
+_GETRS = lapack.get_lapack_funcs("getrs", (np.zeros(1),))
 
 
 def gmres(lin: Linearization, lu, rtol, max_it=None):
@@ -40,7 +55,7 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
     if hasattr(lu, "solve"):              # a preconditioner object
         prec = lu.solve
     else:                                 # an LU factorisation from lu_factor
-        prec = lambda v: linalg.lu_solve(lu, v, check_finite=False)  # noqa: E731
+        prec = _lu_solver(lu)
     x0 = prec(b)
     r0 = b - lin.matvec(x0)
     beta = float(np.linalg.norm(r0))
@@ -56,9 +71,12 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
     V[0] = r0 / beta
     for j in range(max_it):
         w = lin.matvec(prec(V[j]))
-        for i in range(j + 1):
-            Hm[i, j] = np.dot(w, V[i])
-            w -= Hm[i, j] * V[i]
+        Vj = V[: j + 1]
+        h = Vj @ w                              # classical Gram–Schmidt, twice (CGS2)
+        w -= h @ Vj
+        h2 = Vj @ w
+        w -= h2 @ Vj
+        Hm[: j + 1, j] = h + h2
         Hm[j + 1, j] = np.linalg.norm(w)
         if Hm[j + 1, j] > 0.0:
             V[j + 1] = w / Hm[j + 1, j]
@@ -114,15 +132,13 @@ class State:
 
 def jacobi_scale(sysm, ev):
     """c_i ≈ 1/|J_ii|, J = A_P + B K (only a scaling of the rows)."""
-    n = sysm.g.n
-    diag = ev.AP[0].copy()
-    if sysm.kcoef is not None:
-        for d, v in ev.AH.items():
-            rows = np.arange(max(0, -d), min(n, n - d))
-            diag[rows] += (v[rows] - ev.AP[d][rows] * ev.dpa[rows + d]) * sysm.kcoef[abs(d)]
-    diag = np.abs(diag)
+    kc = sysm.kcoef if sysm.kcoef is not None else _NO_COEF
+    diag = jacobi_diagonal(ev.AP, ev.AH, ev.dpa, kc, sysm.kcoef is not None)
     diag[0], diag[-1] = diag[1], diag[-2]
     return 1.0 / np.maximum(diag, 1e-300 + 1e-14 * diag.max())
+
+
+_NO_COEF = np.zeros(3)
 
 
 def cavitated(ev, c):
@@ -170,12 +186,13 @@ class TwoGridPreconditioner:
     def __init__(self, coarse: CoarseLevel, lin: Linearization, sysm):
         self.coarse, self.lin = coarse, lin
         self.P, self.R = coarse.transfer(sysm.g.X)
-        n = lin.n
-        diag = lin.AP[0].copy()
+        diag = lin.AP[2].copy()
         if sysm.kcoef is not None:
-            for d, v in lin.B.items():
-                rows = np.arange(max(0, -d), min(n, n - d))
-                diag[rows] += v[rows] * sysm.kcoef[abs(d)]
+            diag += sysm.kcoef[0] * lin.B[2]
+            diag[1:] += sysm.kcoef[1] * lin.B[1, 1:]
+            diag[:-1] += sysm.kcoef[1] * lin.B[3, :-1]
+            diag[2:] += sysm.kcoef[2] * lin.B[0, 2:]
+            diag[:-2] += sysm.kcoef[2] * lin.B[4, :-2]
         dsc = np.where(lin.free, lin.c * diag, 1.0)
         if sysm.kcoef is not None:
             dsc[lin.cav] = 1.0 - lin.D[lin.cav] * sysm.kcoef[0]
@@ -267,7 +284,7 @@ def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse
                 except (linalg.LinAlgError, ValueError):
                     lu = None
                     continue
-                delta = linalg.lu_solve(lu, lin.rhs, check_finite=False)
+                delta = _lu_solver(lu)(lin.rhs)
                 fresh_lu = True
             if not np.all(np.isfinite(delta)):
                 lu = None

@@ -29,6 +29,7 @@ from ...physics.asperity import (
 )
 from ...physics.elasticity import DeformationOperator
 from .grid import Grid
+from .kernels import assemble, band_product, coupling_bands, dense_matrix, newton_matvec
 from .options import Conditions, ContactModel
 
 __all__ = ["ReynoldsSystem", "Evaluation", "Linearization", "band_apply"]
@@ -69,17 +70,8 @@ class ReynoldsSystem:
         if roughness is not None:
             self.ka = roughness.pressure_scale(model.e_surface) / p_ref
             self.sig = roughness.rms / h_ref
-        n = grid.n
-        # upwind second-order stencil for d/dX (ρ̄H) at node i: Σ_k c_k f[i − s k]
-        s = 1 if self.ubar >= 0 else -1
-        self.s = s
-        idx = np.arange(n)
-        self.up1 = np.clip(idx - s, 0, n - 1)
-        self.up2 = np.clip(idx - 2 * s, 0, n - 1)
-        second = (idx - 2 * s >= 0) & (idx - 2 * s <= n - 1)
-        self.c0 = np.where(second, 1.5, 1.0)
-        self.c1 = np.where(second, -2.0, -1.0)
-        self.c2 = np.where(second, 0.5, 0.0)
+        # upwind direction of the Couette term: d/dX (ρ̄H) from nodes i, i − s, i − 2s
+        self.s = 1 if self.ubar >= 0 else -1
 
     @property
     def K(self):
@@ -87,6 +79,13 @@ class ReynoldsSystem:
         if self.elastic and self._K is None:
             self._K = self.g.K * self.kscale
         return self._K
+
+    def deform(self, v):
+        """Scaled deformation K v: a dense product on grids that keep the dense matrix
+        (LU paths), DC-FFT otherwise."""
+        if self.g.has_dense:
+            return self.kscale * (self.g.K @ v)
+        return self.Kop(v)
 
     # -- asperities and film
     def asperity(self, H):
@@ -108,84 +107,67 @@ class ReynoldsSystem:
             return H0 + self.geom
         return H0 + self.geom + self.Kop(Q)
 
+    # -- rheology
+    def rheology(self, P):
+        """(ρ/ρ₀, dρ̄/dP, ln μ/μ₀, d ln μ/dP) at the nodes for the scaled pressure P, read
+        elementwise through the lubricant (a lubricant with per-node fields may stand in)."""
+        lub, pr = self.lub, self.p_ref
+        p = P * pr
+        rho0 = lub.density
+        return (lub.density_at(p) / rho0, lub.ddensity_dp(p) * (pr / rho0),
+                lub.log_viscosity_ratio(p), lub.dlog_viscosity_dp(p) * pr)
+
     # -- residual and banded derivatives
     def evaluate(self, Q, H0):
         """Residuals and banded derivatives at (Q, H0).
 
         Returns an :class:`Evaluation` with the Reynolds residual R (interior rows), the load
         residual ΔX ΣQ − 1, the fluid pressure P = Q − Pa(H), the film H, D = dPa/dH and
-        the diagonals of A_P = ∂R/∂P, A_H = ∂R/∂H (offsets −2…2)."""
-        g, lub = self.g, self.lub
+        the diagonals of A_P = ∂R/∂P, A_H = ∂R/∂H (offsets −2…2; compiled stencil in
+        :func:`.kernels.assemble`)."""
+        g = self.g
         n, dX = g.n, g.dX
         H = self.film(Q, H0)
         pa, dpa = self.asperity(H)
         P = Q - pa
-        p = P * self.p_ref
-        rho = lub.density_at(p) / lub.density
-        drho = lub.ddensity_dp(p) / lub.density * self.p_ref
-        lnmu = lub.log_viscosity_ratio(p)
-        dlnmu = lub.dlog_viscosity_dp(p) * self.p_ref
-        Hf = np.maximum(H, self.h_floor)
-        dHf = (H > self.h_floor).astype(float)
-        eps = self.lam * rho * Hf**3 * np.exp(-lnmu)
-        deps_dP = eps * (drho / rho - dlnmu)
-        deps_dH = 3.0 * eps / Hf * dHf
-        f = rho * H
-        df_dP = drho * H
-        df_dH = rho
-
-        R = np.zeros(n)
-        ef = 0.5 * (eps[1:] + eps[:-1])           # face i+½, i = 0..n−2
-        flux = ef * np.diff(P)                    # ε ∂P at faces
-        R[1:-1] = (flux[1:] - flux[:-1]) / dX**2
-        # upwind stencil Σ c_k f[i − s k] approximates s·df/dX, so −ū df/dX = −|ū| Σ …
-        cou = -abs(self.ubar) * (self.c0 * f + self.c1 * f[self.up1] + self.c2 * f[self.up2]) / dX
-        R[1:-1] += cou[1:-1]
-        if self.time_coef:
-            R[1:-1] -= self.time_coef * (f[1:-1] - self.f_old[1:-1])
-        load = dX * np.sum(Q) - 1.0
-
-        AP = {d: np.zeros(n) for d in (-2, -1, 0, 1, 2)}
-        AH = {d: np.zeros(n) for d in (-2, -1, 0, 1, 2)}
-        i = np.arange(1, n - 1)
-        efp, efm = ef[i], ef[i - 1]               # faces i+½, i−½
-        AP[1][i] += efp / dX**2
-        AP[-1][i] += efm / dX**2
-        AP[0][i] += -(efp + efm) / dX**2
-        cp = (P[i + 1] - P[i]) / (2 * dX**2)      # through ε at nodes i−1, i, i+1
-        cm = (P[i] - P[i - 1]) / (2 * dX**2)
-        AP[1][i] += cp * deps_dP[i + 1]
-        AP[0][i] += (cp - cm) * deps_dP[i]
-        AP[-1][i] += -cm * deps_dP[i - 1]
-        AH[1][i] += cp * deps_dH[i + 1]
-        AH[0][i] += (cp - cm) * deps_dH[i]
-        AH[-1][i] += -cm * deps_dH[i - 1]
-        s = self.s
-        for ck, off in ((self.c0, 0), (self.c1, -s), (self.c2, -2 * s)):
-            coef = -abs(self.ubar) * ck[i] / dX
-            valid = (i + off >= 0) & (i + off <= n - 1)
-            AP[off][i] += np.where(valid, coef * df_dP[np.clip(i + off, 0, n - 1)], 0.0)
-            AH[off][i] += np.where(valid, coef * df_dH[np.clip(i + off, 0, n - 1)], 0.0)
-        if self.time_coef:
-            AP[0][i] += -self.time_coef * df_dP[i]
-            AH[0][i] += -self.time_coef * df_dH[i]
+        rho, drho, lnmu, dlnmu = self.rheology(P)
+        R = np.empty(n)
+        AP = np.empty((5, n))
+        AH = np.empty((5, n))
+        f_old = self.f_old if self.time_coef else _EMPTY
+        assemble(P, H, rho, drho, lnmu, dlnmu, self.lam, self.h_floor, abs(self.ubar), self.s,
+                 dX, float(self.time_coef), f_old, R, AP, AH)
+        load = dX * float(np.sum(Q)) - 1.0
         return Evaluation(R, load, P, H, pa, dpa, AP, AH)
+
+
+_EMPTY = np.zeros(0)
 
 
 @dataclass
 class Evaluation:
+    """Residuals at one iterate; AP, AH hold the bands as (5, n) arrays (row d + 2 is
+    offset d); :meth:`diagonals` gives them as {offset: array}."""
+
     R: np.ndarray
     load: float
     P: np.ndarray
     H: np.ndarray
     pa: np.ndarray
     dpa: np.ndarray
-    AP: dict
-    AH: dict
+    AP: np.ndarray
+    AH: np.ndarray
+
+    @staticmethod
+    def diagonals(A) -> dict:
+        return {d: A[d + 2] for d in range(-2, 3)}
 
 
 def band_apply(diags, v):
-    """y_i = Σ_d A_d[i] v[i+d] for a banded matrix stored by diagonals."""
+    """y_i = Σ_d A_d[i] v[i+d] for a banded matrix stored by diagonals ({offset: array}
+    or a (5, n) array)."""
+    if isinstance(diags, np.ndarray):
+        return band_product(diags, np.asarray(v, dtype=float))
     n = v.size
     y = diags[0] * v
     for d, a in diags.items():
@@ -198,7 +180,7 @@ def band_apply(diags, v):
 
 class Linearization:
     """Newton system for (δQ, δH₀) at one iterate, usable as a dense matrix (for LU) or
-    matrix-free (J·z costs one DC-FFT plus banded work, for preconditioned GMRES).
+    matrix-free (J·z costs one deformation product plus banded work, for GMRES).
 
     With H = H₀ + X²/2 + K Q and P = Q − Pa(H): δH = K δQ + δH₀, δP = δQ − D δH, so
     δR = A_P δQ + B (K δQ + δH₀), B = A_H − A_P D (banded). Rows: boundary nodes δQ = 0;
@@ -214,13 +196,7 @@ class Linearization:
         self.AP = ev.AP
         D = ev.dpa
         self.D = D
-        self.B = {}
-        for d, v in ev.AH.items():
-            b = v.copy()
-            lo, hi = max(0, -d), min(n, n - d)
-            b[lo:hi] -= ev.AP[d][lo:hi] * D[lo + d:hi + d]
-            self.B[d] = b
-        self.col = sum(self.B.values())                # B·1
+        self.B, self.col = coupling_bands(ev.AP, ev.AH, D)
         self.cav = cav.copy()
         self.bnd = np.zeros(n, dtype=bool)
         self.bnd[0] = self.bnd[-1] = True
@@ -232,42 +208,24 @@ class Linearization:
         rhs[self.cav] = -ev.P[self.cav]
         rhs[self.bnd] = -ev.P[self.bnd]
         self.rhs = np.concatenate([rhs, [-ev.load]])
+        self._out = np.empty(n + 1)
 
     def matvec(self, z):
         n = self.n
-        v, vh = z[:n], z[n]
-        dh = (np.zeros_like(v) if self.rigid else self.sysm.Kop(v)) + vh      # δH
-        y = band_apply(self.AP, v) + band_apply(self.B, dh - vh) + self.col * vh
-        y[self.free] *= self.c[self.free]
-        y[self.cav] = v[self.cav] - self.D[self.cav] * dh[self.cav]
-        y[self.bnd] = v[self.bnd]
-        return np.concatenate([y, [self.dX * np.sum(v)]])
+        v, vh = z[:n], float(z[n])
+        dh = (np.zeros_like(v) if self.rigid else self.sysm.deform(v)) + vh      # δH
+        out = np.empty(n + 1)
+        newton_matvec(self.AP, self.B, self.col, self.c, self.free, self.cav, self.D, v, vh,
+                      dh, self.dX, out)
+        return out
 
     def dense(self):
-        n = self.n
-        J = np.zeros((n + 1, n + 1))
-        idx = np.arange(n)
-        for d, v in self.AP.items():
-            rows = np.arange(max(0, -d), min(n, n - d))
-            J[rows, rows + d] += v[rows]
-        K = self.sysm.K
-        if K is not None:
-            for d, v in self.B.items():           # contiguous slices: no fancy-index copies
-                lo, hi = max(0, -d), min(n, n - d)
-                J[lo:hi, :n] += v[lo:hi, None] * K[lo + d:hi + d, :]
-        J[:n, n] = self.col
-        J[:n] *= np.where(self.free, self.c, 1.0)[:, None]
-        ic = idx[self.cav]
-        if ic.size:
-            J[ic, :] = 0.0
-            if K is not None:
-                J[ic, :n] = -self.D[ic, None] * K[ic, :]
-            J[ic, ic] += 1.0
-            J[ic, n] = -self.D[ic]
-        for b in (0, n - 1):
-            J[b, :] = 0.0
-            J[b, b] = 1.0
-        J[n, :n] = self.dX
-        J[n, n] = 0.0
-        return J
+        if self.rigid:
+            K, ks = _EMPTY2, 0.0
+        else:
+            K, ks = self.sysm.g.K, self.sysm.kscale
+        return dense_matrix(self.AP, self.B, self.col, self.c, self.free, self.cav, self.D, K,
+                            ks, self.dX, not self.rigid)
 
+
+_EMPTY2 = np.zeros((0, 0))

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from ..._validation import InputError, check_positive
@@ -14,7 +16,15 @@ from .postprocess import postprocess
 from .reynolds import ReynoldsSystem
 from .steady import solve_ehl, state_from_dimensional
 
-__all__ = ["TransientEHL"]
+__all__ = ["TransientEHL", "GRID_SLACK", "GRID_MARGIN"]
+
+#: A transient keeps its grid while the required domain fits inside it and the grid is at
+#: most this many times as long as required (spacing that much coarser) …
+GRID_SLACK = 1.3
+#: … and builds new grids this much longer than required, so that they last.
+GRID_MARGIN = 1.1
+#: Automatic grid: an event keeps the node count its steady start settled on.
+EVENT_NODES_FROM_START = True
 
 
 class TransientEHL:
@@ -51,7 +61,9 @@ class TransientEHL:
         self._q = self._p = self._h = None   # total, fluid pressure [Pa], film [m] on the grid
         self._h0 = 0.0                 # rigid approach [m]
         self._hist = []                # [(x, ρh, dt, R)] of the last two time levels
+        self._hc_hist = ()             # central film [m] of the last two levels
         self._lu = None
+        self._n_event = None           # automatic grid: the node count of the steady start
         self.result: EHLResult | None = None
 
     # -- starting states
@@ -60,11 +72,14 @@ class TransientEHL:
         res = solve_ehl(load, radius, entrainment_speed, sliding_speed, self.bodies, self.lub,
                         self.rough, options=self.opts)
         cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
+        self._grid = None
+        self._n_event = (res.x.size if self.opts.n is None and EVENT_NODES_FROM_START
+                         else None)
         grid = self._make_grid(cond, None)
         sysm = ReynoldsSystem(grid, cond, self.model)
         st = state_from_dimensional(sysm, res.x, res.pressure + res.asperity_pressure,
                                     res.rigid_approach)
-        self._grid, self._lu, self._hist = grid, None, []
+        self._grid, self._lu, self._hist, self._hc_hist = grid, None, [], ()
         self._commit(sysm, st, None, time)
         res.time = time
         self.result = res
@@ -75,23 +90,28 @@ class TransientEHL:
         """Start from an unloaded film h(x) = film + x²/(2R) (no pressure yet)."""
         h0 = check_positive("film", film, "m")
         cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
+        self._grid, self._n_event = None, None
         grid = self._make_grid(cond, h0)
         sysm = ReynoldsSystem(grid, cond, self.model)
         st = State(np.zeros(grid.n), h0 / sysm.h_ref)
         ev = sysm.evaluate(st.Q, st.H0)
         st.P, st.H = ev.P, ev.H
-        self._grid, self._lu, self._hist = grid, None, []
+        self._grid, self._lu, self._hist, self._hc_hist = grid, None, [], ()
         self._commit(sysm, st, None, time)
         self.result = None
 
     # -- internals
     def _make_grid(self, cond: Conditions, film) -> Grid:
+        """The current grid while it still fits the contact (see :data:`GRID_SLACK`), else
+        a new one with :data:`GRID_MARGIN` (keeping a grid keeps its factorisation)."""
         lay = layout(cond, self.model, self.opts, squeeze_film=film)
+        if self._n_event is not None:
+            lay = replace(lay, n=self._n_event)
         direction = int(np.sign(cond.entrainment_speed))
         g = self._grid
-        if g is not None and g.same_as(lay, direction):
+        if g is not None and g.covers(lay, direction, GRID_SLACK):
             return g
-        return Grid(self.bodies, lay, direction, self.opts.elastic)
+        return Grid(self.bodies, lay, direction, self.opts.elastic, margin=GRID_MARGIN)
 
     def _commit(self, sysm: ReynoldsSystem, st: State, dt, time):
         if st.P is None:
@@ -103,6 +123,8 @@ class TransientEHL:
         self._h0 = st.H0 * sysm.h_ref
         rho_h = self.lub.density_at(self._p) * self._h
         self._hist = ([(sysm.g.x, rho_h, dt, sysm.cond.radius)] + self._hist)[:2]
+        hc = float(np.interp(0.0, sysm.g.x, self._h))
+        self._hc_hist = (hc, self._hc_hist[0] if self._hc_hist else hc)
         self._grid = sysm.g
         self.time = time
 
@@ -126,6 +148,21 @@ class TransientEHL:
                 f[side] = f_old[idx] + rho0 * (x[side] ** 2 - xe**2) / (2.0 * R_old)
         # the density varies little where the parabola matters (low pressure): use ρ₀
         return f + rho0 * x**2 * (0.5 / R_new - 0.5 / R_old)
+
+    def _predict(self, sysm: ReynoldsSystem, st: State, dt) -> State:
+        """Newton start for the next level: the last pressure scaled to the new load, and
+        h₀ such that the central film continues linearly from the last two levels."""
+        r = self.result
+        if r is None or not r.converged or len(self._hist) < 2 or self._hist[0][2] is None:
+            return st
+        st.Q = st.Q * (sysm.cond.load / r.load)
+        hc1, hc0 = self._hc_hist
+        hc = hc1 + (dt / self._hist[0][2]) * (hc1 - hc0)
+        if not hc > 0.0:
+            return st
+        H = sysm.film(st.Q, 0.0)
+        st.H0 = hc / sysm.h_ref - float(np.interp(0.0, sysm.g.X, H))
+        return st
 
     def step(self, dt, load, radius, entrainment_speed, sliding_speed) -> EHLResult:
         """Advance by dt [s] to the given conditions (load per unit length [N/m])."""
@@ -162,11 +199,21 @@ class TransientEHL:
                                   Conditions(r.load, r.radius, r.entrainment_speed,
                                              r.sliding_speed))
         return (self._grid, self._q, self._p, self._h, self._h0, list(self._hist), self.time,
-                self._lu)
+                self._lu, self._hc_hist, self.result)
 
     def _restore(self, snap):
-        (self._grid, self._q, self._p, self._h, self._h0, hist, self.time, self._lu) = snap
+        (self._grid, self._q, self._p, self._h, self._h0, hist, self.time, self._lu,
+         self._hc_hist, self.result) = snap
         self._hist = list(hist)
+
+    def checkpoint(self):
+        """An opaque copy of the marching state (for :meth:`rollback`), e.g. to redo a step
+        with sub-steps when a time-error estimate is too large."""
+        return self._snapshot()
+
+    def rollback(self, checkpoint):
+        """Return to a state saved by :meth:`checkpoint`."""
+        self._restore(checkpoint)
 
     def _advance(self, dt, cond: Conditions) -> EHLResult:
         o = self.opts
@@ -185,7 +232,8 @@ class TransientEHL:
             a0, f_eff = 1.0, f1
         sysm = ReynoldsSystem(grid, cond, self.model, time_coef=a0 / dt)
         sysm.f_old = f_eff / (self.lub.density * sysm.h_ref)
-        st0 = state_from_dimensional(sysm, prev_grid.x, self._q, self._h0)
+        st0 = self._predict(sysm, state_from_dimensional(sysm, prev_grid.x, self._q, self._h0),
+                            dt)
         out = newton(sysm, st0, o.tol, o.max_iter, lu=self._lu if same else None)
         self._lu = out.lu if out.converged else None
         self._commit(sysm, out.state, dt, self.time + dt)

@@ -1,0 +1,175 @@
+"""Compiled kernels of the discrete Reynolds system (numba): stencil and banded
+derivatives, the Newton matrix's banded part, its matrix-free product and its dense form.
+
+Pure array arithmetic on node arrays; the rheology (ρ, ln μ/μ₀ and their pressure
+derivatives) is evaluated by the caller through the lubricant, so a lubricant with
+per-node properties (e.g. temperature fields) can stand in. Bands are stored as (5, n)
+arrays, row d + 2 holding offset d (A[d + 2, i] multiplies v[i + d]). The equations are
+those of :mod:`.reynolds` (finite volumes, arithmetic-mean face coefficients,
+second-order upwind Couette term, backward-difference time term).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+__all__ = ["assemble", "coupling_bands", "band_product", "newton_matvec", "dense_matrix",
+           "jacobi_diagonal"]
+
+_OPTS = dict(cache=True, nogil=True, fastmath=False)
+
+
+@njit(**_OPTS)
+def assemble(P, H, rho, drho, lnmu, dlnmu, lam, h_floor, abs_ubar, s, dX, time_coef,
+             f_old, R, AP, AH):
+    """Reynolds residual R (interior rows) and banded ∂R/∂P (AP), ∂R/∂H (AH), in place.
+
+    R_i = [ε_{i+½}(P_{i+1} − P_i) − ε_{i−½}(P_i − P_{i−1})]/ΔX² − |ū| Σ_k c_k f_{i−sk}/ΔX
+          − c_t (f_i − f_old,i),   ε = λ ρ H³ e^(−ln μ/μ₀),  f = ρ H,
+    c = (1.5, −2, 0.5) (first order, (1, −1), next to the upstream boundary)."""
+    n = P.size
+    eps = np.empty(n)
+    deP = np.empty(n)
+    deH = np.empty(n)
+    for i in range(n):
+        hf = H[i] if H[i] > h_floor else h_floor
+        e = lam * rho[i] * hf * hf * hf * np.exp(-lnmu[i])
+        eps[i] = e
+        deP[i] = e * (drho[i] / rho[i] - dlnmu[i])
+        deH[i] = 3.0 * e / hf if H[i] > h_floor else 0.0
+    R[:] = 0.0
+    AP[:, :] = 0.0
+    AH[:, :] = 0.0
+    idx2 = 1.0 / (dX * dX)
+    cu = abs_ubar / dX
+    for i in range(1, n - 1):
+        efp = 0.5 * (eps[i + 1] + eps[i])
+        efm = 0.5 * (eps[i] + eps[i - 1])
+        R[i] = (efp * (P[i + 1] - P[i]) - efm * (P[i] - P[i - 1])) * idx2
+        AP[3, i] += efp * idx2
+        AP[1, i] += efm * idx2
+        AP[2, i] -= (efp + efm) * idx2
+        cp = 0.5 * (P[i + 1] - P[i]) * idx2
+        cm = 0.5 * (P[i] - P[i - 1]) * idx2
+        AP[3, i] += cp * deP[i + 1]
+        AP[2, i] += (cp - cm) * deP[i]
+        AP[1, i] -= cm * deP[i - 1]
+        AH[3, i] += cp * deH[i + 1]
+        AH[2, i] += (cp - cm) * deH[i]
+        AH[1, i] -= cm * deH[i - 1]
+        # upwind Couette term −|ū| Σ c_k f[i − s k]/ΔX
+        j2 = i - 2 * s
+        if 0 <= j2 <= n - 1:
+            c0, c1, c2 = 1.5, -2.0, 0.5
+        else:
+            c0, c1, c2 = 1.0, -1.0, 0.0
+        j1 = i - s
+        R[i] -= cu * (c0 * rho[i] * H[i] + c1 * rho[j1] * H[j1]
+                      + (c2 * rho[j2] * H[j2] if c2 != 0.0 else 0.0))
+        AP[2, i] -= cu * c0 * drho[i] * H[i]
+        AH[2, i] -= cu * c0 * rho[i]
+        AP[2 - s, i] -= cu * c1 * drho[j1] * H[j1]
+        AH[2 - s, i] -= cu * c1 * rho[j1]
+        if c2 != 0.0:
+            AP[2 - 2 * s, i] -= cu * c2 * drho[j2] * H[j2]
+            AH[2 - 2 * s, i] -= cu * c2 * rho[j2]
+        if time_coef != 0.0:
+            R[i] -= time_coef * (rho[i] * H[i] - f_old[i])
+            AP[2, i] -= time_coef * drho[i] * H[i]
+            AH[2, i] -= time_coef * rho[i]
+
+
+@njit(**_OPTS)
+def coupling_bands(AP, AH, D):
+    """B = A_H − A_P D (δP = δQ − D δH) and its row sums B·1."""
+    n = D.size
+    B = AH.copy()
+    col = np.zeros(n)
+    for k in range(5):
+        d = k - 2
+        for i in range(n):
+            j = i + d
+            if 0 <= j < n:
+                B[k, i] -= AP[k, i] * D[j]
+            col[i] += B[k, i]
+    return B, col
+
+
+@njit(**_OPTS)
+def band_product(A, v):
+    """y_i = Σ_d A[d + 2, i] v[i + d]."""
+    n = v.size
+    y = np.zeros(n)
+    for k in range(5):
+        d = k - 2
+        for i in range(max(0, -d), min(n, n - d)):
+            y[i] += A[k, i] * v[i + d]
+    return y
+
+
+@njit(**_OPTS)
+def newton_matvec(AP, B, col, c, free, cav, D, v, vh, dh, dX, out):
+    """Newton-matrix product (see :class:`~.reynolds.Linearization`) given δH = K v + vh."""
+    n = v.size
+    for i in range(n):
+        acc = 0.0
+        for k in range(5):
+            j = i + k - 2
+            if 0 <= j < n:
+                acc += AP[k, i] * v[j] + B[k, i] * (dh[j] - vh)
+        acc += col[i] * vh
+        if free[i]:
+            out[i] = c[i] * acc
+        elif cav[i]:
+            out[i] = v[i] - D[i] * dh[i]
+        else:
+            out[i] = v[i]
+    s = 0.0
+    for i in range(n):
+        s += v[i]
+    out[n] = dX * s
+
+
+@njit(**_OPTS)
+def dense_matrix(AP, B, col, c, free, cav, D, K, kscale, dX, elastic):
+    """Dense (n+1)² Newton matrix with the scaled influence matrix kscale·K: free rows
+    c_i[A_P + B K | B·1], cavitated rows [e_i − D_i K_i | −D_i], boundary rows e_i, load
+    row [ΔX … | 0]."""
+    n = D.size
+    J = np.zeros((n + 1, n + 1))
+    for i in range(n):
+        if free[i]:
+            ci = c[i]
+            for k in range(5):
+                j = i + k - 2
+                if 0 <= j < n:
+                    b = B[k, i] * ci * kscale
+                    if elastic and b != 0.0:
+                        J[i, :n] += b * K[j, :]
+                    J[i, j] += ci * AP[k, i]
+            J[i, n] = ci * col[i]
+        elif cav[i]:
+            di = D[i]
+            if elastic and di != 0.0:
+                J[i, :n] = -di * kscale * K[i, :]
+            J[i, i] += 1.0
+            J[i, n] = -di
+        else:
+            J[i, i] = 1.0
+    J[n, :n] = dX
+    return J
+
+
+@njit(**_OPTS)
+def jacobi_diagonal(AP, AH, D, kcoef, elastic):
+    """|diag(A_P + (A_H − A_P D) K)| with K_ij = kcoef[|i − j|]."""
+    n = D.size
+    diag = AP[2].copy()
+    if elastic:
+        for k in range(5):
+            d = k - 2
+            kd = kcoef[abs(d)]
+            for i in range(max(0, -d), min(n, n - d)):
+                diag[i] += (AH[k, i] - AP[k, i] * D[i + d]) * kd
+    return np.abs(diag)
