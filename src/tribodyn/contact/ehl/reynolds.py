@@ -65,6 +65,11 @@ class ReynoldsSystem:
         # time term: c_t (f − f_old) with f = ρ̄H, c_t = a/(U Δt)·α₀
         self.time_coef = time_coef * a / self.u_scale
         self.f_old = f_old
+        # optional per-node factors of the generalized (thermal) Reynolds equation: the
+        # Poiseuille coefficient ε and the Couette flux ū ρ̄H are multiplied by them
+        # (None: isothermal Reynolds; see contact.ehl.thermal)
+        self.flow_factor = None
+        self.couette_factor = None
         self.h_floor = 1e-10 / h_ref
         if roughness is not None:
             self.ka = roughness.pressure_scale(model.e_surface) / p_ref
@@ -130,16 +135,22 @@ class ReynoldsSystem:
         eps = self.lam * rho * Hf**3 * np.exp(-lnmu)
         deps_dP = eps * (drho / rho - dlnmu)
         deps_dH = 3.0 * eps / Hf * dHf
+        if self.flow_factor is not None:
+            eps, deps_dP, deps_dH = (v * self.flow_factor for v in (eps, deps_dP, deps_dH))
         f = rho * H
         df_dP = drho * H
         df_dH = rho
+        fc, dfc_dP, dfc_dH = f, df_dP, df_dH      # Couette flux ρ̄H (× factor if thermal)
+        if self.couette_factor is not None:
+            fc, dfc_dP, dfc_dH = (v * self.couette_factor for v in (f, df_dP, df_dH))
 
         R = np.zeros(n)
         ef = 0.5 * (eps[1:] + eps[:-1])           # face i+½, i = 0..n−2
         flux = ef * np.diff(P)                    # ε ∂P at faces
         R[1:-1] = (flux[1:] - flux[:-1]) / dX**2
         # upwind stencil Σ c_k f[i − s k] approximates s·df/dX, so −ū df/dX = −|ū| Σ …
-        cou = -abs(self.ubar) * (self.c0 * f + self.c1 * f[self.up1] + self.c2 * f[self.up2]) / dX
+        cou = -abs(self.ubar) * (self.c0 * fc + self.c1 * fc[self.up1]
+                                 + self.c2 * fc[self.up2]) / dX
         R[1:-1] += cou[1:-1]
         if self.time_coef:
             R[1:-1] -= self.time_coef * (f[1:-1] - self.f_old[1:-1])
@@ -164,8 +175,8 @@ class ReynoldsSystem:
         for ck, off in ((self.c0, 0), (self.c1, -s), (self.c2, -2 * s)):
             coef = -abs(self.ubar) * ck[i] / dX
             valid = (i + off >= 0) & (i + off <= n - 1)
-            AP[off][i] += np.where(valid, coef * df_dP[np.clip(i + off, 0, n - 1)], 0.0)
-            AH[off][i] += np.where(valid, coef * df_dH[np.clip(i + off, 0, n - 1)], 0.0)
+            AP[off][i] += np.where(valid, coef * dfc_dP[np.clip(i + off, 0, n - 1)], 0.0)
+            AH[off][i] += np.where(valid, coef * dfc_dH[np.clip(i + off, 0, n - 1)], 0.0)
         if self.time_coef:
             AP[0][i] += -self.time_coef * df_dP[i]
             AH[0][i] += -self.time_coef * df_dH[i]
