@@ -62,6 +62,9 @@ class CycleStudy:
     runtime_s: float = 0.0
     timings: dict = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
+    #: with ``numerics.thermal``: ``sets`` are the thermal results and these the
+    #: isothermal ones at the same inlet temperature (None for an isothermal study)
+    isothermal_sets: list[SetCycleResult] | None = None
 
     @property
     def implicit(self) -> ValvetrainResult | None:
@@ -194,12 +197,20 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None) -> Cycle
                 results[name] = f.result()
             coating = fut_coat.result()
     timings["ehl_and_coupling_s"] = time.perf_counter() - t0
+    isothermal = None
+    if n.thermal:                       # thermal EHL per set; isothermal kept beside it
+        from .thermal_study import run_thermal_sets
+        t0 = time.perf_counter()
+        isothermal = [results[s.name] for s in sets]
+        results = run_thermal_sets(case, inputs, workers, lambda name, i, m: report(
+            "set", name=f"{name} (thermal)", done=i, total=m))
+        timings["thermal_ehl_s"] = time.perf_counter() - t0
 
     study = CycleStudy(case=case, dynamics=dyn, inputs=inputs,
                        sets=[results[s.name] for s in sets],
                        labels={s.name: s.coating_label for s in sets}, coupling=coupling,
                        dry=coating[0], ehl_coating=coating[1], sensitivity=coating[2],
-                       timings=timings)
+                       timings=timings, isothermal_sets=isothermal)
     for s in study.sets:
         if s.failures:
             study.warnings.append(f"{s.name}: {len(s.failures)} EHL step(s) did not converge "

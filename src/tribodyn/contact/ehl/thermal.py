@@ -50,18 +50,21 @@ class ThermalOptions:
     film_nodes : nodes across the film (odd, ≥ 3); solid_nodes : depth nodes per solid;
     depth : solid depth in units of the domain length; tol : temperature change [K]
     between fixed-point iterations at convergence; max_iter : fixed-point iterations
-    (steady; a transient step uses ``step_iter``); relaxation : under-relaxation of the
+    (steady); step_iter : pressure ↔ temperature iterations per transient step (1: the
+    pressure of a step is solved with the temperatures of the previous step, then the
+    temperatures with the new pressure — staggered; more iterations stop early at
+    ``tol``); relaxation : under-relaxation of the
     temperature; shear_heating, compression_heating : switch the heat sources (False:
     isothermal-limit checks).
     """
 
-    x_nodes: int = 128
+    x_nodes: int = 96
     film_nodes: int = 7
-    solid_nodes: int = 16
+    solid_nodes: int = 12
     depth: float = 1.0
     tol: float = 0.02
     max_iter: int = 40
-    step_iter: int = 4
+    step_iter: int = 1
     relaxation: float = 0.7
     shear_heating: bool = True
     compression_heating: bool = True
@@ -261,8 +264,9 @@ class ThermalField:
         return on(ff.flow_factor), on(cf), on(Tm), on(fl), on(flim)
 
     def update(self, x, p, h, pa, cond, rough, opts, *, dt=None, theta_old=None, p_old=None,
-               rho_h_old=None, relax=1.0):
-        """One energy solve at (p, h); θ ← θ + relax (θ_new − θ). Returns max |Δθ| [K]."""
+               rho_h_old=None, relax=1.0, refresh=True):
+        """One energy solve at (p, h); θ ← θ + relax (θ_new − θ). Returns max |Δθ| [K].
+        ``refresh``: recompute the film quantities (factors) at the new θ."""
         e = self.fields(x, p, h, pa, cond, rough, opts, p_old=p_old, dt=dt)
         e.theta_old, e.rho_h_old, e.theta_lag = theta_old, rho_h_old, self.theta
         new = solve_energy(e)
@@ -270,11 +274,50 @@ class ThermalField:
             return float("inf")
         change = float(np.max(np.abs(new - self.theta)))
         self.theta = self.theta + relax * (new - self.theta)
-        # film quantities at the relaxed temperature (what the factors are made of)
-        self.fields(x, p, h, pa, cond, rough, opts, p_old=p_old, dt=dt)
+        if refresh:      # film quantities at the relaxed temperature (the factors)
+            self.refresh(x, p, h, pa, cond, rough, opts)
+        return change
+
+    def refresh(self, x, p, h, pa, cond, rough, opts):
+        """Film quantities (and so the factors) at the current θ, without a solve."""
+        self.fields(x, p, h, pa, cond, rough, opts)
         self._h = np.interp(self.x, x, h)
         self._eta_m = self.oil.viscosity_at(np.interp(self.x, x, p), self.mean_T())
-        return change
+
+    def body_theta(self, body: int) -> np.ndarray:
+        """θ of one solid (n_T, ns) with column 0 the surface."""
+        ns = self.grids[body].s.size - 1
+        f0 = self.n1
+        idx = [f0 - k for k in range(ns)] if body == 0 else \
+            [f0 + self.m - 1 + k for k in range(ns)]
+        return self.theta[:, idx]
+
+    def regridded(self, x_ehl, speeds) -> "ThermalField":
+        """A field on a new EHL grid with θ interpolated (film in x, solids in x and
+        depth; zero outside the old grid)."""
+        from scipy.interpolate import RegularGridInterpolator
+        new = ThermalField(x_ehl, self.oil, self.tbodies, self.topts, speeds)
+        if new.m != self.m:
+            return new
+        th = np.zeros_like(new.theta)
+        xn = new.x
+        for j in range(self.m):
+            th[:, new.n1 + j] = np.interp(xn, self.x, self.film_theta[:, j], left=0.0,
+                                          right=0.0)
+        for body in (0, 1):
+            old = self.body_theta(body)
+            so, sn = self.grids[body].s[:-1], new.grids[body].s[:-1]
+            f = RegularGridInterpolator((self.x, so), old, bounds_error=False, fill_value=0.0)
+            X, S = np.meshgrid(xn, sn, indexing="ij")
+            vals = f(np.stack([X, np.minimum(S, so[-1])], axis=-1))
+            f0 = new.n1
+            idx = [f0 - k for k in range(sn.size)] if body == 0 else \
+                [f0 + new.m - 1 + k for k in range(sn.size)]
+            surf = th[:, idx[0]].copy()
+            th[:, idx] = vals
+            th[:, idx[0]] = surf                   # the surface node is the film's wall
+        new.theta = th
+        return new
 
     def rho_h(self, x_ehl, p, h):
         """ρ̄h on the thermal grid [kg/m²] (for ∂(ρh)/∂t of the film continuity)."""
@@ -403,4 +446,6 @@ def solve_thermal_ehl(load, radius, entrainment_speed, sliding_speed, bodies,
                f"{last_change:.3g} K)")
     if out is None:
         out = newton(sysm, st, opts.tol, opts.max_iter)
-    return thermal_result(sysm, out, opts, tf, cond, it, ok, msg)
+    res = thermal_result(sysm, out, opts, tf, cond, it, ok, msg)
+    res._field = tf                 # the temperature field (a transient starts from it)
+    return res
