@@ -379,7 +379,7 @@ class Numerics(Section):
     thermal_solid_nodes: int = _q(12, "", "thermal depth nodes per solid", ge=6, le=200)
     thermal_iterations: int = _q(2, "", "pressure ↔ temperature iterations per transient "
                                         "step (1: staggered)", ge=1, le=50)
-    thermal_tol: float = _q(0.02, "K", "temperature change at which the thermal fixed-"
+    thermal_tol: float = _q(0.05, "K", "temperature change at which the thermal fixed-"
                                        "point iteration stops", gt=0.0, le=10.0)
 
 

@@ -38,7 +38,7 @@ class ThermalProperties:
     specific_heat: float
 
     def __post_init__(self):
-        check_range("conductivity", self.conductivity, 1e-3, 1e4, unit="W/(m K)")
+        check_range("conductivity", self.conductivity, 1e-3, 1e8, unit="W/(m K)")
         check_range("density", self.density, 10.0, 1e5, unit="kg/m³")
         check_range("specific_heat", self.specific_heat, 10.0, 1e5, unit="J/(kg K)")
 

@@ -224,7 +224,7 @@ class ThermalLubricant:
                else 0.1172 * (1.0 - 5.4e-4 * ti) / s)
         c_i = (self.specific_heat if self.specific_heat is not None
                else (1685.0 + 3.39 * ti) / math.sqrt(s))
-        c["k_i"] = check_range("thermal_conductivity", k_i, 0.01, 10.0, unit="W/(m K)")
+        c["k_i"] = check_range("thermal_conductivity", k_i, 0.01, 1e8, unit="W/(m K)")
         c["cp_i"] = check_range("specific_heat", c_i, 100.0, 1e4, unit="J/(kg K)")
 
     # -- viscosity ---------------------------------------------------------------------

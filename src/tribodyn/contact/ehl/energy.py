@@ -122,16 +122,17 @@ def solve_energy(e: EnergyInputs) -> np.ndarray:
     aP[:, inner] += np.abs(Fzi)
     aD[:, inner] += np.maximum(Fzi, 0.0)
     aU[:, inner] += np.maximum(-Fzi, 0.0)
-    # ---- film: sources (dissipation, compression: cooling implicit, heating lagged)
+    # ---- film: sources (dissipation; compression ε_T T Dp/Dt implicit in θ where the
+    # diagonal stays dominant, the rest lagged at theta_lag)
     vol = h[:, None] * wz[None, :]
     b[:, fs] += vol * e.phi
-    comp = e.comp
-    b[:, fs] += vol * comp * e.T_inlet
-    cool = np.minimum(comp, 0.0)
-    aP[:, fs] -= vol * cool
-    heat = np.maximum(comp, 0.0)
+    comp = vol * e.comp
+    b[:, fs] += comp * e.T_inlet
+    room = 0.5 * aP[:, fs]                      # conduction + convection on the diagonal
+    implicit = np.minimum(comp, room)
+    aP[:, fs] -= implicit
     if e.theta_lag is not None:
-        b[:, fs] += vol * heat * e.theta_lag[:, fs]
+        b[:, fs] += (comp - implicit) * e.theta_lag[:, fs]
     if e.dt is not None:
         aP[:, fs] += cap / e.dt
         if e.theta_old is not None:
