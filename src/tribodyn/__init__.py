@@ -8,12 +8,23 @@ uncoated and coated (DLC, WC-C) tappets. Method after Andreou et al., Appl. Sci.
 
 from ._validation import InputError
 from .contact.dry import DryContactResult, solve_dry_contact
-from .contact.ehl import EHLOptions, EHLResult, TransientEHL, solve_ehl
+from .contact.ehl import (
+    EHLOptions,
+    EHLResult,
+    ThermalEHLResult,
+    ThermalOptions,
+    ThermalTransientEHL,
+    TransientEHL,
+    solve_ehl,
+    solve_thermal_ehl,
+)
 from .physics.asperity import Roughness, greenwood_tripp
 from .physics.elasticity import DeformationOperator
 from .physics.hertz import hertz_line_contact
 from .physics.lubricant import Lubricant
+from .physics.heat_conduction import ThermalBody, ThermalProperties
 from .physics.materials import Body, Coating, Material, reduced_modulus
+from .physics.thermal_oil import ThermalLubricant
 
 __version__ = "0.1.0"
 
@@ -21,4 +32,6 @@ __all__ = [
     "Body", "Coating", "DeformationOperator", "DryContactResult", "EHLOptions", "EHLResult",
     "InputError", "Lubricant", "Material", "Roughness", "TransientEHL", "greenwood_tripp",
     "hertz_line_contact", "reduced_modulus", "solve_dry_contact", "solve_ehl", "__version__",
+    "ThermalBody", "ThermalEHLResult", "ThermalLubricant", "ThermalOptions",
+    "ThermalProperties", "ThermalTransientEHL", "solve_thermal_ehl",
 ]
