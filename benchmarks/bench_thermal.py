@@ -1,6 +1,7 @@
 """Thermal EHL timings (prints JSON). Not a timed test.
 
-    python benchmarks/bench_thermal.py [--set wcc_4um] [--repeat 1]
+    python benchmarks/bench_thermal.py [--set wcc_4um] [--repeat 1] [--only steady|cycle]
+        [--model isothermal|thermal]
 
 * steady thermal solve beside the isothermal one (SAE 5W-30 at 40 °C, steel on steel,
   w = 200 kN/m, R = 20 mm, u_e = 2 m/s, u_s = 1 m/s), best of 3;
@@ -55,13 +56,19 @@ def steady():
             th.thermal_iterations, "converged": bool(th.converged)}
 
 
-def cycle(set_name, repeat):
+def cycle(set_name, repeat, model=None):
     case = load_case("andreou2023_thermal")
     s = case.surface_set(set_name)
     dyn = simulate_valvetrain(case.cam(), case.valvetrain_parameters(),
                               tribology=case.analytic_tribology(case.surface_sets()[0]),
                               **case.dynamics_options())
     inp = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
+    if model == "isothermal":
+        t, r = best_of(lambda: ehl_for_set(case, s, inp), repeat)
+        return {"isothermal_s": t, "loaded_steps": int(r.loaded.sum())}
+    if model == "thermal":
+        t, r = best_of(lambda: thermal_for_set(case, s, inp), repeat)
+        return {"thermal_s": t, "loaded_steps": int(r.loaded.sum())}
     t_iso, iso = best_of(lambda: ehl_for_set(case, s, inp), repeat)
     t_th, th = best_of(lambda: thermal_for_set(case, s, inp), repeat)
     L = iso.loaded
@@ -85,13 +92,15 @@ def main():
     ap.add_argument("--set", default="wcc_4um")
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--only", choices=("steady", "cycle"), default=None)
+    ap.add_argument("--model", choices=("isothermal", "thermal"), default=None,
+                    help="cycle of one model only (to time whole processes A/B)")
     a = ap.parse_args()
     threadpool_limits(1)
     out = {"python": platform.python_version(), "numpy": np.__version__, "blas_threads": 1}
     if a.only in (None, "steady"):
         out["steady"] = steady()
     if a.only in (None, "cycle"):
-        out["cycle"] = cycle(a.set, a.repeat)
+        out["cycle"] = cycle(a.set, a.repeat, a.model)
     print(json.dumps(out, indent=2))
 
 

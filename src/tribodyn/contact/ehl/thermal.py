@@ -32,7 +32,7 @@ from ...physics.heat_conduction import ThermalBody, depth_grid
 from ...physics.thermal_oil import ThermalLubricant
 from .energy import EnergyInputs, chain_size, solve_energy
 from .grid import Grid, layout
-from .newton import State, newton
+from .newton import newton
 from .options import Conditions, ContactModel, EHLOptions, EHLResult, with_overrides
 from .postprocess import postprocess
 from .reynolds import ReynoldsSystem

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...physics.thermal_oil import ThermalLubricant
-from .newton import State, newton
+from .newton import newton
 from .options import Conditions, ContactModel, EHLOptions
 from .reynolds import ReynoldsSystem
 from .steady import state_from_dimensional
