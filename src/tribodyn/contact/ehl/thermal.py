@@ -196,9 +196,12 @@ class ThermalField:
         pressure pa on the EHL grid x."""
         oil, t = self.oil, self.topts
         xs = self.x
-        pt, ht = np.interp(xs, x, p), np.interp(xs, x, h)
-        pat = np.interp(xs, x, pa)
-        px = np.interp(xs, x, np.gradient(p, x))
+        # averages over the thermal cells: robust to a pressure spike that moves by a
+        # fraction of a cell between iterations
+        pt, ht, pat = (self.cell_average(x, v) for v in (p, h, pa))
+        faces = np.clip(np.r_[xs - 0.5 * self.dx, xs[-1] + 0.5 * self.dx], x[0], x[-1])
+        pf = np.interp(faces, x, p)
+        px = np.diff(pf) / np.diff(faces)
         T = self.film_T(theta)
         Tm = T @ self.w
         P = pt[:, None]
@@ -228,6 +231,13 @@ class ThermalField:
         return EnergyInputs(self.dx, np.maximum(h_heat, 1e-10), ff.u, rho,
                             oil.volumetric_heat_capacity(P, T), oil.conductivity(P, T), phi,
                             comp, self.Ti, (u1, u2), tuple(self.grids), q, dt=dt)
+
+    def cell_average(self, x, v):
+        """Average of v(x) (on the EHL grid x) over each thermal cell."""
+        faces = np.clip(np.r_[self.x - 0.5 * self.dx, self.x[-1] + 0.5 * self.dx],
+                        x[0], x[-1])
+        cum = np.r_[0.0, np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(x))]
+        return np.diff(np.interp(faces, x, cum)) / np.diff(faces)
 
     @staticmethod
     def _fill(p, ff, cond):
@@ -281,8 +291,8 @@ class ThermalField:
     def refresh(self, x, p, h, pa, cond, rough, opts):
         """Film quantities (and so the factors) at the current θ, without a solve."""
         self.fields(x, p, h, pa, cond, rough, opts)
-        self._h = np.interp(self.x, x, h)
-        self._eta_m = self.oil.viscosity_at(np.interp(self.x, x, p), self.mean_T())
+        self._h = self.cell_average(x, h)
+        self._eta_m = self.oil.viscosity_at(self.cell_average(x, p), self.mean_T())
 
     def body_theta(self, body: int) -> np.ndarray:
         """θ of one solid (n_T, ns) with column 0 the surface."""
@@ -415,6 +425,7 @@ def solve_thermal_ehl(load, radius, entrainment_speed, sliding_speed, bodies,
     hc_prev = iso.central_film
     relax = topts.relaxation
     last_change = float("inf")
+    stalled = 0
     lu = None
     for it in range(1, topts.max_iter + 1):
         p, h = st.P * sysm.p_ref, st.H * sysm.h_ref
@@ -424,8 +435,10 @@ def solve_thermal_ehl(load, radius, entrainment_speed, sliding_speed, bodies,
         if not math.isfinite(change):
             msg = "energy equation gave a non-finite temperature"
             break
-        if change > 1.2 * last_change:             # oscillating: relax more
-            relax = max(0.1, 0.6 * relax)
+        # not contracting (growing or stalled, e.g. a period-2 oscillation): relax more
+        stalled = stalled + 1 if change > 0.9 * last_change else 0
+        if change > 1.2 * last_change or stalled >= 2:
+            relax, stalled = max(0.05, 0.6 * relax), 0
         elif change < 0.5 * last_change:
             relax = min(topts.relaxation, 1.2 * relax)
         last_change = change
