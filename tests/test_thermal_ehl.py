@@ -234,3 +234,25 @@ def test_thermal_input_errors():
         ThermalOptions(film_nodes=1)
     with pytest.raises(InputError, match="conductivity"):
         ThermalProperties(-1.0, 7850.0, 470.0)
+
+
+def test_generalized_reynolds_coefficients_for_a_linear_fluidity():
+    """Yang & Wen's coefficients for 1/η = f₀(1 + a z/h), ρ uniform, by hand:
+    F₀ = f₀h(1 + a/2), F₁ = f₀h²(1/2 + a/3), ρ' = ρf₀h²(1/2 + a/6),
+    ρ'' = ρf₀h³(1/6 + a/12); C = ρ'F₁/F₀ − ρ'', D = ρhu_a + (u_b − u_a)ρ'/F₀. The film
+    follows its more viscous wall: D < ρhu_e when the more fluid wall is the faster."""
+    from tribodyn.physics.film_thermal import film_flow
+    h, rho, f0, a, ua, ub, m = 1e-6, 850.0, 1.0 / 0.05, 1.5, 1.0, 3.0, 41
+    z = np.linspace(0.0, 1.0, m)
+    eta = (1.0 / (f0 * (1.0 + a * z)))[None, :]
+    ff = film_flow(np.array([h]), np.array([1e10]), ua, ub, eta, np.full((1, m), rho),
+                   np.array([2e6]), np.full((1, m), 1e12), eta_ref=np.array([0.05]),
+                   rho_ref=np.array([rho]), eyring=False, limiting=False)
+    F0, F1 = f0 * h * (1 + a / 2), f0 * h**2 * (0.5 + a / 3)
+    rp, rpp = rho * f0 * h**2 * (0.5 + a / 6), rho * f0 * h**3 * (1 / 6 + a / 12)
+    assert ff.F0[0] == pytest.approx(F0, rel=1e-4)
+    assert ff.C[0] == pytest.approx(rp * F1 / F0 - rpp, rel=1e-3)
+    assert ff.D[0] == pytest.approx(rho * h * ua + (ub - ua) * rp / F0, rel=1e-4)
+    # the faster wall b is the more fluid one: the film follows the slower, viscous wall a
+    assert ff.D[0] < 0.95 * rho * h * (ua + ub) / 2
+    assert ff.tau_c[0] == pytest.approx((ub - ua) / F0, rel=1e-4)     # Newtonian Couette
