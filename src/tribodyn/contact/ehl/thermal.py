@@ -64,7 +64,7 @@ class ThermalOptions:
     depth: float = 1.0
     tol: float = 0.05
     max_iter: int = 60
-    step_iter: int = 1
+    step_iter: int = 2
     relaxation: float = 0.7
     shear_heating: bool = True
     compression_heating: bool = True
