@@ -39,7 +39,7 @@ def thermal_claim_row(study, summ) -> tuple[str, str, str, str]:
             f"{_f(v['viscous_energy_vs_reference_thermal_pct'], '{:+.1f}', '%')} vs uncoated "
             f"(isothermal {_f(v['viscous_energy_vs_reference_isothermal_pct'], '{:+.1f}', '%')}"
             f"), mean film {_f(v['mean_film_vs_reference_thermal_pct'], '{:+.1f}', '%')} "
-            f"(isothermal {_f(v['mean_film_vs_reference_isothermal_pct'], '{:+.1f}', '%')}); "
+            f"(isothermal {_f(v['mean_film_vs_reference_isothermal_pct'], '{:+.2f}', '%')}); "
             f"tappet surface up to "
             f"{_f(v['max_tappet_surface_temperature_K'] - _C, '{:.0f}', '°C')}")
     ours = "; ".join(parts) if parts else "no coated surface set converged in all runs"
