@@ -6,8 +6,8 @@ typical datasheet values — kinematic viscosity at 40 and 100 °C (ASTM D445) a
 manufacturers' product data sheets for the grade. They describe a representative oil of
 the grade, not one brand's certified batch: for a particular oil, enter its own data
 sheet. Checks (tests): ν₁₀₀ lies inside the SAE J300 (2015) window of the grade
-(20: 6.9–9.3, 30: 9.3–12.5, 40: 12.5–16.3 mm²/s) and the viscosity index of ν₄₀/ν₁₀₀
-(ASTM D2270) is that of a multigrade oil (150–185). Thermal conductivity and heat
+(20: 6.9–9.3, 30: 9.3–12.5, 40: 12.5–16.3 mm²/s), the ASTM D341 slope is that of an
+engine oil and the So–Klaus α is in the usual range. Thermal conductivity and heat
 capacity are not on data sheets; they default to Cragoe's estimates (see
 :mod:`.thermal_oil`), α to the So & Klaus correlation.
 
