@@ -141,7 +141,7 @@ def test_empty_file_is_the_paper_case(paper):
 
 def test_bundled_names(paper):
     assert set(bundled_cases()) == {"andreou2023", "andreou2023_flexible",
-                                    "example_table_cam"}
+                                    "andreou2023_thermal", "example_table_cam"}
     assert load_case("andreou2023") == paper
 
 

@@ -90,6 +90,15 @@ def synthetic_dataset(implicit=True, failed_step=True) -> xr.Dataset:
                         rolling_friction=np.where(L, 0.0, np.nan),
                         friction_power=(fv + fb) * Us, lambda_ratio=hm / sigma).items():
         ds[name] = (("surface_set", "ehl_crank"), v)
+    # a thermal study's temperatures and isothermal comparison (Figs. 21, 22)
+    rise = np.where(L, 40.0 * (F / F.max()) * np.array([1.0, 1.4, 1.3])[:, None], np.nan)
+    for name, k in (("max_temperature", 1.0), ("mid_film_temperature", 0.9),
+                    ("surface_temperature_cam", 0.7), ("surface_temperature_tappet", 0.8),
+                    ("mean_film_temperature", 0.85)):
+        ds[name] = (("surface_set", "ehl_crank"), 363.15 + k * rise)
+    ds["central_film_isothermal"] = (("surface_set", "ehl_crank"), hc * 1.03)
+    ds["viscous_friction_isothermal"] = (("surface_set", "ehl_crank"), fv * 1.1)
+    ds.attrs["inlet_temperature_K"] = 363.15
     x = np.linspace(-4e-4, 4e-4, 81)
     b = np.sqrt(8 * (F / width) * Rr / (np.pi * 2.3e11))
     ph = np.sqrt((F / width) * 2.3e11 / (2 * np.pi * Rr))

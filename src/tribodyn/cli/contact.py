@@ -77,7 +77,7 @@ def compute_contact(*, load=None, load_per_length=None, width=None, radius=None,
                     shear_coefficient=None, viscosity=None, pressure_viscosity=None,
                     density=None, eyring_stress=None, limiting_shear_coefficient=None,
                     viscosity_model=None, viscous_model=None, limiting_shear=None,
-                    n=None) -> dict:
+                    n=None, thermal=False, oil=None, inlet_temperature=None) -> dict:
     """Parse the options of ``tribodyn contact`` (strings as typed) and solve.
 
     Raises :class:`~tribodyn.InputError` naming the offending option on bad input.
@@ -125,6 +125,13 @@ def compute_contact(*, load=None, load_per_length=None, width=None, radius=None,
     if n is not None and n < 32:
         raise InputError(f"--n must be >= 32 grid nodes (got {n})")
     lub = opts = None
+    thermal_oil = None
+    if not dry and (thermal or oil is not None or inlet_temperature is not None):
+        thermal_oil = _thermal_oil(case, oil, inlet_temperature, {
+            "--viscosity": viscosity, "--pressure-viscosity": pressure_viscosity,
+            "--density": density, "--viscosity-model": viscosity_model})
+    if dry and (thermal or oil is not None):
+        raise InputError("--thermal and --oil need an EHL contact (drop --dry)")
     if not dry:
         over = {k: v for k, v in (("viscosity", viscosity),
                                   ("pressure_viscosity", pressure_viscosity),
@@ -146,11 +153,45 @@ def compute_contact(*, load=None, load_per_length=None, width=None, radius=None,
         opts = _prefixed("numerics", lambda: dataclasses.replace(
             case.ehl_options(surfaces), **ov))
     try:
-        return solve_point(case, surfaces, load_per_length=w, radius=radius, width=width,
-                           entrainment_speed=ue, sliding_speed=us, dry=dry, lubricant=lub,
-                           options=opts, n=n)
+        r = solve_point(case, surfaces, load_per_length=w, radius=radius, width=width,
+                        entrainment_speed=ue, sliding_speed=us, dry=dry,
+                        lubricant=None if thermal_oil is not None else lub, options=opts,
+                        n=n, thermal_oil=thermal_oil if thermal else None)
     except InputError as exc:
         raise _as_option(exc) from None
+    if thermal_oil is not None and not thermal:       # --oil/--inlet-temperature only
+        r["oil"] = thermal_oil.name
+        r["inlet_temperature_K"] = thermal_oil.inlet_temperature
+    return r
+
+
+def _thermal_oil(case, oil, inlet_temperature, lub_options):
+    """The oil of --oil/--inlet-temperature [°C], else the case's datasheet oil."""
+    from ..physics.oils import OILS
+    from ..physics.thermal_oil import ThermalLubricant
+    clash = [k for k, v in lub_options.items() if v is not None]
+    if clash:
+        raise InputError(f"{', '.join(clash)}: not with --thermal/--oil/--inlet-temperature "
+                         "(the oil comes from --oil or the case's [lubricant])")
+    if inlet_temperature is not None and not (-40.0 < inlet_temperature <= 250.0):
+        raise InputError(f"--inlet-temperature must be in (-40, 250] °C (got "
+                         f"{inlet_temperature:g})")
+    if oil is not None:
+        if oil not in OILS:
+            raise InputError(f"--oil must be one of {', '.join(OILS)} (got {oil!r})")
+        if inlet_temperature is None:
+            raise InputError("--oil needs --inlet-temperature [°C] (the sump temperature)")
+        sheet = {k: v for k, v in OILS[oil].items() if k != "description"}
+        return ThermalLubricant(inlet_temperature + 273.15, **sheet, name=oil)
+    try:
+        base = case.thermal_lubricant()
+    except InputError:
+        raise InputError("--thermal needs an oil with a temperature: --oil 5W-30 "
+                         "--inlet-temperature 90, or a --case whose [lubricant] has "
+                         "inlet_temperature_c") from None
+    if inlet_temperature is not None:
+        return base.with_inlet_temperature(inlet_temperature + 273.15)
+    return base
 
 
 def _check_positive(option: str, value: float | None, unit: str) -> None:
@@ -240,6 +281,21 @@ def _table(r: dict) -> Table:
         t.add_row("friction", _g(r["friction_N"]), "N")
         t.add_row("friction coefficient", _g(r["friction_coefficient"], 1, 4), "")
         t.add_row("rolling friction*", _g(r["rolling_friction_N"]), "N")
+        if r.get("thermal"):
+            c = 273.15
+            sec("thermal (vs isothermal at the inlet temperature)")
+            t.add_row("oil, inlet temperature", f"{escape(str(r['oil'] or 'case'))}, "
+                      f"{r['inlet_temperature_K'] - c:.1f}", "°C")
+            t.add_row("max temperature", _g(r["max_temperature_K"] - c, 1, 4), "°C")
+            t.add_row("surfaces cam, tappet (max)",
+                      f"{r['max_surface_temperature_cam_K'] - c:.4g}, "
+                      f"{r['max_surface_temperature_tappet_K'] - c:.4g}", "°C")
+            t.add_row("mid-film at x = 0", _g(r["central_mid_film_temperature_K"] - c, 1, 4),
+                      "°C")
+            t.add_row("h_c thermal, isothermal", f"{r['central_film_m'] * 1e6:.4g}, "
+                      f"{r['isothermal_central_film_m'] * 1e6:.4g}", "µm")
+            t.add_row("viscous friction th., iso.", f"{r['viscous_friction_N']:.4g}, "
+                      f"{r['isothermal_viscous_friction_N']:.4g}", "N")
         sec("regime (Greenwood chart)")
         t.add_row("g_V, g_E", f"{r['greenwood_gV']:.4g}, {r['greenwood_gE']:.4g}", "")
         t.add_row("regime", r["regime"], _REGIME_NAMES.get(r["regime"], ""))
@@ -314,6 +370,17 @@ def contact_command(
                                                   show_default=False),
     n: Optional[int] = typer.Option(None, "--n", rich_help_panel=_NUM,
                                     help="Grid nodes (default: 512 EHL, 1024 dry)."),
+    thermal: bool = typer.Option(False, "--thermal", rich_help_panel=_LUB,
+                                 help="Thermal EHL (film energy equation, conduction in "
+                                      "cam and coated tappet); needs --oil and "
+                                      "--inlet-temperature or a --case with a sump "
+                                      "temperature."),
+    oil: Optional[str] = typer.Option(None, "--oil", rich_help_panel=_LUB,
+                                      help="Bundled datasheet oil: 0W-20, 5W-20, 5W-30, "
+                                           "10W-40."),
+    inlet_temperature: Optional[float] = typer.Option(
+        None, "--inlet-temperature", rich_help_panel=_LUB,
+        help="Oil supply (sump) temperature [°C]."),
     as_json: bool = typer.Option(False, "--json", help="Print a JSON object (SI units)."),
 ):
     """Single-point line contact: Hertz, EHL film, loads, friction and regime.
@@ -326,6 +393,9 @@ def contact_command(
 
       tribodyn contact --dry --load 633 --radius 0.01 --coating-material dlc
       --coating-thickness 4e-6
+
+      tribodyn contact --thermal --oil 5W-30 --inlet-temperature 90 --load 2400
+      --radius 0.01 --ue 2 --us 2 --coating-material dlc --coating-thickness 4e-6
 
     Exit code 1 if the solver did not converge, 2 on bad input.
     """
@@ -341,7 +411,8 @@ def contact_command(
                             eyring_stress=eyring_stress,
                             limiting_shear_coefficient=limiting_shear_coefficient,
                             viscosity_model=viscosity_model, viscous_model=viscous_model,
-                            limiting_shear=limiting_shear, n=n)
+                            limiting_shear=limiting_shear, n=n, thermal=thermal, oil=oil,
+                            inlet_temperature=inlet_temperature)
     except InputError as exc:
         err.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
         raise typer.Exit(code=2) from None

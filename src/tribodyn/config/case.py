@@ -34,9 +34,13 @@ from pydantic import (
 
 from .._validation import InputError
 from ..contact.ehl import EHLOptions
+from ..contact.ehl.thermal import ThermalOptions
 from ..physics.asperity import Roughness
 from ..physics.friction import BOUNDARY_SHEAR_STRENGTH
+from ..physics.heat_conduction import ThermalBody, ThermalProperties
 from ..physics.lubricant import Lubricant
+from ..physics.oils import OILS, THERMAL_MATERIALS
+from ..physics.thermal_oil import ThermalLubricant
 from ..physics.materials import Body, Coating, Material
 from ..valvetrain.camshaft import Camshaft
 from ..valvetrain.cams import AccelerationCam, CamProfile, CircularArcCam, TabulatedCam
@@ -164,13 +168,21 @@ class Case(Section):
                     problems.append((f"{p}.boundary_shear_coefficient",
                                      f"required: material {mat!r} has no "
                                      "boundary_shear_coefficient"))
-        for path, build in (("lubricant", self.lubricant),
-                            ("valvetrain", self.valvetrain_parameters),
-                            ("numerics", self.ehl_options)):
+        builds = [("lubricant", self.lubricant), ("valvetrain", self.valvetrain_parameters),
+                  ("numerics", self.ehl_options)]
+        if self.numerics.thermal or self.lubricant_config.datasheet:
+            builds.append(("lubricant", self.thermal_lubricant))
+        if self.numerics.thermal and not any(p == "lubricant" for p, _ in problems):
+            builds += [("materials", lambda s=s: self.thermal_bodies(s.name))
+                       for s in self.surface_set_configs]
+        done = set()
+        for path, build in builds:
             try:
                 build()
             except InputError as exc:
-                problems.append((path, str(exc)))
+                if (path, str(exc)) not in done:
+                    problems.append((path, str(exc)))
+                    done.add((path, str(exc)))
         try:
             self._cam = self._build_cam()
         except CamTableError as exc:
@@ -251,6 +263,11 @@ class Case(Section):
         if self.valvetrain.model == "flexible":         # the bodies give these
             for k in LUMPED_ONLY:
                 d["valvetrain"].pop(k, None)
+        lub = self.lubricant_config
+        if lub.datasheet:        # follow from the datasheet (α: So–Klaus unless given)
+            for k in ("viscosity", "density", "pressure_viscosity"):
+                if k not in lub.model_fields_set:
+                    d["lubricant"].pop(k, None)
         if resolve_paths and self.cam_config.type == "table":
             d["cam"]["path"] = str(self.cam_table_path)
         return d
@@ -302,13 +319,96 @@ class Case(Section):
         return p if p.is_absolute() else (self._base_dir / p)
 
     def lubricant(self) -> Lubricant:
-        """The :class:`~tribodyn.Lubricant` of ``[lubricant]``."""
+        """The :class:`~tribodyn.Lubricant` of ``[lubricant]`` (a datasheet oil at its
+        inlet temperature)."""
         c = self.lubricant_config
+        if c.datasheet:
+            return self.thermal_lubricant().isothermal()
         return Lubricant(viscosity=c.viscosity, pressure_viscosity=c.pressure_viscosity,
                          density=c.density, eyring_stress=c.eyring_stress,
                          limiting_shear_coefficient=c.limiting_shear_coefficient,
                          limiting_shear_stress=c.limiting_shear_stress,
                          compressible=c.compressible, viscosity_model=c.viscosity_model)
+
+    def thermal_lubricant(self) -> ThermalLubricant:
+        """The temperature- and pressure-dependent oil of ``[lubricant]``
+        (:class:`~tribodyn.physics.thermal_oil.ThermalLubricant`): a datasheet, or the
+        viscosity at ``inlet_temperature_c`` with its ``viscosity_temperature_coefficient``."""
+        c = self.lubricant_config
+        if c.inlet_temperature_c is None:
+            raise InputError("lubricant.inlet_temperature_c: required for the thermal model "
+                             "(the oil supply temperature, °C)")
+        common = dict(inlet_temperature=c.inlet_temperature_c + 273.15,
+                      thermal_expansion=c.thermal_expansion,
+                      thermal_conductivity=c.thermal_conductivity,
+                      specific_heat=c.specific_heat, eyring_stress=c.eyring_stress,
+                      limiting_shear_coefficient=c.limiting_shear_coefficient,
+                      limiting_shear_stress=c.limiting_shear_stress,
+                      limiting_shear_temperature_coefficient=(
+                          c.limiting_shear_temperature_coefficient),
+                      compressible=c.compressible, viscosity_model=c.viscosity_model)
+        given = c.model_fields_set
+        if c.datasheet:
+            sheet = dict(OILS[c.oil]) if c.oil is not None else {}
+            name = c.oil or "datasheet oil"
+            sheet.pop("description", None)
+            if c.kinematic_viscosity_40_cst is not None:
+                sheet["kinematic_viscosity_40"] = c.kinematic_viscosity_40_cst * 1e-6
+            if c.kinematic_viscosity_100_cst is not None:
+                sheet["kinematic_viscosity_100"] = c.kinematic_viscosity_100_cst * 1e-6
+            if c.density_15 is not None:
+                sheet["density"] = c.density_15
+            alpha = c.pressure_viscosity if "pressure_viscosity" in given else None
+            return ThermalLubricant(**common, **sheet, pressure_viscosity=alpha, name=name)
+        if c.viscosity_temperature_coefficient is None:
+            raise InputError("lubricant.viscosity_temperature_coefficient: required for the "
+                             "thermal model with a viscosity (or give a datasheet: oil, "
+                             "kinematic_viscosity_40_cst/_100_cst)")
+        return ThermalLubricant(**common, viscosity=c.viscosity,
+                                viscosity_temperature_coefficient=(
+                                    c.viscosity_temperature_coefficient),
+                                density=c.density, density_temperature=c.inlet_temperature_c
+                                + 273.15, pressure_viscosity=c.pressure_viscosity,
+                                name="lubricant")
+
+    def thermal_properties(self, name: str) -> ThermalProperties:
+        """k, ρ, c of ``[materials.<name>]`` (steel, dlc and wcc default to the literature
+        values of :mod:`tribodyn.physics.oils`)."""
+        m = self.materials[name]
+        d = dict(THERMAL_MATERIALS.get(name, {}))
+        for key, val in (("conductivity", m.thermal_conductivity), ("density", m.density),
+                         ("specific_heat", m.specific_heat)):
+            if val is not None:
+                d[key] = val
+        missing = [k for k in ("conductivity", "density", "specific_heat") if k not in d]
+        if missing:
+            names = {"conductivity": "thermal_conductivity"}
+            raise InputError("; ".join(f"materials.{name}.{names.get(k, k)}: required for the "
+                                       "thermal model" for k in missing))
+        return ThermalProperties(**d)
+
+    def thermal_bodies(self, surface_set: "SurfaceSet | str") -> tuple:
+        """(cam, tappet) as :class:`~tribodyn.physics.heat_conduction.ThermalBody`."""
+        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
+        cfg = next(c for c in self.surface_set_configs if c.name == s.name) \
+            if s.name else None
+        cam = ThermalBody(self.thermal_properties(self.cam_config.material))
+        sub = cfg.substrate if cfg is not None else (
+            "steel" if "steel" in self.materials else self.cam_config.material)
+        coat = s.coating_material if cfg is None else cfg.coating
+        if coat is None:
+            tappet = ThermalBody(self.thermal_properties(sub))
+        else:
+            tappet = ThermalBody(self.thermal_properties(sub), self.thermal_properties(coat),
+                                 s.coating.thickness)
+        return cam, tappet
+
+    def thermal_options(self) -> ThermalOptions:
+        """:class:`~tribodyn.contact.ehl.thermal.ThermalOptions` from ``[numerics]``."""
+        n = self.numerics
+        return ThermalOptions(x_nodes=n.thermal_x_nodes, film_nodes=n.thermal_film_nodes,
+                              solid_nodes=n.thermal_solid_nodes,
+                              step_iter=n.thermal_iterations, tol=n.thermal_tol)
 
     def material(self, name: str) -> Material:
         """The :class:`~tribodyn.Material` of ``[materials.<name>]``."""

@@ -16,6 +16,7 @@ from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, model_val
 from .. import paper
 from ..physics.friction import BOUNDARY_SHEAR_STRENGTH
 from ..physics.lubricant import ROELANDS_MU_INF
+from ..physics.oils import OILS
 from ..valvetrain.parameters import ValvetrainParameters
 from .errors import Problems
 
@@ -333,6 +334,61 @@ class LubricantConfig(Section):
                                                  "(paper: 0)", ge=0.0, le=1e9)
     compressible: bool = _q(True, "", "Dowson–Higginson density (false: constant density)")
     viscosity_model: Literal["roelands", "barus"] = _q("roelands", "", "piezo-viscosity law")
+    # -- datasheet form and thermal properties (numerics.thermal)
+    oil: Optional[Literal[tuple(OILS)]] = _q(  # type: ignore[valid-type]
+        None, "", "bundled oil (datasheet values; the keys below override them)")
+    kinematic_viscosity_40_cst: Optional[float] = _q(
+        None, "mm²/s", "kinematic viscosity at 40 °C (datasheet, ASTM D445)", gt=1.5, le=1e5)
+    kinematic_viscosity_100_cst: Optional[float] = _q(
+        None, "mm²/s", "kinematic viscosity at 100 °C (datasheet)", ge=1.5, le=1e4)
+    density_15: Optional[float] = _q(None, "kg/m³", "density at 15 °C (datasheet)",
+                                     gt=500.0, le=2000.0)
+    thermal_expansion: float = _q(6.5e-4, "1/K", "thermal expansion of the density ε",
+                                  ge=0.0, le=3e-3)
+    inlet_temperature_c: Optional[float] = _q(
+        None, "°C", "oil supply (sump) temperature, also that of the solids far from the "
+                    "contact; required with a datasheet or numerics.thermal", gt=-40.0,
+        le=250.0)
+    viscosity_temperature_coefficient: Optional[float] = _q(
+        None, "1/K", "β = −d ln μ/dT at the inlet temperature (viscosity form with "
+                     "numerics.thermal)", gt=0.0, le=0.5)
+    thermal_conductivity: Optional[float] = _q(
+        None, "W/(m K)", "oil conductivity at the inlet temperature (absent: Cragoe's "
+                         "estimate from the density)", gt=0.01, le=10.0)
+    specific_heat: Optional[float] = _q(
+        None, "J/(kg K)", "oil specific heat at the inlet temperature (absent: Cragoe)",
+        gt=100.0, le=1e4)
+    limiting_shear_temperature_coefficient: float = _q(
+        0.0, "1/K", "c_L: τ_L falls by the factor 1 − c_L (T − T_inlet) (0: temperature "
+                    "independent)", ge=0.0, le=0.05)
+
+    @property
+    def datasheet(self) -> bool:
+        """Given as a datasheet (bundled oil or kinematic viscosities)."""
+        return self.oil is not None or self.kinematic_viscosity_40_cst is not None \
+            or self.kinematic_viscosity_100_cst is not None
+
+    @model_validator(mode="after")
+    def _forms(self):
+        problems = []
+        given = self.model_fields_set
+        if self.datasheet:
+            for k in ("viscosity", "density", "viscosity_temperature_coefficient"):
+                if k in given and getattr(self, k) is not None:
+                    problems.append((k, "not with a datasheet oil (oil or kinematic_viscosity_"
+                                        "*_cst): the viscosity and density follow from it"))
+            if self.oil is None:
+                for k in ("kinematic_viscosity_40_cst", "kinematic_viscosity_100_cst"):
+                    if getattr(self, k) is None:
+                        problems.append((k, "required with the other kinematic viscosity"))
+            if self.inlet_temperature_c is None:
+                problems.append(("inlet_temperature_c", "required with a datasheet oil (the "
+                                                        "temperature it is supplied at)"))
+        elif self.density_15 is not None:
+            problems.append(("density_15", "only with a datasheet oil; give density"))
+        if problems:
+            raise Problems(problems)
+        return self
 
 
 class MaterialConfig(Section):
@@ -345,6 +401,13 @@ class MaterialConfig(Section):
                   "(paper Eq. 17)", ge=0.0, le=2.0)
     label: Optional[str] = _q(None, "", "display name (default: the table key)",
                               min_length=1)
+    thermal_conductivity: Optional[float] = _q(
+        None, "W/(m K)", "thermal conductivity k (numerics.thermal; steel, dlc, wcc have "
+                         "literature defaults)", ge=1e-3, le=1e4)
+    density: Optional[float] = _q(None, "kg/m³", "density ρ (numerics.thermal)", ge=10.0,
+                                  le=1e5)
+    specific_heat: Optional[float] = _q(None, "J/(kg K)", "specific heat c "
+                                        "(numerics.thermal)", ge=10.0, le=1e5)
 
 
 class RoughnessConfig(Section):
@@ -451,6 +514,17 @@ class Numerics(Section):
     workers: int = _q(0, "", "worker processes for the surface sets, the coupling chain and "
                              "the single-contact studies (0: one per CPU core)",
                       ge=0, le=4096)
+    thermal: bool = _q(False, "", "thermal EHL (film energy equation, conduction in the "
+                                  "solids and coatings) along the cycle, beside the "
+                                  "isothermal one")
+    thermal_x_nodes: int = _q(96, "", "thermal grid nodes along the contact", ge=16,
+                              le=1024)
+    thermal_film_nodes: int = _q(7, "", "thermal nodes across the film (odd)", ge=3, le=41)
+    thermal_solid_nodes: int = _q(12, "", "thermal depth nodes per solid", ge=6, le=200)
+    thermal_iterations: int = _q(2, "", "pressure ↔ temperature iterations per transient "
+                                        "step (1: staggered)", ge=1, le=50)
+    thermal_tol: float = _q(0.05, "K", "temperature change at which the thermal fixed-"
+                                       "point iteration stops", gt=0.0, le=10.0)
 
 
 

@@ -125,6 +125,8 @@ def study_to_dataset(study) -> xr.Dataset:
     ds["point_crank"] = _var("point", an.point_crank, "deg",
                              "crank angle of the representative points (Fig. 13)")
     _coating_studies(ds, study)
+    from .thermal import add_thermal
+    add_thermal(ds, study)
     failures = {s.name: [[c, m] for c, m in s.failures] for s in sets}
     ds.attrs.update({
         "title": f"tribodyn cam-cycle study: {case.name}",

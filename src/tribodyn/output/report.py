@@ -35,6 +35,10 @@ _CAPTIONS = {
     "fig18": "Viscous friction (paper Fig. 18).",
     "fig19": "Friction power and friction energy per cycle.",
     "fig20": "Minimum film and λ = h_min/σ over the cycle.",
+    "fig21": "Temperatures over the cycle: tappet and cam surfaces, mid-film and maximum "
+             "(thermal EHL).",
+    "fig22": "Central film and viscous friction, thermal vs isothermal at the inlet "
+             "temperature.",
 }
 
 
@@ -202,6 +206,8 @@ def claims(study, summ) -> list[tuple[str, str, str, str]]:
             "zero-lash contact on the base circle has no well-defined film."))
     rows.append(_viscous_law_row(study, summ))
     rows.append(_friction_loss_row(study, summ))
+    from .report_thermal import thermal_claim_row
+    rows.append(thermal_claim_row(study, summ))
     return rows
 
 
@@ -346,6 +352,8 @@ def report_text(study, ds, figures: dict) -> str:
               f"velocity {_fmt(d.get('seating_velocity_m_s'), 'm/s')}.", ""]
 
     lines += model_comparison_section(study)
+    from .report_thermal import thermal_section
+    lines += thermal_section(study, summ)
     lines += ["## The paper's claims beside tribodyn", "",
               "| claim | paper | tribodyn | why |", "|---|---|---|---|"]
     for claim, pap, ours, why in claims(study, summ):

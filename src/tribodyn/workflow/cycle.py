@@ -64,6 +64,9 @@ class CycleStudy:
     runtime_s: float = 0.0
     timings: dict = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
+    #: with ``numerics.thermal``: ``sets`` are the thermal results and these the
+    #: isothermal ones at the same inlet temperature (None for an isothermal study)
+    isothermal_sets: list[SetCycleResult] | None = None
 
     @property
     def implicit(self) -> ValvetrainResult | None:
@@ -194,6 +197,7 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None,
     workers = max(1, min(int(workers), len(sets) + 1))
     t0 = time.perf_counter()
     results = {}
+    thermal = {}                      # thermal EHL per set (numerics.thermal)
     if executor is None and workers == 1:
         # serial, in this process
         with _single_blas_thread():
@@ -203,6 +207,13 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None,
                 report("set", name=s.name, done=total, total=total)
             _, coupling = _coupling_task(case, ref_name, dyn, inputs, first=results[ref_name])
             coating = _coating_studies_task(case, ref_name, nose)
+            if n.thermal:
+                from .thermal_study import thermal_for_set
+                for s in sets:
+                    label = f"{s.name} (thermal)"
+                    report("set", name=label, done=0, total=total)
+                    thermal[s.name] = thermal_for_set(case, s, inputs)
+                    report("set", name=label, done=total, total=total)
     else:
         own = executor is None
         pool = executor
@@ -218,11 +229,23 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None,
                     for s in sets if s.name != ref_name}
             fut_coat = pool.submit(_coating_studies_task, case, ref_name, nose)
             futs[fut_c] = ref_name
+            fut_th = {}
+            if n.thermal:
+                from .thermal_study import thermal_task
+                fut_th = {pool.submit(thermal_task, case, s.name, inputs): s.name
+                          for s in sets}
             for s in sets:
                 report("set", name=s.name, done=0, total=total)
-            for f in as_completed([*futs, fut_coat]):
+                if n.thermal:
+                    report("set", name=f"{s.name} (thermal)", done=0, total=total)
+            for f in as_completed([*futs, fut_coat, *fut_th]):
                 if f is fut_coat:
                     coating = f.result()
+                    continue
+                if f in fut_th:
+                    name = fut_th[f]
+                    thermal[name] = f.result()
+                    report("set", name=f"{name} (thermal)", done=total, total=total)
                     continue
                 name = futs[f]
                 if f is fut_c:
@@ -242,12 +265,18 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None,
     for name, r in results.items():                 # inside the tasks (their own clocks)
         timings[f"ehl_pass_{name}_s"] = r.runtime_s
     timings["coupling_s"] = coupling.runtime_s
+    isothermal = None
+    if n.thermal:                       # thermal EHL per set; isothermal kept beside it
+        isothermal = [results[s.name] for s in sets]
+        results = thermal
+        for name, r in thermal.items():
+            timings[f"thermal_ehl_pass_{name}_s"] = r.runtime_s
 
     study = CycleStudy(case=case, dynamics=dyn, inputs=inputs,
                        sets=[results[s.name] for s in sets],
                        labels={s.name: s.coating_label for s in sets}, coupling=coupling,
                        dry=coating[0], ehl_coating=coating[1], sensitivity=coating[2],
-                       timings=timings)
+                       timings=timings, isothermal_sets=isothermal)
     for s in study.sets:
         if s.failures:
             study.warnings.append(f"{s.name}: {len(s.failures)} EHL step(s) did not converge "

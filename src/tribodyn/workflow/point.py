@@ -110,9 +110,12 @@ def _shear(v) -> float:
 def solve_point(case, surfaces: SurfaceSet, *, load_per_length, radius, width,
                 entrainment_speed=None, sliding_speed=0.0, dry=False,
                 lubricant: Lubricant | None = None, options: EHLOptions | None = None,
-                n: int | None = None) -> dict:
+                n: int | None = None, thermal_oil=None) -> dict:
     """Solve one contact (see the module docstring). ``lubricant`` and ``options``
-    default to the case's; ``n`` is the dry grid (default 1024)."""
+    default to the case's; ``n`` is the dry grid (default 1024). ``thermal_oil``
+    (:class:`~tribodyn.physics.thermal_oil.ThermalLubricant`): solve the thermal EHL
+    with the case's material thermal properties; the isothermal solution at the inlet
+    temperature is reported beside it (keys ``isothermal_*``)."""
     w = check_positive("load_per_length", load_per_length, "N/m")
     radius = check_positive("radius", radius, "m")
     width = check_positive("width", width, "m")
@@ -161,9 +164,20 @@ def solve_point(case, surfaces: SurfaceSet, *, load_per_length, radius, width,
                          "needs entrainment")
     us = check_real("sliding_speed", sliding_speed, "m/s")
     lub = lubricant or case.lubricant()
+    if thermal_oil is not None:
+        lub = thermal_oil.isothermal()
     opts = options or case.ehl_options(surfaces)
     rough = surfaces.roughness
     res = solve_ehl(w, radius, ue, us, bodies, lub, rough, options=opts)
+    iso = res
+    if thermal_oil is not None:
+        from ..contact.ehl.thermal import solve_thermal_ehl
+        if surfaces.coating is not None and surfaces.coating_material is None:
+            raise InputError("thermal: the coating needs a material with thermal properties "
+                             "(give coating_material, not E, nu, thickness)")
+        res = solve_thermal_ehl(w, radius, ue, us, bodies, thermal_oil,
+                                case.thermal_bodies(surfaces), rough, options=opts,
+                                thermal_options=case.thermal_options())
     W, U, G = hamrock_groups(w, radius, ue, lub.viscosity, lub.pressure_viscosity, e_bulk)
     gV, gE = greenwood_chart_groups(W, U, G)
     ph_c, ph_min = pan_hamrock(W, U, G, radius)
@@ -210,4 +224,21 @@ def solve_point(case, surfaces: SurfaceSet, *, load_per_length, radius, width,
         "iterations": int(res.iterations),
         "message": res.message,
     })
+    out["thermal"] = thermal_oil is not None
+    if thermal_oil is not None:
+        itot = iso.totals(width)
+        out.update({
+            "oil": thermal_oil.name or None,
+            "inlet_temperature_K": thermal_oil.inlet_temperature,
+            "max_temperature_K": res.max_temperature,
+            "max_surface_temperature_cam_K": res.max_surface_temperature[0],
+            "max_surface_temperature_tappet_K": res.max_surface_temperature[1],
+            "central_mid_film_temperature_K": res.central_mid_film_temperature,
+            "thermal_iterations": int(res.thermal_iterations),
+            "isothermal_central_film_m": iso.central_film,
+            "isothermal_min_film_m": iso.min_film,
+            "isothermal_viscous_friction_N": itot["viscous_friction"],
+            "isothermal_friction_N": itot["friction"],
+            "isothermal_converged": bool(iso.converged),
+        })
     return out

@@ -278,6 +278,9 @@ def summary(study, an: Analysis) -> dict:
             "failed_steps": len(s.failures),
         }
     out["implicit_vs_explicit"] = _implicit_vs_explicit(study)
+    if getattr(study, "isothermal_sets", None) is not None:     # numerics.thermal
+        from .thermal_study import thermal_summary
+        out["thermal"] = thermal_summary(study, an)
     out["dynamics"] = {k: v for k, v in dyn.summary().items() if k != "converged"}
     out["warnings"] = list(study.warnings)
     out["runtime_s"] = float(study.runtime_s)

@@ -3,7 +3,8 @@
 Modules: :mod:`.options` (options, inputs, result) · :mod:`.grid` (domain and grid) ·
 :mod:`.reynolds` (discrete system and linearisation) · :mod:`.newton` (semismooth Newton,
 GMRES, two-grid) · :mod:`.postprocess` (friction, loads, checks) · :mod:`.steady` ·
-:mod:`.transient`.
+:mod:`.transient`; thermal EHL: :mod:`.energy` (film + solids energy equation) ·
+:mod:`.thermal` (steady) · :mod:`.thermal_transient`.
 
 Equations (x in the frame of the contact point, u_e the mean entraining speed):
 
@@ -30,6 +31,9 @@ P = p a/w, H = h R/a², X = x/a.
 
 from .options import EHLOptions, EHLResult
 from .steady import solve_ehl
+from .thermal import ThermalEHLResult, ThermalOptions, solve_thermal_ehl
+from .thermal_transient import ThermalTransientEHL
 from .transient import TransientEHL
 
-__all__ = ["EHLOptions", "EHLResult", "solve_ehl", "TransientEHL"]
+__all__ = ["EHLOptions", "EHLResult", "solve_ehl", "TransientEHL", "ThermalOptions",
+           "ThermalEHLResult", "solve_thermal_ehl", "ThermalTransientEHL"]

@@ -22,19 +22,21 @@ _OPTS = dict(cache=True, nogil=True, fastmath=False)
 
 @njit(**_OPTS)
 def assemble(P, H, rho, drho, lnmu, dlnmu, lam, h_floor, abs_ubar, s, dX, time_coef,
-             f_old, R, AP, AH):
+             f_old, ff, cf, R, AP, AH):
     """Reynolds residual R (interior rows) and banded ∂R/∂P (AP), ∂R/∂H (AH), in place.
 
-    R_i = [ε_{i+½}(P_{i+1} − P_i) − ε_{i−½}(P_i − P_{i−1})]/ΔX² − |ū| Σ_k c_k f_{i−sk}/ΔX
-          − c_t (f_i − f_old,i),   ε = λ ρ H³ e^(−ln μ/μ₀),  f = ρ H,
-    c = (1.5, −2, 0.5) (first order, (1, −1), next to the upstream boundary)."""
+    R_i = [ε_{i+½}(P_{i+1} − P_i) − ε_{i−½}(P_i − P_{i−1})]/ΔX² − |ū| Σ_k c_k g_{i−sk}/ΔX
+          − c_t (f_i − f_old,i),   ε = φ_f λ ρ H³ e^(−ln μ/μ₀),  f = ρ H,  g = φ_c ρ H,
+    c = (1.5, −2, 0.5) (first order, (1, −1), next to the upstream boundary). φ_f (ff) and
+    φ_c (cf) are per-node factors of the generalized Reynolds equation, frozen in a solve
+    (1 for the isothermal equation)."""
     n = P.size
     eps = np.empty(n)
     deP = np.empty(n)
     deH = np.empty(n)
     for i in range(n):
         hf = H[i] if H[i] > h_floor else h_floor
-        e = lam * rho[i] * hf * hf * hf * np.exp(-lnmu[i])
+        e = ff[i] * lam * rho[i] * hf * hf * hf * np.exp(-lnmu[i])
         eps[i] = e
         deP[i] = e * (drho[i] / rho[i] - dlnmu[i])
         deH[i] = 3.0 * e / hf if H[i] > h_floor else 0.0
@@ -65,15 +67,15 @@ def assemble(P, H, rho, drho, lnmu, dlnmu, lam, h_floor, abs_ubar, s, dX, time_c
         else:
             c0, c1, c2 = 1.0, -1.0, 0.0
         j1 = i - s
-        R[i] -= cu * (c0 * rho[i] * H[i] + c1 * rho[j1] * H[j1]
-                      + (c2 * rho[j2] * H[j2] if c2 != 0.0 else 0.0))
-        AP[2, i] -= cu * c0 * drho[i] * H[i]
-        AH[2, i] -= cu * c0 * rho[i]
-        AP[2 - s, i] -= cu * c1 * drho[j1] * H[j1]
-        AH[2 - s, i] -= cu * c1 * rho[j1]
+        R[i] -= cu * (c0 * cf[i] * rho[i] * H[i] + c1 * cf[j1] * rho[j1] * H[j1]
+                      + (c2 * cf[j2] * rho[j2] * H[j2] if c2 != 0.0 else 0.0))
+        AP[2, i] -= cu * c0 * cf[i] * drho[i] * H[i]
+        AH[2, i] -= cu * c0 * cf[i] * rho[i]
+        AP[2 - s, i] -= cu * c1 * cf[j1] * drho[j1] * H[j1]
+        AH[2 - s, i] -= cu * c1 * cf[j1] * rho[j1]
         if c2 != 0.0:
-            AP[2 - 2 * s, i] -= cu * c2 * drho[j2] * H[j2]
-            AH[2 - 2 * s, i] -= cu * c2 * rho[j2]
+            AP[2 - 2 * s, i] -= cu * c2 * cf[j2] * drho[j2] * H[j2]
+            AH[2 - 2 * s, i] -= cu * c2 * cf[j2] * rho[j2]
         if time_coef != 0.0:
             R[i] -= time_coef * (rho[i] * H[i] - f_old[i])
             AP[2, i] -= time_coef * drho[i] * H[i]

@@ -66,6 +66,11 @@ class ReynoldsSystem:
         # time term: c_t (f − f_old) with f = ρ̄H, c_t = a/(U Δt)·α₀
         self.time_coef = time_coef * a / self.u_scale
         self.f_old = f_old
+        # optional per-node factors of the generalized (thermal) Reynolds equation: the
+        # Poiseuille coefficient ε and the Couette flux ū ρ̄H are multiplied by them
+        # (None: isothermal Reynolds; see contact.ehl.thermal)
+        self.flow_factor = None
+        self.couette_factor = None
         self.h_floor = 1e-10 / h_ref
         if roughness is not None:
             self.ka = roughness.pressure_scale(model.e_surface) / p_ref
@@ -135,8 +140,13 @@ class ReynoldsSystem:
         AP = np.empty((5, n))
         AH = np.empty((5, n))
         f_old = self.f_old if self.time_coef else _EMPTY
+        ones = None
+        if self.flow_factor is None or self.couette_factor is None:
+            ones = np.ones(n)
+        ff = ones if self.flow_factor is None else np.asarray(self.flow_factor, float)
+        cf = ones if self.couette_factor is None else np.asarray(self.couette_factor, float)
         assemble(P, H, rho, drho, lnmu, dlnmu, self.lam, self.h_floor, abs(self.ubar), self.s,
-                 dX, float(self.time_coef), f_old, R, AP, AH)
+                 dX, float(self.time_coef), f_old, ff, cf, R, AP, AH)
         load = dX * float(np.sum(Q)) - 1.0
         return Evaluation(R, load, P, H, pa, dpa, AP, AH)
 

@@ -5,7 +5,8 @@
 (Figs. 5, 6, 8–18 of Andreou et al. 2023) plus two summary figures (19: friction power and
 energy, 20: minimum film and λ). One module per family: :mod:`.coating` (5, 6),
 :mod:`.dynamics` (8–11), :mod:`.regimes` (12), :mod:`.profiles` (13, 14), :mod:`.cycle`
-(15–20); :mod:`.topography` draws the measured-surface figure (paper Fig. 7).
+(15–20), :mod:`.thermal` (21, 22: temperatures, thermal vs isothermal, in thermal
+studies); :mod:`.topography` draws the measured-surface figure (paper Fig. 7).
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from .cycle import fig15, fig16, fig17, fig18, fig19, fig20
 from .dynamics import fig08, fig09, fig10, fig11
 from .profiles import fig13, fig14
 from .regimes import fig12
+from .thermal import fig21, fig22
 
 __all__ = ["FIGURES", "EVENT_FRACTION", "make_figures"]
 
@@ -42,6 +44,10 @@ _MAKERS = {
     "fig18_viscous_friction.png": (fig18, ("viscous_friction", "loaded")),
     "fig19_friction_power.png": (fig19, ("friction_power", "loaded")),
     "fig20_min_film_lambda.png": (fig20, ("min_film", "lambda_ratio", "loaded")),
+    "fig21_temperatures.png": (fig21, ("max_temperature", "surface_temperature_tappet",
+                                       "loaded")),
+    "fig22_thermal_vs_isothermal.png": (fig22, ("central_film_isothermal",
+                                                 "viscous_friction_isothermal", "loaded")),
 }
 
 

@@ -42,6 +42,8 @@ FIGURES = {
     "fig18_viscous_friction.png": "Viscous friction over the cycle (paper Fig. 18)",
     "fig19_friction_power.png": "Friction power and friction energy per cycle",
     "fig20_min_film_lambda.png": "Minimum film thickness and λ = h_min/σ over the cycle",
+    "fig21_temperatures.png": "Temperatures over the cycle (thermal EHL)",
+    "fig22_thermal_vs_isothermal.png": "Film and viscous friction, thermal vs isothermal",
 }
 
 #: A sample belongs to the cam event where the contact force exceeds this share of its max.

@@ -1,0 +1,61 @@
+"""Thermal EHL against published thermal corrections and the traction curve (prints JSON).
+
+    python benchmarks/thermal_references.py
+
+Steel on steel line contact, w = 500 kN/m, R = 20 mm (p_h ≈ 0.96 GPa), SAE 5W-30 at
+40 °C (bundled datasheet oil), u_e = 5 m/s:
+
+* central film h_T/h_iso against Murch & Wilson (1975) φ = 3.94/(3.94 + L^0.62)
+  (rolling) and Gupta et al. (1992) φ = (1 − 13.2 (p_h/E') L^0.42)/(1 + 0.213 (1 + 2.23
+  SRR^0.83) L^0.64), L = βμ₀u_e²/k, for SRR = 0, 0.5, 1, 1.5;
+* viscous traction coefficient, thermal and isothermal, over SRR = 0.005 … 1.2.
+Not a timing; the tests check the rolling point and the traction curve's shape.
+"""
+
+import json
+import math
+
+from tribodyn import Body, Material, solve_ehl
+from tribodyn.contact.ehl.thermal import solve_thermal_ehl
+from tribodyn.physics.heat_conduction import ThermalBody, ThermalProperties
+from tribodyn.physics.oils import OILS
+from tribodyn.physics.thermal_oil import ThermalLubricant
+
+W, R, UE = 5e5, 0.02, 5.0
+
+
+def main():
+    sheet = {k: v for k, v in OILS["5W-30"].items() if k != "description"}
+    oil = ThermalLubricant(313.15, **sheet)
+    steel = Material(210e9, 0.3)
+    pair = (Body(steel), Body(steel))
+    ts = ThermalProperties(46.0, 7850.0, 470.0)
+    tb = (ThermalBody(ts), ThermalBody(ts))
+    e = 210e9 / 0.91
+    L = (oil.temperature_viscosity_coefficient() * oil.inlet_viscosity * UE**2
+         / float(oil.conductivity(0.0, oil.inlet_temperature)))
+    ph = math.sqrt(W * e / (2 * math.pi * R))
+    iso = solve_ehl(W, R, UE, 0.0, pair, oil.isothermal())
+    film = []
+    for srr in (0.0, 0.5, 1.0, 1.5):
+        r = solve_thermal_ehl(W, R, UE, srr * UE, pair, oil, tb)
+        gupta = (1 - 13.2 * ph / e * L**0.42) / (1 + 0.213 * (1 + 2.23 * srr**0.83) * L**0.64)
+        film.append({"srr": srr, "h_thermal_over_isothermal": r.central_film / iso.central_film,
+                     "gupta_1992": gupta,
+                     "murch_wilson_1975": 3.94 / (3.94 + L**0.62) if srr == 0 else None,
+                     "max_temperature_rise_K": r.max_temperature - r.inlet_temperature,
+                     "converged": bool(r.converged)})
+    traction = []
+    for srr in (0.005, 0.02, 0.05, 0.1, 0.2, 0.4, 0.8, 1.2):
+        r = solve_thermal_ehl(W, R, UE, srr * UE, pair, oil, tb)
+        i = solve_ehl(W, R, UE, srr * UE, pair, oil.isothermal())
+        traction.append({"srr": srr, "mu_thermal": r.viscous_friction / W,
+                         "mu_isothermal": i.viscous_friction / W,
+                         "max_temperature_rise_K": r.max_temperature - r.inlet_temperature,
+                         "converged": bool(r.converged)})
+    print(json.dumps({"thermal_loading_L": L, "hertz_pressure_Pa": ph, "film": film,
+                      "traction": traction}, indent=2))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,375 @@
+"""A lubricant whose properties depend on temperature and pressure (thermal EHL).
+
+Two ways to give the oil:
+
+* **datasheet** — kinematic viscosities ν₄₀, ν₁₀₀ at 40 and 100 °C, density at 15 °C and
+  its thermal expansion; the viscosity at ambient pressure follows the ASTM D341 (Walther)
+  line through the two points.
+* **inlet** — the dynamic viscosity μᵢ at the inlet temperature Tᵢ and the
+  temperature–viscosity coefficient β = −d ln μ/dT there; the viscosity at ambient
+  pressure follows Roelands' temperature term (below) with S₀ = β(Tᵢ − 138)/(ln μᵢ + 9.67).
+
+Equations (T in K, p in Pa, SI unless stated):
+
+* ASTM D341 (2009 form), ν in mm²/s (cSt)::
+
+      log₁₀ log₁₀ Z = A − B log₁₀ T,   Z = ν + 0.7 + exp(−1.47 − 1.84ν − 0.51ν²)
+      ν = (Z − 0.7) − exp(−0.7487 − 3.295(Z−0.7) + 0.6119(Z−0.7)² − 0.3193(Z−0.7)³)
+
+* Roelands (1966) with temperature and pressure terms (the paper's Eq. 3 at T = Tᵢ)::
+
+      ln μ(p, T) + 9.67 = (ln μ₀(T) + 9.67) (1 + 5.1e-9 p)^Z
+      roelands:  ln μ₀(T) + 9.67 = (ln μᵢ + 9.67) ((T − 138)/(Tᵢ − 138))^(−S₀)
+      walther:   μ₀(T) = ν_D341(T) ρ(0, T)
+
+  Z is constant (Roelands found it nearly temperature independent), from α at the inlet:
+  Z = α/(5.1e-9 (ln μᵢ + 9.67)); so α(T) = 5.1e-9 Z (ln μ₀(T) + 9.67) falls with T.
+  ``viscosity_model="barus"``: ln μ = ln μ₀(T) + α p.
+* Pressure–viscosity coefficient when not given: So & Klaus (1980, ASLE Trans. 23:409)
+  correlation from ν, ρ and the ASTM slope b = B at the inlet temperature, α in 1e-8 m²/N::
+
+      α = 1.216 + 4.143 (log ν)^3.0627 + 2.848e-4 b^5.1903 (log ν)^1.5976
+          − 3.999 (log ν)^3.0975 ρ^0.1162                    (ν in cSt, ρ in g/cm³)
+
+* Density: Dowson–Higginson in pressure times a linear thermal expansion (Yang & Wen 1990,
+  J. Tribol. 112:631)::
+
+      ρ(p, T) = ρ_r [1 + 0.6p/(1 + 1.7p)] [1 − ε (T − T_r)]    (p in GPa)
+
+* Thermal conductivity with the pressure law of Larsson & Andersson (2000, Proc. IMechE J
+  214:337) and Cragoe's (1929, US Bureau of Standards Misc. Publ. 97) temperature slope::
+
+      k(p, T) = k_r (1 − 5.4e-4 t)/(1 − 5.4e-4 t_r) (1 + 1.72p/(1 + 0.54p))   (t in °C, p GPa)
+
+  Volumetric heat capacity ρc_p with Cragoe's specific heat slope; its pressure dependence
+  is carried by the density (c_p taken pressure independent)::
+
+      c_p(T) = c_r (1.685 + 0.00339 t)/(1.685 + 0.00339 t_r)
+
+  Without given values k and c_p are Cragoe's estimates from the specific gravity s:
+  k = 0.1172 (1 − 5.4e-4 t)/s W/(m K), c_p = (1685 + 3.39 t)/√s J/(kg K).
+* Shear: Eyring stress τ_E ∝ T (Eyring's τ₀ = k_B T/V); limiting shear stress
+  τ_L = (τ_L0 + Λp) max(0.1, 1 − c_L (T − Tᵢ)) (c_L = 0: temperature independent).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from .._validation import InputError, check_nonnegative, check_positive, check_range
+from .lubricant import ROELANDS_MU_INF, ROELANDS_P0, Lubricant
+
+__all__ = ["ThermalLubricant", "walther_constants", "walther_viscosity", "so_klaus_alpha",
+           "celsius", "kelvin", "T40", "T100", "T15"]
+
+T15, T40, T100 = 288.15, 313.15, 373.15
+#: Larsson & Andersson (2000) pressure law of the conductivity, k ∝ 1 + a p/(1 + b p) [1/Pa].
+CONDUCTIVITY_PRESSURE = (1.72e-9, 0.54e-9)
+_ZERO_C = 273.15
+
+
+def celsius(T):
+    """K → °C."""
+    return np.asarray(T, dtype=float) - _ZERO_C
+
+
+def kelvin(t):
+    """°C → K."""
+    return np.asarray(t, dtype=float) + _ZERO_C
+
+
+def _d341_z(nu_cst):
+    nu = np.asarray(nu_cst, dtype=float)
+    return nu + 0.7 + np.exp(-1.47 - 1.84 * nu - 0.51 * nu * nu)
+
+
+def walther_constants(nu40, nu100) -> tuple[float, float]:
+    """ASTM D341 constants (A, B) of the line through ν(40 °C), ν(100 °C) [m²/s]."""
+    y1 = math.log10(math.log10(float(_d341_z(nu40 * 1e6))))
+    y2 = math.log10(math.log10(float(_d341_z(nu100 * 1e6))))
+    x1, x2 = math.log10(T40), math.log10(T100)
+    B = (y1 - y2) / (x2 - x1)
+    return y1 + B * x1, B
+
+
+def walther_viscosity(T, A, B):
+    """Kinematic viscosity [m²/s] of the ASTM D341 line (A, B) at T [K]."""
+    z = 10.0 ** (10.0 ** (A - B * np.log10(np.asarray(T, dtype=float))))
+    zz = z - 0.7
+    nu = zz - np.exp(-0.7487 - 3.295 * zz + 0.6119 * zz**2 - 0.3193 * zz**3)
+    return nu * 1e-6
+
+
+def so_klaus_alpha(nu, rho, slope) -> float:
+    """So & Klaus (1980) pressure–viscosity coefficient [1/Pa] from the kinematic
+    viscosity ν [m²/s] and density ρ [kg/m³] at the temperature of interest and the ASTM
+    D341 slope b (= B)."""
+    lv = math.log10(nu * 1e6)
+    if lv <= 0.0:
+        raise InputError(f"the So–Klaus correlation needs ν > 1 mm²/s (got {nu * 1e6:.3g})")
+    a = (1.216 + 4.143 * lv**3.0627 + 2.848e-4 * slope**5.1903 * lv**1.5976
+         - 3.999 * lv**3.0975 * (rho * 1e-3) ** 0.1162)
+    return a * 1e-8
+
+
+@dataclass(frozen=True)
+class ThermalLubricant:
+    """Temperature- and pressure-dependent oil (module docstring for the laws).
+
+    Parameters
+    ----------
+    inlet_temperature : Tᵢ, oil supply (sump) temperature [K], also the temperature of
+        the solids far from the contact.
+    kinematic_viscosity_40, kinematic_viscosity_100 : ν at 40 and 100 °C [m²/s]
+        (datasheet form; both or neither).
+    viscosity, viscosity_temperature_coefficient : μᵢ at Tᵢ [Pa·s] and β [1/K] (inlet
+        form, instead of the datasheet viscosities).
+    density, density_temperature : ρ_r [kg/m³] at ambient pressure and T_r [K] (datasheet:
+        15 °C).
+    thermal_expansion : ε [1/K] of the density.
+    pressure_viscosity : α at Tᵢ [1/Pa]; None: So & Klaus estimate (datasheet form only).
+    thermal_conductivity, specific_heat : k [W/(m K)], c_p [J/(kg K)] at Tᵢ and ambient
+        pressure; None: Cragoe's estimates from the density.
+    eyring_stress : τ_E at Tᵢ [Pa]; limiting_shear_coefficient Λ, limiting_shear_stress
+        τ_L0 [Pa], limiting_shear_temperature_coefficient c_L [1/K].
+    compressible, viscosity_model : as :class:`~tribodyn.Lubricant`.
+    name : label (e.g. the oil's grade).
+    """
+
+    inlet_temperature: float
+    kinematic_viscosity_40: float | None = None
+    kinematic_viscosity_100: float | None = None
+    viscosity: float | None = None
+    viscosity_temperature_coefficient: float | None = None
+    density: float = 850.0
+    density_temperature: float = T15
+    thermal_expansion: float = 6.5e-4
+    pressure_viscosity: float | None = None
+    thermal_conductivity: float | None = None
+    specific_heat: float | None = None
+    eyring_stress: float = 2e6
+    limiting_shear_coefficient: float = 0.08
+    limiting_shear_stress: float = 0.0
+    limiting_shear_temperature_coefficient: float = 0.0
+    compressible: bool = True
+    viscosity_model: str = "roelands"
+    name: str = ""
+    _c: dict = field(default=None, init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        Ti = check_range("inlet_temperature", self.inlet_temperature, 200.0, 600.0, unit="K")
+        sheet = (self.kinematic_viscosity_40, self.kinematic_viscosity_100)
+        inlet = (self.viscosity, self.viscosity_temperature_coefficient)
+        c: dict = {"Ti": Ti}
+        if all(v is not None for v in sheet) and all(v is None for v in inlet):
+            n40 = check_positive("kinematic_viscosity_40", sheet[0], "m²/s")
+            n100 = check_positive("kinematic_viscosity_100", sheet[1], "m²/s")
+            if not n100 < n40:
+                raise InputError("kinematic_viscosity_100 must be below kinematic_viscosity_40 "
+                                 f"(got {n100 * 1e6:.4g} and {n40 * 1e6:.4g} mm²/s)")
+            if n100 * 1e6 < 1.5:
+                raise InputError("kinematic_viscosity_100 must be >= 1.5 mm²/s for ASTM D341 "
+                                 f"(got {n100 * 1e6:.4g})")
+            c["form"] = "datasheet"
+            c["A"], c["B"] = walther_constants(n40, n100)
+        elif all(v is not None for v in inlet) and all(v is None for v in sheet):
+            mu = check_positive("viscosity", inlet[0], "Pa·s")
+            if mu <= ROELANDS_MU_INF:
+                raise InputError(f"viscosity must be > {ROELANDS_MU_INF:.3g} Pa·s (got {mu:.6g})")
+            beta = check_range("viscosity_temperature_coefficient", inlet[1], 0.0, 0.5,
+                               lo_open=True, unit="1/K")
+            c["form"] = "inlet"
+            c["S0"] = beta * (Ti - 138.0) / (math.log(mu) + 9.67)
+            c["mu_i"] = mu
+        else:
+            raise InputError("give either kinematic_viscosity_40 and kinematic_viscosity_100 "
+                             "(datasheet) or viscosity and viscosity_temperature_coefficient "
+                             "(inlet form), not a mix")
+        check_range("density", self.density, 300.0, 3000.0, unit="kg/m³")
+        check_range("density_temperature", self.density_temperature, 200.0, 600.0, unit="K")
+        check_range("thermal_expansion", self.thermal_expansion, 0.0, 3e-3, unit="1/K")
+        for name in ("eyring_stress",):
+            check_positive(name, getattr(self, name), "Pa")
+        check_nonnegative("limiting_shear_coefficient", self.limiting_shear_coefficient)
+        check_nonnegative("limiting_shear_stress", self.limiting_shear_stress, "Pa")
+        check_range("limiting_shear_temperature_coefficient",
+                    self.limiting_shear_temperature_coefficient, 0.0, 0.05, unit="1/K")
+        if self.viscosity_model not in ("roelands", "barus"):
+            raise InputError("viscosity_model must be 'roelands' or 'barus' "
+                             f"(got {self.viscosity_model!r})")
+        object.__setattr__(self, "_c", c)
+        mu_i = float(self.ambient_viscosity(Ti))
+        if not mu_i > ROELANDS_MU_INF:
+            raise InputError(f"viscosity at the inlet temperature {mu_i:.3g} Pa·s is below "
+                             "Roelands' limit 6.3e-5 Pa·s (oil too thin or too hot)")
+        c["mu_i"] = mu_i
+        if self.pressure_viscosity is None:
+            if c["form"] != "datasheet":
+                raise InputError("pressure_viscosity is required with the inlet form (the So–"
+                                 "Klaus estimate needs the ASTM D341 slope of a datasheet)")
+            alpha = so_klaus_alpha(float(self.kinematic_viscosity(Ti)),
+                                   float(self.density_at(0.0, Ti)), c["B"])
+        else:
+            alpha = check_range("pressure_viscosity", self.pressure_viscosity, 0.0, 1e-6,
+                                unit="1/Pa")
+        c["alpha_i"] = alpha
+        c["Z"] = alpha / (5.1e-9 * (math.log(mu_i) + 9.67))
+        s = self.density / 1000.0 * (1.0 + self.thermal_expansion
+                                      * (self.density_temperature - T15))   # s at 15 °C
+        ti = Ti - _ZERO_C
+        k_i = (self.thermal_conductivity if self.thermal_conductivity is not None
+               else 0.1172 * (1.0 - 5.4e-4 * ti) / s)
+        c_i = (self.specific_heat if self.specific_heat is not None
+               else (1685.0 + 3.39 * ti) / math.sqrt(s))
+        c["k_i"] = check_range("thermal_conductivity", k_i, 0.01, 1e8, unit="W/(m K)")
+        c["cp_i"] = check_range("specific_heat", c_i, 100.0, 1e4, unit="J/(kg K)")
+
+    # -- viscosity ---------------------------------------------------------------------
+    @property
+    def form(self) -> str:
+        """"datasheet" or "inlet"."""
+        return self._c["form"]
+
+    @property
+    def walther_slope(self) -> float | None:
+        """ASTM D341 slope B (datasheet form)."""
+        return self._c.get("B")
+
+    @property
+    def roelands_z(self) -> float:
+        return self._c["Z"]
+
+    @property
+    def inlet_viscosity(self) -> float:
+        """μ at the inlet temperature and ambient pressure [Pa·s]."""
+        return self._c["mu_i"]
+
+    @property
+    def inlet_pressure_viscosity(self) -> float:
+        """α at the inlet temperature [1/Pa] (given or So–Klaus)."""
+        return self._c["alpha_i"]
+
+    def kinematic_viscosity(self, T):
+        """ν at ambient pressure [m²/s]."""
+        return self.ambient_viscosity(T) / self.density_at(0.0, T)
+
+    def ambient_viscosity(self, T):
+        """μ₀(T) at ambient pressure [Pa·s]."""
+        T = np.asarray(T, dtype=float)
+        c = self._c
+        if c["form"] == "datasheet":
+            return walther_viscosity(T, c["A"], c["B"]) * self.density_at(0.0, T)
+        g = (math.log(c["mu_i"]) + 9.67) * ((T - 138.0) / (c["Ti"] - 138.0)) ** (-c["S0"])
+        return np.exp(g - 9.67)
+
+    def temperature_viscosity_coefficient(self, T=None) -> float:
+        """β = −d ln μ₀/dT at T (default the inlet) [1/K]."""
+        T = self._c["Ti"] if T is None else float(T)
+        d = 0.01
+        return float(-(np.log(self.ambient_viscosity(T + d))
+                       - np.log(self.ambient_viscosity(T - d))) / (2 * d))
+
+    def log_viscosity(self, p, T):
+        """ln μ(p, T) [ln Pa·s] (p < 0 taken as 0)."""
+        pp = np.maximum(np.asarray(p, dtype=float), 0.0)
+        l0 = np.log(self.ambient_viscosity(T))
+        if self.viscosity_model == "barus":
+            return l0 + self._c["alpha_i"] * pp
+        return -9.67 + (l0 + 9.67) * np.exp(self._c["Z"] * np.log1p(pp / ROELANDS_P0))
+
+    def viscosity_at(self, p, T):
+        return np.exp(self.log_viscosity(p, T))
+
+    def dlog_viscosity_dp(self, p, T):
+        p = np.asarray(p, dtype=float)
+        pp = np.maximum(p, 0.0)
+        if self.viscosity_model == "barus":
+            d = np.full(np.broadcast(pp, np.asarray(T)).shape, self._c["alpha_i"])
+        else:
+            z = self._c["Z"]
+            l0 = np.log(self.ambient_viscosity(T))
+            d = (l0 + 9.67) * z / ROELANDS_P0 * np.exp((z - 1.0) * np.log1p(pp / ROELANDS_P0))
+        return np.where(p >= 0.0, d, 0.0)
+
+    # -- density, heat ------------------------------------------------------------------
+    def _thermal_factor(self, T):
+        return 1.0 - self.thermal_expansion * (np.asarray(T, dtype=float)
+                                               - self.density_temperature)
+
+    def density_at(self, p, T):
+        """ρ(p, T) [kg/m³]."""
+        pg = np.maximum(np.asarray(p, dtype=float), 0.0) * 1e-9
+        dh = 1.0 + 0.6 * pg / (1.0 + 1.7 * pg) if self.compressible else 1.0 + 0.0 * pg
+        return self.density * dh * self._thermal_factor(T)
+
+    def ddensity_dp(self, p, T):
+        p = np.asarray(p, dtype=float)
+        if not self.compressible:
+            return np.zeros(np.broadcast(p, np.asarray(T)).shape)
+        pg = np.maximum(p, 0.0) * 1e-9
+        d = self.density * 0.6e-9 / (1.0 + 1.7 * pg) ** 2 * self._thermal_factor(T)
+        return np.where(p >= 0.0, d, 0.0)
+
+    def expansivity(self, T):
+        """ε_T = −(1/ρ) ∂ρ/∂T [1/K] (compression heating)."""
+        return self.thermal_expansion / self._thermal_factor(T)
+
+    def conductivity(self, p, T):
+        """k(p, T) [W/(m K)]."""
+        pp = np.maximum(np.asarray(p, dtype=float), 0.0)
+        t, ti = celsius(T), self._c["Ti"] - _ZERO_C
+        a, b = CONDUCTIVITY_PRESSURE
+        return (self._c["k_i"] * (1.0 - 5.4e-4 * t) / (1.0 - 5.4e-4 * ti)
+                * (1.0 + a * pp / (1.0 + b * pp)))
+
+    def specific_heat_at(self, T):
+        """c_p(T) [J/(kg K)]."""
+        t, ti = celsius(T), self._c["Ti"] - _ZERO_C
+        return self._c["cp_i"] * (1.685 + 0.00339 * t) / (1.685 + 0.00339 * ti)
+
+    def volumetric_heat_capacity(self, p, T):
+        """ρ c_p [J/(m³ K)]."""
+        return self.density_at(p, T) * self.specific_heat_at(T)
+
+    # -- shear ---------------------------------------------------------------------------
+    def eyring_stress_at(self, T):
+        """τ_E(T) = τ_E(Tᵢ) T/Tᵢ [Pa]."""
+        return self.eyring_stress * np.asarray(T, dtype=float) / self._c["Ti"]
+
+    def limiting_shear_stress_at(self, p, T):
+        """τ_L(p, T) [Pa]."""
+        f = np.maximum(0.1, 1.0 - self.limiting_shear_temperature_coefficient
+                       * (np.asarray(T, dtype=float) - self._c["Ti"]))
+        return (self.limiting_shear_stress + self.limiting_shear_coefficient
+                * np.maximum(np.asarray(p, dtype=float), 0.0)) * f
+
+    # -- isothermal views ----------------------------------------------------------------
+    def at(self, T) -> Lubricant:
+        """The isothermal :class:`~tribodyn.Lubricant` of this oil at temperature T [K]."""
+        T = float(T)
+        mu = float(self.ambient_viscosity(T))
+        if self.viscosity_model == "barus":
+            alpha = self._c["alpha_i"]
+        else:
+            alpha = 5.1e-9 * self._c["Z"] * (math.log(mu) + 9.67)
+        f = max(0.1, 1.0 - self.limiting_shear_temperature_coefficient * (T - self._c["Ti"]))
+        return Lubricant(viscosity=mu, pressure_viscosity=alpha,
+                         density=float(self.density_at(0.0, T)),
+                         eyring_stress=float(self.eyring_stress_at(T)),
+                         limiting_shear_coefficient=self.limiting_shear_coefficient * f,
+                         limiting_shear_stress=self.limiting_shear_stress * f,
+                         compressible=self.compressible, viscosity_model=self.viscosity_model)
+
+    def isothermal(self) -> Lubricant:
+        """The oil at its inlet temperature (what the isothermal solvers use)."""
+        return self.at(self._c["Ti"])
+
+    def with_inlet_temperature(self, T) -> "ThermalLubricant":
+        """The same oil supplied at another temperature (α re-estimated if not given)."""
+        if self.form == "inlet":
+            raise InputError("an inlet-form oil is defined at its inlet temperature; give a "
+                             "datasheet to move it")
+        return replace(self, inlet_temperature=float(T))

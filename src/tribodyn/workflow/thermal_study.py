@@ -1,0 +1,258 @@
+"""Thermal transient mixed-EHL along the cam cycle (``numerics.thermal = true``).
+
+For every surface set the thermal solver (:class:`~tribodyn.contact.ehl.thermal_transient.
+ThermalTransientEHL`: generalized Reynolds, film energy equation, conduction in the cam
+and in the coated tappet) is marched over the same samples as the isothermal one
+(:mod:`.cycle_ehl`), from the oil's inlet (sump) temperature. Results are
+:class:`ThermalSetCycleResult` — the fields of :class:`~.cycle_ehl.SetCycleResult` plus the
+temperatures along the cycle. The study keeps the isothermal results beside them for the
+comparison (film and friction thermal vs isothermal, the coatings' thermal effect).
+
+Body 1 is the cam, body 2 the tappet (the coating's side).
+"""
+
+from __future__ import annotations
+
+import time as _time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..contact.ehl.thermal import couette_stress
+from ..contact.ehl.thermal_transient import ThermalTransientEHL
+from .cycle_ehl import PROFILE_POINTS, CycleInputs, SetCycleResult
+
+__all__ = ["ThermalSetCycleResult", "thermal_along_cycle", "thermal_for_set",
+           "thermal_task", "coating_thermal_effect"]
+
+_TEMPS = ("max_temperature", "mid_film_temperature", "surface_temperature_cam",
+          "surface_temperature_tappet", "mean_film_temperature")
+
+
+@dataclass
+class ThermalSetCycleResult(SetCycleResult):
+    """:class:`SetCycleResult` of the thermal model, with temperatures [K] per sample:
+    the maximum of film and surfaces, the mid-film temperature at the contact centre, the
+    maximum surface temperatures of cam and tappet, the film-mean temperature at the
+    centre; and the inlet temperature."""
+
+    max_temperature: np.ndarray = None
+    mid_film_temperature: np.ndarray = None
+    surface_temperature_cam: np.ndarray = None
+    surface_temperature_tappet: np.ndarray = None
+    mean_film_temperature: np.ndarray = None
+    inlet_temperature: float = float("nan")
+    thermal_iterations: np.ndarray = None
+    thermal: bool = field(default=True)
+
+
+def thermal_along_cycle(inp: CycleInputs, name, label, bodies, oil, thermal_bodies, roughness,
+                        options, thermal_options, *, min_load=5.0, progress=None
+                        ) -> ThermalSetCycleResult:
+    """March the thermal transient EHL over the cycle for one surface set (the same
+    samples, outputs and unloaded-sample convention as
+    :func:`~.cycle_ehl.ehl_along_cycle`)."""
+    t_start = _time.perf_counter()
+    n = inp.crank_angle.size
+    nan = np.full(n, np.nan)
+    keys = ("central_film", "min_film", "max_pressure", "hydrodynamic_load", "asperity_load",
+            "viscous_friction", "viscous_friction_newtonian", "viscous_friction_eyring",
+            "boundary_friction", "rolling_friction", "friction_power", "lambda_ratio") + _TEMPS
+    out = {k: nan.copy() for k in keys}
+    loaded = inp.contact_force >= min_load
+    converged = np.ones(n, dtype=bool)
+    iterations = np.zeros(n, dtype=int)
+    t_iter = np.zeros(n, dtype=int)
+    k = PROFILE_POINTS
+    x_prof = np.full((n, k), np.nan)
+    p_prof = np.full((n, k), np.nan, dtype=np.float32)
+    h_prof = np.full((n, k), np.nan, dtype=np.float32)
+    failures = []
+    width = inp.width
+    tr = None
+    for i in range(n):
+        if not loaded[i]:
+            tr = None
+            if progress:
+                progress(i + 1, n)
+            continue
+        args = (inp.contact_force[i] / width, inp.radius[i], inp.entrainment_speed[i],
+                inp.sliding_speed[i])
+        try:
+            if tr is None:
+                tr = ThermalTransientEHL(bodies, oil, thermal_bodies, roughness,
+                                         options=options, thermal_options=thermal_options)
+                r = tr.start_steady(*args, time=inp.time[i])
+            else:
+                r = tr.step(inp.time[i] - inp.time[i - 1], *args)
+        except Exception as exc:            # a step that raises is reported, not fatal
+            converged[i] = False
+            failures.append((float(inp.crank_angle[i]), f"{type(exc).__name__}: {exc}"))
+            tr = None
+            if progress:
+                progress(i + 1, n)
+            continue
+        converged[i] = r.converged
+        iterations[i] = r.iterations
+        t_iter[i] = r.thermal_iterations
+        if not r.converged:
+            failures.append((float(inp.crank_angle[i]), r.message))
+        out["central_film"][i] = r.central_film
+        out["min_film"][i] = r.min_film
+        out["max_pressure"][i] = float(r.pressure.max())
+        out["hydrodynamic_load"][i] = r.hydrodynamic_load * width
+        out["asperity_load"][i] = r.asperity_load * width
+        out["viscous_friction"][i] = r.viscous_friction * width
+        tf = tr.tf
+        _, _, Tm, fl, flim = tf.factors(r.x, _cond(r))
+        for law in ("newtonian", "eyring"):      # both laws, same film and temperatures
+            tau = couette_stress(r.pressure, r.film, r.sliding_speed, oil, Tm, fl, flim, law,
+                                 options.limiting_shear)
+            out[f"viscous_friction_{law}"][i] = float(np.sum(tau)) * (r.x[1] - r.x[0]) * width
+        out["boundary_friction"][i] = r.boundary_friction * width
+        out["rolling_friction"][i] = r.rolling_friction * width
+        out["friction_power"][i] = (r.viscous_friction + r.boundary_friction) * width * abs(
+            inp.sliding_speed[i])
+        if roughness is not None:
+            out["lambda_ratio"][i] = r.min_film / roughness.rms
+        out["max_temperature"][i] = r.max_temperature
+        out["mid_film_temperature"][i] = r.central_mid_film_temperature
+        out["surface_temperature_cam"][i] = r.max_surface_temperature[0]
+        out["surface_temperature_tappet"][i] = r.max_surface_temperature[1]
+        out["mean_film_temperature"][i] = float(np.interp(0.0, tf.x, tf.mean_T()))
+        xs = np.linspace(r.x[0], r.x[-1], k)
+        x_prof[i] = xs
+        p_prof[i] = np.interp(xs, r.x, r.pressure)
+        h_prof[i] = np.interp(xs, r.x, r.film)
+        if progress:
+            progress(i + 1, n)
+    return ThermalSetCycleResult(
+        name=name, label=label, crank_angle=inp.crank_angle.copy(), loaded=loaded,
+        converged=converged, iterations=iterations, x=x_prof, pressure=p_prof, film=h_prof,
+        failures=failures, runtime_s=_time.perf_counter() - t_start,
+        inlet_temperature=float(oil.inlet_temperature), thermal_iterations=t_iter, **out)
+
+
+def _cond(r):
+    from ..contact.ehl.options import Conditions
+    return Conditions(r.load, r.radius, r.entrainment_speed, r.sliding_speed)
+
+
+def thermal_for_set(case, surface_set, inputs: CycleInputs, progress=None
+                    ) -> ThermalSetCycleResult:
+    """:func:`thermal_along_cycle` for one surface set of a case."""
+    s = surface_set
+    return thermal_along_cycle(inputs, s.name, s.coating_label, s.bodies,
+                               case.thermal_lubricant(), case.thermal_bodies(s), s.roughness,
+                               case.ehl_options(s), case.thermal_options(),
+                               min_load=case.numerics.min_load, progress=progress)
+
+
+def thermal_task(case, name, inputs):
+    """The thermal cycle of one surface set, as a task of the study's executor."""
+    from threadpoolctl import threadpool_limits
+    with threadpool_limits(1):
+        return thermal_for_set(case, case.surface_set(name), inputs)
+
+
+def coating_thermal_effect(thermal: dict, isothermal: dict, reference: str, mask,
+                           time, sliding_speed) -> dict:
+    """Per coated set: the change of its viscous-friction energy and of its mean central
+    film relative to the reference (uncoated) set, thermal and isothermal, over the
+    samples in ``mask`` that converged in all four runs; and the peak tappet surface
+    temperature. The thermal effect of a coating is the thermal change minus the
+    isothermal one (what an isothermal model misses)."""
+    dt = np.gradient(np.asarray(time, dtype=float))
+    us = np.abs(np.asarray(sliding_speed, dtype=float))
+    ref_t, ref_i = thermal[reference], isothermal[reference]
+    res = {}
+    for name, th in thermal.items():
+        if name == reference:
+            continue
+        iso = isothermal[name]
+        ok = (mask & th.loaded & th.converged & iso.converged & ref_t.converged
+              & ref_i.converged)
+        ok &= np.isfinite(th.viscous_friction) & np.isfinite(ref_t.viscous_friction)
+        if not ok.any():
+            continue
+
+        def energy(r):
+            return float(np.sum(np.where(ok, r.viscous_friction * us, 0.0) * dt))
+
+        def film(r):
+            return float(np.mean(r.central_film[ok]))
+
+        e = {k: energy(r) for k, r in (("t", th), ("tr", ref_t), ("i", iso), ("ir", ref_i))}
+        f = {k: film(r) for k, r in (("t", th), ("tr", ref_t), ("i", iso), ("ir", ref_i))}
+        dv_t = 100.0 * (e["t"] / e["tr"] - 1.0) if e["tr"] > 0 else float("nan")
+        dv_i = 100.0 * (e["i"] / e["ir"] - 1.0) if e["ir"] > 0 else float("nan")
+        dh_t = 100.0 * (f["t"] / f["tr"] - 1.0)
+        dh_i = 100.0 * (f["i"] / f["ir"] - 1.0)
+        res[name] = {
+            "viscous_energy_vs_reference_thermal_pct": dv_t,
+            "viscous_energy_vs_reference_isothermal_pct": dv_i,
+            "viscous_energy_thermal_effect_pct": dv_t - dv_i,
+            "mean_film_vs_reference_thermal_pct": dh_t,
+            "mean_film_vs_reference_isothermal_pct": dh_i,
+            "film_thermal_effect_pct": dh_t - dh_i,
+            "max_tappet_surface_temperature_K": float(np.nanmax(
+                np.where(ok, th.surface_temperature_tappet, np.nan))),
+            "max_tappet_surface_temperature_reference_K": float(np.nanmax(
+                np.where(ok, ref_t.surface_temperature_tappet, np.nan))),
+            "samples": int(ok.sum()),
+        }
+    return res
+
+
+
+def thermal_summary(study, an) -> dict:
+    """The thermal part of ``summary.json``: per surface set the peak temperatures, the
+    film and friction of the thermal model against the isothermal one (same inlet
+    temperature), and the coatings' thermal effect (:func:`coating_thermal_effect`)."""
+    inp = study.inputs
+    dt = np.gradient(inp.time)
+    us = np.abs(inp.sliding_speed)
+    iso = {s.name: s for s in study.isothermal_sets}
+    out = {"inlet_temperature_K": None, "surface_sets": {}}
+    ev = an.in_event
+
+    def fin(v):
+        v = float(v)
+        return v if np.isfinite(v) else None
+
+    for th in study.sets:
+        i = iso[th.name]
+        out["inlet_temperature_K"] = fin(th.inlet_temperature)
+        ok = th.loaded & th.converged & i.converged
+        L = ok & ev
+        if not L.any():
+            out["surface_sets"][th.name] = {"samples": 0}
+            continue
+
+        def energy(r, key):
+            return float(np.nansum(np.where(ok, getattr(r, key) * us, 0.0) * dt))
+
+        e_t, e_i = energy(th, "viscous_friction"), energy(i, "viscous_friction")
+        f_t = float(np.nansum(np.where(ok, th.friction_power, 0.0) * dt))
+        f_i = float(np.nansum(np.where(ok, i.friction_power, 0.0) * dt))
+        out["surface_sets"][th.name] = {
+            "max_temperature_K": fin(np.nanmax(th.max_temperature[L])),
+            "max_mid_film_temperature_K": fin(np.nanmax(th.mid_film_temperature[L])),
+            "max_surface_temperature_cam_K": fin(np.nanmax(th.surface_temperature_cam[L])),
+            "max_surface_temperature_tappet_K": fin(np.nanmax(
+                th.surface_temperature_tappet[L])),
+            "viscous_friction_energy_thermal_J": fin(e_t),
+            "viscous_friction_energy_isothermal_J": fin(e_i),
+            "viscous_friction_energy_change_pct": fin(100 * (e_t / e_i - 1)) if e_i > 0
+            else None,
+            "friction_energy_thermal_J": fin(f_t), "friction_energy_isothermal_J": fin(f_i),
+            "mean_central_film_change_pct": fin(100 * (np.mean(th.central_film[L])
+                                                       / np.mean(i.central_film[L]) - 1)),
+            "min_film_thermal_m": fin(np.nanmin(th.min_film[L])),
+            "min_film_isothermal_m": fin(np.nanmin(i.min_film[L])),
+            "samples": int(L.sum()),
+        }
+    out["coating_thermal_effect"] = coating_thermal_effect(
+        {s.name: s for s in study.sets}, iso, an.roles["reference"], ev, inp.time,
+        inp.sliding_speed)
+    return out

@@ -1,0 +1,258 @@
+"""Thermal EHL: conduction in moving (coated) solids against analytic solutions, the
+isothermal limit, inlet heating against a published thermal correction, the traction
+curve, the coatings' thermal effect, and the transient coupling."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy import integrate, special
+
+from tribodyn import Body, Coating, InputError, Material, TransientEHL, solve_ehl
+from tribodyn.contact.ehl.energy import solve_solid
+from tribodyn.contact.ehl.thermal import ThermalOptions, solve_thermal_ehl
+from tribodyn.contact.ehl.thermal_transient import ThermalTransientEHL
+from tribodyn.physics.heat_conduction import ThermalBody, ThermalProperties, depth_grid
+from tribodyn.physics.thermal_oil import ThermalLubricant, kelvin
+
+STEEL_T = ThermalProperties(46.0, 7850.0, 470.0)
+DLC_T = ThermalProperties(1.0, 1900.0, 700.0)
+STEEL = Material(210e9, 0.3)
+E_PRIME = 210e9 / 0.91
+OIL = ThermalLubricant(kelvin(40.0), kinematic_viscosity_40=64e-6,
+                       kinematic_viscosity_100=11e-6, density=852.0)
+B = 1e-4          # half-width of the band heat source [m]
+Q = 1e8           # its heat flux [W/m²]
+
+
+def band(x):
+    return np.where(np.abs(x) <= B, Q, 0.0)
+
+
+def solid_surface(body, u, lo=-6 * B, hi=4 * B, n=400, first=None):
+    x = np.linspace(lo, hi, n)
+    kap = body.substrate.diffusivity
+    delta = math.sqrt(kap * (hi - lo) / max(u, 4 * kap / (hi - lo)))
+    g = depth_grid(body, 10 * B, first or delta / 10, 34)
+    return x, solve_solid(band(x), x[1] - x[0], g, u)[:, 0]
+
+
+# ----------------------------------------------------------------------------- solids
+@pytest.mark.parametrize("peclet", [2.0, 10.0])
+def test_band_source_on_moving_half_space_matches_jaeger(peclet):
+    """Jaeger (1942), Carslaw & Jaeger §10.7: θ(x) = q/(πk) ∫ e^{u(x−x')/2κ}
+    K₀(u|x−x'|/2κ) dx' over the band (material moving towards +x); Pe = ub/(2κ)."""
+    k, kap = STEEL_T.conductivity, STEEL_T.diffusivity
+    u = 2 * kap * peclet / B
+    x, th = solid_surface(ThermalBody(STEEL_T), u, n=800)
+    xs = np.linspace(-0.8 * B, 0.95 * B, 13)
+
+    def jaeger(xx):
+        f = lambda xp: math.exp(u * (xx - xp) / (2 * kap)) * special.k0(  # noqa: E731
+            u * abs(xx - xp) / (2 * kap))
+        return Q / (math.pi * k) * (integrate.quad(f, -B, xx, limit=200)[0]
+                                    + integrate.quad(f, xx, B, limit=200)[0])
+
+    ref = np.array([jaeger(v) for v in xs])
+    assert np.interp(xs, x, th) == pytest.approx(ref, rel=0.05)
+    assert np.interp(xs, x, th).max() == pytest.approx(ref.max(), rel=0.02)
+
+
+def test_band_source_at_high_peclet_matches_blok():
+    """Blok (1937): θ_max = (2q/k)√(2κb/(πu)) at the trailing edge for Pe ≫ 1."""
+    k, kap = STEEL_T.conductivity, STEEL_T.diffusivity
+    u = 2 * kap * 200.0 / B
+    x, th = solid_surface(ThermalBody(STEEL_T), u)
+    blok = 2 * Q / k * math.sqrt(2 * kap * B / (math.pi * u))
+    assert th.max() == pytest.approx(blok, rel=0.05)
+    assert x[np.argmax(th)] == pytest.approx(B, abs=0.05 * B)      # at the trailing edge
+
+
+def layered_reference(xs, u, coat, sub, d, terms=80):
+    """Surface temperature of a coated half-space (layer d on a substrate) moving under
+    the band source, depth conduction only (Pe ≫ 1): θ = ∫ q G(τ) dτ with the image
+    series G(τ) = [1 + 2 Σ Rⁿ exp(−n²d²/(κ_c τ))]/(e_c √(πτ)), R = (e_c − e_s)/(e_c + e_s)
+    (Carslaw & Jaeger §12.8, composite solid by Laplace transform)."""
+    e1, e2, k1 = coat.effusivity, sub.effusivity, coat.diffusivity
+    R = (e1 - e2) / (e1 + e2)
+    out = []
+    for x in xs:
+        t0, t1 = max(0.0, (x - B) / u), max(0.0, (x + B) / u)
+        val = 2.0 * (math.sqrt(t1) - math.sqrt(t0)) / math.sqrt(math.pi)
+        for n in range(1, terms + 1):
+            a = n * n * d * d / k1
+            f = lambda t: math.exp(-a / t) / math.sqrt(math.pi * t) if t > 0 else 0.0  # noqa
+            val += 2.0 * R**n * integrate.quad(f, t0, t1, limit=100)[0]
+        out.append(Q / e1 * val)
+    return np.array(out)
+
+
+@pytest.mark.parametrize("thickness", [1e-6, 4e-6])
+def test_coated_moving_solid_matches_the_layered_solution(thickness):
+    u = 10.0                                     # Pe = 40 in the steel substrate
+    body = ThermalBody(STEEL_T, DLC_T, thickness)
+    x, th = solid_surface(body, u, n=800, first=thickness / 4)
+    xs = np.linspace(-0.8 * B, 0.95 * B, 10)
+    ref = layered_reference(xs, u, DLC_T, STEEL_T, thickness)
+    assert np.interp(xs, x, th) == pytest.approx(ref, rel=0.04)
+    _, bare = solid_surface(ThermalBody(STEEL_T), u)
+    assert th.max() > 1.5 * bare.max()            # the DLC layer insulates
+
+
+# ----------------------------------------------------------------------------- EHL
+W, R = 2e5, 0.02
+PAIR = (Body(STEEL), Body(STEEL))
+STEEL_BODIES = (ThermalBody(STEEL_T), ThermalBody(STEEL_T))
+
+
+def test_isothermal_limit_reproduces_the_isothermal_solver():
+    """No heating, or near-infinite conductivities: the isothermal solution at Tᵢ."""
+    iso = solve_ehl(W, R, 2.0, 1.0, PAIR, OIL.isothermal())
+    cold = solve_thermal_ehl(W, R, 2.0, 1.0, PAIR, OIL, STEEL_BODIES,
+                             thermal_options=ThermalOptions(shear_heating=False,
+                                                            compression_heating=False))
+    big = ThermalProperties(1e6, 7850.0, 470.0)
+    oil_k = ThermalLubricant(kelvin(40.0), kinematic_viscosity_40=64e-6,
+                             kinematic_viscosity_100=11e-6, density=852.0,
+                             thermal_conductivity=1e5)
+    conducting = solve_thermal_ehl(W, R, 2.0, 1.0, PAIR, oil_k,
+                                   (ThermalBody(big), ThermalBody(big)))
+    for r in (cold, conducting):
+        assert r.converged, r.message
+        for key in ("central_film", "min_film", "hydrodynamic_load", "viscous_friction",
+                    "rolling_friction"):
+            assert getattr(r, key) == pytest.approx(getattr(iso, key), rel=2e-3), key
+        assert r.pressure.max() == pytest.approx(iso.pressure.max(), rel=2e-3)
+    assert cold.max_temperature == pytest.approx(OIL.inlet_temperature, abs=1e-9)
+    assert conducting.max_temperature - OIL.inlet_temperature < 0.05
+
+
+def test_inlet_heating_in_rolling_against_published_thermal_corrections():
+    """Pure rolling: film reduction h_T/h_iso against Murch & Wilson (1975, J. Lubr.
+    Technol. 97:212), φ = 3.94/(3.94 + L^0.62), and Gupta et al. (1992, Tribol. Trans.
+    35:269), φ = (1 − 13.2 (p_h/E') L^0.42)/(1 + 0.213 L^0.64), L = βμ₀u²/k. The fits
+    (for Newtonian inlets, surfaces at the bulk temperature) and this model (solids that
+    heat, compression heating) differ in their assumptions: agreement within 8 %."""
+    w, u = 5e5, 5.0
+    iso = solve_ehl(w, R, u, 0.0, PAIR, OIL.isothermal())
+    th = solve_thermal_ehl(w, R, u, 0.0, PAIR, OIL, STEEL_BODIES)
+    assert th.converged, th.message
+    L = (OIL.temperature_viscosity_coefficient() * OIL.inlet_viscosity * u**2
+         / float(OIL.conductivity(0.0, OIL.inlet_temperature)))
+    ph = math.sqrt(w * E_PRIME / (2 * math.pi * R))
+    murch = 3.94 / (3.94 + L**0.62)
+    gupta = (1 - 13.2 * ph / E_PRIME * L**0.42) / (1 + 0.213 * L**0.64)
+    ratio = th.central_film / iso.central_film
+    assert 0.3 < L < 0.5
+    assert ratio < 0.95                                    # the inlet heats and the film thins
+    assert ratio == pytest.approx(murch, rel=0.08)
+    assert ratio == pytest.approx(gupta, rel=0.08)
+
+
+def test_traction_curve_rises_peaks_and_falls_thermally():
+    """Traction vs slide-to-roll ratio, p_h ≈ 0.96 GPa, u_e = 5 m/s, SAE 5W-30 at 40 °C:
+    the isothermal Eyring traction keeps rising, the thermal one rises, peaks at
+    SRR ≈ 0.1–0.2 and falls as the film heats (the classic shape of measured traction
+    curves, e.g. Johnson & Cameron 1967, Proc. IMechE 182)."""
+    w, u = 5e5, 5.0
+    srr = [0.02, 0.15, 1.2]
+    mu_t, mu_i, rise = [], [], []
+    for s in srr:
+        t = solve_thermal_ehl(w, R, u, s * u, PAIR, OIL, STEEL_BODIES)
+        i = solve_ehl(w, R, u, s * u, PAIR, OIL.isothermal())
+        assert t.converged, t.message
+        mu_t.append(t.viscous_friction / w)
+        mu_i.append(i.viscous_friction / w)
+        rise.append(t.max_temperature - OIL.inlet_temperature)
+    assert mu_i[0] < mu_i[1] < mu_i[2]                         # isothermal: no maximum
+    assert mu_t[0] < mu_t[1] > mu_t[2]                         # thermal: rise, max, fall
+    assert mu_t[2] < 0.8 * mu_t[1]
+    assert rise[0] < rise[1] < rise[2] and rise[2] > 50.0
+    assert all(a <= b * 1.001 for a, b in zip(mu_t, mu_i))
+
+
+def test_low_conductivity_coating_runs_hotter_with_less_viscous_friction():
+    """DLC on the tappet (body 2): a higher surface temperature and lower viscous
+    friction than steel, more so for the thicker coating and with more sliding."""
+    def solve(thickness, us):
+        if thickness is None:
+            return solve_thermal_ehl(W, R, 2.0, us, PAIR, OIL, STEEL_BODIES)
+        pair = (Body(STEEL), Body(STEEL, Coating(185e9, 0.3, thickness)))
+        tb = (ThermalBody(STEEL_T), ThermalBody(STEEL_T, DLC_T, thickness))
+        return solve_thermal_ehl(W, R, 2.0, us, pair, OIL, tb)
+
+    res = {(t, us): solve(t, us) for t in (None, 1e-6, 4e-6) for us in (1.0, 3.0)
+           if not (t == 1e-6 and us == 1.0)}
+    assert all(r.converged for r in res.values())
+    surf = {k: r.max_surface_temperature[1] for k, r in res.items()}
+    vf = {k: r.viscous_friction for k, r in res.items()}
+    for us in (1.0, 3.0):
+        assert surf[(4e-6, us)] > surf[(None, us)] + 2.0
+        assert vf[(4e-6, us)] < vf[(None, us)]
+    assert surf[(None, 3.0)] < surf[(1e-6, 3.0)] < surf[(4e-6, 3.0)]
+    assert vf[(4e-6, 3.0)] < vf[(1e-6, 3.0)] < vf[(None, 3.0)]
+    drop = {us: 1 - vf[(4e-6, us)] / vf[(None, us)] for us in (1.0, 3.0)}
+    assert drop[3.0] > drop[1.0] > 0.0
+
+
+def test_transient_staggered_coupling_and_steady_start():
+    """A transient march from the steady thermal state: at constant conditions it
+    stays there. With sliding rising fast (0.2 m/s every 20 µs) the cycle's default
+    coupling (two pressure ↔ temperature iterations per step) is within 0.5 % of the
+    iterated one in film and friction, the staggered one (a single iteration) within 1 %."""
+    tb = STEEL_BODIES
+    runs = {}
+    for it in (1, 2, 6):
+        tr = ThermalTransientEHL(PAIR, OIL, tb, thermal_options=ThermalOptions(step_iter=it))
+        r0 = tr.start_steady(W, R, 2.0, 1.0)
+        r1 = tr.step(2e-5, W, R, 2.0, 1.0)
+        assert r1.converged, r1.message
+        assert r1.central_film == pytest.approx(r0.central_film, rel=2e-3)
+        assert r1.max_temperature == pytest.approx(r0.max_temperature, abs=0.3)
+        out = []
+        for k in range(1, 9):
+            r = tr.step(2e-5, W, R, 2.0, 1.0 + 0.2 * k)
+            assert r.converged, r.message
+            out.append((r.central_film, r.friction, r.max_temperature))
+        runs[it] = np.array(out)
+    assert runs[2][:, :2] == pytest.approx(runs[6][:, :2], rel=5e-3)
+    assert runs[1][:, :2] == pytest.approx(runs[6][:, :2], rel=1e-2)
+    assert np.abs(runs[2][:, 2] - runs[6][:, 2]).max() < 0.5
+    assert runs[6][-1, 2] > runs[6][0, 2] + 5.0                # heating up as sliding grows
+    iso = TransientEHL(PAIR, OIL.isothermal())
+    iso.start_steady(W, R, 2.0, 1.0)
+    assert iso.step(2e-5, W, R, 2.0, 2.6).friction > runs[6][-1, 1]
+
+
+def test_thermal_input_errors():
+    with pytest.raises(InputError, match="ThermalLubricant"):
+        solve_thermal_ehl(W, R, 2.0, 1.0, PAIR, OIL.isothermal(), STEEL_BODIES)
+    with pytest.raises(InputError, match="coating where the elastic"):
+        solve_thermal_ehl(W, R, 2.0, 1.0, PAIR, OIL,
+                          (ThermalBody(STEEL_T), ThermalBody(STEEL_T, DLC_T, 1e-6)))
+    with pytest.raises(InputError, match="film_nodes"):
+        ThermalOptions(film_nodes=1)
+    with pytest.raises(InputError, match="conductivity"):
+        ThermalProperties(-1.0, 7850.0, 470.0)
+
+
+def test_generalized_reynolds_coefficients_for_a_linear_fluidity():
+    """Yang & Wen's coefficients for 1/η = f₀(1 + a z/h), ρ uniform, by hand:
+    F₀ = f₀h(1 + a/2), F₁ = f₀h²(1/2 + a/3), ρ' = ρf₀h²(1/2 + a/6),
+    ρ'' = ρf₀h³(1/6 + a/12); C = ρ'F₁/F₀ − ρ'', D = ρhu_a + (u_b − u_a)ρ'/F₀. The film
+    follows its more viscous wall: D < ρhu_e when the more fluid wall is the faster."""
+    from tribodyn.physics.film_thermal import film_flow
+    h, rho, f0, a, ua, ub, m = 1e-6, 850.0, 1.0 / 0.05, 1.5, 1.0, 3.0, 41
+    z = np.linspace(0.0, 1.0, m)
+    eta = (1.0 / (f0 * (1.0 + a * z)))[None, :]
+    ff = film_flow(np.array([h]), np.array([1e10]), ua, ub, eta, np.full((1, m), rho),
+                   np.array([2e6]), np.full((1, m), 1e12), eta_ref=np.array([0.05]),
+                   rho_ref=np.array([rho]), eyring=False, limiting=False)
+    F0, F1 = f0 * h * (1 + a / 2), f0 * h**2 * (0.5 + a / 3)
+    rp, rpp = rho * f0 * h**2 * (0.5 + a / 6), rho * f0 * h**3 * (1 / 6 + a / 12)
+    assert ff.F0[0] == pytest.approx(F0, rel=1e-4)
+    assert ff.C[0] == pytest.approx(rp * F1 / F0 - rpp, rel=1e-3)
+    assert ff.D[0] == pytest.approx(rho * h * ua + (ub - ua) * rp / F0, rel=1e-4)
+    # the faster wall b is the more fluid one: the film follows the slower, viscous wall a
+    assert ff.D[0] < 0.95 * rho * h * (ua + ub) / 2
+    assert ff.tau_c[0] == pytest.approx((ub - ua) / F0, rel=1e-4)     # Newtonian Couette
