@@ -72,6 +72,17 @@ class ThermalTransientEHL(TransientEHL):
         sysm = self._system(grid, cond, Tm)
         st = state_from_dimensional(sysm, res.x, res.pressure + res.asperity_pressure,
                                     res.rigid_approach)
+        # the pressure of the transient's own grid at the steady temperatures, so that
+        # marching at constant conditions stays there (the grids differ)
+        ev = sysm.evaluate(st.Q, st.H0)
+        self.tf.refresh(grid.x, ev.P * sysm.p_ref, ev.H * sysm.h_ref, ev.pa * sysm.p_ref,
+                        cond, self.rough, self.opts)
+        apply_factors(sysm, self.tf, cond)
+        out = newton(sysm, st, self.opts.tol, self.opts.max_iter)
+        if out.converged:
+            st = out.state
+            res = thermal_result(sysm, out, self.opts, self.tf, cond, res.thermal_iterations,
+                                 True, res.message)
         self._grid, self._lu, self._hist, self._hc_hist = grid, None, [], ()
         self._commit(sysm, st, None, time)
         self._p_T = np.interp(self.tf.x, grid.x, self._p)

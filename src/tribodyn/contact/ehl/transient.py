@@ -79,6 +79,11 @@ class TransientEHL:
         sysm = ReynoldsSystem(grid, cond, self.model)
         st = state_from_dimensional(sysm, res.x, res.pressure + res.asperity_pressure,
                                     res.rigid_approach)
+        # the steady state of the transient's own grid, so that marching at constant
+        # conditions stays there (the grids differ in extent and spacing)
+        out = newton(sysm, st, self.opts.tol, self.opts.max_iter)
+        if out.converged:
+            st, res = out.state, postprocess(sysm, out, self.opts)
         self._grid, self._lu, self._hist, self._hc_hist = grid, None, [], ()
         self._commit(sysm, st, None, time)
         res.time = time
