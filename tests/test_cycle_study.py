@@ -11,6 +11,7 @@ from typer.testing import CliRunner
 from tribodyn.cli import app
 from tribodyn.config import load_case
 from tribodyn.output import write_atomic
+from tribodyn.output.writer import MARKER
 
 runner = CliRunner()
 
@@ -136,6 +137,7 @@ def test_atomic_write_keeps_old_folder_when_writing_fails(tmp_path):
     out = tmp_path / "results"
     out.mkdir()
     (out / "old.txt").write_text("keep me")
+    (out / MARKER).write_text("{}")          # a previous result folder: may be replaced
 
     def failing(tmp):
         (tmp / "results.nc").write_text("half")

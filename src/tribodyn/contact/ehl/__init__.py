@@ -2,8 +2,8 @@
 
 Modules: :mod:`.options` (options, inputs, result) · :mod:`.grid` (domain and grid) ·
 :mod:`.reynolds` (discrete system and linearisation) · :mod:`.newton` (semismooth Newton,
-GMRES, two-grid) · :mod:`.postprocess` (friction, loads, checks) · :mod:`.steady` ·
-:mod:`.transient`.
+GMRES, two-grid) · :mod:`.postprocess` (friction, loads, checks) · :mod:`.validity`
+(film > 0, the model's assumptions) · :mod:`.steady` · :mod:`.transient`.
 
 Equations (x in the frame of the contact point, u_e the mean entraining speed):
 

@@ -4,7 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
+import math
+from dataclasses import replace
+
 from ..._validation import InputError, check_positive
+from ...physics.limits import EHL_NODES_TRANSIENT, MAX_SUBSTEPS
 from ...physics.asperity import Roughness
 from ...physics.lubricant import Lubricant
 from .grid import Grid, layout
@@ -15,6 +19,11 @@ from .reynolds import ReynoldsSystem
 from .steady import solve_ehl, state_from_dimensional
 
 __all__ = ["TransientEHL"]
+
+#: a step changing the load by more than this factor is sub-stepped from the start …
+_SPLIT_RATIO = 8.0
+#: … in sub-steps that change it by at most this factor
+_SUBSTEP_FACTOR = 2.0
 
 
 class TransientEHL:
@@ -30,8 +39,14 @@ class TransientEHL:
 
     Start with :meth:`start_steady` (steady solution at u_e ≠ 0) or :meth:`start_film`
     (a given rigid-approach film and zero pressure, e.g. for squeeze tests).
-    A step that fails to converge is retried with sub-steps; if it still fails the result
-    says so (``converged=False``) and marching continues from the last iterate.
+    A step that fails to converge is retried with sub-steps (conditions interpolated
+    linearly in time) from the last converged sub-step: the remaining interval is halved
+    after a failure and doubled again after a success, at most ``max_substeps`` (0…10)
+    halvings in a row and at most 2·max_substeps + 1 failed attempts per step. A step that
+    changes the load by more than a factor of 8 is sub-stepped from the start, in sub-steps
+    that change it by a factor ≤ 2 (at most 2^max_substeps of them). The effort of one step
+    is thus bounded; if it still fails the result says so (``converged=False``) and
+    marching continues from the last iterate.
     """
 
     def __init__(self, bodies, lubricant: Lubricant, roughness: Roughness | None = None, *,
@@ -43,8 +58,10 @@ class TransientEHL:
         opts = options or EHLOptions()
         if option_overrides:
             opts = with_overrides(opts, option_overrides)
+        if opts.n is not None:
+            EHL_NODES_TRANSIENT.check("n", opts.n)
         self.opts = opts
-        self.max_substeps = int(max_substeps)
+        self.max_substeps = MAX_SUBSTEPS.check("max_substeps", max_substeps)
         self.conditions_before = None
         self.time = 0.0
         self._grid = None
@@ -134,27 +151,83 @@ class TransientEHL:
             raise InputError("TransientEHL needs start_steady() or start_film() before step()")
         cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
         saved = self._snapshot()
-        res = self._advance(dt, cond)
-        if res.converged or self.max_substeps <= 0:
-            return res
-        # retry with sub-steps (conditions interpolated) from the same starting state
         c0 = self.conditions_before if self.conditions_before is not None else cond
-        for k in range(1, self.max_substeps + 1):
-            m = 2**k
+        marks = self._load_marks(c0.load, cond.load)
+        if len(marks) == 1:
+            res = self._advance(dt, cond)
+            if res.converged or self.max_substeps == 0:
+                return res
             self._restore(saved)
-            ok = True
-            for j in range(1, m + 1):
-                f = j / m
-                sub = self._advance(dt / m, Conditions(
-                    *(a + f * (b - a) for a, b in zip(
-                        (c0.load, c0.radius, c0.entrainment_speed, c0.sliding_speed),
-                        (cond.load, cond.radius, cond.entrainment_speed,
-                         cond.sliding_speed)))))
-                ok = ok and sub.converged
-            if ok:
-                sub.message += f" ({m} sub-steps)"
-                return sub
-        return sub
+            return self._substep(dt, c0, cond, marks, depth=1)   # the full step failed
+        return self._substep(dt, c0, cond, marks, depth=0)
+
+    def _load_marks(self, w0: float, w1: float) -> list[float]:
+        """Time fractions to pass through: [1] normally; for a load change by more than
+        _SPLIT_RATIO, the fractions at which the (linearly interpolated) load has changed
+        by successive factors ≤ _SUBSTEP_FACTOR (at most 2^max_substeps sub-steps)."""
+        ratio = max(w1 / w0, w0 / w1)
+        if ratio <= _SPLIT_RATIO or self.max_substeps == 0:
+            return [1.0]
+        m = min(math.ceil(math.log(ratio) / math.log(_SUBSTEP_FACTOR)), 2**self.max_substeps)
+        marks = [(w0 * (w1 / w0) ** (j / m) - w0) / (w1 - w0) for j in range(1, m)]
+        return marks + [1.0]
+
+    def _substep(self, dt, c0: Conditions, c1: Conditions, marks, depth: int) -> EHLResult:
+        """March from the current state (fraction 0) through ``marks`` to fraction 1 with
+        bounded adaptive sub-steps (class docstring); the first attempt spans
+        1/2^depth of the way to the first mark."""
+        def at(f):
+            return Conditions(*(a + f * (b - a) for a, b in zip(
+                (c0.load, c0.radius, c0.entrainment_speed, c0.sliding_speed),
+                (c1.load, c1.radius, c1.entrainment_speed, c1.sliding_speed))))
+
+        k = self.max_substeps
+        done, failures, n_ok = 0.0, 0, 0
+        mark = 0
+        res = None
+        while done < 1.0:
+            target = marks[mark]
+            span = (target - done) / 2**depth if depth else target - done
+            f = target if depth == 0 else done + span
+            state = self._snapshot_state()
+            res = self._advance(dt * (f - done), at(f))
+            if res.converged:
+                done, n_ok = f, n_ok + 1
+                depth = max(depth - 1, 0)
+                if done >= target:
+                    mark += 1
+                    depth = 0
+                continue
+            failures += 1
+            self._restore_state(state)
+            depth += 1
+            if depth > k or failures > 2 * k + 1:
+                break
+        if done >= 1.0:
+            res.message += f" ({n_ok} sub-steps)"
+            return res
+        # effort exhausted: finish the interval with a short final attempt so that the
+        # march stays on time, and report failure
+        opts = self.opts
+        self.opts = replace(opts, max_iter=min(opts.max_iter, 5))
+        try:
+            last = self._advance(dt * (1.0 - done), c1)
+        finally:
+            self.opts = opts
+        if not last.converged:
+            last.message = (f"no converged sub-step path: gave up after {failures} failed "
+                            f"sub-steps ({n_ok} converged, reached {done:.3g} of the step; "
+                            f"at most {k} halvings, max_substeps = {k}): {res.message}")
+        return last
+
+    def _snapshot_state(self):
+        return (self._grid, self._q, self._p, self._h, self._h0, list(self._hist), self.time,
+                self._lu, self.result)
+
+    def _restore_state(self, snap):
+        (self._grid, self._q, self._p, self._h, self._h0, hist, self.time, self._lu,
+         self.result) = snap
+        self._hist = list(hist)
 
     def _snapshot(self):
         r = self.result
