@@ -108,6 +108,9 @@ def test_failing_steps_are_reported(tmp_path):
     assert "did not converge" in r.output
     s = json.loads((out / "summary.json").read_text())
     assert all(v["failed_steps"] > 0 for v in s["surface_sets"].values())
+    # films and maxima come from converged samples only: never a failed step's iterate
+    for v in s["surface_sets"].values():
+        assert v["min_film_m"] is None or v["min_film_m"] > 0
     assert any("did not converge" in w for w in s["warnings"])
     report = (out / "report.md").read_text()
     assert "failed step(s)" in report

@@ -57,7 +57,12 @@ def run_command(case: Optional[Path] = typer.Argument(
     with _terminate_as_interrupt():
         try:
             _run(c, out, workers, quiet)
-        except KeyboardInterrupt:
+        except typer.Exit:
+            raise
+        except BaseException as exc:
+            # Ctrl-C, SIGTERM, or an error raised while the workers are being stopped
+            if not (isinstance(exc, KeyboardInterrupt) or _terminated):
+                raise
             console.print(f"[red]interrupted:[/red] nothing written; {out} is unchanged")
             raise typer.Exit(143 if _terminated else 130)
 
@@ -82,7 +87,8 @@ class _terminate_as_interrupt:
                 return
             _terminated = True
             for child in multiprocessing.active_children():
-                child.kill()                 # workers hold no output: stop them at once
+                if not child.name.startswith("SyncManager"):   # the manager shuts down
+                    child.kill()             # workers hold no output: stop them at once
             raise KeyboardInterrupt
 
         try:

@@ -227,7 +227,7 @@ def write_results(study, out_dir, *, figures=True, report=True) -> dict:
     summ = study.analyse().summary
     written = {}
     enc = {v: {"compression": "gzip", "compression_opts": 4}
-           for v in ("profile_x", "pressure", "film")}
+           for v in ("profile_x", "pressure", "film") if v in ds}
 
     def essentials(folder: Path):
         ds.to_netcdf(folder / "results.nc", engine="h5netcdf", encoding=enc)

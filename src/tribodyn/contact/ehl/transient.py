@@ -45,8 +45,9 @@ class TransientEHL:
     halvings in a row and at most 2·max_substeps + 1 failed attempts per step. A step that
     changes the load by more than a factor of 8 is sub-stepped from the start, in sub-steps
     that change it by a factor ≤ 2 (at most 2^max_substeps of them). The effort of one step
-    is thus bounded; if it still fails the result says so (``converged=False``) and
-    marching continues from the last iterate.
+    is thus bounded: with k = max_substeps, at most 2^k + (2k + 1)(k + 2) + 2 solves of at
+    most ``max_iter`` Newton iterations each. If it still fails the result says so
+    (``converged=False``) and marching continues from the last iterate.
     """
 
     def __init__(self, bodies, lubricant: Lubricant, roughness: Roughness | None = None, *,
