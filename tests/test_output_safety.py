@@ -116,6 +116,8 @@ def test_bad_output_is_refused_before_the_study_runs(tmp_path, monkeypatch):
     (tmp_path / "f").write_text("x")
     r = runner.invoke(app, ["run", "-o", str(tmp_path / "f" / "res"), "-q"])
     assert r.exit_code == 2 and "-o/--out" in r.output
+    r = runner.invoke(app, ["run", "-j", "-3", "-o", str(tmp_path / "res"), "-q"])
+    assert r.exit_code == 2 and "-j/--workers" in r.output
 
 
 # ----------------------------------------------------------------------------- atomic writing

@@ -224,3 +224,25 @@ def test_profile_with_too_few_peaks_is_refused(tmp_path):
     line = UniformLineScan(np.sin(np.arange(256) * 2 * np.pi / 32) * 1e-7, 25.6e-6, unit="m")
     with pytest.raises(InsufficientDataError, match="peaks"):
         analyse_surface(line, band=None)
+
+
+def test_damaged_files_are_refused_with_a_message(tmp_path):
+    """Truncated copies of the instrument files, and a text SDF that lost its last line:
+    an error naming the file, never a traceback or silently shortened data."""
+    for name in list(AREAL) + list(PROFILES):
+        raw = (DATA / name).read_bytes()
+        for cut in (40, 600, len(raw) // 2, len(raw) - 5):
+            bad = tmp_path / f"cut{cut}_{name}"
+            bad.write_bytes(raw[:cut])
+            res = runner.invoke(app, ["topography", str(bad)])
+            assert res.exit_code == 2, (name, cut, res.output)
+            assert res.exception is None or isinstance(res.exception, SystemExit)
+    res = runner.invoke(app, ["topography", str(tmp_path / f"cut{len(raw) - 5}_{name}")])
+    assert "truncated" in res.stderr or "cannot read" in res.stderr
+
+
+def test_figure_path_must_be_an_image_file(tmp_path):
+    good = str(DATA / "surface.x3p")
+    for bad in (str(tmp_path), str(tmp_path / "fig.tmp")):
+        res = runner.invoke(app, ["topography", good, "--figure", bad])
+        assert res.exit_code == 2 and "--figure" in res.stderr

@@ -50,6 +50,9 @@ def run_command(case: Optional[Path] = typer.Argument(
         console.print(f"[red]error in the case:[/red] {escape(str(exc))}")
         raise typer.Exit(2)
     try:
+        if workers is not None and not 0 <= workers <= 4096:
+            raise InputError(f"-j/--workers must be an integer >= 0 and <= 4096 (0: one per "
+                             f"CPU core) (got {workers})")
         out = check_output_dir(out, option="-o/--out")     # before hours of computing
     except InputError as exc:
         console.print(f"[red]error:[/red] {escape(str(exc))}")

@@ -212,7 +212,14 @@ def topography_command(
         fig_path = None
         if figure is not None:
             from ..output.figures.topography import plot_height_distribution
-            fig_path = plot_height_distribution(result, figure)
+            if figure.is_dir() or figure.suffix.lower() not in (".png", ".pdf", ".svg"):
+                raise InputError(f"--figure must be a file name ending in .png, .pdf or .svg "
+                                 f"(got {str(figure)!r})")
+            try:
+                fig_path = plot_height_distribution(result, figure)
+            except OSError as exc:
+                raise InputError(f"--figure: cannot write {str(figure)!r} "
+                                 f"({exc.strerror or exc})") from None
     except InputError as exc:
         err.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
         raise typer.Exit(code=2) from None

@@ -74,6 +74,8 @@ def read_topography(path, *, channel: int | None = None, physical_sizes=None,
                                   f"{type(exc).__name__}: {exc}") from None
 
     fmt = reader.name()
+    if reader.format() == "sdf":
+        _check_sdf_complete(path)
     # Readers without file magic (e.g. NASA SRTM .hgt) accept almost any file.
     if reader.format() in _NO_MAGIC and path.suffix.lower().lstrip(".") != reader.format():
         names = ", ".join(f for f, _ in supported_formats())
@@ -156,6 +158,20 @@ def read_topography(path, *, channel: int | None = None, physical_sizes=None,
         return UniformLineScan(heights, sizes[0], periodic=bool(topo.is_periodic), unit="m",
                                info=info)
     return Topography(heights, sizes, periodic=bool(topo.is_periodic), unit="m", info=info)
+
+
+def _check_sdf_complete(path: Path) -> None:
+    """An ASCII ISO 25178-71 file ends its data with a line "*": a file cut short (a copy
+    interrupted, a disk full) would otherwise lose its last heights silently."""
+    with open(path, "rb") as f:
+        head = f.read(8)
+        if not head.startswith((b"aISO", b"aBCR")):
+            return                                   # binary variant: sizes are checked
+        f.seek(0)
+        markers = sum(1 for line in f if line.strip() == b"*")
+    if markers < 2:
+        raise TopographyReadError(f"'{path}' (ISO 25178-71 SDF, text) is truncated: the data "
+                                  "section has no closing '*' line")
 
 
 def write_topography(topography, path) -> Path:
