@@ -51,7 +51,6 @@ from tribodyn import (  # noqa: E402
     solve_ehl,
 )
 from tribodyn.cli import app  # noqa: E402
-from tribodyn.config import Case, load_case  # noqa: E402
 from tribodyn.config import schema  # noqa: E402
 from tribodyn.physics import limits as L  # noqa: E402
 from tribodyn.valvetrain import ValvetrainParameters  # noqa: E402

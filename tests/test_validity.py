@@ -21,7 +21,7 @@ from tribodyn import (
     solve_ehl,
 )
 from tribodyn.cli import app
-from tribodyn.config import Case, load_case
+from tribodyn.config import load_case
 from tribodyn.contact.ehl import transient as transient_module
 from tribodyn.contact.ehl.validity import MAX_ASPECT_RATIO
 

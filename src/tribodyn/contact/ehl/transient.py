@@ -2,14 +2,14 @@
 
 from __future__ import annotations
 
-import numpy as np
-
 import math
 from dataclasses import replace
 
+import numpy as np
+
 from ..._validation import InputError, check_positive
-from ...physics.limits import EHL_NODES_TRANSIENT, MAX_SUBSTEPS
 from ...physics.asperity import Roughness
+from ...physics.limits import EHL_NODES_TRANSIENT, MAX_SUBSTEPS
 from ...physics.lubricant import Lubricant
 from .grid import Grid, layout
 from .newton import State, newton
@@ -41,7 +41,7 @@ class TransientEHL:
     (a given rigid-approach film and zero pressure, e.g. for squeeze tests).
     A step that fails to converge is retried with sub-steps (conditions interpolated
     linearly in time) from the last converged sub-step: the remaining interval is halved
-    after a failure and doubled again after a success, at most ``max_substeps`` (0…10)
+    after a failure and grows again after a success, at most ``max_substeps`` (0…10)
     halvings in a row and at most 2·max_substeps + 1 failed attempts per step. A step that
     changes the load by more than a factor of 8 is sub-stepped from the start, in sub-steps
     that change it by a factor ≤ 2 (at most 2^max_substeps of them). The effort of one step
@@ -215,7 +215,9 @@ class TransientEHL:
             last = self._advance(dt * (1.0 - done), c1)
         finally:
             self.opts = opts
-        if not last.converged:
+        if last.converged:
+            last.message += f" (finished after {failures} failed sub-steps)"
+        else:
             last.message = (f"no converged sub-step path: gave up after {failures} failed "
                             f"sub-steps ({n_ok} converged, reached {done:.3g} of the step; "
                             f"at most {k} halvings, max_substeps = {k}): {res.message}")
