@@ -40,6 +40,7 @@ def run_dir(reduced_case_file, tmp_path_factory):
 def test_outputs_exist(run_dir):
     for name in ("results.nc", "summary.json", "report.md", "case.toml"):
         assert (run_dir / name).stat().st_size > 0
+    assert json.loads((run_dir / MARKER).read_text())["tool"] == "tribodyn"   # a result folder
     pngs = sorted(p.name for p in run_dir.glob("*.png"))
     for key in ("fig05", "fig06", "fig08", "fig09", "fig10", "fig11", "fig12", "fig13",
                 "fig14", "fig15", "fig16", "fig17", "fig18"):
