@@ -45,6 +45,7 @@ coating = st.one_of(
        alpha=st.floats(0.0, 4e-8), E=log_uniform(1e9, 1e12), nu=st.floats(0.0, 0.45),
        rough=roughness, coat=coating, barus=st.booleans())
 @pytest.mark.filterwarnings("ignore::RuntimeWarning")
+@pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")
 def test_converged_means_a_physical_film(load, radius, ue, us, mu0, alpha, E, nu, rough, coat,
                                          barus):
     mat = Material(E, nu)
