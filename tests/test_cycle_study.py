@@ -11,6 +11,7 @@ from typer.testing import CliRunner
 from tribodyn.cli import app
 from tribodyn.config import load_case
 from tribodyn.output import write_atomic
+from tribodyn.output.writer import MARKER
 
 runner = CliRunner()
 
@@ -39,6 +40,7 @@ def run_dir(reduced_case_file, tmp_path_factory):
 def test_outputs_exist(run_dir):
     for name in ("results.nc", "summary.json", "report.md", "case.toml"):
         assert (run_dir / name).stat().st_size > 0
+    assert json.loads((run_dir / MARKER).read_text())["tool"] == "tribodyn"   # a result folder
     pngs = sorted(p.name for p in run_dir.glob("*.png"))
     for key in ("fig05", "fig06", "fig08", "fig09", "fig10", "fig11", "fig12", "fig13",
                 "fig14", "fig15", "fig16", "fig17", "fig18"):
@@ -107,6 +109,9 @@ def test_failing_steps_are_reported(tmp_path):
     assert "did not converge" in r.output
     s = json.loads((out / "summary.json").read_text())
     assert all(v["failed_steps"] > 0 for v in s["surface_sets"].values())
+    # films and maxima come from converged samples only: never a failed step's iterate
+    for v in s["surface_sets"].values():
+        assert v["min_film_m"] is None or v["min_film_m"] > 0
     assert any("did not converge" in w for w in s["warnings"])
     report = (out / "report.md").read_text()
     assert "failed step(s)" in report
@@ -136,6 +141,7 @@ def test_atomic_write_keeps_old_folder_when_writing_fails(tmp_path):
     out = tmp_path / "results"
     out.mkdir()
     (out / "old.txt").write_text("keep me")
+    (out / MARKER).write_text("{}")          # a previous result folder: may be replaced
 
     def failing(tmp):
         (tmp / "results.nc").write_text("half")

@@ -14,7 +14,6 @@ from tribodyn.physics.regimes import (
     lubrication_regime,
     moes_central,
     moes_groups,
-    pan_hamrock,
 )
 
 STEEL = Material(210e9, 0.3)

@@ -20,6 +20,7 @@ from tribodyn import InputError, Roughness
 from tribodyn.cli import app
 from tribodyn.output.figures.topography import plot_height_distribution
 from tribodyn.topography import (
+    PAPER_BAND,
     BandLimitError,
     InsufficientDataError,
     PairAnalysis,
@@ -219,10 +220,31 @@ def test_band_below_nyquist_raises():
         analyse_surface(small_map(), band=(0.15e-6, 3e-6))
 
 
-def test_band_beyond_scan_raises_for_paper_band():
-    # the paper's 250 µm limit exceeds a 6.4 µm (or the paper's own ≈ 55 µm) scan
+def test_explicit_band_beyond_scan_raises():
+    # the paper's 250 µm limit exceeds a 6.4 µm (or the paper's own ≈ 55 µm) scan: given
+    # explicitly, the band stays an error
     with pytest.raises(BandLimitError, match=r"250 µm exceeds the measured length 6\.4 µm"):
-        analyse_surface(small_map())
+        analyse_surface(small_map(), band=PAPER_BAND)
+
+
+def test_default_band_is_the_papers_clipped_to_the_measurement():
+    # pixel 0.1 µm: Nyquist 0.2 µm < 0.25 µm stays; field 6.4 µm less one λ_s per edge
+    r = analyse_surface(small_map())
+    assert r.band.short_wavelength == pytest.approx(0.25e-6)
+    assert r.band.long_wavelength == pytest.approx(6.4e-6 - 2 * 0.25e-6)
+    assert r.band.requested == PAPER_BAND and r.band.clipped
+    assert len(r.warnings) == 1 and "λ_L lowered to the field of view 6.4 µm" in r.warnings[0]
+    # coarse pixels (0.5 µm): λ_s raised to the Nyquist wavelength 1 µm
+    coarse = Topography(small_map(128).heights(), (64e-6, 64e-6), unit="m")
+    r = analyse_surface(coarse)
+    assert r.band.short_wavelength == pytest.approx(1e-6)
+    assert r.band.long_wavelength == pytest.approx(62e-6)
+    assert "Nyquist wavelength 2Δ = 1 µm" in r.warnings[0]
+    # a map too small for summit statistics is refused, not analysed on nothing
+    tiny = Topography(np.random.default_rng(0).standard_normal((16, 16)) * 1e-7,
+                      (1.6e-6, 1.6e-6), unit="m")
+    with pytest.raises(InsufficientDataError, match=r"only 8 summits .* at least 25"):
+        analyse_surface(tiny)
 
 
 def test_band_limits_in_wrong_order_raise():
@@ -231,11 +253,11 @@ def test_band_limits_in_wrong_order_raise():
 
 
 def test_clip_band_narrows_to_measurement_range():
-    r = analyse_surface(small_map(), clip_band=True)
+    r = analyse_surface(small_map(), band=PAPER_BAND, clip_band=True)
     assert r.band.clipped and r.band.requested == (0.25e-6, 250e-6)
     assert r.band.short_wavelength == pytest.approx(0.25e-6)
     assert r.band.long_wavelength == pytest.approx(64 * DX)
-    assert any("clipped" in n for n in r.notes)
+    assert any("used instead of the requested 0.25–250 µm" in w for w in r.warnings)
 
 
 def test_band_errors_are_input_errors():
@@ -261,16 +283,26 @@ def test_file_without_calibration_or_as_line_scan_raises(tmp_path):
     assert t.physical_sizes == pytest.approx((3.2e-6, 3.2e-6))
     line = UniformLineScan(np.sin(np.arange(128.0)), 12.8, unit="µm")
     line.to_netcdf(str(tmp_path / "profile.nc"))
-    with pytest.raises(TopographyReadError, match="line scan"):
-        read_topography(tmp_path / "profile.nc")
+    prof = read_topography(tmp_path / "profile.nc")          # a profile, read as one
+    assert prof.dim == 1 and prof.physical_sizes[0] == pytest.approx(12.8e-6)
 
 
-def test_too_few_defined_points_raise():
+def test_too_little_left_is_refused():
     t = small_map()
     h = t.heights().copy()
     h[:, :32] = np.nan   # half of the map undefined
-    with pytest.raises(InsufficientDataError, match=r"2048 of 4096 points \(50\.0%\) are defined"):
-        analyse_surface(Topography(h, t.physical_sizes, unit="m"), band=(0.4e-6, 3e-6))
+    half = Topography(h, t.physical_sizes, unit="m")
+    # a share rule only when asked for
+    with pytest.raises(InsufficientDataError, match=r"2048 of 4096 points \(50\.0%\) are measured"):
+        analyse_surface(half, band=(0.4e-6, 3e-6), min_defined_fraction=0.9)
+    # by default: refused only because too few summits remain for η and β
+    with pytest.raises(InsufficientDataError, match=r"only \d+ summits .* at least 25"):
+        analyse_surface(half, band=(0.4e-6, 3e-6))
+    big = small_map(128).heights().copy()
+    big[:, :64] = np.nan
+    r = analyse_surface(Topography(big, (12.8e-6, 12.8e-6), unit="m"), band=(0.4e-6, 3e-6))
+    assert r.sampling.undefined_fraction == pytest.approx(0.5)  # enough summits: analysed
+    assert r.summit_stats.count >= 25 and any("50.0% of the points" in w for w in r.warnings)
     with pytest.raises(InsufficientDataError, match="at least 16 per side"):
         analyse_surface(Topography(np.ones((8, 8)), (1e-6, 1e-6), unit="m"), band=None)
 
@@ -350,8 +382,13 @@ def test_cli_table_and_errors(pair_files, tmp_path):
     assert res.exit_code == 0, res.output
     assert "[surface_sets.roughness]" in res.stdout and "summit density" in res.stdout
     assert "band 1.6–12.8 µm" in res.stdout and "converge" in res.stdout
-    res = runner.invoke(app, ["topography", str(pair_files[0])])   # paper band: 250 µm
+    res = runner.invoke(app, ["topography", str(pair_files[0]), "--band", "0.25e-6",
+                              "250e-6"])        # the paper's band, given: must fit
     assert res.exit_code == 2 and "exceeds the measured length" in res.stderr
+    res = runner.invoke(app, ["topography", str(pair_files[0])])   # default: clipped
+    assert res.exit_code == 0, res.output
+    assert "warning: band 0.25–25.1 µm used instead of the requested 0.25–250 µm" in \
+        " ".join(res.stdout.split())
     res = runner.invoke(app, ["topography", str(tmp_path / "missing.opd")])
     assert res.exit_code == 2 and "no such file" in res.stderr
 
@@ -359,7 +396,7 @@ def test_cli_table_and_errors(pair_files, tmp_path):
 def test_cli_synthetic(tmp_path):
     path = tmp_path / "synthetic.x3p"
     res = CliRunner().invoke(app, ["topography", str(path), "--synthetic", "--grid", "256",
-                                   "--band", "2e-6", "25e-6", "--json"])
+                                   "--band", "1e-6", "12.8e-6", "--json"])
     assert res.exit_code == 0, res.output
     assert path.is_file()
     assert json.loads(res.stdout)["sampling"]["pixel_size"] == pytest.approx([1e-7, 1e-7])

@@ -31,8 +31,8 @@ from .contact.ehl import (  # noqa: E402
 )
 from .physics.asperity import Roughness, greenwood_tripp  # noqa: E402
 from .physics.elasticity import DeformationOperator  # noqa: E402
-from .physics.hertz import hertz_line_contact  # noqa: E402
 from .physics.heat_conduction import ThermalBody, ThermalProperties  # noqa: E402
+from .physics.hertz import hertz_line_contact  # noqa: E402
 from .physics.lubricant import Lubricant  # noqa: E402
 from .physics.materials import Body, Coating, Material, reduced_modulus  # noqa: E402
 from .physics.thermal_oil import ThermalLubricant  # noqa: E402

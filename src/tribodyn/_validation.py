@@ -12,8 +12,8 @@ from numbers import Real
 
 import numpy as np
 
-__all__ = ["InputError", "check_real", "check_positive", "check_nonnegative", "check_range",
-           "check_array"]
+__all__ = ["InputError", "check_real", "check_int", "check_bool", "check_choice",
+           "check_positive", "check_nonnegative", "check_range", "check_array"]
 
 
 class InputError(ValueError):
@@ -36,6 +36,32 @@ def check_real(name: str, value, unit: str = "") -> float:
     if not math.isfinite(v):
         raise InputError(f"{name} must be a finite real number{u} (got {_fmt(value)})")
     return v
+
+
+def check_int(name: str, value) -> int:
+    """Return ``value`` as an int; integral floats (4.0) are accepted, bools and
+    non-integral or non-numeric values are not."""
+    if isinstance(value, bool) or not isinstance(value, (Real, np.integer, np.floating)):
+        raise InputError(f"{name} must be an integer (got {value!r})")
+    v = float(value)
+    if not math.isfinite(v) or v != math.floor(v):
+        raise InputError(f"{name} must be an integer (got {_fmt(value)})")
+    return int(v)
+
+
+def check_bool(name: str, value) -> bool:
+    """Return ``value`` if it is a bool (or numpy bool); strings such as "no" are not."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise InputError(f"{name} must be True or False (got {value!r})")
+
+
+def check_choice(name: str, value, choices) -> str:
+    """Return ``value`` if it is one of ``choices`` (strings)."""
+    if not isinstance(value, str) or value not in choices:
+        allowed = ", ".join(repr(c) for c in choices)
+        raise InputError(f"{name} must be one of {allowed} (got {value!r})")
+    return value
 
 
 def check_positive(name: str, value, unit: str = "") -> float:

@@ -72,7 +72,7 @@ def _as_option(exc: InputError) -> InputError:
 
 
 def compute_contact(*, load=None, load_per_length=None, width=None, radius=None, ue=None,
-                    us=0.0, dry=False, coating=None, coating_material=None,
+                    us=None, dry=False, coating=None, coating_material=None,
                     coating_thickness=None, roughness=None, surface_set=None, case_file=None,
                     shear_coefficient=None, viscosity=None, pressure_viscosity=None,
                     density=None, eyring_stress=None, limiting_shear_coefficient=None,
@@ -274,8 +274,8 @@ def _table(r: dict) -> Table:
         t.add_row("Moes h_c", _g(r["moes_central_film_m"], 1e6), "µm")
         sec("loads, friction (over width)")
         t.add_row("hydrodynamic load", _g(r["hydrodynamic_load_N"]), "N")
-        t.add_row("asperity load", f"{r['asperity_load_N']:.4g} "
-                                   f"({100 * r['asperity_load_share']:.3g} %)", "N")
+        t.add_row("asperity load", "–" if r["asperity_load_N"] is None else
+                  f"{r['asperity_load_N']:.4g} ({100 * r['asperity_load_share']:.3g} %)", "N")
         t.add_row("viscous friction", _g(r["viscous_friction_N"]), "N")
         t.add_row("boundary friction", _g(r["boundary_friction_N"]), "N")
         t.add_row("friction", _g(r["friction_N"]), "N")
@@ -319,7 +319,8 @@ def contact_command(
                                            help="Reduced radius of curvature R \\[m]."),
     ue: Optional[float] = typer.Option(None, "--ue", help="Entrainment speed u_e \\[m/s] "
                                        "(EHL; either sign)."),
-    us: float = typer.Option(0.0, "--us", help="Sliding speed u_s \\[m/s] (viscous friction)."),
+    us: Optional[float] = typer.Option(None, "--us", help="Sliding speed u_s \\[m/s] (viscous "
+                                       "friction; default 0)."),
     dry: bool = typer.Option(False, "--dry", help="Dry (frictionless) contact instead of EHL."),
     coating: Optional[str] = typer.Option(None, "--coating", metavar="E,NU,THICKNESS",
                                           rich_help_panel=_SURF,
@@ -422,6 +423,9 @@ def contact_command(
         console = Console()
         console.print(_table(r))
         style = "" if r["converged"] else "red"
-        console.print(f"solver: {r['message']}", markup=False, style=style, soft_wrap=True)
+        status = r["message"].split("; warning: ")[0]
+        console.print(f"solver: {status}", markup=False, style=style, soft_wrap=True)
+        for w in r.get("warnings", []):
+            console.print(f"warning: {w}", markup=False, style="yellow", soft_wrap=True)
     if not r["converged"]:
         raise typer.Exit(code=1)

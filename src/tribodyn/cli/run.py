@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+import multiprocessing
+import os
+import signal
 from pathlib import Path
 from typing import Optional
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
@@ -30,19 +34,83 @@ def run_command(case: Optional[Path] = typer.Argument(
     """Run the cam-cycle study: dynamics, transient EHL per surface set, figures, report.
 
     Writes OUT/results.nc, summary.json, report.md, case.toml and the figures; the folder
-    is replaced only when everything has been written.
+    is replaced only when everything has been written, and only if it is a previous result
+    folder (or new, or empty). If writing fails, the results are saved elsewhere and the
+    message says where. Exit codes: 0 done, 1 study or writing failed, 2 bad input,
+    130/143 interrupted (Ctrl-C/SIGTERM; nothing written).
     """
     from ..config import load_case
-    from ..output import write_results
-    from ..workflow.cycle import StudyError, run_cycle_study
+    from ..output import check_output_dir
 
     try:
         c = load_case(case)
         if implicit is not None:
             c = c.updated({"numerics.implicit_coupling": implicit})
     except InputError as exc:
-        console.print(f"[red]error in the case:[/red] {exc}")
+        console.print(f"[red]error in the case:[/red] {escape(str(exc))}")
         raise typer.Exit(2)
+    try:
+        if workers is not None and not 0 <= workers <= 4096:
+            raise InputError(f"-j/--workers must be an integer >= 0 and <= 4096 (0: one per "
+                             f"CPU core) (got {workers})")
+        out = check_output_dir(out, option="-o/--out")     # before hours of computing
+    except InputError as exc:
+        console.print(f"[red]error:[/red] {escape(str(exc))}")
+        raise typer.Exit(2)
+    with _terminate_as_interrupt():
+        try:
+            _run(c, out, workers, quiet)
+        except typer.Exit:
+            raise
+        except BaseException as exc:
+            # Ctrl-C, SIGTERM, or an error raised while the workers are being stopped
+            if not (isinstance(exc, KeyboardInterrupt) or _terminated):
+                raise
+            console.print(f"[red]interrupted:[/red] nothing written; {out} is unchanged")
+            raise typer.Exit(143 if _terminated else 130)
+
+
+_terminated = False
+
+
+class _terminate_as_interrupt:
+    """SIGTERM is handled like Ctrl-C (KeyboardInterrupt), so that temporary output is
+    removed; worker processes are stopped first."""
+
+    def __enter__(self):
+        global _terminated
+        _terminated = False
+        main = os.getpid()
+
+        def handler(signum, frame):
+            global _terminated
+            if os.getpid() != main:          # a forked worker inherited the handler
+                signal.signal(signal.SIGTERM, signal.SIG_DFL)
+                os.kill(os.getpid(), signal.SIGTERM)
+                return
+            _terminated = True
+            for child in multiprocessing.active_children():
+                if not child.name.startswith("SyncManager"):   # the manager shuts down
+                    child.kill()             # workers hold no output: stop them at once
+            raise KeyboardInterrupt
+
+        try:
+            self._old = signal.signal(signal.SIGTERM, handler)
+        except ValueError:                  # not the main thread: leave signals alone
+            self._old = None
+        return self
+
+    def __exit__(self, *exc):
+        if self._old is not None:
+            signal.signal(signal.SIGTERM, self._old)
+        return False
+
+
+def _run(c, out: Path, workers, quiet: bool) -> None:
+    """Compute the study, write it, print the summary table."""
+    from ..output import OutputWriteError, write_results
+    from ..workflow.cycle import StudyError, run_cycle_study
+
     n_workers = workers if workers is not None else (c.numerics.workers or None)
     console.print(f"case [bold]{c.name}[/bold]: {len(c.surface_set_names)} surface sets, "
                   f"{c.engine_speed:g} rpm → {out}")
@@ -70,7 +138,11 @@ def run_command(case: Optional[Path] = typer.Argument(
         if "dyn" in tasks:
             bar.update(tasks["dyn"], completed=1)
         t_write = bar.add_task("figures and report", total=1)
-        res = write_results(study, out)
+        try:
+            res = write_results(study, out)
+        except OutputWriteError as exc:
+            console.print(f"[red]error:[/red] {escape(str(exc))}")
+            raise typer.Exit(1)
         bar.update(t_write, completed=1)
 
     summ = res["summary"]

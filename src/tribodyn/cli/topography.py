@@ -65,15 +65,47 @@ def _print_surface(console: Console, r) -> None:
     console.print(f"[bold]{escape(r.name)}[/bold]{escape(where)}")
     console.print(f"  band:     {r.band.describe()}", markup=False, soft_wrap=True)
     console.print(f"  sampling: {r.sampling.describe()}", markup=False, soft_wrap=True)
-    console.print(_parameter_table(f"Greenwood–Tripp parameters of {escape(r.name)}", r.summits,
-                                   r.spectral, r.summit_stats.count, r.moments.alpha))
+    console.print(f"  filled:   {r.sampling.undefined_fraction:.1%} of the points (not "
+                  "measured; excluded from the statistics)", markup=False)
+    for w in r.warnings:
+        console.print(f"  warning: {w}", markup=False, style="yellow", soft_wrap=True)
     h = r.heights
-    console.print(f"  height distribution: Ssk = {h.skewness:.3f}, Sku = {h.kurtosis:.3f} "
-                  f"(Gaussian 0, 3); slope anisotropy {r.slope_anisotropy:.2f} (isotropic 1)",
-                  markup=False)
+    if getattr(r, "kind", "") == "profile":
+        _print_profile(console, r)
+    else:
+        console.print(_parameter_table(f"Greenwood–Tripp parameters of {escape(r.name)}",
+                                       r.summits, r.spectral, r.summit_stats.count,
+                                       r.moments.alpha))
+        console.print(f"  height distribution: Ssk = {h.skewness:.3f}, Sku = "
+                      f"{h.kurtosis:.3f} (Gaussian 0, 3); slope anisotropy "
+                      f"{r.slope_anisotropy:.2f} (isotropic 1)", markup=False)
     for note in r.notes:
         console.print(f"  note: {note}", markup=False, soft_wrap=True)
     console.print()
+
+
+def _print_profile(console: Console, r) -> None:
+    from ..topography.profile import ISOTROPIC_LABEL
+    t = Table(title=f"Profile {escape(r.name)}", title_justify="left",
+              caption=f"η, β: {ISOTROPIC_LABEL}", caption_justify="left")
+    for name, justify in (("quantity", "left"), ("unit", "left"), ("value", "right")):
+        t.add_column(name, justify=justify)
+    m, h, p = r.moments, r.heights, r.spectral
+    for label, unit, value in (
+            ("σ = Rq  RMS height", "µm", _um(h.rms)),
+            ("Rsk  skewness", "-", f"{h.skewness:.3f}"),
+            ("Rku  kurtosis", "-", f"{h.kurtosis:.3f}"),
+            ("m0, m2, m4  profile moments", "m², -, 1/m²",
+             f"{m.m0:.4g}, {m.m2:.4g}, {m.m4:.4g}"),
+            ("α  bandwidth m0 m4/m2²", "-", f"{m.alpha:.3g}"),
+            ("peaks per mm, counted", "1/mm", f"{r.peak_density * 1e-3:.4g}"),
+            ("peaks per mm, Gaussian (1/2π)√(m4/m2)", "1/mm",
+             f"{r.peak_density_gaussian * 1e-3:.4g}"),
+            ("η  summit density (isotropic estimate)", "1/m²", f"{p.asperity_density:.4g}"),
+            ("β  summit radius (isotropic estimate)", "µm", _um(p.summit_radius)),
+            ("ηβσ (isotropic estimate)", "-", f"{p.roughness_parameter:.4g}")):
+        t.add_row(label, unit, value)
+    console.print(t)
 
 
 def _print_pair(console: Console, p) -> None:
@@ -94,20 +126,24 @@ def topography_command(
         help="Areal topography file(s) in any format SurfaceTopography reads (.opd, .x3p, "
              ".sur, .datx, .plu, .nc, …). Two files (cam and tappet) also give the "
              "composite pair."),
-    band: tuple[float, float] = typer.Option(
-        (0.25e-6, 250e-6), "--band", metavar="SHORT LONG",
-        help="Band-pass wavelength limits in m (default: the paper's 0.25–250 µm). Must "
-             "lie within the measurement's range (see --clip-band)."),
+    band: Optional[tuple[float, float]] = typer.Option(
+        None, "--band", metavar="SHORT LONG", show_default=False,
+        help="Band-pass wavelength limits in m; must lie within the measurement's range "
+             "(see --clip-band). Default: the paper's 0.25–250 µm clipped to what the "
+             "measurement resolves (a warning says which band was used)."),
     no_filter: bool = typer.Option(False, "--no-filter", help="Level only, no band-pass."),
     filter_kind: str = typer.Option("gaussian", "--filter",
                                     help="'gaussian' (50 % at the cutoffs) or 'step'."),
     detrend: str = typer.Option("height", "--detrend",
                                 help="'height' (plane), 'curvature' (2nd order) or 'center'."),
     clip_band: bool = typer.Option(False, "--clip-band",
-                                   help="Narrow the band to the measurement's range instead "
-                                        "of failing."),
-    min_defined: float = typer.Option(0.9, "--min-defined",
-                                      help="Smallest accepted share of defined points."),
+                                   help="Narrow a --band outside the measurement's range "
+                                        "instead of failing."),
+    min_defined: float = typer.Option(0.0, "--min-defined",
+                                      help="Smallest accepted share of measured points "
+                                           "(default 0: dropouts are filled and excluded "
+                                           "from the statistics; refused only if fewer "
+                                           "than 25 summits remain)."),
     method: str = typer.Option("summits", "--method",
                                help="Estimator for the roughness TOML block: 'summits' or "
                                     "'spectral'."),
@@ -135,10 +171,12 @@ def topography_command(
 ):
     """Greenwood–Tripp roughness (η, σ, β) from measured surface topography.
 
-    Fills undefined points, levels, band-pass filters and reports σ, summit density η and
-    mean summit radius β from 8-neighbour summits and from McCool's spectral moments, plus
-    skewness and kurtosis, with the band and sampling used. Prints the roughness TOML block
-    (asperity_density, rms, summit_radius) to paste into a case file.
+    Fills undefined points (dropouts), levels, band-pass filters and reports σ, summit
+    density η and mean summit radius β from 8-neighbour summits and from McCool's spectral
+    moments, plus skewness and kurtosis, with the band, sampling and share of filled points.
+    A profile (line scan) gives σ, Rsk, Rku, its spectral moments and the isotropic-surface
+    estimates of η and β. Prints the roughness TOML block (asperity_density, rms,
+    summit_radius) to paste into a case file.
     """
     from .._validation import InputError
     from ..topography.analysis import analyse_surface, composite_roughness
@@ -165,18 +203,32 @@ def topography_command(
         kwargs = dict(kind=filter_kind, detrend=detrend, clip_band=clip_band,
                       min_defined_fraction=min_defined, channel=channel, unit=unit,
                       physical_sizes=size)
-        analyses = [analyse_surface(f, None if no_filter else band, **kwargs) for f in files]
+        use_band = None if no_filter else ("auto" if band is None else band)
+        analyses = [analyse_surface(f, use_band, **kwargs) for f in files]
         result = composite_roughness(*analyses) if len(analyses) == 2 else analyses[0]
+        if method == "summits" and getattr(result, "summits", None) is None:
+            method = "spectral"       # profiles (and mixed pairs) have no summits
         block = result.toml_block(method)
         fig_path = None
         if figure is not None:
             from ..output.figures.topography import plot_height_distribution
-            fig_path = plot_height_distribution(result, figure)
+            if figure.is_dir() or figure.suffix.lower() not in (".png", ".pdf", ".svg"):
+                raise InputError(f"--figure must be a file name ending in .png, .pdf or .svg "
+                                 f"(got {str(figure)!r})")
+            try:
+                fig_path = plot_height_distribution(result, figure)
+            except OSError as exc:
+                raise InputError(f"--figure: cannot write {str(figure)!r} "
+                                 f"({exc.strerror or exc})") from None
     except InputError as exc:
         err.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
         raise typer.Exit(code=2) from None
 
     if as_json:
+        for r in analyses:
+            for w in r.warnings:
+                err.print(f"warning: {r.name}: {w}", markup=False, style="yellow",
+                          soft_wrap=True)
         out = result.to_dict()
         out.update(method=method, roughness_toml=block,
                    figure=None if fig_path is None else str(fig_path))

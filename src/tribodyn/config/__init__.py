@@ -27,6 +27,7 @@ from .errors import format_validation_error
 from .schema import (
                    CAM_MODELS,
                    AccelerationCamConfig,
+                   CamshaftConfig,
                    CaseInfo,
                    CircularArcCamConfig,
                    Engine,
@@ -34,9 +35,8 @@ from .schema import (
                    MaterialConfig,
                    Numerics,
                    RoughnessConfig,
-                   SurfaceSetConfig,
-                   CamshaftConfig,
                    SpringConfig,
+                   SurfaceSetConfig,
                    TableCamConfig,
                    TappetConfig,
                    ValveConfig,

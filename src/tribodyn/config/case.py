@@ -39,15 +39,15 @@ from ..physics.asperity import Roughness
 from ..physics.friction import BOUNDARY_SHEAR_STRENGTH
 from ..physics.heat_conduction import ThermalBody, ThermalProperties
 from ..physics.lubricant import Lubricant
+from ..physics.materials import Body, Coating, Material
 from ..physics.oils import OILS, THERMAL_MATERIALS
 from ..physics.thermal_oil import ThermalLubricant
-from ..physics.materials import Body, Coating, Material
-from ..valvetrain.camshaft import Camshaft
 from ..valvetrain.cams import AccelerationCam, CamProfile, CircularArcCam, TabulatedCam
+from ..valvetrain.camshaft import Camshaft
 from ..valvetrain.flexible import FlexibleValvetrain, TappetGeometry, ValveGeometry
-from ..valvetrain.spring import HelicalSpring
 from ..valvetrain.kinematics import rpm_to_cam_speed
 from ..valvetrain.parameters import ValvetrainParameters
+from ..valvetrain.spring import HelicalSpring
 from .errors import CamTableError, Problems, format_validation_error
 from .schema import (
     CAM_MODELS,

@@ -14,8 +14,8 @@ from typing import Annotated, Any, Literal, Optional, Union
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, model_validator
 
 from .. import paper
+from ..physics import limits as L
 from ..physics.friction import BOUNDARY_SHEAR_STRENGTH
-from ..physics.lubricant import ROELANDS_MU_INF
 from ..physics.oils import OILS
 from ..valvetrain.parameters import ValvetrainParameters
 from .errors import Problems
@@ -33,6 +33,12 @@ _NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9_.+\-]*$"
 def _q(default: Any, unit: str, doc: str, **constraints) -> Any:
     """A field with its unit recorded (used in error messages and the docs)."""
     return Field(default, description=doc, json_schema_extra={"unit": unit}, **constraints)
+
+
+def _lim(default: Any, limit: "L.Limit", doc: str) -> Any:
+    """A field whose unit and range are a shared limit of :mod:`tribodyn.physics.limits`
+    (the physics constructors check the same range)."""
+    return _q(default, limit.unit, doc, **limit.constraints())
 
 
 class Section(BaseModel):
@@ -54,15 +60,15 @@ class CaseInfo(Section):
 class Engine(Section):
     """``[engine]``: operating point. The cam turns at half the engine speed (4-stroke)."""
 
-    speed_rpm: float = _q(paper.ENGINE_SPEED_RPM, "rpm", "engine (crank) speed; cam speed = speed_rpm/2",
-                          gt=0.0, le=50000.0)
+    speed_rpm: float = _lim(paper.ENGINE_SPEED_RPM, L.ENGINE_SPEED,
+                            "engine (crank) speed; cam speed = speed_rpm/2")
 
 
 class _CamBase(Section):
     material: str = _q("steel", "", "cam material (a key of [materials]); the cam is uncoated",
                        min_length=1)
     base_radius: float = _q(paper.CAM_BASE_RADIUS, "m", "base-circle radius r_b", gt=0.0, lt=1.0)
-    width: float = _q(paper.CAM_WIDTH, "m", "cam width (axial contact length)", gt=0.0, lt=1.0)
+    width: float = _lim(paper.CAM_WIDTH, L.LENGTH_BELOW_1M, "cam width (axial contact length)")
 
 
 class AccelerationCamConfig(_CamBase):
@@ -240,8 +246,9 @@ LUMPED_ONLY = ("valve_mass", "tappet_mass", "spring_mass", "spring_rate", "sprin
 
 class Valvetrain(Section):
     """``[valvetrain]``: mirrors :class:`~tribodyn.valvetrain.ValvetrainParameters`
-    (``cam_width`` comes from ``[cam] width``); defaults are its defaults. ``model =
-    "flexible"`` adds the bodies ``valve``, ``tappet``, ``spring`` and ``camshaft``."""
+    (``cam_width`` comes from ``[cam] width``); defaults are its defaults, ranges its
+    ranges (:mod:`tribodyn.physics.limits`). ``model = "flexible"`` adds the bodies
+    ``valve``, ``tappet``, ``spring`` and ``camshaft``."""
 
     model: Literal["lumped", "flexible"] = _q("lumped", "", "valvetrain model: lumped chain "
                                                             "or Craig–Bampton bodies")
@@ -251,53 +258,47 @@ class Valvetrain(Section):
     camshaft: Optional[CamshaftConfig] = _q(None, "", "camshaft compliance "
                                                       "([valvetrain.camshaft]; absent: rigid)")
 
-    valve_mass: float = _q(_VT_DEFAULTS["valve_mass"], "kg", "valve + retainer + collets",
-                           gt=0.0)
-    tappet_mass: float = _q(_VT_DEFAULTS["tappet_mass"], "kg", "flat (bucket) tappet", gt=0.0)
-    spring_mass: float = _q(_VT_DEFAULTS["spring_mass"], "kg", "active valve-spring mass",
-                            gt=0.0)
-    spring_rate: float = _q(_VT_DEFAULTS["spring_rate"], "N/m", "valve-spring rate", gt=0.0)
-    spring_preload: float = _q(_VT_DEFAULTS["spring_preload"], "N",
-                               "installed spring load (valve closed)", gt=0.0)
-    spring_masses: int = _q(_VT_DEFAULTS["spring_masses"], "",
-                            "lumped coil masses of the spring model (0: massless spring)",
-                            ge=0, le=200)
-    spring_damping_ratio: float = _q(_VT_DEFAULTS["spring_damping_ratio"], "",
-                                     "damping ratio of the first surge mode", ge=0.0, lt=1.0)
-    contact_stiffness: Optional[float] = _q(None, "N/m", "linear cam–tappet contact "
-                                            "stiffness (absent: Palmgren line-contact law)",
-                                            gt=0.0)
-    contact_modulus: float = _q(_VT_DEFAULTS["contact_modulus"], "Pa",
-                                "E' of the cam/tappet pair for the Palmgren law", gt=0.0)
-    contact_damping: float = _q(_VT_DEFAULTS["contact_damping"], "N·s/m",
-                                "cam–tappet contact damping", ge=0.0)
-    camshaft_stiffness: Optional[float] = _q(None, "N/m", "camshaft/bearing support "
-                                             "stiffness in series (absent: rigid)", gt=0.0)
-    tappet_valve_stiffness: float = _q(_VT_DEFAULTS["tappet_valve_stiffness"], "N/m",
-                                       "bucket crown + shim + valve tip", gt=0.0)
-    tappet_valve_damping: float = _q(_VT_DEFAULTS["tappet_valve_damping"], "N·s/m",
-                                     "tappet–valve damping", ge=0.0)
-    lash: float = _q(_VT_DEFAULTS["lash"], "m", "tappet–valve clearance on the base circle",
-                     ge=0.0, lt=0.01)
-    seat_stiffness: float = _q(_VT_DEFAULTS["seat_stiffness"], "N/m",
-                               "valve stem + seat insert", gt=0.0)
-    seat_damping: float = _q(_VT_DEFAULTS["seat_damping"], "N·s/m", "valve-seat damping",
-                             ge=0.0)
-    spring_seat_stiffness: float = _q(_VT_DEFAULTS["spring_seat_stiffness"], "N/m",
-                                      "retainer–spring seating", gt=0.0)
-    spring_support_stiffness: float = _q(_VT_DEFAULTS["spring_support_stiffness"], "N/m",
-                                         "head–spring seating", gt=0.0)
-    damping_force_ramp: float = _q(_VT_DEFAULTS["damping_force_ramp"], "N",
-                                   "elastic force over which unilateral damping phases in",
-                                   gt=0.0)
-    bore_friction_coefficient: float = _q(_VT_DEFAULTS["bore_friction_coefficient"], "",
-                                          "friction coefficient of the tappet in its bore",
-                                          ge=0.0, le=2.0)
-    bore_friction_velocity: float = _q(_VT_DEFAULTS["bore_friction_velocity"], "m/s",
-                                       "regularisation velocity of the bore friction", gt=0.0)
-    tappet_radius: float = _q(_VT_DEFAULTS["tappet_radius"], "m",
-                              "radius of the tappet face (max contact offset must stay below)",
-                              gt=0.0, lt=1.0)
+    valve_mass: float = _lim(_VT_DEFAULTS["valve_mass"], L.MASS, "valve + retainer + collets")
+    tappet_mass: float = _lim(_VT_DEFAULTS["tappet_mass"], L.MASS, "flat (bucket) tappet")
+    spring_mass: float = _lim(_VT_DEFAULTS["spring_mass"], L.MASS, "active valve-spring mass")
+    spring_rate: float = _lim(_VT_DEFAULTS["spring_rate"], L.SPRING_RATE, "valve-spring rate")
+    spring_preload: float = _lim(_VT_DEFAULTS["spring_preload"], L.SPRING_PRELOAD,
+                                 "installed spring load (valve closed)")
+    spring_masses: int = _lim(_VT_DEFAULTS["spring_masses"], L.SPRING_MASSES,
+                              "lumped coil masses of the spring model (0: massless spring)")
+    spring_damping_ratio: float = _lim(_VT_DEFAULTS["spring_damping_ratio"],
+                                       L.SPRING_DAMPING_RATIO,
+                                       "damping ratio of the first surge mode")
+    contact_stiffness: Optional[float] = _lim(None, L.STIFFNESS, "linear cam–tappet contact "
+                                              "stiffness (absent: Palmgren line-contact law)")
+    contact_modulus: float = _lim(_VT_DEFAULTS["contact_modulus"], L.CONTACT_MODULUS,
+                                  "E' of the cam/tappet pair for the Palmgren law")
+    contact_damping: float = _lim(_VT_DEFAULTS["contact_damping"], L.DAMPING,
+                                  "cam–tappet contact damping")
+    camshaft_stiffness: Optional[float] = _lim(None, L.STIFFNESS, "camshaft/bearing support "
+                                               "stiffness in series (absent: rigid)")
+    tappet_valve_stiffness: float = _lim(_VT_DEFAULTS["tappet_valve_stiffness"], L.STIFFNESS,
+                                         "bucket crown + shim + valve tip")
+    tappet_valve_damping: float = _lim(_VT_DEFAULTS["tappet_valve_damping"], L.DAMPING,
+                                       "tappet–valve damping")
+    lash: float = _lim(_VT_DEFAULTS["lash"], L.LASH, "tappet–valve clearance on the base circle")
+    seat_stiffness: float = _lim(_VT_DEFAULTS["seat_stiffness"], L.STIFFNESS,
+                                 "valve stem + seat insert")
+    seat_damping: float = _lim(_VT_DEFAULTS["seat_damping"], L.DAMPING, "valve-seat damping")
+    spring_seat_stiffness: float = _lim(_VT_DEFAULTS["spring_seat_stiffness"], L.STIFFNESS,
+                                        "retainer–spring seating")
+    spring_support_stiffness: float = _lim(_VT_DEFAULTS["spring_support_stiffness"],
+                                           L.STIFFNESS, "head–spring seating")
+    damping_force_ramp: float = _lim(_VT_DEFAULTS["damping_force_ramp"], L.DAMPING_FORCE_RAMP,
+                                     "elastic force over which unilateral damping phases in")
+    bore_friction_coefficient: float = _lim(_VT_DEFAULTS["bore_friction_coefficient"],
+                                            L.BORE_FRICTION_COEFFICIENT,
+                                            "friction coefficient of the tappet in its bore")
+    bore_friction_velocity: float = _lim(_VT_DEFAULTS["bore_friction_velocity"],
+                                         L.BORE_FRICTION_VELOCITY,
+                                         "regularisation velocity of the bore friction")
+    tappet_radius: float = _lim(_VT_DEFAULTS["tappet_radius"], L.LENGTH_BELOW_1M,
+                                "radius of the tappet face (max contact offset must stay below)")
 
     @model_validator(mode="after")
     def _model_rule(self):
@@ -320,18 +321,20 @@ class Valvetrain(Section):
 class LubricantConfig(Section):
     """``[lubricant]``: :class:`~tribodyn.Lubricant` (Roelands + Dowson–Higginson)."""
 
-    viscosity: float = _q(paper.LUBRICANT["viscosity"], "Pa·s", "dynamic viscosity μ₀ at ambient pressure "
-                                         "(Roelands needs μ₀ > exp(−9.67))",
-                          gt=ROELANDS_MU_INF, le=100.0)
-    pressure_viscosity: float = _q(paper.LUBRICANT["pressure_viscosity"], "1/Pa", "pressure–viscosity coefficient α",
-                                   ge=0.0, le=1e-6)
-    density: float = _q(paper.ASSUMED_DENSITY, "kg/m³", "density ρ₀ at ambient pressure", gt=0.0, le=5000.0)
-    eyring_stress: float = _q(paper.LUBRICANT["eyring_stress"], "Pa", "Eyring stress τ_E", gt=0.0)
-    limiting_shear_coefficient: float = _q(paper.LUBRICANT["limiting_shear_coefficient"], "", "pressure slope Λ of the limiting shear "
-                                                     "stress τ_L = τ_L0 + Λ p",
-                                           ge=0.0, le=1.0)
-    limiting_shear_stress: float = _q(0.0, "Pa", "intercept τ_L0 of the limiting shear stress "
-                                                 "(paper: 0)", ge=0.0, le=1e9)
+    viscosity: float = _lim(paper.LUBRICANT["viscosity"], L.VISCOSITY,
+                            "dynamic viscosity μ₀ at ambient pressure (Roelands needs "
+                            "μ₀ > exp(−9.67))")
+    pressure_viscosity: float = _lim(paper.LUBRICANT["pressure_viscosity"],
+                                     L.PRESSURE_VISCOSITY, "pressure–viscosity coefficient α")
+    density: float = _lim(paper.ASSUMED_DENSITY, L.DENSITY, "density ρ₀ at ambient pressure")
+    eyring_stress: float = _lim(paper.LUBRICANT["eyring_stress"], L.EYRING_STRESS,
+                                "Eyring stress τ_E")
+    limiting_shear_coefficient: float = _lim(paper.LUBRICANT["limiting_shear_coefficient"],
+                                             L.LIMITING_SHEAR_COEFFICIENT,
+                                             "pressure slope Λ of the limiting shear stress "
+                                             "τ_L = τ_L0 + Λ p")
+    limiting_shear_stress: float = _lim(0.0, L.LIMITING_SHEAR_STRESS,
+                                        "intercept τ_L0 of the limiting shear stress (paper: 0)")
     compressible: bool = _q(True, "", "Dowson–Higginson density (false: constant density)")
     viscosity_model: Literal["roelands", "barus"] = _q("roelands", "", "piezo-viscosity law")
     # -- datasheet form and thermal properties (numerics.thermal)
@@ -394,11 +397,11 @@ class LubricantConfig(Section):
 class MaterialConfig(Section):
     """``[materials.<name>]``: an isotropic elastic material (substrate or coating)."""
 
-    E: float = _q(..., "Pa", "Young's modulus", ge=1e6, le=2e12)
-    nu: float = _q(..., "", "Poisson's ratio", gt=-1.0, lt=0.5)
-    boundary_shear_coefficient: Optional[float] = _q(
-        None, "", "pressure coefficient ς of the boundary shear strength of its asperities "
-                  "(paper Eq. 17)", ge=0.0, le=2.0)
+    E: float = _lim(..., L.YOUNGS_MODULUS, "Young's modulus")
+    nu: float = _lim(..., L.POISSON_RATIO, "Poisson's ratio")
+    boundary_shear_coefficient: Optional[float] = _lim(
+        None, L.BOUNDARY_SHEAR_COEFFICIENT, "pressure coefficient ς of the boundary shear "
+                                            "strength of its asperities (paper Eq. 17)")
     label: Optional[str] = _q(None, "", "display name (default: the table key)",
                               min_length=1)
     thermal_conductivity: Optional[float] = _q(
@@ -413,9 +416,9 @@ class MaterialConfig(Section):
 class RoughnessConfig(Section):
     """``roughness = {…}``: composite Greenwood–Tripp roughness of the pair (paper Table 4)."""
 
-    asperity_density: float = _q(..., "1/m²", "summit density η (the paper's ζ)", gt=0.0)
-    rms: float = _q(..., "m", "composite RMS roughness σ", gt=0.0, lt=1e-4)
-    summit_radius: float = _q(..., "m", "mean summit radius β", gt=0.0, lt=1e-2)
+    asperity_density: float = _lim(..., L.ASPERITY_DENSITY, "summit density η (the paper's ζ)")
+    rms: float = _lim(..., L.ROUGHNESS_RMS, "composite RMS roughness σ")
+    summit_radius: float = _lim(..., L.SUMMIT_RADIUS, "mean summit radius β")
 
 
 class SurfaceSetConfig(Section):
@@ -425,17 +428,17 @@ class SurfaceSetConfig(Section):
                    max_length=64, pattern=_NAME_PATTERN)
     coating: Optional[str] = _q(None, "", "coating material on the tappet (a key of "
                                           "[materials]); absent: uncoated", min_length=1)
-    coating_thickness: Optional[float] = _q(None, "m", "coating thickness (required with a "
-                                                       "coating)", gt=0.0, le=1e-3)
+    coating_thickness: Optional[float] = _lim(None, L.COATING_THICKNESS, "coating thickness "
+                                              "(required with a coating)")
     substrate: str = _q("steel", "", "tappet substrate material (a key of [materials])",
                         min_length=1)
     roughness: RoughnessConfig = _q(..., "", "composite roughness of the cam/tappet pair")
-    boundary_shear_coefficient: Optional[float] = _q(
-        None, "", "ς of the pair; absent: the coating's (or the substrate's if uncoated)",
-        ge=0.0, le=2.0)
-    boundary_shear_strength: float = _q(
-        BOUNDARY_SHEAR_STRENGTH, "Pa", "τ₀ of the boundary shear law τ = τ₀ + ς p_a (Eq. 17)",
-        ge=0.0, le=1e9)
+    boundary_shear_coefficient: Optional[float] = _lim(
+        None, L.BOUNDARY_SHEAR_COEFFICIENT, "ς of the pair; absent: the coating's (or the "
+                                            "substrate's if uncoated)")
+    boundary_shear_strength: float = _lim(
+        BOUNDARY_SHEAR_STRENGTH, L.BOUNDARY_SHEAR_STRENGTH,
+        "τ₀ of the boundary shear law τ = τ₀ + ς p_a (Eq. 17)")
 
     @model_validator(mode="before")
     @classmethod
@@ -466,25 +469,24 @@ class Numerics(Section):
                        "domain sized from the contact; steady solves double them while "
                        "h_c, h_min change > 1 % from half the nodes); at most 4096 (the "
                        "transient steps factor dense matrices)",
-                ge=0, le=4096)
+                ge=0, le=L.EHL_NODES_TRANSIENT.le)
     min_load: float = _q(5.0, "N", "contact force below which the EHL is not solved "
                                    "(cam on the base circle: no load, no film)",
                          gt=0.0, le=1e4)
-    inlet: float = _q(4.0, "", "EHL domain upstream of the centre, in Hertz half-widths",
-                      ge=1.0, le=100.0)
-    outlet: float = _q(1.75, "", "EHL domain downstream of the centre, in Hertz half-widths",
-                       ge=1.0, le=100.0)
-    inlet_truncation: float = _q(0.005, "", "EHL domain upstream at least as far as the "
-                                            "cut-off inlet loses this share of the load "
-                                            "(far-field estimate)", gt=0.0, le=0.1)
-    inlet_rigid: float = _q(4.0, "", "EHL domain upstream at least this many rigid inlet "
-                                     "lengths √(2R h) (squeeze films)",
-                            ge=1.0, le=200.0)
-    outlet_rigid: float = _q(2.0, "", "EHL domain downstream, in rigid inlet lengths",
-                             ge=1.0, le=200.0)
-    tol: float = _q(1e-9, "", "EHL Newton tolerance (scaled update and residual)", gt=0.0,
-                    lt=1.0)
-    max_iter: int = _q(60, "", "EHL Newton iterations per solve", ge=1, le=10000)
+    inlet: float = _lim(4.0, L.DOMAIN_HALF_WIDTHS,
+                        "EHL domain upstream of the centre, in Hertz half-widths")
+    outlet: float = _lim(1.75, L.DOMAIN_HALF_WIDTHS,
+                         "EHL domain downstream of the centre, in Hertz half-widths")
+    inlet_truncation: float = _lim(0.005, L.INLET_TRUNCATION,
+                                   "EHL domain upstream at least as far as the cut-off inlet "
+                                   "loses this share of the load (far-field estimate)")
+    inlet_rigid: float = _lim(4.0, L.DOMAIN_RIGID_LENGTHS,
+                              "EHL domain upstream at least this many rigid inlet lengths "
+                              "√(2R h) (squeeze films)")
+    outlet_rigid: float = _lim(2.0, L.DOMAIN_RIGID_LENGTHS,
+                               "EHL domain downstream, in rigid inlet lengths")
+    tol: float = _lim(1e-9, L.NEWTON_TOL, "EHL Newton tolerance (scaled update and residual)")
+    max_iter: int = _lim(60, L.NEWTON_MAX_ITER, "EHL Newton iterations per solve")
     time_order: Literal[1, 2] = _q(2, "", "EHL time discretisation: 1 backward Euler, 2 BDF2")
     crank_step_deg: float = _q(1.0, "deg (crank)", "sample step of the transient EHL along "
                                                    "the cycle (steps with a large estimated "

@@ -13,10 +13,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validation import InputError, check_positive
+from .._validation import InputError, check_int, check_positive
 from ..physics.elasticity import DeformationOperator
 from ..physics.hertz import HertzLineContact, hertz_line_contact
+from ..physics.limits import EHL_NODES, NEWTON_TOL
 from ..physics.materials import as_bodies, reduced_modulus
+from .ehl.validity import MAX_PRESSURE, MAX_ZONE_TO_RADIUS
 
 __all__ = ["DryContactResult", "solve_dry_contact", "contact_edges"]
 
@@ -35,6 +37,8 @@ class DryContactResult:
     iterations: int
     message: str
     hertz: HertzLineContact = field(repr=False)   #: Hertz reference with the bulk E'
+    #: conditions outside the model's validity (also appended to ``message``)
+    warnings: list = field(default_factory=list)
 
     @property
     def contact_center(self) -> float:
@@ -129,9 +133,13 @@ def solve_dry_contact(load: float, radius: float, bodies, *, n: int = 1024,
     w = check_positive("load", load, "N/m")
     r = check_positive("radius", radius, "m")
     bodies = as_bodies(bodies)
-    n = int(n)
-    if n < 32:
-        raise InputError(f"n must be >= 32 (got {n})")
+    n = EHL_NODES.check("n", n)
+    tol = NEWTON_TOL.check("tol", tol)
+    max_iter = check_int("max_iter", max_iter)
+    max_domain_growth = check_int("max_domain_growth", max_domain_growth)
+    if max_iter < 1 or not 0 <= max_domain_growth <= 10:
+        raise InputError(f"max_iter must be >= 1 and max_domain_growth in [0, 10] (got "
+                         f"{max_iter}, {max_domain_growth})")
     domain = check_positive("domain", domain)
     if domain <= 1.0:
         raise InputError(f"domain must be > 1 half-width (got {domain:g})")
@@ -165,8 +173,25 @@ def solve_dry_contact(load: float, radius: float, bodies, *, n: int = 1024,
     ic = p > 0.0
     gap = u - (u[ic].mean() if np.any(ic) else u.min())
     lo, hi = contact_edges(x, p)
-    return DryContactResult(
+    res = DryContactResult(
         x=x, pressure=p, gap=gap, half_width=0.5 * (hi - lo), max_pressure=float(p.max()),
         load=float(p.sum() * dx), converged=bool(ok), iterations=int(iters), message=msg,
         hertz=hz,
     )
+    return _check_validity(res, r)
+
+
+def _check_validity(res: DryContactResult, radius: float) -> DryContactResult:
+    """Warn where Hertz's idealisation fails: contact not small against R, or a pressure
+    beyond the elastic limit (thresholds and sources in :mod:`.ehl.validity`)."""
+    size = max(res.half_width, res.hertz.half_width)
+    if size > MAX_ZONE_TO_RADIUS * radius:
+        res.warnings.append(f"contact half-width {size / radius:.3g} R: the parabolic gap "
+                            "and half-space elasticity need a contact much smaller than R "
+                            f"(flagged above {MAX_ZONE_TO_RADIUS:g} R)")
+    if res.max_pressure > MAX_PRESSURE:
+        res.warnings.append(f"peak pressure {res.max_pressure / 1e9:.3g} GPa exceeds "
+                            f"{MAX_PRESSURE / 1e9:g} GPa: beyond the elastic limit of "
+                            "hardened steel")
+    res.message += "".join(f"; warning: {t}" for t in res.warnings)
+    return res

@@ -5,6 +5,14 @@
 """
 
 from .dataset import study_to_dataset
-from .writer import write_atomic, write_results
+from .writer import (
+    OutputWriteError,
+    check_output_dir,
+    clean_stale,
+    is_result_folder,
+    write_atomic,
+    write_results,
+)
 
-__all__ = ["study_to_dataset", "write_atomic", "write_results"]
+__all__ = ["OutputWriteError", "check_output_dir", "clean_stale", "is_result_folder",
+           "study_to_dataset", "write_atomic", "write_results"]

@@ -28,7 +28,13 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
-from .._validation import InputError, check_positive, check_real
+from .._validation import InputError, check_choice
+from .limits import (
+    ASPERITY_DENSITY,
+    GREENWOOD_TRIPP_ORDER,
+    ROUGHNESS_RMS,
+    SUMMIT_RADIUS,
+)
 
 __all__ = ["greenwood_tripp", "greenwood_tripp_derivative", "greenwood_tripp_table",
            "Roughness"]
@@ -72,22 +78,33 @@ def _exact(n: float, lam: np.ndarray) -> np.ndarray:
     return out
 
 
+def _lambda_array(lam) -> np.ndarray:
+    """λ as a float array: real numbers only (no strings, bools, NaN or ±inf)."""
+    try:
+        a = np.asarray(lam)
+    except (TypeError, ValueError):
+        a = np.asarray([None])
+    if a.dtype.kind not in "iuf" or a.size == 0:
+        raise InputError(f"lam must be a real number or an array of real numbers (got {lam!r})")
+    a = a.astype(float)
+    if not np.all(np.isfinite(a)):
+        raise InputError("lam must be finite (found NaN or inf)")
+    return a
+
+
 def greenwood_tripp(n, lam, method: str = "exact"):
     """Greenwood–Tripp statistical function F_n(λ) (dimensionless).
 
     Parameters
     ----------
-    n : order, >= 0 (2 and 5/2 are the ones used for area and load).
-    lam : λ = h/σ, scalar or array. The exact form is finite for all real λ.
+    n : order, 0 ≤ n ≤ 10 (2 and 5/2 are the ones used for area and load).
+    lam : λ = h/σ, finite real scalar or array. The exact form is finite for all real λ.
     method : ``"exact"`` (default) or ``"paper"`` (Eqs. 7/19, n ∈ {2, 2.5} only,
         clipped at 0; inaccurate, for reproducing the paper).
     """
-    n = check_real("n", n)
-    if n < 0:
-        raise InputError(f"n must be >= 0 (got {n:g})")
-    lam_arr = np.asarray(lam, dtype=float)
-    if np.any(np.isnan(lam_arr)):
-        raise InputError("lam must not contain NaN")
+    n = GREENWOOD_TRIPP_ORDER.check("n", n)
+    lam_arr = _lambda_array(lam)
+    check_choice("method", method, ("exact", "paper"))
     if method == "exact":
         out = _exact(n, lam_arr)
     elif method == "paper":
@@ -106,8 +123,11 @@ def greenwood_tripp(n, lam, method: str = "exact"):
 
 def greenwood_tripp_derivative(n, lam, method: str = "exact"):
     """dF_n/dλ: −n F_{n−1}(λ) exactly; derivative of the clipped fit for ``"paper"``."""
-    n = check_real("n", n)
-    lam_arr = np.asarray(lam, dtype=float)
+    n = GREENWOOD_TRIPP_ORDER.check("n", n)
+    lam_arr = _lambda_array(lam)
+    check_choice("method", method, ("exact", "paper"))
+    if method == "paper" and n not in (2.0, 2.5):
+        raise InputError(f"method='paper' has fits for n = 2 and 2.5 only (got n = {n:g})")
     if method == "exact":
         if n == 0.0:
             out = -np.exp(-0.5 * lam_arr**2) / _SQRT_2PI
@@ -148,7 +168,6 @@ class _LogTable:
         k = np.minimum(u.astype(np.intp), self._y.size - 2)
         t = u - k
         y0, y1, d0, d1 = self._y[k], self._y[k + 1], self._dy[k], self._dy[k + 1]
-        t2 = t * t
         a = 2.0 * (y0 - y1) + d0 + d1             # ln F = y0 + d0 t + b t² + a t³
         b = 3.0 * (y1 - y0) - 2.0 * d0 - d1
         val = y0 + t * (d0 + t * (b + t * a))
@@ -194,9 +213,9 @@ class Roughness:
 
     Parameters
     ----------
-    asperity_density : η, summit density per unit area [1/m²] (the paper's "ζ").
-    rms : σ, composite RMS roughness of the pair [m].
-    summit_radius : β, mean summit radius of curvature [m].
+    asperity_density : η, summit density per unit area [1/m²] (the paper's "ζ"), ≤ 1e18.
+    rms : σ, composite RMS roughness of the pair [m], < 1e-4.
+    summit_radius : β, mean summit radius of curvature [m], < 1e-2.
     method : "exact" F_n (default) or the paper's polynomial fits ("paper").
     """
 
@@ -206,13 +225,11 @@ class Roughness:
     method: str = "exact"
 
     def __post_init__(self):
-        object.__setattr__(self, "asperity_density",
-                           check_positive("asperity_density", self.asperity_density, "1/m²"))
-        object.__setattr__(self, "rms", check_positive("rms", self.rms, "m"))
-        object.__setattr__(self, "summit_radius",
-                           check_positive("summit_radius", self.summit_radius, "m"))
-        if self.method not in ("exact", "paper"):
-            raise InputError(f"method must be 'exact' or 'paper' (got {self.method!r})")
+        # ranges shared with the case file (physics.limits)
+        for name, limit in (("asperity_density", ASPERITY_DENSITY), ("rms", ROUGHNESS_RMS),
+                            ("summit_radius", SUMMIT_RADIUS)):
+            object.__setattr__(self, name, limit.check(name, getattr(self, name)))
+        check_choice("method", self.method, ("exact", "paper"))
 
     @property
     def roughness_parameter(self) -> float:

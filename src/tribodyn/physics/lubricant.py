@@ -24,14 +24,21 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import paper
-from .._validation import InputError, check_nonnegative, check_positive
+from .._validation import check_bool, check_choice
+from .limits import (
+    DENSITY,
+    EYRING_STRESS,
+    LIMITING_SHEAR_COEFFICIENT,
+    LIMITING_SHEAR_STRESS,
+    PRESSURE_VISCOSITY,
+    ROELANDS_MU_INF,
+    VISCOSITY,
+)
 
 __all__ = ["Lubricant", "ROELANDS_P0", "ROELANDS_MU_INF", "SAE_5W20"]
 
 #: Roelands pressure constant 1/5.1e-9 Pa = 0.196 GPa.
 ROELANDS_P0 = 1.0 / 5.1e-9
-#: Roelands reference viscosity exp(−9.67) = 6.31e-5 Pa·s; μ₀ must exceed it.
-ROELANDS_MU_INF = float(np.exp(-9.67))
 
 
 @dataclass(frozen=True)
@@ -40,12 +47,13 @@ class Lubricant:
 
     Parameters
     ----------
-    viscosity : μ₀, dynamic viscosity at ambient pressure [Pa·s], > 6.31e-5.
-    pressure_viscosity : α, pressure–viscosity coefficient [1/Pa], >= 0 (0: isoviscous).
+    viscosity : μ₀, dynamic viscosity at ambient pressure [Pa·s], > 6.31e-5 (Roelands), ≤ 100.
+    pressure_viscosity : α, pressure–viscosity coefficient [1/Pa], 0 … 1e-6 (0: isoviscous).
     density : ρ₀ at ambient pressure [kg/m³] (paper: not given, 850 assumed).
     eyring_stress : τ_E, Eyring stress of the non-Newtonian shear law [Pa].
     limiting_shear_coefficient : Λ, pressure slope of the limiting shear stress [-].
-    compressible : use Dowson–Higginson (True) or constant density (False).
+    compressible : use Dowson–Higginson (True) or constant density (False); a bool.
+    (Ranges of all numbers: ``physics.limits``, the same as the case file's.)
     viscosity_model : "roelands" (default, paper Eq. 3) or "barus".
     limiting_shear_stress : τ_L0, intercept of the limiting shear stress
         τ_L = τ_L0 + Λ p [Pa] (Bair & Winer's linear form; the paper uses Λ p only, τ_L0 = 0).
@@ -61,26 +69,14 @@ class Lubricant:
     limiting_shear_stress: float = 0.0
 
     def __post_init__(self):
-        mu0 = check_positive("viscosity", self.viscosity, "Pa·s")
-        if mu0 <= ROELANDS_MU_INF:
-            raise InputError(f"viscosity must be > {ROELANDS_MU_INF:.3g} Pa·s for the Roelands "
-                             f"law (got {mu0:.6g})")
-        object.__setattr__(self, "viscosity", mu0)
-        object.__setattr__(self, "pressure_viscosity",
-                           check_nonnegative("pressure_viscosity", self.pressure_viscosity, "1/Pa"))
-        object.__setattr__(self, "density", check_positive("density", self.density, "kg/m³"))
-        object.__setattr__(self, "eyring_stress",
-                           check_positive("eyring_stress", self.eyring_stress, "Pa"))
-        object.__setattr__(self, "limiting_shear_coefficient",
-                           check_nonnegative("limiting_shear_coefficient",
-                                             self.limiting_shear_coefficient))
-        object.__setattr__(self, "limiting_shear_stress",
-                           check_nonnegative("limiting_shear_stress",
-                                             self.limiting_shear_stress, "Pa"))
-        object.__setattr__(self, "compressible", bool(self.compressible))
-        if self.viscosity_model not in ("roelands", "barus"):
-            raise InputError("viscosity_model must be 'roelands' or 'barus' "
-                             f"(got {self.viscosity_model!r})")
+        # ranges shared with the case file (physics.limits)
+        for name, limit in (("viscosity", VISCOSITY), ("pressure_viscosity", PRESSURE_VISCOSITY),
+                            ("density", DENSITY), ("eyring_stress", EYRING_STRESS),
+                            ("limiting_shear_coefficient", LIMITING_SHEAR_COEFFICIENT),
+                            ("limiting_shear_stress", LIMITING_SHEAR_STRESS)):
+            object.__setattr__(self, name, limit.check(name, getattr(self, name)))
+        object.__setattr__(self, "compressible", check_bool("compressible", self.compressible))
+        check_choice("viscosity_model", self.viscosity_model, ("roelands", "barus"))
 
     # -- Roelands -----------------------------------------------------------------
     @property

@@ -12,7 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .. import paper
-from .._validation import InputError, check_positive, check_range
+from .._validation import InputError
+from .limits import COATING_THICKNESS, POISSON_RATIO, YOUNGS_MODULUS
 
 __all__ = ["Material", "Coating", "Body", "as_bodies", "reduced_modulus", "STEEL", "DLC", "WCC"]
 
@@ -23,7 +24,7 @@ class Material:
 
     Parameters
     ----------
-    E : Young's modulus [Pa], > 0.
+    E : Young's modulus [Pa], 1e6 … 2e12 (``limits.YOUNGS_MODULUS``).
     nu : Poisson's ratio [-], in (−1, 0.5).
     """
 
@@ -31,9 +32,8 @@ class Material:
     nu: float
 
     def __post_init__(self):
-        object.__setattr__(self, "E", check_positive("E", self.E, "Pa"))
-        object.__setattr__(self, "nu", check_range("nu", self.nu, -1.0, 0.5, lo_open=True,
-                                                   hi_open=True))
+        object.__setattr__(self, "E", YOUNGS_MODULUS.check("E", self.E))
+        object.__setattr__(self, "nu", POISSON_RATIO.check("nu", self.nu))
 
     @property
     def compliance(self) -> float:
@@ -53,14 +53,15 @@ class Coating(Material):
     Parameters
     ----------
     E, nu : elastic constants of the coating [Pa], [-].
-    thickness : layer thickness h_c [m], > 0.
+    thickness : layer thickness h_c [m], in (0, 1e-2].
     """
 
     thickness: float
 
     def __post_init__(self):
         super().__post_init__()
-        object.__setattr__(self, "thickness", check_positive("thickness", self.thickness, "m"))
+        object.__setattr__(self, "thickness", COATING_THICKNESS.check("thickness",
+                                                                      self.thickness))
 
     @property
     def material(self) -> Material:
@@ -92,9 +93,12 @@ class Body:
 
 def as_bodies(bodies) -> tuple[Body, Body]:
     """``bodies`` as a validated pair (Body, Body)."""
-    bodies = tuple(bodies)
+    try:
+        bodies = tuple(bodies)
+    except TypeError:
+        raise InputError(f"bodies must be a pair (Body, Body) (got {bodies!r})") from None
     if len(bodies) != 2 or not all(isinstance(b, Body) for b in bodies):
-        raise InputError("bodies must be a pair (Body, Body)")
+        raise InputError(f"bodies must be a pair (Body, Body) (got {bodies!r})")
     return bodies
 
 

@@ -1,8 +1,10 @@
 """Measured surface topography → Greenwood–Tripp roughness parameters (η, σ, β).
 
-Reads instrument files through SurfaceTopography, fills, levels and band-pass filters
-them, and estimates summit density η and mean summit radius β in two ways side by side:
-8-neighbour summits with local curvature, and McCool's spectral moments. Two surfaces
+Reads instrument files through SurfaceTopography, fills dropouts, levels and band-pass
+filters them (by default in the paper's band clipped to what the measurement resolves),
+and estimates summit density η and mean summit radius β in two ways side by side:
+8-neighbour summits with local curvature, and McCool's spectral moments. Profiles (line
+scans) give σ, Rsk, Rku, their spectral moments and isotropic-surface estimates of η, β. Two surfaces
 (cam and tappet) combine into the pair's composite parameters. Results carry the band and
 sampling, on which η and β strongly depend.
 
@@ -19,8 +21,9 @@ from .errors import (
     TopographyError,
     TopographyReadError,
 )
-from .filtering import PAPER_BAND, Band, Sampling, prepare_topography
+from .filtering import AUTO_BAND, PAPER_BAND, Band, Sampling, prepare_topography
 from .height_statistics import HeightStatistics, height_statistics
+from .profile import ProfileAnalysis, analyse_profile
 from .reading import read_topography, write_topography
 from .results import AsperityParameters, PairAnalysis, SurfaceAnalysis
 from .spectral_moments import SpectralMoments, mccool_parameters
@@ -28,7 +31,7 @@ from .summits import SummitStatistics, summit_statistics
 from .synthetic import synthetic_moments, synthetic_surface
 
 __all__ = [
-    "PAPER_BAND", "AsperityParameters", "Band", "BandLimitError", "HeightStatistics",
+    "AUTO_BAND", "PAPER_BAND", "AsperityParameters", "ProfileAnalysis", "analyse_profile", "Band", "BandLimitError", "HeightStatistics",
     "InsufficientDataError", "PairAnalysis", "Sampling", "SpectralMoments",
     "SummitStatistics", "SurfaceAnalysis", "TopographyError", "TopographyReadError",
     "analyse_pair", "analyse_surface", "composite_roughness", "height_statistics",

@@ -2,8 +2,14 @@
 
 Order of operations (each a SurfaceTopography pipeline step):
 
-1. check the share of defined points (optical profilers drop pixels on steep or dark spots);
-2. fill undefined points with harmonic functions (``interpolate_undefined_data``);
+1. undefined points (dropouts: optical profilers lose pixels on steep or dark spots, often
+   25–30 % of a scan) are filled with the harmonic interpolant
+   (``interpolate_undefined_data("harmonic")``): inside each hole h solves Laplace's
+   equation ∇²h = 0 with the measured heights around the hole as boundary values. It is
+   the smoothest continuation (least ∫|∇h|²) and, by the maximum principle, has no
+   interior extrema: a filled hole adds no summits and no curvature. The filled points are
+   returned as a mask, so that the statistics are taken over measured points only
+   (``analysis``); the share filled is reported (``Sampling.undefined_fraction``);
 3. level: subtract the least-squares plane (``detrend("height")``) or second-order
    polynomial (``"curvature"``, for curved parts such as a cam flank); periodic
    (synthetic) maps only have their mean removed;
@@ -18,12 +24,18 @@ Order of operations (each a SurfaceTopography pipeline step):
    (``mirror_stitch``: 2N_x × 2N_y, continuous heights across the seams), filtered and
    cropped back, which avoids the wrap-around jump of the raw data.
 
-The band must lie inside what the measurement resolves: λ_s ≥ 2Δ (Nyquist wavelength of
-the coarser pixel direction, or the instrument's reliability cutoff if the file states one)
-and λ_L ≤ min(L_x, L_y). Otherwise :class:`BandLimitError` is raised, unless
-``clip_band=True``, which narrows the band to the resolvable range and records it.
-Note the paper's band (0.25–250 µm) with its 50× objective (Δ = 0.099 µm, ≈ 2985 µm²
-scanned, i.e. ≈ 55 µm square): the 250 µm limit exceeds the scan and has no effect there.
+A band given explicitly must lie inside what the measurement resolves: λ_s ≥ 2Δ (Nyquist
+wavelength of the coarser pixel direction, or the instrument's reliability cutoff if the
+file states one) and λ_L ≤ min(L_x, L_y). Otherwise :class:`BandLimitError` is raised,
+unless ``clip_band=True``, which narrows the band to the resolvable range and records it.
+
+The default band (``band="auto"``) is the paper's, 0.25–250 µm, clipped to the
+measurement: λ_s = max(0.25 µm, 2Δ, reliability cutoff) and λ_L = min(250 µm,
+min(L_x, L_y) − 2λ_s), i.e. at most the length that remains after the analysis drops one
+λ_s along each edge (filter end effects, see ``analysis.analysis_margin``). The paper's own
+scan (50× objective, Δ = 0.099 µm, ≈ 55 µm square) resolves 0.25 µm but not 250 µm; most
+instruments resolve neither (pixels of 0.2–3.5 µm, fields of 10–70 µm), so the band
+actually used is reported with a warning.
 """
 
 from __future__ import annotations
@@ -36,11 +48,15 @@ import numpy as np
 from .._validation import InputError, check_positive, check_range
 from .errors import BandLimitError, InsufficientDataError
 
-__all__ = ["PAPER_BAND", "FILTER_KINDS", "DETREND_MODES", "Band", "Sampling", "check_band",
-           "band_pass", "prepare_topography"]
+__all__ = ["PAPER_BAND", "AUTO_BAND", "FILTER_KINDS", "DETREND_MODES", "Band", "Sampling",
+           "check_band", "default_band", "band_pass", "prepare_topography"]
 
 #: Band of the paper (Section 2.2): wavelengths 0.25 µm to 250 µm [m].
 PAPER_BAND = (0.25e-6, 250e-6)
+#: ``band`` value that selects the paper's band clipped to the measurement
+AUTO_BAND = "auto"
+#: The default band must keep λ_L ≥ this × λ_s (else the field is too small for it)
+MIN_BAND_RATIO = 4.0
 FILTER_KINDS = ("gaussian", "step")
 DETREND_MODES = ("height", "curvature", "center")
 #: Smallest map accepted (grid points per side).
@@ -106,6 +122,7 @@ class Band:
     long_wavelength: float | None
     kind: str = "gaussian"
     requested: tuple[float, float] | None = None
+    reason: str = ""        #: why the band differs from the requested one
 
     UNITS = {"short_wavelength": "m", "long_wavelength": "m", "requested": "m"}
 
@@ -137,7 +154,7 @@ class Band:
     def to_dict(self) -> dict:
         return {"short_wavelength": self.short_wavelength, "long_wavelength": self.long_wavelength,
                 "kind": self.kind, "requested": list(self.requested) if self.requested else None,
-                "units": dict(self.UNITS)}
+                "clipped_because": self.reason or None, "units": dict(self.UNITS)}
 
 
 def _um(x: float) -> str:
@@ -193,6 +210,39 @@ def check_band(band, sampling: Sampling, *, kind: str = "gaussian", clip: bool =
     return Band(new_lo, new_hi, kind, requested=(lo, hi) if clipped else None)
 
 
+def default_band(sampling: Sampling, *, kind: str = "gaussian",
+                 reliability_cutoff: float | None = None) -> Band:
+    """The paper's band clipped to what the measurement resolves (module docstring).
+
+    Raises :class:`InsufficientDataError` if fewer than a factor MIN_BAND_RATIO of
+    wavelengths remain."""
+    if kind not in FILTER_KINDS:
+        raise InputError(f"filter kind must be one of {FILTER_KINDS} (got {kind!r})")
+    lo0, hi0 = PAPER_BAND
+    lo, why_lo = lo0, ""
+    nyq = sampling.nyquist_wavelength
+    if nyq > lo:
+        lo, why_lo = nyq, (f"λ_s raised to the Nyquist wavelength 2Δ = {_um(nyq)} µm "
+                           f"(pixel {_um(max(sampling.pixel_size))} µm)")
+    if reliability_cutoff is not None and reliability_cutoff > lo:
+        lo, why_lo = reliability_cutoff, (f"λ_s raised to the instrument's reliability "
+                                          f"cutoff {_um(reliability_cutoff)} µm")
+    field = sampling.longest_wavelength
+    usable = field - (0.0 if sampling.periodic else 2.0 * lo)
+    hi, why_hi = hi0, ""
+    if usable < hi:
+        hi = usable
+        why_hi = (f"λ_L lowered to the field of view {_um(field)} µm" + (
+            "" if sampling.periodic else f" less one λ_s at each edge ({_um(usable)} µm)"))
+    if hi < MIN_BAND_RATIO * lo:
+        raise InsufficientDataError(
+            f"the measurement ({sampling.describe()}) is too small for any band: it "
+            f"resolves wavelengths from {_um(lo)} µm, but its field leaves only {_um(usable)} "
+            f"µm (at least {MIN_BAND_RATIO:g} × λ_s is needed)")
+    reason = "; ".join(t for t in (why_lo, why_hi) if t)
+    return Band(lo, hi, kind, requested=PAPER_BAND if reason else None, reason=reason)
+
+
 def band_pass(topography, band: Band):
     """Band-pass filter a gap-free, levelled map (mirror-stitched if non-periodic).
 
@@ -216,24 +266,28 @@ def band_pass(topography, band: Band):
                       info=dict(topography.info))
 
 
-def prepare_topography(topography, band=PAPER_BAND, *, kind: str = "gaussian",
+def prepare_topography(topography, band=AUTO_BAND, *, kind: str = "gaussian",
                        detrend: str = "height", clip_band: bool = False,
-                       min_defined_fraction: float = 0.9):
+                       min_defined_fraction: float = 0.0):
     """Fill, level and band-pass filter a topography map (in m).
 
     Parameters
     ----------
     topography : SurfaceTopography ``Topography`` in metres (see ``read_topography``).
-    band : (λ_s, λ_L) [m] or ``None`` (level only). Default: the paper's 0.25–250 µm.
+    band : ``"auto"`` (default: the paper's 0.25–250 µm clipped to the measurement, see
+        the module docstring), (λ_s, λ_L) [m] (must fit, see ``clip_band``) or ``None``
+        (level only).
     kind : ``"gaussian"`` (default) or ``"step"``, see the module docstring.
     detrend : ``"height"`` (plane, default), ``"curvature"`` (2nd-order polynomial) or
         ``"center"`` (mean only). Periodic maps always use ``"center"``.
-    clip_band : narrow a band that exceeds the resolvable range instead of raising.
-    min_defined_fraction : smallest accepted share of defined points (default 0.9).
+    clip_band : narrow an explicit band that exceeds the resolvable range instead of raising.
+    min_defined_fraction : smallest accepted share of measured points (default 0: any
+        share; whether enough is left for summits is decided by the analysis).
 
     Returns
     -------
-    (filtered Topography, Band actually applied, Sampling of the input)
+    (filtered Topography, Band actually applied, Sampling of the input, boolean mask of
+    the filled (unmeasured) points)
     """
     if topography.dim != 2:
         raise InsufficientDataError("an areal (2-D) map is needed to identify summits")
@@ -247,21 +301,30 @@ def prepare_topography(topography, band=PAPER_BAND, *, kind: str = "gaussian",
         raise InsufficientDataError(f"the map has {nx} × {ny} points; at least "
                                     f"{MIN_GRID_PTS} per side are needed")
     heights = topography.heights()
+    filled = np.ma.getmaskarray(heights) | ~np.isfinite(np.ma.getdata(heights))
     n_total = nx * ny
-    n_defined = int(np.ma.count(heights))
+    n_defined = n_total - int(filled.sum())
     fraction = n_defined / n_total
     if fraction < min_defined_fraction or n_defined < MIN_GRID_PTS**2:
         raise InsufficientDataError(
-            f"only {n_defined} of {n_total} points ({fraction:.1%}) are defined; at least "
+            f"only {n_defined} of {n_total} points ({fraction:.1%}) are measured; at least "
             f"{min_defined_fraction:.0%} (and {MIN_GRID_PTS**2} points) are required")
     sampling = Sampling.of(topography, undefined_fraction=1.0 - fraction)
     try:
         reliability = topography.short_reliability_cutoff()
     except Exception:  # instrument metadata incomplete: no cutoff
         reliability = None
-    applied = check_band(band, sampling, kind=kind, clip=clip_band, reliability_cutoff=reliability)
+    if isinstance(band, str) and band == AUTO_BAND:
+        applied = default_band(sampling, kind=kind, reliability_cutoff=reliability)
+    else:
+        applied = check_band(band, sampling, kind=kind, clip=clip_band,
+                             reliability_cutoff=reliability)
 
     if n_defined < n_total:
+        from SurfaceTopography import Topography
+        h = np.ma.masked_array(np.ma.getdata(heights), mask=filled)
+        topography = Topography(h, topography.physical_sizes, periodic=topography.is_periodic,
+                                unit=topography.unit, info=dict(topography.info))
         topography = topography.interpolate_undefined_data("harmonic")
     topography = topography.detrend(detrend_mode="center" if topography.is_periodic else detrend)
-    return band_pass(topography, applied), applied, sampling
+    return band_pass(topography, applied), applied, sampling, filled

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
+
 from .errors import TopographyReadError
 
 __all__ = ["read_topography", "write_topography", "supported_formats", "WRITERS"]
@@ -44,21 +46,20 @@ def read_topography(path, *, channel: int | None = None, physical_sizes=None,
 
     Returns
     -------
-    SurfaceTopography ``Topography`` in ``"m"``, possibly with undefined (masked) points;
-    ``info["source"]`` holds the file name, format and channel.
+    SurfaceTopography ``Topography`` (areal map) or ``UniformLineScan`` (profile) in
+    ``"m"``, possibly with undefined (masked) points; ``info["source"]`` holds the file
+    name, format and channel.
 
     Raises
     ------
     TopographyReadError
-        File missing, not a recognised format, damaged, a line scan instead of an areal
-        map, or lacking lateral size / unit information that was not supplied.
+        File missing, not a recognised format, damaged, or lacking lateral size / unit
+        information that was not supplied.
     """
     from SurfaceTopography import open_topography
     from SurfaceTopography.Exceptions import (
         CannotDetectFileFormat,
         MetadataAlreadyFixedByFile,
-        ReadFileError,
-        UnknownFileFormat,
     )
 
     path = Path(path)
@@ -71,10 +72,13 @@ def read_topography(path, *, channel: int | None = None, physical_sizes=None,
         raise TopographyReadError(
             f"cannot read topography file '{path}': not a surface-topography format that "
             f"SurfaceTopography recognises (readable formats: {names})") from None
-    except (ReadFileError, UnknownFileFormat, OSError, ValueError) as exc:
-        raise TopographyReadError(f"cannot read topography file '{path}': {exc}") from None
+    except Exception as exc:       # damaged files make readers fail in many ways
+        raise TopographyReadError(f"cannot read topography file '{path}': "
+                                  f"{type(exc).__name__}: {exc}") from None
 
     fmt = reader.name()
+    if reader.format() == "sdf":
+        _check_sdf_complete(path)
     # Readers without file magic (e.g. NASA SRTM .hgt) accept almost any file.
     if reader.format() in _NO_MAGIC and path.suffix.lower().lstrip(".") != reader.format():
         names = ", ".join(f for f, _ in supported_formats())
@@ -90,11 +94,14 @@ def read_topography(path, *, channel: int | None = None, physical_sizes=None,
                 f"'{path}' has {len(channels)} channel(s) (0…{len(channels) - 1}); "
                 f"channel {channel} does not exist")
         ch = channels[channel]
-    if ch.dim != 2:
-        raise TopographyReadError(
-            f"'{path}' ({fmt}) channel '{ch.name}' is a line scan (profile): an areal "
-            "(2-D) map is needed to identify summits")
-    if ch.nb_grid_pts is not None and min(ch.nb_grid_pts) < 3:
+    if ch.dim not in (1, 2):
+        raise TopographyReadError(f"'{path}' ({fmt}) channel '{ch.name}' has {ch.dim} "
+                                  "dimensions: a profile or an areal map is needed")
+    # a "map" of one line (SDF, SUR, … store profiles so) is a profile
+    single_line = (ch.dim == 2 and ch.nb_grid_pts is not None
+                   and min(ch.nb_grid_pts) == 1 and max(ch.nb_grid_pts) >= 3)
+    if ch.dim == 2 and not single_line and ch.nb_grid_pts is not None \
+            and min(ch.nb_grid_pts) < 3:
         raise TopographyReadError(
             f"'{path}' read as {fmt} has only {ch.nb_grid_pts[0]} × {ch.nb_grid_pts[1]} "
             "points: not a usable topography map")
@@ -105,7 +112,15 @@ def read_topography(path, *, channel: int | None = None, physical_sizes=None,
             raise TopographyReadError(
                 f"'{path}' already stores its lateral size {tuple(ch.physical_sizes)} "
                 f"{ch.unit}; do not pass physical_sizes")
-        kwargs["physical_sizes"] = tuple(float(s) for s in physical_sizes)
+        try:
+            sizes = tuple(float(s) for s in np.atleast_1d(physical_sizes))
+        except (TypeError, ValueError):
+            sizes = ()
+        if len(sizes) not in (1, 2) or not all(np.isfinite(sizes)) or min(sizes) <= 0:
+            raise TopographyReadError(f"physical_sizes must be one or two positive lengths "
+                                      f"(got {physical_sizes!r})")
+        kwargs["physical_sizes"] = sizes[0] if ch.dim == 1 else (
+            sizes if len(sizes) == 2 else sizes * 2)
     elif ch.physical_sizes is None:
         raise TopographyReadError(
             f"'{path}' ({fmt}) has no lateral calibration: give its size and unit "
@@ -123,17 +138,43 @@ def read_topography(path, *, channel: int | None = None, physical_sizes=None,
         topo = topo.to_unit("m")
     except MetadataAlreadyFixedByFile as exc:
         raise TopographyReadError(f"'{path}': {exc}") from None
-    except (ReadFileError, OSError, ValueError, KeyError) as exc:
-        raise TopographyReadError(f"cannot read topography data of '{path}': {exc}") from None
-    if topo.dim != 2:
-        raise TopographyReadError(f"'{path}' does not contain an areal map (dim={topo.dim})")
-    # Materialise once (later steps read the heights several times); Topography masks
-    # non-finite values as undefined.
-    from SurfaceTopography import Topography
-    heights = topo.heights()
+    except Exception as exc:       # readers raise many kinds of errors on damaged files
+        raise TopographyReadError(f"cannot read topography data of '{path}': "
+                                  f"{type(exc).__name__}: {exc}") from None
+    # Materialise once (later steps read the heights several times); non-finite values
+    # are masked as undefined.
+    from SurfaceTopography import Topography, UniformLineScan
+    heights = np.ma.masked_invalid(topo.heights())
     info = {"source": {"file": str(path), "format": reader.format(), "channel": ch.name}}
-    return Topography(heights, tuple(float(s) for s in topo.physical_sizes),
-                      periodic=bool(topo.is_periodic), unit="m", info=info)
+    sizes = tuple(float(s) for s in np.atleast_1d(topo.physical_sizes))
+    if not all(np.isfinite(sizes)) or min(sizes) <= 0:
+        raise TopographyReadError(f"'{path}': invalid lateral size {sizes} in the file")
+    if heights.count() == 0:
+        raise TopographyReadError(f"'{path}': no measured (defined) height in the file")
+    if single_line:
+        axis = 0 if heights.shape[0] > 1 else 1
+        heights, sizes = heights.reshape(-1), (sizes[axis],)
+    if topo.dim == 1 or single_line:
+        if heights.size < 3:
+            raise TopographyReadError(f"'{path}' ({fmt}) holds a profile of only "
+                                      f"{heights.size} points")
+        return UniformLineScan(heights, sizes[0], periodic=bool(topo.is_periodic), unit="m",
+                               info=info)
+    return Topography(heights, sizes, periodic=bool(topo.is_periodic), unit="m", info=info)
+
+
+def _check_sdf_complete(path: Path) -> None:
+    """An ASCII ISO 25178-71 file ends its data with a line "*": a file cut short (a copy
+    interrupted, a disk full) would otherwise lose its last heights silently."""
+    with open(path, "rb") as f:
+        head = f.read(8)
+        if not head.startswith((b"aISO", b"aBCR")):
+            return                                   # binary variant: sizes are checked
+        f.seek(0)
+        markers = sum(1 for line in f if line.strip() == b"*")
+    if markers < 2:
+        raise TopographyReadError(f"'{path}' (ISO 25178-71 SDF, text) is truncated: the data "
+                                  "section has no closing '*' line")
 
 
 def write_topography(topography, path) -> Path:

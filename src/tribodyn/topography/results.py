@@ -112,6 +112,10 @@ class SurfaceAnalysis(_TomlMixin):
     notes: tuple[str, ...] = ()
     source: dict | None = None
     topography: object = field(default=None, repr=False, compare=False)
+    #: what was done to the input (band clipped, dropouts filled); shown as warnings
+    warnings: tuple[str, ...] = ()
+    #: points that were not measured (filled before filtering); None: all measured
+    filled: object = field(default=None, repr=False, compare=False)
 
     @property
     def rms(self) -> float:
@@ -143,7 +147,8 @@ class SurfaceAnalysis(_TomlMixin):
                 "summit_area": self.summit_stats.area,
                 "nonconvex_summit_fraction": self.summit_stats.nonconvex_fraction,
                 "spectral": self.spectral.to_dict(), "slope_anisotropy": self.slope_anisotropy,
-                "notes": list(self.notes)}
+                "filled_fraction": self.sampling.undefined_fraction,
+                "warnings": list(self.warnings), "notes": list(self.notes)}
 
 
 @dataclass(frozen=True)
@@ -191,7 +196,7 @@ class PairAnalysis(_TomlMixin):
 
     def describe_conditions(self) -> list[str]:
         a, b = self.first, self.second
-        if a.band == b.band:
+        if a.band.describe() == b.band.describe():
             lines = [f"band {a.band.describe()}"]
         else:
             lines = [f"band {a.name}: {a.band.describe()}", f"band {b.name}: {b.band.describe()}"]

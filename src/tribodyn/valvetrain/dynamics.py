@@ -255,8 +255,9 @@ def simulate_valvetrain(cam: CamProfile, params: ValvetrainParameters | None = N
     stats = dict(nfev=int(sol.nfev), njev=int(sol.njev), nlu=int(sol.nlu),
                  wall_time_s=wall, method=method)
     if sol.status != 0:
+        t_fail = float(sol.t[-1]) if len(sol.t) else 0.0      # t_eval may hold no point yet
         return ValvetrainResult(**base, stats=stats,
-                                message=f"solver failed at t = {sol.t[-1]:.6g} s: {sol.message}")
+                                message=f"solver failed at t = {t_fail:.6g} s: {sol.message}")
     Y = sol.y
     if Y.shape[1] != t_eval.size or not np.all(np.isfinite(Y)):
         return ValvetrainResult(**base, stats=stats,

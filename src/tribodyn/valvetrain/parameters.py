@@ -30,7 +30,8 @@ import math
 from dataclasses import asdict, dataclass, fields
 
 from .. import paper
-from .._validation import InputError, check_nonnegative, check_positive, check_range
+from .._validation import InputError
+from ..physics import limits as L
 
 __all__ = ["ValvetrainParameters", "STEEL_REDUCED_MODULUS", "PALMGREN_COEFFICIENT"]
 
@@ -119,28 +120,12 @@ class ValvetrainParameters:
     cam_width: float = paper.CAM_WIDTH
 
     def __post_init__(self):
-        pos = {"valve_mass": "kg", "tappet_mass": "kg", "spring_mass": "kg",
-               "spring_rate": "N/m", "spring_preload": "N", "contact_modulus": "Pa",
-               "tappet_valve_stiffness": "N/m", "seat_stiffness": "N/m",
-               "spring_seat_stiffness": "N/m", "spring_support_stiffness": "N/m",
-               "damping_force_ramp": "N", "bore_friction_velocity": "m/s",
-               "tappet_radius": "m", "cam_width": "m"}
-        nonneg = {"contact_damping": "N·s/m", "tappet_valve_damping": "N·s/m",
-                  "seat_damping": "N·s/m", "lash": "m", "bore_friction_coefficient": ""}
-        for name, unit in pos.items():
-            object.__setattr__(self, name, check_positive(name, getattr(self, name), unit))
-        for name, unit in nonneg.items():
-            object.__setattr__(self, name, check_nonnegative(name, getattr(self, name), unit))
-        object.__setattr__(self, "spring_damping_ratio",
-                           check_range("spring_damping_ratio", self.spring_damping_ratio,
-                                       0.0, 1.0, hi_open=True))
-        for name in ("contact_stiffness", "camshaft_stiffness"):
+        # ranges shared with the case file's [valvetrain] (physics.limits)
+        for name, limit in _LIMITS.items():
             v = getattr(self, name)
-            if v is not None:
-                object.__setattr__(self, name, check_positive(name, v, "N/m"))
-        n = self.spring_masses
-        if isinstance(n, bool) or not isinstance(n, int) or not 0 <= n <= 200:
-            raise InputError(f"spring_masses must be an integer in [0, 200] (got {n!r})")
+            if v is None and name in ("contact_stiffness", "camshaft_stiffness"):
+                continue
+            object.__setattr__(self, name, limit.check(name, v))
 
     # -- derived ------------------------------------------------------------------------
     @property
@@ -167,3 +152,20 @@ class ValvetrainParameters:
         d = asdict(self)
         d.update(changes)
         return ValvetrainParameters(**d)
+
+
+#: Range of every field (the case file's [valvetrain] uses the same limits).
+_LIMITS = {
+    "valve_mass": L.MASS, "tappet_mass": L.MASS, "spring_mass": L.MASS,
+    "spring_rate": L.SPRING_RATE, "spring_preload": L.SPRING_PRELOAD,
+    "spring_masses": L.SPRING_MASSES, "spring_damping_ratio": L.SPRING_DAMPING_RATIO,
+    "contact_stiffness": L.STIFFNESS, "contact_modulus": L.CONTACT_MODULUS,
+    "contact_damping": L.DAMPING, "camshaft_stiffness": L.STIFFNESS,
+    "tappet_valve_stiffness": L.STIFFNESS, "tappet_valve_damping": L.DAMPING, "lash": L.LASH,
+    "seat_stiffness": L.STIFFNESS, "seat_damping": L.DAMPING,
+    "spring_seat_stiffness": L.STIFFNESS, "spring_support_stiffness": L.STIFFNESS,
+    "damping_force_ramp": L.DAMPING_FORCE_RAMP,
+    "bore_friction_coefficient": L.BORE_FRICTION_COEFFICIENT,
+    "bore_friction_velocity": L.BORE_FRICTION_VELOCITY, "tappet_radius": L.LENGTH_BELOW_1M,
+    "cam_width": L.LENGTH_BELOW_1M,
+}

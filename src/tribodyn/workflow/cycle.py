@@ -284,7 +284,7 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None,
     if n.implicit_coupling and not coupling.converged:
         study.warnings.append(f"implicit coupling: {coupling.message}")
     if dyn.jump:
-        study.warnings.append(f"contact loss (jump) during the event at {dyn.jumps}")
+        study.warnings.append(_jump_warning(dyn))
     if case.valvetrain_model == "flexible":
         t0 = time.perf_counter()
         report("dynamics")
@@ -296,3 +296,21 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None,
     study.analyse()
     report("done", runtime_s=study.runtime_s)
     return study
+
+
+def _jump_warning(dyn) -> str:
+    """The contact-loss (valve jump) warning, with its share of the cam event."""
+    lost = sum(b - a for a, b in dyn.jumps)
+    ev = dyn.event_mask()
+    step = float(dyn.crank_angle[1] - dyn.crank_angle[0]) if dyn.crank_angle.size > 1 else 0.0
+    event = float(ev.sum()) * step
+    first = ", ".join(f"{a:.1f}–{b:.1f}°" for a, b in dyn.jumps[:3])
+    more = f" and {len(dyn.jumps) - 3} more" if len(dyn.jumps) > 3 else ""
+    text = (f"the tappet loses contact with the cam (valve jump) for {lost:.1f}° crank of the "
+            f"{event:.0f}° cam event ({first}{more})")
+    if event > 0 and lost > 0.1 * event:
+        text += (": the valvetrain does not follow the cam at this speed (check the masses, "
+                 "spring rate and preload); films and friction there describe the impacts, "
+                 "not the design")
+    return text
+

@@ -10,6 +10,8 @@ totals over ``width``.
 
 from __future__ import annotations
 
+import numpy as np
+
 from .. import paper
 from .._validation import InputError, check_positive, check_real
 from ..config import SurfaceSet
@@ -108,11 +110,17 @@ def _shear(v) -> float:
 
 
 def solve_point(case, surfaces: SurfaceSet, *, load_per_length, radius, width,
-                entrainment_speed=None, sliding_speed=0.0, dry=False,
+                entrainment_speed=None, sliding_speed=None, dry=False,
                 lubricant: Lubricant | None = None, options: EHLOptions | None = None,
                 n: int | None = None, thermal_oil=None) -> dict:
     """Solve one contact (see the module docstring). ``lubricant`` and ``options``
-    default to the case's; ``n`` is the dry grid (default 1024). ``thermal_oil``
+    default to the case's; ``n`` is the dry grid (default 1024). ``sliding_speed``
+    defaults to 0 for EHL; a dry contact takes no speeds.
+
+    ``warnings`` lists conditions outside the model's validity (film ≫ R, inertia, …; see
+    :mod:`tribodyn.contact.ehl.validity`). A solution whose film is not positive and finite
+    is not converged, and its solution fields (films, pressure, loads, friction) are
+    ``None``: there is no meaningful value to print. ``thermal_oil``
     (:class:`~tribodyn.physics.thermal_oil.ThermalLubricant`): solve the thermal EHL
     with the case's material thermal properties; the isothermal solution at the inlet
     temperature is reported beside it (keys ``isothermal_*``)."""
@@ -145,14 +153,14 @@ def solve_point(case, surfaces: SurfaceSet, *, load_per_length, radius, width,
         "hertz_max_pressure_Pa": hz.max_pressure,
     }
     if dry:
-        if entrainment_speed is not None or sliding_speed:
+        if entrainment_speed is not None or sliding_speed is not None:
             raise InputError("a dry contact takes no entrainment or sliding speed "
                              "(drop --ue/--us, or drop --dry for an EHL solution)")
         res = solve_dry_contact(w, radius, bodies, n=1024 if n is None else n)
         out.update({"half_width_m": res.half_width, "max_pressure_Pa": res.max_pressure,
                     "contact_center_m": res.contact_center, "grid_points": res.x.size,
                     "converged": bool(res.converged), "iterations": int(res.iterations),
-                    "message": res.message})
+                    "message": res.message, "warnings": list(res.warnings)})
         return out
 
     if entrainment_speed is None:
@@ -162,7 +170,7 @@ def solve_point(case, surfaces: SurfaceSet, *, load_per_length, radius, width,
     if ue == 0.0:
         raise InputError("entrainment_speed (--ue) must be non-zero [m/s]: a steady film "
                          "needs entrainment")
-    us = check_real("sliding_speed", sliding_speed, "m/s")
+    us = check_real("sliding_speed", 0.0 if sliding_speed is None else sliding_speed, "m/s")
     lub = lubricant or case.lubricant()
     if thermal_oil is not None:
         lub = thermal_oil.isothermal()
@@ -223,6 +231,7 @@ def solve_point(case, surfaces: SurfaceSet, *, load_per_length, radius, width,
         "converged": bool(res.converged),
         "iterations": int(res.iterations),
         "message": res.message,
+        "warnings": list(res.warnings),
     })
     out["thermal"] = thermal_oil is not None
     if thermal_oil is not None:
@@ -241,4 +250,15 @@ def solve_point(case, surfaces: SurfaceSet, *, load_per_length, radius, width,
             "isothermal_friction_N": itot["friction"],
             "isothermal_converged": bool(iso.converged),
         })
+    if not (res.min_film > 0.0 and np.isfinite(res.min_film)
+            and np.all(np.isfinite(res.pressure))):
+        out.update({k: None for k in _SOLUTION_KEYS})     # no lubricated solution
     return out
+
+
+#: Fields of an EHL solution; None when the film is not positive and finite.
+_SOLUTION_KEYS = (
+    "central_film_m", "min_film_m", "min_film_position_m", "film_parameter_lambda",
+    "max_pressure_Pa", "hydrodynamic_load_N", "asperity_load_N", "asperity_load_share",
+    "viscous_friction_N", "boundary_friction_N", "rolling_friction_N", "friction_N",
+    "friction_coefficient")

@@ -239,15 +239,17 @@ def summary(study, an: Analysis) -> dict:
     ev = an.in_event
     ref_bf = np.nansum(np.where(ref.loaded & ev, ref.boundary_friction, 0.0) * dt)
     out = {"case": study.case.name, "engine_speed_rpm": float(study.case.engine_speed),
-           "statistics_over": "cam event (lift > 10 µm) for films and forces; all loaded "
-                              "samples for friction energy and power",
+           "statistics_over": "cam event (lift > 10 µm), converged EHL samples, for films "
+                              "and friction maxima; all loaded samples for friction energy "
+                              "and power",
            "reference_set": ref.name, "roles": dict(an.roles),
            "film_gain_rule": FILM_GAIN_RULE,
            "representative_points_crank_deg": [float(c) for c in an.point_crank],
            "surface_sets": {}}
     for s in study.sets:
         L = s.loaded & ev
-        any_l = bool(L.any())
+        C = L & s.converged                   # films and maxima: converged samples only
+        any_c = bool(C.any())
         bf = np.nansum(np.where(L, s.boundary_friction, 0.0) * dt)
         energy = float(np.nansum(np.where(s.loaded, s.friction_power, 0.0) * dt))
         by_law = {}
@@ -259,22 +261,22 @@ def summary(study, an: Analysis) -> dict:
         out["surface_sets"][s.name] = {
             "label": study.labels[s.name],
             "peak_contact_force_N": _finite(dyn.contact_force.max()),
-            "min_film_m": _finite(np.nanmin(s.min_film[L])) if any_l else None,
-            "max_central_film_m": _finite(np.nanmax(s.central_film[L])) if any_l else None,
+            "min_film_m": _finite(np.nanmin(s.min_film[C])) if any_c else None,
+            "max_central_film_m": _finite(np.nanmax(s.central_film[C])) if any_c else None,
             "max_film_gain_vs_uncoated_pct": g["max_pct"],
             "mean_film_gain_vs_uncoated_pct": g["mean_pct"],
             "median_abs_film_gain_vs_uncoated_pct": g["median_abs_pct"],
             "p95_abs_film_gain_vs_uncoated_pct": g["p95_abs_pct"],
             "film_gain_at_points_pct": g["at_points_pct"],
-            "max_boundary_friction_N": _finite(np.nanmax(s.boundary_friction[L])) if any_l else None,
-            "max_viscous_friction_N": _finite(np.nanmax(s.viscous_friction[L])) if any_l else None,
+            "max_boundary_friction_N": _finite(np.nanmax(s.boundary_friction[C])) if any_c else None,
+            "max_viscous_friction_N": _finite(np.nanmax(s.viscous_friction[C])) if any_c else None,
             "boundary_friction_reduction_vs_uncoated_pct":
                 _finite((1.0 - bf / ref_bf) * 100.0) if ref_bf > 0 else None,
             "friction_energy_per_cycle_J": _finite(energy),
             "friction_energy_per_cycle_newtonian_J": by_law["newtonian"],
             "friction_energy_per_cycle_eyring_J": by_law["eyring"],
             "mean_friction_power_W": _finite(energy / period),
-            "min_lambda": _finite(np.nanmin(s.lambda_ratio[L])) if any_l else None,
+            "min_lambda": _finite(np.nanmin(s.lambda_ratio[C])) if any_c else None,
             "failed_steps": len(s.failures),
         }
     out["implicit_vs_explicit"] = _implicit_vs_explicit(study)

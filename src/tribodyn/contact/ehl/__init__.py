@@ -2,9 +2,10 @@
 
 Modules: :mod:`.options` (options, inputs, result) · :mod:`.grid` (domain and grid) ·
 :mod:`.reynolds` (discrete system and linearisation) · :mod:`.newton` (semismooth Newton,
-GMRES, two-grid) · :mod:`.postprocess` (friction, loads, checks) · :mod:`.steady` ·
-:mod:`.transient`; thermal EHL: :mod:`.energy` (film + solids energy equation) ·
-:mod:`.thermal` (steady) · :mod:`.thermal_transient`.
+GMRES, two-grid) · :mod:`.postprocess` (friction, loads, checks) · :mod:`.validity`
+(film > 0, the model's assumptions) · :mod:`.steady` · :mod:`.transient`; thermal EHL:
+:mod:`.energy` (film + solids energy equation) · :mod:`.thermal` (steady) ·
+:mod:`.thermal_transient`.
 
 Equations (x in the frame of the contact point, u_e the mean entraining speed):
 

@@ -12,7 +12,15 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ... import paper
-from ..._validation import InputError, check_nonnegative, check_positive, check_real
+from ..._validation import (
+    InputError,
+    check_bool,
+    check_choice,
+    check_int,
+    check_positive,
+    check_real,
+)
+from ...physics import limits as L
 from ...physics.asperity import Roughness
 from ...physics.friction import BOUNDARY_SHEAR_STRENGTH, VISCOUS_MODELS
 from ...physics.lubricant import Lubricant
@@ -66,27 +74,32 @@ class EHLOptions:
     time_order: int = 2
 
     def __post_init__(self):
-        if self.n is not None and int(self.n) < 32:
-            raise InputError(f"n must be >= 32 or None for automatic (got {self.n})")
-        for name in ("inlet", "outlet", "inlet_rigid", "outlet_rigid"):
-            v = check_positive(name, getattr(self, name))
-            if v < 1.0:
-                raise InputError(f"{name} must be >= 1 length scale (got {v:g})")
-        if self.n is not None and int(self.n) > 65536:
-            raise InputError(f"n must be <= 65536 (got {self.n})")
-        t = check_positive("inlet_truncation", self.inlet_truncation)
-        if t > 0.1:
-            raise InputError(f"inlet_truncation must be in (0, 0.1] (got {t:g})")
-        check_positive("tol", self.tol)
-        if int(self.max_iter) < 1:
-            raise InputError(f"max_iter must be >= 1 (got {self.max_iter})")
-        if self.viscous_model not in VISCOUS_MODELS:
-            raise InputError(f"viscous_model must be one of {VISCOUS_MODELS} "
-                             f"(got {self.viscous_model!r})")
-        check_nonnegative("boundary_shear_strength", self.boundary_shear_strength, "Pa")
-        check_nonnegative("boundary_shear_coefficient", self.boundary_shear_coefficient)
-        if self.time_order not in (1, 2):
-            raise InputError(f"time_order must be 1 or 2 (got {self.time_order})")
+        # ranges shared with the case file's [numerics] (physics.limits)
+        set_ = object.__setattr__
+        if self.n is not None:
+            set_(self, "n", L.EHL_NODES.check("n", self.n))
+        for name in ("inlet", "outlet"):
+            set_(self, name, L.DOMAIN_HALF_WIDTHS.check(name, getattr(self, name)))
+        for name in ("inlet_rigid", "outlet_rigid"):
+            set_(self, name, L.DOMAIN_RIGID_LENGTHS.check(name, getattr(self, name)))
+        set_(self, "inlet_truncation", L.INLET_TRUNCATION.check("inlet_truncation",
+                                                               self.inlet_truncation))
+        set_(self, "tol", L.NEWTON_TOL.check("tol", self.tol))
+        set_(self, "max_iter", L.NEWTON_MAX_ITER.check("max_iter", self.max_iter))
+        set_(self, "elastic", check_bool("elastic", self.elastic))
+        check_choice("viscous_model", self.viscous_model, VISCOUS_MODELS)
+        set_(self, "limiting_shear", check_bool("limiting_shear", self.limiting_shear))
+        set_(self, "boundary_shear_strength", L.BOUNDARY_SHEAR_STRENGTH.check(
+            "boundary_shear_strength", self.boundary_shear_strength))
+        set_(self, "boundary_shear_coefficient", L.BOUNDARY_SHEAR_COEFFICIENT.check(
+            "boundary_shear_coefficient", self.boundary_shear_coefficient))
+        try:
+            order = check_int("time_order", self.time_order)
+        except InputError:
+            order = None
+        if order not in (1, 2):
+            raise InputError(f"time_order must be 1 or 2 (got {self.time_order!r})")
+        set_(self, "time_order", order)
 
 
 # ----------------------------------------------------------------------------- result
@@ -119,6 +132,8 @@ class EHLResult:
     squeeze_velocity: float = 0.0   #: −dh_c/dt, approach speed of the central film [m/s]
     shear_stress: np.ndarray = field(default=None, repr=False)   #: viscous τ(x) [Pa]
     inlet_load_deficit: float = 0.0  #: estimated share of w lost to the truncated inlet
+    #: conditions outside the model's validity (also appended to ``message``)
+    warnings: list = field(default_factory=list)
 
     @property
     def friction(self) -> float:

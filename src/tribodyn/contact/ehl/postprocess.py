@@ -1,5 +1,6 @@
 """Post-processing of an EHL solution: friction, loads, films and their positions, the
-outlet meniscus, and checks of the domain (inlet truncation, outlet pressure).
+outlet meniscus, checks of the domain (inlet truncation, outlet pressure) and of the
+model's validity (:mod:`.validity`).
 
 Friction per unit length (magnitudes): viscous ∫|τ| dx with the Couette stress of the
 chosen law (Newtonian or Eyring, capped at the limiting shear stress; paper Eq. 16 and
@@ -21,6 +22,7 @@ from ...physics.friction import (
 from .newton import NewtonOutcome
 from .options import EHLOptions, EHLResult
 from .reynolds import ReynoldsSystem
+from .validity import check_solution
 
 __all__ = ["postprocess", "shear_stress"]
 
@@ -103,13 +105,15 @@ def _postprocess(sysm: ReynoldsSystem, out: NewtonOutcome, opts: EHLOptions, tim
         nb = e + 1 if e == 0 else e - 1
         deficit += abs(p[nb] - p[e]) / dx * x[e] ** 2 / 2.0
     deficit /= w
+    warns = []
     if ok and deficit > 2.0 * opts.inlet_truncation:
-        msg += (f"; warning: truncated inlet carries an estimated {deficit:.1%} of the load "
-                "(lower inlet_truncation or increase inlet)")
+        warns.append(f"truncated inlet carries an estimated {deficit:.1%} of the load "
+                     "(lower inlet_truncation or increase inlet)")
     out_end = g.n - 2 if g.direction > 0 else 1
     if ok and g.direction != 0 and p[out_end] > 1e-3 * p.max():
-        msg += "; warning: pressure not negligible at the outlet (increase outlet)"
-    return EHLResult(
+        warns.append("pressure not negligible at the outlet (increase outlet)")
+    msg += "".join(f"; warning: {t}" for t in warns)
+    res = EHLResult(
         x=x, pressure=p, asperity_pressure=pa, film=h, central_film=float(np.interp(0.0, x, h)),
         min_film=float(h[i_min]), min_film_position=float(x[i_min]), cavitation_position=x_cav,
         rigid_approach=float(st.H0 * sysm.h_ref), load=w, hydrodynamic_load=float(np.sum(p) * dx),
@@ -117,5 +121,7 @@ def _postprocess(sysm: ReynoldsSystem, out: NewtonOutcome, opts: EHLOptions, tim
         boundary_friction=f_b, entrainment_speed=ue, sliding_speed=us, radius=R,
         converged=bool(ok), iterations=int(it), message=msg, time=time,
         squeeze_velocity=squeeze_velocity, shear_stress=tau, inlet_load_deficit=deficit,
+        warnings=warns,
     )
+    return check_solution(res, sysm.model)   # film > 0, validity of the model
 

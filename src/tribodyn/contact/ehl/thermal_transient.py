@@ -102,14 +102,14 @@ class ThermalTransientEHL(TransientEHL):
         x, _, dt_, R = self._hist[0]
         self._hist[0] = (x, sysm.lub.density_at(self._p) * self._h, dt_, R)
 
-    def _snapshot(self):
+    def _state(self):
         tf = self.tf
-        return (super()._snapshot(), (tf, None if tf is None else tf.theta.copy(), self._p_T,
-                                      self._rho_h_T, self._T_nodes))
+        return (super()._state(), (tf, None if tf is None else tf.theta.copy(), self._p_T,
+                                   self._rho_h_T, self._T_nodes))
 
-    def _restore(self, snap):
+    def _set_state(self, snap):
         base, thermal = snap
-        super()._restore(base)
+        super()._set_state(base)
         self.tf, theta, self._p_T, self._rho_h_T, self._T_nodes = thermal
         if self.tf is not None:
             self.tf.theta = theta.copy()

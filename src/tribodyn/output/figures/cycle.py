@@ -264,8 +264,9 @@ def fig20(ds, path):
         return f"{lab}: min λ = {np.nanmin(lam[j][sel]):.2f}"
     _cycle_lines(b, ds, lam, win, styles, label_fmt=fmt_l)
     b.set_yscale("log")
-    lo = min(0.5, 0.8 * np.nanmin(lam[:, sel]))
-    b.set_ylim(lo, 1.5 * np.nanmax(lam[:, sel]))
+    pos = lam[:, sel][lam[:, sel] > 0]          # failed steps may hold λ ≤ 0
+    lo = min(0.5, 0.8 * float(pos.min())) if pos.size else 0.5
+    b.set_ylim(lo, max(1.5 * float(np.nanmax(lam[:, sel])), 10.0 * lo))
     log_ticks(b)
     b.axhspan(lo, 1.0, color="tab:red", alpha=0.08, zorder=0)
     b.axhspan(1.0, 3.0, color="tab:orange", alpha=0.08, zorder=0)

@@ -18,21 +18,33 @@ __all__ = ["plot_height_distribution"]
 
 def _panels(results):
     """(title, heights [m]) per surface; a pair adds its sum surface h₁ + h₂."""
-    if isinstance(results, (SurfaceAnalysis, PairAnalysis)):
+    if isinstance(results, (SurfaceAnalysis, PairAnalysis)) or \
+            getattr(results, "kind", "") == "profile":
         results = [results]
     panels = []
     for r in results:
         if isinstance(r, PairAnalysis):
             panels += _panels([r.first, r.second])
             ta, tb = r.first.topography, r.second.topography
+            if ta is None or tb is None:          # a profile in the pair: no sum surface
+                continue
             combined = sum_on_common_grid(ta.heights(), ta.pixel_size, ta.is_periodic,
                                           tb.heights(), tb.pixel_size, tb.is_periodic)
             if combined is not None:
-                panels.append((f"sum surface {r.first.name} + {r.second.name}", combined[0]))
+                h = combined[0]
+                filled = np.zeros(h.shape, dtype=bool)
+                for part in (r.first, r.second):
+                    if part.filled is not None:
+                        filled |= np.asarray(part.filled)[:h.shape[0], :h.shape[1]]
+                panels.append((f"sum surface {r.first.name} + {r.second.name}", h[~filled]))
         elif isinstance(r, SurfaceAnalysis):
             if r.topography is None:
                 raise TypeError(f"analysis '{r.name}' carries no height map to plot")
-            panels.append((r.name, np.asarray(r.topography.heights(), dtype=float)))
+            h = np.asarray(r.topography.heights(), dtype=float)
+            panels.append((r.name, h if r.filled is None else h[~np.asarray(r.filled)]))
+        elif getattr(r, "kind", "") == "profile":
+            h = np.asarray(r.profile, dtype=float)
+            panels.append((f"profile {r.name}", h if r.filled is None else h[~r.filled]))
         else:
             raise TypeError(f"expected SurfaceAnalysis or PairAnalysis (got {type(r).__name__})")
     return panels

@@ -1,0 +1,113 @@
+"""Checks of an EHL solution against the assumptions of the model.
+
+Run at the end of every post-processing (steady solves and transient steps).
+
+Not a solution (``converged=False``, whatever Newton said):
+
+* a film that is not finite or not positive somewhere, h(x) ≤ 0. The gap h is the
+  separation of the mean planes of the rough surfaces; h ≤ 0 means they interpenetrate,
+  where neither the Reynolds equation (flow ∝ h³) nor Greenwood–Tripp's asperity model
+  (asperities much smaller than the gap to the other mean plane) holds. It happens when the
+  load is far beyond what the surfaces can carry elastically (e.g. 1e9 N/m on steel).
+
+Outside the model's validity (the result stays as computed and gets a warning, in
+``EHLResult.warnings`` and appended to ``message`` as ``"; warning: …"``):
+
+* **thin film** — Reynolds' equation is the leading order of the Navier–Stokes equations
+  in the film aspect ratio ε = h/ℓ, with corrections of order ε² (Szeri, *Fluid Film
+  Lubrication*, 2nd ed., 2011, §2.1–2.3). The film varies over ℓ = max(b, √(2R h_c))
+  (Hertz half-width in elastic contacts, rigid inlet length otherwise), so ε = h_c/ℓ; the
+  warning is given at ε > 0.1 (corrections > 1 %). For the rigid cylinder ε² = h_c/(2R):
+  films above 2 % of R are flagged.
+* **contact size** — the parabolic gap x²/(2R) differs from the circle by x²/(4R²)
+  relative, and Hertz's half-space idealisation needs a contact much smaller than R
+  (Johnson, *Contact Mechanics*, 1985, §4.1). The warning is given when the zone carrying
+  98 % of the load reaches beyond |x| = 0.1 R (or the Hertz half-width b exceeds 0.1 R).
+* **fluid inertia** — the modified Reynolds number Re* = ρ₀|u_e| h_c²/(μ₀ ℓ) measures
+  inertia against viscous forces in the film (Szeri 2011, §2.3; Hamrock, Schmid & Jacobson,
+  *Fundamentals of Fluid Film Lubrication*, 2004, §7.2); inertia changes the pressure by
+  O(Re*), flagged at Re* > 0.1.
+* **pressure** — a peak contact pressure above 4 GPa lies beyond the first yield of
+  hardened steel (p₀ ≈ 1.67 Y for line contact, Johnson 1985 §6.2, Y ≈ 2 GPa) and far
+  beyond the measurements behind the Roelands and Dowson–Higginson laws (≲ 1–2 GPa): the
+  elastic, isothermal model does not describe it.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .options import ContactModel, EHLResult
+
+__all__ = ["check_solution", "MAX_ASPECT_RATIO", "MAX_ZONE_TO_RADIUS",
+           "MAX_MODIFIED_REYNOLDS", "MAX_PRESSURE"]
+
+#: film aspect ratio h_c/ℓ above which Reynolds' thin-film approximation is flagged
+MAX_ASPECT_RATIO = 0.1
+#: load-carrying zone (or Hertz half-width) relative to R above which the parabolic gap
+#: and the half-space elasticity are flagged
+MAX_ZONE_TO_RADIUS = 0.1
+#: modified Reynolds number above which fluid inertia is flagged
+MAX_MODIFIED_REYNOLDS = 0.1
+#: peak contact pressure [Pa] above which the elastic, isothermal model is flagged
+MAX_PRESSURE = 4e9
+
+
+def _load_zone(x: np.ndarray, q: np.ndarray) -> float:
+    """Largest |x| of the zone holding the central 98 % of ∫q dx [m]."""
+    c = np.cumsum(np.clip(q, 0.0, None))
+    if c[-1] <= 0.0 or not np.isfinite(c[-1]):
+        return 0.0
+    lo, hi = np.searchsorted(c, [0.01 * c[-1], 0.99 * c[-1]])
+    hi = min(hi, x.size - 1)
+    return float(max(abs(x[lo]), abs(x[hi])))
+
+
+def check_solution(res: EHLResult, model: ContactModel) -> EHLResult:
+    """Flag ``res`` (in place, and returned): non-positive or non-finite film →
+    ``converged=False``; outside the model's validity → a warning (module docstring)."""
+    h = np.asarray(res.film, dtype=float)
+    if not np.all(np.isfinite(h)):
+        if res.converged:
+            res.message = "non-finite film: " + res.message
+        res.converged = False
+        return res
+    h_min = float(h.min())
+    if h_min <= 0.0:
+        res.converged = False
+        res.message = (f"non-physical film: h_min = {h_min:.3g} m ≤ 0 (the mean planes of "
+                       "the surfaces interpenetrate; the load is beyond what the lubricated "
+                       f"contact model describes) [Newton: {res.message}]")
+        return res
+    R, w, hc = res.radius, res.load, res.central_film
+    lub = model.lubricant
+    b = math.sqrt(8.0 * w * R / (math.pi * model.e_bulk))
+    ell = max(b, math.sqrt(2.0 * R * max(hc, 0.0)))
+    found = []
+    eps = hc / ell if ell > 0 else math.inf
+    if eps > MAX_ASPECT_RATIO:
+        found.append(f"film h_c = {hc:.3g} m is {hc / R:.3g} R and {eps:.2g} of the length "
+                     f"over which it varies (ℓ = {ell:.3g} m): Reynolds' thin-film "
+                     f"approximation needs h/ℓ ≪ 1 (flagged above {MAX_ASPECT_RATIO:g})")
+    zone = _load_zone(res.x, res.pressure + res.asperity_pressure)
+    size = max(zone, b)
+    if size > MAX_ZONE_TO_RADIUS * R:
+        found.append(f"the load-carrying zone reaches {size / R:.3g} R (Hertz b = "
+                     f"{b / R:.3g} R): the parabolic gap and half-space elasticity need a "
+                     f"contact much smaller than R (flagged above {MAX_ZONE_TO_RADIUS:g} R)")
+    re_star = lub.density * abs(res.entrainment_speed) * hc**2 / (lub.viscosity * ell)
+    if re_star > MAX_MODIFIED_REYNOLDS:
+        found.append(f"modified Reynolds number ρu_e h_c²/(μ₀ℓ) = {re_star:.3g}: fluid "
+                     "inertia, neglected by the Reynolds equation, is not negligible "
+                     f"(flagged above {MAX_MODIFIED_REYNOLDS:g})")
+    p_max = float(np.max(res.pressure + res.asperity_pressure))
+    if p_max > MAX_PRESSURE:
+        found.append(f"peak contact pressure {p_max / 1e9:.3g} GPa exceeds "
+                     f"{MAX_PRESSURE / 1e9:g} GPa: beyond the elastic limit of hardened steel "
+                     "and the measured range of the Roelands and Dowson–Higginson laws")
+    for text in found:
+        res.warnings.append(text)
+        res.message += f"; warning: {text}"
+    return res

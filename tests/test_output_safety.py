@@ -1,0 +1,242 @@
+"""Results are never lost or misplaced: output checked before computing, only tribodyn's own
+result folders replaced, results rescued when writing fails, SIGTERM handled like Ctrl-C,
+temporary folders of killed runs cleaned up."""
+
+import errno
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+from types import SimpleNamespace
+
+import pytest
+import xarray as xr
+from typer.testing import CliRunner
+
+from tribodyn import InputError
+from tribodyn.cli import app
+from tribodyn.config import load_case
+from tribodyn.output import (
+    OutputWriteError,
+    check_output_dir,
+    clean_stale,
+    is_result_folder,
+    write_atomic,
+    write_results,
+)
+from tribodyn.output import writer as W
+
+runner = CliRunner()
+
+
+def dead_pid() -> int:
+    """A PID that belongs to no process (a child that has exited and been reaped)."""
+    p = subprocess.Popen([sys.executable, "-c", "pass"])
+    p.wait()
+    return p.pid
+
+
+# ----------------------------------------------------------------------------- before computing
+def test_existing_file_is_refused_and_left_alone(tmp_path):
+    f = tmp_path / "notes.txt"
+    f.write_text("my notes")
+    with pytest.raises(InputError, match="is an existing file"):
+        check_output_dir(f)
+    r = runner.invoke(app, ["run", "-o", str(f), "-q"])
+    assert r.exit_code == 2 and "existing file" in r.output
+    assert f.read_text() == "my notes"
+    assert [p.name for p in tmp_path.iterdir()] == ["notes.txt"]
+
+
+def test_foreign_folder_is_refused_empty_and_result_folders_accepted(tmp_path):
+    foreign = tmp_path / "photos"
+    foreign.mkdir()
+    (foreign / "a.jpg").write_bytes(b"x")
+    with pytest.raises(InputError, match="did not write"):
+        check_output_dir(foreign)
+    r = runner.invoke(app, ["run", "-o", str(foreign), "-q"])
+    assert r.exit_code == 2 and (foreign / "a.jpg").exists()
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    assert check_output_dir(empty) == empty
+    marked = tmp_path / "marked"
+    marked.mkdir()
+    (marked / W.MARKER).write_text("{}")
+    (marked / "results.nc").write_bytes(b"old")
+    assert is_result_folder(marked) and check_output_dir(marked) == marked
+    legacy = tmp_path / "legacy"                       # written by tribodyn 0.1
+    legacy.mkdir()
+    for name in ("results.nc", "summary.json", "case.toml"):
+        (legacy / name).write_text("x")
+    assert is_result_folder(legacy)
+
+
+def test_parent_that_is_a_file_is_refused(tmp_path):
+    (tmp_path / "f").write_text("x")
+    with pytest.raises(InputError, match="is a file, not a folder"):
+        check_output_dir(tmp_path / "f" / "sub" / "res")
+
+
+def test_unwritable_location_is_refused(tmp_path):
+    if os.geteuid() == 0:               # root writes anywhere: use a location no one can
+        target = Path("/proc/tribodyn-results")
+    else:
+        ro = tmp_path / "ro"
+        ro.mkdir()
+        ro.chmod(0o555)
+        target = ro / "res"
+    with pytest.raises(InputError, match="cannot write in"):
+        check_output_dir(target)
+
+
+def test_full_disk_is_detected_by_the_probe(tmp_path, monkeypatch):
+    def full(fd):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(W.os, "fsync", full)
+    with pytest.raises(InputError, match="No space left on device"):
+        check_output_dir(tmp_path / "res")
+    assert not list(tmp_path.iterdir())                     # the probe is removed
+
+
+def test_too_little_free_space_is_refused(tmp_path, monkeypatch):
+    monkeypatch.setattr(W.shutil, "disk_usage",
+                        lambda p: SimpleNamespace(total=1 << 30, used=1 << 30, free=5 << 20))
+    with pytest.raises(InputError, match="only 5 MB free"):
+        check_output_dir(tmp_path / "res")
+
+
+def test_bad_output_is_refused_before_the_study_runs(tmp_path, monkeypatch):
+    import tribodyn.workflow.cycle as cycle
+    monkeypatch.setattr(cycle, "run_cycle_study",
+                        lambda *a, **k: pytest.fail("the study must not start"))
+    (tmp_path / "f").write_text("x")
+    r = runner.invoke(app, ["run", "-o", str(tmp_path / "f" / "res"), "-q"])
+    assert r.exit_code == 2 and "-o/--out" in r.output
+    r = runner.invoke(app, ["run", "-j", "-3", "-o", str(tmp_path / "res"), "-q"])
+    assert r.exit_code == 2 and "-j/--workers" in r.output
+
+
+# ----------------------------------------------------------------------------- atomic writing
+def test_results_folders_are_marked(tmp_path):
+    out = write_atomic(tmp_path / "res", lambda d: (d / "x.txt").write_text("1"),
+                       meta={"case": "c"})
+    info = json.loads((out / W.MARKER).read_text())
+    assert info["tool"] == "tribodyn" and info["case"] == "c"
+    out = write_atomic(tmp_path / "res", lambda d: (d / "y.txt").write_text("2"))
+    assert (out / "y.txt").exists() and not (out / "x.txt").exists()
+    with pytest.raises(InputError, match="did not write"):
+        (tmp_path / "other").mkdir()
+        (tmp_path / "other" / "keep").write_text("k")
+        write_atomic(tmp_path / "other", lambda d: None)
+    assert (tmp_path / "other" / "keep").read_text() == "k"
+
+
+def test_interrupt_while_writing_leaves_no_trace(tmp_path):
+    def interrupted(d):
+        (d / "results.nc").write_text("half")
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        write_atomic(tmp_path / "res", interrupted)
+    assert not list(tmp_path.iterdir())
+
+
+def test_stale_temporary_folders_are_cleaned(tmp_path):
+    dead = dead_pid()
+    stale = tmp_path / f".res.tmp-{dead}-abc123"          # killed run (process gone)
+    stale.mkdir()
+    (stale / "results.nc").write_text("x")
+    alive = tmp_path / f".res.tmp-{os.getppid()}-xyz789"   # a running process: kept
+    alive.mkdir()
+    legacy = tmp_path / ".res.tmp-k3j2h1g0"                # 0.1 name, an hour old
+    legacy.mkdir()
+    old = time.time() - 2 * 3600
+    os.utime(legacy, (old, old))
+    young = tmp_path / ".res.tmp-q9w8e7r6"                 # 0.1 name, just now: kept
+    young.mkdir()
+    other = tmp_path / ".other.tmp-1-abc"                  # another target: kept
+    other.mkdir()
+    write_atomic(tmp_path / "res", lambda d: (d / "new").write_text("1"))
+    left = sorted(p.name for p in tmp_path.iterdir())
+    assert left == sorted(["res", alive.name, young.name, other.name])
+
+
+def test_previous_results_are_restored_after_a_kill_between_renames(tmp_path):
+    old = tmp_path / f".res.old-{dead_pid()}"
+    old.mkdir()
+    (old / W.MARKER).write_text("{}")
+    (old / "summary.json").write_text("previous")
+    restored = clean_stale(tmp_path / "res")
+    assert restored == [old]
+    assert (tmp_path / "res" / "summary.json").read_text() == "previous"
+
+
+# ----------------------------------------------------------------------------- rescue
+@pytest.fixture
+def fake_study(monkeypatch):
+    """A stand-in for a computed study: write_results needs its Dataset, summary and case."""
+    ds = xr.Dataset({"central_film": ("crank", [1e-7, 2e-7])}, coords={"crank": [0.0, 1.0]})
+    monkeypatch.setattr(W, "study_to_dataset", lambda study: ds)
+    case = load_case()
+    return SimpleNamespace(case=case, analyse=lambda: SimpleNamespace(summary={"a": 1}))
+
+
+def test_results_are_rescued_when_writing_fails(tmp_path, monkeypatch, fake_study):
+    target = tmp_path / "res"
+    original = xr.Dataset.to_netcdf
+
+    def disk_full(self, path, *a, **k):
+        if ".res.tmp-" in str(path):
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return original(self, path, *a, **k)
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", disk_full)
+    monkeypatch.setattr(W.tempfile, "gettempdir", lambda: str(tmp_path / "rescue-area"))
+    with pytest.raises(OutputWriteError) as info:
+        write_results(fake_study, target, figures=False, report=False)
+    err = info.value
+    assert "no space left on the device" in str(err) and str(err.rescued) in str(err)
+    assert err.rescued.parent == tmp_path / "rescue-area"
+    with xr.open_dataset(err.rescued / "results.nc", engine="h5netcdf") as ds:
+        assert ds["central_film"].values.tolist() == [1e-7, 2e-7]
+    assert json.loads((err.rescued / "summary.json").read_text()) == {"a": 1}
+    assert (err.rescued / "case.toml").is_file()
+    assert not target.exists()
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".res")]
+
+
+def test_a_target_taken_meanwhile_is_rescued_too(tmp_path, monkeypatch, fake_study):
+    target = tmp_path / "res"
+    target.write_text("someone else's file")        # appeared after the check
+    monkeypatch.setattr(W.tempfile, "gettempdir", lambda: str(tmp_path / "rescue-area"))
+    with pytest.raises(OutputWriteError, match="existing file") as info:
+        write_results(fake_study, target, figures=False, report=False)
+    assert (info.value.rescued / "results.nc").is_file()
+    assert target.read_text() == "someone else's file"
+
+
+# ----------------------------------------------------------------------------- SIGTERM
+@pytest.mark.parametrize("delay", [1.0, 10.0])    # in the dynamics; among the EHL workers
+def test_sigterm_stops_a_run_cleanly(tmp_path, delay):
+    """SIGTERM during the computation: workers stopped, nothing written, no temporary
+    folder, exit code 143, a message instead of a traceback."""
+    case = tmp_path / "c.toml"
+    load_case().updated({"numerics.workers": 2, "numerics.crank_step_deg": 2.0}).write_toml(case)
+    out = tmp_path / "out"
+    proc = subprocess.Popen([sys.executable, "-m", "tribodyn", "run", str(case), "-o", str(out),
+                             "-q"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.time() + 60
+    line = ""
+    while time.time() < deadline and "case" not in line:
+        line = proc.stdout.readline()
+    time.sleep(delay)
+    proc.send_signal(signal.SIGTERM)
+    stdout, stderr = proc.communicate(timeout=60)
+    assert proc.returncode == 143, stdout + stderr
+    assert "interrupted" in stdout and "Traceback" not in stdout + stderr
+    assert not out.exists()
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".out")]

@@ -1,0 +1,204 @@
+"""No silent garbage: a non-physical film is never converged, results outside the model's
+validity carry warnings, a huge transient step ends in bounded time, bad case files and
+absurd valvetrains are reported with the key named."""
+
+import json
+import math
+import time
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from tribodyn import (
+    Body,
+    InputError,
+    Lubricant,
+    Material,
+    Roughness,
+    TransientEHL,
+    solve_dry_contact,
+    solve_ehl,
+)
+from tribodyn.cli import app
+from tribodyn.config import load_case
+from tribodyn.contact.ehl import transient as transient_module
+from tribodyn.contact.ehl.validity import MAX_ASPECT_RATIO
+
+STEEL = Material(210e9, 0.3)
+PAIR = (Body(STEEL), Body(STEEL))
+OIL = Lubricant(0.055, 1.05e-8)
+ROUGH = Roughness(2.7e9, 0.347e-6, 0.217e-6)
+runner = CliRunner()
+
+
+# ----------------------------------------------------------------------------- EHL validity
+@pytest.mark.parametrize("rough", [None, ROUGH])
+def test_negative_film_is_never_converged(rough):
+    # 1e9 N/m on a 10 mm steel cylinder: Hertz b = 0.33 m ≫ R; the last iterate has h < 0
+    r = solve_ehl(1e9, 0.01, 2.0, 3.0, PAIR, OIL, rough, n=256)
+    assert r.min_film <= 0.0
+    assert r.converged is False
+    assert r.message.startswith("non-physical film: h_min =")
+
+
+def test_film_much_larger_than_the_radius_is_flagged():
+    r = solve_ehl(1e-3, 0.01, 2.0, 3.0, PAIR, OIL)
+    assert r.converged and r.central_film > 0.01          # a film of metres on R = 10 mm
+    assert any("thin-film approximation" in w for w in r.warnings)
+    assert any("load-carrying zone" in w for w in r.warnings)
+    assert "; warning: film h_c" in r.message
+
+
+def test_inertia_is_flagged_at_absurd_speeds():
+    r = solve_ehl(633 / 0.012, 0.01, 1e6, 1e6, PAIR, OIL)
+    text = " ".join(r.warnings)
+    assert "thin-film" in text and "modified Reynolds number" in text
+
+
+def test_ordinary_contacts_carry_no_validity_warning():
+    """The paper's Fig. 5 point and a heavily loaded nose: inside every limit."""
+    for w, R, u in ((633 / 0.012, 0.01, 15.31), (5e4, 0.003, 2.0)):
+        r = solve_ehl(w, R, u, 1.0, PAIR, OIL, ROUGH)
+        assert r.converged and not r.warnings, r.warnings
+        hc, b = r.central_film, math.sqrt(8 * w * R / (math.pi * 2.3077e11))
+        assert hc / max(b, math.sqrt(2 * R * hc)) < MAX_ASPECT_RATIO
+
+
+def test_dry_contact_beyond_hertz_is_flagged():
+    r = solve_dry_contact(1e9, 0.01, PAIR, n=256)
+    assert any("half-width" in w for w in r.warnings)
+    assert any("GPa exceeds 4 GPa" in w for w in r.warnings)
+    assert not solve_dry_contact(633 / 0.012, 0.01, PAIR, n=256).warnings
+
+
+# ----------------------------------------------------------------------------- transient effort
+def _count_advances(monkeypatch):
+    calls = []
+    orig = transient_module.TransientEHL._advance
+
+    def counted(self, dt, cond):
+        res = orig(self, dt, cond)
+        calls.append(res.converged)
+        return res
+
+    monkeypatch.setattr(transient_module.TransientEHL, "_advance", counted)
+    return calls
+
+
+@pytest.mark.parametrize("n", [128, 256])
+def test_hundredfold_load_step_ends_in_bounded_effort(monkeypatch, n):
+    """4e4 → 4e6 N/m in one step: sub-stepped along a linear ramp (at most 2^max_substeps
+    equal sub-steps, halved on failure) in bounded effort, converged with a positive film
+    or reported as not converged, with a warning about the coarse step."""
+    tr = TransientEHL(PAIR, OIL, ROUGH, n=n)
+    tr.start_steady(4e4, 0.01, 2.0, 3.0)
+    calls = _count_advances(monkeypatch)
+    t0 = time.perf_counter()
+    r = tr.step(1e-4, 4e6, 0.01, 2.0, 3.0)
+    elapsed = time.perf_counter() - t0
+    k = tr.max_substeps
+    # ≤ 2^k marks, ≤ 2k + 1 failures each followed by ≤ k + 1 successes before the next
+    # mark, and one final attempt
+    assert len(calls) <= 2**k + (2 * k + 1) * (k + 2) + 1
+    assert elapsed < 120
+    assert tr.time == pytest.approx(1e-4)
+    if r.converged:
+        assert r.min_film > 0 and np.all(np.isfinite(r.pressure)) and r.load == 4e6
+    assert any("changed by a factor 100 within one step" in w for w in r.warnings)
+
+
+def test_a_step_that_cannot_converge_gives_up(monkeypatch):
+    tr = TransientEHL(PAIR, OIL, ROUGH, n=128, max_iter=2, max_substeps=2)
+    tr.start_steady(4e4, 0.01, 2.0, 3.0)
+    calls = _count_advances(monkeypatch)
+    r = tr.step(1e-4, 4e6, 0.01, 2.0, 3.0)
+    assert r.converged is False and "gave up" in r.message
+    assert len(calls) <= 2**2 + (2 * 2 + 1) * (2 + 2) + 1
+    assert tr.time == pytest.approx(1e-4)                   # the march stays on time
+
+
+def test_small_steps_are_not_split():
+    tr = TransientEHL(PAIR, OIL, ROUGH, n=256)
+    tr.start_steady(4e4, 0.01, 2.0, 3.0)
+    r = tr.step(1e-5, 6e4, 0.01, 2.0, 3.0)
+    assert r.converged and "sub-steps" not in r.message
+
+
+# ----------------------------------------------------------------------------- tribodyn contact
+def contact(*args):
+    return runner.invoke(app, ["contact", *args])
+
+
+@pytest.mark.parametrize("extra", [["--ue", "1"], ["--us", "2"], ["--us", "0"]])
+def test_dry_with_speeds_is_an_error(extra):
+    r = contact("--dry", "--load", "633", "--radius", "0.01", *extra)
+    assert r.exit_code == 2 and "dry contact takes no entrainment or sliding speed" in r.output
+
+
+def test_cli_prints_no_negative_film():
+    r = contact("--load", "1e9", "--radius", "0.01", "--ue", "2", "--us", "1", "--n", "256",
+                "--json")
+    assert r.exit_code == 1
+    out = json.loads(r.stdout)
+    assert out["converged"] is False and out["message"].startswith("non-physical film")
+    assert out["central_film_m"] is None and out["min_film_m"] is None
+    assert out["friction_N"] is None
+
+
+def test_cli_warns_outside_the_models_validity():
+    r = contact("--ue", "1e6", "--us", "1e6", "--load", "633", "--radius", "0.01", "--json")
+    assert r.exit_code == 0
+    out = json.loads(r.stdout)
+    assert out["converged"] and len(out["warnings"]) >= 2
+    r = contact("--ue", "1e6", "--us", "1e6", "--load", "633", "--radius", "0.01")
+    text = " ".join(r.stdout.split())
+    assert "warning: film h_c" in text and "Reynolds' thin-film approximation" in text
+
+
+# ----------------------------------------------------------------------------- case files
+@pytest.mark.parametrize("content, what", [
+    ("[engine]\nspeed_rpm = 2000\n# Motorölviskosität\n".encode("latin-1"), "not UTF-8"),
+    ("[engine]\nspeed_rpm = 2000\n".encode("utf-16"), "not UTF-8"),
+    (bytes(range(256)) * 4, "not UTF-8"),
+    (b"\x00\x00\x00\x00" * 64, "TOML syntax error"),
+])
+def test_undecodable_case_files_are_input_errors(tmp_path, content, what):
+    path = tmp_path / "case.toml"
+    path.write_bytes(content)
+    with pytest.raises(InputError, match=what):
+        load_case(path)
+    r = runner.invoke(app, ["run", str(path), "-o", str(tmp_path / "out")])
+    assert r.exit_code == 2 and what in " ".join(r.output.split())
+    assert r.exception is None or isinstance(r.exception, SystemExit)
+    assert not (tmp_path / "out").exists()
+
+
+def test_dynamics_failure_is_reported_not_raised(monkeypatch):
+    """A stiff integrator that gives up before the first output point (as LSODA did at a
+    contact stiffness of 1e30 N/m) returns converged=False with its message."""
+    from types import SimpleNamespace
+
+    from tribodyn.valvetrain import dynamics, simulate_valvetrain
+    case = load_case()
+    fail = SimpleNamespace(status=-1, t=np.empty(0), y=np.empty((0, 0)), nfev=10, njev=1,
+                           nlu=1, message="Repeated convergence failures")
+    monkeypatch.setattr(dynamics, "solve_ivp", lambda *a, **k: fail)
+    r = simulate_valvetrain(case.cam(), case.valvetrain_parameters(), engine_speed=3000)
+    assert r.converged is False
+    assert "solver failed at t = 0 s: Repeated convergence failures" in r.message
+
+
+def test_valve_jump_is_reported_clearly():
+    """A 1 kg valve (allowed, heavy) on the paper's spring leaves the cam: the study warns
+    with the share of the event lost."""
+    from tribodyn.valvetrain import simulate_valvetrain
+    from tribodyn.workflow.cycle import _jump_warning
+    case = load_case().updated({"valvetrain.valve_mass": 1.0})
+    dyn = simulate_valvetrain(case.cam(), case.valvetrain_parameters(),
+                              tribology=case.analytic_tribology("uncoated"),
+                              **case.dynamics_options())
+    assert dyn.converged and dyn.jump
+    text = _jump_warning(dyn)
+    assert "loses contact with the cam (valve jump)" in text
+    assert "does not follow the cam" in text
