@@ -132,11 +132,16 @@ def _coating_studies_task(case, reference: str, nose):
 
 
 # ----------------------------------------------------------------------------- driver
-def run_cycle_study(case, *, workers: int | None = None, progress=None) -> CycleStudy:
+def run_cycle_study(case, *, workers: int | None = None, progress=None,
+                    executor=None) -> CycleStudy:
     """Run the whole study for a validated :class:`~tribodyn.config.Case`.
 
     ``progress(event, **info)`` receives ``("dynamics", …)``, ``("set", name=, done=,
     total=)`` and ``("done", …)`` events (the CLI drives a progress bar with them).
+    ``executor``: any :class:`concurrent.futures.Executor` (e.g. a Dask client's
+    ``client.get_executor()``) runs the surface sets, the coupling chain and the
+    single-contact studies instead of a local process pool; progress is then reported
+    per finished task (``done = total = 1``), as remote workers cannot reach the queue.
     """
     t_start = time.perf_counter()
     _limit_threads()
@@ -166,7 +171,10 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None) -> Cycle
     workers = max(1, min(int(workers), len(sets) + 1))
     t0 = time.perf_counter()
     results = {}
-    if workers == 1:
+    if executor is not None:
+        results, coupling, coating = _run_on_executor(executor, case, sets, ref_name, dyn,
+                                                      inputs, nose, report)
+    elif workers == 1:
         def cb_for(name):
             return lambda i, m: report("set", name=name, done=i, total=m)
         # serial: in-process, with per-step progress
@@ -212,6 +220,26 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None) -> Cycle
     study.analyse()
     report("done", runtime_s=study.runtime_s)
     return study
+
+
+def _run_on_executor(executor, case, sets, ref_name, dyn, inputs, nose, report):
+    """The parallel part of the study on a given executor, one task per surface set."""
+    from concurrent.futures import as_completed
+    fut_c = executor.submit(_coupling_task, case, ref_name, dyn, inputs)
+    futs = {executor.submit(_set_task, case, s.name, inputs): s.name
+            for s in sets if s.name != ref_name}
+    fut_coat = executor.submit(_coating_studies_task, case, ref_name, nose)
+    names = {fut_c: ref_name, **futs}
+    for name in names.values():
+        report("set", name=name, done=0, total=1)
+    results = {}
+    for f in as_completed([fut_c, fut_coat, *futs]):
+        if f in names:
+            report("set", name=names[f], done=1, total=1)
+    results[ref_name], coupling = fut_c.result()
+    for f, name in futs.items():
+        results[name] = f.result()
+    return results, coupling, fut_coat.result()
 
 
 def _drain(queue, report):
