@@ -80,15 +80,15 @@ class AxisConfig(Section):
                              pattern=_DIM_PATTERN)
     values: Optional[list[Scalar]] = _q(None, "", "the values (numbers, strings or "
                                                   "booleans)", min_length=1)
-    start: Optional[Union[StrictInt, StrictFloat]] = _q(None, "key's unit", "first value "
-                                                                           "of a range")
-    stop: Optional[Union[StrictInt, StrictFloat]] = _q(None, "key's unit", "last value of "
-                                                                          "a range "
-                                                                          "(included)")
+    start: Optional[Union[StrictInt, StrictFloat]] = _q(None, "", "first value of a range "
+                                                                  "(in the key's unit)")
+    stop: Optional[Union[StrictInt, StrictFloat]] = _q(None, "", "last value of a range "
+                                                                 "(included)")
     num: Optional[StrictInt] = _q(None, "", "number of values of a range", ge=2,
                                   le=MAX_POINTS)
-    step: Optional[Union[StrictInt, StrictFloat]] = _q(None, "key's unit",
-                                                       "step of a linear range", gt=0)
+    step: Optional[Union[StrictInt, StrictFloat]] = _q(None, "", "step of a linear range "
+                                                                 "(in the key's unit)",
+                                                       gt=0)
     spacing: Literal["linear", "log"] = _q("linear", "", "spacing of a range with num")
     group: Optional[str] = _q(None, "", "axes with the same group are zipped into one "
                                         "dimension of that name", max_length=64,
@@ -392,7 +392,8 @@ def _axis(base: Case, i: int, ax: AxisConfig, problems) -> Optional[Axis]:
         try:
             base.updated({ax.path: v})
         except InputError as exc:
-            key = f"{where}.values[{j}]" if ax.values is not None else f"{where} (value {j})"
+            key = (f"{where}.values[{j}]" if ax.values is not None
+                   else f"{where} (range value {j + 1} of {len(values)})")
             problems.append((key, f"{_fmt(v)}: {_problem_text(exc)}"))
     extra = fi.json_schema_extra if isinstance(fi.json_schema_extra, dict) else {}
     last = parse_path(ax.path)[-1].name

@@ -273,7 +273,7 @@ def estimate_point_seconds(case, mode: str = "study", steps: int = 8) -> float:
 def estimate_sweep(spec, *, workers: int, out_dir=None) -> dict:
     """Estimated wall time of a sweep on ``workers`` single-threaded workers.
 
-    The time per point is the median run time of points already finished in ``out_dir``
+    The time per point is the median CPU time of points already finished in ``out_dir``
     (resume) if any, else :func:`estimate_point_seconds` calibrated on the first and the
     last valid point of the plan. Returns points, invalid, done, todo, seconds_per_point,
     seconds, method."""
@@ -287,12 +287,13 @@ def estimate_sweep(spec, *, workers: int, out_dir=None) -> dict:
             ds = store.load(p.key) if store.status(p.key) == "ok" else None
             if ds is not None:
                 done += 1
-                done_times.append(float(ds.attrs.get("runtime_s", math.nan)))
+                done_times.append(float(ds.attrs.get("cpu_s",
+                                                     ds.attrs.get("runtime_s", math.nan))))
     todo = len(valid) - done
     done_times = [t for t in done_times if math.isfinite(t)]
     if done_times:
         per = statistics.median(done_times)
-        method = f"median run time of the {len(done_times)} finished points"
+        method = f"median CPU time of the {len(done_times)} finished points"
     elif valid:
         cal = [valid[0]] if len(valid) == 1 else [valid[0], valid[-1]]
         times = [estimate_point_seconds(p.case, spec.mode) for p in cal]

@@ -59,7 +59,8 @@ POINT_SCALARS = {
                                    "velocity difference, % of its peak"),
     "coupling_converged": ("1", "implicit coupling converged (1 yes, 0 no)"),
     "n_warnings": ("1", "warnings of the study (non-converged EHL steps, jumps, coupling)"),
-    "runtime_s": ("s", "run time of the point on its worker"),
+    "runtime_s": ("s", "run time (wall clock) of the point on its worker"),
+    "cpu_s": ("s", "CPU time of the point on its worker (one thread)"),
 }
 
 #: Surface-set scalars of the study (keys of summary.json's ``surface_sets`` entries).
@@ -123,11 +124,20 @@ def _scalar(name, value, table=POINT_SCALARS) -> xr.Variable:
     return xr.Variable((), _num(value), {"units": units, "long_name": long})
 
 
+def _where() -> dict:
+    """Host and Dask worker address of this process ('' outside a worker)."""
+    try:
+        from distributed import get_worker
+        worker = get_worker().address
+    except (ImportError, ValueError):
+        worker = ""
+    return {"worker_host": socket.gethostname(), "worker": worker}
+
+
 def failed_point(error: str, runtime_s: float = 0.0) -> xr.Dataset:
     """The Dataset of a point that failed: no variables, the error in the attributes."""
     return xr.Dataset(attrs={"status": "failed", "error": error,
-                             "runtime_s": float(runtime_s), "warnings": "[]",
-                             "worker_host": socket.gethostname()})
+                             "runtime_s": float(runtime_s), "warnings": "[]", **_where()})
 
 
 def _dynamics_scalars(dyn) -> dict:
@@ -250,7 +260,7 @@ def run_point(case, mode: str = "study", traces: bool = False) -> xr.Dataset:
     from threadpoolctl import threadpool_limits
 
     from .cycle import StudyError
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     try:
         with threadpool_limits(1):
             if mode == "dynamics":
@@ -265,8 +275,9 @@ def run_point(case, mode: str = "study", traces: bool = False) -> xr.Dataset:
         tb = traceback.extract_tb(exc.__traceback__)
         where = f" (at {tb[-1].filename.rsplit('/', 1)[-1]}:{tb[-1].lineno})" if tb else ""
         return failed_point(f"{type(exc).__name__}: {exc}{where}", time.perf_counter() - t0)
-    runtime = time.perf_counter() - t0
+    runtime, cpu = time.perf_counter() - t0, time.process_time() - c0
     ds["runtime_s"] = _scalar("runtime_s", runtime)
-    ds.attrs.update({"status": "ok", "error": "", "runtime_s": runtime,
-                     "warnings": json.dumps(warnings), "worker_host": socket.gethostname()})
+    ds["cpu_s"] = _scalar("cpu_s", cpu)
+    ds.attrs.update({"status": "ok", "error": "", "runtime_s": runtime, "cpu_s": cpu,
+                     "warnings": json.dumps(warnings), **_where()})
     return ds
