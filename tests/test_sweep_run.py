@@ -121,7 +121,7 @@ def test_local_cluster_with_two_process_workers(dyn_file, reference, tmp_path):
     from distributed import Client, LocalCluster
     spec = load_sweep(dyn_file)
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                      dashboard_address=None) as cluster, Client(cluster) as client:
+                      dashboard_address=":0") as cluster, Client(cluster) as client:
         pids = set(client.run(os.getpid).values())
         assert len(pids) == 2 and os.getpid() not in pids
         res = run_sweep(spec, client, out_dir=tmp_path)

@@ -70,7 +70,7 @@ def local_cluster(workers: int | None = None):
     if n < 1:
         raise InputError(f"workers: must be >= 1 (got {workers})")
     return LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                        dashboard_address=None, silence_logs=logging.ERROR)
+                        dashboard_address=":0", silence_logs=logging.ERROR)
 
 
 def connect(address: str, *, workers: int | None = None, timeout: float = 30.0):

@@ -148,6 +148,8 @@ def _line_panel(ax, ds, name, xd, combos, scale=1.0, ylabel="", log=False):
     order = np.argsort(x)
     for st, i, sel in _set_lines(ds, combos):
         y = _series(ds, name, xd, i, sel) * scale
+        if not np.isfinite(y).any():        # every point of this line failed
+            continue
         ax.plot(x[order], y[order], marker="o", ms=3.5, **st)
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
@@ -269,26 +271,29 @@ def fig_heatmap(ds, path):
         vmin, vmax = (float(fin.min()), float(fin.max())) if fin.size else (0.0, 1.0)
         for c, (v, lab) in enumerate(zip(vals, labels)):
             ax = axes[r, c]
-            m = ax.pcolormesh(x, y, v, shading="nearest", cmap="viridis", vmin=vmin,
-                              vmax=vmax)
+            # one cell per point, labelled with the axis values (any spacing)
+            m = ax.pcolormesh(np.arange(x.size + 1) - 0.5, np.arange(y.size + 1) - 0.5, v,
+                              cmap="viridis", vmin=vmin, vmax=vmax)
             if v.size <= 64:
                 for iy, ix in np.argwhere(np.isfinite(v)):
-                    ax.text(x[ix], y[iy], f"{v[iy, ix]:.3g}", ha="center", va="center",
+                    ax.text(ix, iy, f"{v[iy, ix]:.3g}", ha="center", va="center",
                             fontsize=6.5, color="w" if v[iy, ix] < 0.5 * (vmin + vmax)
                             else "k")
-            bad = np.argwhere(~ok)
-            for iy, ix in bad:
-                ax.plot(x[ix], y[iy], "x", color="red", ms=8, mew=1.5)
+            for iy, ix in np.argwhere(~ok):
+                ax.plot(ix, iy, "x", color="red", ms=8, mew=1.5)
+            for axis, vals in ((ax.xaxis, x), (ax.yaxis, y)):
+                k = max(1, int(np.ceil(vals.size / 8)))
+                axis.set_ticks(np.arange(0, vals.size, k))
+                axis.set_ticklabels([f"{t:.4g}" for t in vals[::k]], fontsize=7)
             if r == 0 and lab:
                 ax.set_title(lab, fontsize=9)
             ax.set_xlabel(xlabel, fontsize=8)
             if c == 0:
                 ax.set_ylabel(ylabel, fontsize=8)
-            if np.all(y > 0) and y.size > 2 and y.max() / y.min() > 20:
-                ax.set_yscale("log")
         fig.colorbar(m, ax=axes[r, :], label=qlabel, shrink=0.9)
     sub = ", ".join(f"{d} = {_fmt(ds[d].values[0])}" for d in rest)
-    title = "Sweep maps" + (f" (at {sub})" if sub else "") + "; × failed point"
+    title = "Sweep maps" + (f" (at {sub})" if sub else "") + (
+        "; × failed point" if (~ok).any() else "")
     fig.suptitle(title, fontsize=11)
     return save_figure(fig, path)
 
