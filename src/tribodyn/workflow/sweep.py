@@ -165,6 +165,7 @@ def run_sweep(spec, client=None, *, out_dir=None, resume: bool = False,
     report("start", total=len(plan), skipped=skipped, todo=len(todo), workers=n_workers,
            scheduler=scheduler, invalid=len(failed))
     done = skipped + len(failed)
+    futures = []
     try:
         if todo:
             futures = _submit(client, spec, todo)
@@ -186,6 +187,10 @@ def run_sweep(spec, client=None, *, out_dir=None, resume: bool = False,
                 done += 1
                 report("point", done=done, failed=len(failed), total=len(plan),
                        label=p.label, status=status, error=ds.attrs.get("error", ""))
+    except BaseException:                # interrupted: finished points are on disk
+        if futures and own is None:
+            client.cancel([f for f in futures if not f.done()])
+        raise
     finally:
         if own is not None:
             client.close()
