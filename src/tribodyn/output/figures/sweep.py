@@ -227,6 +227,7 @@ def fig_dynamics(ds, path):
                 ax.text(hi, 0.98, f"{name} onset {where}" + (" rpm" if speed else "") + " ",
                         transform=ax.get_xaxis_transform(),
                         rotation=90, va="top", ha="right", fontsize=7, color="red")
+    clipped = _clip_impacts(axes[0], ds, xd, combos, x, order)
     axes[0].axhline(0.0, color="0.5", lw=0.8)
     axes[0].set_ylabel("cam–tappet contact force [N]")
     axes[1].set_ylabel("valve seating velocity [m/s]")
@@ -234,8 +235,33 @@ def fig_dynamics(ds, path):
         ax.set_xlabel(xlabel)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7, loc="best")
-    fig.suptitle("Valvetrain dynamics" + (f"\n{note}" if note else ""), fontsize=11)
+    sub = "; ".join(t for t in (note, clipped) if t)
+    fig.suptitle("Valvetrain dynamics" + (f"\n{sub}" if sub else ""), fontsize=11)
     return save_figure(fig, path)
+
+
+def _clip_impacts(ax, ds, xd, combos, x, order):
+    """After a jump the tappet lands on the cam: impact peaks can be tens of times the
+    cam-driven peak. Keep the axis on the cam-driven range (2.5× the largest peak without
+    a jump) and mark the points above it at the top edge."""
+    pk = np.concatenate([_series(ds, "peak_contact_force_N", xd, None, s) for s, _ in combos])
+    jump = np.concatenate([_series(ds, "jump", xd, None, s) for s, _ in combos]) == 1
+    calm = pk[np.isfinite(pk) & ~jump]
+    if calm.size == 0 or not np.isfinite(pk).any():
+        return None
+    top = 2.5 * float(calm.max())
+    if np.nanmax(pk) <= top:
+        return None
+    lows = np.concatenate([_series(ds, "min_contact_force_in_event_N", xd, None, s)
+                           for s, _ in combos])
+    low = min(0.0, float(np.nanmin(lows))) if np.isfinite(lows).any() else 0.0
+    ax.set_ylim(low - 0.04 * top, top)
+    for sel, _ in combos:
+        y = _series(ds, "peak_contact_force_N", xd, None, sel)[order]
+        off = np.isfinite(y) & (y > top)
+        ax.plot(x[order][off], np.full(off.sum(), top), "^", color="tab:blue", ms=6,
+                clip_on=False, zorder=6)
+    return f"▲ peak off scale: impact after a jump, up to {np.nanmax(pk):.3g} N"
 
 
 def fig_heatmap(ds, path):
