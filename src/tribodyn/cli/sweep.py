@@ -100,9 +100,10 @@ def sweep_command(
                 bar.update(task, completed=info["skipped"] + info["invalid"],
                            failed=info["invalid"])
                 where = info["scheduler"] or "local cluster"
-                bar.console.print(f"{info['todo']} points to run on {info['workers']} "
-                                  f"worker(s) ({where}); {info['skipped']} already "
-                                  f"finished, {info['invalid']} invalid combinations")
+                run = (f"{info['todo']} points to run on {info['workers']} worker(s) "
+                       f"({where})" if info["todo"] else "nothing to run")
+                bar.console.print(f"{run}; {info['skipped']} already finished, "
+                                  f"{info['invalid']} invalid combinations")
             elif event == "point":
                 bar.update(task, completed=info["done"], failed=info["failed"])
                 if info["status"] != "ok":

@@ -48,7 +48,8 @@ SWEEPS_DIR = Path(__file__).resolve().parent.parent / "sweeps"
 #: Largest number of points a sweep may have.
 MAX_POINTS = 1_000_000
 #: Dimension and variable names of the sweep Dataset an axis may not take.
-RESERVED_NAMES = ("surface_set", "crank_angle", "ehl_crank", "point", "status", "error")
+RESERVED_NAMES = ("surface_set", "crank_angle", "ehl_crank", "point", "status", "error",
+                  "warnings")
 _DIM_PATTERN = r"^[A-Za-z][A-Za-z0-9_]*$"
 
 Scalar = Union[StrictBool, StrictInt, StrictFloat, StrictStr]

@@ -133,7 +133,7 @@ def _results_tables(result) -> list[str]:
                 ("min_contact_force_in_event_N", "min F in event [N]", ".4g"),
                 ("jump", "jump", None), ("valve_bounce", "bounce", None),
                 ("seating_velocity_m_s", "seating v [m/s]", ".3g"),
-                ("runtime_s", "run time [s]", ".3g")]
+                ("runtime_s", "run time [s]", ".3g"), ("cpu_s", "CPU [s]", ".3g")]
     dyn_cols = [c for c in dyn_cols if c[0] in ds]
     if dyn_cols:
         out += ["Valvetrain dynamics (explicit tribology of the reference set):", "",
@@ -200,15 +200,18 @@ def _failures_and_warnings(result) -> list[str]:
             out.append(f"| {p.label} | {str(err).replace('|', '/').splitlines()[0] if err else ''} |")
         out.append("")
     ds = result.dataset
-    if "failed_steps" in ds:
-        bad = []
-        for p in result.points:
-            v = np.asarray(_at(ds["failed_steps"], result.spec, p.position).values, float)
-            if np.nansum(v) > 0:
-                bad.append(f"* {p.label}: {int(np.nansum(v))} non-converged transient-EHL "
-                           "step(s) (per surface set in `failed_steps`)")
-        if bad:
-            out += ["## Warnings", ""] + bad[:_MAX_ROWS] + [""]
+    bad = []
+    for p in result.points:
+        w = str(_at(ds["warnings"], result.spec, p.position).values) if "warnings" in ds \
+            else ""
+        if w:
+            bad.append(f"* {p.label}: {w}")
+    if bad:
+        out += ["## Warnings", "", "Finished points whose study reported a problem "
+                "(non-converged EHL steps are also counted per surface set in "
+                "`failed_steps`; the implicit coupling only feeds the explicit-vs-implicit "
+                "comparison, not the EHL of the surface sets):", ""]
+        out += bad[:_MAX_ROWS] + [""]
     if "jump" in ds and float(np.nansum(ds["jump"].values)) > 0 and "surface_set" in ds.dims:
         out += ["Where the follower jumps, the cam and tappet separate during the event: "
                 "the EHL is not solved while the contact force is below "

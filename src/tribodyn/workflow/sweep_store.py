@@ -159,6 +159,7 @@ def combine_points(spec, plan, results: dict) -> xr.Dataset:
                                               "description": a.description})
     status = np.zeros(n, np.int8)
     error = np.full(n, "", dtype=object)
+    warnings = np.full(n, "", dtype=object)
     keys = np.array([p.key for p in plan], dtype=object)
     for p in plan:
         ds = results.get(p.index)
@@ -166,12 +167,15 @@ def combine_points(spec, plan, results: dict) -> xr.Dataset:
             error[p.index] = "not run"
         elif ds.attrs.get("status") == "ok":
             status[p.index] = 1
+            warnings[p.index] = "; ".join(json.loads(ds.attrs.get("warnings", "[]")))
         else:
             error[p.index] = str(ds.attrs.get("error", "failed"))
     out["status"] = xr.Variable(dims, status.reshape(shape),
                                 {"long_name": "point finished (1) or failed (0)"})
     out["error"] = xr.Variable(dims, error.astype(str).reshape(shape),
                                {"long_name": "why the point failed ('' if it did not)"})
+    out["warnings"] = xr.Variable(dims, warnings.astype(str).reshape(shape),
+                                  {"long_name": "warnings of the point's study ('' if none)"})
     out["point_key"] = xr.Variable(dims, keys.astype(str).reshape(shape),
                                    {"long_name": "point file points/<key>.nc"})
     refs = {ds.attrs.get("reference_set") for ds in ok.values()} - {None}
