@@ -1,4 +1,4 @@
-"""The ``tribodyn`` command-line application: ``run``, ``contact``, ``topography``."""
+"""The ``tribodyn`` command-line application: ``run``, ``sweep``, ``contact``, ``topography``."""
 
 from __future__ import annotations
 
@@ -6,6 +6,7 @@ import typer
 
 from .contact import contact_command
 from .run import run_command
+from .sweep import sweep_command
 from .topography import topography_command
 
 __all__ = ["app", "main"]
@@ -20,6 +21,7 @@ def _main():
 
 
 app.command("run")(run_command)
+app.command("sweep")(sweep_command)
 app.command("contact")(contact_command)
 app.command("topography")(topography_command)
 

@@ -30,6 +30,11 @@ def run_command(case: Optional[Path] = typer.Argument(
         implicit: Optional[bool] = typer.Option(
             None, "--implicit/--no-implicit",
             help="run the implicit dynamics for the comparison (default: from the case)"),
+        scheduler: Optional[str] = typer.Option(
+            None, "--scheduler", metavar="ADDRESS",
+            help="run the surface sets and the coupling chain on an existing Dask "
+                 "scheduler (tcp://host:8786, or a scheduler file) instead of local "
+                 "processes"),
         quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress bar")):
     """Run the cam-cycle study: dynamics, transient EHL per surface set, figures, report.
 
@@ -112,6 +117,17 @@ def _run(c, out: Path, workers, quiet: bool) -> None:
     from ..workflow.cycle import StudyError, run_cycle_study
 
     n_workers = workers if workers is not None else (c.numerics.workers or None)
+    client = executor = None
+    if scheduler is not None:
+        from ..workflow.sweep import connect
+        try:
+            client = connect(scheduler)
+        except InputError as exc:
+            console.print(f"[red]error:[/red] {exc}")
+            raise typer.Exit(2)
+        executor = client.get_executor(pure=False)
+        console.print(f"Dask scheduler {scheduler}: "
+                      f"{len(client.scheduler_info().get('workers', {}))} workers")
     console.print(f"case [bold]{c.name}[/bold]: {len(c.surface_set_names)} surface sets, "
                   f"{c.engine_speed:g} rpm → {out}")
     with Progress(TextColumn("{task.description:<24}"), BarColumn(),
@@ -131,10 +147,14 @@ def _run(c, out: Path, workers, quiet: bool) -> None:
                 bar.update(tasks[name], completed=info["done"])
 
         try:
-            study = run_cycle_study(c, workers=n_workers, progress=progress)
+            study = run_cycle_study(c, workers=n_workers, progress=progress,
+                                    executor=executor)
         except StudyError as exc:
             console.print(f"[red]study failed:[/red] {exc}")
             raise typer.Exit(1)
+        finally:
+            if client is not None:
+                client.close()
         if "dyn" in tasks:
             bar.update(tasks["dyn"], completed=1)
         t_write = bar.add_task("figures and report", total=1)

@@ -2,7 +2,8 @@
 
 Modules: :mod:`.schema` (one model per TOML section, with units and ranges) ·
 :mod:`.case` (:class:`Case`, :class:`SurfaceSet`, :func:`load_case`, bundled cases) ·
-:mod:`.errors` (one readable line per problem). Usage::
+:mod:`.errors` (one readable line per problem) · :mod:`.paths` (dotted key paths with
+selectors) · :mod:`.sweep` (sweep files). Usage::
 
     from tribodyn.config import load_case
     case = load_case()                      # the bundled paper case
@@ -24,6 +25,7 @@ from .case import (
                    to_toml,
 )
 from .errors import format_validation_error
+from .paths import PathError, get_path, parse_path, set_path
 from .schema import (
                    CAM_MODELS,
                    AccelerationCamConfig,
@@ -42,10 +44,12 @@ from .schema import (
                    ValveConfig,
                    Valvetrain,
 )
+from .sweep import SweepPoint, SweepSpec, bundled_sweeps, load_sweep
 
 __all__ = ["Case", "SurfaceSet", "load_case", "bundled_cases", "DEFAULT_CASE", "CASES_DIR",
            "to_toml", "set_dotted", "format_validation_error", "CAM_MODELS", "CaseInfo",
            "Engine", "AccelerationCamConfig", "CircularArcCamConfig", "TableCamConfig",
            "Valvetrain", "LubricantConfig", "MaterialConfig", "RoughnessConfig",
            "SurfaceSetConfig", "Numerics", "ValveConfig", "TappetConfig", "SpringConfig",
-           "CamshaftConfig"]
+           "CamshaftConfig", "PathError", "parse_path", "set_path", "get_path",
+           "SweepSpec", "SweepPoint", "load_sweep", "bundled_sweeps"]

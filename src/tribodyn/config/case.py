@@ -18,7 +18,6 @@ from __future__ import annotations
 import dataclasses
 import difflib
 import math
-import re
 import tomllib
 from pathlib import Path
 from typing import Annotated, Any, Optional
@@ -49,6 +48,7 @@ from ..valvetrain.kinematics import rpm_to_cam_speed
 from ..valvetrain.parameters import ValvetrainParameters
 from ..valvetrain.spring import HelicalSpring
 from .errors import CamTableError, Problems, format_validation_error
+from .paths import set_path
 from .schema import (
     CAM_MODELS,
     LUMPED_ONLY,
@@ -606,24 +606,6 @@ def to_toml(data: dict, *, header: list[str] | None = None) -> str:
 
 
 def set_dotted(data: dict, key: str, value) -> None:
-    tokens = []
-    for part in key.split("."):
-        m = re.fullmatch(r"([^\[\]]+)((?:\[\d+\])*)", part)
-        if not m:
-            raise InputError(f"cannot parse key path {key!r}")
-        tokens.append(m.group(1))
-        tokens.extend(int(i) for i in re.findall(r"\[(\d+)\]", m.group(2)))
-    cur: Any = data
-    for t in tokens[:-1]:
-        try:
-            if isinstance(t, int):
-                cur = cur[t]
-            else:
-                cur = cur.setdefault(t, {})
-        except (IndexError, KeyError, TypeError, AttributeError):
-            raise InputError(f"key path {key!r} does not exist in the case") from None
-    last = tokens[-1]
-    try:
-        cur[last] = value
-    except (IndexError, TypeError):
-        raise InputError(f"key path {key!r} does not exist in the case") from None
+    """Set ``value`` at the dotted key path ``key`` of a case dict (all places it
+    addresses; selectors ``[i]``, ``[*]``, ``[name=…]``: :mod:`tribodyn.config.paths`)."""
+    set_path(data, key, value)

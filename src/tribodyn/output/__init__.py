@@ -1,10 +1,12 @@
 """Output of a cycle study: the results Dataset, atomic writing, the report and figures.
 
 :mod:`.dataset` (study → xarray Dataset) · :mod:`.writer` (results folder, atomically) ·
-:mod:`.report` (report.md) · :mod:`.figures` (one module per figure family).
+:mod:`.report` (report.md) · :mod:`.figures` (one module per figure family) ·
+:mod:`.sweep` (a design sweep's sweep.nc, sweep_report.md and figures).
 """
 
 from .dataset import study_to_dataset
+from .sweep import write_sweep
 from .writer import (
     OutputWriteError,
     check_output_dir,
@@ -15,4 +17,4 @@ from .writer import (
 )
 
 __all__ = ["OutputWriteError", "check_output_dir", "clean_stale", "is_result_folder",
-           "study_to_dataset", "write_atomic", "write_results"]
+           "study_to_dataset", "write_atomic", "write_results", "write_sweep"]

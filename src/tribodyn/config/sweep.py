@@ -1,0 +1,451 @@
+"""Sweep files: a base case, fixed changes and axes over any case key (TOML, validated).
+
+A sweep file names a base case (a bundled name or a case file), optional ``[fixed]``
+changes applied to every point, and ``[[axes]]`` over dotted case key paths
+(:mod:`tribodyn.config.paths`) given as lists or linear/logarithmic ranges. Axes are
+crossed (full factorial, ``combine = "product"``) or zipped (``combine = "zip"``, or the
+axes sharing a ``group``). ``docs/sweep-files.md`` documents every key.
+
+Everything that can be checked before a run is checked here, with the key named as for
+case files (:mod:`tribodyn.config.errors`): unknown keys, paths that do not exist in the
+base case, values of the wrong type, and every axis value out of range (each value is
+applied alone to the base case and the case validated). A *combination* of values that
+is invalid only together becomes a failed point of the plan (:meth:`SweepSpec.points`),
+recorded with its error, and does not stop the other points.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Annotated, Any, Literal, Optional, Union
+
+from pydantic import (
+    Field,
+    StrictBool,
+    StrictFloat,
+    StrictInt,
+    StrictStr,
+    ValidationError,
+    model_validator,
+)
+
+from .._validation import InputError
+from .case import Case, bundled_cases, load_case, to_toml
+from .errors import Problems, format_validation_error
+from .paths import PathError, parse_path, schema_field, set_path
+from .schema import CAM_MODELS, Section, _q
+
+__all__ = ["SweepInfo", "AxisConfig", "SweepFile", "Axis", "SweepPoint", "SweepSpec",
+           "load_sweep", "bundled_sweeps", "SWEEPS_DIR", "MAX_POINTS", "RESERVED_NAMES"]
+
+#: Folder of the bundled sweep files.
+SWEEPS_DIR = Path(__file__).resolve().parent.parent / "sweeps"
+#: Largest number of points a sweep may have.
+MAX_POINTS = 1_000_000
+#: Dimension and variable names of the sweep Dataset an axis may not take.
+RESERVED_NAMES = ("surface_set", "crank_angle", "ehl_crank", "point", "status", "error",
+                  "warnings")
+_DIM_PATTERN = r"^[A-Za-z][A-Za-z0-9_]*$"
+
+Scalar = Union[StrictBool, StrictInt, StrictFloat, StrictStr]
+
+
+class SweepInfo(Section):
+    """``[sweep]``: what to run and what to keep."""
+
+    name: str = _q("sweep", "", "short name (reports, file names)", min_length=1,
+                   max_length=64, pattern=r"^[A-Za-z0-9][A-Za-z0-9_.+\-]*$")
+    description: str = _q("", "", "free text")
+    case: str = _q("andreou2023", "", "base case: a bundled case name or a case file "
+                                      "(relative to the sweep file)", min_length=1)
+    mode: Literal["study", "dynamics"] = _q(
+        "study", "", "per point: the full cam-cycle study, or the valvetrain dynamics alone")
+    combine: Literal["product", "zip"] = _q(
+        "product", "", "axes crossed (full factorial) or zipped (equal lengths)")
+    traces: bool = _q(False, "", "keep the cycle traces of every point (not only the "
+                                 "summary scalars)")
+
+
+class AxisConfig(Section):
+    """``[[axes]]``: one swept case key, by list or by range."""
+
+    path: str = _q(..., "", "dotted case key path, e.g. engine.speed_rpm or "
+                            "surface_sets[name=wcc_4um].coating_thickness", min_length=1)
+    name: Optional[str] = _q(None, "", "dimension name in the results (default: the last "
+                                       "key of the path)", max_length=64,
+                             pattern=_DIM_PATTERN)
+    values: Optional[list[Scalar]] = _q(None, "", "the values (numbers, strings or "
+                                                  "booleans)", min_length=1)
+    start: Optional[Union[StrictInt, StrictFloat]] = _q(None, "", "first value of a range "
+                                                                  "(in the key's unit)")
+    stop: Optional[Union[StrictInt, StrictFloat]] = _q(None, "", "last value of a range "
+                                                                 "(included)")
+    num: Optional[StrictInt] = _q(None, "", "number of values of a range", ge=2,
+                                  le=MAX_POINTS)
+    step: Optional[Union[StrictInt, StrictFloat]] = _q(None, "", "step of a linear range "
+                                                                 "(in the key's unit)",
+                                                       gt=0)
+    spacing: Literal["linear", "log"] = _q("linear", "", "spacing of a range with num")
+    group: Optional[str] = _q(None, "", "axes with the same group are zipped into one "
+                                        "dimension of that name", max_length=64,
+                              pattern=_DIM_PATTERN)
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        rng = [k for k in ("start", "stop", "num", "step") if getattr(self, k) is not None]
+        if self.values is not None:
+            if rng:
+                raise Problems([(rng[0], "give either values or a range (start, stop, num "
+                                         "or step), not both")])
+            kinds = {_kind(v) for v in self.values}
+            if len(kinds) > 1:
+                raise Problems([("values", "must all be numbers, all strings or all "
+                                           f"booleans (got {', '.join(sorted(kinds))})")])
+            return self
+        if not rng:
+            raise Problems([("", "give values = [...] or a range: start, stop and num "
+                                 "(or step)")])
+        for k in ("start", "stop"):
+            if getattr(self, k) is None:
+                raise Problems([(k, "required key is missing (a range needs start and "
+                                    "stop)")])
+        if (self.num is None) == (self.step is None):
+            raise Problems([("num", "give exactly one of num and step")])
+        if self.step is not None and self.spacing == "log":
+            raise Problems([("step", "a log range is given by num, not step")])
+        if self.spacing == "log" and not (self.start > 0 and self.stop > 0):
+            raise Problems([("start", "a log range needs start > 0 and stop > 0")])
+        if self.step is not None:
+            n = math.floor(abs(self.stop - self.start) / self.step * (1 + 1e-12)) + 1
+            if n > MAX_POINTS:
+                raise Problems([("step", f"gives {n} values (at most {MAX_POINTS})")])
+        return self
+
+    def generated(self) -> list:
+        """The axis values (a range evaluated; integers stay integers when exact)."""
+        if self.values is not None:
+            return list(self.values)
+        a, b = self.start, self.stop
+        if self.step is not None:
+            n = math.floor(abs(b - a) / self.step * (1 + 1e-12)) + 1
+            d = self.step if b >= a else -self.step
+            vals = [a + i * d for i in range(n)]
+        elif self.spacing == "log":
+            la, lb = math.log(a), math.log(b)
+            vals = [math.exp(la + (lb - la) * i / (self.num - 1)) for i in range(self.num)]
+            vals[0], vals[-1] = a, b
+        else:
+            vals = [a + (b - a) * i / (self.num - 1) for i in range(self.num)]
+        ints = all(isinstance(v, int) for v in (a, b, self.step) if v is not None)
+        if ints and self.spacing == "linear":
+            vals = [int(round(v)) if abs(v - round(v)) < 1e-9 else v for v in vals]
+        return [float(f"{v:.15g}") if isinstance(v, float) else v for v in vals]
+
+
+class SweepFile(Section):
+    """The whole sweep file."""
+
+    sweep: SweepInfo = Field(default_factory=SweepInfo)
+    fixed: dict[Annotated[str, Field(min_length=1)], Any] = _q(
+        {}, "", "dotted case key path → value, applied to the base case at every point")
+    axes: list[AxisConfig] = Field(..., min_length=1)
+
+
+def _kind(v) -> str:
+    if isinstance(v, bool):
+        return "booleans"
+    if isinstance(v, (int, float)):
+        return "numbers"
+    return "strings"
+
+
+# ----------------------------------------------------------------------------- spec
+@dataclass(frozen=True)
+class Axis:
+    """A validated axis: its case key path, dimension name, values, unit and dimension."""
+
+    path: str
+    name: str
+    values: tuple
+    unit: str
+    description: str
+    dim: str                      #: the dimension it spans (its name, or its group)
+
+
+@dataclass
+class SweepPoint:
+    """One point of the plan: its position, axis values, changes and case (or error)."""
+
+    index: int                    #: position in the plan (C order over the dimensions)
+    position: tuple               #: index along each dimension
+    values: dict                  #: axis name → value
+    changes: dict                 #: case key path → value
+    case: Optional[Case] = None   #: None if the combination is invalid
+    error: Optional[str] = None   #: why the combination is invalid
+    key: str = ""                 #: identity of the point (hash of case, mode and traces)
+
+    @property
+    def label(self) -> str:
+        return ", ".join(f"{k} = {_fmt(v)}" for k, v in self.values.items())
+
+
+def _fmt(v) -> str:
+    return f"{v:.6g}" if isinstance(v, float) else str(v)
+
+
+@dataclass
+class SweepSpec:
+    """A validated sweep: base case (with the fixed changes), axes and dimensions."""
+
+    config: SweepFile
+    base: Case
+    axes: list[Axis]
+    dims: list[tuple[str, list[Axis]]] = field(default_factory=list)
+    source: Optional[Path] = None
+    base_source: str = ""
+
+    @property
+    def name(self) -> str:
+        return self.config.sweep.name
+
+    @property
+    def mode(self) -> str:
+        return self.config.sweep.mode
+
+    @property
+    def traces(self) -> bool:
+        return self.config.sweep.traces
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return tuple(len(axes[0].values) for _, axes in self.dims)
+
+    @property
+    def n_points(self) -> int:
+        return math.prod(self.shape)
+
+    def to_toml(self) -> str:
+        """The sweep as validated (base case path absolute), as TOML."""
+        d = self.config.model_dump(mode="python", exclude_none=True)
+        d["sweep"]["case"] = self.base_source
+        if not d["fixed"]:
+            d.pop("fixed")
+        return to_toml(d, header=[f"tribodyn sweep {self.name!r}"])
+
+    def points(self) -> list[SweepPoint]:
+        """The plan: every combination, in C order over :attr:`dims`, each with its case
+        validated (an invalid combination keeps its error and no case)."""
+        from .. import __version__
+        out = []
+        ranges = [range(len(axes[0].values)) for _, axes in self.dims]
+        for i, pos in enumerate(itertools.product(*ranges)):
+            values, changes = {}, {}
+            for (_, axes), j in zip(self.dims, pos):
+                for a in axes:
+                    values[a.name] = a.values[j]
+                    changes[a.path] = a.values[j]
+            p = SweepPoint(index=i, position=tuple(pos), values=values, changes=changes)
+            try:
+                p.case = self.base.updated(changes)
+            except InputError as exc:
+                p.error = f"invalid combination: {_problem_text(exc)}"
+            ident = (p.case.to_toml(resolve_paths=True) if p.case is not None
+                     else repr(sorted(changes.items())))
+            h = hashlib.sha256(f"{ident}\n{self.mode}\n{self.traces}\n{__version__}"
+                               .encode()).hexdigest()
+            p.key = h[:16]
+            out.append(p)
+        return out
+
+    @classmethod
+    def from_dict(cls, data: dict, *, base_dir=None, source=None) -> "SweepSpec":
+        """Validate a (TOML-shaped) dict; the base case and relative paths resolve against
+        ``base_dir`` (default: the current folder)."""
+        base_dir = Path(base_dir) if base_dir is not None else Path.cwd()
+        if not isinstance(data, dict):
+            raise InputError(f"a sweep must be a table (got {type(data).__name__})")
+        try:
+            cfg = SweepFile.model_validate(data)
+        except ValidationError as exc:
+            raise InputError(format_validation_error(exc, SweepFile, source,
+                                                     what="sweep")) from None
+        problems: list[tuple[str, str]] = []
+        base, base_source = _load_base(cfg.sweep.case, base_dir, problems)
+        if base is None:
+            raise InputError(_message(problems, source))
+        base = _apply_fixed(base, cfg.fixed, problems)
+        if base is None:
+            raise InputError(_message(problems, source))
+        axes = [a for a in (_axis(base, i, ax, problems) for i, ax in enumerate(cfg.axes))
+                if a is not None]
+        dims = _dims(cfg, axes, problems)
+        spec = cls(config=cfg, base=base, axes=axes, dims=dims, source=source,
+                   base_source=base_source)
+        if not problems and spec.n_points > MAX_POINTS:
+            problems.append(("axes", f"{spec.n_points} points (at most {MAX_POINTS})"))
+        if problems:
+            raise InputError(_message(problems, source))
+        return spec
+
+    @classmethod
+    def from_toml_string(cls, text: str, *, base_dir=None, source=None) -> "SweepSpec":
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
+            where = f"{source}: " if source is not None else ""
+            raise InputError(f"{where}TOML syntax error: {exc}") from None
+        return cls.from_dict(data, base_dir=base_dir, source=source)
+
+    @classmethod
+    def from_toml(cls, path) -> "SweepSpec":
+        p = Path(path)
+        try:
+            text = p.read_text(encoding="utf-8")
+        except OSError as exc:
+            raise InputError(f"cannot read sweep file {str(p)!r}: {exc.strerror}") from None
+        except UnicodeDecodeError as exc:
+            raise InputError(f"sweep file {str(p)!r} is not UTF-8 text (byte {exc.start}: "
+                             f"{exc.reason})") from None
+        return cls.from_toml_string(text, base_dir=p.resolve().parent, source=p)
+
+
+def _message(problems, source) -> str:
+    n = len(problems)
+    where = f" {source}" if source is not None else ""
+    head = f"invalid sweep{where}: {n} problem{'s' if n != 1 else ''}"
+    return head + "".join(f"\n  {p}: {m}" for p, m in problems)
+
+
+def _problem_text(exc: InputError) -> str:
+    """The problem lines of a case error, joined (without the 'invalid case' head)."""
+    lines = str(exc).splitlines()
+    if lines and lines[0].startswith("invalid case"):
+        lines = [ln.strip() for ln in lines[1:]]
+    return "; ".join(ln for ln in lines if ln)
+
+
+def _load_base(name: str, base_dir: Path, problems):
+    p = Path(name).expanduser()
+    cand = p if p.is_absolute() else base_dir / p
+    try:
+        if cand.exists():
+            case = load_case(cand)
+            return case, str(cand.resolve())
+        if p.stem in bundled_cases() and p.parent == Path(".") and p.suffix in ("", ".toml"):
+            return load_case(p.stem), p.stem
+        problems.append(("sweep.case", f"no case file {str(cand)!r} and no bundled case "
+                                       f"{name!r} (bundled: {', '.join(bundled_cases())})"))
+    except InputError as exc:
+        problems.append(("sweep.case", f"the base case is invalid: {_problem_text(exc)}"))
+    return None, ""
+
+
+def _check_path(base: Case, path: str):
+    """Schema field of a path, checked against the base case's keys and entries."""
+    data = base.to_dict()
+    fi = schema_field(Case, path, data, variants={"cam": CAM_MODELS})
+    probe = base.to_dict()
+    set_path(probe, path, None)             # raises if a selector matches nothing
+    return fi
+
+
+def _apply_fixed(base: Case, fixed: dict, problems):
+    changes = {}
+    for path, value in fixed.items():
+        where = f'fixed."{path}"'
+        try:
+            _check_path(base, path)
+        except PathError as exc:
+            problems.append((where, str(exc)))
+            continue
+        changes[path] = value
+    if problems:
+        return None
+    try:
+        return base.updated(changes)
+    except InputError as exc:
+        problems.append(("fixed", _problem_text(exc)))
+        return None
+
+
+def _axis(base: Case, i: int, ax: AxisConfig, problems) -> Optional[Axis]:
+    where = f"axes[{i}]"
+    try:
+        fi = _check_path(base, ax.path)
+    except PathError as exc:
+        problems.append((f"{where}.path", str(exc)))
+        return None
+    values = ax.generated()
+    ann = fi.annotation
+    is_int = ann is int or ann == Optional[int]
+    if is_int:
+        bad = [v for v in values if isinstance(v, float)]
+        if bad:
+            problems.append((f"{where}.values", f"{ax.path} takes integers (got "
+                                                f"{_fmt(bad[0])})"))
+            return None
+    for j, v in enumerate(values):
+        try:
+            base.updated({ax.path: v})
+        except InputError as exc:
+            key = (f"{where}.values[{j}]" if ax.values is not None
+                   else f"{where} (range value {j + 1} of {len(values)})")
+            problems.append((key, f"{_fmt(v)}: {_problem_text(exc)}"))
+    extra = fi.json_schema_extra if isinstance(fi.json_schema_extra, dict) else {}
+    last = parse_path(ax.path)[-1].name
+    name = ax.name or last
+    return Axis(path=ax.path, name=name, values=tuple(values), unit=extra.get("unit", ""),
+                description=fi.description or "", dim=ax.group or name)
+
+
+def _dims(cfg: SweepFile, axes: list[Axis], problems) -> list[tuple[str, list[Axis]]]:
+    if cfg.sweep.combine == "zip" and axes:
+        dim = axes[0].name
+        axes[:] = [Axis(**{**a.__dict__, "dim": dim}) for a in axes]
+    seen: dict[str, int] = {}
+    for i, a in enumerate(axes):
+        if a.name in seen:
+            problems.append((f"axes[{i}].name", f"duplicate dimension name {a.name!r} (also "
+                                                f"axes[{seen[a.name]}]); give each axis a "
+                                                "distinct name"))
+        seen.setdefault(a.name, i)
+        if a.name in RESERVED_NAMES or a.dim in RESERVED_NAMES:
+            problems.append((f"axes[{i}].name", f"{a.name!r} is reserved (reserved: "
+                                                f"{', '.join(RESERVED_NAMES)})"))
+    paths: dict[str, int] = {}
+    for i, a in enumerate(axes):
+        if a.path in paths:
+            problems.append((f"axes[{i}].path", f"{a.path!r} is swept twice (also "
+                                                f"axes[{paths[a.path]}])"))
+        paths.setdefault(a.path, i)
+    dims: dict[str, list[Axis]] = {}
+    for a in axes:
+        dims.setdefault(a.dim, []).append(a)
+    for dim, group in dims.items():
+        lengths = {len(a.values) for a in group}
+        if len(lengths) > 1:
+            detail = ", ".join(f"{a.name}: {len(a.values)}" for a in group)
+            key = "sweep.combine" if cfg.sweep.combine == "zip" else f"axes.group {dim!r}"
+            problems.append((key, f"zipped axes need the same number of values ({detail})"))
+    return list(dims.items())
+
+
+# ----------------------------------------------------------------------------- loading
+def bundled_sweeps() -> dict[str, Path]:
+    """Name → path of the sweep files shipped with tribodyn."""
+    return {p.stem: p for p in sorted(SWEEPS_DIR.glob("*.toml"))}
+
+
+def load_sweep(path) -> SweepSpec:
+    """Load and validate a sweep file (or a bundled sweep by name)."""
+    p = Path(path)
+    if not p.exists():
+        bundled = bundled_sweeps()
+        if p.stem in bundled and p.parent == Path(".") and p.suffix in ("", ".toml"):
+            return SweepSpec.from_toml(bundled[p.stem])
+    return SweepSpec.from_toml(p)

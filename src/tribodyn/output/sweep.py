@@ -1,0 +1,220 @@
+"""Writing a design sweep: ``sweep.nc``, ``sweep_report.md``, the figures, ``sweep.toml``
+and ``base_case.toml`` next to the point files in the output folder.
+
+Each file is written to a temporary name and renamed into place (the point files in
+``points/`` are the sweep's own record and are never touched here). The report formats
+what the combined Dataset holds: inputs, per-point tables, onset speeds of jump and
+bounce, figures, failed points with their errors, and warnings.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["write_sweep", "sweep_report_text"]
+
+_MAX_ROWS = 60
+
+
+def _atomic_text(path: Path, text: str):
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    with os.fdopen(fd, "w", encoding="utf-8") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def write_sweep(result, out_dir, *, figures: bool = True) -> dict:
+    """Write the files of a :class:`~tribodyn.workflow.sweep.SweepResult` into
+    ``out_dir``; returns ``{"dataset": path, "report": path, "figures": {…}}``."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    ds = result.dataset
+    fd, tmp = tempfile.mkstemp(prefix=".sweep.nc.", suffix=".tmp", dir=out)
+    os.close(fd)
+    try:
+        ds.to_netcdf(tmp, engine="h5netcdf")
+        os.replace(tmp, out / "sweep.nc")
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    _atomic_text(out / "sweep.toml", result.spec.to_toml())
+    _atomic_text(out / "base_case.toml", result.spec.base.to_toml(resolve_paths=True))
+    figs = {}
+    if figures:
+        from .figures.sweep import sweep_figures
+        figs = sweep_figures(ds, out)
+    _atomic_text(out / "sweep_report.md", sweep_report_text(result, figs))
+    return {"dataset": out / "sweep.nc", "report": out / "sweep_report.md", "figures": figs}
+
+
+def _f(v, fmt=".4g") -> str:
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return "–"
+    return format(v, fmt)
+
+
+def _values_text(values) -> str:
+    vals = [f"{v:.6g}" if isinstance(v, float) else str(v) for v in values]
+    return ", ".join(vals) if len(vals) <= 8 else f"{vals[0]}, {vals[1]}, … {vals[-1]} " \
+                                                  f"({len(vals)} values)"
+
+
+def _point_rows(result):
+    """(label, index into the flat dataset) of the points, capped at _MAX_ROWS."""
+    pts = result.points
+    return [(p.label, p.position) for p in pts[:_MAX_ROWS]], len(pts) > _MAX_ROWS
+
+
+def _at(da, spec, pos):
+    sel = {d: i for (d, _), i in zip(spec.dims, pos)}
+    return da.isel(sel)
+
+
+def sweep_report_text(result, figures: dict | None = None) -> str:
+    """The Markdown report of a sweep."""
+    from .figures.sweep import SWEEP_FIGURES, onset_speeds
+    spec, ds = result.spec, result.dataset
+    figures = figures or {}
+    n, nf = len(result.points), len(result.failed)
+    lines = [f"# Sweep `{spec.name}`", ""]
+    if spec.config.sweep.description:
+        lines += [spec.config.sweep.description, ""]
+    where = (f"Dask scheduler {result.scheduler}" if result.scheduler else "a local cluster")
+    lines += [
+        f"* base case: `{spec.base_source}` (`{spec.base.name}`; complete case in "
+        "`base_case.toml` and in the `base_case_toml` attribute of `sweep.nc`)",
+        f"* per point: {'the full cam-cycle study' if spec.mode == 'study' else 'the valvetrain dynamics alone'}"
+        f"{' with cycle traces' if spec.traces else ''}",
+        f"* points: {n} ({n - nf} finished, {nf} failed); {result.ran} run now, "
+        f"{result.skipped} taken from an earlier run",
+        f"* run time {result.runtime_s:.1f} s on {result.workers} worker(s), {where}; "
+        f"tribodyn {ds.attrs.get('tribodyn_version', '')}", ""]
+    lines += ["## Axes", "", "| dimension | key path | unit | values |", "|---|---|---|---|"]
+    for dim, axes in spec.dims:
+        for a in axes:
+            lines.append(f"| {dim} | `{a.path}` | {a.unit or '–'} | "
+                         f"{_values_text(a.values)} |")
+    lines += ["", f"Combination: {spec.config.sweep.combine}"
+              + (" (axes sharing a group are zipped)" if any(len(a) > 1 for _, a in spec.dims)
+                 else ""), ""]
+    if spec.config.fixed:
+        lines += ["Fixed changes to the base case at every point:", ""]
+        lines += [f"* `{k}` = {v!r}" for k, v in spec.config.fixed.items()] + [""]
+    lines += _results_tables(result)
+    lines += _onsets(ds, onset_speeds)
+    if figures:
+        lines += ["## Figures", ""]
+        for name, path in figures.items():
+            lines += [f"![{SWEEP_FIGURES.get(name, name)}]({Path(path).name})", "",
+                      f"*{SWEEP_FIGURES.get(name, name)}.*", ""]
+    lines += _failures_and_warnings(result)
+    lines += ["## Files", "",
+              "* `sweep.nc` — all points in one xarray Dataset indexed by the sweep "
+              "dimensions (and `surface_set`); `status` 1/0 and `error` per point; units "
+              "in the `units` attributes",
+              "* `points/<key>.nc` — one file per point (the record `--resume` uses)",
+              "* `sweep.toml` — the sweep as run; `base_case.toml` — the base case", ""]
+    return "\n".join(lines)
+
+
+def _results_tables(result) -> list[str]:
+    spec, ds = result.spec, result.dataset
+    rows, capped = _point_rows(result)
+    out = ["## Results", ""]
+    if capped:
+        out += [f"The first {_MAX_ROWS} of {len(result.points)} points; all are in "
+                "`sweep.nc`.", ""]
+    dyn_cols = [("peak_contact_force_N", "peak F [N]", ".4g"),
+                ("min_contact_force_in_event_N", "min F in event [N]", ".4g"),
+                ("jump", "jump", None), ("valve_bounce", "bounce", None),
+                ("seating_velocity_m_s", "seating v [m/s]", ".3g"),
+                ("runtime_s", "run time [s]", ".3g"), ("cpu_s", "CPU [s]", ".3g")]
+    dyn_cols = [c for c in dyn_cols if c[0] in ds]
+    if dyn_cols:
+        out += ["Valvetrain dynamics (explicit tribology of the reference set):", "",
+                "| point | " + " | ".join(c[1] for c in dyn_cols) + " |",
+                "|---|" + "---|" * len(dyn_cols)]
+        for label, pos in rows:
+            cells = []
+            for name, _, fmt in dyn_cols:
+                v = float(_at(ds[name], spec, pos).values)
+                cells.append(("yes" if v == 1 else "no" if v == 0 else "–") if fmt is None
+                             else _f(v, fmt))
+            out.append(f"| {label} | " + " | ".join(cells) + " |")
+        out.append("")
+    if "surface_set" not in ds.dims:
+        return out
+    sets = [str(s) for s in ds["surface_set"].values]
+    for name, title, scale, fmt in (
+            ("friction_energy_per_cycle_J", "Friction energy per engine cycle [J]", 1, ".4g"),
+            ("mean_friction_power_W", "Mean friction power [W]", 1, ".4g"),
+            ("min_film_m", "Minimum film thickness in the cam event [µm]", 1e6, ".4g"),
+            ("min_lambda", "Minimum λ = h_min/σ in the cam event", 1, ".3g"),
+            ("boundary_friction_reduction_vs_uncoated_pct",
+             "Boundary friction below the reference set [%]", 1, ".3g"),
+            ("failed_steps", "Transient-EHL steps that did not converge", 1, ".0f")):
+        if name not in ds:
+            continue
+        out += [f"{title}:", "", "| point | " + " | ".join(sets) + " |",
+                "|---|" + "---|" * len(sets)]
+        for label, pos in rows:
+            v = np.asarray(_at(ds[name], spec, pos).values, float) * scale
+            out.append(f"| {label} | " + " | ".join(_f(float(x), fmt) for x in v) + " |")
+        out.append("")
+    return out
+
+
+def _onsets(ds, onset_speeds) -> list[str]:
+    out = []
+    for var, what in (("jump", "Jump (cam contact lost while the cam lifts)"),
+                      ("valve_bounce", "Valve bounce")):
+        res = onset_speeds(ds, var)
+        if not res:
+            continue
+        out += [f"{what}:", ""]
+        for label, lo, hi in res:
+            head = f"* {label}: " if label else "* "
+            if not math.isfinite(hi):
+                out.append(head + "none in the swept range")
+            elif not math.isfinite(lo):
+                out.append(head + f"already at the lowest swept value ({hi:g})")
+            else:
+                out.append(head + f"onset between {lo:g} and {hi:g} (first occurrence at "
+                                  f"{hi:g}; resolution = the sweep's step)")
+        out.append("")
+    return (["## Onset of jump and bounce", ""] + out) if out else []
+
+
+def _failures_and_warnings(result) -> list[str]:
+    out = []
+    if result.failed:
+        out += ["## Failed points", "", f"{len(result.failed)} point(s) failed; the others "
+                "completed. Their variables are NaN in `sweep.nc` (`status` = 0).", "",
+                "| point | error |", "|---|---|"]
+        for p, err in result.failed[:_MAX_ROWS]:
+            out.append(f"| {p.label} | {str(err).replace('|', '/').splitlines()[0] if err else ''} |")
+        out.append("")
+    ds = result.dataset
+    bad = []
+    for p in result.points:
+        w = str(_at(ds["warnings"], result.spec, p.position).values) if "warnings" in ds \
+            else ""
+        if w:
+            bad.append(f"* {p.label}: {w}")
+    if bad:
+        out += ["## Warnings", "", "Finished points whose study reported a problem "
+                "(non-converged EHL steps are also counted per surface set in "
+                "`failed_steps`; the implicit coupling only feeds the explicit-vs-implicit "
+                "comparison, not the EHL of the surface sets):", ""]
+        out += bad[:_MAX_ROWS] + [""]
+    if "jump" in ds and float(np.nansum(ds["jump"].values)) > 0 and "surface_set" in ds.dims:
+        out += ["Where the follower jumps, the cam and tappet separate during the event: "
+                "the EHL is not solved while the contact force is below "
+                "`numerics.min_load`, and the film and friction figures at those speeds "
+                "describe the remaining loaded part of the event.", ""]
+    return out

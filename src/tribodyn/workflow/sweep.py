@@ -1,0 +1,314 @@
+"""Design sweeps on Dask: one task per point, on a local cluster or an existing scheduler.
+
+:func:`run_sweep` takes a validated :class:`~tribodyn.config.sweep.SweepSpec`, plans its
+points, and submits one task per point (:func:`tribodyn.workflow.sweep_point.run_point`:
+the full cam-cycle study of the point's case, or the dynamics alone) to a
+``dask.distributed`` client. Without a client it starts a ``LocalCluster`` of process
+workers sized to the machine (one single-threaded worker per available CPU core, at most
+one per point); :func:`connect` attaches to an existing scheduler (``tcp://host:8786`` or
+a scheduler file), so the same sweep runs on a laptop, a ``dask scheduler`` +
+``dask worker`` cluster or an HPC queue (dask-jobqueue).
+
+With an output folder every finished point is written at once (:class:`PointStore`, one
+file per point, atomically); ``resume=True`` skips the points already finished. A point
+that fails — an invalid combination of values, a solver failure, a worker that died — is
+recorded with its error and the others go on. The result is one xarray Dataset indexed by
+the sweep's dimensions (:func:`combine_points`).
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import os
+import statistics
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import xarray as xr
+
+from .._validation import InputError
+from .sweep_point import failed_point, run_point
+from .sweep_store import PointStore, combine_points
+
+__all__ = ["SweepResult", "run_sweep", "connect", "local_cluster", "machine_workers",
+           "estimate_point_seconds", "estimate_sweep"]
+
+
+@dataclass
+class SweepResult:
+    """A finished (or partly failed) sweep."""
+
+    spec: object                     #: the SweepSpec
+    points: list                     #: the plan (SweepPoint, in dimension order)
+    dataset: xr.Dataset              #: all points, indexed by the sweep dimensions
+    ran: int = 0                     #: points run now
+    skipped: int = 0                 #: points already finished (resume)
+    failed: list = field(default_factory=list)    #: [(SweepPoint, error)]
+    runtime_s: float = 0.0
+    workers: int = 0
+    scheduler: str = ""
+
+    @property
+    def n_ok(self) -> int:
+        return len(self.points) - len(self.failed)
+
+
+def machine_workers() -> int:
+    """CPU cores this process may use."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:                      # not on Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def local_cluster(workers: int | None = None):
+    """A ``LocalCluster`` of single-threaded process workers (default: one per core)."""
+    from distributed import LocalCluster
+    n = machine_workers() if not workers else int(workers)
+    if n < 1:
+        raise InputError(f"workers: must be >= 1 (got {workers})")
+    return LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                        dashboard_address=":0", silence_logs=logging.ERROR)
+
+
+def connect(address: str, *, workers: int | None = None, timeout: float = 30.0):
+    """A client of an existing Dask scheduler: ``tcp://host:port`` (or another Dask
+    address) or the path of a scheduler file. ``workers``: wait until that many workers
+    are connected. Raises :class:`InputError` naming ``--scheduler`` if it cannot."""
+    from distributed import Client
+    if not isinstance(address, str) or not address.strip():
+        raise InputError("--scheduler: give the scheduler's address, e.g. "
+                         "tcp://host:8786, or a scheduler file")
+    try:
+        if "://" not in address and Path(address).is_file():
+            client = Client(scheduler_file=address, timeout=timeout)
+        else:
+            client = Client(address, timeout=timeout)
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise InputError(f"--scheduler: cannot connect to {address!r} within {timeout:g} s "
+                         f"({type(exc).__name__}: {exc}); start one with `dask scheduler` "
+                         "or give a running scheduler's address, e.g. tcp://host:8786"
+                         ) from None
+    if workers:
+        try:
+            client.wait_for_workers(int(workers), timeout=timeout)
+        except TimeoutError:
+            have = len(client.scheduler_info().get("workers", {}))
+            client.close()
+            raise InputError(f"--workers: {workers} workers requested, {have} connected to "
+                             f"{address} after {timeout:g} s") from None
+    return client
+
+
+def _n_workers(client) -> int:
+    try:
+        return len(client.scheduler_info().get("workers", {}))
+    except Exception:                 # a scheduler that does not answer: report 0
+        return 0
+
+
+def run_sweep(spec, client=None, *, out_dir=None, resume: bool = False,
+              workers: int | None = None, progress=None) -> SweepResult:
+    """Run a sweep; return its :class:`SweepResult`.
+
+    spec : a :class:`~tribodyn.config.sweep.SweepSpec` (or a sweep file path).
+    client : a ``distributed.Client``; None starts a ``LocalCluster`` with ``workers``
+        process workers (default: one per CPU core, at most one per point) and closes it
+        at the end.
+    out_dir : folder for the point files (``out_dir/points``); None keeps everything in
+        memory (no resume).
+    resume : skip the points whose file in ``out_dir`` is finished. Without it an
+        ``out_dir`` that already holds points is refused, so no finished point is lost.
+    progress : ``progress(event, **info)`` with ``"start"`` (total, skipped, todo,
+        workers) and ``"point"`` (done, failed, total, label, status, error) events.
+    """
+    from ..config.sweep import SweepSpec, load_sweep
+    if not isinstance(spec, SweepSpec):
+        spec = load_sweep(spec)
+    t_start = time.perf_counter()
+    report = progress or (lambda *a, **k: None)
+    plan = spec.points()
+    store = PointStore(out_dir) if out_dir is not None else None
+    results: dict[int, xr.Dataset] = {}
+    skipped = 0
+    if store is not None:
+        store.clean()
+        if store.keys() and not resume:
+            raise InputError(f"{store.folder} already holds points of a sweep: pass resume "
+                             "(--resume) to go on with it, or choose another output folder")
+        if resume:
+            for p in plan:
+                if p.case is not None and store.status(p.key) == "ok":
+                    results[p.index] = store.load(p.key)
+                    skipped += 1
+    failed: list = []
+    for p in plan:                      # invalid combinations: recorded, never run
+        if p.case is None:
+            results[p.index] = failed_point(p.error)
+            if store is not None:
+                store.write(p, results[p.index])
+            failed.append((p, p.error))
+    todo = [p for p in plan if p.index not in results]
+
+    own = None
+    if client is None and todo:
+        n = min(workers or machine_workers(), len(todo))
+        own = local_cluster(n)
+        from distributed import Client
+        client = Client(own)
+    n_workers = _n_workers(client) if client is not None else 0
+    scheduler = getattr(getattr(client, "scheduler", None), "address", "") or ""
+    if own is not None:
+        scheduler = ""                  # a cluster of this run: not an address to report
+    report("start", total=len(plan), skipped=skipped, todo=len(todo), workers=n_workers,
+           scheduler=scheduler, invalid=len(failed))
+    done = skipped + len(failed)
+    futures = []
+    try:
+        if todo:
+            futures = _submit(client, spec, todo)
+            by_key = {f.key: p for f, p in zip(futures, todo)}
+            from distributed import as_completed
+            for fut in as_completed(futures):
+                p = by_key[fut.key]
+                try:
+                    ds = fut.result()
+                except Exception as exc:            # worker died, cancelled, …
+                    ds = failed_point(f"{type(exc).__name__}: {exc}")
+                fut.release()
+                results[p.index] = ds
+                if store is not None:
+                    store.write(p, ds)
+                status = ds.attrs.get("status", "failed")
+                if status != "ok":
+                    failed.append((p, ds.attrs.get("error", "")))
+                done += 1
+                report("point", done=done, failed=len(failed), total=len(plan),
+                       label=p.label, status=status, error=ds.attrs.get("error", ""))
+    except BaseException:                # interrupted: finished points are on disk
+        if futures and own is None:
+            client.cancel([f for f in futures if not f.done()])
+        raise
+    finally:
+        if own is not None:
+            client.close()
+            own.close()
+    failed.sort(key=lambda f: f[0].index)
+    dataset = combine_points(spec, plan, results)
+    runtime = time.perf_counter() - t_start
+    dataset.attrs["runtime_s"] = runtime
+    dataset.attrs["points_run"] = len(todo)
+    dataset.attrs["points_resumed"] = skipped
+    return SweepResult(spec=spec, points=plan, dataset=dataset, ran=len(todo),
+                       skipped=skipped, failed=failed, runtime_s=runtime,
+                       workers=n_workers, scheduler=scheduler)
+
+
+def _submit(client, spec, todo):
+    """One task per point (unique keys: a rerun never picks up an old task's result)."""
+    import uuid
+    tag = uuid.uuid4().hex[:8]
+    return [client.submit(run_point, p.case, spec.mode, spec.traces, pure=False,
+                          key=f"tribodyn-point-{p.index}-{p.key}-{tag}") for p in todo]
+
+
+# ----------------------------------------------------------------------------- estimate
+def estimate_point_seconds(case, mode: str = "study", steps: int = 8) -> float:
+    """Estimated CPU time [s] of one point on one core, from a calibration run.
+
+    Dynamics mode: the dynamics is run (its time is the estimate). Study mode: the
+    dynamics is run, ``steps`` transient-EHL steps of the reference set are timed from the
+    peak contact force, and the study's time is extrapolated: dynamics + EHL over the
+    loaded samples for every surface set + (implicit coupling) ``coupling_iterations`` ×
+    (dynamics + reference-set EHL) + the single-contact studies (timed). The coupling
+    term is an upper bound (iterations stop once converged)."""
+    from threadpoolctl import threadpool_limits
+
+    from ..contact.ehl import TransientEHL
+    from .coating_study import dry_coating_study, ehl_coating_study
+    from .cycle import StudyError
+    from .cycle_ehl import CycleInputs
+    from .postprocess import surface_roles
+    from .sensitivity import nose_condition, roughness_sensitivity
+    from .sweep_point import point_dynamics
+
+    clock = time.process_time            # CPU time: one core, whatever the machine's load
+    with threadpool_limits(1):
+        t0 = clock()
+        dyn = point_dynamics(case)
+        t_dyn = clock() - t0
+        if mode == "dynamics" or not dyn.converged:
+            return t_dyn
+        n = case.numerics
+        inp = CycleInputs.from_dynamics(dyn, n.crank_step_deg, case.width)
+        loaded = inp.contact_force >= n.min_load
+        n_loaded = int(loaded.sum())
+        if n_loaded == 0:
+            raise StudyError("no EHL sample is loaded")
+        ref = case.surface_set(surface_roles(case)["reference"])
+        i0 = int(inp.contact_force.argmax())
+        i0 = max(1, min(i0, inp.crank_angle.size - steps))
+        tr = TransientEHL(ref.bodies, case.lubricant(), ref.roughness,
+                          options=case.ehl_options(ref))
+        t0 = clock()
+        k = 0
+        for i in range(i0, min(i0 + steps, inp.crank_angle.size)):
+            w = inp.contact_force[i] / case.width
+            args = (max(w, 1.0), inp.radius[i], inp.entrainment_speed[i],
+                    inp.sliding_speed[i])
+            if k == 0:
+                tr.start_steady(*args, time=inp.time[i])
+            else:
+                tr.step(inp.time[i] - inp.time[i - 1], *args)
+            k += 1
+        t_step = (clock() - t0) / max(k, 1)
+        t0 = clock()
+        dry_coating_study()
+        ehl_coating_study(case.lubricant(), case)
+        roughness_sensitivity(case, ref, nose_condition(inp))
+        t_single = clock() - t0
+    t_ehl = n_loaded * t_step
+    t = t_dyn + len(case.surface_set_names) * t_ehl + t_single
+    if n.implicit_coupling:
+        t += n.coupling_iterations * (t_dyn + t_ehl)
+    return t
+
+
+def estimate_sweep(spec, *, workers: int, out_dir=None) -> dict:
+    """Estimated wall time of a sweep on ``workers`` single-threaded workers.
+
+    The time per point is the median CPU time of points already finished in ``out_dir``
+    (resume) if any, else :func:`estimate_point_seconds` calibrated on the first and the
+    last valid point of the plan. Returns points, invalid, done, todo, seconds_per_point,
+    seconds, method."""
+    plan = spec.points()
+    valid = [p for p in plan if p.case is not None]
+    store = PointStore(out_dir) if out_dir is not None else None
+    done_times = []
+    done = 0
+    if store is not None:
+        for p in valid:
+            ds = store.load(p.key) if store.status(p.key) == "ok" else None
+            if ds is not None:
+                done += 1
+                done_times.append(float(ds.attrs.get("cpu_s",
+                                                     ds.attrs.get("runtime_s", math.nan))))
+    todo = len(valid) - done
+    done_times = [t for t in done_times if math.isfinite(t)]
+    if done_times:
+        per = statistics.median(done_times)
+        method = f"median CPU time of the {len(done_times)} finished points"
+    elif valid:
+        cal = [valid[0]] if len(valid) == 1 else [valid[0], valid[-1]]
+        times = [estimate_point_seconds(p.case, spec.mode) for p in cal]
+        per = sum(times) / len(times)
+        method = ("calibration run of " + " and ".join(f"point {p.index} ({p.label})"
+                                                      for p in cal))
+    else:
+        per, method = 0.0, "no valid point"
+    w = max(1, min(workers, max(todo, 1)))
+    return {"points": len(plan), "invalid": len(plan) - len(valid), "done": done,
+            "todo": todo, "seconds_per_point": per,
+            "seconds": math.ceil(todo / w) * per, "workers": w, "method": method}
