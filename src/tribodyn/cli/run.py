@@ -64,7 +64,7 @@ def run_command(case: Optional[Path] = typer.Argument(
         raise typer.Exit(2)
     with _terminate_as_interrupt():
         try:
-            _run(c, out, workers, quiet)
+            _run(c, out, workers, quiet, scheduler)
         except typer.Exit:
             raise
         except BaseException as exc:
@@ -111,7 +111,7 @@ class _terminate_as_interrupt:
         return False
 
 
-def _run(c, out: Path, workers, quiet: bool) -> None:
+def _run(c, out: Path, workers, quiet: bool, scheduler: str | None = None) -> None:
     """Compute the study, write it, print the summary table."""
     from ..output import OutputWriteError, write_results
     from ..workflow.cycle import StudyError, run_cycle_study
@@ -123,7 +123,7 @@ def _run(c, out: Path, workers, quiet: bool) -> None:
         try:
             client = connect(scheduler)
         except InputError as exc:
-            console.print(f"[red]error:[/red] {exc}")
+            console.print(f"[red]error:[/red] {escape(str(exc))}")
             raise typer.Exit(2)
         executor = client.get_executor(pure=False)
         console.print(f"Dask scheduler {scheduler}: "
