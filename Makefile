@@ -1,5 +1,5 @@
 # Two commands do all set-up on a fresh machine:
-#   make test   create .venv if missing, install tribodyn with its test extras, run pytest
+#   make test   create .venv if missing, install tribodyn with its test extras, lint, run pytest
 #   make run    same set-up, then run the main job on the bundled paper case
 PYTHON ?= python3
 VENV   ?= .venv
@@ -7,7 +7,7 @@ PY      = $(VENV)/bin/python
 OUT    ?= results
 STAMP   = $(VENV)/.installed
 
-.PHONY: test run bench clean
+.PHONY: test lint run bench clean
 
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -15,7 +15,11 @@ $(STAMP): pyproject.toml
 	$(PY) -m pip install --quiet -e ".[test]"
 	touch $(STAMP)
 
-test: $(STAMP)
+lint: $(STAMP)
+	$(VENV)/bin/ruff check src tests benchmarks
+	$(VENV)/bin/ruff format --check src tests benchmarks
+
+test: lint
 	$(PY) -m pytest -q
 
 run: $(STAMP)

@@ -28,12 +28,11 @@ import math
 import os
 import sys
 import time
-from dataclasses import replace
 from pathlib import Path
 
-import tribodyn  # noqa: F401  (one BLAS thread, before numpy loads)
 import numpy as np
 
+import tribodyn  # noqa: F401  (one BLAS thread, before numpy loads)
 from tribodyn.config import load_case
 from tribodyn.valvetrain.dynamics import simulate_valvetrain
 from tribodyn.workflow.coupling import run_coupling
@@ -49,9 +48,14 @@ def timed(fn):
 
 
 def pass_stats(r, wall, cpu):
-    return {"wall_s": wall, "cpu_s": cpu, "loaded_steps": int(r.loaded.sum()),
-            "newton_iterations": int(r.iterations.sum()), "failed_steps": len(r.failures),
-            "friction_energy_proxy_J": None}
+    return {
+        "wall_s": wall,
+        "cpu_s": cpu,
+        "loaded_steps": int(r.loaded.sum()),
+        "newton_iterations": int(r.iterations.sum()),
+        "failed_steps": len(r.failures),
+        "friction_energy_proxy_J": None,
+    }
 
 
 def legacy_grid():
@@ -68,16 +72,27 @@ def legacy_grid():
 
     @contextlib.contextmanager
     def ctx():
-        saved = (grid.auto_nodes, tr.GRID_SLACK, tr.GRID_MARGIN, grid.Grid.covers,
-                 tr.EVENT_NODES_FROM_START)
+        saved = (
+            grid.auto_nodes,
+            tr.GRID_SLACK,
+            tr.GRID_MARGIN,
+            grid.Grid.covers,
+            tr.EVENT_NODES_FROM_START,
+        )
         grid.auto_nodes = nodes_01
         tr.GRID_SLACK, tr.GRID_MARGIN, tr.EVENT_NODES_FROM_START = 1.0, 1.0, False
         grid.Grid.covers = lambda self, lay, d, slack: self.same_as(lay, d)
         try:
             yield
         finally:
-            (grid.auto_nodes, tr.GRID_SLACK, tr.GRID_MARGIN, grid.Grid.covers,
-             tr.EVENT_NODES_FROM_START) = saved
+            (
+                grid.auto_nodes,
+                tr.GRID_SLACK,
+                tr.GRID_MARGIN,
+                grid.Grid.covers,
+                tr.EVENT_NODES_FROM_START,
+            ) = saved
+
     return ctx()
 
 
@@ -89,6 +104,7 @@ def energy(time_s, loaded, power):
 def accuracy(study, ref_dir: Path) -> dict:
     """Relative differences of the study's key outputs from a results folder."""
     import xarray as xr
+
     s_new = study.analysis.summary
     s_ref = json.loads((ref_dir / "summary.json").read_text())
     out = {"reference": ref_dir.name, "sets": {}}
@@ -107,8 +123,10 @@ def accuracy(study, ref_dir: Path) -> dict:
     for s in study.sets:
         k = names.index(s.name)
         a, b = s_new["surface_sets"][s.name], s_ref["surface_sets"][s.name]
-        row = {"friction_energy_pct": 100 * (a["friction_energy_per_cycle_J"]
-                                             / b["friction_energy_per_cycle_J"] - 1)}
+        row = {
+            "friction_energy_pct": 100
+            * (a["friction_energy_per_cycle_J"] / b["friction_energy_per_cycle_J"] - 1)
+        }
         red_a = a.get("boundary_friction_reduction_vs_uncoated_pct")
         red_b = b.get("boundary_friction_reduction_vs_uncoated_pct")
         if red_a is not None and red_b is not None:
@@ -130,9 +148,10 @@ def accuracy(study, ref_dir: Path) -> dict:
         out["sets"][s.name] = row
     ie_a, ie_b = s_new["implicit_vs_explicit"], s_ref["implicit_vs_explicit"]
     out["implicit_vs_explicit_pct"] = {
-        key: 100 * (ie_a[key] / ie_b[key] - 1) for key in
-        ("max_contact_force_diff_pct", "max_velocity_diff_pct")
-        if ie_a.get(key) and ie_b.get(key)}
+        key: 100 * (ie_a[key] / ie_b[key] - 1)
+        for key in ("max_contact_force_diff_pct", "max_velocity_diff_pct")
+        if ie_a.get(key) and ie_b.get(key)
+    }
     out["coupling_converged"] = bool(ie_a.get("coupling_converged"))
     out["failed_steps"] = {n: v["failed_steps"] for n, v in s_new["surface_sets"].items()}
     return out
@@ -147,14 +166,22 @@ def main():
     ap.add_argument("--workers", type=int, default=None)
     args = ap.parse_args()
     case = load_case(args.case)
-    out = {"python": sys.version.split()[0], "cpus": os.cpu_count(),
-           "blas_threads_env": os.environ.get("OPENBLAS_NUM_THREADS")}
+    out = {
+        "python": sys.version.split()[0],
+        "cpus": os.cpu_count(),
+        "blas_threads_env": os.environ.get("OPENBLAS_NUM_THREADS"),
+    }
     ref_name = surface_roles(case)["reference"]
     ref = case.surface_set(ref_name)
 
-    dyn, w, c = timed(lambda: simulate_valvetrain(
-        case.cam(), case.valvetrain_parameters(), tribology=case.analytic_tribology(ref),
-        **case.dynamics_options()))
+    dyn, w, c = timed(
+        lambda: simulate_valvetrain(
+            case.cam(),
+            case.valvetrain_parameters(),
+            tribology=case.analytic_tribology(ref),
+            **case.dynamics_options(),
+        )
+    )
     out["dynamics_explicit"] = {"wall_s": w, "cpu_s": c, **dyn.stats}
     inputs = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
 
@@ -162,8 +189,7 @@ def main():
     for s in case.surface_sets():
         r, w, c = timed(lambda: ehl_for_set(case, s, inputs))
         passes[s.name] = pass_stats(r, w, c)
-        passes[s.name]["friction_energy_proxy_J"] = energy(inputs.time, r.loaded,
-                                                           r.friction_power)
+        passes[s.name]["friction_energy_proxy_J"] = energy(inputs.time, r.loaded, r.friction_power)
         if s.name == ref_name:
             first = r
     out["ehl_pass"] = passes
@@ -178,18 +204,26 @@ def main():
 
     if case.numerics.implicit_coupling:
         cp, w, c = timed(lambda: run_coupling(case, ref, dyn, inputs, first))
-        out["coupling_chain"] = {"wall_s": w, "cpu_s": c, "converged": cp.converged,
-                                 "iterations": len(cp.history), "message": cp.message,
-                                 "history": [vars(h) for h in cp.history]}
+        out["coupling_chain"] = {
+            "wall_s": w,
+            "cpu_s": c,
+            "converged": cp.converged,
+            "iterations": len(cp.history),
+            "message": cp.message,
+            "history": [vars(h) for h in cp.history],
+        }
 
     if not args.skip_study:
         t0 = time.perf_counter()
         study = run_cycle_study(case, workers=args.workers)
-        out["study"] = {"wall_s": time.perf_counter() - t0, "runtime_s": study.runtime_s,
-                        "timings": study.timings,
-                        "set_runtime_s": {s.name: s.runtime_s for s in study.sets},
-                        "coupling_runtime_s": study.coupling.runtime_s,
-                        "warnings": study.warnings}
+        out["study"] = {
+            "wall_s": time.perf_counter() - t0,
+            "runtime_s": study.runtime_s,
+            "timings": study.timings,
+            "set_runtime_s": {s.name: s.runtime_s for s in study.sets},
+            "coupling_runtime_s": study.coupling.runtime_s,
+            "warnings": study.warnings,
+        }
         out["accuracy"] = [accuracy(study, Path(d)) for d in args.reference]
     print(json.dumps(out, indent=2, default=float))
 

@@ -53,20 +53,23 @@ def main():
     oil = Lubricant(MU0, G / E_PRIME)
     w, u = conditions(20, 10)
     out = {"python": platform.python_version(), "numpy": np.__version__, "blas_threads": 1}
-    t, r = best_of(lambda: solve_ehl(w, R, u, 1.0, PAIR, oil), 5, "steady_M20_L10_default_grid_cpu_s")
+    t, r = best_of(
+        lambda: solve_ehl(w, R, u, 1.0, PAIR, oil), 5, "steady_M20_L10_default_grid_cpu_s"
+    )
     out["steady_M20_L10_default_grid_s"] = t
     out["steady_M20_L10_default_grid_n"] = len(r.x)
     out["steady_M20_L10_newton_iterations"] = r.iterations
     rough = Roughness(8.3e9, 0.408e-6, 0.669e-6)
-    t, r = best_of(lambda: solve_ehl(w, R, u, 1.0, PAIR, oil, rough), 3,
-                   "steady_M20_L10_with_roughness_cpu_s")
+    t, r = best_of(
+        lambda: solve_ehl(w, R, u, 1.0, PAIR, oil, rough), 3, "steady_M20_L10_with_roughness_cpu_s"
+    )
     out["steady_M20_L10_with_roughness_s"] = t
 
     tr = TransientEHL(PAIR, oil)
     tr.start_steady(w, R, u, 1.0)
     b = math.sqrt(8 * w * R / (math.pi * E_PRIME))
     dt = b / u
-    for k in range(5):                               # settle the history (BDF2)
+    for _ in range(5):  # settle the history (BDF2)
         tr.step(dt, w, R, u, 1.0)
     steps, cpus = [], []
     for k in range(20):
@@ -81,15 +84,19 @@ def main():
 
     scaling = {}
     for n in (256, 512, 1024, 2048, 4096):
-        t, r = best_of(lambda: solve_ehl(w, R, u, 1.0, PAIR, oil, n=n), 2 if n < 4096 else 1,
-                       "n")
-        scaling[str(n)] = {"seconds": t, "cpu_seconds": CPU["n"], "iterations": r.iterations,
-                           "central_film_m": r.central_film}
+        t, r = best_of(lambda: solve_ehl(w, R, u, 1.0, PAIR, oil, n=n), 2 if n < 4096 else 1, "n")
+        scaling[str(n)] = {
+            "seconds": t,
+            "cpu_seconds": CPU["n"],
+            "iterations": r.iterations,
+            "central_film_m": r.central_film,
+        }
     out["steady_time_vs_n"] = scaling
     ns = np.array([int(k) for k in scaling])
     ts = np.array([v["seconds"] for v in scaling.values()])
     out["steady_time_growth_exponent_1024_4096"] = float(
-        np.log(ts[-1] / ts[2]) / np.log(ns[-1] / ns[2]))
+        np.log(ts[-1] / ts[2]) / np.log(ns[-1] / ns[2])
+    )
     CPU.pop("n", None)
     out.update(CPU)
     print(json.dumps(out, indent=2))

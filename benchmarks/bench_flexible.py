@@ -34,15 +34,23 @@ def main(repeats: int = 3) -> dict:
             res[name] = simulate_valvetrain(case.cam(), p, **kw)
             times[name].append(time.perf_counter() - t0)
     med = {k: statistics.median(v) for k, v in times.items()}
-    keys = ("peak_contact_force_N", "min_contact_force_in_event_N", "seating_velocity_m_s",
-            "friction_energy_per_cycle_J", "energy_residual_rel")
-    return {"case": "andreou2023_flexible (bundled), 3000 rpm, 2 engine cycles, explicit",
-            "repeats": repeats, "times_s": times, "median_s": med,
-            "ratio_flexible_to_lumped": med["flexible"] / med["lumped"],
-            "nfev": {k: r.stats.get("nfev") for k, r in res.items()},
-            "summary": {k: {q: r.summary().get(q) for q in keys} for k, r in res.items()}}
+    keys = (
+        "peak_contact_force_N",
+        "min_contact_force_in_event_N",
+        "seating_velocity_m_s",
+        "friction_energy_per_cycle_J",
+        "energy_residual_rel",
+    )
+    return {
+        "case": "andreou2023_flexible (bundled), 3000 rpm, 2 engine cycles, explicit",
+        "repeats": repeats,
+        "times_s": times,
+        "median_s": med,
+        "ratio_flexible_to_lumped": med["flexible"] / med["lumped"],
+        "nfev": {k: r.stats.get("nfev") for k, r in res.items()},
+        "summary": {k: {q: r.summary().get(q) for q in keys} for k, r in res.items()},
+    }
 
 
 if __name__ == "__main__":
-    print(json.dumps(main(int(sys.argv[1]) if len(sys.argv) > 1 else 3), indent=2,
-                     default=float))
+    print(json.dumps(main(int(sys.argv[1]) if len(sys.argv) > 1 else 3), indent=2, default=float))

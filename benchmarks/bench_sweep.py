@@ -32,7 +32,8 @@ from tribodyn.workflow.sweep import local_cluster, machine_workers, run_sweep
 def _spec(n: int) -> SweepSpec:
     return SweepSpec.from_toml_string(
         '[sweep]\nname = "bench"\nmode = "dynamics"\n[[axes]]\npath = "engine.speed_rpm"\n'
-        f"start = 1500.0\nstop = 6000.0\nnum = {n}\n")
+        f"start = 1500.0\nstop = 6000.0\nnum = {n}\n"
+    )
 
 
 def _warm(client):
@@ -41,6 +42,7 @@ def _warm(client):
 
 def throughput(n_points: int, workers: int) -> dict:
     from distributed import Client
+
     spec = _spec(n_points)
     t0 = time.perf_counter()
     with local_cluster(workers) as cluster, Client(cluster) as client:
@@ -51,21 +53,29 @@ def throughput(n_points: int, workers: int) -> dict:
             res = run_sweep(spec, client, out_dir=out)
             wall = time.perf_counter() - t0
     cpu = [float(v) for v in res.dataset["cpu_s"].values.ravel()]
-    return {"workers": workers, "points": n_points, "failed": len(res.failed),
-            "cluster_start_s": start, "wall_s": wall,
-            "points_per_min": 60.0 * n_points / wall, "sum_point_cpu_s": sum(cpu),
-            "median_point_cpu_s": statistics.median(cpu)}
+    return {
+        "workers": workers,
+        "points": n_points,
+        "failed": len(res.failed),
+        "cluster_start_s": start,
+        "wall_s": wall,
+        "points_per_min": 60.0 * n_points / wall,
+        "sum_point_cpu_s": sum(cpu),
+        "median_point_cpu_s": statistics.median(cpu),
+    }
 
 
 def _cheap_point(case, mode="study", traces=False):
     """A point that costs nothing: the scheduling, transfer and file cost stay."""
-    return xr.Dataset({"x": ((), float(case.engine_speed))},
-                      attrs={"status": "ok", "error": "", "runtime_s": 0.0,
-                             "warnings": "[]", "worker": ""})
+    return xr.Dataset(
+        {"x": ((), float(case.engine_speed))},
+        attrs={"status": "ok", "error": "", "runtime_s": 0.0, "warnings": "[]", "worker": ""},
+    )
 
 
 def overhead(n_points: int, workers: int = 2) -> dict:
     from distributed import Client
+
     spec = _spec(n_points)
     t0 = time.perf_counter()
     spec.points()
@@ -82,9 +92,13 @@ def overhead(n_points: int, workers: int = 2) -> dict:
     finally:
         sweep_module.run_point = real
     assert not res.failed
-    return {"workers": workers, "points": n_points, "wall_s": wall,
-            "per_point_ms": 1e3 * wall / n_points,
-            "planning_per_point_ms": 1e3 * plan_s / n_points}
+    return {
+        "workers": workers,
+        "points": n_points,
+        "wall_s": wall,
+        "per_point_ms": 1e3 * wall / n_points,
+        "planning_per_point_ms": 1e3 * plan_s / n_points,
+    }
 
 
 def main() -> dict:
@@ -94,10 +108,14 @@ def main() -> dict:
     a = ap.parse_args()
     one = throughput(a.points, 1)
     two = throughput(a.points, 2)
-    return {"case": "andreou2023 (bundled), dynamics only, 2 engine cycles per point",
-            "machine_cores": machine_workers(), "workers_1": one, "workers_2": two,
-            "speedup_2_over_1": one["wall_s"] / two["wall_s"],
-            "overhead": overhead(a.cheap_points)}
+    return {
+        "case": "andreou2023 (bundled), dynamics only, 2 engine cycles per point",
+        "machine_cores": machine_workers(),
+        "workers_1": one,
+        "workers_2": two,
+        "speedup_2_over_1": one["wall_s"] / two["wall_s"],
+        "overhead": overhead(a.cheap_points),
+    }
 
 
 if __name__ == "__main__":

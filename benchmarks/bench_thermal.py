@@ -49,19 +49,27 @@ def steady():
     args = (2e5, 0.02, 2.0, 1.0, pair)
     t_iso, iso = best_of(lambda: solve_ehl(*args, oil.isothermal()), 3)
     t_th, th = best_of(lambda: solve_thermal_ehl(*args, oil, tb), 3)
-    return {"isothermal_s": t_iso, "thermal_s": t_th, "ratio": t_th / t_iso,
-            "isothermal_central_film_m": iso.central_film, "thermal_central_film_m":
-            th.central_film, "thermal_max_temperature_rise_K":
-            th.max_temperature - th.inlet_temperature, "thermal_iterations":
-            th.thermal_iterations, "converged": bool(th.converged)}
+    return {
+        "isothermal_s": t_iso,
+        "thermal_s": t_th,
+        "ratio": t_th / t_iso,
+        "isothermal_central_film_m": iso.central_film,
+        "thermal_central_film_m": th.central_film,
+        "thermal_max_temperature_rise_K": th.max_temperature - th.inlet_temperature,
+        "thermal_iterations": th.thermal_iterations,
+        "converged": bool(th.converged),
+    }
 
 
 def cycle(set_name, repeat, model=None):
     case = load_case("andreou2023_thermal")
     s = case.surface_set(set_name)
-    dyn = simulate_valvetrain(case.cam(), case.valvetrain_parameters(),
-                              tribology=case.analytic_tribology(case.surface_sets()[0]),
-                              **case.dynamics_options())
+    dyn = simulate_valvetrain(
+        case.cam(),
+        case.valvetrain_parameters(),
+        tribology=case.analytic_tribology(case.surface_sets()[0]),
+        **case.dynamics_options(),
+    )
     inp = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
     if model == "isothermal":
         t, r = best_of(lambda: ehl_for_set(case, s, inp), repeat)
@@ -73,18 +81,27 @@ def cycle(set_name, repeat, model=None):
     t_th, th = best_of(lambda: thermal_for_set(case, s, inp), repeat)
     L = iso.loaded
     steps = int(L.sum())
-    e = lambda r: float(np.nansum(np.where(L, r.friction_power, 0.0)   # noqa: E731
-                                  * np.gradient(inp.time)))
-    return {"case": case.name, "surface_set": set_name, "loaded_steps": steps,
-            "isothermal_s": t_iso, "thermal_s": t_th, "ratio": t_th / t_iso,
-            "isothermal_ms_per_step": 1e3 * t_iso / steps,
-            "thermal_ms_per_step": 1e3 * t_th / steps,
-            "failed_steps_isothermal": len(iso.failures),
-            "failed_steps_thermal": len(th.failures),
-            "friction_energy_isothermal_J": e(iso), "friction_energy_thermal_J": e(th),
-            "max_tappet_surface_temperature_K": float(np.nanmax(th.surface_temperature_tappet)),
-            "max_temperature_K": float(np.nanmax(th.max_temperature)),
-            "inlet_temperature_K": th.inlet_temperature}
+
+    def e(r):
+        return float(np.nansum(np.where(L, r.friction_power, 0.0) * np.gradient(inp.time)))
+
+    return {
+        "case": case.name,
+        "surface_set": set_name,
+        "loaded_steps": steps,
+        "isothermal_s": t_iso,
+        "thermal_s": t_th,
+        "ratio": t_th / t_iso,
+        "isothermal_ms_per_step": 1e3 * t_iso / steps,
+        "thermal_ms_per_step": 1e3 * t_th / steps,
+        "failed_steps_isothermal": len(iso.failures),
+        "failed_steps_thermal": len(th.failures),
+        "friction_energy_isothermal_J": e(iso),
+        "friction_energy_thermal_J": e(th),
+        "max_tappet_surface_temperature_K": float(np.nanmax(th.surface_temperature_tappet)),
+        "max_temperature_K": float(np.nanmax(th.max_temperature)),
+        "inlet_temperature_K": th.inlet_temperature,
+    }
 
 
 def main():
@@ -92,8 +109,12 @@ def main():
     ap.add_argument("--set", default="wcc_4um")
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--only", choices=("steady", "cycle"), default=None)
-    ap.add_argument("--model", choices=("isothermal", "thermal"), default=None,
-                    help="cycle of one model only (to time whole processes A/B)")
+    ap.add_argument(
+        "--model",
+        choices=("isothermal", "thermal"),
+        default=None,
+        help="cycle of one model only (to time whole processes A/B)",
+    )
     a = ap.parse_args()
     threadpool_limits(1)
     out = {"python": platform.python_version(), "numpy": np.__version__, "blas_threads": 1}

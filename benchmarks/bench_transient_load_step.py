@@ -18,8 +18,8 @@ import time
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from tribodyn import Body, Lubricant, Material, Roughness, TransientEHL  # noqa: E402
-from tribodyn.contact.ehl import transient  # noqa: E402
+from tribodyn import Body, Lubricant, Material, Roughness, TransientEHL
+from tribodyn.contact.ehl import transient
 
 
 def main() -> None:
@@ -41,16 +41,24 @@ def main() -> None:
     transient.TransientEHL._advance = counted
     tr = TransientEHL((Body(steel), Body(steel)), oil, rough, **kw)
     tr.start_steady(4e4, 0.01, 2.0, 3.0)
-    out = {"benchmark": "transient_load_step", "grid": args.n or "automatic",
-           "max_substeps": tr.max_substeps}
+    out = {
+        "benchmark": "transient_load_step",
+        "grid": args.n or "automatic",
+        "max_substeps": tr.max_substeps,
+    }
     for label, w in (("up", 4e6), ("down", 4e4)):
         solves.clear()
         t0 = time.perf_counter()
         r = tr.step(1e-4, w, 0.01, 2.0, 3.0)
-        out[label] = {"load_N_per_m": w, "wall_s": round(time.perf_counter() - t0, 2),
-                      "solves": len(solves), "failed_solves": solves.count(False),
-                      "converged": bool(r.converged), "central_film_m": r.central_film,
-                      "min_film_m": r.min_film}
+        out[label] = {
+            "load_N_per_m": w,
+            "wall_s": round(time.perf_counter() - t0, 2),
+            "solves": len(solves),
+            "failed_solves": solves.count(False),
+            "converged": bool(r.converged),
+            "central_film_m": r.central_film,
+            "min_film_m": r.min_film,
+        }
     print(json.dumps(out, indent=2))
 
 

@@ -81,7 +81,7 @@ def expect_input_error(group: str, case: str, call) -> None:
         call()
     except InputError:
         record(group, "handled", case)
-    except Exception as exc:                       # noqa: BLE001
+    except Exception as exc:
         record(group, "traceback", f"{case} -> {type(exc).__name__}: {exc}"[:300])
     else:
         record(group, "garbage", f"{case} accepted")
@@ -103,36 +103,69 @@ def outside(limit) -> list:
 def fuzz_constructors() -> None:
     specs = {
         "Material": (Material, {"E": (210e9, L.YOUNGS_MODULUS), "nu": (0.3, L.POISSON_RATIO)}),
-        "Coating": (Coating, {"E": (175e9, L.YOUNGS_MODULUS), "nu": (0.3, L.POISSON_RATIO),
-                              "thickness": (4e-6, L.COATING_THICKNESS)}),
-        "Lubricant": (Lubricant, {"viscosity": (0.055, L.VISCOSITY),
-                                  "pressure_viscosity": (1e-8, L.PRESSURE_VISCOSITY),
-                                  "density": (850.0, L.DENSITY),
-                                  "eyring_stress": (2e6, L.EYRING_STRESS),
-                                  "limiting_shear_coefficient": (0.08,
-                                                                 L.LIMITING_SHEAR_COEFFICIENT),
-                                  "limiting_shear_stress": (0.0, L.LIMITING_SHEAR_STRESS)}),
-        "Roughness": (Roughness, {"asperity_density": (1e10, L.ASPERITY_DENSITY),
-                                  "rms": (3e-7, L.ROUGHNESS_RMS),
-                                  "summit_radius": (1e-6, L.SUMMIT_RADIUS)}),
-        "EHLOptions": (EHLOptions, {"n": (256, L.EHL_NODES), "inlet": (4.0, L.DOMAIN_HALF_WIDTHS),
-                                    "outlet": (1.75, L.DOMAIN_HALF_WIDTHS),
-                                    "inlet_rigid": (4.0, L.DOMAIN_RIGID_LENGTHS),
-                                    "inlet_truncation": (0.005, L.INLET_TRUNCATION),
-                                    "tol": (1e-9, L.NEWTON_TOL),
-                                    "max_iter": (60, L.NEWTON_MAX_ITER),
-                                    "boundary_shear_coefficient":
-                                        (0.185, L.BOUNDARY_SHEAR_COEFFICIENT)}),
-        "ValvetrainParameters": (ValvetrainParameters, {
-            name: (getattr(ValvetrainParameters(), name), lim) for name, lim in
-            __import__("tribodyn.valvetrain.parameters", fromlist=["_LIMITS"])._LIMITS.items()}),
-        "hertz_line_contact": (hertz_line_contact, {"load": (1e4, L.Limit(gt=0.0)),
-                                                    "radius": (0.01, L.Limit(gt=0.0)),
-                                                    "reduced_modulus": (2.3e11,
-                                                                        L.Limit(gt=0.0))}),
+        "Coating": (
+            Coating,
+            {
+                "E": (175e9, L.YOUNGS_MODULUS),
+                "nu": (0.3, L.POISSON_RATIO),
+                "thickness": (4e-6, L.COATING_THICKNESS),
+            },
+        ),
+        "Lubricant": (
+            Lubricant,
+            {
+                "viscosity": (0.055, L.VISCOSITY),
+                "pressure_viscosity": (1e-8, L.PRESSURE_VISCOSITY),
+                "density": (850.0, L.DENSITY),
+                "eyring_stress": (2e6, L.EYRING_STRESS),
+                "limiting_shear_coefficient": (0.08, L.LIMITING_SHEAR_COEFFICIENT),
+                "limiting_shear_stress": (0.0, L.LIMITING_SHEAR_STRESS),
+            },
+        ),
+        "Roughness": (
+            Roughness,
+            {
+                "asperity_density": (1e10, L.ASPERITY_DENSITY),
+                "rms": (3e-7, L.ROUGHNESS_RMS),
+                "summit_radius": (1e-6, L.SUMMIT_RADIUS),
+            },
+        ),
+        "EHLOptions": (
+            EHLOptions,
+            {
+                "n": (256, L.EHL_NODES),
+                "inlet": (4.0, L.DOMAIN_HALF_WIDTHS),
+                "outlet": (1.75, L.DOMAIN_HALF_WIDTHS),
+                "inlet_rigid": (4.0, L.DOMAIN_RIGID_LENGTHS),
+                "inlet_truncation": (0.005, L.INLET_TRUNCATION),
+                "tol": (1e-9, L.NEWTON_TOL),
+                "max_iter": (60, L.NEWTON_MAX_ITER),
+                "boundary_shear_coefficient": (0.185, L.BOUNDARY_SHEAR_COEFFICIENT),
+            },
+        ),
+        "ValvetrainParameters": (
+            ValvetrainParameters,
+            {
+                name: (getattr(ValvetrainParameters(), name), lim)
+                for name, lim in __import__(
+                    "tribodyn.valvetrain.parameters", fromlist=["_LIMITS"]
+                )._LIMITS.items()
+            },
+        ),
+        "hertz_line_contact": (
+            hertz_line_contact,
+            {
+                "load": (1e4, L.Limit(gt=0.0)),
+                "radius": (0.01, L.Limit(gt=0.0)),
+                "reduced_modulus": (2.3e11, L.Limit(gt=0.0)),
+            },
+        ),
     }
-    none_ok = {("EHLOptions", "n"), ("ValvetrainParameters", "contact_stiffness"),
-               ("ValvetrainParameters", "camshaft_stiffness")}
+    none_ok = {
+        ("EHLOptions", "n"),
+        ("ValvetrainParameters", "contact_stiffness"),
+        ("ValvetrainParameters", "camshaft_stiffness"),
+    }
     for name, (build, fields) in specs.items():
         kw = {k: v for k, (v, _) in fields.items() if v is not None}
         for arg, (_, limit) in fields.items():
@@ -140,8 +173,11 @@ def fuzz_constructors() -> None:
             for bad in bads:
                 if bad is None and (name, arg) in none_ok:
                     continue
-                expect_input_error("api constructors", f"{name}({arg}={bad!r:.20})",
-                                   lambda: build(**{**kw, arg: bad}))
+                expect_input_error(
+                    "api constructors",
+                    f"{name}({arg}={bad!r:.20})",
+                    lambda: build(**{**kw, arg: bad}),
+                )
     # flags, choices and objects
     for case, call in [
         ("Lubricant(compressible='no')", lambda: Lubricant(0.05, 1e-8, compressible="no")),
@@ -158,8 +194,10 @@ def fuzz_constructors() -> None:
         ("TransientEHL(n=8192)", lambda: TransientEHL(PAIR, OIL, n=8192)),
         ("TransientEHL(bodies=None)", lambda: TransientEHL(None, OIL)),
         ("TransientEHL(lubricant='oil')", lambda: TransientEHL(PAIR, "oil")),
-        ("TransientEHL.step before start", lambda: TransientEHL(PAIR, OIL).step(1e-5, 1e4,
-                                                                               0.01, 1, 0)),
+        (
+            "TransientEHL.step before start",
+            lambda: TransientEHL(PAIR, OIL).step(1e-5, 1e4, 0.01, 1, 0),
+        ),
         ("greenwood_tripp(1e6, 1)", lambda: greenwood_tripp(1e6, 1.0)),
         ("greenwood_tripp(2.5, '1')", lambda: greenwood_tripp(2.5, "1")),
         ("greenwood_tripp(-1, 1)", lambda: greenwood_tripp(-1, 1.0)),
@@ -167,8 +205,10 @@ def fuzz_constructors() -> None:
         ("greenwood_tripp(2.5, [1, inf])", lambda: greenwood_tripp(2.5, [1.0, math.inf])),
         ("greenwood_tripp(1.5, 1, 'paper')", lambda: greenwood_tripp(1.5, 1.0, "paper")),
         ("greenwood_tripp(2, 1, None)", lambda: greenwood_tripp(2, 1.0, None)),
-        ("ValvetrainParameters(spring_masses=2.5)",
-         lambda: ValvetrainParameters(spring_masses=2.5)),
+        (
+            "ValvetrainParameters(spring_masses=2.5)",
+            lambda: ValvetrainParameters(spring_masses=2.5),
+        ),
         ("ValvetrainParameters().replace(x=1)", lambda: ValvetrainParameters().replace(x=1)),
     ]:
         expect_input_error("api constructors", case, call)
@@ -185,8 +225,11 @@ def fuzz_solver_arguments() -> None:
             bads = bads + [0.0]
         for bad in bads:
             kw = {**base, arg: bad}
-            expect_input_error("api solver arguments", f"solve_ehl({arg}={bad!r:.20})",
-                               lambda kw=kw: solve_ehl(bodies=PAIR, lubricant=OIL, n=128, **kw))
+            expect_input_error(
+                "api solver arguments",
+                f"solve_ehl({arg}={bad!r:.20})",
+                lambda kw=kw: solve_ehl(bodies=PAIR, lubricant=OIL, n=128, **kw),
+            )
     for case, call in [
         ("solve_ehl(bodies=None)", lambda: solve_ehl(1e4, 0.01, 1, 0, None, OIL)),
         ("solve_ehl(bodies=(Body,))", lambda: solve_ehl(1e4, 0.01, 1, 0, (PAIR[0],), OIL)),
@@ -197,14 +240,15 @@ def fuzz_solver_arguments() -> None:
         ("solve_ehl(nonsense=1)", lambda: solve_ehl(1e4, 0.01, 1, 0, PAIR, OIL, nonsense=1)),
         ("solve_dry_contact(n='x')", lambda: solve_dry_contact(1e4, 0.01, PAIR, n="x")),
         ("solve_dry_contact(load=-1)", lambda: solve_dry_contact(-1, 0.01, PAIR)),
-        ("solve_dry_contact(domain=0.5)", lambda: solve_dry_contact(1e4, 0.01, PAIR,
-                                                                     domain=0.5)),
+        ("solve_dry_contact(domain=0.5)", lambda: solve_dry_contact(1e4, 0.01, PAIR, domain=0.5)),
         ("solve_dry_contact(bodies=1)", lambda: solve_dry_contact(1e4, 0.01, 1)),
         ("TransientEHL.step(dt=0)", lambda: _started().step(0.0, 1e4, 0.01, 1.0, 0.0)),
         ("TransientEHL.step(dt='a')", lambda: _started().step("a", 1e4, 0.01, 1.0, 0.0)),
         ("TransientEHL.step(load=nan)", lambda: _started().step(1e-5, math.nan, 0.01, 1.0, 0)),
-        ("TransientEHL.start_film(film=-1)", lambda: TransientEHL(PAIR, OIL).start_film(
-            -1.0, 1e4, 0.01)),
+        (
+            "TransientEHL.start_film(film=-1)",
+            lambda: TransientEHL(PAIR, OIL).start_film(-1.0, 1e4, 0.01),
+        ),
     ]:
         expect_input_error("api solver arguments", case, call)
 
@@ -247,7 +291,7 @@ def fuzz_extreme_solves() -> None:
                 r = solve_ehl(w, 0.01, ue, ue, PAIR, OIL, ROUGH, n=128, max_iter=30)
             except InputError:
                 record("api extreme solves", "handled", case)
-            except Exception as exc:             # noqa: BLE001
+            except Exception as exc:
                 record("api extreme solves", "traceback", f"{case} -> {exc!r}"[:300])
             else:
                 check_solution("api extreme solves", case, r, 0.01)
@@ -258,19 +302,20 @@ def fuzz_extreme_solves() -> None:
             check_solution("api extreme solves", case, r, R)
         except InputError:
             record("api extreme solves", "handled", case)
-        except Exception as exc:                 # noqa: BLE001
+        except Exception as exc:
             record("api extreme solves", "traceback", f"{case} -> {exc!r}"[:300])
     for w in (1e-3, 1e4, 1e9, 1e12):
         case = f"solve_dry_contact(w={w:g})"
         try:
             r = solve_dry_contact(w, 0.01, PAIR, n=128)
-            record("api extreme solves", "handled" if (r.converged or r.message) else "garbage",
-                   case)
+            record(
+                "api extreme solves", "handled" if (r.converged or r.message) else "garbage", case
+            )
         except InputError:
             record("api extreme solves", "handled", case)
-        except Exception as exc:                 # noqa: BLE001
+        except Exception as exc:
             record("api extreme solves", "traceback", f"{case} -> {exc!r}"[:300])
-    for w1 in (4e6, 4e8, 1.0):                 # huge transient steps: bounded effort
+    for w1 in (4e6, 4e8, 1.0):  # huge transient steps: bounded effort
         case = f"TransientEHL.step 4e4 -> {w1:g}"
         t0 = time.perf_counter()
         try:
@@ -281,7 +326,7 @@ def fuzz_extreme_solves() -> None:
                 record("api extreme solves", "garbage", f"{case}: took > 120 s")
             else:
                 check_solution("api extreme solves", case, r, 0.01)
-        except Exception as exc:                 # noqa: BLE001
+        except Exception as exc:
             record("api extreme solves", "traceback", f"{case} -> {exc!r}"[:300])
 
 
@@ -293,7 +338,7 @@ def cli(group: str, args: list[str], expect=(2,), check=None) -> None:
     case = "tribodyn " + " ".join(args)
     try:
         r = runner.invoke(app, args, catch_exceptions=True)
-    except Exception as exc:                     # noqa: BLE001
+    except Exception as exc:
         record(group, "traceback", f"{case} -> {exc!r}"[:300])
         return
     if r.exception is not None and not isinstance(r.exception, SystemExit):
@@ -304,8 +349,9 @@ def cli(group: str, args: list[str], expect=(2,), check=None) -> None:
         record(group, "traceback", f"{case} -> traceback in the output")
         return
     if r.exit_code not in expect:
-        record(group, "garbage", f"{case}: exit {r.exit_code}, expected {expect}: "
-                                 f"{r.output[-200:]}")
+        record(
+            group, "garbage", f"{case}: exit {r.exit_code}, expected {expect}: {r.output[-200:]}"
+        )
         return
     if check is not None:
         problem = check(r)
@@ -323,8 +369,12 @@ def no_bad_film(r):
     h = out.get("central_film_m")
     if h is not None and (not math.isfinite(h) or h <= 0):
         return f"prints a non-physical film {h}"
-    if out.get("converged") and h is not None and h > 0.02 * out["radius_m"] and \
-            not out.get("warnings"):
+    if (
+        out.get("converged")
+        and h is not None
+        and h > 0.02 * out["radius_m"]
+        and not out.get("warnings")
+    ):
         return "a film beyond the thin-film range without a warning"
     return None
 
@@ -332,10 +382,22 @@ def no_bad_film(r):
 # ----------------------------------------------------------------------------- 4 contact CLI
 def fuzz_contact_cli() -> None:
     ok = ["--load", "633", "--radius", "0.01", "--ue", "5"]
-    numeric = ["--load", "--radius", "--ue", "--us", "--width", "--load-per-length",
-               "--viscosity", "--pressure-viscosity", "--density", "--eyring-stress",
-               "--limiting-shear-coefficient", "--coating-thickness", "--shear-coefficient",
-               "--n"]
+    numeric = [
+        "--load",
+        "--radius",
+        "--ue",
+        "--us",
+        "--width",
+        "--load-per-length",
+        "--viscosity",
+        "--pressure-viscosity",
+        "--density",
+        "--eyring-stress",
+        "--limiting-shear-coefficient",
+        "--coating-thickness",
+        "--shear-coefficient",
+        "--n",
+    ]
     for opt in numeric:
         for bad in ("abc", "nan", "inf", "-1", "0", "1e400", ""):
             if opt in ("--ue", "--us") and bad in ("-1", "0", "1e400"):
@@ -349,41 +411,66 @@ def fuzz_contact_cli() -> None:
                     args = [a for a in args if a not in ("--load", "633")]
                 if opt == "--coating-thickness":
                     args += ["--coating-material", "dlc"]
-            zero_ok = bad == "0" and opt in ("--shear-coefficient", "--pressure-viscosity",
-                                             "--limiting-shear-coefficient")
-            cli("contact cli", ["contact", *args], expect=(0,) if zero_ok else (2,),
-                check=no_bad_film)
-    for extra in (["--coating", "1,2"], ["--coating", "a,b,c"], ["--coating", "175e9,0.6,4e-6"],
-                  ["--coating", "1e-30,0.3,4e-6"], ["--roughness", "1e9,1.0,1e-6"],
-                  ["--roughness", "x"], ["--roughness", "1e9,-1,1e-6"],
-                  ["--surface-set", "nope"], ["--coating-material", "gold",
-                                              "--coating-thickness", "1e-6"],
-                  ["--viscosity-model", "bogus"], ["--viscous-model", "x"],
-                  ["--case", "/nonexistent.toml"], ["--case", str(REPO)],
-                  ["--dry", "--us", "0"], ["--dry", "--ue", "3"],
-                  ["--coating", "175e9,0.3,4e-6", "--coating-material", "dlc"],
-                  ["--surface-set", "wcc_4um", "--roughness", "1e9,1e-7,1e-6"]):
+            zero_ok = bad == "0" and opt in (
+                "--shear-coefficient",
+                "--pressure-viscosity",
+                "--limiting-shear-coefficient",
+            )
+            cli(
+                "contact cli",
+                ["contact", *args],
+                expect=(0,) if zero_ok else (2,),
+                check=no_bad_film,
+            )
+    for extra in (
+        ["--coating", "1,2"],
+        ["--coating", "a,b,c"],
+        ["--coating", "175e9,0.6,4e-6"],
+        ["--coating", "1e-30,0.3,4e-6"],
+        ["--roughness", "1e9,1.0,1e-6"],
+        ["--roughness", "x"],
+        ["--roughness", "1e9,-1,1e-6"],
+        ["--surface-set", "nope"],
+        ["--coating-material", "gold", "--coating-thickness", "1e-6"],
+        ["--viscosity-model", "bogus"],
+        ["--viscous-model", "x"],
+        ["--case", "/nonexistent.toml"],
+        ["--case", str(REPO)],
+        ["--dry", "--us", "0"],
+        ["--dry", "--ue", "3"],
+        ["--coating", "175e9,0.3,4e-6", "--coating-material", "dlc"],
+        ["--surface-set", "wcc_4um", "--roughness", "1e9,1e-7,1e-6"],
+    ):
         cli("contact cli", ["contact", *ok, *extra], check=no_bad_film)
-    cli("contact cli", ["contact", "--radius", "0.01", "--ue", "5"])              # no load
-    cli("contact cli", ["contact", "--load", "633", "--ue", "5"])                 # no radius
-    cli("contact cli", ["contact", "--load", "633", "--radius", "0.01"])          # no speed
-    for args in (["--load", "1e9", "--radius", "0.01", "--ue", "2", "--us", "1"],
-                 ["--load", "633", "--radius", "0.01", "--ue", "1e6", "--us", "1e6"],
-                 ["--load", "1e-3", "--radius", "0.01", "--ue", "2"],
-                 ["--load-per-length", "1e-3", "--radius", "0.01", "--ue", "2"],
-                 ["--dry", "--load", "1e9", "--radius", "0.01"]):
-        cli("contact cli extremes", ["contact", *args, "--n", "256", "--json"],
-            expect=(0, 1), check=no_bad_film)
+    cli("contact cli", ["contact", "--radius", "0.01", "--ue", "5"])  # no load
+    cli("contact cli", ["contact", "--load", "633", "--ue", "5"])  # no radius
+    cli("contact cli", ["contact", "--load", "633", "--radius", "0.01"])  # no speed
+    for args in (
+        ["--load", "1e9", "--radius", "0.01", "--ue", "2", "--us", "1"],
+        ["--load", "633", "--radius", "0.01", "--ue", "1e6", "--us", "1e6"],
+        ["--load", "1e-3", "--radius", "0.01", "--ue", "2"],
+        ["--load-per-length", "1e-3", "--radius", "0.01", "--ue", "2"],
+        ["--dry", "--load", "1e9", "--radius", "0.01"],
+    ):
+        cli(
+            "contact cli extremes",
+            ["contact", *args, "--n", "256", "--json"],
+            expect=(0, 1),
+            check=no_bad_film,
+        )
 
 
 # ----------------------------------------------------------------------------- 5 topography CLI
 def fuzz_topography_cli(tmp: Path) -> None:
     data = REPO / "tests" / "data" / "topography"
     junk = {
-        "empty.x3p": b"", "text.opd": b"hello world\n" * 10, "zeros.sur": b"\0" * 600,
+        "empty.x3p": b"",
+        "text.opd": b"hello world\n" * 10,
+        "zeros.sur": b"\0" * 600,
         "random.dat": bytes(np.random.default_rng(0).integers(0, 256, 2000, dtype=np.uint8)),
         "random.plu": bytes(np.random.default_rng(1).integers(0, 256, 900, dtype=np.uint8)),
-        "bad.sdf": b"aISO-1.0\nManufacID = x\n*\n1 2 3\n*\n", "bad.nc": b"CDF\x01" + b"\0" * 50,
+        "bad.sdf": b"aISO-1.0\nManufacID = x\n*\n1 2 3\n*\n",
+        "bad.nc": b"CDF\x01" + b"\0" * 50,
         "notazip.x3p": b"PK\x03\x04" + b"\0" * 100,
     }
     for name, content in junk.items():
@@ -397,27 +484,58 @@ def fuzz_topography_cli(tmp: Path) -> None:
                 t.write_bytes(raw[:cut])
                 cli("topography cli", ["topography", str(t)])
         good = str(data / "surface.x3p")
-        for extra in (["--band", "-1", "1"], ["--band", "1e-5", "1e-6"], ["--band", "nan", "1"],
-                      ["--band", "0.1e-6", "10e-6"], ["--band", "1e-6", "1"],
-                      ["--filter", "box"], ["--detrend", "cubic"], ["--method", "x"],
-                      ["--min-defined", "2"], ["--min-defined", "0.99"], ["--channel", "7"],
-                      ["--unit", "furlong"], ["--size", "-1", "1"],
-                      ["--figure", str(tmp)], ["--figure", str(tmp / "f.tmp")],
-                      ["--figure", "/proc/f.png"]):
+        for extra in (
+            ["--band", "-1", "1"],
+            ["--band", "1e-5", "1e-6"],
+            ["--band", "nan", "1"],
+            ["--band", "0.1e-6", "10e-6"],
+            ["--band", "1e-6", "1"],
+            ["--filter", "box"],
+            ["--detrend", "cubic"],
+            ["--method", "x"],
+            ["--min-defined", "2"],
+            ["--min-defined", "0.99"],
+            ["--channel", "7"],
+            ["--unit", "furlong"],
+            ["--size", "-1", "1"],
+            ["--figure", str(tmp)],
+            ["--figure", str(tmp / "f.tmp")],
+            ["--figure", "/proc/f.png"],
+        ):
             cli("topography cli", ["topography", good, *extra])
-        cli("topography cli valid", ["topography", good, "--figure",
-                                     str(tmp / "new" / "dir" / "f.png")], expect=(0,))
+        cli(
+            "topography cli valid",
+            ["topography", good, "--figure", str(tmp / "new" / "dir" / "f.png")],
+            expect=(0,),
+        )
         for args in ([good, good], [str(data / "profile.sdf")], [good, str(data / "profile.sur")]):
             cli("topography cli valid", ["topography", *args], expect=(0,))
     cli("topography cli", ["topography"])
     cli("topography cli", ["topography", "a", "b", "c"])
     cli("topography cli", ["topography", str(tmp / "missing.x3p")])
     cli("topography cli", ["topography", str(tmp)])
-    for extra in (["--grid", "4"], ["--pixel", "-1"], ["--rms", "0"], ["--hurst", "2"],
-                  ["--cutoffs", "1e-6", "1e-7"]):
+    for extra in (
+        ["--grid", "4"],
+        ["--pixel", "-1"],
+        ["--rms", "0"],
+        ["--hurst", "2"],
+        ["--cutoffs", "1e-6", "1e-7"],
+    ):
         cli("topography cli", ["topography", str(tmp / "syn.x3p"), "--synthetic", *extra])
-    cli("topography cli", ["topography", str(tmp / "nodir" / "syn.x3p"), "--synthetic",
-                           "--grid", "64", "--cutoffs", "1e-6", "4e-6"], expect=(0, 2))
+    cli(
+        "topography cli",
+        [
+            "topography",
+            str(tmp / "nodir" / "syn.x3p"),
+            "--synthetic",
+            "--grid",
+            "64",
+            "--cutoffs",
+            "1e-6",
+            "4e-6",
+        ],
+        expect=(0, 2),
+    )
 
 
 # ----------------------------------------------------------------------------- 6 run CLI
@@ -430,6 +548,7 @@ def fuzz_run_cli(tmp: Path) -> None:
     original = cycle.run_cycle_study
     cycle.run_cycle_study = must_not_run
     try:
+
         def bad_case(name: str, content: bytes | str, key: str | None) -> None:
             p = tmp / f"{name}.toml"
             p.write_bytes(content if isinstance(content, bytes) else content.encode())
@@ -437,14 +556,23 @@ def fuzz_run_cli(tmp: Path) -> None:
             def check(r):
                 text = " ".join(r.output.split())
                 return None if key is None or key in text else f"message does not name {key}"
+
             cli("run cli case files", ["run", str(p), "-o", str(tmp / "out")], check=check)
 
-        models = {"engine": schema.Engine, "valvetrain": schema.Valvetrain,
-                  "lubricant": schema.LubricantConfig, "numerics": schema.Numerics}
+        models = {
+            "engine": schema.Engine,
+            "valvetrain": schema.Valvetrain,
+            "lubricant": schema.LubricantConfig,
+            "numerics": schema.Numerics,
+        }
         for section, model in models.items():
             for field, fi in model.model_fields.items():
-                bounds = {k: getattr(m, k) for m in fi.metadata for k in ("gt", "ge", "lt", "le")
-                          if getattr(m, k, None) is not None}
+                bounds = {
+                    k: getattr(m, k)
+                    for m in fi.metadata
+                    for k in ("gt", "ge", "lt", "le")
+                    if getattr(m, k, None) is not None
+                }
                 ann = str(fi.annotation)
                 if not bounds or "float" not in ann and "int" not in ann:
                     continue
@@ -452,18 +580,26 @@ def fuzz_run_cli(tmp: Path) -> None:
                     bad = {"gt": v, "ge": v - 1, "lt": v, "le": v * 10 + 1}[k]
                     if "int" in ann and "float" not in ann:
                         bad = int(bad) if math.isfinite(bad) else 10**9
-                    bad_case(f"{section}-{field}-{k}", f"[{section}]\n{field} = {bad!r}\n",
-                             f"{section}.{field}")
-                bad_case(f"{section}-{field}-str", f"[{section}]\n{field} = 'x'\n",
-                         f"{section}.{field}")
+                    bad_case(
+                        f"{section}-{field}-{k}",
+                        f"[{section}]\n{field} = {bad!r}\n",
+                        f"{section}.{field}",
+                    )
+                bad_case(
+                    f"{section}-{field}-str", f"[{section}]\n{field} = 'x'\n", f"{section}.{field}"
+                )
         for name, content, key in [
             ("latin1", "[engine]\nspeed_rpm = 2000\n# Öl\n".encode("latin-1"), "UTF-8"),
             ("utf16", "[engine]\nspeed_rpm = 2000\n".encode("utf-16"), "UTF-8"),
             ("binary", bytes(range(256)) * 8, "UTF-8"),
-            ("nul", b"\0" * 100, "TOML"), ("syntax", "[engine\n", "TOML"),
+            ("nul", b"\0" * 100, "TOML"),
+            ("syntax", "[engine\n", "TOML"),
             ("unknown", "[engine]\nspeed = 3\n", "engine.speed"),
-            ("absurd-stiffness", "[valvetrain]\ncontact_stiffness = 1e30\n",
-             "valvetrain.contact_stiffness"),
+            (
+                "absurd-stiffness",
+                "[valvetrain]\ncontact_stiffness = 1e30\n",
+                "valvetrain.contact_stiffness",
+            ),
             ("absurd-mass", "[valvetrain]\nvalve_mass = 1e6\n", "valvetrain.valve_mass"),
             ("table-missing", "[cam]\ntype = 'table'\npath = 'nope.csv'\n", "cam.path"),
             ("nan", "[lubricant]\nviscosity = nan\n", "lubricant.viscosity"),
@@ -497,10 +633,21 @@ def main() -> None:
             fuzz_topography_cli(tmp)
             fuzz_run_cli(tmp)
     total = sum(results.values())
-    print(json.dumps({"benchmark": "fuzz_inputs", "tribodyn": tribodyn.__version__,
-                      "inputs": total, **results, "groups": groups,
-                      "examples": examples, "runtime_s": round(time.perf_counter() - t0, 1)},
-                     indent=2, ensure_ascii=False))
+    print(
+        json.dumps(
+            {
+                "benchmark": "fuzz_inputs",
+                "tribodyn": tribodyn.__version__,
+                "inputs": total,
+                **results,
+                "groups": groups,
+                "examples": examples,
+                "runtime_s": round(time.perf_counter() - t0, 1),
+            },
+            indent=2,
+            ensure_ascii=False,
+        )
+    )
 
 
 if __name__ == "__main__":

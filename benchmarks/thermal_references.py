@@ -32,29 +32,47 @@ def main():
     ts = ThermalProperties(46.0, 7850.0, 470.0)
     tb = (ThermalBody(ts), ThermalBody(ts))
     e = 210e9 / 0.91
-    L = (oil.temperature_viscosity_coefficient() * oil.inlet_viscosity * UE**2
-         / float(oil.conductivity(0.0, oil.inlet_temperature)))
+    L = (
+        oil.temperature_viscosity_coefficient()
+        * oil.inlet_viscosity
+        * UE**2
+        / float(oil.conductivity(0.0, oil.inlet_temperature))
+    )
     ph = math.sqrt(W * e / (2 * math.pi * R))
     iso = solve_ehl(W, R, UE, 0.0, pair, oil.isothermal())
     film = []
     for srr in (0.0, 0.5, 1.0, 1.5):
         r = solve_thermal_ehl(W, R, UE, srr * UE, pair, oil, tb)
         gupta = (1 - 13.2 * ph / e * L**0.42) / (1 + 0.213 * (1 + 2.23 * srr**0.83) * L**0.64)
-        film.append({"srr": srr, "h_thermal_over_isothermal": r.central_film / iso.central_film,
-                     "gupta_1992": gupta,
-                     "murch_wilson_1975": 3.94 / (3.94 + L**0.62) if srr == 0 else None,
-                     "max_temperature_rise_K": r.max_temperature - r.inlet_temperature,
-                     "converged": bool(r.converged)})
+        film.append(
+            {
+                "srr": srr,
+                "h_thermal_over_isothermal": r.central_film / iso.central_film,
+                "gupta_1992": gupta,
+                "murch_wilson_1975": 3.94 / (3.94 + L**0.62) if srr == 0 else None,
+                "max_temperature_rise_K": r.max_temperature - r.inlet_temperature,
+                "converged": bool(r.converged),
+            }
+        )
     traction = []
     for srr in (0.005, 0.02, 0.05, 0.1, 0.2, 0.4, 0.8, 1.2):
         r = solve_thermal_ehl(W, R, UE, srr * UE, pair, oil, tb)
         i = solve_ehl(W, R, UE, srr * UE, pair, oil.isothermal())
-        traction.append({"srr": srr, "mu_thermal": r.viscous_friction / W,
-                         "mu_isothermal": i.viscous_friction / W,
-                         "max_temperature_rise_K": r.max_temperature - r.inlet_temperature,
-                         "converged": bool(r.converged)})
-    print(json.dumps({"thermal_loading_L": L, "hertz_pressure_Pa": ph, "film": film,
-                      "traction": traction}, indent=2))
+        traction.append(
+            {
+                "srr": srr,
+                "mu_thermal": r.viscous_friction / W,
+                "mu_isothermal": i.viscous_friction / W,
+                "max_temperature_rise_K": r.max_temperature - r.inlet_temperature,
+                "converged": bool(r.converged),
+            }
+        )
+    print(
+        json.dumps(
+            {"thermal_loading_L": L, "hertz_pressure_Pa": ph, "film": film, "traction": traction},
+            indent=2,
+        )
+    )
 
 
 if __name__ == "__main__":

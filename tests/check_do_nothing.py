@@ -20,8 +20,14 @@ HERE = Path(__file__).resolve().parent
 #: the test files of each solver
 FILES = {
     "dry": ["test_dry_contact.py"],
-    "ehl": ["test_ehl_formulas.py", "test_ehl_hydrodynamic.py", "test_ehl_mixed_coated.py",
-            "test_ehl_transient.py", "test_ehl_errors.py", "test_ehl_references.py"],
+    "ehl": [
+        "test_ehl_formulas.py",
+        "test_ehl_hydrodynamic.py",
+        "test_ehl_mixed_coated.py",
+        "test_ehl_transient.py",
+        "test_ehl_errors.py",
+        "test_ehl_references.py",
+    ],
     "dynamics": ["test_valvetrain_dynamics.py"],
 }
 
@@ -29,17 +35,36 @@ FILES = {
 def check(solver: str) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         report = Path(tmp) / "report.jsonl"
-        env = dict(os.environ, TRIBODYN_DO_NOTHING=solver,
-                   TRIBODYN_DO_NOTHING_REPORT=str(report),
-                   PYTHONPATH=os.pathsep.join([str(HERE), os.environ.get("PYTHONPATH", "")]))
-        cmd = [sys.executable, "-m", "pytest", "-q", "-p", "do_nothing", "-p",
-               "no:cacheprovider", "--timeout=600", *(str(HERE / f) for f in FILES[solver])]
+        env = dict(
+            os.environ,
+            TRIBODYN_DO_NOTHING=solver,
+            TRIBODYN_DO_NOTHING_REPORT=str(report),
+            PYTHONPATH=os.pathsep.join([str(HERE), os.environ.get("PYTHONPATH", "")]),
+        )
+        cmd = [
+            sys.executable,
+            "-m",
+            "pytest",
+            "-q",
+            "-p",
+            "do_nothing",
+            "-p",
+            "no:cacheprovider",
+            "--timeout=600",
+            *(str(HERE / f) for f in FILES[solver]),
+        ]
         subprocess.run(cmd, cwd=HERE.parent, env=env, capture_output=True, text=True)
-        rows = [json.loads(line) for line in report.read_text().splitlines()] \
-            if report.exists() else []
+        rows = (
+            [json.loads(line) for line in report.read_text().splitlines()]
+            if report.exists()
+            else []
+        )
     used = [r for r in rows if r["solver_called"]]
-    return {"tests": len(rows), "using_the_solver": len(used),
-            "still_pass": sorted(r["test"] for r in used if r["passed"])}
+    return {
+        "tests": len(rows),
+        "using_the_solver": len(used),
+        "still_pass": sorted(r["test"] for r in used if r["passed"]),
+    }
 
 
 def main(argv):

@@ -27,10 +27,12 @@ def _dry_nothing(op, geom, w, dx, p, tol, max_iter):
 def _newton_nothing(sysm, st, tol, max_iter, lu=None, coarse=None):
     """The EHL Newton iteration doing nothing: the starting state, 'converged'."""
     from tribodyn.contact.ehl.newton import NewtonOutcome, State
+
     _calls["n"] += 1
     ev = sysm.evaluate(st.Q, st.H0)
-    return NewtonOutcome(State(st.Q, st.H0, np.maximum(ev.P, 0.0), ev.H), True, 0,
-                         "converged (do-nothing)", None)
+    return NewtonOutcome(
+        State(st.Q, st.H0, np.maximum(ev.P, 0.0), ev.H), True, 0, "converged (do-nothing)", None
+    )
 
 
 class _Constant:
@@ -47,16 +49,17 @@ class _Constant:
 
 def _ivp_nothing(fun, t_span, y0, method="RK45", t_eval=None, events=None, **kw):
     _calls["n"] += 1
-    n_events = 0 if events is None else (len(events) if isinstance(events, (list, tuple))
-                                         else 1)
+    n_events = 0 if events is None else (len(events) if isinstance(events, (list, tuple)) else 1)
     return _Constant(t_eval if t_eval is not None else [t_span[0], t_span[1]], y0, n_events)
 
 
 #: solver → [(module, attribute, replacement)]: every place the iteration is looked up.
 PATCHES = {
     "dry": [("tribodyn.contact.dry", "_cgm", _dry_nothing)],
-    "ehl": [("tribodyn.contact.ehl.steady", "newton", _newton_nothing),
-            ("tribodyn.contact.ehl.transient", "newton", _newton_nothing)],
+    "ehl": [
+        ("tribodyn.contact.ehl.steady", "newton", _newton_nothing),
+        ("tribodyn.contact.ehl.transient", "newton", _newton_nothing),
+    ],
     "dynamics": [("tribodyn.valvetrain.dynamics", "solve_ivp", _ivp_nothing)],
 }
 
@@ -94,5 +97,7 @@ def pytest_runtest_makereport(item, call):
         return
     used = _calls["n"] > 0 or bool(_fixture_uses_solver & set(item.fixturenames))
     with open(path, "a", encoding="utf-8") as f:
-        f.write(json.dumps({"test": item.nodeid, "passed": call.excinfo is None,
-                            "solver_called": used}) + "\n")
+        f.write(
+            json.dumps({"test": item.nodeid, "passed": call.excinfo is None, "solver_called": used})
+            + "\n"
+        )

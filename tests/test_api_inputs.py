@@ -39,16 +39,19 @@ NON_FINITE = [float("nan"), float("inf"), -float("inf")]
 
 
 # ----------------------------------------------------------------------------- the issue's list
-@pytest.mark.parametrize("call, name", [
-    (lambda: solve_ehl(1e4, 0.01, 1.0, 0.0, None, OIL), "bodies"),
-    (lambda: greenwood_tripp(1e6, 1.0), "n"),
-    (lambda: greenwood_tripp(2.5, "1"), "lam"),
-    (lambda: TransientEHL(PAIR, OIL, max_substeps="a"), "max_substeps"),
-    (lambda: TransientEHL(PAIR, OIL, max_substeps=-1), "max_substeps"),
-    (lambda: Lubricant(0.055, 1e-8, compressible="no"), "compressible"),
-    (lambda: Material(E=1e-30, nu=0.3), "E"),
-    (lambda: Roughness(asperity_density=1e9, rms=1.0, summit_radius=1e-6), "rms"),
-])
+@pytest.mark.parametrize(
+    "call, name",
+    [
+        (lambda: solve_ehl(1e4, 0.01, 1.0, 0.0, None, OIL), "bodies"),
+        (lambda: greenwood_tripp(1e6, 1.0), "n"),
+        (lambda: greenwood_tripp(2.5, "1"), "lam"),
+        (lambda: TransientEHL(PAIR, OIL, max_substeps="a"), "max_substeps"),
+        (lambda: TransientEHL(PAIR, OIL, max_substeps=-1), "max_substeps"),
+        (lambda: Lubricant(0.055, 1e-8, compressible="no"), "compressible"),
+        (lambda: Material(E=1e-30, nu=0.3), "E"),
+        (lambda: Roughness(asperity_density=1e9, rms=1.0, summit_radius=1e-6), "rms"),
+    ],
+)
 def test_reported_raw_exceptions_are_input_errors(call, name):
     with pytest.raises(InputError, match=rf"^{name} must"):
         call()
@@ -58,71 +61,115 @@ def test_reported_raw_exceptions_are_input_errors(call, name):
 VALID = {
     "Material": (Material, dict(E=210e9, nu=0.3)),
     "Coating": (Coating, dict(E=175e9, nu=0.3, thickness=4e-6)),
-    "Lubricant": (Lubricant, dict(viscosity=0.055, pressure_viscosity=1e-8, density=850.0,
-                                  eyring_stress=2e6, limiting_shear_coefficient=0.08,
-                                  limiting_shear_stress=0.0)),
+    "Lubricant": (
+        Lubricant,
+        dict(
+            viscosity=0.055,
+            pressure_viscosity=1e-8,
+            density=850.0,
+            eyring_stress=2e6,
+            limiting_shear_coefficient=0.08,
+            limiting_shear_stress=0.0,
+        ),
+    ),
     "Roughness": (Roughness, dict(asperity_density=1e10, rms=0.3e-6, summit_radius=1e-6)),
-    "EHLOptions": (EHLOptions, dict(n=256, inlet=4.0, outlet=1.75, inlet_truncation=0.005,
-                                    inlet_rigid=4.0, outlet_rigid=2.0, tol=1e-9, max_iter=60,
-                                    boundary_shear_strength=2e6,
-                                    boundary_shear_coefficient=0.185)),
-    "ValvetrainParameters": (ValvetrainParameters, dict(valve_mass=0.07, tappet_mass=0.04,
-                                                        spring_rate=33750.0,
-                                                        spring_preload=250.0,
-                                                        contact_stiffness=4e8,
-                                                        seat_stiffness=5e7, lash=0.0,
-                                                        tappet_radius=0.0165)),
-    "solve_dry_contact": (lambda **k: solve_dry_contact(bodies=PAIR, n=64, **k),
-                          dict(load=1e4, radius=0.01)),
-    "hertz_line_contact": (hertz_line_contact, dict(load=1e4, radius=0.01,
-                                                    reduced_modulus=2.3e11)),
+    "EHLOptions": (
+        EHLOptions,
+        dict(
+            n=256,
+            inlet=4.0,
+            outlet=1.75,
+            inlet_truncation=0.005,
+            inlet_rigid=4.0,
+            outlet_rigid=2.0,
+            tol=1e-9,
+            max_iter=60,
+            boundary_shear_strength=2e6,
+            boundary_shear_coefficient=0.185,
+        ),
+    ),
+    "ValvetrainParameters": (
+        ValvetrainParameters,
+        dict(
+            valve_mass=0.07,
+            tappet_mass=0.04,
+            spring_rate=33750.0,
+            spring_preload=250.0,
+            contact_stiffness=4e8,
+            seat_stiffness=5e7,
+            lash=0.0,
+            tappet_radius=0.0165,
+        ),
+    ),
+    "solve_dry_contact": (
+        lambda **k: solve_dry_contact(bodies=PAIR, n=64, **k),
+        dict(load=1e4, radius=0.01),
+    ),
+    "hertz_line_contact": (hertz_line_contact, dict(load=1e4, radius=0.01, reduced_modulus=2.3e11)),
 }
 #: arguments for which None is a documented value (automatic grid, Palmgren contact law)
 NONE_ALLOWED = {("EHLOptions", "n"), ("ValvetrainParameters", "contact_stiffness")}
-CASES = [(cls, arg, bad) for cls, (_, kw) in VALID.items() for arg in kw
-         for bad in WRONG_TYPES + NON_FINITE
-         if not (bad is None and (cls, arg) in NONE_ALLOWED)]
+CASES = [
+    (cls, arg, bad)
+    for cls, (_, kw) in VALID.items()
+    for arg in kw
+    for bad in WRONG_TYPES + NON_FINITE
+    if not (bad is None and (cls, arg) in NONE_ALLOWED)
+]
 
 
-@pytest.mark.parametrize("cls, arg, bad", CASES,
-                         ids=[f"{c}-{a}-{type(b).__name__}{b!r:.6}" for c, a, b in CASES])
+@pytest.mark.parametrize(
+    "cls, arg, bad", CASES, ids=[f"{c}-{a}-{type(b).__name__}{b!r:.6}" for c, a, b in CASES]
+)
 def test_constructors_reject_wrong_types_and_non_finite_numbers(cls, arg, bad):
     build, kw = VALID[cls]
     with pytest.raises(InputError, match=arg):
         build(**{**kw, arg: bad})
 
 
-@pytest.mark.parametrize("kw, name", [
-    (dict(elastic="yes"), "elastic"), (dict(limiting_shear=1), "limiting_shear"),
-    (dict(viscous_model=3), "viscous_model"), (dict(time_order="2"), "time_order"),
-    (dict(n=100.5), "n"), (dict(n=True), "n"), (dict(max_iter=2.5), "max_iter"),
-])
+@pytest.mark.parametrize(
+    "kw, name",
+    [
+        (dict(elastic="yes"), "elastic"),
+        (dict(limiting_shear=1), "limiting_shear"),
+        (dict(viscous_model=3), "viscous_model"),
+        (dict(time_order="2"), "time_order"),
+        (dict(n=100.5), "n"),
+        (dict(n=True), "n"),
+        (dict(max_iter=2.5), "max_iter"),
+    ],
+)
 def test_option_flags_and_integers_are_typed(kw, name):
     with pytest.raises(InputError, match=name):
         EHLOptions(**kw)
 
 
-@pytest.mark.parametrize("call, name", [
-    (lambda: Body(None), "material"), (lambda: Body(STEEL, coating="dlc"), "coating"),
-    (lambda: reduced_modulus(42), "bodies"), (lambda: reduced_modulus([PAIR[0]]), "bodies"),
-    (lambda: Lubricant(0.055, 1e-8, viscosity_model=None), "viscosity_model"),
-    (lambda: Roughness(1e10, 3e-7, 1e-6, method=1), "method"),
-    (lambda: greenwood_tripp(2.5, [1.0, float("nan")]), "lam"),
-    (lambda: greenwood_tripp(2.5, np.array(["a"])), "lam"),
-    (lambda: greenwood_tripp(2.5, 1.0, method=None), "method"),
-    (lambda: greenwood_tripp(None, 1.0), "n"),
-    (lambda: TransientEHL(PAIR, OIL, max_substeps=2.5), "max_substeps"),
-    (lambda: TransientEHL(PAIR, OIL, max_substeps=11), "max_substeps"),
-    (lambda: TransientEHL(PAIR, OIL, n=8192), "n"),
-    (lambda: TransientEHL(None, OIL), "bodies"),
-    (lambda: solve_ehl(1e4, 0.01, 1.0, 0.0, PAIR, OIL, n="a"), "n"),
-    (lambda: solve_ehl(1e4, 0.01, 1.0, 0.0, PAIR, OIL, bogus=1), "bogus"),
-    (lambda: solve_ehl("1e4", 0.01, 1.0, 0.0, PAIR, OIL), "load"),
-    (lambda: solve_dry_contact(1e4, 0.01, PAIR, n="a"), "n"),
-    (lambda: solve_dry_contact(1e4, 0.01, PAIR, max_iter=None), "max_iter"),
-    (lambda: ValvetrainParameters(spring_masses=1.5), "spring_masses"),
-    (lambda: ValvetrainParameters().replace(bogus=1), "bogus"),
-])
+@pytest.mark.parametrize(
+    "call, name",
+    [
+        (lambda: Body(None), "material"),
+        (lambda: Body(STEEL, coating="dlc"), "coating"),
+        (lambda: reduced_modulus(42), "bodies"),
+        (lambda: reduced_modulus([PAIR[0]]), "bodies"),
+        (lambda: Lubricant(0.055, 1e-8, viscosity_model=None), "viscosity_model"),
+        (lambda: Roughness(1e10, 3e-7, 1e-6, method=1), "method"),
+        (lambda: greenwood_tripp(2.5, [1.0, float("nan")]), "lam"),
+        (lambda: greenwood_tripp(2.5, np.array(["a"])), "lam"),
+        (lambda: greenwood_tripp(2.5, 1.0, method=None), "method"),
+        (lambda: greenwood_tripp(None, 1.0), "n"),
+        (lambda: TransientEHL(PAIR, OIL, max_substeps=2.5), "max_substeps"),
+        (lambda: TransientEHL(PAIR, OIL, max_substeps=11), "max_substeps"),
+        (lambda: TransientEHL(PAIR, OIL, n=8192), "n"),
+        (lambda: TransientEHL(None, OIL), "bodies"),
+        (lambda: solve_ehl(1e4, 0.01, 1.0, 0.0, PAIR, OIL, n="a"), "n"),
+        (lambda: solve_ehl(1e4, 0.01, 1.0, 0.0, PAIR, OIL, bogus=1), "bogus"),
+        (lambda: solve_ehl("1e4", 0.01, 1.0, 0.0, PAIR, OIL), "load"),
+        (lambda: solve_dry_contact(1e4, 0.01, PAIR, n="a"), "n"),
+        (lambda: solve_dry_contact(1e4, 0.01, PAIR, max_iter=None), "max_iter"),
+        (lambda: ValvetrainParameters(spring_masses=1.5), "spring_masses"),
+        (lambda: ValvetrainParameters().replace(bogus=1), "bogus"),
+    ],
+)
 def test_other_bad_arguments(call, name):
     with pytest.raises(InputError, match=name):
         call()
@@ -131,30 +178,67 @@ def test_other_bad_arguments(call, name):
 # ----------------------------------------------------------------------------- shared limits
 #: (case-file section dict key, schema model, {case key: (constructor, its kwarg, limit)})
 SHARED = [
-    ("materials", "steel", {
-        "E": (lambda v: Material(E=v, nu=0.3), "E", L.YOUNGS_MODULUS),
-        "nu": (lambda v: Material(E=210e9, nu=v), "nu", L.POISSON_RATIO)}),
-    ("lubricant", None, {
-        "viscosity": (lambda v: Lubricant(v, 1e-8), "viscosity", L.VISCOSITY),
-        "pressure_viscosity": (lambda v: Lubricant(0.05, v), "pressure_viscosity",
-                               L.PRESSURE_VISCOSITY),
-        "density": (lambda v: Lubricant(0.05, 1e-8, density=v), "density", L.DENSITY),
-        "eyring_stress": (lambda v: Lubricant(0.05, 1e-8, eyring_stress=v), "eyring_stress",
-                          L.EYRING_STRESS)}),
-    ("valvetrain", None, {
-        "valve_mass": (lambda v: ValvetrainParameters(valve_mass=v), "valve_mass", L.MASS),
-        "contact_stiffness": (lambda v: ValvetrainParameters(contact_stiffness=v),
-                              "contact_stiffness", L.STIFFNESS),
-        "spring_rate": (lambda v: ValvetrainParameters(spring_rate=v), "spring_rate",
-                        L.SPRING_RATE),
-        "seat_damping": (lambda v: ValvetrainParameters(seat_damping=v), "seat_damping",
-                         L.DAMPING)}),
-    ("roughness", None, {
-        "rms": (lambda v: Roughness(1e10, v, 1e-6), "rms", L.ROUGHNESS_RMS),
-        "asperity_density": (lambda v: Roughness(v, 3e-7, 1e-6), "asperity_density",
-                             L.ASPERITY_DENSITY),
-        "summit_radius": (lambda v: Roughness(1e10, 3e-7, v), "summit_radius",
-                          L.SUMMIT_RADIUS)}),
+    (
+        "materials",
+        "steel",
+        {
+            "E": (lambda v: Material(E=v, nu=0.3), "E", L.YOUNGS_MODULUS),
+            "nu": (lambda v: Material(E=210e9, nu=v), "nu", L.POISSON_RATIO),
+        },
+    ),
+    (
+        "lubricant",
+        None,
+        {
+            "viscosity": (lambda v: Lubricant(v, 1e-8), "viscosity", L.VISCOSITY),
+            "pressure_viscosity": (
+                lambda v: Lubricant(0.05, v),
+                "pressure_viscosity",
+                L.PRESSURE_VISCOSITY,
+            ),
+            "density": (lambda v: Lubricant(0.05, 1e-8, density=v), "density", L.DENSITY),
+            "eyring_stress": (
+                lambda v: Lubricant(0.05, 1e-8, eyring_stress=v),
+                "eyring_stress",
+                L.EYRING_STRESS,
+            ),
+        },
+    ),
+    (
+        "valvetrain",
+        None,
+        {
+            "valve_mass": (lambda v: ValvetrainParameters(valve_mass=v), "valve_mass", L.MASS),
+            "contact_stiffness": (
+                lambda v: ValvetrainParameters(contact_stiffness=v),
+                "contact_stiffness",
+                L.STIFFNESS,
+            ),
+            "spring_rate": (
+                lambda v: ValvetrainParameters(spring_rate=v),
+                "spring_rate",
+                L.SPRING_RATE,
+            ),
+            "seat_damping": (
+                lambda v: ValvetrainParameters(seat_damping=v),
+                "seat_damping",
+                L.DAMPING,
+            ),
+        },
+    ),
+    (
+        "roughness",
+        None,
+        {
+            "rms": (lambda v: Roughness(1e10, v, 1e-6), "rms", L.ROUGHNESS_RMS),
+            "asperity_density": (
+                lambda v: Roughness(v, 3e-7, 1e-6),
+                "asperity_density",
+                L.ASPERITY_DENSITY,
+            ),
+            "summit_radius": (lambda v: Roughness(1e10, 3e-7, v), "summit_radius", L.SUMMIT_RADIUS),
+        },
+    ),
 ]
 
 
@@ -175,8 +259,11 @@ def _outside(limit):
 def _case_with(section, sub, key, value):
     rough = {"asperity_density": 1e10, "rms": 3e-7, "summit_radius": 1e-6}
     if section == "materials":
-        data = {"materials": {"steel": {"E": 210e9, "nu": 0.3,
-                                        "boundary_shear_coefficient": 0.185, key: value}}}
+        data = {
+            "materials": {
+                "steel": {"E": 210e9, "nu": 0.3, "boundary_shear_coefficient": 0.185, key: value}
+            }
+        }
         return data, f"materials.steel.{key}"
     if section == "roughness":
         data = {"surface_sets": [{"name": "a", "roughness": {**rough, key: value}}]}
@@ -184,15 +271,21 @@ def _case_with(section, sub, key, value):
     return {section: {key: value}}, f"{section}.{key}"
 
 
-LIMIT_CASES = [(sec, sub, key, v) for sec, sub, keys in SHARED for key, (_, _, lim) in
-               keys.items() for v in _outside(lim)]
+LIMIT_CASES = [
+    (sec, sub, key, v)
+    for sec, sub, keys in SHARED
+    for key, (_, _, lim) in keys.items()
+    for v in _outside(lim)
+]
 
 
-@pytest.mark.parametrize("section, sub, key, value", LIMIT_CASES,
-                         ids=[f"{s}.{k}={v:g}" for s, _, k, v in LIMIT_CASES])
+@pytest.mark.parametrize(
+    "section, sub, key, value", LIMIT_CASES, ids=[f"{s}.{k}={v:g}" for s, _, k, v in LIMIT_CASES]
+)
 def test_case_file_and_constructor_reject_the_same_values(section, sub, key, value):
-    build, arg, limit = dict((k, t) for s, _, ks in SHARED for k, t in ks.items()
-                             if s == section)[key]
+    build, arg, limit = dict((k, t) for s, _, ks in SHARED for k, t in ks.items() if s == section)[
+        key
+    ]
     with pytest.raises(InputError, match=rf"^{arg} must"):
         build(value)
     data, path = _case_with(section, sub, key, value)
@@ -206,22 +299,33 @@ def test_schema_constraints_are_the_shared_limits():
 
     def bounds(model, name):
         fi = model.model_fields[name]
-        return {k: getattr(m, k) for m in fi.metadata for k in ("gt", "ge", "lt", "le")
-                if getattr(m, k, None) is not None}
+        return {
+            k: getattr(m, k)
+            for m in fi.metadata
+            for k in ("gt", "ge", "lt", "le")
+            if getattr(m, k, None) is not None
+        }
 
     for name, limit in _LIMITS.items():
         if name == "cam_width":
             assert bounds(schema._CamBase, "width") == limit.constraints()
         else:
             assert bounds(schema.Valvetrain, name) == limit.constraints(), name
-    for model, pairs in ((schema.MaterialConfig, {"E": L.YOUNGS_MODULUS,
-                                                  "nu": L.POISSON_RATIO}),
-                         (schema.RoughnessConfig, {"rms": L.ROUGHNESS_RMS,
-                                                   "asperity_density": L.ASPERITY_DENSITY,
-                                                   "summit_radius": L.SUMMIT_RADIUS}),
-                         (schema.LubricantConfig, {"viscosity": L.VISCOSITY,
-                                                   "density": L.DENSITY,
-                                                   "eyring_stress": L.EYRING_STRESS})):
+    for model, pairs in (
+        (schema.MaterialConfig, {"E": L.YOUNGS_MODULUS, "nu": L.POISSON_RATIO}),
+        (
+            schema.RoughnessConfig,
+            {
+                "rms": L.ROUGHNESS_RMS,
+                "asperity_density": L.ASPERITY_DENSITY,
+                "summit_radius": L.SUMMIT_RADIUS,
+            },
+        ),
+        (
+            schema.LubricantConfig,
+            {"viscosity": L.VISCOSITY, "density": L.DENSITY, "eyring_stress": L.EYRING_STRESS},
+        ),
+    ):
         for name, limit in pairs.items():
             assert bounds(model, name) == limit.constraints(), name
 
@@ -238,6 +342,12 @@ def test_case_file_names_the_key_of_absurd_valvetrain_values():
 def test_greenwood_tripp_orders_up_to_the_limit_match_quadrature(n, lam):
     """F_n(λ) = (1/√2π) ∫_λ^∞ (s − λ)^n e^(−s²/2) ds (Greenwood & Tripp 1970) for every
     order the limit allows, by adaptive quadrature."""
-    ref, _ = integrate.quad(lambda s: (s - lam) ** n * math.exp(-0.5 * s * s), lam, np.inf,
-                            epsabs=0, epsrel=1e-12, limit=200)
+    ref, _ = integrate.quad(
+        lambda s: (s - lam) ** n * math.exp(-0.5 * s * s),
+        lam,
+        np.inf,
+        epsabs=0,
+        epsrel=1e-12,
+        limit=200,
+    )
     assert greenwood_tripp(n, lam) == pytest.approx(ref / math.sqrt(2 * math.pi), rel=1e-8)

@@ -10,8 +10,8 @@ from tribodyn.config import Case
 from tribodyn.valvetrain import AccelerationCam, CircularArcCam, TabulatedCam
 from tribodyn.valvetrain.cam_table import load_lift_table
 
-W = 157.08                           # cam speed at 3000 rpm [rad/s]
-TH = np.radians(np.arange(0.0, 360.0, 0.1))        # a 0.1° table
+W = 157.08  # cam speed at 3000 rpm [rad/s]
+TH = np.radians(np.arange(0.0, 360.0, 0.1))  # a 0.1° table
 
 
 def _away(cam, x, deg):
@@ -30,7 +30,7 @@ def test_three_arc_table_keeps_its_curvature_jumps():
     true = np.sort(ref._breakpoints()[:4])
     assert found.size == 4
     np.testing.assert_allclose(np.sort(found), true, atol=math.radians(0.02))
-    for a, r0, r1 in cam.curvature_jumps:             # R on both sides of each jump
+    for _a, r0, r1 in cam.curvature_jumps:  # R on both sides of each jump
         assert {round(r0 * 1e3), round(r1 * 1e3)} in ({15, 30}, {30, 3})
     x = np.radians(np.arange(0.0, 360.0, 0.01))
     far = _away(ref, x, 0.5)
@@ -74,10 +74,10 @@ def test_concave_cam_is_rejected_with_the_arc_named():
     """A flank dip makes R < 0 over ~4°: rejected, the arc named."""
     ref = AccelerationCam()
     th_deg = np.degrees(TH)
-    dip = -150e-6 * np.exp(-((th_deg - 120.0) / 1.5) ** 2)
+    dip = -150e-6 * np.exp(-(((th_deg - 120.0) / 1.5) ** 2))
     lift = ref.lift(TH) + dip
     R = ref.base_radius + lift + np.gradient(np.gradient(lift, TH), TH)
-    assert R.min() < -1e-3                               # truly concave
+    assert R.min() < -1e-3  # truly concave
     with pytest.raises(InputError, match=r"concave from 11\d\.\d\d° to 1[12]\d\.\d\d° cam"):
         TabulatedCam(TH, lift, 0.015)
 
@@ -92,8 +92,10 @@ def _table(ref=None, step=0.5):
 def test_header_units_radians_metres(tmp_path):
     a, s = _table()
     f = tmp_path / "t.csv"
-    f.write_text("cam angle (rad), lift [m]\n" + "".join(
-        f"{x:.12f},{y:.12e}\n" for x, y in zip(np.radians(a), s)))
+    f.write_text(
+        "cam angle (rad), lift [m]\n"
+        + "".join(f"{x:.12f},{y:.12e}\n" for x, y in zip(np.radians(a), s))
+    )
     t = load_lift_table(f)
     assert (t.angle_unit, t.lift_unit) == ("rad", "m")
     np.testing.assert_allclose(t.lift, s, atol=1e-15)
@@ -104,24 +106,27 @@ def test_header_units_radians_metres(tmp_path):
 def test_event_only_table_in_mm_with_base_radius(tmp_path):
     ref = AccelerationCam()
     a, s = _table(ref, 0.1)
-    on = (a >= 94.0) & (a <= 266.0)                      # the event, base circle to base circle
+    on = (a >= 94.0) & (a <= 266.0)  # the event, base circle to base circle
     f = tmp_path / "event.csv"
-    f.write_text("angle [deg];lift [mm]\n" + "".join(
-        f"{x:.1f};{y * 1e3:.6f}\n".replace(".", ",") for x, y in zip(a[on], s[on])))
-    case = Case.from_toml_string("[cam]\ntype = 'table'\npath = 'event.csv'\n",
-                                 base_dir=tmp_path)
+    f.write_text(
+        "angle [deg];lift [mm]\n"
+        + "".join(f"{x:.1f};{y * 1e3:.6f}\n".replace(".", ",") for x, y in zip(a[on], s[on]))
+    )
+    case = Case.from_toml_string("[cam]\ntype = 'table'\npath = 'event.csv'\n", base_dir=tmp_path)
     cam = case.cam()
     assert cam.event_only
     x = np.radians(np.arange(0.0, 360.0, 0.25))
-    np.testing.assert_allclose(cam.lift(x), ref.lift(x), atol=2e-6)   # 1 µm rounding
+    np.testing.assert_allclose(cam.lift(x), ref.lift(x), atol=2e-6)  # 1 µm rounding
     assert cam.max_lift == pytest.approx(9.3e-3, rel=1e-3)
 
 
 def test_crank_angles_and_three_columns(tmp_path):
     a, s = _table()
     f = tmp_path / "three.csv"
-    f.write_text("crank [deg]\tlift [mm]\tvelocity [mm/deg]\n" + "".join(
-        f"{2 * x:.2f}\t{y * 1e3:.9f}\t0\n" for x, y in zip(a, s)))
+    f.write_text(
+        "crank [deg]\tlift [mm]\tvelocity [mm/deg]\n"
+        + "".join(f"{2 * x:.2f}\t{y * 1e3:.9f}\t0\n" for x, y in zip(a, s))
+    )
     with pytest.raises(InputError, match="has 3 columns.*angle_column and lift_column"):
         load_lift_table(f)
     t = load_lift_table(f, angle_column="crank [deg]", lift_column=2)
@@ -129,8 +134,10 @@ def test_crank_angles_and_three_columns(tmp_path):
     np.testing.assert_allclose(t.angle, np.radians(a), atol=1e-12)
     msg = _reject_case(tmp_path, "three.csv")
     assert "cam.path" in msg and "3 columns" in msg
-    case = Case.from_toml_string("[cam]\ntype = 'table'\npath = 'three.csv'\n"
-                                 "angle_column = 1\nlift_column = 2\n", base_dir=tmp_path)
+    case = Case.from_toml_string(
+        "[cam]\ntype = 'table'\npath = 'three.csv'\nangle_column = 1\nlift_column = 2\n",
+        base_dir=tmp_path,
+    )
     assert case.cam().max_lift == pytest.approx(9.3e-3, rel=1e-4)
 
 
@@ -147,8 +154,9 @@ def test_binary_and_legacy_encodings(tmp_path):
     a, s = _table()
     body = "".join(f"{x:.1f} {y * 1e3:.9f}\n" for x, y in zip(a, s))
     (tmp_path / "cp.csv").write_bytes(("Nockenwinkel [°] Hub [mm]\n" + body).encode("cp1252"))
-    (tmp_path / "u16.csv").write_bytes(("angle [°], lift [µm]\n" + body.replace(" ", ", ")
-                                        ).encode("utf-16"))
+    (tmp_path / "u16.csv").write_bytes(
+        ("angle [°], lift [µm]\n" + body.replace(" ", ", ")).encode("utf-16")
+    )
     t1 = load_lift_table(tmp_path / "cp.csv")
     t2 = load_lift_table(tmp_path / "u16.csv")
     np.testing.assert_allclose(t1.lift, s, atol=1e-12)

@@ -10,7 +10,7 @@ from tribodyn.cli import app
 from tribodyn.physics.regimes import hamrock_groups, pan_hamrock
 
 runner = CliRunner()
-E_STEEL_PAIR = 210e9 / (1.0 - 0.3**2)          # E' of steel on steel, 1/E' = ½Σ(1−ν²)/E
+E_STEEL_PAIR = 210e9 / (1.0 - 0.3**2)  # E' of steel on steel, 1/E' = ½Σ(1−ν²)/E
 
 
 def run(*args):
@@ -18,21 +18,40 @@ def run(*args):
 
 
 def test_ehl_table():
-    r = run("--load", "633", "--radius", "0.01", "--ue", "5", "--us", "2",
-            "--roughness", "8.3e9,0.408e-6,0.669e-6", "--n", "256")
+    r = run(
+        "--load",
+        "633",
+        "--radius",
+        "0.01",
+        "--ue",
+        "5",
+        "--us",
+        "2",
+        "--roughness",
+        "8.3e9,0.408e-6,0.669e-6",
+        "--n",
+        "256",
+    )
     assert r.exit_code == 0, r.output
-    for label in ("central film h_c", "minimum film h_min", "λ = h_min/σ", "half-width b",
-                  "friction coefficient", "regime", "converged"):
+    for label in (
+        "central film h_c",
+        "minimum film h_min",
+        "λ = h_min/σ",
+        "half-width b",
+        "friction coefficient",
+        "regime",
+        "converged",
+    ):
         assert label in r.stdout
     from tribodyn.physics.regimes import greenwood_chart_groups, lubrication_regime
+
     W, U, G = hamrock_groups(633 / 0.012, 0.01, 5.0, 0.055, 1.05e-8, E_STEEL_PAIR)
     assert lubrication_regime(*greenwood_chart_groups(W, U, G)) in r.stdout
 
 
 def test_json_film_matches_pan_hamrock():
-    load, width, radius, ue = 2400.0, 0.012, 0.01, 1.0      # w = 2e5 N/m
-    r = run("--load", str(load), "--radius", str(radius), "--ue", str(ue), "--us", "0.5",
-            "--json")
+    load, width, radius, ue = 2400.0, 0.012, 0.01, 1.0  # w = 2e5 N/m
+    r = run("--load", str(load), "--radius", str(radius), "--ue", str(ue), "--us", "0.5", "--json")
     assert r.exit_code == 0, r.output
     out = json.loads(r.stdout)
     assert out["converged"] is True
@@ -43,15 +62,29 @@ def test_json_film_matches_pan_hamrock():
     assert out["central_film_m"] == pytest.approx(hc, rel=0.10)
     assert out["min_film_m"] == pytest.approx(hmin, rel=0.10)
     assert out["regime"] in ("PE", "PR", "IE", "IR")
-    assert out["film_parameter_lambda"] is None                 # smooth by default
-    assert out["friction_N"] == pytest.approx(out["viscous_friction_N"]
-                                              + out["boundary_friction_N"])
+    assert out["film_parameter_lambda"] is None  # smooth by default
+    assert out["friction_N"] == pytest.approx(
+        out["viscous_friction_N"] + out["boundary_friction_N"]
+    )
     assert out["friction_coefficient"] == pytest.approx(out["friction_N"] / load)
 
 
 def test_json_surface_set_from_the_paper_case():
-    r = run("--surface-set", "wcc_4um", "--load-per-length", "5e4", "--radius", "0.01",
-            "--ue", "5", "--us", "1", "--n", "256", "--json")
+    r = run(
+        "--surface-set",
+        "wcc_4um",
+        "--load-per-length",
+        "5e4",
+        "--radius",
+        "0.01",
+        "--ue",
+        "5",
+        "--us",
+        "1",
+        "--n",
+        "256",
+        "--json",
+    )
     assert r.exit_code == 0, r.output
     out = json.loads(r.stdout)
     assert out["coating_thickness_m"] == 4e-6 and out["coating_E_Pa"] == 175e9
@@ -70,29 +103,38 @@ def test_dry_matches_hertz():
     assert out["half_width_m"] == pytest.approx(b, rel=0.01)
     assert out["hertz_half_width_m"] == pytest.approx(b, rel=1e-12)
     # coating = substrate on the tappet: still Hertz
-    r = run("--dry", "--load", str(load), "--radius", str(radius),
-            "--coating", "210e9,0.3,4e-6")
+    r = run("--dry", "--load", str(load), "--radius", str(radius), "--coating", "210e9,0.3,4e-6")
     assert r.exit_code == 0, r.output
     assert "b / b_Hertz" in r.stdout
 
 
-@pytest.mark.parametrize("args, name", [
-    (("--load", "-5", "--radius", "0.01", "--ue", "1"), "--load"),
-    (("--load", "600", "--radius", "0", "--ue", "1"), "--radius"),
-    (("--load", "600", "--radius", "0.01"), "--ue"),
-    (("--load", "600", "--radius", "0.01", "--ue", "1", "--coating", "1,2"), "--coating"),
-    (("--load", "600", "--radius", "0.01", "--ue", "1", "--coating", "175e9,0.5,4e-6"),
-     "--coating"),
-    (("--load", "600", "--radius", "0.01", "--ue", "1", "--roughness", "1e9,-1e-7,1e-6"),
-     "--roughness"),
-    (("--load", "600", "--radius", "0.01", "--ue", "1", "--surface-set", "nope"),
-     "--surface-set"),
-    (("--load", "600", "--radius", "0.01", "--ue", "1", "--viscosity", "1e-6"),
-     "--viscosity"),
-    (("--load", "600", "--radius", "0.01", "--ue", "1", "--coating-material", "dlc"),
-     "--coating-thickness"),
-    (("--load", "abc", "--radius", "0.01", "--ue", "1"), "--load"),
-])
+@pytest.mark.parametrize(
+    "args, name",
+    [
+        (("--load", "-5", "--radius", "0.01", "--ue", "1"), "--load"),
+        (("--load", "600", "--radius", "0", "--ue", "1"), "--radius"),
+        (("--load", "600", "--radius", "0.01"), "--ue"),
+        (("--load", "600", "--radius", "0.01", "--ue", "1", "--coating", "1,2"), "--coating"),
+        (
+            ("--load", "600", "--radius", "0.01", "--ue", "1", "--coating", "175e9,0.5,4e-6"),
+            "--coating",
+        ),
+        (
+            ("--load", "600", "--radius", "0.01", "--ue", "1", "--roughness", "1e9,-1e-7,1e-6"),
+            "--roughness",
+        ),
+        (
+            ("--load", "600", "--radius", "0.01", "--ue", "1", "--surface-set", "nope"),
+            "--surface-set",
+        ),
+        (("--load", "600", "--radius", "0.01", "--ue", "1", "--viscosity", "1e-6"), "--viscosity"),
+        (
+            ("--load", "600", "--radius", "0.01", "--ue", "1", "--coating-material", "dlc"),
+            "--coating-thickness",
+        ),
+        (("--load", "abc", "--radius", "0.01", "--ue", "1"), "--load"),
+    ],
+)
 def test_bad_input_exits_2_naming_the_parameter(args, name):
     r = run(*args)
     assert r.exit_code == 2

@@ -55,7 +55,7 @@ def test_bundled_case_loads_and_builds_everything(paper):
     assert isinstance(vp, ValvetrainParameters)
     assert vp.cam_width == 0.012
     assert isinstance(paper.ehl_options(), EHLOptions)
-    assert paper.cam_speed == pytest.approx(1500.0 * 2.0 * math.pi / 60.0)   # cam = engine/2
+    assert paper.cam_speed == pytest.approx(1500.0 * 2.0 * math.pi / 60.0)  # cam = engine/2
     sets = paper.surface_sets()
     assert [s.name for s in sets] == ["uncoated", "dlc_1um", "dlc_4um", "wcc_1um", "wcc_4um"]
     assert all(isinstance(s, SurfaceSet) and isinstance(s.roughness, Roughness) for s in sets)
@@ -74,28 +74,49 @@ def test_paper_numbers(paper):
     assert (v.valve_mass, v.spring_mass, v.spring_rate) == (0.07, 0.036, 33750.0)
     # assumed (docs/conventions.md)
     assert (v.tappet_mass, v.spring_preload, v.lash) == (0.040, 250.0, 0.0)
-    assert (c.ramp_height, c.ramp_angle_deg, c.event_angle_deg, c.nose_radius) == \
-        (0.2e-3, 20.0, 171.0, 3e-3)
+    assert (c.ramp_height, c.ramp_angle_deg, c.event_angle_deg, c.nose_radius) == (
+        0.2e-3,
+        20.0,
+        171.0,
+        3e-3,
+    )
     # Table 5 (+ assumed density)
     lub = paper.lubricant()
-    assert (lub.viscosity, lub.pressure_viscosity, lub.eyring_stress,
-            lub.limiting_shear_coefficient, lub.density) == (0.055, 1.05e-8, 2e6, 0.08, 850.0)
+    assert (
+        lub.viscosity,
+        lub.pressure_viscosity,
+        lub.eyring_stress,
+        lub.limiting_shear_coefficient,
+        lub.density,
+    ) == (0.055, 1.05e-8, 2e6, 0.08, 850.0)
     assert lub.viscosity_model == "roelands" and lub.compressible
-    assert lub.limiting_shear_stress == 0.0                     # paper: τ_L = Λp only
-    assert paper.updated({"lubricant.limiting_shear_stress": 3e6}).lubricant() \
-        .limiting_shear_stress == 3e6
+    assert lub.limiting_shear_stress == 0.0  # paper: τ_L = Λp only
+    assert (
+        paper.updated({"lubricant.limiting_shear_stress": 3e6}).lubricant().limiting_shear_stress
+        == 3e6
+    )
     # Table 6 (moduli in GPa)
     m = paper.materials
     assert (m["steel"].E, m["dlc"].E, m["wcc"].E) == (210e9, 185e9, 175e9)
     assert all(x.nu == 0.3 for x in m.values())
-    assert (m["steel"].boundary_shear_coefficient, m["dlc"].boundary_shear_coefficient,
-            m["wcc"].boundary_shear_coefficient) == (0.185, 0.44, 0.54)
+    assert (
+        m["steel"].boundary_shear_coefficient,
+        m["dlc"].boundary_shear_coefficient,
+        m["wcc"].boundary_shear_coefficient,
+    ) == (0.185, 0.44, 0.54)
     # Table 4 roughness, coatings on the tappet, steel cam
-    table4 = {"uncoated": (8.3e9, 0.408e-6, 0.669e-6), "dlc": (3.8e9, 0.358e-6, 0.332e-6),
-              "wcc": (2.7e9, 0.347e-6, 0.217e-6)}
-    expect = {"uncoated": (None, None, 0.185, "uncoated"),
-              "dlc_1um": (185e9, 1e-6, 0.44, "dlc"), "dlc_4um": (185e9, 4e-6, 0.44, "dlc"),
-              "wcc_1um": (175e9, 1e-6, 0.54, "wcc"), "wcc_4um": (175e9, 4e-6, 0.54, "wcc")}
+    table4 = {
+        "uncoated": (8.3e9, 0.408e-6, 0.669e-6),
+        "dlc": (3.8e9, 0.358e-6, 0.332e-6),
+        "wcc": (2.7e9, 0.347e-6, 0.217e-6),
+    }
+    expect = {
+        "uncoated": (None, None, 0.185, "uncoated"),
+        "dlc_1um": (185e9, 1e-6, 0.44, "dlc"),
+        "dlc_4um": (185e9, 4e-6, 0.44, "dlc"),
+        "wcc_1um": (175e9, 1e-6, 0.54, "wcc"),
+        "wcc_4um": (175e9, 4e-6, 0.54, "wcc"),
+    }
     for s in paper.surface_sets():
         E, t, sig, rough_key = expect[s.name]
         cam, tappet = s.bodies
@@ -113,8 +134,8 @@ def test_paper_numbers(paper):
     assert paper.surface_set("dlc_4um").coating_label == "DLC 4 µm"
     assert paper.ehl_options("wcc_1um").boundary_shear_coefficient == 0.54
     assert 0.0 < paper.numerics.crank_step_deg <= 1.0
-    assert paper.numerics.implicit_coupling is True      # the comparison of Figs. 8–10
-    assert paper.numerics.n == 0                         # automatic EHL grid
+    assert paper.numerics.implicit_coupling is True  # the comparison of Figs. 8–10
+    assert paper.numerics.n == 0  # automatic EHL grid
 
 
 def test_bundled_file_itself_holds_the_numbers_and_comments():
@@ -126,9 +147,10 @@ def test_bundled_file_itself_holds_the_numbers_and_comments():
     assert raw["valvetrain"]["tappet_mass"] == 0.040
     for tag in ("Table 4", "Table 5", "Table 6", "Table 7", "ASSUMED", "ERRATUM"):
         assert tag in text
-    for line in text.splitlines():            # every assumption is marked on its line
-        if re.match(r"\s*(tappet_mass|spring_preload|density|event_angle_deg|nose_radius)\s*=",
-                    line):
+    for line in text.splitlines():  # every assumption is marked on its line
+        if re.match(
+            r"\s*(tappet_mass|spring_preload|density|event_angle_deg|nose_radius)\s*=", line
+        ):
             assert "ASSUMED" in line, line
 
 
@@ -140,8 +162,12 @@ def test_empty_file_is_the_paper_case(paper):
 
 
 def test_bundled_names(paper):
-    assert set(bundled_cases()) == {"andreou2023", "andreou2023_flexible",
-                                    "andreou2023_thermal", "example_table_cam"}
+    assert set(bundled_cases()) == {
+        "andreou2023",
+        "andreou2023_flexible",
+        "andreou2023_thermal",
+        "example_table_cam",
+    }
     assert load_case("andreou2023") == paper
 
 
@@ -156,8 +182,9 @@ def test_example_table_cam():
     assert np.max(np.abs(cam.lift(th) - AccelerationCam().lift(th))) < 1e-8
     assert [s.coating_label for s in case.surface_sets()] == ["uncoated", "WC-C 4 µm"]
     header = case.cam_table_path.read_text(encoding="utf-8").splitlines()[0]
-    assert header.startswith("#") and "AccelerationCam" in \
-        case.cam_table_path.read_text(encoding="utf-8")
+    assert header.startswith("#") and "AccelerationCam" in case.cam_table_path.read_text(
+        encoding="utf-8"
+    )
 
 
 def test_other_cam_types():
@@ -169,55 +196,86 @@ def test_other_cam_types():
 # ----------------------------------------------------------------------------- rejection
 def test_unknown_keys_are_rejected_with_dotted_path():
     reject("[foo]\nx = 1\n", "foo: unknown key", "allowed: case, engine")
-    reject("[lubricant]\nviscosty = 0.05\n", "lubricant.viscosty: unknown key",
-           "did you mean 'viscosity'")
+    reject(
+        "[lubricant]\nviscosty = 0.05\n",
+        "lubricant.viscosty: unknown key",
+        "did you mean 'viscosity'",
+    )
     reject("[materials.dlc]\nE = 185e9\nnu = 0.3\nYoung = 1\n", "materials.dlc.Young")
-    reject("[[surface_sets]]\nname = 'a'\n"
-           "roughness = { asperity_density = 1e9, rms = 1e-7, summit_radius = 1e-6, x = 2 }\n",
-           "surface_sets[0].roughness.x: unknown key")
-    reject("[cam]\ntype = 'circular_arc'\nevent_angle_deg = 100\n",
-           "cam.event_angle_deg: unknown key for cam type 'circular_arc'")
+    reject(
+        "[[surface_sets]]\nname = 'a'\n"
+        "roughness = { asperity_density = 1e9, rms = 1e-7, summit_radius = 1e-6, x = 2 }\n",
+        "surface_sets[0].roughness.x: unknown key",
+    )
+    reject(
+        "[cam]\ntype = 'circular_arc'\nevent_angle_deg = 100\n",
+        "cam.event_angle_deg: unknown key for cam type 'circular_arc'",
+    )
 
 
 def test_out_of_range_values_name_the_key():
-    reject("[materials.steel]\nE = -2.1e11\nnu = 0.3\nboundary_shear_coefficient = 0.185\n",
-           "materials.steel.E: must be >= 1e+06 Pa", "(got -2.1e+11)")
-    reject("[materials.steel]\nE = 210e9\nnu = 0.5\nboundary_shear_coefficient = 0.185\n",
-           "materials.steel.nu: must be > -1 and < 0.5", "(got 0.5)")
-    reject("[numerics]\ncrank_step_deg = 0\n", "numerics.crank_step_deg: must be > 0",
-           "<= 5")
-    reject("[lubricant]\nviscosity = 1e-5\n", "lubricant.viscosity: must be > 6.31",
-           "Pa·s", "(got 1e-05)")
+    reject(
+        "[materials.steel]\nE = -2.1e11\nnu = 0.3\nboundary_shear_coefficient = 0.185\n",
+        "materials.steel.E: must be >= 1e+06 Pa",
+        "(got -2.1e+11)",
+    )
+    reject(
+        "[materials.steel]\nE = 210e9\nnu = 0.5\nboundary_shear_coefficient = 0.185\n",
+        "materials.steel.nu: must be > -1 and < 0.5",
+        "(got 0.5)",
+    )
+    reject("[numerics]\ncrank_step_deg = 0\n", "numerics.crank_step_deg: must be > 0", "<= 5")
+    reject(
+        "[lubricant]\nviscosity = 1e-5\n",
+        "lubricant.viscosity: must be > 6.31",
+        "Pa·s",
+        "(got 1e-05)",
+    )
     reject("[cam]\nbase_radius = 0.0\n", "cam.base_radius: must be > 0 m")
     reject("[cam]\nnose_radius = -0.003\n", "cam.nose_radius: must be > 0 m")
-    reject("[cam]\ntype = 'circular_arc'\nnose_radius = 0.02\n",
-           "cam: nose_radius must be < base_radius")
+    reject(
+        "[cam]\ntype = 'circular_arc'\nnose_radius = 0.02\n",
+        "cam: nose_radius must be < base_radius",
+    )
     reject("[valvetrain]\ntappet_radius = 0.01\n", "cam:", "tappet radius")
-    reject("[cam]\ntype = 'spline'\n", "cam.type: must be one of 'acceleration'",
-           "(got 'spline')")
-    reject("[numerics]\nn = 512.0\nviscous_model = 'foo'\n",
-           "numerics.n: must be an integer (got 512.0)", "numerics.viscous_model: must be "
-           "'eyring' or 'newtonian' (got 'foo')", "2 problems")
+    reject("[cam]\ntype = 'spline'\n", "cam.type: must be one of 'acceleration'", "(got 'spline')")
+    reject(
+        "[numerics]\nn = 512.0\nviscous_model = 'foo'\n",
+        "numerics.n: must be an integer (got 512.0)",
+        "numerics.viscous_model: must be 'eyring' or 'newtonian' (got 'foo')",
+        "2 problems",
+    )
     reject("[engine]\nspeed_rpm = '3000'\n", "engine.speed_rpm: must be a number")
     reject("[lubricant]\nviscosity = nan\n", "lubricant.viscosity: must be a finite number")
 
 
 def test_coating_rules():
     head = "[[surface_sets]]\nname = 'a'\ncoating = 'dlc'\n"
-    reject(head + "coating_thickness = 0\n" + ROUGH,
-           "surface_sets[0].coating_thickness: must be > 0 m")
+    reject(
+        head + "coating_thickness = 0\n" + ROUGH, "surface_sets[0].coating_thickness: must be > 0 m"
+    )
     reject(head + ROUGH, "surface_sets[0].coating_thickness: required when a coating is named")
-    reject("[[surface_sets]]\nname = 'a'\ncoating_thickness = 1e-6\n" + ROUGH,
-           "surface_sets[0].coating_thickness: given but no coating")
-    reject("[[surface_sets]]\nname = 'a'\n" + ROUGH + "[[surface_sets]]\nname = 'b'\n"
-           "coating = 'dcl'\ncoating_thickness = 1e-6\n" + ROUGH,
-           "surface_sets[1].coating: unknown material 'dcl'", "did you mean 'dlc'")
-    reject("[[surface_sets]]\nname = 'a'\n" + ROUGH + "[[surface_sets]]\nname = 'a'\n" + ROUGH,
-           "surface_sets[1].name: duplicate surface-set name 'a'")
+    reject(
+        "[[surface_sets]]\nname = 'a'\ncoating_thickness = 1e-6\n" + ROUGH,
+        "surface_sets[0].coating_thickness: given but no coating",
+    )
+    reject(
+        "[[surface_sets]]\nname = 'a'\n" + ROUGH + "[[surface_sets]]\nname = 'b'\n"
+        "coating = 'dcl'\ncoating_thickness = 1e-6\n" + ROUGH,
+        "surface_sets[1].coating: unknown material 'dcl'",
+        "did you mean 'dlc'",
+    )
+    reject(
+        "[[surface_sets]]\nname = 'a'\n" + ROUGH + "[[surface_sets]]\nname = 'a'\n" + ROUGH,
+        "surface_sets[1].name: duplicate surface-set name 'a'",
+    )
     reject("[cam]\nmaterial = 'iron'\n", "cam.material: unknown material 'iron'")
-    reject("[materials.x]\nE = 1e11\nnu = 0.3\n[[surface_sets]]\nname = 'a'\nsubstrate = 'x'\n"
-           + ROUGH + "[cam]\nmaterial = 'x'\n",
-           "surface_sets[0].boundary_shear_coefficient: required")
+    reject(
+        "[materials.x]\nE = 1e11\nnu = 0.3\n[[surface_sets]]\nname = 'a'\nsubstrate = 'x'\n"
+        + ROUGH
+        + "[cam]\nmaterial = 'x'\n",
+        "surface_sets[0].boundary_shear_coefficient: required",
+    )
     # "none" means uncoated
     case = Case.from_toml_string("[[surface_sets]]\nname = 'a'\ncoating = 'none'\n" + ROUGH)
     assert case.surface_sets()[0].tappet.coating is None
@@ -225,13 +283,21 @@ def test_coating_rules():
 
 def test_lift_table_problems(tmp_path):
     rows = [(a, 0.0) for a in range(0, 360, 10)]
-    rows[20], rows[21] = rows[21], rows[20]                    # not monotonic
+    rows[20], rows[21] = rows[21], rows[20]  # not monotonic
     (tmp_path / "bad.csv").write_text("\n".join(f"{a},{s}" for a, s in rows))
-    msg = reject("[cam]\ntype = 'table'\npath = 'bad.csv'\n", "cam.path:",
-                 "non-monotonic lift table", base_dir=tmp_path)
+    msg = reject(
+        "[cam]\ntype = 'table'\npath = 'bad.csv'\n",
+        "cam.path:",
+        "non-monotonic lift table",
+        base_dir=tmp_path,
+    )
     assert "bad.csv" in msg
-    reject("[cam]\ntype = 'table'\npath = 'missing.csv'\n", "cam.path:",
-           "cannot read lift table", base_dir=tmp_path)
+    reject(
+        "[cam]\ntype = 'table'\npath = 'missing.csv'\n",
+        "cam.path:",
+        "cannot read lift table",
+        base_dir=tmp_path,
+    )
     reject("[cam]\ntype = 'table'\n", "cam.path: required key is missing")
 
 
@@ -252,10 +318,14 @@ def test_round_trip_is_lossless(paper):
 
 
 def test_round_trip_of_awkward_values(paper, tmp_path):
-    case = paper.updated({"lubricant.viscosity": 1.0 / 30.0,
-                          "case.description": 'quote " backslash \\ tab\t new\nline µ',
-                          "valvetrain.contact_stiffness": 3.3e8,
-                          "surface_sets[1].coating_thickness": 1.2345678901234567e-6})
+    case = paper.updated(
+        {
+            "lubricant.viscosity": 1.0 / 30.0,
+            "case.description": 'quote " backslash \\ tab\t new\nline µ',
+            "valvetrain.contact_stiffness": 3.3e8,
+            "surface_sets[1].coating_thickness": 1.2345678901234567e-6,
+        }
+    )
     assert case.lubricant_config.viscosity == 1.0 / 30.0
     again = Case.from_toml_string(case.to_toml())
     assert again == case and again.valvetrain.contact_stiffness == 3.3e8
@@ -267,7 +337,7 @@ def test_round_trip_of_table_cam(tmp_path):
     case = load_case("example_table_cam")
     again = Case.from_toml_string(case.to_toml(), base_dir=CASES_DIR)
     assert again == case
-    moved = load_case(case.write_toml(tmp_path / "moved.toml"))   # absolute table path
+    moved = load_case(case.write_toml(tmp_path / "moved.toml"))  # absolute table path
     assert moved.cam_table_path == case.cam_table_path
 
 
@@ -281,19 +351,32 @@ def test_updated_validates(paper):
 
 def test_to_toml_writer_handles_keys_and_floats():
     text = to_toml({"a b": {"x": 1e-300, "y": float("inf"), "z": [1, 2.5], "s": "é"}})
-    assert tomllib.loads(text) == {"a b": {"x": 1e-300, "y": float("inf"), "z": [1, 2.5],
-                                           "s": "é"}}
+    assert tomllib.loads(text) == {"a b": {"x": 1e-300, "y": float("inf"), "z": [1, 2.5], "s": "é"}}
 
 
 # ----------------------------------------------------------------------------- docs
 def test_docs_cover_every_key():
     doc = (Path(__file__).resolve().parents[1] / "docs" / "case-files.md").read_text(
-        encoding="utf-8")
+        encoding="utf-8"
+    )
     from tribodyn import config as cfg
-    models = [cfg.CaseInfo, cfg.Engine, cfg.AccelerationCamConfig, cfg.CircularArcCamConfig,
-              cfg.TableCamConfig, cfg.Valvetrain, cfg.ValveConfig, cfg.TappetConfig,
-              cfg.SpringConfig, cfg.CamshaftConfig, cfg.LubricantConfig, cfg.MaterialConfig,
-              cfg.RoughnessConfig, cfg.SurfaceSetConfig, cfg.Numerics]
-    missing = [f"{m.__name__}.{k}" for m in models for k in m.model_fields
-               if f"`{k}`" not in doc]
+
+    models = [
+        cfg.CaseInfo,
+        cfg.Engine,
+        cfg.AccelerationCamConfig,
+        cfg.CircularArcCamConfig,
+        cfg.TableCamConfig,
+        cfg.Valvetrain,
+        cfg.ValveConfig,
+        cfg.TappetConfig,
+        cfg.SpringConfig,
+        cfg.CamshaftConfig,
+        cfg.LubricantConfig,
+        cfg.MaterialConfig,
+        cfg.RoughnessConfig,
+        cfg.SurfaceSetConfig,
+        cfg.Numerics,
+    ]
+    missing = [f"{m.__name__}.{k}" for m in models for k in m.model_fields if f"`{k}`" not in doc]
     assert not missing, missing

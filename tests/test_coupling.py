@@ -10,16 +10,24 @@ from tribodyn.workflow.coupling import COUPLING_MAX_TOL, COUPLING_RMS_TOL, run_c
 from tribodyn.workflow.cycle_ehl import CycleInputs, ehl_for_set
 
 # the paper case with one surface set at reduced EHL resolution (4° crank, 256 nodes)
-REDUCED = {"numerics.crank_step_deg": 4.0, "numerics.n": 256,
-           "numerics.coupling_iterations": 8, "numerics.output_step_deg": 1.0}
+REDUCED = {
+    "numerics.crank_step_deg": 4.0,
+    "numerics.n": 256,
+    "numerics.coupling_iterations": 8,
+    "numerics.output_step_deg": 1.0,
+}
 
 
 @pytest.fixture(scope="module")
 def coupled():
     case = load_case().updated(REDUCED)
     s = case.surface_set("uncoated")
-    dyn = simulate_valvetrain(case.cam(), case.valvetrain_parameters(),
-                              tribology=case.analytic_tribology(s), **case.dynamics_options())
+    dyn = simulate_valvetrain(
+        case.cam(),
+        case.valvetrain_parameters(),
+        tribology=case.analytic_tribology(s),
+        **case.dynamics_options(),
+    )
     inputs = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
     first = ehl_for_set(case, s, inputs)
     return dyn, run_coupling(case, s, dyn, inputs, first)
@@ -32,7 +40,7 @@ def test_coupling_converges(coupled):
     peak = dyn.contact_force.max()
     assert rms[-1] < COUPLING_RMS_TOL * peak
     assert c.history[-1].max_force_change_N < COUPLING_MAX_TOL * peak
-    assert rms[-1] < rms[0] / 3                     # the iteration contracts
+    assert rms[-1] < rms[0] / 3  # the iteration contracts
 
 
 def test_coupled_dynamics_agree_with_the_explicit_run_in_the_event(coupled):

@@ -23,11 +23,14 @@ WIDTH = CASE.width
 # Conditions of the paper's cam cycle (explicit dynamics, 3000 rpm): the cam nose
 # (R = 3 mm, reversed entrainment), the fast closing flank (R = 77 mm, thick film) and a
 # light bounce after valve closing (10 N, nearly rigid).
-@pytest.mark.parametrize("F, R, ue, us, surface", [
-    (513.3, 2.99e-3, -1.44, 2.55, WCC),
-    (466.5, 77.0e-3, 10.89, 22.0, UNCOATED),
-    (10.1, 15.0e-3, 1.18, 2.36, UNCOATED),
-])
+@pytest.mark.parametrize(
+    "F, R, ue, us, surface",
+    [
+        (513.3, 2.99e-3, -1.44, 2.55, WCC),
+        (466.5, 77.0e-3, 10.89, 22.0, UNCOATED),
+        (10.1, 15.0e-3, 1.18, 2.36, UNCOATED),
+    ],
+)
 def test_default_grid_is_accurate_at_cycle_conditions(F, R, ue, us, surface):
     """The automatic grid's discretisation error, measured against four times the nodes
     on the same domain (second-order convergence: the 4× solution is ~16× closer), is
@@ -50,8 +53,7 @@ def _ramp_inputs(step_deg):
     t = np.radians(crank) / (2 * np.pi * 50.0)
     F = np.clip((crank - 2.3) * 10.0, 0.0, 400.0)
     n = crank.size
-    return CycleInputs(crank, t, F, np.full(n, 3.0), np.full(n, 6.0), np.full(n, 0.02),
-                       WIDTH)
+    return CycleInputs(crank, t, F, np.full(n, 3.0), np.full(n, 6.0), np.full(n, 0.02), WIDTH)
 
 
 def test_time_error_control_resolves_the_engagement():
@@ -64,15 +66,17 @@ def test_time_error_control_resolves_the_engagement():
     res = {}
     for step in (1.0, 0.25):
         inp = _ramp_inputs(step)
-        res[step] = (inp, ehl_along_cycle(inp, "u", "u", UNCOATED.bodies, lub,
-                                          UNCOATED.roughness, opts))
+        res[step] = (
+            inp,
+            ehl_along_cycle(inp, "u", "u", UNCOATED.bodies, lub, UNCOATED.roughness, opts),
+        )
     (ia, a), (ib, b) = res[1.0], res[0.25]
     assert a.converged[a.loaded].all() and b.converged[b.loaded].all()
     k = np.searchsorted(ib.crank_angle, ia.crank_angle)
     both = a.loaded & b.loaded[k]
     assert both.sum() > 40
     assert np.allclose(a.central_film[both], b.central_film[k][both], rtol=0.01)
-    first = np.flatnonzero(a.loaded)[1:3]           # the steps after the steady start
+    first = np.flatnonzero(a.loaded)[1:3]  # the steps after the steady start
     assert np.all(a.substeps[first] > 1)
 
 
@@ -113,19 +117,26 @@ class PicklingExecutor(Executor):
 def test_study_runs_through_any_executor():
     # a light version of the paper's case (one engine cycle, coarse steps and grid, no
     # implicit coupling): the plumbing is under test, not the physics
-    case = load_case().updated({"numerics.crank_step_deg": 4.0, "numerics.n": 128,
-                                "numerics.implicit_coupling": False, "numerics.cycles": 1,
-                                "numerics.output_step_deg": 1.0})
+    case = load_case().updated(
+        {
+            "numerics.crank_step_deg": 4.0,
+            "numerics.n": 128,
+            "numerics.implicit_coupling": False,
+            "numerics.cycles": 1,
+            "numerics.output_step_deg": 1.0,
+        }
+    )
     events = []
     ex = PicklingExecutor()
-    study = run_cycle_study(case, executor=ex,
-                            progress=lambda e, **i: events.append((e, i.get("name"),
-                                                                   i.get("done"))))
-    assert sorted(ex.calls) == sorted(["_coupling_task", "_coating_studies_task"]
-                                      + ["_set_task"] * 4)
+    study = run_cycle_study(
+        case, executor=ex, progress=lambda e, **i: events.append((e, i.get("name"), i.get("done")))
+    )
+    assert sorted(ex.calls) == sorted(
+        ["_coupling_task", "_coating_studies_task"] + ["_set_task"] * 4
+    )
     assert [s.name for s in study.sets] == case.surface_set_names
     done = {name for e, name, d in events if e == "set" and d}
     assert done == set(case.surface_set_names)
-    for a in study.sets[:2]:                # the same as a pass in this process
+    for a in study.sets[:2]:  # the same as a pass in this process
         b = ehl_for_set(case, case.surface_set(a.name), study.inputs)
         assert np.array_equal(a.central_film, b.central_film, equal_nan=True)

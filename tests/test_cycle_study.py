@@ -17,9 +17,13 @@ runner = CliRunner()
 
 # The paper case at reduced resolution: 4° crank steps, fixed 256-node EHL grid, one
 # coupling iteration, coarser dynamics output. Physics and inputs are unchanged.
-REDUCED = {"numerics.crank_step_deg": 4.0, "numerics.n": 256,
-           "numerics.coupling_iterations": 1, "numerics.output_step_deg": 1.0,
-           "numerics.workers": 1}
+REDUCED = {
+    "numerics.crank_step_deg": 4.0,
+    "numerics.n": 256,
+    "numerics.coupling_iterations": 1,
+    "numerics.output_step_deg": 1.0,
+    "numerics.workers": 1,
+}
 
 
 @pytest.fixture(scope="module")
@@ -40,10 +44,23 @@ def run_dir(reduced_case_file, tmp_path_factory):
 def test_outputs_exist(run_dir):
     for name in ("results.nc", "summary.json", "report.md", "case.toml"):
         assert (run_dir / name).stat().st_size > 0
-    assert json.loads((run_dir / MARKER).read_text())["tool"] == "tribodyn"   # a result folder
+    assert json.loads((run_dir / MARKER).read_text())["tool"] == "tribodyn"  # a result folder
     pngs = sorted(p.name for p in run_dir.glob("*.png"))
-    for key in ("fig05", "fig06", "fig08", "fig09", "fig10", "fig11", "fig12", "fig13",
-                "fig14", "fig15", "fig16", "fig17", "fig18"):
+    for key in (
+        "fig05",
+        "fig06",
+        "fig08",
+        "fig09",
+        "fig10",
+        "fig11",
+        "fig12",
+        "fig13",
+        "fig14",
+        "fig15",
+        "fig16",
+        "fig17",
+        "fig18",
+    ):
         assert any(p.startswith(key) for p in pngs), key
     report = (run_dir / "report.md").read_text()
     assert "| claim | paper | tribodyn | why |" in report
@@ -54,19 +71,26 @@ def test_outputs_exist(run_dir):
 def test_summary_keys_and_physics(run_dir):
     s = json.loads((run_dir / "summary.json").read_text())
     assert set(s["surface_sets"]) == {"uncoated", "dlc_1um", "dlc_4um", "wcc_1um", "wcc_4um"}
-    keys = {"peak_contact_force_N", "min_film_m", "max_central_film_m",
-            "max_film_gain_vs_uncoated_pct", "max_boundary_friction_N",
-            "max_viscous_friction_N", "boundary_friction_reduction_vs_uncoated_pct",
-            "friction_energy_per_cycle_J", "mean_friction_power_W"}
+    keys = {
+        "peak_contact_force_N",
+        "min_film_m",
+        "max_central_film_m",
+        "max_film_gain_vs_uncoated_pct",
+        "max_boundary_friction_N",
+        "max_viscous_friction_N",
+        "boundary_friction_reduction_vs_uncoated_pct",
+        "friction_energy_per_cycle_J",
+        "mean_friction_power_W",
+    }
     for v in s["surface_sets"].values():
         assert keys <= set(v)
-        assert 1e-8 <= v["min_film_m"] <= v["max_central_film_m"] <= 1e-5      # 0.01–10 µm
+        assert 1e-8 <= v["min_film_m"] <= v["max_central_film_m"] <= 1e-5  # 0.01–10 µm
         assert 0 < v["friction_energy_per_cycle_J"] < 100 and math.isfinite(
-            v["friction_energy_per_cycle_J"])
+            v["friction_energy_per_cycle_J"]
+        )
         assert v["mean_friction_power_W"] > 0
         assert 300 < v["peak_contact_force_N"] < 1000
-    assert {"max_contact_force_diff_pct", "max_velocity_diff_pct"} <= set(
-        s["implicit_vs_explicit"])
+    assert {"max_contact_force_diff_pct", "max_velocity_diff_pct"} <= set(s["implicit_vs_explicit"])
     assert s["runtime_s"] > 0
     # the coatings' lower (ηβσ)² cut the boundary friction (paper: WC-C > 95 % below steel)
     assert s["surface_sets"]["wcc_4um"]["boundary_friction_reduction_vs_uncoated_pct"] > 80
@@ -78,11 +102,11 @@ def test_dataset_contents(run_dir):
         assert ds["contact_force"].attrs["units"] == "N"
         ev = ds["in_event"].values.astype(bool)
         F = ds["ehl_contact_force"].values
-        assert np.all(F[ev] > 0)                              # contact during the event
+        assert np.all(F[ev] > 0)  # contact during the event
         loaded = ds["loaded"].values.astype(bool)
         hc = ds["central_film"].values
-        assert np.all(np.isfinite(hc[loaded]))                 # every loaded step has a film
-        assert np.all(np.isnan(hc[~loaded]))                   # NaN only where unloaded
+        assert np.all(np.isfinite(hc[loaded]))  # every loaded step has a film
+        assert np.all(np.isnan(hc[~loaded]))  # NaN only where unloaded
         assert np.all(ds["converged"].values[loaded] == 1)
         h = hc[loaded & ev[None, :]]
         assert np.all((h > 1e-8) & (h < 1e-5))
@@ -99,8 +123,9 @@ def test_dataset_contents(run_dir):
 
 
 def test_failing_steps_are_reported(tmp_path):
-    case = load_case().updated({**REDUCED, "numerics.max_iter": 1,
-                                "numerics.implicit_coupling": False})
+    case = load_case().updated(
+        {**REDUCED, "numerics.max_iter": 1, "numerics.implicit_coupling": False}
+    )
     path = tmp_path / "bad.toml"
     case.write_toml(path)
     out = tmp_path / "res"
@@ -141,7 +166,7 @@ def test_atomic_write_keeps_old_folder_when_writing_fails(tmp_path):
     out = tmp_path / "results"
     out.mkdir()
     (out / "old.txt").write_text("keep me")
-    (out / MARKER).write_text("{}")          # a previous result folder: may be replaced
+    (out / MARKER).write_text("{}")  # a previous result folder: may be replaced
 
     def failing(tmp):
         (tmp / "results.nc").write_text("half")
@@ -160,8 +185,10 @@ def test_atomic_write_keeps_old_folder_when_writing_fails(tmp_path):
 def test_python_module_entry_point():
     import subprocess
     import sys
-    r = subprocess.run([sys.executable, "-m", "tribodyn", "--help"], capture_output=True,
-                       text=True, timeout=120)
+
+    r = subprocess.run(
+        [sys.executable, "-m", "tribodyn", "--help"], capture_output=True, text=True, timeout=120
+    )
     assert r.returncode == 0 and "run" in r.stdout and "contact" in r.stdout
 
 
@@ -171,7 +198,7 @@ def test_min_load_above_the_peak_force_is_a_clear_error(tmp_path):
     case.write_toml(path)
     r = runner.invoke(app, ["run", str(path), "-o", str(tmp_path / "out"), "--quiet"])
     assert r.exit_code == 1
-    text = " ".join(r.output.split())                   # the console wraps long lines
+    text = " ".join(r.output.split())  # the console wraps long lines
     assert "numerics.min_load" in text and "peak contact force" in text
     assert not (tmp_path / "out").exists()
 
@@ -190,8 +217,10 @@ def _claims_table(report: str) -> dict:
 
 def _numbers(text: str) -> list[float]:
     import re
-    return [float(m.replace("−", "-")) for m in re.findall(r"[−+-]?\d+(?:\.\d+)?(?:e[−+-]?\d+)?",
-                                                           text)]
+
+    return [
+        float(m.replace("−", "-")) for m in re.findall(r"[−+-]?\d+(?:\.\d+)?(?:e[−+-]?\d+)?", text)
+    ]
 
 
 def test_report_claims_match_the_summary(run_dir):
@@ -202,10 +231,12 @@ def test_report_claims_match_the_summary(run_dir):
     assert len(rows) >= 7
     ours = rows["WC-C cuts boundary friction vs steel by"][1]
     assert _numbers(ours)[0] == pytest.approx(
-        sets[s["roles"]["wcc"]]["boundary_friction_reduction_vs_uncoated_pct"], abs=0.05)
+        sets[s["roles"]["wcc"]]["boundary_friction_reduction_vs_uncoated_pct"], abs=0.05
+    )
     film = rows["Coatings raise the film thickness by up to"][1]
-    best = max(v["max_film_gain_vs_uncoated_pct"] for k, v in sets.items()
-               if k != s["reference_set"])
+    best = max(
+        v["max_film_gain_vs_uncoated_pct"] for k, v in sets.items() if k != s["reference_set"]
+    )
     assert _numbers(film)[0] == pytest.approx(best, abs=0.005)
     loss = _numbers(rows["Friction loss per cam revolution (measured, Winer et al. 1986)"][1])
     energies = [v["friction_energy_per_cycle_J"] for v in sets.values()]
@@ -217,4 +248,5 @@ def test_report_claims_match_the_summary(run_dir):
     assert law[1] == pytest.approx(ref["friction_energy_per_cycle_newtonian_J"], rel=2e-3)
     imp = rows["Implicit vs explicit dynamics"][1]
     assert _numbers(imp)[0] == pytest.approx(
-        s["implicit_vs_explicit"]["max_contact_force_diff_pct"], abs=0.05)
+        s["implicit_vs_explicit"]["max_contact_force_diff_pct"], abs=0.05
+    )

@@ -30,6 +30,7 @@ def _assert_complementarity(r, e_prime):
     """Gap recomputed with the analytic log kernel (valid for homogeneous pairs): zero
     where loaded, non-negative elsewhere, to 1e-4 of the Hertz approach scale b²/R."""
     from independent import log_kernel_displacement
+
     g = r.x**2 / (2 * R) + log_kernel_displacement(r.x, r.pressure, e_prime)
     loaded = r.pressure > 0
     g -= g[loaded].mean()
@@ -73,7 +74,7 @@ def test_thin_coating_gives_substrate_hertz(Ec, nuc):
     r = solve_dry_contact(W, R, _pair(Coating(Ec, nuc, 1e-8)), initial_pressure=_flat)
     hz = hertz_line_contact(W, R, reduced_modulus(_pair()))
     assert r.converged
-    _assert_complementarity(r, 210e9 / 0.91)      # a 10 nm layer: the steel pair
+    _assert_complementarity(r, 210e9 / 0.91)  # a 10 nm layer: the steel pair
     assert r.half_width == pytest.approx(hz.half_width, rel=1e-2)
     assert r.max_pressure == pytest.approx(hz.max_pressure, rel=1e-2)
 
@@ -82,8 +83,7 @@ def test_thin_coating_gives_substrate_hertz(Ec, nuc):
 def test_thick_coating_gives_coating_material_hertz(Ec, nuc):
     e_coat = 2.0 / (STEEL.compliance + Material(Ec, nuc).compliance)
     hz = hertz_line_contact(W, R, e_coat)
-    r = solve_dry_contact(W, R, _pair(Coating(Ec, nuc, 50 * hz.half_width)),
-                          initial_pressure=_flat)
+    r = solve_dry_contact(W, R, _pair(Coating(Ec, nuc, 50 * hz.half_width)), initial_pressure=_flat)
     assert r.converged
     assert r.half_width == pytest.approx(hz.half_width, rel=1e-2)
     assert r.max_pressure == pytest.approx(hz.max_pressure, rel=1e-2)
@@ -121,11 +121,16 @@ def test_contact_at_domain_edge_is_reported():
     assert not r.converged and "domain edge" in r.message
 
 
-@pytest.mark.parametrize("kwargs, name", [
-    (dict(load=-1.0, radius=R), "load"), (dict(load=0.0, radius=R), "load"),
-    (dict(load=float("nan"), radius=R), "load"), (dict(load=W, radius=0.0), "radius"),
-    (dict(load=W, radius=-0.01), "radius"),
-])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        (dict(load=-1.0, radius=R), "load"),
+        (dict(load=0.0, radius=R), "load"),
+        (dict(load=float("nan"), radius=R), "load"),
+        (dict(load=W, radius=0.0), "radius"),
+        (dict(load=W, radius=-0.01), "radius"),
+    ],
+)
 def test_bad_input_names_argument(kwargs, name):
     with pytest.raises(InputError, match=rf"^{name} must"):
         solve_dry_contact(bodies=_pair(), **kwargs)

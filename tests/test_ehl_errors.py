@@ -10,12 +10,17 @@ PAIR = (Body(STEEL), Body(STEEL))
 OIL = Lubricant(0.055, 1.05e-8)
 
 
-@pytest.mark.parametrize("args, name", [
-    ((-1e4, 0.01, 1.0, 0.0), "load"), ((0.0, 0.01, 1.0, 0.0), "load"),
-    ((1e4, 0.0, 1.0, 0.0), "radius"), ((1e4, -0.01, 1.0, 0.0), "radius"),
-    ((1e4, 0.01, float("nan"), 0.0), "entrainment_speed"),
-    ((1e4, 0.01, 1.0, float("inf")), "sliding_speed"),
-])
+@pytest.mark.parametrize(
+    "args, name",
+    [
+        ((-1e4, 0.01, 1.0, 0.0), "load"),
+        ((0.0, 0.01, 1.0, 0.0), "load"),
+        ((1e4, 0.0, 1.0, 0.0), "radius"),
+        ((1e4, -0.01, 1.0, 0.0), "radius"),
+        ((1e4, 0.01, float("nan"), 0.0), "entrainment_speed"),
+        ((1e4, 0.01, 1.0, float("inf")), "sliding_speed"),
+    ],
+)
 def test_bad_arguments_name_the_field(args, name):
     with pytest.raises(InputError, match=rf"^{name} must"):
         solve_ehl(*args, PAIR, OIL)
@@ -26,11 +31,18 @@ def test_zero_entrainment_needs_the_transient_solver():
         solve_ehl(1e4, 0.01, 0.0, 1.0, PAIR, OIL)
 
 
-@pytest.mark.parametrize("kw, name", [
-    (dict(n=8), "n"), (dict(inlet=0.5), "inlet"), (dict(outlet=-1.0), "outlet"),
-    (dict(viscous_model="bingham"), "viscous_model"), (dict(time_order=3), "time_order"),
-    (dict(max_iter=0), "max_iter"), (dict(tol=0.0), "tol"),
-])
+@pytest.mark.parametrize(
+    "kw, name",
+    [
+        (dict(n=8), "n"),
+        (dict(inlet=0.5), "inlet"),
+        (dict(outlet=-1.0), "outlet"),
+        (dict(viscous_model="bingham"), "viscous_model"),
+        (dict(time_order=3), "time_order"),
+        (dict(max_iter=0), "max_iter"),
+        (dict(tol=0.0), "tol"),
+    ],
+)
 def test_bad_options(kw, name):
     with pytest.raises(InputError, match=name):
         EHLOptions(**kw)

@@ -3,9 +3,9 @@
 import math
 
 import pytest
+
 from ehl_cases import ALPHA, E_PRIME, MU0, PAIR, G, R, conditions
 from independent import film_equation_residual, mass_flux_deviation
-
 from tribodyn import Lubricant, solve_ehl
 from tribodyn.physics.regimes import moes_central, pan_hamrock
 
@@ -18,8 +18,7 @@ def assert_solves_reynolds(r, oil):
     misses the flux check by a factor of > 100."""
     dev_max, dev_95 = mass_flux_deviation(r.x, r.pressure, r.film, r.entrainment_speed, oil)
     assert dev_max < 0.25 and dev_95 < 0.01, (dev_max, dev_95)
-    assert film_equation_residual(r.x, r.film, r.pressure + r.asperity_pressure, R,
-                                  E_PRIME) < 1e-6
+    assert film_equation_residual(r.x, r.film, r.pressure + r.asperity_pressure, R, E_PRIME) < 1e-6
 
 
 # Pan & Hamrock fitted Roelands + Dowson–Higginson solutions; their h_c fit drifts above
@@ -53,8 +52,8 @@ def test_moes_barus_incompressible(M, L):
 def test_grid_convergence_from_default(M, L):
     w, u, _, _ = conditions(M, L)
     oil = Lubricant(MU0, ALPHA)
-    a = solve_ehl(w, R, u, 0.0, PAIR, oil)             # default (automatic) grid
-    b = solve_ehl(w, R, u, 0.0, PAIR, oil, n=2 * a.x.size)   # twice as many nodes
+    a = solve_ehl(w, R, u, 0.0, PAIR, oil)  # default (automatic) grid
+    b = solve_ehl(w, R, u, 0.0, PAIR, oil, n=2 * a.x.size)  # twice as many nodes
     assert a.converged and b.converged
     assert_solves_reynolds(a, oil)
     assert_solves_reynolds(b, oil)
@@ -71,21 +70,22 @@ def test_ehl_solution_structure():
     b = math.sqrt(8 * w * R / (math.pi * E_PRIME))
     ph = math.sqrt(w * E_PRIME / (2 * math.pi * R))
     assert r.min_film < r.central_film
-    assert 0.5 * b < r.min_film_position < 1.2 * b          # constriction near the exit
+    assert 0.5 * b < r.min_film_position < 1.2 * b  # constriction near the exit
     assert r.hydrodynamic_load == pytest.approx(w, rel=1e-9)
     mid = abs(r.x) < 0.5 * b
     assert r.pressure[mid].max() == pytest.approx(ph, rel=0.1)
-    assert r.film[mid].max() / r.film[mid].min() < 1.1       # parallel central film
+    assert r.film[mid].max() / r.film[mid].min() < 1.1  # parallel central film
 
 
 def test_two_grid_preconditioned_solution_equals_dense_solution(monkeypatch):
     """Grids above 1024 nodes are solved by GMRES with a coarse-grid LU preconditioner;
     the converged discrete solution must not depend on the linear solver."""
     import tribodyn.contact.ehl.steady as steady
+
     w, u, _, _ = conditions(50, 10)
     oil = Lubricant(MU0, ALPHA)
     fast = solve_ehl(w, R, u, 0.0, PAIR, oil, n=2048)
-    monkeypatch.setattr(steady, "_N_DENSE", 4096)          # force dense LU on every level
+    monkeypatch.setattr(steady, "_N_DENSE", 4096)  # force dense LU on every level
     dense = solve_ehl(w, R, u, 0.0, PAIR, oil, n=2048)
     assert fast.converged and dense.converged
     assert_solves_reynolds(dense, oil)

@@ -17,7 +17,7 @@ ISO = Lubricant(viscosity=0.05, pressure_viscosity=0.0, compressible=False)
 @pytest.mark.parametrize("u_e", [1.0, -2.5])
 def test_martin_rigid_isoviscous(u_e):
     R, w, mu = 0.01, 1e3, 0.05
-    r = solve_ehl(w, R, u_e, 0.0, PAIR, ISO, elastic=False)      # default domain and grid
+    r = solve_ehl(w, R, u_e, 0.0, PAIR, ISO, elastic=False)  # default domain and grid
     assert r.converged, r.message
     assert r.inlet_load_deficit < 0.01
     h0 = r.min_film
@@ -27,12 +27,14 @@ def test_martin_rigid_isoviscous(u_e):
     # converges with the grid spacing (the default grid, sized for the films, places it
     # within 3 %), so it is checked on 1024 nodes over the same domain
     assert r.cavitation_position * np.sign(u_e) / math.sqrt(2 * R * h0) == pytest.approx(
-        0.4751, rel=0.04)
+        0.4751, rel=0.04
+    )
     r = solve_ehl(w, R, u_e, 0.0, PAIR, ISO, elastic=False, n=1024)
     assert r.converged, r.message
     h0 = r.min_film
     assert r.cavitation_position * np.sign(u_e) / math.sqrt(2 * R * h0) == pytest.approx(
-        0.4751, rel=0.02)
+        0.4751, rel=0.02
+    )
     # the Reynolds exit condition emerges: p and dp/dx vanish at the meniscus
     p = r.pressure
     dpdx = np.gradient(p, r.x)
@@ -64,7 +66,7 @@ def test_pure_squeeze_matches_closed_form():
     k = w / (3 * math.sqrt(2) * math.pi * mu * R**1.5)
     tr = TransientEHL(PAIR, ISO, elastic=False, inlet_rigid=8, n=512)
     tr.start_film(h_i, w, R)
-    t_end = 6.0 / (k * math.sqrt(h_i))          # film falls to ~1/16 of h_i
+    t_end = 6.0 / (k * math.sqrt(h_i))  # film falls to ~1/16 of h_i
     dt = t_end / 200
     t, h = [0.0], [h_i]
     for _ in range(200):

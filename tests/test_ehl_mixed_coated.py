@@ -4,9 +4,9 @@ import math
 
 import numpy as np
 import pytest
+
 from ehl_cases import E_PRIME, OIL, PAIR, STEEL, R, conditions
 from independent import mass_flux_deviation
-
 from tribodyn import Body, Coating, Roughness, solve_ehl
 
 W_LOAD, U_E, _, _ = conditions(20, 10)
@@ -41,7 +41,7 @@ def test_asperities_carry_most_of_the_load_when_film_is_below_sigma(smooth):
     assert r.central_film < rough.rms
     assert r.asperity_load > 0.9 * W_LOAD
     assert r.hydrodynamic_load + r.asperity_load == pytest.approx(W_LOAD, rel=1e-9)
-    assert r.boundary_friction > r.viscous_friction        # boundary-dominated regime
+    assert r.boundary_friction > r.viscous_friction  # boundary-dominated regime
     # load sharing: the asperities lift the surfaces apart compared with the smooth film
     assert r.central_film > smooth.central_film
 

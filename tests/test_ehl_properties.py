@@ -33,29 +33,55 @@ def log_uniform(lo, hi):
 
 
 signed_speed = st.tuples(log_uniform(1e-3, 1e3), st.sampled_from([-1.0, 1.0])).map(
-    lambda t: t[0] * t[1])
+    lambda t: t[0] * t[1]
+)
 
 roughness = st.one_of(
     st.none(),
-    st.builds(Roughness, asperity_density=log_uniform(1e8, 1e14), rms=log_uniform(1e-8, 1e-5),
-              summit_radius=log_uniform(1e-7, 1e-3)))
+    st.builds(
+        Roughness,
+        asperity_density=log_uniform(1e8, 1e14),
+        rms=log_uniform(1e-8, 1e-5),
+        summit_radius=log_uniform(1e-7, 1e-3),
+    ),
+)
 
 coating = st.one_of(
     st.none(),
-    st.builds(Coating, E=log_uniform(1e9, 1e12), nu=st.floats(0.0, 0.45),
-              thickness=log_uniform(1e-7, 1e-4)))
+    st.builds(
+        Coating,
+        E=log_uniform(1e9, 1e12),
+        nu=st.floats(0.0, 0.45),
+        thickness=log_uniform(1e-7, 1e-4),
+    ),
+)
 
 
-@settings(max_examples=25, deadline=None, derandomize=True, print_blob=True,
-          suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
-@given(load=log_uniform(1e-2, 1e10), radius=log_uniform(1e-4, 1.0), ue=signed_speed,
-       us=st.floats(-100.0, 100.0), mu0=log_uniform(1e-4, 1.0),
-       alpha=st.floats(0.0, 4e-8), E=log_uniform(1e9, 1e12), nu=st.floats(0.0, 0.45),
-       rough=roughness, coat=coating, barus=st.booleans())
+@settings(
+    max_examples=25,
+    deadline=None,
+    derandomize=True,
+    print_blob=True,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
+)
+@given(
+    load=log_uniform(1e-2, 1e10),
+    radius=log_uniform(1e-4, 1.0),
+    ue=signed_speed,
+    us=st.floats(-100.0, 100.0),
+    mu0=log_uniform(1e-4, 1.0),
+    alpha=st.floats(0.0, 4e-8),
+    E=log_uniform(1e9, 1e12),
+    nu=st.floats(0.0, 0.45),
+    rough=roughness,
+    coat=coating,
+    barus=st.booleans(),
+)
 @pytest.mark.filterwarnings("ignore::RuntimeWarning")
 @pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")
-def test_converged_means_a_physical_film(load, radius, ue, us, mu0, alpha, E, nu, rough, coat,
-                                         barus):
+def test_converged_means_a_physical_film(
+    load, radius, ue, us, mu0, alpha, E, nu, rough, coat, barus
+):
     mat = Material(E, nu)
     bodies = (Body(mat), Body(mat, coat))
     oil = Lubricant(mu0, alpha, viscosity_model="barus" if barus else "roelands")
@@ -65,21 +91,30 @@ def test_converged_means_a_physical_film(load, radius, ue, us, mu0, alpha, E, nu
         assert np.all(np.isfinite(r.film)) and np.all(r.film > 0.0)
         assert r.central_film > 0.0 and r.min_film > 0.0
         assert np.all(np.isfinite(r.pressure)) and np.all(np.isfinite(r.asperity_pressure))
-        for f in (r.viscous_friction, r.boundary_friction, r.hydrodynamic_load,
-                  r.asperity_load):
+        for f in (r.viscous_friction, r.boundary_friction, r.hydrodynamic_load, r.asperity_load):
             assert math.isfinite(f) and f >= 0.0
-    else:                                   # the message does not claim convergence
+    else:  # the message does not claim convergence
         assert not r.message.startswith("converged")
 
 
 @settings(max_examples=40, deadline=None, derandomize=True)
-@given(load=st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.integers(),
-                      st.text(max_size=3), st.none()))
+@given(
+    load=st.one_of(
+        st.floats(allow_nan=True, allow_infinity=True),
+        st.integers(),
+        st.text(max_size=3),
+        st.none(),
+    )
+)
 def test_bad_loads_are_input_errors(load):
     mat = Material(210e9, 0.3)
     oil = Lubricant(0.055, 1e-8)
-    ok = (isinstance(load, (int, float)) and not isinstance(load, bool)
-          and math.isfinite(load) and load > 0)
+    ok = (
+        isinstance(load, (int, float))
+        and not isinstance(load, bool)
+        and math.isfinite(load)
+        and load > 0
+    )
     if ok:
         return
     with pytest.raises(InputError, match="load"):

@@ -16,26 +16,28 @@ import math
 
 import numpy as np
 import pytest
-from ehl_cases import ALPHA, E_PRIME, MU0, PAIR, STEEL, G, R, conditions
-from independent import mass_flux_deviation
 from scipy.integrate import quad
 from scipy.optimize import brentq
 
+from ehl_cases import ALPHA, E_PRIME, MU0, PAIR, STEEL, G, R, conditions
+from independent import mass_flux_deviation
 from tribodyn import Body, Coating, Lubricant, Material, Roughness, solve_ehl
 from tribodyn.physics.regimes import hamrock_groups, moes_central
 
-OIL = Lubricant(MU0, ALPHA, viscosity_model="barus", compressible=False)   # Moes' oil
+OIL = Lubricant(MU0, ALPHA, viscosity_model="barus", compressible=False)  # Moes' oil
 BETA, ETA_BETA_SIGMA = 2e-6, 0.04
 
 
 def f52(lam):
-    return quad(lambda s: (s - lam) ** 2.5 * math.exp(-s * s / 2), lam, np.inf)[0] \
-        / math.sqrt(2 * math.pi)
+    return quad(lambda s: (s - lam) ** 2.5 * math.exp(-s * s / 2), lam, np.inf)[0] / math.sqrt(
+        2 * math.pi
+    )
 
 
 def rough_for(sigma):
-    return Roughness(asperity_density=ETA_BETA_SIGMA / (sigma * BETA), rms=sigma,
-                     summit_radius=BETA)
+    return Roughness(
+        asperity_density=ETA_BETA_SIGMA / (sigma * BETA), rms=sigma, summit_radius=BETA
+    )
 
 
 def pressure_scale(rough, e_prime):
@@ -64,7 +66,7 @@ def test_load_sharing_against_johnson_greenwood_poon(M, lam):
     film from Moes' fit (itself within ~4 % of this solver), the solver resolves h(x):
     measured differences are 0–10 % for M = 20–100, λ = 0.5–1."""
     w, u, W, U = conditions(M, 10)
-    sigma = float(moes_central(W, U, G, R)) / lam          # λ of the smooth Moes film
+    sigma = float(moes_central(W, U, G, R)) / lam  # λ of the smooth Moes film
     rough = rough_for(sigma)
     r = solve_ehl(w, R, u, 0.0, PAIR, OIL, rough)
     assert r.converged, r.message

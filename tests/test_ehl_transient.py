@@ -4,8 +4,8 @@ import math
 
 import numpy as np
 import pytest
-from ehl_cases import E_PRIME, OIL, PAIR, R, conditions
 
+from ehl_cases import E_PRIME, OIL, PAIR, R, conditions
 from tribodyn import Lubricant, TransientEHL, solve_ehl
 from tribodyn.physics.regimes import hamrock_groups, moes_central
 
@@ -25,8 +25,9 @@ def test_load_step_relaxes_to_new_steady_state():
     # the steady solution of the same discrete problem (on the transient's grid, whose
     # extent in Hertz half-widths b at the new load is given explicitly)
     b1 = math.sqrt(8 * 1.5 * w * R / (math.pi * E_PRIME))
-    target = solve_ehl(1.5 * w, R, u, 0.5, PAIR, OIL, n=r.x.size, inlet=-r.x[0] / b1,
-                       outlet=r.x[-1] / b1)
+    target = solve_ehl(
+        1.5 * w, R, u, 0.5, PAIR, OIL, n=r.x.size, inlet=-r.x[0] / b1, outlet=r.x[-1] / b1
+    )
     assert target.x[0] == pytest.approx(r.x[0], rel=1e-12)
     # the film first keeps its old thickness (the oil must be squeezed out) ...
     assert hc[0] > 1.02 * target.central_film
@@ -39,13 +40,13 @@ def test_load_step_relaxes_to_new_steady_state():
 def test_passage_through_zero_entrainment_keeps_a_film():
     """u_e ramps from +u to −u through zero at constant load (cam-nose-like); the steady
     theory predicts h → 0 at u_e = 0, the squeeze term keeps the film finite."""
-    w = 4e4                       # N/m
+    w = 4e4  # N/m
     R_ = 0.005
     u0 = 1.0
     oil = Lubricant(0.055, 1.05e-8)
     tr = TransientEHL(PAIR, oil)
     tr.start_steady(w, R_, u0, 3.0)
-    T = 2e-3                       # ramp duration [s]
+    T = 2e-3  # ramp duration [s]
     nstep = 80
     dt = T / nstep
     hc, ue_hist, squeeze = [], [], []
@@ -63,7 +64,7 @@ def test_passage_through_zero_entrainment_keeps_a_film():
     # quasi-steady estimate at the smallest non-zero |u_e| of the ramp
     W, U, Gg = hamrock_groups(w, R_, u0 * 2 / nstep, 0.055, 1.05e-8, E_PRIME)
     h_qs = float(moes_central(W, U, Gg, R_))
-    assert hc[i0] > 2 * h_qs                        # squeeze film outlives the steady film
+    assert hc[i0] > 2 * h_qs  # squeeze film outlives the steady film
     assert hc.min() > 0.0
     # the film decreases through the reversal (oil is squeezed out, not created): without
     # entrainment only the approach of the surfaces can carry the load
@@ -97,6 +98,7 @@ def test_time_step_halving_gives_the_scheme_order(order, expected):
 
 def test_transient_requires_a_start_and_positive_dt():
     from tribodyn import InputError
+
     tr = TransientEHL(PAIR, OIL)
     with pytest.raises(InputError, match="start"):
         tr.step(1e-6, 1e5, R, 1.0, 0.0)

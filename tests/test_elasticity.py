@@ -61,7 +61,10 @@ def test_log_kernel_identity():
     dx = x[1] - x[0]
     # element-averaged √(1−s²) (exact cell averages, so the test checks the kernel only)
     edges = np.clip(np.concatenate([x - dx / 2, [x[-1] + dx / 2]]), -1, 1)
-    prim = lambda s: 0.5 * (s * np.sqrt(1 - s * s) + np.arcsin(s))
+
+    def prim(s):
+        return 0.5 * (s * np.sqrt(1 - s * s) + np.arcsin(s))
+
     pav = np.diff(prim(edges)) / dx
     op = DeformationOperator.from_coefficients(log_kernel_influence(dx, n))
     lhs = op(pav)
@@ -70,22 +73,30 @@ def test_log_kernel_identity():
 
 def _displacement_by_fourier_quadrature(bodies, x, s):
     """u(x) − u(0) for the Gaussian pressure exp(−x²/2s²) straight from the pair FRF."""
+
     def integrand(m, xx):
-        return pair_frf(m, bodies) * s * math.sqrt(2 * math.pi) * math.exp(-0.5 * (m * s) ** 2) \
-            * (math.cos(m * xx) - 1.0) / math.pi
+        return (
+            pair_frf(m, bodies)
+            * s
+            * math.sqrt(2 * math.pi)
+            * math.exp(-0.5 * (m * s) ** 2)
+            * (math.cos(m * xx) - 1.0)
+            / math.pi
+        )
+
     out = []
     for xx in x:
         val = 0.0
         edges = [0.0, 0.1 / s, 1 / s, 3 / s, 6 / s, 12 / s]
         for a, b in zip(edges[:-1], edges[1:]):
-            val += integrate.quad(integrand, a, b, args=(xx,), limit=400, epsabs=0,
-                                  epsrel=1e-11)[0]
+            val += integrate.quad(integrand, a, b, args=(xx,), limit=400, epsabs=0, epsrel=1e-11)[0]
         out.append(val)
     return np.array(out)
 
 
-@pytest.mark.parametrize("Ec, nuc, h_over_s", [(52.5e9, 0.25, 0.3), (840e9, 0.2, 1.0),
-                                               (175e9, 0.3, 3.0)])
+@pytest.mark.parametrize(
+    "Ec, nuc, h_over_s", [(52.5e9, 0.25, 0.3), (840e9, 0.2, 1.0), (175e9, 0.3, 3.0)]
+)
 def test_influence_coefficients_reproduce_the_frf(Ec, nuc, h_over_s):
     """Independent check of the kernel split (analytic log + analytic layer + tabulated Q₂)."""
     s = 10e-6
@@ -106,5 +117,6 @@ def test_influence_coefficients_reproduce_the_frf(Ec, nuc, h_over_s):
 def test_influence_coefficients_symmetric_pair_order():
     a = (Body(STEEL), Body(STEEL, Coating(100e9, 0.3, 2e-6)))
     b = (a[1], a[0])
-    assert np.allclose(influence_coefficients(a, 1e-6, 64), influence_coefficients(b, 1e-6, 64),
-                       rtol=1e-14)
+    assert np.allclose(
+        influence_coefficients(a, 1e-6, 64), influence_coefficients(b, 1e-6, 64), rtol=1e-14
+    )

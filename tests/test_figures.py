@@ -9,8 +9,11 @@ import xarray as xr
 from tribodyn.output.figures import FIGURES, make_figures
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
-EXPLICIT_IMPLICIT = ("fig08_tappet_velocity.png", "fig09_contact_force.png",
-                     "fig10_tappet_acceleration.png")
+EXPLICIT_IMPLICIT = (
+    "fig08_tappet_velocity.png",
+    "fig09_contact_force.png",
+    "fig10_tappet_acceleration.png",
+)
 
 
 def _hertz(x, b, ph):
@@ -20,28 +23,36 @@ def _hertz(x, b, ph):
 def synthetic_dataset(implicit=True, failed_step=True) -> xr.Dataset:
     """A coarse stand-in for study_to_dataset's output (same names and dims)."""
     rpm, width = 3000.0, 0.012
-    omega = rpm / 2 * 2 * np.pi / 60                     # cam speed [rad/s]
+    omega = rpm / 2 * 2 * np.pi / 60  # cam speed [rad/s]
     ca = np.arange(720.0, 1440.5, 1.0)
     ev = (ca > 900) & (ca < 1260)
-    phase = np.where(ev, (ca - 900) / 360, 0.0)           # 0…1 over the event
+    phase = np.where(ev, (ca - 900) / 360, 0.0)  # 0…1 over the event
     lift = 9.3e-3 * np.sin(np.pi * phase) ** 2
-    dt = 120.0 / rpm / 720.0                              # s per crank degree
+    dt = 120.0 / rpm / 720.0  # s per crank degree
     vel = np.gradient(lift, dt)
     acc = np.gradient(vel, dt)
     force = np.where(ev, 250 + 250 * np.sin(np.pi * phase) ** 2, 4 + 4 * np.sin(ca / 7.0))
     ring = np.where(ev, 30 * np.exp(-np.abs(ca - 905) / 5) * np.sin(ca * 3), 0.0)
     base = 0.015
-    ue = np.where(ev, omega * (base + lift) / 2 - 5.0 * np.sin(np.pi * phase) ** 4,
-                  omega * base / 2)
+    ue = np.where(
+        ev, omega * (base + lift) / 2 - 5.0 * np.sin(np.pi * phase) ** 4, omega * base / 2
+    )
     us = omega * (base + lift)
     R = np.where(ev, base + lift + 0.05 * np.sin(np.pi * phase) ** 8 + 0.002, base)
     R = np.clip(R - 0.012 * np.sin(np.pi * phase) ** 6, 0.002, None)
 
     ds = xr.Dataset(coords={"crank_angle": ("crank_angle", ca, {"units": "deg"})})
-    for name, v in dict(contact_force=force, tappet_velocity=vel, tappet_acceleration=acc,
-                        valve_lift=lift, cam_lift=lift, entrainment_speed=ue,
-                        sliding_speed=us, radius_of_curvature=R,
-                        contact_offset=np.gradient(lift, np.deg2rad(ca / 2))).items():
+    for name, v in dict(
+        contact_force=force,
+        tappet_velocity=vel,
+        tappet_acceleration=acc,
+        valve_lift=lift,
+        cam_lift=lift,
+        entrainment_speed=ue,
+        sliding_speed=us,
+        radius_of_curvature=R,
+        contact_offset=np.gradient(lift, np.deg2rad(ca / 2)),
+    ).items():
         ds[name] = ("crank_angle", v)
     if implicit:
         ds["contact_force_implicit"] = ("crank_angle", force + ring)
@@ -84,17 +95,28 @@ def synthetic_dataset(implicit=True, failed_step=True) -> xr.Dataset:
     fv = np.where(L, 0.012 * F * np.array([1.0, 1.003, 1.002])[:, None], np.nan)
     fb = np.where(L, np.array([0.185, 0.44, 0.54])[:, None] * wa, np.nan)
     sigma = np.array([4.1e-7, 3.6e-7, 3.5e-7])[:, None]
-    for name, v in dict(central_film=hc, min_film=hm, max_pressure=np.where(L, 5e8, np.nan),
-                        hydrodynamic_load=np.where(L, F - wa, np.nan), asperity_load=wa,
-                        viscous_friction=fv, boundary_friction=fb,
-                        rolling_friction=np.where(L, 0.0, np.nan),
-                        friction_power=(fv + fb) * Us, lambda_ratio=hm / sigma).items():
+    for name, v in dict(
+        central_film=hc,
+        min_film=hm,
+        max_pressure=np.where(L, 5e8, np.nan),
+        hydrodynamic_load=np.where(L, F - wa, np.nan),
+        asperity_load=wa,
+        viscous_friction=fv,
+        boundary_friction=fb,
+        rolling_friction=np.where(L, 0.0, np.nan),
+        friction_power=(fv + fb) * Us,
+        lambda_ratio=hm / sigma,
+    ).items():
         ds[name] = (("surface_set", "ehl_crank"), v)
     # a thermal study's temperatures and isothermal comparison (Figs. 21, 22)
     rise = np.where(L, 40.0 * (F / F.max()) * np.array([1.0, 1.4, 1.3])[:, None], np.nan)
-    for name, k in (("max_temperature", 1.0), ("mid_film_temperature", 0.9),
-                    ("surface_temperature_cam", 0.7), ("surface_temperature_tappet", 0.8),
-                    ("mean_film_temperature", 0.85)):
+    for name, k in (
+        ("max_temperature", 1.0),
+        ("mid_film_temperature", 0.9),
+        ("surface_temperature_cam", 0.7),
+        ("surface_temperature_tappet", 0.8),
+        ("mean_film_temperature", 0.85),
+    ):
         ds[name] = (("surface_set", "ehl_crank"), 363.15 + k * rise)
     ds["central_film_isothermal"] = (("surface_set", "ehl_crank"), hc * 1.03)
     ds["viscous_friction_isothermal"] = (("surface_set", "ehl_crank"), fv * 1.1)
@@ -105,10 +127,14 @@ def synthetic_dataset(implicit=True, failed_step=True) -> xr.Dataset:
     p = _hertz(x[None, :], b[:, None], ph[:, None])
     outside = np.abs(x) > b[:, None]
     h = hc[:, :, None] + np.where(outside, (x**2 - b[:, None] ** 2) / (2 * Rr[:, None]), 0.0)[None]
-    ds["profile_x"] = (("surface_set", "ehl_crank", "k"),
-                       np.where(L[..., None], np.broadcast_to(x, L.shape + x.shape), np.nan))
-    ds["pressure"] = (("surface_set", "ehl_crank", "k"),
-                      np.where(L[..., None], p[None] * gain[..., None] ** -0.1, np.nan))
+    ds["profile_x"] = (
+        ("surface_set", "ehl_crank", "k"),
+        np.where(L[..., None], np.broadcast_to(x, L.shape + x.shape), np.nan),
+    )
+    ds["pressure"] = (
+        ("surface_set", "ehl_crank", "k"),
+        np.where(L[..., None], p[None] * gain[..., None] ** -0.1, np.nan),
+    )
     ds["film"] = (("surface_set", "ehl_crank", "k"), np.where(L[..., None], h, np.nan))
     ev_e = e[loaded & (F > 0.05 * F.max())]
     ds = ds.assign_coords(point=("point", np.arange(1, 7)))
@@ -124,19 +150,31 @@ def synthetic_dataset(implicit=True, failed_step=True) -> xr.Dataset:
     ds["dry_max_pressure"] = ("dry_ratio", pd)
     xe = np.linspace(-8e-4, 3.5e-4, 121)
     pairs = ["steel (uncoated)", "DLC 4 µm", "WC-C 4 µm"]
-    ds = ds.assign_coords(ehl_x=("ehl_x", xe), ehl_ratio=("ehl_ratio", ratios),
-                          ehl_pair=("ehl_pair", pairs))
+    ds = ds.assign_coords(
+        ehl_x=("ehl_x", xe), ehl_ratio=("ehl_ratio", ratios), ehl_pair=("ehl_pair", pairs)
+    )
     for dim, k in (("ehl_ratio", ratios), ("ehl_pair", np.array([1.0, 0.9, 0.85]))):
-        pe = 2.6e8 * np.exp(-((xe[None] + 4e-5) / 6e-5) ** 2) * k[:, None] ** 0.01
+        pe = 2.6e8 * np.exp(-(((xe[None] + 4e-5) / 6e-5) ** 2)) * k[:, None] ** 0.01
         he = 1.6e-6 * k[:, None] ** -0.01 + xe[None] ** 2 / 2e-2
         ds[f"{dim}_pressure"] = ((dim, "ehl_x"), pe)
         ds[f"{dim}_film"] = ((dim, "ehl_x"), he)
         ds[f"{dim}_central_film"] = (dim, he[:, np.argmin(np.abs(xe))])
         ds[f"{dim}_min_film"] = (dim, he.min(axis=1))
         ds[f"{dim}_converged"] = (dim, np.ones(k.size, np.int8))
-    ds.attrs.update(engine_speed_rpm=rpm, cam_width_m=width, ehl_coating_conditions=json.dumps(
-        dict(load_total=633.0, width=width, radius=0.01, thickness=5e-6,
-             entrainment_speed=15.31, pair_thickness=4e-6)))
+    ds.attrs.update(
+        engine_speed_rpm=rpm,
+        cam_width_m=width,
+        ehl_coating_conditions=json.dumps(
+            dict(
+                load_total=633.0,
+                width=width,
+                radius=0.01,
+                thickness=5e-6,
+                entrainment_speed=15.31,
+                pair_thickness=4e-6,
+            )
+        ),
+    )
     return ds
 
 
@@ -146,7 +184,7 @@ def _check_pngs(paths, out):
         data = path.read_bytes()
         assert len(data) > 10_000, name
         assert data[:8] == PNG_MAGIC, name
-    assert not [p for p in out.iterdir() if ".tmp" in p.name]     # atomic writes
+    assert not [p for p in out.iterdir() if ".tmp" in p.name]  # atomic writes
 
 
 def test_make_figures_writes_every_png(tmp_path):
@@ -166,16 +204,17 @@ def test_missing_implicit_run_plots_explicit_only(tmp_path):
 
 
 def test_missing_optional_parts_are_skipped(tmp_path):
-    ds = synthetic_dataset().drop_vars(["dry_pressure", "dry_half_width", "dry_max_pressure",
-                                        "dry_x", "dry_ratio"])
-    paths = make_figures(ds, tmp_path, only=["fig05_dry_pressure.png",
-                                             "fig15_central_film.png"])
+    ds = synthetic_dataset().drop_vars(
+        ["dry_pressure", "dry_half_width", "dry_max_pressure", "dry_x", "dry_ratio"]
+    )
+    paths = make_figures(ds, tmp_path, only=["fig05_dry_pressure.png", "fig15_central_film.png"])
     assert set(paths) == {"fig15_central_film.png"}
     _check_pngs(paths, tmp_path)
 
 
 def test_unknown_names_are_an_error(tmp_path):
     from tribodyn import InputError
+
     with pytest.raises(InputError, match="fig99_unknown.png"):
         make_figures(synthetic_dataset(), tmp_path, only=["fig99_unknown.png"])
     assert not list(tmp_path.iterdir())
@@ -186,12 +225,13 @@ def test_unknown_names_are_an_error(tmp_path):
 def drawn(monkeypatch, tmp_path):
     """Draw figures but keep the matplotlib Figure objects instead of only the PNGs."""
     from tribodyn.output.figures import common
+
     figs = {}
     save = common.save_figure
 
     def keep(fig, path):
         figs[path.name] = fig
-        fig.canvas.draw()                      # what the PNG shows, laid out
+        fig.canvas.draw()  # what the PNG shows, laid out
         return save(fig, path)
 
     monkeypatch.setattr(common, "save_figure", keep)
@@ -200,6 +240,7 @@ def drawn(monkeypatch, tmp_path):
     def draw(ds, name):
         make_figures(ds, tmp_path, only=[name])
         return figs[name]
+
     return draw
 
 
@@ -223,8 +264,7 @@ def test_central_film_figure_shows_the_films_and_their_differences(drawn):
     wcc = next(ln for lab, ln in _lines_by_label(bottom).items() if lab.startswith("WC-C"))
     x, y = wcc.get_data()
     ok = np.isfinite(y)
-    np.testing.assert_allclose(y[ok], (np.interp(x[ok], e, hc[2] / ref) - 1) * 100,
-                               rtol=1e-6)
+    np.testing.assert_allclose(y[ok], (np.interp(x[ok], e, hc[2] / ref) - 1) * 100, rtol=1e-6)
     assert "h_c" in top.get_ylabel() and "µm" in top.get_ylabel()
     failed = np.flatnonzero((ds["converged"].values[2] == 0) & (ds["loaded"].values[2] == 1))
     crosses = [ln for ln in top.get_lines() if ln.get_marker() == "x"]
@@ -240,8 +280,9 @@ def test_contact_force_figure_shows_explicit_and_implicit(drawn):
     ca = ds["crank_angle"].values
     for name in ("contact_force", "contact_force_implicit"):
         v = ds[name].values
-        assert any(np.allclose(y, np.interp(ln.get_xdata(), ca, v), rtol=1e-9)
-                   for ln, y in zip(lines, ys)), name
+        assert any(
+            np.allclose(y, np.interp(ln.get_xdata(), ca, v), rtol=1e-9) for ln, y in zip(lines, ys)
+        ), name
 
 
 def test_greenwood_chart_places_the_representative_points(drawn):
@@ -252,8 +293,9 @@ def test_greenwood_chart_places_the_representative_points(drawn):
     assert ax.get_xscale() == "log" and ax.get_yscale() == "log"
     e = ds["ehl_crank"].values
     idx = [int(np.argmin(np.abs(e - c))) for c in ds["point_crank"].values]
-    marks = np.vstack([np.column_stack(ln.get_data()) for ln in ax.get_lines()
-                       if ln.get_marker() == "o"])
+    marks = np.vstack(
+        [np.column_stack(ln.get_data()) for ln in ax.get_lines() if ln.get_marker() == "o"]
+    )
     for i in idx:
         gE, gV = ds["gE"].values[i], ds["gV"].values[i]
         assert np.min(np.hypot(np.log(marks[:, 0] / gE), np.log(marks[:, 1] / gV))) < 1e-9

@@ -34,7 +34,7 @@ def test_bar_frequencies_match_the_analytic_ones(elements):
     a = m.node()
     m.bar(a, L, E, A, RHO, elements)
     n = np.arange(1, 4)
-    free = m.frequencies()[1:4]                      # [0] is the rigid-body mode
+    free = m.frequencies()[1:4]  # [0] is the rigid-body mode
     fixed = m.frequencies(fixed=[0])[:3]
     np.testing.assert_allclose(free, n * C / (2 * L), rtol=5e-3)
     np.testing.assert_allclose(fixed, (2 * n - 1) * C / (4 * L), rtol=5e-3)
@@ -53,9 +53,16 @@ def test_craig_bampton_reduced_vs_full():
     """Free–free valve: the lowest elastic frequencies of the reduced model converge to the
     full FE model's from above as fixed-interface modes are added (Craig & Bampton 1968);
     with k = 4 the first three are within 0.5 %."""
-    v = ValveGeometry(stem_diameter=5.5e-3, stem_length=0.105, retainer_position=0.006,
-                      retainer_mass=0.02, head_mass=0.03, head_stiffness=5e8,
-                      seat_stiffness=5e8, elements=24)
+    v = ValveGeometry(
+        stem_diameter=5.5e-3,
+        stem_length=0.105,
+        retainer_position=0.006,
+        retainer_mass=0.02,
+        head_mass=0.03,
+        head_stiffness=5e8,
+        seat_stiffness=5e8,
+        elements=24,
+    )
     fe = v.fe_model()
     full = fe.frequencies()[1:4]
     errs = []
@@ -63,8 +70,8 @@ def test_craig_bampton_reduced_vs_full():
         r = craig_bampton(fe.M, fe.K, [fe.labels["seat"], fe.labels["retainer"]], modes=k)
         assert r.n == 2 + k
         f = r.frequencies()[1:4] if r.n >= 4 else r.frequencies()[1:]
-        assert np.all(f >= full[:f.size] * (1 - 1e-9))      # Rayleigh–Ritz: from above
-        errs.append(float(np.max(f / full[:f.size] - 1)))
+        assert np.all(f >= full[: f.size] * (1 - 1e-9))  # Rayleigh–Ritz: from above
+        errs.append(float(np.max(f / full[: f.size] - 1)))
         if k >= 4:
             np.testing.assert_allclose(f, full, rtol=5e-3)
     assert errs[-1] < errs[2] < errs[1]
@@ -79,10 +86,11 @@ def test_craig_bampton_reduced_vs_full():
 def test_spring_rate_mass_and_surge():
     """k = G d⁴/(8 D³ n), m = ρ π² d² D n/4 (Wahl 1963); fixed–fixed surge (n/2)√(k/m)."""
     d, D, n, G, rho = 3.8e-3, 21.6e-3, 6, 79.3e9, 7850.0
-    s = HelicalSpring(d, D, n, free_length=0.05, installed_length=0.043, dead_coils=0,
-                      elements_per_coil=2)
-    k = G * d ** 4 / (8 * D ** 3 * n)
-    m = rho * math.pi ** 2 * d ** 2 * D * n / 4
+    s = HelicalSpring(
+        d, D, n, free_length=0.05, installed_length=0.043, dead_coils=0, elements_per_coil=2
+    )
+    k = G * d**4 / (8 * D**3 * n)
+    m = rho * math.pi**2 * d**2 * D * n / 4
     assert s.rate == pytest.approx(k, rel=1e-12)
     assert s.active_mass == pytest.approx(m, rel=1e-12)
     surge = 0.5 * np.arange(1, 4) * math.sqrt(k / m)
@@ -96,12 +104,11 @@ def test_progressive_spring_against_hand_calculation():
     rate k_c/6 → k_c/4, and the first surge frequency rises by 6/4 (four open coils)."""
     d, D = 3.8e-3, 21.6e-3
     p = (4.5e-3, 4.5e-3, 7e-3, 7e-3, 7e-3, 7e-3)
-    s = HelicalSpring(d, D, 6, free_length=sum(p) + 2 * d, installed_length=0.040,
-                      pitches=p)
-    kc = 79.3e9 * d ** 4 / (8 * D ** 3)
+    s = HelicalSpring(d, D, 6, free_length=sum(p) + 2 * d, installed_length=0.040, pitches=p)
+    kc = 79.3e9 * d**4 / (8 * D**3)
     gaps = np.array(p) - d
 
-    def hand(delta):                                 # bisection on the hand formula
+    def hand(delta):  # bisection on the hand formula
         lo, hi = 0.0, 1e5
         for _ in range(200):
             F = 0.5 * (lo + hi)
@@ -111,7 +118,7 @@ def test_progressive_spring_against_hand_calculation():
     deltas = [0.5e-3, 1.2e-3, 1.6e-3, 3e-3, 6e-3, 8e-3]
     F = np.array([s.statics(x).force for x in deltas])
     Fh = np.array([hand(x) for x in deltas])
-    np.testing.assert_allclose(F, Fh, rtol=5e-4)      # clash contact compliance ~0.4 µm
+    np.testing.assert_allclose(F, Fh, rtol=5e-4)  # clash contact compliance ~0.4 µm
     rate_open = (s.statics(1.2e-3).force - s.statics(0.5e-3).force) / 0.7e-3
     rate_closed = (s.statics(8e-3).force - s.statics(6e-3).force) / 2e-3
     assert rate_open == pytest.approx(kc / 6, rel=1e-6)
@@ -119,7 +126,7 @@ def test_progressive_spring_against_hand_calculation():
     f_open = s.surge_frequencies(1e-3)[0]
     f_closed = s.surge_frequencies(6e-3)[0]
     assert f_closed / f_open == pytest.approx(6 / 4, rel=5e-3)
-    assert s.statics(6e-3).closed.sum() == 4          # two coils × two elements
+    assert s.statics(6e-3).closed.sum() == 4  # two coils × two elements
 
 
 def test_spring_input_errors():
@@ -133,16 +140,22 @@ def test_spring_input_errors():
 
 # -- camshaft -----------------------------------------------------------------------------
 def test_camshaft_stiffness_and_lobe_inertia():
-    cs = Camshaft(diameter=0.025, bearing_span=0.09, lobe_position=0.045,
-                  drive_stiffness=1e30, drive_length=0.25)
-    Ip = math.pi * 0.025 ** 4 / 32
+    cs = Camshaft(
+        diameter=0.025,
+        bearing_span=0.09,
+        lobe_position=0.045,
+        drive_stiffness=1e30,
+        drive_length=0.25,
+    )
+    Ip = math.pi * 0.025**4 / 32
     assert cs.torsional_stiffness == pytest.approx(cs.shear_modulus * Ip / 0.25, rel=1e-9)
-    I = math.pi * 0.025 ** 4 / 64                    # mid-span: F L³/(48 E I)
-    assert 1 / cs.bending_compliance == pytest.approx(48 * cs.E * I / 0.09 ** 3, rel=1e-9)
+    I = math.pi * 0.025**4 / 64  # mid-span: F L³/(48 E I)
+    assert 1 / cs.bending_compliance == pytest.approx(48 * cs.E * I / 0.09**3, rel=1e-9)
     # a cam with a tiny lift is a disc: J = ρ w π r⁴/2
     cam = CircularArcCam(0.015, 1e-5, flank_radius=0.02, nose_radius=0.01)
     assert lobe_polar_inertia(cam, 0.012, 7850.0) == pytest.approx(
-        7850 * 0.012 * math.pi * 0.015 ** 4 / 2, rel=2e-3)
+        7850 * 0.012 * math.pi * 0.015**4 / 2, rel=2e-3
+    )
     with pytest.raises(InputError, match="lobe_position"):
         Camshaft(0.025, 0.09, 0.06, 1e4, 0.2)
 
@@ -151,14 +164,15 @@ def test_camshaft_stiffness_and_lobe_inertia():
 def test_flexible_case_and_its_lumped_companion(flex):
     assert isinstance(flex, FlexibleValvetrain)
     lp = flex.lumped_equivalent()
-    assert lp.valve_mass == pytest.approx(0.07, rel=1e-3)          # Table 7 by design
+    assert lp.valve_mass == pytest.approx(0.07, rel=1e-3)  # Table 7 by design
     assert lp.spring_mass == pytest.approx(0.036, rel=1e-3)
     assert lp.spring_rate == pytest.approx(33750.0, rel=1e-3)
     assert lp.spring_preload == pytest.approx(250.0, rel=1e-3)
     b = flex.reduced_bodies(9.3e-3)
-    assert b["valve"].modal_frequencies.size == 0                   # first mode 24 kHz
-    assert b["spring"].modal_frequencies[0] == pytest.approx(flex.spring.surge_frequency(),
-                                                             rel=5e-3)
+    assert b["valve"].modal_frequencies.size == 0  # first mode 24 kHz
+    assert b["spring"].modal_frequencies[0] == pytest.approx(
+        flex.spring.surge_frequency(), rel=5e-3
+    )
 
 
 def test_analytic_jacobian_matches_finite_differences(flex):
@@ -171,16 +185,16 @@ def test_analytic_jacobian_matches_finite_differences(flex):
     y = np.zeros(2 * n + 2)
     y[:n] = rng.normal(0, 1e-7, n)
     y[m.i_face], y[m.i_seat], y[m.i_groove] = s - 2e-6, s, s - 1e-7
-    y[n:2 * n] = rng.normal(0, 1e-3, n)
+    y[n : 2 * n] = rng.normal(0, 1e-3, n)
     y[n + m.i_face] = m.w * s1
-    J = m.jacobian(t, y)[:2 * n, :2 * n]
+    J = m.jacobian(t, y)[: 2 * n, : 2 * n]
     Jfd = np.zeros_like(J)
     for j in range(2 * n):
         h = 1e-10 if j < n else 1e-7
         yp, ym = y.copy(), y.copy()
         yp[j] += h
         ym[j] -= h
-        Jfd[:, j] = (m.rhs(t, yp) - m.rhs(t, ym))[:2 * n] / (2 * h)
+        Jfd[:, j] = (m.rhs(t, yp) - m.rhs(t, ym))[: 2 * n] / (2 * h)
     assert np.max(np.abs(J - Jfd)) < 1e-5 * np.max(np.abs(Jfd))
 
 
@@ -206,11 +220,13 @@ def test_time_response_converges_with_spring_modes(flex):
     """Spring modes 1, 3 and all 11 (valve and tappet by their 5 kHz cut-off): the contact
     force over the presented cycle approaches the all-mode response."""
     import dataclasses
+
     cam = AccelerationCam()
     res = {}
     for k in (1, 3, None):
-        f = flex.replace(spring=dataclasses.replace(flex.spring, modes=k,
-                                                    cutoff=None if k is None else 5000.0))
+        f = flex.replace(
+            spring=dataclasses.replace(flex.spring, modes=k, cutoff=None if k is None else 5000.0)
+        )
         r = simulate_valvetrain(cam, f, tribology=None, cycles=1, output_step=1.0)
         assert r.converged, r.message
         res[k] = r.contact_force
@@ -225,13 +241,15 @@ def test_flexible_case_keys_are_checked():
     with pytest.raises(InputError, match=r"valvetrain.spring_rate: only with model"):
         Case.from_toml_string('[valvetrain]\nmodel = "flexible"\nspring_rate = 3e4\n')
     with pytest.raises(InputError, match=r"valvetrain.valve: only with model"):
-        Case.from_toml_string('[valvetrain.valve]\nstem_diameter = 0.006\n')
+        Case.from_toml_string("[valvetrain.valve]\nstem_diameter = 0.006\n")
     with pytest.raises(InputError, match=r"valvetrain.tappet.mass: required"):
-        Case.from_toml_string('[valvetrain]\nmodel = "flexible"\n[valvetrain.tappet]\n'
-                              'model = "lumped"\n')
+        Case.from_toml_string(
+            '[valvetrain]\nmodel = "flexible"\n[valvetrain.tappet]\nmodel = "lumped"\n'
+        )
     with pytest.raises(InputError, match=r"valvetrain.spring.wire_diameter: must be > 0"):
-        Case.from_toml_string('[valvetrain]\nmodel = "flexible"\n[valvetrain.spring]\n'
-                              'wire_diameter = -1.0\n')
+        Case.from_toml_string(
+            '[valvetrain]\nmodel = "flexible"\n[valvetrain.spring]\nwire_diameter = -1.0\n'
+        )
     case = load_case("andreou2023_flexible")
     assert Case.from_toml_string(case.to_toml()) == case
     assert case.lumped_companion().spring_rate == pytest.approx(33750.0, rel=1e-3)

@@ -26,10 +26,12 @@ def test_shear_laws():
     newt = couette_shear_stress(mu, u, h, "newtonian")
     assert newt == pytest.approx(1e5)
     # Eyring: τ_E asinh(τ_N/τ_E) → Newtonian at low stress, below it at high stress
-    assert couette_shear_stress(mu, u, h, "eyring", eyring_stress=1e9) == pytest.approx(newt, rel=1e-8)
+    assert couette_shear_stress(mu, u, h, "eyring", eyring_stress=1e9) == pytest.approx(
+        newt, rel=1e-8
+    )
     ey = couette_shear_stress(1e3, u, h, "eyring", eyring_stress=2e6)
     assert ey == pytest.approx(2e6 * math.asinh(2e9 / 2e6))
-    assert couette_shear_stress(mu, -u, h, "eyring") < 0          # sign follows sliding
+    assert couette_shear_stress(mu, -u, h, "eyring") < 0  # sign follows sliding
     assert limit_shear_stress(-5e7, 1e8, 0.08) == pytest.approx(-8e6)
     assert limit_shear_stress(1e5, -1e8, 0.08) == 0.0
     # Bair–Winer intercept: τ_L = τ_L0 + Λp
@@ -42,8 +44,19 @@ def test_viscous_friction_rigid_isoviscous_newtonian():
     """Couette friction of a rigid cylinder, no cap: F = μ u_s √(2R/h₀)[atan(x/√(2Rh₀))]."""
     R, w, mu, u, us = 0.01, 1e3, 0.05, 1.0, 0.7
     oil = Lubricant(mu, 0.0, compressible=False)
-    r = solve_ehl(w, R, u, us, PAIR, oil, elastic=False, viscous_model="newtonian",
-                  limiting_shear=False, n=2048, inlet=12)
+    r = solve_ehl(
+        w,
+        R,
+        u,
+        us,
+        PAIR,
+        oil,
+        elastic=False,
+        viscous_model="newtonian",
+        limiting_shear=False,
+        n=2048,
+        inlet=12,
+    )
     h0 = r.min_film
     s = math.sqrt(2 * R * h0)
     exact = mu * us * math.sqrt(2 * R / h0) * (math.atan(r.x[-1] / s) - math.atan(r.x[0] / s))
@@ -64,7 +77,7 @@ def test_limiting_shear_caps_ehl_friction():
     free = solve_ehl(w, R, u, 5.0, PAIR, oil, viscous_model="newtonian", limiting_shear=False)
     lam = oil.limiting_shear_coefficient
     assert capped.viscous_friction <= lam * w * (1 + 1e-9)
-    assert capped.viscous_friction > 0.9 * lam * w          # the cap is active almost everywhere
+    assert capped.viscous_friction > 0.9 * lam * w  # the cap is active almost everywhere
     assert free.viscous_friction > 10 * capped.viscous_friction
     assert eyring.viscous_friction < free.viscous_friction
     assert np.all(np.abs(capped.shear_stress) <= lam * capped.pressure + 1e-9)
@@ -88,8 +101,18 @@ def test_boundary_friction_is_integral_of_local_law():
     ebs = 5e10 * 2e-6 * 0.5e-6
     # independent recomputation of Eq. 6 and Eq. 17–18 on the returned film
     from tribodyn import greenwood_tripp
+
     lam = r.film / 0.5e-6
-    pa = 8 * math.sqrt(2) / 15 * math.pi * ebs**2 * math.sqrt(0.5 / 2.0) * e_s * greenwood_tripp(2.5, lam)
+    pa = (
+        8
+        * math.sqrt(2)
+        / 15
+        * math.pi
+        * ebs**2
+        * math.sqrt(0.5 / 2.0)
+        * e_s
+        * greenwood_tripp(2.5, lam)
+    )
     area = math.pi**2 * ebs**2 * greenwood_tripp(2.0, lam)
     dx = r.x[1] - r.x[0]
     assert np.allclose(r.asperity_pressure, pa, rtol=1e-10, atol=1e-6)
@@ -99,10 +122,18 @@ def test_boundary_friction_is_integral_of_local_law():
     assert tot["friction"] == pytest.approx((r.viscous_friction + r.boundary_friction) * 0.012)
 
 
-@pytest.mark.parametrize("gV, gE, regime", [
-    (1.0, 1.80, "IR"), (1.0, 1.90, "IE"), (5.0, 0.1, "IR"), (5.2, 0.1, "PR"),
-    (1e4, 1e2, "PE"), (1e3, 0.5, "PR"), (0.1, 50.0, "IE"),
-])
+@pytest.mark.parametrize(
+    "gV, gE, regime",
+    [
+        (1.0, 1.80, "IR"),
+        (1.0, 1.90, "IE"),
+        (5.0, 0.1, "IR"),
+        (5.2, 0.1, "PR"),
+        (1e4, 1e2, "PE"),
+        (1e3, 0.5, "PR"),
+        (0.1, 50.0, "IE"),
+    ],
+)
 def test_greenwood_chart_regimes(gV, gE, regime):
     assert lubrication_regime(gV, gE) == regime
 
@@ -121,12 +152,19 @@ def test_chart_groups_from_the_dimensional_inputs():
     assert L == pytest.approx(alpha * e * (2 * mu0 * u / (e * R)) ** 0.25, rel=1e-12)
 
 
-@pytest.mark.parametrize("gV, gE, regime", [
-    # boundaries where Johnson's asymptotes meet: IR Ĥ = 4.9 = IE 3.01 g_E^0.8 at
-    # g_E = (4.9/3.01)^1.25 = 1.838; IR 4.9 = PR 1.66 g_V^(2/3) at g_V = (4.9/1.66)^1.5 = 5.07
-    (1.0, 1.70, "IR"), (1.0, 2.00, "IE"), (4.8, 0.5, "IR"), (5.4, 0.5, "PR"),
-    (1e5, 1e2, "PE"), (1e3, 2e4, "IE"),
-])
+@pytest.mark.parametrize(
+    "gV, gE, regime",
+    [
+        # boundaries where Johnson's asymptotes meet: IR Ĥ = 4.9 = IE 3.01 g_E^0.8 at
+        # g_E = (4.9/3.01)^1.25 = 1.838; IR 4.9 = PR 1.66 g_V^(2/3) at g_V = (4.9/1.66)^1.5 = 5.07
+        (1.0, 1.70, "IR"),
+        (1.0, 2.00, "IE"),
+        (4.8, 0.5, "IR"),
+        (5.4, 0.5, "PR"),
+        (1e5, 1e2, "PE"),
+        (1e3, 2e4, "IE"),
+    ],
+)
 def test_regime_boundaries_from_the_asymptotes(gV, gE, regime):
     assert lubrication_regime(gV, gE) == regime
 
@@ -142,9 +180,9 @@ def test_moes_formula_tends_to_its_asymptotes():
         G = L / (2 * U) ** 0.25
         return float(moes_central(W, U, G, R)) / R / math.sqrt(2 * U)
 
-    assert H(0.01, 0.0) == pytest.approx(3 / 0.01, rel=1e-3)           # rigid–isoviscous
-    assert H(1e4, 0.0) == pytest.approx(2.621 * 1e4**-0.2, rel=2e-2)    # elastic–isoviscous
-    assert H(0.05, 1e4) == pytest.approx(1.287 * 1e4**(2 / 3), rel=2e-2)  # rigid–piezoviscous
+    assert H(0.01, 0.0) == pytest.approx(3 / 0.01, rel=1e-3)  # rigid–isoviscous
+    assert H(1e4, 0.0) == pytest.approx(2.621 * 1e4**-0.2, rel=2e-2)  # elastic–isoviscous
+    assert H(0.05, 1e4) == pytest.approx(1.287 * 1e4 ** (2 / 3), rel=2e-2)  # rigid–piezoviscous
     assert H(1e5, 30.0) == pytest.approx(1.311 * 1e5**-0.125 * 30**0.75, rel=2e-2)
 
 

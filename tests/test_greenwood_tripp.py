@@ -10,14 +10,18 @@ from tribodyn import InputError, Roughness, greenwood_tripp
 from tribodyn.physics.asperity import greenwood_tripp_derivative
 
 
-@pytest.mark.parametrize("n, lam, ref", [(2.5, 0.0, 0.616634), (2.5, 1.0, 0.0805623),
-                                         (2.0, 1.0, 0.0753398), (2.0, 2.0, 5.76873e-3)])
+@pytest.mark.parametrize(
+    "n, lam, ref",
+    [(2.5, 0.0, 0.616634), (2.5, 1.0, 0.0805623), (2.0, 1.0, 0.0753398), (2.0, 2.0, 5.76873e-3)],
+)
 def test_exact_reference_values(n, lam, ref):
     assert greenwood_tripp(n, lam) == pytest.approx(ref, rel=1e-6)
 
 
 def _quad_fn(n, lam):
-    f = lambda s: (s - lam) ** n * math.exp(-0.5 * s * s) / math.sqrt(2 * math.pi)
+    def f(s):
+        return (s - lam) ** n * math.exp(-0.5 * s * s) / math.sqrt(2 * math.pi)
+
     return integrate.quad(f, lam, math.inf, epsabs=0, epsrel=1e-12, limit=200)[0]
 
 
@@ -74,7 +78,7 @@ def test_asperity_pressure_and_area_formulae():
     e = 210e9 / 0.91
     ebs = 8.3e9 * 0.669e-6 * 0.408e-6
     k = 8 * math.sqrt(2) / 15 * math.pi * ebs**2 * math.sqrt(0.408 / 0.669) * e
-    h = 0.408e-6          # λ = 1
+    h = 0.408e-6  # λ = 1
     assert r.asperity_pressure(h, e) == pytest.approx(k * 0.0805623, rel=1e-6)
     assert r.contact_area_fraction(h) == pytest.approx(math.pi**2 * ebs**2 * 0.0753398, rel=1e-6)
     # derivative
@@ -85,6 +89,7 @@ def test_asperity_pressure_and_area_formulae():
 
 def test_interpolation_table_used_by_the_solvers():
     from tribodyn.physics.asperity import greenwood_tripp_table
+
     lam = np.linspace(-15.0, 36.9, 20001)
     for n in (2.5, 2.0):
         f, df = greenwood_tripp_table(n, lam)

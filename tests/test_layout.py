@@ -14,12 +14,21 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "tribodyn"
 #: Numbers that are the paper's (Tables 4–7, Figs. 5/6): they must appear as literals only
 #: in tribodyn/paper.py (docstrings and comments may quote them).
 PAPER_NUMBERS = {
-    paper.STEEL["boundary_shear_coefficient"], paper.DLC["boundary_shear_coefficient"],
-    paper.WCC["boundary_shear_coefficient"], paper.CAM_WIDTH, paper.STEEL["E"],
-    paper.DLC["E"], paper.WCC["E"], paper.LUBRICANT["viscosity"],
-    paper.LUBRICANT["pressure_viscosity"], paper.FIG5["load_total"],
-    paper.FIG5["entrainment_speed"], paper.SPRING_RATE, paper.SPRING_MASS,
-    paper.CAM_MAX_LIFT, *(v for r in paper.ROUGHNESS.values() for v in r.values()),
+    paper.STEEL["boundary_shear_coefficient"],
+    paper.DLC["boundary_shear_coefficient"],
+    paper.WCC["boundary_shear_coefficient"],
+    paper.CAM_WIDTH,
+    paper.STEEL["E"],
+    paper.DLC["E"],
+    paper.WCC["E"],
+    paper.LUBRICANT["viscosity"],
+    paper.LUBRICANT["pressure_viscosity"],
+    paper.FIG5["load_total"],
+    paper.FIG5["entrainment_speed"],
+    paper.SPRING_RATE,
+    paper.SPRING_MASS,
+    paper.CAM_MAX_LIFT,
+    *(v for r in paper.ROUGHNESS.values() for v in r.values()),
 }
 
 
@@ -36,8 +45,11 @@ def _modules():
 
 def _numeric_literals(tree):
     for node in ast.walk(tree):
-        if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) \
-                and not isinstance(node.value, bool):
+        if (
+            isinstance(node, ast.Constant)
+            and isinstance(node.value, (int, float))
+            and not isinstance(node.value, bool)
+        ):
             yield node
 
 
@@ -62,9 +74,20 @@ def test_the_check_sees_a_literal(tmp_path):
 
 
 #: Layer of each top-level part; a module may import only from its own layer or below.
-LAYERS = {"paper": 0, "_validation": 0, "physics": 1, "contact": 2, "valvetrain": 2,
-          "topography": 2, "config": 3, "workflow": 4, "output": 5, "cli": 6,
-          "__init__": 6, "__main__": 7}
+LAYERS = {
+    "paper": 0,
+    "_validation": 0,
+    "physics": 1,
+    "contact": 2,
+    "valvetrain": 2,
+    "topography": 2,
+    "config": 3,
+    "workflow": 4,
+    "output": 5,
+    "cli": 6,
+    "__init__": 6,
+    "__main__": 7,
+}
 
 
 def _part(module: str) -> str:
@@ -95,8 +118,11 @@ def _imports(path: Path):
 def test_imports_only_downwards(path):
     rel = ".".join(path.relative_to(SRC.parent).with_suffix("").parts)
     own = LAYERS[_part(rel)] if path.parent != SRC else LAYERS.get(path.stem, 6)
-    bad = [f"line {ln}: {mod}" for mod, ln in _imports(path)
-           if mod.count(".") >= 1 and LAYERS.get(_part(mod), 0) > own]
+    bad = [
+        f"line {ln}: {mod}"
+        for mod, ln in _imports(path)
+        if mod.count(".") >= 1 and LAYERS.get(_part(mod), 0) > own
+    ]
     assert not bad, f"{rel} imports upwards: {bad}"
 
 

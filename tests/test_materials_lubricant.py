@@ -23,8 +23,9 @@ def test_reduced_modulus_convention():
 
 # Hand-calculated (independent of the implementation): μ₀ = 0.055 Pa·s, α = 1.05e-8 1/Pa,
 # ln μ₀ + 9.67 = 6.7695779, Z = α/(5.1e-9·6.7695779) = 0.3041288.
-@pytest.mark.parametrize("p, mu", [(0.0, 0.055), (0.1e9, 0.13581011), (1e9, 7.868253),
-                                   (3e9, 468.99509)])
+@pytest.mark.parametrize(
+    "p, mu", [(0.0, 0.055), (0.1e9, 0.13581011), (1e9, 7.868253), (3e9, 468.99509)]
+)
 def test_roelands_spot_values(p, mu):
     oil = Lubricant(viscosity=0.055, pressure_viscosity=1.05e-8)
     assert oil.roelands_z == pytest.approx(0.3041288, rel=1e-6)
@@ -37,7 +38,8 @@ def test_roelands_slope_at_zero_is_alpha():
     p = np.linspace(0, 2e9, 11)
     dp = 1e3
     fd = (oil.log_viscosity_ratio(p + dp) - oil.log_viscosity_ratio(np.maximum(p - dp, 0))) / (
-        np.where(p > 0, 2 * dp, dp))
+        np.where(p > 0, 2 * dp, dp)
+    )
     assert np.allclose(oil.dlog_viscosity_dp(p)[1:], fd[1:], rtol=1e-6)
 
 
@@ -46,8 +48,9 @@ def test_barus_option():
     assert oil.viscosity_at(1e9) == pytest.approx(0.055 * math.exp(10.5), rel=1e-12)
 
 
-@pytest.mark.parametrize("p_gpa, ratio", [(0.5, 1 + 0.3 / 1.85), (1.0, 1 + 0.6 / 2.7),
-                                          (2.0, 1 + 1.2 / 4.4)])
+@pytest.mark.parametrize(
+    "p_gpa, ratio", [(0.5, 1 + 0.3 / 1.85), (1.0, 1 + 0.6 / 2.7), (2.0, 1 + 1.2 / 4.4)]
+)
 def test_dowson_higginson_spot_values(p_gpa, ratio):
     oil = Lubricant(viscosity=0.055, pressure_viscosity=1.05e-8, density=850.0)
     assert oil.density_at(p_gpa * 1e9) == pytest.approx(850.0 * ratio, rel=1e-12)
@@ -73,11 +76,17 @@ def test_negative_pressure_is_held_at_ambient():
     assert oil.density_at(-1e9) == pytest.approx(850.0)
 
 
-@pytest.mark.parametrize("kwargs, name", [
-    (dict(E=-210e9, nu=0.3), "E"), (dict(E=0.0, nu=0.3), "E"), (dict(E=float("nan"), nu=0.3), "E"),
-    (dict(E=210e9, nu=0.5), "nu"), (dict(E=210e9, nu=-1.0), "nu"),
-    (dict(E=210e9, nu=float("nan")), "nu"),
-])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        (dict(E=-210e9, nu=0.3), "E"),
+        (dict(E=0.0, nu=0.3), "E"),
+        (dict(E=float("nan"), nu=0.3), "E"),
+        (dict(E=210e9, nu=0.5), "nu"),
+        (dict(E=210e9, nu=-1.0), "nu"),
+        (dict(E=210e9, nu=float("nan")), "nu"),
+    ],
+)
 def test_bad_material_input_names_the_argument(kwargs, name):
     with pytest.raises(InputError, match=rf"^{name} must"):
         Material(**kwargs)
@@ -93,7 +102,7 @@ def test_bad_lubricant_input():
     with pytest.raises(InputError, match="^viscosity must"):
         Lubricant(viscosity=-1.0, pressure_viscosity=1e-8)
     with pytest.raises(InputError, match="^viscosity must be >"):
-        Lubricant(viscosity=1e-5, pressure_viscosity=1e-8)     # below Roelands' 6.31e-5
+        Lubricant(viscosity=1e-5, pressure_viscosity=1e-8)  # below Roelands' 6.31e-5
     with pytest.raises(InputError, match="^pressure_viscosity must"):
         Lubricant(viscosity=0.05, pressure_viscosity=-1e-8)
     with pytest.raises(InputError, match="^density must"):

@@ -67,7 +67,7 @@ def test_foreign_folder_is_refused_empty_and_result_folders_accepted(tmp_path):
     (marked / W.MARKER).write_text("{}")
     (marked / "results.nc").write_bytes(b"old")
     assert is_result_folder(marked) and check_output_dir(marked) == marked
-    legacy = tmp_path / "legacy"                       # written by tribodyn 0.1
+    legacy = tmp_path / "legacy"  # written by tribodyn 0.1
     legacy.mkdir()
     for name in ("results.nc", "summary.json", "case.toml"):
         (legacy / name).write_text("x")
@@ -81,7 +81,7 @@ def test_parent_that_is_a_file_is_refused(tmp_path):
 
 
 def test_unwritable_location_is_refused(tmp_path):
-    if os.geteuid() == 0:               # root writes anywhere: use a location no one can
+    if os.geteuid() == 0:  # root writes anywhere: use a location no one can
         target = Path("/proc/tribodyn-results")
     else:
         ro = tmp_path / "ro"
@@ -99,20 +99,23 @@ def test_full_disk_is_detected_by_the_probe(tmp_path, monkeypatch):
     monkeypatch.setattr(W.os, "fsync", full)
     with pytest.raises(InputError, match="No space left on device"):
         check_output_dir(tmp_path / "res")
-    assert not list(tmp_path.iterdir())                     # the probe is removed
+    assert not list(tmp_path.iterdir())  # the probe is removed
 
 
 def test_too_little_free_space_is_refused(tmp_path, monkeypatch):
-    monkeypatch.setattr(W.shutil, "disk_usage",
-                        lambda p: SimpleNamespace(total=1 << 30, used=1 << 30, free=5 << 20))
+    monkeypatch.setattr(
+        W.shutil, "disk_usage", lambda p: SimpleNamespace(total=1 << 30, used=1 << 30, free=5 << 20)
+    )
     with pytest.raises(InputError, match="only 5 MB free"):
         check_output_dir(tmp_path / "res")
 
 
 def test_bad_output_is_refused_before_the_study_runs(tmp_path, monkeypatch):
     import tribodyn.workflow.cycle as cycle
-    monkeypatch.setattr(cycle, "run_cycle_study",
-                        lambda *a, **k: pytest.fail("the study must not start"))
+
+    monkeypatch.setattr(
+        cycle, "run_cycle_study", lambda *a, **k: pytest.fail("the study must not start")
+    )
     (tmp_path / "f").write_text("x")
     r = runner.invoke(app, ["run", "-o", str(tmp_path / "f" / "res"), "-q"])
     assert r.exit_code == 2 and "-o/--out" in r.output
@@ -122,8 +125,9 @@ def test_bad_output_is_refused_before_the_study_runs(tmp_path, monkeypatch):
 
 # ----------------------------------------------------------------------------- atomic writing
 def test_results_folders_are_marked(tmp_path):
-    out = write_atomic(tmp_path / "res", lambda d: (d / "x.txt").write_text("1"),
-                       meta={"case": "c"})
+    out = write_atomic(
+        tmp_path / "res", lambda d: (d / "x.txt").write_text("1"), meta={"case": "c"}
+    )
     info = json.loads((out / W.MARKER).read_text())
     assert info["tool"] == "tribodyn" and info["case"] == "c"
     out = write_atomic(tmp_path / "res", lambda d: (d / "y.txt").write_text("2"))
@@ -147,18 +151,18 @@ def test_interrupt_while_writing_leaves_no_trace(tmp_path):
 
 def test_stale_temporary_folders_are_cleaned(tmp_path):
     dead = dead_pid()
-    stale = tmp_path / f".res.tmp-{dead}-abc123"          # killed run (process gone)
+    stale = tmp_path / f".res.tmp-{dead}-abc123"  # killed run (process gone)
     stale.mkdir()
     (stale / "results.nc").write_text("x")
-    alive = tmp_path / f".res.tmp-{os.getppid()}-xyz789"   # a running process: kept
+    alive = tmp_path / f".res.tmp-{os.getppid()}-xyz789"  # a running process: kept
     alive.mkdir()
-    legacy = tmp_path / ".res.tmp-k3j2h1g0"                # 0.1 name, an hour old
+    legacy = tmp_path / ".res.tmp-k3j2h1g0"  # 0.1 name, an hour old
     legacy.mkdir()
     old = time.time() - 2 * 3600
     os.utime(legacy, (old, old))
-    young = tmp_path / ".res.tmp-q9w8e7r6"                 # 0.1 name, just now: kept
+    young = tmp_path / ".res.tmp-q9w8e7r6"  # 0.1 name, just now: kept
     young.mkdir()
-    other = tmp_path / ".other.tmp-1-abc"                  # another target: kept
+    other = tmp_path / ".other.tmp-1-abc"  # another target: kept
     other.mkdir()
     write_atomic(tmp_path / "res", lambda d: (d / "new").write_text("1"))
     left = sorted(p.name for p in tmp_path.iterdir())
@@ -211,7 +215,7 @@ def test_results_are_rescued_when_writing_fails(tmp_path, monkeypatch, fake_stud
 
 def test_a_target_taken_meanwhile_is_rescued_too(tmp_path, monkeypatch, fake_study):
     target = tmp_path / "res"
-    target.write_text("someone else's file")        # appeared after the check
+    target.write_text("someone else's file")  # appeared after the check
     monkeypatch.setattr(W.tempfile, "gettempdir", lambda: str(tmp_path / "rescue-area"))
     with pytest.raises(OutputWriteError, match="existing file") as info:
         write_results(fake_study, target, figures=False, report=False)
@@ -220,15 +224,19 @@ def test_a_target_taken_meanwhile_is_rescued_too(tmp_path, monkeypatch, fake_stu
 
 
 # ----------------------------------------------------------------------------- SIGTERM
-@pytest.mark.parametrize("delay", [1.0, 10.0])    # in the dynamics; among the EHL workers
+@pytest.mark.parametrize("delay", [1.0, 10.0])  # in the dynamics; among the EHL workers
 def test_sigterm_stops_a_run_cleanly(tmp_path, delay):
     """SIGTERM during the computation: workers stopped, nothing written, no temporary
     folder, exit code 143, a message instead of a traceback."""
     case = tmp_path / "c.toml"
     load_case().updated({"numerics.workers": 2, "numerics.crank_step_deg": 2.0}).write_toml(case)
     out = tmp_path / "out"
-    proc = subprocess.Popen([sys.executable, "-m", "tribodyn", "run", str(case), "-o", str(out),
-                             "-q"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "tribodyn", "run", str(case), "-o", str(out), "-q"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     deadline = time.time() + 60
     line = ""
     while time.time() < deadline and "case" not in line:

@@ -51,17 +51,26 @@ def problems(text) -> str:
 
 # ----------------------------------------------------------------------------- paths
 def test_parse_and_format_round_trip():
-    for p in ("engine.speed_rpm", "surface_sets[2].coating_thickness",
-              "surface_sets[name=wcc_4um].coating_thickness", "surface_sets[*].roughness.rms",
-              'materials."my mat".E', "materials[*].nu"):
+    for p in (
+        "engine.speed_rpm",
+        "surface_sets[2].coating_thickness",
+        "surface_sets[name=wcc_4um].coating_thickness",
+        "surface_sets[*].roughness.rms",
+        'materials."my mat".E',
+        "materials[*].nu",
+    ):
         assert format_path(parse_path(p)) == p
     assert parse_path('surface_sets[name="dlc_1um"].coating') == (
-        Key("surface_sets"), Match("name", "dlc_1um"), Key("coating"))
+        Key("surface_sets"),
+        Match("name", "dlc_1um"),
+        Key("coating"),
+    )
     assert parse_path("a[0][*].b") == (Key("a"), Index(0), All(), Key("b"))
 
 
-@pytest.mark.parametrize("bad", ["", "engine..speed", "engine.", "surface_sets[x].a",
-                                 "[0].a", "engine speed", "a[1"])
+@pytest.mark.parametrize(
+    "bad", ["", "engine..speed", "engine.", "surface_sets[x].a", "[0].a", "engine speed", "a[1"]
+)
 def test_unparsable_paths(bad):
     with pytest.raises(PathError):
         parse_path(bad)
@@ -82,11 +91,17 @@ def test_set_path_selectors(paper):
 
 def test_set_path_errors_name_the_place(paper):
     d = paper.to_dict()
-    with pytest.raises(PathError, match=r"surface_sets\[name=wcc_5um\]: no entry has name "
-                                        r"= 'wcc_5um'.*did you mean 'wcc_4um'"):
+    with pytest.raises(
+        PathError,
+        match=r"surface_sets\[name=wcc_5um\]: no entry has name "
+        r"= 'wcc_5um'.*did you mean 'wcc_4um'",
+    ):
         set_path(d, "surface_sets[name=wcc_5um].coating_thickness", 1e-6)
-    with pytest.raises(PathError, match=r"surface_sets\[9\]: index out of range \(the array "
-                                        r"has 5 entries"):
+    with pytest.raises(
+        PathError,
+        match=r"surface_sets\[9\]: index out of range \(the array "
+        r"has 5 entries",
+    ):
         set_path(d, "surface_sets[9].coating_thickness", 1e-6)
     with pytest.raises(PathError, match="needs an array"):
         set_path(d, "engine[0].speed_rpm", 1.0)
@@ -95,8 +110,12 @@ def test_set_path_errors_name_the_place(paper):
 
 
 def test_case_updated_with_selectors(paper):
-    c = paper.updated({"surface_sets[name=wcc_4um].coating_thickness": 2e-6,
-                       "surface_sets[*].roughness.rms": 0.3e-6})
+    c = paper.updated(
+        {
+            "surface_sets[name=wcc_4um].coating_thickness": 2e-6,
+            "surface_sets[*].roughness.rms": 0.3e-6,
+        }
+    )
     assert c.surface_set("wcc_4um").coating.thickness == 2e-6
     assert c.surface_set("wcc_1um").coating.thickness == 1e-6
     assert all(s.roughness.rms == 0.3e-6 for s in c.surface_sets())
@@ -129,89 +148,133 @@ def test_minimal_sweep_and_defaults():
     assert s.mode == "study" and not s.traces and s.base.name == "andreou2023"
     assert s.shape == (2,) and s.n_points == 2
     a = s.axes[0]
-    assert (a.name, a.unit, a.dim, a.values) == ("speed_rpm", "rpm", "speed_rpm",
-                                                 (1000.0, 2000.0))
+    assert (a.name, a.unit, a.dim, a.values) == ("speed_rpm", "rpm", "speed_rpm", (1000.0, 2000.0))
 
 
 def test_errors_are_collected_and_name_the_key():
-    msg = problems('[sweep]\nmod = "study"\n[[axes]]\npath = "engine.speed_rpm"\n'
-                   'values = [1000.0]')
+    msg = problems('[sweep]\nmod = "study"\n[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0]')
     assert "sweep.mod: unknown key; did you mean 'mode'?" in msg
-    msg = problems('[[axes]]\npath = "engine.speed"\nvalues = [1.0]\n'
-                   '[[axes]]\npath = "surface_sets[name=wcc_5um].coating_thickness"\n'
-                   'values = [1e-6]\n'
-                   '[[axes]]\npath = "lubricant.viscosity"\nvalues = [0.05, 1e-6, 200.0]')
+    msg = problems(
+        '[[axes]]\npath = "engine.speed"\nvalues = [1.0]\n'
+        '[[axes]]\npath = "surface_sets[name=wcc_5um].coating_thickness"\n'
+        "values = [1e-6]\n"
+        '[[axes]]\npath = "lubricant.viscosity"\nvalues = [0.05, 1e-6, 200.0]'
+    )
     assert msg.startswith("invalid sweep: 4 problems")
     assert "axes[0].path: engine.speed: unknown key; did you mean 'speed_rpm'?" in msg
     assert "axes[1].path: surface_sets[name=wcc_5um]: no entry has name" in msg
-    assert re.search(r"axes\[2\]\.values\[1\]: 1e-06: lubricant\.viscosity: must be > "
-                     r"6\.31499e-05 Pa·s and <= 100 Pa·s", msg)
+    assert re.search(
+        r"axes\[2\]\.values\[1\]: 1e-06: lubricant\.viscosity: must be > "
+        r"6\.31499e-05 Pa·s and <= 100 Pa·s",
+        msg,
+    )
     assert "axes[2].values[2]: 200: lubricant.viscosity" in msg
     assert "axes[2].values[0]" not in msg
 
 
 def test_range_values_out_of_range_are_rejected():
-    msg = problems('[[axes]]\npath = "lubricant.viscosity"\nstart = 1e-6\nstop = 0.1\n'
-                   'num = 4\nspacing = "log"')
+    msg = problems(
+        '[[axes]]\npath = "lubricant.viscosity"\nstart = 1e-6\nstop = 0.1\nnum = 4\nspacing = "log"'
+    )
     assert "axes[0] (range value 1 of 4): 1e-06: lubricant.viscosity: must be >" in msg
     assert "(range value 3 of 4)" not in msg
 
 
-@pytest.mark.parametrize("text, expected", [
-    ('[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0, "fast"]',
-     "axes[0].values: must all be numbers, all strings or all booleans"),
-    ('[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0]\nstart = 1',
-     "axes[0].start: give either values or a range"),
-    ('[[axes]]\npath = "engine.speed_rpm"\nstart = 1000', "axes[0].stop: required key"),
-    ('[[axes]]\npath = "engine.speed_rpm"\nstart = 1000\nstop = 2000',
-     "axes[0].num: give exactly one of num and step"),
-    ('[[axes]]\npath = "engine.speed_rpm"\nstart = 1000\nstop = 2000\nstep = -5',
-     "axes[0].step: must be > 0"),
-    ('[[axes]]\npath = "engine.speed_rpm"\nstart = 0\nstop = 2000\nnum = 3\n'
-     'spacing = "log"', "axes[0].start: a log range needs start > 0"),
-    ('[[axes]]\npath = "numerics.n"\nstart = 64\nstop = 200\nnum = 4',
-     "axes[0].values: numerics.n takes integers (got 109.333)"),
-    ('[[axes]]\npath = "engine.speed_rpm"\nvalues = ["fast"]',
-     "axes[0].values[0]: fast: engine.speed_rpm: must be a number"),
-    ('[sweep]\nname = "x"', "axes: required key is missing"),
-    ('[sweep]\ncombine = "zip"\n[[axes]]\npath = "engine.speed_rpm"\n'
-     'values = [1000.0, 2000.0]\n[[axes]]\npath = "lubricant.viscosity"\nvalues = [0.01]',
-     "sweep.combine: zipped axes need the same number of values (speed_rpm: 2, "
-     "viscosity: 1)"),
-    ('[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0]\n[[axes]]\n'
-     'path = "engine.speed_rpm"\nvalues = [2000.0]\nname = "n2"',
-     "axes[1].path: 'engine.speed_rpm' is swept twice"),
-    ('[[axes]]\npath = "surface_sets[*].roughness.rms"\nvalues = [1e-7]\n[[axes]]\n'
-     'path = "materials.steel.rms"\nvalues = [1.0]', "axes[1].path: materials.steel.rms: "
-                                                      "unknown key"),
-    ('[[axes]]\npath = "surface_sets[0].roughness.rms"\nvalues = [1e-7]\n[[axes]]\n'
-     'path = "surface_sets[1].roughness.rms"\nvalues = [1e-7]',
-     "axes[1].name: duplicate dimension name 'rms'"),
-    ('[[axes]]\npath = "engine.speed_rpm"\nvalues = [1e3]\nname = "status"',
-     "axes[0].name: 'status' is reserved"),
-    ('[fixed]\n"numerics.crank_stp_deg" = 2.0\n[[axes]]\npath = "engine.speed_rpm"\n'
-     'values = [1000.0]', "fixed.\"numerics.crank_stp_deg\": numerics.crank_stp_deg: "
-                          "unknown key; did you mean 'crank_step_deg'?"),
-    ('[fixed]\n"numerics.crank_step_deg" = 20.0\n[[axes]]\npath = "engine.speed_rpm"\n'
-     'values = [1000.0]', "fixed: numerics.crank_step_deg: must be > 0° and <= 5°"),
-    ('[sweep]\ncase = "nope.toml"\n[[axes]]\npath = "engine.speed_rpm"\nvalues = [1e3]',
-     "sweep.case: no case file"),
-    ('[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0]\n[[axes]]\npath = "cam.type"'
-     '\nvalues = ["circular_arc"]\n', "axes[1].values[0]: circular_arc: cam.event_angle_deg: "
-                                     "unknown key for cam type 'circular_arc'"),
-])
+@pytest.mark.parametrize(
+    "text, expected",
+    [
+        (
+            '[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0, "fast"]',
+            "axes[0].values: must all be numbers, all strings or all booleans",
+        ),
+        (
+            '[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0]\nstart = 1',
+            "axes[0].start: give either values or a range",
+        ),
+        ('[[axes]]\npath = "engine.speed_rpm"\nstart = 1000', "axes[0].stop: required key"),
+        (
+            '[[axes]]\npath = "engine.speed_rpm"\nstart = 1000\nstop = 2000',
+            "axes[0].num: give exactly one of num and step",
+        ),
+        (
+            '[[axes]]\npath = "engine.speed_rpm"\nstart = 1000\nstop = 2000\nstep = -5',
+            "axes[0].step: must be > 0",
+        ),
+        (
+            '[[axes]]\npath = "engine.speed_rpm"\nstart = 0\nstop = 2000\nnum = 3\nspacing = "log"',
+            "axes[0].start: a log range needs start > 0",
+        ),
+        (
+            '[[axes]]\npath = "numerics.n"\nstart = 64\nstop = 200\nnum = 4',
+            "axes[0].values: numerics.n takes integers (got 109.333)",
+        ),
+        (
+            '[[axes]]\npath = "engine.speed_rpm"\nvalues = ["fast"]',
+            "axes[0].values[0]: fast: engine.speed_rpm: must be a number",
+        ),
+        ('[sweep]\nname = "x"', "axes: required key is missing"),
+        (
+            '[sweep]\ncombine = "zip"\n[[axes]]\npath = "engine.speed_rpm"\n'
+            'values = [1000.0, 2000.0]\n[[axes]]\npath = "lubricant.viscosity"\nvalues = [0.01]',
+            "sweep.combine: zipped axes need the same number of values (speed_rpm: 2, "
+            "viscosity: 1)",
+        ),
+        (
+            '[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0]\n[[axes]]\n'
+            'path = "engine.speed_rpm"\nvalues = [2000.0]\nname = "n2"',
+            "axes[1].path: 'engine.speed_rpm' is swept twice",
+        ),
+        (
+            '[[axes]]\npath = "surface_sets[*].roughness.rms"\nvalues = [1e-7]\n[[axes]]\n'
+            'path = "materials.steel.rms"\nvalues = [1.0]',
+            "axes[1].path: materials.steel.rms: unknown key",
+        ),
+        (
+            '[[axes]]\npath = "surface_sets[0].roughness.rms"\nvalues = [1e-7]\n[[axes]]\n'
+            'path = "surface_sets[1].roughness.rms"\nvalues = [1e-7]',
+            "axes[1].name: duplicate dimension name 'rms'",
+        ),
+        (
+            '[[axes]]\npath = "engine.speed_rpm"\nvalues = [1e3]\nname = "status"',
+            "axes[0].name: 'status' is reserved",
+        ),
+        (
+            '[fixed]\n"numerics.crank_stp_deg" = 2.0\n[[axes]]\npath = "engine.speed_rpm"\n'
+            "values = [1000.0]",
+            'fixed."numerics.crank_stp_deg": numerics.crank_stp_deg: '
+            "unknown key; did you mean 'crank_step_deg'?",
+        ),
+        (
+            '[fixed]\n"numerics.crank_step_deg" = 20.0\n[[axes]]\npath = "engine.speed_rpm"\n'
+            "values = [1000.0]",
+            "fixed: numerics.crank_step_deg: must be > 0° and <= 5°",
+        ),
+        (
+            '[sweep]\ncase = "nope.toml"\n[[axes]]\npath = "engine.speed_rpm"\nvalues = [1e3]',
+            "sweep.case: no case file",
+        ),
+        (
+            '[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0]\n[[axes]]\npath = "cam.type"'
+            '\nvalues = ["circular_arc"]\n',
+            "axes[1].values[0]: circular_arc: cam.event_angle_deg: "
+            "unknown key for cam type 'circular_arc'",
+        ),
+    ],
+)
 def test_sweep_file_problems(text, expected):
-    if expected is None:         # valid file; the combination is judged per point
+    if expected is None:  # valid file; the combination is judged per point
         spec(text)
         return
     assert expected in problems(text)
 
 
 def test_ranges():
-    s = spec('[[axes]]\npath = "engine.speed_rpm"\nstart = 1000\nstop = 7000\nstep = 1000\n'
-             '[[axes]]\npath = "lubricant.viscosity"\nstart = 0.01\nstop = 0.1\nnum = 3\n'
-             'spacing = "log"\n'
-             '[[axes]]\npath = "numerics.n"\nstart = 64\nstop = 256\nnum = 4')
+    s = spec(
+        '[[axes]]\npath = "engine.speed_rpm"\nstart = 1000\nstop = 7000\nstep = 1000\n'
+        '[[axes]]\npath = "lubricant.viscosity"\nstart = 0.01\nstop = 0.1\nnum = 3\n'
+        'spacing = "log"\n'
+        '[[axes]]\npath = "numerics.n"\nstart = 64\nstop = 256\nnum = 4'
+    )
     speed, visc, n = s.axes
     assert speed.values == (1000, 2000, 3000, 4000, 5000, 6000, 7000)
     assert all(isinstance(v, int) for v in speed.values)
@@ -220,45 +283,53 @@ def test_ranges():
     assert n.values == (64, 128, 192, 256)
     assert s.shape == (7, 3, 4) and s.n_points == 84
     # a step that does not divide the span stops at or before stop
-    s = spec('[[axes]]\npath = "engine.speed_rpm"\nstart = 1000.0\nstop = 2000.0\n'
-             'step = 300.0')
+    s = spec('[[axes]]\npath = "engine.speed_rpm"\nstart = 1000.0\nstop = 2000.0\nstep = 300.0')
     assert s.axes[0].values == (1000.0, 1300.0, 1600.0, 1900.0)
 
 
 def test_product_zip_and_groups():
-    text = ('[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0, 2000.0, 3000.0]\n'
-            '[[axes]]\npath = "lubricant.viscosity"\nvalues = [0.02, 0.05]\ngroup = "oil"\n'
-            '[[axes]]\npath = "lubricant.pressure_viscosity"\nvalues = [1.5e-8, 2e-8]\n'
-            'group = "oil"\n')
+    text = (
+        '[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0, 2000.0, 3000.0]\n'
+        '[[axes]]\npath = "lubricant.viscosity"\nvalues = [0.02, 0.05]\ngroup = "oil"\n'
+        '[[axes]]\npath = "lubricant.pressure_viscosity"\nvalues = [1.5e-8, 2e-8]\n'
+        'group = "oil"\n'
+    )
     s = spec(text)
     assert [(d, [a.name for a in ax]) for d, ax in s.dims] == [
-        ("speed_rpm", ["speed_rpm"]), ("oil", ["viscosity", "pressure_viscosity"])]
+        ("speed_rpm", ["speed_rpm"]),
+        ("oil", ["viscosity", "pressure_viscosity"]),
+    ]
     assert s.shape == (3, 2)
     pts = s.points()
     assert len(pts) == 6 and [p.index for p in pts] == list(range(6))
     # C order: the last dimension varies fastest; zipped axes move together
-    assert pts[1].values == {"speed_rpm": 1000.0, "viscosity": 0.05,
-                             "pressure_viscosity": 2e-8}
+    assert pts[1].values == {"speed_rpm": 1000.0, "viscosity": 0.05, "pressure_viscosity": 2e-8}
     assert pts[1].case.lubricant_config.pressure_viscosity == 2e-8
     assert pts[4].position == (2, 0) and pts[4].case.engine_speed == 3000.0
     with pytest.raises(InputError, match="zipped axes need the same number"):
-        spec("[sweep]\ncombine = \"zip\"\n" + text)
+        spec('[sweep]\ncombine = "zip"\n' + text)
 
 
 def test_zip_combines_everything():
-    s = spec('[sweep]\ncombine = "zip"\n[[axes]]\npath = "engine.speed_rpm"\n'
-             'values = [1000.0, 2000.0]\n[[axes]]\npath = "lubricant.viscosity"\n'
-             'values = [0.02, 0.05]\n')
+    s = spec(
+        '[sweep]\ncombine = "zip"\n[[axes]]\npath = "engine.speed_rpm"\n'
+        'values = [1000.0, 2000.0]\n[[axes]]\npath = "lubricant.viscosity"\n'
+        "values = [0.02, 0.05]\n"
+    )
     assert s.shape == (2,) and s.dims[0][0] == "speed_rpm"
-    assert [p.values for p in s.points()] == [{"speed_rpm": 1000.0, "viscosity": 0.02},
-                                             {"speed_rpm": 2000.0, "viscosity": 0.05}]
+    assert [p.values for p in s.points()] == [
+        {"speed_rpm": 1000.0, "viscosity": 0.02},
+        {"speed_rpm": 2000.0, "viscosity": 0.05},
+    ]
 
 
 def test_invalid_combination_is_a_failed_point_not_a_rejected_file():
     """Each value is valid alone (validated up front); one combination is not: a lift of
     9.9 mm needs a contact offset beyond a 14.5 mm tappet radius."""
-    s = spec('[[axes]]\npath = "cam.max_lift"\nvalues = [0.0093, 0.0099]\n'
-             '[[axes]]\npath = "valvetrain.tappet_radius"\nvalues = [0.0165, 0.0145]\n')
+    s = spec(
+        '[[axes]]\npath = "cam.max_lift"\nvalues = [0.0093, 0.0099]\n'
+        '[[axes]]\npath = "valvetrain.tappet_radius"\nvalues = [0.0165, 0.0145]\n'
+    )
     pts = s.points()
     bad = [p for p in pts if p.case is None]
     assert [p.values for p in bad] == [{"max_lift": 0.0099, "tappet_radius": 0.0145}]
@@ -267,15 +338,13 @@ def test_invalid_combination_is_a_failed_point_not_a_rejected_file():
 
 
 def test_point_keys_identify_the_case():
-    s = spec('[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0, 2000.0, 1000.0]\n'
-             'name = "n"')
+    s = spec('[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0, 2000.0, 1000.0]\nname = "n"')
     k = [p.key for p in s.points()]
     assert k[0] == k[2] != k[1] and all(re.fullmatch(r"[0-9a-f]{16}", x) for x in k)
     # the same case in another sweep has the same key; another mode does not
     t = spec('[[axes]]\npath = "engine.speed_rpm"\nvalues = [2000.0]')
     assert t.points()[0].key == k[1]
-    d = spec('[sweep]\nmode = "dynamics"\n[[axes]]\npath = "engine.speed_rpm"\n'
-             'values = [2000.0]')
+    d = spec('[sweep]\nmode = "dynamics"\n[[axes]]\npath = "engine.speed_rpm"\nvalues = [2000.0]')
     assert d.points()[0].key != k[1]
 
 
@@ -283,9 +352,11 @@ def test_fixed_changes_and_base_case_file(tmp_path):
     case = tmp_path / "c.toml"
     load_case().updated({"engine.speed_rpm": 2500.0}).write_toml(case)
     f = tmp_path / "s.toml"
-    f.write_text('[sweep]\ncase = "c.toml"\n[fixed]\n"numerics.implicit_coupling" = false\n'
-                 '"surface_sets[*].boundary_shear_strength" = 1e6\n'
-                 '[[axes]]\npath = "lubricant.viscosity"\nvalues = [0.02]\n')
+    f.write_text(
+        '[sweep]\ncase = "c.toml"\n[fixed]\n"numerics.implicit_coupling" = false\n'
+        '"surface_sets[*].boundary_shear_strength" = 1e6\n'
+        '[[axes]]\npath = "lubricant.viscosity"\nvalues = [0.02]\n'
+    )
     s = load_sweep(f)
     assert s.base.engine_speed == 2500.0 and not s.base.numerics.implicit_coupling
     assert all(c.boundary_shear_strength == 1e6 for c in s.base.surface_set_configs)
@@ -298,16 +369,22 @@ def test_bundled_sweeps():
     assert {"andreou2023_speed", "andreou2023_dynamics"} <= set(bundled_sweeps())
     s = load_sweep("andreou2023_speed")
     assert s.mode == "study" and s.axes[0].values == tuple(range(1000, 7001, 1000))
-    assert s.base.surface_set_names == ["uncoated", "dlc_1um", "dlc_4um", "wcc_1um",
-                                        "wcc_4um"]
+    assert s.base.surface_set_names == ["uncoated", "dlc_1um", "dlc_4um", "wcc_1um", "wcc_4um"]
     d = load_sweep("andreou2023_dynamics")
     assert d.mode == "dynamics" and d.shape == (37, 3)
 
 
 def test_docs_cover_every_sweep_key():
     doc = (ROOT / "docs" / "sweep-files.md").read_text(encoding="utf-8")
-    missing = [f"{m.__name__}.{k}" for m in (SweepInfo, AxisConfig)
-               for k in m.model_fields if f"`{k}`" not in doc]
-    missing += [k for k in SweepFile.model_fields
-                if f"### `[{k}]`" not in doc and f"### `[[{k}]]`" not in doc]
+    missing = [
+        f"{m.__name__}.{k}"
+        for m in (SweepInfo, AxisConfig)
+        for k in m.model_fields
+        if f"`{k}`" not in doc
+    ]
+    missing += [
+        k
+        for k in SweepFile.model_fields
+        if f"### `[{k}]`" not in doc and f"### `[[{k}]]`" not in doc
+    ]
     assert not missing, missing

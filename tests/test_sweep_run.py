@@ -35,10 +35,11 @@ runner = CliRunner()
 def text(result) -> str:
     """Command output with line wrapping undone."""
     return " ".join(result.output.split())
+
+
 BIN = Path(sys.executable).parent
 
-COARSE = {"numerics.cycles": 1, "numerics.output_step_deg": 2.0,
-          "numerics.max_step_deg": 2.0}
+COARSE = {"numerics.cycles": 1, "numerics.output_step_deg": 2.0, "numerics.max_step_deg": 2.0}
 DYNAMICS_SWEEP = """
 [sweep]
 name = "tiny_dynamics"
@@ -96,8 +97,7 @@ def assert_same_numbers(ds, ref):
     for name in set(ref.data_vars) - skip:
         a, b = ds[name].values, ref[name].values
         if b.dtype.kind in "fc":
-            np.testing.assert_allclose(a, b, rtol=1e-12, atol=0.0, equal_nan=True,
-                                       err_msg=name)
+            np.testing.assert_allclose(a, b, rtol=1e-12, atol=0.0, equal_nan=True, err_msg=name)
         else:
             np.testing.assert_array_equal(a, b, err_msg=name)
 
@@ -112,16 +112,22 @@ def test_reference_is_physical(reference):
     assert ds["jump"].sel(speed_rpm=8000.0, spring_rate=30000.0) == 1
     assert ds["jump"].sel(speed_rpm=2000.0).sum() == 0
     cf = ds["contact_force"].sel(speed_rpm=5000.0, spring_rate=45000.0)
-    assert float(cf.max()) == pytest.approx(float(ds["peak_contact_force_N"].sel(
-        speed_rpm=5000.0, spring_rate=45000.0)))
+    assert float(cf.max()) == pytest.approx(
+        float(ds["peak_contact_force_N"].sel(speed_rpm=5000.0, spring_rate=45000.0))
+    )
     assert ds["crank_angle"].values[0] == 0.0 and ds["crank_angle"].values[-1] == 720.0
 
 
 def test_local_cluster_with_two_process_workers(dyn_file, reference, tmp_path):
     from distributed import Client, LocalCluster
+
     spec = load_sweep(dyn_file)
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                      dashboard_address=":0") as cluster, Client(cluster) as client:
+    with (
+        LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0"
+        ) as cluster,
+        Client(cluster) as client,
+    ):
         pids = set(client.run(os.getpid).values())
         assert len(pids) == 2 and os.getpid() not in pids
         res = run_sweep(spec, client, out_dir=tmp_path)
@@ -140,9 +146,24 @@ def scheduler(tmp_path_factory):
     d = tmp_path_factory.mktemp("dask")
     sfile = d / "scheduler.json"
     log = open(d / "log.txt", "w")
-    procs = [subprocess.Popen([BIN / "dask", "scheduler", "--host", "127.0.0.1", "--port",
-                               "0", "--no-dashboard", "--scheduler-file", sfile],
-                              stdout=log, stderr=subprocess.STDOUT, cwd=d)]
+    procs = [
+        subprocess.Popen(
+            [
+                BIN / "dask",
+                "scheduler",
+                "--host",
+                "127.0.0.1",
+                "--port",
+                "0",
+                "--no-dashboard",
+                "--scheduler-file",
+                sfile,
+            ],
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            cwd=d,
+        )
+    ]
     try:
         t0 = time.monotonic()
         while not sfile.exists() or not sfile.read_text().strip():
@@ -151,9 +172,23 @@ def scheduler(tmp_path_factory):
             time.sleep(0.1)
         address = json.loads(sfile.read_text())["address"]
         for _ in range(2):
-            procs.append(subprocess.Popen(
-                [BIN / "dask", "worker", address, "--nthreads", "1", "--nworkers", "1",
-                 "--no-dashboard"], stdout=log, stderr=subprocess.STDOUT, cwd=d))
+            procs.append(
+                subprocess.Popen(
+                    [
+                        BIN / "dask",
+                        "worker",
+                        address,
+                        "--nthreads",
+                        "1",
+                        "--nworkers",
+                        "1",
+                        "--no-dashboard",
+                    ],
+                    stdout=log,
+                    stderr=subprocess.STDOUT,
+                    cwd=d,
+                )
+            )
         yield address
     finally:
         for p in reversed(procs):
@@ -169,8 +204,10 @@ def scheduler(tmp_path_factory):
 
 def test_sweep_through_scheduler_address(dyn_file, reference, scheduler, tmp_path):
     out = tmp_path / "out"
-    r = runner.invoke(app, ["sweep", str(dyn_file), "-o", str(out), "--scheduler",
-                            scheduler, "--workers", "2", "-q"])
+    r = runner.invoke(
+        app,
+        ["sweep", str(dyn_file), "-o", str(out), "--scheduler", scheduler, "--workers", "2", "-q"],
+    )
     assert r.exit_code == 0, r.output
     assert "6 of 6 points finished" in text(r)
     with xr.open_dataset(out / "sweep.nc", engine="h5netcdf") as ds:
@@ -188,34 +225,44 @@ def test_run_study_on_scheduler_matches_local(scheduler, tmp_path):
     """``tribodyn run --scheduler``: the surface sets, the reference set's task chain and
     the single-contact studies run on the cluster and give the numbers of the in-process
     study (implicit coupling off to keep the test short; its task is the same)."""
-    case = load_case().updated({
-        **COARSE, "numerics.crank_step_deg": 5.0, "numerics.n": 128,
-        "numerics.implicit_coupling": False, "numerics.min_load": 350.0,
-        "numerics.workers": 1})
+    case = load_case().updated(
+        {
+            **COARSE,
+            "numerics.crank_step_deg": 5.0,
+            "numerics.n": 128,
+            "numerics.implicit_coupling": False,
+            "numerics.min_load": 350.0,
+            "numerics.workers": 1,
+        }
+    )
     d = case.to_dict()
-    d["surface_sets"] = [s for s in d["surface_sets"] if s["name"] in ("uncoated",
-                                                                         "wcc_4um")]
+    d["surface_sets"] = [s for s in d["surface_sets"] if s["name"] in ("uncoated", "wcc_4um")]
     case = type(case).from_dict(d)
     path = tmp_path / "case.toml"
     case.write_toml(path)
-    r = runner.invoke(app, ["run", str(path), "-o", str(tmp_path / "out"), "--scheduler",
-                            scheduler, "-q"])
+    r = runner.invoke(
+        app, ["run", str(path), "-o", str(tmp_path / "out"), "--scheduler", scheduler, "-q"]
+    )
     assert r.exit_code == 0, r.output
     remote = json.loads((tmp_path / "out" / "summary.json").read_text())
     local = run_cycle_study(case, workers=1).analyse().summary
     for name in ("uncoated", "wcc_4um"):
         for k in ("friction_energy_per_cycle_J", "min_film_m", "max_boundary_friction_N"):
             assert remote["surface_sets"][name][k] == pytest.approx(
-                local["surface_sets"][name][k], rel=1e-10), (name, k)
-    assert remote["surface_sets"]["wcc_4um"]["boundary_friction_reduction_vs_uncoated_pct"] \
-        > 80
+                local["surface_sets"][name][k], rel=1e-10
+            ), (name, k)
+    assert remote["surface_sets"]["wcc_4um"]["boundary_friction_reduction_vs_uncoated_pct"] > 80
 
 
 def test_unreachable_scheduler_is_an_input_error():
     from tribodyn import InputError
     from tribodyn.workflow.sweep import connect
-    with pytest.raises(InputError, match=r"--scheduler: cannot connect to "
-                                         r"'tcp://127.0.0.1:9' within 2 s"):
+
+    with pytest.raises(
+        InputError,
+        match=r"--scheduler: cannot connect to "
+        r"'tcp://127.0.0.1:9' within 2 s",
+    ):
         connect("tcp://127.0.0.1:9", timeout=2)
 
 
@@ -223,9 +270,12 @@ def test_unreachable_scheduler_is_an_input_error():
 def test_killed_sweep_resumes_only_the_missing_points(dyn_file, reference, tmp_path):
     out = tmp_path / "out"
     points = out / "points"
-    proc = subprocess.Popen([BIN / "tribodyn", "sweep", dyn_file, "-o", out, "-j", "1",
-                             "-q"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                            start_new_session=True)
+    proc = subprocess.Popen(
+        [BIN / "tribodyn", "sweep", dyn_file, "-o", out, "-j", "1", "-q"],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        start_new_session=True,
+    )
     try:
         t0 = time.monotonic()
         while len(list(points.glob("*.nc"))) < 2:
@@ -233,7 +283,7 @@ def test_killed_sweep_resumes_only_the_missing_points(dyn_file, reference, tmp_p
             assert time.monotonic() - t0 < 300, "no point finished"
             time.sleep(0.02)
     finally:
-        os.killpg(proc.pid, signal.SIGKILL)       # the client and its local workers
+        os.killpg(proc.pid, signal.SIGKILL)  # the client and its local workers
         proc.wait()
     before = {p.name: p.stat().st_mtime_ns for p in points.glob("*.nc")}
     assert 2 <= len(before) < 6
@@ -241,14 +291,13 @@ def test_killed_sweep_resumes_only_the_missing_points(dyn_file, reference, tmp_p
     # without --resume the folder is refused: no finished point is overwritten
     r = runner.invoke(app, ["sweep", str(dyn_file), "-o", str(out), "-q"])
     assert r.exit_code == 2 and "already holds points" in text(r)
-    r = runner.invoke(app, ["sweep", str(dyn_file), "-o", str(out), "--resume", "-q",
-                            "-j", "2"])
+    r = runner.invoke(app, ["sweep", str(dyn_file), "-o", str(out), "--resume", "-q", "-j", "2"])
     assert r.exit_code == 0, r.output
     n = len(before)
     assert f"({6 - n} run now, {n} resumed)" in text(r)
     after = {p.name: p.stat().st_mtime_ns for p in points.glob("*.nc")}
     assert len(after) == 6
-    assert all(after[k] == v for k, v in before.items())     # finished points not rerun
+    assert all(after[k] == v for k, v in before.items())  # finished points not rerun
     assert not list(points.glob(".*.tmp"))
     with xr.open_dataset(out / "sweep.nc", engine="h5netcdf") as ds:
         assert_same_numbers(ds.load(), reference)
@@ -261,20 +310,27 @@ def test_failing_point_is_reported_and_the_rest_complete(tmp_path):
     invalid combination are recorded with their errors; the other point completes with
     the numbers of the in-process run."""
     f = tmp_path / "s.toml"
-    f.write_text('[sweep]\nname = "fail"\n' + STUDY_FIXED
-                 + '[[axes]]\npath = "numerics.min_load"\nvalues = [350.0, 5000.0]\n'
-                 + '[[axes]]\npath = "cam.max_lift"\nvalues = [0.0093, 0.0099]\ngroup = "g"\n'
-                 + '[[axes]]\npath = "valvetrain.tappet_radius"\nvalues = [0.0165, 0.0145]\n'
-                 + 'group = "g"\n', encoding="utf-8")
+    f.write_text(
+        '[sweep]\nname = "fail"\n'
+        + STUDY_FIXED
+        + '[[axes]]\npath = "numerics.min_load"\nvalues = [350.0, 5000.0]\n'
+        + '[[axes]]\npath = "cam.max_lift"\nvalues = [0.0093, 0.0099]\ngroup = "g"\n'
+        + '[[axes]]\npath = "valvetrain.tappet_radius"\nvalues = [0.0165, 0.0145]\n'
+        + 'group = "g"\n',
+        encoding="utf-8",
+    )
     spec = load_sweep(f)
     assert spec.shape == (2, 2)
     res = run_sweep(spec, workers=2, out_dir=tmp_path / "out")
     errors = {p.label: e for p, e in res.failed}
     assert len(errors) == 3 and res.n_ok == 1
-    assert "no EHL sample carries numerics.min_load = 5000 N" in errors[
-        "min_load = 5000, max_lift = 0.0093, tappet_radius = 0.0165"]
+    assert (
+        "no EHL sample carries numerics.min_load = 5000 N"
+        in errors["min_load = 5000, max_lift = 0.0093, tappet_radius = 0.0165"]
+    )
     assert errors["min_load = 350, max_lift = 0.0099, tappet_radius = 0.0145"].startswith(
-        "invalid combination: cam: ")
+        "invalid combination: cam: "
+    )
     ds = res.dataset
     assert ds["status"].values.tolist() == [[1, 0], [0, 0]]
     ok = ds.isel(min_load=0, g=0, surface_set=0)
@@ -283,13 +339,15 @@ def test_failing_point_is_reported_and_the_rest_complete(tmp_path):
     assert int(ok["failed_steps"]) == 0
     assert np.isnan(ds["friction_energy_per_cycle_J"].isel(min_load=1, g=0)).all()
     from tribodyn.output.sweep import write_sweep
+
     files = write_sweep(res, tmp_path / "out")
     report = files["report"].read_text()
     assert "## Failed points" in report and "no EHL sample carries" in report
     assert "invalid combination" in report
     # the CLI says so with exit code 1 after writing everything (resume reruns the
     # failed points, keeps the finished one)
-    r = runner.invoke(app, ["sweep", str(f), "-o", str(tmp_path / "out"), "--resume",
-                            "-q", "-j", "1"])
+    r = runner.invoke(
+        app, ["sweep", str(f), "-o", str(tmp_path / "out"), "--resume", "-q", "-j", "1"]
+    )
     assert r.exit_code == 1, r.output
     assert "1 of 4 points finished (1 run now, 1 resumed), 3 failed" in text(r)

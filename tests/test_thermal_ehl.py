@@ -19,10 +19,11 @@ STEEL_T = ThermalProperties(46.0, 7850.0, 470.0)
 DLC_T = ThermalProperties(1.0, 1900.0, 700.0)
 STEEL = Material(210e9, 0.3)
 E_PRIME = 210e9 / 0.91
-OIL = ThermalLubricant(kelvin(40.0), kinematic_viscosity_40=64e-6,
-                       kinematic_viscosity_100=11e-6, density=852.0)
-B = 1e-4          # half-width of the band heat source [m]
-Q = 1e8           # its heat flux [W/m²]
+OIL = ThermalLubricant(
+    kelvin(40.0), kinematic_viscosity_40=64e-6, kinematic_viscosity_100=11e-6, density=852.0
+)
+B = 1e-4  # half-width of the band heat source [m]
+Q = 1e8  # its heat flux [W/m²]
 
 
 def band(x):
@@ -48,10 +49,14 @@ def test_band_source_on_moving_half_space_matches_jaeger(peclet):
     xs = np.linspace(-0.8 * B, 0.95 * B, 13)
 
     def jaeger(xx):
-        f = lambda xp: math.exp(u * (xx - xp) / (2 * kap)) * special.k0(  # noqa: E731
-            u * abs(xx - xp) / (2 * kap))
-        return Q / (math.pi * k) * (integrate.quad(f, -B, xx, limit=200)[0]
-                                    + integrate.quad(f, xx, B, limit=200)[0])
+        def f(xp):
+            return math.exp(u * (xx - xp) / (2 * kap)) * special.k0(u * abs(xx - xp) / (2 * kap))
+
+        return (
+            Q
+            / (math.pi * k)
+            * (integrate.quad(f, -B, xx, limit=200)[0] + integrate.quad(f, xx, B, limit=200)[0])
+        )
 
     ref = np.array([jaeger(v) for v in xs])
     assert np.interp(xs, x, th) == pytest.approx(ref, rel=0.05)
@@ -65,7 +70,7 @@ def test_band_source_at_high_peclet_matches_blok():
     x, th = solid_surface(ThermalBody(STEEL_T), u)
     blok = 2 * Q / k * math.sqrt(2 * kap * B / (math.pi * u))
     assert th.max() == pytest.approx(blok, rel=0.05)
-    assert x[np.argmax(th)] == pytest.approx(B, abs=0.05 * B)      # at the trailing edge
+    assert x[np.argmax(th)] == pytest.approx(B, abs=0.05 * B)  # at the trailing edge
 
 
 def layered_reference(xs, u, coat, sub, d, terms=80):
@@ -89,14 +94,14 @@ def layered_reference(xs, u, coat, sub, d, terms=80):
 
 @pytest.mark.parametrize("thickness", [1e-6, 4e-6])
 def test_coated_moving_solid_matches_the_layered_solution(thickness):
-    u = 10.0                                     # Pe = 40 in the steel substrate
+    u = 10.0  # Pe = 40 in the steel substrate
     body = ThermalBody(STEEL_T, DLC_T, thickness)
     x, th = solid_surface(body, u, n=800, first=thickness / 4)
     xs = np.linspace(-0.8 * B, 0.95 * B, 10)
     ref = layered_reference(xs, u, DLC_T, STEEL_T, thickness)
     assert np.interp(xs, x, th) == pytest.approx(ref, rel=0.04)
     _, bare = solid_surface(ThermalBody(STEEL_T), u)
-    assert th.max() > 1.5 * bare.max()            # the DLC layer insulates
+    assert th.max() > 1.5 * bare.max()  # the DLC layer insulates
 
 
 # ----------------------------------------------------------------------------- EHL
@@ -108,19 +113,36 @@ STEEL_BODIES = (ThermalBody(STEEL_T), ThermalBody(STEEL_T))
 def test_isothermal_limit_reproduces_the_isothermal_solver():
     """No heating, or near-infinite conductivities: the isothermal solution at Tᵢ."""
     iso = solve_ehl(W, R, 2.0, 1.0, PAIR, OIL.isothermal())
-    cold = solve_thermal_ehl(W, R, 2.0, 1.0, PAIR, OIL, STEEL_BODIES,
-                             thermal_options=ThermalOptions(shear_heating=False,
-                                                            compression_heating=False))
+    cold = solve_thermal_ehl(
+        W,
+        R,
+        2.0,
+        1.0,
+        PAIR,
+        OIL,
+        STEEL_BODIES,
+        thermal_options=ThermalOptions(shear_heating=False, compression_heating=False),
+    )
     big = ThermalProperties(1e6, 7850.0, 470.0)
-    oil_k = ThermalLubricant(kelvin(40.0), kinematic_viscosity_40=64e-6,
-                             kinematic_viscosity_100=11e-6, density=852.0,
-                             thermal_conductivity=1e5)
-    conducting = solve_thermal_ehl(W, R, 2.0, 1.0, PAIR, oil_k,
-                                   (ThermalBody(big), ThermalBody(big)))
+    oil_k = ThermalLubricant(
+        kelvin(40.0),
+        kinematic_viscosity_40=64e-6,
+        kinematic_viscosity_100=11e-6,
+        density=852.0,
+        thermal_conductivity=1e5,
+    )
+    conducting = solve_thermal_ehl(
+        W, R, 2.0, 1.0, PAIR, oil_k, (ThermalBody(big), ThermalBody(big))
+    )
     for r in (cold, conducting):
         assert r.converged, r.message
-        for key in ("central_film", "min_film", "hydrodynamic_load", "viscous_friction",
-                    "rolling_friction"):
+        for key in (
+            "central_film",
+            "min_film",
+            "hydrodynamic_load",
+            "viscous_friction",
+            "rolling_friction",
+        ):
             assert getattr(r, key) == pytest.approx(getattr(iso, key), rel=2e-3), key
         assert r.pressure.max() == pytest.approx(iso.pressure.max(), rel=2e-3)
     assert cold.max_temperature == pytest.approx(OIL.inlet_temperature, abs=1e-9)
@@ -137,14 +159,18 @@ def test_inlet_heating_in_rolling_against_published_thermal_corrections():
     iso = solve_ehl(w, R, u, 0.0, PAIR, OIL.isothermal())
     th = solve_thermal_ehl(w, R, u, 0.0, PAIR, OIL, STEEL_BODIES)
     assert th.converged, th.message
-    L = (OIL.temperature_viscosity_coefficient() * OIL.inlet_viscosity * u**2
-         / float(OIL.conductivity(0.0, OIL.inlet_temperature)))
+    L = (
+        OIL.temperature_viscosity_coefficient()
+        * OIL.inlet_viscosity
+        * u**2
+        / float(OIL.conductivity(0.0, OIL.inlet_temperature))
+    )
     ph = math.sqrt(w * E_PRIME / (2 * math.pi * R))
     murch = 3.94 / (3.94 + L**0.62)
     gupta = (1 - 13.2 * ph / E_PRIME * L**0.42) / (1 + 0.213 * L**0.64)
     ratio = th.central_film / iso.central_film
     assert 0.3 < L < 0.5
-    assert ratio < 0.95                                    # the inlet heats and the film thins
+    assert ratio < 0.95  # the inlet heats and the film thins
     assert ratio == pytest.approx(murch, rel=0.08)
     assert ratio == pytest.approx(gupta, rel=0.08)
 
@@ -164,8 +190,8 @@ def test_traction_curve_rises_peaks_and_falls_thermally():
         mu_t.append(t.viscous_friction / w)
         mu_i.append(i.viscous_friction / w)
         rise.append(t.max_temperature - OIL.inlet_temperature)
-    assert mu_i[0] < mu_i[1] < mu_i[2]                         # isothermal: no maximum
-    assert mu_t[0] < mu_t[1] > mu_t[2]                         # thermal: rise, max, fall
+    assert mu_i[0] < mu_i[1] < mu_i[2]  # isothermal: no maximum
+    assert mu_t[0] < mu_t[1] > mu_t[2]  # thermal: rise, max, fall
     assert mu_t[2] < 0.8 * mu_t[1]
     assert rise[0] < rise[1] < rise[2] and rise[2] > 50.0
     assert all(a <= b * 1.001 for a, b in zip(mu_t, mu_i))
@@ -174,6 +200,7 @@ def test_traction_curve_rises_peaks_and_falls_thermally():
 def test_low_conductivity_coating_runs_hotter_with_less_viscous_friction():
     """DLC on the tappet (body 2): a higher surface temperature and lower viscous
     friction than steel, more so for the thicker coating and with more sliding."""
+
     def solve(thickness, us):
         if thickness is None:
             return solve_thermal_ehl(W, R, 2.0, us, PAIR, OIL, STEEL_BODIES)
@@ -181,8 +208,12 @@ def test_low_conductivity_coating_runs_hotter_with_less_viscous_friction():
         tb = (ThermalBody(STEEL_T), ThermalBody(STEEL_T, DLC_T, thickness))
         return solve_thermal_ehl(W, R, 2.0, us, pair, OIL, tb)
 
-    res = {(t, us): solve(t, us) for t in (None, 1e-6, 4e-6) for us in (1.0, 3.0)
-           if not (t == 1e-6 and us == 1.0)}
+    res = {
+        (t, us): solve(t, us)
+        for t in (None, 1e-6, 4e-6)
+        for us in (1.0, 3.0)
+        if not (t == 1e-6 and us == 1.0)
+    }
     assert all(r.converged for r in res.values())
     surf = {k: r.max_surface_temperature[1] for k, r in res.items()}
     vf = {k: r.viscous_friction for k, r in res.items()}
@@ -218,7 +249,7 @@ def test_transient_staggered_coupling_and_steady_start():
     assert runs[2][:, :2] == pytest.approx(runs[6][:, :2], rel=5e-3)
     assert runs[1][:, :2] == pytest.approx(runs[6][:, :2], rel=1e-2)
     assert np.abs(runs[2][:, 2] - runs[6][:, 2]).max() < 0.5
-    assert runs[6][-1, 2] > runs[6][0, 2] + 5.0                # heating up as sliding grows
+    assert runs[6][-1, 2] > runs[6][0, 2] + 5.0  # heating up as sliding grows
     iso = TransientEHL(PAIR, OIL.isothermal())
     iso.start_steady(W, R, 2.0, 1.0)
     assert iso.step(2e-5, W, R, 2.0, 2.6).friction > runs[6][-1, 1]
@@ -228,8 +259,9 @@ def test_thermal_input_errors():
     with pytest.raises(InputError, match="ThermalLubricant"):
         solve_thermal_ehl(W, R, 2.0, 1.0, PAIR, OIL.isothermal(), STEEL_BODIES)
     with pytest.raises(InputError, match="coating where the elastic"):
-        solve_thermal_ehl(W, R, 2.0, 1.0, PAIR, OIL,
-                          (ThermalBody(STEEL_T), ThermalBody(STEEL_T, DLC_T, 1e-6)))
+        solve_thermal_ehl(
+            W, R, 2.0, 1.0, PAIR, OIL, (ThermalBody(STEEL_T), ThermalBody(STEEL_T, DLC_T, 1e-6))
+        )
     with pytest.raises(InputError, match="film_nodes"):
         ThermalOptions(film_nodes=1)
     with pytest.raises(InputError, match="conductivity"):
@@ -242,12 +274,24 @@ def test_generalized_reynolds_coefficients_for_a_linear_fluidity():
     ρ'' = ρf₀h³(1/6 + a/12); C = ρ'F₁/F₀ − ρ'', D = ρhu_a + (u_b − u_a)ρ'/F₀. The film
     follows its more viscous wall: D < ρhu_e when the more fluid wall is the faster."""
     from tribodyn.physics.film_thermal import film_flow
+
     h, rho, f0, a, ua, ub, m = 1e-6, 850.0, 1.0 / 0.05, 1.5, 1.0, 3.0, 41
     z = np.linspace(0.0, 1.0, m)
     eta = (1.0 / (f0 * (1.0 + a * z)))[None, :]
-    ff = film_flow(np.array([h]), np.array([1e10]), ua, ub, eta, np.full((1, m), rho),
-                   np.array([2e6]), np.full((1, m), 1e12), eta_ref=np.array([0.05]),
-                   rho_ref=np.array([rho]), eyring=False, limiting=False)
+    ff = film_flow(
+        np.array([h]),
+        np.array([1e10]),
+        ua,
+        ub,
+        eta,
+        np.full((1, m), rho),
+        np.array([2e6]),
+        np.full((1, m), 1e12),
+        eta_ref=np.array([0.05]),
+        rho_ref=np.array([rho]),
+        eyring=False,
+        limiting=False,
+    )
     F0, F1 = f0 * h * (1 + a / 2), f0 * h**2 * (0.5 + a / 3)
     rp, rpp = rho * f0 * h**2 * (0.5 + a / 6), rho * f0 * h**3 * (1 / 6 + a / 12)
     assert ff.F0[0] == pytest.approx(F0, rel=1e-4)
@@ -255,4 +299,4 @@ def test_generalized_reynolds_coefficients_for_a_linear_fluidity():
     assert ff.D[0] == pytest.approx(rho * h * ua + (ub - ua) * rp / F0, rel=1e-4)
     # the faster wall b is the more fluid one: the film follows the slower, viscous wall a
     assert ff.D[0] < 0.95 * rho * h * (ua + ub) / 2
-    assert ff.tau_c[0] == pytest.approx((ub - ua) / F0, rel=1e-4)     # Newtonian Couette
+    assert ff.tau_c[0] == pytest.approx((ub - ua) / F0, rel=1e-4)  # Newtonian Couette

@@ -19,8 +19,7 @@ from tribodyn.physics.thermal_oil import (
     walther_viscosity,
 )
 
-SHEET = {"kinematic_viscosity_40": 64.0e-6, "kinematic_viscosity_100": 11.0e-6,
-         "density": 852.0}
+SHEET = {"kinematic_viscosity_40": 64.0e-6, "kinematic_viscosity_100": 11.0e-6, "density": 852.0}
 
 
 def test_astm_d341_line_through_the_datasheet_points():
@@ -32,9 +31,9 @@ def test_astm_d341_line_through_the_datasheet_points():
     y = [math.log10(math.log10(v + 0.7)) for v in (64.0, 11.0)]
     x = [math.log10(313.15), math.log10(373.15)]
     y70 = y[0] + (y[1] - y[0]) * (math.log10(343.15) - x[0]) / (x[1] - x[0])
-    nu70 = 10 ** 10 ** y70 - 0.7
+    nu70 = 10**10**y70 - 0.7
     assert walther_viscosity(343.15, A, B) * 1e6 == pytest.approx(nu70, rel=1e-5)
-    assert 3.0 < B < 4.5                               # ASTM slope of engine oils
+    assert 3.0 < B < 4.5  # ASTM slope of engine oils
 
 
 def test_dynamic_viscosity_density_and_expansion():
@@ -46,14 +45,20 @@ def test_dynamic_viscosity_density_and_expansion():
     assert oil.isothermal().viscosity == pytest.approx(oil.inlet_viscosity)
     # Dowson–Higginson times the thermal factor
     assert float(oil.density_at(1e9, kelvin(90.0))) == pytest.approx(
-        rho90 * (1 + 0.6 / 2.7), rel=1e-12)
+        rho90 * (1 + 0.6 / 2.7), rel=1e-12
+    )
 
 
 def test_roelands_with_temperature_reduces_to_the_paper_law_at_the_inlet():
     # inlet form with the paper's oil: μ(1 GPa) = 7.868253 Pa·s by hand (test_materials)
-    oil = ThermalLubricant(kelvin(40.0), viscosity=0.055, viscosity_temperature_coefficient=0.03,
-                           density=850.0, density_temperature=kelvin(40.0),
-                           pressure_viscosity=1.05e-8)
+    oil = ThermalLubricant(
+        kelvin(40.0),
+        viscosity=0.055,
+        viscosity_temperature_coefficient=0.03,
+        density=850.0,
+        density_temperature=kelvin(40.0),
+        pressure_viscosity=1.05e-8,
+    )
     assert float(oil.viscosity_at(1e9, kelvin(40.0))) == pytest.approx(7.868253, rel=1e-6)
     assert oil.temperature_viscosity_coefficient() == pytest.approx(0.03, rel=1e-6)
     # Roelands' temperature term by hand at 80 °C: S0 = β(T−138)/(ln μ + 9.67)
@@ -64,17 +69,22 @@ def test_roelands_with_temperature_reduces_to_the_paper_law_at_the_inlet():
     hot = oil.at(kelvin(80.0))
     assert hot.pressure_viscosity < 1.05e-8
     assert hot.pressure_viscosity == pytest.approx(
-        5.1e-9 * oil.roelands_z * (lnmu + 9.67), rel=1e-12)
+        5.1e-9 * oil.roelands_z * (lnmu + 9.67), rel=1e-12
+    )
 
 
 def test_so_klaus_correlation():
     # So & Klaus (1980): α·1e8 = 1.216 + 4.143 L^3.0627 + 2.848e-4 b^5.1903 L^1.5976
     #                            − 3.999 L^3.0975 ρ^0.1162, L = log10 ν[cSt], ρ [g/cm³]
     L = math.log10(50.0)
-    by_hand = (1.216 + 4.143 * L**3.0627 + 2.848e-4 * 3.5**5.1903 * L**1.5976
-               - 3.999 * L**3.0975 * 0.85**0.1162) * 1e-8
+    by_hand = (
+        1.216
+        + 4.143 * L**3.0627
+        + 2.848e-4 * 3.5**5.1903 * L**1.5976
+        - 3.999 * L**3.0975 * 0.85**0.1162
+    ) * 1e-8
     assert so_klaus_alpha(50e-6, 850.0, 3.5) == pytest.approx(by_hand, rel=1e-12)
-    assert 1.5e-8 < by_hand < 3e-8                     # a 50 cSt mineral oil
+    assert 1.5e-8 < by_hand < 3e-8  # a 50 cSt mineral oil
     with pytest.raises(InputError, match="So–Klaus"):
         so_klaus_alpha(0.9e-6, 850.0, 3.5)
 
@@ -83,9 +93,11 @@ def test_thermal_properties_cragoe_and_larsson_andersson():
     oil = ThermalLubricant(kelvin(90.0), **SHEET)
     s = 0.852
     assert float(oil.conductivity(0.0, kelvin(90.0))) == pytest.approx(
-        0.1172 * (1 - 5.4e-4 * 90) / s, rel=1e-12)
+        0.1172 * (1 - 5.4e-4 * 90) / s, rel=1e-12
+    )
     assert float(oil.specific_heat_at(kelvin(90.0))) == pytest.approx(
-        (1685 + 3.39 * 90) / math.sqrt(s), rel=1e-12)
+        (1685 + 3.39 * 90) / math.sqrt(s), rel=1e-12
+    )
     k0 = float(oil.conductivity(0.0, kelvin(90.0)))
     assert float(oil.conductivity(1e9, kelvin(90.0))) / k0 == pytest.approx(1 + 1.72 / 1.54)
     assert float(oil.eyring_stress_at(2 * kelvin(90.0))) == pytest.approx(2 * oil.eyring_stress)
@@ -93,12 +105,11 @@ def test_thermal_properties_cragoe_and_larsson_andersson():
 
 
 def test_bundled_oils_lie_in_their_sae_grades():
-    windows = {"20": (6.9, 9.3), "30": (9.3, 12.5), "40": (12.5, 16.3)}   # SAE J300, 100 °C
+    windows = {"20": (6.9, 9.3), "30": (9.3, 12.5), "40": (12.5, 16.3)}  # SAE J300, 100 °C
     for name, d in OILS.items():
         lo, hi = windows[name.split("-")[1]]
         assert lo <= d["kinematic_viscosity_100"] * 1e6 < hi, name
-        oil = ThermalLubricant(kelvin(40.0), **{k: v for k, v in d.items()
-                                                 if k != "description"})
+        oil = ThermalLubricant(kelvin(40.0), **{k: v for k, v in d.items() if k != "description"})
         assert 1.2e-8 < oil.inlet_pressure_viscosity < 3e-8, name
         assert 0.12 < float(oil.conductivity(0.0, kelvin(100.0))) < 0.15
 
@@ -118,17 +129,23 @@ def test_case_keys_datasheet_and_thermal():
     assert oil.inlet_temperature == pytest.approx(363.15)
     assert c.lubricant().viscosity == pytest.approx(oil.inlet_viscosity)
     again = Case.from_toml_string(c.to_toml())
-    assert again == c and again.thermal_lubricant().inlet_pressure_viscosity == \
-        pytest.approx(oil.inlet_pressure_viscosity)
-    own = Case.from_toml_string('[lubricant]\nkinematic_viscosity_40_cst = 100.0\n'
-                                'kinematic_viscosity_100_cst = 14.8\ninlet_temperature_c = 100\n'
-                                'pressure_viscosity = 2e-8\n')
-    assert own.lubricant().pressure_viscosity < 2e-8          # α given at 100 °C → Z
+    assert again == c and again.thermal_lubricant().inlet_pressure_viscosity == pytest.approx(
+        oil.inlet_pressure_viscosity
+    )
+    own = Case.from_toml_string(
+        "[lubricant]\nkinematic_viscosity_40_cst = 100.0\n"
+        "kinematic_viscosity_100_cst = 14.8\ninlet_temperature_c = 100\n"
+        "pressure_viscosity = 2e-8\n"
+    )
+    assert own.lubricant().pressure_viscosity < 2e-8  # α given at 100 °C → Z
     assert own.thermal_lubricant().inlet_pressure_viscosity == 2e-8
     msgs = []
-    for text in ('[lubricant]\noil = "5W-30"\nviscosity = 0.05\ninlet_temperature_c = 90.0\n',
-                 '[lubricant]\noil = "15W-50"\n', '[numerics]\nthermal = true\n',
-                 '[lubricant]\nkinematic_viscosity_40_cst = 50.0\ninlet_temperature_c = 90\n'):
+    for text in (
+        '[lubricant]\noil = "5W-30"\nviscosity = 0.05\ninlet_temperature_c = 90.0\n',
+        '[lubricant]\noil = "15W-50"\n',
+        "[numerics]\nthermal = true\n",
+        "[lubricant]\nkinematic_viscosity_40_cst = 50.0\ninlet_temperature_c = 90\n",
+    ):
         with pytest.raises(InputError) as ei:
             Case.from_toml_string(text)
         msgs.append(str(ei.value))
@@ -136,11 +153,13 @@ def test_case_keys_datasheet_and_thermal():
     assert "lubricant.oil" in msgs[1]
     assert "inlet_temperature_c" in msgs[2]
     assert "lubricant.kinematic_viscosity_100_cst: required" in msgs[3]
-    bad = ('[lubricant]\noil = "5W-30"\ninlet_temperature_c = 90.0\n[numerics]\nthermal = true\n'
-           '[materials.x]\nE = 2e11\nnu = 0.3\nboundary_shear_coefficient = 0.1\n'
-           '[[surface_sets]]\nname = "a"\nsubstrate = "x"\n'
-           'roughness = { asperity_density = 1e9, rms = 1e-7, summit_radius = 1e-6 }\n'
-           '[cam]\nmaterial = "x"\n')
+    bad = (
+        '[lubricant]\noil = "5W-30"\ninlet_temperature_c = 90.0\n[numerics]\nthermal = true\n'
+        "[materials.x]\nE = 2e11\nnu = 0.3\nboundary_shear_coefficient = 0.1\n"
+        '[[surface_sets]]\nname = "a"\nsubstrate = "x"\n'
+        "roughness = { asperity_density = 1e9, rms = 1e-7, summit_radius = 1e-6 }\n"
+        '[cam]\nmaterial = "x"\n'
+    )
     with pytest.raises(InputError, match=r"materials.x.thermal_conductivity: required"):
         Case.from_toml_string(bad)
 
@@ -153,5 +172,5 @@ def test_bundled_thermal_case():
     assert tappet.coating.conductivity == 1.0 and tappet.thickness == 4e-6
     assert cam.coating is None and cam.substrate.conductivity == 46.0
     paper = load_case()
-    assert not paper.numerics.thermal                         # the paper's case stays isothermal
+    assert not paper.numerics.thermal  # the paper's case stays isothermal
     assert np.isclose(paper.lubricant().viscosity, 0.055)

@@ -15,9 +15,22 @@ POINT = ("contact", "--load", "2400", "--radius", "0.01", "--ue", "2", "--us", "
 
 
 def test_contact_thermal_json():
-    r = runner.invoke(app, [*POINT, "--thermal", "--oil", "5W-30", "--inlet-temperature",
-                            "90", "--coating-material", "dlc", "--coating-thickness", "4e-6",
-                            "--json"])
+    r = runner.invoke(
+        app,
+        [
+            *POINT,
+            "--thermal",
+            "--oil",
+            "5W-30",
+            "--inlet-temperature",
+            "90",
+            "--coating-material",
+            "dlc",
+            "--coating-thickness",
+            "4e-6",
+            "--json",
+        ],
+    )
     assert r.exit_code == 0, r.output
     out = json.loads(r.stdout)
     assert out["thermal"] and out["converged"] and out["oil"] == "5W-30"
@@ -28,16 +41,31 @@ def test_contact_thermal_json():
     assert out["central_film_m"] <= out["isothermal_central_film_m"] * 1.001
 
 
-@pytest.mark.parametrize("args, name", [
-    (("--thermal",), "--thermal needs an oil"),
-    (("--thermal", "--oil", "5W-30"), "--inlet-temperature"),
-    (("--thermal", "--oil", "SAE90", "--inlet-temperature", "90"), "--oil must be one of"),
-    (("--thermal", "--oil", "5W-30", "--inlet-temperature", "900"), "--inlet-temperature"),
-    (("--thermal", "--oil", "5W-30", "--inlet-temperature", "90", "--viscosity", "0.01"),
-     "--viscosity: not with --thermal"),
-    (("--thermal", "--oil", "5W-30", "--inlet-temperature", "90", "--coating",
-      "185e9,0.3,4e-6"), "coating needs a material"),
-])
+@pytest.mark.parametrize(
+    "args, name",
+    [
+        (("--thermal",), "--thermal needs an oil"),
+        (("--thermal", "--oil", "5W-30"), "--inlet-temperature"),
+        (("--thermal", "--oil", "SAE90", "--inlet-temperature", "90"), "--oil must be one of"),
+        (("--thermal", "--oil", "5W-30", "--inlet-temperature", "900"), "--inlet-temperature"),
+        (
+            ("--thermal", "--oil", "5W-30", "--inlet-temperature", "90", "--viscosity", "0.01"),
+            "--viscosity: not with --thermal",
+        ),
+        (
+            (
+                "--thermal",
+                "--oil",
+                "5W-30",
+                "--inlet-temperature",
+                "90",
+                "--coating",
+                "185e9,0.3,4e-6",
+            ),
+            "coating needs a material",
+        ),
+    ],
+)
 def test_contact_thermal_bad_input_exits_2(args, name):
     r = runner.invoke(app, [*POINT, *args])
     assert r.exit_code == 2, r.output
@@ -51,17 +79,25 @@ def thermal_run(tmp_path_factory):
     coupling, one worker."""
     d = load_case("andreou2023_thermal").to_dict()
     d["surface_sets"] = [d["surface_sets"][0], d["surface_sets"][2]]
-    case = Case.from_dict(d).updated({
-        "numerics.crank_step_deg": 5.0, "numerics.n": 256, "numerics.output_step_deg": 1.0,
-        "numerics.workers": 1, "numerics.thermal_x_nodes": 48,
-        "numerics.thermal_solid_nodes": 8, "numerics.thermal_film_nodes": 5,
-        "numerics.thermal_iterations": 1})
+    case = Case.from_dict(d).updated(
+        {
+            "numerics.crank_step_deg": 5.0,
+            "numerics.n": 256,
+            "numerics.output_step_deg": 1.0,
+            "numerics.workers": 1,
+            "numerics.thermal_x_nodes": 48,
+            "numerics.thermal_solid_nodes": 8,
+            "numerics.thermal_film_nodes": 5,
+            "numerics.thermal_iterations": 1,
+        }
+    )
     path = tmp_path_factory.mktemp("case") / "thermal.toml"
     case.write_toml(path)
     out = tmp_path_factory.mktemp("run") / "results"
     # the single-contact coating studies (Figs. 5, 6, nose sensitivity) are the paper
     # case's and tested there; skipped here to keep the test short
     from tribodyn.workflow import cycle
+
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(cycle, "_coating_studies_task", lambda *a: ([], None, None))
         r = runner.invoke(app, ["run", str(path), "-o", str(out), "--quiet"])
@@ -84,8 +120,13 @@ def test_thermal_run_outputs(thermal_run):
     assert eff["viscous_energy_thermal_effect_pct"] < -1.0
     assert abs(eff["viscous_energy_vs_reference_isothermal_pct"]) < 2.0
     ds = xr.open_dataset(thermal_run / "results.nc", engine="h5netcdf")
-    for v in ("max_temperature", "surface_temperature_tappet", "mid_film_temperature",
-              "central_film_isothermal", "viscous_friction_isothermal"):
+    for v in (
+        "max_temperature",
+        "surface_temperature_tappet",
+        "mid_film_temperature",
+        "central_film_isothermal",
+        "viscous_friction_isothermal",
+    ):
         assert v in ds and ds[v].attrs["units"]
     assert ds.attrs["thermal"] == 1
     ds.close()

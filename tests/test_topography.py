@@ -40,21 +40,29 @@ from tribodyn.topography import (
 # SurfaceTopography's Fourier filter calls numpy.fft.irfftn in a form NumPy 2 deprecates.
 pytestmark = pytest.mark.filterwarnings("ignore:`axes` should not be `None`:DeprecationWarning")
 
-DX = 0.1e-6      # pixel [m]
-SIGMA = 0.3e-6   # RMS height [m]
-TOL = 0.05       # summits vs McCool
+DX = 0.1e-6  # pixel [m]
+SIGMA = 0.3e-6  # RMS height [m]
+TOL = 0.05  # summits vs McCool
 
 
 def deviations(r):
-    return (r.summits.asperity_density / r.spectral.asperity_density - 1,
-            r.summits.summit_radius / r.spectral.summit_radius - 1)
+    return (
+        r.summits.asperity_density / r.spectral.asperity_density - 1,
+        r.summits.summit_radius / r.spectral.summit_radius - 1,
+    )
 
 
 def surface(n=1024, spectrum=(16, 64), seed=0, hurst=0.8):
     """Periodic synthetic surface; spectrum cutoffs in pixels."""
-    return synthetic_surface((n, n), DX, rms=SIGMA, hurst=hurst,
-                             short_cutoff=spectrum[0] * DX, long_cutoff=spectrum[1] * DX,
-                             seed=seed)
+    return synthetic_surface(
+        (n, n),
+        DX,
+        rms=SIGMA,
+        hurst=hurst,
+        short_cutoff=spectrum[0] * DX,
+        long_cutoff=spectrum[1] * DX,
+        seed=seed,
+    )
 
 
 @pytest.fixture(scope="module")
@@ -64,6 +72,7 @@ def narrow_band():
 
 
 # --- McCool / Nayak formulas ------------------------------------------------------------
+
 
 def test_mccool_formulas_unit_moments():
     p = mccool_parameters(SpectralMoments(1.0, 1.0, 1.0))
@@ -79,7 +88,8 @@ def test_eta_beta_sigma_depends_on_bandwidth_only():
     m = SpectralMoments(2.3e-13, 0.04, 7.0e10)
     p = mccool_parameters(m)
     assert p.asperity_density * p.summit_radius * p.rms == pytest.approx(
-        0.375 / (6 * math.sqrt(3 * math.pi)) * math.sqrt(m.alpha), rel=1e-12)
+        0.375 / (6 * math.sqrt(3 * math.pi)) * math.sqrt(m.alpha), rel=1e-12
+    )
 
 
 def test_mccool_rejects_inconsistent_moments():
@@ -98,6 +108,7 @@ def test_direction_averaged_profile_moments(narrow_band):
 
 
 # --- summits vs McCool on isotropic Gaussian surfaces ------------------------------------
+
 
 @pytest.mark.parametrize("index", [0, 1])
 def test_summits_agree_with_mccool_band_limited(narrow_band, index):
@@ -158,6 +169,7 @@ def test_summit_statistics_of_a_lattice_of_bumps():
 
 # --- instrument files --------------------------------------------------------------------
 
+
 @pytest.fixture(scope="module")
 def measured(tmp_path_factory):
     """A non-periodic 1000 × 900 map in µm (like an instrument file), with a tilt."""
@@ -186,10 +198,10 @@ def test_file_analysis_equals_in_memory_and_summits_agree(measured, tmp_path):
     r_file = analyse_surface(path, band=band)
     r_mem = analyse_surface(measured, band=band)
     assert r_file.name == "map.x3p" and r_file.source["format"] == "x3p"
-    assert r_file.summits.asperity_density == pytest.approx(r_mem.summits.asperity_density,
-                                                            rel=1e-9)
-    assert r_file.spectral.summit_radius == pytest.approx(r_mem.spectral.summit_radius,
-                                                          rel=1e-9)
+    assert r_file.summits.asperity_density == pytest.approx(
+        r_mem.summits.asperity_density, rel=1e-9
+    )
+    assert r_file.spectral.summit_radius == pytest.approx(r_mem.spectral.summit_radius, rel=1e-9)
     # non-periodic map: filtered via mirror stitching, one-λ_s margin excluded
     assert not r_file.sampling.periodic
     assert r_file.summits.rms == pytest.approx(r_file.spectral.rms, rel=1e-12)
@@ -210,9 +222,11 @@ def test_undefined_points_are_filled(measured):
 
 # --- errors ------------------------------------------------------------------------------
 
+
 def small_map(n=64, periodic=False):
-    return Topography(surface(n, (4, 32), seed=1).heights(), (n * DX, n * DX),
-                      periodic=periodic, unit="m")
+    return Topography(
+        surface(n, (4, 32), seed=1).heights(), (n * DX, n * DX), periodic=periodic, unit="m"
+    )
 
 
 def test_band_below_nyquist_raises():
@@ -241,8 +255,9 @@ def test_default_band_is_the_papers_clipped_to_the_measurement():
     assert r.band.long_wavelength == pytest.approx(62e-6)
     assert "Nyquist wavelength 2Δ = 1 µm" in r.warnings[0]
     # a map too small for summit statistics is refused, not analysed on nothing
-    tiny = Topography(np.random.default_rng(0).standard_normal((16, 16)) * 1e-7,
-                      (1.6e-6, 1.6e-6), unit="m")
+    tiny = Topography(
+        np.random.default_rng(0).standard_normal((16, 16)) * 1e-7, (1.6e-6, 1.6e-6), unit="m"
+    )
     with pytest.raises(InsufficientDataError, match=r"only 8 summits .* at least 25"):
         analyse_surface(tiny)
 
@@ -283,14 +298,14 @@ def test_file_without_calibration_or_as_line_scan_raises(tmp_path):
     assert t.physical_sizes == pytest.approx((3.2e-6, 3.2e-6))
     line = UniformLineScan(np.sin(np.arange(128.0)), 12.8, unit="µm")
     line.to_netcdf(str(tmp_path / "profile.nc"))
-    prof = read_topography(tmp_path / "profile.nc")          # a profile, read as one
+    prof = read_topography(tmp_path / "profile.nc")  # a profile, read as one
     assert prof.dim == 1 and prof.physical_sizes[0] == pytest.approx(12.8e-6)
 
 
 def test_too_little_left_is_refused():
     t = small_map()
     h = t.heights().copy()
-    h[:, :32] = np.nan   # half of the map undefined
+    h[:, :32] = np.nan  # half of the map undefined
     half = Topography(h, t.physical_sizes, unit="m")
     # a share rule only when asked for
     with pytest.raises(InsufficientDataError, match=r"2048 of 4096 points \(50\.0%\) are measured"):
@@ -309,6 +324,7 @@ def test_too_little_left_is_refused():
 
 # --- composite pair, TOML block, CLI, figure ---------------------------------------------
 
+
 def test_composite_pair(narrow_band):
     a, b = (analyse_surface(t, band=None, name=n) for t, n in zip(narrow_band, ("cam", "tappet")))
     p = composite_roughness(a, b)
@@ -326,9 +342,12 @@ def test_composite_pair(narrow_band):
 
 def test_composite_of_differently_sampled_maps_falls_back_to_spectral():
     a = analyse_surface(surface(256, (16, 64), seed=1), band=None)
-    b = analyse_surface(synthetic_surface((256, 256), 0.8 * DX, rms=SIGMA,
-                                          short_cutoff=16 * DX, long_cutoff=64 * DX, seed=2),
-                        band=None)
+    b = analyse_surface(
+        synthetic_surface(
+            (256, 256), 0.8 * DX, rms=SIGMA, short_cutoff=16 * DX, long_cutoff=64 * DX, seed=2
+        ),
+        band=None,
+    )
     p = composite_roughness(a, b)
     assert p.summits is None and any("pixel sizes" in n for n in p.notes)
     with pytest.raises(InputError, match="method='spectral'"):
@@ -354,49 +373,78 @@ def pair_files(tmp_path_factory):
     d = tmp_path_factory.mktemp("pair")
     paths = []
     for i, suffix in enumerate((".x3p", ".nc")):
-        t = synthetic_surface((256, 256), DX, rms=0.2e-6, short_cutoff=1.6e-6,
-                              long_cutoff=12.8e-6, seed=20 + i)
+        t = synthetic_surface(
+            (256, 256), DX, rms=0.2e-6, short_cutoff=1.6e-6, long_cutoff=12.8e-6, seed=20 + i
+        )
         paths.append(write_topography(t, d / f"surface{i}{suffix}"))
     return paths
 
 
 def test_cli_json_and_figure(pair_files, tmp_path):
     fig = tmp_path / "heights.png"
-    res = CliRunner().invoke(app, ["topography", *map(str, pair_files), "--band", "1.6e-6",
-                                   "12.8e-6", "--json", "--figure", str(fig)])
+    res = CliRunner().invoke(
+        app,
+        [
+            "topography",
+            *map(str, pair_files),
+            "--band",
+            "1.6e-6",
+            "12.8e-6",
+            "--json",
+            "--figure",
+            str(fig),
+        ],
+    )
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
     comp = out["composite"]
     assert comp["summits"]["units"]["asperity_density"] == "1/m²"
     assert out["first"]["band"]["short_wavelength"] == pytest.approx(1.6e-6)
     assert out["first"]["sampling"]["nb_grid_pts"] == [256, 256]
-    assert tomllib.loads(out["roughness_toml"])["surface_sets"]["roughness"]["rms"] == pytest.approx(
-        comp["rms"], rel=1e-5)
+    assert tomllib.loads(out["roughness_toml"])["surface_sets"]["roughness"][
+        "rms"
+    ] == pytest.approx(comp["rms"], rel=1e-5)
     assert fig.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and fig.stat().st_size > 20_000
 
 
 def test_cli_table_and_errors(pair_files, tmp_path):
     runner = CliRunner()
-    res = runner.invoke(app, ["topography", str(pair_files[0]), "--band", "1.6e-6", "12.8e-6",
-                              "--method", "spectral"])
+    res = runner.invoke(
+        app,
+        ["topography", str(pair_files[0]), "--band", "1.6e-6", "12.8e-6", "--method", "spectral"],
+    )
     assert res.exit_code == 0, res.output
     assert "[surface_sets.roughness]" in res.stdout and "summit density" in res.stdout
     assert "band 1.6–12.8 µm" in res.stdout and "converge" in res.stdout
-    res = runner.invoke(app, ["topography", str(pair_files[0]), "--band", "0.25e-6",
-                              "250e-6"])        # the paper's band, given: must fit
+    res = runner.invoke(
+        app, ["topography", str(pair_files[0]), "--band", "0.25e-6", "250e-6"]
+    )  # the paper's band, given: must fit
     assert res.exit_code == 2 and "exceeds the measured length" in res.stderr
-    res = runner.invoke(app, ["topography", str(pair_files[0])])   # default: clipped
+    res = runner.invoke(app, ["topography", str(pair_files[0])])  # default: clipped
     assert res.exit_code == 0, res.output
-    assert "warning: band 0.25–25.1 µm used instead of the requested 0.25–250 µm" in \
-        " ".join(res.stdout.split())
+    assert "warning: band 0.25–25.1 µm used instead of the requested 0.25–250 µm" in " ".join(
+        res.stdout.split()
+    )
     res = runner.invoke(app, ["topography", str(tmp_path / "missing.opd")])
     assert res.exit_code == 2 and "no such file" in res.stderr
 
 
 def test_cli_synthetic(tmp_path):
     path = tmp_path / "synthetic.x3p"
-    res = CliRunner().invoke(app, ["topography", str(path), "--synthetic", "--grid", "256",
-                                   "--band", "1e-6", "12.8e-6", "--json"])
+    res = CliRunner().invoke(
+        app,
+        [
+            "topography",
+            str(path),
+            "--synthetic",
+            "--grid",
+            "256",
+            "--band",
+            "1e-6",
+            "12.8e-6",
+            "--json",
+        ],
+    )
     assert res.exit_code == 0, res.output
     assert path.is_file()
     assert json.loads(res.stdout)["sampling"]["pixel_size"] == pytest.approx([1e-7, 1e-7])
@@ -411,9 +459,12 @@ def test_height_distribution_figure(narrow_band, tmp_path):
 
 def test_roughness_block_pastes_into_a_case_file(narrow_band):
     from tribodyn.config import Case
+
     r = analyse_surface(narrow_band[0], band=None)
-    text = ('[[surface_sets]]\nname = "measured"\ncoating = "wcc"\n'
-            'coating_thickness = 4e-6\n\n' + r.toml_block())
+    text = (
+        '[[surface_sets]]\nname = "measured"\ncoating = "wcc"\n'
+        "coating_thickness = 4e-6\n\n" + r.toml_block()
+    )
     case = Case.from_toml_string(text)
     rough = case.surface_set("measured").roughness
     assert rough.rms == pytest.approx(r.rms, rel=1e-5)

@@ -31,12 +31,12 @@ import make_files as M  # noqa: E402  (the generator documents what the files ho
 #: formats starts at the top of the image, so y points down (a mirror image in y that
 #: changes no statistic); tolerance: the format's quantisation
 AREAL = {
-    "surface.x3p": ("x3p", "up", 1e-13),        # float32 [m]
-    "surface.sdf": ("sdf", "up", 6e-12),        # text, 5 decimals of µm
-    "surface.sur": ("sur", "up", 6e-11),        # int32, 0.1 nm per count (+ offset)
+    "surface.x3p": ("x3p", "up", 1e-13),  # float32 [m]
+    "surface.sdf": ("sdf", "up", 6e-12),  # text, 5 decimals of µm
+    "surface.sur": ("sur", "up", 6e-11),  # int32, 0.1 nm per count (+ offset)
     "surface.dat": ("metropro", "rows", 4e-11),  # int32 phase, 77 pm per count
-    "surface.opd": ("opd", "rows", 1e-13),      # float32 waves
-    "surface.plu": ("plu", "rows", 1e-13),      # float32 [µm]
+    "surface.opd": ("opd", "rows", 1e-13),  # float32 waves
+    "surface.plu": ("plu", "rows", 1e-13),  # float32 [µm]
 }
 PROFILES = {"profile.sdf": "sdf", "profile.sur": "sur"}
 runner = CliRunner()
@@ -52,12 +52,12 @@ def test_areal_file_values_orientation_and_dropouts(name):
     fmt, orient, tol = AREAL[name]
     t = read_topography(DATA / name)
     assert t.info["source"]["format"] == fmt
-    assert t.nb_grid_pts == (M.NX, M.NY)                     # x is the fast axis
+    assert t.nb_grid_pts == (M.NX, M.NY)  # x is the fast axis
     assert np.allclose(t.pixel_size, (M.DX, M.DX), rtol=1e-6)
     assert np.allclose(t.physical_sizes, (M.NX * M.DX, M.NY * M.DX), rtol=1e-6)
     h, m = expected(orient)
     got = t.heights()
-    assert np.array_equal(np.ma.getmaskarray(got), m)         # dropouts where written
+    assert np.array_equal(np.ma.getmaskarray(got), m)  # dropouts where written
     diff = (np.ma.getdata(got) - h)[~m]
     if name == "surface.sur":
         # SurfaceTopography leaves out the header's z offset: a constant shift
@@ -68,8 +68,10 @@ def test_areal_file_values_orientation_and_dropouts(name):
     # sign in every file; along y it keeps it ("up") or changes it ("rows", mirrored)
     x = np.arange(M.NX)[:, None] * M.DX
     y = np.arange(M.NY)[None, :] * M.DX
-    A = np.stack([np.broadcast_to(x, h.shape)[~m], np.broadcast_to(y, h.shape)[~m],
-                  np.ones((~m).sum())], axis=1)
+    A = np.stack(
+        [np.broadcast_to(x, h.shape)[~m], np.broadcast_to(y, h.shape)[~m], np.ones((~m).sum())],
+        axis=1,
+    )
     sx, sy, _ = np.linalg.lstsq(A, np.ma.getdata(got)[~m], rcond=None)[0]
     assert sx > 1e-3
     assert (sy < -5e-4) if orient == "up" else (sy > 5e-4)
@@ -89,8 +91,8 @@ def test_default_cli_run_works_and_matches_the_written_surface(name, reference):
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
     # the band actually used, and why; the dropouts filled, with their share
-    assert out["band"]["short_wavelength"] == pytest.approx(1e-6)          # 2Δ
-    assert out["band"]["long_wavelength"] == pytest.approx(58e-6)          # 60 − 2λ_s
+    assert out["band"]["short_wavelength"] == pytest.approx(1e-6)  # 2Δ
+    assert out["band"]["long_wavelength"] == pytest.approx(58e-6)  # 60 − 2λ_s
     assert out["band"]["requested"] == pytest.approx([0.25e-6, 250e-6])
     assert "Nyquist" in out["band"]["clipped_because"]
     assert out["filled_fraction"] == pytest.approx(M.dropouts().mean(), abs=1e-9)
@@ -102,12 +104,11 @@ def test_default_cli_run_works_and_matches_the_written_surface(name, reference):
     ref = reference
     assert out["heights"]["rms"] == pytest.approx(ref.rms, rel=1e-4)
     assert out["spectral"]["asperity_density"] == pytest.approx(
-        ref.spectral.asperity_density, rel=1e-3)
-    assert out["spectral"]["summit_radius"] == pytest.approx(ref.spectral.summit_radius,
-                                                             rel=1e-3)
+        ref.spectral.asperity_density, rel=1e-3
+    )
+    assert out["spectral"]["summit_radius"] == pytest.approx(ref.spectral.summit_radius, rel=1e-3)
     assert abs(out["summit_count"] - ref.summit_stats.count) <= 2
-    assert out["summits"]["summit_radius"] == pytest.approx(ref.summits.summit_radius,
-                                                            rel=0.03)
+    assert out["summits"]["summit_radius"] == pytest.approx(ref.summits.summit_radius, rel=0.03)
 
 
 def test_table_output_shows_band_and_filled_share():
@@ -124,32 +125,35 @@ def test_dropout_filling_recovers_the_complete_surface():
     σ, η and β from the measured points agree with those of the complete surface. Tested
     within a few standard errors of the summit counts (≈ 1/√N)."""
     dx = 0.1e-6
-    t = synthetic_surface((1024, 1024), dx, rms=0.3e-6, short_cutoff=8 * dx,
-                          long_cutoff=128 * dx, seed=5)
+    t = synthetic_surface(
+        (1024, 1024), dx, rms=0.3e-6, short_cutoff=8 * dx, long_cutoff=128 * dx, seed=5
+    )
     h = t.heights()[:900, :800]
     size = (900 * dx, 800 * dx)
     band = (8 * dx, 128 * dx)
     full = analyse_surface(Topography(h, size, unit="m"), band=band)
     rng = np.random.default_rng(3)
     from scipy.ndimage import gaussian_filter
+
     blobs = gaussian_filter(rng.standard_normal(h.shape), 6.0)
     mask = (blobs > np.quantile(blobs, 0.80)) | (rng.random(h.shape) < 0.10)
-    holed = analyse_surface(Topography(np.ma.masked_array(h, mask=mask), size, unit="m"),
-                            band=band)
+    holed = analyse_surface(Topography(np.ma.masked_array(h, mask=mask), size, unit="m"), band=band)
     assert holed.sampling.undefined_fraction == pytest.approx(0.28, abs=0.01)
     n = holed.summit_stats.count
     assert n > 300
     assert holed.rms == pytest.approx(full.rms, rel=0.02)
     assert holed.summits.asperity_density == pytest.approx(
-        full.summits.asperity_density, rel=3 / math.sqrt(n))
+        full.summits.asperity_density, rel=3 / math.sqrt(n)
+    )
     assert holed.summits.summit_radius == pytest.approx(full.summits.summit_radius, rel=0.03)
-    assert holed.spectral.asperity_density == pytest.approx(full.spectral.asperity_density,
-                                                            rel=0.05)
-    assert holed.spectral.summit_radius == pytest.approx(full.spectral.summit_radius,
-                                                         rel=0.03)
+    assert holed.spectral.asperity_density == pytest.approx(
+        full.spectral.asperity_density, rel=0.05
+    )
+    assert holed.spectral.summit_radius == pytest.approx(full.spectral.summit_radius, rel=0.03)
 
 
 # --- profiles ----------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("name", PROFILES)
 def test_profile_file_values(name):
@@ -201,8 +205,9 @@ def test_profile_of_an_isotropic_surface_estimates_its_summits():
     profile moments agree with the areal McCool values (Nayak 1971), and the counted peak
     density with Longuet-Higgins' (1/2π)√(m4/m2)."""
     dx = 0.1e-6
-    t = synthetic_surface((1024, 1024), dx, rms=0.3e-6, short_cutoff=8 * dx,
-                          long_cutoff=64 * dx, seed=21)
+    t = synthetic_surface(
+        (1024, 1024), dx, rms=0.3e-6, short_cutoff=8 * dx, long_cutoff=64 * dx, seed=21
+    )
     area = analyse_surface(t, band=None)
     h = t.heights()
     eta, beta, dens, dens_g = [], [], [], []
@@ -221,6 +226,7 @@ def test_profile_of_an_isotropic_surface_estimates_its_summits():
 
 def test_profile_with_too_few_peaks_is_refused(tmp_path):
     from tribodyn.topography import InsufficientDataError
+
     line = UniformLineScan(np.sin(np.arange(256) * 2 * np.pi / 32) * 1e-7, 25.6e-6, unit="m")
     with pytest.raises(InsufficientDataError, match="peaks"):
         analyse_surface(line, band=None)

@@ -44,7 +44,7 @@ def test_negative_film_is_never_converged(rough):
 
 def test_film_much_larger_than_the_radius_is_flagged():
     r = solve_ehl(1e-3, 0.01, 2.0, 3.0, PAIR, OIL)
-    assert r.converged and r.central_film > 0.01          # a film of metres on R = 10 mm
+    assert r.converged and r.central_film > 0.01  # a film of metres on R = 10 mm
     assert any("thin-film approximation" in w for w in r.warnings)
     assert any("load-carrying zone" in w for w in r.warnings)
     assert "; warning: film h_c" in r.message
@@ -115,7 +115,7 @@ def test_a_step_that_cannot_converge_gives_up(monkeypatch):
     r = tr.step(1e-4, 4e6, 0.01, 2.0, 3.0)
     assert r.converged is False and "gave up" in r.message
     assert len(calls) <= 2**2 + (2 * 2 + 1) * (2 + 2) + 1
-    assert tr.time == pytest.approx(1e-4)                   # the march stays on time
+    assert tr.time == pytest.approx(1e-4)  # the march stays on time
 
 
 def test_small_steps_are_not_split():
@@ -137,8 +137,9 @@ def test_dry_with_speeds_is_an_error(extra):
 
 
 def test_cli_prints_no_negative_film():
-    r = contact("--load", "1e9", "--radius", "0.01", "--ue", "2", "--us", "1", "--n", "256",
-                "--json")
+    r = contact(
+        "--load", "1e9", "--radius", "0.01", "--ue", "2", "--us", "1", "--n", "256", "--json"
+    )
     assert r.exit_code == 1
     out = json.loads(r.stdout)
     assert out["converged"] is False and out["message"].startswith("non-physical film")
@@ -157,12 +158,15 @@ def test_cli_warns_outside_the_models_validity():
 
 
 # ----------------------------------------------------------------------------- case files
-@pytest.mark.parametrize("content, what", [
-    ("[engine]\nspeed_rpm = 2000\n# Motorölviskosität\n".encode("latin-1"), "not UTF-8"),
-    ("[engine]\nspeed_rpm = 2000\n".encode("utf-16"), "not UTF-8"),
-    (bytes(range(256)) * 4, "not UTF-8"),
-    (b"\x00\x00\x00\x00" * 64, "TOML syntax error"),
-])
+@pytest.mark.parametrize(
+    "content, what",
+    [
+        ("[engine]\nspeed_rpm = 2000\n# Motorölviskosität\n".encode("latin-1"), "not UTF-8"),
+        ("[engine]\nspeed_rpm = 2000\n".encode("utf-16"), "not UTF-8"),
+        (bytes(range(256)) * 4, "not UTF-8"),
+        (b"\x00\x00\x00\x00" * 64, "TOML syntax error"),
+    ],
+)
 def test_undecodable_case_files_are_input_errors(tmp_path, content, what):
     path = tmp_path / "case.toml"
     path.write_bytes(content)
@@ -180,9 +184,17 @@ def test_dynamics_failure_is_reported_not_raised(monkeypatch):
     from types import SimpleNamespace
 
     from tribodyn.valvetrain import dynamics, simulate_valvetrain
+
     case = load_case()
-    fail = SimpleNamespace(status=-1, t=np.empty(0), y=np.empty((0, 0)), nfev=10, njev=1,
-                           nlu=1, message="Repeated convergence failures")
+    fail = SimpleNamespace(
+        status=-1,
+        t=np.empty(0),
+        y=np.empty((0, 0)),
+        nfev=10,
+        njev=1,
+        nlu=1,
+        message="Repeated convergence failures",
+    )
     monkeypatch.setattr(dynamics, "solve_ivp", lambda *a, **k: fail)
     r = simulate_valvetrain(case.cam(), case.valvetrain_parameters(), engine_speed=3000)
     assert r.converged is False
@@ -194,10 +206,14 @@ def test_valve_jump_is_reported_clearly():
     with the share of the event lost."""
     from tribodyn.valvetrain import simulate_valvetrain
     from tribodyn.workflow.cycle import _jump_warning
+
     case = load_case().updated({"valvetrain.valve_mass": 1.0})
-    dyn = simulate_valvetrain(case.cam(), case.valvetrain_parameters(),
-                              tribology=case.analytic_tribology("uncoated"),
-                              **case.dynamics_options())
+    dyn = simulate_valvetrain(
+        case.cam(),
+        case.valvetrain_parameters(),
+        tribology=case.analytic_tribology("uncoated"),
+        **case.dynamics_options(),
+    )
     assert dyn.converged and dyn.jump
     text = _jump_warning(dyn)
     assert "loses contact with the cam (valve jump)" in text

@@ -20,9 +20,9 @@ def test_acceleration_cam_meets_its_design_constraints():
     cam = AccelerationCam()
     nose = math.pi
     s, s1, s2 = cam.derivatives(np.array([nose]))
-    assert s[0] == pytest.approx(9.3e-3, abs=1e-15)          # max lift at the nose
+    assert s[0] == pytest.approx(9.3e-3, abs=1e-15)  # max lift at the nose
     assert s1[0] == pytest.approx(0.0, abs=1e-15)
-    assert 0.015 + s[0] + s2[0] == pytest.approx(3e-3, abs=1e-15)   # nose radius
+    assert 0.015 + s[0] + s2[0] == pytest.approx(3e-3, abs=1e-15)  # nose radius
     # Event: 171° including ramps, symmetric about the nose, zero lift outside.
     th = np.linspace(0, 2 * np.pi, 36001)
     lift = cam.lift(th)
@@ -40,8 +40,7 @@ def test_acceleration_cam_derivatives_are_consistent():
     th = np.linspace(0.0, 2 * np.pi, 2000, endpoint=False) + 1e-3
     s, s1, s2 = cam.derivatives(th)
     np.testing.assert_allclose(_central_diff(cam.lift, th), s1, atol=1e-9)
-    np.testing.assert_allclose(_central_diff(lambda t: cam.derivatives(t)[1], th), s2,
-                               atol=1e-6)
+    np.testing.assert_allclose(_central_diff(lambda t: cam.derivatives(t)[1], th), s2, atol=1e-6)
     # s, s' and s'' continuous across every segment boundary (one-sided limits).
     for b in cam._breakpoints():
         lo = [v[0] for v in cam.derivatives(np.array([b - 1e-9]))]
@@ -49,9 +48,12 @@ def test_acceleration_cam_derivatives_are_consistent():
         np.testing.assert_allclose(lo, hi, atol=1e-9)
     # Scalar fast path agrees with the vectorised one.
     for t in np.linspace(-1.0, 8.0, 301):
-        np.testing.assert_allclose(cam.scalar_derivatives(t),
-                                   [v[0] for v in cam.derivatives(np.array([t]))],
-                                   rtol=0, atol=1e-15)
+        np.testing.assert_allclose(
+            cam.scalar_derivatives(t),
+            [v[0] for v in cam.derivatives(np.array([t]))],
+            rtol=0,
+            atol=1e-15,
+        )
 
 
 def test_acceleration_cam_extremes_from_the_lift_alone():
@@ -72,16 +74,19 @@ def test_acceleration_cam_extremes_from_the_lift_alone():
     assert cam.min_radius_of_curvature < 3e-3
 
 
-@pytest.mark.parametrize("kw, match", [
-    (dict(event_angle=120 * DEG), "radius of curvature"),
-    (dict(pulse_share=0.6), "radius of curvature"),
-    (dict(tappet_radius=0.012), "tappet radius"),
-    (dict(base_radius=-0.015), "base_radius"),
-    (dict(pulse_share=1.2), "pulse_share"),
-    (dict(nose_radius=0.03), "nose_radius"),
-    (dict(ramp_height=0.2e-3, ramp_angle=0.0), "ramp"),
-    (dict(event_angle=30 * DEG), "event_angle"),
-])
+@pytest.mark.parametrize(
+    "kw, match",
+    [
+        (dict(event_angle=120 * DEG), "radius of curvature"),
+        (dict(pulse_share=0.6), "radius of curvature"),
+        (dict(tappet_radius=0.012), "tappet radius"),
+        (dict(base_radius=-0.015), "base_radius"),
+        (dict(pulse_share=1.2), "pulse_share"),
+        (dict(nose_radius=0.03), "nose_radius"),
+        (dict(ramp_height=0.2e-3, ramp_angle=0.0), "ramp"),
+        (dict(event_angle=30 * DEG), "event_angle"),
+    ],
+)
 def test_acceleration_cam_rejects_bad_designs(kw, match):
     with pytest.raises(InputError, match=match):
         AccelerationCam(**kw)
@@ -103,18 +108,24 @@ def test_circular_arc_cam_radius_is_the_arc_radius():
     h = th[1] - th[0]
     s2 = (np.roll(s, -1) - 2 * s + np.roll(s, 1)) / h**2
     bp = cam._breakpoints()
-    far = np.min(np.abs((th[:, None] - bp[None, :] + np.pi) % (2 * np.pi) - np.pi), axis=1) > 0.5 * DEG
+    far = (
+        np.min(np.abs((th[:, None] - bp[None, :] + np.pi) % (2 * np.pi) - np.pi), axis=1)
+        > 0.5 * DEG
+    )
     np.testing.assert_allclose((rb + s + s2)[far], R[far], rtol=1e-4)
     assert cam.max_lift == pytest.approx(L, rel=1e-12)
     assert cam.min_radius_of_curvature == pytest.approx(rn, rel=1e-12)
 
 
-@pytest.mark.parametrize("kw, match", [
-    (dict(flank_radius=0.014), "flank_radius"),
-    (dict(flank_radius=0.0151), "tangentially"),
-    (dict(nose_radius=0.02), "nose_radius"),
-    (dict(tappet_radius=0.01), "tappet radius"),
-])
+@pytest.mark.parametrize(
+    "kw, match",
+    [
+        (dict(flank_radius=0.014), "flank_radius"),
+        (dict(flank_radius=0.0151), "tangentially"),
+        (dict(nose_radius=0.02), "nose_radius"),
+        (dict(tappet_radius=0.01), "tappet radius"),
+    ],
+)
 def test_circular_arc_cam_rejects_bad_geometry(kw, match):
     with pytest.raises(InputError, match=match):
         CircularArcCam(**kw)
@@ -129,7 +140,7 @@ def _far_from(cam, th, spacings, n):
 
 @pytest.mark.parametrize("analytic, spacings", [(AccelerationCam(), 5), (CircularArcCam(), 10)])
 def test_tabulated_copy_matches_analytic_profile(analytic, spacings):
-    n = 720                                                   # 0.5° table
+    n = 720  # 0.5° table
     th_tab, s_tab = analytic.table(n)
     cam = TabulatedCam(th_tab, s_tab, base_radius=analytic.base_radius)
     th = np.linspace(0, 2 * np.pi, 14400, endpoint=False)
@@ -137,7 +148,7 @@ def test_tabulated_copy_matches_analytic_profile(analytic, spacings):
     R_a = analytic.radius_of_curvature(th)
     R_t = cam.radius_of_curvature(th)
     assert np.max(np.abs(R_t / R_a - 1)[far]) < 0.005
-    np.testing.assert_allclose(cam.lift(th), analytic.lift(th), atol=1e-7)   # 0.1 µm
+    np.testing.assert_allclose(cam.lift(th), analytic.lift(th), atol=1e-7)  # 0.1 µm
     np.testing.assert_allclose(cam.lift(th)[far], analytic.lift(th)[far], atol=1e-10)
     # an exact table is fitted to a fraction of a nanometre (the floor is 1e-9 of the lift)
     assert np.sqrt(np.mean((cam.lift(th_tab) - s_tab) ** 2)) <= 2e-8 * s_tab.max()
@@ -148,14 +159,16 @@ def test_tabulated_scalar_path_and_periodicity():
     th_tab, s_tab = AccelerationCam().table(360)
     cam = TabulatedCam(th_tab, s_tab, 0.015)
     for t in np.linspace(-7.0, 14.0, 97):
-        np.testing.assert_allclose(cam.scalar_derivatives(t),
-                                   [v[0] for v in cam.derivatives(np.array([t]))],
-                                   rtol=1e-10, atol=1e-14)
+        np.testing.assert_allclose(
+            cam.scalar_derivatives(t),
+            [v[0] for v in cam.derivatives(np.array([t]))],
+            rtol=1e-10,
+            atol=1e-14,
+        )
     x = np.linspace(0, 2 * np.pi, 50)
     np.testing.assert_allclose(cam.lift(x + 2 * np.pi), cam.lift(x), atol=1e-15)
     # A closed table (last point = first + 360°) is accepted and gives the same spline.
-    cam2 = TabulatedCam(np.append(th_tab, th_tab[0] + 2 * np.pi), np.append(s_tab, s_tab[0]),
-                        0.015)
+    cam2 = TabulatedCam(np.append(th_tab, th_tab[0] + 2 * np.pi), np.append(s_tab, s_tab[0]), 0.015)
     np.testing.assert_allclose(cam2.lift(x), cam.lift(x), atol=1e-15)
 
 
@@ -164,7 +177,7 @@ def test_tabulated_smoothing_of_a_noisy_table():
     th_tab, s_tab = ref.table(720)
     rng = np.random.default_rng(1)
     noisy = s_tab + rng.normal(0.0, 0.3e-6, s_tab.size) * (s_tab > 0)
-    cam = TabulatedCam(th_tab, noisy, 0.015)            # precision estimated from the table
+    cam = TabulatedCam(th_tab, noisy, 0.015)  # precision estimated from the table
     assert cam.precision == pytest.approx(0.3e-6, rel=0.25)
     rms = np.sqrt(np.mean((cam.lift(th_tab) - noisy) ** 2))
     assert rms <= cam.precision * 1.001

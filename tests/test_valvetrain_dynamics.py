@@ -46,7 +46,9 @@ def assert_follows_the_cam(r):
 
 
 def quasi_static(r, p, m_eff):
-    return p.spring_preload + p.spring_rate * r.cam_lift + m_eff * r.cam_speed**2 * r.lift_acceleration
+    return (
+        p.spring_preload + p.spring_rate * r.cam_lift + m_eff * r.cam_speed**2 * r.lift_acceleration
+    )
 
 
 # -- quasi-static limit ------------------------------------------------------------------
@@ -56,7 +58,7 @@ def test_low_speed_contact_force_is_quasi_static(n_spring):
     r = simulate_valvetrain(CAM, p, engine_speed=300.0, tribology=None)
     assert r.converged, r.message
     m_eff = p.valve_mass + p.tappet_mass + p.spring_mass / 3.0
-    ev = r.cam_lift > 20e-6               # valve open (chain preload taken up)
+    ev = r.cam_lift > 20e-6  # valve open (chain preload taken up)
     F_qs = quasi_static(r, p, m_eff)
     err = np.abs(r.contact_force[ev] / F_qs[ev] - 1.0)
     assert err.max() < 0.01
@@ -85,8 +87,13 @@ def test_energy_balance_over_the_cycle(fixture, request):
     # Cam work from the output torque alone (independent of the integrated accumulators).
     P = r.cam_torque * r.cam_speed
     W = np.concatenate([[0.0], np.cumsum(0.5 * (P[1:] + P[:-1]) * np.diff(r.time))])
-    balance = (r.kinetic_energy - r.kinetic_energy[0] + r.elastic_energy
-               - r.elastic_energy[0] + r.dissipated_energy)
+    balance = (
+        r.kinetic_energy
+        - r.kinetic_energy[0]
+        + r.elastic_energy
+        - r.elastic_energy[0]
+        + r.dissipated_energy
+    )
     # Over the full cycle ...
     assert abs(W[-1] - balance[-1]) <= 0.01 * abs(W[-1])
     # ... and at every instant, relative to the largest work done (valve at the nose).
@@ -102,8 +109,11 @@ def test_friction_outputs_are_consistent(explicit_3000):
     r = explicit_3000
     assert_follows_the_cam(r)
     rb = CAM.base_radius
-    np.testing.assert_allclose(r.cam_torque, r.contact_force * r.contact_offset
-                               + r.friction_force * (rb + r.cam_lift), rtol=1e-12)
+    np.testing.assert_allclose(
+        r.cam_torque,
+        r.contact_force * r.contact_offset + r.friction_force * (rb + r.cam_lift),
+        rtol=1e-12,
+    )
     np.testing.assert_allclose(r.friction_power, r.friction_force * r.sliding_speed, rtol=1e-12)
     moving = np.abs(r.tappet_velocity) > 0.1
     assert np.all(np.sign(r.bore_friction_force[moving]) == -np.sign(r.tappet_velocity[moving]))
@@ -117,10 +127,12 @@ def test_friction_outputs_are_consistent(explicit_3000):
 
 def test_bore_friction_raises_opening_force():
     """Bore friction μ_b F_f opposes tappet motion: on opening it adds to the contact force."""
-    base = simulate_valvetrain(CAM, P0.replace(bore_friction_coefficient=0.0),
-                               engine_speed=1000.0, tribology="explicit")
-    fric = simulate_valvetrain(CAM, P0.replace(bore_friction_coefficient=0.5),
-                               engine_speed=1000.0, tribology="explicit")
+    base = simulate_valvetrain(
+        CAM, P0.replace(bore_friction_coefficient=0.0), engine_speed=1000.0, tribology="explicit"
+    )
+    fric = simulate_valvetrain(
+        CAM, P0.replace(bore_friction_coefficient=0.5), engine_speed=1000.0, tribology="explicit"
+    )
     dF = fric.contact_force - base.contact_force
     expected = 0.5 * fric.friction_force * np.sign(fric.tappet_velocity)
     for side in (fric.tappet_velocity > 0.2, fric.tappet_velocity < -0.2):
@@ -130,18 +142,19 @@ def test_bore_friction_raises_opening_force():
 
 @pytest.mark.parametrize("n_spring", [0, 3])
 def test_analytic_jacobian_matches_finite_differences(n_spring):
-    model = ValvetrainModel(CAM, ValvetrainParameters(spring_masses=n_spring), 157.08,
-                            Frictionless())
+    model = ValvetrainModel(
+        CAM, ValvetrainParameters(spring_masses=n_spring), 157.08, Frictionless()
+    )
     n = model.n
     rng = np.random.default_rng(3)
-    for t in (0.0005, 0.012, 0.014, 0.02):                 # base circle, flank, nose, closing
+    for t in (0.0005, 0.012, 0.014, 0.02):  # base circle, flank, nose, closing
         s, s1, _ = CAM.scalar_derivatives(157.08 * t)
         y = np.zeros(2 * n + 2)
-        y[0], y[n] = s - 2e-6, 157.08 * s1 + 0.003          # contact compressed, sliding in
-        y[1] = s - 3e-6 if s > 0 else 0.0                   # tappet–valve compressed
+        y[0], y[n] = s - 2e-6, 157.08 * s1 + 0.003  # contact compressed, sliding in
+        y[1] = s - 3e-6 if s > 0 else 0.0  # tappet–valve compressed
         y[n + 1] = 157.08 * s1
         y[2:n] = rng.normal(0, 1e-5, n_spring)
-        y[n + 2:2 * n] = rng.normal(0, 1e-2, n_spring)
+        y[n + 2 : 2 * n] = rng.normal(0, 1e-2, n_spring)
         J = model.jacobian(t, y)
         Jn = np.empty((2 * n + 2, 2 * n))
         for k in range(2 * n):
@@ -150,8 +163,9 @@ def test_analytic_jacobian_matches_finite_differences(n_spring):
             e[k] = h
             Jn[:, k] = (model.rhs(t, y + e) - model.rhs(t, y - e)) / (2 * h)
         block = slice(0, 2 * n)
-        np.testing.assert_allclose(J[block, block], Jn[block], rtol=0,
-                                   atol=1e-7 * np.abs(Jn[block]).max())
+        np.testing.assert_allclose(
+            J[block, block], Jn[block], rtol=0, atol=1e-7 * np.abs(Jn[block]).max()
+        )
 
 
 # -- spring surge ------------------------------------------------------------------------
@@ -159,16 +173,25 @@ def test_analytic_jacobian_matches_finite_differences(n_spring):
 def test_surge_frequency(n_spring):
     p = ValvetrainParameters(spring_masses=n_spring, spring_damping_ratio=0.0)
     f_ref = 0.5 * math.sqrt(p.spring_rate / p.spring_mass)
-    model = ValvetrainModel(CAM, p, 1e-3, Frictionless())   # cam ~ still: base circle
+    model = ValvetrainModel(CAM, p, 1e-3, Frictionless())  # cam ~ still: base circle
     M, K = model.surge_matrices()
     f_eig = math.sqrt(eigh(K, M, eigvals_only=True)[0]) / (2 * math.pi)
     assert f_eig == pytest.approx(f_ref, rel=0.02)
     # Free vibration of the spring on the seated valve, from the full equations of motion.
     y0 = model.static_state()
     i = np.arange(1, n_spring + 1)
-    y0[2:model.n] = 1e-4 * np.sin(np.pi * i / (n_spring + 1))
-    sol = solve_ivp(model.rhs, (0.0, 0.02), y0, method="LSODA", jac=model.jacobian,
-                    rtol=1e-8, atol=1e-12, max_step=2e-5, dense_output=True)
+    y0[2 : model.n] = 1e-4 * np.sin(np.pi * i / (n_spring + 1))
+    sol = solve_ivp(
+        model.rhs,
+        (0.0, 0.02),
+        y0,
+        method="LSODA",
+        jac=model.jacobian,
+        rtol=1e-8,
+        atol=1e-12,
+        max_step=2e-5,
+        dense_output=True,
+    )
     t = np.linspace(0.0, 0.02, 20001)
     x = sol.sol(t)[2 + n_spring // 2]
     z = np.nonzero(np.diff(np.sign(x)))[0]
@@ -184,7 +207,7 @@ def quasi_static_jump_rpm(p):
     m = p.valve_mass + p.tappet_mass + p.spring_mass / 3
     closing = (s2 < 0) & (s1 < 0)
     w = np.sqrt(np.min((p.spring_preload + p.spring_rate * s[closing]) / (m * -s2[closing])))
-    return w * 60.0 / math.pi                                  # engine rpm = 2 × cam rpm
+    return w * 60.0 / math.pi  # engine rpm = 2 × cam rpm
 
 
 def test_jump_onset_single_lumped_mass():
@@ -192,8 +215,15 @@ def test_jump_onset_single_lumped_mass():
     p = ValvetrainParameters(spring_masses=0, tappet_valve_stiffness=1e9)
     n_qs = quasi_static_jump_rpm(p)
     # Onset within ±5 %: no contact loss at 0.95 n_qs, contact loss at 1.05 n_qs.
-    lo, hi = jump_speed(CAM, p, low=0.95 * n_qs, high=1.05 * n_qs, tolerance=0.1 * n_qs,
-                        tribology=None, output_step=0.5)
+    lo, hi = jump_speed(
+        CAM,
+        p,
+        low=0.95 * n_qs,
+        high=1.05 * n_qs,
+        tolerance=0.1 * n_qs,
+        tribology=None,
+        output_step=0.5,
+    )
     assert 0.95 * n_qs <= lo < hi <= 1.05 * n_qs
 
 
@@ -227,7 +257,7 @@ def test_valve_bounce_and_seating_velocity_at_overspeed(explicit_3000):
 
 # -- implicit hook ------------------------------------------------------------------------
 def test_film_in_series_gives_series_stiffness():
-    k, c = 2e8, -5e-9                                      # film stiffness 1/|c| = 2e8
+    k, c = 2e8, -5e-9  # film stiffness 1/|c| = 2e8
     k_series = 1.0 / (1.0 / k - c)
     p = ValvetrainParameters(contact_stiffness=k)
     film = FilmTableTribology(Frictionless(), [0.0], 1e-6, c, 0.0)
@@ -236,8 +266,8 @@ def test_film_in_series_gives_series_stiffness():
         P, dP, h = model.elastic_contact(0.0, dk)
         assert dP == pytest.approx(k_series, rel=1e-9)
         assert P == pytest.approx(k_series * (dk + 1e-6), rel=1e-9)
-        assert P / k == pytest.approx(dk + h, rel=1e-9)      # δ_el = δ_kin + h
-    assert model.elastic_contact(0.0, -1.5e-6)[0] == 0.0      # film gap open: no force
+        assert P / k == pytest.approx(dk + h, rel=1e-9)  # δ_el = δ_kin + h
+    assert model.elastic_contact(0.0, -1.5e-6)[0] == 0.0  # film gap open: no force
     # In the dynamics: interference s − x_t versus elastic force has slope 1/k_series.
     r = simulate_valvetrain(CAM, p, engine_speed=1000.0, tribology=film)
     assert r.converged, r.message
@@ -260,10 +290,14 @@ def test_film_law_where_the_film_cancels_the_interference():
     cancels δ_kin while h_k and c F_k are µm-sized; the round-off of φ then exceeds a
     tolerance relative to δ_kin + h(0) (a regression: the coupling used to stop there)."""
     time = [0.0, 0.00022222222222222088]
-    film = FilmTableTribology(Frictionless(), time, [-3.9822552500934464e-06,
-                                                     -2.8770965324298964e-06],
-                              [-7.678925280599316e-09, -8.06267147478184e-08],
-                              [119.92766550360953, 27.507175099051093], period=0.04)
+    film = FilmTableTribology(
+        Frictionless(),
+        time,
+        [-3.9822552500934464e-06, -2.8770965324298964e-06],
+        [-7.678925280599316e-09, -8.06267147478184e-08],
+        [119.92766550360953, 27.507175099051093],
+        period=0.04,
+    )
     model = ValvetrainModel(CAM, P0, 157.07963267948966, film)
     t, dk = 0.00019301284856435008, 2.0592842553665916e-07
     P, dP, h = model.elastic_contact(t, dk)
@@ -302,14 +336,17 @@ def test_speed_sweep_reports_peak_min_and_onset():
     assert sw.min_contact_force[2] == 0.0
 
 
-@pytest.mark.parametrize("kw, match", [
-    (dict(valve_mass=-0.07), "valve_mass"),
-    (dict(spring_rate=0.0), "spring_rate"),
-    (dict(spring_masses=-1), "spring_masses"),
-    (dict(contact_stiffness=-1e8), "contact_stiffness"),
-    (dict(bore_friction_coefficient=-0.1), "bore_friction_coefficient"),
-    (dict(spring_damping_ratio=1.5), "spring_damping_ratio"),
-])
+@pytest.mark.parametrize(
+    "kw, match",
+    [
+        (dict(valve_mass=-0.07), "valve_mass"),
+        (dict(spring_rate=0.0), "spring_rate"),
+        (dict(spring_masses=-1), "spring_masses"),
+        (dict(contact_stiffness=-1e8), "contact_stiffness"),
+        (dict(bore_friction_coefficient=-0.1), "bore_friction_coefficient"),
+        (dict(spring_damping_ratio=1.5), "spring_damping_ratio"),
+    ],
+)
 def test_bad_parameters_are_rejected(kw, match):
     with pytest.raises(InputError, match=match):
         ValvetrainParameters(**kw)
@@ -343,7 +380,7 @@ def test_solver_failure_is_reported_not_hidden():
     r = simulate_valvetrain(CAM, P0, engine_speed=3000.0, tribology=_BrokenFilm())
     assert not r.converged
     assert "film law" in r.message
-    assert r.contact_force.size == 0                       # no NaN-filled arrays
+    assert r.contact_force.size == 0  # no NaN-filled arrays
     assert r.summary() == {"converged": False, "message": r.message}
 
 
@@ -373,8 +410,13 @@ def test_time_dependent_friction_respects_start_angle():
     cam = AccelerationCam()
     w = 2 * math.pi * 1500 / 60
     for theta0 in (0.0, math.radians(60)):
-        r = simulate_valvetrain(cam, ValvetrainParameters(), engine_speed=3000.0,
-                                tribology=Pulsing(w), start_angle=theta0)
+        r = simulate_valvetrain(
+            cam,
+            ValvetrainParameters(),
+            engine_speed=3000.0,
+            tribology=Pulsing(w),
+            start_angle=theta0,
+        )
         assert r.converged, r.message
         work_from_torque = np.trapezoid(r.cam_torque * w, r.time)
         work_integrated = r.cam_work[-1] - r.cam_work[0]

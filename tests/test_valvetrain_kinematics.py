@@ -15,15 +15,16 @@ from tribodyn.valvetrain import (
     rpm_to_cam_speed,
 )
 
-W = 157.07963267948966          # 1500 rpm cam
+W = 157.07963267948966  # 1500 rpm cam
 
 
-@pytest.mark.parametrize("cam", [AccelerationCam(), CircularArcCam(),
-                                 TabulatedCam(*AccelerationCam().table(720), 0.015)])
+@pytest.mark.parametrize(
+    "cam", [AccelerationCam(), CircularArcCam(), TabulatedCam(*AccelerationCam().table(720), 0.015)]
+)
 def test_base_circle_speeds_are_exact(cam):
-    th = np.linspace(-0.5, 0.5, 101)                         # base circle (nose at π)
+    th = np.linspace(-0.5, 0.5, 101)  # base circle (nose at π)
     k = flat_follower_kinematics(cam, W, th)
-    if isinstance(cam, TabulatedCam):                        # spline: zero to round-off
+    if isinstance(cam, TabulatedCam):  # spline: zero to round-off
         assert np.max(np.abs(k.lift)) < 1e-12
         np.testing.assert_allclose(k.entrainment_speed, W * 0.015 / 2, rtol=1e-9)
         np.testing.assert_allclose(k.sliding_speed, W * 0.015, rtol=1e-9)
@@ -55,14 +56,14 @@ def test_rolling_and_sliding_from_rigid_body_motion():
     for alpha, centre, rho in [(0.05, cn, rn), (0.3, cn, rn), (0.9, cf, rf), (1.2, cf, rf)]:
         P = contact(alpha, centre, rho)
         P2 = contact(alpha + W * dt, centre, rho)
-        v_contact = (P2[0] - P[0]) / dt                     # contact point along the face
-        u_cam = -W * P[1] - v_contact                       # cam surface rel. to contact
-        u_tap = 0.0 - v_contact                             # tappet surface rel. to contact
+        v_contact = (P2[0] - P[0]) / dt  # contact point along the face
+        u_cam = -W * P[1] - v_contact  # cam surface rel. to contact
+        u_tap = 0.0 - v_contact  # tappet surface rel. to contact
         k = flat_follower_kinematics(cam, W, np.array([alpha]))
         # The package uses the opposite sign convention for the rotation sense.
         assert -0.5 * (u_cam + u_tap) == pytest.approx(k.entrainment_speed[0], rel=1e-5)
         assert abs(u_cam - u_tap) == pytest.approx(k.sliding_speed[0], rel=1e-9)
-        assert P[0] == pytest.approx(k.contact_offset[0], rel=1e-9)      # e = s'
+        assert P[0] == pytest.approx(k.contact_offset[0], rel=1e-9)  # e = s'
         assert P[1] - rb == pytest.approx(k.lift[0], rel=1e-12)
 
 
@@ -77,15 +78,13 @@ def test_entrainment_speed_from_the_lift_alone_and_its_reversals():
     s, sp, sm = cam.lift(th), cam.lift(th + h), cam.lift(th - h)
     ue = W * (0.015 + s + 2 * (sp - 2 * s + sm) / h**2) / 2
     # the acceleration jumps at the segment boundaries of the design: compare elsewhere
-    smooth = np.all(np.abs(th[:, None] - np.asarray(cam._breakpoints())[None, :]) > 2 * h,
-                    axis=1)
-    np.testing.assert_allclose(k.entrainment_speed[smooth], ue[smooth],
-                               atol=2e-4 * W * 0.015)
+    smooth = np.all(np.abs(th[:, None] - np.asarray(cam._breakpoints())[None, :]) > 2 * h, axis=1)
+    np.testing.assert_allclose(k.entrainment_speed[smooth], ue[smooth], atol=2e-4 * W * 0.015)
     assert k.entrainment_speed.min() == pytest.approx(ue.min(), abs=1e-3)
     assert k.entrainment_speed.max() == pytest.approx(ue.max(), abs=1e-3)
     flips = th[np.flatnonzero(np.diff(np.sign(k.entrainment_speed)) != 0)]
     assert flips.size == 2
-    assert flips[0] + flips[1] == pytest.approx(2 * math.pi, abs=2 * h)   # symmetric about π
+    assert flips[0] + flips[1] == pytest.approx(2 * math.pi, abs=2 * h)  # symmetric about π
 
 
 def test_tabulated_copy_kinematics_match():
@@ -106,7 +105,7 @@ def test_quasi_static_jump_speed_and_helpers():
     cam = AccelerationCam()
     w, th = quasi_static_jump_speed(cam, 250.0, 33750.0, 0.122)
     s, s1, s2 = cam.derivatives(np.array([th]))
-    assert s1[0] < 0 and s2[0] < 0                           # closing side
+    assert s1[0] < 0 and s2[0] < 0  # closing side
     assert 250.0 + 33750.0 * s[0] + 0.122 * w**2 * s2[0] == pytest.approx(0.0, abs=1e-9)
     h = 0.01 * math.pi / 180
     grid = np.arange(math.pi, 2 * math.pi, h)

@@ -17,9 +17,9 @@ if "numpy" not in _sys.modules:
     for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
         _os.environ.setdefault(_var, "1")
 
-from ._validation import InputError  # noqa: E402
-from .contact.dry import DryContactResult, solve_dry_contact  # noqa: E402
-from .contact.ehl import (  # noqa: E402
+from ._validation import InputError
+from .contact.dry import DryContactResult, solve_dry_contact
+from .contact.ehl import (
     EHLOptions,
     EHLResult,
     ThermalEHLResult,
@@ -29,20 +29,39 @@ from .contact.ehl import (  # noqa: E402
     solve_ehl,
     solve_thermal_ehl,
 )
-from .physics.asperity import Roughness, greenwood_tripp  # noqa: E402
-from .physics.elasticity import DeformationOperator  # noqa: E402
-from .physics.heat_conduction import ThermalBody, ThermalProperties  # noqa: E402
-from .physics.hertz import hertz_line_contact  # noqa: E402
-from .physics.lubricant import Lubricant  # noqa: E402
-from .physics.materials import Body, Coating, Material, reduced_modulus  # noqa: E402
-from .physics.thermal_oil import ThermalLubricant  # noqa: E402
+from .physics.asperity import Roughness, greenwood_tripp
+from .physics.elasticity import DeformationOperator
+from .physics.heat_conduction import ThermalBody, ThermalProperties
+from .physics.hertz import hertz_line_contact
+from .physics.lubricant import Lubricant
+from .physics.materials import Body, Coating, Material, reduced_modulus
+from .physics.thermal_oil import ThermalLubricant
 
 __version__ = "0.1.0"
 
 __all__ = [
-    "Body", "Coating", "DeformationOperator", "DryContactResult", "EHLOptions", "EHLResult",
-    "InputError", "Lubricant", "Material", "Roughness", "TransientEHL", "greenwood_tripp",
-    "hertz_line_contact", "reduced_modulus", "solve_dry_contact", "solve_ehl", "__version__",
-    "ThermalBody", "ThermalEHLResult", "ThermalLubricant", "ThermalOptions",
-    "ThermalProperties", "ThermalTransientEHL", "solve_thermal_ehl",
+    "Body",
+    "Coating",
+    "DeformationOperator",
+    "DryContactResult",
+    "EHLOptions",
+    "EHLResult",
+    "InputError",
+    "Lubricant",
+    "Material",
+    "Roughness",
+    "TransientEHL",
+    "greenwood_tripp",
+    "hertz_line_contact",
+    "reduced_modulus",
+    "solve_dry_contact",
+    "solve_ehl",
+    "__version__",
+    "ThermalBody",
+    "ThermalEHLResult",
+    "ThermalLubricant",
+    "ThermalOptions",
+    "ThermalProperties",
+    "ThermalTransientEHL",
+    "solve_thermal_ehl",
 ]

@@ -12,8 +12,17 @@ from numbers import Real
 
 import numpy as np
 
-__all__ = ["InputError", "check_real", "check_int", "check_bool", "check_choice",
-           "check_positive", "check_nonnegative", "check_range", "check_array"]
+__all__ = [
+    "InputError",
+    "check_real",
+    "check_int",
+    "check_bool",
+    "check_choice",
+    "check_positive",
+    "check_nonnegative",
+    "check_range",
+    "check_array",
+]
 
 
 class InputError(ValueError):
@@ -82,8 +91,16 @@ def check_nonnegative(name: str, value, unit: str = "") -> float:
     return v
 
 
-def check_range(name: str, value, lo: float, hi: float, *, lo_open: bool = False,
-                hi_open: bool = False, unit: str = "") -> float:
+def check_range(
+    name: str,
+    value,
+    lo: float,
+    hi: float,
+    *,
+    lo_open: bool = False,
+    hi_open: bool = False,
+    unit: str = "",
+) -> float:
     """Finite and inside [lo, hi] (ends open as requested)."""
     v = check_real(name, value, unit)
     bad_lo = v <= lo if lo_open else v < lo
@@ -96,8 +113,9 @@ def check_range(name: str, value, lo: float, hi: float, *, lo_open: bool = False
     return v
 
 
-def check_array(name: str, value, *, ndim: int | None = 1, min_size: int = 1,
-                finite: bool = True) -> np.ndarray:
+def check_array(
+    name: str, value, *, ndim: int | None = 1, min_size: int = 1, finite: bool = True
+) -> np.ndarray:
     """Convert to a float array; reject NaN/inf, wrong rank or too few entries."""
     try:
         a = np.asarray(value, dtype=float)

@@ -16,16 +16,35 @@ package, so every layer may use it. SI units throughout.
 from __future__ import annotations
 
 __all__ = [
-    "CITATION", "DOI", "STEEL", "DLC", "WCC", "MATERIALS", "COATING_THICKNESS",
-    "ROUGHNESS", "LUBRICANT", "BOUNDARY_SHEAR_STRENGTH", "ENGINE_SPEED_RPM",
-    "CAM_BASE_RADIUS", "CAM_MAX_LIFT", "CAM_WIDTH", "VALVE_MASS", "SPRING_MASS",
-    "SPRING_RATE", "FIG5", "CLAIMS", "TOPOGRAPHY_BAND", "ASSUMED_DENSITY",
+    "CITATION",
+    "DOI",
+    "STEEL",
+    "DLC",
+    "WCC",
+    "MATERIALS",
+    "COATING_THICKNESS",
+    "ROUGHNESS",
+    "LUBRICANT",
+    "BOUNDARY_SHEAR_STRENGTH",
+    "ENGINE_SPEED_RPM",
+    "CAM_BASE_RADIUS",
+    "CAM_MAX_LIFT",
+    "CAM_WIDTH",
+    "VALVE_MASS",
+    "SPRING_MASS",
+    "SPRING_RATE",
+    "FIG5",
+    "CLAIMS",
+    "TOPOGRAPHY_BAND",
+    "ASSUMED_DENSITY",
     "ASSUMED_FIG5_RADIUS",
 ]
 
-CITATION = ("P. Andreou, P. Soleimanian, M. Mohammadpour, S. R. Bewsher, G. Offner. Effects "
-            "of Diamond-like Carbon and Tungsten-Carbide Carbon Coatings on Tribological "
-            "Performance of Cam–Tappet Conjunction. Applied Sciences 13 (2023) 7815.")
+CITATION = (
+    "P. Andreou, P. Soleimanian, M. Mohammadpour, S. R. Bewsher, G. Offner. Effects "
+    "of Diamond-like Carbon and Tungsten-Carbide Carbon Coatings on Tribological "
+    "Performance of Cam–Tappet Conjunction. Applied Sciences 13 (2023) 7815."
+)
 DOI = "10.3390/app13137815"
 
 # ----------------------------------------------------------------------------- Table 6
@@ -53,8 +72,12 @@ ROUGHNESS = {
 
 # ----------------------------------------------------------------------------- Table 5
 #: SAE 5W-20: μ₀ [Pa·s], α [1/Pa], Eyring stress τ_E [Pa], limiting-shear slope Λ.
-LUBRICANT = {"viscosity": 0.055, "pressure_viscosity": 1.05e-8, "eyring_stress": 2e6,
-             "limiting_shear_coefficient": 0.08}
+LUBRICANT = {
+    "viscosity": 0.055,
+    "pressure_viscosity": 1.05e-8,
+    "eyring_stress": 2e6,
+    "limiting_shear_coefficient": 0.08,
+}
 #: ρ₀ [kg/m³]: not given in the paper (assumed).
 ASSUMED_DENSITY = 850.0
 
@@ -64,30 +87,35 @@ BOUNDARY_SHEAR_STRENGTH = 2e6
 
 # ----------------------------------------------------------------------------- Table 7
 ENGINE_SPEED_RPM = 3000.0
-CAM_BASE_RADIUS = 0.015       #: [m]
-CAM_MAX_LIFT = 9.3e-3         #: [m]
-CAM_WIDTH = 0.012             #: "cam length", the axial contact length [m]
-VALVE_MASS = 0.07             #: [kg]
-SPRING_MASS = 0.036           #: [kg]
-SPRING_RATE = 33750.0         #: [N/m]
+CAM_BASE_RADIUS = 0.015  #: [m]
+CAM_MAX_LIFT = 9.3e-3  #: [m]
+CAM_WIDTH = 0.012  #: "cam length", the axial contact length [m]
+VALVE_MASS = 0.07  #: [kg]
+SPRING_MASS = 0.036  #: [kg]
+SPRING_RATE = 33750.0  #: [N/m]
 
 # ----------------------------------------------------------------------------- Figs. 5, 6
 #: R of Figs. 5/6 is not given in the paper (assumed, stated on the figures).
 ASSUMED_FIG5_RADIUS = 0.010
 #: Conditions of Figs. 5 and 6: load over the cam width [N], coating 5 µm, modulus ratios
 #: E_c/E_s, entraining speed of Fig. 6 [m/s].
-FIG5 = {"load_total": 633.0, "width": CAM_WIDTH, "radius": ASSUMED_FIG5_RADIUS,
-        "thickness": 5e-6, "ratios": (0.25, 0.5, 1.0, 2.0, 4.0),
-        "entrainment_speed": 15.31}
+FIG5 = {
+    "load_total": 633.0,
+    "width": CAM_WIDTH,
+    "radius": ASSUMED_FIG5_RADIUS,
+    "thickness": 5e-6,
+    "ratios": (0.25, 0.5, 1.0, 2.0, 4.0),
+    "entrainment_speed": 15.31,
+}
 
 # ----------------------------------------------------------------------------- claims
 #: The paper's headline claims (abstract, Section 3, conclusions).
 CLAIMS = {
-    "film_gain_pct": 41.0,               # coatings raise the film by up to 41 %
+    "film_gain_pct": 41.0,  # coatings raise the film by up to 41 %
     "wcc_boundary_reduction_pct": 95.0,  # WC-C cuts boundary friction by > 95 % vs steel
-    "wcc_vs_dlc_boundary_pct": 70.0,     # … and is ~70 % below DLC
-    "wcc_boundary_gain_N": 0.44,         # boundary friction falls by up to 0.44 N (WC-C)
-    "wcc_viscous_loss_N": 0.43,          # viscous friction rises by up to 0.43 N (WC-C)
+    "wcc_vs_dlc_boundary_pct": 70.0,  # … and is ~70 % below DLC
+    "wcc_boundary_gain_N": 0.44,  # boundary friction falls by up to 0.44 N (WC-C)
+    "wcc_viscous_loss_N": 0.43,  # viscous friction rises by up to 0.43 N (WC-C)
 }
 
 # ----------------------------------------------------------------------------- Section 2.2

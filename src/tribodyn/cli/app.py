@@ -11,8 +11,11 @@ from .topography import topography_command
 
 __all__ = ["app", "main"]
 
-app = typer.Typer(add_completion=False, no_args_is_help=True,
-                  help="Tribo-dynamics of coated cam–flat-tappet contacts.")
+app = typer.Typer(
+    add_completion=False,
+    no_args_is_help=True,
+    help="Tribo-dynamics of coated cam–flat-tappet contacts.",
+)
 
 
 @app.callback()

@@ -18,7 +18,6 @@ import math
 import re
 import sys
 from pathlib import Path
-from typing import Optional
 
 import typer
 from rich.console import Console
@@ -42,8 +41,9 @@ def _triple(text: str, option: str, names: str) -> tuple[float, float, float]:
     except ValueError:
         vals = ()
     if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
-        raise InputError(f"{option}: expected three numbers {names} separated by commas "
-                         f"(got {text!r})")
+        raise InputError(
+            f"{option}: expected three numbers {names} separated by commas (got {text!r})"
+        )
     return vals
 
 
@@ -56,11 +56,19 @@ def _prefixed(option: str, build):
         raise InputError(msg if msg.startswith(option) else f"{option}: {msg}") from None
 
 
-_OPTION_OF = {"coating": "--coating", "coating_material": "--coating-material",
-              "coating_thickness": "--coating-thickness", "roughness": "--roughness",
-              "surface_set": "--surface-set", "shear_coefficient": "--shear-coefficient",
-              "load_per_length": "--load-per-length", "radius": "--radius",
-              "width": "--width", "entrainment_speed": "--ue", "sliding_speed": "--us"}
+_OPTION_OF = {
+    "coating": "--coating",
+    "coating_material": "--coating-material",
+    "coating_thickness": "--coating-thickness",
+    "roughness": "--roughness",
+    "surface_set": "--surface-set",
+    "shear_coefficient": "--shear-coefficient",
+    "load_per_length": "--load-per-length",
+    "radius": "--radius",
+    "width": "--width",
+    "entrainment_speed": "--ue",
+    "sliding_speed": "--us",
+}
 
 
 def _as_option(exc: InputError) -> InputError:
@@ -71,13 +79,35 @@ def _as_option(exc: InputError) -> InputError:
     return InputError(msg)
 
 
-def compute_contact(*, load=None, load_per_length=None, width=None, radius=None, ue=None,
-                    us=None, dry=False, coating=None, coating_material=None,
-                    coating_thickness=None, roughness=None, surface_set=None, case_file=None,
-                    shear_coefficient=None, viscosity=None, pressure_viscosity=None,
-                    density=None, eyring_stress=None, limiting_shear_coefficient=None,
-                    viscosity_model=None, viscous_model=None, limiting_shear=None,
-                    n=None, thermal=False, oil=None, inlet_temperature=None) -> dict:
+def compute_contact(
+    *,
+    load=None,
+    load_per_length=None,
+    width=None,
+    radius=None,
+    ue=None,
+    us=None,
+    dry=False,
+    coating=None,
+    coating_material=None,
+    coating_thickness=None,
+    roughness=None,
+    surface_set=None,
+    case_file=None,
+    shear_coefficient=None,
+    viscosity=None,
+    pressure_viscosity=None,
+    density=None,
+    eyring_stress=None,
+    limiting_shear_coefficient=None,
+    viscosity_model=None,
+    viscous_model=None,
+    limiting_shear=None,
+    n=None,
+    thermal=False,
+    oil=None,
+    inlet_temperature=None,
+) -> dict:
     """Parse the options of ``tribodyn contact`` (strings as typed) and solve.
 
     Raises :class:`~tribodyn.InputError` naming the offending option on bad input.
@@ -90,23 +120,34 @@ def compute_contact(*, load=None, load_per_length=None, width=None, radius=None,
     if case_file is not None:
         case = load_case(case_file)
     elif surface_set is not None:
-        case = load_case()                       # the bundled paper case
+        case = load_case()  # the bundled paper case
     else:
-        case = Case()                            # the paper's defaults
+        case = Case()  # the paper's defaults
     coat = rough = None
     if coating is not None:
         E, nu, t = _triple(coating, "--coating", "E [Pa], nu [-], thickness [m]")
         coat = _prefixed("--coating", lambda: Coating(E=E, nu=nu, thickness=t))
     if roughness is not None:
         eta, sig, beta = _triple(roughness, "--roughness", "eta [1/m²], sigma [m], beta [m]")
-        rough = _prefixed("--roughness", lambda: Roughness(
-            asperity_density=eta, rms=sig, summit_radius=beta,
-            method=case.numerics.greenwood_tripp))
+        rough = _prefixed(
+            "--roughness",
+            lambda: Roughness(
+                asperity_density=eta,
+                rms=sig,
+                summit_radius=beta,
+                method=case.numerics.greenwood_tripp,
+            ),
+        )
     try:
-        surfaces = point_surfaces(case, surface_set=surface_set, coating=coat,
-                                  coating_material=coating_material,
-                                  coating_thickness=coating_thickness, roughness=rough,
-                                  shear_coefficient=shear_coefficient)
+        surfaces = point_surfaces(
+            case,
+            surface_set=surface_set,
+            coating=coat,
+            coating_material=coating_material,
+            coating_thickness=coating_thickness,
+            roughness=rough,
+            shear_coefficient=shear_coefficient,
+        )
     except InputError as exc:
         raise _as_option(exc) from None
 
@@ -114,8 +155,9 @@ def compute_contact(*, load=None, load_per_length=None, width=None, radius=None,
         width = case.cam_config.width if case_file is not None else paper.CAM_WIDTH
     _check_positive("--width", width, "m")
     if (load is None) == (load_per_length is None):
-        raise InputError("give exactly one of --load [N, total over --width] and "
-                         "--load-per-length [N/m]")
+        raise InputError(
+            "give exactly one of --load [N, total over --width] and --load-per-length [N/m]"
+        )
     _check_positive("--load", load, "N")
     _check_positive("--load-per-length", load_per_length, "N/m")
     w = load_per_length if load_per_length is not None else load / width
@@ -127,17 +169,32 @@ def compute_contact(*, load=None, load_per_length=None, width=None, radius=None,
     lub = opts = None
     thermal_oil = None
     if not dry and (thermal or oil is not None or inlet_temperature is not None):
-        thermal_oil = _thermal_oil(case, oil, inlet_temperature, {
-            "--viscosity": viscosity, "--pressure-viscosity": pressure_viscosity,
-            "--density": density, "--viscosity-model": viscosity_model})
+        thermal_oil = _thermal_oil(
+            case,
+            oil,
+            inlet_temperature,
+            {
+                "--viscosity": viscosity,
+                "--pressure-viscosity": pressure_viscosity,
+                "--density": density,
+                "--viscosity-model": viscosity_model,
+            },
+        )
     if dry and (thermal or oil is not None):
         raise InputError("--thermal and --oil need an EHL contact (drop --dry)")
     if not dry:
-        over = {k: v for k, v in (("viscosity", viscosity),
-                                  ("pressure_viscosity", pressure_viscosity),
-                                  ("density", density), ("eyring_stress", eyring_stress),
-                                  ("limiting_shear_coefficient", limiting_shear_coefficient),
-                                  ("viscosity_model", viscosity_model)) if v is not None}
+        over = {
+            k: v
+            for k, v in (
+                ("viscosity", viscosity),
+                ("pressure_viscosity", pressure_viscosity),
+                ("density", density),
+                ("eyring_stress", eyring_stress),
+                ("limiting_shear_coefficient", limiting_shear_coefficient),
+                ("viscosity_model", viscosity_model),
+            )
+            if v is not None
+        }
         try:
             lub = dataclasses.replace(case.lubricant(), **over)
         except InputError as exc:
@@ -146,20 +203,37 @@ def compute_contact(*, load=None, load_per_length=None, width=None, radius=None,
             opt = "--" + field.replace("_", "-") if field in over else "lubricant"
             raise InputError(f"{opt}: {msg}") from None
         if viscous_model is not None and viscous_model not in ("eyring", "newtonian"):
-            raise InputError(f"--viscous-model must be 'eyring' or 'newtonian' "
-                             f"(got {viscous_model!r})")
-        ov = {k: v for k, v in (("n", n), ("viscous_model", viscous_model),
-                                ("limiting_shear", limiting_shear)) if v is not None}
-        opts = _prefixed("numerics", lambda: dataclasses.replace(
-            case.ehl_options(surfaces), **ov))
+            raise InputError(
+                f"--viscous-model must be 'eyring' or 'newtonian' (got {viscous_model!r})"
+            )
+        ov = {
+            k: v
+            for k, v in (
+                ("n", n),
+                ("viscous_model", viscous_model),
+                ("limiting_shear", limiting_shear),
+            )
+            if v is not None
+        }
+        opts = _prefixed("numerics", lambda: dataclasses.replace(case.ehl_options(surfaces), **ov))
     try:
-        r = solve_point(case, surfaces, load_per_length=w, radius=radius, width=width,
-                        entrainment_speed=ue, sliding_speed=us, dry=dry,
-                        lubricant=None if thermal_oil is not None else lub, options=opts,
-                        n=n, thermal_oil=thermal_oil if thermal else None)
+        r = solve_point(
+            case,
+            surfaces,
+            load_per_length=w,
+            radius=radius,
+            width=width,
+            entrainment_speed=ue,
+            sliding_speed=us,
+            dry=dry,
+            lubricant=None if thermal_oil is not None else lub,
+            options=opts,
+            n=n,
+            thermal_oil=thermal_oil if thermal else None,
+        )
     except InputError as exc:
         raise _as_option(exc) from None
-    if thermal_oil is not None and not thermal:       # --oil/--inlet-temperature only
+    if thermal_oil is not None and not thermal:  # --oil/--inlet-temperature only
         r["oil"] = thermal_oil.name
         r["inlet_temperature_K"] = thermal_oil.inlet_temperature
     return r
@@ -169,13 +243,17 @@ def _thermal_oil(case, oil, inlet_temperature, lub_options):
     """The oil of --oil/--inlet-temperature [°C], else the case's datasheet oil."""
     from ..physics.oils import OILS
     from ..physics.thermal_oil import ThermalLubricant
+
     clash = [k for k, v in lub_options.items() if v is not None]
     if clash:
-        raise InputError(f"{', '.join(clash)}: not with --thermal/--oil/--inlet-temperature "
-                         "(the oil comes from --oil or the case's [lubricant])")
+        raise InputError(
+            f"{', '.join(clash)}: not with --thermal/--oil/--inlet-temperature "
+            "(the oil comes from --oil or the case's [lubricant])"
+        )
     if inlet_temperature is not None and not (-40.0 < inlet_temperature <= 250.0):
-        raise InputError(f"--inlet-temperature must be in (-40, 250] °C (got "
-                         f"{inlet_temperature:g})")
+        raise InputError(
+            f"--inlet-temperature must be in (-40, 250] °C (got {inlet_temperature:g})"
+        )
     if oil is not None:
         if oil not in OILS:
             raise InputError(f"--oil must be one of {', '.join(OILS)} (got {oil!r})")
@@ -186,9 +264,11 @@ def _thermal_oil(case, oil, inlet_temperature, lub_options):
     try:
         base = case.thermal_lubricant()
     except InputError:
-        raise InputError("--thermal needs an oil with a temperature: --oil 5W-30 "
-                         "--inlet-temperature 90, or a --case whose [lubricant] has "
-                         "inlet_temperature_c") from None
+        raise InputError(
+            "--thermal needs an oil with a temperature: --oil 5W-30 "
+            "--inlet-temperature 90, or a --case whose [lubricant] has "
+            "inlet_temperature_c"
+        ) from None
     if inlet_temperature is not None:
         return base.with_inlet_temperature(inlet_temperature + 273.15)
     return base
@@ -200,8 +280,12 @@ def _check_positive(option: str, value: float | None, unit: str) -> None:
 
 
 # ----------------------------------------------------------------------------- printing
-_REGIME_NAMES = {"IR": "isoviscous–rigid", "PR": "piezoviscous–rigid",
-                 "IE": "isoviscous–elastic", "PE": "piezoviscous–elastic"}
+_REGIME_NAMES = {
+    "IR": "isoviscous–rigid",
+    "PR": "piezoviscous–rigid",
+    "IE": "isoviscous–elastic",
+    "PE": "piezoviscous–elastic",
+}
 
 
 def _g(v, scale=1.0, digits=4) -> str:
@@ -212,12 +296,21 @@ def _g(v, scale=1.0, digits=4) -> str:
 
 def _table(r: dict) -> Table:
     dry = r["mode"] == "dry"
-    title = ("tribodyn contact — dry line contact (frictionless)" if dry
-             else "tribodyn contact — steady mixed-EHL line contact")
-    t = Table(title=title, title_justify="left", show_header=True,
-              caption=None if dry else "* Poiseuille (rolling) part of the shear, reported "
-                                       "separately, not in the friction total",
-              caption_justify="left")
+    title = (
+        "tribodyn contact — dry line contact (frictionless)"
+        if dry
+        else "tribodyn contact — steady mixed-EHL line contact"
+    )
+    t = Table(
+        title=title,
+        title_justify="left",
+        show_header=True,
+        caption=None
+        if dry
+        else "* Poiseuille (rolling) part of the shear, reported "
+        "separately, not in the friction total",
+        caption_justify="left",
+    )
     t.add_column("quantity")
     t.add_column("value", justify="right")
     t.add_column("unit")
@@ -239,17 +332,24 @@ def _table(r: dict) -> Table:
         t.add_row("entrainment speed u_e", _g(r["entrainment_speed_m_per_s"]), "m/s")
         t.add_row("sliding speed u_s", _g(r["sliding_speed_m_per_s"]), "m/s")
         if r["roughness_rms_m"] is not None:
-            t.add_row("roughness η, σ, β",
-                      f"{r['asperity_density_per_m2']:.3g}, "
-                      f"{r['roughness_rms_m'] * 1e6:.4g}, {r['summit_radius_m'] * 1e6:.4g}",
-                      "1/m², µm, µm")
+            t.add_row(
+                "roughness η, σ, β",
+                f"{r['asperity_density_per_m2']:.3g}, "
+                f"{r['roughness_rms_m'] * 1e6:.4g}, {r['summit_radius_m'] * 1e6:.4g}",
+                "1/m², µm, µm",
+            )
         else:
             t.add_row("roughness", "smooth", "")
-        t.add_row("lubricant μ₀, α", f"{r['viscosity_Pa_s']:.4g}, "
-                                      f"{r['pressure_viscosity_per_Pa'] * 1e9:.4g}",
-                  "Pa·s, 1/GPa")
-        t.add_row("boundary ς, τ₀", f"{r['boundary_shear_coefficient']:.4g}, "
-                                    f"{r['boundary_shear_strength_Pa'] * 1e-6:.4g}", "–, MPa")
+        t.add_row(
+            "lubricant μ₀, α",
+            f"{r['viscosity_Pa_s']:.4g}, {r['pressure_viscosity_per_Pa'] * 1e9:.4g}",
+            "Pa·s, 1/GPa",
+        )
+        t.add_row(
+            "boundary ς, τ₀",
+            f"{r['boundary_shear_coefficient']:.4g}, {r['boundary_shear_strength_Pa'] * 1e-6:.4g}",
+            "–, MPa",
+        )
     t.add_row("reduced modulus E' (bulk)", _g(r["reduced_modulus_Pa"], 1e-9), "GPa")
     if r["coating_thickness_m"] is not None:
         t.add_row("E' of the surfaces", _g(r["surface_reduced_modulus_Pa"], 1e-9), "GPa")
@@ -268,14 +368,21 @@ def _table(r: dict) -> Table:
         t.add_row("  at x", _g(r["min_film_position_m"], 1e6), "µm")
         t.add_row("λ = h_min/σ", _g(r["film_parameter_lambda"], 1, 3), "")
         t.add_row("max pressure", _g(r["max_pressure_Pa"], 1e-6), "MPa")
-        t.add_row("Pan–Hamrock h_c, h_min",
-                  f"{r['pan_hamrock_central_film_m'] * 1e6:.4g}, "
-                  f"{r['pan_hamrock_min_film_m'] * 1e6:.4g}", "µm")
+        t.add_row(
+            "Pan–Hamrock h_c, h_min",
+            f"{r['pan_hamrock_central_film_m'] * 1e6:.4g}, {r['pan_hamrock_min_film_m'] * 1e6:.4g}",
+            "µm",
+        )
         t.add_row("Moes h_c", _g(r["moes_central_film_m"], 1e6), "µm")
         sec("loads, friction (over width)")
         t.add_row("hydrodynamic load", _g(r["hydrodynamic_load_N"]), "N")
-        t.add_row("asperity load", "–" if r["asperity_load_N"] is None else
-                  f"{r['asperity_load_N']:.4g} ({100 * r['asperity_load_share']:.3g} %)", "N")
+        t.add_row(
+            "asperity load",
+            "–"
+            if r["asperity_load_N"] is None
+            else f"{r['asperity_load_N']:.4g} ({100 * r['asperity_load_share']:.3g} %)",
+            "N",
+        )
         t.add_row("viscous friction", _g(r["viscous_friction_N"]), "N")
         t.add_row("boundary friction", _g(r["boundary_friction_N"]), "N")
         t.add_row("friction", _g(r["friction_N"]), "N")
@@ -284,18 +391,29 @@ def _table(r: dict) -> Table:
         if r.get("thermal"):
             c = 273.15
             sec("thermal (vs isothermal at the inlet temperature)")
-            t.add_row("oil, inlet temperature", f"{escape(str(r['oil'] or 'case'))}, "
-                      f"{r['inlet_temperature_K'] - c:.1f}", "°C")
+            t.add_row(
+                "oil, inlet temperature",
+                f"{escape(str(r['oil'] or 'case'))}, {r['inlet_temperature_K'] - c:.1f}",
+                "°C",
+            )
             t.add_row("max temperature", _g(r["max_temperature_K"] - c, 1, 4), "°C")
-            t.add_row("surfaces cam, tappet (max)",
-                      f"{r['max_surface_temperature_cam_K'] - c:.4g}, "
-                      f"{r['max_surface_temperature_tappet_K'] - c:.4g}", "°C")
-            t.add_row("mid-film at x = 0", _g(r["central_mid_film_temperature_K"] - c, 1, 4),
-                      "°C")
-            t.add_row("h_c thermal, isothermal", f"{r['central_film_m'] * 1e6:.4g}, "
-                      f"{r['isothermal_central_film_m'] * 1e6:.4g}", "µm")
-            t.add_row("viscous friction th., iso.", f"{r['viscous_friction_N']:.4g}, "
-                      f"{r['isothermal_viscous_friction_N']:.4g}", "N")
+            t.add_row(
+                "surfaces cam, tappet (max)",
+                f"{r['max_surface_temperature_cam_K'] - c:.4g}, "
+                f"{r['max_surface_temperature_tappet_K'] - c:.4g}",
+                "°C",
+            )
+            t.add_row("mid-film at x = 0", _g(r["central_mid_film_temperature_K"] - c, 1, 4), "°C")
+            t.add_row(
+                "h_c thermal, isothermal",
+                f"{r['central_film_m'] * 1e6:.4g}, {r['isothermal_central_film_m'] * 1e6:.4g}",
+                "µm",
+            )
+            t.add_row(
+                "viscous friction th., iso.",
+                f"{r['viscous_friction_N']:.4g}, {r['isothermal_viscous_friction_N']:.4g}",
+                "N",
+            )
         sec("regime (Greenwood chart)")
         t.add_row("g_V, g_E", f"{r['greenwood_gV']:.4g}, {r['greenwood_gE']:.4g}", "")
         t.add_row("regime", r["regime"], _REGIME_NAMES.get(r["regime"], ""))
@@ -308,80 +426,139 @@ def _table(r: dict) -> Table:
 
 # ----------------------------------------------------------------------------- command
 def contact_command(
-    load: Optional[float] = typer.Option(None, "--load", help="Normal load [N], total over "
-                                         "--width."),
-    load_per_length: Optional[float] = typer.Option(None, "--load-per-length",
-                                                    help="Normal load per unit length [N/m] "
-                                                         "(instead of --load)."),
-    width: Optional[float] = typer.Option(None, "--width", help="Contact width \\[m] (default "
-                                          f"{paper.CAM_WIDTH:g}, the paper's cam width, or the case's)."),
-    radius: Optional[float] = typer.Option(None, "--radius",
-                                           help="Reduced radius of curvature R \\[m]."),
-    ue: Optional[float] = typer.Option(None, "--ue", help="Entrainment speed u_e \\[m/s] "
-                                       "(EHL; either sign)."),
-    us: Optional[float] = typer.Option(None, "--us", help="Sliding speed u_s \\[m/s] (viscous "
-                                       "friction; default 0)."),
+    load: float | None = typer.Option(None, "--load", help="Normal load [N], total over --width."),
+    load_per_length: float | None = typer.Option(
+        None, "--load-per-length", help="Normal load per unit length [N/m] (instead of --load)."
+    ),
+    width: float | None = typer.Option(
+        None,
+        "--width",
+        help="Contact width \\[m] (default "
+        f"{paper.CAM_WIDTH:g}, the paper's cam width, or the case's).",
+    ),
+    radius: float | None = typer.Option(
+        None, "--radius", help="Reduced radius of curvature R \\[m]."
+    ),
+    ue: float | None = typer.Option(
+        None, "--ue", help="Entrainment speed u_e \\[m/s] (EHL; either sign)."
+    ),
+    us: float | None = typer.Option(
+        None, "--us", help="Sliding speed u_s \\[m/s] (viscous friction; default 0)."
+    ),
     dry: bool = typer.Option(False, "--dry", help="Dry (frictionless) contact instead of EHL."),
-    coating: Optional[str] = typer.Option(None, "--coating", metavar="E,NU,THICKNESS",
-                                          rich_help_panel=_SURF,
-                                          help="Tappet coating: E [Pa], ν, thickness \\[m]."),
-    coating_material: Optional[str] = typer.Option(
-        None, "--coating-material", rich_help_panel=_SURF,
-        help="Tappet coating material: dlc, wcc or steel (paper Table 6), or a material "
-             "of --case."),
-    coating_thickness: Optional[float] = typer.Option(None, "--coating-thickness",
-                                                      rich_help_panel=_SURF,
-                                                      help="Coating thickness \\[m]."),
-    roughness: Optional[str] = typer.Option(None, "--roughness", metavar="ETA,SIGMA,BETA",
-                                            rich_help_panel=_SURF,
-                                            help="Composite roughness: summit density "
-                                                 "[1/m²], RMS \\[m], summit radius \\[m] "
-                                                 "(default: smooth)."),
-    surface_set: Optional[str] = typer.Option(None, "--surface-set", rich_help_panel=_SURF,
-                                              help="Take bodies, roughness and ς from this "
-                                                   "surface set of --case (default case: "
-                                                   "the paper's)."),
-    case_file: Optional[Path] = typer.Option(None, "--case", rich_help_panel=_SURF,
-                                             help="Case file for materials, lubricant, "
-                                                  "numerics and --surface-set."),
-    shear_coefficient: Optional[float] = typer.Option(
-        None, "--shear-coefficient", rich_help_panel=_SURF,
+    coating: str | None = typer.Option(
+        None,
+        "--coating",
+        metavar="E,NU,THICKNESS",
+        rich_help_panel=_SURF,
+        help="Tappet coating: E [Pa], ν, thickness \\[m].",
+    ),
+    coating_material: str | None = typer.Option(
+        None,
+        "--coating-material",
+        rich_help_panel=_SURF,
+        help="Tappet coating material: dlc, wcc or steel (paper Table 6), or a material of --case.",
+    ),
+    coating_thickness: float | None = typer.Option(
+        None, "--coating-thickness", rich_help_panel=_SURF, help="Coating thickness \\[m]."
+    ),
+    roughness: str | None = typer.Option(
+        None,
+        "--roughness",
+        metavar="ETA,SIGMA,BETA",
+        rich_help_panel=_SURF,
+        help="Composite roughness: summit density "
+        "[1/m²], RMS \\[m], summit radius \\[m] "
+        "(default: smooth).",
+    ),
+    surface_set: str | None = typer.Option(
+        None,
+        "--surface-set",
+        rich_help_panel=_SURF,
+        help="Take bodies, roughness and ς from this "
+        "surface set of --case (default case: "
+        "the paper's).",
+    ),
+    case_file: Path | None = typer.Option(
+        None,
+        "--case",
+        rich_help_panel=_SURF,
+        help="Case file for materials, lubricant, numerics and --surface-set.",
+    ),
+    shear_coefficient: float | None = typer.Option(
+        None,
+        "--shear-coefficient",
+        rich_help_panel=_SURF,
         help="Boundary shear coefficient ς (default: of the coating, else steel's, "
-             f"{paper.STEEL['boundary_shear_coefficient']:g})."),
-    viscosity: Optional[float] = typer.Option(None, "--viscosity", rich_help_panel=_LUB,
-                                              help=f"μ₀ [Pa·s] ({paper.LUBRICANT['viscosity']:g})."),
-    pressure_viscosity: Optional[float] = typer.Option(None, "--pressure-viscosity",
-                                                       rich_help_panel=_LUB,
-                                                       help=f"α [1/Pa] ({paper.LUBRICANT['pressure_viscosity']:g})."),
-    density: Optional[float] = typer.Option(None, "--density", rich_help_panel=_LUB,
-                                            help=f"ρ₀ \\[kg/m³] ({paper.ASSUMED_DENSITY:g}, assumed)."),
-    eyring_stress: Optional[float] = typer.Option(None, "--eyring-stress",
-                                                  rich_help_panel=_LUB,
-                                                  help=f"τ_E [Pa] ({paper.LUBRICANT['eyring_stress']:g})."),
-    limiting_shear_coefficient: Optional[float] = typer.Option(
-        None, "--limiting-shear-coefficient", rich_help_panel=_LUB, help=f"Λ ({paper.LUBRICANT['limiting_shear_coefficient']:g})."),
-    viscosity_model: Optional[str] = typer.Option(None, "--viscosity-model",
-                                                  rich_help_panel=_LUB,
-                                                  help="roelands or barus."),
-    viscous_model: Optional[str] = typer.Option(None, "--viscous-model", rich_help_panel=_NUM,
-                                                help="eyring or newtonian."),
-    limiting_shear: Optional[bool] = typer.Option(None, "--limiting-shear/--no-limiting-shear",
-                                                  rich_help_panel=_NUM,
-                                                  help="Cap viscous shear at Λp.",
-                                                  show_default=False),
-    n: Optional[int] = typer.Option(None, "--n", rich_help_panel=_NUM,
-                                    help="Grid nodes (default: 512 EHL, 1024 dry)."),
-    thermal: bool = typer.Option(False, "--thermal", rich_help_panel=_LUB,
-                                 help="Thermal EHL (film energy equation, conduction in "
-                                      "cam and coated tappet); needs --oil and "
-                                      "--inlet-temperature or a --case with a sump "
-                                      "temperature."),
-    oil: Optional[str] = typer.Option(None, "--oil", rich_help_panel=_LUB,
-                                      help="Bundled datasheet oil: 0W-20, 5W-20, 5W-30, "
-                                           "10W-40."),
-    inlet_temperature: Optional[float] = typer.Option(
-        None, "--inlet-temperature", rich_help_panel=_LUB,
-        help="Oil supply (sump) temperature [°C]."),
+        f"{paper.STEEL['boundary_shear_coefficient']:g}).",
+    ),
+    viscosity: float | None = typer.Option(
+        None,
+        "--viscosity",
+        rich_help_panel=_LUB,
+        help=f"μ₀ [Pa·s] ({paper.LUBRICANT['viscosity']:g}).",
+    ),
+    pressure_viscosity: float | None = typer.Option(
+        None,
+        "--pressure-viscosity",
+        rich_help_panel=_LUB,
+        help=f"α [1/Pa] ({paper.LUBRICANT['pressure_viscosity']:g}).",
+    ),
+    density: float | None = typer.Option(
+        None,
+        "--density",
+        rich_help_panel=_LUB,
+        help=f"ρ₀ \\[kg/m³] ({paper.ASSUMED_DENSITY:g}, assumed).",
+    ),
+    eyring_stress: float | None = typer.Option(
+        None,
+        "--eyring-stress",
+        rich_help_panel=_LUB,
+        help=f"τ_E [Pa] ({paper.LUBRICANT['eyring_stress']:g}).",
+    ),
+    limiting_shear_coefficient: float | None = typer.Option(
+        None,
+        "--limiting-shear-coefficient",
+        rich_help_panel=_LUB,
+        help=f"Λ ({paper.LUBRICANT['limiting_shear_coefficient']:g}).",
+    ),
+    viscosity_model: str | None = typer.Option(
+        None, "--viscosity-model", rich_help_panel=_LUB, help="roelands or barus."
+    ),
+    viscous_model: str | None = typer.Option(
+        None, "--viscous-model", rich_help_panel=_NUM, help="eyring or newtonian."
+    ),
+    limiting_shear: bool | None = typer.Option(
+        None,
+        "--limiting-shear/--no-limiting-shear",
+        rich_help_panel=_NUM,
+        help="Cap viscous shear at Λp.",
+        show_default=False,
+    ),
+    n: int | None = typer.Option(
+        None, "--n", rich_help_panel=_NUM, help="Grid nodes (default: 512 EHL, 1024 dry)."
+    ),
+    thermal: bool = typer.Option(
+        False,
+        "--thermal",
+        rich_help_panel=_LUB,
+        help="Thermal EHL (film energy equation, conduction in "
+        "cam and coated tappet); needs --oil and "
+        "--inlet-temperature or a --case with a sump "
+        "temperature.",
+    ),
+    oil: str | None = typer.Option(
+        None,
+        "--oil",
+        rich_help_panel=_LUB,
+        help="Bundled datasheet oil: 0W-20, 5W-20, 5W-30, 10W-40.",
+    ),
+    inlet_temperature: float | None = typer.Option(
+        None,
+        "--inlet-temperature",
+        rich_help_panel=_LUB,
+        help="Oil supply (sump) temperature [°C].",
+    ),
     as_json: bool = typer.Option(False, "--json", help="Print a JSON object (SI units)."),
 ):
     """Single-point line contact: Hertz, EHL film, loads, friction and regime.
@@ -402,18 +579,34 @@ def contact_command(
     """
     err = Console(stderr=True)
     try:
-        r = compute_contact(load=load, load_per_length=load_per_length, width=width,
-                            radius=radius, ue=ue, us=us, dry=dry, coating=coating,
-                            coating_material=coating_material,
-                            coating_thickness=coating_thickness, roughness=roughness,
-                            surface_set=surface_set, case_file=case_file,
-                            shear_coefficient=shear_coefficient, viscosity=viscosity,
-                            pressure_viscosity=pressure_viscosity, density=density,
-                            eyring_stress=eyring_stress,
-                            limiting_shear_coefficient=limiting_shear_coefficient,
-                            viscosity_model=viscosity_model, viscous_model=viscous_model,
-                            limiting_shear=limiting_shear, n=n, thermal=thermal, oil=oil,
-                            inlet_temperature=inlet_temperature)
+        r = compute_contact(
+            load=load,
+            load_per_length=load_per_length,
+            width=width,
+            radius=radius,
+            ue=ue,
+            us=us,
+            dry=dry,
+            coating=coating,
+            coating_material=coating_material,
+            coating_thickness=coating_thickness,
+            roughness=roughness,
+            surface_set=surface_set,
+            case_file=case_file,
+            shear_coefficient=shear_coefficient,
+            viscosity=viscosity,
+            pressure_viscosity=pressure_viscosity,
+            density=density,
+            eyring_stress=eyring_stress,
+            limiting_shear_coefficient=limiting_shear_coefficient,
+            viscosity_model=viscosity_model,
+            viscous_model=viscous_model,
+            limiting_shear=limiting_shear,
+            n=n,
+            thermal=thermal,
+            oil=oil,
+            inlet_temperature=inlet_temperature,
+        )
     except InputError as exc:
         err.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
         raise typer.Exit(code=2) from None

@@ -6,7 +6,6 @@ import multiprocessing
 import os
 import signal
 from pathlib import Path
-from typing import Optional
 
 import typer
 from rich.console import Console
@@ -21,21 +20,32 @@ __all__ = ["run_command"]
 console = Console()
 
 
-def run_command(case: Optional[Path] = typer.Argument(
-            None, help="case file (TOML); default: the bundled paper case (andreou2023)"),
-        out: Path = typer.Option(Path("results"), "-o", "--out", help="output folder"),
-        workers: Optional[int] = typer.Option(
-            None, "--workers", "-j", help="processes (default: the case's numerics.workers; "
-                                          "0 there means one per CPU core)"),
-        implicit: Optional[bool] = typer.Option(
-            None, "--implicit/--no-implicit",
-            help="run the implicit dynamics for the comparison (default: from the case)"),
-        scheduler: Optional[str] = typer.Option(
-            None, "--scheduler", metavar="ADDRESS",
-            help="run the surface sets and the coupling chain on an existing Dask "
-                 "scheduler (tcp://host:8786, or a scheduler file) instead of local "
-                 "processes"),
-        quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress bar")):
+def run_command(
+    case: Path | None = typer.Argument(
+        None, help="case file (TOML); default: the bundled paper case (andreou2023)"
+    ),
+    out: Path = typer.Option(Path("results"), "-o", "--out", help="output folder"),
+    workers: int | None = typer.Option(
+        None,
+        "--workers",
+        "-j",
+        help="processes (default: the case's numerics.workers; 0 there means one per CPU core)",
+    ),
+    implicit: bool | None = typer.Option(
+        None,
+        "--implicit/--no-implicit",
+        help="run the implicit dynamics for the comparison (default: from the case)",
+    ),
+    scheduler: str | None = typer.Option(
+        None,
+        "--scheduler",
+        metavar="ADDRESS",
+        help="run the surface sets and the coupling chain on an existing Dask "
+        "scheduler (tcp://host:8786, or a scheduler file) instead of local "
+        "processes",
+    ),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress bar"),
+):
     """Run the cam-cycle study: dynamics, transient EHL per surface set, figures, report.
 
     Writes OUT/results.nc, summary.json, report.md, case.toml and the figures; the folder
@@ -56,9 +66,11 @@ def run_command(case: Optional[Path] = typer.Argument(
         raise typer.Exit(2)
     try:
         if workers is not None and not 0 <= workers <= 4096:
-            raise InputError(f"-j/--workers must be an integer >= 0 and <= 4096 (0: one per "
-                             f"CPU core) (got {workers})")
-        out = check_output_dir(out, option="-o/--out")     # before hours of computing
+            raise InputError(
+                f"-j/--workers must be an integer >= 0 and <= 4096 (0: one per "
+                f"CPU core) (got {workers})"
+            )
+        out = check_output_dir(out, option="-o/--out")  # before hours of computing
     except InputError as exc:
         console.print(f"[red]error:[/red] {escape(str(exc))}")
         raise typer.Exit(2)
@@ -89,19 +101,19 @@ class _terminate_as_interrupt:
 
         def handler(signum, frame):
             global _terminated
-            if os.getpid() != main:          # a forked worker inherited the handler
+            if os.getpid() != main:  # a forked worker inherited the handler
                 signal.signal(signal.SIGTERM, signal.SIG_DFL)
                 os.kill(os.getpid(), signal.SIGTERM)
                 return
             _terminated = True
             for child in multiprocessing.active_children():
-                if not child.name.startswith("SyncManager"):   # the manager shuts down
-                    child.kill()             # workers hold no output: stop them at once
+                if not child.name.startswith("SyncManager"):  # the manager shuts down
+                    child.kill()  # workers hold no output: stop them at once
             raise KeyboardInterrupt
 
         try:
             self._old = signal.signal(signal.SIGTERM, handler)
-        except ValueError:                  # not the main thread: leave signals alone
+        except ValueError:  # not the main thread: leave signals alone
             self._old = None
         return self
 
@@ -120,19 +132,29 @@ def _run(c, out: Path, workers, quiet: bool, scheduler: str | None = None) -> No
     client = executor = None
     if scheduler is not None:
         from ..workflow.sweep import connect
+
         try:
             client = connect(scheduler)
         except InputError as exc:
             console.print(f"[red]error:[/red] {escape(str(exc))}")
             raise typer.Exit(2)
         executor = client.get_executor(pure=False)
-        console.print(f"Dask scheduler {scheduler}: "
-                      f"{len(client.scheduler_info().get('workers', {}))} workers")
-    console.print(f"case [bold]{c.name}[/bold]: {len(c.surface_set_names)} surface sets, "
-                  f"{c.engine_speed:g} rpm → {out}")
-    with Progress(TextColumn("{task.description:<24}"), BarColumn(),
-                  TextColumn("{task.percentage:>5.1f} %"), TimeElapsedColumn(),
-                  console=console, disable=quiet, transient=False) as bar:
+        console.print(
+            f"Dask scheduler {scheduler}: {len(client.scheduler_info().get('workers', {}))} workers"
+        )
+    console.print(
+        f"case [bold]{c.name}[/bold]: {len(c.surface_set_names)} surface sets, "
+        f"{c.engine_speed:g} rpm → {out}"
+    )
+    with Progress(
+        TextColumn("{task.description:<24}"),
+        BarColumn(),
+        TextColumn("{task.percentage:>5.1f} %"),
+        TimeElapsedColumn(),
+        console=console,
+        disable=quiet,
+        transient=False,
+    ) as bar:
         tasks = {}
 
         def progress(event, **info):
@@ -147,8 +169,7 @@ def _run(c, out: Path, workers, quiet: bool, scheduler: str | None = None) -> No
                 bar.update(tasks[name], completed=info["done"])
 
         try:
-            study = run_cycle_study(c, workers=n_workers, progress=progress,
-                                    executor=executor)
+            study = run_cycle_study(c, workers=n_workers, progress=progress, executor=executor)
         except StudyError as exc:
             console.print(f"[red]study failed:[/red] {exc}")
             raise typer.Exit(1)
@@ -167,29 +188,48 @@ def _run(c, out: Path, workers, quiet: bool, scheduler: str | None = None) -> No
 
     summ = res["summary"]
     table = Table(title=f"{c.name}: per tappet surface (cam event)")
-    for col in ("surface", "min film µm", "max h_c µm", "film gain %", "max F_b N",
-                "max F_v N", "F_b vs uncoated %", "energy J/cycle", "failed steps"):
+    for col in (
+        "surface",
+        "min film µm",
+        "max h_c µm",
+        "film gain %",
+        "max F_b N",
+        "max F_v N",
+        "F_b vs uncoated %",
+        "energy J/cycle",
+        "failed steps",
+    ):
         table.add_column(col, justify="right")
+
     def num(v, scale=1.0, fmt=".3g"):
         return "–" if v is None else format(v * scale, fmt)
 
     for v in summ["surface_sets"].values():
         red = v["boundary_friction_reduction_vs_uncoated_pct"]
-        table.add_row(v["label"], num(v["min_film_m"], 1e6, ".3f"),
-                      num(v["max_central_film_m"], 1e6, ".2f"),
-                      num(v["max_film_gain_vs_uncoated_pct"], 1.0, "+.2f"),
-                      num(v["max_boundary_friction_N"]), num(v["max_viscous_friction_N"]),
-                      num(None if red is None else -red, 1.0, "+.1f"),
-                      num(v["friction_energy_per_cycle_J"], 1.0, ".3f"), str(v["failed_steps"]))
+        table.add_row(
+            v["label"],
+            num(v["min_film_m"], 1e6, ".3f"),
+            num(v["max_central_film_m"], 1e6, ".2f"),
+            num(v["max_film_gain_vs_uncoated_pct"], 1.0, "+.2f"),
+            num(v["max_boundary_friction_N"]),
+            num(v["max_viscous_friction_N"]),
+            num(None if red is None else -red, 1.0, "+.1f"),
+            num(v["friction_energy_per_cycle_J"], 1.0, ".3f"),
+            str(v["failed_steps"]),
+        )
     console.print(table)
     ie = summ["implicit_vs_explicit"]
     if ie.get("max_contact_force_diff_pct") is not None:
-        console.print(f"implicit vs explicit: contact force differs by at most "
-                      f"{ie['max_contact_force_diff_pct']:.1f} % of its peak (at "
-                      f"{ie['max_contact_force_diff_crank_deg']:.1f}°), tappet velocity by "
-                      f"{ie['max_velocity_diff_pct']:.2f} %")
+        console.print(
+            f"implicit vs explicit: contact force differs by at most "
+            f"{ie['max_contact_force_diff_pct']:.1f} % of its peak (at "
+            f"{ie['max_contact_force_diff_crank_deg']:.1f}°), tappet velocity by "
+            f"{ie['max_velocity_diff_pct']:.2f} %"
+        )
     for w in summ["warnings"]:
         console.print(f"[yellow]warning:[/yellow] {w}")
-    console.print(f"wrote {out}/results.nc, summary.json, report.md and "
-                  f"{len(res['figures'])} figures in {summ['runtime_s']:.1f} s "
-                  f"(+ writing)")
+    console.print(
+        f"wrote {out}/results.nc, summary.json, report.md and "
+        f"{len(res['figures'])} figures in {summ['runtime_s']:.1f} s "
+        f"(+ writing)"
+    )

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
 
 import typer
 from rich.console import Console
@@ -32,23 +31,35 @@ def _duration(s: float) -> str:
 
 
 def sweep_command(
-        sweep: Path = typer.Argument(..., help="sweep file (TOML), or a bundled sweep name"),
-        out: Path = typer.Option(..., "-o", "--out", help="output folder (point files, "
-                                                          "sweep.nc, report, figures)"),
-        scheduler: Optional[str] = typer.Option(
-            None, "--scheduler", metavar="ADDRESS",
-            help="existing Dask scheduler (tcp://host:8786, or a scheduler file); default: "
-                 "a local cluster sized to the machine"),
-        workers: Optional[int] = typer.Option(
-            None, "--workers", "-j", help="local cluster: worker processes (default: one "
-                                          "per CPU core); with --scheduler: wait for this "
-                                          "many workers"),
-        resume: bool = typer.Option(False, "--resume", help="go on with the sweep in OUT: "
-                                                            "skip the finished points"),
-        dry_run: bool = typer.Option(False, "--dry-run", help="validate, print the number "
-                                                              "of points and an estimate "
-                                                              "of the time; run nothing"),
-        quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress bar")):
+    sweep: Path = typer.Argument(..., help="sweep file (TOML), or a bundled sweep name"),
+    out: Path = typer.Option(
+        ..., "-o", "--out", help="output folder (point files, sweep.nc, report, figures)"
+    ),
+    scheduler: str | None = typer.Option(
+        None,
+        "--scheduler",
+        metavar="ADDRESS",
+        help="existing Dask scheduler (tcp://host:8786, or a scheduler file); default: "
+        "a local cluster sized to the machine",
+    ),
+    workers: int | None = typer.Option(
+        None,
+        "--workers",
+        "-j",
+        help="local cluster: worker processes (default: one "
+        "per CPU core); with --scheduler: wait for this "
+        "many workers",
+    ),
+    resume: bool = typer.Option(
+        False, "--resume", help="go on with the sweep in OUT: skip the finished points"
+    ),
+    dry_run: bool = typer.Option(
+        False,
+        "--dry-run",
+        help="validate, print the number of points and an estimate of the time; run nothing",
+    ),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress bar"),
+):
     """Run a design sweep: one task per point on a Dask cluster (local by default).
 
     Writes OUT/points/<key>.nc as each point finishes, then OUT/sweep.nc,
@@ -66,20 +77,26 @@ def sweep_command(
         console.print(f"[red]error in the sweep:[/red] {exc}")
         raise typer.Exit(2)
     shape = " × ".join(f"{d} {len(a[0].values)}" for d, a in spec.dims)
-    console.print(f"sweep [bold]{spec.name}[/bold]: {spec.n_points} points ({shape}), "
-                  f"mode {spec.mode}, base case {spec.base.name} → {out}")
+    console.print(
+        f"sweep [bold]{spec.name}[/bold]: {spec.n_points} points ({shape}), "
+        f"mode {spec.mode}, base case {spec.base.name} → {out}"
+    )
     if dry_run:
         n_w = workers or machine_workers()
         try:
             est = estimate_sweep(spec, workers=n_w, out_dir=out if resume else None)
-        except Exception as exc:          # an estimate that cannot be made is not fatal
+        except Exception as exc:  # an estimate that cannot be made is not fatal
             console.print(f"[yellow]no time estimate:[/yellow] {type(exc).__name__}: {exc}")
             raise typer.Exit(0)
-        console.print(f"{est['points']} points: {est['invalid']} invalid combinations, "
-                      f"{est['done']} already finished, {est['todo']} to run")
-        console.print(f"estimate: {est['seconds_per_point']:.1f} s per point on one core "
-                      f"({est['method']}) → about {_duration(est['seconds'])} on "
-                      f"{est['workers']} worker(s)")
+        console.print(
+            f"{est['points']} points: {est['invalid']} invalid combinations, "
+            f"{est['done']} already finished, {est['todo']} to run"
+        )
+        console.print(
+            f"estimate: {est['seconds_per_point']:.1f} s per point on one core "
+            f"({est['method']}) → about {_duration(est['seconds'])} on "
+            f"{est['workers']} worker(s)"
+        )
         raise typer.Exit(0)
 
     client = None
@@ -89,30 +106,46 @@ def sweep_command(
         except InputError as exc:
             console.print(f"[red]error:[/red] {exc}")
             raise typer.Exit(2)
-    with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
-                  TextColumn("[red]{task.fields[failed]} failed"), TimeElapsedColumn(),
-                  TextColumn("ETA"), TimeRemainingColumn(), console=console, disable=quiet,
-                  transient=False) as bar:
+    with Progress(
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TextColumn("[red]{task.fields[failed]} failed"),
+        TimeElapsedColumn(),
+        TextColumn("ETA"),
+        TimeRemainingColumn(),
+        console=console,
+        disable=quiet,
+        transient=False,
+    ) as bar:
         task = bar.add_task("points", total=spec.n_points, failed=0)
 
         def progress(event, **info):
             if event == "start":
-                bar.update(task, completed=info["skipped"] + info["invalid"],
-                           failed=info["invalid"])
+                bar.update(
+                    task, completed=info["skipped"] + info["invalid"], failed=info["invalid"]
+                )
                 where = info["scheduler"] or "local cluster"
-                run = (f"{info['todo']} points to run on {info['workers']} worker(s) "
-                       f"({where})" if info["todo"] else "nothing to run")
-                bar.console.print(f"{run}; {info['skipped']} already finished, "
-                                  f"{info['invalid']} invalid combinations")
+                run = (
+                    f"{info['todo']} points to run on {info['workers']} worker(s) ({where})"
+                    if info["todo"]
+                    else "nothing to run"
+                )
+                bar.console.print(
+                    f"{run}; {info['skipped']} already finished, "
+                    f"{info['invalid']} invalid combinations"
+                )
             elif event == "point":
                 bar.update(task, completed=info["done"], failed=info["failed"])
                 if info["status"] != "ok":
-                    bar.console.print(f"[yellow]point failed[/yellow] ({info['label']}): "
-                                      f"{info['error']}")
+                    bar.console.print(
+                        f"[yellow]point failed[/yellow] ({info['label']}): {info['error']}"
+                    )
 
         try:
-            result = run_sweep(spec, client, out_dir=out, resume=resume, workers=workers,
-                               progress=progress)
+            result = run_sweep(
+                spec, client, out_dir=out, resume=resume, workers=workers, progress=progress
+            )
         except InputError as exc:
             console.print(f"[red]error:[/red] {exc}")
             raise typer.Exit(2)
@@ -120,11 +153,13 @@ def sweep_command(
             if client is not None:
                 client.close()
     from ..output.sweep import write_sweep
+
     files = write_sweep(result, out)
-    console.print(f"{result.n_ok} of {len(result.points)} points finished "
-                  f"({result.ran} run now, {result.skipped} resumed), {len(result.failed)} "
-                  f"failed, in {_duration(result.runtime_s)}")
-    console.print(f"wrote {out}/sweep.nc, sweep_report.md and {len(files['figures'])} "
-                  "figures")
+    console.print(
+        f"{result.n_ok} of {len(result.points)} points finished "
+        f"({result.ran} run now, {result.skipped} resumed), {len(result.failed)} "
+        f"failed, in {_duration(result.runtime_s)}"
+    )
+    console.print(f"wrote {out}/sweep.nc, sweep_report.md and {len(files['figures'])} figures")
     if result.failed:
         raise typer.Exit(1)

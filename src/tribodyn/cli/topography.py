@@ -9,7 +9,6 @@ from __future__ import annotations
 import json
 import sys
 from pathlib import Path
-from typing import Optional
 
 import typer
 from rich.console import Console
@@ -19,10 +18,12 @@ from rich.table import Table
 __all__ = ["topography_command"]
 
 _SYN = "Synthetic surfaces (--synthetic)"
-_LIMITATION = ("η and β depend strongly on the band and the sampling. The 8-neighbour summit "
-               "values converge to the continuous-surface (McCool) values only when the "
-               "shortest filtered wavelength spans many pixels (≳ 16); the spectral values "
-               "assume an isotropic Gaussian surface.")
+_LIMITATION = (
+    "η and β depend strongly on the band and the sampling. The 8-neighbour summit "
+    "values converge to the continuous-surface (McCool) values only when the "
+    "shortest filtered wavelength spans many pixels (≳ 16); the spectral values "
+    "assume an isotropic Gaussian surface."
+)
 
 
 def _um(x: float) -> str:
@@ -34,19 +35,29 @@ def _dev(a: float, b: float) -> str:
 
 
 def _parameter_table(title: str, summits, spectral, count=None, alpha=None) -> Table:
-    t = Table(title=title, title_justify="left",
-              caption="summits: 8-neighbour summits, 3-point curvature; spectral: McCool "
-                      "(1986) from spectral moments; Δ = summits/spectral − 1",
-              caption_justify="left")
-    for name, justify in (("quantity", "left"), ("unit", "left"), ("summits", "right"),
-                          ("spectral", "right"), ("Δ", "right")):
+    t = Table(
+        title=title,
+        title_justify="left",
+        caption="summits: 8-neighbour summits, 3-point curvature; spectral: McCool "
+        "(1986) from spectral moments; Δ = summits/spectral − 1",
+        caption_justify="left",
+    )
+    for name, justify in (
+        ("quantity", "left"),
+        ("unit", "left"),
+        ("summits", "right"),
+        ("spectral", "right"),
+        ("Δ", "right"),
+    ):
         t.add_column(name, justify=justify)
-    rows = [("σ  RMS height", "µm", "rms", _um),
-            ("η  summit density", "1/m²", "asperity_density", lambda v: f"{v:.4g}"),
-            ("β  summit radius", "µm", "summit_radius", _um),
-            ("ηβσ", "-", "roughness_parameter", lambda v: f"{v:.4g}"),
-            ("summit height, mean", "µm", "summit_height_mean", _um),
-            ("summit height, std", "µm", "summit_height_std", _um)]
+    rows = [
+        ("σ  RMS height", "µm", "rms", _um),
+        ("η  summit density", "1/m²", "asperity_density", lambda v: f"{v:.4g}"),
+        ("β  summit radius", "µm", "summit_radius", _um),
+        ("ηβσ", "-", "roughness_parameter", lambda v: f"{v:.4g}"),
+        ("summit height, mean", "µm", "summit_height_mean", _um),
+        ("summit height, std", "µm", "summit_height_std", _um),
+    ]
     for label, unit, attr, fmt in rows:
         b = getattr(spectral, attr)
         if summits is None:
@@ -54,8 +65,9 @@ def _parameter_table(title: str, summits, spectral, count=None, alpha=None) -> T
         else:
             a = getattr(summits, attr)
             t.add_row(label, unit, fmt(a), fmt(b), _dev(a, b))
-    t.add_row("summits / bandwidth α", "-", "–" if count is None else str(count),
-              f"α = {alpha:.3g}", "")
+    t.add_row(
+        "summits / bandwidth α", "-", "–" if count is None else str(count), f"α = {alpha:.3g}", ""
+    )
     return t
 
 
@@ -65,20 +77,32 @@ def _print_surface(console: Console, r) -> None:
     console.print(f"[bold]{escape(r.name)}[/bold]{escape(where)}")
     console.print(f"  band:     {r.band.describe()}", markup=False, soft_wrap=True)
     console.print(f"  sampling: {r.sampling.describe()}", markup=False, soft_wrap=True)
-    console.print(f"  filled:   {r.sampling.undefined_fraction:.1%} of the points (not "
-                  "measured; excluded from the statistics)", markup=False)
+    console.print(
+        f"  filled:   {r.sampling.undefined_fraction:.1%} of the points (not "
+        "measured; excluded from the statistics)",
+        markup=False,
+    )
     for w in r.warnings:
         console.print(f"  warning: {w}", markup=False, style="yellow", soft_wrap=True)
     h = r.heights
     if getattr(r, "kind", "") == "profile":
         _print_profile(console, r)
     else:
-        console.print(_parameter_table(f"Greenwood–Tripp parameters of {escape(r.name)}",
-                                       r.summits, r.spectral, r.summit_stats.count,
-                                       r.moments.alpha))
-        console.print(f"  height distribution: Ssk = {h.skewness:.3f}, Sku = "
-                      f"{h.kurtosis:.3f} (Gaussian 0, 3); slope anisotropy "
-                      f"{r.slope_anisotropy:.2f} (isotropic 1)", markup=False)
+        console.print(
+            _parameter_table(
+                f"Greenwood–Tripp parameters of {escape(r.name)}",
+                r.summits,
+                r.spectral,
+                r.summit_stats.count,
+                r.moments.alpha,
+            )
+        )
+        console.print(
+            f"  height distribution: Ssk = {h.skewness:.3f}, Sku = "
+            f"{h.kurtosis:.3f} (Gaussian 0, 3); slope anisotropy "
+            f"{r.slope_anisotropy:.2f} (isotropic 1)",
+            markup=False,
+        )
     for note in r.notes:
         console.print(f"  note: {note}", markup=False, soft_wrap=True)
     console.print()
@@ -86,87 +110,126 @@ def _print_surface(console: Console, r) -> None:
 
 def _print_profile(console: Console, r) -> None:
     from ..topography.profile import ISOTROPIC_LABEL
-    t = Table(title=f"Profile {escape(r.name)}", title_justify="left",
-              caption=f"η, β: {ISOTROPIC_LABEL}", caption_justify="left")
+
+    t = Table(
+        title=f"Profile {escape(r.name)}",
+        title_justify="left",
+        caption=f"η, β: {ISOTROPIC_LABEL}",
+        caption_justify="left",
+    )
     for name, justify in (("quantity", "left"), ("unit", "left"), ("value", "right")):
         t.add_column(name, justify=justify)
     m, h, p = r.moments, r.heights, r.spectral
     for label, unit, value in (
-            ("σ = Rq  RMS height", "µm", _um(h.rms)),
-            ("Rsk  skewness", "-", f"{h.skewness:.3f}"),
-            ("Rku  kurtosis", "-", f"{h.kurtosis:.3f}"),
-            ("m0, m2, m4  profile moments", "m², -, 1/m²",
-             f"{m.m0:.4g}, {m.m2:.4g}, {m.m4:.4g}"),
-            ("α  bandwidth m0 m4/m2²", "-", f"{m.alpha:.3g}"),
-            ("peaks per mm, counted", "1/mm", f"{r.peak_density * 1e-3:.4g}"),
-            ("peaks per mm, Gaussian (1/2π)√(m4/m2)", "1/mm",
-             f"{r.peak_density_gaussian * 1e-3:.4g}"),
-            ("η  summit density (isotropic estimate)", "1/m²", f"{p.asperity_density:.4g}"),
-            ("β  summit radius (isotropic estimate)", "µm", _um(p.summit_radius)),
-            ("ηβσ (isotropic estimate)", "-", f"{p.roughness_parameter:.4g}")):
+        ("σ = Rq  RMS height", "µm", _um(h.rms)),
+        ("Rsk  skewness", "-", f"{h.skewness:.3f}"),
+        ("Rku  kurtosis", "-", f"{h.kurtosis:.3f}"),
+        ("m0, m2, m4  profile moments", "m², -, 1/m²", f"{m.m0:.4g}, {m.m2:.4g}, {m.m4:.4g}"),
+        ("α  bandwidth m0 m4/m2²", "-", f"{m.alpha:.3g}"),
+        ("peaks per mm, counted", "1/mm", f"{r.peak_density * 1e-3:.4g}"),
+        ("peaks per mm, Gaussian (1/2π)√(m4/m2)", "1/mm", f"{r.peak_density_gaussian * 1e-3:.4g}"),
+        ("η  summit density (isotropic estimate)", "1/m²", f"{p.asperity_density:.4g}"),
+        ("β  summit radius (isotropic estimate)", "µm", _um(p.summit_radius)),
+        ("ηβσ (isotropic estimate)", "-", f"{p.roughness_parameter:.4g}"),
+    ):
         t.add_row(label, unit, value)
     console.print(t)
 
 
 def _print_pair(console: Console, p) -> None:
-    console.print(f"[bold]composite pair[/bold] {escape(p.first.name)} + "
-                  f"{escape(p.second.name)}: σ = √(σ₁² + σ₂²); spectral: summed moments; "
-                  "summits: sum surface h₁ + h₂")
-    console.print(_parameter_table("Composite Greenwood–Tripp parameters", p.summits,
-                                   p.spectral, None if p.summit_stats is None
-                                   else p.summit_stats.count, p.moments.alpha))
+    console.print(
+        f"[bold]composite pair[/bold] {escape(p.first.name)} + "
+        f"{escape(p.second.name)}: σ = √(σ₁² + σ₂²); spectral: summed moments; "
+        "summits: sum surface h₁ + h₂"
+    )
+    console.print(
+        _parameter_table(
+            "Composite Greenwood–Tripp parameters",
+            p.summits,
+            p.spectral,
+            None if p.summit_stats is None else p.summit_stats.count,
+            p.moments.alpha,
+        )
+    )
     for note in p.notes:
         console.print(f"  note: {note}", markup=False, soft_wrap=True)
     console.print()
 
 
 def topography_command(
-    files: Optional[list[Path]] = typer.Argument(
-        None, show_default=False, metavar="FILE [FILE2]",
+    files: list[Path] | None = typer.Argument(
+        None,
+        show_default=False,
+        metavar="FILE [FILE2]",
         help="Areal topography file(s) in any format SurfaceTopography reads (.opd, .x3p, "
-             ".sur, .datx, .plu, .nc, …). Two files (cam and tappet) also give the "
-             "composite pair."),
-    band: Optional[tuple[float, float]] = typer.Option(
-        None, "--band", metavar="SHORT LONG", show_default=False,
+        ".sur, .datx, .plu, .nc, …). Two files (cam and tappet) also give the "
+        "composite pair.",
+    ),
+    band: tuple[float, float] | None = typer.Option(
+        None,
+        "--band",
+        metavar="SHORT LONG",
+        show_default=False,
         help="Band-pass wavelength limits in m; must lie within the measurement's range "
-             "(see --clip-band). Default: the paper's 0.25–250 µm clipped to what the "
-             "measurement resolves (a warning says which band was used)."),
+        "(see --clip-band). Default: the paper's 0.25–250 µm clipped to what the "
+        "measurement resolves (a warning says which band was used).",
+    ),
     no_filter: bool = typer.Option(False, "--no-filter", help="Level only, no band-pass."),
-    filter_kind: str = typer.Option("gaussian", "--filter",
-                                    help="'gaussian' (50 % at the cutoffs) or 'step'."),
-    detrend: str = typer.Option("height", "--detrend",
-                                help="'height' (plane), 'curvature' (2nd order) or 'center'."),
-    clip_band: bool = typer.Option(False, "--clip-band",
-                                   help="Narrow a --band outside the measurement's range "
-                                        "instead of failing."),
-    min_defined: float = typer.Option(0.0, "--min-defined",
-                                      help="Smallest accepted share of measured points "
-                                           "(default 0: dropouts are filled and excluded "
-                                           "from the statistics; refused only if fewer "
-                                           "than 25 summits remain)."),
-    method: str = typer.Option("summits", "--method",
-                               help="Estimator for the roughness TOML block: 'summits' or "
-                                    "'spectral'."),
+    filter_kind: str = typer.Option(
+        "gaussian", "--filter", help="'gaussian' (50 % at the cutoffs) or 'step'."
+    ),
+    detrend: str = typer.Option(
+        "height", "--detrend", help="'height' (plane), 'curvature' (2nd order) or 'center'."
+    ),
+    clip_band: bool = typer.Option(
+        False,
+        "--clip-band",
+        help="Narrow a --band outside the measurement's range instead of failing.",
+    ),
+    min_defined: float = typer.Option(
+        0.0,
+        "--min-defined",
+        help="Smallest accepted share of measured points "
+        "(default 0: dropouts are filled and excluded "
+        "from the statistics; refused only if fewer "
+        "than 25 summits remain).",
+    ),
+    method: str = typer.Option(
+        "summits",
+        "--method",
+        help="Estimator for the roughness TOML block: 'summits' or 'spectral'.",
+    ),
     as_json: bool = typer.Option(False, "--json", help="Print JSON instead of tables."),
-    figure: Optional[Path] = typer.Option(None, "--figure", metavar="PATH",
-                                          help="Write the height-distribution figure (PNG)."),
-    channel: Optional[int] = typer.Option(None, "--channel", help="Channel index."),
-    unit: Optional[str] = typer.Option(None, "--unit",
-                                       help="Length unit, for files that store none."),
-    size: Optional[tuple[float, float]] = typer.Option(
-        None, "--size", metavar="LX LY", help="Lateral size (in --unit), for files without "
-                                              "lateral calibration."),
-    synthetic: bool = typer.Option(False, "--synthetic", rich_help_panel=_SYN,
-                                   help="First write synthetic isotropic Gaussian surfaces "
-                                        "to FILE [FILE2] (.x3p, .nc, .gwy, .txt), then "
-                                        "analyse them."),
+    figure: Path | None = typer.Option(
+        None, "--figure", metavar="PATH", help="Write the height-distribution figure (PNG)."
+    ),
+    channel: int | None = typer.Option(None, "--channel", help="Channel index."),
+    unit: str | None = typer.Option(None, "--unit", help="Length unit, for files that store none."),
+    size: tuple[float, float] | None = typer.Option(
+        None,
+        "--size",
+        metavar="LX LY",
+        help="Lateral size (in --unit), for files without lateral calibration.",
+    ),
+    synthetic: bool = typer.Option(
+        False,
+        "--synthetic",
+        rich_help_panel=_SYN,
+        help="First write synthetic isotropic Gaussian surfaces "
+        "to FILE [FILE2] (.x3p, .nc, .gwy, .txt), then "
+        "analyse them.",
+    ),
     grid: int = typer.Option(512, "--grid", rich_help_panel=_SYN, help="Points per side."),
     pixel: float = typer.Option(0.1e-6, "--pixel", rich_help_panel=_SYN, help="Pixel size in m."),
     rms: float = typer.Option(0.25e-6, "--rms", rich_help_panel=_SYN, help="RMS height σ in m."),
     hurst: float = typer.Option(0.8, "--hurst", rich_help_panel=_SYN, help="Hurst exponent."),
     cutoffs: tuple[float, float] = typer.Option(
-        (2e-6, 25e-6), "--cutoffs", metavar="SHORT LONG", rich_help_panel=_SYN,
-        help="Spectrum cutoff wavelengths in m."),
+        (2e-6, 25e-6),
+        "--cutoffs",
+        metavar="SHORT LONG",
+        rich_help_panel=_SYN,
+        help="Spectrum cutoff wavelengths in m.",
+    ),
     seed: int = typer.Option(1, "--seed", rich_help_panel=_SYN, help="Random seed."),
 ):
     """Greenwood–Tripp roughness (η, σ, β) from measured surface topography.
@@ -191,35 +254,53 @@ def topography_command(
             raise InputError(f"give one or two topography files (got {len(files)})")
         if synthetic:
             for i, path in enumerate(files):
-                topo = synthetic_surface((grid, grid), pixel, rms=rms, hurst=hurst,
-                                         short_cutoff=cutoffs[0], long_cutoff=cutoffs[1],
-                                         seed=seed + i)
+                topo = synthetic_surface(
+                    (grid, grid),
+                    pixel,
+                    rms=rms,
+                    hurst=hurst,
+                    short_cutoff=cutoffs[0],
+                    long_cutoff=cutoffs[1],
+                    seed=seed + i,
+                )
                 write_topography(topo, path)
                 if not as_json:
-                    console.print(f"wrote synthetic surface {path} ({grid} × {grid} points, "
-                                  f"pixel {_um(pixel)} µm, σ = {_um(rms)} µm, H = {hurst:g}, "
-                                  f"wavelengths {_um(cutoffs[0])}–{_um(cutoffs[1])} µm)",
-                                  markup=False)
-        kwargs = dict(kind=filter_kind, detrend=detrend, clip_band=clip_band,
-                      min_defined_fraction=min_defined, channel=channel, unit=unit,
-                      physical_sizes=size)
+                    console.print(
+                        f"wrote synthetic surface {path} ({grid} × {grid} points, "
+                        f"pixel {_um(pixel)} µm, σ = {_um(rms)} µm, H = {hurst:g}, "
+                        f"wavelengths {_um(cutoffs[0])}–{_um(cutoffs[1])} µm)",
+                        markup=False,
+                    )
+        kwargs = dict(
+            kind=filter_kind,
+            detrend=detrend,
+            clip_band=clip_band,
+            min_defined_fraction=min_defined,
+            channel=channel,
+            unit=unit,
+            physical_sizes=size,
+        )
         use_band = None if no_filter else ("auto" if band is None else band)
         analyses = [analyse_surface(f, use_band, **kwargs) for f in files]
         result = composite_roughness(*analyses) if len(analyses) == 2 else analyses[0]
         if method == "summits" and getattr(result, "summits", None) is None:
-            method = "spectral"       # profiles (and mixed pairs) have no summits
+            method = "spectral"  # profiles (and mixed pairs) have no summits
         block = result.toml_block(method)
         fig_path = None
         if figure is not None:
             from ..output.figures.topography import plot_height_distribution
+
             if figure.is_dir() or figure.suffix.lower() not in (".png", ".pdf", ".svg"):
-                raise InputError(f"--figure must be a file name ending in .png, .pdf or .svg "
-                                 f"(got {str(figure)!r})")
+                raise InputError(
+                    f"--figure must be a file name ending in .png, .pdf or .svg "
+                    f"(got {str(figure)!r})"
+                )
             try:
                 fig_path = plot_height_distribution(result, figure)
             except OSError as exc:
-                raise InputError(f"--figure: cannot write {str(figure)!r} "
-                                 f"({exc.strerror or exc})") from None
+                raise InputError(
+                    f"--figure: cannot write {str(figure)!r} ({exc.strerror or exc})"
+                ) from None
     except InputError as exc:
         err.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
         raise typer.Exit(code=2) from None
@@ -227,11 +308,11 @@ def topography_command(
     if as_json:
         for r in analyses:
             for w in r.warnings:
-                err.print(f"warning: {r.name}: {w}", markup=False, style="yellow",
-                          soft_wrap=True)
+                err.print(f"warning: {r.name}: {w}", markup=False, style="yellow", soft_wrap=True)
         out = result.to_dict()
-        out.update(method=method, roughness_toml=block,
-                   figure=None if fig_path is None else str(fig_path))
+        out.update(
+            method=method, roughness_toml=block, figure=None if fig_path is None else str(fig_path)
+        )
         sys.stdout.write(json.dumps(out, indent=2, ensure_ascii=False) + "\n")
         return
     for r in analyses:
@@ -240,8 +321,9 @@ def topography_command(
         _print_pair(console, result)
     console.print(_LIMITATION, markup=False, style="dim")
     console.print()
-    console.print(f"[bold]case-file block[/bold] (method: {escape(method)}; paste into the "
-                  "case TOML)")
+    console.print(
+        f"[bold]case-file block[/bold] (method: {escape(method)}; paste into the case TOML)"
+    )
     console.print(block, markup=False, highlight=False, soft_wrap=True)
     if fig_path is not None:
         console.print(f"wrote {fig_path}", markup=False)

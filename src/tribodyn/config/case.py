@@ -20,7 +20,7 @@ import difflib
 import math
 import tomllib
 from pathlib import Path
-from typing import Annotated, Any, Optional
+from typing import Annotated, Any
 
 import tomli_w
 from pydantic import (
@@ -69,8 +69,16 @@ from .schema import (
     paper_surface_sets,
 )
 
-__all__ = ["Case", "SurfaceSet", "load_case", "bundled_cases", "DEFAULT_CASE", "CASES_DIR",
-           "to_toml", "set_dotted"]
+__all__ = [
+    "Case",
+    "SurfaceSet",
+    "load_case",
+    "bundled_cases",
+    "DEFAULT_CASE",
+    "CASES_DIR",
+    "to_toml",
+    "set_dotted",
+]
 
 #: Folder of the bundled case files.
 CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
@@ -112,7 +120,6 @@ class SurfaceSet:
         return self.bodies[1].coating
 
 
-
 class Case(Section):
     """A validated case. Build it with :func:`load_case`, :meth:`from_toml_string` or
     :meth:`from_dict`; every section has defaults (the paper's case)."""
@@ -121,16 +128,17 @@ class Case(Section):
     engine: Engine = Field(default_factory=Engine)
     cam_config: CamConfig = Field(default_factory=AccelerationCamConfig, alias="cam")
     valvetrain: Valvetrain = Field(default_factory=Valvetrain)
-    lubricant_config: LubricantConfig = Field(default_factory=LubricantConfig,
-                                              alias="lubricant")
+    lubricant_config: LubricantConfig = Field(default_factory=LubricantConfig, alias="lubricant")
     materials: dict[Annotated[str, Field(min_length=1)], MaterialConfig] = Field(
-        default_factory=paper_materials, min_length=1)
-    surface_set_configs: list[SurfaceSetConfig] = Field(default_factory=paper_surface_sets,
-                                                        min_length=1, alias="surface_sets")
+        default_factory=paper_materials, min_length=1
+    )
+    surface_set_configs: list[SurfaceSetConfig] = Field(
+        default_factory=paper_surface_sets, min_length=1, alias="surface_sets"
+    )
     numerics: Numerics = Field(default_factory=Numerics)
 
     _base_dir: Path = PrivateAttr(default_factory=Path.cwd)
-    _source: Optional[Path] = PrivateAttr(default=None)
+    _source: Path | None = PrivateAttr(default=None)
     _cam: Any = PrivateAttr(default=None)
 
     # -- validation ---------------------------------------------------------------------
@@ -146,8 +154,9 @@ class Case(Section):
             if name not in self.materials:
                 hint = difflib.get_close_matches(name, list(self.materials), n=1)
                 more = f"; did you mean {hint[0]!r}?" if hint else ""
-                problems.append((path, f"unknown material {name!r} (defined in [materials]: "
-                                       f"{known}){more}"))
+                problems.append(
+                    (path, f"unknown material {name!r} (defined in [materials]: {known}){more}")
+                )
                 return False
             return True
 
@@ -156,8 +165,13 @@ class Case(Section):
         for i, s in enumerate(self.surface_set_configs):
             p = f"surface_sets[{i}]"
             if s.name in seen:
-                problems.append((f"{p}.name", f"duplicate surface-set name {s.name!r} (also "
-                                              f"surface_sets[{seen[s.name]}])"))
+                problems.append(
+                    (
+                        f"{p}.name",
+                        f"duplicate surface-set name {s.name!r} (also "
+                        f"surface_sets[{seen[s.name]}])",
+                    )
+                )
             seen.setdefault(s.name, i)
             ok = check_material(f"{p}.substrate", s.substrate)
             if s.coating is not None:
@@ -165,16 +179,24 @@ class Case(Section):
             if ok and s.boundary_shear_coefficient is None:
                 mat = s.coating if s.coating is not None else s.substrate
                 if self.materials[mat].boundary_shear_coefficient is None:
-                    problems.append((f"{p}.boundary_shear_coefficient",
-                                     f"required: material {mat!r} has no "
-                                     "boundary_shear_coefficient"))
-        builds = [("lubricant", self.lubricant), ("valvetrain", self.valvetrain_parameters),
-                  ("numerics", self.ehl_options)]
+                    problems.append(
+                        (
+                            f"{p}.boundary_shear_coefficient",
+                            f"required: material {mat!r} has no boundary_shear_coefficient",
+                        )
+                    )
+        builds = [
+            ("lubricant", self.lubricant),
+            ("valvetrain", self.valvetrain_parameters),
+            ("numerics", self.ehl_options),
+        ]
         if self.numerics.thermal or self.lubricant_config.datasheet:
             builds.append(("lubricant", self.thermal_lubricant))
         if self.numerics.thermal and not any(p == "lubricant" for p, _ in problems):
-            builds += [("materials", lambda s=s: self.thermal_bodies(s.name))
-                       for s in self.surface_set_configs]
+            builds += [
+                ("materials", lambda s=s: self.thermal_bodies(s.name))
+                for s in self.surface_set_configs
+            ]
         done = set()
         for path, build in builds:
             try:
@@ -195,21 +217,24 @@ class Case(Section):
 
     # -- construction -------------------------------------------------------------------
     @classmethod
-    def from_dict(cls, data: dict, *, base_dir=None, source=None) -> "Case":
+    def from_dict(cls, data: dict, *, base_dir=None, source=None) -> Case:
         """Validate a (TOML-shaped) dict. Relative paths resolve against ``base_dir``
         (default: the current folder)."""
         if not isinstance(data, dict):
             raise InputError(f"a case must be a table of sections (got {type(data).__name__})")
-        ctx = {"base_dir": Path(base_dir) if base_dir is not None else None,
-               "source": Path(source) if source is not None else None}
+        ctx = {
+            "base_dir": Path(base_dir) if base_dir is not None else None,
+            "source": Path(source) if source is not None else None,
+        }
         try:
             return cls.model_validate(data, context=ctx)
         except ValidationError as exc:
-            raise InputError(format_validation_error(exc, cls, source,
-                                                      variants={"cam": CAM_MODELS})) from None
+            raise InputError(
+                format_validation_error(exc, cls, source, variants={"cam": CAM_MODELS})
+            ) from None
 
     @classmethod
-    def from_toml_string(cls, text: str, *, base_dir=None, source=None) -> "Case":
+    def from_toml_string(cls, text: str, *, base_dir=None, source=None) -> Case:
         """Parse and validate TOML text (see :meth:`from_dict` for ``base_dir``)."""
         try:
             data = tomllib.loads(text)
@@ -219,7 +244,7 @@ class Case(Section):
         return cls.from_dict(data, base_dir=base_dir, source=source)
 
     @classmethod
-    def from_toml(cls, path) -> "Case":
+    def from_toml(cls, path) -> Case:
         """Read and validate a case file; relative paths resolve against its folder."""
         p = Path(path)
         try:
@@ -227,11 +252,13 @@ class Case(Section):
         except OSError as exc:
             raise InputError(f"cannot read case file {str(p)!r}: {exc.strerror}") from None
         except UnicodeDecodeError as exc:
-            raise InputError(f"case file {str(p)!r} is not UTF-8 text (byte {exc.start}: "
-                             f"{exc.reason}); save it as UTF-8 TOML") from None
+            raise InputError(
+                f"case file {str(p)!r} is not UTF-8 text (byte {exc.start}: "
+                f"{exc.reason}); save it as UTF-8 TOML"
+            ) from None
         return cls.from_toml_string(text, base_dir=p.resolve().parent, source=p)
 
-    def updated(self, changes: dict) -> "Case":
+    def updated(self, changes: dict) -> Case:
         """A new case with some keys changed and everything validated again.
 
         ``changes`` maps dotted key paths to values, e.g.
@@ -249,8 +276,9 @@ class Case(Section):
         its cached objects do not matter."""
         if not isinstance(other, Case):
             return NotImplemented
-        return (self.model_dump() == other.model_dump()
-                and self.cam_table_path == other.cam_table_path)
+        return (
+            self.model_dump() == other.model_dump() and self.cam_table_path == other.cam_table_path
+        )
 
     __hash__ = None  # mutable containers inside: not hashable
 
@@ -260,11 +288,11 @@ class Case(Section):
         ``resolve_paths=True`` makes the cam table path absolute."""
         d = self.model_dump(mode="python", exclude_none=True, by_alias=True)
         d["cam"] = {"type": d["cam"].pop("type"), **d["cam"]}
-        if self.valvetrain.model == "flexible":         # the bodies give these
+        if self.valvetrain.model == "flexible":  # the bodies give these
             for k in LUMPED_ONLY:
                 d["valvetrain"].pop(k, None)
         lub = self.lubricant_config
-        if lub.datasheet:        # follow from the datasheet (α: So–Klaus unless given)
+        if lub.datasheet:  # follow from the datasheet (α: So–Klaus unless given)
             for k in ("viscosity", "density", "pressure_viscosity"):
                 if k not in lub.model_fields_set:
                     d["lubricant"].pop(k, None)
@@ -274,8 +302,9 @@ class Case(Section):
 
     def to_toml(self, *, resolve_paths: bool = False) -> str:
         """TOML text that reads back to an equal case (all keys written)."""
-        head = [f"# tribodyn case {self.case.name!r} (all keys, SI units unless the key "
-                "says otherwise)"]
+        head = [
+            f"# tribodyn case {self.case.name!r} (all keys, SI units unless the key says otherwise)"
+        ]
         return to_toml(self.to_dict(resolve_paths=resolve_paths), header=head)
 
     def write_toml(self, path, *, resolve_paths: bool = True) -> Path:
@@ -287,7 +316,7 @@ class Case(Section):
 
     # -- builders -----------------------------------------------------------------------
     @property
-    def source(self) -> Optional[Path]:
+    def source(self) -> Path | None:
         """The file the case was read from (None if built in memory)."""
         return self._source
 
@@ -311,7 +340,7 @@ class Case(Section):
         return self.cam_config.width
 
     @property
-    def cam_table_path(self) -> Optional[Path]:
+    def cam_table_path(self) -> Path | None:
         """Resolved path of the cam lift table (``type = "table"`` only)."""
         if self.cam_config.type != "table":
             return None
@@ -324,11 +353,16 @@ class Case(Section):
         c = self.lubricant_config
         if c.datasheet:
             return self.thermal_lubricant().isothermal()
-        return Lubricant(viscosity=c.viscosity, pressure_viscosity=c.pressure_viscosity,
-                         density=c.density, eyring_stress=c.eyring_stress,
-                         limiting_shear_coefficient=c.limiting_shear_coefficient,
-                         limiting_shear_stress=c.limiting_shear_stress,
-                         compressible=c.compressible, viscosity_model=c.viscosity_model)
+        return Lubricant(
+            viscosity=c.viscosity,
+            pressure_viscosity=c.pressure_viscosity,
+            density=c.density,
+            eyring_stress=c.eyring_stress,
+            limiting_shear_coefficient=c.limiting_shear_coefficient,
+            limiting_shear_stress=c.limiting_shear_stress,
+            compressible=c.compressible,
+            viscosity_model=c.viscosity_model,
+        )
 
     def thermal_lubricant(self) -> ThermalLubricant:
         """The temperature- and pressure-dependent oil of ``[lubricant]``
@@ -336,17 +370,22 @@ class Case(Section):
         viscosity at ``inlet_temperature_c`` with its ``viscosity_temperature_coefficient``."""
         c = self.lubricant_config
         if c.inlet_temperature_c is None:
-            raise InputError("lubricant.inlet_temperature_c: required for the thermal model "
-                             "(the oil supply temperature, °C)")
-        common = dict(inlet_temperature=c.inlet_temperature_c + 273.15,
-                      thermal_expansion=c.thermal_expansion,
-                      thermal_conductivity=c.thermal_conductivity,
-                      specific_heat=c.specific_heat, eyring_stress=c.eyring_stress,
-                      limiting_shear_coefficient=c.limiting_shear_coefficient,
-                      limiting_shear_stress=c.limiting_shear_stress,
-                      limiting_shear_temperature_coefficient=(
-                          c.limiting_shear_temperature_coefficient),
-                      compressible=c.compressible, viscosity_model=c.viscosity_model)
+            raise InputError(
+                "lubricant.inlet_temperature_c: required for the thermal model "
+                "(the oil supply temperature, °C)"
+            )
+        common = dict(
+            inlet_temperature=c.inlet_temperature_c + 273.15,
+            thermal_expansion=c.thermal_expansion,
+            thermal_conductivity=c.thermal_conductivity,
+            specific_heat=c.specific_heat,
+            eyring_stress=c.eyring_stress,
+            limiting_shear_coefficient=c.limiting_shear_coefficient,
+            limiting_shear_stress=c.limiting_shear_stress,
+            limiting_shear_temperature_coefficient=(c.limiting_shear_temperature_coefficient),
+            compressible=c.compressible,
+            viscosity_model=c.viscosity_model,
+        )
         given = c.model_fields_set
         if c.datasheet:
             sheet = dict(OILS[c.oil]) if c.oil is not None else {}
@@ -361,54 +400,73 @@ class Case(Section):
             alpha = c.pressure_viscosity if "pressure_viscosity" in given else None
             return ThermalLubricant(**common, **sheet, pressure_viscosity=alpha, name=name)
         if c.viscosity_temperature_coefficient is None:
-            raise InputError("lubricant.viscosity_temperature_coefficient: required for the "
-                             "thermal model with a viscosity (or give a datasheet: oil, "
-                             "kinematic_viscosity_40_cst/_100_cst)")
-        return ThermalLubricant(**common, viscosity=c.viscosity,
-                                viscosity_temperature_coefficient=(
-                                    c.viscosity_temperature_coefficient),
-                                density=c.density, density_temperature=c.inlet_temperature_c
-                                + 273.15, pressure_viscosity=c.pressure_viscosity,
-                                name="lubricant")
+            raise InputError(
+                "lubricant.viscosity_temperature_coefficient: required for the "
+                "thermal model with a viscosity (or give a datasheet: oil, "
+                "kinematic_viscosity_40_cst/_100_cst)"
+            )
+        return ThermalLubricant(
+            **common,
+            viscosity=c.viscosity,
+            viscosity_temperature_coefficient=(c.viscosity_temperature_coefficient),
+            density=c.density,
+            density_temperature=c.inlet_temperature_c + 273.15,
+            pressure_viscosity=c.pressure_viscosity,
+            name="lubricant",
+        )
 
     def thermal_properties(self, name: str) -> ThermalProperties:
         """k, ρ, c of ``[materials.<name>]`` (steel, dlc and wcc default to the literature
         values of :mod:`tribodyn.physics.oils`)."""
         m = self.materials[name]
         d = dict(THERMAL_MATERIALS.get(name, {}))
-        for key, val in (("conductivity", m.thermal_conductivity), ("density", m.density),
-                         ("specific_heat", m.specific_heat)):
+        for key, val in (
+            ("conductivity", m.thermal_conductivity),
+            ("density", m.density),
+            ("specific_heat", m.specific_heat),
+        ):
             if val is not None:
                 d[key] = val
         missing = [k for k in ("conductivity", "density", "specific_heat") if k not in d]
         if missing:
             names = {"conductivity": "thermal_conductivity"}
-            raise InputError("; ".join(f"materials.{name}.{names.get(k, k)}: required for the "
-                                       "thermal model" for k in missing))
+            raise InputError(
+                "; ".join(
+                    f"materials.{name}.{names.get(k, k)}: required for the thermal model"
+                    for k in missing
+                )
+            )
         return ThermalProperties(**d)
 
-    def thermal_bodies(self, surface_set: "SurfaceSet | str") -> tuple:
+    def thermal_bodies(self, surface_set: SurfaceSet | str) -> tuple:
         """(cam, tappet) as :class:`~tribodyn.physics.heat_conduction.ThermalBody`."""
         s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
-        cfg = next(c for c in self.surface_set_configs if c.name == s.name) \
-            if s.name else None
+        cfg = next(c for c in self.surface_set_configs if c.name == s.name) if s.name else None
         cam = ThermalBody(self.thermal_properties(self.cam_config.material))
-        sub = cfg.substrate if cfg is not None else (
-            "steel" if "steel" in self.materials else self.cam_config.material)
+        sub = (
+            cfg.substrate
+            if cfg is not None
+            else ("steel" if "steel" in self.materials else self.cam_config.material)
+        )
         coat = s.coating_material if cfg is None else cfg.coating
         if coat is None:
             tappet = ThermalBody(self.thermal_properties(sub))
         else:
-            tappet = ThermalBody(self.thermal_properties(sub), self.thermal_properties(coat),
-                                 s.coating.thickness)
+            tappet = ThermalBody(
+                self.thermal_properties(sub), self.thermal_properties(coat), s.coating.thickness
+            )
         return cam, tappet
 
     def thermal_options(self) -> ThermalOptions:
         """:class:`~tribodyn.contact.ehl.thermal.ThermalOptions` from ``[numerics]``."""
         n = self.numerics
-        return ThermalOptions(x_nodes=n.thermal_x_nodes, film_nodes=n.thermal_film_nodes,
-                              solid_nodes=n.thermal_solid_nodes,
-                              step_iter=n.thermal_iterations, tol=n.thermal_tol)
+        return ThermalOptions(
+            x_nodes=n.thermal_x_nodes,
+            film_nodes=n.thermal_film_nodes,
+            solid_nodes=n.thermal_solid_nodes,
+            step_iter=n.thermal_iterations,
+            tol=n.thermal_tol,
+        )
 
     def material(self, name: str) -> Material:
         """The :class:`~tribodyn.Material` of ``[materials.<name>]``."""
@@ -421,32 +479,50 @@ class Case(Section):
         c = self.cam_config
         tr = self.valvetrain.tappet_radius
         if c.type == "acceleration":
-            return AccelerationCam(c.base_radius, c.max_lift,
-                                   event_angle=math.radians(c.event_angle_deg),
-                                   nose_radius=c.nose_radius, ramp_height=c.ramp_height,
-                                   ramp_angle=math.radians(c.ramp_angle_deg),
-                                   pulse_share=c.pulse_share,
-                                   ramp_pulse_share=c.ramp_pulse_share,
-                                   nose_angle=math.radians(c.nose_angle_deg),
-                                   tappet_radius=tr)
+            return AccelerationCam(
+                c.base_radius,
+                c.max_lift,
+                event_angle=math.radians(c.event_angle_deg),
+                nose_radius=c.nose_radius,
+                ramp_height=c.ramp_height,
+                ramp_angle=math.radians(c.ramp_angle_deg),
+                pulse_share=c.pulse_share,
+                ramp_pulse_share=c.ramp_pulse_share,
+                nose_angle=math.radians(c.nose_angle_deg),
+                tappet_radius=tr,
+            )
         if c.type == "circular_arc":
-            return CircularArcCam(c.base_radius, c.max_lift, flank_radius=c.flank_radius,
-                                  nose_radius=c.nose_radius,
-                                  nose_angle=math.radians(c.nose_angle_deg), tappet_radius=tr)
+            return CircularArcCam(
+                c.base_radius,
+                c.max_lift,
+                flank_radius=c.flank_radius,
+                nose_radius=c.nose_radius,
+                nose_angle=math.radians(c.nose_angle_deg),
+                tappet_radius=tr,
+            )
         try:
-            cam = TabulatedCam.from_csv(self.cam_table_path, c.base_radius,
-                                        smoothing=c.smoothing, angle_unit=c.angle_unit,
-                                        lift_unit=c.lift_unit, angle_column=c.angle_column,
-                                        lift_column=c.lift_column, tappet_radius=tr)
-        except InputError as exc:        # the table's own message, filed under cam.path
+            cam = TabulatedCam.from_csv(
+                self.cam_table_path,
+                c.base_radius,
+                smoothing=c.smoothing,
+                angle_unit=c.angle_unit,
+                lift_unit=c.lift_unit,
+                angle_column=c.angle_column,
+                lift_column=c.lift_column,
+                tappet_radius=tr,
+            )
+        except InputError as exc:  # the table's own message, filed under cam.path
             msg = str(exc)
             if str(self.cam_table_path) not in msg:
                 msg = f"{self.cam_table_path}: {msg}"
             raise CamTableError("path", msg) from None
         if c.max_lift is not None and abs(cam.max_lift / c.max_lift - 1.0) > 0.01:
-            raise CamTableError("max_lift", f"{c.max_lift:g} m disagrees with the lift "
-                                             f"table's maximum {cam.max_lift:g} m by more "
-                                             "than 1 %")
+            raise CamTableError(
+                "max_lift",
+                f"{c.max_lift:g} m disagrees with the lift "
+                f"table's maximum {cam.max_lift:g} m by more "
+                "than 1 %",
+            )
         return cam
 
     def cam(self) -> CamProfile:
@@ -476,8 +552,7 @@ class Case(Section):
         return self.valvetrain.model
 
     def _joint_parameters(self) -> ValvetrainParameters:
-        d = self.valvetrain.model_dump(exclude={"model", "valve", "tappet", "spring",
-                                                "camshaft"})
+        d = self.valvetrain.model_dump(exclude={"model", "valve", "tappet", "spring", "camshaft"})
         return ValvetrainParameters(**d, cam_width=self.cam_config.width)
 
     def _flexible(self, joints: ValvetrainParameters) -> FlexibleValvetrain:
@@ -493,21 +568,31 @@ class Case(Section):
         cs = None if v.camshaft is None else Camshaft(**v.camshaft.model_dump())
         return FlexibleValvetrain(valve, tappet, spring, joints, cs)
 
-    def ehl_options(self, surface_set: "SurfaceSet | str | None" = None) -> EHLOptions:
+    def ehl_options(self, surface_set: SurfaceSet | str | None = None) -> EHLOptions:
         """:class:`~tribodyn.EHLOptions` from ``[numerics]``; with a surface set (object or
         name), its ς and τ₀ of the boundary friction law."""
         n = self.numerics
         if 0 < n.n < 32:
             raise InputError(f"numerics.n: must be 0 (automatic) or >= 32 (got {n.n})")
-        kw = dict(n=n.n or None, inlet=n.inlet, outlet=n.outlet,
-                  inlet_truncation=n.inlet_truncation, inlet_rigid=n.inlet_rigid,
-                  outlet_rigid=n.outlet_rigid, tol=n.tol, max_iter=n.max_iter,
-                  viscous_model=n.viscous_model, limiting_shear=n.limiting_shear,
-                  time_order=n.time_order)
+        kw = dict(
+            n=n.n or None,
+            inlet=n.inlet,
+            outlet=n.outlet,
+            inlet_truncation=n.inlet_truncation,
+            inlet_rigid=n.inlet_rigid,
+            outlet_rigid=n.outlet_rigid,
+            tol=n.tol,
+            max_iter=n.max_iter,
+            viscous_model=n.viscous_model,
+            limiting_shear=n.limiting_shear,
+            time_order=n.time_order,
+        )
         if surface_set is not None:
             s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
-            kw.update(boundary_shear_coefficient=s.boundary_shear_coefficient,
-                      boundary_shear_strength=s.boundary_shear_strength)
+            kw.update(
+                boundary_shear_coefficient=s.boundary_shear_coefficient,
+                boundary_shear_strength=s.boundary_shear_strength,
+            )
         return EHLOptions(**kw)
 
     def surface_sets(self) -> list[SurfaceSet]:
@@ -540,36 +625,58 @@ class Case(Section):
             tappet = Body(substrate, Coating(E=cm.E, nu=cm.nu, thickness=s.coating_thickness))
             label = f"{cm.label or s.coating} {s.coating_thickness * 1e6:.3g} µm"
             mat = s.coating
-        sigma = (s.boundary_shear_coefficient if s.boundary_shear_coefficient is not None
-                 else self.materials[mat].boundary_shear_coefficient)
+        sigma = (
+            s.boundary_shear_coefficient
+            if s.boundary_shear_coefficient is not None
+            else self.materials[mat].boundary_shear_coefficient
+        )
         r = s.roughness
-        rough = Roughness(asperity_density=r.asperity_density, rms=r.rms,
-                          summit_radius=r.summit_radius, method=self.numerics.greenwood_tripp)
-        return SurfaceSet(name=s.name, bodies=(cam, tappet), roughness=rough,
-                          boundary_shear_coefficient=float(sigma), coating_label=label,
-                          boundary_shear_strength=s.boundary_shear_strength,
-                          coating_material=s.coating)
+        rough = Roughness(
+            asperity_density=r.asperity_density,
+            rms=r.rms,
+            summit_radius=r.summit_radius,
+            method=self.numerics.greenwood_tripp,
+        )
+        return SurfaceSet(
+            name=s.name,
+            bodies=(cam, tappet),
+            roughness=rough,
+            boundary_shear_coefficient=float(sigma),
+            coating_label=label,
+            boundary_shear_strength=s.boundary_shear_strength,
+            coating_material=s.coating,
+        )
 
     def dynamics_options(self) -> dict:
         """Keyword arguments of :func:`~tribodyn.valvetrain.simulate_valvetrain` from the
         case (engine speed and ``[numerics]``)."""
         n = self.numerics
-        return dict(engine_speed=self.engine.speed_rpm, cycles=n.cycles,
-                    output_step=n.output_step_deg, method=n.dynamics_method,
-                    rtol=n.dynamics_rtol, max_step=n.max_step_deg)
+        return dict(
+            engine_speed=self.engine.speed_rpm,
+            cycles=n.cycles,
+            output_step=n.output_step_deg,
+            method=n.dynamics_method,
+            rtol=n.dynamics_rtol,
+            max_step=n.max_step_deg,
+        )
 
-    def analytic_tribology(self, surface_set: "SurfaceSet | str"):
+    def analytic_tribology(self, surface_set: SurfaceSet | str):
         """Explicit tribology of the dynamics for one surface set
         (:class:`~tribodyn.valvetrain.AnalyticTribology` over the cam width)."""
         from ..valvetrain.tribology import AnalyticTribology
+
         s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
         n = self.numerics
-        model = AnalyticTribology(self.cam_config.width, bodies=s.bodies,
-                                  lubricant=self.lubricant(),
-                                  roughness=s.roughness,
-                                  boundary_shear_coefficient=s.boundary_shear_coefficient,
-                                  viscous_model=n.viscous_model, film_formula=n.film_formula,
-                                  limiting_shear=n.limiting_shear)
+        model = AnalyticTribology(
+            self.cam_config.width,
+            bodies=s.bodies,
+            lubricant=self.lubricant(),
+            roughness=s.roughness,
+            boundary_shear_coefficient=s.boundary_shear_coefficient,
+            viscous_model=n.viscous_model,
+            film_formula=n.film_formula,
+            limiting_shear=n.limiting_shear,
+        )
         # τ₀ is not a constructor argument of AnalyticTribology; it is forwarded through
         # the keyword arguments it passes to analytic_contact.
         model.kwargs["boundary_shear_strength"] = s.boundary_shear_strength
@@ -596,7 +703,6 @@ def load_case(path=None) -> Case:
         if p.stem in bundled and p.parent == Path(".") and p.suffix in ("", ".toml"):
             return Case.from_toml(bundled[p.stem])
     return Case.from_toml(p)
-
 
 
 def to_toml(data: dict, *, header: list[str] | None = None) -> str:

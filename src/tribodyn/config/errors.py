@@ -35,7 +35,6 @@ class CamTableError(InputError):
         self.key = f"cam.{key}"
 
 
-
 def _unit_of(fi) -> str:
     extra = fi.json_schema_extra if fi is not None else None
     return extra.get("unit", "") if isinstance(extra, dict) else ""
@@ -146,8 +145,9 @@ def _error_lines(err: dict, root, variants) -> list[tuple[str, str]]:
     inp = err.get("input")
     if typ == "value_error" and isinstance(ctx.get("error"), Problems):
         prefix, _, _ = _resolve_loc(root, loc, variants)
-        return [(f"{prefix}.{p}" if prefix and p else (prefix or p), m)
-                for p, m in ctx["error"].items]
+        return [
+            (f"{prefix}.{p}" if prefix and p else (prefix or p), m) for p, m in ctx["error"].items
+        ]
     path, fi, owner = _resolve_loc(root, loc, variants)
     got = f" (got {_given(inp)})"
     if typ in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
@@ -168,15 +168,21 @@ def _error_lines(err: dict, root, variants) -> list[tuple[str, str]]:
     if typ == "literal_error":
         return [(path, f"must be {ctx.get('expected')}{got}")]
     if typ == "union_tag_invalid":
-        return [(f"{path}.type", f"must be one of {ctx.get('expected_tags')} "
-                                 f"(got {ctx.get('tag')!r})")]
+        return [
+            (f"{path}.type", f"must be one of {ctx.get('expected_tags')} (got {ctx.get('tag')!r})")
+        ]
     if typ in ("union_tag_not_found", "model_type", "model_attributes_type", "dict_type"):
         return [(path, f"must be a table{got}")]
     if typ == "list_type":
         return [(path, f"must be an array of tables ([[{path}]]){got}")]
     if typ == "too_short":
-        return [(path, f"must have at least {ctx.get('min_length')} entr"
-                       f"{'y' if ctx.get('min_length') == 1 else 'ies'}")]
+        return [
+            (
+                path,
+                f"must have at least {ctx.get('min_length')} entr"
+                f"{'y' if ctx.get('min_length') == 1 else 'ies'}",
+            )
+        ]
     if typ in ("float_type", "float_parsing"):
         return [(path, f"must be a number{_unit_hint(fi)}{got}")]
     if typ in ("int_type", "int_parsing", "int_from_float"):
@@ -192,8 +198,13 @@ def _error_lines(err: dict, root, variants) -> list[tuple[str, str]]:
     if typ == "string_too_long":
         return [(path, f"must have at most {ctx.get('max_length')} characters{got}")]
     if typ == "string_pattern_mismatch":
-        return [(path, "must start with a letter or digit and contain only letters, digits, "
-                       f"'_', '.', '+', '-'{got}")]
+        return [
+            (
+                path,
+                "must start with a letter or digit and contain only letters, digits, "
+                f"'_', '.', '+', '-'{got}",
+            )
+        ]
     if typ == "value_error":
         return [(path, f"{ctx.get('error', err['msg'])}")]
     return [(path, f"{err['msg']}{got}")]
@@ -204,8 +215,9 @@ def _unit_hint(fi) -> str:
     return f" [{u}]" if u else ""
 
 
-def format_validation_error(exc: ValidationError, root, source=None, *, what="case",
-                            variants=None) -> str:
+def format_validation_error(
+    exc: ValidationError, root, source=None, *, what="case", variants=None
+) -> str:
     """Readable multi-line message: one ``dotted.key: problem (got value)`` per line.
 
     root : the model class validated; what : how the message names it ("case", "sweep");
@@ -219,5 +231,3 @@ def format_validation_error(exc: ValidationError, root, source=None, *, what="ca
     where = f" {source}" if source is not None else ""
     head = f"invalid {what}{where}: {n} problem{'s' if n != 1 else ''}"
     return head + "".join(f"\n  {p or '(top level)'}: {m}" for p, m in lines)
-
-

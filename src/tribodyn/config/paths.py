@@ -27,8 +27,18 @@ from pydantic import BaseModel
 
 from .._validation import InputError
 
-__all__ = ["PathError", "Key", "Index", "All", "Match", "parse_path", "format_path",
-           "set_path", "get_path", "schema_field"]
+__all__ = [
+    "PathError",
+    "Key",
+    "Index",
+    "All",
+    "Match",
+    "parse_path",
+    "format_path",
+    "set_path",
+    "get_path",
+    "schema_field",
+]
 
 
 class PathError(InputError):
@@ -56,7 +66,7 @@ class Match:
     value: str
 
 
-Token = Union[Key, Index, All, Match]
+Token = Union[Key, Index, All, Match]  # noqa: UP007  (a runtime alias, kept explicit)
 
 _BARE = r"[A-Za-z0-9_\-]+"
 _QUOTED = r'"[^"]*"'
@@ -74,16 +84,20 @@ def parse_path(path: str) -> tuple[Token, ...]:
     while True:
         m = _KEY_RE.match(s, i)
         if not m:
-            raise PathError(f"cannot parse key path {path!r} at character {i + 1}: expected "
-                            "a key (letters, digits, _ or -, or text in double quotes)")
+            raise PathError(
+                f"cannot parse key path {path!r} at character {i + 1}: expected "
+                "a key (letters, digits, _ or -, or text in double quotes)"
+            )
         key = m.group(1)
         tokens.append(Key(key[1:-1] if key.startswith('"') else key))
         i = m.end()
         while i < len(s) and s[i] == "[":
             m = _SEL_RE.match(s, i)
             if not m:
-                raise PathError(f"cannot parse key path {path!r} at character {i + 1}: a "
-                                "selector is [index], [*] or [key=value]")
+                raise PathError(
+                    f"cannot parse key path {path!r} at character {i + 1}: a "
+                    "selector is [index], [*] or [key=value]"
+                )
             if m.group(1) is not None:
                 tokens.append(Index(int(m.group(1))))
             elif m.group(2) is not None:
@@ -95,8 +109,9 @@ def parse_path(path: str) -> tuple[Token, ...]:
         if i == len(s):
             return tuple(tokens)
         if s[i] != ".":
-            raise PathError(f"cannot parse key path {path!r} at character {i + 1}: expected "
-                            "'.', '[' or the end")
+            raise PathError(
+                f"cannot parse key path {path!r} at character {i + 1}: expected '.', '[' or the end"
+            )
         i += 1
 
 
@@ -120,11 +135,12 @@ def _select(cur, tok, where: str) -> list:
     """The children of ``cur`` selected by one selector token."""
     if isinstance(tok, Index):
         if not isinstance(cur, list):
-            raise PathError(f"{where}: [{tok.index}] needs an array (this is a "
-                            f"{_kind(cur)})")
+            raise PathError(f"{where}: [{tok.index}] needs an array (this is a {_kind(cur)})")
         if not 0 <= tok.index < len(cur):
-            raise PathError(f"{where}[{tok.index}]: index out of range (the array has "
-                            f"{len(cur)} entries, [0] to [{len(cur) - 1}])")
+            raise PathError(
+                f"{where}[{tok.index}]: index out of range (the array has "
+                f"{len(cur)} entries, [0] to [{len(cur) - 1}])"
+            )
         return [cur[tok.index]]
     if isinstance(tok, All):
         if isinstance(cur, list):
@@ -133,16 +149,22 @@ def _select(cur, tok, where: str) -> list:
             return list(cur.values())
         raise PathError(f"{where}: [*] needs an array or a table (this is a {_kind(cur)})")
     if not isinstance(cur, list):
-        raise PathError(f"{where}: [{tok.field}={tok.value}] needs an array of tables "
-                        f"(this is a {_kind(cur)})")
-    hits = [e for e in cur if isinstance(e, dict) and tok.field in e
-            and _text(e[tok.field]) == tok.value]
+        raise PathError(
+            f"{where}: [{tok.field}={tok.value}] needs an array of tables (this is a {_kind(cur)})"
+        )
+    hits = [
+        e
+        for e in cur
+        if isinstance(e, dict) and tok.field in e and _text(e[tok.field]) == tok.value
+    ]
     if not hits:
         have = [_text(e[tok.field]) for e in cur if isinstance(e, dict) and tok.field in e]
         hint = difflib.get_close_matches(tok.value, have, n=1)
         more = f"; did you mean {hint[0]!r}?" if hint else ""
-        raise PathError(f"{where}[{tok.field}={tok.value}]: no entry has {tok.field} = "
-                        f"{tok.value!r} ({tok.field}s: {', '.join(have) or 'none'}){more}")
+        raise PathError(
+            f"{where}[{tok.field}={tok.value}]: no entry has {tok.field} = "
+            f"{tok.value!r} ({tok.field}s: {', '.join(have) or 'none'}){more}"
+        )
     return hits
 
 
@@ -168,8 +190,7 @@ def _walk(data, tokens, create: bool):
         else:
             segs[-1][1].append(t)
     if segs[-1][1]:
-        raise PathError(f"{format_path(tokens)}: a key path must end on a key, not a "
-                        "selector")
+        raise PathError(f"{format_path(tokens)}: a key path must end on a key, not a selector")
     curs = [data]
     done: list[Token] = []
     for key, sels in segs[:-1]:
@@ -177,8 +198,7 @@ def _walk(data, tokens, create: bool):
         where = format_path(done + [key])
         for c in curs:
             if not isinstance(c, dict):
-                raise PathError(f"{format_path(done)}: is a {_kind(c)}, it has no key "
-                                f"{key.name!r}")
+                raise PathError(f"{format_path(done)}: is a {_kind(c)}, it has no key {key.name!r}")
             if key.name not in c:
                 if not create or sels:
                     raise PathError(f"{where}: not in the case")
@@ -249,8 +269,7 @@ def schema_field(root, path, data: dict | None = None, variants: dict | None = N
                     hint = difflib.get_close_matches(t.name, list(fields), n=1)
                     more = f"; did you mean {hint[0]!r}?" if hint else ""
                     where = format_path(done + [t])
-                    raise PathError(f"{where}: unknown key{more} (allowed: "
-                                    f"{', '.join(fields)})")
+                    raise PathError(f"{where}: unknown key{more} (allowed: {', '.join(fields)})")
                 fi = fields[t.name]
                 if t.name in variants:
                     tag = None
@@ -265,8 +284,7 @@ def schema_field(root, path, data: dict | None = None, variants: dict | None = N
                 fi = None
                 node = node.get(t.name) if isinstance(node, dict) else None
             else:
-                raise PathError(f"{format_path(done + [t])}: {format_path(done)} has no "
-                                "keys")
+                raise PathError(f"{format_path(done + [t])}: {format_path(done)} has no keys")
         else:
             origin = get_origin(cur)
             if origin is list:
@@ -274,18 +292,18 @@ def schema_field(root, path, data: dict | None = None, variants: dict | None = N
             elif origin is dict and isinstance(t, All):
                 cur = get_args(cur)[1]
             else:
-                raise PathError(f"{format_path(done + [t])}: {format_path(done)} is not an "
-                                "array")
+                raise PathError(f"{format_path(done + [t])}: {format_path(done)} is not an array")
             fi = None
             if isinstance(node, list) and node:
-                node = node[t.index] if isinstance(t, Index) and t.index < len(node) \
-                    else node[0]
+                node = node[t.index] if isinstance(t, Index) and t.index < len(node) else node[0]
             elif isinstance(node, dict) and node:
                 node = next(iter(node.values()))
         done.append(t)
     if fi is None:
         raise PathError(f"{format_path(tokens)}: not a single key of the case")
     if isinstance(cur, type) and issubclass(cur, BaseModel):
-        raise PathError(f"{format_path(tokens)}: is a table; give one of its keys "
-                        f"({', '.join(_keyed_fields(cur))})")
+        raise PathError(
+            f"{format_path(tokens)}: is a table; give one of its keys "
+            f"({', '.join(_keyed_fields(cur))})"
+        )
     return fi

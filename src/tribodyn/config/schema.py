@@ -9,7 +9,7 @@ defaults. Sections are strict (no type coercion), frozen, and reject unknown key
 from __future__ import annotations
 
 import dataclasses
-from typing import Annotated, Any, Literal, Optional, Union
+from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, model_validator
 
@@ -20,11 +20,28 @@ from ..physics.oils import OILS
 from ..valvetrain.parameters import ValvetrainParameters
 from .errors import Problems
 
-__all__ = ["CaseInfo", "Engine", "AccelerationCamConfig", "CircularArcCamConfig",
-           "TableCamConfig", "CAM_MODELS", "CamConfig", "Valvetrain", "ValveConfig",
-           "TappetConfig", "SpringConfig", "CamshaftConfig", "LUMPED_ONLY", "LubricantConfig",
-           "MaterialConfig", "RoughnessConfig", "SurfaceSetConfig", "Numerics",
-           "paper_materials", "paper_surface_sets"]
+__all__ = [
+    "CaseInfo",
+    "Engine",
+    "AccelerationCamConfig",
+    "CircularArcCamConfig",
+    "TableCamConfig",
+    "CAM_MODELS",
+    "CamConfig",
+    "Valvetrain",
+    "ValveConfig",
+    "TappetConfig",
+    "SpringConfig",
+    "CamshaftConfig",
+    "LUMPED_ONLY",
+    "LubricantConfig",
+    "MaterialConfig",
+    "RoughnessConfig",
+    "SurfaceSetConfig",
+    "Numerics",
+    "paper_materials",
+    "paper_surface_sets",
+]
 
 _VT_DEFAULTS = {f.name: f.default for f in dataclasses.fields(ValvetrainParameters)}
 _NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9_.+\-]*$"
@@ -35,7 +52,7 @@ def _q(default: Any, unit: str, doc: str, **constraints) -> Any:
     return Field(default, description=doc, json_schema_extra={"unit": unit}, **constraints)
 
 
-def _lim(default: Any, limit: "L.Limit", doc: str) -> Any:
+def _lim(default: Any, limit: L.Limit, doc: str) -> Any:
     """A field whose unit and range are a shared limit of :mod:`tribodyn.physics.limits`
     (the physics constructors check the same range)."""
     return _q(default, limit.unit, doc, **limit.constraints())
@@ -44,29 +61,38 @@ def _lim(default: Any, limit: "L.Limit", doc: str) -> Any:
 class Section(BaseModel):
     """Base of all case sections: unknown keys rejected, no silent type coercion."""
 
-    model_config = ConfigDict(extra="forbid", strict=True, frozen=True, allow_inf_nan=False,
-                              validate_default=False)
+    model_config = ConfigDict(
+        extra="forbid", strict=True, frozen=True, allow_inf_nan=False, validate_default=False
+    )
 
 
 # ----------------------------------------------------------------------------- sections
 class CaseInfo(Section):
     """``[case]``: identification of the study."""
 
-    name: str = _q("case", "", "short name of the case (used in reports and file names)",
-                   min_length=1, max_length=64, pattern=_NAME_PATTERN)
+    name: str = _q(
+        "case",
+        "",
+        "short name of the case (used in reports and file names)",
+        min_length=1,
+        max_length=64,
+        pattern=_NAME_PATTERN,
+    )
     description: str = _q("", "", "free text")
 
 
 class Engine(Section):
     """``[engine]``: operating point. The cam turns at half the engine speed (4-stroke)."""
 
-    speed_rpm: float = _lim(paper.ENGINE_SPEED_RPM, L.ENGINE_SPEED,
-                            "engine (crank) speed; cam speed = speed_rpm/2")
+    speed_rpm: float = _lim(
+        paper.ENGINE_SPEED_RPM, L.ENGINE_SPEED, "engine (crank) speed; cam speed = speed_rpm/2"
+    )
 
 
 class _CamBase(Section):
-    material: str = _q("steel", "", "cam material (a key of [materials]); the cam is uncoated",
-                       min_length=1)
+    material: str = _q(
+        "steel", "", "cam material (a key of [materials]); the cam is uncoated", min_length=1
+    )
     base_radius: float = _q(paper.CAM_BASE_RADIUS, "m", "base-circle radius r_b", gt=0.0, lt=1.0)
     width: float = _lim(paper.CAM_WIDTH, L.LENGTH_BELOW_1M, "cam width (axial contact length)")
 
@@ -76,18 +102,23 @@ class AccelerationCamConfig(_CamBase):
 
     type: Literal["acceleration"] = "acceleration"
     max_lift: float = _q(paper.CAM_MAX_LIFT, "m", "maximum lift L incl. the ramp", gt=0.0, lt=1.0)
-    event_angle_deg: float = _q(171.0, "deg (cam)", "total event incl. both ramps",
-                                gt=0.0, lt=360.0)
+    event_angle_deg: float = _q(
+        171.0, "deg (cam)", "total event incl. both ramps", gt=0.0, lt=360.0
+    )
     nose_radius: float = _q(3e-3, "m", "radius of curvature at the nose", gt=0.0, lt=1.0)
-    ramp_height: float = _q(0.2e-3, "m", "opening/closing ramp height (0: no ramp)",
-                            ge=0.0, lt=1.0)
+    ramp_height: float = _q(0.2e-3, "m", "opening/closing ramp height (0: no ramp)", ge=0.0, lt=1.0)
     ramp_angle_deg: float = _q(20.0, "deg (cam)", "ramp length (0: no ramp)", ge=0.0, lt=180.0)
-    pulse_share: float = _q(0.25, "", "share of the half main event taken by the positive "
-                                      "acceleration pulse", gt=0.0, lt=1.0)
-    ramp_pulse_share: float = _q(0.5, "", "share of the ramp taken by its acceleration pulse",
-                                 gt=0.0, le=1.0)
-    nose_angle_deg: float = _q(180.0, "deg (cam)", "cam angle of maximum lift", ge=0.0,
-                               lt=360.0)
+    pulse_share: float = _q(
+        0.25,
+        "",
+        "share of the half main event taken by the positive acceleration pulse",
+        gt=0.0,
+        lt=1.0,
+    )
+    ramp_pulse_share: float = _q(
+        0.5, "", "share of the ramp taken by its acceleration pulse", gt=0.0, le=1.0
+    )
+    nose_angle_deg: float = _q(180.0, "deg (cam)", "cam angle of maximum lift", ge=0.0, lt=360.0)
 
 
 class CircularArcCamConfig(_CamBase):
@@ -97,33 +128,47 @@ class CircularArcCamConfig(_CamBase):
     max_lift: float = _q(paper.CAM_MAX_LIFT, "m", "maximum lift L", gt=0.0, lt=1.0)
     flank_radius: float = _q(0.030, "m", "flank arc radius (> base_radius)", gt=0.0, lt=1.0)
     nose_radius: float = _q(3e-3, "m", "nose arc radius (< base_radius)", gt=0.0, lt=1.0)
-    nose_angle_deg: float = _q(180.0, "deg (cam)", "cam angle of maximum lift", ge=0.0,
-                               lt=360.0)
+    nose_angle_deg: float = _q(180.0, "deg (cam)", "cam angle of maximum lift", ge=0.0, lt=360.0)
 
 
 class TableCamConfig(_CamBase):
     """``[cam] type = "table"``: :class:`~tribodyn.valvetrain.TabulatedCam` from a CSV file."""
 
     type: Literal["table"]
-    path: str = _q(..., "", "CSV lift table (cam angle, lift), relative to the case file",
-                   min_length=1)
+    path: str = _q(
+        ..., "", "CSV lift table (cam angle, lift), relative to the case file", min_length=1
+    )
     angle_unit: Literal["auto", "deg", "rad", "crank_deg"] = _q(
-        "auto", "", "unit of the angle column (auto: from the header, else degrees)")
+        "auto", "", "unit of the angle column (auto: from the header, else degrees)"
+    )
     lift_unit: Literal["auto", "mm", "m", "um", "in"] = _q(
-        "auto", "", "unit of the lift column (auto: from the header, else mm)")
-    angle_column: Optional[Union[int, str]] = _q(
-        None, "", "angle column: 1-based number or header name (needed with > 2 columns)")
-    lift_column: Optional[Union[int, str]] = _q(
-        None, "", "lift column: 1-based number or header name (needed with > 2 columns)")
-    smoothing: Optional[float] = _q(None, "m", "precision of the table: allowed RMS deviation "
-                                               "of the fit (absent: estimated from the "
-                                               "table)", ge=0.0, lt=1e-3)
-    max_lift: Optional[float] = _q(None, "m", "optional check: the table's maximum lift must "
-                                              "agree within 1 %", gt=0.0, lt=1.0)
+        "auto", "", "unit of the lift column (auto: from the header, else mm)"
+    )
+    angle_column: int | str | None = _q(
+        None, "", "angle column: 1-based number or header name (needed with > 2 columns)"
+    )
+    lift_column: int | str | None = _q(
+        None, "", "lift column: 1-based number or header name (needed with > 2 columns)"
+    )
+    smoothing: float | None = _q(
+        None,
+        "m",
+        "precision of the table: allowed RMS deviation "
+        "of the fit (absent: estimated from the "
+        "table)",
+        ge=0.0,
+        lt=1e-3,
+    )
+    max_lift: float | None = _q(
+        None, "m", "optional check: the table's maximum lift must agree within 1 %", gt=0.0, lt=1.0
+    )
 
 
-CAM_MODELS = {"acceleration": AccelerationCamConfig, "circular_arc": CircularArcCamConfig,
-              "table": TableCamConfig}
+CAM_MODELS = {
+    "acceleration": AccelerationCamConfig,
+    "circular_arc": CircularArcCamConfig,
+    "table": TableCamConfig,
+}
 
 
 def _cam_tag(v: Any):
@@ -132,20 +177,31 @@ def _cam_tag(v: Any):
     return getattr(v, "type", None)
 
 
-CamConfig = Annotated[Union[Annotated[AccelerationCamConfig, Tag("acceleration")],
-                            Annotated[CircularArcCamConfig, Tag("circular_arc")],
-                            Annotated[TableCamConfig, Tag("table")]],
-                      Discriminator(_cam_tag)]
+CamConfig = Annotated[
+    Annotated[AccelerationCamConfig, Tag("acceleration")]
+    | Annotated[CircularArcCamConfig, Tag("circular_arc")]
+    | Annotated[TableCamConfig, Tag("table")],
+    Discriminator(_cam_tag),
+]
 
 
 # ------------------------------------------------------- flexible valvetrain bodies
 class _BodyModes(Section):
-    modes: Optional[int] = _q(None, "", "fixed-interface modes kept (Craig–Bampton); "
-                                        "absent: all modes up to `cutoff`", ge=0, le=400)
-    cutoff: float = _q(5000.0, "Hz", "keep the fixed-interface modes up to this frequency "
-                                     "(used when `modes` is absent)", gt=0.0, le=1e7)
-    damping_ratio: float = _q(0.02, "", "modal damping ratio ζ of the body's modes", ge=0.0,
-                              lt=1.0)
+    modes: int | None = _q(
+        None,
+        "",
+        "fixed-interface modes kept (Craig–Bampton); absent: all modes up to `cutoff`",
+        ge=0,
+        le=400,
+    )
+    cutoff: float = _q(
+        5000.0,
+        "Hz",
+        "keep the fixed-interface modes up to this frequency (used when `modes` is absent)",
+        gt=0.0,
+        le=1e7,
+    )
+    damping_ratio: float = _q(0.02, "", "modal damping ratio ζ of the body's modes", ge=0.0, lt=1.0)
 
 
 class ValveConfig(_BodyModes):
@@ -153,14 +209,13 @@ class ValveConfig(_BodyModes):
     ValveGeometry`. Defaults: an ASSUMED valve of 0.07 kg total (Table 7)."""
 
     stem_diameter: float = _q(5.5e-3, "m", "valve stem diameter", gt=0.0, lt=0.1)
-    stem_length: float = _q(0.105, "m", "stem length from the tip to the head", gt=0.0,
-                            lt=1.0)
-    retainer_position: float = _q(0.006, "m", "distance from the tip to the collet groove",
-                                  gt=0.0, lt=1.0)
+    stem_length: float = _q(0.105, "m", "stem length from the tip to the head", gt=0.0, lt=1.0)
+    retainer_position: float = _q(
+        0.006, "m", "distance from the tip to the collet groove", gt=0.0, lt=1.0
+    )
     retainer_mass: float = _q(0.0204, "kg", "spring retainer + collets", gt=0.0, lt=10.0)
     head_mass: float = _q(0.030, "kg", "valve head", gt=0.0, lt=10.0)
-    head_stiffness: float = _q(5e8, "N/m", "head and fillet between stem end and seat face",
-                               gt=0.0)
+    head_stiffness: float = _q(5e8, "N/m", "head and fillet between stem end and seat face", gt=0.0)
     seat_stiffness: float = _q(5e8, "N/m", "seat insert + seat contact", gt=0.0)
     E: float = _q(paper.STEEL["E"], "Pa", "Young's modulus of the valve", ge=1e9, le=2e12)
     density: float = _q(7850.0, "kg/m³", "density of the valve", gt=0.0, le=3e4)
@@ -172,11 +227,9 @@ class TappetConfig(_BodyModes):
     TappetGeometry`; radius = ``[valvetrain] tappet_radius``."""
 
     model: Literal["fe", "lumped"] = _q("fe", "", "crown + skirt bars, or one rigid mass")
-    mass: Optional[float] = _q(None, "kg", "tappet mass (model = \"lumped\" only)", gt=0.0,
-                               lt=10.0)
+    mass: float | None = _q(None, "kg", 'tappet mass (model = "lumped" only)', gt=0.0, lt=10.0)
     crown_thickness: float = _q(3.5e-3, "m", "crown (disc) thickness", gt=0.0, lt=0.1)
-    skirt_length: float = _q(0.02, "m", "skirt (tube) length below the crown", gt=0.0,
-                             lt=0.5)
+    skirt_length: float = _q(0.02, "m", "skirt (tube) length below the crown", gt=0.0, lt=0.5)
     skirt_thickness: float = _q(1e-3, "m", "skirt wall thickness", gt=0.0, lt=0.1)
     E: float = _q(paper.STEEL["E"], "Pa", "Young's modulus of the tappet", ge=1e9, le=2e12)
     density: float = _q(7850.0, "kg/m³", "density of the tappet", gt=0.0, le=3e4)
@@ -187,8 +240,15 @@ class TappetConfig(_BodyModes):
         if self.model == "lumped" and self.mass is None:
             raise Problems([("mass", 'required with model = "lumped"')])
         if self.model == "fe" and self.mass is not None:
-            raise Problems([("mass", 'only with model = "lumped" (the FE tappet\'s mass '
-                                     "follows from its geometry)")])
+            raise Problems(
+                [
+                    (
+                        "mass",
+                        'only with model = "lumped" (the FE tappet\'s mass '
+                        "follows from its geometry)",
+                    )
+                ]
+            )
         return self
 
 
@@ -201,17 +261,21 @@ class SpringConfig(_BodyModes):
     active_coils: float = _q(6.0, "", "number of active coils n_a", gt=0.0, le=100.0)
     dead_coils: float = _q(1.0, "", "closed end coils at each end", ge=0.0, le=10.0)
     free_length: float = _q(53.007e-3, "m", "free length", gt=0.0, lt=1.0)
-    installed_length: float = _q(45.600e-3, "m", "installed length (valve closed)", gt=0.0,
-                                 lt=1.0)
-    pitches: Optional[list[float]] = _q(None, "m", "free pitch of each active coil "
-                                                   "(progressive spring); absent: uniform")
+    installed_length: float = _q(45.600e-3, "m", "installed length (valve closed)", gt=0.0, lt=1.0)
+    pitches: list[float] | None = _q(
+        None, "m", "free pitch of each active coil (progressive spring); absent: uniform"
+    )
     shear_modulus: float = _q(79.3e9, "Pa", "shear modulus G of the wire", ge=1e9, le=1e12)
     density: float = _q(7850.0, "kg/m³", "density of the wire", gt=0.0, le=3e4)
     elements_per_coil: int = _q(2, "", "bar elements per active coil", ge=1, le=20)
-    clash_margin: float = _q(1.25, "", "coils closing below this × the largest static force "
-                                       "are resolved exactly", ge=1.0, le=100.0)
-    clash_damping: float = _q(50.0, "N·s/m", "damping of a closed coil contact", ge=0.0,
-                              le=1e6)
+    clash_margin: float = _q(
+        1.25,
+        "",
+        "coils closing below this × the largest static force are resolved exactly",
+        ge=1.0,
+        le=100.0,
+    )
+    clash_damping: float = _q(50.0, "N·s/m", "damping of a closed coil contact", ge=0.0, le=1e6)
 
 
 class CamshaftConfig(Section):
@@ -219,29 +283,42 @@ class CamshaftConfig(Section):
     :class:`~tribodyn.valvetrain.camshaft.Camshaft`."""
 
     diameter: float = _q(..., "m", "shaft diameter", gt=0.0, lt=1.0)
-    bearing_span: float = _q(..., "m", "distance between the two bearings next to the lobe",
-                             gt=0.0, lt=10.0)
-    lobe_position: float = _q(..., "m", "lobe distance from the nearer bearing (≤ span/2)",
-                              ge=0.0, lt=10.0)
-    drive_stiffness: float = _q(..., "N·m/rad", "torsional stiffness of the drive "
-                                                "(chain/belt, sprocket)", gt=0.0)
-    drive_length: float = _q(..., "m", "shaft length from the drive to the lobe", gt=0.0,
-                             lt=10.0)
+    bearing_span: float = _q(
+        ..., "m", "distance between the two bearings next to the lobe", gt=0.0, lt=10.0
+    )
+    lobe_position: float = _q(
+        ..., "m", "lobe distance from the nearer bearing (≤ span/2)", ge=0.0, lt=10.0
+    )
+    drive_stiffness: float = _q(
+        ..., "N·m/rad", "torsional stiffness of the drive (chain/belt, sprocket)", gt=0.0
+    )
+    drive_length: float = _q(..., "m", "shaft length from the drive to the lobe", gt=0.0, lt=10.0)
     E: float = _q(paper.STEEL["E"], "Pa", "Young's modulus of the shaft", ge=1e9, le=2e12)
     nu: float = _q(0.3, "", "Poisson's ratio of the shaft", gt=-1.0, lt=0.5)
     density: float = _q(7850.0, "kg/m³", "density of the shaft", gt=0.0, le=3e4)
-    bearing_stiffness: Optional[float] = _q(None, "N/m", "radial stiffness of each bearing "
-                                                         "(absent: rigid)", gt=0.0)
-    torsional_damping_ratio: float = _q(0.02, "", "damping ratio of the torsion mode",
-                                        ge=0.0, lt=1.0)
-    lobe_inertia: Optional[float] = _q(None, "kg·m²", "polar inertia of the lobe (absent: "
-                                                      "from the cam contour)", gt=0.0)
+    bearing_stiffness: float | None = _q(
+        None, "N/m", "radial stiffness of each bearing (absent: rigid)", gt=0.0
+    )
+    torsional_damping_ratio: float = _q(
+        0.02, "", "damping ratio of the torsion mode", ge=0.0, lt=1.0
+    )
+    lobe_inertia: float | None = _q(
+        None, "kg·m²", "polar inertia of the lobe (absent: from the cam contour)", gt=0.0
+    )
 
 
 #: [valvetrain] keys of the lumped model that the flexible bodies replace.
-LUMPED_ONLY = ("valve_mass", "tappet_mass", "spring_mass", "spring_rate", "spring_preload",
-               "spring_masses", "spring_damping_ratio", "seat_stiffness",
-               "camshaft_stiffness")
+LUMPED_ONLY = (
+    "valve_mass",
+    "tappet_mass",
+    "spring_mass",
+    "spring_rate",
+    "spring_preload",
+    "spring_masses",
+    "spring_damping_ratio",
+    "seat_stiffness",
+    "camshaft_stiffness",
+)
 
 
 class Valvetrain(Section):
@@ -250,55 +327,84 @@ class Valvetrain(Section):
     ranges (:mod:`tribodyn.physics.limits`). ``model = "flexible"`` adds the bodies
     ``valve``, ``tappet``, ``spring`` and ``camshaft``."""
 
-    model: Literal["lumped", "flexible"] = _q("lumped", "", "valvetrain model: lumped chain "
-                                                            "or Craig–Bampton bodies")
-    valve: Optional[ValveConfig] = _q(None, "", "flexible valve ([valvetrain.valve])")
-    tappet: Optional[TappetConfig] = _q(None, "", "flexible tappet ([valvetrain.tappet])")
-    spring: Optional[SpringConfig] = _q(None, "", "flexible spring ([valvetrain.spring])")
-    camshaft: Optional[CamshaftConfig] = _q(None, "", "camshaft compliance "
-                                                      "([valvetrain.camshaft]; absent: rigid)")
+    model: Literal["lumped", "flexible"] = _q(
+        "lumped", "", "valvetrain model: lumped chain or Craig–Bampton bodies"
+    )
+    valve: ValveConfig | None = _q(None, "", "flexible valve ([valvetrain.valve])")
+    tappet: TappetConfig | None = _q(None, "", "flexible tappet ([valvetrain.tappet])")
+    spring: SpringConfig | None = _q(None, "", "flexible spring ([valvetrain.spring])")
+    camshaft: CamshaftConfig | None = _q(
+        None, "", "camshaft compliance ([valvetrain.camshaft]; absent: rigid)"
+    )
 
     valve_mass: float = _lim(_VT_DEFAULTS["valve_mass"], L.MASS, "valve + retainer + collets")
     tappet_mass: float = _lim(_VT_DEFAULTS["tappet_mass"], L.MASS, "flat (bucket) tappet")
     spring_mass: float = _lim(_VT_DEFAULTS["spring_mass"], L.MASS, "active valve-spring mass")
     spring_rate: float = _lim(_VT_DEFAULTS["spring_rate"], L.SPRING_RATE, "valve-spring rate")
-    spring_preload: float = _lim(_VT_DEFAULTS["spring_preload"], L.SPRING_PRELOAD,
-                                 "installed spring load (valve closed)")
-    spring_masses: int = _lim(_VT_DEFAULTS["spring_masses"], L.SPRING_MASSES,
-                              "lumped coil masses of the spring model (0: massless spring)")
-    spring_damping_ratio: float = _lim(_VT_DEFAULTS["spring_damping_ratio"],
-                                       L.SPRING_DAMPING_RATIO,
-                                       "damping ratio of the first surge mode")
-    contact_stiffness: Optional[float] = _lim(None, L.STIFFNESS, "linear cam–tappet contact "
-                                              "stiffness (absent: Palmgren line-contact law)")
-    contact_modulus: float = _lim(_VT_DEFAULTS["contact_modulus"], L.CONTACT_MODULUS,
-                                  "E' of the cam/tappet pair for the Palmgren law")
-    contact_damping: float = _lim(_VT_DEFAULTS["contact_damping"], L.DAMPING,
-                                  "cam–tappet contact damping")
-    camshaft_stiffness: Optional[float] = _lim(None, L.STIFFNESS, "camshaft/bearing support "
-                                               "stiffness in series (absent: rigid)")
-    tappet_valve_stiffness: float = _lim(_VT_DEFAULTS["tappet_valve_stiffness"], L.STIFFNESS,
-                                         "bucket crown + shim + valve tip")
-    tappet_valve_damping: float = _lim(_VT_DEFAULTS["tappet_valve_damping"], L.DAMPING,
-                                       "tappet–valve damping")
+    spring_preload: float = _lim(
+        _VT_DEFAULTS["spring_preload"], L.SPRING_PRELOAD, "installed spring load (valve closed)"
+    )
+    spring_masses: int = _lim(
+        _VT_DEFAULTS["spring_masses"],
+        L.SPRING_MASSES,
+        "lumped coil masses of the spring model (0: massless spring)",
+    )
+    spring_damping_ratio: float = _lim(
+        _VT_DEFAULTS["spring_damping_ratio"],
+        L.SPRING_DAMPING_RATIO,
+        "damping ratio of the first surge mode",
+    )
+    contact_stiffness: float | None = _lim(
+        None, L.STIFFNESS, "linear cam–tappet contact stiffness (absent: Palmgren line-contact law)"
+    )
+    contact_modulus: float = _lim(
+        _VT_DEFAULTS["contact_modulus"],
+        L.CONTACT_MODULUS,
+        "E' of the cam/tappet pair for the Palmgren law",
+    )
+    contact_damping: float = _lim(
+        _VT_DEFAULTS["contact_damping"], L.DAMPING, "cam–tappet contact damping"
+    )
+    camshaft_stiffness: float | None = _lim(
+        None, L.STIFFNESS, "camshaft/bearing support stiffness in series (absent: rigid)"
+    )
+    tappet_valve_stiffness: float = _lim(
+        _VT_DEFAULTS["tappet_valve_stiffness"], L.STIFFNESS, "bucket crown + shim + valve tip"
+    )
+    tappet_valve_damping: float = _lim(
+        _VT_DEFAULTS["tappet_valve_damping"], L.DAMPING, "tappet–valve damping"
+    )
     lash: float = _lim(_VT_DEFAULTS["lash"], L.LASH, "tappet–valve clearance on the base circle")
-    seat_stiffness: float = _lim(_VT_DEFAULTS["seat_stiffness"], L.STIFFNESS,
-                                 "valve stem + seat insert")
+    seat_stiffness: float = _lim(
+        _VT_DEFAULTS["seat_stiffness"], L.STIFFNESS, "valve stem + seat insert"
+    )
     seat_damping: float = _lim(_VT_DEFAULTS["seat_damping"], L.DAMPING, "valve-seat damping")
-    spring_seat_stiffness: float = _lim(_VT_DEFAULTS["spring_seat_stiffness"], L.STIFFNESS,
-                                        "retainer–spring seating")
-    spring_support_stiffness: float = _lim(_VT_DEFAULTS["spring_support_stiffness"],
-                                           L.STIFFNESS, "head–spring seating")
-    damping_force_ramp: float = _lim(_VT_DEFAULTS["damping_force_ramp"], L.DAMPING_FORCE_RAMP,
-                                     "elastic force over which unilateral damping phases in")
-    bore_friction_coefficient: float = _lim(_VT_DEFAULTS["bore_friction_coefficient"],
-                                            L.BORE_FRICTION_COEFFICIENT,
-                                            "friction coefficient of the tappet in its bore")
-    bore_friction_velocity: float = _lim(_VT_DEFAULTS["bore_friction_velocity"],
-                                         L.BORE_FRICTION_VELOCITY,
-                                         "regularisation velocity of the bore friction")
-    tappet_radius: float = _lim(_VT_DEFAULTS["tappet_radius"], L.LENGTH_BELOW_1M,
-                                "radius of the tappet face (max contact offset must stay below)")
+    spring_seat_stiffness: float = _lim(
+        _VT_DEFAULTS["spring_seat_stiffness"], L.STIFFNESS, "retainer–spring seating"
+    )
+    spring_support_stiffness: float = _lim(
+        _VT_DEFAULTS["spring_support_stiffness"], L.STIFFNESS, "head–spring seating"
+    )
+    damping_force_ramp: float = _lim(
+        _VT_DEFAULTS["damping_force_ramp"],
+        L.DAMPING_FORCE_RAMP,
+        "elastic force over which unilateral damping phases in",
+    )
+    bore_friction_coefficient: float = _lim(
+        _VT_DEFAULTS["bore_friction_coefficient"],
+        L.BORE_FRICTION_COEFFICIENT,
+        "friction coefficient of the tappet in its bore",
+    )
+    bore_friction_velocity: float = _lim(
+        _VT_DEFAULTS["bore_friction_velocity"],
+        L.BORE_FRICTION_VELOCITY,
+        "regularisation velocity of the bore friction",
+    )
+    tappet_radius: float = _lim(
+        _VT_DEFAULTS["tappet_radius"],
+        L.LENGTH_BELOW_1M,
+        "radius of the tappet face (max contact offset must stay below)",
+    )
 
     @model_validator(mode="after")
     def _model_rule(self):
@@ -306,9 +412,14 @@ class Valvetrain(Section):
         if self.model == "flexible":
             for k in LUMPED_ONLY:
                 if k in self.model_fields_set:
-                    problems.append((k, 'only with model = "lumped" (the flexible bodies '
-                                        "give it: see [valvetrain.valve], "
-                                        "[valvetrain.spring], [valvetrain.camshaft])"))
+                    problems.append(
+                        (
+                            k,
+                            'only with model = "lumped" (the flexible bodies '
+                            "give it: see [valvetrain.valve], "
+                            "[valvetrain.spring], [valvetrain.camshaft])",
+                        )
+                    )
         else:
             for k in ("valve", "tappet", "spring", "camshaft"):
                 if getattr(self, k) is not None:
@@ -321,55 +432,91 @@ class Valvetrain(Section):
 class LubricantConfig(Section):
     """``[lubricant]``: :class:`~tribodyn.Lubricant` (Roelands + Dowson–Higginson)."""
 
-    viscosity: float = _lim(paper.LUBRICANT["viscosity"], L.VISCOSITY,
-                            "dynamic viscosity μ₀ at ambient pressure (Roelands needs "
-                            "μ₀ > exp(−9.67))")
-    pressure_viscosity: float = _lim(paper.LUBRICANT["pressure_viscosity"],
-                                     L.PRESSURE_VISCOSITY, "pressure–viscosity coefficient α")
+    viscosity: float = _lim(
+        paper.LUBRICANT["viscosity"],
+        L.VISCOSITY,
+        "dynamic viscosity μ₀ at ambient pressure (Roelands needs μ₀ > exp(−9.67))",
+    )
+    pressure_viscosity: float = _lim(
+        paper.LUBRICANT["pressure_viscosity"],
+        L.PRESSURE_VISCOSITY,
+        "pressure–viscosity coefficient α",
+    )
     density: float = _lim(paper.ASSUMED_DENSITY, L.DENSITY, "density ρ₀ at ambient pressure")
-    eyring_stress: float = _lim(paper.LUBRICANT["eyring_stress"], L.EYRING_STRESS,
-                                "Eyring stress τ_E")
-    limiting_shear_coefficient: float = _lim(paper.LUBRICANT["limiting_shear_coefficient"],
-                                             L.LIMITING_SHEAR_COEFFICIENT,
-                                             "pressure slope Λ of the limiting shear stress "
-                                             "τ_L = τ_L0 + Λ p")
-    limiting_shear_stress: float = _lim(0.0, L.LIMITING_SHEAR_STRESS,
-                                        "intercept τ_L0 of the limiting shear stress (paper: 0)")
+    eyring_stress: float = _lim(
+        paper.LUBRICANT["eyring_stress"], L.EYRING_STRESS, "Eyring stress τ_E"
+    )
+    limiting_shear_coefficient: float = _lim(
+        paper.LUBRICANT["limiting_shear_coefficient"],
+        L.LIMITING_SHEAR_COEFFICIENT,
+        "pressure slope Λ of the limiting shear stress τ_L = τ_L0 + Λ p",
+    )
+    limiting_shear_stress: float = _lim(
+        0.0, L.LIMITING_SHEAR_STRESS, "intercept τ_L0 of the limiting shear stress (paper: 0)"
+    )
     compressible: bool = _q(True, "", "Dowson–Higginson density (false: constant density)")
     viscosity_model: Literal["roelands", "barus"] = _q("roelands", "", "piezo-viscosity law")
     # -- datasheet form and thermal properties (numerics.thermal)
-    oil: Optional[Literal[tuple(OILS)]] = _q(  # type: ignore[valid-type]
-        None, "", "bundled oil (datasheet values; the keys below override them)")
-    kinematic_viscosity_40_cst: Optional[float] = _q(
-        None, "mm²/s", "kinematic viscosity at 40 °C (datasheet, ASTM D445)", gt=1.5, le=1e5)
-    kinematic_viscosity_100_cst: Optional[float] = _q(
-        None, "mm²/s", "kinematic viscosity at 100 °C (datasheet)", ge=1.5, le=1e4)
-    density_15: Optional[float] = _q(None, "kg/m³", "density at 15 °C (datasheet)",
-                                     gt=500.0, le=2000.0)
-    thermal_expansion: float = _q(6.5e-4, "1/K", "thermal expansion of the density ε",
-                                  ge=0.0, le=3e-3)
-    inlet_temperature_c: Optional[float] = _q(
-        None, "°C", "oil supply (sump) temperature, also that of the solids far from the "
-                    "contact; required with a datasheet or numerics.thermal", gt=-40.0,
-        le=250.0)
-    viscosity_temperature_coefficient: Optional[float] = _q(
-        None, "1/K", "β = −d ln μ/dT at the inlet temperature (viscosity form with "
-                     "numerics.thermal)", gt=0.0, le=0.5)
-    thermal_conductivity: Optional[float] = _q(
-        None, "W/(m K)", "oil conductivity at the inlet temperature (absent: Cragoe's "
-                         "estimate from the density)", gt=0.01, le=10.0)
-    specific_heat: Optional[float] = _q(
-        None, "J/(kg K)", "oil specific heat at the inlet temperature (absent: Cragoe)",
-        gt=100.0, le=1e4)
+    oil: Literal[tuple(OILS)] | None = _q(  # type: ignore[valid-type]
+        None, "", "bundled oil (datasheet values; the keys below override them)"
+    )
+    kinematic_viscosity_40_cst: float | None = _q(
+        None, "mm²/s", "kinematic viscosity at 40 °C (datasheet, ASTM D445)", gt=1.5, le=1e5
+    )
+    kinematic_viscosity_100_cst: float | None = _q(
+        None, "mm²/s", "kinematic viscosity at 100 °C (datasheet)", ge=1.5, le=1e4
+    )
+    density_15: float | None = _q(
+        None, "kg/m³", "density at 15 °C (datasheet)", gt=500.0, le=2000.0
+    )
+    thermal_expansion: float = _q(
+        6.5e-4, "1/K", "thermal expansion of the density ε", ge=0.0, le=3e-3
+    )
+    inlet_temperature_c: float | None = _q(
+        None,
+        "°C",
+        "oil supply (sump) temperature, also that of the solids far from the "
+        "contact; required with a datasheet or numerics.thermal",
+        gt=-40.0,
+        le=250.0,
+    )
+    viscosity_temperature_coefficient: float | None = _q(
+        None,
+        "1/K",
+        "β = −d ln μ/dT at the inlet temperature (viscosity form with numerics.thermal)",
+        gt=0.0,
+        le=0.5,
+    )
+    thermal_conductivity: float | None = _q(
+        None,
+        "W/(m K)",
+        "oil conductivity at the inlet temperature (absent: Cragoe's estimate from the density)",
+        gt=0.01,
+        le=10.0,
+    )
+    specific_heat: float | None = _q(
+        None,
+        "J/(kg K)",
+        "oil specific heat at the inlet temperature (absent: Cragoe)",
+        gt=100.0,
+        le=1e4,
+    )
     limiting_shear_temperature_coefficient: float = _q(
-        0.0, "1/K", "c_L: τ_L falls by the factor 1 − c_L (T − T_inlet) (0: temperature "
-                    "independent)", ge=0.0, le=0.05)
+        0.0,
+        "1/K",
+        "c_L: τ_L falls by the factor 1 − c_L (T − T_inlet) (0: temperature independent)",
+        ge=0.0,
+        le=0.05,
+    )
 
     @property
     def datasheet(self) -> bool:
         """Given as a datasheet (bundled oil or kinematic viscosities)."""
-        return self.oil is not None or self.kinematic_viscosity_40_cst is not None \
+        return (
+            self.oil is not None
+            or self.kinematic_viscosity_40_cst is not None
             or self.kinematic_viscosity_100_cst is not None
+        )
 
     @model_validator(mode="after")
     def _forms(self):
@@ -378,15 +525,24 @@ class LubricantConfig(Section):
         if self.datasheet:
             for k in ("viscosity", "density", "viscosity_temperature_coefficient"):
                 if k in given and getattr(self, k) is not None:
-                    problems.append((k, "not with a datasheet oil (oil or kinematic_viscosity_"
-                                        "*_cst): the viscosity and density follow from it"))
+                    problems.append(
+                        (
+                            k,
+                            "not with a datasheet oil (oil or kinematic_viscosity_"
+                            "*_cst): the viscosity and density follow from it",
+                        )
+                    )
             if self.oil is None:
                 for k in ("kinematic_viscosity_40_cst", "kinematic_viscosity_100_cst"):
                     if getattr(self, k) is None:
                         problems.append((k, "required with the other kinematic viscosity"))
             if self.inlet_temperature_c is None:
-                problems.append(("inlet_temperature_c", "required with a datasheet oil (the "
-                                                        "temperature it is supplied at)"))
+                problems.append(
+                    (
+                        "inlet_temperature_c",
+                        "required with a datasheet oil (the temperature it is supplied at)",
+                    )
+                )
         elif self.density_15 is not None:
             problems.append(("density_15", "only with a datasheet oil; give density"))
         if problems:
@@ -399,18 +555,23 @@ class MaterialConfig(Section):
 
     E: float = _lim(..., L.YOUNGS_MODULUS, "Young's modulus")
     nu: float = _lim(..., L.POISSON_RATIO, "Poisson's ratio")
-    boundary_shear_coefficient: Optional[float] = _lim(
-        None, L.BOUNDARY_SHEAR_COEFFICIENT, "pressure coefficient ς of the boundary shear "
-                                            "strength of its asperities (paper Eq. 17)")
-    label: Optional[str] = _q(None, "", "display name (default: the table key)",
-                              min_length=1)
-    thermal_conductivity: Optional[float] = _q(
-        None, "W/(m K)", "thermal conductivity k (numerics.thermal; steel, dlc, wcc have "
-                         "literature defaults)", ge=1e-3, le=1e4)
-    density: Optional[float] = _q(None, "kg/m³", "density ρ (numerics.thermal)", ge=10.0,
-                                  le=1e5)
-    specific_heat: Optional[float] = _q(None, "J/(kg K)", "specific heat c "
-                                        "(numerics.thermal)", ge=10.0, le=1e5)
+    boundary_shear_coefficient: float | None = _lim(
+        None,
+        L.BOUNDARY_SHEAR_COEFFICIENT,
+        "pressure coefficient ς of the boundary shear strength of its asperities (paper Eq. 17)",
+    )
+    label: str | None = _q(None, "", "display name (default: the table key)", min_length=1)
+    thermal_conductivity: float | None = _q(
+        None,
+        "W/(m K)",
+        "thermal conductivity k (numerics.thermal; steel, dlc, wcc have literature defaults)",
+        ge=1e-3,
+        le=1e4,
+    )
+    density: float | None = _q(None, "kg/m³", "density ρ (numerics.thermal)", ge=10.0, le=1e5)
+    specific_heat: float | None = _q(
+        None, "J/(kg K)", "specific heat c (numerics.thermal)", ge=10.0, le=1e5
+    )
 
 
 class RoughnessConfig(Section):
@@ -424,110 +585,191 @@ class RoughnessConfig(Section):
 class SurfaceSetConfig(Section):
     """``[[surface_sets]]``: one tappet surface to study (the cam is uncoated)."""
 
-    name: str = _q(..., "", "identifier (letters, digits, _ . + -), unique", min_length=1,
-                   max_length=64, pattern=_NAME_PATTERN)
-    coating: Optional[str] = _q(None, "", "coating material on the tappet (a key of "
-                                          "[materials]); absent: uncoated", min_length=1)
-    coating_thickness: Optional[float] = _lim(None, L.COATING_THICKNESS, "coating thickness "
-                                              "(required with a coating)")
-    substrate: str = _q("steel", "", "tappet substrate material (a key of [materials])",
-                        min_length=1)
+    name: str = _q(
+        ...,
+        "",
+        "identifier (letters, digits, _ . + -), unique",
+        min_length=1,
+        max_length=64,
+        pattern=_NAME_PATTERN,
+    )
+    coating: str | None = _q(
+        None,
+        "",
+        "coating material on the tappet (a key of [materials]); absent: uncoated",
+        min_length=1,
+    )
+    coating_thickness: float | None = _lim(
+        None, L.COATING_THICKNESS, "coating thickness (required with a coating)"
+    )
+    substrate: str = _q(
+        "steel", "", "tappet substrate material (a key of [materials])", min_length=1
+    )
     roughness: RoughnessConfig = _q(..., "", "composite roughness of the cam/tappet pair")
-    boundary_shear_coefficient: Optional[float] = _lim(
-        None, L.BOUNDARY_SHEAR_COEFFICIENT, "ς of the pair; absent: the coating's (or the "
-                                            "substrate's if uncoated)")
+    boundary_shear_coefficient: float | None = _lim(
+        None,
+        L.BOUNDARY_SHEAR_COEFFICIENT,
+        "ς of the pair; absent: the coating's (or the substrate's if uncoated)",
+    )
     boundary_shear_strength: float = _lim(
-        BOUNDARY_SHEAR_STRENGTH, L.BOUNDARY_SHEAR_STRENGTH,
-        "τ₀ of the boundary shear law τ = τ₀ + ς p_a (Eq. 17)")
+        BOUNDARY_SHEAR_STRENGTH,
+        L.BOUNDARY_SHEAR_STRENGTH,
+        "τ₀ of the boundary shear law τ = τ₀ + ς p_a (Eq. 17)",
+    )
 
     @model_validator(mode="before")
     @classmethod
     def _none_coating(cls, data):
         # ``coating = "none"`` is accepted as "uncoated" (TOML has no null).
-        if isinstance(data, dict) and isinstance(data.get("coating"), str) \
-                and data["coating"].strip().lower() in ("none", ""):
+        if (
+            isinstance(data, dict)
+            and isinstance(data.get("coating"), str)
+            and data["coating"].strip().lower() in ("none", "")
+        ):
             data = {k: v for k, v in data.items() if k != "coating"}
         return data
 
     @model_validator(mode="after")
     def _coating_thickness(self):
         if self.coating is not None and self.coating_thickness is None:
-            raise Problems([("coating_thickness",
-                              f"required when a coating is named (coating = {self.coating!r}); "
-                              "give the thickness in m, e.g. 4e-6")])
+            raise Problems(
+                [
+                    (
+                        "coating_thickness",
+                        f"required when a coating is named (coating = {self.coating!r}); "
+                        "give the thickness in m, e.g. 4e-6",
+                    )
+                ]
+            )
         if self.coating is None and self.coating_thickness is not None:
-            raise Problems([("coating_thickness",
-                              "given but no coating is named; add `coating = \"<material>\"` or "
-                              "remove the thickness")])
+            raise Problems(
+                [
+                    (
+                        "coating_thickness",
+                        'given but no coating is named; add `coating = "<material>"` or '
+                        "remove the thickness",
+                    )
+                ]
+            )
         return self
 
 
 class Numerics(Section):
     """``[numerics]``: solver settings."""
 
-    n: int = _q(0, "", "EHL grid nodes (uniform); 0 = automatic (384 nodes over the "
-                       "domain sized from the contact; steady solves double them while "
-                       "h_c, h_min change > 1 % from half the nodes); at most 4096 (the "
-                       "transient steps factor dense matrices)",
-                ge=0, le=L.EHL_NODES_TRANSIENT.le)
-    min_load: float = _q(5.0, "N", "contact force below which the EHL is not solved "
-                                   "(cam on the base circle: no load, no film)",
-                         gt=0.0, le=1e4)
-    inlet: float = _lim(4.0, L.DOMAIN_HALF_WIDTHS,
-                        "EHL domain upstream of the centre, in Hertz half-widths")
-    outlet: float = _lim(1.75, L.DOMAIN_HALF_WIDTHS,
-                         "EHL domain downstream of the centre, in Hertz half-widths")
-    inlet_truncation: float = _lim(0.005, L.INLET_TRUNCATION,
-                                   "EHL domain upstream at least as far as the cut-off inlet "
-                                   "loses this share of the load (far-field estimate)")
-    inlet_rigid: float = _lim(4.0, L.DOMAIN_RIGID_LENGTHS,
-                              "EHL domain upstream at least this many rigid inlet lengths "
-                              "√(2R h) (squeeze films)")
-    outlet_rigid: float = _lim(2.0, L.DOMAIN_RIGID_LENGTHS,
-                               "EHL domain downstream, in rigid inlet lengths")
+    n: int = _q(
+        0,
+        "",
+        "EHL grid nodes (uniform); 0 = automatic (384 nodes over the "
+        "domain sized from the contact; steady solves double them while "
+        "h_c, h_min change > 1 % from half the nodes); at most 4096 (the "
+        "transient steps factor dense matrices)",
+        ge=0,
+        le=L.EHL_NODES_TRANSIENT.le,
+    )
+    min_load: float = _q(
+        5.0,
+        "N",
+        "contact force below which the EHL is not solved "
+        "(cam on the base circle: no load, no film)",
+        gt=0.0,
+        le=1e4,
+    )
+    inlet: float = _lim(
+        4.0, L.DOMAIN_HALF_WIDTHS, "EHL domain upstream of the centre, in Hertz half-widths"
+    )
+    outlet: float = _lim(
+        1.75, L.DOMAIN_HALF_WIDTHS, "EHL domain downstream of the centre, in Hertz half-widths"
+    )
+    inlet_truncation: float = _lim(
+        0.005,
+        L.INLET_TRUNCATION,
+        "EHL domain upstream at least as far as the cut-off inlet "
+        "loses this share of the load (far-field estimate)",
+    )
+    inlet_rigid: float = _lim(
+        4.0,
+        L.DOMAIN_RIGID_LENGTHS,
+        "EHL domain upstream at least this many rigid inlet lengths √(2R h) (squeeze films)",
+    )
+    outlet_rigid: float = _lim(
+        2.0, L.DOMAIN_RIGID_LENGTHS, "EHL domain downstream, in rigid inlet lengths"
+    )
     tol: float = _lim(1e-9, L.NEWTON_TOL, "EHL Newton tolerance (scaled update and residual)")
     max_iter: int = _lim(60, L.NEWTON_MAX_ITER, "EHL Newton iterations per solve")
     time_order: Literal[1, 2] = _q(2, "", "EHL time discretisation: 1 backward Euler, 2 BDF2")
-    crank_step_deg: float = _q(1.0, "deg (crank)", "sample step of the transient EHL along "
-                                                   "the cycle (steps with a large estimated "
-                                                   "time error are subdivided)",
-                               gt=0.0, le=5.0)
+    crank_step_deg: float = _q(
+        1.0,
+        "deg (crank)",
+        "sample step of the transient EHL along "
+        "the cycle (steps with a large estimated "
+        "time error are subdivided)",
+        gt=0.0,
+        le=5.0,
+    )
     viscous_model: Literal["eyring", "newtonian"] = _q("eyring", "", "viscous friction law")
     limiting_shear: bool = _q(True, "", "cap viscous shear at Λp")
     greenwood_tripp: Literal["exact", "paper"] = _q(
-        "exact", "", "Greenwood–Tripp functions: exact, or the paper's polynomial fits "
-                     "(reproduction only)")
+        "exact",
+        "",
+        "Greenwood–Tripp functions: exact, or the paper's polynomial fits (reproduction only)",
+    )
     film_formula: Literal["moes", "pan_hamrock", "dowson_toyoda"] = _q(
-        "moes", "", "film formula of the explicit (analytic) tribology in the dynamics")
+        "moes", "", "film formula of the explicit (analytic) tribology in the dynamics"
+    )
     cycles: int = _q(2, "", "engine cycles simulated (the last is presented)", ge=1, le=50)
-    output_step_deg: float = _q(0.25, "deg (crank)", "output step of the valvetrain dynamics",
-                                gt=0.0, le=5.0)
-    max_step_deg: float = _q(1.0, "deg (crank)", "largest integrator step of the dynamics",
-                             gt=0.0, le=10.0)
-    dynamics_method: Literal["LSODA", "Radau", "BDF"] = _q("LSODA", "",
-                                                           "stiff integrator (solve_ivp)")
+    output_step_deg: float = _q(
+        0.25, "deg (crank)", "output step of the valvetrain dynamics", gt=0.0, le=5.0
+    )
+    max_step_deg: float = _q(
+        1.0, "deg (crank)", "largest integrator step of the dynamics", gt=0.0, le=10.0
+    )
+    dynamics_method: Literal["LSODA", "Radau", "BDF"] = _q(
+        "LSODA", "", "stiff integrator (solve_ivp)"
+    )
     dynamics_rtol: float = _q(1e-6, "", "relative tolerance of the dynamics", gt=0.0, lt=0.1)
-    implicit_coupling: bool = _q(True, "", "also run the implicit dynamics (numerical EHL "
-                                           "film and friction in the dynamics) for the "
-                                           "comparison with the explicit run")
-    coupling_iterations: int = _q(6, "", "dynamics ↔ EHL iterations of the implicit coupling "
-                                         "(Anderson-accelerated)",
-                                  ge=1, le=100)
-    workers: int = _q(0, "", "worker processes for the surface sets, the coupling chain and "
-                             "the single-contact studies (0: one per CPU core)",
-                      ge=0, le=4096)
-    thermal: bool = _q(False, "", "thermal EHL (film energy equation, conduction in the "
-                                  "solids and coatings) along the cycle, beside the "
-                                  "isothermal one")
-    thermal_x_nodes: int = _q(96, "", "thermal grid nodes along the contact", ge=16,
-                              le=1024)
+    implicit_coupling: bool = _q(
+        True,
+        "",
+        "also run the implicit dynamics (numerical EHL "
+        "film and friction in the dynamics) for the "
+        "comparison with the explicit run",
+    )
+    coupling_iterations: int = _q(
+        6,
+        "",
+        "dynamics ↔ EHL iterations of the implicit coupling (Anderson-accelerated)",
+        ge=1,
+        le=100,
+    )
+    workers: int = _q(
+        0,
+        "",
+        "worker processes for the surface sets, the coupling chain and "
+        "the single-contact studies (0: one per CPU core)",
+        ge=0,
+        le=4096,
+    )
+    thermal: bool = _q(
+        False,
+        "",
+        "thermal EHL (film energy equation, conduction in the "
+        "solids and coatings) along the cycle, beside the "
+        "isothermal one",
+    )
+    thermal_x_nodes: int = _q(96, "", "thermal grid nodes along the contact", ge=16, le=1024)
     thermal_film_nodes: int = _q(7, "", "thermal nodes across the film (odd)", ge=3, le=41)
     thermal_solid_nodes: int = _q(12, "", "thermal depth nodes per solid", ge=6, le=200)
-    thermal_iterations: int = _q(2, "", "pressure ↔ temperature iterations per transient "
-                                        "step (1: staggered)", ge=1, le=50)
-    thermal_tol: float = _q(0.05, "K", "temperature change at which the thermal fixed-"
-                                       "point iteration stops", gt=0.0, le=10.0)
-
+    thermal_iterations: int = _q(
+        2, "", "pressure ↔ temperature iterations per transient step (1: staggered)", ge=1, le=50
+    )
+    thermal_tol: float = _q(
+        0.05,
+        "K",
+        "temperature change at which the thermal fixed-point iteration stops",
+        gt=0.0,
+        le=10.0,
+    )
 
 
 def paper_materials() -> dict:
@@ -538,11 +780,17 @@ def paper_materials() -> dict:
 def paper_surface_sets() -> list:
     """The bundled case's surface sets: uncoated, DLC and WC-C at 1 and 4 µm, with the
     Table 4 roughness of the coating type (the same for both thicknesses)."""
-    sets = [SurfaceSetConfig(name="uncoated",
-                             roughness=RoughnessConfig(**paper.ROUGHNESS["uncoated"]))]
+    sets = [
+        SurfaceSetConfig(name="uncoated", roughness=RoughnessConfig(**paper.ROUGHNESS["uncoated"]))
+    ]
     for coat in ("dlc", "wcc"):
         for t_um in (1, 4):
-            sets.append(SurfaceSetConfig(name=f"{coat}_{t_um}um", coating=coat,
-                                         coating_thickness=t_um * 1e-6,
-                                         roughness=RoughnessConfig(**paper.ROUGHNESS[coat])))
+            sets.append(
+                SurfaceSetConfig(
+                    name=f"{coat}_{t_um}um",
+                    coating=coat,
+                    coating_thickness=t_um * 1e-6,
+                    roughness=RoughnessConfig(**paper.ROUGHNESS[coat]),
+                )
+            )
     return sets

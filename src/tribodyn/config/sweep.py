@@ -40,80 +40,122 @@ from .errors import Problems, format_validation_error
 from .paths import PathError, parse_path, schema_field, set_path
 from .schema import CAM_MODELS, Section, _q
 
-__all__ = ["SweepInfo", "AxisConfig", "SweepFile", "Axis", "SweepPoint", "SweepSpec",
-           "load_sweep", "bundled_sweeps", "SWEEPS_DIR", "MAX_POINTS", "RESERVED_NAMES"]
+__all__ = [
+    "SweepInfo",
+    "AxisConfig",
+    "SweepFile",
+    "Axis",
+    "SweepPoint",
+    "SweepSpec",
+    "load_sweep",
+    "bundled_sweeps",
+    "SWEEPS_DIR",
+    "MAX_POINTS",
+    "RESERVED_NAMES",
+]
 
 #: Folder of the bundled sweep files.
 SWEEPS_DIR = Path(__file__).resolve().parent.parent / "sweeps"
 #: Largest number of points a sweep may have.
 MAX_POINTS = 1_000_000
 #: Dimension and variable names of the sweep Dataset an axis may not take.
-RESERVED_NAMES = ("surface_set", "crank_angle", "ehl_crank", "point", "status", "error",
-                  "warnings")
+RESERVED_NAMES = ("surface_set", "crank_angle", "ehl_crank", "point", "status", "error", "warnings")
 _DIM_PATTERN = r"^[A-Za-z][A-Za-z0-9_]*$"
 
-Scalar = Union[StrictBool, StrictInt, StrictFloat, StrictStr]
+Scalar = Union[StrictBool, StrictInt, StrictFloat, StrictStr]  # noqa: UP007
 
 
 class SweepInfo(Section):
     """``[sweep]``: what to run and what to keep."""
 
-    name: str = _q("sweep", "", "short name (reports, file names)", min_length=1,
-                   max_length=64, pattern=r"^[A-Za-z0-9][A-Za-z0-9_.+\-]*$")
+    name: str = _q(
+        "sweep",
+        "",
+        "short name (reports, file names)",
+        min_length=1,
+        max_length=64,
+        pattern=r"^[A-Za-z0-9][A-Za-z0-9_.+\-]*$",
+    )
     description: str = _q("", "", "free text")
-    case: str = _q("andreou2023", "", "base case: a bundled case name or a case file "
-                                      "(relative to the sweep file)", min_length=1)
+    case: str = _q(
+        "andreou2023",
+        "",
+        "base case: a bundled case name or a case file (relative to the sweep file)",
+        min_length=1,
+    )
     mode: Literal["study", "dynamics"] = _q(
-        "study", "", "per point: the full cam-cycle study, or the valvetrain dynamics alone")
+        "study", "", "per point: the full cam-cycle study, or the valvetrain dynamics alone"
+    )
     combine: Literal["product", "zip"] = _q(
-        "product", "", "axes crossed (full factorial) or zipped (equal lengths)")
-    traces: bool = _q(False, "", "keep the cycle traces of every point (not only the "
-                                 "summary scalars)")
+        "product", "", "axes crossed (full factorial) or zipped (equal lengths)"
+    )
+    traces: bool = _q(
+        False, "", "keep the cycle traces of every point (not only the summary scalars)"
+    )
 
 
 class AxisConfig(Section):
     """``[[axes]]``: one swept case key, by list or by range."""
 
-    path: str = _q(..., "", "dotted case key path, e.g. engine.speed_rpm or "
-                            "surface_sets[name=wcc_4um].coating_thickness", min_length=1)
-    name: Optional[str] = _q(None, "", "dimension name in the results (default: the last "
-                                       "key of the path)", max_length=64,
-                             pattern=_DIM_PATTERN)
-    values: Optional[list[Scalar]] = _q(None, "", "the values (numbers, strings or "
-                                                  "booleans)", min_length=1)
-    start: Optional[Union[StrictInt, StrictFloat]] = _q(None, "", "first value of a range "
-                                                                  "(in the key's unit)")
-    stop: Optional[Union[StrictInt, StrictFloat]] = _q(None, "", "last value of a range "
-                                                                 "(included)")
-    num: Optional[StrictInt] = _q(None, "", "number of values of a range", ge=2,
-                                  le=MAX_POINTS)
-    step: Optional[Union[StrictInt, StrictFloat]] = _q(None, "", "step of a linear range "
-                                                                 "(in the key's unit)",
-                                                       gt=0)
+    path: str = _q(
+        ...,
+        "",
+        "dotted case key path, e.g. engine.speed_rpm or "
+        "surface_sets[name=wcc_4um].coating_thickness",
+        min_length=1,
+    )
+    name: str | None = _q(
+        None,
+        "",
+        "dimension name in the results (default: the last key of the path)",
+        max_length=64,
+        pattern=_DIM_PATTERN,
+    )
+    values: list[Scalar] | None = _q(
+        None, "", "the values (numbers, strings or booleans)", min_length=1
+    )
+    start: StrictInt | StrictFloat | None = _q(
+        None, "", "first value of a range (in the key's unit)"
+    )
+    stop: StrictInt | StrictFloat | None = _q(None, "", "last value of a range (included)")
+    num: StrictInt | None = _q(None, "", "number of values of a range", ge=2, le=MAX_POINTS)
+    step: StrictInt | StrictFloat | None = _q(
+        None, "", "step of a linear range (in the key's unit)", gt=0
+    )
     spacing: Literal["linear", "log"] = _q("linear", "", "spacing of a range with num")
-    group: Optional[str] = _q(None, "", "axes with the same group are zipped into one "
-                                        "dimension of that name", max_length=64,
-                              pattern=_DIM_PATTERN)
+    group: str | None = _q(
+        None,
+        "",
+        "axes with the same group are zipped into one dimension of that name",
+        max_length=64,
+        pattern=_DIM_PATTERN,
+    )
 
     @model_validator(mode="after")
     def _one_form(self):
         rng = [k for k in ("start", "stop", "num", "step") if getattr(self, k) is not None]
         if self.values is not None:
             if rng:
-                raise Problems([(rng[0], "give either values or a range (start, stop, num "
-                                         "or step), not both")])
+                raise Problems(
+                    [(rng[0], "give either values or a range (start, stop, num or step), not both")]
+                )
             kinds = {_kind(v) for v in self.values}
             if len(kinds) > 1:
-                raise Problems([("values", "must all be numbers, all strings or all "
-                                           f"booleans (got {', '.join(sorted(kinds))})")])
+                raise Problems(
+                    [
+                        (
+                            "values",
+                            "must all be numbers, all strings or all "
+                            f"booleans (got {', '.join(sorted(kinds))})",
+                        )
+                    ]
+                )
             return self
         if not rng:
-            raise Problems([("", "give values = [...] or a range: start, stop and num "
-                                 "(or step)")])
+            raise Problems([("", "give values = [...] or a range: start, stop and num (or step)")])
         for k in ("start", "stop"):
             if getattr(self, k) is None:
-                raise Problems([(k, "required key is missing (a range needs start and "
-                                    "stop)")])
+                raise Problems([(k, "required key is missing (a range needs start and stop)")])
         if (self.num is None) == (self.step is None):
             raise Problems([("num", "give exactly one of num and step")])
         if self.step is not None and self.spacing == "log":
@@ -152,7 +194,8 @@ class SweepFile(Section):
 
     sweep: SweepInfo = Field(default_factory=SweepInfo)
     fixed: dict[Annotated[str, Field(min_length=1)], Any] = _q(
-        {}, "", "dotted case key path → value, applied to the base case at every point")
+        {}, "", "dotted case key path → value, applied to the base case at every point"
+    )
     axes: list[AxisConfig] = Field(..., min_length=1)
 
 
@@ -174,20 +217,20 @@ class Axis:
     values: tuple
     unit: str
     description: str
-    dim: str                      #: the dimension it spans (its name, or its group)
+    dim: str  #: the dimension it spans (its name, or its group)
 
 
 @dataclass
 class SweepPoint:
     """One point of the plan: its position, axis values, changes and case (or error)."""
 
-    index: int                    #: position in the plan (C order over the dimensions)
-    position: tuple               #: index along each dimension
-    values: dict                  #: axis name → value
-    changes: dict                 #: case key path → value
-    case: Optional[Case] = None   #: None if the combination is invalid
-    error: Optional[str] = None   #: why the combination is invalid
-    key: str = ""                 #: identity of the point (hash of case, mode and traces)
+    index: int  #: position in the plan (C order over the dimensions)
+    position: tuple  #: index along each dimension
+    values: dict  #: axis name → value
+    changes: dict  #: case key path → value
+    case: Case | None = None  #: None if the combination is invalid
+    error: str | None = None  #: why the combination is invalid
+    key: str = ""  #: identity of the point (hash of case, mode and traces)
 
     @property
     def label(self) -> str:
@@ -206,7 +249,7 @@ class SweepSpec:
     base: Case
     axes: list[Axis]
     dims: list[tuple[str, list[Axis]]] = field(default_factory=list)
-    source: Optional[Path] = None
+    source: Path | None = None
     base_source: str = ""
 
     @property
@@ -241,6 +284,7 @@ class SweepSpec:
         """The plan: every combination, in C order over :attr:`dims`, each with its case
         validated (an invalid combination keeps its error and no case)."""
         from .. import __version__
+
         out = []
         ranges = [range(len(axes[0].values)) for _, axes in self.dims]
         for i, pos in enumerate(itertools.product(*ranges)):
@@ -254,16 +298,20 @@ class SweepSpec:
                 p.case = self.base.updated(changes)
             except InputError as exc:
                 p.error = f"invalid combination: {_problem_text(exc)}"
-            ident = (p.case.to_toml(resolve_paths=True) if p.case is not None
-                     else repr(sorted(changes.items())))
-            h = hashlib.sha256(f"{ident}\n{self.mode}\n{self.traces}\n{__version__}"
-                               .encode()).hexdigest()
+            ident = (
+                p.case.to_toml(resolve_paths=True)
+                if p.case is not None
+                else repr(sorted(changes.items()))
+            )
+            h = hashlib.sha256(
+                f"{ident}\n{self.mode}\n{self.traces}\n{__version__}".encode()
+            ).hexdigest()
             p.key = h[:16]
             out.append(p)
         return out
 
     @classmethod
-    def from_dict(cls, data: dict, *, base_dir=None, source=None) -> "SweepSpec":
+    def from_dict(cls, data: dict, *, base_dir=None, source=None) -> SweepSpec:
         """Validate a (TOML-shaped) dict; the base case and relative paths resolve against
         ``base_dir`` (default: the current folder)."""
         base_dir = Path(base_dir) if base_dir is not None else Path.cwd()
@@ -272,8 +320,9 @@ class SweepSpec:
         try:
             cfg = SweepFile.model_validate(data)
         except ValidationError as exc:
-            raise InputError(format_validation_error(exc, SweepFile, source,
-                                                     what="sweep")) from None
+            raise InputError(
+                format_validation_error(exc, SweepFile, source, what="sweep")
+            ) from None
         problems: list[tuple[str, str]] = []
         base, base_source = _load_base(cfg.sweep.case, base_dir, problems)
         if base is None:
@@ -281,11 +330,15 @@ class SweepSpec:
         base = _apply_fixed(base, cfg.fixed, problems)
         if base is None:
             raise InputError(_message(problems, source))
-        axes = [a for a in (_axis(base, i, ax, problems) for i, ax in enumerate(cfg.axes))
-                if a is not None]
+        axes = [
+            a
+            for a in (_axis(base, i, ax, problems) for i, ax in enumerate(cfg.axes))
+            if a is not None
+        ]
         dims = _dims(cfg, axes, problems)
-        spec = cls(config=cfg, base=base, axes=axes, dims=dims, source=source,
-                   base_source=base_source)
+        spec = cls(
+            config=cfg, base=base, axes=axes, dims=dims, source=source, base_source=base_source
+        )
         if not problems and spec.n_points > MAX_POINTS:
             problems.append(("axes", f"{spec.n_points} points (at most {MAX_POINTS})"))
         if problems:
@@ -293,7 +346,7 @@ class SweepSpec:
         return spec
 
     @classmethod
-    def from_toml_string(cls, text: str, *, base_dir=None, source=None) -> "SweepSpec":
+    def from_toml_string(cls, text: str, *, base_dir=None, source=None) -> SweepSpec:
         try:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
@@ -302,15 +355,16 @@ class SweepSpec:
         return cls.from_dict(data, base_dir=base_dir, source=source)
 
     @classmethod
-    def from_toml(cls, path) -> "SweepSpec":
+    def from_toml(cls, path) -> SweepSpec:
         p = Path(path)
         try:
             text = p.read_text(encoding="utf-8")
         except OSError as exc:
             raise InputError(f"cannot read sweep file {str(p)!r}: {exc.strerror}") from None
         except UnicodeDecodeError as exc:
-            raise InputError(f"sweep file {str(p)!r} is not UTF-8 text (byte {exc.start}: "
-                             f"{exc.reason})") from None
+            raise InputError(
+                f"sweep file {str(p)!r} is not UTF-8 text (byte {exc.start}: {exc.reason})"
+            ) from None
         return cls.from_toml_string(text, base_dir=p.resolve().parent, source=p)
 
 
@@ -338,8 +392,13 @@ def _load_base(name: str, base_dir: Path, problems):
             return case, str(cand.resolve())
         if p.stem in bundled_cases() and p.parent == Path(".") and p.suffix in ("", ".toml"):
             return load_case(p.stem), p.stem
-        problems.append(("sweep.case", f"no case file {str(cand)!r} and no bundled case "
-                                       f"{name!r} (bundled: {', '.join(bundled_cases())})"))
+        problems.append(
+            (
+                "sweep.case",
+                f"no case file {str(cand)!r} and no bundled case "
+                f"{name!r} (bundled: {', '.join(bundled_cases())})",
+            )
+        )
     except InputError as exc:
         problems.append(("sweep.case", f"the base case is invalid: {_problem_text(exc)}"))
     return None, ""
@@ -350,7 +409,7 @@ def _check_path(base: Case, path: str):
     data = base.to_dict()
     fi = schema_field(Case, path, data, variants={"cam": CAM_MODELS})
     probe = base.to_dict()
-    set_path(probe, path, None)             # raises if a selector matches nothing
+    set_path(probe, path, None)  # raises if a selector matches nothing
     return fi
 
 
@@ -373,7 +432,7 @@ def _apply_fixed(base: Case, fixed: dict, problems):
         return None
 
 
-def _axis(base: Case, i: int, ax: AxisConfig, problems) -> Optional[Axis]:
+def _axis(base: Case, i: int, ax: AxisConfig, problems) -> Axis | None:
     where = f"axes[{i}]"
     try:
         fi = _check_path(base, ax.path)
@@ -382,25 +441,33 @@ def _axis(base: Case, i: int, ax: AxisConfig, problems) -> Optional[Axis]:
         return None
     values = ax.generated()
     ann = fi.annotation
-    is_int = ann is int or ann == Optional[int]
+    is_int = ann is int or ann == Optional[int]  # noqa: UP045  (compares with pydantic's own annotation)
     if is_int:
         bad = [v for v in values if isinstance(v, float)]
         if bad:
-            problems.append((f"{where}.values", f"{ax.path} takes integers (got "
-                                                f"{_fmt(bad[0])})"))
+            problems.append((f"{where}.values", f"{ax.path} takes integers (got {_fmt(bad[0])})"))
             return None
     for j, v in enumerate(values):
         try:
             base.updated({ax.path: v})
         except InputError as exc:
-            key = (f"{where}.values[{j}]" if ax.values is not None
-                   else f"{where} (range value {j + 1} of {len(values)})")
+            key = (
+                f"{where}.values[{j}]"
+                if ax.values is not None
+                else f"{where} (range value {j + 1} of {len(values)})"
+            )
             problems.append((key, f"{_fmt(v)}: {_problem_text(exc)}"))
     extra = fi.json_schema_extra if isinstance(fi.json_schema_extra, dict) else {}
     last = parse_path(ax.path)[-1].name
     name = ax.name or last
-    return Axis(path=ax.path, name=name, values=tuple(values), unit=extra.get("unit", ""),
-                description=fi.description or "", dim=ax.group or name)
+    return Axis(
+        path=ax.path,
+        name=name,
+        values=tuple(values),
+        unit=extra.get("unit", ""),
+        description=fi.description or "",
+        dim=ax.group or name,
+    )
 
 
 def _dims(cfg: SweepFile, axes: list[Axis], problems) -> list[tuple[str, list[Axis]]]:
@@ -410,18 +477,28 @@ def _dims(cfg: SweepFile, axes: list[Axis], problems) -> list[tuple[str, list[Ax
     seen: dict[str, int] = {}
     for i, a in enumerate(axes):
         if a.name in seen:
-            problems.append((f"axes[{i}].name", f"duplicate dimension name {a.name!r} (also "
-                                                f"axes[{seen[a.name]}]); give each axis a "
-                                                "distinct name"))
+            problems.append(
+                (
+                    f"axes[{i}].name",
+                    f"duplicate dimension name {a.name!r} (also "
+                    f"axes[{seen[a.name]}]); give each axis a "
+                    "distinct name",
+                )
+            )
         seen.setdefault(a.name, i)
         if a.name in RESERVED_NAMES or a.dim in RESERVED_NAMES:
-            problems.append((f"axes[{i}].name", f"{a.name!r} is reserved (reserved: "
-                                                f"{', '.join(RESERVED_NAMES)})"))
+            problems.append(
+                (
+                    f"axes[{i}].name",
+                    f"{a.name!r} is reserved (reserved: {', '.join(RESERVED_NAMES)})",
+                )
+            )
     paths: dict[str, int] = {}
     for i, a in enumerate(axes):
         if a.path in paths:
-            problems.append((f"axes[{i}].path", f"{a.path!r} is swept twice (also "
-                                                f"axes[{paths[a.path]}])"))
+            problems.append(
+                (f"axes[{i}].path", f"{a.path!r} is swept twice (also axes[{paths[a.path]}])")
+            )
         paths.setdefault(a.path, i)
     dims: dict[str, list[Axis]] = {}
     for a in axes:

@@ -27,16 +27,16 @@ __all__ = ["DryContactResult", "solve_dry_contact", "contact_edges"]
 class DryContactResult:
     """Result of :func:`solve_dry_contact` (SI units, per unit length)."""
 
-    x: np.ndarray                 #: node positions [m]
-    pressure: np.ndarray          #: contact pressure [Pa]
-    gap: np.ndarray               #: gap between deformed surfaces [m] (0 in contact)
-    half_width: float             #: contact half-width (edges interpolated) [m]
-    max_pressure: float           #: peak pressure [Pa]
-    load: float                   #: ∫p dx [N/m]
+    x: np.ndarray  #: node positions [m]
+    pressure: np.ndarray  #: contact pressure [Pa]
+    gap: np.ndarray  #: gap between deformed surfaces [m] (0 in contact)
+    half_width: float  #: contact half-width (edges interpolated) [m]
+    max_pressure: float  #: peak pressure [Pa]
+    load: float  #: ∫p dx [N/m]
     converged: bool
     iterations: int
     message: str
-    hertz: HertzLineContact = field(repr=False)   #: Hertz reference with the bulk E'
+    hertz: HertzLineContact = field(repr=False)  #: Hertz reference with the bulk E'
     #: conditions outside the model's validity (also appended to ``message``)
     warnings: list = field(default_factory=list)
 
@@ -74,8 +74,15 @@ def _estimate_half_width(load, radius, bodies) -> float:
     return max(b_bulk, b_surf)
 
 
-def _cgm(op: DeformationOperator, geom: np.ndarray, w: float, dx: float, p: np.ndarray,
-         tol: float, max_iter: int):
+def _cgm(
+    op: DeformationOperator,
+    geom: np.ndarray,
+    w: float,
+    dx: float,
+    p: np.ndarray,
+    tol: float,
+    max_iter: int,
+):
     delta, g_old = 0.0, 1.0
     t = np.zeros_like(p)
     err = np.inf
@@ -111,9 +118,18 @@ def _cgm(op: DeformationOperator, geom: np.ndarray, w: float, dx: float, p: np.n
     return p, None, False, it, f"not converged after {max_iter} iterations (change {err:.1e})"
 
 
-def solve_dry_contact(load: float, radius: float, bodies, *, n: int = 1024,
-                      domain: float = 1.6, tol: float = 1e-10, max_iter: int = 3000,
-                      max_domain_growth: int = 3, initial_pressure=None) -> DryContactResult:
+def solve_dry_contact(
+    load: float,
+    radius: float,
+    bodies,
+    *,
+    n: int = 1024,
+    domain: float = 1.6,
+    tol: float = 1e-10,
+    max_iter: int = 3000,
+    max_domain_growth: int = 3,
+    initial_pressure=None,
+) -> DryContactResult:
     """Dry line contact of a steel or coated cylinder/plane pair.
 
     Parameters
@@ -138,8 +154,10 @@ def solve_dry_contact(load: float, radius: float, bodies, *, n: int = 1024,
     max_iter = check_int("max_iter", max_iter)
     max_domain_growth = check_int("max_domain_growth", max_domain_growth)
     if max_iter < 1 or not 0 <= max_domain_growth <= 10:
-        raise InputError(f"max_iter must be >= 1 and max_domain_growth in [0, 10] (got "
-                         f"{max_iter}, {max_domain_growth})")
+        raise InputError(
+            f"max_iter must be >= 1 and max_domain_growth in [0, 10] (got "
+            f"{max_iter}, {max_domain_growth})"
+        )
     domain = check_positive("domain", domain)
     if domain <= 1.0:
         raise InputError(f"domain must be > 1 half-width (got {domain:g})")
@@ -174,8 +192,15 @@ def solve_dry_contact(load: float, radius: float, bodies, *, n: int = 1024,
     gap = u - (u[ic].mean() if np.any(ic) else u.min())
     lo, hi = contact_edges(x, p)
     res = DryContactResult(
-        x=x, pressure=p, gap=gap, half_width=0.5 * (hi - lo), max_pressure=float(p.max()),
-        load=float(p.sum() * dx), converged=bool(ok), iterations=int(iters), message=msg,
+        x=x,
+        pressure=p,
+        gap=gap,
+        half_width=0.5 * (hi - lo),
+        max_pressure=float(p.max()),
+        load=float(p.sum() * dx),
+        converged=bool(ok),
+        iterations=int(iters),
+        message=msg,
         hertz=hz,
     )
     return _check_validity(res, r)
@@ -186,12 +211,16 @@ def _check_validity(res: DryContactResult, radius: float) -> DryContactResult:
     beyond the elastic limit (thresholds and sources in :mod:`.ehl.validity`)."""
     size = max(res.half_width, res.hertz.half_width)
     if size > MAX_ZONE_TO_RADIUS * radius:
-        res.warnings.append(f"contact half-width {size / radius:.3g} R: the parabolic gap "
-                            "and half-space elasticity need a contact much smaller than R "
-                            f"(flagged above {MAX_ZONE_TO_RADIUS:g} R)")
+        res.warnings.append(
+            f"contact half-width {size / radius:.3g} R: the parabolic gap "
+            "and half-space elasticity need a contact much smaller than R "
+            f"(flagged above {MAX_ZONE_TO_RADIUS:g} R)"
+        )
     if res.max_pressure > MAX_PRESSURE:
-        res.warnings.append(f"peak pressure {res.max_pressure / 1e9:.3g} GPa exceeds "
-                            f"{MAX_PRESSURE / 1e9:g} GPa: beyond the elastic limit of "
-                            "hardened steel")
+        res.warnings.append(
+            f"peak pressure {res.max_pressure / 1e9:.3g} GPa exceeds "
+            f"{MAX_PRESSURE / 1e9:g} GPa: beyond the elastic limit of "
+            "hardened steel"
+        )
     res.message += "".join(f"; warning: {t}" for t in res.warnings)
     return res

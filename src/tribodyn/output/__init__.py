@@ -16,5 +16,13 @@ from .writer import (
     write_results,
 )
 
-__all__ = ["OutputWriteError", "check_output_dir", "clean_stale", "is_result_folder",
-           "study_to_dataset", "write_atomic", "write_results", "write_sweep"]
+__all__ = [
+    "OutputWriteError",
+    "check_output_dir",
+    "clean_stale",
+    "is_result_folder",
+    "study_to_dataset",
+    "write_atomic",
+    "write_results",
+    "write_sweep",
+]

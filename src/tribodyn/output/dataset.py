@@ -43,10 +43,14 @@ _EHL = {
     "hydrodynamic_load": ("N", "load carried by the fluid (total over the width)"),
     "asperity_load": ("N", "load carried by the asperities (total over the width)"),
     "viscous_friction": ("N", "viscous (Couette) friction force"),
-    "viscous_friction_newtonian": ("N", "viscous friction with the Newtonian law (Eq. 16), "
-                                        "same film and pressure"),
-    "viscous_friction_eyring": ("N", "viscous friction with the Eyring law, same film and "
-                                     "pressure"),
+    "viscous_friction_newtonian": (
+        "N",
+        "viscous friction with the Newtonian law (Eq. 16), same film and pressure",
+    ),
+    "viscous_friction_eyring": (
+        "N",
+        "viscous friction with the Eyring law, same film and pressure",
+    ),
     "boundary_friction": ("N", "boundary friction force"),
     "rolling_friction": ("N", "Poiseuille (rolling) part of Eq. 16"),
     "friction_power": ("W", "friction power (viscous + boundary) × u_s"),
@@ -62,108 +66,152 @@ def _var(dims, data, units=None, long_name=None, **attrs) -> xr.Variable:
 def study_to_dataset(study) -> xr.Dataset:
     """All results of a :class:`~tribodyn.workflow.cycle.CycleStudy` in one Dataset."""
     from .. import __version__
+
     an = study.analyse()
     case, dyn, inp, sets = study.case, study.dynamics, study.inputs, study.sets
     ds = xr.Dataset()
     ds.coords["crank_angle"] = _var("crank_angle", dyn.crank_angle, "deg", "crank angle")
     for k, (units, name) in _DYNAMICS.items():
         ds["analytic_friction_power" if k == "friction_power" else k] = _var(
-            "crank_angle", getattr(dyn, k), units, name)
+            "crank_angle", getattr(dyn, k), units, name
+        )
     imp = study.implicit
     if imp is not None:
         for k in ("contact_force", "tappet_velocity", "tappet_acceleration", "valve_lift"):
             units, name = _DYNAMICS[k]
             ds[k + "_implicit"] = _var(
-                "crank_angle", np.interp(dyn.crank_angle, imp.crank_angle, getattr(imp, k)),
-                units, name + " (implicit: numerical EHL in the dynamics)")
+                "crank_angle",
+                np.interp(dyn.crank_angle, imp.crank_angle, getattr(imp, k)),
+                units,
+                name + " (implicit: numerical EHL in the dynamics)",
+            )
 
-    ds.coords["ehl_crank"] = _var("ehl_crank", inp.crank_angle, "deg",
-                                  "crank angle of the transient-EHL samples")
+    ds.coords["ehl_crank"] = _var(
+        "ehl_crank", inp.crank_angle, "deg", "crank angle of the transient-EHL samples"
+    )
     ds.coords["surface_set"] = xr.Variable("surface_set", [s.name for s in sets])
-    ds["surface_label"] = _var("surface_set", [study.labels[s.name] for s in sets],
-                               long_name="tappet surface")
+    ds["surface_label"] = _var(
+        "surface_set", [study.labels[s.name] for s in sets], long_name="tappet surface"
+    )
     cfg = {s.name: s for s in case.surface_sets()}
-    ds["coating_material"] = _var("surface_set", [cfg[s.name].coating_material or ""
-                                                  for s in sets],
-                                  long_name="coating material key ('' = uncoated)")
+    ds["coating_material"] = _var(
+        "surface_set",
+        [cfg[s.name].coating_material or "" for s in sets],
+        long_name="coating material key ('' = uncoated)",
+    )
     ds["coating_thickness"] = _var(
-        "surface_set", [cfg[s.name].coating.thickness if cfg[s.name].coating else 0.0
-                        for s in sets], "m", "coating thickness (0 = uncoated)")
+        "surface_set",
+        [cfg[s.name].coating.thickness if cfg[s.name].coating else 0.0 for s in sets],
+        "m",
+        "coating thickness (0 = uncoated)",
+    )
     for name, v, units, long in (
-            ("ehl_contact_force", inp.contact_force, "N", "contact force at the EHL samples"),
-            ("ehl_entrainment_speed", inp.entrainment_speed, "m/s", "u_e at the EHL samples"),
-            ("ehl_sliding_speed", inp.sliding_speed, "m/s", "u_s at the EHL samples"),
-            ("ehl_radius", inp.radius, "m", "R at the EHL samples")):
+        ("ehl_contact_force", inp.contact_force, "N", "contact force at the EHL samples"),
+        ("ehl_entrainment_speed", inp.entrainment_speed, "m/s", "u_e at the EHL samples"),
+        ("ehl_sliding_speed", inp.sliding_speed, "m/s", "u_s at the EHL samples"),
+        ("ehl_radius", inp.radius, "m", "R at the EHL samples"),
+    ):
         ds[name] = _var("ehl_crank", v, units, long)
     ds["gV"] = _var("ehl_crank", an.gV, "1", "Greenwood-chart viscosity group g_V")
     ds["gE"] = _var("ehl_crank", an.gE, "1", "Greenwood-chart elasticity group g_E")
     from ..physics.regimes import REGIMES
-    ds["regime"] = _var("ehl_crank", an.regime, long_name="lubrication regime",
-                        flag_values="-1 0 1 2 3",
-                        flag_meanings="unloaded " + " ".join(REGIMES))
-    ds["in_event"] = _var("ehl_crank", an.in_event.astype(np.int8),
-                          long_name="inside the cam lift event (lift > 10 µm)")
+
+    ds["regime"] = _var(
+        "ehl_crank",
+        an.regime,
+        long_name="lubrication regime",
+        flag_values="-1 0 1 2 3",
+        flag_meanings="unloaded " + " ".join(REGIMES),
+    )
+    ds["in_event"] = _var(
+        "ehl_crank",
+        an.in_event.astype(np.int8),
+        long_name="inside the cam lift event (lift > 10 µm)",
+    )
     two = ("surface_set", "ehl_crank")
-    ds["loaded"] = _var(two, np.array([s.loaded for s in sets]).astype(np.int8),
-                        long_name="contact loaded (EHL solved)")
-    ds["converged"] = _var(two, np.array([s.converged for s in sets]).astype(np.int8),
-                           long_name="EHL step converged")
-    ds["iterations"] = _var(two, np.array([s.iterations for s in sets]).astype(np.int32),
-                            long_name="Newton iterations")
+    ds["loaded"] = _var(
+        two,
+        np.array([s.loaded for s in sets]).astype(np.int8),
+        long_name="contact loaded (EHL solved)",
+    )
+    ds["converged"] = _var(
+        two, np.array([s.converged for s in sets]).astype(np.int8), long_name="EHL step converged"
+    )
+    ds["iterations"] = _var(
+        two, np.array([s.iterations for s in sets]).astype(np.int32), long_name="Newton iterations"
+    )
     for k, (units, name) in _EHL.items():
         ds[k] = _var(two, np.array([getattr(s, k) for s in sets]), units, name)
     three = ("surface_set", "ehl_crank", "k")
-    ds.coords["k"] = _var("k", np.arange(sets[0].x.shape[1]), long_name=(
-        "profile sample index (each step's whole solver domain, uniform)"))
-    ds["profile_x"] = _var(three, np.array([s.x for s in sets]), "m",
-                           "position along the contact (positive in the direction of "
-                           "positive u_e)")
-    ds["pressure"] = _var(three, np.array([s.pressure for s in sets]), "Pa",
-                          "hydrodynamic pressure p(x)")
+    ds.coords["k"] = _var(
+        "k",
+        np.arange(sets[0].x.shape[1]),
+        long_name=("profile sample index (each step's whole solver domain, uniform)"),
+    )
+    ds["profile_x"] = _var(
+        three,
+        np.array([s.x for s in sets]),
+        "m",
+        "position along the contact (positive in the direction of positive u_e)",
+    )
+    ds["pressure"] = _var(
+        three, np.array([s.pressure for s in sets]), "Pa", "hydrodynamic pressure p(x)"
+    )
     ds["film"] = _var(three, np.array([s.film for s in sets]), "m", "film thickness h(x)")
     ds.coords["point"] = xr.Variable("point", np.arange(1, an.point_crank.size + 1))
-    ds["point_crank"] = _var("point", an.point_crank, "deg",
-                             "crank angle of the representative points (Fig. 13)")
+    ds["point_crank"] = _var(
+        "point", an.point_crank, "deg", "crank angle of the representative points (Fig. 13)"
+    )
     _coating_studies(ds, study)
     from .thermal import add_thermal
+
     add_thermal(ds, study)
     failures = {s.name: [[c, m] for c, m in s.failures] for s in sets}
-    ds.attrs.update({
-        "title": f"tribodyn cam-cycle study: {case.name}",
-        "tribodyn_version": __version__,
-        "case_toml": case.to_toml(),
-        "engine_speed_rpm": float(case.engine_speed),
-        "cam_width_m": float(case.width),
-        "runtime_s": float(study.runtime_s),
-        "reference_set": an.roles["reference"],
-        "surface_roles": json.dumps(an.roles),
-        "coupling": json.dumps(study.coupling.to_dict()),
-        "warnings": json.dumps(study.warnings),
-        "ehl_failures": json.dumps(failures),
-        "conventions": "SI; EHL NaN where unloaded (loaded = 0)",
-        "roughness_sensitivity": json.dumps(
-            study.sensitivity.to_dict() if study.sensitivity is not None else {}),
-    })
+    ds.attrs.update(
+        {
+            "title": f"tribodyn cam-cycle study: {case.name}",
+            "tribodyn_version": __version__,
+            "case_toml": case.to_toml(),
+            "engine_speed_rpm": float(case.engine_speed),
+            "cam_width_m": float(case.width),
+            "runtime_s": float(study.runtime_s),
+            "reference_set": an.roles["reference"],
+            "surface_roles": json.dumps(an.roles),
+            "coupling": json.dumps(study.coupling.to_dict()),
+            "warnings": json.dumps(study.warnings),
+            "ehl_failures": json.dumps(failures),
+            "conventions": "SI; EHL NaN where unloaded (loaded = 0)",
+            "roughness_sensitivity": json.dumps(
+                study.sensitivity.to_dict() if study.sensitivity is not None else {}
+            ),
+        }
+    )
     return ds
 
 
 def _coating_studies(ds, study):
     from .. import paper
+
     if study.dry:
         ds.attrs["dry_coating_conditions"] = json.dumps(
-            {k: v for k, v in paper.FIG5.items() if k != "ratios"})
+            {k: v for k, v in paper.FIG5.items() if k != "ratios"}
+        )
         half = max(1.3 * c.result.half_width for c in study.dry)
         xd = np.linspace(-half, half, 401)
         ds.coords["dry_x"] = _var("dry_x", xd, "m")
-        ds.coords["dry_ratio"] = _var("dry_ratio", [c.ratio for c in study.dry],
-                                      long_name="coating/steel modulus ratio")
+        ds.coords["dry_ratio"] = _var(
+            "dry_ratio", [c.ratio for c in study.dry], long_name="coating/steel modulus ratio"
+        )
         ds["dry_pressure"] = _var(
             ("dry_ratio", "dry_x"),
-            np.array([np.interp(xd, c.result.x, c.result.pressure, left=0, right=0)
-                      for c in study.dry]), "Pa", "dry contact pressure (Fig. 5)")
+            np.array(
+                [np.interp(xd, c.result.x, c.result.pressure, left=0, right=0) for c in study.dry]
+            ),
+            "Pa",
+            "dry contact pressure (Fig. 5)",
+        )
         ds["dry_half_width"] = _var("dry_ratio", [c.result.half_width for c in study.dry], "m")
-        ds["dry_max_pressure"] = _var("dry_ratio", [c.result.max_pressure for c in study.dry],
-                                      "Pa")
+        ds["dry_max_pressure"] = _var("dry_ratio", [c.result.max_pressure for c in study.dry], "Pa")
     e = study.ehl_coating
     if e is not None and e.results:
         lo = max(r.x[0] for r in e.results)
@@ -172,16 +220,25 @@ def _coating_studies(ds, study):
         ds.coords["ehl_x"] = _var("ehl_x", xe, "m")
         ds.coords["ehl_ratio"] = xr.Variable("ehl_ratio", [c.ratio for c in e.ratios])
         ds.coords["ehl_pair"] = xr.Variable("ehl_pair", [c.label for c in e.pairs])
-        for dim, items in (("ehl_ratio", [c.result for c in e.ratios]),
-                           ("ehl_pair", [c.result for c in e.pairs])):
+        for dim, items in (
+            ("ehl_ratio", [c.result for c in e.ratios]),
+            ("ehl_pair", [c.result for c in e.pairs]),
+        ):
             ds[f"{dim}_pressure"] = _var(
-                (dim, "ehl_x"), np.array([np.interp(xe, r.x, r.pressure) for r in items]),
-                "Pa", "EHL pressure (Fig. 6)")
+                (dim, "ehl_x"),
+                np.array([np.interp(xe, r.x, r.pressure) for r in items]),
+                "Pa",
+                "EHL pressure (Fig. 6)",
+            )
             ds[f"{dim}_film"] = _var(
-                (dim, "ehl_x"), np.array([np.interp(xe, r.x, r.film) for r in items]),
-                "m", "EHL film (Fig. 6)")
+                (dim, "ehl_x"),
+                np.array([np.interp(xe, r.x, r.film) for r in items]),
+                "m",
+                "EHL film (Fig. 6)",
+            )
             ds[f"{dim}_central_film"] = _var(dim, [r.central_film for r in items], "m")
             ds[f"{dim}_min_film"] = _var(dim, [r.min_film for r in items], "m")
-            ds[f"{dim}_converged"] = _var(dim, np.array([r.converged for r in items],
-                                                        dtype=np.int8))
+            ds[f"{dim}_converged"] = _var(
+                dim, np.array([r.converged for r in items], dtype=np.int8)
+            )
         ds.attrs["ehl_coating_conditions"] = json.dumps(e.conditions)

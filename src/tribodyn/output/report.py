@@ -17,13 +17,12 @@ from .. import paper
 __all__ = ["write_report", "report_text", "claims"]
 
 _CAPTIONS = {
-    "fig05": "Dry pressure for coating/steel modulus ratios (paper Fig. 5; R = 10 mm "
-             "assumed).",
+    "fig05": "Dry pressure for coating/steel modulus ratios (paper Fig. 5; R = 10 mm assumed).",
     "fig06": "EHL pressure and film for modulus ratios and the real pairs (paper Fig. 6; "
-             "u_e = {u} m/s, R = 10 mm assumed).",
+    "u_e = {u} m/s, R = 10 mm assumed).",
     "fig08": "Tappet velocity, implicit vs explicit (paper Fig. 8).",
     "fig09": "Contact force, implicit vs explicit, with the six representative points "
-             "(paper Fig. 9).",
+    "(paper Fig. 9).",
     "fig10": "Tappet acceleration, implicit vs explicit (paper Fig. 10).",
     "fig11": "Entraining speed, sliding speed and radius of curvature (paper Fig. 11).",
     "fig12": "Greenwood chart with the cycle's operating points (paper Fig. 12).",
@@ -36,9 +35,8 @@ _CAPTIONS = {
     "fig19": "Friction power and friction energy per cycle.",
     "fig20": "Minimum film and λ = h_min/σ over the cycle.",
     "fig21": "Temperatures over the cycle: tappet and cam surfaces, mid-film and maximum "
-             "(thermal EHL).",
-    "fig22": "Central film and viscous friction, thermal vs isothermal at the inlet "
-             "temperature.",
+    "(thermal EHL).",
+    "fig22": "Central film and viscous friction, thermal vs isothermal at the inlet temperature.",
 }
 
 
@@ -76,8 +74,9 @@ def _range(values, fmt="{:.2g}", unit=""):
     if not vals:
         return "–"
     lo, hi = min(vals), max(vals)
-    txt = fmt.format(lo) if fmt.format(lo) == fmt.format(hi) else \
-        f"{fmt.format(lo)}–{fmt.format(hi)}"
+    txt = (
+        fmt.format(lo) if fmt.format(lo) == fmt.format(hi) else f"{fmt.format(lo)}–{fmt.format(hi)}"
+    )
     return txt + (f" {unit}" if unit else "")
 
 
@@ -89,47 +88,66 @@ def _film_row(study, summ):
     coated = {k: v for k, v in sets.items() if k != unc}
     gains = [v["max_film_gain_vs_uncoated_pct"] for v in coated.values()]
     g_best = max((g for g in gains if g is not None), default=None)
-    at_pts = [abs(g) for v in coated.values() for g in v["film_gain_at_points_pct"]
-              if g is not None]
+    at_pts = [
+        abs(g) for v in coated.values() for g in v["film_gain_at_points_pct"] if g is not None
+    ]
     med = [v["median_abs_film_gain_vs_uncoated_pct"] for v in coated.values()]
     p95 = [v["p95_abs_film_gain_vs_uncoated_pct"] for v in coated.values()]
     target = paper.CLAIMS["film_gain_pct"]
-    ours = (f"max {g_best:+.2f} % (robust, see the rule below); median of the absolute gain "
-            f"{_range(med, '{:.2f}', '%')}, 95th percentile {_range(p95, '{:.2f}', '%')}"
-            if g_best is not None else "–")
-    txt = ("The paper's mechanism — a lower modulus widens the contact and thickens the "
-           "film — exists but is far too small at its inputs: a 1–4 µm layer with "
-           "E_c/E_s = 175/210 or 185/210 on a contact whose Hertz half-width is tens of µm "
-           "changes the effective modulus by well under 1 %, and the EHL film scales only as "
-           "E'^(−0.1…−0.2).")
+    ours = (
+        f"max {g_best:+.2f} % (robust, see the rule below); median of the absolute gain "
+        f"{_range(med, '{:.2f}', '%')}, 95th percentile {_range(p95, '{:.2f}', '%')}"
+        if g_best is not None
+        else "–"
+    )
+    txt = (
+        "The paper's mechanism — a lower modulus widens the contact and thickens the "
+        "film — exists but is far too small at its inputs: a 1–4 µm layer with "
+        "E_c/E_s = 175/210 or 185/210 on a contact whose Hertz half-width is tens of µm "
+        "changes the effective modulus by well under 1 %, and the EHL film scales only as "
+        "E'^(−0.1…−0.2)."
+    )
     big = max(at_pts, default=None)
     if big:
-        txt += (f" At the six representative points the coatings change h_c by at most "
-                f"{big:.2g} %, {target / big:.0f}× less than +{target:g} %.")
+        txt += (
+            f" At the six representative points the coatings change h_c by at most "
+            f"{big:.2g} %, {target / big:.0f}× less than +{target:g} %."
+        )
     fac = [f for f in an.modulus_factor if f is not None and math.isfinite(f)]
     if fac:
-        txt += (f" To give +{target:g} % there (Moes film formula, α kept), the bulk E' "
-                f"itself would have to fall by a factor of {_range(fac, '{:.0f}')}, not by "
-                "the 10–17 % of a coating's modulus, and a 1–4 µm layer does not even change "
-                "the bulk E'.")
+        txt += (
+            f" To give +{target:g} % there (Moes film formula, α kept), the bulk E' "
+            f"itself would have to fall by a factor of {_range(fac, '{:.0f}')}, not by "
+            "the 10–17 % of a coating's modulus, and a 1–4 µm layer does not even change "
+            "the bulk E'."
+        )
     e = study.ehl_coating
     if e is not None and e.pairs:
         h0 = e.pairs[0].result.central_film
-        txt += (" At the paper's Fig. 6 conditions the real pairs' central films differ from "
-                "steel's by " + ", ".join(f"{(c.result.central_film / h0 - 1) * 100:+.2f} % "
-                                          f"({c.label})" for c in e.pairs[1:]) + ".")
+        txt += (
+            " At the paper's Fig. 6 conditions the real pairs' central films differ from "
+            "steel's by "
+            + ", ".join(
+                f"{(c.result.central_film / h0 - 1) * 100:+.2f} % ({c.label})" for c in e.pairs[1:]
+            )
+            + "."
+        )
     if e is not None and e.ratios:
         r = np.array([c.ratio for c in e.ratios])
         hc = np.array([c.result.central_film for c in e.ratios])
         i1, i0 = int(np.argmin(np.abs(r - 1.0))), int(np.argmin(r))
-        txt += (f" Even a coating four times softer than steel (E_c/E_s = {r[i0]:g}, 5 µm, "
-                f"Fig. 6 conditions) changes h_c by only {(hc[i0] / hc[i1] - 1) * 100:+.1f} %.")
+        txt += (
+            f" Even a coating four times softer than steel (E_c/E_s = {r[i0]:g}, 5 µm, "
+            f"Fig. 6 conditions) changes h_c by only {(hc[i0] / hc[i1] - 1) * 100:+.1f} %."
+        )
     share = _max_asperity_share(study, unc)
-    txt += (" The Table 4 roughness cannot supply the gain either: its ηβσ (2e-4…2.3e-3) "
-            "makes the asperity pressure at most ~1 MPa, so the asperities carry at most "
-            f"{_fmt(share * 100 if share is not None else None, '%', 2)} of the load even at "
-            "λ ≈ 0.2 and hardly lift the surfaces. We find no input of the paper that "
-            f"produces +{target:g} %. Film-gain rule: {summ['film_gain_rule']}.")
+    txt += (
+        " The Table 4 roughness cannot supply the gain either: its ηβσ (2e-4…2.3e-3) "
+        "makes the asperity pressure at most ~1 MPa, so the asperities carry at most "
+        f"{_fmt(share * 100 if share is not None else None, '%', 2)} of the load even at "
+        "λ ≈ 0.2 and hardly lift the surfaces. We find no input of the paper that "
+        f"produces +{target:g} %. Film-gain rule: {summ['film_gain_rule']}."
+    )
     return ("Coatings raise the film thickness by up to", f"+{target:g} %", ours, txt)
 
 
@@ -152,26 +170,40 @@ def claims(study, summ) -> list[tuple[str, str, str, str]]:
     rows = [_film_row(study, summ)]
     if wcc:
         fr = _boundary_factor(case, unc) / _boundary_factor(case, wcc)
-        why = ("It follows from the roughness and ς inputs, not from the film: boundary "
-               "friction ∝ τ₀π²(ηβσ)²F₂ + ς(8√2/15)π(ηβσ)²√(σ/β)E'F₅/₂. WC-C's "
-               f"(ηβσ)²√(σ/β) is {fr:.0f}× smaller than the uncoated surface's, which "
-               f"outweighs its ς ({case.surface_set(wcc).boundary_shear_coefficient:g} vs "
-               f"{case.surface_set(unc).boundary_shear_coefficient:g}).")
-        rows.append(("WC-C cuts boundary friction vs steel by",
-                     f"> {paper.CLAIMS['wcc_boundary_reduction_pct']:g} %",
-                     f"{sets[wcc]['boundary_friction_reduction_vs_uncoated_pct']:.1f} % "
-                     f"({study.labels[wcc]})", why))
+        why = (
+            "It follows from the roughness and ς inputs, not from the film: boundary "
+            "friction ∝ τ₀π²(ηβσ)²F₂ + ς(8√2/15)π(ηβσ)²√(σ/β)E'F₅/₂. WC-C's "
+            f"(ηβσ)²√(σ/β) is {fr:.0f}× smaller than the uncoated surface's, which "
+            f"outweighs its ς ({case.surface_set(wcc).boundary_shear_coefficient:g} vs "
+            f"{case.surface_set(unc).boundary_shear_coefficient:g})."
+        )
+        rows.append(
+            (
+                "WC-C cuts boundary friction vs steel by",
+                f"> {paper.CLAIMS['wcc_boundary_reduction_pct']:g} %",
+                f"{sets[wcc]['boundary_friction_reduction_vs_uncoated_pct']:.1f} % "
+                f"({study.labels[wcc]})",
+                why,
+            )
+        )
     if wcc and dlc:
         bw = _cycle_integral(study, "boundary_friction", wcc, ev)
         bd = _cycle_integral(study, "boundary_friction", dlc, ev)
         hw, hd = study.set(wcc).central_film, study.set(dlc).central_film
         dh = float(np.nanmax(np.abs(hw / hd - 1.0)[ev])) * 100 if ev.any() else float("nan")
         q = _boundary_factor(case, wcc, True) / _boundary_factor(case, dlc, True)
-        why = (f"The films of the two coatings differ by at most {dh:.2g} %; the difference "
-               f"is the roughness and ς: (ηβσ)²√(σ/β)·ς of WC-C / DLC = {q:.2f}.")
-        rows.append(("WC-C boundary friction below DLC by",
-                     f"~{paper.CLAIMS['wcc_vs_dlc_boundary_pct']:g} %",
-                     f"{(1 - bw / bd) * 100:.0f} %" if bd > 0 else "–", why))
+        why = (
+            f"The films of the two coatings differ by at most {dh:.2g} %; the difference "
+            f"is the roughness and ς: (ηβσ)²√(σ/β)·ς of WC-C / DLC = {q:.2f}."
+        )
+        rows.append(
+            (
+                "WC-C boundary friction below DLC by",
+                f"~{paper.CLAIMS['wcc_vs_dlc_boundary_pct']:g} %",
+                f"{(1 - bw / bd) * 100:.0f} %" if bd > 0 else "–",
+                why,
+            )
+        )
     if wcc:
         ref, w = study.set(unc), study.set(wcc)
         L = ref.loaded & ev
@@ -179,34 +211,45 @@ def claims(study, summ) -> list[tuple[str, str, str, str]]:
         db = ref.boundary_friction - w.boundary_friction
         dv_max = float(np.nanmax(np.where(L, dv, np.nan))) if L.any() else None
         db_max = float(np.nanmax(np.where(L, db, np.nan))) if L.any() else None
-        rows.append((
-            "Viscous friction rises with coatings (WC-C at most)",
-            f"+{paper.CLAIMS['wcc_viscous_loss_N']:g} N", _fmt(dv_max, "N"),
-            "Same sign, much smaller: viscous friction grows with the contact width, which "
-            "the coatings widen by < 1 % (see the film row)."))
-        rows.append((
-            "Boundary friction falls with WC-C (at most)",
-            f"−{paper.CLAIMS['wcc_boundary_gain_N']:g} N",
-            _fmt(-db_max if db_max is not None else None, "N"),
-            "Same order: set by the steel surface's boundary friction, nearly all of which "
-            "WC-C removes."))
+        rows.append(
+            (
+                "Viscous friction rises with coatings (WC-C at most)",
+                f"+{paper.CLAIMS['wcc_viscous_loss_N']:g} N",
+                _fmt(dv_max, "N"),
+                "Same sign, much smaller: viscous friction grows with the contact width, which "
+                "the coatings widen by < 1 % (see the film row).",
+            )
+        )
+        rows.append(
+            (
+                "Boundary friction falls with WC-C (at most)",
+                f"−{paper.CLAIMS['wcc_boundary_gain_N']:g} N",
+                _fmt(-db_max if db_max is not None else None, "N"),
+                "Same order: set by the steel surface's boundary friction, nearly all of which "
+                "WC-C removes.",
+            )
+        )
     imp = summ.get("implicit_vs_explicit", {})
     if imp.get("max_contact_force_diff_pct") is not None:
-        rows.append((
-            "Implicit vs explicit dynamics",
-            "insignificant, except where lightly loaded (engagement/disengagement)",
-            f"max contact-force difference {imp['max_contact_force_diff_pct']:.1f} % of the "
-            f"peak at {imp['max_contact_force_diff_crank_deg']:.1f}° crank; max velocity "
-            f"difference {imp['max_velocity_diff_pct']:.2f} %",
-            "Agrees in where the differences are: through the loaded event the curves "
-            "coincide; they differ where the contact engages and disengages, where the "
-            "lightly loaded (hydrodynamic, h ∝ 1/F) film is several µm and comparable to "
-            "the contact deflection. There the implicit result depends on the film the "
-            "contact has when it is first loaded (at `numerics.min_load`), because a "
-            "zero-lash contact on the base circle has no well-defined film."))
+        rows.append(
+            (
+                "Implicit vs explicit dynamics",
+                "insignificant, except where lightly loaded (engagement/disengagement)",
+                f"max contact-force difference {imp['max_contact_force_diff_pct']:.1f} % of the "
+                f"peak at {imp['max_contact_force_diff_crank_deg']:.1f}° crank; max velocity "
+                f"difference {imp['max_velocity_diff_pct']:.2f} %",
+                "Agrees in where the differences are: through the loaded event the curves "
+                "coincide; they differ where the contact engages and disengages, where the "
+                "lightly loaded (hydrodynamic, h ∝ 1/F) film is several µm and comparable to "
+                "the contact deflection. There the implicit result depends on the film the "
+                "contact has when it is first loaded (at `numerics.min_load`), because a "
+                "zero-lash contact on the base circle has no well-defined film.",
+            )
+        )
     rows.append(_viscous_law_row(study, summ))
     rows.append(_friction_loss_row(study, summ))
     from .report_thermal import thermal_claim_row
+
     rows.append(thermal_claim_row(study, summ))
     return rows
 
@@ -218,23 +261,38 @@ def _viscous_law_row(study, summ):
     e_ey = v["friction_energy_per_cycle_eyring_J"]
     e_nw = v["friction_energy_per_cycle_newtonian_J"]
     ours = f"Eyring {_fmt(e_ey, 'J')}, Newtonian {_fmt(e_nw, 'J')} per cycle"
-    txt = ("The paper prints the Newtonian Couette stress (Eq. 16) but names an Eyring "
-           "stress (Table 5); both laws are evaluated on the same films and pressures, each "
-           "capped by the limiting shear stress Λp.")
+    txt = (
+        "The paper prints the Newtonian Couette stress (Eq. 16) but names an Eyring "
+        "stress (Table 5); both laws are evaluated on the same films and pressures, each "
+        "capped by the limiting shear stress Λp."
+    )
     if e_ey and e_nw:
-        txt += (f" With the Newtonian law the friction energy of the {study.labels[unc]} "
-                f"surface is {e_nw / e_ey:.1f}× the Eyring one")
+        txt += (
+            f" With the Newtonian law the friction energy of the {study.labels[unc]} "
+            f"surface is {e_nw / e_ey:.1f}× the Eyring one"
+        )
     sens = study.sensitivity
     if sens is not None:
-        mu = {c.viscous_model: c.friction_coefficient for k, c in sens.cases.items()
-              if k == "case roughness" or k.endswith("viscous law")}
+        mu = {
+            c.viscous_model: c.friction_coefficient
+            for k, c in sens.cases.items()
+            if k == "case roughness" or k.endswith("viscous law")
+        }
         if len(mu) == 2:
-            txt += (f"; at the nose ({sens.conditions.crank_deg:.0f}° crank) μ = "
-                    f"{mu['eyring']:.3f} (Eyring) vs {mu['newtonian']:.3f} (Newtonian)")
-    txt += (". So the low friction loss is not only a roughness matter: the viscous law "
-            f"chosen (here: {study.case.numerics.viscous_model}) moves it by this factor.")
-    return ("Viscous law (Newtonian Eq. 16 vs Eyring, Table 5)", "not compared in the paper",
-            ours, txt)
+            txt += (
+                f"; at the nose ({sens.conditions.crank_deg:.0f}° crank) μ = "
+                f"{mu['eyring']:.3f} (Eyring) vs {mu['newtonian']:.3f} (Newtonian)"
+            )
+    txt += (
+        ". So the low friction loss is not only a roughness matter: the viscous law "
+        f"chosen (here: {study.case.numerics.viscous_model}) moves it by this factor."
+    )
+    return (
+        "Viscous law (Newtonian Eq. 16 vs Eyring, Table 5)",
+        "not compared in the paper",
+        ours,
+        txt,
+    )
 
 
 def _friction_loss_row(study, summ):
@@ -246,48 +304,65 @@ def _friction_loss_row(study, summ):
         a = c.get("case roughness")
         b = next((v for k, v in c.items() if k.startswith("Gaussian")), None)
         if a and b:
-            sens_txt = (f" At the nose ({sens.conditions.crank_deg:.0f}° crank) the friction "
-                        f"coefficient is {a.friction_coefficient:.3f} with the Table 4 "
-                        f"roughness and {b.friction_coefficient:.3f} with the same σ and β but "
-                        f"ηβσ = {b.eta_beta_sigma:.2g} (asperity load share "
-                        f"{a.asperity_load_share * 100:.2g} % → "
-                        f"{b.asperity_load_share * 100:.2g} %).")
+            sens_txt = (
+                f" At the nose ({sens.conditions.crank_deg:.0f}° crank) the friction "
+                f"coefficient is {a.friction_coefficient:.3f} with the Table 4 "
+                f"roughness and {b.friction_coefficient:.3f} with the same σ and β but "
+                f"ηβσ = {b.eta_beta_sigma:.2g} (asperity load share "
+                f"{a.asperity_load_share * 100:.2g} % → "
+                f"{b.asperity_load_share * 100:.2g} %)."
+            )
         d = c.get("no limiting-shear cap")
         if a and d and a.limiting_shear:
             lam = study.case.lubricant_config.limiting_shear_coefficient
-            sens_txt += (f" Without the limiting-shear cap (Λ = {lam:g}) the viscous friction "
-                         f"there is {d.viscous_friction_N:.3g} N instead of "
-                         f"{a.viscous_friction_N:.3g} N (μ {d.friction_coefficient:.3f}).")
-    ours = (f"{min(e):.3g}–{max(e):.3g} J" if max(e) - min(e) >= 5e-4 else f"{max(e):.3g} J")
-    txt = ("An order-of-magnitude check, not a validation: the 2–4 J were measured on an "
-           "OHV push-rod engine with crowned (convex) lifters, a different contact geometry, "
-           "load and speed from this direct-acting flat tappet. tribodyn's loss is low because "
-           "with the Table 4 asperity parameters the contact is almost hydrodynamic even at "
-           "λ ≈ 0.2 (μ ≈ 0.01): Table 4's ηβσ is one to two orders below what any Gaussian "
-           "surface has (≥ 0.025 for isotropic ones; measured tappets give ηβσ ≈ 0.03–0.05)."
-           + sens_txt)
-    return ("Friction loss per cam revolution (measured, Winer et al. 1986)",
-            "2–4 J (measurement on another engine, not a paper claim)", ours, txt)
+            sens_txt += (
+                f" Without the limiting-shear cap (Λ = {lam:g}) the viscous friction "
+                f"there is {d.viscous_friction_N:.3g} N instead of "
+                f"{a.viscous_friction_N:.3g} N (μ {d.friction_coefficient:.3f})."
+            )
+    ours = f"{min(e):.3g}–{max(e):.3g} J" if max(e) - min(e) >= 5e-4 else f"{max(e):.3g} J"
+    txt = (
+        "An order-of-magnitude check, not a validation: the 2–4 J were measured on an "
+        "OHV push-rod engine with crowned (convex) lifters, a different contact geometry, "
+        "load and speed from this direct-acting flat tappet. tribodyn's loss is low because "
+        "with the Table 4 asperity parameters the contact is almost hydrodynamic even at "
+        "λ ≈ 0.2 (μ ≈ 0.01): Table 4's ηβσ is one to two orders below what any Gaussian "
+        "surface has (≥ 0.025 for isotropic ones; measured tappets give ηβσ ≈ 0.03–0.05)."
+        + sens_txt
+    )
+    return (
+        "Friction loss per cam revolution (measured, Winer et al. 1986)",
+        "2–4 J (measurement on another engine, not a paper claim)",
+        ours,
+        txt,
+    )
 
 
 # ----------------------------------------------------------------------------- report
 def model_comparison_section(study) -> list[str]:
-    """"Lumped vs flexible" table of a flexible case (empty for a lumped case)."""
+    """ "Lumped vs flexible" table of a flexible case (empty for a lumped case)."""
     mc = getattr(study, "model_comparison", None)
     if mc is None or not mc.rows:
         return []
     cols = [m for m in ("lumped", "flexible") if m in mc.rows]
-    spec = [("peak contact force", "peak_contact_force_N", "N", 1.0),
-            ("minimum contact force in the event", "min_contact_force_in_event_N", "N", 1.0),
-            ("jump speed (engine)", "jump_speed_rpm", "rpm", 1.0),
-            ("valve-seating velocity", "seating_velocity_m_s", "m/s", 1.0),
-            ("friction energy per cycle", "friction_energy_per_cycle_J", "mJ", 1e3)]
-    lines = ["## Lumped vs flexible valvetrain", "",
-             "The lumped companion has the flexible model's masses, spring rate, preload and "
-             "static compliances; the differences are the bodies' flexibility (Craig–Bampton "
-             "modes), the spring continuum with coil clash and the camshaft compliance. "
-             "Explicit tribology, same cam and numerics.", "",
-             "| quantity | " + " | ".join(cols) + " |", "|---" * (len(cols) + 1) + "|"]
+    spec = [
+        ("peak contact force", "peak_contact_force_N", "N", 1.0),
+        ("minimum contact force in the event", "min_contact_force_in_event_N", "N", 1.0),
+        ("jump speed (engine)", "jump_speed_rpm", "rpm", 1.0),
+        ("valve-seating velocity", "seating_velocity_m_s", "m/s", 1.0),
+        ("friction energy per cycle", "friction_energy_per_cycle_J", "mJ", 1e3),
+    ]
+    lines = [
+        "## Lumped vs flexible valvetrain",
+        "",
+        "The lumped companion has the flexible model's masses, spring rate, preload and "
+        "static compliances; the differences are the bodies' flexibility (Craig–Bampton "
+        "modes), the spring continuum with coil clash and the camshaft compliance. "
+        "Explicit tribology, same cam and numerics.",
+        "",
+        "| quantity | " + " | ".join(cols) + " |",
+        "|---" * (len(cols) + 1) + "|",
+    ]
     for label, key, unit, f in spec:
         vals = [mc.rows[m].get(key) for m in cols]
         txt = [_fmt(None if v is None else v * f, unit, 4) for v in vals]
@@ -312,19 +387,24 @@ def report_text(study, ds, figures: dict) -> str:
         "Reynolds cavitation, coated DC-FFT elasticity, Greenwood–Tripp asperities, "
         f"{case.numerics.viscous_model} shear capped at the limiting shear stress, boundary "
         "friction τ₀ + ς p_a) along the presented cycle for each tappet surface; implicit "
-        "dynamics with the numerical EHL for the comparison of Figs. 8–10.", ""]
+        "dynamics with the numerical EHL for the comparison of Figs. 8–10.",
+        "",
+    ]
     if study.warnings:
         lines += ["## Warnings", ""] + [f"- {w}" for w in study.warnings] + [""]
 
-    lines += ["## Results per tappet surface", "",
-              "Films and forces over the cam event; friction energy over all loaded "
-              "samples of the presented cycle (totals over the cam width). Film gain: "
-              "robust maximum and median |gain| under the rule at the end of this section.",
-              "",
-              "| surface | min film | max h_c | max film gain | median abs. film gain | "
-              "max boundary friction | max viscous friction | boundary friction vs uncoated "
-              "| friction energy per cycle | mean friction power | min λ | failed steps |",
-              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines += [
+        "## Results per tappet surface",
+        "",
+        "Films and forces over the cam event; friction energy over all loaded "
+        "samples of the presented cycle (totals over the cam width). Film gain: "
+        "robust maximum and median |gain| under the rule at the end of this section.",
+        "",
+        "| surface | min film | max h_c | max film gain | median abs. film gain | "
+        "max boundary friction | max viscous friction | boundary friction vs uncoated "
+        "| friction energy per cycle | mean friction power | min λ | failed steps |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
     first = summ["reference_set"]
     for name, v in summ["surface_sets"].items():
         lines.append(
@@ -337,63 +417,92 @@ def report_text(study, ds, figures: dict) -> str:
             f"{_pct_change(v['boundary_friction_reduction_vs_uncoated_pct'], name == first)} | "
             f"{_fmt(v['friction_energy_per_cycle_J'], 'J')} | "
             f"{_fmt(v['mean_friction_power_W'], 'W')} | {_fmt(v['min_lambda'])} | "
-            f"{v['failed_steps']} |")
+            f"{v['failed_steps']} |"
+        )
     lines += ["", f"Film-gain rule: {summ['film_gain_rule']}.", ""]
     d = summ.get("dynamics", {})
     ue = d.get("entrainment_speed_range_m_s") or [None, None]
     rmin = d.get("min_radius_of_curvature_m")
-    lines += ["Dynamics (explicit): peak contact force "
-              f"{_fmt(d.get('peak_contact_force_N'), 'N')} at "
-              f"{d.get('peak_contact_force_crank_deg', float('nan')):.1f}° crank; minimum in "
-              f"the event {_fmt(d.get('min_contact_force_in_event_N'), 'N')}; u_e from "
-              f"{_fmt(ue[0], 'm/s')} to {_fmt(ue[1], 'm/s')}; minimum R "
-              f"{_fmt(rmin * 1e3 if rmin is not None else None, 'mm')}; "
-              f"jump: {d.get('jump')}; valve bounce: {d.get('valve_bounce')}; seating "
-              f"velocity {_fmt(d.get('seating_velocity_m_s'), 'm/s')}.", ""]
+    lines += [
+        "Dynamics (explicit): peak contact force "
+        f"{_fmt(d.get('peak_contact_force_N'), 'N')} at "
+        f"{d.get('peak_contact_force_crank_deg', float('nan')):.1f}° crank; minimum in "
+        f"the event {_fmt(d.get('min_contact_force_in_event_N'), 'N')}; u_e from "
+        f"{_fmt(ue[0], 'm/s')} to {_fmt(ue[1], 'm/s')}; minimum R "
+        f"{_fmt(rmin * 1e3 if rmin is not None else None, 'mm')}; "
+        f"jump: {d.get('jump')}; valve bounce: {d.get('valve_bounce')}; seating "
+        f"velocity {_fmt(d.get('seating_velocity_m_s'), 'm/s')}.",
+        "",
+    ]
 
     lines += model_comparison_section(study)
     from .report_thermal import thermal_section
+
     lines += thermal_section(study, summ)
-    lines += ["## The paper's claims beside tribodyn", "",
-              "| claim | paper | tribodyn | why |", "|---|---|---|---|"]
+    lines += [
+        "## The paper's claims beside tribodyn",
+        "",
+        "| claim | paper | tribodyn | why |",
+        "|---|---|---|---|",
+    ]
     for claim, pap, ours, why in claims(study, summ):
         lines.append(f"| {claim} | {pap} | {ours} | {why} |")
     lines.append("")
 
     lines += ["## Figures", ""]
-    u = (study.ehl_coating.conditions.get("entrainment_speed")
-         if study.ehl_coating is not None else paper.FIG5["entrainment_speed"])
+    u = (
+        study.ehl_coating.conditions.get("entrainment_speed")
+        if study.ehl_coating is not None
+        else paper.FIG5["entrainment_speed"]
+    )
     for key, path in sorted(figures.items()):
-        cap = next((c.format(u=u) for k, c in _CAPTIONS.items()
-                    if Path(path).name.startswith(k)), key)
+        cap = next(
+            (c.format(u=u) for k, c in _CAPTIONS.items() if Path(path).name.startswith(k)), key
+        )
         lines += [f"![{cap}]({Path(path).name})", "", f"*{cap}*", ""]
 
     lines += ["## Numerics", ""]
     loaded = np.array([s.loaded for s in study.sets])
     conv = np.array([s.converged for s in study.sets])
     its = np.array([s.iterations for s in study.sets])
-    lines.append(f"- Transient EHL: {int(loaded.sum())} loaded steps over {len(study.sets)} "
-                 f"surface sets, {int((loaded & ~conv).sum())} not converged; Newton "
-                 f"iterations per step mean {its[loaded].mean():.1f}, max "
-                 f"{int(its[loaded].max()) if loaded.any() else 0}.")
+    lines.append(
+        f"- Transient EHL: {int(loaded.sum())} loaded steps over {len(study.sets)} "
+        f"surface sets, {int((loaded & ~conv).sum())} not converged; Newton "
+        f"iterations per step mean {its[loaded].mean():.1f}, max "
+        f"{int(its[loaded].max()) if loaded.any() else 0}."
+    )
     for s in study.sets:
         if s.failures:
             shown = "; ".join(f"{c:.0f}°: {m}" for c, m in s.failures[:10])
-            lines.append(f"- {s.name}: {len(s.failures)} failed step(s): {shown}"
-                         + (" …" if len(s.failures) > 10 else ""))
+            lines.append(
+                f"- {s.name}: {len(s.failures)} failed step(s): {shown}"
+                + (" …" if len(s.failures) > 10 else "")
+            )
     if coupling.history:
         hist = ", ".join(f"{h.rms_force_change_N:.2f} N" for h in coupling.history)
-        lines.append(f"- Implicit coupling: {coupling.message}; RMS change of the contact "
-                     f"force per iteration: {hist}.")
-    lines.append("- EHL NaN values in results.nc mark unloaded samples (the cam on its base "
-                 "circle carries no load): `loaded` = 0.")
-    lines += ["", "## Inputs and assumptions", "",
-              "The paper does not give the cam profile, tappet mass, spring preload, joint "
-              "stiffness and damping, lubricant density or the radius of Figs. 5/6; those "
-              "values are assumptions (marked ASSUMED in the bundled case file), and the "
-              "paper's errata are corrected (Table 6 moduli are GPa, Table 4's ζ is the "
-              "summit density η). The complete case as run:", "", "```toml",
-              case.to_toml().strip(), "```", ""]
+        lines.append(
+            f"- Implicit coupling: {coupling.message}; RMS change of the contact "
+            f"force per iteration: {hist}."
+        )
+    lines.append(
+        "- EHL NaN values in results.nc mark unloaded samples (the cam on its base "
+        "circle carries no load): `loaded` = 0."
+    )
+    lines += [
+        "",
+        "## Inputs and assumptions",
+        "",
+        "The paper does not give the cam profile, tappet mass, spring preload, joint "
+        "stiffness and damping, lubricant density or the radius of Figs. 5/6; those "
+        "values are assumptions (marked ASSUMED in the bundled case file), and the "
+        "paper's errata are corrected (Table 6 moduli are GPa, Table 4's ζ is the "
+        "summit density η). The complete case as run:",
+        "",
+        "```toml",
+        case.to_toml().strip(),
+        "```",
+        "",
+    ]
     return "\n".join(lines)
 
 

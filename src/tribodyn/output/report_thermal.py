@@ -19,16 +19,19 @@ def _f(v, fmt="{:.3g}", unit=""):
 
 def thermal_claim_row(study, summ) -> tuple[str, str, str, str]:
     """(claim, paper, tribodyn, why) of the coatings' thermal effect."""
-    claim = ("Coatings' thermal effect on viscous friction and film (DLC, WC-C at 1 and "
-             "4 µm)")
+    claim = "Coatings' thermal effect on viscous friction and film (DLC, WC-C at 1 and 4 µm)"
     paper = "not modelled (isothermal model)"
     th = summ.get("thermal")
     if th is None:
-        return (claim, paper, "not computed in this run (numerics.thermal = false)",
-                "The paper's model, and this run, are isothermal: the oil has its inlet "
-                "viscosity everywhere. Run the bundled thermal variant "
-                "(`tribodyn run andreou2023_thermal`) for the thermal EHL with the "
-                "coatings' conductivities.")
+        return (
+            claim,
+            paper,
+            "not computed in this run (numerics.thermal = false)",
+            "The paper's model, and this run, are isothermal: the oil has its inlet "
+            "viscosity everywhere. Run the bundled thermal variant "
+            "(`tribodyn run andreou2023_thermal`) for the thermal EHL with the "
+            "coatings' conductivities.",
+        )
     eff = th.get("coating_thermal_effect", {})
     ref = summ["reference_set"]
     t_ref = th["surface_sets"].get(ref, {}).get("max_surface_temperature_tappet_K")
@@ -41,19 +44,22 @@ def thermal_claim_row(study, summ) -> tuple[str, str, str, str]:
             f"), mean film {_f(v['mean_film_vs_reference_thermal_pct'], '{:+.1f}', '%')} "
             f"(isothermal {_f(v['mean_film_vs_reference_isothermal_pct'], '{:+.2f}', '%')}); "
             f"tappet surface up to "
-            f"{_f(v['max_tappet_surface_temperature_K'] - _C, '{:.0f}', '°C')}")
+            f"{_f(v['max_tappet_surface_temperature_K'] - _C, '{:.0f}', '°C')}"
+        )
     ours = "; ".join(parts) if parts else "no coated surface set converged in all runs"
     if t_ref is not None:
         ours += f" (uncoated tappet surface up to {t_ref - _C:.0f} °C)"
-    why = ("The coatings conduct heat poorly (DLC ≈ 1, WC-C ≈ 2 W/(m K) against 46 for "
-           "steel; effusivity √(kρc) 8× and 6× lower): the frictional heat stays at the "
-           "tappet surface, which runs hotter, and the oil sheared against it thins, so "
-           "the viscous friction falls — more for the thicker layer, where the tappet "
-           "surface moves slowly through the contact and the heat has time to build up. "
-           "The film, formed in the inlet before most heat is generated, changes much "
-           "less. The isothermal model sees only the modulus and roughness of the "
-           "coatings. Differences are thermal minus isothermal changes against the "
-           "uncoated tappet over the cam event (samples converged in all runs).")
+    why = (
+        "The coatings conduct heat poorly (DLC ≈ 1, WC-C ≈ 2 W/(m K) against 46 for "
+        "steel; effusivity √(kρc) 8× and 6× lower): the frictional heat stays at the "
+        "tappet surface, which runs hotter, and the oil sheared against it thins, so "
+        "the viscous friction falls — more for the thicker layer, where the tappet "
+        "surface moves slowly through the contact and the heat has time to build up. "
+        "The film, formed in the inlet before most heat is generated, changes much "
+        "less. The isothermal model sees only the modulus and roughness of the "
+        "coatings. Differences are thermal minus isothermal changes against the "
+        "uncoated tappet over the cam event (samples converged in all runs)."
+    )
     return claim, paper, ours, why
 
 
@@ -64,23 +70,27 @@ def thermal_section(study, summ) -> list[str]:
     t_in = th.get("inlet_temperature_K")
     case = study.case
     oil = case.thermal_lubricant()
-    lines = ["## Thermal EHL", "",
-             f"Oil {oil.name or 'from the case'} supplied at {_f(t_in - _C, '{:.0f}', '°C')}"
-             f" (μ = {oil.inlet_viscosity * 1e3:.3g} mPa·s, α = "
-             f"{oil.inlet_pressure_viscosity * 1e9:.3g} 1/GPa, β = "
-             f"{oil.temperature_viscosity_coefficient():.3g} 1/K there); the cam and the "
-             "tappet far from the contact at the same temperature. Generalized Reynolds "
-             "equation with the viscosity varying across the film, energy equation in the "
-             "film (conduction across, convection along and across, shear and compression "
-             "heating), conduction in the moving cam and in the coated tappet, Eyring shear "
-             "at the local temperature capped by the limiting shear stress, boundary-"
-             "friction heat at the surfaces. The isothermal results are the same EHL at the "
-             "inlet temperature. The implicit dynamics comparison, if run, uses the "
-             "isothermal EHL.", "",
-             "| surface | max tappet surface | max cam surface | max mid-film | max "
-             "temperature | mean h_c thermal vs isothermal | viscous friction energy thermal "
-             "/ isothermal | friction energy thermal / isothermal |",
-             "|---|---|---|---|---|---|---|---|"]
+    lines = [
+        "## Thermal EHL",
+        "",
+        f"Oil {oil.name or 'from the case'} supplied at {_f(t_in - _C, '{:.0f}', '°C')}"
+        f" (μ = {oil.inlet_viscosity * 1e3:.3g} mPa·s, α = "
+        f"{oil.inlet_pressure_viscosity * 1e9:.3g} 1/GPa, β = "
+        f"{oil.temperature_viscosity_coefficient():.3g} 1/K there); the cam and the "
+        "tappet far from the contact at the same temperature. Generalized Reynolds "
+        "equation with the viscosity varying across the film, energy equation in the "
+        "film (conduction across, convection along and across, shear and compression "
+        "heating), conduction in the moving cam and in the coated tappet, Eyring shear "
+        "at the local temperature capped by the limiting shear stress, boundary-"
+        "friction heat at the surfaces. The isothermal results are the same EHL at the "
+        "inlet temperature. The implicit dynamics comparison, if run, uses the "
+        "isothermal EHL.",
+        "",
+        "| surface | max tappet surface | max cam surface | max mid-film | max "
+        "temperature | mean h_c thermal vs isothermal | viscous friction energy thermal "
+        "/ isothermal | friction energy thermal / isothermal |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
     for name, v in th["surface_sets"].items():
         if not v.get("samples"):
             lines.append(f"| {study.labels[name]} | – | – | – | – | – | – | – |")
@@ -95,8 +105,13 @@ def thermal_section(study, summ) -> list[str]:
             f"{_f(v['viscous_friction_energy_thermal_J'], '{:.3g}')} / "
             f"{_f(v['viscous_friction_energy_isothermal_J'], '{:.3g}', 'J')} | "
             f"{_f(v['friction_energy_thermal_J'], '{:.3g}')} / "
-            f"{_f(v['friction_energy_isothermal_J'], '{:.3g}', 'J')} |")
-    lines += ["", "Temperatures: maxima over the cam event; energies over the samples that "
-              "converged in both models. The per-surface table above and the figures show "
-              "the thermal model.", ""]
+            f"{_f(v['friction_energy_isothermal_J'], '{:.3g}', 'J')} |"
+        )
+    lines += [
+        "",
+        "Temperatures: maxima over the cam event; energies over the samples that "
+        "converged in both models. The per-surface table above and the figures show "
+        "the thermal model.",
+        "",
+    ]
     return lines

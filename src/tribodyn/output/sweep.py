@@ -47,6 +47,7 @@ def write_sweep(result, out_dir, *, figures: bool = True) -> dict:
     figs = {}
     if figures:
         from .figures.sweep import sweep_figures
+
         figs = sweep_figures(ds, out)
     _atomic_text(out / "sweep_report.md", sweep_report_text(result, figs))
     return {"dataset": out / "sweep.nc", "report": out / "sweep_report.md", "figures": figs}
@@ -60,8 +61,11 @@ def _f(v, fmt=".4g") -> str:
 
 def _values_text(values) -> str:
     vals = [f"{v:.6g}" if isinstance(v, float) else str(v) for v in values]
-    return ", ".join(vals) if len(vals) <= 8 else f"{vals[0]}, {vals[1]}, … {vals[-1]} " \
-                                                  f"({len(vals)} values)"
+    return (
+        ", ".join(vals)
+        if len(vals) <= 8
+        else f"{vals[0]}, {vals[1]}, … {vals[-1]} ({len(vals)} values)"
+    )
 
 
 def _point_rows(result):
@@ -78,13 +82,14 @@ def _at(da, spec, pos):
 def sweep_report_text(result, figures: dict | None = None) -> str:
     """The Markdown report of a sweep."""
     from .figures.sweep import SWEEP_FIGURES, onset_speeds
+
     spec, ds = result.spec, result.dataset
     figures = figures or {}
     n, nf = len(result.points), len(result.failed)
     lines = [f"# Sweep `{spec.name}`", ""]
     if spec.config.sweep.description:
         lines += [spec.config.sweep.description, ""]
-    where = (f"Dask scheduler {result.scheduler}" if result.scheduler else "a local cluster")
+    where = f"Dask scheduler {result.scheduler}" if result.scheduler else "a local cluster"
     lines += [
         f"* base case: `{spec.base_source}` (`{spec.base.name}`; complete case in "
         "`base_case.toml` and in the `base_case_toml` attribute of `sweep.nc`)",
@@ -93,15 +98,19 @@ def sweep_report_text(result, figures: dict | None = None) -> str:
         f"* points: {n} ({n - nf} finished, {nf} failed); {result.ran} run now, "
         f"{result.skipped} taken from an earlier run",
         f"* run time {result.runtime_s:.1f} s on {result.workers} worker(s), {where}; "
-        f"tribodyn {ds.attrs.get('tribodyn_version', '')}", ""]
+        f"tribodyn {ds.attrs.get('tribodyn_version', '')}",
+        "",
+    ]
     lines += ["## Axes", "", "| dimension | key path | unit | values |", "|---|---|---|---|"]
     for dim, axes in spec.dims:
         for a in axes:
-            lines.append(f"| {dim} | `{a.path}` | {a.unit or '–'} | "
-                         f"{_values_text(a.values)} |")
-    lines += ["", f"Combination: {spec.config.sweep.combine}"
-              + (" (axes sharing a group are zipped)" if any(len(a) > 1 for _, a in spec.dims)
-                 else ""), ""]
+            lines.append(f"| {dim} | `{a.path}` | {a.unit or '–'} | {_values_text(a.values)} |")
+    lines += [
+        "",
+        f"Combination: {spec.config.sweep.combine}"
+        + (" (axes sharing a group are zipped)" if any(len(a) > 1 for _, a in spec.dims) else ""),
+        "",
+    ]
     if spec.config.fixed:
         lines += ["Fixed changes to the base case at every point:", ""]
         lines += [f"* `{k}` = {v!r}" for k, v in spec.config.fixed.items()] + [""]
@@ -110,15 +119,23 @@ def sweep_report_text(result, figures: dict | None = None) -> str:
     if figures:
         lines += ["## Figures", ""]
         for name, path in figures.items():
-            lines += [f"![{SWEEP_FIGURES.get(name, name)}]({Path(path).name})", "",
-                      f"*{SWEEP_FIGURES.get(name, name)}.*", ""]
+            lines += [
+                f"![{SWEEP_FIGURES.get(name, name)}]({Path(path).name})",
+                "",
+                f"*{SWEEP_FIGURES.get(name, name)}.*",
+                "",
+            ]
     lines += _failures_and_warnings(result)
-    lines += ["## Files", "",
-              "* `sweep.nc` — all points in one xarray Dataset indexed by the sweep "
-              "dimensions (and `surface_set`); `status` 1/0 and `error` per point; units "
-              "in the `units` attributes",
-              "* `points/<key>.nc` — one file per point (the record `--resume` uses)",
-              "* `sweep.toml` — the sweep as run; `base_case.toml` — the base case", ""]
+    lines += [
+        "## Files",
+        "",
+        "* `sweep.nc` — all points in one xarray Dataset indexed by the sweep "
+        "dimensions (and `surface_set`); `status` 1/0 and `error` per point; units "
+        "in the `units` attributes",
+        "* `points/<key>.nc` — one file per point (the record `--resume` uses)",
+        "* `sweep.toml` — the sweep as run; `base_case.toml` — the base case",
+        "",
+    ]
     return "\n".join(lines)
 
 
@@ -127,41 +144,57 @@ def _results_tables(result) -> list[str]:
     rows, capped = _point_rows(result)
     out = ["## Results", ""]
     if capped:
-        out += [f"The first {_MAX_ROWS} of {len(result.points)} points; all are in "
-                "`sweep.nc`.", ""]
-    dyn_cols = [("peak_contact_force_N", "peak F [N]", ".4g"),
-                ("min_contact_force_in_event_N", "min F in event [N]", ".4g"),
-                ("jump", "jump", None), ("valve_bounce", "bounce", None),
-                ("seating_velocity_m_s", "seating v [m/s]", ".3g"),
-                ("runtime_s", "run time [s]", ".3g"), ("cpu_s", "CPU [s]", ".3g")]
+        out += [f"The first {_MAX_ROWS} of {len(result.points)} points; all are in `sweep.nc`.", ""]
+    dyn_cols = [
+        ("peak_contact_force_N", "peak F [N]", ".4g"),
+        ("min_contact_force_in_event_N", "min F in event [N]", ".4g"),
+        ("jump", "jump", None),
+        ("valve_bounce", "bounce", None),
+        ("seating_velocity_m_s", "seating v [m/s]", ".3g"),
+        ("runtime_s", "run time [s]", ".3g"),
+        ("cpu_s", "CPU [s]", ".3g"),
+    ]
     dyn_cols = [c for c in dyn_cols if c[0] in ds]
     if dyn_cols:
-        out += ["Valvetrain dynamics (explicit tribology of the reference set):", "",
-                "| point | " + " | ".join(c[1] for c in dyn_cols) + " |",
-                "|---|" + "---|" * len(dyn_cols)]
+        out += [
+            "Valvetrain dynamics (explicit tribology of the reference set):",
+            "",
+            "| point | " + " | ".join(c[1] for c in dyn_cols) + " |",
+            "|---|" + "---|" * len(dyn_cols),
+        ]
         for label, pos in rows:
             cells = []
             for name, _, fmt in dyn_cols:
                 v = float(_at(ds[name], spec, pos).values)
-                cells.append(("yes" if v == 1 else "no" if v == 0 else "–") if fmt is None
-                             else _f(v, fmt))
+                cells.append(
+                    ("yes" if v == 1 else "no" if v == 0 else "–") if fmt is None else _f(v, fmt)
+                )
             out.append(f"| {label} | " + " | ".join(cells) + " |")
         out.append("")
     if "surface_set" not in ds.dims:
         return out
     sets = [str(s) for s in ds["surface_set"].values]
     for name, title, scale, fmt in (
-            ("friction_energy_per_cycle_J", "Friction energy per engine cycle [J]", 1, ".4g"),
-            ("mean_friction_power_W", "Mean friction power [W]", 1, ".4g"),
-            ("min_film_m", "Minimum film thickness in the cam event [µm]", 1e6, ".4g"),
-            ("min_lambda", "Minimum λ = h_min/σ in the cam event", 1, ".3g"),
-            ("boundary_friction_reduction_vs_uncoated_pct",
-             "Boundary friction below the reference set [%]", 1, ".3g"),
-            ("failed_steps", "Transient-EHL steps that did not converge", 1, ".0f")):
+        ("friction_energy_per_cycle_J", "Friction energy per engine cycle [J]", 1, ".4g"),
+        ("mean_friction_power_W", "Mean friction power [W]", 1, ".4g"),
+        ("min_film_m", "Minimum film thickness in the cam event [µm]", 1e6, ".4g"),
+        ("min_lambda", "Minimum λ = h_min/σ in the cam event", 1, ".3g"),
+        (
+            "boundary_friction_reduction_vs_uncoated_pct",
+            "Boundary friction below the reference set [%]",
+            1,
+            ".3g",
+        ),
+        ("failed_steps", "Transient-EHL steps that did not converge", 1, ".0f"),
+    ):
         if name not in ds:
             continue
-        out += [f"{title}:", "", "| point | " + " | ".join(sets) + " |",
-                "|---|" + "---|" * len(sets)]
+        out += [
+            f"{title}:",
+            "",
+            "| point | " + " | ".join(sets) + " |",
+            "|---|" + "---|" * len(sets),
+        ]
         for label, pos in rows:
             v = np.asarray(_at(ds[name], spec, pos).values, float) * scale
             out.append(f"| {label} | " + " | ".join(_f(float(x), fmt) for x in v) + " |")
@@ -171,8 +204,10 @@ def _results_tables(result) -> list[str]:
 
 def _onsets(ds, onset_speeds) -> list[str]:
     out = []
-    for var, what in (("jump", "Jump (cam contact lost while the cam lifts)"),
-                      ("valve_bounce", "Valve bounce")):
+    for var, what in (
+        ("jump", "Jump (cam contact lost while the cam lifts)"),
+        ("valve_bounce", "Valve bounce"),
+    ):
         res = onset_speeds(ds, var)
         if not res:
             continue
@@ -184,8 +219,10 @@ def _onsets(ds, onset_speeds) -> list[str]:
             elif not math.isfinite(lo):
                 out.append(head + f"already at the lowest swept value ({hi:g})")
             else:
-                out.append(head + f"onset between {lo:g} and {hi:g} (first occurrence at "
-                                  f"{hi:g}; resolution = the sweep's step)")
+                out.append(
+                    head + f"onset between {lo:g} and {hi:g} (first occurrence at "
+                    f"{hi:g}; resolution = the sweep's step)"
+                )
         out.append("")
     return (["## Onset of jump and bounce", ""] + out) if out else []
 
@@ -193,28 +230,43 @@ def _onsets(ds, onset_speeds) -> list[str]:
 def _failures_and_warnings(result) -> list[str]:
     out = []
     if result.failed:
-        out += ["## Failed points", "", f"{len(result.failed)} point(s) failed; the others "
-                "completed. Their variables are NaN in `sweep.nc` (`status` = 0).", "",
-                "| point | error |", "|---|---|"]
+        out += [
+            "## Failed points",
+            "",
+            f"{len(result.failed)} point(s) failed; the others "
+            "completed. Their variables are NaN in `sweep.nc` (`status` = 0).",
+            "",
+            "| point | error |",
+            "|---|---|",
+        ]
         for p, err in result.failed[:_MAX_ROWS]:
-            out.append(f"| {p.label} | {str(err).replace('|', '/').splitlines()[0] if err else ''} |")
+            out.append(
+                f"| {p.label} | {str(err).replace('|', '/').splitlines()[0] if err else ''} |"
+            )
         out.append("")
     ds = result.dataset
     bad = []
     for p in result.points:
-        w = str(_at(ds["warnings"], result.spec, p.position).values) if "warnings" in ds \
-            else ""
+        w = str(_at(ds["warnings"], result.spec, p.position).values) if "warnings" in ds else ""
         if w:
             bad.append(f"* {p.label}: {w}")
     if bad:
-        out += ["## Warnings", "", "Finished points whose study reported a problem "
-                "(non-converged EHL steps are also counted per surface set in "
-                "`failed_steps`; the implicit coupling only feeds the explicit-vs-implicit "
-                "comparison, not the EHL of the surface sets):", ""]
+        out += [
+            "## Warnings",
+            "",
+            "Finished points whose study reported a problem "
+            "(non-converged EHL steps are also counted per surface set in "
+            "`failed_steps`; the implicit coupling only feeds the explicit-vs-implicit "
+            "comparison, not the EHL of the surface sets):",
+            "",
+        ]
         out += bad[:_MAX_ROWS] + [""]
     if "jump" in ds and float(np.nansum(ds["jump"].values)) > 0 and "surface_set" in ds.dims:
-        out += ["Where the follower jumps, the cam and tappet separate during the event: "
-                "the EHL is not solved while the contact force is below "
-                "`numerics.min_load`, and the film and friction figures at those speeds "
-                "describe the remaining loaded part of the event.", ""]
+        out += [
+            "Where the follower jumps, the cam and tappet separate during the event: "
+            "the EHL is not solved while the contact force is below "
+            "`numerics.min_load`, and the film and friction figures at those speeds "
+            "describe the remaining loaded part of the event.",
+            "",
+        ]
     return out

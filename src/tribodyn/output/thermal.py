@@ -38,14 +38,18 @@ def add_thermal(ds: xr.Dataset, study) -> xr.Dataset:
         return ds
     two = ("surface_set", "ehl_crank")
     for k, name in _TEMPERATURES.items():
-        ds[k] = xr.Variable(two, np.array([getattr(s, k) for s in study.sets]),
-                            {"units": "K", "long_name": name})
+        ds[k] = xr.Variable(
+            two, np.array([getattr(s, k) for s in study.sets]), {"units": "K", "long_name": name}
+        )
     for k, (units, name) in _ISO.items():
-        ds[k + "_isothermal"] = xr.Variable(two, np.array([getattr(s, k) for s in iso]),
-                                            {"units": units, "long_name": name})
-    ds["converged_isothermal"] = xr.Variable(two, np.array([s.converged for s in iso])
-                                             .astype(np.int8),
-                                             {"long_name": "isothermal EHL step converged"})
+        ds[k + "_isothermal"] = xr.Variable(
+            two, np.array([getattr(s, k) for s in iso]), {"units": units, "long_name": name}
+        )
+    ds["converged_isothermal"] = xr.Variable(
+        two,
+        np.array([s.converged for s in iso]).astype(np.int8),
+        {"long_name": "isothermal EHL step converged"},
+    )
     ds.attrs["thermal"] = 1
     ds.attrs["inlet_temperature_K"] = float(study.sets[0].inlet_temperature)
     return ds

@@ -32,8 +32,17 @@ from pathlib import Path
 from .._validation import InputError
 from .dataset import study_to_dataset
 
-__all__ = ["write_atomic", "write_results", "check_output_dir", "is_result_folder",
-           "clean_stale", "OutputWriteError", "MARKER", "PROBE_BYTES", "MIN_FREE_BYTES"]
+__all__ = [
+    "write_atomic",
+    "write_results",
+    "check_output_dir",
+    "is_result_folder",
+    "clean_stale",
+    "OutputWriteError",
+    "MARKER",
+    "PROBE_BYTES",
+    "MIN_FREE_BYTES",
+]
 
 #: File that marks a folder as written by tribodyn (JSON: tool, version, case, time).
 MARKER = ".tribodyn-results"
@@ -87,13 +96,17 @@ def check_output_dir(path, *, option: str = "output folder") -> Path:
     target = Path(path).expanduser().absolute()
     if target.exists() or target.is_symlink():
         if not target.is_dir():
-            raise InputError(f"{option} {str(target)!r} is an existing file, not a result "
-                             "folder; tribodyn replaces only result folders it wrote: give "
-                             "a new folder name")
+            raise InputError(
+                f"{option} {str(target)!r} is an existing file, not a result "
+                "folder; tribodyn replaces only result folders it wrote: give "
+                "a new folder name"
+            )
         if any(target.iterdir()) and not is_result_folder(target):
-            raise InputError(f"{option} {str(target)!r} is a folder that tribodyn did not "
-                             f"write (no {MARKER} marker); it replaces only its own result "
-                             "folders: give a new or empty folder")
+            raise InputError(
+                f"{option} {str(target)!r} is a folder that tribodyn did not "
+                f"write (no {MARKER} marker); it replaces only its own result "
+                "folders: give a new or empty folder"
+            )
     base = _existing_ancestor(target.parent)
     if not base.is_dir():
         raise InputError(f"{option} {str(target)!r}: {str(base)!r} is a file, not a folder")
@@ -110,8 +123,9 @@ def _probe(folder: Path, target: Path, option: str) -> None:
             f.flush()
             os.fsync(f.fileno())
     except OSError as exc:
-        raise InputError(f"{option} {str(target)!r}: cannot write in {str(folder)!r} "
-                         f"({exc.strerror or exc})") from None
+        raise InputError(
+            f"{option} {str(target)!r}: cannot write in {str(folder)!r} ({exc.strerror or exc})"
+        ) from None
     finally:
         try:
             probe.unlink()
@@ -119,8 +133,10 @@ def _probe(folder: Path, target: Path, option: str) -> None:
             pass
     free = shutil.disk_usage(folder).free
     if free < MIN_FREE_BYTES:
-        raise InputError(f"{option} {str(target)!r}: only {free / 2**20:.0f} MB free in "
-                         f"{str(folder)!r}; the results need up to {MIN_FREE_BYTES >> 20} MB")
+        raise InputError(
+            f"{option} {str(target)!r}: only {free / 2**20:.0f} MB free in "
+            f"{str(folder)!r}; the results need up to {MIN_FREE_BYTES >> 20} MB"
+        )
 
 
 def _pid_alive(pid: int) -> bool:
@@ -128,7 +144,7 @@ def _pid_alive(pid: int) -> bool:
         os.kill(pid, 0)
     except ProcessLookupError:
         return False
-    except PermissionError:          # exists, owned by someone else
+    except PermissionError:  # exists, owned by someone else
         return True
     return True
 
@@ -147,9 +163,12 @@ def clean_stale(target) -> list[Path]:
     for p in parent.iterdir():
         if not p.name.startswith(head) or not p.is_dir() or p.is_symlink():
             continue
-        rest = p.name[len(head):]
-        m = (re.fullmatch(r"(tmp)-(\d+)-.+", rest) or re.fullmatch(r"(old)-(\d+)", rest)
-             or re.fullmatch(r"(tmp)-()[^-]+", rest))      # last: 0.1 name, no PID
+        rest = p.name[len(head) :]
+        m = (
+            re.fullmatch(r"(tmp)-(\d+)-.+", rest)
+            or re.fullmatch(r"(old)-(\d+)", rest)
+            or re.fullmatch(r"(tmp)-()[^-]+", rest)
+        )  # last: 0.1 name, no PID
         if not m:
             continue
         kind, pid = m.group(1), m.group(2) or None
@@ -175,13 +194,13 @@ def write_atomic(target: Path, writer, *, meta: dict | None = None) -> Path:
     ``target`` is left exactly as it was and the temporary folder is removed.
     """
     target = Path(target).expanduser().absolute()
-    if target.exists() and (not target.is_dir()
-                            or (any(target.iterdir()) and not is_result_folder(target))):
-        check_output_dir(target)                         # raises with the reason
+    if target.exists() and (
+        not target.is_dir() or (any(target.iterdir()) and not is_result_folder(target))
+    ):
+        check_output_dir(target)  # raises with the reason
     clean_stale(target)
     target.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.tmp-{os.getpid()}-",
-                                dir=target.parent))
+    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.tmp-{os.getpid()}-", dir=target.parent))
     try:
         writer(tmp)
         info = {"tool": "tribodyn", "written": time.strftime("%Y-%m-%dT%H:%M:%S%z"), **(meta or {})}
@@ -227,8 +246,11 @@ def write_results(study, out_dir, *, figures=True, report=True) -> dict:
     ds = study_to_dataset(study)
     summ = study.analyse().summary
     written = {}
-    enc = {v: {"compression": "gzip", "compression_opts": 4}
-           for v in ("profile_x", "pressure", "film") if v in ds}
+    enc = {
+        v: {"compression": "gzip", "compression_opts": 4}
+        for v in ("profile_x", "pressure", "film")
+        if v in ds
+    }
 
     def essentials(folder: Path):
         ds.to_netcdf(folder / "results.nc", engine="h5netcdf", encoding=enc)
@@ -240,16 +262,18 @@ def write_results(study, out_dir, *, figures=True, report=True) -> dict:
         figs = {}
         if figures:
             from .figures import make_figures
+
             figs = make_figures(ds, tmp)
         if report:
             from .report import write_report
+
             write_report(study, ds, figs, tmp / "report.md")
         written.update(figures=figs)
 
     target = Path(out_dir).expanduser().absolute()
     try:
         write_atomic(target, writer, meta={"version": __version__, "case": study.case.name})
-    except Exception as exc:   # disk full, folder removed or taken, permissions, a figure
+    except Exception as exc:  # disk full, folder removed or taken, permissions, a figure
         rescued = None
         for folder in _rescue_dirs(study.case.name):
             try:
@@ -262,9 +286,12 @@ def write_results(study, out_dir, *, figures=True, report=True) -> dict:
         why = getattr(exc, "strerror", None) or f"{type(exc).__name__}: {exc}"
         if getattr(exc, "errno", None) == errno.ENOSPC:
             why = "no space left on the device"
-        where = (f"the computed results (results.nc, summary.json, case.toml) were saved to "
-                 f"{rescued}" if rescued is not None else
-                 "the results could not be saved anywhere else either")
-        raise OutputWriteError(f"cannot write the results to {target}: {why}; {where}",
-                               target, rescued, exc) from exc
+        where = (
+            f"the computed results (results.nc, summary.json, case.toml) were saved to {rescued}"
+            if rescued is not None
+            else "the results could not be saved anywhere else either"
+        )
+        raise OutputWriteError(
+            f"cannot write the results to {target}: {why}; {where}", target, rescued, exc
+        ) from exc
     return {"summary": summ, "path": target, **written}

@@ -55,8 +55,8 @@ class AnalyticContact:
     half_width: np.ndarray
     max_pressure: np.ndarray
     asperity_load: np.ndarray
-    viscous_friction: np.ndarray       #: magnitude [N/m]
-    boundary_friction: np.ndarray      #: magnitude [N/m]
+    viscous_friction: np.ndarray  #: magnitude [N/m]
+    boundary_friction: np.ndarray  #: magnitude [N/m]
     gV: np.ndarray
     gE: np.ndarray
     regime: np.ndarray
@@ -66,17 +66,27 @@ class AnalyticContact:
         return self.viscous_friction + self.boundary_friction
 
 
-def analytic_contact(load, radius, entrainment_speed, sliding_speed, bodies,
-                     lubricant: Lubricant, roughness: Roughness | None = None, *,
-                     boundary_shear_coefficient: float = paper.STEEL["boundary_shear_coefficient"],
-                     boundary_shear_strength: float = BOUNDARY_SHEAR_STRENGTH,
-                     viscous_model: str = "eyring", limiting_shear: bool = True,
-                     film_formula: str = "moes") -> AnalyticContact:
+def analytic_contact(
+    load,
+    radius,
+    entrainment_speed,
+    sliding_speed,
+    bodies,
+    lubricant: Lubricant,
+    roughness: Roughness | None = None,
+    *,
+    boundary_shear_coefficient: float = paper.STEEL["boundary_shear_coefficient"],
+    boundary_shear_strength: float = BOUNDARY_SHEAR_STRENGTH,
+    viscous_model: str = "eyring",
+    limiting_shear: bool = True,
+    film_formula: str = "moes",
+) -> AnalyticContact:
     """Analytic film, asperity load and friction (see module docstring)."""
     if film_formula not in FILM_FORMULAS:
         raise ValueError(f"film_formula must be one of {FILM_FORMULAS} (got {film_formula!r})")
-    w, R, ue, us = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in
-                                         (load, radius, entrainment_speed, sliding_speed)))
+    w, R, ue, us = np.broadcast_arrays(
+        *(np.asarray(a, dtype=float) for a in (load, radius, entrainment_speed, sliding_speed))
+    )
     w = np.maximum(w, 1e-12)
     e = reduced_modulus(bodies)
     ue_eff = np.maximum(np.abs(ue), _U_FLOOR)
@@ -99,14 +109,20 @@ def analytic_contact(load, radius, entrainment_speed, sliding_speed, bodies,
 
     # Viscous friction over the Hertz zone, x = b sin θ (smooth integrand).
     theta = 0.5 * np.pi * _GL_X
-    wts = 0.5 * np.pi * _GL_W * np.cos(theta)                 # dx/b = cos θ dθ
-    p = ph[..., None] * np.cos(theta)                          # p_h √(1 − sin²θ)
+    wts = 0.5 * np.pi * _GL_W * np.cos(theta)  # dx/b = cos θ dθ
+    p = ph[..., None] * np.cos(theta)  # p_h √(1 − sin²θ)
     mu = lubricant.viscosity_at(p)
-    tau = np.abs(couette_shear_stress(mu, us[..., None], hc[..., None], viscous_model,
-                                      lubricant.eyring_stress))
+    tau = np.abs(
+        couette_shear_stress(
+            mu, us[..., None], hc[..., None], viscous_model, lubricant.eyring_stress
+        )
+    )
     if limiting_shear:
-        tau = np.abs(limit_shear_stress(tau, p, lubricant.limiting_shear_coefficient,
-                                        lubricant.limiting_shear_stress))
+        tau = np.abs(
+            limit_shear_stress(
+                tau, p, lubricant.limiting_shear_coefficient, lubricant.limiting_shear_stress
+            )
+        )
     f_visc = b * np.sum(tau * wts, axis=-1)
 
     if roughness is not None:
@@ -121,7 +137,14 @@ def analytic_contact(load, radius, entrainment_speed, sliding_speed, bodies,
 
     gV, gE = greenwood_chart_groups(W, U, G)
     return AnalyticContact(
-        central_film=hc, min_film=hmin, half_width=b, max_pressure=ph, asperity_load=wa,
-        viscous_friction=f_visc, boundary_friction=f_bound, gV=gV, gE=gE,
+        central_film=hc,
+        min_film=hmin,
+        half_width=b,
+        max_pressure=ph,
+        asperity_load=wa,
+        viscous_friction=f_visc,
+        boundary_friction=f_bound,
+        gV=gV,
+        gE=gE,
         regime=lubrication_regime(gV, gE),
     )

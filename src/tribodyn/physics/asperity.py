@@ -36,8 +36,7 @@ from .limits import (
     SUMMIT_RADIUS,
 )
 
-__all__ = ["greenwood_tripp", "greenwood_tripp_derivative", "greenwood_tripp_table",
-           "Roughness"]
+__all__ = ["greenwood_tripp", "greenwood_tripp_derivative", "greenwood_tripp_table", "Roughness"]
 
 _SQRT_2PI = math.sqrt(2.0 * math.pi)
 
@@ -46,8 +45,8 @@ _PAPER_F52 = (0.000421, -0.008538, 0.07162, -0.3193, 0.802, -1.082, 0.6166)
 _PAPER_F2 = (-0.002, 0.028, -0.173, 0.526, -0.804, 0.5)
 
 
-_LAM_NEG = -12.0     # below: asymptotic series (exp(−λ²/4)·D_{−n−1}(λ) is 0·∞ for λ ≲ −38)
-_LAM_POS = 37.0      # above: F_n < φ(λ)/λ ≈ 1e-300, i.e. 0 in double precision
+_LAM_NEG = -12.0  # below: asymptotic series (exp(−λ²/4)·D_{−n−1}(λ) is 0·∞ for λ ≲ −38)
+_LAM_POS = 37.0  # above: F_n < φ(λ)/λ ≈ 1e-300, i.e. 0 in double precision
 
 
 def _negative_series(n: float, lam: np.ndarray) -> np.ndarray:
@@ -69,7 +68,7 @@ def _exact(n: float, lam: np.ndarray) -> np.ndarray:
     lam = np.asarray(lam, dtype=float)
     neg = lam < _LAM_NEG
     mid = ~neg & (lam <= _LAM_POS)
-    out = np.zeros_like(lam)                         # λ > 37: F_n underflows to 0
+    out = np.zeros_like(lam)  # λ > 37: F_n underflows to 0
     lm = lam[mid]
     d, _ = special.pbdv(-n - 1.0, lm)
     out[mid] = math.gamma(n + 1.0) * np.exp(-0.25 * lm * lm) * d / _SQRT_2PI
@@ -138,7 +137,9 @@ def greenwood_tripp_derivative(n, lam, method: str = "exact"):
     elif method == "paper":
         coeffs, lam_max = (_PAPER_F52, 2.5) if n == 2.5 else (_PAPER_F2, 3.0)
         val = np.polyval(coeffs, lam_arr)
-        out = np.where((lam_arr <= lam_max) & (val > 0.0), np.polyval(np.polyder(coeffs), lam_arr), 0.0)
+        out = np.where(
+            (lam_arr <= lam_max) & (val > 0.0), np.polyval(np.polyder(coeffs), lam_arr), 0.0
+        )
     else:
         raise InputError(f"method must be 'exact' or 'paper' (got {method!r})")
     return out if out.ndim else float(out)
@@ -152,6 +153,7 @@ class _LogTable:
 
     def __init__(self, n: float):
         from scipy.interpolate import CubicHermiteSpline
+
         self.n = n
         lam = np.linspace(_LAM_NEG, _LAM_POS, int(round((_LAM_POS - _LAM_NEG) / 0.002)) + 1)
         f = _exact(n, lam)
@@ -168,7 +170,7 @@ class _LogTable:
         k = np.minimum(u.astype(np.intp), self._y.size - 2)
         t = u - k
         y0, y1, d0, d1 = self._y[k], self._y[k + 1], self._dy[k], self._dy[k + 1]
-        a = 2.0 * (y0 - y1) + d0 + d1             # ln F = y0 + d0 t + b t² + a t³
+        a = 2.0 * (y0 - y1) + d0 + d1  # ln F = y0 + d0 t + b t² + a t³
         b = 3.0 * (y1 - y0) - 2.0 * d0 - d1
         val = y0 + t * (d0 + t * (b + t * a))
         der = (d0 + t * (2.0 * b + 3.0 * a * t)) / self._step
@@ -226,8 +228,11 @@ class Roughness:
 
     def __post_init__(self):
         # ranges shared with the case file (physics.limits)
-        for name, limit in (("asperity_density", ASPERITY_DENSITY), ("rms", ROUGHNESS_RMS),
-                            ("summit_radius", SUMMIT_RADIUS)):
+        for name, limit in (
+            ("asperity_density", ASPERITY_DENSITY),
+            ("rms", ROUGHNESS_RMS),
+            ("summit_radius", SUMMIT_RADIUS),
+        ):
             object.__setattr__(self, name, limit.check(name, getattr(self, name)))
         check_choice("method", self.method, ("exact", "paper"))
 
@@ -238,8 +243,15 @@ class Roughness:
 
     def pressure_scale(self, reduced_modulus: float) -> float:
         """K = (8√2/15) π (ηβσ)² √(σ/β) E'  [Pa], so that p_a = K F_{5/2}(h/σ)."""
-        return (8.0 * math.sqrt(2.0) / 15.0 * math.pi * self.roughness_parameter**2
-                * math.sqrt(self.rms / self.summit_radius) * reduced_modulus)
+        return (
+            8.0
+            * math.sqrt(2.0)
+            / 15.0
+            * math.pi
+            * self.roughness_parameter**2
+            * math.sqrt(self.rms / self.summit_radius)
+            * reduced_modulus
+        )
 
     def asperity_pressure(self, gap, reduced_modulus: float) -> np.ndarray:
         """Local asperity pressure p_a(h) [Pa] at gap h [m] (Eq. 6 per unit area)."""
@@ -249,8 +261,11 @@ class Roughness:
     def asperity_pressure_derivative(self, gap, reduced_modulus: float) -> np.ndarray:
         """dp_a/dh [Pa/m] (negative: more gap, fewer contacts)."""
         lam = np.asarray(gap, dtype=float) / self.rms
-        return (self.pressure_scale(reduced_modulus) / self.rms
-                * greenwood_tripp_derivative(2.5, lam, self.method))
+        return (
+            self.pressure_scale(reduced_modulus)
+            / self.rms
+            * greenwood_tripp_derivative(2.5, lam, self.method)
+        )
 
     def contact_area_fraction(self, gap) -> np.ndarray:
         """Real-contact-area fraction A_a/A = π²(ηβσ)² F₂(h/σ) (Eq. 18 per unit area)."""

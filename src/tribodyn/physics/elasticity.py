@@ -46,8 +46,13 @@ from .._validation import InputError, check_positive
 from .materials import Coating, Material, as_bodies
 
 __all__ = [
-    "half_plane_frf", "coated_half_plane_frf", "pair_frf", "influence_coefficients",
-    "log_kernel_influence", "DeformationOperator", "dense_deformation",
+    "half_plane_frf",
+    "coated_half_plane_frf",
+    "pair_frf",
+    "influence_coefficients",
+    "log_kernel_influence",
+    "DeformationOperator",
+    "dense_deformation",
 ]
 
 
@@ -78,16 +83,21 @@ def _coated_G(t, coating: Material, substrate: Material) -> np.ndarray:
     r = cs / cc
     e1 = np.expm1(-2.0 * t)
     th = 1.0 + e1
-    q = 2.0 * e1 + e1 * e1                      # θ² − 1
+    q = 2.0 * e1 + e1 * e1  # θ² − 1
     den = (1.0 - lam) * (1.0 - kap) - (lam + kap) * e1 - 4.0 * kap * t * t * th + lam * kap * q
-    const = (1.0 - lam * kap) - r * (1.0 - lam) * (1.0 - kap)   # 0 up to round-off
-    num_minus = (const + 4.0 * t * kap * th - lam * kap * q
-                 - r * (-(lam + kap) * e1 - 4.0 * kap * t * t * th + lam * kap * q))
+    const = (1.0 - lam * kap) - r * (1.0 - lam) * (1.0 - kap)  # 0 up to round-off
+    num_minus = (
+        const
+        + 4.0 * t * kap * th
+        - lam * kap * q
+        - r * (-(lam + kap) * e1 - 4.0 * kap * t * t * th + lam * kap * q)
+    )
     return cc * num_minus / den
 
 
-def coated_half_plane_frf(m, coating: Coating | Material, substrate: Material,
-                          thickness: float | None = None) -> np.ndarray:
+def coated_half_plane_frf(
+    m, coating: Coating | Material, substrate: Material, thickness: float | None = None
+) -> np.ndarray:
     """Coated half-plane FRF g̃(m) [m/Pa per rad/m] (paper Eqs. 13–14)."""
     h = thickness if thickness is not None else getattr(coating, "thickness", None)
     if h is None:
@@ -111,7 +121,7 @@ def pair_frf(m, bodies) -> np.ndarray:
 
 # ------------------------------------------------------------- tabulated remainder Q₂
 _XI_LO, _XI_HI, _PER_DECADE = 1e-4, 2e2, 40
-_T_MAX = 40.0          # G₂ ~ t² e^{−2t}: negligible beyond t = 40
+_T_MAX = 40.0  # G₂ ~ t² e^{−2t}: negligible beyond t = 40
 
 
 def _remainder_integrand(coating: Material, substrate: Material):
@@ -129,9 +139,14 @@ def _remainder_integrand(coating: Material, substrate: Material):
         th = 1.0 + e1
         q = 2.0 * e1 + e1 * e1
         den = a1 - (lam + kap) * e1 - 4.0 * kap * t * t * th + lk * q
-        num = (const + 4.0 * t * kap * th - lk * q
-               - r * (-(lam + kap) * e1 - 4.0 * kap * t * t * th + lk * q))
+        num = (
+            const
+            + 4.0 * t * kap * th
+            - lk * q
+            - r * (-(lam + kap) * e1 - 4.0 * kap * t * t * th + lk * q)
+        )
         return (cc * num / den + g_inf * e1) / t
+
     return f
 
 
@@ -150,21 +165,32 @@ class _RemainderTable:
 
         f = _remainder_integrand(coating, substrate)
 
-        self.q_inf = 0.5 * float(f(1e-8))          # Q₂(ξ → ∞) = f(0)/2
-        xi = np.logspace(np.log10(_XI_LO), np.log10(_XI_HI),
-                         int(round(_PER_DECADE * np.log10(_XI_HI / _XI_LO))) + 1)
+        self.q_inf = 0.5 * float(f(1e-8))  # Q₂(ξ → ∞) = f(0)/2
+        xi = np.logspace(
+            np.log10(_XI_LO),
+            np.log10(_XI_HI),
+            int(round(_PER_DECADE * np.log10(_XI_HI / _XI_LO))) + 1,
+        )
         vals = np.empty_like(xi)
         for i, x in enumerate(xi):
             # ∫₀^T f(t) sin(xt)/t dt; first piece (one half-period) has a regular integrand.
             ta = min(_T_MAX, math.pi / x)
             # quad samples inside (0, ta): sin(xt)/t needs no t = 0 limit
-            a, _ = integrate.quad(lambda t: f(t) * math.sin(x * t) / t, 0.0, ta,
-                                  limit=200, epsabs=0.0, epsrel=1e-12)
+            a, _ = integrate.quad(
+                lambda t: f(t) * math.sin(x * t) / t, 0.0, ta, limit=200, epsabs=0.0, epsrel=1e-12
+            )
             b = 0.0
             if ta < _T_MAX:
-                b, _ = integrate.quad(lambda t: f(t) / t, ta, _T_MAX, weight="sin", wvar=x,
-                                      limit=500, epsabs=1e-14 * abs(g_inf) + 1e-30,
-                                      epsrel=1e-11)
+                b, _ = integrate.quad(
+                    lambda t: f(t) / t,
+                    ta,
+                    _T_MAX,
+                    weight="sin",
+                    wvar=x,
+                    limit=500,
+                    epsabs=1e-14 * abs(g_inf) + 1e-30,
+                    epsrel=1e-11,
+                )
             vals[i] = (a + b) / math.pi
         # Interpolate the bounded, smooth Q₂(ξ)(1 + ξ)/ξ (→ s at 0, → Q∞ at ∞) in ln ξ.
         self.spline = interpolate.CubicSpline(np.log(xi), vals * (1.0 + xi) / xi)
@@ -208,8 +234,9 @@ def _q1(xi):
     xi = np.asarray(xi, dtype=float)
     a = np.abs(xi)
     with np.errstate(divide="ignore", invalid="ignore"):
-        lg = np.where(a > 0.0, xi * (np.log(xi * xi + 4.0) - 2.0 * np.log(np.where(a > 0, a, 1.0))),
-                      0.0)
+        lg = np.where(
+            a > 0.0, xi * (np.log(xi * xi + 4.0) - 2.0 * np.log(np.where(a > 0, a, 1.0))), 0.0
+        )
     return (lg + 4.0 * np.arctan(0.5 * xi)) / (2.0 * math.pi)
 
 
@@ -272,8 +299,11 @@ class DeformationOperator:
         self.bodies = as_bodies(bodies)
         self.dx = check_positive("dx", dx, "m")
         self.n = int(n)
-        self.coefficients = (influence_coefficients(self.bodies, self.dx, self.n)
-                             if coefficients is None else np.asarray(coefficients, dtype=float))
+        self.coefficients = (
+            influence_coefficients(self.bodies, self.dx, self.n)
+            if coefficients is None
+            else np.asarray(coefficients, dtype=float)
+        )
         self._kernel_hat = np.fft.rfft(self._wraparound(self.coefficients))
 
     @classmethod
@@ -291,7 +321,7 @@ class DeformationOperator:
         n = c.size
         k = np.zeros(2 * n)
         k[:n] = c
-        k[n + 1:] = c[:0:-1]
+        k[n + 1 :] = c[:0:-1]
         return k
 
     def __call__(self, p) -> np.ndarray:
@@ -305,6 +335,6 @@ class DeformationOperator:
         """Dense N×N influence matrix (for Newton Jacobians and tests)."""
         return linalg.toeplitz(self.coefficients)
 
-    def scaled(self, factor: float) -> "DeformationOperator":
+    def scaled(self, factor: float) -> DeformationOperator:
         """The same operator with coefficients multiplied by ``factor`` (non-dimensionalisation)."""
         return DeformationOperator.from_coefficients(self.coefficients * factor, self.dx)

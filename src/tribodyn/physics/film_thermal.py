@@ -49,12 +49,27 @@ def _trapz(f, dz):
 class FilmFlow:
     """Across-film quantities at every x (arrays (n,) or (n, m)); see :func:`film_flow`."""
 
-    __slots__ = ("F0", "F1", "C", "D", "rho_e", "u", "gamma_c", "gamma_p", "tau_c",
-                 "dissipation", "C_ref", "D_ref", "flow_factor", "couette_factor")
+    __slots__ = (
+        "F0",
+        "F1",
+        "C",
+        "D",
+        "rho_e",
+        "u",
+        "gamma_c",
+        "gamma_p",
+        "tau_c",
+        "dissipation",
+        "C_ref",
+        "D_ref",
+        "flow_factor",
+        "couette_factor",
+    )
 
 
-def film_flow(h, px, ua, ub, eta, rho, tau_e, tau_l, *, eta_ref, rho_ref,
-              eyring=True, limiting=True) -> FilmFlow:
+def film_flow(
+    h, px, ua, ub, eta, rho, tau_e, tau_l, *, eta_ref, rho_ref, eyring=True, limiting=True
+) -> FilmFlow:
     """Flow, shear and dissipation of the film.
 
     h, px : film [m] and dp/dx [Pa/m], shape (n,); ua, ub : surface speeds [m/s];

@@ -25,21 +25,34 @@ import numpy as np
 from .. import paper
 from .._validation import InputError
 
-__all__ = ["VISCOUS_MODELS", "couette_shear_stress", "limit_shear_stress",
-           "boundary_shear_stress", "BOUNDARY_SHEAR_STRENGTH"]
+__all__ = [
+    "VISCOUS_MODELS",
+    "couette_shear_stress",
+    "limit_shear_stress",
+    "boundary_shear_stress",
+    "BOUNDARY_SHEAR_STRENGTH",
+]
 
 VISCOUS_MODELS = ("newtonian", "eyring")
 #: τ₀ of Eq. 17 [Pa].
 BOUNDARY_SHEAR_STRENGTH = paper.BOUNDARY_SHEAR_STRENGTH
 
 
-def couette_shear_stress(viscosity, sliding_speed, film, model: str = "eyring",
-                         eyring_stress: float = paper.LUBRICANT["eyring_stress"]) -> np.ndarray:
+def couette_shear_stress(
+    viscosity,
+    sliding_speed,
+    film,
+    model: str = "eyring",
+    eyring_stress: float = paper.LUBRICANT["eyring_stress"],
+) -> np.ndarray:
     """Couette shear stress [Pa], signed like the sliding speed."""
     if model not in VISCOUS_MODELS:
         raise InputError(f"viscous model must be one of {VISCOUS_MODELS} (got {model!r})")
-    rate_stress = (np.asarray(viscosity, dtype=float) * np.asarray(sliding_speed, dtype=float)
-                   / np.asarray(film, dtype=float))
+    rate_stress = (
+        np.asarray(viscosity, dtype=float)
+        * np.asarray(sliding_speed, dtype=float)
+        / np.asarray(film, dtype=float)
+    )
     if model == "newtonian":
         return rate_stress
     return eyring_stress * np.arcsinh(rate_stress / eyring_stress)
@@ -55,8 +68,13 @@ def limit_shear_stress(tau, pressure, coefficient: float, intercept: float = 0.0
     return np.sign(tau) * np.minimum(np.abs(tau), cap)
 
 
-def boundary_shear_stress(asperity_pressure, area_fraction,
-                          coefficient: float, shear_strength: float = BOUNDARY_SHEAR_STRENGTH):
+def boundary_shear_stress(
+    asperity_pressure,
+    area_fraction,
+    coefficient: float,
+    shear_strength: float = BOUNDARY_SHEAR_STRENGTH,
+):
     """Boundary shear per unit nominal area τ_b = τ₀ A_a/A + ς p_a [Pa]."""
-    return (shear_strength * np.asarray(area_fraction, dtype=float)
-            + coefficient * np.asarray(asperity_pressure, dtype=float))
+    return shear_strength * np.asarray(area_fraction, dtype=float) + coefficient * np.asarray(
+        asperity_pressure, dtype=float
+    )

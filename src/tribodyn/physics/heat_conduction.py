@@ -153,6 +153,7 @@ def depth_grid(body: ThermalBody, depth: float, first: float, n: int) -> DepthGr
     in_coat = (mid < body.thickness) if body.coating is not None else np.zeros(mid.size, bool)
     sub, coat = body.substrate, body.coating
     k = np.where(in_coat, coat.conductivity if coat else 0.0, sub.conductivity)
-    rc = np.where(in_coat, coat.volumetric_heat_capacity if coat else 0.0,
-                  sub.volumetric_heat_capacity)
+    rc = np.where(
+        in_coat, coat.volumetric_heat_capacity if coat else 0.0, sub.volumetric_heat_capacity
+    )
     return DepthGrid(s, k.astype(float), rc.astype(float))

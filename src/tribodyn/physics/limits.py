@@ -19,16 +19,47 @@ from dataclasses import dataclass
 
 from .._validation import InputError, check_int, check_real
 
-__all__ = ["Limit", "ROELANDS_MU_INF", "YOUNGS_MODULUS", "POISSON_RATIO", "COATING_THICKNESS",
-           "ASPERITY_DENSITY", "ROUGHNESS_RMS", "SUMMIT_RADIUS", "VISCOSITY",
-           "PRESSURE_VISCOSITY", "DENSITY", "EYRING_STRESS", "LIMITING_SHEAR_COEFFICIENT",
-           "LIMITING_SHEAR_STRESS", "BOUNDARY_SHEAR_COEFFICIENT", "BOUNDARY_SHEAR_STRENGTH",
-           "MASS", "SPRING_RATE", "SPRING_PRELOAD", "STIFFNESS", "DAMPING", "CONTACT_MODULUS",
-           "SPRING_MASSES", "SPRING_DAMPING_RATIO", "LASH", "DAMPING_FORCE_RAMP",
-           "BORE_FRICTION_COEFFICIENT", "BORE_FRICTION_VELOCITY", "LENGTH_BELOW_1M",
-           "ENGINE_SPEED", "EHL_NODES", "EHL_NODES_TRANSIENT", "DOMAIN_HALF_WIDTHS",
-           "DOMAIN_RIGID_LENGTHS", "INLET_TRUNCATION", "NEWTON_TOL", "NEWTON_MAX_ITER",
-           "MAX_SUBSTEPS", "GREENWOOD_TRIPP_ORDER"]
+__all__ = [
+    "Limit",
+    "ROELANDS_MU_INF",
+    "YOUNGS_MODULUS",
+    "POISSON_RATIO",
+    "COATING_THICKNESS",
+    "ASPERITY_DENSITY",
+    "ROUGHNESS_RMS",
+    "SUMMIT_RADIUS",
+    "VISCOSITY",
+    "PRESSURE_VISCOSITY",
+    "DENSITY",
+    "EYRING_STRESS",
+    "LIMITING_SHEAR_COEFFICIENT",
+    "LIMITING_SHEAR_STRESS",
+    "BOUNDARY_SHEAR_COEFFICIENT",
+    "BOUNDARY_SHEAR_STRENGTH",
+    "MASS",
+    "SPRING_RATE",
+    "SPRING_PRELOAD",
+    "STIFFNESS",
+    "DAMPING",
+    "CONTACT_MODULUS",
+    "SPRING_MASSES",
+    "SPRING_DAMPING_RATIO",
+    "LASH",
+    "DAMPING_FORCE_RAMP",
+    "BORE_FRICTION_COEFFICIENT",
+    "BORE_FRICTION_VELOCITY",
+    "LENGTH_BELOW_1M",
+    "ENGINE_SPEED",
+    "EHL_NODES",
+    "EHL_NODES_TRANSIENT",
+    "DOMAIN_HALF_WIDTHS",
+    "DOMAIN_RIGID_LENGTHS",
+    "INLET_TRUNCATION",
+    "NEWTON_TOL",
+    "NEWTON_MAX_ITER",
+    "MAX_SUBSTEPS",
+    "GREENWOOD_TRIPP_ORDER",
+]
 
 #: Roelands reference viscosity exp(−9.67) = 6.31e-5 Pa·s; μ₀ must exceed it (paper Eq. 3).
 ROELANDS_MU_INF = math.exp(-9.67)
@@ -53,20 +84,26 @@ class Limit:
 
     def constraints(self) -> dict:
         """The bounds as pydantic ``Field`` keywords (``gt=…``, ``le=…``)."""
-        return {k: getattr(self, k) for k in ("gt", "ge", "lt", "le")
-                if getattr(self, k) is not None}
+        return {
+            k: getattr(self, k) for k in ("gt", "ge", "lt", "le") if getattr(self, k) is not None
+        }
 
     def describe(self, unit: bool = True) -> str:
         """'> 0 and <= 0.0001 m' (the form the case-file messages use)."""
         u = f" {self.unit}" if unit and self.unit else ""
-        return " and ".join(f"{sym} {_num(v)}{u}" for sym, v in (
-            (">", self.gt), (">=", self.ge), ("<", self.lt), ("<=", self.le)) if v is not None)
+        return " and ".join(
+            f"{sym} {_num(v)}{u}"
+            for sym, v in ((">", self.gt), (">=", self.ge), ("<", self.lt), ("<=", self.le))
+            if v is not None
+        )
 
     def contains(self, v: float) -> bool:
-        return not ((self.gt is not None and not v > self.gt)
-                    or (self.ge is not None and not v >= self.ge)
-                    or (self.lt is not None and not v < self.lt)
-                    or (self.le is not None and not v <= self.le))
+        return not (
+            (self.gt is not None and not v > self.gt)
+            or (self.ge is not None and not v >= self.ge)
+            or (self.lt is not None and not v < self.lt)
+            or (self.le is not None and not v <= self.le)
+        )
 
     def check(self, name: str, value):
         """``value`` as float (int if ``integer``) if it is a finite number inside the
@@ -76,76 +113,116 @@ class Limit:
         if not self.contains(v):
             u = f" [{self.unit}]" if self.unit else ""
             what = "an integer " if self.integer else ""
-            raise InputError(f"{name} must be {what}{self.describe(unit=False)}{u} "
-                             f"(got {_num(v)})")
+            raise InputError(f"{name} must be {what}{self.describe(unit=False)}{u} (got {_num(v)})")
         return v
 
 
 # -- materials -------------------------------------------------------------------------
-YOUNGS_MODULUS = Limit("Pa", ge=1e6, le=2e12, why="soft elastomers (~1 MPa) to diamond "
-                                                  "(1.05–1.2 TPa)")
-POISSON_RATIO = Limit("", gt=-1.0, lt=0.5, why="positive-definite strain energy of an "
-                                               "isotropic solid")
-COATING_THICKNESS = Limit("m", gt=0.0, le=1e-2, why="thin films to overlays and sprayed layers "
-                                                    "of several mm")
+YOUNGS_MODULUS = Limit(
+    "Pa", ge=1e6, le=2e12, why="soft elastomers (~1 MPa) to diamond (1.05–1.2 TPa)"
+)
+POISSON_RATIO = Limit(
+    "", gt=-1.0, lt=0.5, why="positive-definite strain energy of an isotropic solid"
+)
+COATING_THICKNESS = Limit(
+    "m", gt=0.0, le=1e-2, why="thin films to overlays and sprayed layers of several mm"
+)
 
 # -- roughness (Greenwood–Tripp) -------------------------------------------------------
-ASPERITY_DENSITY = Limit("1/m²", gt=0.0, le=1e18,
-                         why="at most one summit per nm² (atomic spacing ≈ 0.3 nm)")
-ROUGHNESS_RMS = Limit("m", gt=0.0, lt=1e-4, why="composite RMS roughness below 100 µm: "
-                                                "rougher surfaces are not lubricated contacts")
+ASPERITY_DENSITY = Limit(
+    "1/m²", gt=0.0, le=1e18, why="at most one summit per nm² (atomic spacing ≈ 0.3 nm)"
+)
+ROUGHNESS_RMS = Limit(
+    "m",
+    gt=0.0,
+    lt=1e-4,
+    why="composite RMS roughness below 100 µm: rougher surfaces are not lubricated contacts",
+)
 SUMMIT_RADIUS = Limit("m", gt=0.0, lt=1e-2, why="summit radii below 10 mm")
 
 # -- lubricant -------------------------------------------------------------------------
-VISCOSITY = Limit("Pa·s", gt=ROELANDS_MU_INF, le=100.0,
-                  why="Roelands' law needs μ₀ > exp(−9.67) Pa·s; 100 Pa·s is a heavy gear oil "
-                      "far below its pour point")
-PRESSURE_VISCOSITY = Limit("1/Pa", ge=0.0, le=1e-6, why="α of mineral and synthetic oils is "
-                                                        "1e-8…4e-8 1/Pa")
+VISCOSITY = Limit(
+    "Pa·s",
+    gt=ROELANDS_MU_INF,
+    le=100.0,
+    why="Roelands' law needs μ₀ > exp(−9.67) Pa·s; 100 Pa·s is a heavy gear oil "
+    "far below its pour point",
+)
+PRESSURE_VISCOSITY = Limit(
+    "1/Pa", ge=0.0, le=1e-6, why="α of mineral and synthetic oils is 1e-8…4e-8 1/Pa"
+)
 DENSITY = Limit("kg/m³", gt=0.0, le=5000.0, why="liquids lighter than 5000 kg/m³")
 EYRING_STRESS = Limit("Pa", gt=0.0, le=1e9, why="τ_E of lubricants is 1–20 MPa")
 LIMITING_SHEAR_COEFFICIENT = Limit("", ge=0.0, le=1.0, why="Λ of oils is 0.03–0.1")
 LIMITING_SHEAR_STRESS = Limit("Pa", ge=0.0, le=1e9, why="τ_L0 of oils is a few MPa")
-BOUNDARY_SHEAR_COEFFICIENT = Limit("", ge=0.0, le=2.0, why="ς (a friction coefficient of the "
-                                                          "asperity tips) below 2")
+BOUNDARY_SHEAR_COEFFICIENT = Limit(
+    "", ge=0.0, le=2.0, why="ς (a friction coefficient of the asperity tips) below 2"
+)
 BOUNDARY_SHEAR_STRENGTH = Limit("Pa", ge=0.0, le=1e9, why="τ₀ of boundary films is ~2 MPa")
 
 # -- valvetrain ------------------------------------------------------------------------
-MASS = Limit("kg", ge=1e-3, le=10.0,
-             why="valvetrain parts from a gram (collets) to the few kg of the largest "
-                 "poppet valves; outside, the spring cannot control the valve")
+MASS = Limit(
+    "kg",
+    ge=1e-3,
+    le=10.0,
+    why="valvetrain parts from a gram (collets) to the few kg of the largest "
+    "poppet valves; outside, the spring cannot control the valve",
+)
 SPRING_RATE = Limit("N/m", gt=0.0, le=1e7, why="valve springs are 10–500 kN/m")
 SPRING_PRELOAD = Limit("N", gt=0.0, le=1e5, why="installed loads are 0.1–10 kN")
-STIFFNESS = Limit("N/m", gt=0.0, le=1e11,
-                  why="joint stiffnesses of valvetrains are 1e7–1e9 N/m; above 1e11 N/m the "
-                      "joint is rigid for the dynamics and only makes the integration stiff")
+STIFFNESS = Limit(
+    "N/m",
+    gt=0.0,
+    le=1e11,
+    why="joint stiffnesses of valvetrains are 1e7–1e9 N/m; above 1e11 N/m the "
+    "joint is rigid for the dynamics and only makes the integration stiff",
+)
 DAMPING = Limit("N·s/m", ge=0.0, le=1e6, why="above the critical damping of any joint")
-CONTACT_MODULUS = Limit("Pa", ge=1e6, le=1e13, why="E' of pairs of materials within "
-                                                   "YOUNGS_MODULUS")
-SPRING_MASSES = Limit("", ge=0, le=200, integer=True, why="lumped coil masses; 200 resolve "
-                                                          "surge modes far above any excitation")
+CONTACT_MODULUS = Limit("Pa", ge=1e6, le=1e13, why="E' of pairs of materials within YOUNGS_MODULUS")
+SPRING_MASSES = Limit(
+    "",
+    ge=0,
+    le=200,
+    integer=True,
+    why="lumped coil masses; 200 resolve surge modes far above any excitation",
+)
 SPRING_DAMPING_RATIO = Limit("", ge=0.0, lt=1.0, why="under-damped surge modes")
 LASH = Limit("m", ge=0.0, lt=0.01, why="valve clearance below 10 mm")
 DAMPING_FORCE_RAMP = Limit("N", gt=0.0, le=1e4, why="force over which contact damping phases in")
 BORE_FRICTION_COEFFICIENT = Limit("", ge=0.0, le=2.0, why="friction coefficients below 2")
-BORE_FRICTION_VELOCITY = Limit("m/s", gt=0.0, le=10.0, why="regularisation below the tappet "
-                                                           "speeds (~1–10 m/s)")
+BORE_FRICTION_VELOCITY = Limit(
+    "m/s", gt=0.0, le=10.0, why="regularisation below the tappet speeds (~1–10 m/s)"
+)
 LENGTH_BELOW_1M = Limit("m", gt=0.0, lt=1.0, why="valvetrain dimensions below 1 m")
 ENGINE_SPEED = Limit("rpm", gt=0.0, le=50000.0, why="engine speeds below 50 000 rpm")
 
 # -- numerics --------------------------------------------------------------------------
-EHL_NODES = Limit("", ge=32, le=65536, integer=True, why="steady solves (two-grid "
-                                                         "preconditioning above 1024 nodes)")
-EHL_NODES_TRANSIENT = Limit("", ge=32, le=4096, integer=True,
-                            why="the transient steps factor dense matrices")
+EHL_NODES = Limit(
+    "",
+    ge=32,
+    le=65536,
+    integer=True,
+    why="steady solves (two-grid preconditioning above 1024 nodes)",
+)
+EHL_NODES_TRANSIENT = Limit(
+    "", ge=32, le=4096, integer=True, why="the transient steps factor dense matrices"
+)
 DOMAIN_HALF_WIDTHS = Limit("", ge=1.0, le=100.0, why="EHL domain in Hertz half-widths")
 DOMAIN_RIGID_LENGTHS = Limit("", ge=1.0, le=200.0, why="EHL domain in rigid inlet lengths")
 INLET_TRUNCATION = Limit("", gt=0.0, le=0.1, why="share of the load lost to the cut inlet")
 NEWTON_TOL = Limit("", gt=0.0, lt=1.0, why="scaled Newton tolerance")
 NEWTON_MAX_ITER = Limit("", ge=1, le=10000, integer=True, why="Newton iterations per solve")
-MAX_SUBSTEPS = Limit("", ge=0, le=10, integer=True,
-                     why="a failing transient step is halved at most this often (sub-steps "
-                         "down to dt/2^max_substeps), which bounds the effort of one step")
-GREENWOOD_TRIPP_ORDER = Limit("", ge=0.0, le=10.0,
-                              why="the theory uses n = 0…5/2; orders up to 10 are verified "
-                                  "against quadrature")
+MAX_SUBSTEPS = Limit(
+    "",
+    ge=0,
+    le=10,
+    integer=True,
+    why="a failing transient step is halved at most this often (sub-steps "
+    "down to dt/2^max_substeps), which bounds the effort of one step",
+)
+GREENWOOD_TRIPP_ORDER = Limit(
+    "",
+    ge=0.0,
+    le=10.0,
+    why="the theory uses n = 0…5/2; orders up to 10 are verified against quadrature",
+)

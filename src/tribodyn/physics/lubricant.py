@@ -70,10 +70,14 @@ class Lubricant:
 
     def __post_init__(self):
         # ranges shared with the case file (physics.limits)
-        for name, limit in (("viscosity", VISCOSITY), ("pressure_viscosity", PRESSURE_VISCOSITY),
-                            ("density", DENSITY), ("eyring_stress", EYRING_STRESS),
-                            ("limiting_shear_coefficient", LIMITING_SHEAR_COEFFICIENT),
-                            ("limiting_shear_stress", LIMITING_SHEAR_STRESS)):
+        for name, limit in (
+            ("viscosity", VISCOSITY),
+            ("pressure_viscosity", PRESSURE_VISCOSITY),
+            ("density", DENSITY),
+            ("eyring_stress", EYRING_STRESS),
+            ("limiting_shear_coefficient", LIMITING_SHEAR_COEFFICIENT),
+            ("limiting_shear_stress", LIMITING_SHEAR_STRESS),
+        ):
             object.__setattr__(self, name, limit.check(name, getattr(self, name)))
         object.__setattr__(self, "compressible", check_bool("compressible", self.compressible))
         check_choice("viscosity_model", self.viscosity_model, ("roelands", "barus"))
@@ -126,5 +130,6 @@ class Lubricant:
 
 
 #: The paper's Table 5 lubricant (SAE 5W-20), with the assumed ρ₀ = 850 kg/m³.
-SAE_5W20 = Lubricant(viscosity=paper.LUBRICANT["viscosity"],
-                     pressure_viscosity=paper.LUBRICANT["pressure_viscosity"])
+SAE_5W20 = Lubricant(
+    viscosity=paper.LUBRICANT["viscosity"], pressure_viscosity=paper.LUBRICANT["pressure_viscosity"]
+)

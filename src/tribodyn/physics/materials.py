@@ -60,8 +60,7 @@ class Coating(Material):
 
     def __post_init__(self):
         super().__post_init__()
-        object.__setattr__(self, "thickness", COATING_THICKNESS.check("thickness",
-                                                                      self.thickness))
+        object.__setattr__(self, "thickness", COATING_THICKNESS.check("thickness", self.thickness))
 
     @property
     def material(self) -> Material:
@@ -79,7 +78,9 @@ class Body:
         if not isinstance(self.material, Material) or isinstance(self.material, Coating):
             raise InputError(f"material must be a Material (got {type(self.material).__name__})")
         if self.coating is not None and not isinstance(self.coating, Coating):
-            raise InputError(f"coating must be a Coating or None (got {type(self.coating).__name__})")
+            raise InputError(
+                f"coating must be a Coating or None (got {type(self.coating).__name__})"
+            )
 
     @property
     def surface(self) -> Material:

@@ -41,21 +41,32 @@ __all__ = ["OILS", "THERMAL_MATERIALS", "oil_names"]
 #: name → datasheet keys of :class:`~tribodyn.physics.thermal_oil.ThermalLubricant`
 #: (SI: m²/s, kg/m³) and a description.
 OILS = {
-    "0W-20": {"kinematic_viscosity_40": 44.0e-6, "kinematic_viscosity_100": 8.5e-6,
-              "density": 845.0,
-              "description": "SAE 0W-20 synthetic passenger-car oil (API SP / ILSAC GF-6), "
-                             "typical datasheet values"},
-    "5W-20": {"kinematic_viscosity_40": 48.0e-6, "kinematic_viscosity_100": 8.6e-6,
-              "density": 850.0,
-              "description": "SAE 5W-20 passenger-car oil (the grade of Andreou et al. 2023), "
-                             "typical datasheet values"},
-    "5W-30": {"kinematic_viscosity_40": 64.0e-6, "kinematic_viscosity_100": 11.0e-6,
-              "density": 852.0,
-              "description": "SAE 5W-30 synthetic passenger-car oil, typical datasheet values"},
-    "10W-40": {"kinematic_viscosity_40": 100.0e-6, "kinematic_viscosity_100": 14.8e-6,
-               "density": 868.0,
-               "description": "SAE 10W-40 semi-synthetic passenger-car oil, typical datasheet "
-                              "values"},
+    "0W-20": {
+        "kinematic_viscosity_40": 44.0e-6,
+        "kinematic_viscosity_100": 8.5e-6,
+        "density": 845.0,
+        "description": "SAE 0W-20 synthetic passenger-car oil (API SP / ILSAC GF-6), "
+        "typical datasheet values",
+    },
+    "5W-20": {
+        "kinematic_viscosity_40": 48.0e-6,
+        "kinematic_viscosity_100": 8.6e-6,
+        "density": 850.0,
+        "description": "SAE 5W-20 passenger-car oil (the grade of Andreou et al. 2023), "
+        "typical datasheet values",
+    },
+    "5W-30": {
+        "kinematic_viscosity_40": 64.0e-6,
+        "kinematic_viscosity_100": 11.0e-6,
+        "density": 852.0,
+        "description": "SAE 5W-30 synthetic passenger-car oil, typical datasheet values",
+    },
+    "10W-40": {
+        "kinematic_viscosity_40": 100.0e-6,
+        "kinematic_viscosity_100": 14.8e-6,
+        "density": 868.0,
+        "description": "SAE 10W-40 semi-synthetic passenger-car oil, typical datasheet values",
+    },
 }
 
 #: name → (k [W/(m K)], ρ [kg/m³], c [J/(kg K)]), keyed like the bundled case's materials.

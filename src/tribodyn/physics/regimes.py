@@ -24,16 +24,24 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = [
-    "hamrock_groups", "moes_groups", "greenwood_chart_groups", "regime_asymptotes",
-    "lubrication_regime", "film_parameter", "pan_hamrock", "dowson_higginson_min", "dowson_toyoda_central",
-    "moes_central", "martin_rigid_isoviscous", "REGIMES",
+    "hamrock_groups",
+    "moes_groups",
+    "greenwood_chart_groups",
+    "regime_asymptotes",
+    "lubrication_regime",
+    "film_parameter",
+    "pan_hamrock",
+    "dowson_higginson_min",
+    "dowson_toyoda_central",
+    "moes_central",
+    "martin_rigid_isoviscous",
+    "REGIMES",
 ]
 
 REGIMES = ("IR", "PR", "IE", "PE")
 
 
-def hamrock_groups(load, radius, entrainment_speed, viscosity, pressure_viscosity,
-                   reduced_modulus):
+def hamrock_groups(load, radius, entrainment_speed, viscosity, pressure_viscosity, reduced_modulus):
     """(W', U, G): W' = w/(E'R), U = μ₀|u_e|/(E'R), G = αE'."""
     er = reduced_modulus * np.asarray(radius, dtype=float)
     w_ = np.asarray(load, dtype=float) / er

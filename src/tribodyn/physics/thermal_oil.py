@@ -62,8 +62,17 @@ import numpy as np
 from .._validation import InputError, check_nonnegative, check_positive, check_range
 from .lubricant import ROELANDS_MU_INF, ROELANDS_P0, Lubricant
 
-__all__ = ["ThermalLubricant", "walther_constants", "walther_viscosity", "so_klaus_alpha",
-           "celsius", "kelvin", "T40", "T100", "T15"]
+__all__ = [
+    "ThermalLubricant",
+    "walther_constants",
+    "walther_viscosity",
+    "so_klaus_alpha",
+    "celsius",
+    "kelvin",
+    "T40",
+    "T100",
+    "T15",
+]
 
 T15, T40, T100 = 288.15, 313.15, 373.15
 #: Larsson & Andersson (2000) pressure law of the conductivity, k ∝ 1 + a p/(1 + b p) [1/Pa].
@@ -110,8 +119,12 @@ def so_klaus_alpha(nu, rho, slope) -> float:
     lv = math.log10(nu * 1e6)
     if lv <= 0.0:
         raise InputError(f"the So–Klaus correlation needs ν > 1 mm²/s (got {nu * 1e6:.3g})")
-    a = (1.216 + 4.143 * lv**3.0627 + 2.848e-4 * slope**5.1903 * lv**1.5976
-         - 3.999 * lv**3.0975 * (rho * 1e-3) ** 0.1162)
+    a = (
+        1.216
+        + 4.143 * lv**3.0627
+        + 2.848e-4 * slope**5.1903 * lv**1.5976
+        - 3.999 * lv**3.0975 * (rho * 1e-3) ** 0.1162
+    )
     return a * 1e-8
 
 
@@ -168,26 +181,33 @@ class ThermalLubricant:
             n40 = check_positive("kinematic_viscosity_40", sheet[0], "m²/s")
             n100 = check_positive("kinematic_viscosity_100", sheet[1], "m²/s")
             if not n100 < n40:
-                raise InputError("kinematic_viscosity_100 must be below kinematic_viscosity_40 "
-                                 f"(got {n100 * 1e6:.4g} and {n40 * 1e6:.4g} mm²/s)")
+                raise InputError(
+                    "kinematic_viscosity_100 must be below kinematic_viscosity_40 "
+                    f"(got {n100 * 1e6:.4g} and {n40 * 1e6:.4g} mm²/s)"
+                )
             if n100 * 1e6 < 1.5:
-                raise InputError("kinematic_viscosity_100 must be >= 1.5 mm²/s for ASTM D341 "
-                                 f"(got {n100 * 1e6:.4g})")
+                raise InputError(
+                    "kinematic_viscosity_100 must be >= 1.5 mm²/s for ASTM D341 "
+                    f"(got {n100 * 1e6:.4g})"
+                )
             c["form"] = "datasheet"
             c["A"], c["B"] = walther_constants(n40, n100)
         elif all(v is not None for v in inlet) and all(v is None for v in sheet):
             mu = check_positive("viscosity", inlet[0], "Pa·s")
             if mu <= ROELANDS_MU_INF:
                 raise InputError(f"viscosity must be > {ROELANDS_MU_INF:.3g} Pa·s (got {mu:.6g})")
-            beta = check_range("viscosity_temperature_coefficient", inlet[1], 0.0, 0.5,
-                               lo_open=True, unit="1/K")
+            beta = check_range(
+                "viscosity_temperature_coefficient", inlet[1], 0.0, 0.5, lo_open=True, unit="1/K"
+            )
             c["form"] = "inlet"
             c["S0"] = beta * (Ti - 138.0) / (math.log(mu) + 9.67)
             c["mu_i"] = mu
         else:
-            raise InputError("give either kinematic_viscosity_40 and kinematic_viscosity_100 "
-                             "(datasheet) or viscosity and viscosity_temperature_coefficient "
-                             "(inlet form), not a mix")
+            raise InputError(
+                "give either kinematic_viscosity_40 and kinematic_viscosity_100 "
+                "(datasheet) or viscosity and viscosity_temperature_coefficient "
+                "(inlet form), not a mix"
+            )
         check_range("density", self.density, 300.0, 3000.0, unit="kg/m³")
         check_range("density_temperature", self.density_temperature, 200.0, 600.0, unit="K")
         check_range("thermal_expansion", self.thermal_expansion, 0.0, 3e-3, unit="1/K")
@@ -195,42 +215,63 @@ class ThermalLubricant:
             check_positive(name, getattr(self, name), "Pa")
         check_nonnegative("limiting_shear_coefficient", self.limiting_shear_coefficient)
         check_nonnegative("limiting_shear_stress", self.limiting_shear_stress, "Pa")
-        check_range("limiting_shear_temperature_coefficient",
-                    self.limiting_shear_temperature_coefficient, 0.0, 0.05, unit="1/K")
+        check_range(
+            "limiting_shear_temperature_coefficient",
+            self.limiting_shear_temperature_coefficient,
+            0.0,
+            0.05,
+            unit="1/K",
+        )
         if self.viscosity_model not in ("roelands", "barus"):
-            raise InputError("viscosity_model must be 'roelands' or 'barus' "
-                             f"(got {self.viscosity_model!r})")
+            raise InputError(
+                f"viscosity_model must be 'roelands' or 'barus' (got {self.viscosity_model!r})"
+            )
         object.__setattr__(self, "_c", c)
         mu_i = float(self.ambient_viscosity(Ti))
         if not mu_i > ROELANDS_MU_INF:
-            raise InputError(f"viscosity at the inlet temperature {mu_i:.3g} Pa·s is below "
-                             "Roelands' limit 6.3e-5 Pa·s (oil too thin or too hot)")
+            raise InputError(
+                f"viscosity at the inlet temperature {mu_i:.3g} Pa·s is below "
+                "Roelands' limit 6.3e-5 Pa·s (oil too thin or too hot)"
+            )
         c["mu_i"] = mu_i
         if self.pressure_viscosity is None:
             if c["form"] != "datasheet":
-                raise InputError("pressure_viscosity is required with the inlet form (the So–"
-                                 "Klaus estimate needs the ASTM D341 slope of a datasheet)")
-            alpha = so_klaus_alpha(float(self.kinematic_viscosity(Ti)),
-                                   float(self.density_at(0.0, Ti)), c["B"])
+                raise InputError(
+                    "pressure_viscosity is required with the inlet form (the So–"
+                    "Klaus estimate needs the ASTM D341 slope of a datasheet)"
+                )
+            alpha = so_klaus_alpha(
+                float(self.kinematic_viscosity(Ti)), float(self.density_at(0.0, Ti)), c["B"]
+            )
         else:
-            alpha = check_range("pressure_viscosity", self.pressure_viscosity, 0.0, 1e-6,
-                                unit="1/Pa")
+            alpha = check_range(
+                "pressure_viscosity", self.pressure_viscosity, 0.0, 1e-6, unit="1/Pa"
+            )
         c["alpha_i"] = alpha
         c["Z"] = alpha / (5.1e-9 * (math.log(mu_i) + 9.67))
-        s = self.density / 1000.0 * (1.0 + self.thermal_expansion
-                                      * (self.density_temperature - T15))   # s at 15 °C
+        s = (
+            self.density
+            / 1000.0
+            * (1.0 + self.thermal_expansion * (self.density_temperature - T15))
+        )  # s at 15 °C
         ti = Ti - _ZERO_C
-        k_i = (self.thermal_conductivity if self.thermal_conductivity is not None
-               else 0.1172 * (1.0 - 5.4e-4 * ti) / s)
-        c_i = (self.specific_heat if self.specific_heat is not None
-               else (1685.0 + 3.39 * ti) / math.sqrt(s))
+        k_i = (
+            self.thermal_conductivity
+            if self.thermal_conductivity is not None
+            else 0.1172 * (1.0 - 5.4e-4 * ti) / s
+        )
+        c_i = (
+            self.specific_heat
+            if self.specific_heat is not None
+            else (1685.0 + 3.39 * ti) / math.sqrt(s)
+        )
         c["k_i"] = check_range("thermal_conductivity", k_i, 0.01, 1e8, unit="W/(m K)")
         c["cp_i"] = check_range("specific_heat", c_i, 100.0, 1e4, unit="J/(kg K)")
 
     # -- viscosity ---------------------------------------------------------------------
     @property
     def form(self) -> str:
-        """"datasheet" or "inlet"."""
+        """ "datasheet" or "inlet"."""
         return self._c["form"]
 
     @property
@@ -269,8 +310,10 @@ class ThermalLubricant:
         """β = −d ln μ₀/dT at T (default the inlet) [1/K]."""
         T = self._c["Ti"] if T is None else float(T)
         d = 0.01
-        return float(-(np.log(self.ambient_viscosity(T + d))
-                       - np.log(self.ambient_viscosity(T - d))) / (2 * d))
+        return float(
+            -(np.log(self.ambient_viscosity(T + d)) - np.log(self.ambient_viscosity(T - d)))
+            / (2 * d)
+        )
 
     def log_viscosity(self, p, T):
         """ln μ(p, T) [ln Pa·s] (p < 0 taken as 0)."""
@@ -296,8 +339,9 @@ class ThermalLubricant:
 
     # -- density, heat ------------------------------------------------------------------
     def _thermal_factor(self, T):
-        return 1.0 - self.thermal_expansion * (np.asarray(T, dtype=float)
-                                               - self.density_temperature)
+        return 1.0 - self.thermal_expansion * (
+            np.asarray(T, dtype=float) - self.density_temperature
+        )
 
     def density_at(self, p, T):
         """ρ(p, T) [kg/m³]."""
@@ -322,8 +366,12 @@ class ThermalLubricant:
         pp = np.maximum(np.asarray(p, dtype=float), 0.0)
         t, ti = celsius(T), self._c["Ti"] - _ZERO_C
         a, b = CONDUCTIVITY_PRESSURE
-        return (self._c["k_i"] * (1.0 - 5.4e-4 * t) / (1.0 - 5.4e-4 * ti)
-                * (1.0 + a * pp / (1.0 + b * pp)))
+        return (
+            self._c["k_i"]
+            * (1.0 - 5.4e-4 * t)
+            / (1.0 - 5.4e-4 * ti)
+            * (1.0 + a * pp / (1.0 + b * pp))
+        )
 
     def specific_heat_at(self, T):
         """c_p(T) [J/(kg K)]."""
@@ -341,10 +389,16 @@ class ThermalLubricant:
 
     def limiting_shear_stress_at(self, p, T):
         """τ_L(p, T) [Pa]."""
-        f = np.maximum(0.1, 1.0 - self.limiting_shear_temperature_coefficient
-                       * (np.asarray(T, dtype=float) - self._c["Ti"]))
-        return (self.limiting_shear_stress + self.limiting_shear_coefficient
-                * np.maximum(np.asarray(p, dtype=float), 0.0)) * f
+        f = np.maximum(
+            0.1,
+            1.0
+            - self.limiting_shear_temperature_coefficient
+            * (np.asarray(T, dtype=float) - self._c["Ti"]),
+        )
+        return (
+            self.limiting_shear_stress
+            + self.limiting_shear_coefficient * np.maximum(np.asarray(p, dtype=float), 0.0)
+        ) * f
 
     # -- isothermal views ----------------------------------------------------------------
     def at(self, T) -> Lubricant:
@@ -356,20 +410,25 @@ class ThermalLubricant:
         else:
             alpha = 5.1e-9 * self._c["Z"] * (math.log(mu) + 9.67)
         f = max(0.1, 1.0 - self.limiting_shear_temperature_coefficient * (T - self._c["Ti"]))
-        return Lubricant(viscosity=mu, pressure_viscosity=alpha,
-                         density=float(self.density_at(0.0, T)),
-                         eyring_stress=float(self.eyring_stress_at(T)),
-                         limiting_shear_coefficient=self.limiting_shear_coefficient * f,
-                         limiting_shear_stress=self.limiting_shear_stress * f,
-                         compressible=self.compressible, viscosity_model=self.viscosity_model)
+        return Lubricant(
+            viscosity=mu,
+            pressure_viscosity=alpha,
+            density=float(self.density_at(0.0, T)),
+            eyring_stress=float(self.eyring_stress_at(T)),
+            limiting_shear_coefficient=self.limiting_shear_coefficient * f,
+            limiting_shear_stress=self.limiting_shear_stress * f,
+            compressible=self.compressible,
+            viscosity_model=self.viscosity_model,
+        )
 
     def isothermal(self) -> Lubricant:
         """The oil at its inlet temperature (what the isothermal solvers use)."""
         return self.at(self._c["Ti"])
 
-    def with_inlet_temperature(self, T) -> "ThermalLubricant":
+    def with_inlet_temperature(self, T) -> ThermalLubricant:
         """The same oil supplied at another temperature (α re-estimated if not given)."""
         if self.form == "inlet":
-            raise InputError("an inlet-form oil is defined at its inlet temperature; give a "
-                             "datasheet to move it")
+            raise InputError(
+                "an inlet-form oil is defined at its inlet temperature; give a datasheet to move it"
+            )
         return replace(self, inlet_temperature=float(T))

@@ -48,9 +48,18 @@ from .spectral_moments import (
 )
 from .summits import summit_statistics
 
-__all__ = ["analyse_surface", "analyse_pair", "composite_roughness", "analyse_filtered",
-           "analysis_margin", "analysis_region", "mean_curvature_field", "profile_moments",
-           "MIN_PIXELS_PER_WAVELENGTH", "MIN_SUMMITS"]
+__all__ = [
+    "analyse_surface",
+    "analyse_pair",
+    "composite_roughness",
+    "analyse_filtered",
+    "analysis_margin",
+    "analysis_region",
+    "mean_curvature_field",
+    "profile_moments",
+    "MIN_PIXELS_PER_WAVELENGTH",
+    "MIN_SUMMITS",
+]
 
 #: Shortest filtered wavelength, in pixels, above which 8-neighbour summit statistics are
 #: treated as converged (Gaussian S-filter; see the tests and ``summits`` docstring).
@@ -85,9 +94,10 @@ def analysis_region(shape, margin) -> np.ndarray:
     if nx - 2 * wx < 3 or ny - 2 * wy < 3:
         raise InsufficientDataError(
             f"the map ({nx} × {ny} points) is too small for the band: excluding "
-            f"{wx} × {wy} edge pixels (one λ_s) leaves no interior to analyse")
+            f"{wx} × {wy} edge pixels (one λ_s) leaves no interior to analyse"
+        )
     region = np.zeros((nx, ny), dtype=bool)
-    region[wx:nx - wx, wy:ny - wy] = True
+    region[wx : nx - wx, wy : ny - wy] = True
     return region
 
 
@@ -105,8 +115,9 @@ def mean_curvature_field(topography, region=None) -> np.ndarray:
     return kappa
 
 
-def profile_moments(topography, band: Band | None = None, region=None, measured=None
-                    ) -> tuple[SpectralMoments, float]:
+def profile_moments(
+    topography, band: Band | None = None, region=None, measured=None
+) -> tuple[SpectralMoments, float]:
     """Direction-averaged profile moments and the slope anisotropy max/min(m2x, m2y).
 
     All derivatives are spectral (exact for the band-limited field):
@@ -137,16 +148,15 @@ def profile_moments(topography, band: Band | None = None, region=None, measured=
             return float(np.mean(np.asarray(field)[:nx, :ny][region] ** 2))
 
         h = np.asarray(topography.heights())
-        m0 = (float(np.mean(h**2)) if measured is None else float(np.var(h[measured])))
-        m2x = interior_mean_square(lambda qx, qy: 1j * qx, False)   # ∂h/∂x
-        m2y = interior_mean_square(lambda qx, qy: 1j * qy, False)   # ∂h/∂y
-        m4 = interior_mean_square(lambda q: -q * q, True)            # ∇²h
+        m0 = float(np.mean(h**2)) if measured is None else float(np.var(h[measured]))
+        m2x = interior_mean_square(lambda qx, qy: 1j * qx, False)  # ∂h/∂x
+        m2y = interior_mean_square(lambda qx, qy: 1j * qy, False)  # ∂h/∂y
+        m4 = interior_mean_square(lambda q: -q * q, True)  # ∇²h
     moments = isotropic_profile_moments(m0, m2x + m2y, m4)
     return moments, float(max(m2x, m2y) / min(m2x, m2y))
 
 
-def reliable_points(measured: np.ndarray, band: Band, pixel_size, periodic: bool
-                    ) -> np.ndarray:
+def reliable_points(measured: np.ndarray, band: Band, pixel_size, periodic: bool) -> np.ndarray:
     """Measured points far enough from the filled holes to be analysed.
 
     The harmonic fill of a hole has its maximum on the hole's rim (maximum principle) and
@@ -175,38 +185,60 @@ def reliable_points(measured: np.ndarray, band: Band, pixel_size, periodic: bool
             big[sl] |= labels[sl] == k
     near = ndimage.binary_dilation(f, structure=np.ones((3, 3), dtype=bool))
     if big.any():
-        near |= ndimage.binary_dilation(big, structure=np.ones((2 * r_big + 1,) * 2,
-                                                               dtype=bool))
+        near |= ndimage.binary_dilation(big, structure=np.ones((2 * r_big + 1,) * 2, dtype=bool))
     return measured & ~near[pad:-pad, pad:-pad]
 
 
-def analyse_filtered(topography, band: Band, sampling: Sampling, name: str = "surface",
-                     source: dict | None = None, filled=None) -> SurfaceAnalysis:
+def analyse_filtered(
+    topography,
+    band: Band,
+    sampling: Sampling,
+    name: str = "surface",
+    source: dict | None = None,
+    filled=None,
+) -> SurfaceAnalysis:
     """Analyse a map that is already levelled and filtered (heights in m); ``filled``
     marks points that were not measured (excluded from the statistics)."""
     heights = np.asarray(topography.heights(), dtype=float)
     measured = None if filled is None or not np.any(filled) else ~np.asarray(filled)
     hstats = height_statistics(heights if measured is None else heights[measured])
-    region = analysis_region(heights.shape, analysis_margin(band, topography.pixel_size,
-                                                            topography.is_periodic))
+    region = analysis_region(
+        heights.shape, analysis_margin(band, topography.pixel_size, topography.is_periodic)
+    )
     if measured is not None:
-        region &= reliable_points(measured, band, topography.pixel_size,
-                                  topography.is_periodic)
-    sstats = summit_statistics(heights, mean_curvature_field(topography, region),
-                               topography.pixel_size, topography.is_periodic)
+        region &= reliable_points(measured, band, topography.pixel_size, topography.is_periodic)
+    sstats = summit_statistics(
+        heights,
+        mean_curvature_field(topography, region),
+        topography.pixel_size,
+        topography.is_periodic,
+    )
     if sstats.count < MIN_SUMMITS:
-        share = "" if measured is None else (
-            f" ({1 - sampling.undefined_fraction:.0%} of the points measured)")
+        share = (
+            ""
+            if measured is None
+            else (f" ({1 - sampling.undefined_fraction:.0%} of the points measured)")
+        )
         raise InsufficientDataError(
             f"only {sstats.count} summits on the measured points of the analysed interior"
             f"{share}: at least {MIN_SUMMITS} are needed for η and β (standard error "
-            f"≈ 1/√N); use a larger measurement, fewer dropouts or a shorter band")
+            f"≈ 1/√N); use a larger measurement, fewer dropouts or a shorter band"
+        )
     moments, anisotropy = profile_moments(topography, band, region, measured)
     mccool = mccool_parameters(moments)
-    result = SurfaceAnalysis(name=name, sampling=sampling, band=band, heights=hstats,
-                             moments=moments, summit_stats=sstats, mccool=mccool,
-                             slope_anisotropy=anisotropy, source=source, topography=topography,
-                             filled=None if measured is None else ~measured)
+    result = SurfaceAnalysis(
+        name=name,
+        sampling=sampling,
+        band=band,
+        heights=hstats,
+        moments=moments,
+        summit_stats=sstats,
+        mccool=mccool,
+        slope_anisotropy=anisotropy,
+        source=source,
+        topography=topography,
+        filled=None if measured is None else ~measured,
+    )
     return _with_notes(result)
 
 
@@ -217,17 +249,21 @@ def _deviation(a: float, b: float) -> float:
 def _sampling_note(band: Band, sampling: Sampling) -> str:
     dx = max(sampling.pixel_size)
     if band.kind == "none":
-        return ("no short-wavelength filter: the 8-neighbour summit estimates depend on the "
-                "pixel size and the instrument's noise; prefer a band with λ_s ≥ "
-                f"{MIN_PIXELS_PER_WAVELENGTH:g} pixels")
+        return (
+            "no short-wavelength filter: the 8-neighbour summit estimates depend on the "
+            "pixel size and the instrument's noise; prefer a band with λ_s ≥ "
+            f"{MIN_PIXELS_PER_WAVELENGTH:g} pixels"
+        )
     ratio = band.short_wavelength / dx
     text = f"λ_s spans {ratio:.3g} pixels"
     if ratio < MIN_PIXELS_PER_WAVELENGTH * (1 - 1e-6):  # tolerate float32 pixel sizes
-        text += (f" (< {MIN_PIXELS_PER_WAVELENGTH:g}): the 8-neighbour summit η and β depend "
-                 "on the sampling and need not converge to the continuous-surface (McCool) "
-                 "values; the spectral estimates are sampling-independent")
+        text += (
+            f" (< {MIN_PIXELS_PER_WAVELENGTH:g}): the 8-neighbour summit η and β depend "
+            "on the sampling and need not converge to the continuous-surface (McCool) "
+            "values; the spectral estimates are sampling-independent"
+        )
     else:
-        text += (f" (≥ {MIN_PIXELS_PER_WAVELENGTH:g}): summit statistics resolved")
+        text += f" (≥ {MIN_PIXELS_PER_WAVELENGTH:g}): summit statistics resolved"
     return text
 
 
@@ -235,13 +271,17 @@ def input_warnings(band: Band, sampling: Sampling) -> tuple[str, ...]:
     """Warnings about what was done to the input: band clipped, dropouts filled."""
     out = []
     if band.clipped:
-        out.append(f"band {_um(band.short_wavelength)}–{_um(band.long_wavelength)} µm used "
-                   f"instead of the requested {_um(band.requested[0])}–"
-                   f"{_um(band.requested[1])} µm: {band.reason or 'clipped to the measurement'}")
+        out.append(
+            f"band {_um(band.short_wavelength)}–{_um(band.long_wavelength)} µm used "
+            f"instead of the requested {_um(band.requested[0])}–"
+            f"{_um(band.requested[1])} µm: {band.reason or 'clipped to the measurement'}"
+        )
     if sampling.undefined_fraction > 0:
-        out.append(f"{sampling.undefined_fraction:.1%} of the points were not measured "
-                   "(dropouts): filled by harmonic interpolation for the filter, excluded from "
-                   "the statistics")
+        out.append(
+            f"{sampling.undefined_fraction:.1%} of the points were not measured "
+            "(dropouts): filled by harmonic interpolation for the filter, excluded from "
+            "the statistics"
+        )
     return tuple(out)
 
 
@@ -254,30 +294,47 @@ def _with_notes(r: SurfaceAnalysis) -> SurfaceAnalysis:
     d_eta = _deviation(r.summits.asperity_density, r.spectral.asperity_density)
     d_beta = _deviation(r.summits.summit_radius, r.spectral.summit_radius)
     if max(abs(d_eta), abs(d_beta)) > NOTE_DEVIATION:
-        notes.append(f"summit vs spectral estimates differ by {d_eta:+.0%} (η) and "
-                     f"{d_beta:+.0%} (β)")
+        notes.append(
+            f"summit vs spectral estimates differ by {d_eta:+.0%} (η) and {d_beta:+.0%} (β)"
+        )
     if r.slope_anisotropy > 1.5:
-        notes.append(f"anisotropic texture (mean-square slope ratio {r.slope_anisotropy:.2f} "
-                     "between x and y): McCool's formulas assume isotropy")
+        notes.append(
+            f"anisotropic texture (mean-square slope ratio {r.slope_anisotropy:.2f} "
+            "between x and y): McCool's formulas assume isotropy"
+        )
     h = r.heights
     if abs(h.skewness) > 0.5 or abs(h.kurtosis - 3.0) > 1.0:
-        notes.append(f"height distribution not Gaussian (Ssk = {h.skewness:.2f}, "
-                     f"Sku = {h.kurtosis:.2f}; Gaussian 0 and 3): Greenwood–Tripp's F_n assume "
-                     "Gaussian summit heights")
+        notes.append(
+            f"height distribution not Gaussian (Ssk = {h.skewness:.2f}, "
+            f"Sku = {h.kurtosis:.2f}; Gaussian 0 and 3): Greenwood–Tripp's F_n assume "
+            "Gaussian summit heights"
+        )
     if r.summits.roughness_parameter < MIN_ETA_BETA_SIGMA:
-        notes.append(f"summit ηβσ = {r.summits.roughness_parameter:.3g} is below "
-                     f"{MIN_ETA_BETA_SIGMA:.3f}, the minimum for an isotropic Gaussian surface")
+        notes.append(
+            f"summit ηβσ = {r.summits.roughness_parameter:.3g} is below "
+            f"{MIN_ETA_BETA_SIGMA:.3f}, the minimum for an isotropic Gaussian surface"
+        )
     if r.summit_stats.count < 200:
-        notes.append(f"only {r.summit_stats.count} summits: η and β carry a statistical "
-                     f"uncertainty of order {1 / np.sqrt(r.summit_stats.count):.0%}")
+        notes.append(
+            f"only {r.summit_stats.count} summits: η and β carry a statistical "
+            f"uncertainty of order {1 / np.sqrt(r.summit_stats.count):.0%}"
+        )
     return replace(r, notes=tuple(notes), warnings=input_warnings(r.band, r.sampling))
 
 
-def analyse_surface(source, band=AUTO_BAND, *, kind: str = "gaussian",
-                    detrend: str = "height", clip_band: bool = False,
-                    min_defined_fraction: float = 0.0, name: str | None = None,
-                    channel: int | None = None, physical_sizes=None,
-                    unit: str | None = None):
+def analyse_surface(
+    source,
+    band=AUTO_BAND,
+    *,
+    kind: str = "gaussian",
+    detrend: str = "height",
+    clip_band: bool = False,
+    min_defined_fraction: float = 0.0,
+    name: str | None = None,
+    channel: int | None = None,
+    physical_sizes=None,
+    unit: str | None = None,
+):
     """Greenwood–Tripp parameters of one surface.
 
     Parameters
@@ -309,8 +366,7 @@ def analyse_surface(source, band=AUTO_BAND, *, kind: str = "gaussian",
     """
     src = None
     if isinstance(source, (str, Path)):
-        topo = read_topography(source, channel=channel, physical_sizes=physical_sizes,
-                               unit=unit)
+        topo = read_topography(source, channel=channel, physical_sizes=physical_sizes, unit=unit)
         src = topo.info.get("source")
         name = Path(source).name if name is None else name
     else:
@@ -318,12 +374,25 @@ def analyse_surface(source, band=AUTO_BAND, *, kind: str = "gaussian",
         name = "surface" if name is None else name
     if topo.dim == 1:
         from .profile import analyse_profile
-        return analyse_profile(topo, band, kind=kind, detrend=detrend, clip_band=clip_band,
-                               min_defined_fraction=min_defined_fraction, name=name,
-                               source=src)
+
+        return analyse_profile(
+            topo,
+            band,
+            kind=kind,
+            detrend=detrend,
+            clip_band=clip_band,
+            min_defined_fraction=min_defined_fraction,
+            name=name,
+            source=src,
+        )
     filtered, applied, sampling, filled = prepare_topography(
-        topo, band, kind=kind, detrend=detrend, clip_band=clip_band,
-        min_defined_fraction=min_defined_fraction)
+        topo,
+        band,
+        kind=kind,
+        detrend=detrend,
+        clip_band=clip_band,
+        min_defined_fraction=min_defined_fraction,
+    )
     return analyse_filtered(filtered, applied, sampling, name=name, source=src, filled=filled)
 
 
@@ -332,8 +401,9 @@ def _same_band(a: Band, b: Band) -> bool:
     if a.kind != b.kind:
         return False
     pairs = ((a.short_wavelength, b.short_wavelength), (a.long_wavelength, b.long_wavelength))
-    return all(x == y or (x is not None and y is not None and abs(x / y - 1.0) < 1e-6)
-               for x, y in pairs)
+    return all(
+        x == y or (x is not None and y is not None and abs(x / y - 1.0) < 1e-6) for x, y in pairs
+    )
 
 
 def composite_roughness(first: SurfaceAnalysis, second: SurfaceAnalysis) -> PairAnalysis:
@@ -348,14 +418,19 @@ def composite_roughness(first: SurfaceAnalysis, second: SurfaceAnalysis) -> Pair
     ta, tb = first.topography, second.topography
     combined = None
     if ta is not None and tb is not None:
-        combined = sum_on_common_grid(ta.heights(), ta.pixel_size, ta.is_periodic,
-                                      tb.heights(), tb.pixel_size, tb.is_periodic)
+        combined = sum_on_common_grid(
+            ta.heights(), ta.pixel_size, ta.is_periodic, tb.heights(), tb.pixel_size, tb.is_periodic
+        )
     if ta is None or tb is None:
-        notes.append("no composite summit analysis: a profile has no summits (the spectral "
-                     "composite is an isotropic-surface estimate)")
+        notes.append(
+            "no composite summit analysis: a profile has no summits (the spectral "
+            "composite is an isotropic-surface estimate)"
+        )
     elif combined is None:
-        notes.append("no composite summit analysis: the maps have different pixel sizes "
-                     "(the spectral composite is used)")
+        notes.append(
+            "no composite summit analysis: the maps have different pixel sizes "
+            "(the spectral composite is used)"
+        )
     else:
         h, (dx, dy), periodic = combined
         nx, ny = h.shape
@@ -369,19 +444,26 @@ def composite_roughness(first: SurfaceAnalysis, second: SurfaceAnalysis) -> Pair
         region = analysis_region(h.shape, analysis_margin(band, (dx, dy), periodic))
         if filled.any():
             region &= reliable_points(~filled, band, (dx, dy), periodic)
-        summit_stats = summit_statistics(h, mean_curvature_field(t, region), (dx, dy),
-                                         periodic)
+        summit_stats = summit_statistics(h, mean_curvature_field(t, region), (dx, dy), periodic)
         if (nx, ny) != tuple(ta.nb_grid_pts) or (nx, ny) != tuple(tb.nb_grid_pts):
             notes.append(f"sum surface h₁ + h₂ on the common {nx} × {ny} grid")
-    pair = PairAnalysis(first=first, second=second, moments=moments,
-                        mccool=mccool_parameters(moments), summit_stats=summit_stats,
-                        sum_heights=sum_stats, notes=())
+    pair = PairAnalysis(
+        first=first,
+        second=second,
+        moments=moments,
+        mccool=mccool_parameters(moments),
+        summit_stats=summit_stats,
+        sum_heights=sum_stats,
+        notes=(),
+    )
     if pair.summits is not None:
         d_eta = _deviation(pair.summits.asperity_density, pair.spectral.asperity_density)
         d_beta = _deviation(pair.summits.summit_radius, pair.spectral.summit_radius)
         if max(abs(d_eta), abs(d_beta)) > NOTE_DEVIATION:
-            notes.append(f"composite summit vs spectral estimates differ by {d_eta:+.0%} (η) "
-                         f"and {d_beta:+.0%} (β)")
+            notes.append(
+                f"composite summit vs spectral estimates differ by {d_eta:+.0%} (η) "
+                f"and {d_beta:+.0%} (β)"
+            )
     return replace(pair, notes=tuple(notes))
 
 
@@ -391,8 +473,10 @@ def analyse_pair(first, second, band=AUTO_BAND, **kwargs) -> PairAnalysis:
     ``first``/``second``: file names or ``Topography`` objects; other arguments as
     :func:`analyse_surface` (``name`` is not accepted; file names label the surfaces).
     """
-    a = analyse_surface(first, band, **kwargs, **({} if isinstance(first, (str, Path))
-                                                  else {"name": "surface 1"}))
-    b = analyse_surface(second, band, **kwargs, **({} if isinstance(second, (str, Path))
-                                                   else {"name": "surface 2"}))
+    a = analyse_surface(
+        first, band, **kwargs, **({} if isinstance(first, (str, Path)) else {"name": "surface 1"})
+    )
+    b = analyse_surface(
+        second, band, **kwargs, **({} if isinstance(second, (str, Path)) else {"name": "surface 2"})
+    )
     return composite_roughness(a, b)

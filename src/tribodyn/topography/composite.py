@@ -28,8 +28,9 @@ __all__ = ["composite_rms", "composite_moments", "sum_on_common_grid"]
 
 def composite_rms(sigma_1: float, sigma_2: float) -> float:
     """σ = √(σ₁² + σ₂²) [m]."""
-    return math.hypot(check_nonnegative("sigma_1", sigma_1, "m"),
-                      check_nonnegative("sigma_2", sigma_2, "m"))
+    return math.hypot(
+        check_nonnegative("sigma_1", sigma_1, "m"), check_nonnegative("sigma_2", sigma_2, "m")
+    )
 
 
 def composite_moments(first: SpectralMoments, second: SpectralMoments) -> SpectralMoments:
@@ -37,8 +38,9 @@ def composite_moments(first: SpectralMoments, second: SpectralMoments) -> Spectr
     return first + second
 
 
-def sum_on_common_grid(heights_1, pixel_size_1, periodic_1, heights_2, pixel_size_2,
-                       periodic_2, rtol: float = 1e-6):
+def sum_on_common_grid(
+    heights_1, pixel_size_1, periodic_1, heights_2, pixel_size_2, periodic_2, rtol: float = 1e-6
+):
     """Sum surface h₁ + h₂ on the common grid, or ``None`` if the pixel sizes differ.
 
     Maps with equal pixel sizes but different extents are cropped to the common extent

@@ -48,8 +48,18 @@ import numpy as np
 from .._validation import InputError, check_positive, check_range
 from .errors import BandLimitError, InsufficientDataError
 
-__all__ = ["PAPER_BAND", "AUTO_BAND", "FILTER_KINDS", "DETREND_MODES", "Band", "Sampling",
-           "check_band", "default_band", "band_pass", "prepare_topography"]
+__all__ = [
+    "PAPER_BAND",
+    "AUTO_BAND",
+    "FILTER_KINDS",
+    "DETREND_MODES",
+    "Band",
+    "Sampling",
+    "check_band",
+    "default_band",
+    "band_pass",
+    "prepare_topography",
+]
 
 #: Band of the paper (Section 2.2): wavelengths 0.25 µm to 250 µm [m].
 PAPER_BAND = (0.25e-6, 250e-6)
@@ -81,11 +91,14 @@ class Sampling:
     UNITS = {"pixel_size": "m", "physical_sizes": "m"}
 
     @classmethod
-    def of(cls, topography, undefined_fraction: float = 0.0) -> "Sampling":
-        return cls(tuple(int(n) for n in topography.nb_grid_pts),
-                   tuple(float(p) for p in topography.pixel_size),
-                   tuple(float(s) for s in topography.physical_sizes),
-                   bool(topography.is_periodic), float(undefined_fraction))
+    def of(cls, topography, undefined_fraction: float = 0.0) -> Sampling:
+        return cls(
+            tuple(int(n) for n in topography.nb_grid_pts),
+            tuple(float(p) for p in topography.pixel_size),
+            tuple(float(s) for s in topography.physical_sizes),
+            bool(topography.is_periodic),
+            float(undefined_fraction),
+        )
 
     @property
     def nyquist_wavelength(self) -> float:
@@ -99,16 +112,23 @@ class Sampling:
 
     def describe(self) -> str:
         (nx, ny), (dx, dy), (lx, ly) = self.nb_grid_pts, self.pixel_size, self.physical_sizes
-        text = (f"{nx} × {ny} points, pixel {_um(dx)} × {_um(dy)} µm, "
-                f"area {_um(lx)} × {_um(ly)} µm, {'periodic' if self.periodic else 'non-periodic'}")
+        text = (
+            f"{nx} × {ny} points, pixel {_um(dx)} × {_um(dy)} µm, "
+            f"area {_um(lx)} × {_um(ly)} µm, {'periodic' if self.periodic else 'non-periodic'}"
+        )
         if self.undefined_fraction > 0:
             text += f", {self.undefined_fraction:.2%} undefined points filled"
         return text
 
     def to_dict(self) -> dict:
-        return {"nb_grid_pts": list(self.nb_grid_pts), "pixel_size": list(self.pixel_size),
-                "physical_sizes": list(self.physical_sizes), "periodic": self.periodic,
-                "undefined_fraction": self.undefined_fraction, "units": dict(self.UNITS)}
+        return {
+            "nb_grid_pts": list(self.nb_grid_pts),
+            "pixel_size": list(self.pixel_size),
+            "physical_sizes": list(self.physical_sizes),
+            "periodic": self.periodic,
+            "undefined_fraction": self.undefined_fraction,
+            "units": dict(self.UNITS),
+        }
 
 
 @dataclass(frozen=True)
@@ -122,7 +142,7 @@ class Band:
     long_wavelength: float | None
     kind: str = "gaussian"
     requested: tuple[float, float] | None = None
-    reason: str = ""        #: why the band differs from the requested one
+    reason: str = ""  #: why the band differs from the requested one
 
     UNITS = {"short_wavelength": "m", "long_wavelength": "m", "requested": "m"}
 
@@ -143,26 +163,42 @@ class Band:
     def describe(self) -> str:
         if self.kind == "none":
             return "no band-pass filter (levelled only)"
-        kind = ("Gaussian, 50 % transmission at the cutoffs" if self.kind == "gaussian"
-                else "ideal step")
+        kind = (
+            "Gaussian, 50 % transmission at the cutoffs"
+            if self.kind == "gaussian"
+            else "ideal step"
+        )
         text = f"{_um(self.short_wavelength)}–{_um(self.long_wavelength)} µm ({kind})"
         if self.clipped:
-            text += (f", clipped from the requested {_um(self.requested[0])}–"
-                     f"{_um(self.requested[1])} µm to the measurement's range")
+            text += (
+                f", clipped from the requested {_um(self.requested[0])}–"
+                f"{_um(self.requested[1])} µm to the measurement's range"
+            )
         return text
 
     def to_dict(self) -> dict:
-        return {"short_wavelength": self.short_wavelength, "long_wavelength": self.long_wavelength,
-                "kind": self.kind, "requested": list(self.requested) if self.requested else None,
-                "clipped_because": self.reason or None, "units": dict(self.UNITS)}
+        return {
+            "short_wavelength": self.short_wavelength,
+            "long_wavelength": self.long_wavelength,
+            "kind": self.kind,
+            "requested": list(self.requested) if self.requested else None,
+            "clipped_because": self.reason or None,
+            "units": dict(self.UNITS),
+        }
 
 
 def _um(x: float) -> str:
     return f"{x * 1e6:.4g}"
 
 
-def check_band(band, sampling: Sampling, *, kind: str = "gaussian", clip: bool = False,
-               reliability_cutoff: float | None = None) -> Band:
+def check_band(
+    band,
+    sampling: Sampling,
+    *,
+    kind: str = "gaussian",
+    clip: bool = False,
+    reliability_cutoff: float | None = None,
+) -> Band:
     """Validate a band (λ_s, λ_L) [m] against the sampling; ``None`` means no filter.
 
     Raises :class:`BandLimitError` naming the violated limit unless ``clip`` is true.
@@ -178,14 +214,21 @@ def check_band(band, sampling: Sampling, *, kind: str = "gaussian", clip: bool =
     lo = check_positive("band short-wavelength limit", lo, "m")
     hi = check_positive("band long-wavelength limit", hi, "m")
     if lo >= hi:
-        raise BandLimitError(f"band limits must satisfy short < long (got {_um(lo)} µm ≥ "
-                             f"{_um(hi)} µm)")
-    lo_min, why = sampling.nyquist_wavelength, (
-        f"the Nyquist wavelength 2Δ = {_um(sampling.nyquist_wavelength)} µm "
-        f"(pixel {_um(max(sampling.pixel_size))} µm)")
+        raise BandLimitError(
+            f"band limits must satisfy short < long (got {_um(lo)} µm ≥ {_um(hi)} µm)"
+        )
+    lo_min, why = (
+        sampling.nyquist_wavelength,
+        (
+            f"the Nyquist wavelength 2Δ = {_um(sampling.nyquist_wavelength)} µm "
+            f"(pixel {_um(max(sampling.pixel_size))} µm)"
+        ),
+    )
     if reliability_cutoff is not None and reliability_cutoff > lo_min:
-        lo_min, why = reliability_cutoff, (f"the instrument's reliability cutoff "
-                                           f"{_um(reliability_cutoff)} µm")
+        lo_min, why = (
+            reliability_cutoff,
+            (f"the instrument's reliability cutoff {_um(reliability_cutoff)} µm"),
+        )
     hi_max = sampling.longest_wavelength
     new_lo, new_hi = lo, hi
     if lo < lo_min * (1 - 1e-9):
@@ -193,7 +236,8 @@ def check_band(band, sampling: Sampling, *, kind: str = "gaussian", clip: bool =
             raise BandLimitError(
                 f"band short-wavelength limit {_um(lo)} µm is below {why}, the shortest "
                 f"wavelength this measurement resolves; use a limit ≥ {_um(lo_min)} µm or "
-                "clip the band to the measurement's range")
+                "clip the band to the measurement's range"
+            )
         new_lo = lo_min
     if hi > hi_max * (1 + 1e-9):
         if not clip:
@@ -201,17 +245,20 @@ def check_band(band, sampling: Sampling, *, kind: str = "gaussian", clip: bool =
                 f"band long-wavelength limit {_um(hi)} µm exceeds the measured length "
                 f"{_um(hi_max)} µm (shorter side of the map), the longest wavelength it "
                 f"contains; use a limit ≤ {_um(hi_max)} µm or clip the band to the "
-                "measurement's range")
+                "measurement's range"
+            )
         new_hi = hi_max
     if new_lo >= new_hi:
-        raise BandLimitError(f"no wavelengths left: the measurement resolves "
-                             f"{_um(lo_min)}–{_um(hi_max)} µm")
+        raise BandLimitError(
+            f"no wavelengths left: the measurement resolves {_um(lo_min)}–{_um(hi_max)} µm"
+        )
     clipped = (new_lo, new_hi) != (lo, hi)
     return Band(new_lo, new_hi, kind, requested=(lo, hi) if clipped else None)
 
 
-def default_band(sampling: Sampling, *, kind: str = "gaussian",
-                 reliability_cutoff: float | None = None) -> Band:
+def default_band(
+    sampling: Sampling, *, kind: str = "gaussian", reliability_cutoff: float | None = None
+) -> Band:
     """The paper's band clipped to what the measurement resolves (module docstring).
 
     Raises :class:`InsufficientDataError` if fewer than a factor MIN_BAND_RATIO of
@@ -222,23 +269,32 @@ def default_band(sampling: Sampling, *, kind: str = "gaussian",
     lo, why_lo = lo0, ""
     nyq = sampling.nyquist_wavelength
     if nyq > lo:
-        lo, why_lo = nyq, (f"λ_s raised to the Nyquist wavelength 2Δ = {_um(nyq)} µm "
-                           f"(pixel {_um(max(sampling.pixel_size))} µm)")
+        lo, why_lo = (
+            nyq,
+            (
+                f"λ_s raised to the Nyquist wavelength 2Δ = {_um(nyq)} µm "
+                f"(pixel {_um(max(sampling.pixel_size))} µm)"
+            ),
+        )
     if reliability_cutoff is not None and reliability_cutoff > lo:
-        lo, why_lo = reliability_cutoff, (f"λ_s raised to the instrument's reliability "
-                                          f"cutoff {_um(reliability_cutoff)} µm")
+        lo, why_lo = (
+            reliability_cutoff,
+            (f"λ_s raised to the instrument's reliability cutoff {_um(reliability_cutoff)} µm"),
+        )
     field = sampling.longest_wavelength
     usable = field - (0.0 if sampling.periodic else 2.0 * lo)
     hi, why_hi = hi0, ""
     if usable < hi:
         hi = usable
-        why_hi = (f"λ_L lowered to the field of view {_um(field)} µm" + (
-            "" if sampling.periodic else f" less one λ_s at each edge ({_um(usable)} µm)"))
+        why_hi = f"λ_L lowered to the field of view {_um(field)} µm" + (
+            "" if sampling.periodic else f" less one λ_s at each edge ({_um(usable)} µm)"
+        )
     if hi < MIN_BAND_RATIO * lo:
         raise InsufficientDataError(
             f"the measurement ({sampling.describe()}) is too small for any band: it "
             f"resolves wavelengths from {_um(lo)} µm, but its field leaves only {_um(usable)} "
-            f"µm (at least {MIN_BAND_RATIO:g} × λ_s is needed)")
+            f"µm (at least {MIN_BAND_RATIO:g} × λ_s is needed)"
+        )
     reason = "; ".join(t for t in (why_lo, why_hi) if t)
     return Band(lo, hi, kind, requested=PAPER_BAND if reason else None, reason=reason)
 
@@ -256,19 +312,30 @@ def band_pass(topography, band: Band):
         nx, ny = topography.nb_grid_pts
         base = topography if topography.is_periodic else topography.mirror_stitch()
         if band.kind == "step":
-            filtered = (base.shortcut(cutoff_wavelength=band.short_wavelength)
-                        .longcut(cutoff_wavelength=band.long_wavelength))
+            filtered = base.shortcut(cutoff_wavelength=band.short_wavelength).longcut(
+                cutoff_wavelength=band.long_wavelength
+            )
         else:
             filtered = base.filter(filter_function=band.transfer, isotropic=True)
         heights = np.asarray(filtered.heights(), dtype=float)[:nx, :ny]
-    return Topography(np.ascontiguousarray(heights), tuple(topography.physical_sizes),
-                      periodic=bool(topography.is_periodic), unit=topography.unit,
-                      info=dict(topography.info))
+    return Topography(
+        np.ascontiguousarray(heights),
+        tuple(topography.physical_sizes),
+        periodic=bool(topography.is_periodic),
+        unit=topography.unit,
+        info=dict(topography.info),
+    )
 
 
-def prepare_topography(topography, band=AUTO_BAND, *, kind: str = "gaussian",
-                       detrend: str = "height", clip_band: bool = False,
-                       min_defined_fraction: float = 0.0):
+def prepare_topography(
+    topography,
+    band=AUTO_BAND,
+    *,
+    kind: str = "gaussian",
+    detrend: str = "height",
+    clip_band: bool = False,
+    min_defined_fraction: float = 0.0,
+):
     """Fill, level and band-pass filter a topography map (in m).
 
     Parameters
@@ -298,8 +365,9 @@ def prepare_topography(topography, band=AUTO_BAND, *, kind: str = "gaussian",
         raise InputError(f"detrend must be one of {DETREND_MODES} (got {detrend!r})")
     nx, ny = topography.nb_grid_pts
     if min(nx, ny) < MIN_GRID_PTS:
-        raise InsufficientDataError(f"the map has {nx} × {ny} points; at least "
-                                    f"{MIN_GRID_PTS} per side are needed")
+        raise InsufficientDataError(
+            f"the map has {nx} × {ny} points; at least {MIN_GRID_PTS} per side are needed"
+        )
     heights = topography.heights()
     filled = np.ma.getmaskarray(heights) | ~np.isfinite(np.ma.getdata(heights))
     n_total = nx * ny
@@ -308,7 +376,8 @@ def prepare_topography(topography, band=AUTO_BAND, *, kind: str = "gaussian",
     if fraction < min_defined_fraction or n_defined < MIN_GRID_PTS**2:
         raise InsufficientDataError(
             f"only {n_defined} of {n_total} points ({fraction:.1%}) are measured; at least "
-            f"{min_defined_fraction:.0%} (and {MIN_GRID_PTS**2} points) are required")
+            f"{min_defined_fraction:.0%} (and {MIN_GRID_PTS**2} points) are required"
+        )
     sampling = Sampling.of(topography, undefined_fraction=1.0 - fraction)
     try:
         reliability = topography.short_reliability_cutoff()
@@ -317,14 +386,21 @@ def prepare_topography(topography, band=AUTO_BAND, *, kind: str = "gaussian",
     if isinstance(band, str) and band == AUTO_BAND:
         applied = default_band(sampling, kind=kind, reliability_cutoff=reliability)
     else:
-        applied = check_band(band, sampling, kind=kind, clip=clip_band,
-                             reliability_cutoff=reliability)
+        applied = check_band(
+            band, sampling, kind=kind, clip=clip_band, reliability_cutoff=reliability
+        )
 
     if n_defined < n_total:
         from SurfaceTopography import Topography
+
         h = np.ma.masked_array(np.ma.getdata(heights), mask=filled)
-        topography = Topography(h, topography.physical_sizes, periodic=topography.is_periodic,
-                                unit=topography.unit, info=dict(topography.info))
+        topography = Topography(
+            h,
+            topography.physical_sizes,
+            periodic=topography.is_periodic,
+            unit=topography.unit,
+            info=dict(topography.info),
+        )
         topography = topography.interpolate_undefined_data("harmonic")
     topography = topography.detrend(detrend_mode="center" if topography.is_periodic else detrend)
     return band_pass(topography, applied), applied, sampling, filled

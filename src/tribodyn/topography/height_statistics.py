@@ -35,8 +35,13 @@ class HeightStatistics:
     UNITS = {"rms": "m", "mean": "m", "skewness": "-", "kurtosis": "-"}
 
     def to_dict(self) -> dict:
-        return {"rms": self.rms, "mean": self.mean, "skewness": self.skewness,
-                "kurtosis": self.kurtosis, "units": dict(self.UNITS)}
+        return {
+            "rms": self.rms,
+            "mean": self.mean,
+            "skewness": self.skewness,
+            "kurtosis": self.kurtosis,
+            "units": dict(self.UNITS),
+        }
 
 
 def height_statistics(heights) -> HeightStatistics:
@@ -48,9 +53,12 @@ def height_statistics(heights) -> HeightStatistics:
     if var <= 0.0:
         raise InputError("heights are constant: no roughness")
     d2 = d * d
-    return HeightStatistics(rms=math.sqrt(var), mean=mean,
-                            skewness=float(np.mean(d2 * d)) / var**1.5,
-                            kurtosis=float(np.mean(d2 * d2)) / var**2)
+    return HeightStatistics(
+        rms=math.sqrt(var),
+        mean=mean,
+        skewness=float(np.mean(d2 * d)) / var**1.5,
+        kurtosis=float(np.mean(d2 * d2)) / var**2,
+    )
 
 
 def gaussian_pdf(z, sigma: float, mean: float = 0.0):

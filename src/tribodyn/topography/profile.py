@@ -40,15 +40,15 @@ from .height_statistics import HeightStatistics, height_statistics
 from .results import AsperityParameters, _TomlMixin
 from .spectral_moments import McCoolParameters, SpectralMoments, mccool_parameters
 
-__all__ = ["ProfileSampling", "ProfileAnalysis", "analyse_profile", "MIN_PEAKS",
-           "ISOTROPIC_LABEL"]
+__all__ = ["ProfileSampling", "ProfileAnalysis", "analyse_profile", "MIN_PEAKS", "ISOTROPIC_LABEL"]
 
 #: Fewest peaks (measured interior) for a meaningful analysis.
 MIN_PEAKS = 25
 #: Smallest profile [points].
 MIN_POINTS = 32
-ISOTROPIC_LABEL = ("isotropic-surface estimate from one profile (McCool): valid only if "
-                   "the surface has no lay")
+ISOTROPIC_LABEL = (
+    "isotropic-surface estimate from one profile (McCool): valid only if the surface has no lay"
+)
 
 
 def _um(x: float) -> str:
@@ -74,17 +74,23 @@ class ProfileSampling:
         return self.physical_sizes[0]
 
     def describe(self) -> str:
-        text = (f"profile of {self.nb_grid_pts[0]} points, spacing {_um(self.pixel_size[0])} "
-                f"µm, length {_um(self.physical_sizes[0])} µm")
+        text = (
+            f"profile of {self.nb_grid_pts[0]} points, spacing {_um(self.pixel_size[0])} "
+            f"µm, length {_um(self.physical_sizes[0])} µm"
+        )
         if self.undefined_fraction > 0:
             text += f", {self.undefined_fraction:.2%} undefined points filled"
         return text
 
     def to_dict(self) -> dict:
-        return {"nb_grid_pts": list(self.nb_grid_pts), "pixel_size": list(self.pixel_size),
-                "physical_sizes": list(self.physical_sizes), "periodic": self.periodic,
-                "undefined_fraction": self.undefined_fraction,
-                "units": {"pixel_size": "m", "physical_sizes": "m"}}
+        return {
+            "nb_grid_pts": list(self.nb_grid_pts),
+            "pixel_size": list(self.pixel_size),
+            "physical_sizes": list(self.physical_sizes),
+            "periodic": self.periodic,
+            "undefined_fraction": self.undefined_fraction,
+            "units": {"pixel_size": "m", "physical_sizes": "m"},
+        }
 
 
 @dataclass(frozen=True)
@@ -99,8 +105,8 @@ class ProfileAnalysis(_TomlMixin):
     heights: HeightStatistics
     moments: SpectralMoments
     peak_count: int
-    peak_density: float              #: counted peaks per length [1/m]
-    peak_density_gaussian: float     #: (1/2π)√(m4/m2) [1/m]
+    peak_density: float  #: counted peaks per length [1/m]
+    peak_density_gaussian: float  #: (1/2π)√(m4/m2) [1/m]
     isotropic: McCoolParameters
     notes: tuple[str, ...] = ()
     warnings: tuple[str, ...] = ()
@@ -127,8 +133,14 @@ class ProfileAnalysis(_TomlMixin):
     @property
     def spectral(self) -> AsperityParameters:
         m = self.isotropic
-        return AsperityParameters("spectral", m.asperity_density, self.heights.rms,
-                                  m.summit_radius, m.summit_height_mean, m.summit_height_std)
+        return AsperityParameters(
+            "spectral",
+            m.asperity_density,
+            self.heights.rms,
+            m.summit_radius,
+            m.summit_height_mean,
+            m.summit_height_std,
+        )
 
     @property
     def slope_anisotropy(self) -> float:
@@ -136,8 +148,10 @@ class ProfileAnalysis(_TomlMixin):
 
     def parameters(self, method: str = "spectral") -> AsperityParameters:
         if method == "summits":
-            raise InputError("a profile has no summits: use method='spectral' (the "
-                             "isotropic-surface estimate from the profile moments)")
+            raise InputError(
+                "a profile has no summits: use method='spectral' (the "
+                "isotropic-surface estimate from the profile moments)"
+            )
         if method != "spectral":
             raise InputError(f"method must be one of ('summits', 'spectral') (got {method!r})")
         return self.spectral
@@ -159,15 +173,25 @@ class ProfileAnalysis(_TomlMixin):
     def to_dict(self) -> dict:
         iso = self.spectral.to_dict()
         iso["label"] = ISOTROPIC_LABEL
-        return {"name": self.name, "kind": "profile", "source": self.source,
-                "band": self.band.to_dict(), "sampling": self.sampling.to_dict(),
-                "heights": self.heights.to_dict(), "moments": self.moments.to_dict(),
-                "peak_count": self.peak_count, "peak_density": self.peak_density,
-                "peak_density_gaussian": self.peak_density_gaussian,
-                "summits": None, "isotropic_estimate": iso, "spectral": iso,
-                "filled_fraction": self.sampling.undefined_fraction,
-                "warnings": list(self.warnings), "notes": list(self.notes),
-                "units": {"peak_density": "1/m", "peak_density_gaussian": "1/m"}}
+        return {
+            "name": self.name,
+            "kind": "profile",
+            "source": self.source,
+            "band": self.band.to_dict(),
+            "sampling": self.sampling.to_dict(),
+            "heights": self.heights.to_dict(),
+            "moments": self.moments.to_dict(),
+            "peak_count": self.peak_count,
+            "peak_density": self.peak_density,
+            "peak_density_gaussian": self.peak_density_gaussian,
+            "summits": None,
+            "isotropic_estimate": iso,
+            "spectral": iso,
+            "filled_fraction": self.sampling.undefined_fraction,
+            "warnings": list(self.warnings),
+            "notes": list(self.notes),
+            "units": {"peak_density": "1/m", "peak_density_gaussian": "1/m"},
+        }
 
 
 def _filter_profile(h: np.ndarray, dx: float, band: Band, periodic: bool) -> tuple:
@@ -182,9 +206,17 @@ def _filter_profile(h: np.ndarray, dx: float, band: Band, periodic: bool) -> tup
     return tuple(np.fft.irfft(spec * f, m)[:n] for f in (1.0, 1j * q, -q * q))
 
 
-def analyse_profile(line, band=AUTO_BAND, *, kind: str = "gaussian", detrend: str = "height",
-                    clip_band: bool = False, min_defined_fraction: float = 0.0,
-                    name: str | None = None, source: dict | None = None) -> ProfileAnalysis:
+def analyse_profile(
+    line,
+    band=AUTO_BAND,
+    *,
+    kind: str = "gaussian",
+    detrend: str = "height",
+    clip_band: bool = False,
+    min_defined_fraction: float = 0.0,
+    name: str | None = None,
+    source: dict | None = None,
+) -> ProfileAnalysis:
     """Roughness of a line scan (SurfaceTopography ``UniformLineScan`` in m, or any
     object with ``heights()``, ``pixel_size`` and ``physical_sizes``); arguments as
     :func:`~tribodyn.topography.analyse_surface` (``detrend``: "height" removes a line,
@@ -202,37 +234,41 @@ def analyse_profile(line, band=AUTO_BAND, *, kind: str = "gaussian", detrend: st
     dx = float(np.ravel(line.pixel_size)[0])
     periodic = bool(getattr(line, "is_periodic", False))
     if n < MIN_POINTS:
-        raise InsufficientDataError(f"the profile has {n} points; at least {MIN_POINTS} "
-                                    "are needed")
+        raise InsufficientDataError(f"the profile has {n} points; at least {MIN_POINTS} are needed")
     measured = ~filled
     share = measured.mean()
     if share < min_defined_fraction or measured.sum() < MIN_POINTS:
-        raise InsufficientDataError(f"only {int(measured.sum())} of {n} points ({share:.1%}) "
-                                    "are measured")
+        raise InsufficientDataError(
+            f"only {int(measured.sum())} of {n} points ({share:.1%}) are measured"
+        )
     sampling = ProfileSampling((n,), (dx,), (n * dx,), periodic, float(1.0 - share))
-    applied = (default_band(sampling, kind=kind) if isinstance(band, str) and band == AUTO_BAND
-               else check_band(band, sampling, kind=kind, clip=clip_band))
+    applied = (
+        default_band(sampling, kind=kind)
+        if isinstance(band, str) and band == AUTO_BAND
+        else check_band(band, sampling, kind=kind, clip=clip_band)
+    )
     x = np.arange(n) * dx
-    if filled.any():                       # 1-D harmonic interpolation = linear
+    if filled.any():  # 1-D harmonic interpolation = linear
         h = h.copy()
         h[filled] = np.interp(x[filled], x[measured], h[measured])
     deg = 0 if periodic else {"height": 1, "curvature": 2, "center": 0}[detrend]
     h = h - np.polyval(np.polyfit(x[measured], h[measured], deg), x)
-    if applied.kind == "none" and not periodic:   # unfiltered: finite differences
+    if applied.kind == "none" and not periodic:  # unfiltered: finite differences
         hf = h
         d1, d2 = np.gradient(h, dx), np.gradient(np.gradient(h, dx), dx)
         margin = 1
     else:
         hf, d1, d2 = _filter_profile(h, dx, applied, periodic)
-        margin = 0 if periodic else max(1, int(math.ceil(applied.short_wavelength / dx
-                                                         - 1e-9)))
+        margin = 0 if periodic else max(1, int(math.ceil(applied.short_wavelength / dx - 1e-9)))
     region = np.zeros(n, dtype=bool)
-    region[margin:n - margin] = True
-    ok = measured & np.roll(measured, 1) & np.roll(measured, -1)   # with measured neighbours
+    region[margin : n - margin] = True
+    ok = measured & np.roll(measured, 1) & np.roll(measured, -1)  # with measured neighbours
     region &= ok
     if region.sum() < MIN_POINTS:
-        raise InsufficientDataError(f"the profile ({sampling.describe()}) is too short for "
-                                    f"the band: {int(region.sum())} points remain inside")
+        raise InsufficientDataError(
+            f"the profile ({sampling.describe()}) is too short for "
+            f"the band: {int(region.sum())} points remain inside"
+        )
     hstats = height_statistics(hf[measured])
     m0 = float(np.var(hf[measured]))
     m2 = float(np.mean(d1[region] ** 2))
@@ -246,15 +282,25 @@ def analyse_profile(line, band=AUTO_BAND, *, kind: str = "gaussian", detrend: st
         raise InsufficientDataError(
             f"only {count} peaks on the measured interior of the profile: at least "
             f"{MIN_PEAKS} are needed (standard error ≈ 1/√N); use a longer profile, fewer "
-            "dropouts or a shorter band")
+            "dropouts or a shorter band"
+        )
     length = float(region.sum()) * dx
     moments = SpectralMoments(m0, m2, m4)
     iso = mccool_parameters(moments)
     result = ProfileAnalysis(
-        name=name, sampling=sampling, band=applied, heights=hstats, moments=moments,
-        peak_count=count, peak_density=count / length,
-        peak_density_gaussian=math.sqrt(m4 / m2) / (2.0 * math.pi), isotropic=iso,
-        source=source, profile=hf, filled=filled if filled.any() else None)
+        name=name,
+        sampling=sampling,
+        band=applied,
+        heights=hstats,
+        moments=moments,
+        peak_count=count,
+        peak_density=count / length,
+        peak_density_gaussian=math.sqrt(m4 / m2) / (2.0 * math.pi),
+        isotropic=iso,
+        source=source,
+        profile=hf,
+        filled=filled if filled.any() else None,
+    )
     return _with_profile_notes(result)
 
 
@@ -262,17 +308,24 @@ def _with_profile_notes(r: ProfileAnalysis) -> ProfileAnalysis:
     from dataclasses import replace
 
     from .analysis import input_warnings
+
     notes = [f"η and β are an {ISOTROPIC_LABEL}"]
     if r.band.kind != "none":
         px = r.band.short_wavelength / r.sampling.pixel_size[0]
         if px < 16.0 * (1 - 1e-6):
-            notes.append(f"λ_s spans {px:.3g} points (< 16): counted peaks depend on the "
-                         "sampling; the moment estimates do not")
+            notes.append(
+                f"λ_s spans {px:.3g} points (< 16): counted peaks depend on the "
+                "sampling; the moment estimates do not"
+            )
     h = r.heights
     if abs(h.skewness) > 0.5 or abs(h.kurtosis - 3.0) > 1.0:
-        notes.append(f"height distribution not Gaussian (Rsk = {h.skewness:.2f}, Rku = "
-                     f"{h.kurtosis:.2f}; Gaussian 0 and 3)")
+        notes.append(
+            f"height distribution not Gaussian (Rsk = {h.skewness:.2f}, Rku = "
+            f"{h.kurtosis:.2f}; Gaussian 0 and 3)"
+        )
     if r.peak_count < 200:
-        notes.append(f"only {r.peak_count} peaks: statistical uncertainty of order "
-                     f"{1 / math.sqrt(r.peak_count):.0%}")
+        notes.append(
+            f"only {r.peak_count} peaks: statistical uncertainty of order "
+            f"{1 / math.sqrt(r.peak_count):.0%}"
+        )
     return replace(r, notes=tuple(notes), warnings=input_warnings(r.band, r.sampling))

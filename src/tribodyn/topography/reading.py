@@ -20,18 +20,25 @@ __all__ = ["read_topography", "write_topography", "supported_formats", "WRITERS"
 _NO_MAGIC = ("hgt",)
 
 #: File suffix -> SurfaceTopography writer method (all write lateral size and unit).
-WRITERS = {".x3p": "to_x3p", ".nc": "to_netcdf", ".gwy": "to_gwy", ".txt": "to_matrix",
-           ".asc": "to_matrix"}
+WRITERS = {
+    ".x3p": "to_x3p",
+    ".nc": "to_netcdf",
+    ".gwy": "to_gwy",
+    ".txt": "to_matrix",
+    ".asc": "to_matrix",
+}
 
 
 def supported_formats() -> list[tuple[str, str]]:
     """(identifier, name) of every format SurfaceTopography can read."""
     from SurfaceTopography.IO import readers
+
     return [(r.format(), r.name()) for r in readers]
 
 
-def read_topography(path, *, channel: int | None = None, physical_sizes=None,
-                    unit: str | None = None):
+def read_topography(
+    path, *, channel: int | None = None, physical_sizes=None, unit: str | None = None
+):
     """Read an areal topography map and return it in metres.
 
     Parameters
@@ -71,10 +78,12 @@ def read_topography(path, *, channel: int | None = None, physical_sizes=None,
         names = ", ".join(f for f, _ in supported_formats())
         raise TopographyReadError(
             f"cannot read topography file '{path}': not a surface-topography format that "
-            f"SurfaceTopography recognises (readable formats: {names})") from None
-    except Exception as exc:       # damaged files make readers fail in many ways
-        raise TopographyReadError(f"cannot read topography file '{path}': "
-                                  f"{type(exc).__name__}: {exc}") from None
+            f"SurfaceTopography recognises (readable formats: {names})"
+        ) from None
+    except Exception as exc:  # damaged files make readers fail in many ways
+        raise TopographyReadError(
+            f"cannot read topography file '{path}': {type(exc).__name__}: {exc}"
+        ) from None
 
     fmt = reader.name()
     if reader.format() == "sdf":
@@ -84,7 +93,8 @@ def read_topography(path, *, channel: int | None = None, physical_sizes=None,
         names = ", ".join(f for f, _ in supported_formats())
         raise TopographyReadError(
             f"cannot read topography file '{path}': not a surface-topography format that "
-            f"SurfaceTopography recognises (readable formats: {names})")
+            f"SurfaceTopography recognises (readable formats: {names})"
+        )
     channels = reader.channels
     if channel is None:
         ch = reader.default_channel
@@ -92,58 +102,73 @@ def read_topography(path, *, channel: int | None = None, physical_sizes=None,
         if not 0 <= channel < len(channels):
             raise TopographyReadError(
                 f"'{path}' has {len(channels)} channel(s) (0…{len(channels) - 1}); "
-                f"channel {channel} does not exist")
+                f"channel {channel} does not exist"
+            )
         ch = channels[channel]
     if ch.dim not in (1, 2):
-        raise TopographyReadError(f"'{path}' ({fmt}) channel '{ch.name}' has {ch.dim} "
-                                  "dimensions: a profile or an areal map is needed")
+        raise TopographyReadError(
+            f"'{path}' ({fmt}) channel '{ch.name}' has {ch.dim} "
+            "dimensions: a profile or an areal map is needed"
+        )
     # a "map" of one line (SDF, SUR, … store profiles so) is a profile
-    single_line = (ch.dim == 2 and ch.nb_grid_pts is not None
-                   and min(ch.nb_grid_pts) == 1 and max(ch.nb_grid_pts) >= 3)
-    if ch.dim == 2 and not single_line and ch.nb_grid_pts is not None \
-            and min(ch.nb_grid_pts) < 3:
+    single_line = (
+        ch.dim == 2
+        and ch.nb_grid_pts is not None
+        and min(ch.nb_grid_pts) == 1
+        and max(ch.nb_grid_pts) >= 3
+    )
+    if ch.dim == 2 and not single_line and ch.nb_grid_pts is not None and min(ch.nb_grid_pts) < 3:
         raise TopographyReadError(
             f"'{path}' read as {fmt} has only {ch.nb_grid_pts[0]} × {ch.nb_grid_pts[1]} "
-            "points: not a usable topography map")
+            "points: not a usable topography map"
+        )
 
     kwargs = {}
     if physical_sizes is not None:
         if ch.physical_sizes is not None:
             raise TopographyReadError(
                 f"'{path}' already stores its lateral size {tuple(ch.physical_sizes)} "
-                f"{ch.unit}; do not pass physical_sizes")
+                f"{ch.unit}; do not pass physical_sizes"
+            )
         try:
             sizes = tuple(float(s) for s in np.atleast_1d(physical_sizes))
         except (TypeError, ValueError):
             sizes = ()
         if len(sizes) not in (1, 2) or not all(np.isfinite(sizes)) or min(sizes) <= 0:
-            raise TopographyReadError(f"physical_sizes must be one or two positive lengths "
-                                      f"(got {physical_sizes!r})")
-        kwargs["physical_sizes"] = sizes[0] if ch.dim == 1 else (
-            sizes if len(sizes) == 2 else sizes * 2)
+            raise TopographyReadError(
+                f"physical_sizes must be one or two positive lengths (got {physical_sizes!r})"
+            )
+        kwargs["physical_sizes"] = (
+            sizes[0] if ch.dim == 1 else (sizes if len(sizes) == 2 else sizes * 2)
+        )
     elif ch.physical_sizes is None:
         raise TopographyReadError(
             f"'{path}' ({fmt}) has no lateral calibration: give its size and unit "
-            "(physical_sizes and unit; CLI: --size LX LY --unit UNIT)")
+            "(physical_sizes and unit; CLI: --size LX LY --unit UNIT)"
+        )
     if unit is not None:
         if ch.unit is not None:
-            raise TopographyReadError(f"'{path}' already stores its unit ({ch.unit}); "
-                                      "do not pass unit")
+            raise TopographyReadError(
+                f"'{path}' already stores its unit ({ch.unit}); do not pass unit"
+            )
         kwargs["unit"] = unit
     elif ch.unit is None:
-        raise TopographyReadError(f"'{path}' ({fmt}) does not store a length unit: give "
-                                  "unit (e.g. 'µm'; CLI: --unit)")
+        raise TopographyReadError(
+            f"'{path}' ({fmt}) does not store a length unit: give unit (e.g. 'µm'; CLI: --unit)"
+        )
     try:
         topo = ch.topography(**kwargs)
         topo = topo.to_unit("m")
     except MetadataAlreadyFixedByFile as exc:
         raise TopographyReadError(f"'{path}': {exc}") from None
-    except Exception as exc:       # readers raise many kinds of errors on damaged files
-        raise TopographyReadError(f"cannot read topography data of '{path}': "
-                                  f"{type(exc).__name__}: {exc}") from None
+    except Exception as exc:  # readers raise many kinds of errors on damaged files
+        raise TopographyReadError(
+            f"cannot read topography data of '{path}': {type(exc).__name__}: {exc}"
+        ) from None
     # Materialise once (later steps read the heights several times); non-finite values
     # are masked as undefined.
     from SurfaceTopography import Topography, UniformLineScan
+
     heights = np.ma.masked_invalid(topo.heights())
     info = {"source": {"file": str(path), "format": reader.format(), "channel": ch.name}}
     sizes = tuple(float(s) for s in np.atleast_1d(topo.physical_sizes))
@@ -156,10 +181,12 @@ def read_topography(path, *, channel: int | None = None, physical_sizes=None,
         heights, sizes = heights.reshape(-1), (sizes[axis],)
     if topo.dim == 1 or single_line:
         if heights.size < 3:
-            raise TopographyReadError(f"'{path}' ({fmt}) holds a profile of only "
-                                      f"{heights.size} points")
-        return UniformLineScan(heights, sizes[0], periodic=bool(topo.is_periodic), unit="m",
-                               info=info)
+            raise TopographyReadError(
+                f"'{path}' ({fmt}) holds a profile of only {heights.size} points"
+            )
+        return UniformLineScan(
+            heights, sizes[0], periodic=bool(topo.is_periodic), unit="m", info=info
+        )
     return Topography(heights, sizes, periodic=bool(topo.is_periodic), unit="m", info=info)
 
 
@@ -169,12 +196,14 @@ def _check_sdf_complete(path: Path) -> None:
     with open(path, "rb") as f:
         head = f.read(8)
         if not head.startswith((b"aISO", b"aBCR")):
-            return                                   # binary variant: sizes are checked
+            return  # binary variant: sizes are checked
         f.seek(0)
         markers = sum(1 for line in f if line.strip() == b"*")
     if markers < 2:
-        raise TopographyReadError(f"'{path}' (ISO 25178-71 SDF, text) is truncated: the data "
-                                  "section has no closing '*' line")
+        raise TopographyReadError(
+            f"'{path}' (ISO 25178-71 SDF, text) is truncated: the data "
+            "section has no closing '*' line"
+        )
 
 
 def write_topography(topography, path) -> Path:
@@ -187,8 +216,9 @@ def write_topography(topography, path) -> Path:
     path = Path(path)
     method = WRITERS.get(path.suffix.lower())
     if method is None:
-        raise TopographyReadError(f"cannot write '{path}': supported suffixes are "
-                                  f"{', '.join(sorted(WRITERS))}")
+        raise TopographyReadError(
+            f"cannot write '{path}': supported suffixes are {', '.join(sorted(WRITERS))}"
+        )
     path.parent.mkdir(parents=True, exist_ok=True)
     getattr(topography, method)(str(path))
     return path

@@ -33,8 +33,14 @@ class AsperityParameters:
     summit_height_mean: float
     summit_height_std: float
 
-    UNITS = {"asperity_density": "1/m²", "rms": "m", "summit_radius": "m",
-             "summit_height_mean": "m", "summit_height_std": "m", "roughness_parameter": "-"}
+    UNITS = {
+        "asperity_density": "1/m²",
+        "rms": "m",
+        "summit_radius": "m",
+        "summit_height_mean": "m",
+        "summit_height_std": "m",
+        "roughness_parameter": "-",
+    }
 
     @property
     def roughness_parameter(self) -> float:
@@ -42,25 +48,43 @@ class AsperityParameters:
         return self.asperity_density * self.summit_radius * self.rms
 
     def to_roughness(self) -> Roughness:
-        return Roughness(asperity_density=self.asperity_density, rms=self.rms,
-                         summit_radius=self.summit_radius)
+        return Roughness(
+            asperity_density=self.asperity_density, rms=self.rms, summit_radius=self.summit_radius
+        )
 
     def to_dict(self) -> dict:
-        return {"method": self.method, "asperity_density": self.asperity_density,
-                "rms": self.rms, "summit_radius": self.summit_radius,
-                "roughness_parameter": self.roughness_parameter,
-                "summit_height_mean": self.summit_height_mean,
-                "summit_height_std": self.summit_height_std, "units": dict(self.UNITS)}
+        return {
+            "method": self.method,
+            "asperity_density": self.asperity_density,
+            "rms": self.rms,
+            "summit_radius": self.summit_radius,
+            "roughness_parameter": self.roughness_parameter,
+            "summit_height_mean": self.summit_height_mean,
+            "summit_height_std": self.summit_height_std,
+            "units": dict(self.UNITS),
+        }
 
 
 def _summit_parameters(s: SummitStatistics, rms: float) -> AsperityParameters:
-    return AsperityParameters("summits", s.asperity_density, rms, s.summit_radius,
-                              s.summit_height_mean, s.summit_height_std)
+    return AsperityParameters(
+        "summits",
+        s.asperity_density,
+        rms,
+        s.summit_radius,
+        s.summit_height_mean,
+        s.summit_height_std,
+    )
 
 
 def _spectral_parameters(m: McCoolParameters, rms: float | None = None) -> AsperityParameters:
-    return AsperityParameters("spectral", m.asperity_density, m.rms if rms is None else rms,
-                              m.summit_radius, m.summit_height_mean, m.summit_height_std)
+    return AsperityParameters(
+        "spectral",
+        m.asperity_density,
+        m.rms if rms is None else rms,
+        m.summit_radius,
+        m.summit_height_mean,
+        m.summit_height_std,
+    )
 
 
 def _check_method(method: str) -> str:
@@ -80,14 +104,18 @@ class _TomlMixin:
         Headed ``[surface_sets.roughness]``: pasted right below a ``[[surface_sets]]``
         entry, TOML makes it that surface pair's ``roughness`` table."""
         p = self.parameters(method)
-        lines = ["[surface_sets.roughness]",
-                 "# paste below the [[surface_sets]] entry of this surface pair",
-                 f"# {self.describe_source()}: {METHOD_LABELS[_check_method(method)]}, "
-                 f"ηβσ = {p.roughness_parameter:.4g}"]
+        lines = [
+            "[surface_sets.roughness]",
+            "# paste below the [[surface_sets]] entry of this surface pair",
+            f"# {self.describe_source()}: {METHOD_LABELS[_check_method(method)]}, "
+            f"ηβσ = {p.roughness_parameter:.4g}",
+        ]
         lines += [f"# {line}" for line in self.describe_conditions()]
-        lines += [f"asperity_density = {p.asperity_density:.6g}  # η [1/m²]",
-                  f"rms = {p.rms:.6g}  # σ [m]",
-                  f"summit_radius = {p.summit_radius:.6g}  # β [m]"]
+        lines += [
+            f"asperity_density = {p.asperity_density:.6g}  # η [1/m²]",
+            f"rms = {p.rms:.6g}  # σ [m]",
+            f"summit_radius = {p.summit_radius:.6g}  # β [m]",
+        ]
         return "\n".join(lines) + "\n"
 
 
@@ -140,15 +168,23 @@ class SurfaceAnalysis(_TomlMixin):
         return [f"band {self.band.describe()}", f"sampling {self.sampling.describe()}"]
 
     def to_dict(self) -> dict:
-        return {"name": self.name, "source": self.source, "band": self.band.to_dict(),
-                "sampling": self.sampling.to_dict(), "heights": self.heights.to_dict(),
-                "moments": self.moments.to_dict(), "summits": self.summits.to_dict(),
-                "summit_count": self.summit_stats.count,
-                "summit_area": self.summit_stats.area,
-                "nonconvex_summit_fraction": self.summit_stats.nonconvex_fraction,
-                "spectral": self.spectral.to_dict(), "slope_anisotropy": self.slope_anisotropy,
-                "filled_fraction": self.sampling.undefined_fraction,
-                "warnings": list(self.warnings), "notes": list(self.notes)}
+        return {
+            "name": self.name,
+            "source": self.source,
+            "band": self.band.to_dict(),
+            "sampling": self.sampling.to_dict(),
+            "heights": self.heights.to_dict(),
+            "moments": self.moments.to_dict(),
+            "summits": self.summits.to_dict(),
+            "summit_count": self.summit_stats.count,
+            "summit_area": self.summit_stats.area,
+            "nonconvex_summit_fraction": self.summit_stats.nonconvex_fraction,
+            "spectral": self.spectral.to_dict(),
+            "slope_anisotropy": self.slope_anisotropy,
+            "filled_fraction": self.sampling.undefined_fraction,
+            "warnings": list(self.warnings),
+            "notes": list(self.notes),
+        }
 
 
 @dataclass(frozen=True)
@@ -187,8 +223,10 @@ class PairAnalysis(_TomlMixin):
         if _check_method(method) == "spectral":
             return self.spectral
         if self.summit_stats is None:
-            raise InputError("no composite summit analysis (the two maps are sampled "
-                             "differently); use method='spectral'")
+            raise InputError(
+                "no composite summit analysis (the two maps are sampled "
+                "differently); use method='spectral'"
+            )
         return self.summits
 
     def describe_source(self) -> str:
@@ -203,17 +241,26 @@ class PairAnalysis(_TomlMixin):
         if a.sampling == b.sampling:
             lines.append(f"sampling (both) {a.sampling.describe()}")
         else:
-            lines += [f"sampling {a.name}: {a.sampling.describe()}",
-                      f"sampling {b.name}: {b.sampling.describe()}"]
+            lines += [
+                f"sampling {a.name}: {a.sampling.describe()}",
+                f"sampling {b.name}: {b.sampling.describe()}",
+            ]
         return lines
 
     def to_dict(self) -> dict:
-        return {"first": self.first.to_dict(), "second": self.second.to_dict(),
-                "composite": {
-                    "rms": self.rms, "moments": self.moments.to_dict(),
-                    "summits": None if self.summits is None else self.summits.to_dict(),
-                    "summit_count": None if self.summit_stats is None else self.summit_stats.count,
-                    "sum_surface_heights": (None if self.sum_heights is None
-                                            else self.sum_heights.to_dict()),
-                    "spectral": self.spectral.to_dict(), "notes": list(self.notes),
-                    "units": {"rms": "m"}}}
+        return {
+            "first": self.first.to_dict(),
+            "second": self.second.to_dict(),
+            "composite": {
+                "rms": self.rms,
+                "moments": self.moments.to_dict(),
+                "summits": None if self.summits is None else self.summits.to_dict(),
+                "summit_count": None if self.summit_stats is None else self.summit_stats.count,
+                "sum_surface_heights": (
+                    None if self.sum_heights is None else self.sum_heights.to_dict()
+                ),
+                "spectral": self.spectral.to_dict(),
+                "notes": list(self.notes),
+                "units": {"rms": "m"},
+            },
+        }

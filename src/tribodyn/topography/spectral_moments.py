@@ -39,8 +39,13 @@ from dataclasses import dataclass
 
 from .._validation import InputError, check_positive
 
-__all__ = ["SpectralMoments", "McCoolParameters", "isotropic_profile_moments",
-           "mccool_parameters", "MIN_ALPHA_ISOTROPIC"]
+__all__ = [
+    "SpectralMoments",
+    "McCoolParameters",
+    "isotropic_profile_moments",
+    "mccool_parameters",
+    "MIN_ALPHA_ISOTROPIC",
+]
 
 #: Smallest bandwidth parameter of an isotropic surface (profile moments).
 MIN_ALPHA_ISOTROPIC = 1.5
@@ -61,13 +66,18 @@ class SpectralMoments:
         """Bandwidth parameter α = m0 m4 / m2² [-]."""
         return self.m0 * self.m4 / self.m2**2
 
-    def __add__(self, other: "SpectralMoments") -> "SpectralMoments":
+    def __add__(self, other: SpectralMoments) -> SpectralMoments:
         """Moments of the sum of two independent surfaces (spectra add)."""
         return SpectralMoments(self.m0 + other.m0, self.m2 + other.m2, self.m4 + other.m4)
 
     def to_dict(self) -> dict:
-        return {"m0": self.m0, "m2": self.m2, "m4": self.m4, "alpha": self.alpha,
-                "units": dict(self.UNITS, alpha="-")}
+        return {
+            "m0": self.m0,
+            "m2": self.m2,
+            "m4": self.m4,
+            "alpha": self.alpha,
+            "units": dict(self.UNITS, alpha="-"),
+        }
 
 
 @dataclass(frozen=True)
@@ -81,17 +91,24 @@ class McCoolParameters:
     summit_height_std: float
     summit_height_mean: float
 
-    UNITS = {"asperity_density": "1/m²", "summit_radius": "m", "rms": "m", "alpha": "-",
-             "summit_height_std": "m", "summit_height_mean": "m"}
+    UNITS = {
+        "asperity_density": "1/m²",
+        "summit_radius": "m",
+        "rms": "m",
+        "alpha": "-",
+        "summit_height_std": "m",
+        "summit_height_mean": "m",
+    }
 
 
-def isotropic_profile_moments(areal_m0: float, areal_m2: float, areal_m4: float
-                              ) -> SpectralMoments:
+def isotropic_profile_moments(areal_m0: float, areal_m2: float, areal_m4: float) -> SpectralMoments:
     """Direction-averaged profile moments from areal moments M0 [m²], M2 [-], M4 [1/m²]:
     m0 = M0, m2 = M2/2, m4 = 3M4/8."""
-    return SpectralMoments(check_positive("M0", areal_m0, "m²"),
-                           0.5 * check_positive("M2", areal_m2),
-                           0.375 * check_positive("M4", areal_m4, "1/m²"))
+    return SpectralMoments(
+        check_positive("M0", areal_m0, "m²"),
+        0.5 * check_positive("M2", areal_m2),
+        0.375 * check_positive("M4", areal_m4, "1/m²"),
+    )
 
 
 def mccool_parameters(moments: SpectralMoments) -> McCoolParameters:
@@ -101,8 +118,10 @@ def mccool_parameters(moments: SpectralMoments) -> McCoolParameters:
     m4 = check_positive("m4", moments.m4, "1/m²")
     alpha = m0 * m4 / m2**2
     if alpha < 1.0:
-        raise InputError(f"bandwidth parameter α = m0 m4/m2² must be >= 1 (got {alpha:.6g}); "
-                         "the moments are inconsistent")
+        raise InputError(
+            f"bandwidth parameter α = m0 m4/m2² must be >= 1 (got {alpha:.6g}); "
+            "the moments are inconsistent"
+        )
     sigma = math.sqrt(m0)
     return McCoolParameters(
         asperity_density=m4 / (6.0 * math.pi * math.sqrt(3.0) * m2),

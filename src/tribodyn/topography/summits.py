@@ -46,8 +46,14 @@ class SummitStatistics:
     summit_height_std: float
     nonconvex_fraction: float
 
-    UNITS = {"area": "m²", "asperity_density": "1/m²", "mean_curvature": "1/m",
-             "summit_radius": "m", "summit_height_mean": "m", "summit_height_std": "m"}
+    UNITS = {
+        "area": "m²",
+        "asperity_density": "1/m²",
+        "mean_curvature": "1/m",
+        "summit_radius": "m",
+        "summit_height_mean": "m",
+        "summit_height_std": "m",
+    }
 
 
 def find_summits(heights, periodic: bool = False) -> np.ndarray:
@@ -67,7 +73,7 @@ def find_summits(heights, periodic: bool = False) -> np.ndarray:
     for dx in (-1, 0, 1):
         for dy in (-1, 0, 1):
             if dx or dy:
-                mask &= c > h[1 + dx:nx - 1 + dx, 1 + dy:ny - 1 + dy]
+                mask &= c > h[1 + dx : nx - 1 + dx, 1 + dy : ny - 1 + dy]
     if periodic:
         return mask
     out = np.zeros(np.shape(heights), dtype=bool)
@@ -75,8 +81,9 @@ def find_summits(heights, periodic: bool = False) -> np.ndarray:
     return out
 
 
-def summit_statistics(heights, mean_curvature, pixel_size, periodic: bool = False
-                      ) -> SummitStatistics:
+def summit_statistics(
+    heights, mean_curvature, pixel_size, periodic: bool = False
+) -> SummitStatistics:
     """Summit density, mean summit curvature/radius and summit heights of a map.
 
     Parameters
@@ -97,8 +104,9 @@ def summit_statistics(heights, mean_curvature, pixel_size, periodic: bool = Fals
     h = np.asarray(heights, dtype=float)
     kappa = np.asarray(mean_curvature, dtype=float)
     if kappa.shape != h.shape:
-        raise InputError(f"mean_curvature must have the heights' shape {h.shape} "
-                         f"(got {kappa.shape})")
+        raise InputError(
+            f"mean_curvature must have the heights' shape {h.shape} (got {kappa.shape})"
+        )
     dx, dy = (check_positive("pixel size", p, "m") for p in pixel_size)
     region = np.isfinite(kappa)
     mask = find_summits(h, periodic) & region
@@ -110,8 +118,13 @@ def summit_statistics(heights, mean_curvature, pixel_size, periodic: bool = Fals
     if kbar <= 0.0:
         raise InputError("mean summit curvature is not positive: the map is not resolved")
     z = h[mask]
-    return SummitStatistics(count=int(k.size), area=float(area),
-                            asperity_density=float(k.size / area), mean_curvature=kbar,
-                            summit_radius=1.0 / kbar, summit_height_mean=float(np.mean(z)),
-                            summit_height_std=float(np.std(z)),
-                            nonconvex_fraction=float(np.mean(k <= 0.0)))
+    return SummitStatistics(
+        count=int(k.size),
+        area=float(area),
+        asperity_density=float(k.size / area),
+        mean_curvature=kbar,
+        summit_radius=1.0 / kbar,
+        summit_height_mean=float(np.mean(z)),
+        summit_height_std=float(np.std(z)),
+        nonconvex_fraction=float(np.mean(k <= 0.0)),
+    )

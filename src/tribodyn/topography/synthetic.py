@@ -26,8 +26,14 @@ __all__ = ["synthetic_surface", "synthetic_moments", "DEFAULT_SYNTHETIC"]
 
 #: Default synthetic surface: a ≈ 51 µm square scan at 0.1 µm pixels (like the paper's
 #: 50× white-light measurement), σ = 0.25 µm, H = 0.8, wavelengths 2–25 µm.
-DEFAULT_SYNTHETIC = dict(nb_grid_pts=(512, 512), pixel_size=0.1e-6, rms=0.25e-6, hurst=0.8,
-                         short_cutoff=2e-6, long_cutoff=25e-6)
+DEFAULT_SYNTHETIC = dict(
+    nb_grid_pts=(512, 512),
+    pixel_size=0.1e-6,
+    rms=0.25e-6,
+    hurst=0.8,
+    short_cutoff=2e-6,
+    long_cutoff=25e-6,
+)
 
 
 def _check(nb_grid_pts, pixel_size, rms, hurst, short_cutoff, long_cutoff):
@@ -43,19 +49,25 @@ def _check(nb_grid_pts, pixel_size, rms, hurst, short_cutoff, long_cutoff):
     ls = check_positive("short_cutoff", short_cutoff, "m")
     ll = check_positive("long_cutoff", long_cutoff, "m")
     if not 2 * dx <= ls < ll <= min(nx, ny) * dx:
-        raise InputError(f"cutoffs must satisfy 2Δ = {2 * dx:.4g} m ≤ short_cutoff "
-                         f"({ls:.4g} m) < long_cutoff ({ll:.4g} m) ≤ map size "
-                         f"{min(nx, ny) * dx:.4g} m")
+        raise InputError(
+            f"cutoffs must satisfy 2Δ = {2 * dx:.4g} m ≤ short_cutoff "
+            f"({ls:.4g} m) < long_cutoff ({ll:.4g} m) ≤ map size "
+            f"{min(nx, ny) * dx:.4g} m"
+        )
     return (nx, ny), dx, rms, hurst, ls, ll
 
 
-def synthetic_surface(nb_grid_pts=DEFAULT_SYNTHETIC["nb_grid_pts"],
-                      pixel_size: float = DEFAULT_SYNTHETIC["pixel_size"], *,
-                      rms: float = DEFAULT_SYNTHETIC["rms"],
-                      hurst: float = DEFAULT_SYNTHETIC["hurst"],
-                      short_cutoff: float = DEFAULT_SYNTHETIC["short_cutoff"],
-                      long_cutoff: float = DEFAULT_SYNTHETIC["long_cutoff"],
-                      seed=None, exact_rms: bool = True):
+def synthetic_surface(
+    nb_grid_pts=DEFAULT_SYNTHETIC["nb_grid_pts"],
+    pixel_size: float = DEFAULT_SYNTHETIC["pixel_size"],
+    *,
+    rms: float = DEFAULT_SYNTHETIC["rms"],
+    hurst: float = DEFAULT_SYNTHETIC["hurst"],
+    short_cutoff: float = DEFAULT_SYNTHETIC["short_cutoff"],
+    long_cutoff: float = DEFAULT_SYNTHETIC["long_cutoff"],
+    seed=None,
+    exact_rms: bool = True,
+):
     """Periodic isotropic Gaussian topography (SurfaceTopography ``Topography``, unit m).
 
     Parameters
@@ -73,23 +85,42 @@ def synthetic_surface(nb_grid_pts=DEFAULT_SYNTHETIC["nb_grid_pts"],
     from SurfaceTopography import Topography
     from SurfaceTopography.Generation import fourier_synthesis
 
-    (nx, ny), dx, rms, hurst, ls, ll = _check(nb_grid_pts, pixel_size, rms, hurst,
-                                              short_cutoff, long_cutoff)
+    (nx, ny), dx, rms, hurst, ls, ll = _check(
+        nb_grid_pts, pixel_size, rms, hurst, short_cutoff, long_cutoff
+    )
     rng = np.random.default_rng(seed)
-    t = fourier_synthesis((nx, ny), (nx * dx, ny * dx), hurst=hurst, rms_height=rms,
-                          short_cutoff=ls, long_cutoff=ll, rolloff=1.0, rng=rng, unit="m")
+    t = fourier_synthesis(
+        (nx, ny),
+        (nx * dx, ny * dx),
+        hurst=hurst,
+        rms_height=rms,
+        short_cutoff=ls,
+        long_cutoff=ll,
+        rolloff=1.0,
+        rng=rng,
+        unit="m",
+    )
     h = t.heights()
     if exact_rms:
         h = h * (rms / np.sqrt(np.mean(h**2)))
-    info = {"synthetic": {"rms": rms, "hurst": hurst, "short_cutoff": ls,
-                          "long_cutoff": ll, "pixel_size": dx}}
+    info = {
+        "synthetic": {
+            "rms": rms,
+            "hurst": hurst,
+            "short_cutoff": ls,
+            "long_cutoff": ll,
+            "pixel_size": dx,
+        }
+    }
     return Topography(h, (nx * dx, ny * dx), periodic=True, unit="m", info=info)
 
 
-def synthetic_moments(rms: float = DEFAULT_SYNTHETIC["rms"],
-                      hurst: float = DEFAULT_SYNTHETIC["hurst"],
-                      short_cutoff: float = DEFAULT_SYNTHETIC["short_cutoff"],
-                      long_cutoff: float = DEFAULT_SYNTHETIC["long_cutoff"]) -> SpectralMoments:
+def synthetic_moments(
+    rms: float = DEFAULT_SYNTHETIC["rms"],
+    hurst: float = DEFAULT_SYNTHETIC["hurst"],
+    short_cutoff: float = DEFAULT_SYNTHETIC["short_cutoff"],
+    long_cutoff: float = DEFAULT_SYNTHETIC["long_cutoff"],
+) -> SpectralMoments:
     """Expected direction-averaged profile moments of the prescribed spectrum (continuum
     integrals, normalised to m0 = σ²)."""
     rms = check_positive("rms", rms, "m")

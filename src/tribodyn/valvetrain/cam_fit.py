@@ -34,9 +34,9 @@ from scipy.interpolate import BSpline, PPoly
 __all__ = ["estimate_noise", "find_curvature_jumps", "fit_periodic_lift", "LiftFit"]
 
 TWO_PI = 2.0 * math.pi
-_K = 5                       # quintic
-_JUMP_Z = 8.0               # significance of a jump (standard errors)
-_JUMP_REL = 0.01             # and at least this share of the base radius
+_K = 5  # quintic
+_JUMP_Z = 8.0  # significance of a jump (standard errors)
+_JUMP_REL = 0.01  # and at least this share of the base radius
 
 
 def estimate_noise(y) -> float:
@@ -73,25 +73,26 @@ def _local_fits(x, y, xi, w, period):
     idx = (j0[:, None] + offs[None, :]) % n
     xx = x[idx] + period * np.floor_divide(j0[:, None] + offs[None, :], n)
     sc = np.abs(xx - xi[:, None]).max(axis=1)[:, None]
-    u = (xx - xi[:, None]) / sc                          # scaled for conditioning
+    u = (xx - xi[:, None]) / sc  # scaled for conditioning
     up = np.where(u > 0.0, u, 0.0)
     yy = y[idx]
     one = np.ones_like(u)
-    coef, inv, rss = _lsq_rss(np.stack([one, u, u * u, u ** 3, up * up, up ** 3], -1), yy)
-    _, _, rss5 = _lsq_rss(np.stack([one, u, u * u, u ** 3, u ** 4, u ** 5], -1), yy)
+    coef, inv, rss = _lsq_rss(np.stack([one, u, u * u, u**3, up * up, up**3], -1), yy)
+    _, _, rss5 = _lsq_rss(np.stack([one, u, u * u, u**3, u**4, u**5], -1), yy)
     s2 = sc[:, 0] ** 2
     return 2.0 * coef[:, 4] / s2, 2.0 * np.sqrt(inv[:, 4, 4]) / s2, rss, rss5
 
 
-def find_curvature_jumps(x, y, sigma: float, base_radius: float,
-                         period: float = TWO_PI) -> list[tuple[float, float]]:
+def find_curvature_jumps(
+    x, y, sigma: float, base_radius: float, period: float = TWO_PI
+) -> list[tuple[float, float]]:
     """Positions [rad] and sizes Δs'' [m/rad²] of the jumps of s'' in a periodic table."""
     x = np.asarray(x, float)
     y = np.asarray(y, float)
     h = float(np.median(np.diff(x)))
     sig = max(sigma, 1e-12)
     scales = [w for w in (4, 8, 16, 32, 64, 128) if w * h <= math.radians(10.0) or w == 4]
-    best = {}                                   # index → (z, w, jump)
+    best = {}  # index → (z, w, jump)
     for w in scales:
         jump, se, rss, rss5 = _local_fits(x, y, x, w, period)
         z = np.abs(jump) / (se * sig)
@@ -122,8 +123,7 @@ def find_curvature_jumps(x, y, sigma: float, base_radius: float,
         k = int(np.argmin(rss))
         # at its best position the jump must explain what a smooth quintic arc cannot
         # (a fast but continuous change of s'', or a step of the jerk, does not)
-        if abs(jump[k]) > _JUMP_REL * base_radius and \
-                rss5[k] - rss[k] > (_JUMP_Z * sig) ** 2:
+        if abs(jump[k]) > _JUMP_REL * base_radius and rss5[k] - rss[k] > (_JUMP_Z * sig) ** 2:
             out.append((float(cand[k] % period), float(jump[k])))
     return sorted(out)
 
@@ -131,12 +131,13 @@ def find_curvature_jumps(x, y, sigma: float, base_radius: float,
 def _deriv(t, k, n):
     """Sparse map of B-spline coefficients (degree k, knots t, n of them) to those of the
     derivative (degree k − 1, knots t[1:-1]); zero-length supports give 0."""
-    den = t[k + 1:k + n] - t[1:n]
+    den = t[k + 1 : k + n] - t[1:n]
     f = np.where(den > 0.0, k / np.where(den > 0.0, den, 1.0), 0.0)
     rows = np.arange(n - 1)
-    return sp.csr_matrix((np.concatenate([-f, f]), (np.concatenate([rows, rows]),
-                                                     np.concatenate([rows, rows + 1]))),
-                         shape=(n - 1, n))
+    return sp.csr_matrix(
+        (np.concatenate([-f, f]), (np.concatenate([rows, rows]), np.concatenate([rows, rows + 1]))),
+        shape=(n - 1, n),
+    )
 
 
 @dataclass
@@ -152,8 +153,9 @@ class LiftFit:
     rms_residual: float
 
 
-def fit_periodic_lift(x, y, base_radius: float, precision: float | None = None,
-                      quantum: float = 0.0) -> LiftFit:
+def fit_periodic_lift(
+    x, y, base_radius: float, precision: float | None = None, quantum: float = 0.0
+) -> LiftFit:
     """Penalised periodic quintic spline through the table (see module docstring).
 
     precision : RMS deviation allowed [m] (None: the estimated noise, at least the
@@ -178,19 +180,19 @@ def fit_periodic_lift(x, y, base_radius: float, precision: float | None = None,
         tau += [a] * 4
     tau = np.sort(np.asarray(tau))
     m = tau.size
-    t = np.concatenate([tau[m - _K:] - P, tau, tau[:_K + 1] + P])
-    n = m + _K                                   # basis functions before folding
+    t = np.concatenate([tau[m - _K :] - P, tau, tau[: _K + 1] + P])
+    n = m + _K  # basis functions before folding
 
     def fold(B):
         B = sp.csr_matrix(B)
         main = B[:, :m].tolil()
-        main[:, :_K] = main[:, :_K] + B[:, m:m + _K]
+        main[:, :_K] = main[:, :_K] + B[:, m : m + _K]
         return main.tocsr()
 
     A = fold(BSpline.design_matrix(x, t, _K))
     # ∫(s''')² by 3-point Gauss on every interval of one period
     D = _deriv(t[2:-2], _K - 2, n - 2) @ _deriv(t[1:-1], _K - 1, n - 1) @ _deriv(t, _K, n)
-    lo, hi = t[_K:_K + m], t[_K + 1:_K + m + 1]
+    lo, hi = t[_K : _K + m], t[_K + 1 : _K + m + 1]
     keep = hi > lo
     g, gw = np.polynomial.legendre.leggauss(3)
     mid, half = 0.5 * (lo + hi)[keep], 0.5 * (hi - lo)[keep]
@@ -203,7 +205,7 @@ def fit_periodic_lift(x, y, base_radius: float, precision: float | None = None,
     lam0 = AtA.diagonal().sum() / max(R.diagonal().sum(), 1e-300)
 
     def solve(u):
-        c = spla.splu((AtA + (lam0 * 10.0 ** u) * R).tocsc()).solve(Aty)
+        c = spla.splu((AtA + (lam0 * 10.0**u) * R).tocsc()).solve(Aty)
         return c, float(np.sqrt(np.mean((A @ c - y) ** 2)))
 
     lo_u, hi_u = -24.0, 24.0

@@ -50,20 +50,26 @@ def _decode(p: Path) -> str:
         raw = p.read_bytes()
     except OSError as exc:
         raise InputError(f"cannot read lift table {str(p)!r}: {exc.strerror}") from None
-    for bom, enc in ((b"\xff\xfe\x00\x00", "utf-32"), (b"\x00\x00\xfe\xff", "utf-32"),
-                     (b"\xff\xfe", "utf-16"), (b"\xfe\xff", "utf-16")):
+    for bom, enc in (
+        (b"\xff\xfe\x00\x00", "utf-32"),
+        (b"\x00\x00\xfe\xff", "utf-32"),
+        (b"\xff\xfe", "utf-16"),
+        (b"\xfe\xff", "utf-16"),
+    ):
         if raw.startswith(bom):
             try:
                 return raw.decode(enc)
             except UnicodeDecodeError:
                 break
     if b"\x00" in raw[:4096]:
-        raise InputError(f"lift table {str(p)!r} is a binary file, not a text table of cam "
-                         "angle and lift (export it as CSV text)")
+        raise InputError(
+            f"lift table {str(p)!r} is a binary file, not a text table of cam "
+            "angle and lift (export it as CSV text)"
+        )
     try:
         return raw.decode("utf-8-sig")
     except UnicodeDecodeError:
-        return raw.decode("cp1252", errors="replace")     # numbers are ASCII either way
+        return raw.decode("cp1252", errors="replace")  # numbers are ASCII either way
 
 
 def _split(line: str, sep: str | None) -> list[str]:
@@ -74,23 +80,33 @@ def _split(line: str, sep: str | None) -> list[str]:
 
 def _unit_in(text: str, units: dict) -> str | None:
     t = text.lower().replace("µ", "u").replace("μ", "u")
-    pats = {"crank_deg": r"crank", "rad": r"\brad", "deg": r"deg|°|grad\b",
-            "um": r"\bum\b|micro", "mm": r"\bmm\b", "in": r"\bin\b|inch", "m": r"\bm\b"}
+    pats = {
+        "crank_deg": r"crank",
+        "rad": r"\brad",
+        "deg": r"deg|°|grad\b",
+        "um": r"\bum\b|micro",
+        "mm": r"\bmm\b",
+        "in": r"\bin\b|inch",
+        "m": r"\bm\b",
+    }
     for unit, pat in pats.items():
         if unit in units and re.search(pat, t):
             return unit
     return None
 
 
-def load_lift_table(path, *, angle_unit: str = "auto", lift_unit: str = "auto",
-                    angle_column=None, lift_column=None) -> LiftTable:
+def load_lift_table(
+    path, *, angle_unit: str = "auto", lift_unit: str = "auto", angle_column=None, lift_column=None
+) -> LiftTable:
     """Read a lift table file (see module docstring)."""
     if angle_unit not in ("auto", *ANGLE_UNITS):
-        raise InputError(f"angle_unit must be 'auto' or one of {sorted(ANGLE_UNITS)} "
-                         f"(got {angle_unit!r})")
+        raise InputError(
+            f"angle_unit must be 'auto' or one of {sorted(ANGLE_UNITS)} (got {angle_unit!r})"
+        )
     if lift_unit not in ("auto", *LIFT_UNITS):
-        raise InputError(f"lift_unit must be 'auto' or one of {sorted(LIFT_UNITS)} "
-                         f"(got {lift_unit!r})")
+        raise InputError(
+            f"lift_unit must be 'auto' or one of {sorted(LIFT_UNITS)} (got {lift_unit!r})"
+        )
     p = Path(path)
     text = _decode(p)
     lines = [(i, ln.strip()) for i, ln in enumerate(text.splitlines(), start=1)]
@@ -102,13 +118,19 @@ def load_lift_table(path, *, angle_unit: str = "auto", lift_unit: str = "auto",
         if not rows:
             cand = next((c for c in (";", "\t", ",") if c in line), None)
             fields = _split(line, cand)
-            if sep is None and cand == "," and all(
-                    _NUM.match(f.replace(",", ".")) for f in line.split()) and \
-                    not all(_NUM.match(f) for f in fields):
+            if (
+                sep is None
+                and cand == ","
+                and all(_NUM.match(f.replace(",", ".")) for f in line.split())
+                and not all(_NUM.match(f) for f in fields)
+            ):
                 cand, fields = None, line.split()
             conv = [f.replace(",", ".") if cand in (";", "\t") else f for f in fields]
-            if len(conv) >= 2 and all(_NUM.match(f) for f in conv if f != "") \
-                    and all(f != "" for f in conv):
+            if (
+                len(conv) >= 2
+                and all(_NUM.match(f) for f in conv if f != "")
+                and all(f != "" for f in conv)
+            ):
                 sep = cand
                 rows.append(conv)
                 ncol = len(conv)
@@ -119,12 +141,15 @@ def load_lift_table(path, *, angle_unit: str = "auto", lift_unit: str = "auto",
         fields = _split(line, sep)
         conv = [f.replace(",", ".") if sep in (";", "\t") else f for f in fields]
         if len(conv) != ncol or not all(_NUM.match(f) for f in conv):
-            raise InputError(f"lift table {p.name!r}, line {lineno}: expected {ncol} numbers "
-                             f"like line {first}, got {line!r}")
+            raise InputError(
+                f"lift table {p.name!r}, line {lineno}: expected {ncol} numbers "
+                f"like line {first}, got {line!r}"
+            )
         rows.append(conv)
     if not rows:
-        raise InputError(f"lift table {p.name!r} contains no data rows (two numeric "
-                         "columns: cam angle, lift)")
+        raise InputError(
+            f"lift table {p.name!r} contains no data rows (two numeric columns: cam angle, lift)"
+        )
     names = header if len(header) == ncol else [f"column {k + 1}" for k in range(ncol)]
 
     def pick(sel, key, default):
@@ -133,7 +158,8 @@ def load_lift_table(path, *, angle_unit: str = "auto", lift_unit: str = "auto",
                 raise InputError(
                     f"lift table {p.name!r} has {ncol} columns ({', '.join(names)}); choose "
                     "the angle and lift columns with angle_column and lift_column (1-based "
-                    "number or header name)")
+                    "number or header name)"
+                )
             return default
         if isinstance(sel, bool):
             raise InputError(f"{key} must be a column number or name (got {sel!r})")
@@ -143,8 +169,9 @@ def load_lift_table(path, *, angle_unit: str = "auto", lift_unit: str = "auto",
             return sel - 1
         hits = [k for k, n in enumerate(names) if n.strip().lower() == str(sel).strip().lower()]
         if not hits:
-            raise InputError(f"{key} {sel!r} is not a column of {p.name!r} "
-                             f"(columns: {', '.join(names)})")
+            raise InputError(
+                f"{key} {sel!r} is not a column of {p.name!r} (columns: {', '.join(names)})"
+            )
         return hits[0]
 
     ia = pick(angle_column, "angle_column", 0)
@@ -156,22 +183,34 @@ def load_lift_table(path, *, angle_unit: str = "auto", lift_unit: str = "auto",
         raise InputError(f"lift table {p.name!r} contains NaN or inf")
     h_angle = _unit_in(names[ia], ANGLE_UNITS) if header else None
     h_lift = _unit_in(names[il], LIFT_UNITS) if header else None
-    for key, given, found in (("angle_unit", angle_unit, h_angle),
-                              ("lift_unit", lift_unit, h_lift)):
+    for key, given, found in (
+        ("angle_unit", angle_unit, h_angle),
+        ("lift_unit", lift_unit, h_lift),
+    ):
         if given != "auto" and found is not None and found != given:
-            raise InputError(f"{key} = {given!r} but the header of {p.name!r} says "
-                             f"{found!r} ({names[ia if key == 'angle_unit' else il]!r})")
+            raise InputError(
+                f"{key} = {given!r} but the header of {p.name!r} says "
+                f"{found!r} ({names[ia if key == 'angle_unit' else il]!r})"
+            )
     au = angle_unit if angle_unit != "auto" else (h_angle or "deg")
     lu = lift_unit if lift_unit != "auto" else (h_lift or "mm")
-    decimals = max((len(r[il].split(".")[1].split("e")[0].split("E")[0]) if "." in r[il]
-                    and "e" not in r[il].lower() else 0) for r in rows)
-    quantum = 10.0 ** -decimals * LIFT_UNITS[lu] if decimals < 15 else 0.0
-    return LiftTable(data[:, 0] * ANGLE_UNITS[au], data[:, 1] * LIFT_UNITS[lu], au, lu,
-                     names, quantum)
+    decimals = max(
+        (
+            len(r[il].split(".")[1].split("e")[0].split("E")[0])
+            if "." in r[il] and "e" not in r[il].lower()
+            else 0
+        )
+        for r in rows
+    )
+    quantum = 10.0**-decimals * LIFT_UNITS[lu] if decimals < 15 else 0.0
+    return LiftTable(
+        data[:, 0] * ANGLE_UNITS[au], data[:, 1] * LIFT_UNITS[lu], au, lu, names, quantum
+    )
 
 
-def read_lift_table(path, *, angle_unit: str = "auto",
-                    lift_unit: str = "auto") -> tuple[np.ndarray, np.ndarray]:
+def read_lift_table(
+    path, *, angle_unit: str = "auto", lift_unit: str = "auto"
+) -> tuple[np.ndarray, np.ndarray]:
     """Return (θ [rad], s [m]) from a two-column lift table file."""
     t = load_lift_table(path, angle_unit=angle_unit, lift_unit=lift_unit)
     return t.angle, t.lift

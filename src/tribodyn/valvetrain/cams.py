@@ -40,7 +40,7 @@ from .._validation import (
 __all__ = ["CamProfile", "AccelerationCam", "CircularArcCam", "TabulatedCam"]
 
 TWO_PI = 2.0 * math.pi
-_CHECK_POINTS = 36000          # 0.01° grid for the curvature / offset checks
+_CHECK_POINTS = 36000  # 0.01° grid for the curvature / offset checks
 
 
 class CamProfile(ABC):
@@ -107,18 +107,22 @@ class CamProfile(ABC):
             Rg = self.radius_of_curvature(g)
             bad = Rg <= 0.0
             i = int(np.argmin(Rg))
-            a, b = i, i                                # the concave arc around the minimum
+            a, b = i, i  # the concave arc around the minimum
             while bad[(a - 1) % g.size] and (i - a) < g.size:
                 a -= 1
             while bad[(b + 1) % g.size] and (b - i) < g.size:
                 b += 1
-            arc = (f"concave from {math.degrees(g[a % g.size]):.2f}° to "
-                   f"{math.degrees(g[b % g.size]):.2f}° cam" if bad.any()
-                   else f"concave at {math.degrees(th[k] % TWO_PI):.2f}° cam")
+            arc = (
+                f"concave from {math.degrees(g[a % g.size]):.2f}° to "
+                f"{math.degrees(g[b % g.size]):.2f}° cam"
+                if bad.any()
+                else f"concave at {math.degrees(th[k] % TWO_PI):.2f}° cam"
+            )
             raise InputError(
                 f"{type(self).__name__}: radius of curvature R = r_b + s + s'' must be > 0 "
                 f"everywhere (got R = {R[k] * 1e3:.4g} mm at cam angle "
-                f"{math.degrees(th[k] % TWO_PI):.2f}°): the cam would be {arc}")
+                f"{math.degrees(th[k] % TWO_PI):.2f}°): the cam would be {arc}"
+            )
         if tappet_radius is not None:
             rt = check_positive("tappet_radius", tappet_radius, "m")
             j = int(np.argmax(np.abs(s1)))
@@ -127,7 +131,8 @@ class CamProfile(ABC):
                     f"{type(self).__name__}: contact offset |e| = |s'| must stay below the "
                     f"tappet radius {rt * 1e3:.4g} mm (got {abs(s1[j]) * 1e3:.4g} mm at cam "
                     f"angle {math.degrees(th[j] % TWO_PI):.2f}°): the contact would run off "
-                    "the tappet face")
+                    "the tappet face"
+                )
 
     def event(self, threshold: float = 1e-9) -> tuple[float, float]:
         """(opening, closing) cam angles [rad] where s first/last exceeds ``threshold`` [m].
@@ -171,6 +176,7 @@ class CamProfile(ABC):
 #   "zero"   a = 0                                      (constant velocity)
 #   "neg"    a = −[N sin(π x/(2β)) + B ψ(1−ψ)²], ψ = x/β (negative region to the nose)
 
+
 def _seg_eval(kind, beta, p, x, sin, cos):
     """(a, ∫a, ∬a) of one segment at local angle x (floats with math, arrays with numpy)."""
     if kind == "zero":
@@ -179,17 +185,18 @@ def _seg_eval(kind, beta, p, x, sin, cos):
     if kind == "sine":
         A = p[0]
         w = math.pi / beta
-        return (A * sin(w * x), A * (1.0 - cos(w * x)) / w,
-                A * (x - sin(w * x) / w) / w)
+        return (A * sin(w * x), A * (1.0 - cos(w * x)) / w, A * (x - sin(w * x) / w) / w)
     # "neg"
     N, B = p
     w = 0.5 * math.pi / beta
     psi = x / beta
     a = -(N * sin(w * x) + B * psi * (1.0 - psi) ** 2)
-    i1 = -(N * (1.0 - cos(w * x)) / w
-           + B * beta * (psi**2 / 2.0 - 2.0 * psi**3 / 3.0 + psi**4 / 4.0))
-    i2 = -(N * (x - sin(w * x) / w) / w
-           + B * beta**2 * (psi**3 / 6.0 - psi**4 / 6.0 + psi**5 / 20.0))
+    i1 = -(
+        N * (1.0 - cos(w * x)) / w + B * beta * (psi**2 / 2.0 - 2.0 * psi**3 / 3.0 + psi**4 / 4.0)
+    )
+    i2 = -(
+        N * (x - sin(w * x) / w) / w + B * beta**2 * (psi**3 / 6.0 - psi**4 / 6.0 + psi**5 / 20.0)
+    )
     return a, i1, i2
 
 
@@ -224,46 +231,64 @@ class AccelerationCam(CamProfile):
     tappet_radius : optional; if given, max |e| must stay below it.
     """
 
-    def __init__(self, base_radius: float = paper.CAM_BASE_RADIUS,
-                 max_lift: float = paper.CAM_MAX_LIFT, *, event_angle: float = math.radians(171.0), nose_radius: float = 3e-3,
-                 ramp_height: float = 0.2e-3, ramp_angle: float = math.radians(20.0),
-                 pulse_share: float = 0.25, ramp_pulse_share: float = 0.5,
-                 nose_angle: float = math.pi, tappet_radius: float | None = None):
+    def __init__(
+        self,
+        base_radius: float = paper.CAM_BASE_RADIUS,
+        max_lift: float = paper.CAM_MAX_LIFT,
+        *,
+        event_angle: float = math.radians(171.0),
+        nose_radius: float = 3e-3,
+        ramp_height: float = 0.2e-3,
+        ramp_angle: float = math.radians(20.0),
+        pulse_share: float = 0.25,
+        ramp_pulse_share: float = 0.5,
+        nose_angle: float = math.pi,
+        tappet_radius: float | None = None,
+    ):
         self.base_radius = check_positive("base_radius", base_radius, "m")
         self.max_lift_design = check_positive("max_lift", max_lift, "m")
-        self.event_angle_design = check_range("event_angle", event_angle, 0.0, TWO_PI,
-                                              lo_open=True, hi_open=True, unit="rad")
+        self.event_angle_design = check_range(
+            "event_angle", event_angle, 0.0, TWO_PI, lo_open=True, hi_open=True, unit="rad"
+        )
         self.nose_radius = check_positive("nose_radius", nose_radius, "m")
         self.ramp_height = check_nonnegative("ramp_height", ramp_height, "m")
         self.ramp_angle = check_nonnegative("ramp_angle", ramp_angle, "rad")
-        self.pulse_share = check_range("pulse_share", pulse_share, 0.0, 1.0, lo_open=True,
-                                       hi_open=True)
-        self.ramp_pulse_share = check_range("ramp_pulse_share", ramp_pulse_share, 0.0, 1.0,
-                                            lo_open=True)
-        self.nose_angle = check_range("nose_angle", nose_angle, 0.0, TWO_PI, hi_open=True,
-                                      unit="rad")
+        self.pulse_share = check_range(
+            "pulse_share", pulse_share, 0.0, 1.0, lo_open=True, hi_open=True
+        )
+        self.ramp_pulse_share = check_range(
+            "ramp_pulse_share", ramp_pulse_share, 0.0, 1.0, lo_open=True
+        )
+        self.nose_angle = check_range(
+            "nose_angle", nose_angle, 0.0, TWO_PI, hi_open=True, unit="rad"
+        )
         L, rb = self.max_lift_design, self.base_radius
         if (self.ramp_height > 0.0) != (self.ramp_angle > 0.0):
-            raise InputError("ramp_height and ramp_angle must both be > 0 or both be 0 "
-                             f"(got {self.ramp_height:g} m, {self.ramp_angle:g} rad)")
+            raise InputError(
+                "ramp_height and ramp_angle must both be > 0 or both be 0 "
+                f"(got {self.ramp_height:g} m, {self.ramp_angle:g} rad)"
+            )
         if self.ramp_height >= L:
-            raise InputError(f"ramp_height must be < max_lift (got {self.ramp_height:g} m "
-                             f">= {L:g} m)")
+            raise InputError(
+                f"ramp_height must be < max_lift (got {self.ramp_height:g} m >= {L:g} m)"
+            )
         beta_h = 0.5 * self.event_angle_design - self.ramp_angle
         if beta_h <= 0.0:
             raise InputError(
                 f"event_angle must exceed twice the ramp_angle (got event "
                 f"{math.degrees(self.event_angle_design):.4g}°, ramp "
-                f"{math.degrees(self.ramp_angle):.4g}°)")
+                f"{math.degrees(self.ramp_angle):.4g}°)"
+            )
         N = rb + L - self.nose_radius
         if N <= 0.0:
             raise InputError(
                 f"nose_radius must be < base_radius + max_lift = {(rb + L) * 1e3:.4g} mm for a "
-                f"lift event with negative nose acceleration (got {self.nose_radius * 1e3:.4g} mm)")
+                f"lift event with negative nose acceleration (got {self.nose_radius * 1e3:.4g} mm)"
+            )
 
         # Ramp: half-sine acceleration pulse then constant velocity.
         br, hr = self.ramp_angle, self.ramp_height
-        segs = []                                      # (kind, beta, params)
+        segs = []  # (kind, beta, params)
         if br > 0.0:
             ba = self.ramp_pulse_share * br
             vr = hr / (br - 0.5 * ba)
@@ -276,21 +301,26 @@ class AccelerationCam(CamProfile):
         b2 = beta_h - b1
         # Velocity and lift conditions at the nose for (A1, A2) — see class docstring.
         c2, c4 = 2.0 / math.pi, 2.0 / math.pi - 4.0 / math.pi**2
-        M = np.array([[2.0 * b1 / math.pi, -b2 / 12.0],
-                      [b1**2 / math.pi + 2.0 * b1 * b2 / math.pi, -b2**2 / 20.0]])
-        rhs = np.array([b2 * c2 * N - vr,
-                        L - hr - vr * (b1 + b2) + b2**2 * N * c4])
+        M = np.array(
+            [
+                [2.0 * b1 / math.pi, -b2 / 12.0],
+                [b1**2 / math.pi + 2.0 * b1 * b2 / math.pi, -(b2**2) / 20.0],
+            ]
+        )
+        rhs = np.array([b2 * c2 * N - vr, L - hr - vr * (b1 + b2) + b2**2 * N * c4])
         A1, A2 = np.linalg.solve(M, rhs)
         if not A1 > 0.0:
             raise InputError(
                 "AccelerationCam: no positive acceleration pulse fits these parameters "
                 f"(A1 = {A1:.4g} m/rad²); increase event_angle or nose_radius, or reduce "
-                "max_lift")
+                "max_lift"
+            )
         if A2 < -0.5 * math.pi * N:
             raise InputError(
                 "AccelerationCam: the negative region would change sign near its start "
                 f"(A2 = {A2:.4g} m/rad² < −πN/2 = {-0.5 * math.pi * N:.4g}); increase "
-                "pulse_share or event_angle")
+                "pulse_share or event_angle"
+            )
         segs.append(("sine", b1, (A1,)))
         segs.append(("neg", b2, (N, A2)))
         self.pulse_amplitude = float(A1)
@@ -306,7 +336,7 @@ class AccelerationCam(CamProfile):
             _, i1, i2 = _seg_eval(kind, beta, p, beta, math.sin, math.cos)
             s0, v0 = s0 + v0 * beta + i2, v0 + i1
             phi0 += beta
-        self._half = phi0                     # = event/2
+        self._half = phi0  # = event/2
         self._starts = [sg[0] for sg in self._segs]
         # Numerical residuals at the nose are ~1e-16 by construction; keep them honest.
         self._nose_velocity_residual = v0
@@ -319,7 +349,7 @@ class AccelerationCam(CamProfile):
         return (self.nose_angle - self._half) % TWO_PI
 
     def _breakpoints(self) -> np.ndarray:
-        b = self._half - np.array(self._starts + [self._half])     # distance from the nose
+        b = self._half - np.array(self._starts + [self._half])  # distance from the nose
         return np.concatenate([self.nose_angle - b, self.nose_angle + b]) % TWO_PI
 
     def _local(self, angle):
@@ -329,8 +359,8 @@ class AccelerationCam(CamProfile):
 
     def derivatives(self, angle):
         d = self._local(angle)
-        sign = np.where(d < 0.0, 1.0, -1.0)          # opening side: s' > 0
-        phi = self._half - np.abs(d)                  # angle from the event start
+        sign = np.where(d < 0.0, 1.0, -1.0)  # opening side: s' > 0
+        phi = self._half - np.abs(d)  # angle from the event start
         s = np.zeros_like(phi)
         s1 = np.zeros_like(phi)
         s2 = np.zeros_like(phi)
@@ -381,15 +411,23 @@ class CircularArcCam(CamProfile):
     tappet_radius : optional check of max |e|.
     """
 
-    def __init__(self, base_radius: float = paper.CAM_BASE_RADIUS,
-                 max_lift: float = paper.CAM_MAX_LIFT, *, flank_radius: float = 0.030, nose_radius: float = 3e-3,
-                 nose_angle: float = math.pi, tappet_radius: float | None = None):
+    def __init__(
+        self,
+        base_radius: float = paper.CAM_BASE_RADIUS,
+        max_lift: float = paper.CAM_MAX_LIFT,
+        *,
+        flank_radius: float = 0.030,
+        nose_radius: float = 3e-3,
+        nose_angle: float = math.pi,
+        tappet_radius: float | None = None,
+    ):
         self.base_radius = rb = check_positive("base_radius", base_radius, "m")
         self.max_lift_design = L = check_positive("max_lift", max_lift, "m")
         self.flank_radius = rf = check_positive("flank_radius", flank_radius, "m")
         self.nose_radius = rn = check_positive("nose_radius", nose_radius, "m")
-        self.nose_angle = check_range("nose_angle", nose_angle, 0.0, TWO_PI, hi_open=True,
-                                      unit="rad")
+        self.nose_angle = check_range(
+            "nose_angle", nose_angle, 0.0, TWO_PI, hi_open=True, unit="rad"
+        )
         if rf <= rb:
             raise InputError(f"flank_radius must be > base_radius (got {rf:g} m <= {rb:g} m)")
         d = rb + L - rn
@@ -397,15 +435,16 @@ class CircularArcCam(CamProfile):
             raise InputError(f"nose_radius must be < base_radius + max_lift (got {rn:g} m)")
         if rn >= rb:
             raise InputError(f"nose_radius must be < base_radius (got {rn:g} m >= {rb:g} m)")
-        a, b = rf - rb, rf - rn                      # |C_f|, |C_f − C_n|
+        a, b = rf - rb, rf - rn  # |C_f|, |C_f − C_n|
         # C_f = (x, y): x² + y² = a², x² + (y − d)² = b²  ⇒  y = (a² − b² + d²)/(2d)
         y = (a * a - b * b + d * d) / (2.0 * d)
         x2 = a * a - y * y
         if x2 <= 0.0:
             raise InputError(
                 "CircularArcCam: flank_radius too small to join the base and nose circles "
-                f"tangentially (ρ_f = {rf:g} m, r_b = {rb:g} m, ρ_n = {rn:g} m, L = {L:g} m)")
-        self._cf = (-math.sqrt(x2), y)               # flank centre for the φ > 0 side
+                f"tangentially (ρ_f = {rf:g} m, r_b = {rb:g} m, ρ_n = {rn:g} m, L = {L:g} m)"
+            )
+        self._cf = (-math.sqrt(x2), y)  # flank centre for the φ > 0 side
         self._d = d
         # Normal angles of the junctions: nose/flank along C_n − C_f, flank/base along −C_f.
         cx, cy = self._cf
@@ -422,8 +461,9 @@ class CircularArcCam(CamProfile):
 
     def _breakpoints(self):
         p = np.array([self._phi_nose, self._phi_base])
-        return np.concatenate([self.nose_angle - p, self.nose_angle + p,
-                               [self.nose_angle]]) % TWO_PI
+        return (
+            np.concatenate([self.nose_angle - p, self.nose_angle + p, [self.nose_angle]]) % TWO_PI
+        )
 
     def derivatives(self, angle):
         phi = (np.asarray(angle, dtype=float) - self.nose_angle + math.pi) % TWO_PI - math.pi
@@ -442,7 +482,7 @@ class CircularArcCam(CamProfile):
         R = np.where(nose, self.nose_radius, np.where(flank, self.flank_radius, rb))
         s = h - rb
         s1 = sg * h1
-        s2 = R - h                                   # R = h + h''
+        s2 = R - h  # R = h + h''
         return s, s1, s2
 
     def scalar_derivatives(self, angle):
@@ -486,33 +526,47 @@ class TabulatedCam(CamProfile):
     ``precision`` is the precision used [m].
     """
 
-    def __init__(self, angle, lift, base_radius: float, *, smoothing: float | None = None,
-                 quantum: float = 0.0, tappet_radius: float | None = None):
+    def __init__(
+        self,
+        angle,
+        lift,
+        base_radius: float,
+        *,
+        smoothing: float | None = None,
+        quantum: float = 0.0,
+        tappet_radius: float | None = None,
+    ):
         from .cam_fit import estimate_noise, fit_periodic_lift
+
         self.base_radius = check_positive("base_radius", base_radius, "m")
-        self.smoothing = (None if smoothing is None
-                          else check_nonnegative("smoothing", smoothing, "m"))
+        self.smoothing = (
+            None if smoothing is None else check_nonnegative("smoothing", smoothing, "m")
+        )
         th = check_array("angle", angle, min_size=12)
         s = check_array("lift", lift, min_size=12)
         if th.shape != s.shape:
-            raise InputError(f"angle and lift must have the same length (got {th.size} and "
-                             f"{s.size})")
+            raise InputError(
+                f"angle and lift must have the same length (got {th.size} and {s.size})"
+            )
         dth = np.diff(th)
         if np.any(dth <= 0.0):
             k = int(np.argmax(dth <= 0.0))
             raise InputError(
                 "angle must be strictly increasing (non-monotonic lift table at entry "
-                f"{k + 1}: {math.degrees(th[k]):.4g}° then {math.degrees(th[k + 1]):.4g}°)")
+                f"{k + 1}: {math.degrees(th[k]):.4g}° then {math.degrees(th[k + 1]):.4g}°)"
+            )
         span = th[-1] - th[0]
         tol = 1e-9 * TWO_PI
         if span > TWO_PI + tol:
-            raise InputError(f"angle must span at most one revolution (got "
-                             f"{math.degrees(span):.6g}°)")
+            raise InputError(
+                f"angle must span at most one revolution (got {math.degrees(span):.6g}°)"
+            )
         if abs(span - TWO_PI) <= tol:
             if abs(s[-1] - s[0]) > max(1e-9, 1e-6 * np.ptp(s), 3.0 * (smoothing or 0.0)):
                 raise InputError(
                     "lift table is not periodic: the lift at θ₀ + 360° must equal the lift at "
-                    f"θ₀ (got {s[0] * 1e3:.6g} mm and {s[-1] * 1e3:.6g} mm)")
+                    f"θ₀ (got {s[0] * 1e3:.6g} mm and {s[-1] * 1e3:.6g} mm)"
+                )
             th, s = th[:-1], s[:-1]
             dth = np.diff(th)
         gap = th[0] + TWO_PI - th[-1]
@@ -524,10 +578,13 @@ class TabulatedCam(CamProfile):
                     f"lift table covers {math.degrees(span):.4g}° and does not end on the base "
                     f"circle (lift {s[0] * 1e3:.4g} mm at the start, {s[-1] * 1e3:.4g} mm at "
                     "the end): give a full revolution, or the event from base circle to "
-                    "base circle")
+                    "base circle"
+                )
             if span < math.radians(20.0):
-                raise InputError(f"lift event of {math.degrees(span):.3g}° is implausibly "
-                                 "short: check the angle unit")
+                raise InputError(
+                    f"lift event of {math.degrees(span):.3g}° is implausibly "
+                    "short: check the angle unit"
+                )
             h = float(np.median(dth))
             k = int(math.floor(gap / h))
             fill = th[-1] + gap * np.arange(1, k) / k
@@ -537,8 +594,9 @@ class TabulatedCam(CamProfile):
         else:
             self.event_only = False
         if s.min() < -1e-5:
-            raise InputError(f"lift must be >= 0 above the base circle (got min "
-                             f"{s.min() * 1e3:.4g} mm)")
+            raise InputError(
+                f"lift must be >= 0 above the base circle (got min {s.min() * 1e3:.4g} mm)"
+            )
         if not s.max() > 0.0:
             raise InputError("lift must rise above the base circle somewhere (max lift is 0)")
         self.angle = th
@@ -547,7 +605,7 @@ class TabulatedCam(CamProfile):
         self.precision = fit.precision
         self.fit_rms = fit.rms_residual
         self._x = fit.breaks
-        self._c = fit.coeffs                         # (6, pieces), highest power first
+        self._c = fit.coeffs  # (6, pieces), highest power first
         self._x0 = float(self._x[0])
         self._xlist = self._x[:-1].tolist()
         self._clist = [tuple(col) for col in self._c.T]
@@ -556,21 +614,43 @@ class TabulatedCam(CamProfile):
         for a, _ in fit.jumps:
             lo = self.derivatives(np.array([a - 1e-7]))
             hi = self.derivatives(np.array([a + 1e-7]))
-            self.curvature_jumps.append((a, float(rb + lo[0][0] + lo[2][0]),
-                                         float(rb + hi[0][0] + hi[2][0])))
+            self.curvature_jumps.append(
+                (a, float(rb + lo[0][0] + lo[2][0]), float(rb + hi[0][0] + hi[2][0]))
+            )
         self.check(tappet_radius)
 
     @classmethod
-    def from_csv(cls, path, base_radius: float, *, smoothing: float | None = None,
-                 angle_unit: str = "auto", lift_unit: str = "auto", angle_column=None,
-                 lift_column=None, tappet_radius: float | None = None) -> "TabulatedCam":
+    def from_csv(
+        cls,
+        path,
+        base_radius: float,
+        *,
+        smoothing: float | None = None,
+        angle_unit: str = "auto",
+        lift_unit: str = "auto",
+        angle_column=None,
+        lift_column=None,
+        tappet_radius: float | None = None,
+    ) -> TabulatedCam:
         """Read a lift table (CSV; units from the header or the arguments); see
         :func:`tribodyn.valvetrain.cam_table.load_lift_table`."""
         from .cam_table import load_lift_table
-        t = load_lift_table(path, angle_unit=angle_unit, lift_unit=lift_unit,
-                            angle_column=angle_column, lift_column=lift_column)
-        return cls(t.angle, t.lift, base_radius, smoothing=smoothing, quantum=t.quantum,
-                   tappet_radius=tappet_radius)
+
+        t = load_lift_table(
+            path,
+            angle_unit=angle_unit,
+            lift_unit=lift_unit,
+            angle_column=angle_column,
+            lift_column=lift_column,
+        )
+        return cls(
+            t.angle,
+            t.lift,
+            base_radius,
+            smoothing=smoothing,
+            quantum=t.quantum,
+            tappet_radius=tappet_radius,
+        )
 
     def _breakpoints(self):
         return self._x[:-1] % TWO_PI
@@ -581,11 +661,11 @@ class TabulatedCam(CamProfile):
         k = np.clip(np.searchsorted(self._x, u, side="right") - 1, 0, self._c.shape[1] - 1)
         x = u - self._x[k]
         c = self._c[:, k]
-        n = c.shape[0] - 1                           # degree (5); c[j] multiplies x^(n−j)
+        n = c.shape[0] - 1  # degree (5); c[j] multiplies x^(n−j)
         s = np.zeros_like(x)
         s1 = np.zeros_like(x)
         s2 = np.zeros_like(x)
-        for j in range(n + 1):                       # Horner for s, s' and s''
+        for j in range(n + 1):  # Horner for s, s' and s''
             p = n - j
             s = s * x + c[j]
             if p >= 1:

@@ -30,8 +30,7 @@ from .cams import CamProfile
 __all__ = ["Camshaft", "lobe_polar_inertia"]
 
 
-def lobe_polar_inertia(cam: CamProfile, width: float, density: float,
-                       n: int = 3600) -> float:
+def lobe_polar_inertia(cam: CamProfile, width: float, density: float, n: int = 3600) -> float:
     """Polar moment of inertia of the lobe about the camshaft axis [kg·m²].
 
     The flat-follower cam contour is the envelope of the follower faces: at follower
@@ -74,18 +73,24 @@ class Camshaft:
     lobe_inertia: float | None = None
 
     def __post_init__(self):
-        for name, unit in (("diameter", "m"), ("bearing_span", "m"),
-                           ("drive_stiffness", "N·m/rad"), ("drive_length", "m"),
-                           ("E", "Pa"), ("density", "kg/m³")):
+        for name, unit in (
+            ("diameter", "m"),
+            ("bearing_span", "m"),
+            ("drive_stiffness", "N·m/rad"),
+            ("drive_length", "m"),
+            ("E", "Pa"),
+            ("density", "kg/m³"),
+        ):
             check_positive(name, getattr(self, name), unit)
         check_range("nu", self.nu, -1.0, 0.5, lo_open=True, hi_open=True)
         check_nonnegative("lobe_position", self.lobe_position, "m")
         if self.lobe_position > 0.5 * self.bearing_span:
-            raise InputError(f"lobe_position must be <= bearing_span/2 = "
-                             f"{0.5 * self.bearing_span:g} m (distance from the nearer "
-                             f"bearing; got {self.lobe_position:g} m)")
-        check_range("torsional_damping_ratio", self.torsional_damping_ratio, 0.0, 1.0,
-                    hi_open=True)
+            raise InputError(
+                f"lobe_position must be <= bearing_span/2 = "
+                f"{0.5 * self.bearing_span:g} m (distance from the nearer "
+                f"bearing; got {self.lobe_position:g} m)"
+            )
+        check_range("torsional_damping_ratio", self.torsional_damping_ratio, 0.0, 1.0, hi_open=True)
         if self.bearing_stiffness is not None:
             check_positive("bearing_stiffness", self.bearing_stiffness, "N/m")
         if self.lobe_inertia is not None:
@@ -98,7 +103,7 @@ class Camshaft:
     @property
     def torsional_stiffness(self) -> float:
         """k_t of drive and shaft in series [N·m/rad]."""
-        Ip = math.pi * self.diameter ** 4 / 32.0
+        Ip = math.pi * self.diameter**4 / 32.0
         k_shaft = self.shear_modulus * Ip / self.drive_length
         return 1.0 / (1.0 / self.drive_stiffness + 1.0 / k_shaft)
 
@@ -107,7 +112,7 @@ class Camshaft:
         """Deflection per unit contact force at the lobe [m/N] (shaft + bearings)."""
         L, a = self.bearing_span, self.lobe_position
         b = L - a
-        I = math.pi * self.diameter ** 4 / 64.0
+        I = math.pi * self.diameter**4 / 64.0
         c = a * a * b * b / (3.0 * self.E * I * L)
         if self.bearing_stiffness is not None:
             c += ((b / L) ** 2 + (a / L) ** 2) / self.bearing_stiffness
@@ -115,7 +120,10 @@ class Camshaft:
 
     def inertia(self, cam: CamProfile, width: float) -> float:
         """J of the torsion DOF: lobe + a third of the shaft from drive to lobe [kg·m²]."""
-        lobe = (self.lobe_inertia if self.lobe_inertia is not None
-                else lobe_polar_inertia(cam, width, self.density))
-        shaft = self.density * math.pi * self.diameter ** 4 / 32.0 * self.drive_length
+        lobe = (
+            self.lobe_inertia
+            if self.lobe_inertia is not None
+            else lobe_polar_inertia(cam, width, self.density)
+        )
+        shaft = self.density * math.pi * self.diameter**4 / 32.0 * self.drive_length
         return lobe + shaft / 3.0

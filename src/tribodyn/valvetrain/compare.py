@@ -19,8 +19,9 @@ __all__ = ["compare_results", "COMPARED"]
 COMPARED = ("tappet_velocity", "contact_force", "tappet_acceleration")
 
 
-def compare_results(reference: ValvetrainResult, other: ValvetrainResult,
-                    quantities=COMPARED) -> dict:
+def compare_results(
+    reference: ValvetrainResult, other: ValvetrainResult, quantities=COMPARED
+) -> dict:
     """Differences other − reference over the presented cycle (dict per quantity)."""
     for name, r in (("reference", reference), ("other", other)):
         if not isinstance(r, ValvetrainResult) or not r.converged:

@@ -128,10 +128,13 @@ class ValvetrainResult:
             "tribology": self.tribology,
             "peak_contact_force_N": float(self.contact_force.max()),
             "peak_contact_force_crank_deg": float(self.crank_angle[self.contact_force.argmax()]),
-            "min_contact_force_in_event_N": float(self.contact_force[ev].min()) if ev.any()
+            "min_contact_force_in_event_N": float(self.contact_force[ev].min())
+            if ev.any()
             else float("nan"),
-            "entrainment_speed_range_m_s": [float(self.entrainment_speed.min()),
-                                            float(self.entrainment_speed.max())],
+            "entrainment_speed_range_m_s": [
+                float(self.entrainment_speed.min()),
+                float(self.entrainment_speed.max()),
+            ],
             "min_radius_of_curvature_m": float(self.radius_of_curvature.min()),
             "max_valve_lift_m": float(self.valve_lift.max()),
             "max_seat_force_N": float(self.seat_force.max()),
@@ -152,24 +155,35 @@ def resolve_tribology(tribology, params: ValvetrainParameters) -> TribologyModel
     if isinstance(tribology, str):
         if tribology == "explicit":
             return AnalyticTribology(width=params.cam_width)
-        raise InputError(f"tribology must be 'explicit', None or a TribologyModel "
-                         f"(got {tribology!r})")
+        raise InputError(
+            f"tribology must be 'explicit', None or a TribologyModel (got {tribology!r})"
+        )
     if not isinstance(tribology, TribologyModel):
-        raise InputError(f"tribology must be 'explicit', None or a TribologyModel (got "
-                         f"{type(tribology).__name__})")
+        raise InputError(
+            f"tribology must be 'explicit', None or a TribologyModel (got "
+            f"{type(tribology).__name__})"
+        )
     w = getattr(tribology, "width", None)
     if w is not None and abs(w - params.cam_width) > 1e-12:
-        raise InputError(f"tribology width {w:g} m differs from cam_width "
-                         f"{params.cam_width:g} m")
+        raise InputError(f"tribology width {w:g} m differs from cam_width {params.cam_width:g} m")
     return tribology
 
 
-def simulate_valvetrain(cam: CamProfile, params: ValvetrainParameters | None = None, *,
-                        engine_speed: float = 3000.0, tribology="explicit", cycles: int = 2,
-                        output_step: float = 0.25, method: str = "LSODA",
-                        rtol: float = 1e-6, atol: float | None = None,
-                        max_step: float = 1.0, start_angle: float = 0.0,
-                        jump_lift_threshold: float = 10e-6) -> ValvetrainResult:
+def simulate_valvetrain(
+    cam: CamProfile,
+    params: ValvetrainParameters | None = None,
+    *,
+    engine_speed: float = 3000.0,
+    tribology="explicit",
+    cycles: int = 2,
+    output_step: float = 0.25,
+    method: str = "LSODA",
+    rtol: float = 1e-6,
+    atol: float | None = None,
+    max_step: float = 1.0,
+    start_angle: float = 0.0,
+    jump_lift_threshold: float = 10e-6,
+) -> ValvetrainResult:
     """Simulate the single valvetrain and present its last engine cycle.
 
     Parameters
@@ -214,7 +228,7 @@ def simulate_valvetrain(cam: CamProfile, params: ValvetrainParameters | None = N
         model = ValvetrainModel(cam, params, w, trib, start_angle=start_angle)
     lobe = getattr(model, "lobe_angle", lambda t, y: model.theta0 + w * t)
     n = model.n
-    T_cycle = 2.0 * math.pi / w                       # one engine cycle = one cam revolution
+    T_cycle = 2.0 * math.pi / w  # one engine cycle = one cam revolution
     t_end = cycles * T_cycle
     t0_pres = (cycles - 1) * T_cycle
     crank0 = 720.0 * (cycles - 1)
@@ -241,33 +255,72 @@ def simulate_valvetrain(cam: CamProfile, params: ValvetrainParameters | None = N
             h0 = model.film(t, 0.0, 0.5 * w * (rb + s + 2.0 * s2), rb + s + s2)[0]
         return max(s, thr) - y[0] + h0
 
-    base = dict(converged=False, engine_speed=float(engine_speed), cam_speed=w,
-                params=params, cam=cam, tribology=trib.name, jump_lift_threshold=thr)
+    base = dict(
+        converged=False,
+        engine_speed=float(engine_speed),
+        cam_speed=w,
+        params=params,
+        cam=cam,
+        tribology=trib.name,
+        jump_lift_threshold=thr,
+    )
     y0 = model.static_state()
     wall = _time.perf_counter()
     try:
-        sol = solve_ivp(model.rhs, (0.0, t_end), y0, method=method, t_eval=t_eval,
-                        jac=model.jacobian, rtol=rtol, atol=atol, max_step=hmax,
-                        events=[ev_seat, ev_contact])
+        sol = solve_ivp(
+            model.rhs,
+            (0.0, t_end),
+            y0,
+            method=method,
+            t_eval=t_eval,
+            jac=model.jacobian,
+            rtol=rtol,
+            atol=atol,
+            max_step=hmax,
+            events=[ev_seat, ev_contact],
+        )
     except (ContactLawError, FloatingPointError, ValueError, ZeroDivisionError) as exc:
         return ValvetrainResult(**base, message=f"solver failed: {exc}")
     wall = _time.perf_counter() - wall
-    stats = dict(nfev=int(sol.nfev), njev=int(sol.njev), nlu=int(sol.nlu),
-                 wall_time_s=wall, method=method)
+    stats = dict(
+        nfev=int(sol.nfev), njev=int(sol.njev), nlu=int(sol.nlu), wall_time_s=wall, method=method
+    )
     if sol.status != 0:
-        t_fail = float(sol.t[-1]) if len(sol.t) else 0.0      # t_eval may hold no point yet
-        return ValvetrainResult(**base, stats=stats,
-                                message=f"solver failed at t = {t_fail:.6g} s: {sol.message}")
+        t_fail = float(sol.t[-1]) if len(sol.t) else 0.0  # t_eval may hold no point yet
+        return ValvetrainResult(
+            **base, stats=stats, message=f"solver failed at t = {t_fail:.6g} s: {sol.message}"
+        )
     Y = sol.y
     if Y.shape[1] != t_eval.size or not np.all(np.isfinite(Y)):
-        return ValvetrainResult(**base, stats=stats,
-                                message="solver returned incomplete or non-finite output")
+        return ValvetrainResult(
+            **base, stats=stats, message="solver returned incomplete or non-finite output"
+        )
 
     # -- outputs on the crank grid ------------------------------------------------------
     m = t_eval.size
-    cols = {k: np.empty(m) for k in ("s", "s1", "s2", "R", "ue", "us", "Fc", "P", "film",
-                                     "Ftv", "Fs", "Fb", "acc_t", "acc_v", "F0s", "FNs",
-                                     "T", "U")}
+    cols = {
+        k: np.empty(m)
+        for k in (
+            "s",
+            "s1",
+            "s2",
+            "R",
+            "ue",
+            "us",
+            "Fc",
+            "P",
+            "film",
+            "Ftv",
+            "Fs",
+            "Fb",
+            "acc_t",
+            "acc_v",
+            "F0s",
+            "FNs",
+            "T",
+            "U",
+        )
+    }
     try:
         for i in range(m):
             f = model.evaluate(t_eval[i], Y[:, i])
@@ -278,34 +331,56 @@ def simulate_valvetrain(cam: CamProfile, params: ValvetrainParameters | None = N
             cols["F0s"][i] = f["Fseg"][0]
             cols["FNs"][i] = f["Fseg"][-1]
             cols["T"][i], cols["U"][i] = model.energy(t_eval[i], Y[:, i], f)
-        Ff = np.asarray(trib.friction(t_eval, cols["Fc"], cols["ue"], cols["us"], cols["R"]),
-                        dtype=float) * np.ones(m)
-        report = {k: np.broadcast_to(np.asarray(v), (m,)).copy() for k, v in
-                  trib.report(t_eval, cols["Fc"], cols["ue"], cols["us"], cols["R"]).items()}
+        Ff = np.asarray(
+            trib.friction(t_eval, cols["Fc"], cols["ue"], cols["us"], cols["R"]), dtype=float
+        ) * np.ones(m)
+        report = {
+            k: np.broadcast_to(np.asarray(v), (m,)).copy()
+            for k, v in trib.report(t_eval, cols["Fc"], cols["ue"], cols["us"], cols["R"]).items()
+        }
     except ContactLawError as exc:
         return ValvetrainResult(**base, stats=stats, message=f"output evaluation failed: {exc}")
     rb = cam.base_radius
-    note = None                       # flexible spring: a clash its reduction cannot see
+    note = None  # flexible spring: a clash its reduction cannot see
     unresolved = getattr(model, "unresolved_clash", lambda Y: -math.inf)(Y)
     if unresolved > 0.0:
-        note = (f"coil clash in a spring segment reduced to modes (overlap "
-                f"{unresolved * 1e6:.3g} µm): raise the spring's clash_margin")
+        note = (
+            f"coil clash in a spring segment reduced to modes (overlap "
+            f"{unresolved * 1e6:.3g} µm): raise the spring's clash_margin"
+        )
     res = ValvetrainResult(
-        **{**base, "converged": True}, message="ok" if note is None else f"ok; warning: {note}",
-        stats=stats, tribology_report=report,
-        time=t_eval, crank_angle=crank, cam_angle=model.theta0 + w * t_eval,
-        cam_lift=cols["s"], lift_velocity=cols["s1"], lift_acceleration=cols["s2"],
-        radius_of_curvature=cols["R"], contact_offset=cols["s1"].copy(),
-        entrainment_speed=cols["ue"], sliding_speed=cols["us"], contact_force=cols["Fc"],
-        elastic_contact_force=cols["P"], series_film=cols["film"],
-        tappet_displacement=Y[0].copy(), tappet_velocity=Y[n].copy(),
-        tappet_acceleration=cols["acc_t"], valve_lift=Y[1] - model.d_seat,
-        valve_velocity=Y[n + 1].copy(), valve_acceleration=cols["acc_v"],
-        seat_force=cols["Fs"], tappet_valve_force=cols["Ftv"], spring_force=cols["F0s"],
-        spring_support_force=cols["FNs"], friction_force=Ff,
+        **{**base, "converged": True},
+        message="ok" if note is None else f"ok; warning: {note}",
+        stats=stats,
+        tribology_report=report,
+        time=t_eval,
+        crank_angle=crank,
+        cam_angle=model.theta0 + w * t_eval,
+        cam_lift=cols["s"],
+        lift_velocity=cols["s1"],
+        lift_acceleration=cols["s2"],
+        radius_of_curvature=cols["R"],
+        contact_offset=cols["s1"].copy(),
+        entrainment_speed=cols["ue"],
+        sliding_speed=cols["us"],
+        contact_force=cols["Fc"],
+        elastic_contact_force=cols["P"],
+        series_film=cols["film"],
+        tappet_displacement=Y[0].copy(),
+        tappet_velocity=Y[n].copy(),
+        tappet_acceleration=cols["acc_t"],
+        valve_lift=Y[1] - model.d_seat,
+        valve_velocity=Y[n + 1].copy(),
+        valve_acceleration=cols["acc_v"],
+        seat_force=cols["Fs"],
+        tappet_valve_force=cols["Ftv"],
+        spring_force=cols["F0s"],
+        spring_support_force=cols["FNs"],
+        friction_force=Ff,
         bore_friction_force=-cols["Fb"],
         cam_torque=cols["Fc"] * cols["s1"] + Ff * (rb + cols["s"]),
-        friction_power=Ff * cols["us"])
+        friction_power=Ff * cols["us"],
+    )
 
     # -- energy balance over the presented cycle ----------------------------------------
     res.cam_work = Y[2 * n] - Y[2 * n, 0]
@@ -317,10 +392,15 @@ def simulate_valvetrain(cam: CamProfile, params: ValvetrainParameters | None = N
     D = res.dissipated_energy[-1]
     resid = W - (Tb - Ta + Ub - Ua + D)
     gross = float(np.sum(np.abs(res.cam_torque * w) * np.gradient(t_eval)))
-    res.energy = dict(cam_work=W, kinetic_change=Tb - Ta, elastic_change=Ub - Ua,
-                      dissipation=D, residual=resid,
-                      relative_residual=resid / max(abs(W), gross, 1e-300),
-                      gross_cam_work=gross)
+    res.energy = dict(
+        cam_work=W,
+        kinetic_change=Tb - Ta,
+        elastic_change=Ub - Ua,
+        dissipation=D,
+        residual=resid,
+        relative_residual=resid / max(abs(W), gross, 1e-300),
+        gross_cam_work=gross,
+    )
 
     # -- events --------------------------------------------------------------------------
     def crank_of(t):
@@ -328,8 +408,8 @@ def simulate_valvetrain(cam: CamProfile, params: ValvetrainParameters | None = N
 
     t_seat, y_seat = sol.t_events[0], sol.y_events[0]
     t_con, y_con = sol.t_events[1], sol.y_events[1]
-    in_win = lambda t: t0_pres - 1e-12 <= t <= t_end + 1e-12      # noqa: E731
-    seat_ev = []                                                  # (t, v_valve)
+    in_win = lambda t: t0_pres - 1e-12 <= t <= t_end + 1e-12  # noqa: E731
+    seat_ev = []  # (t, v_valve)
     for t, y in zip(t_seat, y_seat):
         seat_ev.append((t, y[n + 1]))
     seatings = [(crank_of(t), v) for t, v in seat_ev if in_win(t) and v < 0.0]
@@ -338,7 +418,7 @@ def simulate_valvetrain(cam: CamProfile, params: ValvetrainParameters | None = N
     k_peak = int(np.argmax(res.valve_lift))
     t_peak = t_eval[k_peak]
     closing = [(t, v) for t, v in seat_ev if in_win(t) and v < 0.0 and t > t_peak]
-    if not closing:     # event wraps past the cycle end: take the first one in the window
+    if not closing:  # event wraps past the cycle end: take the first one in the window
         closing = [(t, v) for t, v in seat_ev if in_win(t) and v < 0.0]
     if closing:
         res.seating_velocity = float(abs(closing[0][1]))

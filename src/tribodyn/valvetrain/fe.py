@@ -46,8 +46,8 @@ class AxialFEModel:
         self.name = name
         self.labels: dict[str, int] = {}
         self._n = 0
-        self._k: list[tuple[int, int, float]] = []        # (i, j, k); j = −1: to ground
-        self._m: list[tuple[int, int, float]] = []        # (i, j, m) mass entries
+        self._k: list[tuple[int, int, float]] = []  # (i, j, k); j = −1: to ground
+        self._m: list[tuple[int, int, float]] = []  # (i, j, m) mass entries
         self.elements: list[tuple[int, int, float]] = []  # bar/spring elements (i, j, k)
 
     @property
@@ -61,8 +61,17 @@ class AxialFEModel:
             self.labels[label] = i
         return i
 
-    def bar(self, start: int, length: float, E: float, area: float, density: float,
-            elements: int, end_label: str | None = None, nodes: list | None = None) -> int:
+    def bar(
+        self,
+        start: int,
+        length: float,
+        E: float,
+        area: float,
+        density: float,
+        elements: int,
+        end_label: str | None = None,
+        nodes: list | None = None,
+    ) -> int:
         """Append a uniform bar of ``elements`` elements from node ``start``; returns the
         end node (labelled ``end_label``). Interior node indices go to ``nodes``."""
         check_positive("length", length, "m")
@@ -80,8 +89,12 @@ class AxialFEModel:
             self._k.append((a, b, k))
             self.elements.append((a, b, k))
             lump, cons = (1.0 - MASS_MIXING) * m / 2.0, MASS_MIXING * m / 6.0
-            self._m += [(a, a, lump + 2 * cons), (b, b, lump + 2 * cons), (a, b, cons),
-                        (b, a, cons)]
+            self._m += [
+                (a, a, lump + 2 * cons),
+                (b, b, lump + 2 * cons),
+                (a, b, cons),
+                (b, a, cons),
+            ]
             if nodes is not None and e < elements - 1:
                 nodes.append(b)
             a = b
@@ -124,8 +137,7 @@ class AxialFEModel:
         """Natural frequencies [Hz] with the DOFs ``fixed`` held (free–free: rigid-body
         modes come out as ≈ 0)."""
         keep = [i for i in range(self._n) if i not in set(fixed)]
-        w2 = sla.eigh(self.K[np.ix_(keep, keep)], self.M[np.ix_(keep, keep)],
-                      eigvals_only=True)
+        w2 = sla.eigh(self.K[np.ix_(keep, keep)], self.M[np.ix_(keep, keep)], eigvals_only=True)
         f = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
         return f if count is None else f[:count]
 
@@ -155,15 +167,22 @@ class ReducedBody:
     def frequencies(self, fixed=(), count: int | None = None) -> np.ndarray:
         """Natural frequencies [Hz] of the reduced body with reduced coordinates held."""
         keep = [i for i in range(self.n) if i not in set(fixed)]
-        w2 = sla.eigh(self.K[np.ix_(keep, keep)], self.M[np.ix_(keep, keep)],
-                      eigvals_only=True)
+        w2 = sla.eigh(self.K[np.ix_(keep, keep)], self.M[np.ix_(keep, keep)], eigvals_only=True)
         f = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
         return f if count is None else f[:count]
 
 
-def craig_bampton(M, K, boundary, *, modes: int | None = None, cutoff: float | None = None,
-                  damping_ratio: float = 0.0, name: str = "body",
-                  extra_damping: np.ndarray | None = None) -> ReducedBody:
+def craig_bampton(
+    M,
+    K,
+    boundary,
+    *,
+    modes: int | None = None,
+    cutoff: float | None = None,
+    damping_ratio: float = 0.0,
+    name: str = "body",
+    extra_damping: np.ndarray | None = None,
+) -> ReducedBody:
     """Craig–Bampton reduction of (M, K) keeping the DOFs ``boundary`` (in that order).
 
     modes : number of fixed-interface modes kept; or ``cutoff`` [Hz]: all modes up to it
@@ -177,8 +196,7 @@ def craig_bampton(M, K, boundary, *, modes: int | None = None, cutoff: float | N
     b = [int(i) for i in boundary]
     if len(set(b)) != len(b) or any(not 0 <= i < n for i in b):
         raise InputError(f"boundary DOFs must be distinct indices in [0, {n}) (got {b})")
-    if modes is not None and (isinstance(modes, bool) or not isinstance(modes, int)
-                              or modes < 0):
+    if modes is not None and (isinstance(modes, bool) or not isinstance(modes, int) or modes < 0):
         raise InputError(f"modes must be an integer >= 0 (got {modes!r})")
     if cutoff is not None:
         check_positive("cutoff", cutoff, "Hz")
@@ -221,5 +239,13 @@ def craig_bampton(M, K, boundary, *, modes: int | None = None, cutoff: float | N
         Cr[nb:, nb:] = np.diag(2.0 * zeta * wk)
     if extra_damping is not None:
         Cr += T.T @ np.asarray(extra_damping, float) @ T
-    return ReducedBody(name=name, boundary=b, T=T, M=Mr, K=Kr, C=Cr,
-                       modal_frequencies=f_all[:kk].copy(), interior_frequencies=f_all)
+    return ReducedBody(
+        name=name,
+        boundary=b,
+        T=T,
+        M=Mr,
+        K=Kr,
+        C=Cr,
+        modal_frequencies=f_all[:kk].copy(),
+        interior_frequencies=f_all,
+    )

@@ -36,7 +36,7 @@ from .spring import HelicalSpring
 
 __all__ = ["ValveGeometry", "TappetGeometry", "FlexibleValvetrain"]
 
-STEEL_DENSITY = 7850.0      # kg/m³ (ASSUMED where a case gives none)
+STEEL_DENSITY = 7850.0  # kg/m³ (ASSUMED where a case gives none)
 STEEL_E = paper.STEEL["E"]  # Pa (paper Table 6)
 
 
@@ -71,21 +71,30 @@ class ValveGeometry:
     damping_ratio: float = 0.02
 
     def __post_init__(self):
-        for n, u in (("stem_diameter", "m"), ("stem_length", "m"),
-                     ("retainer_position", "m"), ("retainer_mass", "kg"),
-                     ("head_mass", "kg"), ("head_stiffness", "N/m"),
-                     ("seat_stiffness", "N/m"), ("E", "Pa"), ("density", "kg/m³")):
+        for n, u in (
+            ("stem_diameter", "m"),
+            ("stem_length", "m"),
+            ("retainer_position", "m"),
+            ("retainer_mass", "kg"),
+            ("head_mass", "kg"),
+            ("head_stiffness", "N/m"),
+            ("seat_stiffness", "N/m"),
+            ("E", "Pa"),
+            ("density", "kg/m³"),
+        ):
             check_positive(n, getattr(self, n), u)
         if self.retainer_position >= self.stem_length:
-            raise InputError(f"retainer_position must be < stem_length (got "
-                             f"{self.retainer_position:g} m >= {self.stem_length:g} m)")
+            raise InputError(
+                f"retainer_position must be < stem_length (got "
+                f"{self.retainer_position:g} m >= {self.stem_length:g} m)"
+            )
         _check_count("elements", self.elements, 2, 400)
         _check_count("modes", self.modes, 0, 400, allow_none=True)
         check_range("damping_ratio", self.damping_ratio, 0.0, 1.0, hi_open=True)
 
     @property
     def stem_area(self) -> float:
-        return 0.25 * math.pi * self.stem_diameter ** 2
+        return 0.25 * math.pi * self.stem_diameter**2
 
     @property
     def stem_mass(self) -> float:
@@ -105,8 +114,15 @@ class ValveGeometry:
         cam excites and would only make the equations stiffer."""
         m = AxialFEModel("valve")
         ret = m.node("retainer")
-        end = m.bar(ret, self.stem_length - self.retainer_position, self.E, self.stem_area,
-                    self.density, self.elements, "stem_end")
+        end = m.bar(
+            ret,
+            self.stem_length - self.retainer_position,
+            self.E,
+            self.stem_area,
+            self.density,
+            self.elements,
+            "stem_end",
+        )
         seat = m.node("seat")
         m.spring(end, seat, self.head_stiffness)
         m.mass(seat, self.head_mass)
@@ -151,8 +167,14 @@ class TappetGeometry:
                 raise InputError("tappet mass is required with model = 'lumped'")
             check_positive("mass", self.mass, "kg")
             return
-        for n, u in (("radius", "m"), ("crown_thickness", "m"), ("skirt_length", "m"),
-                     ("skirt_thickness", "m"), ("E", "Pa"), ("density", "kg/m³")):
+        for n, u in (
+            ("radius", "m"),
+            ("crown_thickness", "m"),
+            ("skirt_length", "m"),
+            ("skirt_thickness", "m"),
+            ("E", "Pa"),
+            ("density", "kg/m³"),
+        ):
             check_positive(n, getattr(self, n), u)
         if self.skirt_thickness >= self.radius:
             raise InputError("skirt_thickness must be below the tappet radius")
@@ -181,8 +203,15 @@ class TappetGeometry:
             return m
         r, t = self.radius, self.skirt_thickness
         m.mass(face, self.density * math.pi * r * r * self.crown_thickness)
-        m.bar(face, self.skirt_length, self.E, math.pi * (r * r - (r - t) ** 2),
-              self.density, self.elements, "skirt_end")
+        m.bar(
+            face,
+            self.skirt_length,
+            self.E,
+            math.pi * (r * r - (r - t) ** 2),
+            self.density,
+            self.elements,
+            "skirt_end",
+        )
         return m
 
     @property
@@ -190,7 +219,7 @@ class TappetGeometry:
         """Axial stiffness EA/t of the crown disc [N/m] (None for the lumped tappet)."""
         if self.model == "lumped":
             return None
-        return self.E * math.pi * self.radius ** 2 / self.crown_thickness
+        return self.E * math.pi * self.radius**2 / self.crown_thickness
 
 
 @dataclass(frozen=True)
@@ -211,8 +240,12 @@ class FlexibleValvetrain:
     camshaft: Camshaft | None = None
 
     def __post_init__(self):
-        for name, cls in (("valve", ValveGeometry), ("tappet", TappetGeometry),
-                          ("spring", HelicalSpring), ("joints", ValvetrainParameters)):
+        for name, cls in (
+            ("valve", ValveGeometry),
+            ("tappet", TappetGeometry),
+            ("spring", HelicalSpring),
+            ("joints", ValvetrainParameters),
+        ):
             if not isinstance(getattr(self, name), cls):
                 raise InputError(f"{name} must be a {cls.__name__}")
         if self.camshaft is not None and not isinstance(self.camshaft, Camshaft):
@@ -241,14 +274,17 @@ class FlexibleValvetrain:
             c += 1.0 / self.tappet.crown_stiffness
         return 1.0 / c
 
-    def replace(self, **changes) -> "FlexibleValvetrain":
+    def replace(self, **changes) -> FlexibleValvetrain:
         return replace(self, **changes)
 
-    def with_modes(self, k: int | None) -> "FlexibleValvetrain":
+    def with_modes(self, k: int | None) -> FlexibleValvetrain:
         """The same valvetrain with k fixed-interface modes in every FE body (None: all)."""
-        return replace(self, valve=replace(self.valve, modes=k, cutoff=None),
-                       tappet=replace(self.tappet, modes=k, cutoff=None),
-                       spring=replace(self.spring, modes=k, cutoff=None))
+        return replace(
+            self,
+            valve=replace(self.valve, modes=k, cutoff=None),
+            tappet=replace(self.tappet, modes=k, cutoff=None),
+            spring=replace(self.spring, modes=k, cutoff=None),
+        )
 
     # -- reduced bodies -------------------------------------------------------------------
     def max_spring_force(self, max_lift: float) -> float:
@@ -261,18 +297,38 @@ class FlexibleValvetrain:
         v, t, s = self.valve, self.tappet, self.spring
         out = {}
         fv = v.fe_model()
-        out["valve"] = craig_bampton(fv.M, fv.K, [fv.labels[k] for k in ("seat", "retainer")],
-                                     modes=v.modes, cutoff=v.cutoff,
-                                     damping_ratio=v.damping_ratio, name="valve")
+        out["valve"] = craig_bampton(
+            fv.M,
+            fv.K,
+            [fv.labels[k] for k in ("seat", "retainer")],
+            modes=v.modes,
+            cutoff=v.cutoff,
+            damping_ratio=v.damping_ratio,
+            name="valve",
+        )
         ft = t.fe_model()
         bt = [ft.labels["face"]]
-        out["tappet"] = craig_bampton(ft.M, ft.K, bt, modes=t.modes, cutoff=t.cutoff,
-                                      damping_ratio=t.damping_ratio, name="tappet")
+        out["tappet"] = craig_bampton(
+            ft.M,
+            ft.K,
+            bt,
+            modes=t.modes,
+            cutoff=t.cutoff,
+            damping_ratio=t.damping_ratio,
+            name="tappet",
+        )
         fs = s.fe_model()
         clash = s.clash_nodes(self.max_spring_force(max_lift))
         bs = [0] + [j for j in clash if 0 < j < fs.n - 1] + [fs.n - 1]
-        out["spring"] = craig_bampton(fs.M, fs.K, bs, modes=s.modes, cutoff=s.cutoff,
-                                      damping_ratio=s.damping_ratio, name="spring")
+        out["spring"] = craig_bampton(
+            fs.M,
+            fs.K,
+            bs,
+            modes=s.modes,
+            cutoff=s.cutoff,
+            damping_ratio=s.damping_ratio,
+            name="spring",
+        )
         return out
 
     # -- the lumped companion --------------------------------------------------------------
@@ -283,12 +339,19 @@ class FlexibleValvetrain:
         and seat in series; camshaft bending in series with the contact. The lumped spring
         gets 8 coil masses and the spring's surge damping ratio."""
         v = self.valve
-        k_seat = 1.0 / (1.0 / v.stem_stiffness_below_retainer + 1.0 / v.head_stiffness
-                        + 1.0 / v.seat_stiffness)
+        k_seat = 1.0 / (
+            1.0 / v.stem_stiffness_below_retainer + 1.0 / v.head_stiffness + 1.0 / v.seat_stiffness
+        )
         cs = self.camshaft
         k_cam = None if cs is None else 1.0 / cs.bending_compliance
         return self.joints.replace(
-            tappet_valve_stiffness=self.tappet_valve_stiffness, valve_mass=v.mass, tappet_mass=self.tappet.total_mass,
-            spring_mass=self.spring.active_mass, spring_rate=self.spring.rate,
-            spring_preload=self.spring.preload, spring_damping_ratio=self.spring.damping_ratio,
-            seat_stiffness=k_seat, camshaft_stiffness=k_cam)
+            tappet_valve_stiffness=self.tappet_valve_stiffness,
+            valve_mass=v.mass,
+            tappet_mass=self.tappet.total_mass,
+            spring_mass=self.spring.active_mass,
+            spring_rate=self.spring.rate,
+            spring_preload=self.spring.preload,
+            spring_damping_ratio=self.spring.damping_ratio,
+            seat_stiffness=k_seat,
+            camshaft_stiffness=k_cam,
+        )

@@ -45,8 +45,14 @@ __all__ = ["FlexibleValvetrainModel"]
 class FlexibleValvetrainModel:
     """Right-hand side, Jacobian, forces and energies of the flexible valvetrain."""
 
-    def __init__(self, cam: CamProfile, flex: FlexibleValvetrain, cam_speed: float,
-                 tribology: TribologyModel, start_angle: float = 0.0):
+    def __init__(
+        self,
+        cam: CamProfile,
+        flex: FlexibleValvetrain,
+        cam_speed: float,
+        tribology: TribologyModel,
+        start_angle: float = 0.0,
+    ):
         if not isinstance(flex, FlexibleValvetrain):
             raise InputError("flex must be a FlexibleValvetrain")
         self.cam, self.flex, self.w, self.trib = cam, flex, float(cam_speed), tribology
@@ -54,8 +60,9 @@ class FlexibleValvetrainModel:
         self.theta0 = float(start_angle)
         s0 = cam.scalar_derivatives(self.theta0)[0]
         if abs(s0) > 1e-9:
-            raise InputError(f"start_angle must be on the base circle (lift there is "
-                             f"{s0 * 1e3:.4g} mm)")
+            raise InputError(
+                f"start_angle must be on the base circle (lift there is {s0 * 1e3:.4g} mm)"
+            )
         bodies = flex.reduced_bodies(cam.max_lift)
         self.bodies = bodies
         spring = flex.spring
@@ -68,9 +75,11 @@ class FlexibleValvetrainModel:
         names += [f"s{j}" for j in spring_nodes]
         idx = {nm: i for i, nm in enumerate(names)}
         nb = len(names)
-        gmap = {"tappet": [idx["face"]],
-                "valve": [idx["seat"], idx["groove"]],
-                "spring": [idx[f"s{j}"] for j in spring_nodes]}
+        gmap = {
+            "tappet": [idx["face"]],
+            "valve": [idx["seat"], idx["groove"]],
+            "spring": [idx[f"s{j}"] for j in spring_nodes],
+        }
         k = nb
         for name, body in (("tappet", tb), ("valve", vb), ("spring", sb)):
             nm = body.n - len(body.boundary)
@@ -114,22 +123,36 @@ class FlexibleValvetrainModel:
         self.d_seat = F0 / flex.valve.seat_stiffness
         self.d_ss = F0 / p.spring_seat_stiffness
         self.d_sp = F0 / p.spring_support_stiffness
-        w1 = 2.0 * math.pi * (sb.interior_frequencies[0] if sb.interior_frequencies.size
-                              else spring.surge_frequency())
+        w1 = (
+            2.0
+            * math.pi
+            * (
+                sb.interior_frequencies[0]
+                if sb.interior_frequencies.size
+                else spring.surge_frequency()
+            )
+        )
         self.beta_s = 2.0 * spring.damping_ratio / w1
         kel, _, gel, _ = spring._elements()
-        self.clash = []                   # (global a, global b, element j, Δ_static, g, Q_s)
+        self.clash = []  # (global a, global b, element j, Δ_static, g, Q_s)
         pos = {j: i for i, j in enumerate(spring_nodes)}
         for j in range(kel.size):
             if j in pos and j + 1 in pos:
                 Qs = spring.clash_force(st.compressions[j] - gel[j])[0]
-                self.clash.append((idx[f"s{j}"], idx[f"s{j + 1}"], j,
-                                   float(st.compressions[j]), float(gel[j]), Qs))
-        self.internal_clash = [j for j in range(kel.size)
-                               if not (j in pos and j + 1 in pos)]
+                self.clash.append(
+                    (
+                        idx[f"s{j}"],
+                        idx[f"s{j + 1}"],
+                        j,
+                        float(st.compressions[j]),
+                        float(gel[j]),
+                        Qs,
+                    )
+                )
+        self.internal_clash = [j for j in range(kel.size) if not (j in pos and j + 1 in pos)]
         self.static_compressions = st.compressions
         self.spring_gaps = gel
-        fs = np.zeros(n)                  # static joint forces on the nodes
+        fs = np.zeros(n)  # static joint forces on the nodes
         fs[self.i_seat] += F0
         fs[self.i_groove] -= F0
         fs[self.i_top] += F0
@@ -159,8 +182,10 @@ class FlexibleValvetrainModel:
         h, hF = self.trib.film(t, force, ue, R)
         h, hF = float(h), float(hF)
         if not (math.isfinite(h) and math.isfinite(hF)) or hF > 0.0:
-            raise ContactLawError(f"film law returned h = {h:g} m, dh/dF = {hF:g} m/N at "
-                                  f"t = {t:.6g} s (need finite, dh/dF <= 0)")
+            raise ContactLawError(
+                f"film law returned h = {h:g} m, dh/dF = {hF:g} m/N at "
+                f"t = {t:.6g} s (need finite, dh/dF <= 0)"
+            )
         return h, hF
 
     def elastic_contact(self, t, dk, ue=0.0, R=1.0):
@@ -170,7 +195,7 @@ class FlexibleValvetrainModel:
             if dk <= 0.0:
                 return 0.0, 0.0, 0.0
             z = dk / C
-            return z ** g, g * z ** (g - 1.0) / C, 0.0
+            return z**g, g * z ** (g - 1.0) / C, 0.0
         h0 = self.film(t, 0.0, ue, R)[0]
         if dk + h0 <= 0.0:
             return 0.0, 0.0, h0
@@ -178,7 +203,7 @@ class FlexibleValvetrainModel:
         z = hi
         tol = 1e-13 * max(dk + h0, 1e-9)
         for _ in range(60):
-            P = z ** g
+            P = z**g
             h, hF = self.film(t, P, ue, R)
             phi = C * z + P * ikc - h - dk
             if phi > 0.0:
@@ -212,7 +237,7 @@ class FlexibleValvetrainModel:
     def evaluate(self, t: float, y, jac: bool = False) -> dict:
         p, n, w = self.p, self.n, self.w
         q = np.asarray(y[:n], dtype=float)
-        v = np.asarray(y[n:2 * n], dtype=float)
+        v = np.asarray(y[n : 2 * n], dtype=float)
         ql, vl = q.tolist(), v.tolist()
         iphi = self.iphi
         phi = ql[iphi] if iphi is not None else 0.0
@@ -226,7 +251,7 @@ class FlexibleValvetrainModel:
         us = wl * (rb + s)
         ramp = p.damping_force_ramp
         fj = [0.0] * n
-        elems = []                          # (gradient dict, k, c) for the Jacobian
+        elems = []  # (gradient dict, k, c) for the Jacobian
         diss = 0.0
         # cam contact
         i_f = self.i_face
@@ -244,8 +269,11 @@ class FlexibleValvetrainModel:
             fj[iphi] += Fc * s1
         diss += (Fc - P) * dkd
         if Fc > 0.0:
-            Ff = (self.friction_fn(th, Fc) if self.friction_fn is not None
-                  else float(self.trib.friction(t, Fc, ue, us, R)))
+            Ff = (
+                self.friction_fn(th, Fc)
+                if self.friction_fn is not None
+                else float(self.trib.friction(t, Fc, ue, us, R))
+            )
         else:
             Ff = 0.0
         if iphi is not None:
@@ -258,8 +286,9 @@ class FlexibleValvetrainModel:
             gvec = {i_f: -1.0}
             if iphi is not None:
                 gvec[iphi] = -s1
-            elems.append((gvec, dPdk * (1.0 + p.contact_damping * dgc * dkd),
-                          p.contact_damping * gc))
+            elems.append(
+                (gvec, dPdk * (1.0 + p.contact_damping * dgc * dkd), p.contact_damping * gc)
+            )
         if jac:
             cb = p.bore_friction_coefficient * Ff * (1.0 - th_v * th_v) / p.bore_friction_velocity
             elems.append(({i_f: 1.0}, 0.0, cb))
@@ -289,16 +318,36 @@ class FlexibleValvetrainModel:
             return F
 
         i_u, i_t, i_s, i_g = self.i_under, self.i_tip, self.i_seat, self.i_groove
-        Ftv = joint(i_u, i_t, ql[i_u] - ql[i_t] - p.lash, vl[i_u] - vl[i_t],
-                    self.k_tv, p.tappet_valve_damping, 0.0)
-        Fs = joint(None, i_s, self.d_seat - ql[i_s], -vl[i_s],
-                   self.flex.valve.seat_stiffness, p.seat_damping, self.F0)
+        Ftv = joint(
+            i_u,
+            i_t,
+            ql[i_u] - ql[i_t] - p.lash,
+            vl[i_u] - vl[i_t],
+            self.k_tv,
+            p.tappet_valve_damping,
+            0.0,
+        )
+        Fs = joint(
+            None,
+            i_s,
+            self.d_seat - ql[i_s],
+            -vl[i_s],
+            self.flex.valve.seat_stiffness,
+            p.seat_damping,
+            self.F0,
+        )
         kss, ksp = p.spring_seat_stiffness, p.spring_support_stiffness
         i_top, i_bot = self.i_top, self.i_bot
-        Fss = joint(i_g, i_top, ql[i_g] - ql[i_top] + self.d_ss, vl[i_g] - vl[i_top],
-                    kss, self.beta_s * kss, self.F0)
-        Fsp = joint(i_bot, None, ql[i_bot] + self.d_sp, vl[i_bot], ksp, self.beta_s * ksp,
-                    self.F0)
+        Fss = joint(
+            i_g,
+            i_top,
+            ql[i_g] - ql[i_top] + self.d_ss,
+            vl[i_g] - vl[i_top],
+            kss,
+            self.beta_s * kss,
+            self.F0,
+        )
+        Fsp = joint(i_bot, None, ql[i_bot] + self.d_sp, vl[i_bot], ksp, self.beta_s * ksp, self.F0)
         sp = self.flex.spring
         cdamp = sp.clash_damping
         for a, b, _, d0, g, Qs in self.clash:
@@ -325,9 +374,27 @@ class FlexibleValvetrainModel:
         accl = acc.tolist()
         # output order: acc[0] tappet face, acc[1] valve seat face; Fseg[0] spring force on
         # the valve (spring seat), Fseg[-1] support force on the head
-        out = dict(theta=th, s=s, s1=s1, s2=s2, R=R, ue=ue, us=us, dk=dk, P=P, Fc=Fc, Ff=Ff,
-                   Fb=Fb, Ftv=Ftv, Fs=Fs, Fseg=[Fss, Fsp], acc=accl, film=hfilm,
-                   cam_power=cam_power, dissipation_rate=diss)
+        out = dict(
+            theta=th,
+            s=s,
+            s1=s1,
+            s2=s2,
+            R=R,
+            ue=ue,
+            us=us,
+            dk=dk,
+            P=P,
+            Fc=Fc,
+            Ff=Ff,
+            Fb=Fb,
+            Ftv=Ftv,
+            Fs=Fs,
+            Fseg=[Fss, Fsp],
+            acc=accl,
+            film=hfilm,
+            cam_power=cam_power,
+            dissipation_rate=diss,
+        )
         if jac:
             out["elements"] = elems
         return out
@@ -337,8 +404,8 @@ class FlexibleValvetrainModel:
         n = self.n
         f = self.evaluate(t, y)
         dy = np.empty(2 * n + 2)
-        dy[:n] = y[n:2 * n]
-        dy[n:2 * n] = f["acc"]
+        dy[:n] = y[n : 2 * n]
+        dy[n : 2 * n] = f["acc"]
         dy[2 * n] = f["cam_power"]
         dy[2 * n + 1] = f["dissipation_rate"]
         return dy
@@ -357,9 +424,9 @@ class FlexibleValvetrainModel:
                     K[i, j] += k * gi * gj
                     C[i, j] += c * gi * gj
         J = np.zeros((2 * n + 2, 2 * n + 2))
-        J[:n, n:2 * n] = np.eye(n)
-        J[n:2 * n, :n] = -self.Minv @ K
-        J[n:2 * n, n:2 * n] = -self.Minv @ C
+        J[:n, n : 2 * n] = np.eye(n)
+        J[n : 2 * n, :n] = -self.Minv @ K
+        J[n : 2 * n, n : 2 * n] = -self.Minv @ C
         return J
 
     # -- energy ------------------------------------------------------------------------
@@ -367,9 +434,9 @@ class FlexibleValvetrainModel:
         """(kinetic, elastic) energy [J] relative to the static equilibrium state."""
         n, p = self.n, self.p
         q = np.asarray(y[:n], dtype=float)
-        v = np.asarray(y[n:2 * n], dtype=float)
+        v = np.asarray(y[n : 2 * n], dtype=float)
         T = 0.5 * float(v @ (self.M @ v))
-        if self.iphi is not None:       # rotation of the lobe relative to ω: J(φ̇² − 2ωφ̇)/2
+        if self.iphi is not None:  # rotation of the lobe relative to ω: J(φ̇² − 2ωφ̇)/2
             T -= self.J * self.w * v[self.iphi]
         f = self.evaluate(t, y) if evaluated is None else evaluated
         U = 0.5 * float(q @ (self.K @ q)) + float(self.f_static @ q)
@@ -380,14 +447,13 @@ class FlexibleValvetrainModel:
 
         U += pot(self.k_tv, q[self.i_under] - q[self.i_tip] - p.lash, -p.lash)
         U += pot(self.flex.valve.seat_stiffness, self.d_seat - q[self.i_seat], self.d_seat)
-        U += pot(p.spring_seat_stiffness, q[self.i_groove] - q[self.i_top] + self.d_ss,
-                 self.d_ss)
+        U += pot(p.spring_seat_stiffness, q[self.i_groove] - q[self.i_top] + self.d_ss, self.d_ss)
         U += pot(p.spring_support_stiffness, q[self.i_bot] + self.d_sp, self.d_sp)
         sp = self.flex.spring
         c = sp._palmgren_c
         e = _PALMGREN_EXP
 
-        def clash_pot(ov):                      # ∫ Q dδ, Q = (δ/C)^(1/e)
+        def clash_pot(ov):  # ∫ Q dδ, Q = (δ/C)^(1/e)
             return 0.0 if ov <= 0.0 else C_pot(ov)
 
         def C_pot(ov):

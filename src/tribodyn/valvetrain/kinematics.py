@@ -25,8 +25,12 @@ import numpy as np
 from .._validation import InputError, check_array, check_positive
 from .cams import CamProfile
 
-__all__ = ["FlatFollowerKinematics", "flat_follower_kinematics", "quasi_static_jump_speed",
-           "rpm_to_cam_speed"]
+__all__ = [
+    "FlatFollowerKinematics",
+    "flat_follower_kinematics",
+    "quasi_static_jump_speed",
+    "rpm_to_cam_speed",
+]
 
 
 def rpm_to_cam_speed(engine_speed: float) -> float:
@@ -39,17 +43,17 @@ def rpm_to_cam_speed(engine_speed: float) -> float:
 class FlatFollowerKinematics:
     """Kinematic state of a flat follower (arrays over the requested cam angles)."""
 
-    angle: np.ndarray                 #: cam angle θ [rad]
-    cam_speed: float                  #: ω [rad/s]
-    lift: np.ndarray                  #: s [m]
-    lift_velocity: np.ndarray         #: s' [m/rad]
-    lift_acceleration: np.ndarray     #: s'' [m/rad²]
-    radius_of_curvature: np.ndarray   #: R = r_b + s + s'' [m]
-    contact_offset: np.ndarray        #: e = s' [m]
-    entrainment_speed: np.ndarray     #: u_e = ω(r_b + s + 2s'')/2 [m/s]
-    sliding_speed: np.ndarray         #: u_s = ω(r_b + s) [m/s]
-    tappet_velocity: np.ndarray       #: ω s' [m/s]
-    tappet_acceleration: np.ndarray   #: ω² s'' [m/s²]
+    angle: np.ndarray  #: cam angle θ [rad]
+    cam_speed: float  #: ω [rad/s]
+    lift: np.ndarray  #: s [m]
+    lift_velocity: np.ndarray  #: s' [m/rad]
+    lift_acceleration: np.ndarray  #: s'' [m/rad²]
+    radius_of_curvature: np.ndarray  #: R = r_b + s + s'' [m]
+    contact_offset: np.ndarray  #: e = s' [m]
+    entrainment_speed: np.ndarray  #: u_e = ω(r_b + s + 2s'')/2 [m/s]
+    sliding_speed: np.ndarray  #: u_s = ω(r_b + s) [m/s]
+    tappet_velocity: np.ndarray  #: ω s' [m/s]
+    tappet_acceleration: np.ndarray  #: ω² s'' [m/s²]
 
     @property
     def crank_angle(self) -> np.ndarray:
@@ -68,14 +72,23 @@ def flat_follower_kinematics(cam: CamProfile, cam_speed: float, angle) -> FlatFo
     rb = cam.base_radius
     R = rb + s + s2
     return FlatFollowerKinematics(
-        angle=th, cam_speed=w, lift=s, lift_velocity=s1, lift_acceleration=s2,
-        radius_of_curvature=R, contact_offset=s1.copy(),
-        entrainment_speed=0.5 * w * (rb + s + 2.0 * s2), sliding_speed=w * (rb + s),
-        tappet_velocity=w * s1, tappet_acceleration=w * w * s2)
+        angle=th,
+        cam_speed=w,
+        lift=s,
+        lift_velocity=s1,
+        lift_acceleration=s2,
+        radius_of_curvature=R,
+        contact_offset=s1.copy(),
+        entrainment_speed=0.5 * w * (rb + s + 2.0 * s2),
+        sliding_speed=w * (rb + s),
+        tappet_velocity=w * s1,
+        tappet_acceleration=w * w * s2,
+    )
 
 
-def quasi_static_jump_speed(cam: CamProfile, preload: float, spring_rate: float,
-                            effective_mass: float, *, n: int = 36000) -> tuple[float, float]:
+def quasi_static_jump_speed(
+    cam: CamProfile, preload: float, spring_rate: float, effective_mass: float, *, n: int = 36000
+) -> tuple[float, float]:
     """Quasi-static jump (follower separation) speed of a cam with a rigid follower train.
 
     Contact is lost where F₀ + k s + m_eff ω² s'' = 0 first occurs, i.e.::

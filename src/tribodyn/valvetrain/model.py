@@ -66,21 +66,41 @@ class _FrictionTable:
     film formulas make friction peak sharply (|u_e| → 0). Forces: 19 levels to 3 kN,
     constant friction coefficient beyond."""
 
-    FORCES = (0.0, 2.0, 5.0, 10.0, 20.0, 40.0, 70.0, 100.0, 150.0, 200.0, 275.0, 350.0,
-              450.0, 600.0, 800.0, 1100.0, 1500.0, 2000.0, 3000.0)
+    FORCES = (
+        0.0,
+        2.0,
+        5.0,
+        10.0,
+        20.0,
+        40.0,
+        70.0,
+        100.0,
+        150.0,
+        200.0,
+        275.0,
+        350.0,
+        450.0,
+        600.0,
+        800.0,
+        1100.0,
+        1500.0,
+        2000.0,
+        3000.0,
+    )
 
-    def __init__(self, model: TribologyModel, cam: CamProfile, cam_speed: float,
-                 start_angle: float = 0.0):
+    def __init__(
+        self, model: TribologyModel, cam: CamProfile, cam_speed: float, start_angle: float = 0.0
+    ):
         two_pi = 2.0 * math.pi
         rb = cam.base_radius
-        fine = np.linspace(0.0, two_pi, 7200, endpoint=False)          # 0.05°
+        fine = np.linspace(0.0, two_pi, 7200, endpoint=False)  # 0.05°
         s, _, s2 = cam.derivatives(fine)
         flip = np.nonzero(np.diff(np.sign(rb + s + 2.0 * s2)))[0]
         th = [np.linspace(0.0, two_pi, 361)]
         for k in flip:
             th.append(fine[k] + np.radians(np.arange(-2.0, 2.01, 0.1)))
         th = np.unique(np.concatenate(th) % two_pi)
-        th = np.append(th, th[0] + two_pi)                              # wrap point
+        th = np.append(th, th[0] + two_pi)  # wrap point
         self.F = np.asarray(self.FORCES)
         s, _, s2 = cam.derivatives(th)
         R = rb + s + s2
@@ -89,8 +109,7 @@ class _FrictionTable:
         # simulation time of cam angle θ in the first revolution: t = (θ − θ₀)/ω mod 2π/ω
         t_of = np.mod(th - start_angle, two_pi) / cam_speed
         TT, FF = np.meshgrid(t_of, self.F, indexing="ij")
-        tab = np.asarray(model.friction(TT, FF, ue[:, None], us[:, None], R[:, None]),
-                         dtype=float)
+        tab = np.asarray(model.friction(TT, FF, ue[:, None], us[:, None], R[:, None]), dtype=float)
         if not np.all(np.isfinite(tab)) or np.any(tab < 0.0):
             raise InputError("tribology model returned negative or non-finite friction")
         self.th = th.tolist()
@@ -108,13 +127,12 @@ class _FrictionTable:
         a = (u - th[i]) / (th[i + 1] - th[i])
         ti, tj = self.tab[i], self.tab[i + 1]
         Fl = self.Fl
-        if force >= self.Fmax:                    # beyond the table: constant coefficient
+        if force >= self.Fmax:  # beyond the table: constant coefficient
             return ((1.0 - a) * ti[-1] + a * tj[-1]) * force / self.Fmax
         lo = bisect.bisect_right(Fl, force) - 1
         hi = lo + 1
         b = (force - Fl[lo]) / (Fl[hi] - Fl[lo])
-        return ((1.0 - a) * ((1.0 - b) * ti[lo] + b * ti[hi])
-                + a * ((1.0 - b) * tj[lo] + b * tj[hi]))
+        return (1.0 - a) * ((1.0 - b) * ti[lo] + b * ti[hi]) + a * ((1.0 - b) * tj[lo] + b * tj[hi])
 
 
 class ValvetrainModel:
@@ -127,22 +145,31 @@ class ValvetrainModel:
     start_angle : cam angle at t = 0 [rad] (must be on the base circle).
     """
 
-    def __init__(self, cam: CamProfile, params: ValvetrainParameters, cam_speed: float,
-                 tribology: TribologyModel, start_angle: float = 0.0):
+    def __init__(
+        self,
+        cam: CamProfile,
+        params: ValvetrainParameters,
+        cam_speed: float,
+        tribology: TribologyModel,
+        start_angle: float = 0.0,
+    ):
         self.cam, self.p, self.w, self.trib = cam, params, float(cam_speed), tribology
         self.theta0 = float(start_angle)
         p = params
         N = p.spring_masses
         self.N = N
-        self.n = N + 2                                # q size
+        self.n = N + 2  # q size
         n_seg = N + 1
         self.k_seg = n_seg * p.spring_rate
         # End segments: coil segment in series with the seat stiffness.
         k_top = 1.0 / (1.0 / self.k_seg + 1.0 / p.spring_seat_stiffness)
         k_bot = 1.0 / (1.0 / self.k_seg + 1.0 / p.spring_support_stiffness)
         if N == 0:
-            k_single = 1.0 / (1.0 / p.spring_rate + 1.0 / p.spring_seat_stiffness
-                              + 1.0 / p.spring_support_stiffness)
+            k_single = 1.0 / (
+                1.0 / p.spring_rate
+                + 1.0 / p.spring_seat_stiffness
+                + 1.0 / p.spring_support_stiffness
+            )
             self.kseg = np.array([k_single])
             w1 = math.pi * math.sqrt(p.spring_rate / p.spring_mass)
             m_valve = p.valve_mass + p.spring_mass / 3.0
@@ -151,8 +178,12 @@ class ValvetrainModel:
             self.kseg = np.full(n_seg, self.k_seg)
             self.kseg[0], self.kseg[-1] = k_top, k_bot
             m_node = p.spring_mass / n_seg
-            w1 = 2.0 * n_seg * math.sqrt(p.spring_rate / p.spring_mass) * math.sin(
-                math.pi / (2.0 * n_seg))
+            w1 = (
+                2.0
+                * n_seg
+                * math.sqrt(p.spring_rate / p.spring_mass)
+                * math.sin(math.pi / (2.0 * n_seg))
+            )
             m_valve = p.valve_mass + 0.5 * m_node
             self.m_node = m_node
         self.beta = 2.0 * p.spring_damping_ratio / w1  # stiffness-proportional coil damping
@@ -162,7 +193,7 @@ class ValvetrainModel:
         self.mass = np.array([p.tappet_mass, m_valve] + [self.m_node] * N)
         self.inv_mass = 1.0 / self.mass
         self.inv_mass_l = self.inv_mass.tolist()
-        self.d_seat = p.spring_preload / p.seat_stiffness        # static seat compression
+        self.d_seat = p.spring_preload / p.seat_stiffness  # static seat compression
         # Contact law δ_el = C z + z^γ/k_cam, P = z^γ.
         if p.contact_stiffness is None:
             self.gamma = 1.0 / _PALMGREN_EXP
@@ -180,8 +211,9 @@ class ValvetrainModel:
             self._tab = False
         s0 = cam.scalar_derivatives(self.theta0)[0]
         if abs(s0) > 1e-9:
-            raise InputError(f"start_angle must be on the base circle (lift there is "
-                             f"{s0 * 1e3:.4g} mm)")
+            raise InputError(
+                f"start_angle must be on the base circle (lift there is {s0 * 1e3:.4g} mm)"
+            )
 
     # -- contact law ---------------------------------------------------------------------
     def film(self, t: float, force: float, ue: float, R: float) -> tuple[float, float]:
@@ -189,31 +221,34 @@ class ValvetrainModel:
             return 0.0, 0.0
         h, hF = self.trib.film(float(t), float(force), ue, R)
         h, hF = float(h), float(hF)
-        if not (-_HUGE < h < _HUGE and -_HUGE < hF <= 0.0):     # finite, dh/dF <= 0
-            raise ContactLawError(f"film law returned h = {h:g} m, dh/dF = {hF:g} m/N at "
-                                  f"t = {t:.6g} s, F = {force:.6g} N (need finite, dh/dF <= 0)")
+        if not (-_HUGE < h < _HUGE and -_HUGE < hF <= 0.0):  # finite, dh/dF <= 0
+            raise ContactLawError(
+                f"film law returned h = {h:g} m, dh/dF = {hF:g} m/N at "
+                f"t = {t:.6g} s, F = {force:.6g} N (need finite, dh/dF <= 0)"
+            )
         return h, hF
 
-    def elastic_contact(self, t: float, dk: float, ue: float = 0.0,
-                        R: float = 1.0) -> tuple[float, float, float]:
+    def elastic_contact(
+        self, t: float, dk: float, ue: float = 0.0, R: float = 1.0
+    ) -> tuple[float, float, float]:
         """Elastic contact force P [N], dP/dδ_kin [N/m] and film h [m] at interference dk."""
         C, g, ikc = self.C, self.gamma, self.inv_kcam
         if not self.has_film and ikc == 0.0:
             if dk <= 0.0:
                 return 0.0, 0.0, 0.0
             z = dk / C
-            P = z ** g
+            P = z**g
             return P, g * z ** (g - 1.0) / C, 0.0
         h0, hF0 = self.film(t, 0.0, ue, R)
         if dk + h0 <= 0.0:
             return 0.0, 0.0, h0
-        lo, hi = 0.0, (dk + h0) / C                  # bracket in z (see module docstring)
-        z = hi          # Newton from the upper bracket: monotone for convex φ(z)
+        lo, hi = 0.0, (dk + h0) / C  # bracket in z (see module docstring)
+        z = hi  # Newton from the upper bracket: monotone for convex φ(z)
         # φ is a difference of terms of size |δ_kin| and |h|: its round-off scales with them,
         # not with the (possibly tiny) net interference δ_kin + h(0)
         tol = 1e-13 * max(dk + h0, abs(dk), abs(h0), 1e-9)
         for _ in range(80):
-            P = z ** g
+            P = z**g
             h, hF = self.film(t, P, ue, R)
             phi = C * z + P * ikc - h - dk
             if phi > 0.0:
@@ -226,13 +261,15 @@ class ValvetrainModel:
                 return P, dPdz / dphi, h
             zn = z - phi / dphi
             z = zn if lo < zn < hi else 0.5 * (lo + hi)
-            if hi - lo <= 1e-14 * hi:                 # bracket collapsed onto the root
-                P = z ** g
+            if hi - lo <= 1e-14 * hi:  # bracket collapsed onto the root
+                P = z**g
                 h, hF = self.film(t, P, ue, R)
                 dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
                 return P, dPdz / (C + dPdz * (ikc - hF)), h
-        raise ContactLawError(f"contact/film law did not converge at t = {t:.6g} s "
-                              f"(δ_kin = {dk:.4g} m, h(0) = {h0:.4g} m)")
+        raise ContactLawError(
+            f"contact/film law did not converge at t = {t:.6g} s "
+            f"(δ_kin = {dk:.4g} m, h(0) = {h0:.4g} m)"
+        )
 
     def contact_potential(self, P: float) -> float:
         """Elastic energy stored in the contact at force P [J] (Palmgren/linear + camshaft)."""
@@ -241,7 +278,7 @@ class ValvetrainModel:
         if self.gamma == 1.0:
             u = 0.5 * self.C * P * P
         else:
-            e = 1.0 / self.gamma                      # 0.9
+            e = 1.0 / self.gamma  # 0.9
             u = self.C * e / (1.0 + e) * P ** (1.0 + e)
         return u + 0.5 * self.inv_kcam * P * P
 
@@ -273,8 +310,11 @@ class ValvetrainModel:
             Fc = 0.0
         # friction at the contact and in the bore
         if Fc > 0.0:
-            Ff = (self.friction_fn(th, Fc) if self._tab
-                  else float(self.trib.friction(t, Fc, ue, us, R)))
+            Ff = (
+                self.friction_fn(th, Fc)
+                if self._tab
+                else float(self.trib.friction(t, Fc, ue, us, R))
+            )
         else:
             Ff = 0.0
         th_v = math.tanh(vt / p.bore_friction_velocity)
@@ -298,7 +338,7 @@ class ValvetrainModel:
             Fs = 0.0
         # spring chain: segment j joins node j (0 = valve) and node j+1 (N+1 = head)
         xs = [xv] + yl[2:n] + [0.0]
-        vs = [vv] + yl[n + 2:2 * n] + [0.0]
+        vs = [vv] + yl[n + 2 : 2 * n] + [0.0]
         F0 = p.spring_preload
         ks, cs = self.kseg_l, self.cseg_l
         Fseg = [0.0] * (N + 1)
@@ -311,7 +351,7 @@ class ValvetrainModel:
             dd = vs[j] - vs[j + 1]
             fe = F0 + ks[j] * d
             f = fe + cs[j] * dd
-            if j == 0 or j == N:                      # compression-only end seatings
+            if j == 0 or j == N:  # compression-only end seatings
                 if fe < 0.0:
                     fe = 0.0
                 if f < 0.0:
@@ -326,20 +366,42 @@ class ValvetrainModel:
         acc[1] = (Ftv - Fseg[0] + Fs) * im[1]
         for i in range(1, N + 1):
             acc[i + 1] = (Fseg[i - 1] - Fseg[i]) * im[i + 1]
-        out = dict(theta=th, s=s, s1=s1, s2=s2, R=R, ue=ue, us=us, dk=dk, P=P, Fc=Fc,
-                   Ff=Ff, Fb=Fb, Ftv=Ftv, Fs=Fs, Fseg=Fseg, acc=acc, film=hfilm,
-                   cam_power=Fc * w * s1 + Ff * us,
-                   dissipation_rate=((Fc - P) * dkd + (Ftv - Etv) * dtvd + (Fs - Es) * (-vv)
-                                     + diss + Fb * vt + Ff * us))
+        out = dict(
+            theta=th,
+            s=s,
+            s1=s1,
+            s2=s2,
+            R=R,
+            ue=ue,
+            us=us,
+            dk=dk,
+            P=P,
+            Fc=Fc,
+            Ff=Ff,
+            Fb=Fb,
+            Ftv=Ftv,
+            Fs=Fs,
+            Fseg=Fseg,
+            acc=acc,
+            film=hfilm,
+            cam_power=Fc * w * s1 + Ff * us,
+            dissipation_rate=(
+                (Fc - P) * dkd + (Ftv - Etv) * dtvd + (Fs - Es) * (-vv) + diss + Fb * vt + Ff * us
+            ),
+        )
         if jac:
             kc = dPdk * (1.0 + p.contact_damping * dgc * dkd) if on_c else 0.0
             cc = p.contact_damping * gc if on_c else 0.0
             cb = p.bore_friction_coefficient * Ff * (1.0 - th_v * th_v) / p.bore_friction_velocity
-            ktv = (p.tappet_valve_stiffness * (1.0 + p.tappet_valve_damping * dgtv * dtvd)
-                   if (on_tv and dtv > 0.0) else 0.0)
+            ktv = (
+                p.tappet_valve_stiffness * (1.0 + p.tappet_valve_damping * dgtv * dtvd)
+                if (on_tv and dtv > 0.0)
+                else 0.0
+            )
             ctv = p.tappet_valve_damping * gtv if on_tv else 0.0
-            kst = (p.seat_stiffness * (1.0 - p.seat_damping * dgs * vv)
-                   if (on_s and ds > 0.0) else 0.0)
+            kst = (
+                p.seat_stiffness * (1.0 - p.seat_damping * dgs * vv) if (on_s and ds > 0.0) else 0.0
+            )
             cst = p.seat_damping * gs if on_s else 0.0
             kseg, cseg = list(ks), list(cs)
             for j in {0, N}:
@@ -347,8 +409,7 @@ class ValvetrainModel:
                     kseg[j] = cseg[j] = 0.0
                 elif F0 + ks[j] * D[j] < 0.0:
                     kseg[j] = 0.0
-            out.update(kc=kc, cc=cc, cb=cb, ktv=ktv, ctv=ctv, ks=kst, cs=cst, kseg=kseg,
-                       cseg=cseg)
+            out.update(kc=kc, cc=cc, cb=cb, ktv=ktv, ctv=ctv, ks=kst, cs=cst, kseg=kseg, cseg=cseg)
         return out
 
     # -- ODE interface -----------------------------------------------------------------
@@ -356,8 +417,8 @@ class ValvetrainModel:
         n = self.n
         f = self.evaluate(t, y)
         dy = np.empty(2 * n + 2)
-        dy[:n] = y[n:2 * n]
-        dy[n:2 * n] = f["acc"]
+        dy[:n] = y[n : 2 * n]
+        dy[n : 2 * n] = f["acc"]
         dy[2 * n] = f["cam_power"]
         dy[2 * n + 1] = f["dissipation_rate"]
         return dy
@@ -368,8 +429,8 @@ class ValvetrainModel:
         effect on the motion is small and the accumulators do not feed back)."""
         n, N = self.n, self.N
         f = self.evaluate(t, y, jac=True)
-        K = np.zeros((n, n))                          # ∂(force)/∂q
-        Cm = np.zeros((n, n))                         # ∂(force)/∂q̇
+        K = np.zeros((n, n))  # ∂(force)/∂q
+        Cm = np.zeros((n, n))  # ∂(force)/∂q̇
 
         def element(a, b, k, c):
             """Compressive element between bodies a and b (b = None: ground), whose force
@@ -384,17 +445,17 @@ class ValvetrainModel:
                 Cm[b, a] += c
                 Cm[b, b] -= c
 
-        K[0, 0] -= f["kc"]                            # cam contact: δ = s − x_t
-        Cm[0, 0] -= f["cc"] + f["cb"]                 # + bore friction
-        element(1, 0, f["ktv"], f["ctv"])             # tappet–valve: δ = x_t − x_v
-        element(1, None, f["ks"], f["cs"])            # valve seat (to ground)
+        K[0, 0] -= f["kc"]  # cam contact: δ = s − x_t
+        Cm[0, 0] -= f["cc"] + f["cb"]  # + bore friction
+        element(1, 0, f["ktv"], f["ctv"])  # tappet–valve: δ = x_t − x_v
+        element(1, None, f["ks"], f["cs"])  # valve seat (to ground)
         kseg, cseg = f["kseg"], f["cseg"]
-        for j in range(N + 1):                        # coil segment j: nodes j+1, j+2 (q index)
+        for j in range(N + 1):  # coil segment j: nodes j+1, j+2 (q index)
             element(j + 1, j + 2 if j < N else None, kseg[j], cseg[j])
         J = np.zeros((2 * n + 2, 2 * n + 2))
-        J[:n, n:2 * n] = np.eye(n)
-        J[n:2 * n, :n] = K * self.inv_mass[:, None]
-        J[n:2 * n, n:2 * n] = Cm * self.inv_mass[:, None]
+        J[:n, n : 2 * n] = np.eye(n)
+        J[n : 2 * n, :n] = K * self.inv_mass[:, None]
+        J[n : 2 * n, n : 2 * n] = Cm * self.inv_mass[:, None]
         return J
 
     # -- energy ------------------------------------------------------------------------
@@ -402,7 +463,7 @@ class ValvetrainModel:
         """(kinetic, elastic) energy [J] relative to the static equilibrium state
         (``evaluated``: the output of :meth:`evaluate` at (t, y), if already known)."""
         p, n, N = self.p, self.n, self.N
-        v = np.asarray(y[n:2 * n])
+        v = np.asarray(y[n : 2 * n])
         T = 0.5 * float(np.sum(self.mass * v * v))
         f = self.evaluate(t, y) if evaluated is None else evaluated
         U = self.contact_potential(f["P"])
@@ -410,7 +471,7 @@ class ValvetrainModel:
         if dtv > 0.0:
             U += 0.5 * p.tappet_valve_stiffness * dtv * dtv
         ds = self.d_seat - y[1]
-        U += 0.5 * p.seat_stiffness * (max(ds, 0.0) ** 2 - self.d_seat ** 2)
+        U += 0.5 * p.seat_stiffness * (max(ds, 0.0) ** 2 - self.d_seat**2)
         xs = np.concatenate([[y[1]], np.asarray(y[2:n]), [0.0]])
         D = xs[:-1] - xs[1:]
         F0 = p.spring_preload
@@ -431,8 +492,8 @@ class ValvetrainModel:
         if N == 0:
             return np.zeros((0, 0)), np.zeros((0, 0))
         K = np.zeros((N, N))
-        for j in range(N + 1):                        # segment j between nodes j, j+1
-            a, b = j - 1, j                           # coil indices (−1/N = fixed ends)
+        for j in range(N + 1):  # segment j between nodes j, j+1
+            a, b = j - 1, j  # coil indices (−1/N = fixed ends)
             k = self.kseg[j]
             if 0 <= a < N:
                 K[a, a] += k

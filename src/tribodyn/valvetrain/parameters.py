@@ -41,7 +41,7 @@ STEEL_REDUCED_MODULUS = paper.STEEL["E"] / (1.0 - paper.STEEL["nu"] ** 2)
 #: Palmgren's line-contact approach for steel, δ = 3.84e-5 Q^0.9 / l^0.8 with δ, l in mm and
 #: Q in N (Palmgren, Ball and Roller Bearing Engineering, 3rd ed., 1959; Harris & Kotzalas,
 #: Rolling Bearing Analysis, 5th ed., 2007). In SI: δ = 3.84e-8 · 1000^(−0.8) Q^0.9 l^(−0.8).
-PALMGREN_COEFFICIENT = 3.84e-8 * 1000.0 ** -0.8
+PALMGREN_COEFFICIENT = 3.84e-8 * 1000.0**-0.8
 
 
 @dataclass(frozen=True)
@@ -141,10 +141,14 @@ class ValvetrainParameters:
     @property
     def contact_compliance_coefficient(self) -> float:
         """C of the Palmgren law δ = C F^0.9 [m/N^0.9] for this width and modulus."""
-        return (PALMGREN_COEFFICIENT * self.cam_width ** -0.8
-                * STEEL_REDUCED_MODULUS / self.contact_modulus)
+        return (
+            PALMGREN_COEFFICIENT
+            * self.cam_width**-0.8
+            * STEEL_REDUCED_MODULUS
+            / self.contact_modulus
+        )
 
-    def replace(self, **changes) -> "ValvetrainParameters":
+    def replace(self, **changes) -> ValvetrainParameters:
         """A copy with some fields changed (validated again)."""
         unknown = set(changes) - {f.name for f in fields(self)}
         if unknown:
@@ -156,16 +160,27 @@ class ValvetrainParameters:
 
 #: Range of every field (the case file's [valvetrain] uses the same limits).
 _LIMITS = {
-    "valve_mass": L.MASS, "tappet_mass": L.MASS, "spring_mass": L.MASS,
-    "spring_rate": L.SPRING_RATE, "spring_preload": L.SPRING_PRELOAD,
-    "spring_masses": L.SPRING_MASSES, "spring_damping_ratio": L.SPRING_DAMPING_RATIO,
-    "contact_stiffness": L.STIFFNESS, "contact_modulus": L.CONTACT_MODULUS,
-    "contact_damping": L.DAMPING, "camshaft_stiffness": L.STIFFNESS,
-    "tappet_valve_stiffness": L.STIFFNESS, "tappet_valve_damping": L.DAMPING, "lash": L.LASH,
-    "seat_stiffness": L.STIFFNESS, "seat_damping": L.DAMPING,
-    "spring_seat_stiffness": L.STIFFNESS, "spring_support_stiffness": L.STIFFNESS,
+    "valve_mass": L.MASS,
+    "tappet_mass": L.MASS,
+    "spring_mass": L.MASS,
+    "spring_rate": L.SPRING_RATE,
+    "spring_preload": L.SPRING_PRELOAD,
+    "spring_masses": L.SPRING_MASSES,
+    "spring_damping_ratio": L.SPRING_DAMPING_RATIO,
+    "contact_stiffness": L.STIFFNESS,
+    "contact_modulus": L.CONTACT_MODULUS,
+    "contact_damping": L.DAMPING,
+    "camshaft_stiffness": L.STIFFNESS,
+    "tappet_valve_stiffness": L.STIFFNESS,
+    "tappet_valve_damping": L.DAMPING,
+    "lash": L.LASH,
+    "seat_stiffness": L.STIFFNESS,
+    "seat_damping": L.DAMPING,
+    "spring_seat_stiffness": L.STIFFNESS,
+    "spring_support_stiffness": L.STIFFNESS,
     "damping_force_ramp": L.DAMPING_FORCE_RAMP,
     "bore_friction_coefficient": L.BORE_FRICTION_COEFFICIENT,
-    "bore_friction_velocity": L.BORE_FRICTION_VELOCITY, "tappet_radius": L.LENGTH_BELOW_1M,
+    "bore_friction_velocity": L.BORE_FRICTION_VELOCITY,
+    "tappet_radius": L.LENGTH_BELOW_1M,
     "cam_width": L.LENGTH_BELOW_1M,
 }

@@ -44,7 +44,7 @@ class SpringStatics:
 
     force: float
     compressions: np.ndarray
-    closed: np.ndarray                     #: element closed (wires touching)
+    closed: np.ndarray  #: element closed (wires touching)
 
 
 @dataclass(frozen=True)
@@ -83,10 +83,16 @@ class HelicalSpring:
     _derived: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self):
-        for name, unit in (("wire_diameter", "m"), ("mean_diameter", "m"),
-                           ("free_length", "m"), ("installed_length", "m"),
-                           ("shear_modulus", "Pa"), ("density", "kg/m³"),
-                           ("active_coils", ""), ("clash_margin", "")):
+        for name, unit in (
+            ("wire_diameter", "m"),
+            ("mean_diameter", "m"),
+            ("free_length", "m"),
+            ("installed_length", "m"),
+            ("shear_modulus", "Pa"),
+            ("density", "kg/m³"),
+            ("active_coils", ""),
+            ("clash_margin", ""),
+        ):
             check_positive(name, getattr(self, name), unit)
         check_range("dead_coils", self.dead_coils, 0.0, 10.0)
         check_range("damping_ratio", self.damping_ratio, 0.0, 1.0, hi_open=True)
@@ -96,37 +102,53 @@ class HelicalSpring:
             raise InputError(f"elements_per_coil must be an integer in [1, 20] (got {e!r})")
         d, D = self.wire_diameter, self.mean_diameter
         if not D > d:
-            raise InputError(f"mean_diameter must exceed wire_diameter (got D = {D:g} m, "
-                             f"d = {d:g} m)")
+            raise InputError(
+                f"mean_diameter must exceed wire_diameter (got D = {D:g} m, d = {d:g} m)"
+            )
         if self.pitches is not None:
             p = np.asarray(self.pitches, dtype=float)
-            if p.ndim != 1 or p.size != self.active_coils or \
-                    abs(self.active_coils - round(self.active_coils)) > 1e-12:
-                raise InputError(f"pitches must list one pitch per active coil "
-                                 f"({self.active_coils:g} coils; got {p.size})")
+            if (
+                p.ndim != 1
+                or p.size != self.active_coils
+                or abs(self.active_coils - round(self.active_coils)) > 1e-12
+            ):
+                raise InputError(
+                    f"pitches must list one pitch per active coil "
+                    f"({self.active_coils:g} coils; got {p.size})"
+                )
             if np.any(~np.isfinite(p)) or np.any(p <= d):
-                raise InputError(f"pitches must all exceed the wire diameter {d * 1e3:g} mm "
-                                 f"(got min {p.min() * 1e3:g} mm)")
+                raise InputError(
+                    f"pitches must all exceed the wire diameter {d * 1e3:g} mm "
+                    f"(got min {p.min() * 1e3:g} mm)"
+                )
             object.__setattr__(self, "pitches", tuple(float(x) for x in p))
             free = float(p.sum()) + 2.0 * self.dead_coils * d
             if abs(free - self.free_length) > 1e-4:
-                raise InputError(f"free_length {self.free_length * 1e3:.4g} mm disagrees with "
-                                 f"the pitches (Σ p + 2 n_dead d = {free * 1e3:.4g} mm)")
+                raise InputError(
+                    f"free_length {self.free_length * 1e3:.4g} mm disagrees with "
+                    f"the pitches (Σ p + 2 n_dead d = {free * 1e3:.4g} mm)"
+                )
         if not self.installed_length < self.free_length:
-            raise InputError(f"installed_length must be below free_length (got "
-                             f"{self.installed_length:g} m >= {self.free_length:g} m)")
+            raise InputError(
+                f"installed_length must be below free_length (got "
+                f"{self.installed_length:g} m >= {self.free_length:g} m)"
+            )
         if self.installed_length <= self.solid_length:
-            raise InputError(f"installed_length {self.installed_length * 1e3:.4g} mm is at or "
-                             f"below the solid length {self.solid_length * 1e3:.4g} mm")
+            raise InputError(
+                f"installed_length {self.installed_length * 1e3:.4g} mm is at or "
+                f"below the solid length {self.solid_length * 1e3:.4g} mm"
+            )
         if self.coil_gaps.min() <= 0.0:
-            raise InputError("free_length too short for the wire: the uniform pitch would "
-                             "not exceed the wire diameter")
+            raise InputError(
+                "free_length too short for the wire: the uniform pitch would "
+                "not exceed the wire diameter"
+            )
 
     # -- geometry ------------------------------------------------------------------------
     @property
     def coil_rate(self) -> float:
         """k_c = G d⁴/(8 D³), the rate of one coil [N/m]."""
-        return self.shear_modulus * self.wire_diameter ** 4 / (8.0 * self.mean_diameter ** 3)
+        return self.shear_modulus * self.wire_diameter**4 / (8.0 * self.mean_diameter**3)
 
     @property
     def rate(self) -> float:
@@ -190,12 +212,12 @@ class HelicalSpring:
             na = self.active_coils
             n_full = int(math.ceil(na - 1e-12))
             share = np.ones(n_full)
-            share[-1] = na - (n_full - 1)                    # fractional last coil
+            share[-1] = na - (n_full - 1)  # fractional last coil
             gaps = self.coil_gaps
             k, m, g = [], [], []
             for i in range(n_full):
                 for _ in range(e):
-                    frac = share[i] / e                     # coils in this element
+                    frac = share[i] / e  # coils in this element
                     k.append(self.coil_rate / frac)
                     m.append(self.wire_mass_per_coil * frac)
                     g.append(gaps[i] * frac)
@@ -211,13 +233,14 @@ class HelicalSpring:
         """Axial FE model: nodes 0 (retainer end) … N (head end); the moving dead coil's
         mass on node 0. Element masses follow the mixed mass matrix of :mod:`.fe`."""
         k, m, _, _ = self._elements()
-        rho_a = 1.0                                   # bar() needs E, A, ρ: use k and m
+        rho_a = 1.0  # bar() needs E, A, ρ: use k and m
         model = AxialFEModel("spring")
         a = model.node("top")
         for j in range(k.size):
             # a bar of length 1 with E·A = k and ρ·A = m reproduces k and m exactly
-            a = model.bar(a, 1.0, k[j] / rho_a, rho_a, m[j] / rho_a, 1,
-                          "bottom" if j == k.size - 1 else None)
+            a = model.bar(
+                a, 1.0, k[j] / rho_a, rho_a, m[j] / rho_a, 1, "bottom" if j == k.size - 1 else None
+            )
         if self.dead_coils > 0.0:
             model.mass(0, self.dead_coil_mass)
         return model
@@ -241,7 +264,7 @@ class HelicalSpring:
         k, g = k[j], g[j]
         if force <= k * g:
             return force / k
-        lo, hi = g, force / k                           # k δ + Q(δ − g) = force
+        lo, hi = g, force / k  # k δ + Q(δ − g) = force
         for _ in range(200):
             mid = 0.5 * (lo + hi)
             if k * mid + self.clash_force(mid - g)[0] > force:
@@ -267,8 +290,9 @@ class HelicalSpring:
         while total(hi) < compression:
             hi *= 2.0
             if hi > 1e9:
-                raise InputError(f"spring compression {compression * 1e3:.4g} mm is beyond "
-                                 "the solid length")
+                raise InputError(
+                    f"spring compression {compression * 1e3:.4g} mm is beyond the solid length"
+                )
         for _ in range(200):
             mid = 0.5 * (lo + hi)
             if total(mid) > compression:
@@ -301,18 +325,20 @@ class HelicalSpring:
         [m]: the tangent stiffness includes the clash contact of closed coils, so they rise
         as coils close (the dead coil's mass is left out: both ends are fixed)."""
         import scipy.linalg as sla
+
         st = self.statics(compression)
         k, m, g, _ = self._elements()
         n = k.size + 1
-        kt = k + np.array([self.clash_force(st.compressions[j] - g[j])[1]
-                           for j in range(k.size)])
+        kt = k + np.array([self.clash_force(st.compressions[j] - g[j])[1] for j in range(k.size)])
         K = np.zeros((n, n))
         M = np.zeros((n, n))
         from .fe import MASS_MIXING
+
         for j in range(k.size):
-            K[j:j + 2, j:j + 2] += kt[j] * np.array([[1.0, -1.0], [-1.0, 1.0]])
-            M[j:j + 2, j:j + 2] += m[j] * ((1 - MASS_MIXING) / 2 * np.eye(2)
-                                           + MASS_MIXING / 6 * np.array([[2.0, 1.0],
-                                                                          [1.0, 2.0]]))
+            K[j : j + 2, j : j + 2] += kt[j] * np.array([[1.0, -1.0], [-1.0, 1.0]])
+            M[j : j + 2, j : j + 2] += m[j] * (
+                (1 - MASS_MIXING) / 2 * np.eye(2)
+                + MASS_MIXING / 6 * np.array([[2.0, 1.0], [1.0, 2.0]])
+            )
         w2 = sla.eigh(K[1:-1, 1:-1], M[1:-1, 1:-1], eigvals_only=True)
         return np.sqrt(np.clip(w2[:count], 0.0, None)) / (2.0 * math.pi)

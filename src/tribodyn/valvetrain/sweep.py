@@ -26,12 +26,12 @@ class SpeedSweepResult:
     """Sweep outputs, one entry per engine speed [rpm] (NaN where a run failed)."""
 
     engine_speed: np.ndarray
-    peak_contact_force: np.ndarray        #: [N]
-    min_contact_force: np.ndarray         #: [N] inside the lift event
-    jump: np.ndarray                      #: contact lost while the cam lifts
-    jump_onset_crank_angle: np.ndarray    #: [deg in the presented cycle] (NaN: no jump)
+    peak_contact_force: np.ndarray  #: [N]
+    min_contact_force: np.ndarray  #: [N] inside the lift event
+    jump: np.ndarray  #: contact lost while the cam lifts
+    jump_onset_crank_angle: np.ndarray  #: [deg in the presented cycle] (NaN: no jump)
     valve_bounce: np.ndarray
-    seating_velocity: np.ndarray          #: [m/s]
+    seating_velocity: np.ndarray  #: [m/s]
     converged: np.ndarray
     messages: list = field(default_factory=list)
 
@@ -42,8 +42,9 @@ class SpeedSweepResult:
         return float(self.engine_speed[ok].min()) if ok.any() else float("nan")
 
     def to_dict(self) -> dict:
-        return {k: (v.tolist() if isinstance(v, np.ndarray) else v)
-                for k, v in self.__dict__.items()} | {"jump_onset_speed": self.jump_onset_speed}
+        return {
+            k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in self.__dict__.items()
+        } | {"jump_onset_speed": self.jump_onset_speed}
 
 
 def _row(r: ValvetrainResult):
@@ -52,12 +53,25 @@ def _row(r: ValvetrainResult):
     ev = r.event_mask()
     fmin = float(r.contact_force[ev].min()) if ev.any() else math.nan
     onset = r.jumps[0][0] if r.jumps else math.nan
-    return (float(r.contact_force.max()), fmin, r.jump, onset, r.valve_bounce,
-            r.seating_velocity, True)
+    return (
+        float(r.contact_force.max()),
+        fmin,
+        r.jump,
+        onset,
+        r.valve_bounce,
+        r.seating_velocity,
+        True,
+    )
 
 
-def speed_sweep(cam: CamProfile, engine_speeds, params: ValvetrainParameters | None = None,
-                *, tribology="explicit", **kwargs) -> SpeedSweepResult:
+def speed_sweep(
+    cam: CamProfile,
+    engine_speeds,
+    params: ValvetrainParameters | None = None,
+    *,
+    tribology="explicit",
+    **kwargs,
+) -> SpeedSweepResult:
     """Simulate at each engine speed [rpm] (sorted ascending); kwargs go to
     :func:`simulate_valvetrain`."""
     n = check_array("engine_speeds", engine_speeds, min_size=1)
@@ -66,21 +80,33 @@ def speed_sweep(cam: CamProfile, engine_speeds, params: ValvetrainParameters | N
     n = np.sort(n)
     rows, msgs = [], []
     for rpm in n:
-        r = simulate_valvetrain(cam, params, engine_speed=float(rpm), tribology=tribology,
-                                **kwargs)
+        r = simulate_valvetrain(cam, params, engine_speed=float(rpm), tribology=tribology, **kwargs)
         rows.append(_row(r))
         msgs.append(r.message)
     cols = list(zip(*rows))
     return SpeedSweepResult(
-        engine_speed=n, peak_contact_force=np.array(cols[0]), min_contact_force=np.array(cols[1]),
-        jump=np.array(cols[2], dtype=bool), jump_onset_crank_angle=np.array(cols[3]),
-        valve_bounce=np.array(cols[4], dtype=bool), seating_velocity=np.array(cols[5]),
-        converged=np.array(cols[6], dtype=bool), messages=msgs)
+        engine_speed=n,
+        peak_contact_force=np.array(cols[0]),
+        min_contact_force=np.array(cols[1]),
+        jump=np.array(cols[2], dtype=bool),
+        jump_onset_crank_angle=np.array(cols[3]),
+        valve_bounce=np.array(cols[4], dtype=bool),
+        seating_velocity=np.array(cols[5]),
+        converged=np.array(cols[6], dtype=bool),
+        messages=msgs,
+    )
 
 
-def jump_speed(cam: CamProfile, params: ValvetrainParameters | None = None, *,
-               low: float = 2000.0, high: float = 12000.0, tolerance: float = 10.0,
-               tribology="explicit", **kwargs) -> tuple[float, float]:
+def jump_speed(
+    cam: CamProfile,
+    params: ValvetrainParameters | None = None,
+    *,
+    low: float = 2000.0,
+    high: float = 12000.0,
+    tolerance: float = 10.0,
+    tribology="explicit",
+    **kwargs,
+) -> tuple[float, float]:
     """Bracket [n_lo, n_hi] [rpm] of the lowest engine speed with cam contact loss.
 
     Requires no jump at ``low`` and a jump at ``high``; bisects until the bracket is

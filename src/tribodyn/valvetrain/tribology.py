@@ -36,8 +36,13 @@ from ..physics.asperity import Roughness
 from ..physics.lubricant import SAE_5W20, Lubricant
 from ..physics.materials import STEEL, Body
 
-__all__ = ["TribologyModel", "Frictionless", "AnalyticTribology", "FilmTableTribology",
-           "PAPER_ROUGHNESS_UNCOATED"]
+__all__ = [
+    "TribologyModel",
+    "Frictionless",
+    "AnalyticTribology",
+    "FilmTableTribology",
+    "PAPER_ROUGHNESS_UNCOATED",
+]
 
 #: Paper Table 4, uncoated tappet: η = 8.3e9 m⁻², σ = 0.408 µm, β = 0.669 µm.
 PAPER_ROUGHNESS_UNCOATED = Roughness(**paper.ROUGHNESS["uncoated"])
@@ -72,8 +77,7 @@ class Frictionless(TribologyModel):
     name = "frictionless"
 
     def friction(self, t, force, entrainment_speed, sliding_speed, radius):
-        return np.zeros(np.broadcast(t, force, entrainment_speed, sliding_speed,
-                                     radius).shape)
+        return np.zeros(np.broadcast(t, force, entrainment_speed, sliding_speed, radius).shape)
 
 
 class AnalyticTribology(TribologyModel):
@@ -96,28 +100,46 @@ class AnalyticTribology(TribologyModel):
 
     name = "analytic"
 
-    def __init__(self, width: float = paper.CAM_WIDTH, *, bodies=None, lubricant: Lubricant = SAE_5W20,
-                 roughness: Roughness | None = PAPER_ROUGHNESS_UNCOATED,
-                 boundary_shear_coefficient: float = paper.STEEL["boundary_shear_coefficient"],
-                 viscous_model: str = "eyring",
-                 film_formula: str = "moes", limiting_shear: bool = True):
+    def __init__(
+        self,
+        width: float = paper.CAM_WIDTH,
+        *,
+        bodies=None,
+        lubricant: Lubricant = SAE_5W20,
+        roughness: Roughness | None = PAPER_ROUGHNESS_UNCOATED,
+        boundary_shear_coefficient: float = paper.STEEL["boundary_shear_coefficient"],
+        viscous_model: str = "eyring",
+        film_formula: str = "moes",
+        limiting_shear: bool = True,
+    ):
         self.width = check_positive("width", width, "m")
         self.bodies = tuple(bodies) if bodies is not None else (Body(STEEL), Body(STEEL))
         if not isinstance(lubricant, Lubricant):
             raise InputError(f"lubricant must be a Lubricant (got {type(lubricant).__name__})")
         self.lubricant = lubricant
         self.roughness = roughness
-        self.kwargs = dict(boundary_shear_coefficient=boundary_shear_coefficient,
-                           viscous_model=viscous_model, film_formula=film_formula,
-                           limiting_shear=limiting_shear)
+        self.kwargs = dict(
+            boundary_shear_coefficient=boundary_shear_coefficient,
+            viscous_model=viscous_model,
+            film_formula=film_formula,
+            limiting_shear=limiting_shear,
+        )
 
     def _contact(self, force, ue, us, R):
         w = np.maximum(np.asarray(force, dtype=float), 0.0) / self.width
         # Very light loads give films of thousands of σ: Greenwood–Tripp underflows (and
         # scipy's pbdv returns NaN for λ ≳ 10³); the asperity terms are exactly 0 there.
         with np.errstate(under="ignore", invalid="ignore"):
-            c = analytic_contact(w, np.maximum(R, 1e-9), ue, us, self.bodies, self.lubricant,
-                                 self.roughness, **self.kwargs)
+            c = analytic_contact(
+                w,
+                np.maximum(R, 1e-9),
+                ue,
+                us,
+                self.bodies,
+                self.lubricant,
+                self.roughness,
+                **self.kwargs,
+            )
         if self.roughness is not None:
             far = np.asarray(c.central_film) > 38.0 * self.roughness.rms
             for name in ("asperity_load", "boundary_friction"):
@@ -133,11 +155,14 @@ class AnalyticTribology(TribologyModel):
     def report(self, t, force, entrainment_speed, sliding_speed, radius) -> dict:
         c = self._contact(force, entrainment_speed, sliding_speed, radius)
         on = np.asarray(force) > 0.0
-        return {"central_film": c.central_film, "min_film": c.min_film,
-                "viscous_friction": np.where(on, c.viscous_friction * self.width, 0.0),
-                "boundary_friction": np.where(on, c.boundary_friction * self.width, 0.0),
-                "asperity_load": np.where(on, c.asperity_load * self.width, 0.0),
-                "regime": c.regime}
+        return {
+            "central_film": c.central_film,
+            "min_film": c.min_film,
+            "viscous_friction": np.where(on, c.viscous_friction * self.width, 0.0),
+            "boundary_friction": np.where(on, c.boundary_friction * self.width, 0.0),
+            "asperity_load": np.where(on, c.asperity_load * self.width, 0.0),
+            "regime": c.regime,
+        }
 
 
 class FilmTableTribology(TribologyModel):
@@ -168,11 +193,20 @@ class FilmTableTribology(TribologyModel):
     has_film = True
     name = "film-table"
 
-    def __init__(self, friction_model: TribologyModel, time, film, compliance=None,
-                 reference_force=None, *, period: float | None = None):
+    def __init__(
+        self,
+        friction_model: TribologyModel,
+        time,
+        film,
+        compliance=None,
+        reference_force=None,
+        *,
+        period: float | None = None,
+    ):
         if not isinstance(friction_model, TribologyModel):
-            raise InputError("friction_model must be a TribologyModel (got "
-                             f"{type(friction_model).__name__})")
+            raise InputError(
+                f"friction_model must be a TribologyModel (got {type(friction_model).__name__})"
+            )
         self.friction_model = friction_model
         self.periodic_in_cam_angle = friction_model.periodic_in_cam_angle
         t = check_array("time", np.atleast_1d(time), min_size=1)
@@ -181,8 +215,13 @@ class FilmTableTribology(TribologyModel):
         n = t.size
 
         def arr(name, v, default):
-            a = np.full(n, default) if v is None else np.broadcast_to(
-                check_array(name, np.atleast_1d(v), min_size=1), (n,)).astype(float)
+            a = (
+                np.full(n, default)
+                if v is None
+                else np.broadcast_to(check_array(name, np.atleast_1d(v), min_size=1), (n,)).astype(
+                    float
+                )
+            )
             return a
 
         self.time = t
@@ -193,8 +232,12 @@ class FilmTableTribology(TribologyModel):
         self.Fk = arr("reference_force", reference_force, 0.0)
         self.period = None if period is None else check_positive("period", period, "s")
         self._t0 = float(t[0])
-        self._tl, self._hl, self._cl, self._fl = (t.tolist(), self.h.tolist(),
-                                                  self.c.tolist(), self.Fk.tolist())
+        self._tl, self._hl, self._cl, self._fl = (
+            t.tolist(),
+            self.h.tolist(),
+            self.c.tolist(),
+            self.Fk.tolist(),
+        )
 
     def _wrap(self, t):
         if self.period is None:
@@ -222,7 +265,7 @@ class FilmTableTribology(TribologyModel):
         return hk + ck * (force - fk), ck
 
     def film(self, t, force, entrainment_speed, radius):
-        if type(t) is float and type(force) is float:       # the dynamics' hot path
+        if type(t) is float and type(force) is float:  # the dynamics' hot path
             return self._scalar_film(t, force)
         if np.ndim(t) == 0 and np.ndim(force) == 0:
             return self._scalar_film(float(t), float(force))
@@ -236,7 +279,6 @@ class FilmTableTribology(TribologyModel):
         return hk + ck * (force - fk), ck * np.ones_like(np.asarray(force, dtype=float))
 
     def report(self, t, force, entrainment_speed, sliding_speed, radius) -> dict:
-        out = dict(self.friction_model.report(t, force, entrainment_speed, sliding_speed,
-                                              radius))
+        out = dict(self.friction_model.report(t, force, entrainment_speed, sliding_speed, radius))
         out["series_film"] = self.film(t, force, entrainment_speed, radius)[0]
         return out

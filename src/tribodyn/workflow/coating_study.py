@@ -15,8 +15,14 @@ from ..contact.ehl import EHLResult, solve_ehl
 from ..physics.lubricant import SAE_5W20, Lubricant
 from ..physics.materials import STEEL, Body, Coating, Material
 
-__all__ = ["DryCoatingCase", "ModulusCase", "PairCase", "EHLCoatingStudy",
-           "dry_coating_study", "ehl_coating_study"]
+__all__ = [
+    "DryCoatingCase",
+    "ModulusCase",
+    "PairCase",
+    "EHLCoatingStudy",
+    "dry_coating_study",
+    "ehl_coating_study",
+]
 
 _FIG5 = paper.FIG5
 
@@ -62,10 +68,17 @@ class EHLCoatingStudy:
         return [c.result for c in self.ratios] + [c.result for c in self.pairs]
 
 
-def dry_coating_study(ratios=_FIG5["ratios"], *, thickness=_FIG5["thickness"],
-                      load_total=_FIG5["load_total"], width=_FIG5["width"],
-                      radius=_FIG5["radius"], substrate: Material = STEEL,
-                      coating_nu: float = 0.3, n: int = 1024) -> list[DryCoatingCase]:
+def dry_coating_study(
+    ratios=_FIG5["ratios"],
+    *,
+    thickness=_FIG5["thickness"],
+    load_total=_FIG5["load_total"],
+    width=_FIG5["width"],
+    radius=_FIG5["radius"],
+    substrate: Material = STEEL,
+    coating_nu: float = 0.3,
+    n: int = 1024,
+) -> list[DryCoatingCase]:
     """Dry pressure for a steel cam on a coated steel tappet, one case per modulus ratio."""
     w = load_total / width
     cases = []
@@ -76,12 +89,18 @@ def dry_coating_study(ratios=_FIG5["ratios"], *, thickness=_FIG5["thickness"],
     return cases
 
 
-def ehl_coating_study(lubricant: Lubricant = SAE_5W20, case=None, *,
-                      ratios=_FIG5["ratios"], thickness=_FIG5["thickness"],
-                      load_total=_FIG5["load_total"], width=_FIG5["width"],
-                      radius=_FIG5["radius"],
-                      entrainment_speed=_FIG5["entrainment_speed"],
-                      pair_thickness: float = paper.COATING_THICKNESS) -> EHLCoatingStudy:
+def ehl_coating_study(
+    lubricant: Lubricant = SAE_5W20,
+    case=None,
+    *,
+    ratios=_FIG5["ratios"],
+    thickness=_FIG5["thickness"],
+    load_total=_FIG5["load_total"],
+    width=_FIG5["width"],
+    radius=_FIG5["radius"],
+    entrainment_speed=_FIG5["entrainment_speed"],
+    pair_thickness: float = paper.COATING_THICKNESS,
+) -> EHLCoatingStudy:
     """Smooth EHL line contacts of the paper's Fig. 6 conditions.
 
     ``ratios``: coating/steel modulus ratios with a ``thickness`` coating; ``pairs``: steel
@@ -90,20 +109,31 @@ def ehl_coating_study(lubricant: Lubricant = SAE_5W20, case=None, *,
     film do not depend on sliding in this isothermal model.
     """
     w = load_total / width
-    out = EHLCoatingStudy(conditions=dict(
-        load_total=load_total, width=width, radius=radius, thickness=thickness,
-        entrainment_speed=entrainment_speed, pair_thickness=pair_thickness))
+    out = EHLCoatingStudy(
+        conditions=dict(
+            load_total=load_total,
+            width=width,
+            radius=radius,
+            thickness=thickness,
+            entrainment_speed=entrainment_speed,
+            pair_thickness=pair_thickness,
+        )
+    )
     steel = Body(STEEL)
     for ratio in ratios:
         coat = Coating(E=STEEL.E * ratio, nu=STEEL.nu, thickness=thickness)
         r = solve_ehl(w, radius, entrainment_speed, 0.0, (steel, Body(STEEL, coat)), lubricant)
         out.ratios.append(ModulusCase(f"E_c/E_s = {ratio:g}", ratio, r))
     if case is not None:
-        coatings = [(m.label or k, k, case.material(k)) for k, m in case.materials.items()
-                    if k != "steel"]
+        coatings = [
+            (m.label or k, k, case.material(k)) for k, m in case.materials.items() if k != "steel"
+        ]
     else:
-        coatings = [(v["label"], k, Material(v["E"], v["nu"]))
-                    for k, v in paper.MATERIALS.items() if k != "steel"]
+        coatings = [
+            (v["label"], k, Material(v["E"], v["nu"]))
+            for k, v in paper.MATERIALS.items()
+            if k != "steel"
+        ]
     r = solve_ehl(w, radius, entrainment_speed, 0.0, (steel, steel), lubricant)
     out.pairs.append(PairCase("steel (uncoated)", None, r))
     for label, key, mat in coatings:

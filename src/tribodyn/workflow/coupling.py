@@ -32,10 +32,19 @@ from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from ..valvetrain.tribology import FilmTableTribology, TribologyModel
 from .cycle_ehl import CycleInputs, SetCycleResult, ehl_for_set
 
-__all__ = ["FrictionCoefficientTable", "film_law_from_ehl", "ehl_tribology",
-           "CouplingIteration", "CouplingResult", "run_coupling", "RELAXATION",
-           "ANDERSON_MEMORY", "AndersonMixer",
-           "COUPLING_RMS_TOL", "COUPLING_MAX_TOL"]
+__all__ = [
+    "FrictionCoefficientTable",
+    "film_law_from_ehl",
+    "ehl_tribology",
+    "CouplingIteration",
+    "CouplingResult",
+    "run_coupling",
+    "RELAXATION",
+    "ANDERSON_MEMORY",
+    "AndersonMixer",
+    "COUPLING_RMS_TOL",
+    "COUPLING_MAX_TOL",
+]
 
 #: Mixing of the film/friction tables between coupling iterations (Anderson β) …
 RELAXATION = 0.5
@@ -96,10 +105,12 @@ def film_law_from_ehl(inputs, ehl, lubricant, e_prime: float):
         w = F[i] / inputs.width
         u = max(abs(inputs.entrainment_speed[i]), 1e-3)
         R = inputs.radius[i]
-        W1, U, G = hamrock_groups(w, R, u, lubricant.viscosity, lubricant.pressure_viscosity,
-                                  e_prime)
-        W2, _, _ = hamrock_groups(1.01 * w, R, u, lubricant.viscosity,
-                                  lubricant.pressure_viscosity, e_prime)
+        W1, U, G = hamrock_groups(
+            w, R, u, lubricant.viscosity, lubricant.pressure_viscosity, e_prime
+        )
+        W2, _, _ = hamrock_groups(
+            1.01 * w, R, u, lubricant.viscosity, lubricant.pressure_viscosity, e_prime
+        )
         slope = np.log(moes_central(W2, U, G, R) / moes_central(W1, U, G, R)) / np.log(1.01)
         c[i] = min(0.0, hc[i] * slope / F[i])
     return h, c, F
@@ -108,8 +119,7 @@ def film_law_from_ehl(inputs, ehl, lubricant, e_prime: float):
 def ehl_tribology(inputs, ehl, lubricant, e_prime: float, period: float) -> FilmTableTribology:
     """Tribology model of the implicit coupling from one transient-EHL cycle."""
     ff = _bridge(ehl.friction, ehl.loaded)
-    mu = np.where(ehl.loaded & np.isfinite(ff),
-                  ff / np.maximum(inputs.contact_force, 1e-12), 0.0)
+    mu = np.where(ehl.loaded & np.isfinite(ff), ff / np.maximum(inputs.contact_force, 1e-12), 0.0)
     friction = FrictionCoefficientTable(inputs.time, mu, period)
     h, c, F = film_law_from_ehl(inputs, ehl, lubricant, e_prime)
     return FilmTableTribology(friction, inputs.time, h, c, F, period=period)
@@ -137,8 +147,12 @@ class CouplingResult:
 
     def to_dict(self) -> dict:
         """JSON-ready summary (without the dynamics)."""
-        return {"converged": self.converged, "message": self.message,
-                "history": [vars(h) for h in self.history], "runtime_s": self.runtime_s}
+        return {
+            "converged": self.converged,
+            "message": self.message,
+            "history": [vars(h) for h in self.history],
+            "runtime_s": self.runtime_s,
+        }
 
 
 def _relax(new: FilmTableTribology, old: FilmTableTribology | None, theta: float, period):
@@ -150,9 +164,14 @@ def _relax(new: FilmTableTribology, old: FilmTableTribology | None, theta: float
         return theta * a + (1.0 - theta) * np.interp(t, b_time, b)
 
     mu = mix(new.friction_model.mu, old.time, old.friction_model.mu)
-    return FilmTableTribology(FrictionCoefficientTable(t, mu, period), t,
-                              mix(new.h, old.time, old.h), mix(new.c, old.time, old.c),
-                              mix(new.Fk, old.time, old.Fk), period=period)
+    return FilmTableTribology(
+        FrictionCoefficientTable(t, mu, period),
+        t,
+        mix(new.h, old.time, old.h),
+        mix(new.c, old.time, old.c),
+        mix(new.Fk, old.time, old.Fk),
+        period=period,
+    )
 
 
 class AndersonMixer:
@@ -174,7 +193,7 @@ class AndersonMixer:
         f = gx - x
         self.x.append(x)
         self.f.append(f)
-        self.x, self.f = self.x[-(self.m + 1):], self.f[-(self.m + 1):]
+        self.x, self.f = self.x[-(self.m + 1) :], self.f[-(self.m + 1) :]
         new = x + self.beta * f
         if len(self.f) > 1:
             dF = np.diff(np.array(self.f), axis=0).T
@@ -191,13 +210,25 @@ def _pack(table: FilmTableTribology):
 
 def _unpack(v, like: FilmTableTribology, period) -> FilmTableTribology:
     n = like.time.size
-    h, c, F, mu = (v[k * n:(k + 1) * n] for k in range(4))
-    return FilmTableTribology(FrictionCoefficientTable(like.time, np.maximum(mu, 0.0), period),
-                              like.time, h, np.minimum(c, 0.0), F, period=period)
+    h, c, F, mu = (v[k * n : (k + 1) * n] for k in range(4))
+    return FilmTableTribology(
+        FrictionCoefficientTable(like.time, np.maximum(mu, 0.0), period),
+        like.time,
+        h,
+        np.minimum(c, 0.0),
+        F,
+        period=period,
+    )
 
 
-def run_coupling(case, surface_set, dynamics: ValvetrainResult, inputs: CycleInputs,
-                 first: SetCycleResult, progress=None) -> CouplingResult:
+def run_coupling(
+    case,
+    surface_set,
+    dynamics: ValvetrainResult,
+    inputs: CycleInputs,
+    first: SetCycleResult,
+    progress=None,
+) -> CouplingResult:
     """Implicit coupling for one surface set, starting from its EHL (``first``) on the
     explicit dynamics and their cycle ``inputs``. ``progress(label, i, n)`` receives the
     EHL re-passes."""
@@ -221,14 +252,17 @@ def run_coupling(case, surface_set, dynamics: ValvetrainResult, inputs: CycleInp
             table = g
         else:
             if g.time.size != table.time.size or np.any(g.time != table.time):
-                g = _relax(g, table, 1.0, period)         # onto the same samples
+                g = _relax(g, table, 1.0, period)  # onto the same samples
             if scale is None:
                 n_t = g.time.size
-                scale = np.repeat([max(np.abs(v).max(), 1e-300) for v in
-                                   (g.h, g.c, g.Fk, g.friction_model.mu)], n_t)
+                scale = np.repeat(
+                    [max(np.abs(v).max(), 1e-300) for v in (g.h, g.c, g.Fk, g.friction_model.mu)],
+                    n_t,
+                )
             table = _unpack(scale * mixer(_pack(table) / scale, _pack(g) / scale), g, period)
-        new = simulate_valvetrain(case.cam(), case.valvetrain_parameters(), tribology=table,
-                                  **case.dynamics_options())
+        new = simulate_valvetrain(
+            case.cam(), case.valvetrain_parameters(), tribology=table, **case.dynamics_options()
+        )
         if not new.converged:
             msg = f"implicit dynamics failed at iteration {k}: {new.message}"
             break
@@ -240,8 +274,10 @@ def run_coupling(case, surface_set, dynamics: ValvetrainResult, inputs: CycleInp
         prev = new
         if rms < COUPLING_RMS_TOL * f_peak and mx < COUPLING_MAX_TOL * f_peak:
             out.converged = True
-            msg = (f"converged in {k} iterations (last change of the contact force: RMS "
-                   f"{rms:.2f} N, max {mx:.1f} N)")
+            msg = (
+                f"converged in {k} iterations (last change of the contact force: RMS "
+                f"{rms:.2f} N, max {mx:.1f} N)"
+            )
             break
         if k < n.coupling_iterations:
             inp = CycleInputs.from_dynamics(new, n.crank_step_deg, case.width)
@@ -251,11 +287,14 @@ def run_coupling(case, surface_set, dynamics: ValvetrainResult, inputs: CycleInp
 
                 def cb(i, m, label=label):
                     progress(label, i, m)
+
             ehl = ehl_for_set(case, s, inp, progress=cb)
     if not out.converged and out.history:
         last = out.history[-1]
-        msg += (f" (last change of the contact force: RMS {last.rms_force_change_N:.2f} N, "
-                f"max {last.max_force_change_N:.1f} N)")
+        msg += (
+            f" (last change of the contact force: RMS {last.rms_force_change_N:.2f} N, "
+            f"max {last.max_force_change_N:.1f} N)"
+        )
     out.message = msg
     out.runtime_s = time.perf_counter() - t0
     return out

@@ -50,16 +50,16 @@ class StudyError(RuntimeError):
 class CycleStudy:
     """Everything the cycle study computed (see module docstring)."""
 
-    case: object                                #: the validated Case
-    dynamics: ValvetrainResult                  #: explicit dynamics
-    inputs: CycleInputs                         #: EHL samples of the presented cycle
-    sets: list[SetCycleResult]                  #: in case order
-    labels: dict[str, str]                      #: set name → label
+    case: object  #: the validated Case
+    dynamics: ValvetrainResult  #: explicit dynamics
+    inputs: CycleInputs  #: EHL samples of the presented cycle
+    sets: list[SetCycleResult]  #: in case order
+    labels: dict[str, str]  #: set name → label
     coupling: CouplingResult = field(default_factory=CouplingResult)
-    dry: list[DryCoatingCase] = field(default_factory=list)       #: Fig. 5 cases
-    ehl_coating: EHLCoatingStudy | None = None                     #: Fig. 6 results
-    sensitivity: RoughnessSensitivity | None = None                #: at the cam nose
-    model_comparison: ModelComparison | None = None    #: lumped vs flexible (flexible cases)
+    dry: list[DryCoatingCase] = field(default_factory=list)  #: Fig. 5 cases
+    ehl_coating: EHLCoatingStudy | None = None  #: Fig. 6 results
+    sensitivity: RoughnessSensitivity | None = None  #: at the cam nose
+    model_comparison: ModelComparison | None = None  #: lumped vs flexible (flexible cases)
     analysis: Analysis | None = None
     runtime_s: float = 0.0
     timings: dict = field(default_factory=dict)
@@ -101,11 +101,13 @@ def _limit_threads():
     """One BLAS thread per process (a runtime limit; see :func:`_pool_context` for the
     start-up setting that also avoids the threads' start-up costs)."""
     from threadpoolctl import threadpool_limits
+
     threadpool_limits(1)
 
 
 def _blas_single_threaded() -> bool:
     from threadpoolctl import threadpool_info
+
     return all(i.get("num_threads", 1) <= 1 for i in threadpool_info())
 
 
@@ -115,6 +117,7 @@ def _pool_context():
     interpreter per worker with one BLAS thread set in its environment (a runtime limit
     does not remove the threaded BLAS's overhead on small matrices)."""
     import multiprocessing as mp
+
     methods = mp.get_all_start_methods()
     if "fork" in methods and _blas_single_threaded():
         return mp.get_context("fork")
@@ -141,21 +144,24 @@ def _coating_studies_task(case, reference: str, nose):
     _limit_threads()
     dry = dry_coating_study()
     ehl = ehl_coating_study(case.lubricant(), case)
-    sens = (roughness_sensitivity(case, case.surface_set(reference), nose)
-            if nose is not None else None)
+    sens = (
+        roughness_sensitivity(case, case.surface_set(reference), nose) if nose is not None else None
+    )
     return dry, ehl, sens
 
 
 @contextmanager
 def _single_blas_thread():
     from threadpoolctl import threadpool_limits
+
     with threadpool_limits(1):
         yield
 
 
 # ----------------------------------------------------------------------------- driver
-def run_cycle_study(case, *, workers: int | None = None, progress=None,
-                    executor: Executor | None = None) -> CycleStudy:
+def run_cycle_study(
+    case, *, workers: int | None = None, progress=None, executor: Executor | None = None
+) -> CycleStudy:
     """Run the whole study for a validated :class:`~tribodyn.config.Case`.
 
     The surface sets, the coupling chain (reference set, then the implicit iterations)
@@ -179,8 +185,12 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None,
 
     t0 = time.perf_counter()
     report("dynamics")
-    dyn = simulate_valvetrain(case.cam(), case.valvetrain_parameters(),
-                              tribology=case.analytic_tribology(ref), **case.dynamics_options())
+    dyn = simulate_valvetrain(
+        case.cam(),
+        case.valvetrain_parameters(),
+        tribology=case.analytic_tribology(ref),
+        **case.dynamics_options(),
+    )
     timings["dynamics_explicit_s"] = time.perf_counter() - t0
     if not dyn.converged:
         raise StudyError(f"valvetrain dynamics failed: {dyn.message}")
@@ -188,7 +198,8 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None,
     if not np.any(inputs.contact_force >= n.min_load):
         raise StudyError(
             f"no EHL sample carries numerics.min_load = {n.min_load:g} N: the peak contact "
-            f"force is {inputs.contact_force.max():.1f} N (lower numerics.min_load)")
+            f"force is {inputs.contact_force.max():.1f} N (lower numerics.min_load)"
+        )
     nose = nose_condition(inputs)
     total = inputs.crank_angle.size
 
@@ -197,7 +208,7 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None,
     workers = max(1, min(int(workers), len(sets) + 1))
     t0 = time.perf_counter()
     results = {}
-    thermal = {}                      # thermal EHL per set (numerics.thermal)
+    thermal = {}  # thermal EHL per set (numerics.thermal)
     if executor is None and workers == 1:
         # serial, in this process
         with _single_blas_thread():
@@ -209,6 +220,7 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None,
             coating = _coating_studies_task(case, ref_name, nose)
             if n.thermal:
                 from .thermal_study import thermal_for_set
+
                 for s in sets:
                     label = f"{s.name} (thermal)"
                     report("set", name=label, done=0, total=total)
@@ -225,15 +237,18 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None,
         try:
             # the coupling chain is the longest task: submitted first
             fut_c = pool.submit(_coupling_task, case, ref_name, dyn, inputs)
-            futs = {pool.submit(_set_task, case, s.name, inputs): s.name
-                    for s in sets if s.name != ref_name}
+            futs = {
+                pool.submit(_set_task, case, s.name, inputs): s.name
+                for s in sets
+                if s.name != ref_name
+            }
             fut_coat = pool.submit(_coating_studies_task, case, ref_name, nose)
             futs[fut_c] = ref_name
             fut_th = {}
             if n.thermal:
                 from .thermal_study import thermal_task
-                fut_th = {pool.submit(thermal_task, case, s.name, inputs): s.name
-                          for s in sets}
+
+                fut_th = {pool.submit(thermal_task, case, s.name, inputs): s.name for s in sets}
             for s in sets:
                 report("set", name=s.name, done=0, total=total)
                 if n.thermal:
@@ -262,25 +277,35 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None,
                     else:
                         os.environ[k] = v
     timings["ehl_and_coupling_s"] = time.perf_counter() - t0
-    for name, r in results.items():                 # inside the tasks (their own clocks)
+    for name, r in results.items():  # inside the tasks (their own clocks)
         timings[f"ehl_pass_{name}_s"] = r.runtime_s
     timings["coupling_s"] = coupling.runtime_s
     isothermal = None
-    if n.thermal:                       # thermal EHL per set; isothermal kept beside it
+    if n.thermal:  # thermal EHL per set; isothermal kept beside it
         isothermal = [results[s.name] for s in sets]
         results = thermal
         for name, r in thermal.items():
             timings[f"thermal_ehl_pass_{name}_s"] = r.runtime_s
 
-    study = CycleStudy(case=case, dynamics=dyn, inputs=inputs,
-                       sets=[results[s.name] for s in sets],
-                       labels={s.name: s.coating_label for s in sets}, coupling=coupling,
-                       dry=coating[0], ehl_coating=coating[1], sensitivity=coating[2],
-                       timings=timings, isothermal_sets=isothermal)
+    study = CycleStudy(
+        case=case,
+        dynamics=dyn,
+        inputs=inputs,
+        sets=[results[s.name] for s in sets],
+        labels={s.name: s.coating_label for s in sets},
+        coupling=coupling,
+        dry=coating[0],
+        ehl_coating=coating[1],
+        sensitivity=coating[2],
+        timings=timings,
+        isothermal_sets=isothermal,
+    )
     for s in study.sets:
         if s.failures:
-            study.warnings.append(f"{s.name}: {len(s.failures)} EHL step(s) did not converge "
-                                  f"(first at {s.failures[0][0]:.0f}°: {s.failures[0][1]})")
+            study.warnings.append(
+                f"{s.name}: {len(s.failures)} EHL step(s) did not converge "
+                f"(first at {s.failures[0][0]:.0f}°: {s.failures[0][1]})"
+            )
     if n.implicit_coupling and not coupling.converged:
         study.warnings.append(f"implicit coupling: {coupling.message}")
     if dyn.jump:
@@ -288,8 +313,7 @@ def run_cycle_study(case, *, workers: int | None = None, progress=None,
     if case.valvetrain_model == "flexible":
         t0 = time.perf_counter()
         report("dynamics")
-        study.model_comparison = compare_lumped_flexible(case, case.analytic_tribology(ref),
-                                                         dyn)
+        study.model_comparison = compare_lumped_flexible(case, case.analytic_tribology(ref), dyn)
         study.warnings += study.model_comparison.messages
         timings["lumped_vs_flexible_s"] = time.perf_counter() - t0
     study.runtime_s = time.perf_counter() - t_start
@@ -306,11 +330,14 @@ def _jump_warning(dyn) -> str:
     event = float(ev.sum()) * step
     first = ", ".join(f"{a:.1f}–{b:.1f}°" for a, b in dyn.jumps[:3])
     more = f" and {len(dyn.jumps) - 3} more" if len(dyn.jumps) > 3 else ""
-    text = (f"the tappet loses contact with the cam (valve jump) for {lost:.1f}° crank of the "
-            f"{event:.0f}° cam event ({first}{more})")
+    text = (
+        f"the tappet loses contact with the cam (valve jump) for {lost:.1f}° crank of the "
+        f"{event:.0f}° cam event ({first}{more})"
+    )
     if event > 0 and lost > 0.1 * event:
-        text += (": the valvetrain does not follow the cam at this speed (check the masses, "
-                 "spring rate and preload); films and friction there describe the impacts, "
-                 "not the design")
+        text += (
+            ": the valvetrain does not follow the cam at this speed (check the masses, "
+            "spring rate and preload); films and friction there describe the impacts, "
+            "not the design"
+        )
     return text
-

@@ -23,8 +23,7 @@ from ..contact.ehl import EHLOptions, EHLResult, TransientEHL
 from ..contact.ehl.postprocess import shear_stress
 from ..physics.lubricant import Lubricant
 
-__all__ = ["CycleInputs", "SetCycleResult", "ehl_along_cycle", "ehl_for_set",
-           "PROFILE_POINTS"]
+__all__ = ["CycleInputs", "SetCycleResult", "ehl_along_cycle", "ehl_for_set", "PROFILE_POINTS"]
 
 #: Number of points on which p(x), h(x) of every step are stored: the step's whole solver
 #: domain, resampled uniformly (its own x coordinate is stored with it).
@@ -35,13 +34,13 @@ PROFILE_POINTS = 512
 class CycleInputs:
     """Conjunction conditions over the presented cycle (from the dynamics)."""
 
-    crank_angle: np.ndarray       #: [deg], strictly increasing
-    time: np.ndarray              #: [s]
-    contact_force: np.ndarray     #: total over the width [N]
+    crank_angle: np.ndarray  #: [deg], strictly increasing
+    time: np.ndarray  #: [s]
+    contact_force: np.ndarray  #: total over the width [N]
     entrainment_speed: np.ndarray  #: [m/s]
-    sliding_speed: np.ndarray     #: [m/s]
-    radius: np.ndarray            #: radius of curvature [m]
-    width: float                  #: cam width [m]
+    sliding_speed: np.ndarray  #: [m/s]
+    radius: np.ndarray  #: radius of curvature [m]
+    width: float  #: cam width [m]
     #: the dynamics' own output (time, F, u_e, u_s, R) at its finer output step, for
     #: conditions between the samples (sub-steps); None: interpolate the samples
     fine: tuple | None = None
@@ -52,12 +51,14 @@ class CycleInputs:
         if self.fine is not None:
             tt, *cols = self.fine
         else:
-            tt, cols = self.time, (self.contact_force, self.entrainment_speed,
-                                   self.sliding_speed, self.radius)
+            tt, cols = (
+                self.time,
+                (self.contact_force, self.entrainment_speed, self.sliding_speed, self.radius),
+            )
         return tuple(float(np.interp(t, tt, c)) for c in cols)
 
     @classmethod
-    def from_dynamics(cls, res, crank_step_deg: float, width: float) -> "CycleInputs":
+    def from_dynamics(cls, res, crank_step_deg: float, width: float) -> CycleInputs:
         """Sample a :class:`~tribodyn.valvetrain.ValvetrainResult` every crank_step_deg."""
         c0, c1 = float(res.crank_angle[0]), float(res.crank_angle[-1])
         n = int(round((c1 - c0) / crank_step_deg)) + 1
@@ -67,12 +68,23 @@ class CycleInputs:
         def at(v):
             return np.interp(crank, res.crank_angle, v)
 
-        fine = (np.asarray(res.time, float), np.maximum(res.contact_force, 0.0),
-                np.asarray(res.entrainment_speed, float), np.asarray(res.sliding_speed, float),
-                np.asarray(res.radius_of_curvature, float))
-        return cls(crank, at(res.time), np.maximum(at(res.contact_force), 0.0),
-                   at(res.entrainment_speed), at(res.sliding_speed),
-                   at(res.radius_of_curvature), float(width), fine)
+        fine = (
+            np.asarray(res.time, float),
+            np.maximum(res.contact_force, 0.0),
+            np.asarray(res.entrainment_speed, float),
+            np.asarray(res.sliding_speed, float),
+            np.asarray(res.radius_of_curvature, float),
+        )
+        return cls(
+            crank,
+            at(res.time),
+            np.maximum(at(res.contact_force), 0.0),
+            at(res.entrainment_speed),
+            at(res.sliding_speed),
+            at(res.radius_of_curvature),
+            float(width),
+            fine,
+        )
 
 
 @dataclass
@@ -92,15 +104,15 @@ class SetCycleResult:
     asperity_load: np.ndarray
     viscous_friction: np.ndarray
     viscous_friction_newtonian: np.ndarray  #: the same film and pressure, Newtonian law
-    viscous_friction_eyring: np.ndarray     #: the same film and pressure, Eyring law
+    viscous_friction_eyring: np.ndarray  #: the same film and pressure, Eyring law
     boundary_friction: np.ndarray
     rolling_friction: np.ndarray
     friction_power: np.ndarray
-    lambda_ratio: np.ndarray       #: h_min/σ
-    x: np.ndarray                  #: (crank, k) profile positions [m], NaN where unloaded
-    pressure: np.ndarray           #: (crank, k) [Pa], NaN where unloaded
-    film: np.ndarray               #: (crank, k) [m]
-    failures: list = field(default_factory=list)   #: [(crank_deg, message)]
+    lambda_ratio: np.ndarray  #: h_min/σ
+    x: np.ndarray  #: (crank, k) profile positions [m], NaN where unloaded
+    pressure: np.ndarray  #: (crank, k) [Pa], NaN where unloaded
+    film: np.ndarray  #: (crank, k) [m]
+    failures: list = field(default_factory=list)  #: [(crank_deg, message)]
     runtime_s: float = 0.0
     #: solver steps taken to reach each sample (1: the sample step itself; more where the
     #: time-error control or an engagement subdivided it; 0 where unloaded)
@@ -133,7 +145,7 @@ class _Marcher:
 
     def __init__(self, tr: TransientEHL, inp: CycleInputs, min_load: float):
         self.tr, self.inp, self.min_load = tr, inp, float(min_load)
-        self.levels = []           # (t, h_c) of the last accepted levels
+        self.levels = []  # (t, h_c) of the last accepted levels
         self.t = None
         self.substeps = 0
 
@@ -161,9 +173,11 @@ class _Marcher:
             pred = h1 + (t - t1) / (t1 - t0) * (h1 - h0)
             return abs(h - pred) / (3.0 * h)
         (t2, h2), (t1, h1), (t0, h0) = lv
-        pred = (h0 * (t - t1) * (t - t2) / ((t0 - t1) * (t0 - t2))
-                + h1 * (t - t0) * (t - t2) / ((t1 - t0) * (t1 - t2))
-                + h2 * (t - t0) * (t - t1) / ((t2 - t0) * (t2 - t1)))
+        pred = (
+            h0 * (t - t1) * (t - t2) / ((t0 - t1) * (t0 - t2))
+            + h1 * (t - t0) * (t - t2) / ((t1 - t0) * (t1 - t2))
+            + h2 * (t - t0) * (t - t1) / ((t2 - t0) * (t2 - t1))
+        )
         return (2.0 / 11.0) * abs(h - pred) / h
 
     def _step(self, t):
@@ -195,9 +209,18 @@ class _Marcher:
         return r
 
 
-def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: Lubricant,
-                    roughness, options: EHLOptions, *, min_load: float = 5.0,
-                    progress=None) -> SetCycleResult:
+def ehl_along_cycle(
+    inp: CycleInputs,
+    name: str,
+    label: str,
+    bodies,
+    lubricant: Lubricant,
+    roughness,
+    options: EHLOptions,
+    *,
+    min_load: float = 5.0,
+    progress=None,
+) -> SetCycleResult:
     """March the transient EHL over the cycle for one surface set.
 
     ``progress(i, n)`` is called after each sample (for progress bars).
@@ -207,11 +230,23 @@ def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: 
     t_start = _time.perf_counter()
     n = inp.crank_angle.size
     nan = np.full(n, np.nan)
-    out = {k: nan.copy() for k in ("central_film", "min_film", "max_pressure",
-                                   "hydrodynamic_load", "asperity_load", "viscous_friction",
-                                   "viscous_friction_newtonian", "viscous_friction_eyring",
-                                   "boundary_friction", "rolling_friction", "friction_power",
-                                   "lambda_ratio")}
+    out = {
+        k: nan.copy()
+        for k in (
+            "central_film",
+            "min_film",
+            "max_pressure",
+            "hydrodynamic_load",
+            "asperity_load",
+            "viscous_friction",
+            "viscous_friction_newtonian",
+            "viscous_friction_eyring",
+            "boundary_friction",
+            "rolling_friction",
+            "friction_power",
+            "lambda_ratio",
+        )
+    }
     loaded = inp.contact_force >= min_load
     converged = np.ones(n, dtype=bool)
     iterations = np.zeros(n, dtype=int)
@@ -226,7 +261,7 @@ def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: 
     march = None
     for i in range(n):
         if not loaded[i]:
-            tr = None                       # the event ended: the next one starts afresh
+            tr = None  # the event ended: the next one starts afresh
             if progress:
                 progress(i + 1, n)
             continue
@@ -237,7 +272,7 @@ def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: 
                 r = march.start(i)
             else:
                 r = march.advance(i)
-        except Exception as exc:            # a step that raises is reported, not fatal
+        except Exception as exc:  # a step that raises is reported, not fatal
             converged[i] = False
             failures.append((float(inp.crank_angle[i]), f"{type(exc).__name__}: {exc}"))
             tr = None
@@ -255,15 +290,16 @@ def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: 
         out["hydrodynamic_load"][i] = r.hydrodynamic_load * l
         out["asperity_load"][i] = r.asperity_load * l
         out["viscous_friction"][i] = r.viscous_friction * l
-        for law in ("newtonian", "eyring"):      # both laws on the same film (report)
-            tau = shear_stress(r.pressure, r.film, r.sliding_speed, lubricant, law,
-                               options.limiting_shear)
-            out[f"viscous_friction_{law}"][i] = float(np.sum(np.abs(tau))) * (
-                r.x[1] - r.x[0]) * l
+        for law in ("newtonian", "eyring"):  # both laws on the same film (report)
+            tau = shear_stress(
+                r.pressure, r.film, r.sliding_speed, lubricant, law, options.limiting_shear
+            )
+            out[f"viscous_friction_{law}"][i] = float(np.sum(np.abs(tau))) * (r.x[1] - r.x[0]) * l
         out["boundary_friction"][i] = r.boundary_friction * l
         out["rolling_friction"][i] = r.rolling_friction * l
-        out["friction_power"][i] = (r.viscous_friction + r.boundary_friction) * l * abs(
-            inp.sliding_speed[i])
+        out["friction_power"][i] = (
+            (r.viscous_friction + r.boundary_friction) * l * abs(inp.sliding_speed[i])
+        )
         if roughness is not None:
             out["lambda_ratio"][i] = r.min_film / roughness.rms
         xs = np.linspace(r.x[0], r.x[-1], k)
@@ -273,15 +309,34 @@ def ehl_along_cycle(inp: CycleInputs, name: str, label: str, bodies, lubricant: 
         if progress:
             progress(i + 1, n)
     return SetCycleResult(
-        name=name, label=label, crank_angle=inp.crank_angle.copy(), loaded=loaded,
-        converged=converged, iterations=iterations, x=x_prof, pressure=p_prof, film=h_prof,
-        failures=failures, runtime_s=_time.perf_counter() - t_start, substeps=substeps, **out)
+        name=name,
+        label=label,
+        crank_angle=inp.crank_angle.copy(),
+        loaded=loaded,
+        converged=converged,
+        iterations=iterations,
+        x=x_prof,
+        pressure=p_prof,
+        film=h_prof,
+        failures=failures,
+        runtime_s=_time.perf_counter() - t_start,
+        substeps=substeps,
+        **out,
+    )
 
 
 def ehl_for_set(case, surface_set, inputs: CycleInputs, progress=None) -> SetCycleResult:
     """:func:`ehl_along_cycle` for one surface set of a case (its bodies, roughness and
     friction law; the case's lubricant and numerics)."""
     s = surface_set
-    return ehl_along_cycle(inputs, s.name, s.coating_label, s.bodies, case.lubricant(),
-                           s.roughness, case.ehl_options(s),
-                           min_load=case.numerics.min_load, progress=progress)
+    return ehl_along_cycle(
+        inputs,
+        s.name,
+        s.coating_label,
+        s.bodies,
+        case.lubricant(),
+        s.roughness,
+        case.ehl_options(s),
+        min_load=case.numerics.min_load,
+        progress=progress,
+    )

@@ -35,24 +35,31 @@ class ModelComparison:
 
 def _row(r: ValvetrainResult) -> dict:
     s = r.summary()
-    return {"peak_contact_force_N": s["peak_contact_force_N"],
-            "min_contact_force_in_event_N": s["min_contact_force_in_event_N"],
-            "seating_velocity_m_s": s["seating_velocity_m_s"],
-            "friction_energy_per_cycle_J": s["friction_energy_per_cycle_J"],
-            "jump_at_case_speed": s["jump"], "solver_time_s": r.stats.get("wall_time_s")}
+    return {
+        "peak_contact_force_N": s["peak_contact_force_N"],
+        "min_contact_force_in_event_N": s["min_contact_force_in_event_N"],
+        "seating_velocity_m_s": s["seating_velocity_m_s"],
+        "friction_energy_per_cycle_J": s["friction_energy_per_cycle_J"],
+        "jump_at_case_speed": s["jump"],
+        "solver_time_s": r.stats.get("wall_time_s"),
+    }
 
 
-def compare_lumped_flexible(case, tribology, flexible: ValvetrainResult, *,
-                            jump_speeds: bool = True,
-                            high_factor: float = 3.0) -> ModelComparison:
+def compare_lumped_flexible(
+    case,
+    tribology,
+    flexible: ValvetrainResult,
+    *,
+    jump_speeds: bool = True,
+    high_factor: float = 3.0,
+) -> ModelComparison:
     """Run the lumped companion of a flexible ``case`` (same tribology and numerics) and
     collect both models' numbers; ``flexible`` is the case's own (flexible) run. The jump
     speed is searched up to ``high_factor`` × the case's engine speed (NaN with a message
     if there is no jump up to there)."""
     out = ModelComparison()
     opts = case.dynamics_options()
-    lumped = simulate_valvetrain(case.cam(), case.lumped_companion(), tribology=tribology,
-                                 **opts)
+    lumped = simulate_valvetrain(case.cam(), case.lumped_companion(), tribology=tribology, **opts)
     for name, r in (("lumped", lumped), ("flexible", flexible)):
         if not r.converged:
             out.messages.append(f"{name} dynamics failed: {r.message}")
@@ -61,17 +68,25 @@ def compare_lumped_flexible(case, tribology, flexible: ValvetrainResult, *,
     if not jump_speeds:
         return out
     kw = {k: v for k, v in opts.items() if k != "engine_speed"}
-    for name, params in (("lumped", case.lumped_companion()),
-                         ("flexible", case.valvetrain_parameters())):
+    for name, params in (
+        ("lumped", case.lumped_companion()),
+        ("flexible", case.valvetrain_parameters()),
+    ):
         if name not in out.rows:
             continue
         low = min(0.5 * case.engine_speed, 2000.0)
         try:
-            lo, hi = jump_speed(case.cam(), params, low=low,
-                                high=high_factor * case.engine_speed,
-                                tolerance=JUMP_SPEED_TOLERANCE, tribology=tribology, **kw)
+            lo, hi = jump_speed(
+                case.cam(),
+                params,
+                low=low,
+                high=high_factor * case.engine_speed,
+                tolerance=JUMP_SPEED_TOLERANCE,
+                tribology=tribology,
+                **kw,
+            )
             out.rows[name]["jump_speed_rpm"] = 0.5 * (lo + hi)
-        except (RuntimeError, ValueError) as exc:      # InputError is a ValueError
+        except (RuntimeError, ValueError) as exc:  # InputError is a ValueError
             out.rows[name]["jump_speed_rpm"] = math.nan
             out.messages.append(f"{name} jump speed: {exc}")
     return out

@@ -32,10 +32,16 @@ from ..physics.regimes import (
 __all__ = ["point_surfaces", "solve_point"]
 
 
-def point_surfaces(case, *, surface_set: str | None = None, coating: Coating | None = None,
-                   coating_material: str | None = None, coating_thickness: float | None = None,
-                   roughness: Roughness | None = None,
-                   shear_coefficient: float | None = None) -> SurfaceSet:
+def point_surfaces(
+    case,
+    *,
+    surface_set: str | None = None,
+    coating: Coating | None = None,
+    coating_material: str | None = None,
+    coating_thickness: float | None = None,
+    roughness: Roughness | None = None,
+    shear_coefficient: float | None = None,
+) -> SurfaceSet:
     """The surfaces of one contact.
 
     ``surface_set``: a set of ``case`` by name (exclusive with the other arguments).
@@ -46,41 +52,57 @@ def point_surfaces(case, *, surface_set: str | None = None, coating: Coating | N
     steel's; τ₀ is the case's first surface set's.
     """
     if surface_set is not None:
-        clash = [k for k, v in (("coating", coating), ("coating_material", coating_material),
-                                ("coating_thickness", coating_thickness),
-                                ("roughness", roughness)) if v is not None]
+        clash = [
+            k
+            for k, v in (
+                ("coating", coating),
+                ("coating_material", coating_material),
+                ("coating_thickness", coating_thickness),
+                ("roughness", roughness),
+            )
+            if v is not None
+        ]
         if clash:
-            raise InputError(f"surface_set takes the coating and roughness from the case; "
-                             f"drop {', '.join(clash)}")
+            raise InputError(
+                f"surface_set takes the coating and roughness from the case; "
+                f"drop {', '.join(clash)}"
+            )
         try:
             s = case.surface_set(surface_set)
         except InputError as exc:
             raise InputError(f"surface_set: {exc}") from None
         if shear_coefficient is not None:
             from dataclasses import replace
+
             s = replace(s, boundary_shear_coefficient=_shear(shear_coefficient))
         return s
     if coating is not None and coating_material is not None:
-        raise InputError("give either coating (E, nu, thickness) or coating_material "
-                         "(not both)")
+        raise InputError("give either coating (E, nu, thickness) or coating_material (not both)")
     if coating_thickness is not None and coating_material is None:
         raise InputError("coating_thickness needs coating_material")
     cam = Body(case.material(case.cam_config.material))
-    substrate = (case.material("steel") if "steel" in case.materials
-                 else case.material(case.cam_config.material))
+    substrate = (
+        case.material("steel")
+        if "steel" in case.materials
+        else case.material(case.cam_config.material)
+    )
     steel = case.materials.get("steel")
     sigma = steel.boundary_shear_coefficient if steel is not None else None
     label, key = "uncoated", None
     if coating is not None:
         if not isinstance(coating, Coating):
             raise InputError(f"coating must be a Coating (got {type(coating).__name__})")
-        label = (f"coating E = {coating.E / 1e9:.4g} GPa, ν = {coating.nu:g}, "
-                 f"{coating.thickness * 1e6:.3g} µm")
+        label = (
+            f"coating E = {coating.E / 1e9:.4g} GPa, ν = {coating.nu:g}, "
+            f"{coating.thickness * 1e6:.3g} µm"
+        )
     elif coating_material is not None:
         key = coating_material.strip().lower().replace("-", "")
         if key not in case.materials:
-            raise InputError(f"coating_material must be one of {', '.join(case.materials)} "
-                             f"(got {coating_material!r})")
+            raise InputError(
+                f"coating_material must be one of {', '.join(case.materials)} "
+                f"(got {coating_material!r})"
+            )
         m = case.materials[key]
         if coating_thickness is None and key != "steel":
             raise InputError("coating_material needs coating_thickness [m]")
@@ -95,11 +117,15 @@ def point_surfaces(case, *, surface_set: str | None = None, coating: Coating | N
         sigma = _shear(shear_coefficient)
     if sigma is None:
         sigma = paper.STEEL["boundary_shear_coefficient"]
-    return SurfaceSet(name="", bodies=(cam, Body(substrate, coating)), roughness=roughness,
-                      boundary_shear_coefficient=float(sigma), coating_label=label,
-                      boundary_shear_strength=case.surface_set_configs[0]
-                      .boundary_shear_strength,
-                      coating_material=key if coating is not None else None)
+    return SurfaceSet(
+        name="",
+        bodies=(cam, Body(substrate, coating)),
+        roughness=roughness,
+        boundary_shear_coefficient=float(sigma),
+        coating_label=label,
+        boundary_shear_strength=case.surface_set_configs[0].boundary_shear_strength,
+        coating_material=key if coating is not None else None,
+    )
 
 
 def _shear(v) -> float:
@@ -109,10 +135,21 @@ def _shear(v) -> float:
     return v
 
 
-def solve_point(case, surfaces: SurfaceSet, *, load_per_length, radius, width,
-                entrainment_speed=None, sliding_speed=None, dry=False,
-                lubricant: Lubricant | None = None, options: EHLOptions | None = None,
-                n: int | None = None, thermal_oil=None) -> dict:
+def solve_point(
+    case,
+    surfaces: SurfaceSet,
+    *,
+    load_per_length,
+    radius,
+    width,
+    entrainment_speed=None,
+    sliding_speed=None,
+    dry=False,
+    lubricant: Lubricant | None = None,
+    options: EHLOptions | None = None,
+    n: int | None = None,
+    thermal_oil=None,
+) -> dict:
     """Solve one contact (see the module docstring). ``lubricant`` and ``options``
     default to the case's; ``n`` is the dry grid (default 1024). ``sliding_speed``
     defaults to 0 for EHL; a dry contact takes no speeds.
@@ -154,22 +191,34 @@ def solve_point(case, surfaces: SurfaceSet, *, load_per_length, radius, width,
     }
     if dry:
         if entrainment_speed is not None or sliding_speed is not None:
-            raise InputError("a dry contact takes no entrainment or sliding speed "
-                             "(drop --ue/--us, or drop --dry for an EHL solution)")
+            raise InputError(
+                "a dry contact takes no entrainment or sliding speed "
+                "(drop --ue/--us, or drop --dry for an EHL solution)"
+            )
         res = solve_dry_contact(w, radius, bodies, n=1024 if n is None else n)
-        out.update({"half_width_m": res.half_width, "max_pressure_Pa": res.max_pressure,
-                    "contact_center_m": res.contact_center, "grid_points": res.x.size,
-                    "converged": bool(res.converged), "iterations": int(res.iterations),
-                    "message": res.message, "warnings": list(res.warnings)})
+        out.update(
+            {
+                "half_width_m": res.half_width,
+                "max_pressure_Pa": res.max_pressure,
+                "contact_center_m": res.contact_center,
+                "grid_points": res.x.size,
+                "converged": bool(res.converged),
+                "iterations": int(res.iterations),
+                "message": res.message,
+                "warnings": list(res.warnings),
+            }
+        )
         return out
 
     if entrainment_speed is None:
-        raise InputError("entrainment_speed (--ue) [m/s] is required for an EHL solution "
-                         "(or use --dry)")
+        raise InputError(
+            "entrainment_speed (--ue) [m/s] is required for an EHL solution (or use --dry)"
+        )
     ue = check_real("entrainment_speed", entrainment_speed, "m/s")
     if ue == 0.0:
-        raise InputError("entrainment_speed (--ue) must be non-zero [m/s]: a steady film "
-                         "needs entrainment")
+        raise InputError(
+            "entrainment_speed (--ue) must be non-zero [m/s]: a steady film needs entrainment"
+        )
     us = check_real("sliding_speed", 0.0 if sliding_speed is None else sliding_speed, "m/s")
     lub = lubricant or case.lubricant()
     if thermal_oil is not None:
@@ -180,85 +229,112 @@ def solve_point(case, surfaces: SurfaceSet, *, load_per_length, radius, width,
     iso = res
     if thermal_oil is not None:
         from ..contact.ehl.thermal import solve_thermal_ehl
+
         if surfaces.coating is not None and surfaces.coating_material is None:
-            raise InputError("thermal: the coating needs a material with thermal properties "
-                             "(give coating_material, not E, nu, thickness)")
-        res = solve_thermal_ehl(w, radius, ue, us, bodies, thermal_oil,
-                                case.thermal_bodies(surfaces), rough, options=opts,
-                                thermal_options=case.thermal_options())
+            raise InputError(
+                "thermal: the coating needs a material with thermal properties "
+                "(give coating_material, not E, nu, thickness)"
+            )
+        res = solve_thermal_ehl(
+            w,
+            radius,
+            ue,
+            us,
+            bodies,
+            thermal_oil,
+            case.thermal_bodies(surfaces),
+            rough,
+            options=opts,
+            thermal_options=case.thermal_options(),
+        )
     W, U, G = hamrock_groups(w, radius, ue, lub.viscosity, lub.pressure_viscosity, e_bulk)
     gV, gE = greenwood_chart_groups(W, U, G)
     ph_c, ph_min = pan_hamrock(W, U, G, radius)
     tot = res.totals(width)
-    out.update({
-        "entrainment_speed_m_per_s": ue,
-        "sliding_speed_m_per_s": us,
-        "asperity_density_per_m2": rough.asperity_density if rough else None,
-        "roughness_rms_m": rough.rms if rough else None,
-        "summit_radius_m": rough.summit_radius if rough else None,
-        "greenwood_tripp": rough.method if rough else None,
-        "boundary_shear_coefficient": opts.boundary_shear_coefficient,
-        "boundary_shear_strength_Pa": opts.boundary_shear_strength,
-        "viscosity_Pa_s": lub.viscosity,
-        "pressure_viscosity_per_Pa": lub.pressure_viscosity,
-        "density_kg_per_m3": lub.density,
-        "eyring_stress_Pa": lub.eyring_stress,
-        "limiting_shear_coefficient": lub.limiting_shear_coefficient,
-        "viscosity_model": lub.viscosity_model,
-        "viscous_model": opts.viscous_model,
-        "limiting_shear": opts.limiting_shear,
-        "grid_points": int(res.x.size),
-        "central_film_m": res.central_film,
-        "min_film_m": res.min_film,
-        "min_film_position_m": res.min_film_position,
-        "film_parameter_lambda": res.min_film / rough.rms if rough else None,
-        "max_pressure_Pa": float(res.pressure.max()),
-        "pan_hamrock_central_film_m": float(ph_c),
-        "pan_hamrock_min_film_m": float(ph_min),
-        "moes_central_film_m": float(moes_central(W, U, G, radius)),
-        "hydrodynamic_load_N": tot["hydrodynamic_load"],
-        "asperity_load_N": tot["asperity_load"],
-        "asperity_load_share": res.asperity_load / res.load,
-        "viscous_friction_N": tot["viscous_friction"],
-        "boundary_friction_N": tot["boundary_friction"],
-        "rolling_friction_N": tot["rolling_friction"],
-        "friction_N": tot["friction"],
-        "friction_coefficient": res.friction_coefficient,
-        "hamrock_W": float(W), "hamrock_U": float(U), "hamrock_G": float(G),
-        "greenwood_gV": float(gV),
-        "greenwood_gE": float(gE),
-        "regime": str(lubrication_regime(gV, gE)),
-        "converged": bool(res.converged),
-        "iterations": int(res.iterations),
-        "message": res.message,
-        "warnings": list(res.warnings),
-    })
+    out.update(
+        {
+            "entrainment_speed_m_per_s": ue,
+            "sliding_speed_m_per_s": us,
+            "asperity_density_per_m2": rough.asperity_density if rough else None,
+            "roughness_rms_m": rough.rms if rough else None,
+            "summit_radius_m": rough.summit_radius if rough else None,
+            "greenwood_tripp": rough.method if rough else None,
+            "boundary_shear_coefficient": opts.boundary_shear_coefficient,
+            "boundary_shear_strength_Pa": opts.boundary_shear_strength,
+            "viscosity_Pa_s": lub.viscosity,
+            "pressure_viscosity_per_Pa": lub.pressure_viscosity,
+            "density_kg_per_m3": lub.density,
+            "eyring_stress_Pa": lub.eyring_stress,
+            "limiting_shear_coefficient": lub.limiting_shear_coefficient,
+            "viscosity_model": lub.viscosity_model,
+            "viscous_model": opts.viscous_model,
+            "limiting_shear": opts.limiting_shear,
+            "grid_points": int(res.x.size),
+            "central_film_m": res.central_film,
+            "min_film_m": res.min_film,
+            "min_film_position_m": res.min_film_position,
+            "film_parameter_lambda": res.min_film / rough.rms if rough else None,
+            "max_pressure_Pa": float(res.pressure.max()),
+            "pan_hamrock_central_film_m": float(ph_c),
+            "pan_hamrock_min_film_m": float(ph_min),
+            "moes_central_film_m": float(moes_central(W, U, G, radius)),
+            "hydrodynamic_load_N": tot["hydrodynamic_load"],
+            "asperity_load_N": tot["asperity_load"],
+            "asperity_load_share": res.asperity_load / res.load,
+            "viscous_friction_N": tot["viscous_friction"],
+            "boundary_friction_N": tot["boundary_friction"],
+            "rolling_friction_N": tot["rolling_friction"],
+            "friction_N": tot["friction"],
+            "friction_coefficient": res.friction_coefficient,
+            "hamrock_W": float(W),
+            "hamrock_U": float(U),
+            "hamrock_G": float(G),
+            "greenwood_gV": float(gV),
+            "greenwood_gE": float(gE),
+            "regime": str(lubrication_regime(gV, gE)),
+            "converged": bool(res.converged),
+            "iterations": int(res.iterations),
+            "message": res.message,
+            "warnings": list(res.warnings),
+        }
+    )
     out["thermal"] = thermal_oil is not None
     if thermal_oil is not None:
         itot = iso.totals(width)
-        out.update({
-            "oil": thermal_oil.name or None,
-            "inlet_temperature_K": thermal_oil.inlet_temperature,
-            "max_temperature_K": res.max_temperature,
-            "max_surface_temperature_cam_K": res.max_surface_temperature[0],
-            "max_surface_temperature_tappet_K": res.max_surface_temperature[1],
-            "central_mid_film_temperature_K": res.central_mid_film_temperature,
-            "thermal_iterations": int(res.thermal_iterations),
-            "isothermal_central_film_m": iso.central_film,
-            "isothermal_min_film_m": iso.min_film,
-            "isothermal_viscous_friction_N": itot["viscous_friction"],
-            "isothermal_friction_N": itot["friction"],
-            "isothermal_converged": bool(iso.converged),
-        })
-    if not (res.min_film > 0.0 and np.isfinite(res.min_film)
-            and np.all(np.isfinite(res.pressure))):
-        out.update({k: None for k in _SOLUTION_KEYS})     # no lubricated solution
+        out.update(
+            {
+                "oil": thermal_oil.name or None,
+                "inlet_temperature_K": thermal_oil.inlet_temperature,
+                "max_temperature_K": res.max_temperature,
+                "max_surface_temperature_cam_K": res.max_surface_temperature[0],
+                "max_surface_temperature_tappet_K": res.max_surface_temperature[1],
+                "central_mid_film_temperature_K": res.central_mid_film_temperature,
+                "thermal_iterations": int(res.thermal_iterations),
+                "isothermal_central_film_m": iso.central_film,
+                "isothermal_min_film_m": iso.min_film,
+                "isothermal_viscous_friction_N": itot["viscous_friction"],
+                "isothermal_friction_N": itot["friction"],
+                "isothermal_converged": bool(iso.converged),
+            }
+        )
+    if not (res.min_film > 0.0 and np.isfinite(res.min_film) and np.all(np.isfinite(res.pressure))):
+        out.update({k: None for k in _SOLUTION_KEYS})  # no lubricated solution
     return out
 
 
 #: Fields of an EHL solution; None when the film is not positive and finite.
 _SOLUTION_KEYS = (
-    "central_film_m", "min_film_m", "min_film_position_m", "film_parameter_lambda",
-    "max_pressure_Pa", "hydrodynamic_load_N", "asperity_load_N", "asperity_load_share",
-    "viscous_friction_N", "boundary_friction_N", "rolling_friction_N", "friction_N",
-    "friction_coefficient")
+    "central_film_m",
+    "min_film_m",
+    "min_film_position_m",
+    "film_parameter_lambda",
+    "max_pressure_Pa",
+    "hydrodynamic_load_N",
+    "asperity_load_N",
+    "asperity_load_share",
+    "viscous_friction_N",
+    "boundary_friction_N",
+    "rolling_friction_N",
+    "friction_N",
+    "friction_coefficient",
+)

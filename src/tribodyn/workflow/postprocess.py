@@ -33,9 +33,18 @@ from ..physics.regimes import (
     moes_central,
 )
 
-__all__ = ["Analysis", "analyse", "surface_roles", "event_mask", "representative_points",
-           "film_gain_mask", "film_gain_statistics", "modulus_factor_for_gain",
-           "GAIN_SETTLE_STEPS", "FILM_GAIN_RULE"]
+__all__ = [
+    "Analysis",
+    "analyse",
+    "surface_roles",
+    "event_mask",
+    "representative_points",
+    "film_gain_mask",
+    "film_gain_statistics",
+    "modulus_factor_for_gain",
+    "GAIN_SETTLE_STEPS",
+    "FILM_GAIN_RULE",
+]
 
 #: Samples excluded from the film-gain statistics after each engagement of the contact.
 GAIN_SETTLE_STEPS = 5
@@ -43,23 +52,24 @@ FILM_GAIN_RULE = (
     "film gain 100·(h_c,set/h_c,reference − 1) % at EHL samples inside the cam event "
     "(lift > 10 µm), loaded and converged in both sets, excluding the first "
     f"{GAIN_SETTLE_STEPS} steps after each engagement; max = robust maximum over those "
-    "samples, median and p95 of |gain|, and the gain at the six representative points")
+    "samples, median and p95 of |gain|, and the gain at the six representative points"
+)
 
 
 @dataclass
 class Analysis:
     """What the report and the figures need beyond the raw arrays of the study."""
 
-    roles: dict                      #: role → surface-set name ("reference", "wcc", "dlc")
-    in_event: np.ndarray             #: EHL samples inside the cam event
-    point_index: np.ndarray          #: indices of the six representative points
-    point_crank: np.ndarray          #: their crank angles [deg]
-    gV: np.ndarray                   #: Greenwood-chart viscosity group (NaN unloaded)
-    gE: np.ndarray                   #: elasticity group (NaN unloaded)
-    regime: np.ndarray               #: regime code (index into REGIMES; −1 unloaded)
-    film_gain: dict = field(default_factory=dict)      #: set → film-gain statistics
+    roles: dict  #: role → surface-set name ("reference", "wcc", "dlc")
+    in_event: np.ndarray  #: EHL samples inside the cam event
+    point_index: np.ndarray  #: indices of the six representative points
+    point_crank: np.ndarray  #: their crank angles [deg]
+    gV: np.ndarray  #: Greenwood-chart viscosity group (NaN unloaded)
+    gE: np.ndarray  #: elasticity group (NaN unloaded)
+    regime: np.ndarray  #: regime code (index into REGIMES; −1 unloaded)
+    film_gain: dict = field(default_factory=dict)  #: set → film-gain statistics
     modulus_factor: list = field(default_factory=list)  #: E' factor for +41 % per point
-    summary: dict = field(default_factory=dict)         #: summary.json
+    summary: dict = field(default_factory=dict)  #: summary.json
 
 
 # ----------------------------------------------------------------------------- roles
@@ -73,8 +83,9 @@ def surface_roles(case) -> dict:
     for key in paper.MATERIALS:
         cands = [s for s in sets if s.coating_material == key]
         if cands:
-            best = min(cands, key=lambda s: abs(math.log(s.coating.thickness
-                                                         / paper.COATING_THICKNESS)))
+            best = min(
+                cands, key=lambda s: abs(math.log(s.coating.thickness / paper.COATING_THICKNESS))
+            )
             roles[key] = best.name
     return roles
 
@@ -116,7 +127,7 @@ def representative_points(inputs, dynamics, loaded) -> np.ndarray:
         pts.append(before[np.argmin(np.abs(ue[before]))] if before.size else closing[0])
         pts.append(i_fast_c)
     pts = sorted(set(int(p) for p in pts))
-    for e in idx[np.linspace(0, idx.size - 1, 13).astype(int)]:   # degenerate events
+    for e in idx[np.linspace(0, idx.size - 1, 13).astype(int)]:  # degenerate events
         if len(pts) >= 6:
             break
         if int(e) not in pts:
@@ -130,13 +141,21 @@ def chart(case, inputs, loaded_any):
     lub = case.lubricant()
     e_prime = reduced_modulus(case.surface_sets()[0].bodies)
     w = np.maximum(inputs.contact_force, 1e-9) / inputs.width
-    W, U, G = hamrock_groups(w, inputs.radius,
-                             np.maximum(np.abs(inputs.entrainment_speed), 1e-3),
-                             lub.viscosity, lub.pressure_viscosity, e_prime)
+    W, U, G = hamrock_groups(
+        w,
+        inputs.radius,
+        np.maximum(np.abs(inputs.entrainment_speed), 1e-3),
+        lub.viscosity,
+        lub.pressure_viscosity,
+        e_prime,
+    )
     gV, gE = greenwood_chart_groups(W, U, G)
     code = np.array([REGIMES.index(r) for r in np.atleast_1d(lubrication_regime(gV, gE))])
-    return (np.where(loaded_any, gV, np.nan), np.where(loaded_any, gE, np.nan),
-            np.where(loaded_any, code, -1).astype(np.int8))
+    return (
+        np.where(loaded_any, gV, np.nan),
+        np.where(loaded_any, gE, np.nan),
+        np.where(loaded_any, code, -1).astype(np.int8),
+    )
 
 
 # ----------------------------------------------------------------------------- film gain
@@ -150,12 +169,23 @@ def _settled(loaded: np.ndarray, steps: int) -> np.ndarray:
     return out
 
 
-def film_gain_mask(in_event, loaded_ref, loaded_set, converged_ref, converged_set,
-                   settle_steps: int = GAIN_SETTLE_STEPS) -> np.ndarray:
+def film_gain_mask(
+    in_event,
+    loaded_ref,
+    loaded_set,
+    converged_ref,
+    converged_set,
+    settle_steps: int = GAIN_SETTLE_STEPS,
+) -> np.ndarray:
     """Samples admitted to the film-gain statistics (see the module docstring)."""
     both = np.asarray(loaded_ref, bool) & np.asarray(loaded_set, bool)
-    return (np.asarray(in_event, bool) & both & np.asarray(converged_ref, bool)
-            & np.asarray(converged_set, bool) & _settled(both, settle_steps))
+    return (
+        np.asarray(in_event, bool)
+        & both
+        & np.asarray(converged_ref, bool)
+        & np.asarray(converged_set, bool)
+        & _settled(both, settle_steps)
+    )
 
 
 def film_gain_statistics(h_ref, h_set, mask, point_index) -> dict:
@@ -172,15 +202,25 @@ def film_gain_statistics(h_ref, h_set, mask, point_index) -> dict:
         return float(v) if g.size and math.isfinite(v) else None
 
     at = [float(gain[i]) if ok[i] else None for i in point_index]
-    return {"max_pct": fin(g.max()) if g.size else None,
-            "mean_pct": fin(g.mean()) if g.size else None,
-            "median_abs_pct": fin(np.median(np.abs(g))) if g.size else None,
-            "p95_abs_pct": fin(np.percentile(np.abs(g), 95)) if g.size else None,
-            "at_points_pct": at, "samples": int(g.size)}
+    return {
+        "max_pct": fin(g.max()) if g.size else None,
+        "mean_pct": fin(g.mean()) if g.size else None,
+        "median_abs_pct": fin(np.median(np.abs(g))) if g.size else None,
+        "p95_abs_pct": fin(np.percentile(np.abs(g), 95)) if g.size else None,
+        "at_points_pct": at,
+        "samples": int(g.size),
+    }
 
 
-def modulus_factor_for_gain(load, radius, entrainment_speed, viscosity, pressure_viscosity,
-                            e_prime, gain=paper.CLAIMS["film_gain_pct"] / 100.0) -> float:
+def modulus_factor_for_gain(
+    load,
+    radius,
+    entrainment_speed,
+    viscosity,
+    pressure_viscosity,
+    e_prime,
+    gain=paper.CLAIMS["film_gain_pct"] / 100.0,
+) -> float:
     """Factor f by which E' must fall (E' → E'/f) for the Moes central film to rise by
     ``gain`` at one operating point (w [N/m], R [m], u_e [m/s]; α kept). NaN if no factor
     up to 10⁶ does it."""
@@ -220,12 +260,28 @@ def analyse(study) -> Analysis:
         gains[s.name] = film_gain_statistics(ref.central_film, s.central_film, m, pidx)
     lub = case.lubricant()
     e_prime = reduced_modulus(case.surface_set(roles["reference"]).bodies)
-    factors = [modulus_factor_for_gain(inp.contact_force[i] / inp.width, inp.radius[i],
-                                       inp.entrainment_speed[i], lub.viscosity,
-                                       lub.pressure_viscosity, e_prime) for i in pidx]
-    an = Analysis(roles=roles, in_event=ev, point_index=pidx,
-                  point_crank=inp.crank_angle[pidx], gV=gV, gE=gE, regime=regime,
-                  film_gain=gains, modulus_factor=factors)
+    factors = [
+        modulus_factor_for_gain(
+            inp.contact_force[i] / inp.width,
+            inp.radius[i],
+            inp.entrainment_speed[i],
+            lub.viscosity,
+            lub.pressure_viscosity,
+            e_prime,
+        )
+        for i in pidx
+    ]
+    an = Analysis(
+        roles=roles,
+        in_event=ev,
+        point_index=pidx,
+        point_crank=inp.crank_angle[pidx],
+        gV=gV,
+        gE=gE,
+        regime=regime,
+        film_gain=gains,
+        modulus_factor=factors,
+    )
     an.summary = summary(study, an)
     return an
 
@@ -233,29 +289,34 @@ def analyse(study) -> Analysis:
 def summary(study, an: Analysis) -> dict:
     """The numbers users and scripts read (``summary.json``); totals over the cam width."""
     dyn, inp = study.dynamics, study.inputs
-    period = 2.0 * math.pi / study.case.cam_speed       # one engine cycle = one cam rev
+    period = 2.0 * math.pi / study.case.cam_speed  # one engine cycle = one cam rev
     dt = np.gradient(inp.time)
     ref = study.set(an.roles["reference"])
     ev = an.in_event
     ref_bf = np.nansum(np.where(ref.loaded & ev, ref.boundary_friction, 0.0) * dt)
-    out = {"case": study.case.name, "engine_speed_rpm": float(study.case.engine_speed),
-           "statistics_over": "cam event (lift > 10 µm), converged EHL samples, for films "
-                              "and friction maxima; all loaded samples for friction energy "
-                              "and power",
-           "reference_set": ref.name, "roles": dict(an.roles),
-           "film_gain_rule": FILM_GAIN_RULE,
-           "representative_points_crank_deg": [float(c) for c in an.point_crank],
-           "surface_sets": {}}
+    out = {
+        "case": study.case.name,
+        "engine_speed_rpm": float(study.case.engine_speed),
+        "statistics_over": "cam event (lift > 10 µm), converged EHL samples, for films "
+        "and friction maxima; all loaded samples for friction energy "
+        "and power",
+        "reference_set": ref.name,
+        "roles": dict(an.roles),
+        "film_gain_rule": FILM_GAIN_RULE,
+        "representative_points_crank_deg": [float(c) for c in an.point_crank],
+        "surface_sets": {},
+    }
     for s in study.sets:
         L = s.loaded & ev
-        C = L & s.converged                   # films and maxima: converged samples only
+        C = L & s.converged  # films and maxima: converged samples only
         any_c = bool(C.any())
         bf = np.nansum(np.where(L, s.boundary_friction, 0.0) * dt)
         energy = float(np.nansum(np.where(s.loaded, s.friction_power, 0.0) * dt))
         by_law = {}
         for law in ("newtonian", "eyring"):
-            p_law = ((getattr(s, f"viscous_friction_{law}") + s.boundary_friction)
-                     * np.abs(inp.sliding_speed))
+            p_law = (getattr(s, f"viscous_friction_{law}") + s.boundary_friction) * np.abs(
+                inp.sliding_speed
+            )
             by_law[law] = _finite(np.nansum(np.where(s.loaded, p_law, 0.0) * dt))
         g = an.film_gain[s.name]
         out["surface_sets"][s.name] = {
@@ -268,10 +329,13 @@ def summary(study, an: Analysis) -> dict:
             "median_abs_film_gain_vs_uncoated_pct": g["median_abs_pct"],
             "p95_abs_film_gain_vs_uncoated_pct": g["p95_abs_pct"],
             "film_gain_at_points_pct": g["at_points_pct"],
-            "max_boundary_friction_N": _finite(np.nanmax(s.boundary_friction[C])) if any_c else None,
+            "max_boundary_friction_N": _finite(np.nanmax(s.boundary_friction[C]))
+            if any_c
+            else None,
             "max_viscous_friction_N": _finite(np.nanmax(s.viscous_friction[C])) if any_c else None,
-            "boundary_friction_reduction_vs_uncoated_pct":
-                _finite((1.0 - bf / ref_bf) * 100.0) if ref_bf > 0 else None,
+            "boundary_friction_reduction_vs_uncoated_pct": _finite((1.0 - bf / ref_bf) * 100.0)
+            if ref_bf > 0
+            else None,
             "friction_energy_per_cycle_J": _finite(energy),
             "friction_energy_per_cycle_newtonian_J": by_law["newtonian"],
             "friction_energy_per_cycle_eyring_J": by_law["eyring"],
@@ -280,8 +344,9 @@ def summary(study, an: Analysis) -> dict:
             "failed_steps": len(s.failures),
         }
     out["implicit_vs_explicit"] = _implicit_vs_explicit(study)
-    if getattr(study, "isothermal_sets", None) is not None:     # numerics.thermal
+    if getattr(study, "isothermal_sets", None) is not None:  # numerics.thermal
         from .thermal_study import thermal_summary
+
         out["thermal"] = thermal_summary(study, an)
     out["dynamics"] = {k: v for k, v in dyn.summary().items() if k != "converged"}
     out["warnings"] = list(study.warnings)
@@ -295,9 +360,13 @@ def _implicit_vs_explicit(study) -> dict:
     dyn, cp = study.dynamics, study.coupling
     imp = cp.implicit
     if imp is None:
-        return {"max_contact_force_diff_pct": None, "max_velocity_diff_pct": None,
-                "note": "implicit coupling disabled in the case"
-                if not study.case.numerics.implicit_coupling else cp.message}
+        return {
+            "max_contact_force_diff_pct": None,
+            "max_velocity_diff_pct": None,
+            "note": "implicit coupling disabled in the case"
+            if not study.case.numerics.implicit_coupling
+            else cp.message,
+        }
     fi = np.interp(dyn.crank_angle, imp.crank_angle, imp.contact_force)
     vi = np.interp(dyn.crank_angle, imp.crank_angle, imp.tappet_velocity)
     dF = np.abs(fi - dyn.contact_force)

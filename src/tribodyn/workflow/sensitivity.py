@@ -18,8 +18,14 @@ from ..contact.ehl import solve_ehl
 from ..physics.asperity import Roughness
 from .cycle_ehl import CycleInputs
 
-__all__ = ["NoseCondition", "SensitivityCase", "RoughnessSensitivity", "nose_condition",
-           "roughness_sensitivity", "GAUSSIAN_ETA_BETA_SIGMA"]
+__all__ = [
+    "NoseCondition",
+    "SensitivityCase",
+    "RoughnessSensitivity",
+    "nose_condition",
+    "roughness_sensitivity",
+    "GAUSSIAN_ETA_BETA_SIGMA",
+]
 
 #: ηβσ of the "typical measured Gaussian surface" variant.
 GAUSSIAN_ETA_BETA_SIGMA = 0.04
@@ -64,8 +70,11 @@ class RoughnessSensitivity:
     cases: dict[str, SensitivityCase] = field(default_factory=dict)
 
     def to_dict(self) -> dict:
-        return {"conditions": vars(self.conditions), "surface_set": self.surface_set,
-                "cases": {k: vars(v) for k, v in self.cases.items()}}
+        return {
+            "conditions": vars(self.conditions),
+            "surface_set": self.surface_set,
+            "cases": {k: vars(v) for k, v in self.cases.items()},
+        }
 
 
 def nose_condition(inputs: CycleInputs) -> NoseCondition | None:
@@ -76,9 +85,14 @@ def nose_condition(inputs: CycleInputs) -> NoseCondition | None:
     if not ok.any():
         return None
     i = int(np.flatnonzero(ok)[np.argmin(inputs.radius[ok])])
-    return NoseCondition(i, float(inputs.crank_angle[i]), float(F[i]),
-                         float(inputs.radius[i]), float(inputs.entrainment_speed[i]),
-                         float(inputs.sliding_speed[i]))
+    return NoseCondition(
+        i,
+        float(inputs.crank_angle[i]),
+        float(F[i]),
+        float(inputs.radius[i]),
+        float(inputs.entrainment_speed[i]),
+        float(inputs.sliding_speed[i]),
+    )
 
 
 def roughness_sensitivity(case, surface_set, nose: NoseCondition) -> RoughnessSensitivity:
@@ -87,26 +101,45 @@ def roughness_sensitivity(case, surface_set, nose: NoseCondition) -> RoughnessSe
     s = surface_set
     w = nose.force / case.width
     r0 = s.roughness
-    alt = Roughness(asperity_density=GAUSSIAN_ETA_BETA_SIGMA / (r0.rms * r0.summit_radius),
-                    rms=r0.rms, summit_radius=r0.summit_radius, method=r0.method)
+    alt = Roughness(
+        asperity_density=GAUSSIAN_ETA_BETA_SIGMA / (r0.rms * r0.summit_radius),
+        rms=r0.rms,
+        summit_radius=r0.summit_radius,
+        method=r0.method,
+    )
     opts = case.ehl_options(s)
     other = "newtonian" if opts.viscous_model == "eyring" else "eyring"
-    variants = (("case roughness", r0, {}),
-                (f"{other} viscous law", r0, {"viscous_model": other}),
-                (f"Gaussian ηβσ = {GAUSSIAN_ETA_BETA_SIGMA:g}", alt, {}),
-                ("no limiting-shear cap", r0, {"limiting_shear": False}))
+    variants = (
+        ("case roughness", r0, {}),
+        (f"{other} viscous law", r0, {"viscous_model": other}),
+        (f"Gaussian ηβσ = {GAUSSIAN_ETA_BETA_SIGMA:g}", alt, {}),
+        ("no limiting-shear cap", r0, {"limiting_shear": False}),
+    )
     out = RoughnessSensitivity(nose, s.name)
     lub = case.lubricant()
     for label, rough, over in variants:
-        r = solve_ehl(w, nose.radius, nose.entrainment_speed, nose.sliding_speed, s.bodies,
-                      lub, rough, options=opts, **over)
+        r = solve_ehl(
+            w,
+            nose.radius,
+            nose.entrainment_speed,
+            nose.sliding_speed,
+            s.bodies,
+            lub,
+            rough,
+            options=opts,
+            **over,
+        )
         out.cases[label] = SensitivityCase(
-            label=label, eta_beta_sigma=rough.roughness_parameter,
+            label=label,
+            eta_beta_sigma=rough.roughness_parameter,
             viscous_model=over.get("viscous_model", opts.viscous_model),
             limiting_shear=bool(over.get("limiting_shear", opts.limiting_shear)),
-            central_film_m=r.central_film, min_film_m=r.min_film,
+            central_film_m=r.central_film,
+            min_film_m=r.min_film,
             asperity_load_share=r.asperity_load / w,
             boundary_friction_N=r.boundary_friction * case.width,
             viscous_friction_N=r.viscous_friction * case.width,
-            friction_coefficient=r.friction_coefficient, converged=r.converged)
+            friction_coefficient=r.friction_coefficient,
+            converged=r.converged,
+        )
     return out

@@ -32,20 +32,27 @@ from .._validation import InputError
 from .sweep_point import failed_point, run_point
 from .sweep_store import PointStore, combine_points
 
-__all__ = ["SweepResult", "run_sweep", "connect", "local_cluster", "machine_workers",
-           "estimate_point_seconds", "estimate_sweep"]
+__all__ = [
+    "SweepResult",
+    "run_sweep",
+    "connect",
+    "local_cluster",
+    "machine_workers",
+    "estimate_point_seconds",
+    "estimate_sweep",
+]
 
 
 @dataclass
 class SweepResult:
     """A finished (or partly failed) sweep."""
 
-    spec: object                     #: the SweepSpec
-    points: list                     #: the plan (SweepPoint, in dimension order)
-    dataset: xr.Dataset              #: all points, indexed by the sweep dimensions
-    ran: int = 0                     #: points run now
-    skipped: int = 0                 #: points already finished (resume)
-    failed: list = field(default_factory=list)    #: [(SweepPoint, error)]
+    spec: object  #: the SweepSpec
+    points: list  #: the plan (SweepPoint, in dimension order)
+    dataset: xr.Dataset  #: all points, indexed by the sweep dimensions
+    ran: int = 0  #: points run now
+    skipped: int = 0  #: points already finished (resume)
+    failed: list = field(default_factory=list)  #: [(SweepPoint, error)]
     runtime_s: float = 0.0
     workers: int = 0
     scheduler: str = ""
@@ -59,18 +66,24 @@ def machine_workers() -> int:
     """CPU cores this process may use."""
     try:
         return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:                      # not on Linux
+    except AttributeError:  # not on Linux
         return max(1, os.cpu_count() or 1)
 
 
 def local_cluster(workers: int | None = None):
     """A ``LocalCluster`` of single-threaded process workers (default: one per core)."""
     from distributed import LocalCluster
+
     n = machine_workers() if not workers else int(workers)
     if n < 1:
         raise InputError(f"workers: must be >= 1 (got {workers})")
-    return LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                        dashboard_address=":0", silence_logs=logging.ERROR)
+    return LocalCluster(
+        n_workers=n,
+        threads_per_worker=1,
+        processes=True,
+        dashboard_address=":0",
+        silence_logs=logging.ERROR,
+    )
 
 
 def connect(address: str, *, workers: int | None = None, timeout: float = 30.0):
@@ -78,39 +91,51 @@ def connect(address: str, *, workers: int | None = None, timeout: float = 30.0):
     address) or the path of a scheduler file. ``workers``: wait until that many workers
     are connected. Raises :class:`InputError` naming ``--scheduler`` if it cannot."""
     from distributed import Client
+
     if not isinstance(address, str) or not address.strip():
-        raise InputError("--scheduler: give the scheduler's address, e.g. "
-                         "tcp://host:8786, or a scheduler file")
+        raise InputError(
+            "--scheduler: give the scheduler's address, e.g. tcp://host:8786, or a scheduler file"
+        )
     try:
         if "://" not in address and Path(address).is_file():
             client = Client(scheduler_file=address, timeout=timeout)
         else:
             client = Client(address, timeout=timeout)
     except (OSError, TimeoutError, ValueError) as exc:
-        raise InputError(f"--scheduler: cannot connect to {address!r} within {timeout:g} s "
-                         f"({type(exc).__name__}: {exc}); start one with `dask scheduler` "
-                         "or give a running scheduler's address, e.g. tcp://host:8786"
-                         ) from None
+        raise InputError(
+            f"--scheduler: cannot connect to {address!r} within {timeout:g} s "
+            f"({type(exc).__name__}: {exc}); start one with `dask scheduler` "
+            "or give a running scheduler's address, e.g. tcp://host:8786"
+        ) from None
     if workers:
         try:
             client.wait_for_workers(int(workers), timeout=timeout)
         except TimeoutError:
             have = len(client.scheduler_info().get("workers", {}))
             client.close()
-            raise InputError(f"--workers: {workers} workers requested, {have} connected to "
-                             f"{address} after {timeout:g} s") from None
+            raise InputError(
+                f"--workers: {workers} workers requested, {have} connected to "
+                f"{address} after {timeout:g} s"
+            ) from None
     return client
 
 
 def _n_workers(client) -> int:
     try:
         return len(client.scheduler_info().get("workers", {}))
-    except Exception:                 # a scheduler that does not answer: report 0
+    except Exception:  # a scheduler that does not answer: report 0
         return 0
 
 
-def run_sweep(spec, client=None, *, out_dir=None, resume: bool = False,
-              workers: int | None = None, progress=None) -> SweepResult:
+def run_sweep(
+    spec,
+    client=None,
+    *,
+    out_dir=None,
+    resume: bool = False,
+    workers: int | None = None,
+    progress=None,
+) -> SweepResult:
     """Run a sweep; return its :class:`SweepResult`.
 
     spec : a :class:`~tribodyn.config.sweep.SweepSpec` (or a sweep file path).
@@ -125,6 +150,7 @@ def run_sweep(spec, client=None, *, out_dir=None, resume: bool = False,
         workers) and ``"point"`` (done, failed, total, label, status, error) events.
     """
     from ..config.sweep import SweepSpec, load_sweep
+
     if not isinstance(spec, SweepSpec):
         spec = load_sweep(spec)
     t_start = time.perf_counter()
@@ -136,15 +162,17 @@ def run_sweep(spec, client=None, *, out_dir=None, resume: bool = False,
     if store is not None:
         store.clean()
         if store.keys() and not resume:
-            raise InputError(f"{store.folder} already holds points of a sweep: pass resume "
-                             "(--resume) to go on with it, or choose another output folder")
+            raise InputError(
+                f"{store.folder} already holds points of a sweep: pass resume "
+                "(--resume) to go on with it, or choose another output folder"
+            )
         if resume:
             for p in plan:
                 if p.case is not None and store.status(p.key) == "ok":
                     results[p.index] = store.load(p.key)
                     skipped += 1
     failed: list = []
-    for p in plan:                      # invalid combinations: recorded, never run
+    for p in plan:  # invalid combinations: recorded, never run
         if p.case is None:
             results[p.index] = failed_point(p.error)
             if store is not None:
@@ -157,13 +185,21 @@ def run_sweep(spec, client=None, *, out_dir=None, resume: bool = False,
         n = min(workers or machine_workers(), len(todo))
         own = local_cluster(n)
         from distributed import Client
+
         client = Client(own)
     n_workers = _n_workers(client) if client is not None else 0
     scheduler = getattr(getattr(client, "scheduler", None), "address", "") or ""
     if own is not None:
-        scheduler = ""                  # a cluster of this run: not an address to report
-    report("start", total=len(plan), skipped=skipped, todo=len(todo), workers=n_workers,
-           scheduler=scheduler, invalid=len(failed))
+        scheduler = ""  # a cluster of this run: not an address to report
+    report(
+        "start",
+        total=len(plan),
+        skipped=skipped,
+        todo=len(todo),
+        workers=n_workers,
+        scheduler=scheduler,
+        invalid=len(failed),
+    )
     done = skipped + len(failed)
     futures = []
     try:
@@ -171,11 +207,12 @@ def run_sweep(spec, client=None, *, out_dir=None, resume: bool = False,
             futures = _submit(client, spec, todo)
             by_key = {f.key: p for f, p in zip(futures, todo)}
             from distributed import as_completed
+
             for fut in as_completed(futures):
                 p = by_key[fut.key]
                 try:
                     ds = fut.result()
-                except Exception as exc:            # worker died, cancelled, …
+                except Exception as exc:  # worker died, cancelled, …
                     ds = failed_point(f"{type(exc).__name__}: {exc}")
                 fut.release()
                 results[p.index] = ds
@@ -185,9 +222,16 @@ def run_sweep(spec, client=None, *, out_dir=None, resume: bool = False,
                 if status != "ok":
                     failed.append((p, ds.attrs.get("error", "")))
                 done += 1
-                report("point", done=done, failed=len(failed), total=len(plan),
-                       label=p.label, status=status, error=ds.attrs.get("error", ""))
-    except BaseException:                # interrupted: finished points are on disk
+                report(
+                    "point",
+                    done=done,
+                    failed=len(failed),
+                    total=len(plan),
+                    label=p.label,
+                    status=status,
+                    error=ds.attrs.get("error", ""),
+                )
+    except BaseException:  # interrupted: finished points are on disk
         if futures and own is None:
             client.cancel([f for f in futures if not f.done()])
         raise
@@ -201,17 +245,35 @@ def run_sweep(spec, client=None, *, out_dir=None, resume: bool = False,
     dataset.attrs["runtime_s"] = runtime
     dataset.attrs["points_run"] = len(todo)
     dataset.attrs["points_resumed"] = skipped
-    return SweepResult(spec=spec, points=plan, dataset=dataset, ran=len(todo),
-                       skipped=skipped, failed=failed, runtime_s=runtime,
-                       workers=n_workers, scheduler=scheduler)
+    return SweepResult(
+        spec=spec,
+        points=plan,
+        dataset=dataset,
+        ran=len(todo),
+        skipped=skipped,
+        failed=failed,
+        runtime_s=runtime,
+        workers=n_workers,
+        scheduler=scheduler,
+    )
 
 
 def _submit(client, spec, todo):
     """One task per point (unique keys: a rerun never picks up an old task's result)."""
     import uuid
+
     tag = uuid.uuid4().hex[:8]
-    return [client.submit(run_point, p.case, spec.mode, spec.traces, pure=False,
-                          key=f"tribodyn-point-{p.index}-{p.key}-{tag}") for p in todo]
+    return [
+        client.submit(
+            run_point,
+            p.case,
+            spec.mode,
+            spec.traces,
+            pure=False,
+            key=f"tribodyn-point-{p.index}-{p.key}-{tag}",
+        )
+        for p in todo
+    ]
 
 
 # ----------------------------------------------------------------------------- estimate
@@ -234,7 +296,7 @@ def estimate_point_seconds(case, mode: str = "study", steps: int = 8) -> float:
     from .sensitivity import nose_condition, roughness_sensitivity
     from .sweep_point import point_dynamics
 
-    clock = time.process_time            # CPU time: one core, whatever the machine's load
+    clock = time.process_time  # CPU time: one core, whatever the machine's load
     with threadpool_limits(1):
         t0 = clock()
         dyn = point_dynamics(case)
@@ -250,14 +312,14 @@ def estimate_point_seconds(case, mode: str = "study", steps: int = 8) -> float:
         ref = case.surface_set(surface_roles(case)["reference"])
         i0 = int(inp.contact_force.argmax())
         i0 = max(1, min(i0, inp.crank_angle.size - steps))
-        tr = TransientEHL(ref.bodies, case.lubricant(), ref.roughness,
-                          options=case.ehl_options(ref))
+        tr = TransientEHL(
+            ref.bodies, case.lubricant(), ref.roughness, options=case.ehl_options(ref)
+        )
         t0 = clock()
         k = 0
         for i in range(i0, min(i0 + steps, inp.crank_angle.size)):
             w = inp.contact_force[i] / case.width
-            args = (max(w, 1.0), inp.radius[i], inp.entrainment_speed[i],
-                    inp.sliding_speed[i])
+            args = (max(w, 1.0), inp.radius[i], inp.entrainment_speed[i], inp.sliding_speed[i])
             if k == 0:
                 tr.start_steady(*args, time=inp.time[i])
             else:
@@ -293,8 +355,7 @@ def estimate_sweep(spec, *, workers: int, out_dir=None) -> dict:
             ds = store.load(p.key) if store.status(p.key) == "ok" else None
             if ds is not None:
                 done += 1
-                done_times.append(float(ds.attrs.get("cpu_s",
-                                                     ds.attrs.get("runtime_s", math.nan))))
+                done_times.append(float(ds.attrs.get("cpu_s", ds.attrs.get("runtime_s", math.nan))))
     todo = len(valid) - done
     done_times = [t for t in done_times if math.isfinite(t)]
     if done_times:
@@ -304,11 +365,17 @@ def estimate_sweep(spec, *, workers: int, out_dir=None) -> dict:
         cal = [valid[0]] if len(valid) == 1 else [valid[0], valid[-1]]
         times = [estimate_point_seconds(p.case, spec.mode) for p in cal]
         per = sum(times) / len(times)
-        method = ("calibration run of " + " and ".join(f"point {p.index} ({p.label})"
-                                                      for p in cal))
+        method = "calibration run of " + " and ".join(f"point {p.index} ({p.label})" for p in cal)
     else:
         per, method = 0.0, "no valid point"
     w = max(1, min(workers, max(todo, 1)))
-    return {"points": len(plan), "invalid": len(plan) - len(valid), "done": done,
-            "todo": todo, "seconds_per_point": per,
-            "seconds": math.ceil(todo / w) * per, "workers": w, "method": method}
+    return {
+        "points": len(plan),
+        "invalid": len(plan) - len(valid),
+        "done": done,
+        "todo": todo,
+        "seconds_per_point": per,
+        "seconds": math.ceil(todo / w) * per,
+        "workers": w,
+        "method": method,
+    }

@@ -37,8 +37,10 @@ __all__ = ["run_point", "failed_point", "POINT_SCALARS", "SET_SCALARS"]
 #: Point scalars: name → (units, long name). Booleans are stored as 0/1.
 POINT_SCALARS = {
     "peak_contact_force_N": ("N", "peak cam–tappet contact force"),
-    "peak_contact_force_crank_deg": ("deg", "crank angle of the peak contact force "
-                                            "(presented cycle)"),
+    "peak_contact_force_crank_deg": (
+        "deg",
+        "crank angle of the peak contact force (presented cycle)",
+    ),
     "min_contact_force_in_event_N": ("N", "minimum contact force in the cam event"),
     "min_radius_of_curvature_m": ("m", "minimum radius of curvature of the cam"),
     "entrainment_speed_min_m_s": ("m/s", "lowest entraining speed u_e"),
@@ -46,17 +48,23 @@ POINT_SCALARS = {
     "max_valve_lift_m": ("m", "maximum valve lift"),
     "max_seat_force_N": ("N", "maximum valve-seat force"),
     "peak_cam_torque_Nm": ("N·m", "peak camshaft drive torque"),
-    "dynamics_friction_energy_per_cycle_J": ("J", "friction energy per cycle of the "
-                                                  "dynamics' explicit (analytic) tribology"),
+    "dynamics_friction_energy_per_cycle_J": (
+        "J",
+        "friction energy per cycle of the dynamics' explicit (analytic) tribology",
+    ),
     "jump": ("1", "cam contact lost while the cam lifts (1 yes, 0 no)"),
     "jump_onset_crank_deg": ("deg", "crank angle where the first jump starts (NaN: none)"),
     "valve_bounce": ("1", "valve lifts off its seat after closing (1 yes, 0 no)"),
     "seating_velocity_m_s": ("m/s", "valve velocity at the first closing seat impact"),
     "energy_residual_rel": ("1", "relative residual of the cycle energy balance"),
-    "max_contact_force_diff_pct": ("%", "implicit vs explicit dynamics: largest contact-"
-                                        "force difference, % of its peak"),
-    "max_velocity_diff_pct": ("%", "implicit vs explicit dynamics: largest tappet-"
-                                   "velocity difference, % of its peak"),
+    "max_contact_force_diff_pct": (
+        "%",
+        "implicit vs explicit dynamics: largest contact-force difference, % of its peak",
+    ),
+    "max_velocity_diff_pct": (
+        "%",
+        "implicit vs explicit dynamics: largest tappet-velocity difference, % of its peak",
+    ),
     "coupling_converged": ("1", "implicit coupling converged (1 yes, 0 no)"),
     "n_warnings": ("1", "warnings of the study (non-converged EHL steps, jumps, coupling)"),
     "runtime_s": ("s", "run time (wall clock) of the point on its worker"),
@@ -68,19 +76,21 @@ SET_SCALARS = {
     "min_film_m": ("m", "minimum film thickness h_min in the cam event"),
     "max_central_film_m": ("m", "largest central film thickness h_c in the cam event"),
     "min_lambda": ("1", "minimum λ = h_min/σ in the cam event"),
-    "max_film_gain_vs_uncoated_pct": ("%", "robust maximum film gain over the reference "
-                                           "set"),
+    "max_film_gain_vs_uncoated_pct": ("%", "robust maximum film gain over the reference set"),
     "median_abs_film_gain_vs_uncoated_pct": ("%", "median |film gain| over the reference"),
     "p95_abs_film_gain_vs_uncoated_pct": ("%", "95th percentile of |film gain|"),
     "max_boundary_friction_N": ("N", "peak boundary friction force in the cam event"),
     "max_viscous_friction_N": ("N", "peak viscous friction force in the cam event"),
     "boundary_friction_reduction_vs_uncoated_pct": (
-        "%", "boundary friction impulse below the reference set's"),
+        "%",
+        "boundary friction impulse below the reference set's",
+    ),
     "friction_energy_per_cycle_J": ("J", "friction energy per engine cycle"),
-    "friction_energy_per_cycle_newtonian_J": ("J", "friction energy per cycle, Newtonian "
-                                                   "viscous law"),
-    "friction_energy_per_cycle_eyring_J": ("J", "friction energy per cycle, Eyring "
-                                                "viscous law"),
+    "friction_energy_per_cycle_newtonian_J": (
+        "J",
+        "friction energy per cycle, Newtonian viscous law",
+    ),
+    "friction_energy_per_cycle_eyring_J": ("J", "friction energy per cycle, Eyring viscous law"),
     "mean_friction_power_W": ("W", "mean friction power over the engine cycle"),
     "failed_steps": ("1", "transient-EHL steps that did not converge"),
 }
@@ -128,6 +138,7 @@ def _where() -> dict:
     """Host and Dask worker address of this process ('' outside a worker)."""
     try:
         from distributed import get_worker
+
         worker = get_worker().address
     except (ImportError, ValueError):
         worker = ""
@@ -136,8 +147,15 @@ def _where() -> dict:
 
 def failed_point(error: str, runtime_s: float = 0.0) -> xr.Dataset:
     """The Dataset of a point that failed: no variables, the error in the attributes."""
-    return xr.Dataset(attrs={"status": "failed", "error": error,
-                             "runtime_s": float(runtime_s), "warnings": "[]", **_where()})
+    return xr.Dataset(
+        attrs={
+            "status": "failed",
+            "error": error,
+            "runtime_s": float(runtime_s),
+            "warnings": "[]",
+            **_where(),
+        }
+    )
 
 
 def _dynamics_scalars(dyn) -> dict:
@@ -149,14 +167,18 @@ def _dynamics_scalars(dyn) -> dict:
         - float(dyn.crank_angle[0]),
         "min_contact_force_in_event_N": s["min_contact_force_in_event_N"],
         "min_radius_of_curvature_m": s["min_radius_of_curvature_m"],
-        "entrainment_speed_min_m_s": ue[0], "entrainment_speed_max_m_s": ue[1],
-        "max_valve_lift_m": s["max_valve_lift_m"], "max_seat_force_N": s["max_seat_force_N"],
+        "entrainment_speed_min_m_s": ue[0],
+        "entrainment_speed_max_m_s": ue[1],
+        "max_valve_lift_m": s["max_valve_lift_m"],
+        "max_seat_force_N": s["max_seat_force_N"],
         "peak_cam_torque_Nm": s["peak_cam_torque_Nm"],
         "dynamics_friction_energy_per_cycle_J": s["friction_energy_per_cycle_J"],
         "jump": s["jump"],
-        "jump_onset_crank_deg": (dyn.jumps[0][0] - float(dyn.crank_angle[0])
-                                 if dyn.jumps else math.nan),
-        "valve_bounce": s["valve_bounce"], "seating_velocity_m_s": s["seating_velocity_m_s"],
+        "jump_onset_crank_deg": (
+            dyn.jumps[0][0] - float(dyn.crank_angle[0]) if dyn.jumps else math.nan
+        ),
+        "valve_bounce": s["valve_bounce"],
+        "seating_velocity_m_s": s["seating_velocity_m_s"],
         "energy_residual_rel": s["energy_residual_rel"],
     }
 
@@ -164,21 +186,28 @@ def _dynamics_scalars(dyn) -> dict:
 def _dynamics_traces(ds: xr.Dataset, dyn):
     c0 = float(dyn.crank_angle[0])
     ds.coords["crank_angle"] = xr.Variable(
-        "crank_angle", dyn.crank_angle - c0,
-        {"units": "deg", "long_name": "crank angle in the presented engine cycle"})
+        "crank_angle",
+        dyn.crank_angle - c0,
+        {"units": "deg", "long_name": "crank angle in the presented engine cycle"},
+    )
     for k, (units, long) in _DYN_TRACES.items():
         name = "dynamics_friction_power" if k == "friction_power" else k
-        ds[name] = xr.Variable("crank_angle", np.asarray(getattr(dyn, k), float),
-                               {"units": units, "long_name": long})
+        ds[name] = xr.Variable(
+            "crank_angle", np.asarray(getattr(dyn, k), float), {"units": units, "long_name": long}
+        )
 
 
 def point_dynamics(case):
     from ..valvetrain.dynamics import simulate_valvetrain
     from .postprocess import surface_roles
+
     ref = case.surface_set(surface_roles(case)["reference"])
-    return simulate_valvetrain(case.cam(), case.valvetrain_parameters(),
-                               tribology=case.analytic_tribology(ref),
-                               **case.dynamics_options())
+    return simulate_valvetrain(
+        case.cam(),
+        case.valvetrain_parameters(),
+        tribology=case.analytic_tribology(ref),
+        **case.dynamics_options(),
+    )
 
 
 def _dynamics_point(case, traces: bool) -> tuple[xr.Dataset, list]:
@@ -197,53 +226,75 @@ def _dynamics_point(case, traces: bool) -> tuple[xr.Dataset, list]:
 
 def _study_point(case, traces: bool) -> tuple[xr.Dataset, list]:
     from .cycle import run_cycle_study
+
     study = run_cycle_study(case, workers=1)
     summ = study.analyse().summary
     ds = xr.Dataset()
     for k, v in _dynamics_scalars(study.dynamics).items():
         ds[k] = _scalar(k, v)
     ie = summ["implicit_vs_explicit"]
-    ds["max_contact_force_diff_pct"] = _scalar("max_contact_force_diff_pct",
-                                               ie.get("max_contact_force_diff_pct"))
-    ds["max_velocity_diff_pct"] = _scalar("max_velocity_diff_pct",
-                                          ie.get("max_velocity_diff_pct"))
+    ds["max_contact_force_diff_pct"] = _scalar(
+        "max_contact_force_diff_pct", ie.get("max_contact_force_diff_pct")
+    )
+    ds["max_velocity_diff_pct"] = _scalar("max_velocity_diff_pct", ie.get("max_velocity_diff_pct"))
     ds["coupling_converged"] = _scalar("coupling_converged", ie.get("coupling_converged"))
     ds["n_warnings"] = _scalar("n_warnings", len(study.warnings))
     names = [s.name for s in study.sets]
     ds.coords["surface_set"] = xr.Variable("surface_set", names)
-    ds.coords["surface_label"] = xr.Variable("surface_set", [study.labels[n] for n in names],
-                                             {"long_name": "tappet surface"})
+    ds.coords["surface_label"] = xr.Variable(
+        "surface_set", [study.labels[n] for n in names], {"long_name": "tappet surface"}
+    )
     sets = {s.name: s for s in case.surface_sets()}
     ds.coords["coating_material"] = xr.Variable(
-        "surface_set", [sets[n].coating_material or "" for n in names],
-        {"long_name": "coating material key ('' = uncoated)"})
+        "surface_set",
+        [sets[n].coating_material or "" for n in names],
+        {"long_name": "coating material key ('' = uncoated)"},
+    )
     ds.coords["coating_thickness"] = xr.Variable(
-        "surface_set", [sets[n].coating.thickness if sets[n].coating else 0.0 for n in names],
-        {"units": "m", "long_name": "coating thickness (0 = uncoated)"})
+        "surface_set",
+        [sets[n].coating.thickness if sets[n].coating else 0.0 for n in names],
+        {"units": "m", "long_name": "coating thickness (0 = uncoated)"},
+    )
     for k, (units, long) in SET_SCALARS.items():
-        ds[k] = xr.Variable("surface_set",
-                            np.array([_num(summ["surface_sets"][n][k]) for n in names]),
-                            {"units": units, "long_name": long})
+        ds[k] = xr.Variable(
+            "surface_set",
+            np.array([_num(summ["surface_sets"][n][k]) for n in names]),
+            {"units": units, "long_name": long},
+        )
     ds.attrs["reference_set"] = summ["reference_set"]
     if traces:
         _dynamics_traces(ds, study.dynamics)
         inp = study.inputs
         ds.coords["ehl_crank"] = xr.Variable(
-            "ehl_crank", inp.crank_angle - float(study.dynamics.crank_angle[0]),
-            {"units": "deg", "long_name": "crank angle of the transient-EHL samples in the "
-                                          "presented cycle"})
-        ds["ehl_contact_force"] = xr.Variable("ehl_crank", inp.contact_force,
-                                              {"units": "N", "long_name": "contact force "
-                                                                          "at the EHL samples"})
+            "ehl_crank",
+            inp.crank_angle - float(study.dynamics.crank_angle[0]),
+            {
+                "units": "deg",
+                "long_name": "crank angle of the transient-EHL samples in the presented cycle",
+            },
+        )
+        ds["ehl_contact_force"] = xr.Variable(
+            "ehl_crank",
+            inp.contact_force,
+            {"units": "N", "long_name": "contact force at the EHL samples"},
+        )
         two = ("surface_set", "ehl_crank")
         for k, (units, long) in _EHL_TRACES.items():
-            ds[k] = xr.Variable(two, np.array([getattr(s, k) for s in study.sets], float),
-                                {"units": units, "long_name": long})
-        ds["loaded"] = xr.Variable(two, np.array([s.loaded for s in study.sets], np.int8),
-                                   {"long_name": "contact loaded (EHL solved)"})
-        ds["converged"] = xr.Variable(two, np.array([s.converged for s in study.sets],
-                                                    np.int8),
-                                      {"long_name": "EHL step converged"})
+            ds[k] = xr.Variable(
+                two,
+                np.array([getattr(s, k) for s in study.sets], float),
+                {"units": units, "long_name": long},
+            )
+        ds["loaded"] = xr.Variable(
+            two,
+            np.array([s.loaded for s in study.sets], np.int8),
+            {"long_name": "contact loaded (EHL solved)"},
+        )
+        ds["converged"] = xr.Variable(
+            two,
+            np.array([s.converged for s in study.sets], np.int8),
+            {"long_name": "EHL step converged"},
+        )
     return ds, list(study.warnings)
 
 
@@ -260,6 +311,7 @@ def run_point(case, mode: str = "study", traces: bool = False) -> xr.Dataset:
     from threadpoolctl import threadpool_limits
 
     from .cycle import StudyError
+
     t0, c0 = time.perf_counter(), time.process_time()
     try:
         with threadpool_limits(1):
@@ -271,13 +323,21 @@ def run_point(case, mode: str = "study", traces: bool = False) -> xr.Dataset:
                 raise ValueError(f"mode must be 'study' or 'dynamics' (got {mode!r})")
     except (_PointFailure, StudyError) as exc:
         return failed_point(str(exc), time.perf_counter() - t0)
-    except Exception as exc:          # any other error of this point is recorded, not fatal
+    except Exception as exc:  # any other error of this point is recorded, not fatal
         tb = traceback.extract_tb(exc.__traceback__)
         where = f" (at {tb[-1].filename.rsplit('/', 1)[-1]}:{tb[-1].lineno})" if tb else ""
         return failed_point(f"{type(exc).__name__}: {exc}{where}", time.perf_counter() - t0)
     runtime, cpu = time.perf_counter() - t0, time.process_time() - c0
     ds["runtime_s"] = _scalar("runtime_s", runtime)
     ds["cpu_s"] = _scalar("cpu_s", cpu)
-    ds.attrs.update({"status": "ok", "error": "", "runtime_s": runtime, "cpu_s": cpu,
-                     "warnings": json.dumps(warnings), **_where()})
+    ds.attrs.update(
+        {
+            "status": "ok",
+            "error": "",
+            "runtime_s": runtime,
+            "cpu_s": cpu,
+            "warnings": json.dumps(warnings),
+            **_where(),
+        }
+    )
     return ds

@@ -69,10 +69,15 @@ class PointStore:
         attributes."""
         self.dir.mkdir(parents=True, exist_ok=True)
         ds = ds.copy()
-        ds.attrs.update({"point_index": int(point.index), "point_key": point.key,
-                         "point_values": json.dumps(point.values),
-                         "point_changes": json.dumps(point.changes),
-                         "point_label": point.label})
+        ds.attrs.update(
+            {
+                "point_index": int(point.index),
+                "point_key": point.key,
+                "point_values": json.dumps(point.values),
+                "point_changes": json.dumps(point.changes),
+                "point_label": point.label,
+            }
+        )
         if point.case is not None:
             ds.attrs["case_toml"] = point.case.to_toml()
         fd, tmp = tempfile.mkstemp(prefix=f".{point.key}.", suffix=".tmp", dir=self.dir)
@@ -111,6 +116,7 @@ def combine_points(spec, plan, results: dict) -> xr.Dataset:
     """One Dataset of all points of ``plan`` (``results``: point index → its Dataset),
     indexed by the sweep dimensions; variables of failed or missing points are NaN."""
     from .. import __version__
+
     shape = spec.shape
     dims = [d for d, _ in spec.dims]
     ok = {i: ds for i, ds in results.items() if ds.attrs.get("status") == "ok"}
@@ -119,8 +125,9 @@ def combine_points(spec, plan, results: dict) -> xr.Dataset:
         have = [ds[d].values for ds in ok.values() if d in ds.dims]
         if have:
             inner[d] = _ordered_union(have)
-    aligned = {i: ds.reindex({d: v for d, v in inner.items() if d in ds.dims})
-               for i, ds in ok.items()}
+    aligned = {
+        i: ds.reindex({d: v for d, v in inner.items() if d in ds.dims}) for i, ds in ok.items()
+    }
     out = xr.Dataset()
     names: list[str] = []
     for ds in aligned.values():
@@ -133,30 +140,34 @@ def combine_points(spec, plan, results: dict) -> xr.Dataset:
         for i, ds in aligned.items():
             if name in ds:
                 data[i] = ds[name].values.astype(float)
-        out[name] = xr.Variable((*dims, *idims), data.reshape(*shape, *data.shape[1:]),
-                                dict(first.attrs))
+        out[name] = xr.Variable(
+            (*dims, *idims), data.reshape(*shape, *data.shape[1:]), dict(first.attrs)
+        )
     for d, v in inner.items():
         first = next(ds for ds in aligned.values() if d in ds.dims)
-        out.coords[d] = xr.Variable(d, v.astype(str) if v.dtype == object else v,
-                                    dict(first[d].attrs))
-    for name in SET_COORDS:              # per-set descriptions, where all points agree
-        vals = {tuple(ds[name].values.tolist()) for ds in aligned.values()
-                if name in ds.coords}
+        out.coords[d] = xr.Variable(
+            d, v.astype(str) if v.dtype == object else v, dict(first[d].attrs)
+        )
+    for name in SET_COORDS:  # per-set descriptions, where all points agree
+        vals = {tuple(ds[name].values.tolist()) for ds in aligned.values() if name in ds.coords}
         if len(vals) == 1 and "surface_set" in inner:
             first = next(ds[name] for ds in aligned.values() if name in ds.coords)
             v = np.asarray(first.values)
-            out.coords[name] = xr.Variable("surface_set",
-                                           v.astype(str) if v.dtype == object else v,
-                                           dict(first.attrs))
+            out.coords[name] = xr.Variable(
+                "surface_set", v.astype(str) if v.dtype == object else v, dict(first.attrs)
+            )
     for dim, axes in spec.dims:
         idx_axis = next((a for a in axes if a.name == dim), None)
         if idx_axis is None:
-            out.coords[dim] = xr.Variable(dim, np.arange(len(axes[0].values)),
-                                          {"long_name": f"position along {dim}"})
+            out.coords[dim] = xr.Variable(
+                dim, np.arange(len(axes[0].values)), {"long_name": f"position along {dim}"}
+            )
         for a in axes:
-            out.coords[a.name] = xr.Variable(dim, np.array(a.values),
-                                             {"units": a.unit, "long_name": a.path,
-                                              "description": a.description})
+            out.coords[a.name] = xr.Variable(
+                dim,
+                np.array(a.values),
+                {"units": a.unit, "long_name": a.path, "description": a.description},
+            )
     status = np.zeros(n, np.int8)
     error = np.full(n, "", dtype=object)
     warnings = np.full(n, "", dtype=object)
@@ -170,28 +181,48 @@ def combine_points(spec, plan, results: dict) -> xr.Dataset:
             warnings[p.index] = "; ".join(json.loads(ds.attrs.get("warnings", "[]")))
         else:
             error[p.index] = str(ds.attrs.get("error", "failed"))
-    out["status"] = xr.Variable(dims, status.reshape(shape),
-                                {"long_name": "point finished (1) or failed (0)"})
-    out["error"] = xr.Variable(dims, error.astype(str).reshape(shape),
-                               {"long_name": "why the point failed ('' if it did not)"})
-    out["warnings"] = xr.Variable(dims, warnings.astype(str).reshape(shape),
-                                  {"long_name": "warnings of the point's study ('' if none)"})
-    out["point_key"] = xr.Variable(dims, keys.astype(str).reshape(shape),
-                                   {"long_name": "point file points/<key>.nc"})
+    out["status"] = xr.Variable(
+        dims, status.reshape(shape), {"long_name": "point finished (1) or failed (0)"}
+    )
+    out["error"] = xr.Variable(
+        dims,
+        error.astype(str).reshape(shape),
+        {"long_name": "why the point failed ('' if it did not)"},
+    )
+    out["warnings"] = xr.Variable(
+        dims,
+        warnings.astype(str).reshape(shape),
+        {"long_name": "warnings of the point's study ('' if none)"},
+    )
+    out["point_key"] = xr.Variable(
+        dims, keys.astype(str).reshape(shape), {"long_name": "point file points/<key>.nc"}
+    )
     refs = {ds.attrs.get("reference_set") for ds in ok.values()} - {None}
-    out.attrs.update({
-        "title": f"tribodyn sweep: {spec.name}",
-        "tribodyn_version": __version__,
-        "mode": spec.mode,
-        "traces": int(spec.traces),
-        "n_points": int(n),
-        "n_failed": int(n - status.sum()),
-        "axes": json.dumps([{"path": a.path, "name": a.name, "dim": a.dim, "unit": a.unit,
-                             "values": list(a.values)} for a in spec.axes]),
-        "sweep_toml": spec.to_toml(),
-        "base_case_toml": spec.base.to_toml(resolve_paths=True),
-        "conventions": "SI; NaN where a point failed (status = 0)",
-    })
+    out.attrs.update(
+        {
+            "title": f"tribodyn sweep: {spec.name}",
+            "tribodyn_version": __version__,
+            "mode": spec.mode,
+            "traces": int(spec.traces),
+            "n_points": int(n),
+            "n_failed": int(n - status.sum()),
+            "axes": json.dumps(
+                [
+                    {
+                        "path": a.path,
+                        "name": a.name,
+                        "dim": a.dim,
+                        "unit": a.unit,
+                        "values": list(a.values),
+                    }
+                    for a in spec.axes
+                ]
+            ),
+            "sweep_toml": spec.to_toml(),
+            "base_case_toml": spec.base.to_toml(resolve_paths=True),
+            "conventions": "SI; NaN where a point failed (status = 0)",
+        }
+    )
     if len(refs) == 1:
         out.attrs["reference_set"] = refs.pop()
     return out

@@ -22,11 +22,21 @@ from ..contact.ehl.thermal import couette_stress
 from ..contact.ehl.thermal_transient import ThermalTransientEHL
 from .cycle_ehl import PROFILE_POINTS, CycleInputs, SetCycleResult
 
-__all__ = ["ThermalSetCycleResult", "thermal_along_cycle", "thermal_for_set",
-           "thermal_task", "coating_thermal_effect"]
+__all__ = [
+    "ThermalSetCycleResult",
+    "thermal_along_cycle",
+    "thermal_for_set",
+    "thermal_task",
+    "coating_thermal_effect",
+]
 
-_TEMPS = ("max_temperature", "mid_film_temperature", "surface_temperature_cam",
-          "surface_temperature_tappet", "mean_film_temperature")
+_TEMPS = (
+    "max_temperature",
+    "mid_film_temperature",
+    "surface_temperature_cam",
+    "surface_temperature_tappet",
+    "mean_film_temperature",
+)
 
 
 @dataclass
@@ -46,18 +56,40 @@ class ThermalSetCycleResult(SetCycleResult):
     thermal: bool = field(default=True)
 
 
-def thermal_along_cycle(inp: CycleInputs, name, label, bodies, oil, thermal_bodies, roughness,
-                        options, thermal_options, *, min_load=5.0, progress=None
-                        ) -> ThermalSetCycleResult:
+def thermal_along_cycle(
+    inp: CycleInputs,
+    name,
+    label,
+    bodies,
+    oil,
+    thermal_bodies,
+    roughness,
+    options,
+    thermal_options,
+    *,
+    min_load=5.0,
+    progress=None,
+) -> ThermalSetCycleResult:
     """March the thermal transient EHL over the cycle for one surface set (the same
     samples, outputs and unloaded-sample convention as
     :func:`~.cycle_ehl.ehl_along_cycle`)."""
     t_start = _time.perf_counter()
     n = inp.crank_angle.size
     nan = np.full(n, np.nan)
-    keys = ("central_film", "min_film", "max_pressure", "hydrodynamic_load", "asperity_load",
-            "viscous_friction", "viscous_friction_newtonian", "viscous_friction_eyring",
-            "boundary_friction", "rolling_friction", "friction_power", "lambda_ratio") + _TEMPS
+    keys = (
+        "central_film",
+        "min_film",
+        "max_pressure",
+        "hydrodynamic_load",
+        "asperity_load",
+        "viscous_friction",
+        "viscous_friction_newtonian",
+        "viscous_friction_eyring",
+        "boundary_friction",
+        "rolling_friction",
+        "friction_power",
+        "lambda_ratio",
+    ) + _TEMPS
     out = {k: nan.copy() for k in keys}
     loaded = inp.contact_force >= min_load
     converged = np.ones(n, dtype=bool)
@@ -76,16 +108,26 @@ def thermal_along_cycle(inp: CycleInputs, name, label, bodies, oil, thermal_bodi
             if progress:
                 progress(i + 1, n)
             continue
-        args = (inp.contact_force[i] / width, inp.radius[i], inp.entrainment_speed[i],
-                inp.sliding_speed[i])
+        args = (
+            inp.contact_force[i] / width,
+            inp.radius[i],
+            inp.entrainment_speed[i],
+            inp.sliding_speed[i],
+        )
         try:
             if tr is None:
-                tr = ThermalTransientEHL(bodies, oil, thermal_bodies, roughness,
-                                         options=options, thermal_options=thermal_options)
+                tr = ThermalTransientEHL(
+                    bodies,
+                    oil,
+                    thermal_bodies,
+                    roughness,
+                    options=options,
+                    thermal_options=thermal_options,
+                )
                 r = tr.start_steady(*args, time=inp.time[i])
             else:
                 r = tr.step(inp.time[i] - inp.time[i - 1], *args)
-        except Exception as exc:            # a step that raises is reported, not fatal
+        except Exception as exc:  # a step that raises is reported, not fatal
             converged[i] = False
             failures.append((float(inp.crank_angle[i]), f"{type(exc).__name__}: {exc}"))
             tr = None
@@ -105,14 +147,16 @@ def thermal_along_cycle(inp: CycleInputs, name, label, bodies, oil, thermal_bodi
         out["viscous_friction"][i] = r.viscous_friction * width
         tf = tr.tf
         _, _, Tm, fl, flim = tf.factors(r.x, _cond(r))
-        for law in ("newtonian", "eyring"):      # both laws, same film and temperatures
-            tau = couette_stress(r.pressure, r.film, r.sliding_speed, oil, Tm, fl, flim, law,
-                                 options.limiting_shear)
+        for law in ("newtonian", "eyring"):  # both laws, same film and temperatures
+            tau = couette_stress(
+                r.pressure, r.film, r.sliding_speed, oil, Tm, fl, flim, law, options.limiting_shear
+            )
             out[f"viscous_friction_{law}"][i] = float(np.sum(tau)) * (r.x[1] - r.x[0]) * width
         out["boundary_friction"][i] = r.boundary_friction * width
         out["rolling_friction"][i] = r.rolling_friction * width
-        out["friction_power"][i] = (r.viscous_friction + r.boundary_friction) * width * abs(
-            inp.sliding_speed[i])
+        out["friction_power"][i] = (
+            (r.viscous_friction + r.boundary_friction) * width * abs(inp.sliding_speed[i])
+        )
         if roughness is not None:
             out["lambda_ratio"][i] = r.min_film / roughness.rms
         out["max_temperature"][i] = r.max_temperature
@@ -127,36 +171,58 @@ def thermal_along_cycle(inp: CycleInputs, name, label, bodies, oil, thermal_bodi
         if progress:
             progress(i + 1, n)
     return ThermalSetCycleResult(
-        name=name, label=label, crank_angle=inp.crank_angle.copy(), loaded=loaded,
-        converged=converged, iterations=iterations, x=x_prof, pressure=p_prof, film=h_prof,
-        failures=failures, runtime_s=_time.perf_counter() - t_start,
-        inlet_temperature=float(oil.inlet_temperature), thermal_iterations=t_iter, **out)
+        name=name,
+        label=label,
+        crank_angle=inp.crank_angle.copy(),
+        loaded=loaded,
+        converged=converged,
+        iterations=iterations,
+        x=x_prof,
+        pressure=p_prof,
+        film=h_prof,
+        failures=failures,
+        runtime_s=_time.perf_counter() - t_start,
+        inlet_temperature=float(oil.inlet_temperature),
+        thermal_iterations=t_iter,
+        **out,
+    )
 
 
 def _cond(r):
     from ..contact.ehl.options import Conditions
+
     return Conditions(r.load, r.radius, r.entrainment_speed, r.sliding_speed)
 
 
-def thermal_for_set(case, surface_set, inputs: CycleInputs, progress=None
-                    ) -> ThermalSetCycleResult:
+def thermal_for_set(case, surface_set, inputs: CycleInputs, progress=None) -> ThermalSetCycleResult:
     """:func:`thermal_along_cycle` for one surface set of a case."""
     s = surface_set
-    return thermal_along_cycle(inputs, s.name, s.coating_label, s.bodies,
-                               case.thermal_lubricant(), case.thermal_bodies(s), s.roughness,
-                               case.ehl_options(s), case.thermal_options(),
-                               min_load=case.numerics.min_load, progress=progress)
+    return thermal_along_cycle(
+        inputs,
+        s.name,
+        s.coating_label,
+        s.bodies,
+        case.thermal_lubricant(),
+        case.thermal_bodies(s),
+        s.roughness,
+        case.ehl_options(s),
+        case.thermal_options(),
+        min_load=case.numerics.min_load,
+        progress=progress,
+    )
 
 
 def thermal_task(case, name, inputs):
     """The thermal cycle of one surface set, as a task of the study's executor."""
     from threadpoolctl import threadpool_limits
+
     with threadpool_limits(1):
         return thermal_for_set(case, case.surface_set(name), inputs)
 
 
-def coating_thermal_effect(thermal: dict, isothermal: dict, reference: str, mask,
-                           time, sliding_speed) -> dict:
+def coating_thermal_effect(
+    thermal: dict, isothermal: dict, reference: str, mask, time, sliding_speed
+) -> dict:
     """Per coated set: the change of its viscous-friction energy and of its mean central
     film relative to the reference (uncoated) set, thermal and isothermal, over the
     samples in ``mask`` that converged in all four runs; and the peak tappet surface
@@ -170,8 +236,7 @@ def coating_thermal_effect(thermal: dict, isothermal: dict, reference: str, mask
         if name == reference:
             continue
         iso = isothermal[name]
-        ok = (mask & th.loaded & th.converged & iso.converged & ref_t.converged
-              & ref_i.converged)
+        ok = mask & th.loaded & th.converged & iso.converged & ref_t.converged & ref_i.converged
         ok &= np.isfinite(th.viscous_friction) & np.isfinite(ref_t.viscous_friction)
         if not ok.any():
             continue
@@ -195,14 +260,15 @@ def coating_thermal_effect(thermal: dict, isothermal: dict, reference: str, mask
             "mean_film_vs_reference_thermal_pct": dh_t,
             "mean_film_vs_reference_isothermal_pct": dh_i,
             "film_thermal_effect_pct": dh_t - dh_i,
-            "max_tappet_surface_temperature_K": float(np.nanmax(
-                np.where(ok, th.surface_temperature_tappet, np.nan))),
-            "max_tappet_surface_temperature_reference_K": float(np.nanmax(
-                np.where(ok, ref_t.surface_temperature_tappet, np.nan))),
+            "max_tappet_surface_temperature_K": float(
+                np.nanmax(np.where(ok, th.surface_temperature_tappet, np.nan))
+            ),
+            "max_tappet_surface_temperature_reference_K": float(
+                np.nanmax(np.where(ok, ref_t.surface_temperature_tappet, np.nan))
+            ),
             "samples": int(ok.sum()),
         }
     return res
-
 
 
 def thermal_summary(study, an) -> dict:
@@ -239,20 +305,20 @@ def thermal_summary(study, an) -> dict:
             "max_temperature_K": fin(np.nanmax(th.max_temperature[L])),
             "max_mid_film_temperature_K": fin(np.nanmax(th.mid_film_temperature[L])),
             "max_surface_temperature_cam_K": fin(np.nanmax(th.surface_temperature_cam[L])),
-            "max_surface_temperature_tappet_K": fin(np.nanmax(
-                th.surface_temperature_tappet[L])),
+            "max_surface_temperature_tappet_K": fin(np.nanmax(th.surface_temperature_tappet[L])),
             "viscous_friction_energy_thermal_J": fin(e_t),
             "viscous_friction_energy_isothermal_J": fin(e_i),
-            "viscous_friction_energy_change_pct": fin(100 * (e_t / e_i - 1)) if e_i > 0
-            else None,
-            "friction_energy_thermal_J": fin(f_t), "friction_energy_isothermal_J": fin(f_i),
-            "mean_central_film_change_pct": fin(100 * (np.mean(th.central_film[L])
-                                                       / np.mean(i.central_film[L]) - 1)),
+            "viscous_friction_energy_change_pct": fin(100 * (e_t / e_i - 1)) if e_i > 0 else None,
+            "friction_energy_thermal_J": fin(f_t),
+            "friction_energy_isothermal_J": fin(f_i),
+            "mean_central_film_change_pct": fin(
+                100 * (np.mean(th.central_film[L]) / np.mean(i.central_film[L]) - 1)
+            ),
             "min_film_thermal_m": fin(np.nanmin(th.min_film[L])),
             "min_film_isothermal_m": fin(np.nanmin(i.min_film[L])),
             "samples": int(L.sum()),
         }
     out["coating_thermal_effect"] = coating_thermal_effect(
-        {s.name: s for s in study.sets}, iso, an.roles["reference"], ev, inp.time,
-        inp.sliding_speed)
+        {s.name: s for s in study.sets}, iso, an.roles["reference"], ev, inp.time, inp.sliding_speed
+    )
     return out

@@ -65,6 +65,7 @@ def dropouts() -> np.ndarray:
     profilers (clusters on steep flanks plus scattered single pixels)."""
     rng = np.random.default_rng(7)
     from scipy.ndimage import gaussian_filter
+
     blobs = gaussian_filter(rng.standard_normal((NX, NY)), 4.0, mode="wrap")
     mask = blobs > np.quantile(blobs, 0.80)
     mask |= rng.random((NX, NY)) < 0.10
@@ -138,12 +139,24 @@ def write_sdf(path: Path, h: np.ndarray, mask: np.ndarray) -> None:
     ``Key = value``, ``*``, heights (DataType 7, double) × Zscale in m, profile after
     profile (x fastest), invalid points ``BAD``, closing ``*``."""
     ny = h.shape[1]
-    lines = ["aISO-1.0", "ManufacID   = tribodyn", "CreateDate  = 060520241011",
-             "ModDate     = 060520241011", f"NumPoints   = {h.shape[0]}",
-             f"NumProfiles = {ny}", f"Xscale      = {DX if ny > 1 else DXP:.6E}",
-             f"Yscale      = {DX:.6E}", "Zscale      = 1.0E-06", "Zresolution = -1",
-             "Compression = 0", "DataType    = 7", "CheckType   = 0", "NumDataSet  = 1",
-             f"NanPresent  = {1 if mask.any() else 0}", "*"]
+    lines = [
+        "aISO-1.0",
+        "ManufacID   = tribodyn",
+        "CreateDate  = 060520241011",
+        "ModDate     = 060520241011",
+        f"NumPoints   = {h.shape[0]}",
+        f"NumProfiles = {ny}",
+        f"Xscale      = {DX if ny > 1 else DXP:.6E}",
+        f"Yscale      = {DX:.6E}",
+        "Zscale      = 1.0E-06",
+        "Zresolution = -1",
+        "Compression = 0",
+        "DataType    = 7",
+        "CheckType   = 0",
+        "NumDataSet  = 1",
+        f"NanPresent  = {1 if mask.any() else 0}",
+        "*",
+    ]
     um = rows_bottom_up(h * 1e6) if ny > 1 else h.T * 1e6
     bad = rows_bottom_up(mask) if ny > 1 else mask.T
     for row, brow in zip(um, bad):
@@ -158,7 +171,7 @@ def write_sur(path: Path, h: np.ndarray, mask: np.ndarray) -> None:
     after line (x fastest); height = (raw − Zmin)·dz + Z offset in the z unit;
     non-measured points = Zmin − 2 with the special-points flag set."""
     nx, ny = h.shape
-    dz_um = 1e-4                                      # 0.1 nm per count
+    dz_um = 1e-4  # 0.1 nm per count
     um = h * 1e6
     z0 = float(np.floor(um.min()))
     raw = np.round((um - z0) / dz_um).astype(np.int64)
@@ -172,38 +185,38 @@ def write_sur(path: Path, h: np.ndarray, mask: np.ndarray) -> None:
         struct.pack_into("<" + fmt, hd, off, *vals)
 
     hd[0:12] = b"DIGITAL SURF"
-    put(12, "h", 0)                                   # format: PC
-    put(14, "h", 1)                                   # number of objects
-    put(16, "h", 1)                                   # version
-    put(18, "h", 2 if ny > 1 else 1)                  # object type: 2 surface, 1 profile
+    put(12, "h", 0)  # format: PC
+    put(14, "h", 1)  # number of objects
+    put(16, "h", 1)  # version
+    put(18, "h", 2 if ny > 1 else 1)  # object type: 2 surface, 1 profile
     hd[20:50] = b"tribodyn test surface".ljust(30)
     hd[50:80] = b"synthetic".ljust(30)
-    put(80, "h", 0)                                   # material code
-    put(82, "h", 2)                                   # acquisition: optical
-    put(84, "h", 0)                                   # range type
-    put(86, "h", 1 if mask.any() else 0)              # special (non-measured) points
-    put(88, "h", 1)                                   # absolute heights
-    put(90, "f", 0.0)                                 # gauge resolution
-    put(94, "i", 0)                                   # W size
-    put(98, "h", 32)                                  # bits per point
+    put(80, "h", 0)  # material code
+    put(82, "h", 2)  # acquisition: optical
+    put(84, "h", 0)  # range type
+    put(86, "h", 1 if mask.any() else 0)  # special (non-measured) points
+    put(88, "h", 1)  # absolute heights
+    put(90, "f", 0.0)  # gauge resolution
+    put(94, "i", 0)  # W size
+    put(98, "h", 32)  # bits per point
     put(100, "i", zmin)
     put(104, "i", zmax)
-    put(108, "i", nx)                                 # points per line
-    put(112, "i", ny)                                 # number of lines
+    put(108, "i", nx)  # points per line
+    put(112, "i", ny)  # number of lines
     put(116, "i", nx * ny)
-    put(120, "f", (DX if ny > 1 else DXP) * 1e6)      # x spacing [µm]
-    put(124, "f", DX * 1e6 if ny > 1 else 1.0)        # y spacing [µm]
-    put(128, "f", dz_um)                              # z spacing [µm]
+    put(120, "f", (DX if ny > 1 else DXP) * 1e6)  # x spacing [µm]
+    put(124, "f", DX * 1e6 if ny > 1 else 1.0)  # y spacing [µm]
+    put(128, "f", dz_um)  # z spacing [µm]
     for off, text in ((132, b"X"), (148, b"Y"), (164, b"Z")):
-        hd[off:off + 16] = text.ljust(16, b"\0")
-    for off in (180, 196, 212, 228, 244, 260):        # step and length units
-        hd[off:off + 16] = unit.ljust(16, b"\0")
-    put(276, "fff", 1.0, 1.0, 1.0)                    # unit ratios
-    put(288, "hhh", 0, 0, 0)                          # imprint, inverted, levelled
-    put(306, "hhhhhhh", 12, 11, 10, 6, 5, 2024, 1)    # time and date
-    put(320, "f", 1.0)                                # measurement duration
-    put(334, "hh", 0, 0)                              # comment and private sizes
-    put(466, "fff", 0.0, 0.0, z0)                     # x, y, z offsets (z in µm)
+        hd[off : off + 16] = text.ljust(16, b"\0")
+    for off in (180, 196, 212, 228, 244, 260):  # step and length units
+        hd[off : off + 16] = unit.ljust(16, b"\0")
+    put(276, "fff", 1.0, 1.0, 1.0)  # unit ratios
+    put(288, "hhh", 0, 0, 0)  # imprint, inverted, levelled
+    put(306, "hhhhhhh", 12, 11, 10, 6, 5, 2024, 1)  # time and date
+    put(320, "f", 1.0)  # measurement duration
+    put(334, "hh", 0, 0)  # comment and private sizes
+    put(466, "fff", 0.0, 0.0, z0)  # x, y, z offsets (z in µm)
     path.write_bytes(bytes(hd) + data)
 
 
@@ -215,7 +228,7 @@ def write_metropro(path: Path, h: np.ndarray, mask: np.ndarray) -> None:
     invalid phase ≥ 2147483640."""
     nx, ny = h.shape
     wavelength, scale, obliquity = 632.8e-9, 0.5, 1.0
-    q = scale * obliquity * wavelength / 4096.0                    # m per count
+    q = scale * obliquity * wavelength / 4096.0  # m per count
     phase = np.round(h / q).astype(np.int64)
     phase = np.where(mask, 2147483647, phase).astype(">i4")
     data = rows_top_down(phase).tobytes()
@@ -224,26 +237,26 @@ def write_metropro(path: Path, h: np.ndarray, mask: np.ndarray) -> None:
     def put(off, fmt, *vals):
         struct.pack_into(">" + fmt, hd, off, *vals)
 
-    put(0, "I", 0x881B036F)                            # magic number, format 1
-    put(4, "h", 1)                                     # header format
-    put(6, "i", 834)                                   # header size
-    put(10, "h", 1)                                    # software type: MetroPro
+    put(0, "I", 0x881B036F)  # magic number, format 1
+    put(4, "h", 1)  # header format
+    put(6, "i", 834)  # header size
+    put(10, "h", 1)  # software type: MetroPro
     hd[12:42] = b"Mon May  6 10:11:12 2024".ljust(30, b"\0")
-    put(42, "hhh", 8, 3, 0)                            # version 8.3.0
-    put(48, "hhhhhh", 0, 0, 0, 0, 0, 0)                # no intensity data
+    put(42, "hhh", 8, 3, 0)  # version 8.3.0
+    put(48, "hhhhhh", 0, 0, 0, 0, 0, 0)  # no intensity data
     put(60, "i", 0)
-    put(64, "hhhh", 0, 0, nx, ny)                      # phase origin and size
-    put(72, "i", 4 * nx * ny)                          # phase bytes
-    put(76, "i", 1714990272)                           # time stamp
+    put(64, "hhhh", 0, 0, nx, ny)  # phase origin and size
+    put(72, "i", 4 * nx * ny)  # phase bytes
+    put(76, "i", 1714990272)  # time stamp
     hd[80:162] = b"tribodyn test surface".ljust(82, b"\0")
-    put(162, "h", 1)                                   # source: measured
-    put(164, "f", scale)                               # interferometric scale factor
-    put(168, "f", wavelength)                          # wavelength in
-    put(172, "f", 0.3)                                 # numerical aperture
-    put(176, "f", obliquity)                           # obliquity factor
-    put(180, "f", 50.0)                                # magnification
-    put(184, "f", DX)                                  # lateral resolution [m]
-    put(218, "h", 0)                                   # phase resolution: normal
+    put(162, "h", 1)  # source: measured
+    put(164, "f", scale)  # interferometric scale factor
+    put(168, "f", wavelength)  # wavelength in
+    put(172, "f", 0.3)  # numerical aperture
+    put(176, "f", obliquity)  # obliquity factor
+    put(180, "f", 50.0)  # magnification
+    put(184, "f", DX)  # lateral resolution [m]
+    put(218, "h", 0)  # phase resolution: normal
     path.write_bytes(bytes(hd) + data)
 
 
@@ -258,13 +271,15 @@ def write_opd(path: Path, h: np.ndarray, mask: np.ndarray) -> None:
     wavelength_nm, mult = 632.8, 1.0
     waves = (h * 1e9 / wavelength_nm * mult).astype("<f4")
     waves = np.where(mask, np.float32(1e38 * 1.5), waves).astype("<f4")
-    array = struct.pack("<HHH", nx, ny, 4) + waves.tobytes()     # [ix][iy], iy fastest
-    blocks = [("OPD", 3, array),
-              ("Wavelength", 7, struct.pack("<f", wavelength_nm)),
-              ("Pixel_size", 7, struct.pack("<f", DX * 1e3)),
-              ("Mult", 7, struct.pack("<f", mult)),
-              ("Aspect", 7, struct.pack("<f", 1.0)),
-              ("Title", 5, b"tribodyn test surface")]
+    array = struct.pack("<HHH", nx, ny, 4) + waves.tobytes()  # [ix][iy], iy fastest
+    blocks = [
+        ("OPD", 3, array),
+        ("Wavelength", 7, struct.pack("<f", wavelength_nm)),
+        ("Pixel_size", 7, struct.pack("<f", DX * 1e3)),
+        ("Mult", 7, struct.pack("<f", mult)),
+        ("Aspect", 7, struct.pack("<f", 1.0)),
+        ("Title", 5, b"tribodyn test surface"),
+    ]
     n = len(blocks) + 1
     head = bytearray(b"\x01\x00")
 
@@ -294,17 +309,20 @@ def write_plu(path: Path, h: np.ndarray, mask: np.ndarray) -> None:
     hd[0:128] = b"Mon May 06 10:11:12 2024".ljust(128, b"\0")
     put(128, "I", 1714990272)
     hd[132:388] = b"tribodyn test surface".ljust(256, b"\0")
-    put(388, "III", ny, nx, nx * ny)                   # calibration: rows, columns, N
+    put(388, "III", ny, nx, nx * ny)  # calibration: rows, columns, N
     put(400, "fffffff", 1.0, DX * 1e6, DX * 1e6, 0.0, 0.0, 1.0, 0.0)
-    put(428, "IIIIIIIIII", 3, 0, 0, 5, 3, nx, ny, nx, ny, 0)   # topography, confocal
-    put(468, "d", 0.1)                                 # z increment
-    put(476, "f", 10.0)                                # range
-    put(480, "II", 100, 0)                             # planes, threshold
-    hd[488:494] = bytes([0, 1, 0xFF, 0, 0, 0])         # restore, layers, version 2006, …
+    put(428, "IIIIIIIIII", 3, 0, 0, 5, 3, nx, ny, nx, ny, 0)  # topography, confocal
+    put(468, "d", 0.1)  # z increment
+    put(476, "f", 10.0)  # range
+    put(480, "II", 100, 0)  # planes, threshold
+    hd[488:494] = bytes([0, 1, 0xFF, 0, 0, 0])  # restore, layers, version 2006, …
     put(496, "I", 1)
     valid = (h * 1e6)[~mask]
-    data = (struct.pack("<II", ny, nx) + rows_top_down(um).tobytes()
-            + struct.pack("<ff", valid.min(), valid.max()))
+    data = (
+        struct.pack("<II", ny, nx)
+        + rows_top_down(um).tobytes()
+        + struct.pack("<ff", valid.min(), valid.max())
+    )
     path.write_bytes(bytes(hd) + data)
 
 

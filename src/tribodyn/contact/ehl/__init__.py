@@ -36,5 +36,13 @@ from .thermal import ThermalEHLResult, ThermalOptions, solve_thermal_ehl
 from .thermal_transient import ThermalTransientEHL
 from .transient import TransientEHL
 
-__all__ = ["EHLOptions", "EHLResult", "solve_ehl", "TransientEHL", "ThermalOptions",
-           "ThermalEHLResult", "solve_thermal_ehl", "ThermalTransientEHL"]
+__all__ = [
+    "EHLOptions",
+    "EHLResult",
+    "solve_ehl",
+    "TransientEHL",
+    "ThermalOptions",
+    "ThermalEHLResult",
+    "solve_thermal_ehl",
+    "ThermalTransientEHL",
+]

@@ -84,19 +84,19 @@ def solve_energy(e: EnergyInputs) -> np.ndarray:
     j = 0…m−1 (j = 0, m−1 the surfaces), body-2 depth nodes shallowest first."""
     n, m = e.u.shape
     g1, g2 = e.grids
-    n1, n2 = g1.s.size - 2, g2.s.size - 2          # interior depth nodes (1…ns−1)
+    n1, n2 = g1.s.size - 2, g2.s.size - 2  # interior depth nodes (1…ns−1)
     Nz = n1 + m + n2
-    f0 = n1                                       # chain index of film node j = 0
+    f0 = n1  # chain index of film node j = 0
     mats = tuple(np.zeros((n, Nz)) for _ in range(6))
-    aP, aW, aE, aD, aU, b = mats                  # west, east, chain −1, +1, rhs
+    aP, aW, aE, aD, aU, b = mats  # west, east, chain −1, +1, rhs
     dx = e.dx
     dz = 1.0 / (m - 1)
     h = e.h
     wz = np.full(m, dz)
-    wz[0] = wz[-1] = 0.5 * dz                     # ζ control-volume widths
+    wz[0] = wz[-1] = 0.5 * dz  # ζ control-volume widths
 
     # ---- film: conduction across
-    kf = 0.5 * (e.k[:, 1:] + e.k[:, :-1])          # faces j+½
+    kf = 0.5 * (e.k[:, 1:] + e.k[:, :-1])  # faces j+½
     G = kf / (h[:, None] * dz)
     fs = slice(f0, f0 + m)
     aP[:, fs][:, :-1] += G
@@ -104,19 +104,20 @@ def solve_energy(e: EnergyInputs) -> np.ndarray:
     aP[:, fs][:, 1:] += G
     aD[:, fs][:, 1:] += G
     # ---- film: convection along x and across (Ω from continuity)
-    cap = e.rc * h[:, None] * wz[None, :]          # ρc h Δζ
+    cap = e.rc * h[:, None] * wz[None, :]  # ρc h Δζ
     F = cap * e.u / dx
     sub = (aP[:, fs], aW[:, fs], aE[:, fs])
     _upwind(*sub, F)
-    mflux = e.rho * e.u * h[:, None]              # ρ u h on the nodes
+    mflux = e.rho * e.u * h[:, None]  # ρ u h on the nodes
     dmdx = np.gradient(mflux, dx, axis=0)
     if e.dt is not None and e.rho_h_old is not None:
-        rho_e = (np.sum(e.rho * wz, axis=1))
+        rho_e = np.sum(e.rho * wz, axis=1)
         dmdx = dmdx + ((rho_e * h - e.rho_h_old) / e.dt)[:, None]
     from ...physics.film_thermal import cumtrapz
+
     rho_omega = -cumtrapz(dmdx, np.full(n, dz))
-    rho_omega -= rho_omega[:, -1:] * np.linspace(0.0, 1.0, m)[None, :]   # Ω = 0 on walls
-    Fz = e.rc / e.rho * rho_omega                  # ρc Ω
+    rho_omega -= rho_omega[:, -1:] * np.linspace(0.0, 1.0, m)[None, :]  # Ω = 0 on walls
+    Fz = e.rc / e.rho * rho_omega  # ρc Ω
     inner = slice(f0 + 1, f0 + m - 1)
     Fzi = Fz[:, 1:-1]
     aP[:, inner] += np.abs(Fzi)
@@ -128,7 +129,7 @@ def solve_energy(e: EnergyInputs) -> np.ndarray:
     b[:, fs] += vol * e.phi
     comp = vol * e.comp
     b[:, fs] += comp * e.T_inlet
-    room = 0.5 * aP[:, fs]                      # conduction + convection on the diagonal
+    room = 0.5 * aP[:, fs]  # conduction + convection on the diagonal
     implicit = np.minimum(comp, room)
     aP[:, fs] -= implicit
     if e.theta_lag is not None:
@@ -145,7 +146,7 @@ def solve_energy(e: EnergyInputs) -> np.ndarray:
     for body, (g, u_b) in enumerate(zip(e.grids, e.speeds)):
         ns = g.s.size - 1
         if body == 0:
-            idx = np.array([f0] + [f0 - k for k in range(1, ns)])        # node k → chain
+            idx = np.array([f0] + [f0 - k for k in range(1, ns)])  # node k → chain
         else:
             idx = np.array([f0 + m - 1] + [f0 + m - 1 + k for k in range(1, ns)])
         _solid(mats, g, u_b, idx, body == 1, dx, e.dt, e.theta_old)
@@ -157,13 +158,13 @@ def _solid(mats, g: DepthGrid, u_b, idx, deeper_is_up, dx, dt, theta_old):
     depth nodes 0…ns−1; ``deeper_is_up``: increasing depth is +1 in the chain)."""
     aP, aW, aE, aD, aU, b = mats
     n = aP.shape[0]
-    ns = g.s.size - 1                               # nodes 0…ns−1 unknown, ns: θ = 0
-    Gs = g.face_conductance()                       # between k and k+1
+    ns = g.s.size - 1  # nodes 0…ns−1 unknown, ns: θ = 0
+    Gs = g.face_conductance()  # between k and k+1
     Cn = g.node_capacity()
     Kx = g.node_x_conductance()
     for k in range(ns):
         c = idx[k]
-        aP[:, c] += Gs[k]                           # to deeper node (θ = 0 past the grid)
+        aP[:, c] += Gs[k]  # to deeper node (θ = 0 past the grid)
         if k + 1 < ns:
             (aU if deeper_is_up else aD)[:, c] += Gs[k]
         if k >= 1:
@@ -176,7 +177,7 @@ def _solid(mats, g: DepthGrid, u_b, idx, deeper_is_up, dx, dt, theta_old):
         aE[:-1, c] += kx
         aP[1:, c] += kx
         aP[:-1, c] += kx
-        aP[0 if u_b >= 0 else n - 1, c] += kx      # Dirichlet ghost at the inflow end
+        aP[0 if u_b >= 0 else n - 1, c] += kx  # Dirichlet ghost at the inflow end
         if dt is not None:
             aP[:, c] += Cn[k] / dt
             if theta_old is not None:
@@ -195,8 +196,7 @@ def _solve(mats, Nz):
     down = -aD.ravel()[1:]
     east = -aE.ravel()[:-Nz]
     west = -aW.ravel()[Nz:]
-    A = sparse.diags([diag, up, down, east, west], [0, 1, -1, Nz, -Nz], shape=(N, N),
-                     format="csc")
+    A = sparse.diags([diag, up, down, east, west], [0, 1, -1, Nz, -Nz], shape=(N, N), format="csc")
     theta = splinalg.splu(A, permc_spec="COLAMD").solve(b.ravel())
     return theta.reshape(n, Nz)
 

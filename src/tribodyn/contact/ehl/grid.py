@@ -65,10 +65,13 @@ def _length_scale(cond: Conditions, model: ContactModel, squeeze_film=None):
 def _domain(b, s, cond: Conditions, mu0, opts: EHLOptions) -> tuple[float, float]:
     """Upstream and downstream extent [m]: the largest of the elastic (b), the inlet
     truncation and the rigid (s) requirements (see :class:`EHLOptions`)."""
-    x_trunc = cond.radius * math.sqrt(24.0 * mu0 * abs(cond.entrainment_speed)
-                                      / (opts.inlet_truncation * cond.load))
-    return (max(opts.inlet * b, x_trunc, opts.inlet_rigid * s),
-            max(opts.outlet * b, opts.outlet_rigid * s))
+    x_trunc = cond.radius * math.sqrt(
+        24.0 * mu0 * abs(cond.entrainment_speed) / (opts.inlet_truncation * cond.load)
+    )
+    return (
+        max(opts.inlet * b, x_trunc, opts.inlet_rigid * s),
+        max(opts.outlet * b, opts.outlet_rigid * s),
+    )
 
 
 def auto_nodes(length=None, s=None) -> int:
@@ -77,8 +80,7 @@ def auto_nodes(length=None, s=None) -> int:
     return N_AUTO
 
 
-def layout(cond: Conditions, model: ContactModel, opts: EHLOptions,
-           squeeze_film=None) -> Layout:
+def layout(cond: Conditions, model: ContactModel, opts: EHLOptions, squeeze_film=None) -> Layout:
     """The grid :class:`Layout` for these conditions (``squeeze_film``: a film [m] the
     estimate must not fall below, for squeeze films near u_e = 0)."""
     a, b, h_est = _length_scale(cond, model, squeeze_film)
@@ -106,8 +108,15 @@ class Grid:
     preconditioner built on it) survives changes of load and radius in a transient.
     """
 
-    def __init__(self, bodies, lay: Layout, direction: int, elastic: bool, n: int | None = None,
-                 margin: float = 1.0):
+    def __init__(
+        self,
+        bodies,
+        lay: Layout,
+        direction: int,
+        elastic: bool,
+        n: int | None = None,
+        margin: float = 1.0,
+    ):
         n = lay.n if n is None else n
         self.a, self.n, self.direction = lay.a, n, direction
         lo, hi = _extent(lay, direction)
@@ -137,13 +146,20 @@ class Grid:
         grid at most ``slack`` times as long as required (spacing that much coarser)."""
         lo, hi = _extent(lay, direction)
         lo, hi = lo * lay.a, hi * lay.a
-        return (self.n == lay.n and self.direction == direction
-                and self.x[0] <= lo and self.x[-1] >= hi
-                and self.x[-1] - self.x[0] <= slack * (hi - lo))
+        return (
+            self.n == lay.n
+            and self.direction == direction
+            and self.x[0] <= lo
+            and self.x[-1] >= hi
+            and self.x[-1] - self.x[0] <= slack * (hi - lo)
+        )
 
     def same_as(self, lay: Layout, direction: int) -> bool:
         """Same node count and orientation, extents within 2 %."""
         lo, hi = _extent(lay, direction)
-        return (self.n == lay.n and self.direction == direction
-                and abs(lo * lay.a / self.x[0] - 1.0) < 0.02
-                and abs(hi * lay.a / self.x[-1] - 1.0) < 0.02)
+        return (
+            self.n == lay.n
+            and self.direction == direction
+            and abs(lo * lay.a / self.x[0] - 1.0) < 0.02
+            and abs(hi * lay.a / self.x[-1] - 1.0) < 0.02
+        )

@@ -14,15 +14,22 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-__all__ = ["assemble", "coupling_bands", "band_product", "newton_matvec", "dense_matrix",
-           "jacobi_diagonal"]
+__all__ = [
+    "assemble",
+    "coupling_bands",
+    "band_product",
+    "newton_matvec",
+    "dense_matrix",
+    "jacobi_diagonal",
+]
 
 _OPTS = dict(cache=True, nogil=True, fastmath=False)
 
 
 @njit(**_OPTS)
-def assemble(P, H, rho, drho, lnmu, dlnmu, lam, h_floor, abs_ubar, s, dX, time_coef,
-             f_old, ff, cf, R, AP, AH):
+def assemble(
+    P, H, rho, drho, lnmu, dlnmu, lam, h_floor, abs_ubar, s, dX, time_coef, f_old, ff, cf, R, AP, AH
+):
     """Reynolds residual R (interior rows) and banded ∂R/∂P (AP), ∂R/∂H (AH), in place.
 
     R_i = [ε_{i+½}(P_{i+1} − P_i) − ε_{i−½}(P_i − P_{i−1})]/ΔX² − |ū| Σ_k c_k g_{i−sk}/ΔX
@@ -67,8 +74,11 @@ def assemble(P, H, rho, drho, lnmu, dlnmu, lam, h_floor, abs_ubar, s, dX, time_c
         else:
             c0, c1, c2 = 1.0, -1.0, 0.0
         j1 = i - s
-        R[i] -= cu * (c0 * cf[i] * rho[i] * H[i] + c1 * cf[j1] * rho[j1] * H[j1]
-                      + (c2 * cf[j2] * rho[j2] * H[j2] if c2 != 0.0 else 0.0))
+        R[i] -= cu * (
+            c0 * cf[i] * rho[i] * H[i]
+            + c1 * cf[j1] * rho[j1] * H[j1]
+            + (c2 * cf[j2] * rho[j2] * H[j2] if c2 != 0.0 else 0.0)
+        )
         AP[2, i] -= cu * c0 * cf[i] * drho[i] * H[i]
         AH[2, i] -= cu * c0 * cf[i] * rho[i]
         AP[2 - s, i] -= cu * c1 * cf[j1] * drho[j1] * H[j1]

@@ -19,8 +19,16 @@ from scipy.linalg import lapack
 from .kernels import jacobi_diagonal
 from .reynolds import Linearization, ReynoldsSystem
 
-__all__ = ["State", "NewtonOutcome", "newton", "gmres", "CoarseLevel",
-           "TwoGridPreconditioner", "jacobi_scale", "cavitated"]
+__all__ = [
+    "State",
+    "NewtonOutcome",
+    "newton",
+    "gmres",
+    "CoarseLevel",
+    "TwoGridPreconditioner",
+    "jacobi_scale",
+    "cavitated",
+]
 
 _NONMONOTONE = 6
 _TRACE = False
@@ -37,6 +45,7 @@ def _lu_solver(lu):
 
     def solve(v):
         return getrs(fac, piv, v)[0]
+
     return solve
 
 
@@ -52,9 +61,9 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
     bn = float(np.linalg.norm(b))
     if bn == 0.0:
         return np.zeros_like(b), 0
-    if hasattr(lu, "solve"):              # a preconditioner object
+    if hasattr(lu, "solve"):  # a preconditioner object
         prec = lu.solve
-    else:                                 # an LU factorisation from lu_factor
+    else:  # an LU factorisation from lu_factor
         prec = _lu_solver(lu)
     x0 = prec(b)
     r0 = b - lin.matvec(x0)
@@ -72,7 +81,7 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
     for j in range(max_it):
         w = lin.matvec(prec(V[j]))
         Vj = V[: j + 1]
-        h = Vj @ w                              # classical Gram–Schmidt, twice (CGS2)
+        h = Vj @ w  # classical Gram–Schmidt, twice (CGS2)
         w -= h @ Vj
         h2 = Vj @ w
         w -= h2 @ Vj
@@ -165,12 +174,14 @@ class CoarseLevel:
         key = (X.size, X[0], X[-1])
         if key not in self._transfer:
             from scipy import sparse
+
             xc = self.X
             j = np.clip(np.searchsorted(xc, X, side="right") - 1, 0, xc.size - 2)
             t = (X - xc[j]) / (xc[j + 1] - xc[j])
             rows = np.r_[np.arange(X.size), np.arange(X.size)]
-            P = sparse.csr_matrix((np.r_[1 - t, t], (rows, np.r_[j, j + 1])),
-                                  shape=(X.size, xc.size))
+            P = sparse.csr_matrix(
+                (np.r_[1 - t, t], (rows, np.r_[j, j + 1])), shape=(X.size, xc.size)
+            )
             Rt = P.T.tocsr()
             Rm = sparse.diags(1.0 / np.asarray(Rt.sum(axis=1)).ravel()) @ Rt
             self._transfer[key] = (P, Rm.tocsr())
@@ -225,8 +236,7 @@ class NewtonOutcome:
     lu: object = None
 
 
-def newton(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None
-           ) -> NewtonOutcome:
+def newton(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None) -> NewtonOutcome:
     """Solve ``sysm`` from ``st`` (see :func:`_newton_impl`)."""
     # trial points of the line search may overflow (e.g. exp(αp)); they are rejected by
     # their non-finite merit, and the accepted solution is checked for finiteness
@@ -257,23 +267,23 @@ def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse
     msg = "maximum iterations reached"
     ok = False
     prev_cav, release, release_cap = None, 1, 1 << 30
-    history = [m0]          # non-monotone (Grippo–Lampariello–Lucidi) acceptance
-    watchdog = 2            # full Newton steps allowed to raise the merit (warm starts)
+    history = [m0]  # non-monotone (Grippo–Lampariello–Lucidi) acceptance
+    watchdog = 2  # full Newton steps allowed to raise the merit (warm starts)
     gmres_tol = 1e-6
     it = 0
     for it in range(1, max_iter + 1):
         cav_std = cavitated(ev, c)
         accepted = False
         fresh_lu = False
-        for cav in ((_release(cav_std, prev_cav, release), cav_std) if release > 1
-                    else (cav_std,)):
+        for cav in (_release(cav_std, prev_cav, release), cav_std) if release > 1 else (cav_std,):
             lin = Linearization(sysm, c, cav, ev)
             delta = None
             fresh_lu = lu is None
             if coarse is not None and lu is None:
-                delta, _ = gmres(lin, TwoGridPreconditioner(coarse, lin, sysm), gmres_tol,
-                                  _MAX_KRYLOV_TWO_GRID)
-                fresh_lu = True                 # nothing stale to refresh
+                delta, _ = gmres(
+                    lin, TwoGridPreconditioner(coarse, lin, sysm), gmres_tol, _MAX_KRYLOV_TWO_GRID
+                )
+                fresh_lu = True  # nothing stale to refresh
             if delta is None and lu is not None:
                 delta, nkry = gmres(lin, lu, gmres_tol)
                 if delta is None or nkry > _MAX_KRYLOV_BEFORE_REFACTOR:
@@ -297,17 +307,19 @@ def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse
                 evn = sysm.evaluate(Qn, H0n)
                 mn, _ = merit_of(evn, c)
                 ref = max(history[-_NONMONOTONE:])
-                if np.isfinite(mn) and (mn <= (1.0 - 1e-4 * step) * ref or
-                                        (step == 1.0 and watchdog > 0 and mn <= _WATCHDOG * ref)):
+                if np.isfinite(mn) and (
+                    mn <= (1.0 - 1e-4 * step) * ref
+                    or (step == 1.0 and watchdog > 0 and mn <= _WATCHDOG * ref)
+                ):
                     if not mn <= (1.0 - 1e-4 * step) * ref:
-                        watchdog -= 1      # a full step that raised the merit: limited budget
+                        watchdog -= 1  # a full step that raised the merit: limited budget
                     accepted = True
                     break
                 step *= 0.5
             if accepted:
                 break
         if not accepted and lu is not None and not fresh_lu:
-            lu = None                  # Krylov direction from a stale preconditioner: retry
+            lu = None  # Krylov direction from a stale preconditioner: retry
             continue
         if not accepted:
             msg = f"line search failed (merit {m0:.2e})"
@@ -324,12 +336,16 @@ def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse
         else:
             release = 1
         prev_cav = cav_std
-        upd = step * max(np.max(np.abs(dQ)) / max(np.max(np.abs(Qn)), 1e-30),
-                         abs(dH0) / max(abs(evn.H[g.i0]), 1e-30))
+        upd = step * max(
+            np.max(np.abs(dQ)) / max(np.max(np.abs(Qn)), 1e-30),
+            abs(dH0) / max(abs(evn.H[g.i0]), 1e-30),
+        )
         if _TRACE:
-            print(f"    it {it} step {step:.3g} merit {mn:.3e} upd {upd:.2e} "
-                  f"ncav {int(cav_std.sum())} rel {release}")
-        m0, c = merit_of(evn)          # re-scale at the accepted point
+            print(
+                f"    it {it} step {step:.3g} merit {mn:.3e} upd {upd:.2e} "
+                f"ncav {int(cav_std.sum())} rel {release}"
+            )
+        m0, c = merit_of(evn)  # re-scale at the accepted point
         Q, H0, ev = Qn, H0n, evn
         history.append(m0)
         res = math.sqrt(max(m0, 0.0))
@@ -339,6 +355,5 @@ def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse
             ok = True
             msg = f"converged in {it} Newton iterations (update {upd:.1e}, residual {res:.1e})"
             break
-    P = np.maximum(ev.P, 0.0) if ok else ev.P   # cavitated nodes are 0 up to round-off
+    P = np.maximum(ev.P, 0.0) if ok else ev.P  # cavitated nodes are 0 up to round-off
     return State(Q, H0, P, ev.H), ok, it, msg, lu
-

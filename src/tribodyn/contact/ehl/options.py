@@ -82,17 +82,30 @@ class EHLOptions:
             set_(self, name, L.DOMAIN_HALF_WIDTHS.check(name, getattr(self, name)))
         for name in ("inlet_rigid", "outlet_rigid"):
             set_(self, name, L.DOMAIN_RIGID_LENGTHS.check(name, getattr(self, name)))
-        set_(self, "inlet_truncation", L.INLET_TRUNCATION.check("inlet_truncation",
-                                                               self.inlet_truncation))
+        set_(
+            self,
+            "inlet_truncation",
+            L.INLET_TRUNCATION.check("inlet_truncation", self.inlet_truncation),
+        )
         set_(self, "tol", L.NEWTON_TOL.check("tol", self.tol))
         set_(self, "max_iter", L.NEWTON_MAX_ITER.check("max_iter", self.max_iter))
         set_(self, "elastic", check_bool("elastic", self.elastic))
         check_choice("viscous_model", self.viscous_model, VISCOUS_MODELS)
         set_(self, "limiting_shear", check_bool("limiting_shear", self.limiting_shear))
-        set_(self, "boundary_shear_strength", L.BOUNDARY_SHEAR_STRENGTH.check(
-            "boundary_shear_strength", self.boundary_shear_strength))
-        set_(self, "boundary_shear_coefficient", L.BOUNDARY_SHEAR_COEFFICIENT.check(
-            "boundary_shear_coefficient", self.boundary_shear_coefficient))
+        set_(
+            self,
+            "boundary_shear_strength",
+            L.BOUNDARY_SHEAR_STRENGTH.check(
+                "boundary_shear_strength", self.boundary_shear_strength
+            ),
+        )
+        set_(
+            self,
+            "boundary_shear_coefficient",
+            L.BOUNDARY_SHEAR_COEFFICIENT.check(
+                "boundary_shear_coefficient", self.boundary_shear_coefficient
+            ),
+        )
         try:
             order = check_int("time_order", self.time_order)
         except InputError:
@@ -107,21 +120,21 @@ class EHLOptions:
 class EHLResult:
     """Line-contact EHL solution (per unit length, SI). Friction forces are magnitudes."""
 
-    x: np.ndarray                   #: node positions [m] (contact frame)
-    pressure: np.ndarray            #: hydrodynamic pressure p [Pa]
-    asperity_pressure: np.ndarray   #: Greenwood–Tripp asperity pressure p_a [Pa]
-    film: np.ndarray                #: film thickness h [m]
-    central_film: float             #: h at x = 0 [m]
-    min_film: float                 #: min h [m]
-    min_film_position: float        #: x of min h [m]
-    cavitation_position: float      #: outlet meniscus (p → 0) [m]
-    rigid_approach: float           #: h₀ (includes the 2-D elastic constant) [m]
-    load: float                     #: imposed w [N/m]
-    hydrodynamic_load: float        #: ∫p dx [N/m]
-    asperity_load: float            #: ∫p_a dx [N/m]
-    viscous_friction: float         #: ∫|τ_couette| dx [N/m]
-    rolling_friction: float         #: ∫(h/2)|dp/dx| dx, Poiseuille part of Eq. 16 [N/m]
-    boundary_friction: float        #: ∫(τ₀ A_a/A + ς p_a) dx [N/m]
+    x: np.ndarray  #: node positions [m] (contact frame)
+    pressure: np.ndarray  #: hydrodynamic pressure p [Pa]
+    asperity_pressure: np.ndarray  #: Greenwood–Tripp asperity pressure p_a [Pa]
+    film: np.ndarray  #: film thickness h [m]
+    central_film: float  #: h at x = 0 [m]
+    min_film: float  #: min h [m]
+    min_film_position: float  #: x of min h [m]
+    cavitation_position: float  #: outlet meniscus (p → 0) [m]
+    rigid_approach: float  #: h₀ (includes the 2-D elastic constant) [m]
+    load: float  #: imposed w [N/m]
+    hydrodynamic_load: float  #: ∫p dx [N/m]
+    asperity_load: float  #: ∫p_a dx [N/m]
+    viscous_friction: float  #: ∫|τ_couette| dx [N/m]
+    rolling_friction: float  #: ∫(h/2)|dp/dx| dx, Poiseuille part of Eq. 16 [N/m]
+    boundary_friction: float  #: ∫(τ₀ A_a/A + ς p_a) dx [N/m]
     entrainment_speed: float
     sliding_speed: float
     radius: float
@@ -129,8 +142,8 @@ class EHLResult:
     iterations: int
     message: str
     time: float = 0.0
-    squeeze_velocity: float = 0.0   #: −dh_c/dt, approach speed of the central film [m/s]
-    shear_stress: np.ndarray = field(default=None, repr=False)   #: viscous τ(x) [Pa]
+    squeeze_velocity: float = 0.0  #: −dh_c/dt, approach speed of the central film [m/s]
+    shear_stress: np.ndarray = field(default=None, repr=False)  #: viscous τ(x) [Pa]
     inlet_load_deficit: float = 0.0  #: estimated share of w lost to the truncated inlet
     #: conditions outside the model's validity (also appended to ``message``)
     warnings: list = field(default_factory=list)
@@ -147,9 +160,18 @@ class EHLResult:
     def totals(self, width: float) -> dict:
         """Loads [N] and friction forces [N] over a contact width [m]."""
         width = check_positive("width", width, "m")
-        return {k: getattr(self, k) * width for k in (
-            "load", "hydrodynamic_load", "asperity_load", "viscous_friction",
-            "rolling_friction", "boundary_friction", "friction")}
+        return {
+            k: getattr(self, k) * width
+            for k in (
+                "load",
+                "hydrodynamic_load",
+                "asperity_load",
+                "viscous_friction",
+                "rolling_friction",
+                "boundary_friction",
+                "friction",
+            )
+        }
 
 
 # ----------------------------------------------------------------------------- helpers
@@ -159,8 +181,9 @@ def with_overrides(opts: EHLOptions, overrides: dict) -> EHLOptions:
     """A copy of ``opts`` with some fields replaced; unknown names are an error."""
     unknown = sorted(set(overrides) - set(opts.__dict__))
     if unknown:
-        raise InputError(f"unknown EHL option(s) {', '.join(unknown)}; valid: "
-                         f"{', '.join(sorted(opts.__dict__))}")
+        raise InputError(
+            f"unknown EHL option(s) {', '.join(unknown)}; valid: {', '.join(sorted(opts.__dict__))}"
+        )
     return EHLOptions(**{**opts.__dict__, **overrides})
 
 
@@ -174,11 +197,14 @@ class Conditions:
     sliding_speed: float
 
     @classmethod
-    def checked(cls, load, radius, entrainment_speed, sliding_speed) -> "Conditions":
+    def checked(cls, load, radius, entrainment_speed, sliding_speed) -> Conditions:
         """Validated conditions (load and radius > 0, speeds finite)."""
-        return cls(check_positive("load", load, "N/m"), check_positive("radius", radius, "m"),
-                   check_real("entrainment_speed", entrainment_speed, "m/s"),
-                   check_real("sliding_speed", sliding_speed, "m/s"))
+        return cls(
+            check_positive("load", load, "N/m"),
+            check_positive("radius", radius, "m"),
+            check_real("entrainment_speed", entrainment_speed, "m/s"),
+            check_real("sliding_speed", sliding_speed, "m/s"),
+        )
 
 
 @dataclass(frozen=True)
@@ -198,12 +224,13 @@ class ContactModel:
         object.__setattr__(self, "e_surface", reduced_modulus(self.bodies, surface=True))
 
     @classmethod
-    def checked(cls, bodies, lubricant, roughness) -> "ContactModel":
+    def checked(cls, bodies, lubricant, roughness) -> ContactModel:
         """Validated model: two bodies, a Lubricant, a Roughness or None."""
         bodies = as_bodies(bodies)
         if not isinstance(lubricant, Lubricant):
             raise InputError(f"lubricant must be a Lubricant (got {type(lubricant).__name__})")
         if roughness is not None and not isinstance(roughness, Roughness):
-            raise InputError("roughness must be a Roughness or None "
-                             f"(got {type(roughness).__name__})")
+            raise InputError(
+                f"roughness must be a Roughness or None (got {type(roughness).__name__})"
+            )
         return cls(bodies, lubricant, roughness)

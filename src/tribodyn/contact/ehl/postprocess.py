@@ -30,22 +30,26 @@ __all__ = ["postprocess", "shear_stress"]
 _H_FLOOR = 1e-10
 
 
-def shear_stress(pressure, film, sliding_speed, lubricant, model: str,
-                 limiting_shear: bool) -> np.ndarray:
+def shear_stress(
+    pressure, film, sliding_speed, lubricant, model: str, limiting_shear: bool
+) -> np.ndarray:
     """Couette shear stress τ(x) [Pa] of a solution: Newtonian μu_s/h or Eyring
     τ_E asinh(μu_s/(τ_E h)) with μ = μ(p), capped at τ_L0 + Λp when ``limiting_shear``."""
     p = np.asarray(pressure, dtype=float)
     mu = lubricant.viscosity_at(p)
-    tau = couette_shear_stress(mu, sliding_speed, np.maximum(film, _H_FLOOR), model,
-                               lubricant.eyring_stress)
+    tau = couette_shear_stress(
+        mu, sliding_speed, np.maximum(film, _H_FLOOR), model, lubricant.eyring_stress
+    )
     if limiting_shear:
-        tau = limit_shear_stress(tau, p, lubricant.limiting_shear_coefficient,
-                                 lubricant.limiting_shear_stress)
+        tau = limit_shear_stress(
+            tau, p, lubricant.limiting_shear_coefficient, lubricant.limiting_shear_stress
+        )
     return tau
 
 
-def postprocess(sysm: ReynoldsSystem, out: NewtonOutcome, opts: EHLOptions, time=0.0,
-                squeeze_velocity=0.0) -> EHLResult:
+def postprocess(
+    sysm: ReynoldsSystem, out: NewtonOutcome, opts: EHLOptions, time=0.0, squeeze_velocity=0.0
+) -> EHLResult:
     """:class:`EHLResult` of a Newton outcome on ``sysm`` (friction, loads, films,
     meniscus, inlet-truncation estimate, warnings)."""
     # a non-converged last iterate may hold extreme pressures: evaluate quietly, flag below
@@ -53,8 +57,9 @@ def postprocess(sysm: ReynoldsSystem, out: NewtonOutcome, opts: EHLOptions, time
         return _postprocess(sysm, out, opts, time, squeeze_velocity)
 
 
-def _postprocess(sysm: ReynoldsSystem, out: NewtonOutcome, opts: EHLOptions, time,
-                 squeeze_velocity) -> EHLResult:
+def _postprocess(
+    sysm: ReynoldsSystem, out: NewtonOutcome, opts: EHLOptions, time, squeeze_velocity
+) -> EHLResult:
     st, ok, it, msg = out.state, out.converged, out.iterations, out.message
     w, R = sysm.cond.load, sysm.cond.radius
     ue, us = sysm.cond.entrainment_speed, sysm.cond.sliding_speed
@@ -73,8 +78,14 @@ def _postprocess(sysm: ReynoldsSystem, out: NewtonOutcome, opts: EHLOptions, tim
     f_roll = float(np.sum(0.5 * hf * np.abs(dpdx)) * dx)
     if rough is not None:
         area = rough.contact_area_fraction(h)
-        f_b = float(np.sum(boundary_shear_stress(pa, area, opts.boundary_shear_coefficient,
-                                                 opts.boundary_shear_strength)) * dx)
+        f_b = float(
+            np.sum(
+                boundary_shear_stress(
+                    pa, area, opts.boundary_shear_coefficient, opts.boundary_shear_strength
+                )
+            )
+            * dx
+        )
     else:
         f_b = 0.0
     i_min = int(np.argmin(h))
@@ -107,21 +118,40 @@ def _postprocess(sysm: ReynoldsSystem, out: NewtonOutcome, opts: EHLOptions, tim
     deficit /= w
     warns = []
     if ok and deficit > 2.0 * opts.inlet_truncation:
-        warns.append(f"truncated inlet carries an estimated {deficit:.1%} of the load "
-                     "(lower inlet_truncation or increase inlet)")
+        warns.append(
+            f"truncated inlet carries an estimated {deficit:.1%} of the load "
+            "(lower inlet_truncation or increase inlet)"
+        )
     out_end = g.n - 2 if g.direction > 0 else 1
     if ok and g.direction != 0 and p[out_end] > 1e-3 * p.max():
         warns.append("pressure not negligible at the outlet (increase outlet)")
     msg += "".join(f"; warning: {t}" for t in warns)
     res = EHLResult(
-        x=x, pressure=p, asperity_pressure=pa, film=h, central_film=float(np.interp(0.0, x, h)),
-        min_film=float(h[i_min]), min_film_position=float(x[i_min]), cavitation_position=x_cav,
-        rigid_approach=float(st.H0 * sysm.h_ref), load=w, hydrodynamic_load=float(np.sum(p) * dx),
-        asperity_load=float(np.sum(pa) * dx), viscous_friction=f_visc, rolling_friction=f_roll,
-        boundary_friction=f_b, entrainment_speed=ue, sliding_speed=us, radius=R,
-        converged=bool(ok), iterations=int(it), message=msg, time=time,
-        squeeze_velocity=squeeze_velocity, shear_stress=tau, inlet_load_deficit=deficit,
+        x=x,
+        pressure=p,
+        asperity_pressure=pa,
+        film=h,
+        central_film=float(np.interp(0.0, x, h)),
+        min_film=float(h[i_min]),
+        min_film_position=float(x[i_min]),
+        cavitation_position=x_cav,
+        rigid_approach=float(st.H0 * sysm.h_ref),
+        load=w,
+        hydrodynamic_load=float(np.sum(p) * dx),
+        asperity_load=float(np.sum(pa) * dx),
+        viscous_friction=f_visc,
+        rolling_friction=f_roll,
+        boundary_friction=f_b,
+        entrainment_speed=ue,
+        sliding_speed=us,
+        radius=R,
+        converged=bool(ok),
+        iterations=int(it),
+        message=msg,
+        time=time,
+        squeeze_velocity=squeeze_velocity,
+        shear_stress=tau,
+        inlet_load_deficit=deficit,
         warnings=warns,
     )
-    return check_solution(res, sysm.model)   # film > 0, validity of the model
-
+    return check_solution(res, sysm.model)  # film > 0, validity of the model

@@ -38,8 +38,9 @@ __all__ = ["ReynoldsSystem", "Evaluation", "Linearization", "band_apply"]
 class ReynoldsSystem:
     """Scaled discrete system for one solve (one time level)."""
 
-    def __init__(self, grid: Grid, cond: Conditions, model: ContactModel, time_coef=0.0,
-                 f_old=None):
+    def __init__(
+        self, grid: Grid, cond: Conditions, model: ContactModel, time_coef=0.0, f_old=None
+    ):
         w, R, ue = cond.load, cond.radius, cond.entrainment_speed
         lub, roughness = model.lubricant, model.roughness
         self.g = grid
@@ -48,8 +49,8 @@ class ReynoldsSystem:
         self.lub = lub
         self.rough = roughness
         a = grid.a
-        self.p_ref = p_ref = w / a          # P = p a / w
-        self.h_ref = h_ref = a * a / R      # H = h R / a²
+        self.p_ref = p_ref = w / a  # P = p a / w
+        self.h_ref = h_ref = a * a / R  # H = h R / a²
         self.elastic = grid.elastic
         self._K = None
         if grid.elastic:
@@ -119,8 +120,12 @@ class ReynoldsSystem:
         lub, pr = self.lub, self.p_ref
         p = P * pr
         rho0 = lub.density
-        return (lub.density_at(p) / rho0, lub.ddensity_dp(p) * (pr / rho0),
-                lub.log_viscosity_ratio(p), lub.dlog_viscosity_dp(p) * pr)
+        return (
+            lub.density_at(p) / rho0,
+            lub.ddensity_dp(p) * (pr / rho0),
+            lub.log_viscosity_ratio(p),
+            lub.dlog_viscosity_dp(p) * pr,
+        )
 
     # -- residual and banded derivatives
     def evaluate(self, Q, H0):
@@ -145,8 +150,26 @@ class ReynoldsSystem:
             ones = np.ones(n)
         ff = ones if self.flow_factor is None else np.asarray(self.flow_factor, float)
         cf = ones if self.couette_factor is None else np.asarray(self.couette_factor, float)
-        assemble(P, H, rho, drho, lnmu, dlnmu, self.lam, self.h_floor, abs(self.ubar), self.s,
-                 dX, float(self.time_coef), f_old, ff, cf, R, AP, AH)
+        assemble(
+            P,
+            H,
+            rho,
+            drho,
+            lnmu,
+            dlnmu,
+            self.lam,
+            self.h_floor,
+            abs(self.ubar),
+            self.s,
+            dX,
+            float(self.time_coef),
+            f_old,
+            ff,
+            cf,
+            R,
+            AP,
+            AH,
+        )
         load = dX * float(np.sum(Q)) - 1.0
         return Evaluation(R, load, P, H, pa, dpa, AP, AH)
 
@@ -223,10 +246,11 @@ class Linearization:
     def matvec(self, z):
         n = self.n
         v, vh = z[:n], float(z[n])
-        dh = (np.zeros_like(v) if self.rigid else self.sysm.deform(v)) + vh      # δH
+        dh = (np.zeros_like(v) if self.rigid else self.sysm.deform(v)) + vh  # δH
         out = np.empty(n + 1)
-        newton_matvec(self.AP, self.B, self.col, self.c, self.free, self.cav, self.D, v, vh,
-                      dh, self.dX, out)
+        newton_matvec(
+            self.AP, self.B, self.col, self.c, self.free, self.cav, self.D, v, vh, dh, self.dX, out
+        )
         return out
 
     def dense(self):
@@ -234,8 +258,19 @@ class Linearization:
             K, ks = _EMPTY2, 0.0
         else:
             K, ks = self.sysm.g.K, self.sysm.kscale
-        return dense_matrix(self.AP, self.B, self.col, self.c, self.free, self.cav, self.D, K,
-                            ks, self.dX, not self.rigid)
+        return dense_matrix(
+            self.AP,
+            self.B,
+            self.col,
+            self.c,
+            self.free,
+            self.cav,
+            self.D,
+            K,
+            ks,
+            self.dX,
+            not self.rigid,
+        )
 
 
 _EMPTY2 = np.zeros((0, 0))

@@ -51,9 +51,18 @@ def state_from_dimensional(sysm: ReynoldsSystem, x, q, h0) -> State:
     return State(Q, h0 / sysm.h_ref)
 
 
-def solve_ehl(load, radius, entrainment_speed, sliding_speed, bodies, lubricant: Lubricant,
-              roughness: Roughness | None = None, *, options: EHLOptions | None = None,
-              **option_overrides) -> EHLResult:
+def solve_ehl(
+    load,
+    radius,
+    entrainment_speed,
+    sliding_speed,
+    bodies,
+    lubricant: Lubricant,
+    roughness: Roughness | None = None,
+    *,
+    options: EHLOptions | None = None,
+    **option_overrides,
+) -> EHLResult:
     """Steady mixed-EHL line contact.
 
     Parameters
@@ -74,8 +83,9 @@ def solve_ehl(load, radius, entrainment_speed, sliding_speed, bodies, lubricant:
     if option_overrides:
         opts = with_overrides(opts, option_overrides)
     if cond.entrainment_speed == 0.0:
-        raise InputError("entrainment_speed must be non-zero for a steady film "
-                         "(pure squeeze needs TransientEHL)")
+        raise InputError(
+            "entrainment_speed must be non-zero for a steady film (pure squeeze needs TransientEHL)"
+        )
     return _solve(cond, model, opts)
 
 
@@ -104,8 +114,7 @@ def _solve(cond: Conditions, model: ContactModel, opts: EHLOptions) -> EHLResult
         if st is None:
             st0 = initial_state(sysm, lay.b if opts.elastic else 0.0, lay.h_est)
         else:
-            st0 = state_from_dimensional(sysm, prev.g.x, st.Q * prev.p_ref,
-                                         st.H0 * prev.h_ref)
+            st0 = state_from_dimensional(sysm, prev.g.x, st.Q * prev.p_ref, st.H0 * prev.h_ref)
         max_it = opts.max_iter * (2 if k == 0 and len(levels) > 1 else 1)
         out = newton(sysm, st0, opts.tol, max_it, coarse=coarse if nk > _N_DENSE else None)
         total += out.iterations
@@ -118,15 +127,23 @@ def _solve(cond: Conditions, model: ContactModel, opts: EHLOptions) -> EHLResult
         films.append(_films(sysm, st) if out.converged else None)
         # a posteriori grid check of the automatic grid: if h_c or h_min still changed by
         # more than _GRID_REFINE_CHANGE from the previous (half as fine) level, double n
-        if (k == len(levels) - 1 and opts.n is None and out.converged and nk < N_MAX_AUTO
-                and len(films) >= 2 and films[-2] is not None):
+        if (
+            k == len(levels) - 1
+            and opts.n is None
+            and out.converged
+            and nk < N_MAX_AUTO
+            and len(films) >= 2
+            and films[-2] is not None
+        ):
             change = max(abs(f1 / f0 - 1.0) for f0, f1 in zip(films[-2], films[-1]))
             if change > _GRID_REFINE_CHANGE:
                 if coarse is None and nk <= _N_DENSE:
                     coarse = CoarseLevel(sysm, st)
                 levels.append(min(N_MAX_AUTO, 2 * nk))
-                refined = (f"; grid refined to {levels[-1]} nodes (h changed by "
-                           f"{change:.1%} from {levels[-3]} to {nk} nodes)")
+                refined = (
+                    f"; grid refined to {levels[-1]} nodes (h changed by "
+                    f"{change:.1%} from {levels[-3]} to {nk} nodes)"
+                )
         k += 1
     out.iterations = total
     out.message += refined
@@ -139,14 +156,14 @@ def _films(sysm: ReynoldsSystem, st: State) -> tuple[float, float]:
     return float(np.interp(0.0, sysm.g.x, h)), float(h.min())
 
 
-def _continuation(grid: Grid, cond: Conditions, model: ContactModel, opts: EHLOptions,
-                  lay: Layout) -> NewtonOutcome:
+def _continuation(
+    grid: Grid, cond: Conditions, model: ContactModel, opts: EHLOptions, lay: Layout
+) -> NewtonOutcome:
     """Load continuation on the same grid: start light (nearly rigid), increase to w."""
     total, st, prev = 0, None, None
     out = None
     for frac in (0.05, 0.15, 0.35, 0.6, 0.8, 1.0):
-        c = Conditions(cond.load * frac, cond.radius, cond.entrainment_speed,
-                       cond.sliding_speed)
+        c = Conditions(cond.load * frac, cond.radius, cond.entrainment_speed, cond.sliding_speed)
         sysm = ReynoldsSystem(grid, c, model)
         if st is None:
             st = initial_state(sysm, lay.b * math.sqrt(frac), lay.h_est)
@@ -157,8 +174,7 @@ def _continuation(grid: Grid, cond: Conditions, model: ContactModel, opts: EHLOp
         st, prev = out.state, sysm
         if not out.converged:
             out.iterations = total
-            out.message = (f"load continuation stalled at {frac:.0%} of the load: "
-                           f"{out.message}")
+            out.message = f"load continuation stalled at {frac:.0%} of the load: {out.message}"
             return out
     out.iterations = total
     out.message += " (after load continuation)"

@@ -38,8 +38,14 @@ from .postprocess import postprocess
 from .reynolds import ReynoldsSystem
 from .steady import solve_ehl, state_from_dimensional
 
-__all__ = ["ThermalOptions", "ThermalEHLResult", "FrozenTemperatureOil", "ThermalField",
-           "solve_thermal_ehl", "couette_stress"]
+__all__ = [
+    "ThermalOptions",
+    "ThermalEHLResult",
+    "FrozenTemperatureOil",
+    "ThermalField",
+    "solve_thermal_ehl",
+    "couette_stress",
+]
 
 
 @dataclass(frozen=True)
@@ -87,16 +93,16 @@ class ThermalOptions:
 class ThermalEHLResult(EHLResult):
     """:class:`EHLResult` with the temperatures of the thermal solution (K)."""
 
-    inlet_temperature: float = float("nan")        #: Tᵢ [K]
-    x_thermal: np.ndarray = field(default=None, repr=False)   #: thermal grid [m]
+    inlet_temperature: float = float("nan")  #: Tᵢ [K]
+    x_thermal: np.ndarray = field(default=None, repr=False)  #: thermal grid [m]
     film_temperature: np.ndarray = field(default=None, repr=False)  #: (n_T, m) [K]
     surface_temperature: np.ndarray = field(default=None, repr=False)  #: (2, n_T) body 1, 2
     mid_film_temperature: np.ndarray = field(default=None, repr=False)  #: (n_T,) [K]
-    max_temperature: float = float("nan")          #: max over film and surfaces [K]
-    central_mid_film_temperature: float = float("nan")   #: at x = 0 [K]
+    max_temperature: float = float("nan")  #: max over film and surfaces [K]
+    central_mid_film_temperature: float = float("nan")  #: at x = 0 [K]
     max_surface_temperature: tuple = (float("nan"), float("nan"))  #: bodies 1, 2 [K]
     thermal_iterations: int = 0
-    heat_generated: float = 0.0                    #: viscous + boundary heat [W/m]
+    heat_generated: float = 0.0  #: viscous + boundary heat [W/m]
 
 
 class FrozenTemperatureOil:
@@ -107,7 +113,7 @@ class FrozenTemperatureOil:
         self.oil = oil
         self.T = np.asarray(T, dtype=float)
         iso = oil.isothermal()
-        self.viscosity = iso.viscosity             # μ₀ at Tᵢ: scales of the system
+        self.viscosity = iso.viscosity  # μ₀ at Tᵢ: scales of the system
         self.pressure_viscosity = iso.pressure_viscosity
         self.density = iso.density
         self._lnmu0 = math.log(iso.viscosity)
@@ -131,8 +137,17 @@ class FrozenTemperatureOil:
         return self.oil.viscosity_at(p, self.T)
 
 
-def couette_stress(pressure, film, sliding_speed, oil: ThermalLubricant, T_mean, fluidity,
-                   f_lim, model: str, limiting: bool):
+def couette_stress(
+    pressure,
+    film,
+    sliding_speed,
+    oil: ThermalLubricant,
+    T_mean,
+    fluidity,
+    f_lim,
+    model: str,
+    limiting: bool,
+):
     """Couette shear stress magnitude [Pa]: Eyring (or Newtonian) at the film-mean
     temperature with the across-film fluidity F₀ = ``fluidity``·h/μ(p, T̄), capped at
     (τ_L0 + Λp)·f_lim (f_lim: temperature factor of the hottest layer)."""
@@ -145,8 +160,11 @@ def couette_stress(pressure, film, sliding_speed, oil: ThermalLubricant, T_mean,
     else:
         tau = newt
     if limiting:
-        tau = np.minimum(tau, (oil.limiting_shear_stress + oil.limiting_shear_coefficient
-                               * np.maximum(p, 0.0)) * f_lim)
+        tau = np.minimum(
+            tau,
+            (oil.limiting_shear_stress + oil.limiting_shear_coefficient * np.maximum(p, 0.0))
+            * f_lim,
+        )
     return tau
 
 
@@ -154,22 +172,22 @@ class ThermalField:
     """Temperature rise θ on the thermal grid (film + both solids) and the film
     quantities of the last update (see :mod:`.energy` for the chain layout)."""
 
-    def __init__(self, x_ehl, oil: ThermalLubricant, tbodies, topts: ThermalOptions,
-                 speeds):
+    def __init__(self, x_ehl, oil: ThermalLubricant, tbodies, topts: ThermalOptions, speeds):
         n = int(min(topts.x_nodes, x_ehl.size))
         self.x = np.linspace(x_ehl[0], x_ehl[-1], n)
         self.dx = self.x[1] - self.x[0]
         self.oil, self.topts, self.tbodies = oil, topts, tbodies
         self.Ti = float(oil.inlet_temperature)
-        self.m = int(topts.film_nodes) | 1          # odd
+        self.m = int(topts.film_nodes) | 1  # odd
         L = self.x[-1] - self.x[0]
         u_fast = max(abs(speeds[0]), abs(speeds[1]), 0.1)
         self.grids = []
         for tb in tbodies:
             kap = tb.substrate.diffusivity
             delta = math.sqrt(kap * L / max(u_fast, 4.0 * kap / L))
-            self.grids.append(depth_grid(tb, topts.depth * L, min(delta / 8.0, L / 40.0),
-                                         topts.solid_nodes))
+            self.grids.append(
+                depth_grid(tb, topts.depth * L, min(delta / 8.0, L / 40.0), topts.solid_nodes)
+            )
         self.n1 = self.grids[0].s.size - 2
         self.Nz = chain_size(self.m, *self.grids)
         self.theta = np.zeros((n, self.Nz))
@@ -180,18 +198,29 @@ class ThermalField:
     # -- views
     @property
     def film_theta(self):
-        return self.theta[:, self.n1:self.n1 + self.m]
+        return self.theta[:, self.n1 : self.n1 + self.m]
 
     def film_T(self, theta=None):
         th = self.theta if theta is None else theta
-        return self.Ti + th[:, self.n1:self.n1 + self.m]
+        return self.Ti + th[:, self.n1 : self.n1 + self.m]
 
     def mean_T(self, theta=None):
         return self.film_T(theta) @ self.w
 
     # -- physics on the thermal grid
-    def fields(self, x, p, h, pa, cond: Conditions, rough: Roughness | None, opts: EHLOptions,
-               theta=None, p_old=None, dt=None):
+    def fields(
+        self,
+        x,
+        p,
+        h,
+        pa,
+        cond: Conditions,
+        rough: Roughness | None,
+        opts: EHLOptions,
+        theta=None,
+        p_old=None,
+        dt=None,
+    ):
         """Film flow and the energy-equation inputs for pressure p, film h, asperity
         pressure pa on the EHL grid x."""
         oil, t = self.oil, self.topts
@@ -208,10 +237,20 @@ class ThermalField:
         eta, rho = oil.viscosity_at(P, T), oil.density_at(P, T)
         u1 = cond.entrainment_speed + 0.5 * cond.sliding_speed
         u2 = cond.entrainment_speed - 0.5 * cond.sliding_speed
-        ff = film_flow(np.maximum(ht, 1e-10), px, u1, u2, eta, rho, oil.eyring_stress_at(Tm),
-                       oil.limiting_shear_stress_at(P, T), eta_ref=oil.viscosity_at(pt, Tm),
-                       rho_ref=oil.density_at(pt, Tm),
-                       eyring=opts.viscous_model == "eyring", limiting=opts.limiting_shear)
+        ff = film_flow(
+            np.maximum(ht, 1e-10),
+            px,
+            u1,
+            u2,
+            eta,
+            rho,
+            oil.eyring_stress_at(Tm),
+            oil.limiting_shear_stress_at(P, T),
+            eta_ref=oil.viscosity_at(pt, Tm),
+            rho_ref=oil.density_at(pt, Tm),
+            eyring=opts.viscous_model == "eyring",
+            limiting=opts.limiting_shear,
+        )
         self.flow = ff
         if not t.shear_heating:
             phi, q = np.zeros_like(eta), np.zeros_like(pt)
@@ -219,23 +258,37 @@ class ThermalField:
             phi = ff.dissipation
             q = np.zeros_like(pt)
             if rough is not None:
-                tb = boundary_shear_stress(pat, rough.contact_area_fraction(ht),
-                                           opts.boundary_shear_coefficient,
-                                           opts.boundary_shear_strength)
+                tb = boundary_shear_stress(
+                    pat,
+                    rough.contact_area_fraction(ht),
+                    opts.boundary_shear_coefficient,
+                    opts.boundary_shear_strength,
+                )
                 q = tb * abs(cond.sliding_speed)
         comp = np.zeros_like(eta)
         if t.compression_heating:
             dpdt = 0.0 if p_old is None or dt is None else ((pt - p_old) / dt)[:, None]
             comp = oil.expansivity(T) * (ff.u * px[:, None] + dpdt)
         h_heat = ht * self._fill(pt, ff, cond)
-        return EnergyInputs(self.dx, np.maximum(h_heat, 1e-10), ff.u, rho,
-                            oil.volumetric_heat_capacity(P, T), oil.conductivity(P, T), phi,
-                            comp, self.Ti, (u1, u2), tuple(self.grids), q, dt=dt)
+        return EnergyInputs(
+            self.dx,
+            np.maximum(h_heat, 1e-10),
+            ff.u,
+            rho,
+            oil.volumetric_heat_capacity(P, T),
+            oil.conductivity(P, T),
+            phi,
+            comp,
+            self.Ti,
+            (u1, u2),
+            tuple(self.grids),
+            q,
+            dt=dt,
+        )
 
     def cell_average(self, x, v):
         """Average of v(x) (on the EHL grid x) over each thermal cell."""
-        faces = np.clip(np.r_[self.x - 0.5 * self.dx, self.x[-1] + 0.5 * self.dx],
-                        x[0], x[-1])
+        faces = np.clip(np.r_[self.x - 0.5 * self.dx, self.x[-1] + 0.5 * self.dx], x[0], x[-1])
         cum = np.r_[0.0, np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(x))]
         return np.diff(np.interp(faces, x, cum)) / np.diff(faces)
 
@@ -251,7 +304,7 @@ class ThermalField:
         idx = np.arange(ipk, p.size) if ue > 0 else np.arange(ipk, -1, -1)
         pos = np.flatnonzero(p[idx] <= 0.0)
         if pos.size:
-            beyond = idx[pos[0]:]
+            beyond = idx[pos[0] :]
             q_cav = ff.D[beyond[0]]
             with np.errstate(divide="ignore", invalid="ignore"):
                 fill[beyond] = np.clip(q_cav / ff.D[beyond], 0.05, 1.0)
@@ -268,13 +321,29 @@ class ThermalField:
         T = self.film_T()
         Tm = T @ self.w
         fl = ff.F0 * self._eta_m / np.maximum(self._h, 1e-10)
-        flim = np.maximum(0.1, 1.0 - self.oil.limiting_shear_temperature_coefficient
-                          * (T.max(axis=1) - self.Ti))
-        on = lambda v: np.interp(x_ehl, self.x, v)   # noqa: E731
+        flim = np.maximum(
+            0.1, 1.0 - self.oil.limiting_shear_temperature_coefficient * (T.max(axis=1) - self.Ti)
+        )
+        on = lambda v: np.interp(x_ehl, self.x, v)  # noqa: E731
         return on(ff.flow_factor), on(cf), on(Tm), on(fl), on(flim)
 
-    def update(self, x, p, h, pa, cond, rough, opts, *, dt=None, theta_old=None, p_old=None,
-               rho_h_old=None, relax=1.0, refresh=True):
+    def update(
+        self,
+        x,
+        p,
+        h,
+        pa,
+        cond,
+        rough,
+        opts,
+        *,
+        dt=None,
+        theta_old=None,
+        p_old=None,
+        rho_h_old=None,
+        relax=1.0,
+        refresh=True,
+    ):
         """One energy solve at (p, h); θ ← θ + relax (θ_new − θ). Returns max |Δθ| [K].
         ``refresh``: recompute the film quantities (factors) at the new θ."""
         e = self.fields(x, p, h, pa, cond, rough, opts, p_old=p_old, dt=dt)
@@ -284,7 +353,7 @@ class ThermalField:
             return float("inf")
         change = float(np.max(np.abs(new - self.theta)))
         self.theta = self.theta + relax * (new - self.theta)
-        if refresh:      # film quantities at the relaxed temperature (the factors)
+        if refresh:  # film quantities at the relaxed temperature (the factors)
             self.refresh(x, p, h, pa, cond, rough, opts)
         return change
 
@@ -298,22 +367,21 @@ class ThermalField:
         """θ of one solid (n_T, ns) with column 0 the surface."""
         ns = self.grids[body].s.size - 1
         f0 = self.n1
-        idx = [f0 - k for k in range(ns)] if body == 0 else \
-            [f0 + self.m - 1 + k for k in range(ns)]
+        idx = [f0 - k for k in range(ns)] if body == 0 else [f0 + self.m - 1 + k for k in range(ns)]
         return self.theta[:, idx]
 
-    def regridded(self, x_ehl, speeds) -> "ThermalField":
+    def regridded(self, x_ehl, speeds) -> ThermalField:
         """A field on a new EHL grid with θ interpolated (film in x, solids in x and
         depth; zero outside the old grid)."""
         from scipy.interpolate import RegularGridInterpolator
+
         new = ThermalField(x_ehl, self.oil, self.tbodies, self.topts, speeds)
         if new.m != self.m:
             return new
         th = np.zeros_like(new.theta)
         xn = new.x
         for j in range(self.m):
-            th[:, new.n1 + j] = np.interp(xn, self.x, self.film_theta[:, j], left=0.0,
-                                          right=0.0)
+            th[:, new.n1 + j] = np.interp(xn, self.x, self.film_theta[:, j], left=0.0, right=0.0)
         for body in (0, 1):
             old = self.body_theta(body)
             so, sn = self.grids[body].s[:-1], new.grids[body].s[:-1]
@@ -321,11 +389,14 @@ class ThermalField:
             X, S = np.meshgrid(xn, sn, indexing="ij")
             vals = f(np.stack([X, np.minimum(S, so[-1])], axis=-1))
             f0 = new.n1
-            idx = [f0 - k for k in range(sn.size)] if body == 0 else \
-                [f0 + new.m - 1 + k for k in range(sn.size)]
+            idx = (
+                [f0 - k for k in range(sn.size)]
+                if body == 0
+                else [f0 + new.m - 1 + k for k in range(sn.size)]
+            )
             surf = th[:, idx[0]].copy()
             th[:, idx] = vals
-            th[:, idx[0]] = surf                   # the surface node is the film's wall
+            th[:, idx[0]] = surf  # the surface node is the film's wall
         new.theta = th
         return new
 
@@ -336,8 +407,11 @@ class ThermalField:
 
     def heat(self):
         """Heat generated per unit length [W/m]: film dissipation + boundary friction."""
-        return 0.0 if self.flow is None else float(
-            np.sum((self.flow.dissipation * self._h[:, None]) @ self.w) * self.dx)
+        return (
+            0.0
+            if self.flow is None
+            else float(np.sum((self.flow.dissipation * self._h[:, None]) @ self.w) * self.dx)
+        )
 
 
 def apply_factors(sysm: ReynoldsSystem, tf: ThermalField, cond: Conditions):
@@ -347,16 +421,26 @@ def apply_factors(sysm: ReynoldsSystem, tf: ThermalField, cond: Conditions):
     sysm.flow_factor, sysm.couette_factor = fp, fc
 
 
-def thermal_result(sysm, out, opts, tf: ThermalField, cond, iterations, ok, msg, time=0.0,
-                   squeeze_velocity=0.0) -> ThermalEHLResult:
+def thermal_result(
+    sysm, out, opts, tf: ThermalField, cond, iterations, ok, msg, time=0.0, squeeze_velocity=0.0
+) -> ThermalEHLResult:
     """Post-process a thermal solution: the EHL result with the thermal Couette stress,
     and the temperatures."""
     out.converged = bool(out.converged and ok)
     out.message = msg
     r = postprocess(sysm, out, opts, time=time, squeeze_velocity=squeeze_velocity)
     _, _, Tm, fl, flim = tf.factors(sysm.g.x, cond)
-    tau = couette_stress(r.pressure, r.film, cond.sliding_speed, tf.oil, Tm, fl, flim,
-                         opts.viscous_model, opts.limiting_shear)
+    tau = couette_stress(
+        r.pressure,
+        r.film,
+        cond.sliding_speed,
+        tf.oil,
+        Tm,
+        fl,
+        flim,
+        opts.viscous_model,
+        opts.limiting_shear,
+    )
     r.shear_stress = np.sign(cond.sliding_speed) * tau
     r.viscous_friction = float(np.sum(tau) * (r.x[1] - r.x[0]))
     d = {k: getattr(r, k) for k in r.__dataclass_fields__}
@@ -364,14 +448,19 @@ def thermal_result(sysm, out, opts, tf: ThermalField, cond, iterations, ok, msg,
     surf = np.vstack([T[:, 0], T[:, -1]])
     mid = T[:, tf.m // 2]
     qb = r.boundary_friction * abs(cond.sliding_speed)
-    res = ThermalEHLResult(**d, inlet_temperature=tf.Ti, x_thermal=tf.x.copy(),
-                           film_temperature=T.copy(), surface_temperature=surf,
-                           mid_film_temperature=mid, max_temperature=float(T.max()),
-                           central_mid_film_temperature=float(np.interp(0.0, tf.x, mid)),
-                           max_surface_temperature=(float(surf[0].max()),
-                                                    float(surf[1].max())),
-                           thermal_iterations=int(iterations),
-                           heat_generated=tf.heat() + qb)
+    res = ThermalEHLResult(
+        **d,
+        inlet_temperature=tf.Ti,
+        x_thermal=tf.x.copy(),
+        film_temperature=T.copy(),
+        surface_temperature=surf,
+        mid_film_temperature=mid,
+        max_temperature=float(T.max()),
+        central_mid_film_temperature=float(np.interp(0.0, tf.x, mid)),
+        max_surface_temperature=(float(surf[0].max()), float(surf[1].max())),
+        thermal_iterations=int(iterations),
+        heat_generated=tf.heat() + qb,
+    )
     return res
 
 
@@ -387,11 +476,20 @@ def checked_thermal_bodies(tbodies, bodies):
     return tb
 
 
-def solve_thermal_ehl(load, radius, entrainment_speed, sliding_speed, bodies,
-                      oil: ThermalLubricant, thermal_bodies, roughness: Roughness | None = None,
-                      *, options: EHLOptions | None = None,
-                      thermal_options: ThermalOptions | None = None,
-                      **option_overrides) -> ThermalEHLResult:
+def solve_thermal_ehl(
+    load,
+    radius,
+    entrainment_speed,
+    sliding_speed,
+    bodies,
+    oil: ThermalLubricant,
+    thermal_bodies,
+    roughness: Roughness | None = None,
+    *,
+    options: EHLOptions | None = None,
+    thermal_options: ThermalOptions | None = None,
+    **option_overrides,
+) -> ThermalEHLResult:
     """Steady thermal mixed-EHL line contact (arguments as :func:`~tribodyn.solve_ehl`).
 
     oil : :class:`~tribodyn.physics.thermal_oil.ThermalLubricant` (inlet temperature =
@@ -408,15 +506,24 @@ def solve_thermal_ehl(load, radius, entrainment_speed, sliding_speed, bodies,
     cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
     iso_model = ContactModel.checked(bodies, oil.isothermal(), roughness)
     tb = checked_thermal_bodies(thermal_bodies, iso_model.bodies)
-    iso = solve_ehl(load, radius, entrainment_speed, sliding_speed, iso_model.bodies,
-                    oil.isothermal(), roughness, options=opts)
+    iso = solve_ehl(
+        load,
+        radius,
+        entrainment_speed,
+        sliding_speed,
+        iso_model.bodies,
+        oil.isothermal(),
+        roughness,
+        options=opts,
+    )
     lay = replace(layout(cond, iso_model, opts), n=iso.x.size)
     direction = 1 if cond.entrainment_speed >= 0 else -1
     grid = Grid(iso_model.bodies, lay, direction, opts.elastic)
     standin = FrozenTemperatureOil(oil, np.full(grid.n, oil.inlet_temperature))
     sysm = ReynoldsSystem(grid, cond, ContactModel(iso_model.bodies, standin, roughness))
-    st = state_from_dimensional(sysm, iso.x, iso.pressure + iso.asperity_pressure,
-                                iso.rigid_approach)
+    st = state_from_dimensional(
+        sysm, iso.x, iso.pressure + iso.asperity_pressure, iso.rigid_approach
+    )
     ev = sysm.evaluate(st.Q, st.H0)
     st.P, st.H = ev.P, ev.H
     u1 = cond.entrainment_speed + 0.5 * cond.sliding_speed
@@ -462,14 +569,18 @@ def solve_thermal_ehl(load, radius, entrainment_speed, sliding_speed, bodies,
         tol_T = topts.tol + 2e-3 * float(np.max(np.abs(tf.theta)))
         if change < tol_T and dh < 1e-5:
             ok = True
-            msg = (f"thermal fixed point in {it} iterations (ΔT {change:.2g} K, Δh_c "
-                   f"{dh:.1e}); {out.message}")
+            msg = (
+                f"thermal fixed point in {it} iterations (ΔT {change:.2g} K, Δh_c "
+                f"{dh:.1e}); {out.message}"
+            )
             break
     else:
-        msg = (f"thermal iteration not converged in {topts.max_iter} iterations (last ΔT "
-               f"{last_change:.3g} K)")
+        msg = (
+            f"thermal iteration not converged in {topts.max_iter} iterations (last ΔT "
+            f"{last_change:.3g} K)"
+        )
     if out is None:
         out = newton(sysm, st, opts.tol, opts.max_iter)
     res = thermal_result(sysm, out, opts, tf, cond, it, ok, msg)
-    res._field = tf                 # the temperature field (a transient starts from it)
+    res._field = tf  # the temperature field (a transient starts from it)
     return res

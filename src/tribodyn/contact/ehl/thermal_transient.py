@@ -39,50 +39,85 @@ class ThermalTransientEHL(TransientEHL):
     :class:`~tribodyn.physics.thermal_oil.ThermalLubricant`, ``thermal_bodies`` the pair of
     :class:`~tribodyn.physics.heat_conduction.ThermalBody`."""
 
-    def __init__(self, bodies, oil: ThermalLubricant, thermal_bodies, roughness=None, *,
-                 options: EHLOptions | None = None,
-                 thermal_options: ThermalOptions | None = None, max_substeps: int = 3,
-                 **option_overrides):
-        super().__init__(bodies, oil.isothermal(), roughness, options=options,
-                         max_substeps=max_substeps, **option_overrides)
+    def __init__(
+        self,
+        bodies,
+        oil: ThermalLubricant,
+        thermal_bodies,
+        roughness=None,
+        *,
+        options: EHLOptions | None = None,
+        thermal_options: ThermalOptions | None = None,
+        max_substeps: int = 3,
+        **option_overrides,
+    ):
+        super().__init__(
+            bodies,
+            oil.isothermal(),
+            roughness,
+            options=options,
+            max_substeps=max_substeps,
+            **option_overrides,
+        )
         self.oil = oil
         self.tbodies = checked_thermal_bodies(thermal_bodies, self.bodies)
         self.topts = thermal_options or ThermalOptions()
         self.tf: ThermalField | None = None
-        self._p_T = None            # pressure on the thermal grid (compression heating)
-        self._rho_h_T = None        # ρh on the thermal grid (film continuity)
-        self._T_nodes = None        # film-mean temperature on the EHL grid [K]
+        self._p_T = None  # pressure on the thermal grid (compression heating)
+        self._rho_h_T = None  # ρh on the thermal grid (film continuity)
+        self._T_nodes = None  # film-mean temperature on the EHL grid [K]
 
-    def start_steady(self, load, radius, entrainment_speed, sliding_speed, time=0.0
-                     ) -> ThermalEHLResult:
-        res = solve_thermal_ehl(load, radius, entrainment_speed, sliding_speed, self.bodies,
-                                self.oil, self.tbodies, self.rough, options=self.opts,
-                                thermal_options=self.topts)
+    def start_steady(
+        self, load, radius, entrainment_speed, sliding_speed, time=0.0
+    ) -> ThermalEHLResult:
+        res = solve_thermal_ehl(
+            load,
+            radius,
+            entrainment_speed,
+            sliding_speed,
+            self.bodies,
+            self.oil,
+            self.tbodies,
+            self.rough,
+            options=self.opts,
+            thermal_options=self.topts,
+        )
         cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
         self._grid = None
-        self._n_event = (res.x.size if self.opts.n is None and EVENT_NODES_FROM_START
-                         else None)
+        self._n_event = res.x.size if self.opts.n is None and EVENT_NODES_FROM_START else None
         grid = self._make_grid(cond, None)
         u1 = entrainment_speed + 0.5 * sliding_speed
         speeds = (u1, u1 - sliding_speed)
         tf = res._field
-        self.tf = tf.regridded(grid.x, speeds) if grid.x.size != res.x.size or \
-            abs(grid.x[0] / res.x[0] - 1) > 1e-12 else tf
+        self.tf = (
+            tf.regridded(grid.x, speeds)
+            if grid.x.size != res.x.size or abs(grid.x[0] / res.x[0] - 1) > 1e-12
+            else tf
+        )
         Tm = np.interp(grid.x, self.tf.x, self.tf.mean_T())
         sysm = self._system(grid, cond, Tm)
-        st = state_from_dimensional(sysm, res.x, res.pressure + res.asperity_pressure,
-                                    res.rigid_approach)
+        st = state_from_dimensional(
+            sysm, res.x, res.pressure + res.asperity_pressure, res.rigid_approach
+        )
         # the pressure of the transient's own grid at the steady temperatures, so that
         # marching at constant conditions stays there (the grids differ)
         ev = sysm.evaluate(st.Q, st.H0)
-        self.tf.refresh(grid.x, ev.P * sysm.p_ref, ev.H * sysm.h_ref, ev.pa * sysm.p_ref,
-                        cond, self.rough, self.opts)
+        self.tf.refresh(
+            grid.x,
+            ev.P * sysm.p_ref,
+            ev.H * sysm.h_ref,
+            ev.pa * sysm.p_ref,
+            cond,
+            self.rough,
+            self.opts,
+        )
         apply_factors(sysm, self.tf, cond)
         out = newton(sysm, st, self.opts.tol, self.opts.max_iter)
         if out.converged:
             st = out.state
-            res = thermal_result(sysm, out, self.opts, self.tf, cond, res.thermal_iterations,
-                                 True, res.message)
+            res = thermal_result(
+                sysm, out, self.opts, self.tf, cond, res.thermal_iterations, True, res.message
+            )
         self._grid, self._lu, self._hist, self._hc_hist = grid, None, [], ()
         self._commit(sysm, st, None, time)
         self._p_T = np.interp(self.tf.x, grid.x, self._p)
@@ -94,8 +129,9 @@ class ThermalTransientEHL(TransientEHL):
     def _system(self, grid, cond, T_nodes, time_coef=0.0):
         oil = FrozenTemperatureOil(self.oil, T_nodes)
         self._T_nodes = T_nodes
-        return ReynoldsSystem(grid, cond, ContactModel(self.bodies, oil, self.rough),
-                              time_coef=time_coef)
+        return ReynoldsSystem(
+            grid, cond, ContactModel(self.bodies, oil, self.rough), time_coef=time_coef
+        )
 
     def _commit(self, sysm, st, dt, time):
         super()._commit(sysm, st, dt, time)
@@ -104,8 +140,10 @@ class ThermalTransientEHL(TransientEHL):
 
     def _state(self):
         tf = self.tf
-        return (super()._state(), (tf, None if tf is None else tf.theta.copy(), self._p_T,
-                                   self._rho_h_T, self._T_nodes))
+        return (
+            super()._state(),
+            (tf, None if tf is None else tf.theta.copy(), self._p_T, self._rho_h_T, self._T_nodes),
+        )
 
     def _set_state(self, snap):
         base, thermal = snap
@@ -140,8 +178,9 @@ class ThermalTransientEHL(TransientEHL):
         sysm.f_old = f_eff / (sysm.lub.density * sysm.h_ref)
         st = state_from_dimensional(sysm, prev_grid.x, self._q, self._h0)
         ev = sysm.evaluate(st.Q, st.H0)
-        tf.refresh(grid.x, ev.P * sysm.p_ref, ev.H * sysm.h_ref, ev.pa * sysm.p_ref, cond,
-                   self.rough, o)
+        tf.refresh(
+            grid.x, ev.P * sysm.p_ref, ev.H * sysm.h_ref, ev.pa * sysm.p_ref, cond, self.rough, o
+        )
         lu = self._lu if same else None
         ok_t, change, k = False, float("inf"), 0
         out = None
@@ -153,9 +192,20 @@ class ThermalTransientEHL(TransientEHL):
                 break
             st = out.state
             p, h = st.P * sysm.p_ref, st.H * sysm.h_ref
-            change = tf.update(grid.x, p, h, (st.Q - st.P) * sysm.p_ref, cond, self.rough, o,
-                               dt=dt, theta_old=theta_old, p_old=p_old, rho_h_old=rho_h_old,
-                               refresh=k < t.step_iter)
+            change = tf.update(
+                grid.x,
+                p,
+                h,
+                (st.Q - st.P) * sysm.p_ref,
+                cond,
+                self.rough,
+                o,
+                dt=dt,
+                theta_old=theta_old,
+                p_old=p_old,
+                rho_h_old=rho_h_old,
+                refresh=k < t.step_iter,
+            )
             if not np.isfinite(change):
                 break
             if k > 1 and change < t.tol:
@@ -173,7 +223,17 @@ class ThermalTransientEHL(TransientEHL):
         elif t.step_iter > 1:
             msg += f"; last temperature change {change:.2g} K after {k} thermal iterations"
         ok = bool(out.converged and ok_t)
-        res = thermal_result(sysm, out, o, tf, cond, k, ok, msg, time=self.time,
-                             squeeze_velocity=-(hc_new - hc_prev) / dt)
+        res = thermal_result(
+            sysm,
+            out,
+            o,
+            tf,
+            cond,
+            k,
+            ok,
+            msg,
+            time=self.time,
+            squeeze_velocity=-(hc_new - hc_prev) / dt,
+        )
         self.result = res
         return res

@@ -60,8 +60,16 @@ class TransientEHL:
     (``converged=False``) and marching continues from the last iterate.
     """
 
-    def __init__(self, bodies, lubricant: Lubricant, roughness: Roughness | None = None, *,
-                 options: EHLOptions | None = None, max_substeps: int = 3, **option_overrides):
+    def __init__(
+        self,
+        bodies,
+        lubricant: Lubricant,
+        roughness: Roughness | None = None,
+        *,
+        options: EHLOptions | None = None,
+        max_substeps: int = 3,
+        **option_overrides,
+    ):
         self.model = ContactModel.checked(bodies, lubricant, roughness)
         self.bodies = self.model.bodies
         self.lub = lubricant
@@ -76,27 +84,35 @@ class TransientEHL:
         self.conditions_before = None
         self.time = 0.0
         self._grid = None
-        self._q = self._p = self._h = None   # total, fluid pressure [Pa], film [m] on the grid
-        self._h0 = 0.0                 # rigid approach [m]
-        self._hist = []                # [(x, ρh, dt, R)] of the last two time levels
-        self._hc_hist = ()             # central film [m] of the last two levels
+        self._q = self._p = self._h = None  # total, fluid pressure [Pa], film [m] on the grid
+        self._h0 = 0.0  # rigid approach [m]
+        self._hist = []  # [(x, ρh, dt, R)] of the last two time levels
+        self._hc_hist = ()  # central film [m] of the last two levels
         self._lu = None
-        self._n_event = None           # automatic grid: the node count of the steady start
+        self._n_event = None  # automatic grid: the node count of the steady start
         self.result: EHLResult | None = None
 
     # -- starting states
     def start_steady(self, load, radius, entrainment_speed, sliding_speed, time=0.0) -> EHLResult:
         """Start from the steady solution at the given conditions (u_e ≠ 0)."""
-        res = solve_ehl(load, radius, entrainment_speed, sliding_speed, self.bodies, self.lub,
-                        self.rough, options=self.opts)
+        res = solve_ehl(
+            load,
+            radius,
+            entrainment_speed,
+            sliding_speed,
+            self.bodies,
+            self.lub,
+            self.rough,
+            options=self.opts,
+        )
         cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
         self._grid = None
-        self._n_event = (res.x.size if self.opts.n is None and EVENT_NODES_FROM_START
-                         else None)
+        self._n_event = res.x.size if self.opts.n is None and EVENT_NODES_FROM_START else None
         grid = self._make_grid(cond, None)
         sysm = ReynoldsSystem(grid, cond, self.model)
-        st = state_from_dimensional(sysm, res.x, res.pressure + res.asperity_pressure,
-                                    res.rigid_approach)
+        st = state_from_dimensional(
+            sysm, res.x, res.pressure + res.asperity_pressure, res.rigid_approach
+        )
         # the steady state of the transient's own grid, so that marching at constant
         # conditions stays there (the grids differ in extent and spacing)
         out = newton(sysm, st, self.opts.tol, self.opts.max_iter)
@@ -108,8 +124,7 @@ class TransientEHL:
         self.result = res
         return res
 
-    def start_film(self, film, load, radius, entrainment_speed=0.0, sliding_speed=0.0,
-                   time=0.0):
+    def start_film(self, film, load, radius, entrainment_speed=0.0, sliding_speed=0.0, time=0.0):
         """Start from an unloaded film h(x) = film + x²/(2R) (no pressure yet)."""
         h0 = check_positive("film", film, "m")
         cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
@@ -196,12 +211,14 @@ class TransientEHL:
         saved = self._snapshot()
         c0 = self.conditions_before if self.conditions_before is not None else cond
         marks = self._load_marks(c0.load, cond.load)
-        if len(marks) > 1:                # a large load change: follow its ramp
+        if len(marks) > 1:  # a large load change: follow its ramp
             res = self._substep(dt, c0, cond, marks, depth=0)
             ratio = max(cond.load / c0.load, c0.load / cond.load)
-            note = (f"the load changed by a factor {ratio:.3g} within one step, which was "
-                    f"split into sub-steps along a linear ramp; refine the time step to "
-                    "resolve the loading history")
+            note = (
+                f"the load changed by a factor {ratio:.3g} within one step, which was "
+                f"split into sub-steps along a linear ramp; refine the time step to "
+                "resolve the loading history"
+            )
             res.warnings.append(note)
             res.message += f"; warning: {note}"
             return res
@@ -209,7 +226,7 @@ class TransientEHL:
         if res.converged or self.max_substeps == 0:
             return res
         self._restore(saved)
-        return self._substep(dt, c0, cond, marks, depth=1)   # the full step failed
+        return self._substep(dt, c0, cond, marks, depth=1)  # the full step failed
 
     @contextmanager
     def _max_iter(self, n: int):
@@ -236,10 +253,17 @@ class TransientEHL:
         """March from the current state (fraction 0) through ``marks`` to fraction 1 with
         bounded adaptive sub-steps (class docstring); the first attempt spans
         1/2^depth of the way to the first mark."""
+
         def at(f):
-            return Conditions(*(a + f * (b - a) for a, b in zip(
-                (c0.load, c0.radius, c0.entrainment_speed, c0.sliding_speed),
-                (c1.load, c1.radius, c1.entrainment_speed, c1.sliding_speed))))
+            return Conditions(
+                *(
+                    a + f * (b - a)
+                    for a, b in zip(
+                        (c0.load, c0.radius, c0.entrainment_speed, c0.sliding_speed),
+                        (c1.load, c1.radius, c1.entrainment_speed, c1.sliding_speed),
+                    )
+                )
+            )
 
         k = self.max_substeps
         done, failures, n_ok = 0.0, 0, 0
@@ -273,27 +297,51 @@ class TransientEHL:
         if last.converged:
             last.message += f" (finished after {failures} failed sub-steps)"
         else:
-            last.message = (f"no converged sub-step path: gave up after {failures} failed "
-                            f"sub-steps ({n_ok} converged, reached {done:.3g} of the step; "
-                            f"at most {k} halvings, max_substeps = {k}): {res.message}")
+            last.message = (
+                f"no converged sub-step path: gave up after {failures} failed "
+                f"sub-steps ({n_ok} converged, reached {done:.3g} of the step; "
+                f"at most {k} halvings, max_substeps = {k}): {res.message}"
+            )
         return last
 
     def _state(self):
         """The marching state (restored by :meth:`_set_state`)."""
-        return (self._grid, self._q, self._p, self._h, self._h0, list(self._hist), self.time,
-                self._lu, self._hc_hist, self.result)
+        return (
+            self._grid,
+            self._q,
+            self._p,
+            self._h,
+            self._h0,
+            list(self._hist),
+            self.time,
+            self._lu,
+            self._hc_hist,
+            self.result,
+        )
 
     def _set_state(self, snap):
-        (self._grid, self._q, self._p, self._h, self._h0, hist, self.time, self._lu,
-         self._hc_hist, self.result) = snap
+        (
+            self._grid,
+            self._q,
+            self._p,
+            self._h,
+            self._h0,
+            hist,
+            self.time,
+            self._lu,
+            self._hc_hist,
+            self.result,
+        ) = snap
         self._hist = list(hist)
 
     def _snapshot(self):
         """The state before a step, remembering that step's starting conditions."""
         r = self.result
-        self.conditions_before = (None if r is None else
-                                  Conditions(r.load, r.radius, r.entrainment_speed,
-                                             r.sliding_speed))
+        self.conditions_before = (
+            None
+            if r is None
+            else Conditions(r.load, r.radius, r.entrainment_speed, r.sliding_speed)
+        )
         return self._state()
 
     def _restore(self, snap):
@@ -325,13 +373,11 @@ class TransientEHL:
             a0, f_eff = 1.0, f1
         sysm = ReynoldsSystem(grid, cond, self.model, time_coef=a0 / dt)
         sysm.f_old = f_eff / (self.lub.density * sysm.h_ref)
-        st0 = self._predict(sysm, state_from_dimensional(sysm, prev_grid.x, self._q, self._h0),
-                            dt)
+        st0 = self._predict(sysm, state_from_dimensional(sysm, prev_grid.x, self._q, self._h0), dt)
         out = newton(sysm, st0, o.tol, o.max_iter, lu=self._lu if same else None)
         self._lu = out.lu if out.converged else None
         self._commit(sysm, out.state, dt, self.time + dt)
         hc_new = float(np.interp(0.0, grid.x, self._h))
-        res = postprocess(sysm, out, o, time=self.time,
-                          squeeze_velocity=-(hc_new - hc_prev) / dt)
+        res = postprocess(sysm, out, o, time=self.time, squeeze_velocity=-(hc_new - hc_prev) / dt)
         self.result = res
         return res

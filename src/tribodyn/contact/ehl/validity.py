@@ -41,8 +41,13 @@ import numpy as np
 
 from .options import ContactModel, EHLResult
 
-__all__ = ["check_solution", "MAX_ASPECT_RATIO", "MAX_ZONE_TO_RADIUS",
-           "MAX_MODIFIED_REYNOLDS", "MAX_PRESSURE"]
+__all__ = [
+    "check_solution",
+    "MAX_ASPECT_RATIO",
+    "MAX_ZONE_TO_RADIUS",
+    "MAX_MODIFIED_REYNOLDS",
+    "MAX_PRESSURE",
+]
 
 #: film aspect ratio h_c/ℓ above which Reynolds' thin-film approximation is flagged
 MAX_ASPECT_RATIO = 0.1
@@ -77,9 +82,11 @@ def check_solution(res: EHLResult, model: ContactModel) -> EHLResult:
     h_min = float(h.min())
     if h_min <= 0.0:
         res.converged = False
-        res.message = (f"non-physical film: h_min = {h_min:.3g} m ≤ 0 (the mean planes of "
-                       "the surfaces interpenetrate; the load is beyond what the lubricated "
-                       f"contact model describes) [Newton: {res.message}]")
+        res.message = (
+            f"non-physical film: h_min = {h_min:.3g} m ≤ 0 (the mean planes of "
+            "the surfaces interpenetrate; the load is beyond what the lubricated "
+            f"contact model describes) [Newton: {res.message}]"
+        )
         return res
     R, w, hc = res.radius, res.load, res.central_film
     lub = model.lubricant
@@ -88,25 +95,33 @@ def check_solution(res: EHLResult, model: ContactModel) -> EHLResult:
     found = []
     eps = hc / ell if ell > 0 else math.inf
     if eps > MAX_ASPECT_RATIO:
-        found.append(f"film h_c = {hc:.3g} m is {hc / R:.3g} R and {eps:.2g} of the length "
-                     f"over which it varies (ℓ = {ell:.3g} m): Reynolds' thin-film "
-                     f"approximation needs h/ℓ ≪ 1 (flagged above {MAX_ASPECT_RATIO:g})")
+        found.append(
+            f"film h_c = {hc:.3g} m is {hc / R:.3g} R and {eps:.2g} of the length "
+            f"over which it varies (ℓ = {ell:.3g} m): Reynolds' thin-film "
+            f"approximation needs h/ℓ ≪ 1 (flagged above {MAX_ASPECT_RATIO:g})"
+        )
     zone = _load_zone(res.x, res.pressure + res.asperity_pressure)
     size = max(zone, b)
     if size > MAX_ZONE_TO_RADIUS * R:
-        found.append(f"the load-carrying zone reaches {size / R:.3g} R (Hertz b = "
-                     f"{b / R:.3g} R): the parabolic gap and half-space elasticity need a "
-                     f"contact much smaller than R (flagged above {MAX_ZONE_TO_RADIUS:g} R)")
+        found.append(
+            f"the load-carrying zone reaches {size / R:.3g} R (Hertz b = "
+            f"{b / R:.3g} R): the parabolic gap and half-space elasticity need a "
+            f"contact much smaller than R (flagged above {MAX_ZONE_TO_RADIUS:g} R)"
+        )
     re_star = lub.density * abs(res.entrainment_speed) * hc**2 / (lub.viscosity * ell)
     if re_star > MAX_MODIFIED_REYNOLDS:
-        found.append(f"modified Reynolds number ρu_e h_c²/(μ₀ℓ) = {re_star:.3g}: fluid "
-                     "inertia, neglected by the Reynolds equation, is not negligible "
-                     f"(flagged above {MAX_MODIFIED_REYNOLDS:g})")
+        found.append(
+            f"modified Reynolds number ρu_e h_c²/(μ₀ℓ) = {re_star:.3g}: fluid "
+            "inertia, neglected by the Reynolds equation, is not negligible "
+            f"(flagged above {MAX_MODIFIED_REYNOLDS:g})"
+        )
     p_max = float(np.max(res.pressure + res.asperity_pressure))
     if p_max > MAX_PRESSURE:
-        found.append(f"peak contact pressure {p_max / 1e9:.3g} GPa exceeds "
-                     f"{MAX_PRESSURE / 1e9:g} GPa: beyond the elastic limit of hardened steel "
-                     "and the measured range of the Roelands and Dowson–Higginson laws")
+        found.append(
+            f"peak contact pressure {p_max / 1e9:.3g} GPa exceeds "
+            f"{MAX_PRESSURE / 1e9:g} GPa: beyond the elastic limit of hardened steel "
+            "and the measured range of the Roelands and Dowson–Higginson laws"
+        )
     for text in found:
         res.warnings.append(text)
         res.message += f"; warning: {text}"

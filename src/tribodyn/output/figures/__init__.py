@@ -29,25 +29,34 @@ _MAKERS = {
     "fig06_ehl_pressure_film.png": (fig06, ("ehl_x",)),
     "fig08_tappet_velocity.png": (fig08, ("crank_angle", "tappet_velocity", "contact_force")),
     "fig09_contact_force.png": (fig09, ("crank_angle", "contact_force")),
-    "fig10_tappet_acceleration.png": (fig10, ("crank_angle", "tappet_acceleration",
-                                               "contact_force")),
-    "fig11_entrainment_speed.png": (fig11, ("entrainment_speed", "sliding_speed",
-                                             "radius_of_curvature", "contact_force")),
+    "fig10_tappet_acceleration.png": (
+        fig10,
+        ("crank_angle", "tappet_acceleration", "contact_force"),
+    ),
+    "fig11_entrainment_speed.png": (
+        fig11,
+        ("entrainment_speed", "sliding_speed", "radius_of_curvature", "contact_force"),
+    ),
     "fig12_greenwood_chart.png": (fig12, ("gV", "gE", "loaded", "ehl_contact_force")),
-    "fig13_pressure_film_points.png": (fig13, ("pressure", "film", "profile_x",
-                                                "point_crank", "loaded")),
-    "fig14_coatings_pressure_film.png": (fig14, ("pressure", "film", "profile_x", "loaded",
-                                                  "ehl_contact_force")),
+    "fig13_pressure_film_points.png": (
+        fig13,
+        ("pressure", "film", "profile_x", "point_crank", "loaded"),
+    ),
+    "fig14_coatings_pressure_film.png": (
+        fig14,
+        ("pressure", "film", "profile_x", "loaded", "ehl_contact_force"),
+    ),
     "fig15_central_film.png": (fig15, ("central_film", "loaded")),
     "fig16_boundary_load.png": (fig16, ("asperity_load", "loaded")),
     "fig17_boundary_friction.png": (fig17, ("boundary_friction", "loaded")),
     "fig18_viscous_friction.png": (fig18, ("viscous_friction", "loaded")),
     "fig19_friction_power.png": (fig19, ("friction_power", "loaded")),
     "fig20_min_film_lambda.png": (fig20, ("min_film", "lambda_ratio", "loaded")),
-    "fig21_temperatures.png": (fig21, ("max_temperature", "surface_temperature_tappet",
-                                       "loaded")),
-    "fig22_thermal_vs_isothermal.png": (fig22, ("central_film_isothermal",
-                                                 "viscous_friction_isothermal", "loaded")),
+    "fig21_temperatures.png": (fig21, ("max_temperature", "surface_temperature_tappet", "loaded")),
+    "fig22_thermal_vs_isothermal.png": (
+        fig22,
+        ("central_film_isothermal", "viscous_friction_isothermal", "loaded"),
+    ),
 }
 
 
@@ -66,18 +75,20 @@ def make_figures(ds, out_dir, *, only=None) -> dict[str, Path]:
     ref = ds.attrs.get("reference_set")
     if ref is not None and "surface_set" in ds.dims:
         names = [str(v) for v in ds["surface_set"].values]
-        if ref in names and names[0] != ref:      # the figures compare against index 0
+        if ref in names and names[0] != ref:  # the figures compare against index 0
             k = names.index(ref)
             ds = ds.isel(surface_set=[k] + [i for i in range(len(names)) if i != k])
     if only is not None:
         unknown = sorted(set(only) - set(_MAKERS))
         if unknown:
-            raise InputError(f"unknown figure name(s) {', '.join(unknown)}; known: "
-                             f"{', '.join(_MAKERS)}")
+            raise InputError(
+                f"unknown figure name(s) {', '.join(unknown)}; known: {', '.join(_MAKERS)}"
+            )
     wanted = list(_MAKERS) if only is None else [n for n in _MAKERS if n in set(only)]
     written = {}
-    with plt.rc_context({"font.size": 10, "axes.titlesize": TITLE_SIZE,
-                         "figure.dpi": 100, "savefig.dpi": 150}):
+    with plt.rc_context(
+        {"font.size": 10, "axes.titlesize": TITLE_SIZE, "figure.dpi": 100, "savefig.dpi": 150}
+    ):
         for name in wanted:
             maker, needs = _MAKERS[name]
             if not has(ds, *needs):

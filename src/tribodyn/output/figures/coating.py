@@ -22,21 +22,25 @@ from .common import (
 
 # ----------------------------------------------------------------------------- Fig. 5
 
+
 def fig05(ds, path):
     from ... import paper
     from ...physics.hertz import hertz_line_contact
     from ...physics.materials import STEEL
 
-    cond = (json.loads(ds.attrs["dry_coating_conditions"])
-            if "dry_coating_conditions" in ds.attrs else paper.FIG5)
+    cond = (
+        json.loads(ds.attrs["dry_coating_conditions"])
+        if "dry_coating_conditions" in ds.attrs
+        else paper.FIG5
+    )
     ratios = arr(ds, "dry_ratio")
     x = arr(ds, "dry_x") * UM
     p = arr(ds, "dry_pressure") * MPA
     b = arr(ds, "dry_half_width") * UM if "dry_half_width" in ds else np.full(ratios.size, np.nan)
-    pm = (arr(ds, "dry_max_pressure") * MPA if "dry_max_pressure" in ds
-          else np.nanmax(p, axis=1))
-    fig, (ax, az) = plt.subplots(1, 2, figsize=(12, 5), layout="constrained",
-                                 gridspec_kw=dict(width_ratios=(1.3, 1)))
+    pm = arr(ds, "dry_max_pressure") * MPA if "dry_max_pressure" in ds else np.nanmax(p, axis=1)
+    fig, (ax, az) = plt.subplots(
+        1, 2, figsize=(12, 5), layout="constrained", gridspec_kw=dict(width_ratios=(1.3, 1))
+    )
     cmap = plt.get_cmap("viridis")
     for i, r in enumerate(ratios):
         col = cmap(i / max(ratios.size - 1, 1))
@@ -48,9 +52,14 @@ def fig05(ds, path):
     h = hertz_line_contact(w, cond["radius"], e_prime)
     xs = np.linspace(x[0], x[-1], 801)
     for a in (ax, az):
-        a.plot(xs, h.pressure(xs / UM) * MPA, "k:", lw=1.2,
-               label=f"Hertz, uncoated steel: b = {h.half_width * UM:.1f} µm, "
-                     f"p_h = {h.max_pressure * MPA:.0f} MPa")
+        a.plot(
+            xs,
+            h.pressure(xs / UM) * MPA,
+            "k:",
+            lw=1.2,
+            label=f"Hertz, uncoated steel: b = {h.half_width * UM:.1f} µm, "
+            f"p_h = {h.max_pressure * MPA:.0f} MPa",
+        )
         a.set_xlabel("x [µm]")
         a.set_ylabel("contact pressure p [MPa]")
         a.grid(alpha=0.3)
@@ -64,13 +73,18 @@ def fig05(ds, path):
     az.set_title("(b) zoom on the pressure peak", fontsize=TITLE_SIZE)
     handles, labels = ax.get_legend_handles_labels()
     legend_below(fig, handles, labels, ncol=2)
-    return finish(fig, path, FIGURES[path.name],
-                   f"steel cam on coated steel tappet: coating {cond['thickness'] * UM:g} µm, "
-                   f"{cond['load_total']:g} N over {cond['width'] * MM:g} mm, "
-                   f"R = {cond['radius'] * MM:g} mm assumed (not given in the paper)")
+    return finish(
+        fig,
+        path,
+        FIGURES[path.name],
+        f"steel cam on coated steel tappet: coating {cond['thickness'] * UM:g} µm, "
+        f"{cond['load_total']:g} N over {cond['width'] * MM:g} mm, "
+        f"R = {cond['radius'] * MM:g} mm assumed (not given in the paper)",
+    )
 
 
 # ----------------------------------------------------------------------------- Fig. 6
+
 
 def fig06(ds, path):
     cond = json.loads(ds.attrs.get("ehl_coating_conditions", "{}") or "{}")
@@ -80,40 +94,61 @@ def fig06(ds, path):
         ratios = arr(ds, "ehl_ratio")
         ref = int(np.argmin(np.abs(ratios - 1.0)))
         cmap = plt.get_cmap("viridis")
-        styles = [dict(color=cmap(i / max(ratios.size - 1, 1)), ls="-", lw=1.5,
-                       label=f"E_c/E_s = {r:g}") for i, r in enumerate(ratios)]
+        styles = [
+            dict(color=cmap(i / max(ratios.size - 1, 1)), ls="-", lw=1.5, label=f"E_c/E_s = {r:g}")
+            for i, r in enumerate(ratios)
+        ]
         th = cond.get("thickness")
         what = "coating/steel modulus ratios" + (f", coating {th * UM:g} µm" if th else "")
         groups.append(("ehl_ratio", styles, ref, what, f"E_c/E_s = {ratios[ref]:g}"))
     if has(ds, "ehl_pair_pressure", "ehl_pair_film"):
         pairs = [str(v) for v in ds["ehl_pair"].values]
         cols = ["k", "tab:blue", "tab:red", "tab:green", "tab:purple"]
-        styles = [dict(color=cols[i % len(cols)], ls=("-", "--", "-.", ":")[i % 4], lw=1.5,
-                       label=lab) for i, lab in enumerate(pairs)]
+        styles = [
+            dict(color=cols[i % len(cols)], ls=("-", "--", "-.", ":")[i % 4], lw=1.5, label=lab)
+            for i, lab in enumerate(pairs)
+        ]
         groups.append(("ehl_pair", styles, 0, "the paper's pairs", pairs[0]))
     if not groups:
         return None
-    fig, axes = plt.subplots(3, len(groups), figsize=(6.2 * len(groups), 10.5), squeeze=False,
-                             layout="constrained", sharex="col",
-                             gridspec_kw=dict(height_ratios=(1.2, 1.2, 1)))
+    fig, axes = plt.subplots(
+        3,
+        len(groups),
+        figsize=(6.2 * len(groups), 10.5),
+        squeeze=False,
+        layout="constrained",
+        sharex="col",
+        gridspec_kw=dict(height_ratios=(1.2, 1.2, 1)),
+    )
     for col, (dim, styles, ref, what, ref_name) in enumerate(groups):
         p = arr(ds, f"{dim}_pressure") * MPA
         h = arr(ds, f"{dim}_film") * UM
-        hc = (arr(ds, f"{dim}_central_film") * UM if f"{dim}_central_film" in ds
-              else h[:, np.argmin(np.abs(x))])
-        hm = (arr(ds, f"{dim}_min_film") * UM if f"{dim}_min_film" in ds
-              else np.nanmin(h, axis=1))
-        conv = (np.asarray(ds[f"{dim}_converged"].values).astype(bool)
-                if f"{dim}_converged" in ds else np.ones(len(styles), bool))
+        hc = (
+            arr(ds, f"{dim}_central_film") * UM
+            if f"{dim}_central_film" in ds
+            else h[:, np.argmin(np.abs(x))]
+        )
+        hm = arr(ds, f"{dim}_min_film") * UM if f"{dim}_min_film" in ds else np.nanmin(h, axis=1)
+        conv = (
+            np.asarray(ds[f"{dim}_converged"].values).astype(bool)
+            if f"{dim}_converged" in ds
+            else np.ones(len(styles), bool)
+        )
         lo, hi = support(x, p, pad=0.3)
         win = (x >= lo) & (x <= hi)
         ap, ah, ad = axes[:, col]
         for i, st in enumerate(styles):
             flag = "" if conv[i] else " (NOT converged)"
-            ap.plot(x, p[i], **{**st, "label": f"{st['label']}: "
-                                                f"p_max = {np.nanmax(p[i]):.0f} MPa{flag}"})
-            ah.plot(x, h[i], **{**st, "label": f"{st['label']}: h_c = {hc[i]:.4f} µm, "
-                                                f"h_min = {hm[i]:.4f} µm"})
+            ap.plot(
+                x,
+                p[i],
+                **{**st, "label": f"{st['label']}: p_max = {np.nanmax(p[i]):.0f} MPa{flag}"},
+            )
+            ah.plot(
+                x,
+                h[i],
+                **{**st, "label": f"{st['label']}: h_c = {hc[i]:.4f} µm, h_min = {hm[i]:.4f} µm"},
+            )
             ad.plot(x, (h[i] - h[ref]) * 1e3, **st)
         ap.set_ylabel("pressure p [MPa]")
         ap.set_title(f"({'ab'[col]}) {what}", fontsize=TITLE_SIZE)
@@ -126,8 +161,7 @@ def fig06(ds, path):
         dwin = (h[:, win] - h[ref, win]) * 1e3
         lim = np.nanmax(np.abs(dwin)) * 1.15 or 1.0
         ad.set_ylim(-lim, lim)
-        ad.set_title("film difference in the contact (zoom: the differences are nm)",
-                     fontsize=9)
+        ad.set_title("film difference in the contact (zoom: the differences are nm)", fontsize=9)
         ad.set_xlabel("x [µm]  (entraining direction →)")
         for a in (ap, ah, ad):
             a.set_xlim(lo, hi)
@@ -136,13 +170,13 @@ def fig06(ds, path):
         ah.legend(fontsize=8, loc="lower left")
     sub = ""
     if cond:
-        sub = (f"{cond.get('load_total', float('nan')):g} N over "
-               f"{cond.get('width', float('nan')) * MM:g} mm, "
-               f"u_e = {cond.get('entrainment_speed', float('nan')):g} m/s, pure rolling, "
-               f"R = {cond.get('radius', float('nan')) * MM:g} mm assumed "
-               "(not given in the paper)")
+        sub = (
+            f"{cond.get('load_total', float('nan')):g} N over "
+            f"{cond.get('width', float('nan')) * MM:g} mm, "
+            f"u_e = {cond.get('entrainment_speed', float('nan')):g} m/s, pure rolling, "
+            f"R = {cond.get('radius', float('nan')) * MM:g} mm assumed "
+            "(not given in the paper)"
+        )
         if cond.get("pair_thickness"):
             sub += f"; pairs: coating {cond['pair_thickness'] * UM:g} µm"
     return finish(fig, path, FIGURES[path.name], sub or None)
-
-

@@ -15,26 +15,20 @@ import matplotlib
 import numpy as np
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.pyplot as plt
 
 __all__ = ["plt", "save_figure", "FIGURES", "EVENT_FRACTION"]
 
 #: File names and titles of the figures :func:`make_figures` writes, in order.
 FIGURES = {
-    "fig05_dry_pressure.png":
-        "Dry contact pressure for coating/steel modulus ratios (paper Fig. 5)",
-    "fig06_ehl_pressure_film.png":
-        "EHL pressure and film for coating moduli and real pairs (paper Fig. 6)",
+    "fig05_dry_pressure.png": "Dry contact pressure for coating/steel modulus ratios (paper Fig. 5)",
+    "fig06_ehl_pressure_film.png": "EHL pressure and film for coating moduli and real pairs (paper Fig. 6)",
     "fig08_tappet_velocity.png": "Tappet velocity, explicit vs implicit EHL (paper Fig. 8)",
-    "fig09_contact_force.png":
-        "Cam–tappet contact force, explicit vs implicit EHL (paper Fig. 9)",
-    "fig10_tappet_acceleration.png":
-        "Tappet acceleration, explicit vs implicit EHL (paper Fig. 10)",
-    "fig11_entrainment_speed.png":
-        "Entraining speed, sliding speed and radius of curvature (paper Fig. 11)",
+    "fig09_contact_force.png": "Cam–tappet contact force, explicit vs implicit EHL (paper Fig. 9)",
+    "fig10_tappet_acceleration.png": "Tappet acceleration, explicit vs implicit EHL (paper Fig. 10)",
+    "fig11_entrainment_speed.png": "Entraining speed, sliding speed and radius of curvature (paper Fig. 11)",
     "fig12_greenwood_chart.png": "Greenwood chart of the operating points (paper Fig. 12)",
-    "fig13_pressure_film_points.png":
-        "Pressure and film at the six representative points (paper Fig. 13)",
+    "fig13_pressure_film_points.png": "Pressure and film at the six representative points (paper Fig. 13)",
     "fig14_coatings_pressure_film.png": "Pressure and film of the coated surfaces (paper Fig. 14)",
     "fig15_central_film.png": "Central film thickness over the cycle (paper Fig. 15)",
     "fig16_boundary_load.png": "Asperity (boundary) load over the cycle (paper Fig. 16)",
@@ -67,6 +61,7 @@ def save_figure(fig, path) -> Path:
 
 # ----------------------------------------------------------------------------- helpers
 
+
 def has(ds, *names) -> bool:
     return all(n in ds.variables for n in names)
 
@@ -86,10 +81,16 @@ def set_styles(ds) -> list[dict]:
     (``coating_material``), the thinnest of several thicknesses dashed, the rest solid."""
     labels = set_labels(ds)
     n = len(labels)
-    mats = ([str(v) for v in ds["coating_material"].values] if "coating_material" in ds
-            else [""] + ["coating"] * (n - 1))
-    thick = (np.asarray(ds["coating_thickness"].values, float) if "coating_thickness" in ds
-             else np.zeros(n))
+    mats = (
+        [str(v) for v in ds["coating_material"].values]
+        if "coating_material" in ds
+        else [""] + ["coating"] * (n - 1)
+    )
+    thick = (
+        np.asarray(ds["coating_thickness"].values, float)
+        if "coating_thickness" in ds
+        else np.zeros(n)
+    )
     families = list(dict.fromkeys(m for m in mats if m))
     styles = []
     for i, (mat, lab) in enumerate(zip(mats, labels)):
@@ -123,8 +124,10 @@ def event_window(ds) -> tuple[float, float]:
         sel &= force >= EVENT_FRACTION * np.nanmax(force)
     if not sel.any():
         return float(e[0]), float(e[-1])
-    return (max(float(e[sel][0]) - EVENT_MARGIN_DEG, float(e[0])),
-            min(float(e[sel][-1]) + EVENT_MARGIN_DEG, float(e[-1])))
+    return (
+        max(float(e[sel][0]) - EVENT_MARGIN_DEG, float(e[0])),
+        min(float(e[sel][-1]) + EVENT_MARGIN_DEG, float(e[-1])),
+    )
 
 
 def in_window(x, window) -> np.ndarray:
@@ -159,8 +162,17 @@ def mark_failures(ax, ds, values, window=None, label=True) -> int:
     idx = np.nonzero(bad & np.isfinite(values))
     if idx[0].size == 0:
         return 0
-    ax.plot(e[idx[1]], values[idx], "x", color="red", ms=7, mew=1.8, ls="none",
-            label="EHL step not converged" if label else None, zorder=5)
+    ax.plot(
+        e[idx[1]],
+        values[idx],
+        "x",
+        color="red",
+        ms=7,
+        mew=1.8,
+        ls="none",
+        label="EHL step not converged" if label else None,
+        zorder=5,
+    )
     return int(idx[0].size)
 
 
@@ -171,8 +183,9 @@ def failure_note(ds) -> str:
     return f"{n} non-converged EHL step(s) marked ×" if n else "all EHL steps converged"
 
 
-def place_labels(ax, xs, ys, texts, *, avoid=None, radius_pt=20.0, fontsize=9,
-                  marker=True, color="k"):
+def place_labels(
+    ax, xs, ys, texts, *, avoid=None, radius_pt=20.0, fontsize=9, marker=True, color="k"
+):
     """Annotate points with short labels, choosing for each label the offset direction
     farthest from the other points, the labels already placed and ``avoid`` (x, y).
     Points closer than a marker size share one label ("3,4")."""
@@ -223,12 +236,21 @@ def place_labels(ax, xs, ys, texts, *, avoid=None, radius_pt=20.0, fontsize=9,
         if marker:
             ax.plot(xs[grp], ys[grp], "o", ms=6, mfc="white", mec=color, mew=1.5, zorder=6)
         box = "circle,pad=0.15" if len(grp) == 1 else "round,pad=0.2"
-        ax.annotate(text, (xs[grp[0]], ys[grp[0]]), xytext=best, textcoords="offset points",
-                    ha="center", va="center", fontsize=fontsize, fontweight="bold",
-                    color=color, zorder=7,
-                    bbox=dict(boxstyle=box, fc="white", ec=color, lw=0.8),
-                    arrowprops=dict(arrowstyle="-", color=color, lw=0.8, shrinkA=0,
-                                    shrinkB=3))
+        ax.annotate(
+            text,
+            (xs[grp[0]], ys[grp[0]]),
+            xytext=best,
+            textcoords="offset points",
+            ha="center",
+            va="center",
+            fontsize=fontsize,
+            fontweight="bold",
+            color=color,
+            zorder=7,
+            bbox=dict(boxstyle=box, fc="white", ec=color, lw=0.8),
+            arrowprops=dict(arrowstyle="-", color=color, lw=0.8, shrinkA=0, shrinkB=3),
+        )
+
 
 def point_indices(ds) -> list[int]:
     """Indices into ehl_crank of the six representative points."""
@@ -247,6 +269,7 @@ def signed(v, digits) -> str:
 def log_ticks(ax, axis="y"):
     """Plain-number labels (0.1, 0.2, 0.5, 1, …) on a logarithmic axis."""
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
     a = ax.yaxis if axis == "y" else ax.xaxis
     a.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
     a.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
@@ -266,8 +289,9 @@ def finish(fig, path, title, subtitle=None) -> Path:
 
 def legend_below(fig, handles, labels, ncol=None, fontsize=9):
     ncol = ncol or min(len(labels), 5)
-    fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=fontsize,
-               frameon=False)
+    fig.legend(
+        handles, labels, loc="outside lower center", ncol=ncol, fontsize=fontsize, frameon=False
+    )
 
 
 def support(x, p, frac=1e-3, pad=0.35):

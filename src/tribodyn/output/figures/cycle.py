@@ -27,6 +27,7 @@ from .common import (
 
 # ----------------------------------------------------------------------------- Figs. 15–20
 
+
 def _cycle_lines(ax, ds, values, window, styles, *, label_fmt=None, floor=None):
     """Plot (surface_set, ehl_crank) values over the event for every set."""
     e = arr(ds, "ehl_crank")
@@ -67,11 +68,19 @@ def _point_ticks(ax, ds):
             continue
         for k in g:
             ax.axvline(pc[k], color="0.6", lw=0.6, ls="--", zorder=0)
-        ax.annotate(",".join(str(nums[k]) for k in g), (c, 1.0),
-                    xycoords=("data", "axes fraction"), xytext=(0, 2),
-                    textcoords="offset points", ha="center", va="bottom", fontsize=8,
-                    color="0.35")
+        ax.annotate(
+            ",".join(str(nums[k]) for k in g),
+            (c, 1.0),
+            xycoords=("data", "axes fraction"),
+            xytext=(0, 2),
+            textcoords="offset points",
+            ha="center",
+            va="bottom",
+            fontsize=8,
+            color="0.35",
+        )
     ax.set_title(ax.get_title(), pad=14)
+
 
 def fig15(ds, path):
     win = event_window(ds)
@@ -81,8 +90,14 @@ def fig15(ds, path):
     gain = (hc / ref - 1.0) * 100.0
     e = arr(ds, "ehl_crank")
     sel = in_window(e, win)
-    fig, (a, b) = plt.subplots(2, 1, figsize=(11, 9), sharex=True, layout="constrained",
-                               gridspec_kw=dict(height_ratios=(1.6, 1)))
+    fig, (a, b) = plt.subplots(
+        2,
+        1,
+        figsize=(11, 9),
+        sharex=True,
+        layout="constrained",
+        gridspec_kw=dict(height_ratios=(1.6, 1)),
+    )
     _cycle_lines(a, ds, hc * UM, win, styles)
     a.set_yscale("log")
     log_ticks(a)
@@ -93,8 +108,18 @@ def fig15(ds, path):
     a.set_title("(a) central film thickness", fontsize=TITLE_SIZE)
     _point_ticks(a, ds)
 
-    _difference_panel(b, ds, gain, sel, win, styles, "%", 2, "h_c change vs uncoated [%]",
-                      "(b) film change relative to uncoated (paper claims up to +41 %)")
+    _difference_panel(
+        b,
+        ds,
+        gain,
+        sel,
+        win,
+        styles,
+        "%",
+        2,
+        "h_c change vs uncoated [%]",
+        "(b) film change relative to uncoated (paper claims up to +41 %)",
+    )
     return finish(fig, path, FIGURES[path.name], f"cam event only; {failure_note(ds)}")
 
 
@@ -108,12 +133,16 @@ def _log_floor(values, decades=4):
 def _difference_panel(ax, ds, diff, sel, win, styles, unit, digits, ylabel, title):
     """Lower panel of Figs. 15 and 18: each set's difference to the reference set (index
     0), labelled with its extremes over the event window ``sel``."""
+
     def fmt(j, lab):
         g = diff[j][sel]
         if j == 0 or not np.isfinite(g).any():
             return lab + " (reference)"
-        return (f"{lab}: max {signed(np.nanmax(g), digits)} {unit}, "
-                f"min {signed(np.nanmin(g), digits)} {unit}")
+        return (
+            f"{lab}: max {signed(np.nanmax(g), digits)} {unit}, "
+            f"min {signed(np.nanmin(g), digits)} {unit}"
+        )
+
     _cycle_lines(ax, ds, diff, win, styles, label_fmt=fmt)
     ax.axhline(0, color="0.4", lw=0.8)
     ax.set_ylabel(ylabel)
@@ -132,6 +161,7 @@ def _linear_and_log(ds, path, name, ylabel, sub, *, decades=4):
     def fmt(j, lab):
         m = np.nanmax(v[j][sel]) if np.isfinite(v[j][sel]).any() else np.nan
         return f"{lab}: max {m:.3g} N"
+
     _cycle_lines(a, ds, v, win, styles, label_fmt=fmt)
     a.set_ylabel(ylabel)
     a.set_ylim(bottom=0)
@@ -145,8 +175,9 @@ def _linear_and_log(ds, path, name, ylabel, sub, *, decades=4):
     b.set_ylim(floor, 2 * np.nanmax(v[:, sel]) if np.isfinite(v[:, sel]).any() else 1)
     b.set_ylabel(ylabel)
     b.grid(alpha=0.3, which="both")
-    b.set_title(f"(b) logarithmic scale (values below {floor:.1e} N not drawn)",
-                fontsize=TITLE_SIZE)
+    b.set_title(
+        f"(b) logarithmic scale (values below {floor:.1e} N not drawn)", fontsize=TITLE_SIZE
+    )
     return finish(fig, path, FIGURES[path.name], sub)
 
 
@@ -164,13 +195,19 @@ def _reduction_note(ds, name, what):
     if not tot[0] > 0:
         return None
     return f"{what} vs uncoated: " + ", ".join(
-        f"{labels[j]} {signed((tot[j] / tot[0] - 1) * 100, 0)} %" for j in range(1, len(labels)))
+        f"{labels[j]} {signed((tot[j] / tot[0] - 1) * 100, 0)} %" for j in range(1, len(labels))
+    )
 
 
 def fig16(ds, path):
-    return _linear_and_log(ds, path, "asperity_load", "asperity load W_a [N]",
-                           _reduction_note(ds, "asperity_load", "∫W_a dt over the cycle"),
-                           decades=5)
+    return _linear_and_log(
+        ds,
+        path,
+        "asperity_load",
+        "asperity load W_a [N]",
+        _reduction_note(ds, "asperity_load", "∫W_a dt over the cycle"),
+        decades=5,
+    )
 
 
 def fig17(ds, path):
@@ -187,8 +224,14 @@ def fig18(ds, path):
     d = v - v[0]
     e = arr(ds, "ehl_crank")
     sel = in_window(e, win)
-    fig, (a, b) = plt.subplots(2, 1, figsize=(11, 9), sharex=True, layout="constrained",
-                               gridspec_kw=dict(height_ratios=(1.5, 1)))
+    fig, (a, b) = plt.subplots(
+        2,
+        1,
+        figsize=(11, 9),
+        sharex=True,
+        layout="constrained",
+        gridspec_kw=dict(height_ratios=(1.5, 1)),
+    )
     _cycle_lines(a, ds, v, win, styles)
     a.set_ylabel("viscous friction F_v [N]")
     a.set_ylim(bottom=0)
@@ -197,8 +240,18 @@ def fig18(ds, path):
     a.set_title("(a) viscous (Couette) friction", fontsize=TITLE_SIZE)
     _point_ticks(a, ds)
 
-    _difference_panel(b, ds, d, sel, win, styles, "N", 3, "F_v − F_v(uncoated) [N]",
-                      "(b) difference to uncoated (paper: WC-C up to +0.43 N)")
+    _difference_panel(
+        b,
+        ds,
+        d,
+        sel,
+        win,
+        styles,
+        "N",
+        3,
+        "F_v − F_v(uncoated) [N]",
+        "(b) difference to uncoated (paper: WC-C up to +0.43 N)",
+    )
     return finish(fig, path, FIGURES[path.name], f"cam event only; {failure_note(ds)}")
 
 
@@ -219,14 +272,14 @@ def fig19(ds, path):
     _point_ticks(a, ds)
     labels = [st["label"] for st in styles]
     ypos = np.arange(len(labels))
-    b.barh(ypos, energy, color=[st["color"] for st in styles], alpha=0.8,
-           edgecolor="k")
+    b.barh(ypos, energy, color=[st["color"] for st in styles], alpha=0.8, edgecolor="k")
     for y, en in zip(ypos, energy):
         txt = f"{en:.4f} J"
         if y > 0 and energy[0] > 0:
             txt += f" ({signed((en / energy[0] - 1) * 100, 2)} %)"
-        b.text(en * 0.02, y, txt, va="center", ha="left", fontsize=9, color="white",
-               fontweight="bold")
+        b.text(
+            en * 0.02, y, txt, va="center", ha="left", fontsize=9, color="white", fontweight="bold"
+        )
     b.set_yticks(ypos, labels)
     b.invert_yaxis()
     b.set_xlabel("friction energy per engine cycle [J]")
@@ -234,9 +287,13 @@ def fig19(ds, path):
     b.grid(alpha=0.3, axis="x")
     rpm = ds.attrs.get("engine_speed_rpm", float("nan"))
     period = 120.0 / float(rpm)
-    return finish(fig, path, FIGURES[path.name],
-                   f"one engine cycle = 720° crank = {period * 1e3:.0f} ms at {rpm:g} rpm; "
-                   f"mean power uncoated {energy[0] / period:.2f} W")
+    return finish(
+        fig,
+        path,
+        FIGURES[path.name],
+        f"one engine cycle = 720° crank = {period * 1e3:.0f} ms at {rpm:g} rpm; "
+        f"mean power uncoated {energy[0] / period:.2f} W",
+    )
 
 
 def fig20(ds, path):
@@ -250,6 +307,7 @@ def fig20(ds, path):
 
     def fmt_h(j, lab):
         return f"{lab}: min {np.nanmin(hm[j][sel]):.3f} µm"
+
     _cycle_lines(a, ds, hm, win, styles, label_fmt=fmt_h)
     a.set_yscale("log")
     log_ticks(a)
@@ -262,9 +320,10 @@ def fig20(ds, path):
 
     def fmt_l(j, lab):
         return f"{lab}: min λ = {np.nanmin(lam[j][sel]):.2f}"
+
     _cycle_lines(b, ds, lam, win, styles, label_fmt=fmt_l)
     b.set_yscale("log")
-    pos = lam[:, sel][lam[:, sel] > 0]          # failed steps may hold λ ≤ 0
+    pos = lam[:, sel][lam[:, sel] > 0]  # failed steps may hold λ ≤ 0
     lo = min(0.5, 0.8 * float(pos.min())) if pos.size else 0.5
     b.set_ylim(lo, max(1.5 * float(np.nanmax(lam[:, sel])), 10.0 * lo))
     log_ticks(b)
@@ -276,8 +335,5 @@ def fig20(ds, path):
     b.set_ylabel("λ = h_min/σ")
     b.grid(alpha=0.3, which="both")
     b.legend(fontsize=8, ncol=2, loc="best")
-    b.set_title("(b) film parameter (σ: composite RMS roughness of each set)",
-                fontsize=TITLE_SIZE)
+    b.set_title("(b) film parameter (σ: composite RMS roughness of each set)", fontsize=TITLE_SIZE)
     return finish(fig, path, FIGURES[path.name], f"cam event only; {failure_note(ds)}")
-
-

@@ -20,6 +20,7 @@ from .common import (
 
 # ----------------------------------------------------------------------------- Figs. 8–10
 
+
 def _zoom_windows(ds) -> list[tuple[float, float]]:
     """Engagement and disengagement windows [deg], widened to hold the largest
     explicit/implicit force difference on each side of the nose."""
@@ -39,8 +40,9 @@ def _zoom_windows(ds) -> list[tuple[float, float]]:
 
 
 _EXPLICIT_STYLE = dict(color="tab:blue", lw=1.5, label="explicit (analytic film in the dynamics)")
-_IMPLICIT_STYLE = dict(color="tab:orange", lw=1.3, ls="--",
-                       label="implicit (numerical EHL in the dynamics)")
+_IMPLICIT_STYLE = dict(
+    color="tab:orange", lw=1.3, ls="--", label="implicit (numerical EHL in the dynamics)"
+)
 
 
 def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False):
@@ -68,29 +70,49 @@ def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False)
     ax.set_title("(a) presented engine cycle", fontsize=TITLE_SIZE)
     for k, (w, a) in enumerate(zip(wins, zooms)):
         ax.axvspan(*w, color="0.85", zorder=0)
-        ax.text(0.5 * (w[0] + w[1]), 1.0, "cd"[k], transform=ax.get_xaxis_transform(),
-                ha="center", va="bottom", fontsize=9)
+        ax.text(
+            0.5 * (w[0] + w[1]),
+            1.0,
+            "cd"[k],
+            transform=ax.get_xaxis_transform(),
+            ha="center",
+            va="bottom",
+            fontsize=9,
+        )
         crank_axis(a, w)
         sel = in_window(ca, w)
         vals = y[sel] if yi is None else np.concatenate([y[sel], yi[sel]])
         lo, hi = np.nanmin(vals), np.nanmax(vals)
         pad = 0.08 * (hi - lo) or 1.0
         a.set_ylim(lo - pad, hi + pad)
-        a.set_title(f"({'cd'[k]}) zoom: {('engagement', 'disengagement')[k]}",
-                    fontsize=TITLE_SIZE)
+        a.set_title(f"({'cd'[k]}) zoom: {('engagement', 'disengagement')[k]}", fontsize=TITLE_SIZE)
     if has_imp:
         d = yi - y
         ad.plot(ca, d, color="tab:purple", lw=1.0)
         i = int(np.nanargmax(np.abs(d)))
         big = abs(d[i])
         txt = f"{big:.0f}" if big >= 100 else f"{big:.3g}"
-        ad.annotate(f"max |Δ| = {txt} {diff_unit} at {ca[i]:.1f}°", (ca[i], d[i]),
-                    xytext=(12, 0), textcoords="offset points", fontsize=9, va="center",
-                    ha="left" if ca[i] < 0.8 * full[1] + 0.2 * full[0] else "right")
+        ad.annotate(
+            f"max |Δ| = {txt} {diff_unit} at {ca[i]:.1f}°",
+            (ca[i], d[i]),
+            xytext=(12, 0),
+            textcoords="offset points",
+            fontsize=9,
+            va="center",
+            ha="left" if ca[i] < 0.8 * full[1] + 0.2 * full[0] else "right",
+        )
         ad.axhline(0, color="0.5", lw=0.6)
     else:
-        ad.text(0.5, 0.5, "implicit run not in the results: explicit only",
-                transform=ad.transAxes, ha="center", va="center", fontsize=11, color="tab:red")
+        ad.text(
+            0.5,
+            0.5,
+            "implicit run not in the results: explicit only",
+            transform=ad.transAxes,
+            ha="center",
+            va="center",
+            fontsize=11,
+            color="tab:red",
+        )
         ad.set_yticks([])
     ad.set_ylabel(f"implicit − explicit\n[{diff_unit}]")
     crank_axis(ad, full)
@@ -99,10 +121,24 @@ def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False)
         pc = arr(ds, "point_crank")
         py = np.interp(pc, ca, y)
         ev = in_window(ca, (pc.min() - 40, pc.max() + 40))
-        place_labels(ax, pc, py, [str(int(n)) for n in arr(ds, "point")],
-                      avoid=(ca[ev][::4], y[ev][::4]), radius_pt=16)
-        ax.plot([], [], "o", ms=6, mfc="white", mec="k", mew=1.5,
-                label="representative points 1–6 (Fig. 13)")
+        place_labels(
+            ax,
+            pc,
+            py,
+            [str(int(n)) for n in arr(ds, "point")],
+            avoid=(ca[ev][::4], y[ev][::4]),
+            radius_pt=16,
+        )
+        ax.plot(
+            [],
+            [],
+            "o",
+            ms=6,
+            mfc="white",
+            mec="k",
+            mew=1.5,
+            label="representative points 1–6 (Fig. 13)",
+        )
     ax.legend(fontsize=9, loc="upper left")
     sub = None if has_imp else "implicit run not in the results: explicit only"
     return finish(fig, path, FIGURES[path.name], sub)
@@ -113,16 +149,19 @@ def fig08(ds, path):
 
 
 def fig09(ds, path):
-    return _explicit_implicit(ds, path, "contact_force", 1.0, "contact force W [N]", "N",
-                              points=True)
+    return _explicit_implicit(
+        ds, path, "contact_force", 1.0, "contact force W [N]", "N", points=True
+    )
 
 
 def fig10(ds, path):
-    return _explicit_implicit(ds, path, "tappet_acceleration", 1.0,
-                              "tappet acceleration [m/s²]", "m/s²")
+    return _explicit_implicit(
+        ds, path, "tappet_acceleration", 1.0, "tappet acceleration [m/s²]", "m/s²"
+    )
 
 
 # ----------------------------------------------------------------------------- Fig. 11
+
 
 def _zero_crossings(x, y):
     s = np.sign(y)
@@ -135,29 +174,55 @@ def fig11(ds, path):
     t_on, t_off = dynamics_event(ds)
     win = (max(ca[0], t_on - 40.0), min(ca[-1], t_off + 40.0))
     sel = in_window(ca, win)
-    fig, axes = plt.subplots(3, 1, figsize=(11, 9.5), sharex=True, layout="constrained",
-                             gridspec_kw=dict(height_ratios=(1.6, 1, 1)))
+    fig, axes = plt.subplots(
+        3,
+        1,
+        figsize=(11, 9.5),
+        sharex=True,
+        layout="constrained",
+        gridspec_kw=dict(height_ratios=(1.6, 1, 1)),
+    )
     ue = arr(ds, "entrainment_speed")
     a = axes[0]
     a.plot(ca[sel], ue[sel], color="tab:blue", lw=1.6, label="u_e = ω(r_b + s + 2s'')/2")
-    a.fill_between(ca[sel], ue[sel], 0, where=ue[sel] < 0, color="tab:red", alpha=0.2,
-                   label="u_e < 0 (entrainment reversed)")
+    a.fill_between(
+        ca[sel],
+        ue[sel],
+        0,
+        where=ue[sel] < 0,
+        color="tab:red",
+        alpha=0.2,
+        label="u_e < 0 (entrainment reversed)",
+    )
     a.axhline(0, color="k", lw=0.9)
     zc = _zero_crossings(ca[sel], ue[sel])
     for k, z in enumerate(zc):
         a.axvline(z, color="tab:red", lw=0.8, ls=":")
         left = k % 2 == 0
-        a.annotate(f"u_e = 0 at {z:.1f}°", (z, 0), xytext=(-8 if left else 8, -16),
-                   textcoords="offset points", ha="right" if left else "left", va="center",
-                   fontsize=8, color="tab:red",
-                   arrowprops=dict(arrowstyle="-", color="tab:red", lw=0.6))
+        a.annotate(
+            f"u_e = 0 at {z:.1f}°",
+            (z, 0),
+            xytext=(-8 if left else 8, -16),
+            textcoords="offset points",
+            ha="right" if left else "left",
+            va="center",
+            fontsize=8,
+            color="tab:red",
+            arrowprops=dict(arrowstyle="-", color="tab:red", lw=0.6),
+        )
     a.set_ylabel("entraining speed u_e [m/s]")
     if "point_crank" in ds:
         pc = arr(ds, "point_crank")
-        place_labels(a, pc, np.interp(pc, ca, ue), [str(int(n)) for n in arr(ds, "point")],
-                      avoid=(ca[sel][::4], ue[sel][::4]), radius_pt=15, fontsize=8)
-        a.plot([], [], "o", ms=6, mfc="white", mec="k", mew=1.5,
-               label="representative points 1–6")
+        place_labels(
+            a,
+            pc,
+            np.interp(pc, ca, ue),
+            [str(int(n)) for n in arr(ds, "point")],
+            avoid=(ca[sel][::4], ue[sel][::4]),
+            radius_pt=15,
+            fontsize=8,
+        )
+        a.plot([], [], "o", ms=6, mfc="white", mec="k", mew=1.5, label="representative points 1–6")
     a.legend(fontsize=9, loc="center")
     a.set_title("(a) entraining (mean rolling) speed", fontsize=TITLE_SIZE)
     a.grid(alpha=0.3)
@@ -173,12 +238,20 @@ def fig11(ds, path):
     axes[2].set_ylabel("radius of curvature R [mm]")
     axes[2].set_title("(c) cam radius of curvature R = r_b + s + s''", fontsize=TITLE_SIZE)
     i = np.flatnonzero(sel)[np.argmin(R[sel])]
-    axes[2].annotate(f"R_min = {R[i]:.2f} mm", (ca[i], R[i]), xytext=(0, 14),
-                     textcoords="offset points", ha="center", fontsize=8)
+    axes[2].annotate(
+        f"R_min = {R[i]:.2f} mm",
+        (ca[i], R[i]),
+        xytext=(0, 14),
+        textcoords="offset points",
+        ha="center",
+        fontsize=8,
+    )
     crank_axis(axes[2], win)
     axes[2].grid(alpha=0.3, which="both")
-    return finish(fig, path, FIGURES[path.name],
-                   f"cam event {t_on:.0f}–{t_off:.0f}° crank (±40° of base circle shown); "
-                   f"{ds.attrs.get('engine_speed_rpm', float('nan')):g} rpm")
-
-
+    return finish(
+        fig,
+        path,
+        FIGURES[path.name],
+        f"cam event {t_on:.0f}–{t_off:.0f}° crank (±40° of base circle shown); "
+        f"{ds.attrs.get('engine_speed_rpm', float('nan')):g} rpm",
+    )

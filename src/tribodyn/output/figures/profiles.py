@@ -25,6 +25,7 @@ from .common import (
 
 # ----------------------------------------------------------------------------- Figs. 13–14
 
+
 def _compared_set(ds) -> int:
     """Index of the set compared with the reference in Fig. 13: the WC-C set of the
     ``surface_roles`` attribute (the paper's comparison), else the last set."""
@@ -79,10 +80,11 @@ def fig13(ds, path):
     conv = np.asarray(ds["converged"].values) if "converged" in ds else None
     fig, axes = plt.subplots(2, 3, figsize=(15, 9.4), layout="constrained")
     # uncoated: broad light line; coated: thin dark dashed line on top (they often coincide)
-    pst = [dict(color="tab:blue", ls="-", lw=2.6, alpha=0.55),
-           dict(color="navy", ls="--", lw=1.3)]
-    hst = [dict(color="tab:red", ls="-", lw=2.6, alpha=0.55),
-           dict(color="darkred", ls="--", lw=1.3)]
+    pst = [dict(color="tab:blue", ls="-", lw=2.6, alpha=0.55), dict(color="navy", ls="--", lw=1.3)]
+    hst = [
+        dict(color="tab:red", ls="-", lw=2.6, alpha=0.55),
+        dict(color="darkred", ls="--", lw=1.3),
+    ]
     for k, (a, i) in enumerate(zip(axes.flat, idx)):
         n = int(arr(ds, "point")[k])
         ah = a.twinx()
@@ -120,23 +122,47 @@ def fig13(ds, path):
             fin = np.flatnonzero(np.isfinite(p0))
             edge = fin.size and max(p0[fin[0]], p0[fin[-1]]) > 0.05 * np.nanmax(p0)
             if np.isfinite(share) and (share < 0.9 or edge):
-                a.text(0.03, 0.04, "pressure not negligible at the domain edge:\n"
-                                   f"∫p dx × width = {share:.0%} of the fluid load",
-                       transform=a.transAxes, fontsize=8, va="bottom", color="0.2",
-                       bbox=dict(fc="lightyellow", ec="0.6", alpha=0.9))
-        a.text(0.98, 0.97, f"h_c = {hc_all[sets[0], i] * UM:.3f} / "
-                           f"{hc_all[sets[1], i] * UM:.3f} µm",
-               transform=a.transAxes, ha="right", va="top", fontsize=8,
-               bbox=dict(fc="white", ec="none", alpha=0.8))
-    handles = [Line2D([], [], **pst[0]), Line2D([], [], **pst[1]),
-               Line2D([], [], **hst[0]), Line2D([], [], **hst[1])]
-    names = [f"pressure, {labels[sets[0]]}", f"pressure, {labels[sets[1]]}",
-             f"film, {labels[sets[0]]}", f"film, {labels[sets[1]]}"]
+                a.text(
+                    0.03,
+                    0.04,
+                    "pressure not negligible at the domain edge:\n"
+                    f"∫p dx × width = {share:.0%} of the fluid load",
+                    transform=a.transAxes,
+                    fontsize=8,
+                    va="bottom",
+                    color="0.2",
+                    bbox=dict(fc="lightyellow", ec="0.6", alpha=0.9),
+                )
+        a.text(
+            0.98,
+            0.97,
+            f"h_c = {hc_all[sets[0], i] * UM:.3f} / {hc_all[sets[1], i] * UM:.3f} µm",
+            transform=a.transAxes,
+            ha="right",
+            va="top",
+            fontsize=8,
+            bbox=dict(fc="white", ec="none", alpha=0.8),
+        )
+    handles = [
+        Line2D([], [], **pst[0]),
+        Line2D([], [], **pst[1]),
+        Line2D([], [], **hst[0]),
+        Line2D([], [], **hst[1]),
+    ]
+    names = [
+        f"pressure, {labels[sets[0]]}",
+        f"pressure, {labels[sets[1]]}",
+        f"film, {labels[sets[0]]}",
+        f"film, {labels[sets[1]]}",
+    ]
     legend_below(fig, handles, names, ncol=4, fontsize=10)
-    sub = (f"{labels[sets[0]]} solid, {labels[sets[1]]} dashed (as in the paper); "
-           f"h_c given as {labels[sets[0]]} / {labels[sets[1]]}; "
-           "x positive in the direction of positive u_e")
+    sub = (
+        f"{labels[sets[0]]} solid, {labels[sets[1]]} dashed (as in the paper); "
+        f"h_c given as {labels[sets[0]]} / {labels[sets[1]]}; "
+        "x positive in the direction of positive u_e"
+    )
     return finish(fig, path, FIGURES[path.name], sub)
+
 
 def fig14(ds, path):
     idx = point_indices(ds)
@@ -159,8 +185,13 @@ def fig14(ds, path):
         if not L[j]:
             continue
         ref = j == 0
-        kw = dict(st, lw=2.4 if ref else st["lw"], color="0.6" if ref else st["color"],
-                  zorder=2 if ref else 3, label=st["label"] + (" (reference)" if ref else ""))
+        kw = dict(
+            st,
+            lw=2.4 if ref else st["lw"],
+            color="0.6" if ref else st["color"],
+            zorder=2 if ref else 3,
+            label=st["label"] + (" (reference)" if ref else ""),
+        )
         axes[0, 0].plot(x, P[j], **kw)
         axes[1, 0].plot(x, H[j], **kw)
         axes[0, 1].plot(x, P[j], marker=".", ms=4, **kw)
@@ -182,12 +213,22 @@ def fig14(ds, path):
     axes[1, 1].set_ylim(0.97 * hmin, hmin + 0.25 * (np.nanmax(hz) - hmin) + 0.03 * hmin)
     for a in axes[:, 2]:
         a.axhline(0, color="0.4", lw=0.8)
-    titles = [["(a) complete distribution", "(b) zoom: pressure peak (dots: grid points)",
-               "(c) difference to uncoated"],
-              ["(a) complete distribution", "(b) zoom: film minimum (dots: grid points)",
-               "(c) difference to uncoated"]]
-    ylabels = [["pressure p [MPa]", "pressure p [MPa]", "p − p(uncoated) [MPa]"],
-               ["film h [µm]", "film h [µm]", "h − h(uncoated) [nm]"]]
+    titles = [
+        [
+            "(a) complete distribution",
+            "(b) zoom: pressure peak (dots: grid points)",
+            "(c) difference to uncoated",
+        ],
+        [
+            "(a) complete distribution",
+            "(b) zoom: film minimum (dots: grid points)",
+            "(c) difference to uncoated",
+        ],
+    ]
+    ylabels = [
+        ["pressure p [MPa]", "pressure p [MPa]", "p − p(uncoated) [MPa]"],
+        ["film h [µm]", "film h [µm]", "h − h(uncoated) [nm]"],
+    ]
     for r in range(2):
         for c in range(3):
             a = axes[r, c]
@@ -199,8 +240,9 @@ def fig14(ds, path):
     legend_below(fig, handles, labels, ncol=len(labels))
     e = arr(ds, "ehl_crank")[i]
     what = f"point {n}, " if n else ""
-    sub = (f"heaviest-loaded representative point: {what}{e:.0f}° crank, "
-           f"W = {force[i]:.0f} N, u_e = {arr(ds, 'ehl_entrainment_speed')[i]:.2f} m/s, "
-           f"R = {arr(ds, 'ehl_radius')[i] * MM:.2f} mm")
+    sub = (
+        f"heaviest-loaded representative point: {what}{e:.0f}° crank, "
+        f"W = {force[i]:.0f} N, u_e = {arr(ds, 'ehl_entrainment_speed')[i]:.2f} m/s, "
+        f"R = {arr(ds, 'ehl_radius')[i] * MM:.2f} mm"
+    )
     return finish(fig, path, FIGURES[path.name], sub)
-

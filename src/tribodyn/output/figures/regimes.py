@@ -17,10 +17,12 @@ from .common import (
 
 # ----------------------------------------------------------------------------- Fig. 12
 
-_REGIME_NAMES = {"IR": "IR\nisoviscous–rigid\n(hydrodynamic)",
-                 "PR": "PR\npiezoviscous–rigid",
-                 "IE": "IE\nisoviscous–elastic\n(soft EHL)",
-                 "PE": "PE\npiezoviscous–elastic\n(classical EHL)"}
+_REGIME_NAMES = {
+    "IR": "IR\nisoviscous–rigid\n(hydrodynamic)",
+    "PR": "PR\npiezoviscous–rigid",
+    "IE": "IE\nisoviscous–elastic\n(soft EHL)",
+    "PE": "PE\npiezoviscous–elastic\n(classical EHL)",
+}
 _REGIME_COLOURS = {"IR": "#dbe9f6", "PR": "#e2f0d9", "IE": "#fff2cc", "PE": "#f8dcdc"}
 
 
@@ -51,9 +53,16 @@ def fig12(ds, path):
         code[lab == r] = k
     fig, ax = plt.subplots(figsize=(10.5, 8), layout="constrained")
     cmap = ListedColormap([_REGIME_COLOURS.get(r, "0.9") for r in REGIMES])
-    ax.pcolormesh(GE[::2, ::2], GV[::2, ::2], code[::2, ::2], cmap=cmap, shading="auto",
-                  zorder=0, rasterized=True,
-                  norm=BoundaryNorm(np.arange(len(REGIMES) + 1) - 0.5, cmap.N))
+    ax.pcolormesh(
+        GE[::2, ::2],
+        GV[::2, ::2],
+        code[::2, ::2],
+        cmap=cmap,
+        shading="auto",
+        zorder=0,
+        rasterized=True,
+        norm=BoundaryNorm(np.arange(len(REGIMES) + 1) - 0.5, cmap.N),
+    )
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlim(ge_lo, ge_hi)
@@ -73,37 +82,85 @@ def fig12(ds, path):
             continue
         if not ind.all():
             # contour of the (slightly smoothed) indicator: the boundary of the region
-            ax.contour(GE, GV, gaussian_filter(ind.astype(float), 2.0), levels=[0.5],
-                       colors="k", linewidths=1.4, zorder=1)
+            ax.contour(
+                GE,
+                GV,
+                gaussian_filter(ind.astype(float), 2.0),
+                levels=[0.5],
+                colors="k",
+                linewidths=1.4,
+                zorder=1,
+            )
         coarse = ind[::step, ::step]
         inner = distance_transform_edt(np.pad(coarse, 1, constant_values=False))[1:-1, 1:-1]
         score = np.where(coarse, np.minimum(np.minimum(inner * step, 0.18 * n), d_data), -1.0)
         a, b = np.unravel_index(np.argmax(score), score.shape)
         i, j = ci[a, b], cj[a, b]
-        ax.text(10 ** lge[j], 10 ** lgv[i], _REGIME_NAMES.get(r, r), ha="center",
-                va="center", fontsize=10, fontweight="bold", color="0.25", zorder=2,
-                bbox=dict(fc="white", ec="none", alpha=0.6, pad=1.5))
+        ax.text(
+            10 ** lge[j],
+            10 ** lgv[i],
+            _REGIME_NAMES.get(r, r),
+            ha="center",
+            va="center",
+            fontsize=10,
+            fontweight="bold",
+            color="0.25",
+            zorder=2,
+            bbox=dict(fc="white", ec="none", alpha=0.6, pad=1.5),
+        )
     order = np.argsort(e)
     path_sel = order[event[order]]
     ax.plot(gE[path_sel], gV[path_sel], color="0.4", lw=0.6, zorder=3)
     if light.any():
-        ax.plot(gE[light], gV[light], ".", color="0.45", ms=4, zorder=3,
-                label=f"loaded base circle / ramps (W < {EVENT_FRACTION:.0%} of max)")
-    sc = ax.scatter(gE[event], gV[event], c=e[event], cmap="plasma", s=16, zorder=4,
-                    edgecolors="none", label="cam event (coloured by crank angle)")
+        ax.plot(
+            gE[light],
+            gV[light],
+            ".",
+            color="0.45",
+            ms=4,
+            zorder=3,
+            label=f"loaded base circle / ramps (W < {EVENT_FRACTION:.0%} of max)",
+        )
+    sc = ax.scatter(
+        gE[event],
+        gV[event],
+        c=e[event],
+        cmap="plasma",
+        s=16,
+        zorder=4,
+        edgecolors="none",
+        label="cam event (coloured by crank angle)",
+    )
     cb = fig.colorbar(sc, ax=ax, pad=0.01)
     cb.set_label("crank angle [deg]")
     idx = point_indices(ds)
     if idx:
-        place_labels(ax, gE[idx], gV[idx], [str(int(v)) for v in arr(ds, "point")],
-                      avoid=(gE[event], gV[event]), radius_pt=18)
-        ax.plot([], [], "o", ms=6, mfc="white", mec="k", mew=1.5,
-                label="representative points 1–6 (Fig. 13)")
+        place_labels(
+            ax,
+            gE[idx],
+            gV[idx],
+            [str(int(v)) for v in arr(ds, "point")],
+            avoid=(gE[event], gV[event]),
+            radius_pt=18,
+        )
+        ax.plot(
+            [],
+            [],
+            "o",
+            ms=6,
+            mfc="white",
+            mec="k",
+            mew=1.5,
+            label="representative points 1–6 (Fig. 13)",
+        )
     ax.set_xlabel("elasticity parameter g_E = W' U^(−1/2)")
     ax.set_ylabel("viscosity parameter g_V = G W'^(3/2) U^(−1/2)")
     ax.legend(loc="lower right", fontsize=9, framealpha=0.9)
     ax.grid(alpha=0.25, which="major")
-    return finish(fig, path, FIGURES[path.name],
-                   "boundaries where the Johnson (1970) asymptotes IR, PR, IE, PE meet; "
-                   "g_V, g_E with the bulk E' of the first surface set")
-
+    return finish(
+        fig,
+        path,
+        FIGURES[path.name],
+        "boundaries where the Johnson (1970) asymptotes IR, PR, IE, PE meet; "
+        "g_V, g_E with the bulk E' of the first surface set",
+    )

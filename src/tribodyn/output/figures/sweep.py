@@ -26,8 +26,7 @@ import numpy as np
 
 from .common import UM, has, plt, save_figure, set_styles
 
-__all__ = ["sweep_figures", "x_dim", "other_combinations", "onset_speeds",
-           "SWEEP_FIGURES"]
+__all__ = ["sweep_figures", "x_dim", "other_combinations", "onset_speeds", "SWEEP_FIGURES"]
 
 SWEEP_FIGURES = {
     "sweep_friction.png": "Friction energy per cycle and mean friction power",
@@ -121,8 +120,10 @@ def _combos(ds, xd):
 def _set_lines(ds, combos):
     """(style dict, surface-set index or None, combination) for every line to draw."""
     if "surface_set" not in ds.dims:
-        return [(dict(color="k", ls=_LINESTYLES[j % 4], lw=1.5, label=lab or None), None, sel)
-                for j, (sel, lab) in enumerate(combos)]
+        return [
+            (dict(color="k", ls=_LINESTYLES[j % 4], lw=1.5, label=lab or None), None, sel)
+            for j, (sel, lab) in enumerate(combos)
+        ]
     styles = set_styles(ds)
     lines = []
     for j, (sel, lab) in enumerate(combos):
@@ -148,7 +149,7 @@ def _line_panel(ax, ds, name, xd, combos, scale=1.0, ylabel="", log=False):
     order = np.argsort(x)
     for st, i, sel in _set_lines(ds, combos):
         y = _series(ds, name, xd, i, sel) * scale
-        if not np.isfinite(y).any():        # every point of this line failed
+        if not np.isfinite(y).any():  # every point of this line failed
             continue
         ax.plot(x[order], y[order], marker="o", ms=3.5, **st)
     ax.set_xlabel(xlabel)
@@ -161,8 +162,9 @@ def _line_panel(ax, ds, name, xd, combos, scale=1.0, ylabel="", log=False):
 def _finish(fig, axes, path, title, note):
     h, lab = axes[0].get_legend_handles_labels()
     if h:
-        fig.legend(h, lab, loc="outside lower center", ncol=min(len(lab), 5), fontsize=8,
-                   frameon=False)
+        fig.legend(
+            h, lab, loc="outside lower center", ncol=min(len(lab), 5), fontsize=8, frameon=False
+        )
     fig.suptitle(title if note is None else f"{title}\n{note}", fontsize=11)
     return save_figure(fig, path)
 
@@ -171,10 +173,15 @@ def fig_friction(ds, path):
     xd = x_dim(ds)
     combos, note = _combos(ds, xd)
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.4), layout="constrained")
-    _line_panel(axes[0], ds, "friction_energy_per_cycle_J", xd, combos,
-                ylabel="friction energy per cycle [J]")
-    _line_panel(axes[1], ds, "mean_friction_power_W", xd, combos,
-                ylabel="mean friction power [W]")
+    _line_panel(
+        axes[0],
+        ds,
+        "friction_energy_per_cycle_J",
+        xd,
+        combos,
+        ylabel="friction energy per cycle [J]",
+    )
+    _line_panel(axes[1], ds, "mean_friction_power_W", xd, combos, ylabel="mean friction power [W]")
     return _finish(fig, axes, path, "Cam–tappet friction loss (transient mixed EHL)", note)
 
 
@@ -182,13 +189,20 @@ def fig_film(ds, path):
     xd = x_dim(ds)
     combos, note = _combos(ds, xd)
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.4), layout="constrained")
-    _line_panel(axes[0], ds, "min_film_m", xd, combos, scale=UM,
-                ylabel="minimum film h_min [µm]")
+    _line_panel(axes[0], ds, "min_film_m", xd, combos, scale=UM, ylabel="minimum film h_min [µm]")
     _line_panel(axes[1], ds, "min_lambda", xd, combos, ylabel="minimum λ = h_min/σ")
     axes[1].axhline(1.0, color="0.5", lw=0.8, ls="--")
     axes[1].axhline(3.0, color="0.5", lw=0.8, ls=":")
-    axes[1].text(0.99, 1.0, "λ = 1 (boundary)", transform=axes[1].get_yaxis_transform(),
-                 ha="right", va="bottom", fontsize=7, color="0.4")
+    axes[1].text(
+        0.99,
+        1.0,
+        "λ = 1 (boundary)",
+        transform=axes[1].get_yaxis_transform(),
+        ha="right",
+        va="bottom",
+        fontsize=7,
+        color="0.4",
+    )
     return _finish(fig, axes, path, "Minimum film in the cam event", note)
 
 
@@ -203,30 +217,61 @@ def fig_dynamics(ds, path):
         sfx = f" ({lab})" if lab else ""
         pk = _series(ds, "peak_contact_force_N", xd, None, sel)[order]
         mn = _series(ds, "min_contact_force_in_event_N", xd, None, sel)[order]
-        axes[0].plot(x[order], pk, ls=ls, marker="o", ms=3.5, color="tab:blue",
-                     label=f"peak{sfx}")
-        axes[0].plot(x[order], mn, ls=ls, marker="s", ms=3.5, color="tab:orange",
-                     label=f"minimum in the cam event{sfx}")
+        axes[0].plot(x[order], pk, ls=ls, marker="o", ms=3.5, color="tab:blue", label=f"peak{sfx}")
+        axes[0].plot(
+            x[order],
+            mn,
+            ls=ls,
+            marker="s",
+            ms=3.5,
+            color="tab:orange",
+            label=f"minimum in the cam event{sfx}",
+        )
         jump = _series(ds, "jump", xd, None, sel)[order] == 1
         if jump.any():
-            axes[0].plot(x[order][jump], mn[jump], "x", color="red", ms=9, mew=2,
-                         label="jump (contact lost)" if j == 0 else None, zorder=5)
+            axes[0].plot(
+                x[order][jump],
+                mn[jump],
+                "x",
+                color="red",
+                ms=9,
+                mew=2,
+                label="jump (contact lost)" if j == 0 else None,
+                zorder=5,
+            )
         sv = _series(ds, "seating_velocity_m_s", xd, None, sel)[order]
-        axes[1].plot(x[order], sv, ls=ls, marker="o", ms=3.5, color="k",
-                     label=f"seating velocity{sfx}")
+        axes[1].plot(
+            x[order], sv, ls=ls, marker="o", ms=3.5, color="k", label=f"seating velocity{sfx}"
+        )
         bounce = _series(ds, "valve_bounce", xd, None, sel)[order] == 1
         if bounce.any():
-            axes[1].plot(x[order][bounce], sv[bounce], "x", color="red", ms=9, mew=2,
-                         label="valve bounce" if j == 0 else None, zorder=5)
+            axes[1].plot(
+                x[order][bounce],
+                sv[bounce],
+                "x",
+                color="red",
+                ms=9,
+                mew=2,
+                label="valve bounce" if j == 0 else None,
+                zorder=5,
+            )
     speed = xlabel.startswith("engine speed")
     for ax, var, name in ((axes[0], "jump", "jump"), (axes[1], "valve_bounce", "bounce")):
-        for k, (lab, lo, hi) in enumerate(onset_speeds(ds, var)[:len(combos)]):
+        for k, (_lab, lo, hi) in enumerate(onset_speeds(ds, var)[: len(combos)]):
             if np.isfinite(hi):
                 ax.axvline(hi, color="red", lw=0.8, ls=_LINESTYLES[k % 4], alpha=0.6)
                 where = f"{lo:g}–{hi:g}" if np.isfinite(lo) else f"≤ {hi:g}"
-                ax.text(hi, 0.98, f"{name} onset {where}" + (" rpm" if speed else "") + " ",
-                        transform=ax.get_xaxis_transform(),
-                        rotation=90, va="top", ha="right", fontsize=7, color="red")
+                ax.text(
+                    hi,
+                    0.98,
+                    f"{name} onset {where}" + (" rpm" if speed else "") + " ",
+                    transform=ax.get_xaxis_transform(),
+                    rotation=90,
+                    va="top",
+                    ha="right",
+                    fontsize=7,
+                    color="red",
+                )
     clipped = _clip_impacts(axes[0], ds, xd, combos, x, order)
     axes[0].axhline(0.0, color="0.5", lw=0.8)
     axes[0].set_ylabel("cam–tappet contact force [N]")
@@ -252,15 +297,23 @@ def _clip_impacts(ax, ds, xd, combos, x, order):
     top = 2.5 * float(calm.max())
     if np.nanmax(pk) <= top:
         return None
-    lows = np.concatenate([_series(ds, "min_contact_force_in_event_N", xd, None, s)
-                           for s, _ in combos])
+    lows = np.concatenate(
+        [_series(ds, "min_contact_force_in_event_N", xd, None, s) for s, _ in combos]
+    )
     low = min(0.0, float(np.nanmin(lows))) if np.isfinite(lows).any() else 0.0
     ax.set_ylim(low - 0.04 * top, top)
     for sel, _ in combos:
         y = _series(ds, "peak_contact_force_N", xd, None, sel)[order]
         off = np.isfinite(y) & (y > top)
-        ax.plot(x[order][off], np.full(off.sum(), top), "^", color="tab:blue", ms=6,
-                clip_on=False, zorder=6)
+        ax.plot(
+            x[order][off],
+            np.full(off.sum(), top),
+            "^",
+            color="tab:blue",
+            ms=6,
+            clip_on=False,
+            zorder=6,
+        )
     return f"▲ peak off scale: impact after a jump, up to {np.nanmax(pk):.3g} N"
 
 
@@ -274,37 +327,68 @@ def fig_heatmap(ds, path):
     rest = {d: 0 for d in _sweep_dims(ds) if d not in (xd, yd)}
     study = "surface_set" in ds.dims and has(ds, "friction_energy_per_cycle_J")
     if study:
-        quantities = [("friction_energy_per_cycle_J", 1.0, "friction energy per cycle [J]"),
-                      ("min_film_m", UM, "minimum film [µm]")]
+        quantities = [
+            ("friction_energy_per_cycle_J", 1.0, "friction energy per cycle [J]"),
+            ("min_film_m", UM, "minimum film [µm]"),
+        ]
         cols = list(range(ds.sizes["surface_set"]))
-        labels = [str(v) for v in (ds["surface_label"].values if "surface_label" in ds.coords
-                                   else ds["surface_set"].values)]
+        labels = [
+            str(v)
+            for v in (
+                ds["surface_label"].values
+                if "surface_label" in ds.coords
+                else ds["surface_set"].values
+            )
+        ]
     else:
-        quantities = [("peak_contact_force_N", 1.0, "peak contact force [N]"),
-                      ("min_contact_force_in_event_N", 1.0, "min. contact force in event [N]")]
+        quantities = [
+            ("peak_contact_force_N", 1.0, "peak contact force [N]"),
+            ("min_contact_force_in_event_N", 1.0, "min. contact force in event [N]"),
+        ]
         cols, labels = [None], [""]
     x, xlabel = _x_values(ds, xd)
     y, ylabel = _x_values(ds, yd)
-    fig, axes = plt.subplots(len(quantities), len(cols), squeeze=False,
-                             figsize=(2.9 * len(cols) + 1.5, 2.6 * len(quantities) + 0.8),
-                             layout="constrained")
+    fig, axes = plt.subplots(
+        len(quantities),
+        len(cols),
+        squeeze=False,
+        figsize=(2.9 * len(cols) + 1.5, 2.6 * len(quantities) + 0.8),
+        layout="constrained",
+    )
     ok = np.asarray(ds["status"].isel(rest).transpose(yd, xd).values) == 1
     for r, (name, scale, qlabel) in enumerate(quantities):
         da = ds[name].isel(rest)
-        vals = [np.asarray((da.isel(surface_set=c) if c is not None else da)
-                           .transpose(yd, xd).values, float) * scale for c in cols]
+        vals = [
+            np.asarray(
+                (da.isel(surface_set=c) if c is not None else da).transpose(yd, xd).values, float
+            )
+            * scale
+            for c in cols
+        ]
         fin = np.concatenate([v[np.isfinite(v)] for v in vals]) if vals else np.array([])
         vmin, vmax = (float(fin.min()), float(fin.max())) if fin.size else (0.0, 1.0)
         for c, (v, lab) in enumerate(zip(vals, labels)):
             ax = axes[r, c]
             # one cell per point, labelled with the axis values (any spacing)
-            m = ax.pcolormesh(np.arange(x.size + 1) - 0.5, np.arange(y.size + 1) - 0.5, v,
-                              cmap="viridis", vmin=vmin, vmax=vmax)
+            m = ax.pcolormesh(
+                np.arange(x.size + 1) - 0.5,
+                np.arange(y.size + 1) - 0.5,
+                v,
+                cmap="viridis",
+                vmin=vmin,
+                vmax=vmax,
+            )
             if v.size <= 64:
                 for iy, ix in np.argwhere(np.isfinite(v)):
-                    ax.text(ix, iy, f"{v[iy, ix]:.3g}", ha="center", va="center",
-                            fontsize=6.5, color="w" if v[iy, ix] < 0.5 * (vmin + vmax)
-                            else "k")
+                    ax.text(
+                        ix,
+                        iy,
+                        f"{v[iy, ix]:.3g}",
+                        ha="center",
+                        va="center",
+                        fontsize=6.5,
+                        color="w" if v[iy, ix] < 0.5 * (vmin + vmax) else "k",
+                    )
             for iy, ix in np.argwhere(~ok):
                 ax.plot(ix, iy, "x", color="red", ms=8, mew=1.5)
             for axis, vals in ((ax.xaxis, x), (ax.yaxis, y)):
@@ -318,8 +402,9 @@ def fig_heatmap(ds, path):
                 ax.set_ylabel(ylabel, fontsize=8)
         fig.colorbar(m, ax=axes[r, :], label=qlabel, shrink=0.9)
     sub = ", ".join(f"{d} = {_fmt(ds[d].values[0])}" for d in rest)
-    title = "Sweep maps" + (f" (at {sub})" if sub else "") + (
-        "; × failed point" if (~ok).any() else "")
+    title = (
+        "Sweep maps" + (f" (at {sub})" if sub else "") + ("; × failed point" if (~ok).any() else "")
+    )
     fig.suptitle(title, fontsize=11)
     return save_figure(fig, path)
 
@@ -331,10 +416,12 @@ def sweep_figures(ds, out_dir) -> dict[str, Path]:
     if x_dim(ds) is None or int(ds["status"].sum()) == 0:
         return {}
     made = {}
-    makers = [("sweep_friction.png", fig_friction, ("friction_energy_per_cycle_J",)),
-              ("sweep_film.png", fig_film, ("min_film_m", "min_lambda")),
-              ("sweep_dynamics.png", fig_dynamics, ("peak_contact_force_N",)),
-              ("sweep_heatmap.png", fig_heatmap, ("status",))]
+    makers = [
+        ("sweep_friction.png", fig_friction, ("friction_energy_per_cycle_J",)),
+        ("sweep_film.png", fig_film, ("min_film_m", "min_lambda")),
+        ("sweep_dynamics.png", fig_dynamics, ("peak_contact_force_N",)),
+        ("sweep_heatmap.png", fig_heatmap, ("status",)),
+    ]
     for name, fn, need in makers:
         if has(ds, *need):
             p = fn(ds, out / name)

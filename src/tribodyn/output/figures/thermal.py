@@ -36,15 +36,20 @@ def fig21(ds, path):
     c = 273.15
     t_in = float(ds.attrs.get("inlet_temperature_K", np.nan)) - c
     fig, axes = plt.subplots(3, 1, figsize=(11, 11), sharex=True, layout="constrained")
-    panels = (("surface_temperature_tappet", "(a) tappet surface (max over the contact)"),
-              ("surface_temperature_cam", "(b) cam surface (max over the contact)"),
-              ("mid_film_temperature", "(c) mid-film at the centre (solid) and maximum of "
-                                       "film and surfaces (thin)"))
+    panels = (
+        ("surface_temperature_tappet", "(a) tappet surface (max over the contact)"),
+        ("surface_temperature_cam", "(b) cam surface (max over the contact)"),
+        (
+            "mid_film_temperature",
+            "(c) mid-film at the centre (solid) and maximum of film and surfaces (thin)",
+        ),
+    )
     for ax, (key, title) in zip(axes, panels):
         _lines(ax, e, masked(ds, key) - c, sel, styles)
         if key == "mid_film_temperature":
-            _lines(ax, e, masked(ds, "max_temperature") - c, sel, styles, lw=0.7,
-                   alpha=0.7, label=None)
+            _lines(
+                ax, e, masked(ds, "max_temperature") - c, sel, styles, lw=0.7, alpha=0.7, label=None
+            )
         ax.axhline(t_in, color="0.5", ls=":", lw=1)
         ax.set_ylabel("temperature [°C]")
         ax.set_title(title, fontsize=TITLE_SIZE)
@@ -52,9 +57,12 @@ def fig21(ds, path):
     axes[0].legend(fontsize=9, ncol=3, loc="best")
     for ax in axes[:-1]:
         ax.set_xlabel("")
-    return finish(fig, path, FIGURES[path.name],
-                  f"inlet (sump) temperature {t_in:.0f} °C (dotted); cam event only; "
-                  f"{failure_note(ds)}")
+    return finish(
+        fig,
+        path,
+        FIGURES[path.name],
+        f"inlet (sump) temperature {t_in:.0f} °C (dotted); cam event only; {failure_note(ds)}",
+    )
 
 
 def fig22(ds, path):
@@ -71,21 +79,21 @@ def fig22(ds, path):
     _lines(a, e, hci * UM, sel, styles, ls=":", label=None)
     a.set_yscale("log")
     a.set_ylabel("central film h_c [µm]")
-    a.set_title("(a) central film: thermal (solid), isothermal at the inlet temperature "
-                "(dotted)", fontsize=TITLE_SIZE)
+    a.set_title(
+        "(a) central film: thermal (solid), isothermal at the inlet temperature (dotted)",
+        fontsize=TITLE_SIZE,
+    )
     _lines(b, e, fv, sel, styles)
     _lines(b, e, fvi, sel, styles, ls=":", label=None)
     b.set_ylim(bottom=0)
     b.set_ylabel("viscous friction F_v [N]")
-    b.set_title("(b) viscous friction: thermal (solid), isothermal (dotted)",
-                fontsize=TITLE_SIZE)
+    b.set_title("(b) viscous friction: thermal (solid), isothermal (dotted)", fontsize=TITLE_SIZE)
     with np.errstate(divide="ignore", invalid="ignore"):
         _lines(c, e, hc / hci, sel, styles)
         _lines(c, e, fv / fvi, sel, styles, ls="--", label=None)
     c.axhline(1.0, color="0.5", lw=0.8)
     c.set_ylabel("thermal / isothermal")
-    c.set_title("(c) ratios: central film (solid), viscous friction (dashed)",
-                fontsize=TITLE_SIZE)
+    c.set_title("(c) ratios: central film (solid), viscous friction (dashed)", fontsize=TITLE_SIZE)
     for ax in (a, b, c):
         crank_axis(ax, win)
     for ax in (a, b):

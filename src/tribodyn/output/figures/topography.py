@@ -18,24 +18,32 @@ __all__ = ["plot_height_distribution"]
 
 def _panels(results):
     """(title, heights [m]) per surface; a pair adds its sum surface h₁ + h₂."""
-    if isinstance(results, (SurfaceAnalysis, PairAnalysis)) or \
-            getattr(results, "kind", "") == "profile":
+    if (
+        isinstance(results, (SurfaceAnalysis, PairAnalysis))
+        or getattr(results, "kind", "") == "profile"
+    ):
         results = [results]
     panels = []
     for r in results:
         if isinstance(r, PairAnalysis):
             panels += _panels([r.first, r.second])
             ta, tb = r.first.topography, r.second.topography
-            if ta is None or tb is None:          # a profile in the pair: no sum surface
+            if ta is None or tb is None:  # a profile in the pair: no sum surface
                 continue
-            combined = sum_on_common_grid(ta.heights(), ta.pixel_size, ta.is_periodic,
-                                          tb.heights(), tb.pixel_size, tb.is_periodic)
+            combined = sum_on_common_grid(
+                ta.heights(),
+                ta.pixel_size,
+                ta.is_periodic,
+                tb.heights(),
+                tb.pixel_size,
+                tb.is_periodic,
+            )
             if combined is not None:
                 h = combined[0]
                 filled = np.zeros(h.shape, dtype=bool)
                 for part in (r.first, r.second):
                     if part.filled is not None:
-                        filled |= np.asarray(part.filled)[:h.shape[0], :h.shape[1]]
+                        filled |= np.asarray(part.filled)[: h.shape[0], : h.shape[1]]
                 panels.append((f"sum surface {r.first.name} + {r.second.name}", h[~filled]))
         elif isinstance(r, SurfaceAnalysis):
             if r.topography is None:
@@ -74,8 +82,13 @@ def plot_height_distribution(results, path, *, bins: int = 80) -> Path:
     """
     panels = _panels(results)
     n = len(panels)
-    fig, axes = plt.subplots(2, n, figsize=(max(4.3 * n, 6.5), 6.8), squeeze=False,
-                             gridspec_kw={"height_ratios": [1.3, 1.0]})
+    fig, axes = plt.subplots(
+        2,
+        n,
+        figsize=(max(4.3 * n, 6.5), 6.8),
+        squeeze=False,
+        gridspec_kw={"height_ratios": [1.3, 1.0]},
+    )
     for j, (title, h) in enumerate(panels):
         s = height_statistics(h)
         z = (h.ravel() - s.mean) * 1e6  # µm
@@ -86,8 +99,14 @@ def plot_height_distribution(results, path, *, bins: int = 80) -> Path:
         zz = np.linspace(-lim, lim, 400)
         gauss = gaussian_pdf(zz, sig)
         for i, ax in enumerate(axes[:, j]):
-            ax.stairs(dens, edges, fill=True, color="tab:blue", alpha=0.45,
-                      label="heights of the filtered map")
+            ax.stairs(
+                dens,
+                edges,
+                fill=True,
+                color="tab:blue",
+                alpha=0.45,
+                label="heights of the filtered map",
+            )
             ax.plot(zz, gauss, "k-", lw=1.4, label="Gaussian with the same σ")
             for k in (-3, 3):
                 ax.axvline(k * sig, color="grey", ls=":", lw=0.8)
@@ -97,14 +116,18 @@ def plot_height_distribution(results, path, *, bins: int = 80) -> Path:
             if i == 1:
                 ax.set_yscale("log")
                 pos = dens[dens > 0]
-                ax.set_ylim(0.5 * pos.min() if pos.size else 1e-6, 2.0 * max(dens.max(),
-                                                                            gauss.max()))
+                ax.set_ylim(
+                    0.5 * pos.min() if pos.size else 1e-6, 2.0 * max(dens.max(), gauss.max())
+                )
                 ax.set_title("log scale (tails; dotted: ±3σ)", fontsize=9)
             else:
-                ax.set_title(f"{title}\nσ = {sig:.3g} µm, Ssk = {s.skewness:.2f}, "
-                             f"Sku = {s.kurtosis:.2f}", fontsize=10)
-    fig.suptitle("Height distribution vs Gaussian (cf. paper Fig. 7)\n"
-                 + _conditions(results), fontsize=9)
+                ax.set_title(
+                    f"{title}\nσ = {sig:.3g} µm, Ssk = {s.skewness:.2f}, Sku = {s.kurtosis:.2f}",
+                    fontsize=10,
+                )
+    fig.suptitle(
+        "Height distribution vs Gaussian (cf. paper Fig. 7)\n" + _conditions(results), fontsize=9
+    )
     handles, labels = axes[0, 0].get_legend_handles_labels()
     fig.tight_layout(rect=(0, 0.04, 1, 1))
     fig.legend(handles, labels, loc="lower center", ncol=2, fontsize=9, frameon=False)
