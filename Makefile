@@ -1,13 +1,14 @@
 # Two commands do all set-up on a fresh machine:
 #   make test   create .venv if missing, install tribodyn with its test extras, lint, run pytest
 #   make run    same set-up, then run the main job on the bundled paper case
+#   make docs   build the documentation site into docs/_build/html (warnings are errors)
 PYTHON ?= python3
 VENV   ?= .venv
 PY      = $(VENV)/bin/python
 OUT    ?= results
 STAMP   = $(VENV)/.installed
 
-.PHONY: test lint run bench clean
+.PHONY: test lint run bench docs clean
 
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -25,8 +26,18 @@ test: lint
 run: $(STAMP)
 	$(VENV)/bin/tribodyn run -o $(OUT)
 
+DOCS_STAMP = $(VENV)/.docs-installed
+
+$(DOCS_STAMP): $(STAMP)
+	$(PY) -m pip install --quiet -e ".[docs]"
+	touch $(DOCS_STAMP)
+
+# The documentation site (Sphinx, PyData theme, MyST); warnings are errors.
+docs: $(DOCS_STAMP)
+	$(PY) -m sphinx -W --keep-going -b html docs docs/_build/html
+
 bench: $(STAMP)
 	for b in benchmarks/bench_*.py; do echo "== $$b"; $(PY) $$b; done
 
 clean:
-	rm -rf $(VENV) $(OUT) .pytest_cache build src/*.egg-info
+	rm -rf $(VENV) $(OUT) .pytest_cache build src/*.egg-info docs/_build

@@ -28,3 +28,31 @@ def rng():
 
 def coated_pair(steel, E, nu, thickness):
     return (Body(steel), Body(steel, Coating(E=E, nu=nu, thickness=thickness)))
+
+
+# The paper case at reduced resolution: 4° crank steps, fixed 256-node EHL grid, one
+# coupling iteration, coarser dynamics output. Physics and inputs are unchanged.
+REDUCED = {
+    "numerics.crank_step_deg": 4.0,
+    "numerics.n": 256,
+    "numerics.coupling_iterations": 1,
+    "numerics.output_step_deg": 1.0,
+    "numerics.workers": 1,
+}
+
+
+@pytest.fixture(scope="session")
+def reduced_results(tmp_path_factory):
+    """A result folder of ``tribodyn run`` on the reduced paper case (run once per session;
+    tests that change files must copy it)."""
+    from typer.testing import CliRunner
+
+    from tribodyn.cli import app
+    from tribodyn.config import load_case
+
+    path = tmp_path_factory.mktemp("case") / "reduced.toml"
+    load_case().updated(REDUCED).write_toml(path)
+    out = tmp_path_factory.mktemp("run") / "results"
+    r = CliRunner().invoke(app, ["run", str(path), "-o", str(out), "--quiet"])
+    assert r.exit_code == 0, r.output
+    return out

@@ -8,22 +8,14 @@ import pytest
 import xarray as xr
 from typer.testing import CliRunner
 
+import tribodyn
+from conftest import REDUCED
 from tribodyn.cli import app
 from tribodyn.config import load_case
 from tribodyn.output import write_atomic
 from tribodyn.output.writer import MARKER
 
 runner = CliRunner()
-
-# The paper case at reduced resolution: 4° crank steps, fixed 256-node EHL grid, one
-# coupling iteration, coarser dynamics output. Physics and inputs are unchanged.
-REDUCED = {
-    "numerics.crank_step_deg": 4.0,
-    "numerics.n": 256,
-    "numerics.coupling_iterations": 1,
-    "numerics.output_step_deg": 1.0,
-    "numerics.workers": 1,
-}
 
 
 @pytest.fixture(scope="module")
@@ -34,11 +26,8 @@ def reduced_case_file(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def run_dir(reduced_case_file, tmp_path_factory):
-    out = tmp_path_factory.mktemp("run") / "results"
-    r = runner.invoke(app, ["run", str(reduced_case_file), "-o", str(out), "--quiet"])
-    assert r.exit_code == 0, r.output
-    return out
+def run_dir(reduced_results):
+    return reduced_results
 
 
 def test_outputs_exist(run_dir):
@@ -92,6 +81,8 @@ def test_summary_keys_and_physics(run_dir):
         assert 300 < v["peak_contact_force_N"] < 1000
     assert {"max_contact_force_diff_pct", "max_velocity_diff_pct"} <= set(s["implicit_vs_explicit"])
     assert s["runtime_s"] > 0
+    with xr.open_dataset(run_dir / "results.nc", engine="h5netcdf") as ds:
+        assert ds.attrs["tribodyn_version"] == tribodyn.__version__
     # the coatings' lower (ηβσ)² cut the boundary friction (paper: WC-C > 95 % below steel)
     assert s["surface_sets"]["wcc_4um"]["boundary_friction_reduction_vs_uncoated_pct"] > 80
 

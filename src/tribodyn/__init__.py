@@ -18,6 +18,7 @@ if "numpy" not in _sys.modules:
         _os.environ.setdefault(_var, "1")
 
 from ._validation import InputError
+from ._version import __version__
 from .contact.dry import DryContactResult, solve_dry_contact
 from .contact.ehl import (
     EHLOptions,
@@ -36,8 +37,6 @@ from .physics.hertz import hertz_line_contact
 from .physics.lubricant import Lubricant
 from .physics.materials import Body, Coating, Material, reduced_modulus
 from .physics.thermal_oil import ThermalLubricant
-
-__version__ = "0.1.0"
 
 __all__ = [
     "Body",

@@ -15,6 +15,18 @@ package, so every layer may use it. SI units throughout.
 
 from __future__ import annotations
 
+from typing import TypedDict
+
+
+class MaterialRow(TypedDict):
+    """One material of Table 6: E [Pa], ν, ς, display label."""
+
+    E: float
+    nu: float
+    boundary_shear_coefficient: float
+    label: str
+
+
 __all__ = [
     "CITATION",
     "DOI",
@@ -51,11 +63,11 @@ DOI = "10.3390/app13137815"
 # Moduli printed as "MPa" in the paper: they are GPa (erratum). ς is the pressure
 # coefficient of boundary shear strength (Eq. 17, from AFM measurements).
 #: Steel (cam and tappet substrate): E [Pa], ν, ς.
-STEEL = {"E": 210e9, "nu": 0.3, "boundary_shear_coefficient": 0.185, "label": "steel"}
+STEEL: MaterialRow = {"E": 210e9, "nu": 0.3, "boundary_shear_coefficient": 0.185, "label": "steel"}
 #: Diamond-like carbon coating ("Diamolith-DLC").
-DLC = {"E": 185e9, "nu": 0.3, "boundary_shear_coefficient": 0.44, "label": "DLC"}
+DLC: MaterialRow = {"E": 185e9, "nu": 0.3, "boundary_shear_coefficient": 0.44, "label": "DLC"}
 #: Tungsten-carbide carbon coating ("Nitron-MC").
-WCC = {"E": 175e9, "nu": 0.3, "boundary_shear_coefficient": 0.54, "label": "WC-C"}
+WCC: MaterialRow = {"E": 175e9, "nu": 0.3, "boundary_shear_coefficient": 0.54, "label": "WC-C"}
 #: Table 6 by the material keys of the bundled case.
 MATERIALS = {"steel": STEEL, "dlc": DLC, "wcc": WCC}
 #: Coating layer thickness [m] (Table 6).

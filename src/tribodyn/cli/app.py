@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import typer
 
+from .._version import __version__
 from .contact import contact_command
 from .run import run_command
 from .sweep import sweep_command
@@ -18,8 +19,22 @@ app = typer.Typer(
 )
 
 
+def _print_version(value: bool) -> None:
+    if value:
+        typer.echo(f"tribodyn {__version__}")
+        raise typer.Exit()
+
+
 @app.callback()
-def _main():
+def _main(
+    version: bool = typer.Option(
+        False,
+        "--version",
+        callback=_print_version,
+        is_eager=True,
+        help="Print the version and exit.",
+    ),
+) -> None:
     """tribodyn: cam–tappet tribo-dynamics with coated surfaces."""
 
 

@@ -107,6 +107,7 @@ def greenwood_tripp(n, lam, method: str = "exact"):
     if method == "exact":
         out = _exact(n, lam_arr)
     elif method == "paper":
+        coeffs: tuple[float, ...]
         if n == 2.5:
             coeffs, lam_max = _PAPER_F52, 2.5
         elif n == 2.0:
@@ -157,8 +158,9 @@ class _LogTable:
         self.n = n
         lam = np.linspace(_LAM_NEG, _LAM_POS, int(round((_LAM_POS - _LAM_NEG) / 0.002)) + 1)
         f = _exact(n, lam)
-        fm1 = _exact(n - 1.0, lam) if n >= 1.0 else None
-        slope = -n * fm1 / f
+        if n < 1.0:
+            raise ValueError(f"the tabulated F_n needs n >= 1 (got n = {n:g})")
+        slope = -n * _exact(n - 1.0, lam) / f
         self.spline = CubicHermiteSpline(lam, np.log(f), slope)
         self._lam0, self._step = float(lam[0]), float(lam[1] - lam[0])
         self._y, self._dy = np.log(f), slope * self._step

@@ -43,7 +43,7 @@ import numpy as np
 from scipy import integrate, interpolate, linalg
 
 from .._validation import InputError, check_positive
-from .materials import Coating, Material, as_bodies
+from .materials import Body, Coating, Material, as_bodies
 
 __all__ = [
     "half_plane_frf",
@@ -110,13 +110,13 @@ def coated_half_plane_frf(
 
 def pair_frf(m, bodies) -> np.ndarray:
     """Total FRF of a body pair: sum of the two bodies' surface FRFs."""
-    total = 0.0
+    total: np.ndarray | float = 0.0
     for b in as_bodies(bodies):
         if b.coating is None:
             total = total + half_plane_frf(m, b.material)
         else:
             total = total + coated_half_plane_frf(m, b.coating, b.material)
-    return total
+    return np.asarray(total)
 
 
 # ------------------------------------------------------------- tabulated remainder Q₂
@@ -296,7 +296,7 @@ class DeformationOperator:
     """
 
     def __init__(self, bodies, dx: float, n: int, coefficients: np.ndarray | None = None):
-        self.bodies = as_bodies(bodies)
+        self.bodies: tuple[Body, Body] | None = as_bodies(bodies)
         self.dx = check_positive("dx", dx, "m")
         self.n = int(n)
         self.coefficients = (
