@@ -241,3 +241,26 @@ def test_report_claims_match_the_summary(run_dir):
     assert _numbers(imp)[0] == pytest.approx(
         s["implicit_vs_explicit"]["max_contact_force_diff_pct"], abs=0.05
     )
+
+
+def test_friction_energy_agrees_with_the_closed_form_contact(run_dir):
+    """The transient-EHL friction energy per cycle of the reference set against the
+    closed-form contact of the explicit dynamics along the same motion (Hertz pressure,
+    Moes central film, the same Eyring law and Greenwood–Tripp asperities; see
+    physics.analytic_contact): an independent model without the Reynolds solution, which
+    misses the squeeze film and the pressure spike. They agree within 25 % (measured:
+    0.243 vs 0.219 J); a wrong film, friction law or time integration breaks this."""
+    from scipy.integrate import trapezoid
+
+    s = json.loads((run_dir / "summary.json").read_text())
+    with xr.open_dataset(run_dir / "results.nc", engine="h5netcdf") as ds:
+        omega = 2 * math.pi * ds.attrs["engine_speed_rpm"] / 60.0
+        t = np.radians(ds["crank_angle"].values) / omega
+        closed_form = trapezoid(np.nan_to_num(ds["analytic_friction_power"].values), t)
+    ehl = s["surface_sets"]["uncoated"]["friction_energy_per_cycle_J"]
+    assert ehl == pytest.approx(closed_form, rel=0.25)
+    # and the friction energy is the time integral of the reported mean power
+    period = 2 * 2 * math.pi / omega  # one cam revolution = two crank revolutions
+    assert s["surface_sets"]["uncoated"]["mean_friction_power_W"] * period == pytest.approx(
+        ehl, rel=1e-6
+    )
