@@ -9,9 +9,10 @@ from __future__ import annotations
 import json
 import sys
 from pathlib import Path
+from typing import Any, cast
 
 import typer
-from rich.console import Console
+from rich.console import Console, JustifyMethod
 from rich.markup import escape
 from rich.table import Table
 
@@ -49,7 +50,7 @@ def _parameter_table(title: str, summits, spectral, count=None, alpha=None) -> T
         ("spectral", "right"),
         ("Δ", "right"),
     ):
-        t.add_column(name, justify=justify)
+        t.add_column(name, justify=cast(JustifyMethod, justify))
     rows = [
         ("σ  RMS height", "µm", "rms", _um),
         ("η  summit density", "1/m²", "asperity_density", lambda v: f"{v:.4g}"),
@@ -118,7 +119,7 @@ def _print_profile(console: Console, r) -> None:
         caption_justify="left",
     )
     for name, justify in (("quantity", "left"), ("unit", "left"), ("value", "right")):
-        t.add_column(name, justify=justify)
+        t.add_column(name, justify=cast(JustifyMethod, justify))
     m, h, p = r.moments, r.heights, r.spectral
     for label, unit, value in (
         ("σ = Rq  RMS height", "µm", _um(h.rms)),
@@ -271,7 +272,7 @@ def topography_command(
                         f"wavelengths {_um(cutoffs[0])}–{_um(cutoffs[1])} µm)",
                         markup=False,
                     )
-        kwargs = dict(
+        kwargs: dict[str, Any] = dict(
             kind=filter_kind,
             detrend=detrend,
             clip_band=clip_band,

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 import difflib
+import functools
 import math
 import tomllib
 from pathlib import Path
@@ -194,7 +195,7 @@ class Case(Section):
             builds.append(("lubricant", self.thermal_lubricant))
         if self.numerics.thermal and not any(p == "lubricant" for p, _ in problems):
             builds += [
-                ("materials", lambda s=s: self.thermal_bodies(s.name))
+                ("materials", functools.partial(self.thermal_bodies, s.name))
                 for s in self.surface_set_configs
             ]
         done = set()
@@ -280,7 +281,7 @@ class Case(Section):
             self.model_dump() == other.model_dump() and self.cam_table_path == other.cam_table_path
         )
 
-    __hash__ = None  # mutable containers inside: not hashable
+    __hash__ = None  # type: ignore[assignment]  # mutable containers inside: not hashable
 
     # -- serialisation ------------------------------------------------------------------
     def to_dict(self, *, resolve_paths: bool = False) -> dict:
@@ -374,7 +375,7 @@ class Case(Section):
                 "lubricant.inlet_temperature_c: required for the thermal model "
                 "(the oil supply temperature, °C)"
             )
-        common = dict(
+        common: dict[str, Any] = dict(
             inlet_temperature=c.inlet_temperature_c + 273.15,
             thermal_expansion=c.thermal_expansion,
             thermal_conductivity=c.thermal_conductivity,
@@ -388,7 +389,7 @@ class Case(Section):
         )
         given = c.model_fields_set
         if c.datasheet:
-            sheet = dict(OILS[c.oil]) if c.oil is not None else {}
+            sheet: dict[str, Any] = dict(OILS[c.oil]) if c.oil is not None else {}
             name = c.oil or "datasheet oil"
             sheet.pop("description", None)
             if c.kinematic_viscosity_40_cst is not None:
@@ -452,8 +453,10 @@ class Case(Section):
         if coat is None:
             tappet = ThermalBody(self.thermal_properties(sub))
         else:
+            coating = s.bodies[1].coating
+            assert coating is not None  # a coated set's tappet carries its coating
             tappet = ThermalBody(
-                self.thermal_properties(sub), self.thermal_properties(coat), s.coating.thickness
+                self.thermal_properties(sub), self.thermal_properties(coat), coating.thickness
             )
         return cam, tappet
 
@@ -574,7 +577,7 @@ class Case(Section):
         n = self.numerics
         if 0 < n.n < 32:
             raise InputError(f"numerics.n: must be 0 (automatic) or >= 32 (got {n.n})")
-        kw = dict(
+        kw: dict[str, Any] = dict(
             n=n.n or None,
             inlet=n.inlet,
             outlet=n.outlet,
@@ -622,14 +625,17 @@ class Case(Section):
             mat = s.substrate
         else:
             cm = self.materials[s.coating]
-            tappet = Body(substrate, Coating(E=cm.E, nu=cm.nu, thickness=s.coating_thickness))
-            label = f"{cm.label or s.coating} {s.coating_thickness * 1e6:.3g} µm"
+            thickness = s.coating_thickness
+            assert thickness is not None  # required with a coating (schema validator)
+            tappet = Body(substrate, Coating(E=cm.E, nu=cm.nu, thickness=thickness))
+            label = f"{cm.label or s.coating} {thickness * 1e6:.3g} µm"
             mat = s.coating
         sigma = (
             s.boundary_shear_coefficient
             if s.boundary_shear_coefficient is not None
             else self.materials[mat].boundary_shear_coefficient
         )
+        assert sigma is not None  # required by the case cross-check
         r = s.roughness
         rough = Roughness(
             asperity_density=r.asperity_density,

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import difflib
 import re
+from collections.abc import Mapping
 from typing import Any, Union, get_args, get_origin
 
 from pydantic import BaseModel, ValidationError
@@ -140,7 +141,7 @@ def _allowed_keys(model) -> list[str]:
     return []
 
 
-def _error_lines(err: dict, root, variants) -> list[tuple[str, str]]:
+def _error_lines(err: Mapping[str, Any], root, variants) -> list[tuple[str, str]]:
     typ, loc, ctx = err["type"], err["loc"], err.get("ctx") or {}
     inp = err.get("input")
     if typ == "value_error" and isinstance(ctx.get("error"), Problems):

@@ -175,7 +175,8 @@ def _text(v) -> str:
 
 
 def _kind(v) -> str:
-    return {dict: "table", list: "array"}.get(type(v), type(v).__name__)
+    kinds: dict[type, str] = {dict: "table", list: "array"}
+    return kinds.get(type(v), type(v).__name__)
 
 
 def _walk(data, tokens, create: bool):

@@ -37,7 +37,7 @@ from pydantic import (
 from .._validation import InputError
 from .case import Case, bundled_cases, load_case, to_toml
 from .errors import Problems, format_validation_error
-from .paths import PathError, parse_path, schema_field, set_path
+from .paths import Key, PathError, parse_path, schema_field, set_path
 from .schema import CAM_MODELS, Section, _q
 
 __all__ = [
@@ -173,15 +173,19 @@ class AxisConfig(Section):
         if self.values is not None:
             return list(self.values)
         a, b = self.start, self.stop
+        assert a is not None and b is not None  # a range has both ends (validated)
+        vals: list
         if self.step is not None:
             n = math.floor(abs(b - a) / self.step * (1 + 1e-12)) + 1
             d = self.step if b >= a else -self.step
             vals = [a + i * d for i in range(n)]
         elif self.spacing == "log":
+            assert self.num is not None
             la, lb = math.log(a), math.log(b)
             vals = [math.exp(la + (lb - la) * i / (self.num - 1)) for i in range(self.num)]
             vals[0], vals[-1] = a, b
         else:
+            assert self.num is not None
             vals = [a + (b - a) * i / (self.num - 1) for i in range(self.num)]
         ints = all(isinstance(v, int) for v in (a, b, self.step) if v is not None)
         if ints and self.spacing == "linear":
@@ -458,7 +462,9 @@ def _axis(base: Case, i: int, ax: AxisConfig, problems) -> Axis | None:
             )
             problems.append((key, f"{_fmt(v)}: {_problem_text(exc)}"))
     extra = fi.json_schema_extra if isinstance(fi.json_schema_extra, dict) else {}
-    last = parse_path(ax.path)[-1].name
+    tail = parse_path(ax.path)[-1]
+    assert isinstance(tail, Key)  # checked by _check_path: a path ends at a key
+    last = tail.name
     name = ax.name or last
     return Axis(
         path=ax.path,

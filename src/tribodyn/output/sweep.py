@@ -196,8 +196,8 @@ def _results_tables(result) -> list[str]:
             "|---|" + "---|" * len(sets),
         ]
         for label, pos in rows:
-            v = np.asarray(_at(ds[name], spec, pos).values, float) * scale
-            out.append(f"| {label} | " + " | ".join(_f(float(x), fmt) for x in v) + " |")
+            vals = np.asarray(_at(ds[name], spec, pos).values, float) * scale
+            out.append(f"| {label} | " + " | ".join(_f(float(x), fmt) for x in vals) + " |")
         out.append("")
     return out
 

@@ -28,6 +28,7 @@ import shutil
 import tempfile
 import time
 from pathlib import Path
+from typing import Any
 
 from .._validation import InputError
 from .dataset import study_to_dataset
@@ -245,7 +246,7 @@ def write_results(study, out_dir, *, figures=True, report=True) -> dict:
 
     ds = study_to_dataset(study)
     summ = study.analyse().summary
-    written = {}
+    written: dict[str, Any] = {}
     enc = {
         v: {"compression": "gzip", "compression_opts": 4}
         for v in ("profile_x", "pressure", "film")

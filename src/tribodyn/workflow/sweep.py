@@ -169,8 +169,10 @@ def run_sweep(
         if resume:
             for p in plan:
                 if p.case is not None and store.status(p.key) == "ok":
-                    results[p.index] = store.load(p.key)
-                    skipped += 1
+                    finished = store.load(p.key)
+                    if finished is not None:
+                        results[p.index] = finished
+                        skipped += 1
     failed: list = []
     for p in plan:  # invalid combinations: recorded, never run
         if p.case is None:
@@ -329,7 +331,9 @@ def estimate_point_seconds(case, mode: str = "study", steps: int = 8) -> float:
         t0 = clock()
         dry_coating_study()
         ehl_coating_study(case.lubricant(), case)
-        roughness_sensitivity(case, ref, nose_condition(inp))
+        nose = nose_condition(inp)
+        if nose is not None:
+            roughness_sensitivity(case, ref, nose)
         t_single = clock() - t0
     t_ehl = n_loaded * t_step
     t = t_dyn + len(case.surface_set_names) * t_ehl + t_single

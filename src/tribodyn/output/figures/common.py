@@ -138,7 +138,11 @@ def dynamics_event(ds) -> tuple[float, float]:
     """Engagement and disengagement crank angles [deg] of the dynamics output."""
     ca = arr(ds, "crank_angle")
     f = arr(ds, "contact_force")
-    on = np.flatnonzero(f >= EVENT_FRACTION * np.nanmax(f)) if np.nanmax(f) > 0 else []
+    on = (
+        np.flatnonzero(f >= EVENT_FRACTION * np.nanmax(f))
+        if np.nanmax(f) > 0
+        else np.zeros(0, dtype=int)
+    )
     if len(on) == 0:
         return float(ca[0]), float(ca[-1])
     return float(ca[on[0]]), float(ca[on[-1]])

@@ -36,7 +36,7 @@ def _zoom_windows(ds) -> list[tuple[float, float]]:
                 c = ca[near][np.nanargmax(d[near])]
                 wins[k][0] = min(wins[k][0], c - 10.0)
                 wins[k][1] = max(wins[k][1], c + 10.0)
-    return [tuple(w) for w in wins]
+    return [(w[0], w[1]) for w in wins]
 
 
 _EXPLICIT_STYLE = dict(color="tab:blue", lw=1.5, label="explicit (analytic film in the dynamics)")

@@ -54,7 +54,10 @@ def x_dim(ds) -> str | None:
         if a["path"] == "engine.speed_rpm":
             return a["dim"]
     num = [d for d in _sweep_dims(ds) if _numeric(ds, d)]
-    return num[0] if num else (_sweep_dims(ds) or [None])[0]
+    if num:
+        return num[0]
+    dims = _sweep_dims(ds)
+    return dims[0] if dims else None
 
 
 def _x_values(ds, xd):
