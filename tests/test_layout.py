@@ -77,6 +77,8 @@ def test_the_check_sees_a_literal(tmp_path):
 LAYERS = {
     "paper": 0,
     "_validation": 0,
+    "_version": 0,
+    "_typing": 0,
     "physics": 1,
     "contact": 2,
     "valvetrain": 2,

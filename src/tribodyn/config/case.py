@@ -32,6 +32,7 @@ from pydantic import (
     model_validator,
 )
 
+from .._typing import PathLike
 from .._validation import InputError
 from ..contact.ehl import EHLOptions
 from ..contact.ehl.thermal import ThermalOptions
@@ -695,7 +696,7 @@ def bundled_cases() -> dict[str, Path]:
     return {p.stem: p for p in sorted(CASES_DIR.glob("*.toml"))}
 
 
-def load_case(path=None) -> Case:
+def load_case(path: PathLike | None = None) -> Case:
     """Load and validate a case file.
 
     ``path=None`` loads the bundled paper case; a bare name such as ``"andreou2023"`` or
@@ -717,7 +718,7 @@ def to_toml(data: dict, *, header: list[str] | None = None) -> str:
     return lines + ("\n" if lines else "") + tomli_w.dumps(data)
 
 
-def set_dotted(data: dict, key: str, value) -> None:
+def set_dotted(data: dict, key: str, value: Any) -> None:
     """Set ``value`` at the dotted key path ``key`` of a case dict (all places it
     addresses; selectors ``[i]``, ``[*]``, ``[name=…]``: :mod:`tribodyn.config.paths`)."""
     set_path(data, key, value)

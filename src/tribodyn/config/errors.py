@@ -217,7 +217,12 @@ def _unit_hint(fi) -> str:
 
 
 def format_validation_error(
-    exc: ValidationError, root, source=None, *, what="case", variants=None
+    exc: ValidationError,
+    root: type[BaseModel],
+    source: object = None,
+    *,
+    what: str = "case",
+    variants: dict | None = None,
 ) -> str:
     """Readable multi-line message: one ``dotted.key: problem (got value)`` per line.
 

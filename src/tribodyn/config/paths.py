@@ -218,7 +218,7 @@ def _walk(data, tokens, create: bool):
     return curs, last
 
 
-def set_path(data: dict, path, value) -> int:
+def set_path(data: dict, path: str | list, value: Any) -> int:
     """Set ``value`` at every place ``path`` addresses in the dict ``data`` (in place);
     missing tables on the way and a missing last key are created (validation of the case
     decides whether they are allowed). Returns the number of places set."""
@@ -229,7 +229,7 @@ def set_path(data: dict, path, value) -> int:
     return len(curs)
 
 
-def get_path(data: dict, path) -> list:
+def get_path(data: dict, path: str | list) -> list:
     """Values at every place ``path`` addresses (absent last keys are skipped)."""
     tokens = parse_path(path) if isinstance(path, str) else tuple(path)
     curs, last = _walk(data, tokens, create=False)

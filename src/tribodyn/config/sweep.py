@@ -34,6 +34,7 @@ from pydantic import (
     model_validator,
 )
 
+from .._typing import PathLike
 from .._validation import InputError
 from .case import Case, bundled_cases, load_case, to_toml
 from .errors import Problems, format_validation_error
@@ -524,7 +525,7 @@ def bundled_sweeps() -> dict[str, Path]:
     return {p.stem: p for p in sorted(SWEEPS_DIR.glob("*.toml"))}
 
 
-def load_sweep(path) -> SweepSpec:
+def load_sweep(path: PathLike) -> SweepSpec:
     """Load and validate a sweep file (or a bundled sweep by name)."""
     p = Path(path)
     if not p.exists():

@@ -9,15 +9,17 @@ costs two O(N log N) convolutions.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._typing import ArrayLike
 from .._validation import InputError, check_int, check_positive
 from ..physics.elasticity import DeformationOperator
 from ..physics.hertz import HertzLineContact, hertz_line_contact
 from ..physics.limits import EHL_NODES, NEWTON_TOL
-from ..physics.materials import as_bodies, reduced_modulus
+from ..physics.materials import BodyPair, as_bodies, reduced_modulus
 from .ehl.validity import MAX_PRESSURE, MAX_ZONE_TO_RADIUS
 
 __all__ = ["DryContactResult", "solve_dry_contact", "contact_edges"]
@@ -121,14 +123,14 @@ def _cgm(
 def solve_dry_contact(
     load: float,
     radius: float,
-    bodies,
+    bodies: BodyPair,
     *,
     n: int = 1024,
     domain: float = 1.6,
     tol: float = 1e-10,
     max_iter: int = 3000,
     max_domain_growth: int = 3,
-    initial_pressure=None,
+    initial_pressure: Callable[[np.ndarray], ArrayLike] | None = None,
 ) -> DryContactResult:
     """Dry line contact of a steel or coated cylinder/plane pair.
 

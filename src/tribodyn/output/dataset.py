@@ -15,9 +15,13 @@ single-contact studies' conditions.
 from __future__ import annotations
 
 import json
+from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
+
+if TYPE_CHECKING:
+    from ..workflow.cycle import CycleStudy
 
 __all__ = ["study_to_dataset"]
 
@@ -63,7 +67,7 @@ def _var(dims, data, units=None, long_name=None, **attrs) -> xr.Variable:
     return xr.Variable(dims, np.asarray(data), {**a, **attrs})
 
 
-def study_to_dataset(study) -> xr.Dataset:
+def study_to_dataset(study: CycleStudy) -> xr.Dataset:
     """All results of a :class:`~tribodyn.workflow.cycle.CycleStudy` in one Dataset."""
     from .. import __version__
 
@@ -101,7 +105,7 @@ def study_to_dataset(study) -> xr.Dataset:
     )
     ds["coating_thickness"] = _var(
         "surface_set",
-        [cfg[s.name].coating.thickness if cfg[s.name].coating else 0.0 for s in sets],
+        [c.thickness if (c := cfg[s.name].coating) is not None else 0.0 for s in sets],
         "m",
         "coating thickness (0 = uncoated)",
     )

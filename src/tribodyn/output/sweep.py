@@ -13,8 +13,14 @@ import math
 import os
 import tempfile
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+from .._typing import PathLike
+
+if TYPE_CHECKING:
+    from ..workflow.sweep import SweepResult
 
 __all__ = ["write_sweep", "sweep_report_text"]
 
@@ -28,7 +34,7 @@ def _atomic_text(path: Path, text: str):
     os.replace(tmp, path)
 
 
-def write_sweep(result, out_dir, *, figures: bool = True) -> dict:
+def write_sweep(result: SweepResult, out_dir: PathLike, *, figures: bool = True) -> dict:
     """Write the files of a :class:`~tribodyn.workflow.sweep.SweepResult` into
     ``out_dir``; returns ``{"dataset": path, "report": path, "figures": {…}}``."""
     out = Path(out_dir)

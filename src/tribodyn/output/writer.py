@@ -27,11 +27,16 @@ import re
 import shutil
 import tempfile
 import time
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
+from .._typing import PathLike
 from .._validation import InputError
 from .dataset import study_to_dataset
+
+if TYPE_CHECKING:
+    from ..workflow.cycle import CycleStudy
 
 __all__ = [
     "write_atomic",
@@ -71,7 +76,7 @@ class OutputWriteError(RuntimeError):
 
 
 # ----------------------------------------------------------------------------- checks
-def is_result_folder(path) -> bool:
+def is_result_folder(path: PathLike) -> bool:
     """True for a folder written by tribodyn (marker, or the 0.1 set of files)."""
     p = Path(path)
     if not p.is_dir():
@@ -86,7 +91,7 @@ def _existing_ancestor(p: Path) -> Path:
     return q
 
 
-def check_output_dir(path, *, option: str = "output folder") -> Path:
+def check_output_dir(path: PathLike, *, option: str = "output folder") -> Path:
     """Check that results can be written to ``path`` before anything is computed.
 
     Returns the absolute path. Raises :class:`~tribodyn.InputError` naming ``option``
@@ -150,7 +155,7 @@ def _pid_alive(pid: int) -> bool:
     return True
 
 
-def clean_stale(target) -> list[Path]:
+def clean_stale(target: PathLike) -> list[Path]:
     """Remove ``.NAME.tmp-*`` and ``.NAME.old-*`` folders next to ``target`` left by runs
     that were killed (process gone; 0.1-style names after an hour). An ``.old`` folder is
     moved back to ``target`` if the target is missing (the kill came between the two
@@ -187,7 +192,9 @@ def clean_stale(target) -> list[Path]:
 
 
 # ----------------------------------------------------------------------------- writing
-def write_atomic(target: Path, writer, *, meta: dict | None = None) -> Path:
+def write_atomic(
+    target: Path, writer: Callable[[Path], object], *, meta: dict | None = None
+) -> Path:
     """Call ``writer(tmpdir)`` to fill a fresh folder, mark it, then replace ``target``.
 
     ``target`` must be absent, empty or a tribodyn result folder (:func:`check_output_dir`
@@ -234,7 +241,13 @@ def _rescue_dirs(case_name: str):
         yield base / name
 
 
-def write_results(study, out_dir, *, figures=True, report=True) -> dict:
+def write_results(
+    study: CycleStudy,
+    out_dir: PathLike,
+    *,
+    figures: bool | list[str] = True,
+    report: bool = True,
+) -> dict:
     """Write results.nc, summary.json, case.toml, figures and report.md atomically into
     ``out_dir``. Returns ``{"summary": …, "figures": {name: path}, "path": out_dir}``.
 

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
+from .._typing import ArrayLike
 from .._validation import InputError, check_choice
 from .limits import (
     ASPERITY_DENSITY,
@@ -91,7 +92,7 @@ def _lambda_array(lam) -> np.ndarray:
     return a
 
 
-def greenwood_tripp(n, lam, method: str = "exact"):
+def greenwood_tripp(n: float, lam: ArrayLike, method: str = "exact") -> np.ndarray | float:
     """Greenwood–Tripp statistical function F_n(λ) (dimensionless).
 
     Parameters
@@ -255,7 +256,7 @@ class Roughness:
             * reduced_modulus
         )
 
-    def asperity_pressure(self, gap, reduced_modulus: float) -> np.ndarray:
+    def asperity_pressure(self, gap: ArrayLike, reduced_modulus: float) -> np.ndarray | float:
         """Local asperity pressure p_a(h) [Pa] at gap h [m] (Eq. 6 per unit area)."""
         lam = np.asarray(gap, dtype=float) / self.rms
         return self.pressure_scale(reduced_modulus) * greenwood_tripp(2.5, lam, self.method)
@@ -269,7 +270,7 @@ class Roughness:
             * greenwood_tripp_derivative(2.5, lam, self.method)
         )
 
-    def contact_area_fraction(self, gap) -> np.ndarray:
+    def contact_area_fraction(self, gap: ArrayLike) -> np.ndarray | float:
         """Real-contact-area fraction A_a/A = π²(ηβσ)² F₂(h/σ) (Eq. 18 per unit area)."""
         lam = np.asarray(gap, dtype=float) / self.rms
         return math.pi**2 * self.roughness_parameter**2 * greenwood_tripp(2.0, lam, self.method)

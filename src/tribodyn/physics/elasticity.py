@@ -43,7 +43,7 @@ import numpy as np
 from scipy import integrate, interpolate, linalg
 
 from .._validation import InputError, check_positive
-from .materials import Body, Coating, Material, as_bodies
+from .materials import Body, BodyPair, Coating, Material, as_bodies
 
 __all__ = [
     "half_plane_frf",
@@ -295,7 +295,7 @@ class DeformationOperator:
     ``p`` [Pa] (last axis of length n; leading axes are batched).
     """
 
-    def __init__(self, bodies, dx: float, n: int, coefficients: np.ndarray | None = None):
+    def __init__(self, bodies: BodyPair, dx: float, n: int, coefficients: np.ndarray | None = None):
         self.bodies: tuple[Body, Body] | None = as_bodies(bodies)
         self.dx = check_positive("dx", dx, "m")
         self.n = int(n)

@@ -9,7 +9,9 @@ Conventions (docs/conventions.md, paper Eq. 10):
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TypeAlias
 
 from .. import paper
 from .._validation import InputError
@@ -92,7 +94,11 @@ class Body:
         return self.coating is not None
 
 
-def as_bodies(bodies) -> tuple[Body, Body]:
+#: The two bodies of a contact, (cam, tappet): a tuple or any sequence of two Body.
+BodyPair: TypeAlias = "Sequence[Body]"
+
+
+def as_bodies(bodies: BodyPair) -> tuple[Body, Body]:
     """``bodies`` as a validated pair (Body, Body)."""
     try:
         bodies = tuple(bodies)
@@ -103,7 +109,7 @@ def as_bodies(bodies) -> tuple[Body, Body]:
     return bodies
 
 
-def reduced_modulus(bodies, *, surface: bool = False) -> float:
+def reduced_modulus(bodies: BodyPair, *, surface: bool = False) -> float:
     """Reduced modulus E' of a pair: 1/E' = ½[(1−ν₁²)/E₁ + (1−ν₂²)/E₂] [Pa].
 
     ``surface=False`` uses the substrate (bulk) materials, as Hertz theory for a thin

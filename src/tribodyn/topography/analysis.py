@@ -31,13 +31,16 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
+from .._typing import PathLike
 from .composite import composite_moments, sum_on_common_grid
 from .errors import InsufficientDataError
-from .filtering import AUTO_BAND, Band, Sampling, prepare_topography
+from .filtering import AUTO_BAND, Band, BandSpec, Sampling, prepare_topography
 from .height_statistics import height_statistics
+from .profile import ProfileAnalysis
 from .reading import read_topography
 from .results import PairAnalysis, SurfaceAnalysis
 from .spectral_moments import (
@@ -323,8 +326,8 @@ def _with_notes(r: SurfaceAnalysis) -> SurfaceAnalysis:
 
 
 def analyse_surface(
-    source,
-    band=AUTO_BAND,
+    source: PathLike | Any,
+    band: BandSpec = AUTO_BAND,
     *,
     kind: str = "gaussian",
     detrend: str = "height",
@@ -332,9 +335,9 @@ def analyse_surface(
     min_defined_fraction: float = 0.0,
     name: str | None = None,
     channel: int | None = None,
-    physical_sizes=None,
+    physical_sizes: tuple[float, ...] | None = None,
     unit: str | None = None,
-):
+) -> SurfaceAnalysis | ProfileAnalysis:
     """Greenwood–Tripp parameters of one surface.
 
     Parameters
@@ -467,7 +470,9 @@ def composite_roughness(first: SurfaceAnalysis, second: SurfaceAnalysis) -> Pair
     return replace(pair, notes=tuple(notes))
 
 
-def analyse_pair(first, second, band=AUTO_BAND, **kwargs) -> PairAnalysis:
+def analyse_pair(
+    first: PathLike | Any, second: PathLike | Any, band: BandSpec = AUTO_BAND, **kwargs: Any
+) -> PairAnalysis:
     """Analyse two surfaces (e.g. cam and tappet) with the same settings and combine them.
 
     ``first``/``second``: file names or ``Topography`` objects; other arguments as

@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -65,6 +66,8 @@ __all__ = [
 PAPER_BAND = (0.25e-6, 250e-6)
 #: ``band`` value that selects the paper's band clipped to the measurement
 AUTO_BAND = "auto"
+#: A band as the API takes it: "auto", (λ_s, λ_L) [m], or None (level only).
+BandSpec = tuple[float, float] | str | None
 #: The default band must keep λ_L ≥ this × λ_s (else the field is too small for it)
 MIN_BAND_RATIO = 4.0
 FILTER_KINDS = ("gaussian", "step")
@@ -328,14 +331,14 @@ def band_pass(topography, band: Band):
 
 
 def prepare_topography(
-    topography,
-    band=AUTO_BAND,
+    topography: Any,
+    band: BandSpec = AUTO_BAND,
     *,
     kind: str = "gaussian",
     detrend: str = "height",
     clip_band: bool = False,
     min_defined_fraction: float = 0.0,
-):
+) -> tuple[Any, Band, Sampling, Any]:
     """Fill, level and band-pass filter a topography map (in m).
 
     Parameters

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._typing import ArrayLike
 from .._validation import InputError, check_array, check_positive
 
 __all__ = ["HeightStatistics", "height_statistics", "gaussian_pdf"]
@@ -44,7 +45,7 @@ class HeightStatistics:
         }
 
 
-def height_statistics(heights) -> HeightStatistics:
+def height_statistics(heights: ArrayLike) -> HeightStatistics:
     """σ, mean, Ssk and Sku of a height array [m] (NaN/inf rejected)."""
     z = check_array("heights", heights, ndim=None, min_size=3).ravel()
     mean = float(np.mean(z))

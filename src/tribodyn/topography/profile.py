@@ -30,12 +30,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
 from .._validation import InputError, check_range
 from .errors import InsufficientDataError
-from .filtering import AUTO_BAND, DETREND_MODES, Band, check_band, default_band
+from .filtering import AUTO_BAND, DETREND_MODES, Band, BandSpec, check_band, default_band
 from .height_statistics import HeightStatistics, height_statistics
 from .results import AsperityParameters, _TomlMixin
 from .spectral_moments import McCoolParameters, SpectralMoments, mccool_parameters
@@ -207,8 +208,8 @@ def _filter_profile(h: np.ndarray, dx: float, band: Band, periodic: bool) -> tup
 
 
 def analyse_profile(
-    line,
-    band=AUTO_BAND,
+    line: Any,
+    band: BandSpec = AUTO_BAND,
     *,
     kind: str = "gaussian",
     detrend: str = "height",

@@ -10,9 +10,11 @@ analysis never sees instrument units.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
+from .._typing import PathLike
 from .errors import TopographyReadError
 
 __all__ = ["read_topography", "write_topography", "supported_formats", "WRITERS"]
@@ -37,8 +39,12 @@ def supported_formats() -> list[tuple[str, str]]:
 
 
 def read_topography(
-    path, *, channel: int | None = None, physical_sizes=None, unit: str | None = None
-):
+    path: PathLike,
+    *,
+    channel: int | None = None,
+    physical_sizes: tuple[float, ...] | None = None,
+    unit: str | None = None,
+) -> Any:
     """Read an areal topography map and return it in metres.
 
     Parameters
@@ -206,7 +212,7 @@ def _check_sdf_complete(path: Path) -> None:
         )
 
 
-def write_topography(topography, path) -> Path:
+def write_topography(topography: Any, path: PathLike) -> Path:
     """Write a topography map with SurfaceTopography's writers, chosen by suffix.
 
     ``.x3p`` (ISO 5436-2), ``.nc`` (netCDF), ``.gwy`` (Gwyddion) or ``.txt``/``.asc``

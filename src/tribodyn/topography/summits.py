@@ -82,7 +82,10 @@ def find_summits(heights, periodic: bool = False) -> np.ndarray:
 
 
 def summit_statistics(
-    heights, mean_curvature, pixel_size, periodic: bool = False
+    heights: np.ndarray,
+    mean_curvature: np.ndarray,
+    pixel_size: tuple[float, float],
+    periodic: bool = False,
 ) -> SummitStatistics:
     """Summit density, mean summit curvature/radius and summit heights of a map.
 

@@ -16,6 +16,7 @@ M_n = (1/2π) ∫ qⁿ⁺¹ C²ᴰ(q) dq and m0 = M0, m2 = M2/2, m4 = 3M4/8 (see
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -58,16 +59,16 @@ def _check(nb_grid_pts, pixel_size, rms, hurst, short_cutoff, long_cutoff):
 
 
 def synthetic_surface(
-    nb_grid_pts=DEFAULT_SYNTHETIC["nb_grid_pts"],
+    nb_grid_pts: int | tuple[int, int] = DEFAULT_SYNTHETIC["nb_grid_pts"],
     pixel_size: float = DEFAULT_SYNTHETIC["pixel_size"],
     *,
     rms: float = DEFAULT_SYNTHETIC["rms"],
     hurst: float = DEFAULT_SYNTHETIC["hurst"],
     short_cutoff: float = DEFAULT_SYNTHETIC["short_cutoff"],
     long_cutoff: float = DEFAULT_SYNTHETIC["long_cutoff"],
-    seed=None,
+    seed: int | np.random.Generator | None = None,
     exact_rms: bool = True,
-):
+) -> Any:
     """Periodic isotropic Gaussian topography (SurfaceTopography ``Topography``, unit m).
 
     Parameters

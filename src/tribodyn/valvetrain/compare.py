@@ -20,7 +20,7 @@ COMPARED = ("tappet_velocity", "contact_force", "tappet_acceleration")
 
 
 def compare_results(
-    reference: ValvetrainResult, other: ValvetrainResult, quantities=COMPARED
+    reference: ValvetrainResult, other: ValvetrainResult, quantities: tuple[str, ...] = COMPARED
 ) -> dict:
     """Differences other − reference over the presented cycle (dict per quantity)."""
     for name, r in (("reference", reference), ("other", other)):

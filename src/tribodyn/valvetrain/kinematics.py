@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._typing import ArrayLike
 from .._validation import InputError, check_array, check_positive
 from .cams import CamProfile
 
@@ -61,7 +62,9 @@ class FlatFollowerKinematics:
         return np.degrees(2.0 * self.angle)
 
 
-def flat_follower_kinematics(cam: CamProfile, cam_speed: float, angle) -> FlatFollowerKinematics:
+def flat_follower_kinematics(
+    cam: CamProfile, cam_speed: float, angle: ArrayLike
+) -> FlatFollowerKinematics:
     """Kinematics of a flat follower on ``cam`` at constant ``cam_speed`` ω [rad/s] (> 0)
     at cam angles ``angle`` [rad] (scalar or array)."""
     if not isinstance(cam, CamProfile):

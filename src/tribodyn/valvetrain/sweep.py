@@ -13,10 +13,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._typing import ArrayLike
 from .._validation import InputError, check_array, check_positive
 from .cams import CamProfile
 from .dynamics import ValvetrainResult, simulate_valvetrain
 from .parameters import ValvetrainParameters
+from .tribology import TribologyModel
 
 __all__ = ["SpeedSweepResult", "speed_sweep", "jump_speed"]
 
@@ -66,10 +68,10 @@ def _row(r: ValvetrainResult):
 
 def speed_sweep(
     cam: CamProfile,
-    engine_speeds,
+    engine_speeds: ArrayLike,
     params: ValvetrainParameters | None = None,
     *,
-    tribology="explicit",
+    tribology: TribologyModel | str | None = "explicit",
     **kwargs,
 ) -> SpeedSweepResult:
     """Simulate at each engine speed [rpm] (sorted ascending); kwargs go to
@@ -104,7 +106,7 @@ def jump_speed(
     low: float = 2000.0,
     high: float = 12000.0,
     tolerance: float = 10.0,
-    tribology="explicit",
+    tribology: TribologyModel | str | None = "explicit",
     **kwargs,
 ) -> tuple[float, float]:
     """Bracket [n_lo, n_hi] [rpm] of the lowest engine speed with cam contact loss.

@@ -23,6 +23,7 @@ import time
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -39,6 +40,9 @@ from .model_comparison import ModelComparison, compare_lumped_flexible
 from .postprocess import Analysis, analyse, surface_roles
 from .sensitivity import RoughnessSensitivity, nose_condition, roughness_sensitivity
 
+if TYPE_CHECKING:
+    from ..config.case import Case
+
 __all__ = ["CycleStudy", "StudyError", "run_cycle_study"]
 
 
@@ -50,7 +54,7 @@ class StudyError(RuntimeError):
 class CycleStudy:
     """Everything the cycle study computed (see module docstring)."""
 
-    case: object  #: the validated Case
+    case: Case  #: the validated Case
     dynamics: ValvetrainResult  #: explicit dynamics
     inputs: CycleInputs  #: EHL samples of the presented cycle
     sets: list[SetCycleResult]  #: in case order

@@ -23,14 +23,23 @@ import math
 import os
 import statistics
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import xarray as xr
 
+from .._typing import PathLike
 from .._validation import InputError
 from .sweep_point import failed_point, run_point
 from .sweep_store import PointStore, combine_points
+
+if TYPE_CHECKING:
+    from distributed import Client, LocalCluster
+
+    from ..config.case import Case
+    from ..config.sweep import SweepSpec
 
 __all__ = [
     "SweepResult",
@@ -47,7 +56,7 @@ __all__ = [
 class SweepResult:
     """A finished (or partly failed) sweep."""
 
-    spec: object  #: the SweepSpec
+    spec: SweepSpec
     points: list  #: the plan (SweepPoint, in dimension order)
     dataset: xr.Dataset  #: all points, indexed by the sweep dimensions
     ran: int = 0  #: points run now
@@ -70,7 +79,7 @@ def machine_workers() -> int:
         return max(1, os.cpu_count() or 1)
 
 
-def local_cluster(workers: int | None = None):
+def local_cluster(workers: int | None = None) -> LocalCluster:
     """A ``LocalCluster`` of single-threaded process workers (default: one per core)."""
     from distributed import LocalCluster
 
@@ -86,7 +95,7 @@ def local_cluster(workers: int | None = None):
     )
 
 
-def connect(address: str, *, workers: int | None = None, timeout: float = 30.0):
+def connect(address: str, *, workers: int | None = None, timeout: float = 30.0) -> Client:
     """A client of an existing Dask scheduler: ``tcp://host:port`` (or another Dask
     address) or the path of a scheduler file. ``workers``: wait until that many workers
     are connected. Raises :class:`InputError` naming ``--scheduler`` if it cannot."""
@@ -128,13 +137,13 @@ def _n_workers(client) -> int:
 
 
 def run_sweep(
-    spec,
-    client=None,
+    spec: SweepSpec | PathLike,
+    client: Client | None = None,
     *,
-    out_dir=None,
+    out_dir: PathLike | None = None,
     resume: bool = False,
     workers: int | None = None,
-    progress=None,
+    progress: Callable[..., None] | None = None,
 ) -> SweepResult:
     """Run a sweep; return its :class:`SweepResult`.
 
@@ -176,7 +185,7 @@ def run_sweep(
     failed: list = []
     for p in plan:  # invalid combinations: recorded, never run
         if p.case is None:
-            results[p.index] = failed_point(p.error)
+            results[p.index] = failed_point(p.error or "invalid combination")
             if store is not None:
                 store.write(p, results[p.index])
             failed.append((p, p.error))
@@ -234,12 +243,13 @@ def run_sweep(
                     error=ds.attrs.get("error", ""),
                 )
     except BaseException:  # interrupted: finished points are on disk
-        if futures and own is None:
+        if futures and own is None and client is not None:
             client.cancel([f for f in futures if not f.done()])
         raise
     finally:
         if own is not None:
-            client.close()
+            if client is not None:
+                client.close()
             own.close()
     failed.sort(key=lambda f: f[0].index)
     dataset = combine_points(spec, plan, results)
@@ -279,7 +289,7 @@ def _submit(client, spec, todo):
 
 
 # ----------------------------------------------------------------------------- estimate
-def estimate_point_seconds(case, mode: str = "study", steps: int = 8) -> float:
+def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> float:
     """Estimated CPU time [s] of one point on one core, from a calibration run.
 
     Dynamics mode: the dynamics is run (its time is the estimate). Study mode: the
@@ -342,7 +352,7 @@ def estimate_point_seconds(case, mode: str = "study", steps: int = 8) -> float:
     return t
 
 
-def estimate_sweep(spec, *, workers: int, out_dir=None) -> dict:
+def estimate_sweep(spec: SweepSpec, *, workers: int, out_dir: PathLike | None = None) -> dict:
     """Estimated wall time of a sweep on ``workers`` single-threaded workers.
 
     The time per point is the median CPU time of points already finished in ``out_dir``
@@ -367,7 +377,7 @@ def estimate_sweep(spec, *, workers: int, out_dir=None) -> dict:
         method = f"median CPU time of the {len(done_times)} finished points"
     elif valid:
         cal = [valid[0]] if len(valid) == 1 else [valid[0], valid[-1]]
-        times = [estimate_point_seconds(p.case, spec.mode) for p in cal]
+        times = [estimate_point_seconds(p.case, spec.mode) for p in cal if p.case is not None]
         per = sum(times) / len(times)
         method = "calibration run of " + " and ".join(f"point {p.index} ({p.label})" for p in cal)
     else:
