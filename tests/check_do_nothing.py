@@ -32,6 +32,16 @@ FILES = {
 }
 
 
+#: Tests that call the solver but check what happens around it, not its answer; they pass
+#: with a do-nothing solver by design and are listed separately, with the reason.
+EXEMPT = {
+    "tests/test_valvetrain_dynamics.py::test_solver_failure_is_reported_not_hidden": (
+        "a film law that raises must be reported as a failed run: the error comes from the "
+        "film law, whatever the integrator does"
+    ),
+}
+
+
 def check(solver: str) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         report = Path(tmp) / "report.jsonl"
@@ -63,7 +73,8 @@ def check(solver: str) -> dict:
     return {
         "tests": len(rows),
         "using_the_solver": len(used),
-        "still_pass": sorted(r["test"] for r in used if r["passed"]),
+        "still_pass": sorted(r["test"] for r in used if r["passed"] and r["test"] not in EXEMPT),
+        "exempt": {r["test"]: EXEMPT[r["test"]] for r in used if r["test"] in EXEMPT},
     }
 
 

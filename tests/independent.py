@@ -58,3 +58,26 @@ def film_equation_residual(x, h, q, R, e_prime):
     displacement is defined up to a constant, absorbed in the rigid approach h₀)."""
     rest = h - x**2 / (2.0 * R) - log_kernel_displacement(x, q, e_prime)
     return float(np.max(np.abs(rest - np.median(rest))) / np.min(h))
+
+
+def squeeze_balance_error(profiles, dt, oil, half_width):
+    """Transient Reynolds at zero entrainment, recomputed outside the solver:
+    ∂/∂x(ρh³/(12μ) ∂p/∂x) = ∂(ρh)/∂t with ∂(ρh)/∂t by BDF2 from the last three steps'
+    profiles, or by backward Euler from the last two (interpolated onto the newest grid).
+    ``profiles`` = [(x, p, h)] × 3 or × 2 (oldest first), the newest at u_e = 0. Returns
+    max |flux divergence − ∂(ρh)/∂t| over the nodes with |x| < b/2, relative to
+    max |∂(ρh)/∂t| there."""
+    x, p, h = profiles[-1]
+    m = [rheology(np.interp(x, xs, ps), oil)[0] * np.interp(x, xs, hs) for xs, ps, hs in profiles]
+    if len(m) == 3:
+        dmdt = (3.0 * m[2] - 4.0 * m[1] + m[0]) / (2.0 * dt)
+    else:
+        dmdt = (m[1] - m[0]) / dt
+    dx = np.diff(x)
+    rho, mu = rheology(0.5 * (p[1:] + p[:-1]), oil)
+    hm = 0.5 * (h[1:] + h[:-1])
+    flux = -rho * hm**3 / (12.0 * mu) * np.diff(p) / dx  # Poiseuille mass flux at the faces
+    div = np.diff(flux) / (0.5 * (dx[1:] + dx[:-1]))
+    inner = np.abs(x[1:-1]) < 0.5 * half_width
+    rate = dmdt[1:-1][inner]
+    return float(np.max(np.abs(-div[inner] - rate)) / np.max(np.abs(rate)))

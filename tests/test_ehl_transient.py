@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from ehl_cases import E_PRIME, OIL, PAIR, R, conditions
+from independent import squeeze_balance_error
 from tribodyn import Lubricant, TransientEHL, solve_ehl
 from tribodyn.physics.regimes import hamrock_groups, moes_central
 
@@ -49,18 +50,23 @@ def test_passage_through_zero_entrainment_keeps_a_film():
     T = 2e-3  # ramp duration [s]
     nstep = 80
     dt = T / nstep
-    hc, ue_hist, squeeze = [], [], []
+    hc, ue_hist, squeeze, profiles = [], [], [], []
     for k in range(1, nstep + 1):
         ue = u0 * (1 - 2 * k / nstep)
         r = tr.step(dt, w, R_, ue, 3.0)
         assert r.converged, r.message
         assert np.all(np.isfinite(r.film)) and np.all(np.isfinite(r.pressure))
+        profiles.append((r.x.copy(), r.pressure.copy(), r.film.copy()))
         hc.append(r.central_film)
         ue_hist.append(ue)
         squeeze.append(r.squeeze_velocity)
     hc = np.array(hc)
     i0 = int(np.argmin(np.abs(ue_hist)))
     assert ue_hist[i0] == pytest.approx(0.0, abs=1e-12)
+    # at u_e = 0 the load is carried by squeeze alone: the transient Reynolds equation,
+    # recomputed from the profiles of the last three steps (measured: 1.4e-4)
+    b = math.sqrt(8 * w * R_ / (math.pi * E_PRIME))
+    assert squeeze_balance_error(profiles[i0 - 2 : i0 + 1], dt, oil, b) < 0.01
     # quasi-steady estimate at the smallest non-zero |u_e| of the ramp
     W, U, Gg = hamrock_groups(w, R_, u0 * 2 / nstep, 0.055, 1.05e-8, E_PRIME)
     h_qs = float(moes_central(W, U, Gg, R_))
@@ -74,11 +80,17 @@ def test_passage_through_zero_entrainment_keeps_a_film():
 
 def _reversal_film(nstep, order):
     """h_c at u_e = 0 (half-way through the ramp of the test above) with nstep steps."""
-    tr = TransientEHL(PAIR, Lubricant(0.055, 1.05e-8), time_order=order)
+    oil = Lubricant(0.055, 1.05e-8)
+    tr = TransientEHL(PAIR, oil, time_order=order)
     tr.start_steady(4e4, 0.005, 1.0, 3.0)
+    profiles = []
     for k in range(1, nstep // 2 + 1):
         r = tr.step(2e-3 / nstep, 4e4, 0.005, 1.0 * (1 - 2 * k / nstep), 3.0)
         assert r.converged, r.message
+        profiles.append((r.x.copy(), r.pressure.copy(), r.film.copy()))
+    # the step solved the transient Reynolds equation of its own scheme (independent check)
+    b = math.sqrt(8 * 4e4 * 0.005 / (math.pi * E_PRIME))
+    assert squeeze_balance_error(profiles[-(order + 1) :], 2e-3 / nstep, oil, b) < 0.01
     return r.central_film
 
 
