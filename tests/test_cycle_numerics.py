@@ -140,3 +140,29 @@ def test_study_runs_through_any_executor():
     for a in study.sets[:2]:  # the same as a pass in this process
         b = ehl_for_set(case, case.surface_set(a.name), study.inputs)
         assert np.array_equal(a.central_film, b.central_film, equal_nan=True)
+
+
+def test_validity_warnings_of_the_steps_reach_the_study():
+    """Steps outside the model's validity (here: a 0.5 mm radius under 5 kN, contact
+    pressure beyond the elastic limit) are collected per kind with their first crank angle
+    and count, so the study's warnings (report, summary.json) name them."""
+    crank = np.arange(0.0, 6.0 + 1e-9, 1.0)
+    t = np.radians(crank) / (2 * np.pi * 50.0)
+    n = crank.size
+    inp = CycleInputs(
+        crank, t, np.full(n, 5000.0), np.full(n, 3.0), np.full(n, 6.0), np.full(n, 5e-4), WIDTH
+    )
+    r = ehl_along_cycle(
+        inp,
+        "u",
+        "u",
+        UNCOATED.bodies,
+        CASE.lubricant(),
+        UNCOATED.roughness,
+        CASE.ehl_options(UNCOATED),
+    )
+    assert r.loaded.all()
+    kinds = {text.split(" ")[0]: (count, first) for count, first, text in r.validity.values()}
+    assert "peak" in kinds  # "peak contact pressure … GPa exceeds …"
+    count, first = kinds["peak"]
+    assert count == int(r.converged.sum()) and first == 0.0

@@ -310,6 +310,11 @@ def run_cycle_study(
                 f"{s.name}: {len(s.failures)} EHL step(s) did not converge "
                 f"(first at {s.failures[0][0]:.0f}°: {s.failures[0][1]})"
             )
+        for count, first, text in s.validity.values():
+            study.warnings.append(
+                f"{s.name}: {count} EHL step(s) outside the model's validity "
+                f"(first at {first:.0f}°: {text})"
+            )
     if n.implicit_coupling and not coupling.converged:
         study.warnings.append(f"implicit coupling: {coupling.message}")
     if dyn.jump:

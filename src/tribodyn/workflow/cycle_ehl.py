@@ -15,6 +15,7 @@ P = (F_v + F_b) u_s [W]; films [m]; pressures [Pa].
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -113,6 +114,8 @@ class SetCycleResult:
     pressure: np.ndarray  #: (crank, k) [Pa], NaN where unloaded
     film: np.ndarray  #: (crank, k) [m]
     failures: list = field(default_factory=list)  #: [(crank_deg, message)]
+    #: validity warnings of converged steps, by kind: {kind: (count, first crank_deg, text)}
+    validity: dict = field(default_factory=dict)
     runtime_s: float = 0.0
     #: solver steps taken to reach each sample (1: the sample step itself; more where the
     #: time-error control or an engagement subdivided it; 0 where unloaded)
@@ -256,6 +259,7 @@ def ehl_along_cycle(
     p_prof = np.full((n, k), np.nan, dtype=np.float32)
     h_prof = np.full((n, k), np.nan, dtype=np.float32)
     failures = []
+    validity: dict[str, tuple[int, float, str]] = {}
     l = inp.width
     tr = None
     march = None
@@ -284,6 +288,10 @@ def ehl_along_cycle(
         iterations[i] = r.iterations
         if not r.converged:
             failures.append((float(inp.crank_angle[i]), r.message))
+        for text in r.warnings:  # outside the model's validity (contact.ehl.validity)
+            kind = re.sub(r"[-+]?\d[\d.eE+-]*", "#", text)
+            count, first, example = validity.get(kind, (0, float(inp.crank_angle[i]), text))
+            validity[kind] = (count + 1, first, example)
         out["central_film"][i] = r.central_film
         out["min_film"][i] = r.min_film
         out["max_pressure"][i] = float(r.pressure.max())
@@ -319,6 +327,7 @@ def ehl_along_cycle(
         pressure=p_prof,
         film=h_prof,
         failures=failures,
+        validity=validity,
         runtime_s=_time.perf_counter() - t_start,
         substeps=substeps,
         **out,
