@@ -1,5 +1,7 @@
 """Dry line-contact solver against Hertz and the coated limits."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -141,3 +143,19 @@ def test_bad_grid_and_bodies():
         solve_dry_contact(W, R, _pair(), n=8)
     with pytest.raises(InputError, match="bodies"):
         solve_dry_contact(W, R, (Body(STEEL),))
+
+
+def test_hertz_pressure_profile_closed_form():
+    """p(x) = p_h √(1 − x²/b²) inside the contact, 0 outside; ∫p dx = π b p_h / 2 = w and
+    b = √(8wR/(πE')), p_h = √(wE'/(2πR)) (Johnson, Contact Mechanics, 1985, §4.3)."""
+    w, R, E = 5e4, 0.01, 2.3e11
+    hz = hertz_line_contact(w, R, E)
+    b = math.sqrt(8 * w * R / (math.pi * E))
+    ph = math.sqrt(w * E / (2 * math.pi * R))
+    assert hz.half_width == pytest.approx(b, rel=1e-12)
+    assert hz.max_pressure == pytest.approx(ph, rel=1e-12)
+    x = np.array([-2 * b, -b, -0.5 * b, 0.0, 0.3 * b, b, 1.5 * b])
+    ref = ph * np.sqrt(np.clip(1 - (x / b) ** 2, 0, None))
+    assert np.allclose(hz.pressure(x), ref, rtol=1e-12, atol=0.0)
+    xs = np.linspace(-1.2 * b, 1.2 * b, 200001)
+    assert float(np.sum(hz.pressure(xs)) * (xs[1] - xs[0])) == pytest.approx(w, rel=1e-5)

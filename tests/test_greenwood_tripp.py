@@ -22,11 +22,13 @@ def _quad_fn(n, lam):
     def f(s):
         return (s - lam) ** n * math.exp(-0.5 * s * s) / math.sqrt(2 * math.pi)
 
-    return integrate.quad(f, lam, math.inf, epsabs=0, epsrel=1e-12, limit=200)[0]
+    # split at 0 so that the quadrature sees the Gaussian's mass when λ ≪ 0
+    pieces = [(lam, 0.0), (0.0, math.inf)] if lam < 0 else [(lam, math.inf)]
+    return sum(integrate.quad(f, a, b, epsabs=0, epsrel=1e-12, limit=200)[0] for a, b in pieces)
 
 
 @pytest.mark.parametrize("n", [0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.7])
-@pytest.mark.parametrize("lam", [-5.0, -1.3, 0.0, 0.7, 2.5, 4.0, 8.0])
+@pytest.mark.parametrize("lam", [-40.0, -15.0, -5.0, -1.3, 0.0, 0.7, 2.5, 4.0, 8.0])
 def test_exact_matches_definition(n, lam):
     assert greenwood_tripp(n, lam) == pytest.approx(_quad_fn(n, lam), rel=1e-9)
 
@@ -41,11 +43,30 @@ def test_finite_positive_decreasing_over_range():
     assert greenwood_tripp(2.0, -5.0) == pytest.approx(26.0, rel=1e-6)
 
 
-def test_derivative_identity():
-    lam = np.linspace(-3, 6, 37)
+@pytest.mark.parametrize("n", [0.0, 1.0, 2.0, 2.5, 3.7])
+def test_derivative_identity(n):
+    """dF_n/dλ against central differences of F_n (which is checked against its defining
+    integral above), also on the series branch below λ = −12."""
+    lam = np.concatenate([np.linspace(-3, 6, 37), [-30.0, -14.0]])
+    h = 1e-6 * np.maximum(1.0, np.abs(lam))
+    fd = (greenwood_tripp(n, lam + h) - greenwood_tripp(n, lam - h)) / (2 * h)
+    assert np.allclose(greenwood_tripp_derivative(n, lam), fd, rtol=1e-6, atol=1e-12)
+
+
+@pytest.mark.parametrize("n", [2.0, 2.5])
+def test_paper_fit_derivative_is_the_fit_slope(n):
+    """The paper's polynomial option: its derivative is the slope of the clipped fit (zero
+    where the fit is clipped)."""
+    lam = np.linspace(0.05, 3.95, 40)
     h = 1e-6
-    fd = (greenwood_tripp(2.5, lam + h) - greenwood_tripp(2.5, lam - h)) / (2 * h)
-    assert np.allclose(greenwood_tripp_derivative(2.5, lam), fd, rtol=1e-6, atol=1e-12)
+    f = greenwood_tripp(n, lam + h, method="paper")
+    g = greenwood_tripp(n, lam - h, method="paper")
+    fd = (f - g) / (2 * h)
+    d = greenwood_tripp_derivative(n, lam, method="paper")
+    smooth = (f > 0) & (g > 0)  # away from the clipping point
+    assert np.allclose(d[smooth], fd[smooth], rtol=1e-6, atol=1e-10)
+    assert np.all(d[greenwood_tripp(n, lam, method="paper") == 0.0] == 0.0)
+    assert np.all(d[smooth] < 0)
 
 
 def test_paper_polynomials_are_clipped_and_documented_inaccurate():

@@ -73,8 +73,8 @@ def _exact(n: float, lam: np.ndarray) -> np.ndarray:
     lm = lam[mid]
     d, _ = special.pbdv(-n - 1.0, lm)
     out[mid] = math.gamma(n + 1.0) * np.exp(-0.25 * lm * lm) * d / _SQRT_2PI
-    if np.any(neg):
-        out = np.where(neg, _negative_series(n, lam), out)
+    if np.any(neg):  # the series only where it applies (it is singular at λ = 0)
+        out[neg] = _negative_series(n, lam[neg])
     return out
 
 
