@@ -10,7 +10,8 @@ the explicit model): no Reynolds solution, only
 * Greenwood–Tripp asperity pressure and area at h_c, uniform over the Hertz width
   (asperity load capped at the total load),
 * viscous friction ∫_{−b}^{b} τ(x) dx with the local Roelands viscosity μ(p(x)), the
-  Couette law of :mod:`tribodyn.physics.friction` at h_c, capped by Λp(x),
+  Couette law of :mod:`tribodyn.physics.friction` at h_c, capped by the limiting shear
+  stress τ_L0 + Λp(x),
 * boundary friction 2b (τ₀ A_a/A + ς p_a).
 
 All inputs may be arrays (broadcast together); loads and forces are per unit length.

@@ -10,10 +10,10 @@ Order of operations (each a SurfaceTopography pipeline step):
    interior extrema: a filled hole adds no summits and no curvature. The filled points are
    returned as a mask, so that the statistics are taken over measured points only
    (``analysis``); the share filled is reported (``Sampling.undefined_fraction``);
-3. level: subtract the least-squares plane (``detrend("height")``) or second-order
+2. level: subtract the least-squares plane (``detrend("height")``) or second-order
    polynomial (``"curvature"``, for curved parts such as a cam flank); periodic
    (synthetic) maps only have their mean removed;
-4. band-pass filter by wavelength λ, isotropic in the plane (q = 2π/λ = |q|):
+3. band-pass filter by wavelength λ, isotropic in the plane (q = 2π/λ = |q|):
 
    - ``"gaussian"`` (default): areal Gaussian filters with 50 % transmission at the cutoffs
      (ISO 16610-61 weighting, α = √(ln 2/π)); transfer function

@@ -99,8 +99,8 @@ def quasi_static_jump_speed(
         ω_jump = min over {s'' < 0, closing side} √((F₀ + k s)/(m_eff |s''|))
 
     Returns (ω_jump [rad/s], cam angle of the minimum [rad]). For a symmetric cam the
-    opening side gives the same value; the closing side (s' < 0) is used, as the issue
-    specifies. Multiply ω by 60/π to get engine rpm.
+    opening side gives the same value; the closing side (s' < 0) is used, where
+    the spring decelerates the train towards the seat. Multiply ω by 60/π to get engine rpm.
     """
     F0 = check_positive("preload", preload, "N")
     k = check_positive("spring_rate", spring_rate, "N/m")
