@@ -6,7 +6,9 @@
 Phases, each with wall and CPU seconds: the explicit valvetrain dynamics; one transient-EHL
 pass along the cycle per surface set (loaded steps, Newton iterations, failed steps); the
 coupling chain of the reference set (implicit dynamics runs, EHL re-passes, iterations);
-the whole study (``run_cycle_study`` with its default process pool).
+the whole study (``run_cycle_study`` with its default process pool). The implicit
+dynamics run once with the compiled lumped model and once with the Python right-hand
+side under solve_ivp (``implicit_dynamics``).
 
 ``--legacy`` repeats the reference set's EHL pass in the same process with the grid
 settings of tribodyn 0.1 (spacing s/46 over the domain, 512 to 4096 nodes, a new grid
@@ -34,8 +36,10 @@ import numpy as np
 
 import tribodyn  # noqa: F401  (one BLAS thread, before numpy loads)
 from tribodyn.config import load_case
+from tribodyn.physics.materials import reduced_modulus
+from tribodyn.valvetrain import dynamics as dynamics_module
 from tribodyn.valvetrain.dynamics import simulate_valvetrain
-from tribodyn.workflow.coupling import run_coupling
+from tribodyn.workflow.coupling import ehl_tribology, run_coupling
 from tribodyn.workflow.cycle import run_cycle_study
 from tribodyn.workflow.cycle_ehl import CycleInputs, ehl_for_set
 from tribodyn.workflow.postprocess import surface_roles
@@ -157,6 +161,39 @@ def accuracy(study, ref_dir: Path) -> dict:
     return out
 
 
+def implicit_dynamics(case, ref, inputs, first) -> dict:
+    """One implicit dynamics run (the first coupling iteration's film law) with the
+    compiled lumped model and with the Python right-hand side under solve_ivp (the path
+    of tribodyn 0.1 and of non-tabulated tribology models): CPU times and the largest
+    difference of the contact force."""
+    lub = case.lubricant()
+    period = 2.0 * math.pi / case.cam_speed
+    table = ehl_tribology(inputs, first, lub, reduced_modulus(ref.bodies), period)
+
+    def run():
+        return simulate_valvetrain(
+            case.cam(), case.valvetrain_parameters(), tribology=table, **case.dynamics_options()
+        )
+
+    fast, wf, cf = timed(run)
+    saved = dynamics_module.compiled_model
+    dynamics_module.compiled_model = lambda model: None
+    try:
+        slow, ws, cs = timed(run)
+    finally:
+        dynamics_module.compiled_model = saved
+    peak = float(slow.contact_force.max())
+    return {
+        "compiled": {"wall_s": wf, "cpu_s": cf, **fast.stats},
+        "python_solve_ivp": {"wall_s": ws, "cpu_s": cs, **slow.stats},
+        "cpu_speedup": cs / cf,
+        "max_force_difference_pct_of_peak": float(
+            100.0 * np.abs(fast.contact_force - slow.contact_force).max() / peak
+        ),
+        "seating_velocity_m_s": [fast.seating_velocity, slow.seating_velocity],
+    }
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("case", nargs="?", default=None)
@@ -203,6 +240,7 @@ def main():
         out["ehl_pass_legacy_grid"] = leg
 
     if case.numerics.implicit_coupling:
+        out["implicit_dynamics"] = implicit_dynamics(case, ref, inputs, first)
         cp, w, c = timed(lambda: run_coupling(case, ref, dyn, inputs, first))
         out["coupling_chain"] = {
             "wall_s": w,

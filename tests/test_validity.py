@@ -196,9 +196,28 @@ def test_dynamics_failure_is_reported_not_raised(monkeypatch):
         message="Repeated convergence failures",
     )
     monkeypatch.setattr(dynamics, "solve_ivp", lambda *a, **k: fail)
+    monkeypatch.setattr(dynamics, "compiled_model", lambda model: None)  # the solve_ivp path
     r = simulate_valvetrain(case.cam(), case.valvetrain_parameters(), engine_speed=3000)
     assert r.converged is False
     assert "solver failed at t = 0 s: Repeated convergence failures" in r.message
+
+
+def test_compiled_dynamics_failure_is_reported_not_raised(monkeypatch):
+    """The compiled path: an LSODA run that gives up returns converged=False with
+    ODEPACK's message, and no arrays."""
+    from tribodyn.valvetrain import compiled, simulate_valvetrain
+
+    case = load_case()
+
+    def failing(f, y0, t, **kw):
+        info = {"nfe": np.array([10]), "nje": np.array([1]), "message": "Repeated error test"}
+        return np.zeros((len(t), len(y0))), info
+
+    monkeypatch.setattr(compiled, "odeint", failing)
+    r = simulate_valvetrain(case.cam(), case.valvetrain_parameters(), engine_speed=3000)
+    assert r.converged is False
+    assert "LSODA failed: Repeated error test" in r.message
+    assert r.contact_force.size == 0
 
 
 def test_valve_jump_is_reported_clearly():

@@ -725,7 +725,7 @@ class Numerics(Section):
         1.0, "deg (crank)", "largest integrator step of the dynamics", gt=0.0, le=10.0
     )
     dynamics_method: Literal["LSODA", "Radau", "BDF"] = _q(
-        "LSODA", "", "stiff integrator (solve_ivp)"
+        "LSODA", "", "stiff integrator (LSODA: compiled lumped model; Radau, BDF: solve_ivp)"
     )
     dynamics_rtol: float = _q(1e-6, "", "relative tolerance of the dynamics", gt=0.0, lt=0.1)
     implicit_coupling: bool = _q(

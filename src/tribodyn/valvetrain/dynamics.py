@@ -21,6 +21,7 @@ from scipy.integrate import solve_ivp
 
 from .._validation import InputError, check_positive
 from .cams import CamProfile
+from .compiled import compiled_model, integrate_compiled, lumped_energies
 from .flexible import FlexibleValvetrain
 from .flexible_model import FlexibleValvetrainModel
 from .kinematics import rpm_to_cam_speed
@@ -264,37 +265,62 @@ def simulate_valvetrain(
         tribology=trib.name,
         jump_lift_threshold=thr,
     )
-    y0 = model.static_state()
-    wall = _time.perf_counter()
-    try:
-        sol = solve_ivp(
-            model.rhs,
-            (0.0, t_end),
-            y0,
+    cm = compiled_model(model) if (method == "LSODA" and type(model) is ValvetrainModel) else None
+    if cm is not None:  # compiled right-hand side, whole run in one LSODA call
+        k_out = int(round(720.0 * cycles / output_step))
+        t_grid = np.linspace(0.0, t_end, k_out + 1)
+        t_grid[-t_eval.size :] = t_eval  # the presented cycle on the same points
+
+        def grid_events(T, Y):
+            s = cm.outputs(T, Y)["s"]
+            h0 = model.trib.film(T, np.zeros_like(T), 0.0, 1.0)[0] if model.has_film else 0.0
+            return np.vstack([Y[1] - model.d_seat, np.maximum(s, thr) - Y[0] + h0])
+
+        Yall, t_evs, y_evs, stats, fail = integrate_compiled(
+            cm, t_grid, rtol, atol, hmax, [ev_seat, ev_contact], grid_events
+        )
+        if fail is not None:
+            return ValvetrainResult(**base, stats=stats, message=f"solver failed: {fail}")
+        Y = Yall[:, -t_eval.size :]
+        (t_seat, t_con), (y_seat, y_con) = t_evs, y_evs
+    else:
+        y0 = model.static_state()
+        wall = _time.perf_counter()
+        try:
+            sol = solve_ivp(
+                model.rhs,
+                (0.0, t_end),
+                y0,
+                method=method,
+                t_eval=t_eval,
+                jac=model.jacobian,
+                rtol=rtol,
+                atol=atol,
+                max_step=hmax,
+                events=[ev_seat, ev_contact],
+            )
+        except (ContactLawError, FloatingPointError, ValueError, ZeroDivisionError) as exc:
+            return ValvetrainResult(**base, message=f"solver failed: {exc}")
+        wall = _time.perf_counter() - wall
+        stats = dict(
+            nfev=int(sol.nfev),
+            njev=int(sol.njev),
+            nlu=int(sol.nlu),
+            wall_time_s=wall,
             method=method,
-            t_eval=t_eval,
-            jac=model.jacobian,
-            rtol=rtol,
-            atol=atol,
-            max_step=hmax,
-            events=[ev_seat, ev_contact],
         )
-    except (ContactLawError, FloatingPointError, ValueError, ZeroDivisionError) as exc:
-        return ValvetrainResult(**base, message=f"solver failed: {exc}")
-    wall = _time.perf_counter() - wall
-    stats = dict(
-        nfev=int(sol.nfev), njev=int(sol.njev), nlu=int(sol.nlu), wall_time_s=wall, method=method
-    )
-    if sol.status != 0:
-        t_fail = float(sol.t[-1]) if len(sol.t) else 0.0  # t_eval may hold no point yet
-        return ValvetrainResult(
-            **base, stats=stats, message=f"solver failed at t = {t_fail:.6g} s: {sol.message}"
-        )
-    Y = sol.y
-    if Y.shape[1] != t_eval.size or not np.all(np.isfinite(Y)):
-        return ValvetrainResult(
-            **base, stats=stats, message="solver returned incomplete or non-finite output"
-        )
+        if sol.status != 0:
+            t_fail = float(sol.t[-1]) if len(sol.t) else 0.0  # t_eval may hold no point yet
+            return ValvetrainResult(
+                **base, stats=stats, message=f"solver failed at t = {t_fail:.6g} s: {sol.message}"
+            )
+        Y = sol.y
+        if Y.shape[1] != t_eval.size or not np.all(np.isfinite(Y)):
+            return ValvetrainResult(
+                **base, stats=stats, message="solver returned incomplete or non-finite output"
+            )
+        t_seat, y_seat = sol.t_events[0], sol.y_events[0]
+        t_con, y_con = sol.t_events[1], sol.y_events[1]
 
     # -- outputs on the crank grid ------------------------------------------------------
     m = t_eval.size
@@ -322,15 +348,23 @@ def simulate_valvetrain(
         )
     }
     try:
-        for i in range(m):
-            f = model.evaluate(t_eval[i], Y[:, i])
+        if cm is not None:
+            f = cm.outputs(t_eval, Y)
             for k in ("s", "s1", "s2", "R", "ue", "us", "Fc", "P", "film", "Ftv", "Fs", "Fb"):
-                cols[k][i] = f[k]
-            cols["acc_t"][i] = f["acc"][0]
-            cols["acc_v"][i] = f["acc"][1]
-            cols["F0s"][i] = f["Fseg"][0]
-            cols["FNs"][i] = f["Fseg"][-1]
-            cols["T"][i], cols["U"][i] = model.energy(t_eval[i], Y[:, i], f)
+                cols[k][:] = f[k]
+            cols["acc_t"][:], cols["acc_v"][:] = f["acc_t"], f["acc_v"]
+            cols["F0s"][:], cols["FNs"][:] = f["F0s"], f["FNs"]
+            cols["T"][:], cols["U"][:] = lumped_energies(model, Y, f["P"])
+        else:
+            for i in range(m):
+                f = model.evaluate(t_eval[i], Y[:, i])
+                for k in ("s", "s1", "s2", "R", "ue", "us", "Fc", "P", "film", "Ftv", "Fs", "Fb"):
+                    cols[k][i] = f[k]
+                cols["acc_t"][i] = f["acc"][0]
+                cols["acc_v"][i] = f["acc"][1]
+                cols["F0s"][i] = f["Fseg"][0]
+                cols["FNs"][i] = f["Fseg"][-1]
+                cols["T"][i], cols["U"][i] = model.energy(t_eval[i], Y[:, i], f)
         Ff = np.asarray(
             trib.friction(t_eval, cols["Fc"], cols["ue"], cols["us"], cols["R"]), dtype=float
         ) * np.ones(m)
@@ -406,8 +440,6 @@ def simulate_valvetrain(
     def crank_of(t):
         return float(math.degrees(2.0 * w * t))
 
-    t_seat, y_seat = sol.t_events[0], sol.y_events[0]
-    t_con, y_con = sol.t_events[1], sol.y_events[1]
     in_win = lambda t: t0_pres - 1e-12 <= t <= t_end + 1e-12  # noqa: E731
     seat_ev = []  # (t, v_valve)
     for t, y in zip(t_seat, y_seat):
