@@ -300,3 +300,36 @@ def test_generalized_reynolds_coefficients_for_a_linear_fluidity():
     # the faster wall b is the more fluid one: the film follows the slower, viscous wall a
     assert ff.D[0] < 0.95 * rho * h * (ua + ub) / 2
     assert ff.tau_c[0] == pytest.approx((ub - ua) / F0, rel=1e-4)  # Newtonian Couette
+
+
+def test_dissipation_is_the_stress_times_the_shear_rate_of_the_flow():
+    """Newtonian film, uniform η, Couette + Poiseuille (an EHL inlet with sliding):
+    u(z) = u_a + (u_b − u_a) z/h + p_x (z² − zh)/(2η), so Φ(z) = η (du/dz)² exactly
+    (Dowson 1962, Proc. IMechE 176:515). Its cross term 2η γ̇_c γ̇_p integrates to zero
+    but puts the heat at the wall where Couette and Poiseuille shear add: with the
+    pressure rising (p_x > 0) and the wall z = 0 the faster, that is z = 0."""
+    from tribodyn.physics.film_thermal import film_flow
+
+    h, eta, ua, ub, px, m = 2e-6, 0.05, 8.75, 1.25, 2e11, 41
+    z = np.linspace(0.0, h, m)
+    ff = film_flow(
+        np.array([h]),
+        np.array([px]),
+        ua,
+        ub,
+        np.full((1, m), eta),
+        np.full((1, m), 850.0),
+        np.array([1e9]),
+        np.full((1, m), 1e12),
+        eta_ref=np.array([eta]),
+        rho_ref=np.array([850.0]),
+        eyring=False,
+        limiting=False,
+    )
+    dudz = (ub - ua) / h + px * (2 * z - h) / (2 * eta)
+    assert ff.dissipation[0] == pytest.approx(
+        eta * dudz**2, rel=1e-9, abs=1e-6 * eta * dudz.max() ** 2
+    )
+    total = eta * (ub - ua) ** 2 / h + px**2 * h**3 / (12 * eta)  # Couette + Poiseuille
+    assert np.trapezoid(ff.dissipation[0], z) == pytest.approx(total, rel=2e-3)
+    assert ff.dissipation[0, 0] > 5.0 * ff.dissipation[0, -1]  # heat at the fast wall
