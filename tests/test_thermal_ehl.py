@@ -333,3 +333,65 @@ def test_dissipation_is_the_stress_times_the_shear_rate_of_the_flow():
     total = eta * (ub - ua) ** 2 / h + px**2 * h**3 / (12 * eta)  # Couette + Poiseuille
     assert np.trapezoid(ff.dissipation[0], z) == pytest.approx(total, rel=2e-3)
     assert ff.dissipation[0, 0] > 5.0 * ff.dissipation[0, -1]  # heat at the fast wall
+
+
+@pytest.mark.parametrize("px", [0.0, 2e11])
+def test_sheared_film_between_walls_at_the_bulk_temperature(px):
+    """Energy equation of a uniform film (h = 2 µm, u_s = 7.5 m/s, η = 0.05 Pa·s) between
+    walls held at the bulk temperature (solids of conductivity 1e6 W/(m K)), after its
+    short thermal entry: the fully developed profile k θ'' = −η (du/dz)², θ(0) = θ(h) = 0.
+    Couette alone: θ = (η u_s²/2k) ζ(1 − ζ), mid-film η u_s²/(8k) — the inlet's sliding
+    heat of the Newtonian inlet analyses (Greenwood & Kauzlarich 1973, J. Lubr. Technol.
+    95:417); with a pressure gradient the Couette–Poiseuille profile (hotter at the wall
+    where the two shears add)."""
+    from numpy.polynomial import Polynomial as P
+
+    from tribodyn.contact.ehl.energy import EnergyInputs, solve_energy
+    from tribodyn.physics.film_thermal import film_flow
+
+    h, eta, k, ua, ub, m, n = 2e-6, 0.05, 0.13, 8.75, 1.25, 21, 60
+    ones = np.ones((n, m))
+    ff = film_flow(
+        np.full(n, h),
+        np.full(n, px),
+        ua,
+        ub,
+        eta * ones,
+        850.0 * ones,
+        np.full(n, 1e9),
+        1e12 * ones,
+        eta_ref=np.full(n, eta),
+        rho_ref=np.full(n, 850.0),
+        eyring=False,
+        limiting=False,
+    )
+    cold = ThermalBody(ThermalProperties(1e6, 7850.0, 470.0))
+    grids = tuple(depth_grid(cold, 1e-3, 1e-6, 12) for _ in range(2))
+    dx = 2e-5  # 1.2 mm: many thermal entry lengths u h²/κ of the film
+    e = EnergyInputs(
+        dx,
+        np.full(n, h),
+        ff.u,
+        850.0 * ones,
+        1.7e6 * ones,
+        k * ones,
+        ff.dissipation,
+        0.0 * ones,
+        313.15,
+        (ua, ub),
+        grids,
+        np.zeros(n),
+    )
+    theta = solve_energy(e)
+    film = theta[-1, grids[0].s.size - 2 : grids[0].s.size - 2 + m]
+    g = P([(ub - ua) / h - px * h / (2 * eta), px / eta])  # du/dz
+    rhs = -(eta / k) * g**2
+    th = rhs.integ(2)
+    th = th - th(0.0) - (th(h) - th(0.0)) * P([0.0, 1.0 / h])  # θ(0) = θ(h) = 0
+    z = np.linspace(0.0, h, m)
+    scale = float(np.max(th(z)))
+    assert film == pytest.approx(th(z), abs=0.02 * scale)
+    if px == 0.0:
+        assert scale == pytest.approx(eta * (ua - ub) ** 2 / (8 * k), rel=0.02)
+    else:
+        assert np.argmax(film) < m // 2  # towards the fast wall z = 0
