@@ -7,7 +7,10 @@ Steel on steel line contact, w = 500 kN/m, R = 20 mm (p_h ≈ 0.96 GPa), SAE 5W-
 
 * central film h_T/h_iso against Murch & Wilson (1975) φ = 3.94/(3.94 + L^0.62)
   (rolling) and Gupta et al. (1992) φ = (1 − 13.2 (p_h/E') L^0.42)/(1 + 0.213 (1 + 2.23
-  SRR^0.83) L^0.64), L = βμ₀u_e²/k, for SRR = 0, 0.5, 1, 1.5;
+  SRR^0.83) L^0.64), L = βμ₀u_e²/k, for SRR = u_s/u_e = 0, 0.5, 1, 1.5; beside it the
+  same with the walls held at the bulk temperature (solids of conductivity 1e6 W/(m K), the
+  assumption of those inlet analyses) and the Couette heat of the inlet, mid-film
+  μ₀u_s²/(8k) between walls at the bulk temperature;
 * viscous traction coefficient, thermal and isothermal, over SRR = 0.005 … 1.2.
 Not a timing; the tests check the rolling point and the traction curve's shape.
 """
@@ -31,6 +34,8 @@ def main():
     pair = (Body(steel), Body(steel))
     ts = ThermalProperties(46.0, 7850.0, 470.0)
     tb = (ThermalBody(ts), ThermalBody(ts))
+    cold = ThermalProperties(1e6, 7850.0, 470.0)
+    tb_cold = (ThermalBody(cold), ThermalBody(cold))
     e = 210e9 / 0.91
     L = (
         oil.temperature_viscosity_coefficient()
@@ -43,15 +48,19 @@ def main():
     film = []
     for srr in (0.0, 0.5, 1.0, 1.5):
         r = solve_thermal_ehl(W, R, UE, srr * UE, pair, oil, tb)
+        rc = solve_thermal_ehl(W, R, UE, srr * UE, pair, oil, tb_cold)
+        k0 = float(oil.conductivity(0.0, oil.inlet_temperature))
         gupta = (1 - 13.2 * ph / e * L**0.42) / (1 + 0.213 * (1 + 2.23 * srr**0.83) * L**0.64)
         film.append(
             {
                 "srr": srr,
                 "h_thermal_over_isothermal": r.central_film / iso.central_film,
+                "h_over_isothermal_walls_at_bulk_temperature": rc.central_film / iso.central_film,
+                "inlet_couette_mid_film_rise_K": oil.inlet_viscosity * (srr * UE) ** 2 / (8 * k0),
                 "gupta_1992": gupta,
                 "murch_wilson_1975": 3.94 / (3.94 + L**0.62) if srr == 0 else None,
                 "max_temperature_rise_K": r.max_temperature - r.inlet_temperature,
-                "converged": bool(r.converged),
+                "converged": bool(r.converged and rc.converged),
             }
         )
     traction = []

@@ -19,11 +19,17 @@ coefficients). The generalized Reynolds equation is d/dx(C dp/dx) − dD/dx − 
 Shear: the Couette part of the stress is uniform across the film. With the Eyring law
 γ̇ = (τ_E/η) sinh(τ/τ_E) it is τ_c = τ_E asinh(|u_b − u_a|/(τ_E F₀)) (the isothermal
 solver's τ_E asinh(ηu_s/(τ_E h)) for constant η), capped by the smallest limiting shear
-stress across the film (the hottest layer shears first). Heat generated per volume::
+stress across the film (the hottest layer shears first). Heat generated per volume is the
+stress times the shear rate at each layer, with the stress τ(z) = s τ_c + p_x (z − F₁/F₀)
+(momentum balance: linear in z) and the shear rate du/dz of the velocity profile::
 
-    Φ(z) = τ_c γ̇_c(z) + η γ̇_p(z)²,   γ̇_c = |u_b − u_a|/(η F₀),   γ̇_p = p_x (z − F₁/F₀)/η
+    Φ(z) = (s τ_c + p_x (z − F₁/F₀)) (s γ̇_c + γ̇_p),   s = sign(u_b − u_a),
+    γ̇_c = |u_b − u_a|/(η F₀),   γ̇_p = p_x (z − F₁/F₀)/η
 
-so ∫Φ dz = τ_c|u_b − u_a| + Poiseuille dissipation: the friction power of the film.
+The cross terms integrate to zero (∫ dz/η (z − F₁/F₀) = 0), so ∫Φ dz = τ_c|u_b − u_a| +
+∫η γ̇_p² dz, the friction power of the film; locally they move the heat towards the surface
+where Couette and Poiseuille shear add (in an inlet, the faster one), as in the full
+thermal-EHL energy equation (Sadeghi & Dow 1987, J. Tribol. 109:512; Yang & Wen 1990).
 Integrals: trapezoidal on the ζ nodes; the flow factors are taken relative to the same
 quadrature at uniform properties, so they are exactly 1 for an isothermal film.
 """
@@ -111,5 +117,10 @@ def film_flow(
     if limiting:
         tau = np.minimum(tau, tau_l.min(axis=1))
     f.tau_c = tau
-    f.dissipation = tau[:, None] * f.gamma_c + eta * f.gamma_p**2
+    # Φ = τ(z) γ̇(z): the signed Couette stress plus the Poiseuille stress p_x(z − F₁/F₀),
+    # times the signed shear rate du/dz. The cross terms integrate to zero across the film
+    # but put the inlet's heat next to the surface whose Couette and Poiseuille shear add.
+    sgn = np.sign(du)
+    tau_p = px[:, None] * (z - (F1 / F0)[:, None])
+    f.dissipation = (sgn * tau[:, None] + tau_p) * (sgn * f.gamma_c + f.gamma_p)
     return f
