@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import difflib
 import re
+import types
 from collections.abc import Mapping
 from typing import Any, Union, get_args, get_origin
 
@@ -82,7 +83,7 @@ def _given(v) -> str:
 
 
 def _strip_optional(ann):
-    if get_origin(ann) is Union:
+    if get_origin(ann) in (Union, types.UnionType):  # Optional[X] and X | None
         args = [a for a in get_args(ann) if a is not type(None)]
         if len(args) == 1:
             return args[0]

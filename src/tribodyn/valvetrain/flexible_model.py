@@ -201,8 +201,10 @@ class FlexibleValvetrainModel:
             return 0.0, 0.0, h0
         lo, hi = 0.0, (dk + h0) / C
         z = hi
-        tol = 1e-13 * max(dk + h0, 1e-9)
-        for _ in range(60):
+        # φ is a difference of terms of size |δ_kin| and |h|: its round-off scales with them,
+        # not with the (possibly tiny) net interference δ_kin + h(0)
+        tol = 1e-13 * max(dk + h0, abs(dk), abs(h0), 1e-9)
+        for _ in range(80):
             P = z**g
             h, hF = self.film(t, P, ue, R)
             phi = C * z + P * ikc - h - dk
@@ -216,7 +218,15 @@ class FlexibleValvetrainModel:
                 return P, dPdz / dphi, h
             zn = z - phi / dphi
             z = zn if lo < zn < hi else 0.5 * (lo + hi)
-        raise ContactLawError(f"contact/film law did not converge at t = {t:.6g} s")
+            if hi - lo <= 1e-14 * hi:  # bracket collapsed onto the root
+                P = z**g
+                h, hF = self.film(t, P, ue, R)
+                dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
+                return P, dPdz / (C + dPdz * (ikc - hF)), h
+        raise ContactLawError(
+            f"contact/film law did not converge at t = {t:.6g} s "
+            f"(δ_kin = {dk:.4g} m, h(0) = {h0:.4g} m)"
+        )
 
     def contact_potential(self, P: float) -> float:
         if P <= 0.0:

@@ -20,7 +20,14 @@ from .dynamics import ValvetrainResult, simulate_valvetrain
 from .parameters import ValvetrainParameters
 from .tribology import TribologyModel
 
-__all__ = ["SpeedSweepResult", "speed_sweep", "jump_speed"]
+__all__ = [
+    "SpeedSweepResult",
+    "speed_sweep",
+    "jump_speed",
+    "JumpSpeedSearch",
+    "locate_jump_speed",
+    "corrected_jump_speed_estimate",
+]
 
 
 @dataclass
@@ -138,3 +145,156 @@ def jump_speed(
         else:
             lo = mid
     return lo, hi
+
+
+@dataclass
+class JumpSpeedSearch:
+    """Result of :func:`locate_jump_speed`: ``speed`` [rpm] (midpoint of ``bracket``; NaN if
+    not found), the bracket (no jump, jump) [rpm], the quasi-static estimate [rpm], the
+    dynamics runs as (rpm, minimum contact force in the event [N], jump) in run order."""
+
+    speed: float
+    bracket: tuple
+    quasi_static: float
+    runs: list
+    converged: bool
+    message: str
+
+    def to_dict(self) -> dict:
+        return dict(self.__dict__)
+
+
+def corrected_jump_speed_estimate(
+    cam: CamProfile, params: ValvetrainParameters, dynamic=None
+) -> float:
+    """Engine speed [rpm] at which the follower's inertia first exceeds the spring force:
+    min over the decelerating part of the event of ω² = (F₀ + k s)/(m_e |s''|), m_e =
+    m_tappet + m_valve + m_spring/3 (rigid train, the classical estimate as
+    :func:`~tribodyn.valvetrain.kinematics.quasi_static_jump_speed`, both flanks), ω the
+    cam speed.
+
+    ``dynamic`` = (n_a [rpm], F_min,a [N]): a dynamics run without jump; its shortfall
+    D_a = F_qs(n_a) − F_min,a below the quasi-static margin F_qs(n) = min(F₀ + k s −
+    m_e ω² s''⁻) is scaled as n² (inertia-driven vibration) and the speed where
+    F_qs(n) − D_a (n/n_a)² = 0 is returned instead."""
+    th = np.linspace(0.0, 2.0 * math.pi, 7201)
+    s, _, s2 = cam.derivatives(th)
+    ev = s > 10e-6
+    if not ev.any():
+        raise InputError("the cam has no lift event")
+    m_e = params.tappet_mass + params.valve_mass + params.spring_mass / 3.0
+    spring = params.spring_preload + params.spring_rate * s[ev]
+    dec = np.clip(-s2[ev], 0.0, None)  # |s''| where the cam decelerates the follower
+
+    def margin(rpm):
+        w = rpm * math.pi / 60.0
+        return float(np.min(spring - m_e * w * w * dec))
+
+    shortfall = 0.0
+    if dynamic is not None:
+        n_a, f_a = dynamic
+        shortfall = (margin(n_a) - f_a) / n_a**2
+    lo, hi = 0.0, 1000.0
+    while margin(hi) - shortfall * hi * hi > 0.0:
+        lo, hi = hi, 2.0 * hi
+        if hi > 1e6:
+            return math.inf
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if margin(mid) - shortfall * mid * mid > 0.0:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def locate_jump_speed(
+    cam: CamProfile,
+    params,
+    *,
+    start: float,
+    high: float,
+    tolerance: float = 50.0,
+    max_runs: int = 10,
+    tribology="explicit",
+    start_result: ValvetrainResult | None = None,
+    **kwargs,
+) -> JumpSpeedSearch:
+    """Lowest engine speed [rpm] with cam contact loss, within ``tolerance`` [rpm], in few
+    dynamics runs.
+
+    1. The run at ``start`` (or ``start_result``) must keep contact; its minimum contact
+       force corrects the quasi-static estimate (:func:`corrected_jump_speed_estimate` of the
+       lumped equivalent) → first guess.
+    2. Each run gives its minimum contact force in the event F_min (no jump) or a jump.
+       The next guess is the secant of F_min against n² through the two fastest runs
+       without jump (the inertia forces grow with n²), kept inside the bracket [fastest
+       run without jump, slowest with jump]; a guess that would not shrink the bracket
+       by at least ``tolerance`` probes one tolerance beyond its fastest non-jumping end,
+       and a bracket without a secant is bisected.
+    3. Stops when the bracket is narrower than ``tolerance``: speed = its midpoint
+       (± tolerance/2). ``converged=False`` with a message after ``max_runs`` runs, if a
+       run fails, or without a jump up to ``high`` (speed NaN). Assumes one onset, as
+       :func:`jump_speed`.
+    """
+    lo = check_positive("start", start, "rpm")
+    hi_cap = check_positive("high", high, "rpm")
+    tol = check_positive("tolerance", tolerance, "rpm")
+    if hi_cap <= lo:
+        raise InputError(f"high must exceed start (got {lo:g}, {hi_cap:g} rpm)")
+    lumped = params.lumped_equivalent() if hasattr(params, "lumped_equivalent") else params
+    runs: list = []
+
+    def run(rpm):
+        r = simulate_valvetrain(cam, params, engine_speed=rpm, tribology=tribology, **kwargs)
+        if not r.converged:
+            raise RuntimeError(f"valvetrain run at {rpm:g} rpm failed: {r.message}")
+        fmin = float(r.contact_force[r.event_mask()].min()) if not r.jump else 0.0
+        runs.append((float(rpm), fmin, bool(r.jump)))
+        return r
+
+    def result(ok, msg, n_lo, n_hi, qs):
+        speed = 0.5 * (n_lo + n_hi) if ok else math.nan
+        return JumpSpeedSearch(speed, (n_lo, n_hi), qs, runs, ok, msg)
+
+    try:
+        r0 = start_result if start_result is not None else run(lo)
+        if start_result is not None:
+            runs.append((float(lo), float(r0.contact_force[r0.event_mask()].min()), r0.jump))
+        if r0.jump:
+            raise InputError(f"the follower already jumps at start = {lo:g} rpm")
+        qs = corrected_jump_speed_estimate(cam, lumped, (lo, runs[-1][1]))
+        n_hi = math.inf
+        guess = min(max(qs, lo + tol), hi_cap)
+        while n_hi - lo > tol:
+            if len(runs) >= max_runs + (start_result is not None):
+                return result(False, f"no {tol:g} rpm bracket in {max_runs} runs", lo, n_hi, qs)
+            r = run(guess)
+            if r.jump:
+                n_hi = guess
+            else:
+                lo = guess
+            if n_hi - lo <= tol:
+                break
+            ok = sorted((n, f) for n, f, j in runs if not j)
+            (n1, f1), (n2, f2) = ok[-2] if len(ok) > 1 else ok[-1], ok[-1]
+            cand = math.nan
+            if f1 > f2 > 0.0:  # F_min falls with speed: secant to F_min = 0 in n²
+                cand = math.sqrt(n2 * n2 + f2 * (n2 * n2 - n1 * n1) / (f1 - f2))
+            if math.isfinite(n_hi):
+                if not (lo < cand < n_hi):
+                    cand = 0.5 * (lo + n_hi)
+                cand = min(max(cand, lo + tol), n_hi - tol) if n_hi - lo > 2 * tol else lo + tol
+                if n_hi - lo <= 2 * tol:
+                    cand = 0.5 * (lo + n_hi)
+            else:
+                if not cand > lo:
+                    cand = 2.0 * lo
+                cand = max(cand, lo + tol)
+                if lo >= hi_cap:
+                    return result(False, f"no jump up to high = {hi_cap:g} rpm", lo, n_hi, qs)
+                cand = min(cand, hi_cap)
+            guess = cand
+    except (RuntimeError, InputError) as exc:
+        return JumpSpeedSearch(math.nan, (math.nan, math.nan), math.nan, runs, False, str(exc))
+    return result(True, f"bracketed within {n_hi - lo:.0f} rpm in {len(runs)} runs", lo, n_hi, qs)
