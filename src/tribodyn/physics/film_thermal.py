@@ -72,6 +72,21 @@ class FilmFlow:
         "couette_factor",
     )
 
+    F0: np.ndarray
+    F1: np.ndarray
+    C: np.ndarray
+    D: np.ndarray
+    rho_e: np.ndarray
+    u: np.ndarray
+    gamma_c: np.ndarray
+    gamma_p: np.ndarray
+    tau_c: np.ndarray
+    dissipation: np.ndarray
+    C_ref: np.ndarray
+    D_ref: np.ndarray
+    flow_factor: np.ndarray
+    couette_factor: np.ndarray
+
 
 def film_flow(
     h, px, ua, ub, eta, rho, tau_e, tau_l, *, eta_ref, rho_ref, eyring=True, limiting=True

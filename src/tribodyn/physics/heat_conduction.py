@@ -125,14 +125,14 @@ def depth_grid(body: ThermalBody, depth: float, first: float, n: int) -> DepthGr
     n = int(n)
     if n < 6:
         raise InputError(f"solid nodes must be >= 6 (got {n})")
-    s = [0.0]
+    nodes: list[float] = [0.0]
     if body.coating is not None and body.thickness < depth:
         nc = max(4, int(math.ceil(body.thickness / first)))
         nc = min(nc, n // 2)
-        s += list(np.linspace(0.0, body.thickness, nc + 1)[1:])
+        nodes += list(np.linspace(0.0, body.thickness, nc + 1)[1:])
         first = body.thickness / nc
-    m = n - (len(s) - 1)
-    start, rest = s[-1], depth - s[-1]
+    m = n - (len(nodes) - 1)
+    start, rest = nodes[-1], depth - nodes[-1]
     if m >= 1 and rest > 0:
         # geometric cells: first·(r^m − 1)/(r − 1) = rest
         if first * m >= rest:
@@ -147,8 +147,8 @@ def depth_grid(body: ThermalBody, depth: float, first: float, n: int) -> DepthGr
                     lo = r
         cells = first * r ** np.arange(m) if r != 1.0 else np.full(m, rest / m)
         cells *= rest / cells.sum()
-        s += list(start + np.cumsum(cells))
-    s = np.asarray(s)
+        nodes += list(start + np.cumsum(cells))
+    s = np.asarray(nodes)
     mid = 0.5 * (s[1:] + s[:-1])
     in_coat = (mid < body.thickness) if body.coating is not None else np.zeros(mid.size, bool)
     sub, coat = body.substrate, body.coating

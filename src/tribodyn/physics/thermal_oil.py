@@ -170,7 +170,7 @@ class ThermalLubricant:
     compressible: bool = True
     viscosity_model: str = "roelands"
     name: str = ""
-    _c: dict = field(default=None, init=False, repr=False, compare=False)
+    _c: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self):
         Ti = check_range("inlet_temperature", self.inlet_temperature, 200.0, 600.0, unit="K")

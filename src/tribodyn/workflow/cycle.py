@@ -211,7 +211,7 @@ def run_cycle_study(
         workers = n.workers or os.cpu_count() or 1
     workers = max(1, min(int(workers), len(sets) + 1))
     t0 = time.perf_counter()
-    results = {}
+    results: dict = {}
     thermal = {}  # thermal EHL per set (numerics.thermal)
     if executor is None and workers == 1:
         # serial, in this process
@@ -232,8 +232,10 @@ def run_cycle_study(
                     report("set", name=label, done=total, total=total)
     else:
         own = executor is None
-        pool = executor
-        if own:
+        pool: Executor
+        if executor is not None:
+            pool = executor
+        else:
             ctx = _pool_context()
             saved = {k: os.environ.get(k) for k in _THREAD_ENV}
             os.environ.update({k: "1" for k in _THREAD_ENV})

@@ -135,8 +135,8 @@ class State:
 
     Q: np.ndarray
     H0: float
-    P: np.ndarray = None
-    H: np.ndarray = None
+    P: np.ndarray = None  # type: ignore[assignment]  # set by ReynoldsSystem.evaluate
+    H: np.ndarray = None  # type: ignore[assignment]
 
 
 def jacobi_scale(sysm, ev):
@@ -166,7 +166,7 @@ class CoarseLevel:
         self.lin = Linearization(sysm, c, cavitated(ev, c), ev)
         self.lu = linalg.lu_factor(self.lin.dense(), check_finite=False)
         self.X = sysm.g.X
-        self._transfer = {}
+        self._transfer: dict = {}
 
     def transfer(self, X):
         """Prolongation P (linear interpolation) and restriction R (averaging, Pᵀ with

@@ -143,7 +143,7 @@ class EHLResult:
     message: str
     time: float = 0.0
     squeeze_velocity: float = 0.0  #: −dh_c/dt, approach speed of the central film [m/s]
-    shear_stress: np.ndarray = field(default=None, repr=False)  #: viscous τ(x) [Pa]
+    shear_stress: np.ndarray | None = field(default=None, repr=False)  #: viscous τ(x) [Pa]
     inlet_load_deficit: float = 0.0  #: estimated share of w lost to the truncated inlet
     #: conditions outside the model's validity (also appended to ``message``)
     warnings: list = field(default_factory=list)

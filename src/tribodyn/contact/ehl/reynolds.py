@@ -53,7 +53,10 @@ class ReynoldsSystem:
         self.h_ref = h_ref = a * a / R  # H = h R / a²
         self.elastic = grid.elastic
         self._K = None
+        self.Kop: DeformationOperator | None
+        self.kcoef: np.ndarray | None
         if grid.elastic:
+            assert grid.coef is not None  # an elastic grid carries its influence coefficients
             kscale = self.kscale = p_ref / h_ref
             self.Kop = DeformationOperator.from_coefficients(grid.coef * kscale)
             self.kcoef = grid.coef * kscale
