@@ -39,7 +39,7 @@ def initial_state(sysm: ReynoldsSystem, b, h_est) -> State:
     P = np.sqrt(np.clip(1.0 - (g.X / bb) ** 2, 0.0, None))
     P /= np.sum(P) * g.dX
     H0 = h_est / sysm.h_ref
-    if sysm.elastic:
+    if sysm.Kop is not None:  # elastic
         H0 -= sysm.Kop(P)[g.i0]
     return State(P, H0)
 
@@ -103,9 +103,14 @@ def _solve(cond: Conditions, model: ContactModel, opts: EHLOptions) -> EHLResult
     direction = 1 if cond.entrainment_speed >= 0 else -1
     # nested iteration: coarse grids first (cheap, robust), then the requested grid
     levels = _levels(lay.n)
-    st, total, sysm, coarse = None, 0, None, None
-    films, refined = [], ""
-    out = None
+    st: State | None = None
+    sysm: ReynoldsSystem | None = None
+    prev: ReynoldsSystem | None = None
+    coarse: CoarseLevel | None = None
+    total = 0
+    films: list[tuple[float, float] | None] = []
+    refined = ""
+    out: NewtonOutcome | None = None
     k = 0
     while k < len(levels):
         nk = levels[k]
@@ -114,6 +119,7 @@ def _solve(cond: Conditions, model: ContactModel, opts: EHLOptions) -> EHLResult
         if st is None:
             st0 = initial_state(sysm, lay.b if opts.elastic else 0.0, lay.h_est)
         else:
+            assert prev is not None
             st0 = state_from_dimensional(sysm, prev.g.x, st.Q * prev.p_ref, st.H0 * prev.h_ref)
         max_it = opts.max_iter * (2 if k == 0 and len(levels) > 1 else 1)
         out = newton(sysm, st0, opts.tol, max_it, coarse=coarse if nk > _N_DENSE else None)
@@ -134,8 +140,10 @@ def _solve(cond: Conditions, model: ContactModel, opts: EHLOptions) -> EHLResult
             and nk < N_MAX_AUTO
             and len(films) >= 2
             and films[-2] is not None
+            and films[-1] is not None
         ):
-            change = max(abs(f1 / f0 - 1.0) for f0, f1 in zip(films[-2], films[-1]))
+            f_prev, f_last = films[-2], films[-1]
+            change = max(abs(f1 / f0 - 1.0) for f0, f1 in zip(f_prev, f_last))
             if change > _GRID_REFINE_CHANGE:
                 if coarse is None and nk <= _N_DENSE:
                     coarse = CoarseLevel(sysm, st)
@@ -145,6 +153,7 @@ def _solve(cond: Conditions, model: ContactModel, opts: EHLOptions) -> EHLResult
                     f"{change:.1%} from {levels[-3]} to {nk} nodes)"
                 )
         k += 1
+    assert out is not None and sysm is not None  # at least one level was solved
     out.iterations = total
     out.message += refined
     return postprocess(sysm, out, opts)
@@ -160,14 +169,17 @@ def _continuation(
     grid: Grid, cond: Conditions, model: ContactModel, opts: EHLOptions, lay: Layout
 ) -> NewtonOutcome:
     """Load continuation on the same grid: start light (nearly rigid), increase to w."""
-    total, st, prev = 0, None, None
-    out = None
+    total = 0
+    st: State | None = None
+    prev: ReynoldsSystem | None = None
+    out: NewtonOutcome | None = None
     for frac in (0.05, 0.15, 0.35, 0.6, 0.8, 1.0):
         c = Conditions(cond.load * frac, cond.radius, cond.entrainment_speed, cond.sliding_speed)
         sysm = ReynoldsSystem(grid, c, model)
         if st is None:
             st = initial_state(sysm, lay.b * math.sqrt(frac), lay.h_est)
         else:
+            assert prev is not None
             st = state_from_dimensional(sysm, grid.x, st.Q * prev.p_ref, st.H0 * prev.h_ref)
         out = newton(sysm, st, opts.tol, opts.max_iter)
         total += out.iterations
@@ -176,6 +188,7 @@ def _continuation(
             out.iterations = total
             out.message = f"load continuation stalled at {frac:.0%} of the load: {out.message}"
             return out
+    assert out is not None
     out.iterations = total
     out.message += " (after load continuation)"
     return out
