@@ -83,13 +83,16 @@ class TransientEHL:
         self.max_substeps = MAX_SUBSTEPS.check("max_substeps", max_substeps)
         self.conditions_before = None
         self.time = 0.0
-        self._grid = None
-        self._q = self._p = self._h = None  # total, fluid pressure [Pa], film [m] on the grid
+        self._grid: Grid | None = None
+        # total, fluid pressure [Pa], film [m] on the grid
+        self._q: np.ndarray | None = None
+        self._p: np.ndarray | None = None
+        self._h: np.ndarray | None = None
         self._h0 = 0.0  # rigid approach [m]
-        self._hist = []  # [(x, ρh, dt, R)] of the last two time levels
-        self._hc_hist = ()  # central film [m] of the last two levels
-        self._lu = None
-        self._n_event = None  # automatic grid: the node count of the steady start
+        self._hist: list[tuple] = []  # [(x, ρh, dt, R)] of the last two time levels
+        self._hc_hist: tuple[float, ...] = ()  # central film [m] of the last two levels
+        self._lu: object | None = None
+        self._n_event: int | None = None  # automatic grid: the node count of the steady start
         self.result: EHLResult | None = None
 
     # -- starting states
@@ -268,7 +271,7 @@ class TransientEHL:
         k = self.max_substeps
         done, failures, n_ok = 0.0, 0, 0
         mark = 0
-        res = None
+        res: EHLResult | None = None
         while done < 1.0:
             target = marks[mark]
             span = (target - done) / 2**depth if depth else target - done
@@ -288,6 +291,7 @@ class TransientEHL:
             if depth > k or failures > 2 * k + 1:
                 break
         if done >= 1.0:
+            assert res is not None  # the interval was covered by converged sub-steps
             res.message += f" ({n_ok} sub-steps)"
             return res
         # effort exhausted: finish the interval with a short final attempt so that the
@@ -300,7 +304,8 @@ class TransientEHL:
             last.message = (
                 f"no converged sub-step path: gave up after {failures} failed "
                 f"sub-steps ({n_ok} converged, reached {done:.3g} of the step; "
-                f"at most {k} halvings, max_substeps = {k}): {res.message}"
+                f"at most {k} halvings, max_substeps = {k}): "
+                f"{res.message if res is not None else last.message}"
             )
         return last
 
@@ -359,6 +364,7 @@ class TransientEHL:
     def _advance(self, dt, cond: Conditions) -> EHLResult:
         o = self.opts
         prev_grid = self._grid
+        assert prev_grid is not None and self._h is not None and self._q is not None  # started
         hc_prev = float(np.interp(0.0, prev_grid.x, self._h))
         grid = self._make_grid(cond, hc_prev)
         same = grid is prev_grid
@@ -377,6 +383,7 @@ class TransientEHL:
         out = newton(sysm, st0, o.tol, o.max_iter, lu=self._lu if same else None)
         self._lu = out.lu if out.converged else None
         self._commit(sysm, out.state, dt, self.time + dt)
+        assert self._h is not None  # set by _commit
         hc_new = float(np.interp(0.0, grid.x, self._h))
         res = postprocess(sysm, out, o, time=self.time, squeeze_velocity=-(hc_new - hc_prev) / dt)
         self.result = res
