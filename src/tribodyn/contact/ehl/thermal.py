@@ -21,14 +21,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from typing import cast
 
 import numpy as np
 
 from ..._validation import InputError, check_positive, check_range
 from ...physics.asperity import Roughness
-from ...physics.film_thermal import film_flow
+from ...physics.film_thermal import FilmFlow, film_flow
 from ...physics.friction import boundary_shear_stress
 from ...physics.heat_conduction import ThermalBody, depth_grid
+from ...physics.lubricant import Lubricant
 from ...physics.thermal_oil import ThermalLubricant
 from .energy import EnergyInputs, chain_size, solve_energy
 from .grid import Grid, layout
@@ -94,11 +96,14 @@ class ThermalEHLResult(EHLResult):
     """:class:`EHLResult` with the temperatures of the thermal solution (K)."""
 
     inlet_temperature: float = float("nan")  #: Tᵢ [K]
-    x_thermal: np.ndarray = field(default=None, repr=False)  #: thermal grid [m]
-    film_temperature: np.ndarray = field(default=None, repr=False)  #: (n_T, m) [K]
-    surface_temperature: np.ndarray = field(default=None, repr=False)  #: (2, n_T) body 1, 2
-    mid_film_temperature: np.ndarray = field(default=None, repr=False)  #: (n_T,) [K]
+    x_thermal: np.ndarray | None = field(default=None, repr=False)  #: thermal grid [m]
+    film_temperature: np.ndarray | None = field(default=None, repr=False)  #: (n_T, m) [K]
+    #: (2, n_T) [K], body 1 and 2
+    surface_temperature: np.ndarray | None = field(default=None, repr=False)
+    mid_film_temperature: np.ndarray | None = field(default=None, repr=False)  #: (n_T,) [K]
     max_temperature: float = float("nan")  #: max over film and surfaces [K]
+    #: the solver's temperature field (a transient starts from it)
+    temperature_field: object = field(default=None, repr=False, compare=False)
     central_mid_film_temperature: float = float("nan")  #: at x = 0 [K]
     max_surface_temperature: tuple = (float("nan"), float("nan"))  #: bodies 1, 2 [K]
     thermal_iterations: int = 0
@@ -193,7 +198,7 @@ class ThermalField:
         self.theta = np.zeros((n, self.Nz))
         self.w = np.full(self.m, 1.0 / (self.m - 1))
         self.w[0] = self.w[-1] = 0.5 / (self.m - 1)
-        self.flow = None
+        self.flow: FilmFlow | None = None
 
     # -- views
     @property
@@ -314,6 +319,7 @@ class ThermalField:
         """(flow factor, Couette factor, T̄, fluidity ratio, f_lim) interpolated on the
         EHL grid from the last :meth:`fields`."""
         ff = self.flow
+        assert ff is not None, "ThermalField.fields() must run before factors()"
         us, ue = cond.sliding_speed, cond.entrainment_speed
         ue_eff = math.copysign(max(abs(ue), 0.05 * abs(us), 1e-3), ue if ue != 0 else 1.0)
         cf = 1.0 + (ff.D - ff.D_ref) / (ff.rho_e * np.maximum(self._h, 1e-10) * ue_eff)
@@ -417,7 +423,9 @@ class ThermalField:
 def apply_factors(sysm: ReynoldsSystem, tf: ThermalField, cond: Conditions):
     """Set the frozen temperatures and generalized-Reynolds factors on ``sysm``."""
     fp, fc, Tm, _, _ = tf.factors(sysm.g.x, cond)
-    sysm.lub.T = Tm
+    lub = sysm.lub
+    assert isinstance(lub, FrozenTemperatureOil)  # set up by the thermal solvers
+    lub.T = Tm
     sysm.flow_factor, sysm.couette_factor = fp, fc
 
 
@@ -520,7 +528,9 @@ def solve_thermal_ehl(
     direction = 1 if cond.entrainment_speed >= 0 else -1
     grid = Grid(iso_model.bodies, lay, direction, opts.elastic)
     standin = FrozenTemperatureOil(oil, np.full(grid.n, oil.inlet_temperature))
-    sysm = ReynoldsSystem(grid, cond, ContactModel(iso_model.bodies, standin, roughness))
+    # the stand-in has the interface of Lubricant that the Reynolds system reads
+    model = ContactModel(iso_model.bodies, cast(Lubricant, standin), roughness)
+    sysm = ReynoldsSystem(grid, cond, model)
     st = state_from_dimensional(
         sysm, iso.x, iso.pressure + iso.asperity_pressure, iso.rigid_approach
     )
@@ -559,6 +569,7 @@ def solve_thermal_ehl(
             tf.theta = theta_prev + 0.5 * (tf.theta - theta_prev)
             tf.refresh(grid.x, p, h, pa, cond, roughness, opts)
             relax = max(0.1, 0.5 * relax)
+        assert out is not None  # the loop above ran at least once
         if not out.converged:
             msg = f"Reynolds failed at thermal iteration {it}: {out.message}"
             break
@@ -582,5 +593,5 @@ def solve_thermal_ehl(
     if out is None:
         out = newton(sysm, st, opts.tol, opts.max_iter)
     res = thermal_result(sysm, out, opts, tf, cond, it, ok, msg)
-    res._field = tf  # the temperature field (a transient starts from it)
+    res.temperature_field = tf  # the temperature field (a transient starts from it)
     return res

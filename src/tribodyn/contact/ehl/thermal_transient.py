@@ -63,9 +63,9 @@ class ThermalTransientEHL(TransientEHL):
         self.tbodies = checked_thermal_bodies(thermal_bodies, self.bodies)
         self.topts = thermal_options or ThermalOptions()
         self.tf: ThermalField | None = None
-        self._p_T = None  # pressure on the thermal grid (compression heating)
-        self._rho_h_T = None  # ρh on the thermal grid (film continuity)
-        self._T_nodes = None  # film-mean temperature on the EHL grid [K]
+        self._p_T: np.ndarray | None = None  # pressure on the thermal grid (compression heating)
+        self._rho_h_T: np.ndarray | None = None  # ρh on the thermal grid (film continuity)
+        self._T_nodes: np.ndarray | None = None  # film-mean temperature on the EHL grid [K]
 
     def start_steady(
         self, load, radius, entrainment_speed, sliding_speed, time=0.0
@@ -88,13 +88,15 @@ class ThermalTransientEHL(TransientEHL):
         grid = self._make_grid(cond, None)
         u1 = entrainment_speed + 0.5 * sliding_speed
         speeds = (u1, u1 - sliding_speed)
-        tf = res._field
-        self.tf = (
-            tf.regridded(grid.x, speeds)
+        steady_field = res.temperature_field
+        assert isinstance(steady_field, ThermalField)  # set by solve_thermal_ehl
+        tf = (
+            steady_field.regridded(grid.x, speeds)
             if grid.x.size != res.x.size or abs(grid.x[0] / res.x[0] - 1) > 1e-12
-            else tf
+            else steady_field
         )
-        Tm = np.interp(grid.x, self.tf.x, self.tf.mean_T())
+        self.tf = tf
+        Tm = np.interp(grid.x, tf.x, tf.mean_T())
         sysm = self._system(grid, cond, Tm)
         st = state_from_dimensional(
             sysm, res.x, res.pressure + res.asperity_pressure, res.rigid_approach
@@ -102,7 +104,7 @@ class ThermalTransientEHL(TransientEHL):
         # the pressure of the transient's own grid at the steady temperatures, so that
         # marching at constant conditions stays there (the grids differ)
         ev = sysm.evaluate(st.Q, st.H0)
-        self.tf.refresh(
+        tf.refresh(
             grid.x,
             ev.P * sysm.p_ref,
             ev.H * sysm.h_ref,
@@ -111,17 +113,18 @@ class ThermalTransientEHL(TransientEHL):
             self.rough,
             self.opts,
         )
-        apply_factors(sysm, self.tf, cond)
+        apply_factors(sysm, tf, cond)
         out = newton(sysm, st, self.opts.tol, self.opts.max_iter)
         if out.converged:
             st = out.state
             res = thermal_result(
-                sysm, out, self.opts, self.tf, cond, res.thermal_iterations, True, res.message
+                sysm, out, self.opts, tf, cond, res.thermal_iterations, True, res.message
             )
         self._grid, self._lu, self._hist, self._hc_hist = grid, None, [], ()
         self._commit(sysm, st, None, time)
-        self._p_T = np.interp(self.tf.x, grid.x, self._p)
-        self._rho_h_T = self.tf.rho_h(grid.x, self._p, self._h)
+        assert self._p is not None and self._h is not None  # set by _commit
+        self._p_T = np.interp(tf.x, grid.x, self._p)
+        self._rho_h_T = tf.rho_h(grid.x, self._p, self._h)
         res.time = time
         self.result = res
         return res
@@ -154,7 +157,10 @@ class ThermalTransientEHL(TransientEHL):
 
     def _advance(self, dt, cond: Conditions) -> ThermalEHLResult:
         o, t = self.opts, self.topts
-        prev_grid = self._grid
+        prev_grid, tf_old = self._grid, self.tf
+        assert prev_grid is not None and tf_old is not None  # started
+        assert self._h is not None and self._q is not None
+        assert self._p_T is not None and self._rho_h_T is not None
         hc_prev = float(np.interp(0.0, prev_grid.x, self._h))
         grid = self._make_grid(cond, hc_prev)
         same = grid is prev_grid
@@ -168,7 +174,6 @@ class ThermalTransientEHL(TransientEHL):
             a0, f_eff = 1.0, f1
         u1 = cond.entrainment_speed + 0.5 * cond.sliding_speed
         speeds = (u1, u1 - cond.sliding_speed)
-        tf_old = self.tf
         tf = tf_old if same else tf_old.regridded(grid.x, speeds)
         theta_old = tf.theta.copy()
         p_old = np.interp(tf.x, tf_old.x, self._p_T)
@@ -210,10 +215,12 @@ class ThermalTransientEHL(TransientEHL):
                 break
             if k > 1 and change < t.tol:
                 break
+        assert out is not None  # at least one thermal iteration ran
         ok_t = bool(np.isfinite(change))
         self._lu = lu
         self.tf = tf
         self._commit(sysm, out.state if out.converged else st, dt, self.time + dt)
+        assert self._p is not None and self._h is not None  # set by _commit
         self._p_T = np.interp(tf.x, grid.x, self._p)
         self._rho_h_T = tf.rho_h(grid.x, self._p, self._h)
         hc_new = float(np.interp(0.0, grid.x, self._h))
