@@ -29,6 +29,7 @@ from abc import ABC, abstractmethod
 import numpy as np
 
 from .. import paper
+from .._typing import ArrayLike
 from .._validation import (
     InputError,
     check_array,
@@ -528,8 +529,8 @@ class TabulatedCam(CamProfile):
 
     def __init__(
         self,
-        angle,
-        lift,
+        angle: ArrayLike,
+        lift: ArrayLike,
         base_radius: float,
         *,
         smoothing: float | None = None,

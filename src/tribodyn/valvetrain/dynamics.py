@@ -175,7 +175,7 @@ def simulate_valvetrain(
     params: ValvetrainParameters | None = None,
     *,
     engine_speed: float = 3000.0,
-    tribology="explicit",
+    tribology: TribologyModel | str | None = "explicit",
     cycles: int = 2,
     output_step: float = 0.25,
     method: str = "LSODA",

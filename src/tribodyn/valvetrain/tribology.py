@@ -30,11 +30,12 @@ from abc import ABC, abstractmethod
 import numpy as np
 
 from .. import paper
+from .._typing import ArrayLike
 from .._validation import InputError, check_array, check_positive
 from ..physics.analytic_contact import analytic_contact
 from ..physics.asperity import Roughness
 from ..physics.lubricant import SAE_5W20, Lubricant
-from ..physics.materials import STEEL, Body
+from ..physics.materials import STEEL, Body, BodyPair
 
 __all__ = [
     "TribologyModel",
@@ -104,7 +105,7 @@ class AnalyticTribology(TribologyModel):
         self,
         width: float = paper.CAM_WIDTH,
         *,
-        bodies=None,
+        bodies: BodyPair | None = None,
         lubricant: Lubricant = SAE_5W20,
         roughness: Roughness | None = PAPER_ROUGHNESS_UNCOATED,
         boundary_shear_coefficient: float = paper.STEEL["boundary_shear_coefficient"],
@@ -196,10 +197,10 @@ class FilmTableTribology(TribologyModel):
     def __init__(
         self,
         friction_model: TribologyModel,
-        time,
-        film,
-        compliance=None,
-        reference_force=None,
+        time: ArrayLike,
+        film: ArrayLike,
+        compliance: ArrayLike | None = None,
+        reference_force: ArrayLike | None = None,
         *,
         period: float | None = None,
     ):

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import os
 import time
+from collections.abc import Callable
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -164,7 +165,11 @@ def _single_blas_thread():
 
 # ----------------------------------------------------------------------------- driver
 def run_cycle_study(
-    case, *, workers: int | None = None, progress=None, executor: Executor | None = None
+    case: Case,
+    *,
+    workers: int | None = None,
+    progress: Callable[..., None] | None = None,
+    executor: Executor | None = None,
 ) -> CycleStudy:
     """Run the whole study for a validated :class:`~tribodyn.config.Case`.
 
@@ -306,15 +311,15 @@ def run_cycle_study(
         timings=timings,
         isothermal_sets=isothermal,
     )
-    for s in study.sets:
-        if s.failures:
+    for res in study.sets:
+        if res.failures:
             study.warnings.append(
-                f"{s.name}: {len(s.failures)} EHL step(s) did not converge "
-                f"(first at {s.failures[0][0]:.0f}°: {s.failures[0][1]})"
+                f"{res.name}: {len(res.failures)} EHL step(s) did not converge "
+                f"(first at {res.failures[0][0]:.0f}°: {res.failures[0][1]})"
             )
-        for count, first, text in s.validity.values():
+        for count, first, text in res.validity.values():
             study.warnings.append(
-                f"{s.name}: {count} EHL step(s) outside the model's validity "
+                f"{res.name}: {count} EHL step(s) outside the model's validity "
                 f"(first at {first:.0f}°: {text})"
             )
     if n.implicit_coupling and not coupling.converged:

@@ -16,6 +16,7 @@ import numpy as np
 from ..._validation import InputError
 from ...physics.asperity import Roughness
 from ...physics.lubricant import Lubricant
+from ...physics.materials import BodyPair
 from .grid import N_MAX_AUTO, Grid, Layout, layout
 from .newton import CoarseLevel, NewtonOutcome, State, newton
 from .options import Conditions, ContactModel, EHLOptions, EHLResult, with_overrides
@@ -52,11 +53,11 @@ def state_from_dimensional(sysm: ReynoldsSystem, x, q, h0) -> State:
 
 
 def solve_ehl(
-    load,
-    radius,
-    entrainment_speed,
-    sliding_speed,
-    bodies,
+    load: float,
+    radius: float,
+    entrainment_speed: float,
+    sliding_speed: float,
+    bodies: BodyPair,
     lubricant: Lubricant,
     roughness: Roughness | None = None,
     *,

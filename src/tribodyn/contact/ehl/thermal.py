@@ -20,6 +20,7 @@ conductivities, the thermal solution is the isothermal one at the inlet temperat
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from typing import cast
 
@@ -31,6 +32,7 @@ from ...physics.film_thermal import FilmFlow, film_flow
 from ...physics.friction import boundary_shear_stress
 from ...physics.heat_conduction import ThermalBody, depth_grid
 from ...physics.lubricant import Lubricant
+from ...physics.materials import BodyPair
 from ...physics.thermal_oil import ThermalLubricant
 from .energy import EnergyInputs, chain_size, solve_energy
 from .grid import Grid, layout
@@ -485,13 +487,13 @@ def checked_thermal_bodies(tbodies, bodies):
 
 
 def solve_thermal_ehl(
-    load,
-    radius,
-    entrainment_speed,
-    sliding_speed,
-    bodies,
+    load: float,
+    radius: float,
+    entrainment_speed: float,
+    sliding_speed: float,
+    bodies: BodyPair,
     oil: ThermalLubricant,
-    thermal_bodies,
+    thermal_bodies: Sequence[ThermalBody],
     roughness: Roughness | None = None,
     *,
     options: EHLOptions | None = None,

@@ -12,8 +12,13 @@ starting point, so one or two iterations usually suffice. Start with :meth:`star
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
+from ...physics.asperity import Roughness
+from ...physics.heat_conduction import ThermalBody
+from ...physics.materials import BodyPair
 from ...physics.thermal_oil import ThermalLubricant
 from .newton import newton
 from .options import Conditions, ContactModel, EHLOptions
@@ -41,10 +46,10 @@ class ThermalTransientEHL(TransientEHL):
 
     def __init__(
         self,
-        bodies,
+        bodies: BodyPair,
         oil: ThermalLubricant,
-        thermal_bodies,
-        roughness=None,
+        thermal_bodies: Sequence[ThermalBody],
+        roughness: Roughness | None = None,
         *,
         options: EHLOptions | None = None,
         thermal_options: ThermalOptions | None = None,

@@ -12,6 +12,7 @@ from ..._validation import InputError, check_positive
 from ...physics.asperity import Roughness
 from ...physics.limits import EHL_NODES_TRANSIENT, MAX_SUBSTEPS
 from ...physics.lubricant import Lubricant
+from ...physics.materials import BodyPair
 from .grid import Grid, layout
 from .newton import State, newton
 from .options import Conditions, ContactModel, EHLOptions, EHLResult, with_overrides
@@ -62,7 +63,7 @@ class TransientEHL:
 
     def __init__(
         self,
-        bodies,
+        bodies: BodyPair,
         lubricant: Lubricant,
         roughness: Roughness | None = None,
         *,
