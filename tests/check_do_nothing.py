@@ -28,7 +28,7 @@ FILES = {
         "test_ehl_errors.py",
         "test_ehl_references.py",
     ],
-    "dynamics": ["test_valvetrain_dynamics.py"],
+    "dynamics": ["test_valvetrain_dynamics.py", "test_valvetrain_compiled.py"],
 }
 
 

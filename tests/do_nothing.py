@@ -53,6 +53,16 @@ def _ivp_nothing(fun, t_span, y0, method="RK45", t_eval=None, events=None, **kw)
     return _Constant(t_eval if t_eval is not None else [t_span[0], t_span[1]], y0, n_events)
 
 
+def _odeint_nothing(func, y0, t, *args, full_output=False, **kw):
+    """scipy.integrate.odeint that stays at the initial state (the compiled lumped path)."""
+    _calls["n"] += 1
+    Y = np.repeat(np.asarray(y0, float)[None, :], len(t), axis=0)
+    if not full_output:
+        return Y
+    n = np.zeros(max(len(t) - 1, 1), dtype=int)
+    return Y, {"nfe": n, "nje": n, "message": "Integration successful."}
+
+
 #: solver → [(module, attribute, replacement)]: every place the iteration is looked up.
 PATCHES = {
     "dry": [("tribodyn.contact.dry", "_cgm", _dry_nothing)],
@@ -60,7 +70,11 @@ PATCHES = {
         ("tribodyn.contact.ehl.steady", "newton", _newton_nothing),
         ("tribodyn.contact.ehl.transient", "newton", _newton_nothing),
     ],
-    "dynamics": [("tribodyn.valvetrain.dynamics", "solve_ivp", _ivp_nothing)],
+    "dynamics": [
+        ("tribodyn.valvetrain.dynamics", "solve_ivp", _ivp_nothing),
+        ("tribodyn.valvetrain.compiled", "odeint", _odeint_nothing),
+        ("tribodyn.valvetrain.compiled", "solve_ivp", _ivp_nothing),
+    ],
 }
 
 
