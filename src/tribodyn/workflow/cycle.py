@@ -317,11 +317,17 @@ def run_cycle_study(
                 f"{res.name}: {len(res.failures)} EHL step(s) did not converge "
                 f"(first at {res.failures[0][0]:.0f}°: {res.failures[0][1]})"
             )
-        for count, first, text in res.validity.values():
-            study.warnings.append(
-                f"{res.name}: {count} EHL step(s) outside the model's validity "
-                f"(first at {first:.0f}°: {text})"
-            )
+    # validity warnings, one line per kind (sets with the same count and start together)
+    kinds: dict[tuple, list[str]] = {}
+    for res in study.sets:
+        for kind, (count, first, text) in res.validity.items():
+            kinds.setdefault((kind, count, first), [text]).append(res.name)
+    for (_kind, count, first), (text, *names) in kinds.items():
+        who = ", ".join(names) if len(names) < len(study.sets) else "every surface set"
+        study.warnings.append(
+            f"{who}: {count} EHL step(s) outside the model's validity "
+            f"(first at {first:.0f}°: {text})"
+        )
     if n.implicit_coupling and not coupling.converged:
         study.warnings.append(f"implicit coupling: {coupling.message}")
     if dyn.jump:
