@@ -252,3 +252,12 @@ def test_figure_path_must_be_an_image_file(tmp_path):
     for bad in (str(tmp_path), str(tmp_path / "fig.tmp")):
         res = runner.invoke(app, ["topography", good, "--figure", bad])
         assert res.exit_code == 2 and "--figure" in res.stderr
+
+
+def test_cli_pairs_an_areal_map_with_a_profile():
+    """A cam measured as a profile and a tappet as an areal map: the pair's composite
+    parameters from the map and the profile's isotropic-surface estimates (exit 0)."""
+    r = CliRunner().invoke(
+        app, ["topography", str(DATA / "surface.x3p"), str(DATA / "profile.sur"), "--json"]
+    )
+    assert r.exit_code == 0, r.output

@@ -245,7 +245,6 @@ def topography_command(
     from .._validation import InputError
     from ..topography.analysis import analyse_surface, composite_roughness
     from ..topography.reading import write_topography
-    from ..topography.results import SurfaceAnalysis
     from ..topography.synthetic import synthetic_surface
 
     console = Console()
@@ -284,12 +283,7 @@ def topography_command(
         )
         use_band = None if no_filter else ("auto" if band is None else band)
         analyses = [analyse_surface(f, use_band, **kwargs) for f in files]
-        result: Any = analyses[0]
-        if len(analyses) == 2:
-            a, b = analyses
-            if not (isinstance(a, SurfaceAnalysis) and isinstance(b, SurfaceAnalysis)):
-                raise InputError("a cam–tappet pair needs two areal maps, not profiles")
-            result = composite_roughness(a, b)
+        result: Any = composite_roughness(*analyses) if len(analyses) == 2 else analyses[0]
         if method == "summits" and getattr(result, "summits", None) is None:
             method = "spectral"  # profiles (and mixed pairs) have no summits
         block = result.toml_block(method)

@@ -409,8 +409,11 @@ def _same_band(a: Band, b: Band) -> bool:
     )
 
 
-def composite_roughness(first: SurfaceAnalysis, second: SurfaceAnalysis) -> PairAnalysis:
-    """Composite (equivalent-surface) parameters of a pair of analysed surfaces."""
+def composite_roughness(
+    first: SurfaceAnalysis | ProfileAnalysis, second: SurfaceAnalysis | ProfileAnalysis
+) -> PairAnalysis:
+    """Composite (equivalent-surface) parameters of a pair of analysed surfaces (areal
+    maps, or a profile with its isotropic-surface estimates)."""
     from SurfaceTopography import Topography
 
     moments = composite_moments(first.moments, second.moments)
