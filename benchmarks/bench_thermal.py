@@ -7,7 +7,7 @@
   w = 200 kN/m, R = 20 mm, u_e = 2 m/s, u_s = 1 m/s), best of 3;
 * the cam cycle of the bundled thermal case (``andreou2023_thermal``) for one surface
   set: the isothermal transient EHL and the thermal one over the same samples, with the
-  ratio of their run times (the issue's bound: ≤ 5).
+  ratio of their run times (the design bound: ≤ 5).
 BLAS is limited to one thread (as in the cycle study's workers).
 """
 

@@ -38,7 +38,7 @@ WRONG_TYPES = [None, "1", "a", [1.0, 2.0], {}, 1j, object(), True]
 NON_FINITE = [float("nan"), float("inf"), -float("inf")]
 
 
-# ----------------------------------------------------------------------------- the list
+# ----------------------------------------------------------------------------- the reported problems
 @pytest.mark.parametrize(
     "call, name",
     [

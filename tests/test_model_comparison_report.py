@@ -1,4 +1,4 @@
-"""The report's lumped-vs-flexible section: the five quantities of the issue, both models,
+"""The report's lumped-vs-flexible section: the five compared quantities, both models,
 and how the jump speed was found."""
 
 from types import SimpleNamespace
