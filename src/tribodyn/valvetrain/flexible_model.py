@@ -36,7 +36,13 @@ import numpy as np
 from .._validation import InputError
 from .cams import CamProfile
 from .flexible import FlexibleValvetrain
-from .model import _PALMGREN_EXP, ContactLawError, _FrictionTable, smooth_step
+from .model import (
+    _PALMGREN_EXP,
+    ContactLawError,
+    _FrictionTable,
+    contact_film_root,
+    smooth_step,
+)
 from .tribology import TribologyModel
 
 __all__ = ["FlexibleValvetrainModel"]
@@ -196,37 +202,7 @@ class FlexibleValvetrainModel:
                 return 0.0, 0.0, 0.0
             z = dk / C
             return z**g, g * z ** (g - 1.0) / C, 0.0
-        h0 = self.film(t, 0.0, ue, R)[0]
-        if dk + h0 <= 0.0:
-            return 0.0, 0.0, h0
-        lo, hi = 0.0, (dk + h0) / C
-        z = hi
-        # φ is a difference of terms of size |δ_kin| and |h|: its round-off scales with them,
-        # not with the (possibly tiny) net interference δ_kin + h(0)
-        tol = 1e-13 * max(dk + h0, abs(dk), abs(h0), 1e-9)
-        for _ in range(80):
-            P = z**g
-            h, hF = self.film(t, P, ue, R)
-            phi = C * z + P * ikc - h - dk
-            if phi > 0.0:
-                hi = z
-            else:
-                lo = z
-            dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
-            dphi = C + dPdz * (ikc - hF)
-            if abs(phi) <= tol:
-                return P, dPdz / dphi, h
-            zn = z - phi / dphi
-            z = zn if lo < zn < hi else 0.5 * (lo + hi)
-            if hi - lo <= 1e-14 * hi:  # bracket collapsed onto the root
-                P = z**g
-                h, hF = self.film(t, P, ue, R)
-                dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
-                return P, dPdz / (C + dPdz * (ikc - hF)), h
-        raise ContactLawError(
-            f"contact/film law did not converge at t = {t:.6g} s "
-            f"(δ_kin = {dk:.4g} m, h(0) = {h0:.4g} m)"
-        )
+        return contact_film_root(self.film, t, dk, ue, R, C, g, ikc)
 
     def contact_potential(self, P: float) -> float:
         if P <= 0.0:

@@ -135,6 +135,45 @@ class _FrictionTable:
         return (1.0 - a) * ((1.0 - b) * ti[lo] + b * ti[hi]) + a * ((1.0 - b) * tj[lo] + b * tj[hi])
 
 
+def contact_film_root(film, t, dk, ue, R, C, g, ikc) -> tuple[float, float, float]:
+    """Solve the cam contact in series with the film for P = z^g [N]:
+    φ(z) = C z + P/k_cam − h(t, P) − δ_kin = 0, with ``film(t, P, ue, R) -> (h, dh/dP)``,
+    C the contact compliance coefficient, g the contact exponent and ``ikc`` = 1/k_cam.
+    Safeguarded Newton from the upper bracket (monotone for convex φ) with bisection;
+    returns (P [N], dP/dδ_kin [N/m], h [m]). Shared by the lumped and flexible models."""
+    h0, _ = film(t, 0.0, ue, R)
+    if dk + h0 <= 0.0:
+        return 0.0, 0.0, h0
+    lo, hi = 0.0, (dk + h0) / C  # bracket in z (see module docstring)
+    z = hi
+    # φ is a difference of terms of size |δ_kin| and |h|: its round-off scales with them,
+    # not with the (possibly tiny) net interference δ_kin + h(0)
+    tol = 1e-13 * max(dk + h0, abs(dk), abs(h0), 1e-9)
+    for _ in range(80):
+        P = z**g
+        h, hF = film(t, P, ue, R)
+        phi = C * z + P * ikc - h - dk
+        if phi > 0.0:
+            hi = z
+        else:
+            lo = z
+        dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
+        dphi = C + dPdz * (ikc - hF)
+        if abs(phi) <= tol:
+            return P, dPdz / dphi, h
+        zn = z - phi / dphi
+        z = zn if lo < zn < hi else 0.5 * (lo + hi)
+        if hi - lo <= 1e-14 * hi:  # bracket collapsed onto the root
+            P = z**g
+            h, hF = film(t, P, ue, R)
+            dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
+            return P, dPdz / (C + dPdz * (ikc - hF)), h
+    raise ContactLawError(
+        f"contact/film law did not converge at t = {t:.6g} s "
+        f"(δ_kin = {dk:.4g} m, h(0) = {h0:.4g} m)"
+    )
+
+
 class ValvetrainModel:
     """Right-hand side, Jacobian, forces and energies of the valvetrain.
 
@@ -239,37 +278,7 @@ class ValvetrainModel:
             z = dk / C
             P = z**g
             return P, g * z ** (g - 1.0) / C, 0.0
-        h0, hF0 = self.film(t, 0.0, ue, R)
-        if dk + h0 <= 0.0:
-            return 0.0, 0.0, h0
-        lo, hi = 0.0, (dk + h0) / C  # bracket in z (see module docstring)
-        z = hi  # Newton from the upper bracket: monotone for convex φ(z)
-        # φ is a difference of terms of size |δ_kin| and |h|: its round-off scales with them,
-        # not with the (possibly tiny) net interference δ_kin + h(0)
-        tol = 1e-13 * max(dk + h0, abs(dk), abs(h0), 1e-9)
-        for _ in range(80):
-            P = z**g
-            h, hF = self.film(t, P, ue, R)
-            phi = C * z + P * ikc - h - dk
-            if phi > 0.0:
-                hi = z
-            else:
-                lo = z
-            dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
-            dphi = C + dPdz * (ikc - hF)
-            if abs(phi) <= tol:
-                return P, dPdz / dphi, h
-            zn = z - phi / dphi
-            z = zn if lo < zn < hi else 0.5 * (lo + hi)
-            if hi - lo <= 1e-14 * hi:  # bracket collapsed onto the root
-                P = z**g
-                h, hF = self.film(t, P, ue, R)
-                dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
-                return P, dPdz / (C + dPdz * (ikc - hF)), h
-        raise ContactLawError(
-            f"contact/film law did not converge at t = {t:.6g} s "
-            f"(δ_kin = {dk:.4g} m, h(0) = {h0:.4g} m)"
-        )
+        return contact_film_root(self.film, t, dk, ue, R, C, g, ikc)
 
     def contact_potential(self, P: float) -> float:
         """Elastic energy stored in the contact at force P [J] (Palmgren/linear + camshaft)."""
