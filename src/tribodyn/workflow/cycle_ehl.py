@@ -126,6 +126,22 @@ class SetCycleResult:
         return self.viscous_friction + self.boundary_friction
 
 
+#: The per-sample scalar outputs of a :class:`SetCycleResult` (NaN where unloaded).
+SAMPLE_OUTPUTS = (
+    "central_film",
+    "min_film",
+    "max_pressure",
+    "hydrodynamic_load",
+    "asperity_load",
+    "viscous_friction",
+    "viscous_friction_newtonian",
+    "viscous_friction_eyring",
+    "boundary_friction",
+    "rolling_friction",
+    "friction_power",
+    "lambda_ratio",
+)
+
 #: Time-error control: a step whose estimated local error of the central film exceeds this
 #: share is repeated in sub-steps (BDF2: error ∝ Δt³) …
 TIME_TOL = 2e-3
@@ -233,23 +249,7 @@ def ehl_along_cycle(
     t_start = _time.perf_counter()
     n = inp.crank_angle.size
     nan = np.full(n, np.nan)
-    out = {
-        k: nan.copy()
-        for k in (
-            "central_film",
-            "min_film",
-            "max_pressure",
-            "hydrodynamic_load",
-            "asperity_load",
-            "viscous_friction",
-            "viscous_friction_newtonian",
-            "viscous_friction_eyring",
-            "boundary_friction",
-            "rolling_friction",
-            "friction_power",
-            "lambda_ratio",
-        )
-    }
+    out = {k: nan.copy() for k in SAMPLE_OUTPUTS}
     loaded = inp.contact_force >= min_load
     converged = np.ones(n, dtype=bool)
     iterations = np.zeros(n, dtype=int)

@@ -20,7 +20,7 @@ import numpy as np
 
 from ..contact.ehl.thermal import couette_stress
 from ..contact.ehl.thermal_transient import ThermalTransientEHL
-from .cycle_ehl import PROFILE_POINTS, CycleInputs, SetCycleResult
+from .cycle_ehl import PROFILE_POINTS, SAMPLE_OUTPUTS, CycleInputs, SetCycleResult
 
 __all__ = [
     "ThermalSetCycleResult",
@@ -76,21 +76,7 @@ def thermal_along_cycle(
     t_start = _time.perf_counter()
     n = inp.crank_angle.size
     nan = np.full(n, np.nan)
-    keys = (
-        "central_film",
-        "min_film",
-        "max_pressure",
-        "hydrodynamic_load",
-        "asperity_load",
-        "viscous_friction",
-        "viscous_friction_newtonian",
-        "viscous_friction_eyring",
-        "boundary_friction",
-        "rolling_friction",
-        "friction_power",
-        "lambda_ratio",
-    ) + _TEMPS
-    out = {k: nan.copy() for k in keys}
+    out = {k: nan.copy() for k in SAMPLE_OUTPUTS + _TEMPS}
     loaded = inp.contact_force >= min_load
     converged = np.ones(n, dtype=bool)
     iterations = np.zeros(n, dtype=int)
