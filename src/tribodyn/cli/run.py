@@ -180,7 +180,7 @@ def _run(c, out: Path, workers, quiet: bool, scheduler: str | None = None) -> No
             bar.update(tasks["dyn"], completed=1)
         t_write = bar.add_task("figures and report", total=1)
         try:
-            res = write_results(study, out)
+            res = write_results(study, out, workers=n_workers)
         except OutputWriteError as exc:
             console.print(f"[red]error:[/red] {escape(str(exc))}")
             raise typer.Exit(1)

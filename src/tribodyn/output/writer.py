@@ -247,9 +247,12 @@ def write_results(
     *,
     figures: bool | list[str] = True,
     report: bool = True,
+    workers: int | None = None,
 ) -> dict:
     """Write results.nc, summary.json, case.toml, figures and report.md atomically into
     ``out_dir``. Returns ``{"summary": …, "figures": {name: path}, "path": out_dir}``.
+    ``figures``: all (True), none (False) or a list of file names; they are drawn in
+    ``workers`` processes (default: the CPU count, at most 4).
 
     Raises :class:`OutputWriteError` if ``out_dir`` may not be replaced (an existing file
     or a foreign folder, see :func:`check_output_dir`, which the command line calls before
@@ -277,7 +280,9 @@ def write_results(
         if figures:
             from .figures import make_figures
 
-            figs = make_figures(ds, tmp)
+            n = workers if workers is not None else min(os.cpu_count() or 1, 4)
+            only = figures if isinstance(figures, list) else None
+            figs = make_figures(ds, tmp, only=only, workers=n)
         if report:
             from .report import write_report
 

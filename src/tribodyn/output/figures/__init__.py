@@ -60,7 +60,11 @@ _MAKERS = {
 }
 
 
-def make_figures(ds, out_dir, *, only=None) -> dict[str, Path]:
+#: Relative drawing cost of the heavier figures (for splitting them over processes).
+_COST = {"fig12_greenwood_chart.png": 3.0, "fig13_pressure_film_points.png": 2.0}
+
+
+def make_figures(ds, out_dir, *, only=None, workers: int = 1) -> dict[str, Path]:
     """Write the report figures of a cycle-study Dataset into ``out_dir``.
 
     Returns ``{file name: path}`` for the figures written (keys as in :data:`FIGURES`).
@@ -68,7 +72,9 @@ def make_figures(ds, out_dir, *, only=None) -> dict[str, Path]:
     set), which is plotted first. A figure whose variables are not in the Dataset (e.g. a study without the
     single-contact coating studies) is skipped; the explicit/implicit figures plot the
     explicit run alone, and say so, when the ``*_implicit`` variables are absent.
-    ``only``: optional iterable of file names to restrict the output.
+    ``only``: optional iterable of file names to restrict the output. ``workers`` > 1
+    draws the figures in that many processes (each figure is written atomically by its
+    own process; the result is the same as drawing them in turn).
     """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -84,16 +90,46 @@ def make_figures(ds, out_dir, *, only=None) -> dict[str, Path]:
             raise InputError(
                 f"unknown figure name(s) {', '.join(unknown)}; known: {', '.join(_MAKERS)}"
             )
-    wanted = list(_MAKERS) if only is None else [n for n in _MAKERS if n in set(only)]
+    wanted = [n for n in _MAKERS if (only is None or n in set(only)) and has(ds, *_MAKERS[n][1])]
+    groups = _split(wanted, max(1, int(workers)))
+    if len(groups) <= 1:
+        return _draw(ds, out, wanted)
+    import multiprocessing as mp
+    import sys
+    from concurrent.futures import ProcessPoolExecutor
+
+    # fork shares the loaded modules (Linux); elsewhere a fresh interpreter per process
+    ctx = mp.get_context("fork" if sys.platform.startswith("linux") else "spawn")
+    written: dict[str, Path] = {}
+    with ProcessPoolExecutor(max_workers=len(groups), mp_context=ctx) as pool:
+        for part in [pool.submit(_draw, ds, out, g) for g in groups]:
+            written.update(part.result())
+    return {n: written[n] for n in wanted if n in written}
+
+
+def _split(names: list[str], workers: int) -> list[list[str]]:
+    """Longest-first assignment of the figures to at most ``workers`` groups (by
+    :data:`_COST`); no group for fewer than two figures each."""
+    k = min(workers, len(names) // 2)
+    if k <= 1:
+        return [names] if names else []
+    groups: list[list[str]] = [[] for _ in range(k)]
+    load = [0.0] * k
+    for n in sorted(names, key=lambda n: -_COST.get(n, 1.0)):
+        j = load.index(min(load))
+        groups[j].append(n)
+        load[j] += _COST.get(n, 1.0)
+    return groups
+
+
+def _draw(ds, out: Path, names) -> dict[str, Path]:
+    """Draw ``names`` in this process."""
     written = {}
     with plt.rc_context(
         {"font.size": 10, "axes.titlesize": TITLE_SIZE, "figure.dpi": 100, "savefig.dpi": 150}
     ):
-        for name in wanted:
-            maker, needs = _MAKERS[name]
-            if not has(ds, *needs):
-                continue
-            path = maker(ds, out / name)
+        for name in names:
+            path = _MAKERS[name][0](ds, out / name)
             if path is not None:
                 written[name] = path
     return written

@@ -29,6 +29,7 @@ _REGIME_COLOURS = {"IR": "#dbe9f6", "PR": "#e2f0d9", "IE": "#fff2cc", "PE": "#f8
 def fig12(ds, path):
     from matplotlib.colors import BoundaryNorm, ListedColormap
     from scipy.ndimage import distance_transform_edt, gaussian_filter
+    from scipy.spatial import cKDTree
 
     from ...physics.regimes import REGIMES, lubrication_regime
 
@@ -43,7 +44,7 @@ def fig12(ds, path):
     ge_hi = max(1e2, np.nanmax(gE[loaded]) * 3) if any_ else 1e2
     gv_lo = min(1e-2, np.nanmin(gV[loaded]) / 3) if any_ else 1e-2
     gv_hi = max(1e4, np.nanmax(gV[loaded]) * 3) if any_ else 1e4
-    n = 1200
+    n = 600
     lge = np.linspace(np.log10(ge_lo), np.log10(ge_hi), n)
     lgv = np.linspace(np.log10(gv_lo), np.log10(gv_hi), n)
     GE, GV = np.meshgrid(10**lge, 10**lgv)
@@ -54,9 +55,9 @@ def fig12(ds, path):
     fig, ax = plt.subplots(figsize=(10.5, 8), layout="constrained")
     cmap = ListedColormap([_REGIME_COLOURS.get(r, "0.9") for r in REGIMES])
     ax.pcolormesh(
-        GE[::2, ::2],
-        GV[::2, ::2],
-        code[::2, ::2],
+        GE,
+        GV,
+        code,
         cmap=cmap,
         shading="auto",
         zorder=0,
@@ -73,7 +74,8 @@ def fig12(ds, path):
     if any_:
         di = (np.log10(gV[loaded]) - lgv[0]) / (lgv[1] - lgv[0])
         dj = (np.log10(gE[loaded]) - lge[0]) / (lge[1] - lge[0])
-        d_data = np.min(np.hypot(ci[..., None] - di, cj[..., None] - dj), axis=-1)
+        tree = cKDTree(np.c_[di, dj])
+        d_data = tree.query(np.c_[ci.ravel(), cj.ravel()])[0].reshape(ci.shape)
     else:
         d_data = np.full(ci.shape, np.inf)
     for k, r in enumerate(REGIMES):
@@ -85,7 +87,7 @@ def fig12(ds, path):
             ax.contour(
                 GE,
                 GV,
-                gaussian_filter(ind.astype(float), 2.0),
+                gaussian_filter(ind.astype(float), 1.0),
                 levels=[0.5],
                 colors="k",
                 linewidths=1.4,
