@@ -245,6 +245,7 @@ def test_out_of_range_values_name_the_key():
         "numerics.viscous_model: must be 'eyring' or 'newtonian' (got 'foo')",
         "2 problems",
     )
+    reject("[numerics]\ncoupling_n = 10\n", "numerics.coupling_n: must be 0", ">= 32 (got 10)")
     reject("[engine]\nspeed_rpm = '3000'\n", "engine.speed_rpm: must be a number")
     reject("[lubricant]\nviscosity = nan\n", "lubricant.viscosity: must be a finite number")
 

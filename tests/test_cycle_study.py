@@ -288,6 +288,8 @@ def test_regression_headline_numbers(run_dir):
             reduction, abs=0.2
         ), name
         assert v["peak_contact_force_N"] == pytest.approx(513.27, rel=3e-3), name
-        assert v["min_film_m"] == pytest.approx(8.25e-8, rel=1.5e-2), name
+        # 8.25e-8 before the sub-step runs (0.2.0): its 1167° sample was one step where
+        # the time-converged march (10× tighter time tolerance) gives 2.8 % less film
+        assert v["min_film_m"] == pytest.approx(8.02e-8, rel=1.5e-2), name
         # the coatings change the film by well under 1 % at the representative points
         assert max(abs(g) for g in v["film_gain_at_points_pct"]) < 0.5, name

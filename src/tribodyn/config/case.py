@@ -578,6 +578,10 @@ class Case(Section):
         n = self.numerics
         if 0 < n.n < 32:
             raise InputError(f"numerics.n: must be 0 (automatic) or >= 32 (got {n.n})")
+        if 0 < n.coupling_n < 32:
+            raise InputError(
+                f"numerics.coupling_n: must be 0 (as numerics.n) or >= 32 (got {n.coupling_n})"
+            )
         kw: dict[str, Any] = dict(
             n=n.n or None,
             inlet=n.inlet,

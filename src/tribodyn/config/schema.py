@@ -742,6 +742,15 @@ class Numerics(Section):
         ge=1,
         le=100,
     )
+    coupling_n: int = _q(
+        192,
+        "",
+        "EHL grid nodes of the coupling's re-passes along the implicit dynamics (they "
+        "give the film law, needed to the coupling tolerance only; the reported EHL "
+        "keeps numerics.n); 0 = as numerics.n",
+        ge=0,
+        le=4096,
+    )
     workers: int = _q(
         0,
         "",

@@ -288,7 +288,7 @@ def run_coupling(
                 def cb(i, m, label=label):
                     progress(label, i, m)
 
-            ehl = ehl_for_set(case, s, inp, progress=cb)
+            ehl = ehl_for_set(case, s, inp, progress=cb, film_law_only=True)
     if not out.converged and out.history:
         last = out.history[-1]
         msg += (

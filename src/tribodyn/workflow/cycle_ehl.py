@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -147,6 +147,22 @@ SAMPLE_OUTPUTS = (
 TIME_TOL = 2e-3
 #: … at most this many (they share the step's end conditions by interpolation).
 MAX_SUBSTEPS = 8
+#: Light events (ramps, bounces after valve closing: the event's largest force below this
+#: share of the cycle's) are nearly rigid hydrodynamic contacts whose friction is < 1 % of
+#: the cycle's; the automatic grid gives them this many nodes (h_c error ≈ 1 % against
+#: 0.2 % at 384, docs/convergence.md).
+LIGHT_EVENT_FRACTION = 0.05
+LIGHT_EVENT_NODES = 192
+#: A sample after a sub-stepped one starts with as many sub-steps and keeps them while
+#: each sub-step's estimated error stays below this multiple of the tolerance.
+_GUESS_SLACK = 2.0
+#: … and the next sample starts with a single step again when the sub-steps' errors say
+#: that fewer than this many would have done.
+_GUESS_KEEP = 1.5
+#: The time-error tolerance of the coupling's re-passes, which feed only the film law (see
+#: :func:`ehl_for_set`): their film is needed to the coupling tolerance, not to the
+#: reported accuracy.
+COUPLING_TIME_TOL = 5e-3
 
 
 class _Marcher:
@@ -160,13 +176,22 @@ class _Marcher:
       extrapolation, |h − h_pred|/(3h), or |Δh|/(2h)). A step with
       e > TIME_TOL is repeated in m = ⌈(e/TIME_TOL)^(1/3)⌉ ≤ MAX_SUBSTEPS sub-steps with
       the conditions interpolated from the dynamics' output.
+    * Time errors come in runs (engagement, impacts, u_e reversals): after a sub-stepped
+      sample the next one starts with as many sub-steps instead of trying the whole
+      step first. Each sub-step's error is estimated the same way; if one exceeds
+      _GUESS_SLACK × TIME_TOL the sample is redone with more sub-steps, and the next
+      sample tries a single step again when m·(e_max/TIME_TOL)^(1/3) < _GUESS_KEEP.
     """
 
-    def __init__(self, tr: TransientEHL, inp: CycleInputs, min_load: float):
+    def __init__(
+        self, tr: TransientEHL, inp: CycleInputs, min_load: float, time_tol: float = TIME_TOL
+    ):
         self.tr, self.inp, self.min_load = tr, inp, float(min_load)
+        self.time_tol = float(time_tol)
         self.levels = []  # (t, h_c) of the last accepted levels
         self.t = None
         self.substeps = 0
+        self.guess = 1  # sub-steps to start the next sample with
 
     def _args(self, t):
         F, ue, us, R = self.inp.at(t)
@@ -178,7 +203,7 @@ class _Marcher:
         t_i = float(inp.time[i])
         F_i, ue, us, R = F[i], inp.entrainment_speed[i], inp.sliding_speed[i], inp.radius[i]
         r = self.tr.start_steady(F_i / inp.width, R, ue, us, time=t_i)
-        self.levels, self.t, self.substeps = [(t_i, r.central_film)], t_i, 1
+        self.levels, self.t, self.substeps, self.guess = [(t_i, r.central_film)], t_i, 1, 1
         return r
 
     def _error(self, t, h) -> float:
@@ -207,25 +232,63 @@ class _Marcher:
     def _accept(self, t, r):
         self.levels = [(t, r.central_film), *self.levels][:3]
 
+    def _substeps(self, t_start, t_end, m):
+        """March [t_start, t_end] in m equal sub-steps; returns the last result and the
+        largest estimated local error of the sub-steps."""
+        worst, r = 0.0, None
+        for j in range(1, m + 1):
+            t = t_start + (t_end - t_start) * j / m
+            r = self._step(t)
+            if r.converged:
+                worst = max(worst, self._error(t, r.central_film))
+            self._accept(t, r)
+        return r, worst
+
+    def _split(self, err) -> int:
+        """Sub-steps that bring a one-step error ``err`` below the tolerance (∝ Δt³)."""
+        return int(min(MAX_SUBSTEPS, max(2, math.ceil((err / self.time_tol) ** (1.0 / 3.0)))))
+
     def advance(self, i) -> EHLResult:
         t_end = float(self.inp.time[i])
         t_start = self.t
         cp = self.tr.checkpoint()
+        m = self.guess
+        if m > 1:
+            # the previous sample needed sub-steps: start with as many, keep them if each
+            # meets the tolerance (with a margin for the estimate), else redo with more
+            levels = list(self.levels)
+            r, worst = self._substeps(t_start, t_end, m)
+            if worst > _GUESS_SLACK * self.time_tol and m < MAX_SUBSTEPS:
+                self.tr.rollback(cp)
+                self.t, self.levels = t_start, levels
+                m = max(m + 1, self._split(worst * m**3))
+                r, worst = self._substeps(t_start, t_end, m)
+            # the sub-steps the next sample starts with (1: a single step is tried first)
+            need = (worst * m**3 / self.time_tol) ** (1.0 / 3.0)
+            self.guess = 1 if need < _GUESS_KEEP else min(MAX_SUBSTEPS, math.ceil(need))
+            self.substeps = m
+            return r
         r = self._step(t_end)
         err = self._error(t_end, r.central_film) if r.converged else 0.0
-        m = 1
-        if err > TIME_TOL:
-            m = int(min(MAX_SUBSTEPS, max(2, math.ceil((err / TIME_TOL) ** (1.0 / 3.0)))))
+        if err > self.time_tol:
+            m = self._split(err)
             self.tr.rollback(cp)
             self.t = t_start
-            for j in range(1, m + 1):
-                t = t_start + (t_end - t_start) * j / m
-                r = self._step(t)
-                self._accept(t, r)
+            r, _ = self._substeps(t_start, t_end, m)
+            self.guess = m
         else:
             self._accept(t_end, r)
         self.substeps = m
         return r
+
+
+def _event_peaks(force, loaded) -> np.ndarray:
+    """Per sample, the largest force of its loaded event (contiguous loaded samples)."""
+    peak = np.zeros_like(force)
+    edges = np.flatnonzero(np.diff(np.r_[0, loaded.astype(np.int8), 0]))
+    for a, b in zip(edges[::2], edges[1::2]):
+        peak[a:b] = force[a:b].max()
+    return peak
 
 
 def ehl_along_cycle(
@@ -239,10 +302,12 @@ def ehl_along_cycle(
     *,
     min_load: float = 5.0,
     progress=None,
+    time_tol: float = TIME_TOL,
 ) -> SetCycleResult:
     """March the transient EHL over the cycle for one surface set.
 
-    ``progress(i, n)`` is called after each sample (for progress bars).
+    ``progress(i, n)`` is called after each sample (for progress bars); ``time_tol``: the
+    local time error of h_c above which a step is sub-stepped (:class:`_Marcher`).
     """
     import time as _time
 
@@ -261,6 +326,7 @@ def ehl_along_cycle(
     failures = []
     validity: dict[str, tuple[int, float, str]] = {}
     l = inp.width
+    peak = _event_peaks(inp.contact_force, loaded)
     tr = None
     march = None
     for i in range(n):
@@ -271,8 +337,10 @@ def ehl_along_cycle(
             continue
         try:
             if tr is None:
-                tr = TransientEHL(bodies, lubricant, roughness, options=options)
-                march = _Marcher(tr, inp, min_load)
+                light = options.n is None and peak[i] < LIGHT_EVENT_FRACTION * peak.max()
+                opts = replace(options, n=LIGHT_EVENT_NODES) if light else options
+                tr = TransientEHL(bodies, lubricant, roughness, options=opts)
+                march = _Marcher(tr, inp, min_load, time_tol)
                 r = march.start(i)
             else:
                 r = march.advance(i)
@@ -334,10 +402,23 @@ def ehl_along_cycle(
     )
 
 
-def ehl_for_set(case, surface_set, inputs: CycleInputs, progress=None) -> SetCycleResult:
+def ehl_for_set(
+    case, surface_set, inputs: CycleInputs, progress=None, *, film_law_only: bool = False
+) -> SetCycleResult:
     """:func:`ehl_along_cycle` for one surface set of a case (its bodies, roughness and
-    friction law; the case's lubricant and numerics)."""
+    friction law; the case's lubricant and numerics).
+
+    ``film_law_only``: the pass only feeds the implicit coupling's film law (the
+    coupling's re-passes), which needs the film to the coupling tolerance: the grid has
+    ``numerics.coupling_n`` nodes and the time-error tolerance is
+    :data:`COUPLING_TIME_TOL`."""
     s = surface_set
+    opts = case.ehl_options(s)
+    time_tol = TIME_TOL
+    if film_law_only:
+        time_tol = COUPLING_TIME_TOL
+        if case.numerics.coupling_n:
+            opts = replace(opts, n=case.numerics.coupling_n)
     return ehl_along_cycle(
         inputs,
         s.name,
@@ -345,7 +426,8 @@ def ehl_for_set(case, surface_set, inputs: CycleInputs, progress=None) -> SetCyc
         s.bodies,
         case.lubricant(),
         s.roughness,
-        case.ehl_options(s),
+        opts,
         min_load=case.numerics.min_load,
         progress=progress,
+        time_tol=time_tol,
     )
