@@ -80,36 +80,6 @@ def test_time_error_control_resolves_the_engagement():
     assert np.all(a.substeps[first] > 1)
 
 
-def test_light_event_grid_keeps_the_film_within_its_error_budget():
-    """A light event (a 10 N bounce after a 400 N event) is marched on
-    LIGHT_EVENT_NODES: its films differ from the default grid's (so the rule applies)
-    by less than 1.5 %, and the main event is untouched."""
-    from dataclasses import replace
-
-    from tribodyn.workflow.cycle_ehl import LIGHT_EVENT_FRACTION, LIGHT_EVENT_NODES
-
-    crank = np.arange(0.0, 40.0 + 1e-9, 1.0)
-    t = np.radians(crank) / (2 * np.pi * 50.0)
-    F = np.where(crank < 15.0, 400.0, 0.0)
-    F[25:35] = 10.0 + 2.0 * np.sin(np.linspace(0.0, np.pi, 10))
-    assert F[25:35].max() < LIGHT_EVENT_FRACTION * F.max()
-    n = crank.size
-    inp = CycleInputs(crank, t, F, np.full(n, 15e-3), np.full(n, 1.18), np.full(n, 2.36), WIDTH)
-    lub, opts = CASE.lubricant(), CASE.ehl_options(UNCOATED)
-    assert opts.n is None and LIGHT_EVENT_NODES < 384
-    a = ehl_along_cycle(inp, "u", "u", UNCOATED.bodies, lub, UNCOATED.roughness, opts)
-    fixed = replace(opts, n=384)  # the default grid for every event
-    b = ehl_along_cycle(inp, "u", "u", UNCOATED.bodies, lub, UNCOATED.roughness, fixed)
-    light = np.zeros(n, bool)
-    light[25:35] = True
-    assert a.converged[a.loaded].all() and b.converged[b.loaded].all()
-    d = np.abs(a.central_film[light] / b.central_film[light] - 1.0)
-    assert 0.0 < d.max() < 0.015
-    assert np.abs(a.min_film[light] / b.min_film[light] - 1.0).max() < 0.015
-    main = a.loaded & ~light
-    assert np.allclose(a.central_film[main], b.central_film[main], rtol=1e-3)
-
-
 def test_anderson_mixer_accelerates_a_linear_fixed_point():
     """x = A x + c with a slowly contracting A: plain relaxation (memory 0) needs many
     iterations; Anderson with memory 2 solves the 2-D problem in a few."""

@@ -147,12 +147,6 @@ SAMPLE_OUTPUTS = (
 TIME_TOL = 2e-3
 #: … at most this many (they share the step's end conditions by interpolation).
 MAX_SUBSTEPS = 8
-#: Light events (ramps, bounces after valve closing: the event's largest force below this
-#: share of the cycle's) are nearly rigid hydrodynamic contacts whose friction is < 1 % of
-#: the cycle's; the automatic grid gives them this many nodes (h_c error ≈ 1 % against
-#: 0.2 % at 384, docs/convergence.md).
-LIGHT_EVENT_FRACTION = 0.05
-LIGHT_EVENT_NODES = 192
 #: A sample after a sub-stepped one starts with as many sub-steps and keeps them while
 #: each sub-step's estimated error stays below this multiple of the tolerance.
 _GUESS_SLACK = 2.0
@@ -282,15 +276,6 @@ class _Marcher:
         return r
 
 
-def _event_peaks(force, loaded) -> np.ndarray:
-    """Per sample, the largest force of its loaded event (contiguous loaded samples)."""
-    peak = np.zeros_like(force)
-    edges = np.flatnonzero(np.diff(np.r_[0, loaded.astype(np.int8), 0]))
-    for a, b in zip(edges[::2], edges[1::2]):
-        peak[a:b] = force[a:b].max()
-    return peak
-
-
 def ehl_along_cycle(
     inp: CycleInputs,
     name: str,
@@ -326,7 +311,6 @@ def ehl_along_cycle(
     failures = []
     validity: dict[str, tuple[int, float, str]] = {}
     l = inp.width
-    peak = _event_peaks(inp.contact_force, loaded)
     tr = None
     march = None
     for i in range(n):
@@ -337,9 +321,7 @@ def ehl_along_cycle(
             continue
         try:
             if tr is None:
-                light = options.n is None and peak[i] < LIGHT_EVENT_FRACTION * peak.max()
-                opts = replace(options, n=LIGHT_EVENT_NODES) if light else options
-                tr = TransientEHL(bodies, lubricant, roughness, options=opts)
+                tr = TransientEHL(bodies, lubricant, roughness, options=options)
                 march = _Marcher(tr, inp, min_load, time_tol)
                 r = march.start(i)
             else:
