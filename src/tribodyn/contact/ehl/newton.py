@@ -251,7 +251,14 @@ def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse
     dip below zero pressure; the min-function clamps them on the next iteration.
     The Newton systems are solved by LU, by GMRES preconditioned with an earlier LU, or —
     given a ``coarse`` level — by GMRES with the two-grid preconditioner (no dense matrix
-    on this grid; a dense LU only as fallback)."""
+    on this grid; a dense LU only as fallback).
+
+    Converged when the relative update is below ``tol`` (residual < 10³·tol), when the
+    residual is at round-off, or when a full step on an unchanged active set converges
+    quadratically with a predicted next update C·u_k² < tol, C = u_k/u_{k−1}²
+    (the usual a-posteriori estimate of a quadratically converging Newton iteration, cf.
+    Deuflhard, *Newton Methods for Nonlinear Problems*, Springer 2004; it saves the
+    iteration that would only confirm convergence)."""
     g = sysm.g
 
     def merit_of(ev, c=None):
@@ -270,6 +277,7 @@ def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse
     history = [m0]  # non-monotone (Grippo–Lampariello–Lucidi) acceptance
     watchdog = 2  # full Newton steps allowed to raise the merit (warm starts)
     gmres_tol = 1e-6
+    upd_prev = None
     it = 0
     for it in range(1, max_iter + 1):
         cav_std = cavitated(ev, c)
@@ -351,7 +359,18 @@ def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse
         res = math.sqrt(max(m0, 0.0))
         # converged: update below tol, or residual at round-off with an update so small
         # that the next (quadratic) one would be
-        if (upd < tol and res < 1e3 * tol) or (res < 1e-13 and upd < math.sqrt(tol)):
+        # … or quadratic convergence (same active set, full step) predicting the next
+        # update C·upd² below tol, C = upd/upd_prev² (Deuflhard's a-posteriori estimate)
+        quad = (
+            upd_prev is not None
+            and not (overshoot or moved)
+            and step == 1.0
+            and upd < math.sqrt(tol)
+            and upd**3 < tol * upd_prev**2
+            and res < 1e3 * tol
+        )
+        upd_prev = upd
+        if (upd < tol and res < 1e3 * tol) or (res < 1e-13 and upd < math.sqrt(tol)) or quad:
             ok = True
             msg = f"converged in {it} Newton iterations (update {upd:.1e}, residual {res:.1e})"
             break

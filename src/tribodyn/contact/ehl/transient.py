@@ -91,6 +91,7 @@ class TransientEHL:
         self._h: np.ndarray | None = None
         self._h0 = 0.0  # rigid approach [m]
         self._hist: list[tuple] = []  # [(x, ρh, dt, R)] of the last two time levels
+        self._q_hist: list[tuple] = []  # [(x, q)] total pressure of the last two levels
         self._hc_hist: tuple[float, ...] = ()  # central film [m] of the last two levels
         self._lu: object | None = None
         self._n_event: int | None = None  # automatic grid: the node count of the steady start
@@ -123,6 +124,7 @@ class TransientEHL:
         if out.converged:
             st, res = out.state, postprocess(sysm, out, self.opts)
         self._grid, self._lu, self._hist, self._hc_hist = grid, None, [], ()
+        self._q_hist = []
         self._commit(sysm, st, None, time)
         res.time = time
         self.result = res
@@ -139,6 +141,7 @@ class TransientEHL:
         ev = sysm.evaluate(st.Q, st.H0)
         st.P, st.H = ev.P, ev.H
         self._grid, self._lu, self._hist, self._hc_hist = grid, None, [], ()
+        self._q_hist = []
         self._commit(sysm, st, None, time)
         self.result = None
 
@@ -165,6 +168,7 @@ class TransientEHL:
         self._h0 = st.H0 * sysm.h_ref
         rho_h = self.lub.density_at(self._p) * self._h
         self._hist = ([(sysm.g.x, rho_h, dt, sysm.cond.radius)] + self._hist)[:2]
+        self._q_hist = ([(sysm.g.x, self._q)] + self._q_hist)[:2]
         hc = float(np.interp(0.0, sysm.g.x, self._h))
         self._hc_hist = (hc, self._hc_hist[0] if self._hc_hist else hc)
         self._grid = sysm.g
@@ -192,12 +196,22 @@ class TransientEHL:
         return f + rho0 * x**2 * (0.5 / R_new - 0.5 / R_old)
 
     def _predict(self, sysm: ReynoldsSystem, st: State, dt) -> State:
-        """Newton start for the next level: the last pressure scaled to the new load, and
-        h₀ such that the central film continues linearly from the last two levels."""
+        """Newton start for the next level: the total pressure extrapolated linearly from
+        the last two levels and scaled to the new load (after a start: the last pressure
+        scaled), and h₀ such that the central film continues linearly from the last two
+        levels."""
         r = self.result
         if r is None or not r.converged or len(self._hist) < 2 or self._hist[0][2] is None:
             return st
-        st.Q = st.Q * (sysm.cond.load / r.load)
+        q = None
+        if len(self._q_hist) == 2:  # the total pressure extrapolated linearly in time …
+            (x1, q1), (x0, q0) = self._q_hist
+            xg = sysm.g.x
+            a1, a0 = np.interp(xg, x1, q1, 0.0, 0.0), np.interp(xg, x0, q0, 0.0, 0.0)
+            q = np.maximum(a1 + (dt / self._hist[0][2]) * (a1 - a0), 0.0)
+            w = float(np.sum(q) * (xg[1] - xg[0]))
+            q = q * (sysm.cond.load / w) if w > 0.0 else None  # … carrying the new load
+        st.Q = q / sysm.p_ref if q is not None else st.Q * (sysm.cond.load / r.load)
         hc1, hc0 = self._hc_hist
         hc = hc1 + (dt / self._hist[0][2]) * (hc1 - hc0)
         if not hc > 0.0:
@@ -323,6 +337,7 @@ class TransientEHL:
             self._lu,
             self._hc_hist,
             self.result,
+            list(self._q_hist),
         )
 
     def _set_state(self, snap):
@@ -337,8 +352,10 @@ class TransientEHL:
             self._lu,
             self._hc_hist,
             self.result,
+            q_hist,
         ) = snap
         self._hist = list(hist)
+        self._q_hist = list(q_hist)
 
     def _snapshot(self):
         """The state before a step, remembering that step's starting conditions."""
