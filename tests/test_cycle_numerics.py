@@ -166,3 +166,25 @@ def test_validity_warnings_of_the_steps_reach_the_study():
     assert "peak" in kinds  # "peak contact pressure … GPa exceeds …"
     count, first = kinds["peak"]
     assert count == int(r.converged.sum()) and first == 0.0
+
+
+def test_coupling_re_passes_use_their_own_grid_and_time_tolerance(monkeypatch):
+    """film_law_only passes run on numerics.coupling_n nodes (never finer than a fixed
+    numerics.n) at COUPLING_TIME_TOL; the reported passes keep numerics.n and TIME_TOL."""
+    import tribodyn.workflow.cycle_ehl as ce
+
+    seen = []
+    monkeypatch.setattr(ce, "ehl_along_cycle", lambda *a, **k: seen.append((a[6].n, k["time_tol"])))
+    inp = _ramp_inputs(1.0)
+    for changes, expect in (
+        ({}, [(None, ce.TIME_TOL), (192, ce.COUPLING_TIME_TOL)]),
+        ({"numerics.n": 128}, [(128, ce.TIME_TOL), (128, ce.COUPLING_TIME_TOL)]),
+        ({"numerics.n": 512}, [(512, ce.TIME_TOL), (192, ce.COUPLING_TIME_TOL)]),
+        ({"numerics.coupling_n": 0}, [(None, ce.TIME_TOL), (None, ce.COUPLING_TIME_TOL)]),
+    ):
+        case = CASE.updated(changes)
+        seen.clear()
+        ehl_for_set(case, case.surface_set("uncoated"), inp)
+        ehl_for_set(case, case.surface_set("uncoated"), inp, film_law_only=True)
+        assert seen == expect, changes
+    assert ce.COUPLING_TIME_TOL > ce.TIME_TOL

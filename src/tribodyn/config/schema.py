@@ -747,7 +747,7 @@ class Numerics(Section):
         "",
         "EHL grid nodes of the coupling's re-passes along the implicit dynamics (they "
         "give the film law, needed to the coupling tolerance only; the reported EHL "
-        "keeps numerics.n); 0 = as numerics.n",
+        "keeps numerics.n); at most numerics.n when that is set; 0 = as numerics.n",
         ge=0,
         le=4096,
     )

@@ -392,15 +392,16 @@ def ehl_for_set(
 
     ``film_law_only``: the pass only feeds the implicit coupling's film law (the
     coupling's re-passes), which needs the film to the coupling tolerance: the grid has
-    ``numerics.coupling_n`` nodes and the time-error tolerance is
-    :data:`COUPLING_TIME_TOL`."""
+    ``numerics.coupling_n`` nodes (at most ``numerics.n`` when that is set) and the
+    time-error tolerance is :data:`COUPLING_TIME_TOL`."""
     s = surface_set
     opts = case.ehl_options(s)
     time_tol = TIME_TOL
     if film_law_only:
         time_tol = COUPLING_TIME_TOL
-        if case.numerics.coupling_n:
-            opts = replace(opts, n=case.numerics.coupling_n)
+        nodes = case.numerics.coupling_n
+        if nodes:  # never finer than the study's own fixed grid
+            opts = replace(opts, n=min(nodes, case.numerics.n) if case.numerics.n else nodes)
     return ehl_along_cycle(
         inputs,
         s.name,
