@@ -273,8 +273,4 @@ class Roughness:
     def contact_area_fraction(self, gap: ArrayLike) -> np.ndarray | float:
         """Real-contact-area fraction A_a/A = π²(ηβσ)² F₂(h/σ) (Eq. 18 per unit area)."""
         lam = np.asarray(gap, dtype=float) / self.rms
-        if self.method == "exact" and lam.ndim and np.all(np.isfinite(lam)):
-            f = greenwood_tripp_table(2.0, lam)[0]  # the exact F₂ to 1e-8, tabulated
-        else:
-            f = greenwood_tripp(2.0, lam, self.method)
-        return math.pi**2 * self.roughness_parameter**2 * f
+        return math.pi**2 * self.roughness_parameter**2 * greenwood_tripp(2.0, lam, self.method)
