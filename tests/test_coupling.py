@@ -55,3 +55,34 @@ def test_coupled_dynamics_agree_with_the_explicit_run_in_the_event(coupled):
     d = np.abs(f_imp - dyn.contact_force)[loaded] / dyn.contact_force.max()
     assert np.percentile(d, 75) < 0.02, np.percentile(d, [50, 75, 90, 100])
     assert np.median(d) < 0.01
+
+
+def test_a_diverging_coupling_stops_and_reports_its_most_consistent_iterate(coupled, monkeypatch):
+    """Scripted implicit runs whose force changes shrink and then grow 100-fold: the
+    coupling stops as diverging at that iteration, says so, and reports the iterate with
+    the smallest change instead of the diverged one."""
+    import tribodyn.workflow.coupling as cp
+
+    dyn, _ = coupled
+    case = load_case().updated({**REDUCED, "numerics.coupling_iterations": 6})
+    s = case.surface_set("uncoated")
+    inputs = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
+    first = ehl_for_set(case, s, inputs)
+    bump = 0.5 * (1.0 + np.sin(np.linspace(0.0, 40.0, dyn.contact_force.size)))
+    scales = iter([0.02, 0.01, 1.0, 0.5, 0.5, 0.5])  # changes ∝ 0.02, 0.01, 0.99
+    runs = []
+
+    def scripted(*args, **kwargs):
+        r = simulate_valvetrain(*args, **kwargs)
+        r.contact_force = dyn.contact_force * (1.0 + next(scales) * bump)
+        runs.append(r)
+        return r
+
+    monkeypatch.setattr(cp, "simulate_valvetrain", scripted)
+    monkeypatch.setattr(cp, "ehl_for_set", lambda *a, **k: first)  # no re-pass needed
+    c = run_coupling(case, s, dyn, inputs, first)
+    assert not c.converged
+    assert "diverging at iteration 3" in c.message, c.message
+    assert len(c.history) == 3
+    assert c.implicit is runs[1]  # iteration 2: the smallest change
+    assert "iteration 2's (smallest change)" in c.message

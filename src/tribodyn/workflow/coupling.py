@@ -44,6 +44,7 @@ __all__ = [
     "AndersonMixer",
     "COUPLING_RMS_TOL",
     "COUPLING_MAX_TOL",
+    "DIVERGENCE_FACTOR",
 ]
 
 #: Mixing of the film/friction tables between coupling iterations (Anderson β) …
@@ -55,6 +56,10 @@ ANDERSON_MEMORY = 2
 #: valve-closing impact, whose timing is the last to settle).
 COUPLING_RMS_TOL = 5e-3
 COUPLING_MAX_TOL = 5e-2
+#: The coupling stops as diverging when the RMS change exceeds this multiple of the
+#: smallest change so far; a coupling that does not converge reports the iterate with the
+#: smallest change.
+DIVERGENCE_FACTOR = 20.0
 
 
 class FrictionCoefficientTable(TribologyModel):
@@ -137,7 +142,8 @@ class CouplingIteration:
 @dataclass
 class CouplingResult:
     """The implicit coupling of one surface set: the implicit dynamics (None if disabled
-    or failed), the per-iteration history, convergence, a message and the run time."""
+    or failed; without convergence, the iterate whose force changed least), the
+    per-iteration history, convergence, a message and the run time."""
 
     converged: bool = False
     message: str = "implicit coupling disabled"
@@ -231,7 +237,13 @@ def run_coupling(
 ) -> CouplingResult:
     """Implicit coupling for one surface set, starting from its EHL (``first``) on the
     explicit dynamics and their cycle ``inputs``. ``progress(label, i, n)`` receives the
-    EHL re-passes."""
+    EHL re-passes.
+
+    Stops when the contact force changes by less than COUPLING_RMS_TOL (RMS over the
+    event) and COUPLING_MAX_TOL (max) of its peak, after ``numerics.coupling_iterations``,
+    or as diverging when the RMS change exceeds DIVERGENCE_FACTOR times the smallest so
+    far; without convergence the iterate with the smallest change is reported, and the
+    message says which."""
     t0 = time.perf_counter()
     n = case.numerics
     out = CouplingResult()
@@ -245,6 +257,7 @@ def run_coupling(
     f_peak = float(dynamics.contact_force.max())
     prev, table, ehl, inp = dynamics, None, first, inputs
     mixer, scale = AndersonMixer(), None
+    best = None  # (iteration, RMS change, dynamics) with the smallest change
     msg = f"not converged in {n.coupling_iterations} iterations"
     for k in range(1, n.coupling_iterations + 1):
         g = ehl_tribology(inp, ehl, lub, e_prime, period)
@@ -272,6 +285,14 @@ def run_coupling(
         out.history.append(CouplingIteration(k, rms, mx))
         out.implicit = new
         prev = new
+        if best is None or rms < best[1]:
+            best = (k, rms, new)
+        if k > 1 and rms > DIVERGENCE_FACTOR * best[1] and rms > COUPLING_RMS_TOL * f_peak:
+            msg = (
+                f"diverging at iteration {k} (RMS change {rms:.3g} N, "
+                f"{rms / best[1]:.0f}× the smallest so far)"
+            )
+            break
         if rms < COUPLING_RMS_TOL * f_peak and mx < COUPLING_MAX_TOL * f_peak:
             out.converged = True
             msg = (
@@ -295,6 +316,10 @@ def run_coupling(
             f" (last change of the contact force: RMS {last.rms_force_change_N:.2f} N, "
             f"max {last.max_force_change_N:.1f} N)"
         )
+        if best is not None and best[0] != last.iteration:
+            # report the most self-consistent iterate, not a diverged one
+            out.implicit = best[2]
+            msg += f"; the implicit run reported is iteration {best[0]}'s (smallest change)"
     out.message = msg
     out.runtime_s = time.perf_counter() - t0
     return out
