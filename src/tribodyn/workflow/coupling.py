@@ -289,8 +289,8 @@ def run_coupling(
             best = (k, rms, new)
         if k > 1 and rms > DIVERGENCE_FACTOR * best[1] and rms > COUPLING_RMS_TOL * f_peak:
             msg = (
-                f"diverging at iteration {k} (RMS change {rms:.3g} N, "
-                f"{rms / best[1]:.0f}× the smallest so far)"
+                f"diverging at iteration {k} (RMS change {rms:.3g} N against "
+                f"{best[1]:.3g} N at iteration {best[0]})"
             )
             break
         if rms < COUPLING_RMS_TOL * f_peak and mx < COUPLING_MAX_TOL * f_peak:
