@@ -237,12 +237,7 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     FNs = 0.0
     kN = 0.0
     for j in range(N + 1):
-        xa = y[1] if j == 0 else y[j + 1]
-        va = y[n + 1] if j == 0 else y[n + j + 1]
-        xb = y[j + 2] if j < N else 0.0
-        vb = y[n + j + 2] if j < N else 0.0
-        d = xa - xb
-        dd = va - vb
+        d, dd = _segment(y, n, N, j)
         fe = F0 + kseg[j] * d
         f = fe + cseg[j] * dd
         if j == 0 or j == N:
@@ -299,6 +294,15 @@ def _rhs(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl, flag
 
 
 @njit(**_OPTS)
+def _segment(y, n, N, j):
+    """Compression d and its rate of spring segment j: between coordinates j + 1 and
+    j + 2, the last one (j = N) against the fixed seat."""
+    xb = y[j + 2] if j < N else 0.0
+    vb = y[n + j + 2] if j < N else 0.0
+    return y[j + 1] - xb, y[n + j + 1] - vb
+
+
+@njit(**_OPTS)
 def _element(K, Cm, a, b, k, c):
     K[a, a] -= k
     Cm[a, a] -= c
@@ -328,15 +332,11 @@ def _jac(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl):
     _element(K, Cm, 1, -1, out[24], out[25])
     F0 = par[_F0]
     for j in range(N + 1):
-        xa = y[1] if j == 0 else y[j + 1]
-        va = y[n + 1] if j == 0 else y[n + j + 1]
-        xb = y[j + 2] if j < N else 0.0
-        vb = y[n + j + 2] if j < N else 0.0
-        d = xa - xb
+        d, dd = _segment(y, n, N, j)
         k, c = kseg[j], cseg[j]
         if j == 0 or j == N:
             fe = F0 + kseg[j] * d
-            f = max(fe, 0.0) + cseg[j] * (va - vb)
+            f = max(fe, 0.0) + cseg[j] * dd
             if f <= 0.0:
                 k = c = 0.0
             elif fe < 0.0:
