@@ -26,6 +26,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 from scipy import special
 
 from .._typing import ArrayLike
@@ -169,15 +170,11 @@ class _LogTable:
     def _hermite(self, lm):
         """ln F_n and its λ-derivative: the same cubic Hermite spline, evaluated directly
         on the uniform grid (faster than the generic piecewise polynomial)."""
-        u = (lm - self._lam0) / self._step
-        k = np.minimum(u.astype(np.intp), self._y.size - 2)
-        t = u - k
-        y0, y1, d0, d1 = self._y[k], self._y[k + 1], self._dy[k], self._dy[k + 1]
-        a = 2.0 * (y0 - y1) + d0 + d1  # ln F = y0 + d0 t + b t² + a t³
-        b = 3.0 * (y1 - y0) - 2.0 * d0 - d1
-        val = y0 + t * (d0 + t * (b + t * a))
-        der = (d0 + t * (2.0 * b + 3.0 * a * t)) / self._step
-        return val, der
+        lm = np.asarray(lm, dtype=float)
+        val, der = _hermite_uniform(
+            np.ascontiguousarray(lm).ravel(), self._y, self._dy, self._lam0, self._step
+        )
+        return val.reshape(lm.shape), der.reshape(lm.shape)
 
     def __call__(self, lam):
         lam = np.asarray(lam, dtype=float)
@@ -199,6 +196,29 @@ class _LogTable:
             out[neg] = _negative_series(self.n, ln)
             dout[neg] = -self.n * _negative_series(self.n - 1.0, ln)
         return out, dout
+
+
+@njit(cache=True, nogil=True)
+def _hermite_uniform(lm, y, dy, lam0, step):
+    """Cubic Hermite interpolant on a uniform grid (values y, slopes·step dy) and its
+    derivative: ln F = y₀ + d₀t + bt² + at³, a = 2(y₀ − y₁) + d₀ + d₁,
+    b = 3(y₁ − y₀) − 2d₀ − d₁, t ∈ [0, 1] within the interval."""
+    val = np.empty(lm.size)
+    der = np.empty(lm.size)
+    top = y.size - 2
+    for i in range(lm.size):
+        u = (lm[i] - lam0) / step
+        if not 0.0 <= u <= top + 1.0:  # outside the table (callers keep λ inside)
+            val[i] = der[i] = np.nan
+            continue
+        k = min(int(u), top)
+        t = u - k
+        y0, y1, d0, d1 = y[k], y[k + 1], dy[k], dy[k + 1]
+        a = 2.0 * (y0 - y1) + d0 + d1
+        b = 3.0 * (y1 - y0) - 2.0 * d0 - d1
+        val[i] = y0 + t * (d0 + t * (b + t * a))
+        der[i] = (d0 + t * (2.0 * b + 3.0 * a * t)) / step
+    return val, der
 
 
 _TABLES: dict = {}
@@ -270,7 +290,14 @@ class Roughness:
             * greenwood_tripp_derivative(2.5, lam, self.method)
         )
 
-    def contact_area_fraction(self, gap: ArrayLike) -> np.ndarray | float:
-        """Real-contact-area fraction A_a/A = π²(ηβσ)² F₂(h/σ) (Eq. 18 per unit area)."""
+    def contact_area_fraction(self, gap: ArrayLike, tabulated: bool = False) -> np.ndarray | float:
+        """Real-contact-area fraction A_a/A = π²(ηβσ)² F₂(h/σ) (Eq. 18 per unit area).
+
+        ``tabulated``: the exact F₂ read from the solvers' interpolation table (relative
+        error < 1e-8, several times faster on arrays); the paper's polynomial is direct."""
         lam = np.asarray(gap, dtype=float) / self.rms
-        return math.pi**2 * self.roughness_parameter**2 * greenwood_tripp(2.0, lam, self.method)
+        if tabulated and self.method == "exact":
+            f2 = greenwood_tripp_table(2.0, lam)[0]
+        else:
+            f2 = greenwood_tripp(2.0, lam, self.method)
+        return math.pi**2 * self.roughness_parameter**2 * f2

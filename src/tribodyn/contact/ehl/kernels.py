@@ -1,5 +1,6 @@
 """Compiled kernels of the discrete Reynolds system (numba): stencil and banded
-derivatives, the Newton matrix's banded part, its matrix-free product and its dense form.
+derivatives, the Newton matrix's banded part, its matrix-free product, its dense form,
+and GMRES on it preconditioned with an earlier LU factorisation.
 
 Pure array arithmetic on node arrays; the rheology (ρ, ln μ/μ₀ and their pressure
 derivatives) is evaluated by the caller through the lubricant, so a lubricant with
@@ -11,6 +12,8 @@ second-order upwind Couette term, backward-difference time term).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
@@ -21,6 +24,8 @@ __all__ = [
     "newton_matvec",
     "dense_matrix",
     "jacobi_diagonal",
+    "GETRS",
+    "gmres_lu",
 ]
 
 _OPTS = dict(cache=True, nogil=True, fastmath=False)
@@ -185,3 +190,213 @@ def jacobi_diagonal(AP, AH, D, kcoef, elastic):
             for i in range(max(0, -d), min(n, n - d)):
                 diag[i] += (AH[k, i] - AP[k, i] * D[i + d]) * kd
     return np.abs(diag)
+
+
+def _scipy_routine(module: str, name: str, nargs: int):
+    """A LAPACK/BLAS routine of SciPy's Cython exports as a ctypes function (all
+    arguments by pointer) that compiled code can call; it is passed to the kernels as an
+    argument, which keeps them cacheable."""
+    import ctypes
+
+    from numba.extending import get_cython_function_address
+
+    addr = get_cython_function_address(f"scipy.linalg.cython_{module}", name)
+    return ctypes.CFUNCTYPE(None, *([ctypes.c_void_p] * nargs))(addr)
+
+
+#: dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
+GETRS = _scipy_routine("lapack", "dgetrs", 9)
+#: dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
+GEMV = _scipy_routine("blas", "dgemv", 11)
+
+
+@njit(**_OPTS)
+def _lu_solve(getrs, fac, piv1, x, ints, trans):
+    """x ← A⁻¹ x in place for A = P L U factorised by LAPACK getrf (``fac`` column-major,
+    ``piv1`` the 1-based pivots); ``ints`` = [n, 1, n, n, info], ``trans`` = [ord("N")]."""
+    getrs(
+        trans.ctypes,
+        ints[0:].ctypes,
+        ints[1:].ctypes,
+        fac.ctypes,
+        ints[2:].ctypes,
+        piv1.ctypes,
+        x.ctypes,
+        ints[3:].ctypes,
+        ints[4:].ctypes,
+    )
+
+
+@njit(**_OPTS)
+def _apply(gemv, AP, B, col, c, free, cav, D, K, kscale, elastic, dX, z, out, dh, ints, reals, tr):
+    """Newton-matrix product out = J z with δH = kscale·K v + vh (dense row-major K,
+    by BLAS gemv on its column-major view with trans = "T"); ``dh`` is work space,
+    ``ints`` = [n, n, 1], ``reals`` = [1, 0], ``tr`` = [ord("T")]."""
+    n = D.size
+    vh = z[n]
+    if elastic:
+        gemv(
+            tr.ctypes,
+            ints[0:].ctypes,
+            ints[1:].ctypes,
+            reals[0:].ctypes,
+            K.ctypes,
+            ints[0:].ctypes,
+            z.ctypes,
+            ints[2:].ctypes,
+            reals[1:].ctypes,
+            dh.ctypes,
+            ints[2:].ctypes,
+        )
+        for i in range(n):
+            dh[i] = kscale * dh[i] + vh
+    else:
+        dh[:] = vh
+    newton_matvec(AP, B, col, c, free, cav, D, z[:n], vh, dh, dX, out)
+
+
+@njit(**_OPTS)
+def _norm(v):
+    s = 0.0
+    for x in v:
+        s += x * x
+    return math.sqrt(s)
+
+
+@njit(**_OPTS)
+def gmres_lu(
+    getrs, gemv, AP, B, col, c, free, cav, D, K, kscale, elastic, dX, fac, piv1, b, rtol, max_it
+):
+    """Right-preconditioned GMRES for J x = b (J: the Newton matrix of
+    :class:`~.reynolds.Linearization` with the dense influence matrix K, M = LU of an
+    earlier Newton matrix, applied by ``getrs`` = :data:`GETRS` with the factors ``fac``
+    and 1-based pivots ``piv1`` of ``scipy.linalg.lu_factor``; ``gemv`` = :data:`GEMV`
+    for the products with K), started from x₀ = M⁻¹b; Arnoldi with classical Gram–Schmidt
+    applied twice (CGS2) and Givens rotations (Saad, *Iterative Methods for Sparse
+    Linear Systems*, 2nd ed., SIAM 2003, Alg. 6.9 and §9.3.2). Stops when the residual
+    estimate |g_{j+1}| ≤ rtol·|b|.
+
+    Returns (x, iterations, ok); ok is False for a non-finite residual, a breakdown or
+    no convergence within ``max_it`` iterations."""
+    m = b.size
+    bn = _norm(b)
+    if bn == 0.0:
+        return np.zeros(m), 0, True
+    ints = np.array([m, 1, m, m, 0], dtype=np.int32)
+    trans = np.array([78], dtype=np.uint8)  # "N"
+    n = D.size
+    mv_ints = np.array([n, n, 1], dtype=np.int32)
+    mv_reals = np.array([1.0, 0.0])
+    mv_tr = np.array([84], dtype=np.uint8)  # "T"
+    dh = np.empty(n)
+    x0 = b.copy()
+    _lu_solve(getrs, fac, piv1, x0, ints, trans)
+    w = np.empty(m)
+    _apply(
+        gemv,
+        AP,
+        B,
+        col,
+        c,
+        free,
+        cav,
+        D,
+        K,
+        kscale,
+        elastic,
+        dX,
+        x0,
+        w,
+        dh,
+        mv_ints,
+        mv_reals,
+        mv_tr,
+    )
+    r0 = b - w
+    beta = _norm(r0)
+    if not math.isfinite(beta):
+        return x0, 0, False
+    if beta <= rtol * bn:
+        return x0, 0, True
+    V = np.zeros((max_it + 1, m))
+    Hm = np.zeros((max_it + 1, max_it))
+    cs = np.zeros(max_it)
+    sn = np.zeros(max_it)
+    gv = np.zeros(max_it + 1)
+    h = np.zeros(max_it + 1)
+    gv[0] = beta
+    for i in range(m):
+        V[0, i] = r0[i] / beta
+    t = np.empty(m)
+    for j in range(max_it):
+        t[:] = V[j]
+        _lu_solve(getrs, fac, piv1, t, ints, trans)
+        _apply(
+            gemv,
+            AP,
+            B,
+            col,
+            c,
+            free,
+            cav,
+            D,
+            K,
+            kscale,
+            elastic,
+            dX,
+            t,
+            w,
+            dh,
+            mv_ints,
+            mv_reals,
+            mv_tr,
+        )
+        for i in range(j + 1):
+            Hm[i, j] = 0.0
+        for _ in range(2):  # CGS2
+            for i in range(j + 1):
+                acc = 0.0
+                for k in range(m):
+                    acc += V[i, k] * w[k]
+                h[i] = acc
+            for i in range(j + 1):
+                hi = h[i]
+                for k in range(m):
+                    w[k] -= hi * V[i, k]
+                Hm[i, j] += hi
+        hn = _norm(w)
+        Hm[j + 1, j] = hn
+        if hn > 0.0:
+            for k in range(m):
+                V[j + 1, k] = w[k] / hn
+        for i in range(j):
+            tt = cs[i] * Hm[i, j] + sn[i] * Hm[i + 1, j]
+            Hm[i + 1, j] = -sn[i] * Hm[i, j] + cs[i] * Hm[i + 1, j]
+            Hm[i, j] = tt
+        den = math.hypot(Hm[j, j], Hm[j + 1, j])
+        if den == 0.0:
+            return x0, j + 1, False
+        cs[j] = Hm[j, j] / den
+        sn[j] = Hm[j + 1, j] / den
+        Hm[j, j] = den
+        Hm[j + 1, j] = 0.0
+        gv[j + 1] = -sn[j] * gv[j]
+        gv[j] = cs[j] * gv[j]
+        if abs(gv[j + 1]) <= rtol * bn or j == max_it - 1:
+            if abs(gv[j + 1]) > rtol * bn:
+                return x0, j + 1, False
+            k = j + 1  # y = Hm[:k, :k]⁻¹ g (upper triangular)
+            y = np.zeros(k)
+            for i in range(k - 1, -1, -1):
+                acc = gv[i]
+                for q in range(i + 1, k):
+                    acc -= Hm[i, q] * y[q]
+                y[i] = acc / Hm[i, i]
+            t[:] = 0.0
+            for i in range(k):
+                yi = y[i]
+                for q in range(m):
+                    t[q] += yi * V[i, q]
+            _lu_solve(getrs, fac, piv1, t, ints, trans)
+            return x0 + t, k, True
+    return x0, max_it, False

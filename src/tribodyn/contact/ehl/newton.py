@@ -36,6 +36,9 @@ _WATCHDOG = 100.0
 _MAX_KRYLOV = 30
 _MAX_KRYLOV_BEFORE_REFACTOR = 20
 _MAX_KRYLOV_TWO_GRID = 200
+#: GMRES with an LU preconditioner in compiled code (False: the NumPy loop below, which
+#: is kept for the two-grid preconditioner and as a cross-check in the tests)
+_COMPILED_GMRES = True
 
 
 def _lu_solver(lu):
@@ -57,6 +60,10 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
     a ``solve`` method) as preconditioner,
     started from the preconditioned solution. Returns (x, iterations) or (None, its)."""
     max_it = max_it or _MAX_KRYLOV
+    if isinstance(lu, tuple) and _COMPILED_GMRES:  # compiled, on dense-product grids
+        out = lin.gmres_lu(*lu, rtol, max_it)
+        if out is not None:
+            return out
     b = lin.rhs
     bn = float(np.linalg.norm(b))
     if bn == 0.0:

@@ -77,7 +77,7 @@ def _postprocess(
     f_visc = float(np.sum(np.abs(tau)) * dx)
     f_roll = float(np.sum(0.5 * hf * np.abs(dpdx)) * dx)
     if rough is not None:
-        area = rough.contact_area_fraction(h)
+        area = rough.contact_area_fraction(h, tabulated=True)
         f_b = float(
             np.sum(
                 boundary_shear_stress(

@@ -29,7 +29,16 @@ from ...physics.asperity import (
 )
 from ...physics.elasticity import DeformationOperator
 from .grid import Grid
-from .kernels import assemble, band_product, coupling_bands, dense_matrix, newton_matvec
+from .kernels import (
+    GEMV,
+    GETRS,
+    assemble,
+    band_product,
+    coupling_bands,
+    dense_matrix,
+    gmres_lu,
+    newton_matvec,
+)
 from .options import Conditions, ContactModel
 
 __all__ = ["ReynoldsSystem", "Evaluation", "Linearization", "band_apply"]
@@ -114,7 +123,7 @@ class ReynoldsSystem:
         """H = H0 + X²/2 + K Q: the surfaces deform under the total pressure Q = P + Pa."""
         if not self.elastic:
             return H0 + self.geom
-        return H0 + self.geom + self.Kop(Q)
+        return H0 + self.geom + self.deform(Q)
 
     # -- rheology
     def rheology(self, P):
@@ -255,6 +264,38 @@ class Linearization:
             self.AP, self.B, self.col, self.c, self.free, self.cav, self.D, v, vh, dh, self.dX, out
         )
         return out
+
+    def gmres_lu(self, fac, piv, rtol, max_it):
+        """Compiled GMRES (:func:`.kernels.gmres_lu`) for this system with the LU
+        (``fac``, ``piv``) of an earlier Newton matrix as preconditioner; None where the
+        products need the DC-FFT operator (no dense K on this grid)."""
+        if self.rigid:
+            K, ks = _EMPTY2, 0.0
+        elif self.sysm.g.has_dense:
+            K, ks = np.ascontiguousarray(self.sysm.g.K), self.sysm.kscale
+        else:
+            return None
+        x, its, ok = gmres_lu(
+            GETRS,
+            GEMV,
+            self.AP,
+            self.B,
+            self.col,
+            self.c,
+            self.free,
+            self.cav,
+            self.D,
+            K,
+            ks,
+            not self.rigid,
+            self.dX,
+            fac,
+            piv + 1,  # LAPACK's 1-based pivots
+            self.rhs,
+            float(rtol),
+            int(max_it),
+        )
+        return (x if ok else None), its
 
     def dense(self):
         if self.rigid:

@@ -16,6 +16,8 @@ import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from PIL import Image
+from PIL.PngImagePlugin import PngInfo
 
 __all__ = ["plt", "save_figure", "FIGURES", "EVENT_FRACTION"]
 
@@ -48,13 +50,25 @@ FAMILY_COLOURS = ("tab:blue", "tab:red", "tab:green", "tab:purple", "tab:brown",
 TITLE_SIZE = 11
 
 
+_DPI = 150
+
+
 def save_figure(fig, path) -> Path:
     """Save atomically (temporary file, then rename) and close the figure."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(path.stem + ".tmp" + path.suffix)
+    # one draw (layout included) at the saved resolution, written by PIL: savefig would
+    # draw a laid-out figure twice (a layout pass with rendering off, then the real one)
+    fig.set_dpi(_DPI)
+    fig.canvas.draw()
+    rgba = np.asarray(fig.canvas.buffer_rgba())
+    info = PngInfo()
+    info.add_text("Software", f"Matplotlib version{matplotlib.__version__}, https://matplotlib.org/")
     # fast zlib level: 40 % less encoding time for 14 % larger files
-    fig.savefig(tmp, dpi=150, pil_kwargs={"compress_level": 1})
+    Image.fromarray(rgba).save(
+        tmp, format="png", dpi=(_DPI, _DPI), pnginfo=info, compress_level=1
+    )
     plt.close(fig)
     tmp.replace(path)
     return path
