@@ -275,14 +275,16 @@ def write_results(
         study.case.write_toml(folder / "case.toml")
 
     def writer(tmp: Path):
-        essentials(tmp)
         figs = {}
         if figures:
             from .figures import make_figures
 
             n = workers if workers is not None else min(os.cpu_count() or 1, 4)
             only = figures if isinstance(figures, list) else None
-            figs = make_figures(ds, tmp, only=only, workers=n)
+            # the data files are written while other processes draw
+            figs = make_figures(ds, tmp, only=only, workers=n, meanwhile=lambda: essentials(tmp))
+        else:
+            essentials(tmp)
         if report:
             from .report import write_report
 

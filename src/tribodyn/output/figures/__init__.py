@@ -11,6 +11,7 @@ studies); :mod:`.topography` draws the measured-surface figure (paper Fig. 7).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 from ..._validation import InputError
@@ -60,11 +61,24 @@ _MAKERS = {
 }
 
 
-#: Relative drawing cost of the heavier figures (for splitting them over processes).
-_COST = {"fig12_greenwood_chart.png": 3.0, "fig13_pressure_film_points.png": 2.0}
+#: Relative drawing cost of the figures (CPU time of the paper case's figures, the
+#: average one = 1), to start the costliest first when several processes draw them.
+_COST = {
+    "fig13_pressure_film_points.png": 2.2,
+    "fig14_coatings_pressure_film.png": 1.8,
+    "fig12_greenwood_chart.png": 1.8,
+    "fig20_min_film_lambda.png": 1.5,
+    "fig06_ehl_pressure_film.png": 1.4,
+    "fig05_dry_pressure.png": 0.6,
+    "fig08_tappet_velocity.png": 0.7,
+    "fig18_viscous_friction.png": 0.6,
+    "fig19_friction_power.png": 0.55,
+}
 
 
-def make_figures(ds, out_dir, *, only=None, workers: int = 1) -> dict[str, Path]:
+def make_figures(
+    ds, out_dir, *, only=None, workers: int = 1, meanwhile: Callable[[], object] | None = None
+) -> dict[str, Path]:
     """Write the report figures of a cycle-study Dataset into ``out_dir``.
 
     Returns ``{file name: path}`` for the figures written (keys as in :data:`FIGURES`).
@@ -73,8 +87,10 @@ def make_figures(ds, out_dir, *, only=None, workers: int = 1) -> dict[str, Path]
     single-contact coating studies) is skipped; the explicit/implicit figures plot the
     explicit run alone, and say so, when the ``*_implicit`` variables are absent.
     ``only``: optional iterable of file names to restrict the output. ``workers`` > 1
-    draws the figures in that many processes (each figure is written atomically by its
-    own process; the result is the same as drawing them in turn).
+    draws the figures in that many processes, the costliest first (each figure is
+    written atomically by its own process; the result is the same as drawing them in
+    turn). ``meanwhile``: called in this process while the other processes draw (e.g.
+    to write the data files), or before drawing when there are none.
     """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -91,35 +107,44 @@ def make_figures(ds, out_dir, *, only=None, workers: int = 1) -> dict[str, Path]
                 f"unknown figure name(s) {', '.join(unknown)}; known: {', '.join(_MAKERS)}"
             )
     wanted = [n for n in _MAKERS if (only is None or n in set(only)) and has(ds, *_MAKERS[n][1])]
-    groups = _split(wanted, max(1, int(workers)))
-    if len(groups) <= 1:
+    k = min(max(1, int(workers)), len(wanted) // 2)  # at least two figures per process
+    if k <= 1:
+        if meanwhile is not None:
+            meanwhile()
         return _draw(ds, out, wanted)
     import multiprocessing as mp
     import sys
     from concurrent.futures import ProcessPoolExecutor
 
-    # fork shares the loaded modules (Linux); elsewhere a fresh interpreter per process
+    # fork shares the loaded modules and the Dataset (Linux); elsewhere a fresh
+    # interpreter per process, which receives the Dataset once
     ctx = mp.get_context("fork" if sys.platform.startswith("linux") else "spawn")
     written: dict[str, Path] = {}
-    with ProcessPoolExecutor(max_workers=len(groups), mp_context=ctx) as pool:
-        for part in [pool.submit(_draw, ds, out, g) for g in groups]:
-            written.update(part.result())
+    with ProcessPoolExecutor(
+        max_workers=k, mp_context=ctx, initializer=_hold, initargs=(ds,)
+    ) as pool:
+        order = sorted(wanted, key=lambda n: -_COST.get(n, 1.0))
+        parts = [pool.submit(_draw_held, out, n) for n in order]
+        try:
+            if meanwhile is not None:
+                meanwhile()
+            for part in parts:
+                written.update(part.result())
+        except BaseException:
+            pool.shutdown(wait=True, cancel_futures=True)  # no figures after a failure
+            raise
     return {n: written[n] for n in wanted if n in written}
 
 
-def _split(names: list[str], workers: int) -> list[list[str]]:
-    """Longest-first assignment of the figures to at most ``workers`` groups (by
-    :data:`_COST`); no group for fewer than two figures each."""
-    k = min(workers, len(names) // 2)
-    if k <= 1:
-        return [names] if names else []
-    groups: list[list[str]] = [[] for _ in range(k)]
-    load = [0.0] * k
-    for n in sorted(names, key=lambda n: -_COST.get(n, 1.0)):
-        j = load.index(min(load))
-        groups[j].append(n)
-        load[j] += _COST.get(n, 1.0)
-    return groups
+_HELD: list = []  # the Dataset of a drawing process
+
+
+def _hold(ds) -> None:
+    _HELD[:] = [ds]
+
+
+def _draw_held(out: Path, name: str) -> dict[str, Path]:
+    return _draw(_HELD[0], out, [name])
 
 
 def _draw(ds, out: Path, names) -> dict[str, Path]:
