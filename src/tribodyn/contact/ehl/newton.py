@@ -61,7 +61,8 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
     started from the preconditioned solution. Returns (x, iterations) or (None, its)."""
     max_it = max_it or _MAX_KRYLOV
     if isinstance(lu, tuple) and _COMPILED_GMRES:  # compiled, on dense-product grids
-        out = lin.gmres_lu(*lu, rtol, max_it)
+        fac, piv = lu
+        out = lin.gmres_lu(fac, piv, rtol, max_it)
         if out is not None:
             return out
     b = lin.rhs

@@ -268,7 +268,10 @@ class Linearization:
     def gmres_lu(self, fac, piv, rtol, max_it):
         """Compiled GMRES (:func:`.kernels.gmres_lu`) for this system with the LU
         (``fac``, ``piv``) of an earlier Newton matrix as preconditioner; None where the
-        products need the DC-FFT operator (no dense K on this grid)."""
+        products need the DC-FFT operator (no dense K on this grid) or the factors are not
+        LAPACK's column-major ones with 32-bit pivots."""
+        if not (fac.flags.f_contiguous and piv.dtype == np.int32):
+            return None
         if self.rigid:
             K, ks = _EMPTY2, 0.0
         elif self.sysm.g.has_dense:
