@@ -25,6 +25,7 @@ __all__ = [
     "dense_matrix",
     "jacobi_diagonal",
     "GETRS",
+    "GEMV",
     "gmres_lu",
 ]
 
