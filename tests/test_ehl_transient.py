@@ -159,3 +159,42 @@ def test_compiled_gmres_matches_the_numpy_loop(monkeypatch):
     assert ref[:, 2].max() > 0.0  # asperities carry load: the mixed branch is exercised
     np.testing.assert_allclose(new[:, :3], ref[:, :3], rtol=1e-9)
     np.testing.assert_array_equal(new[:, 3], ref[:, 3])
+
+
+@pytest.mark.parametrize("elastic", [True, False])
+def test_compiled_gmres_solves_a_random_newton_system(elastic):
+    """kernels.gmres_lu on a random banded Newton system with a symmetric Toeplitz K and
+    a perturbed LU as preconditioner: the solution of the assembled dense matrix (LAPACK
+    solve), and a clean failure (ok = False) when the system holds a NaN."""
+    from scipy import linalg
+
+    from tribodyn.contact.ehl import kernels as k
+
+    rng = np.random.default_rng(7)
+    n = 120
+    AP = rng.normal(size=(5, n))
+    AP[2] += 6.0  # diagonally dominant bands
+    AH = 0.1 * rng.normal(size=(5, n))
+    D = 0.05 * rng.random(n)
+    B, col = k.coupling_bands(AP, AH, D)
+    c = 1.0 + rng.random(n)
+    cav = np.zeros(n, dtype=bool)
+    cav[90:100] = True
+    free = ~cav
+    free[0] = free[-1] = False
+    K = linalg.toeplitz(1.0 / (1.0 + np.arange(n))) if elastic else np.zeros((0, 0))
+    ks, dX = 0.3, 0.01
+    J = k.dense_matrix(
+        AP, B, col, c, free, cav, D, K if elastic else np.zeros((n, n)), ks, dX, elastic
+    )
+    fac, piv = linalg.lu_factor(J * (1.0 + 0.05 * rng.random(J.shape)))  # an earlier matrix
+    b = rng.normal(size=n + 1)
+    args = (k.GETRS, k.GEMV, AP, B, col, c, free, cav, D, K, ks, elastic, dX, fac, piv + 1)
+    x, its, ok = k.gmres_lu(*args, b, 1e-12, 30)
+    assert ok and 0 < its <= 30
+    exact = np.linalg.solve(J, b)
+    assert np.linalg.norm(x - exact) <= 1e-9 * np.linalg.norm(exact)
+    bad = AP.copy()
+    bad[2, 40] = np.nan
+    _, _, ok = k.gmres_lu(k.GETRS, k.GEMV, bad, *args[3:], b, 1e-12, 30)
+    assert not ok

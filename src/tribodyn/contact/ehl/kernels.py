@@ -383,8 +383,9 @@ def gmres_lu(
         Hm[j + 1, j] = 0.0
         gv[j + 1] = -sn[j] * gv[j]
         gv[j] = cs[j] * gv[j]
-        if abs(gv[j + 1]) <= rtol * bn or j == max_it - 1:
-            if abs(gv[j + 1]) > rtol * bn:
+        done = abs(gv[j + 1]) <= rtol * bn  # False for a NaN residual
+        if done or j == max_it - 1 or not math.isfinite(gv[j + 1]):
+            if not done:
                 return x0, j + 1, False
             k = j + 1  # y = Hm[:k, :k]⁻¹ g (upper triangular)
             y = np.zeros(k)

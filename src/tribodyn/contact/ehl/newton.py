@@ -109,8 +109,9 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
         Hm[j + 1, j] = 0.0
         gv[j + 1] = -sn[j] * gv[j]
         gv[j] = cs[j] * gv[j]
-        if abs(gv[j + 1]) <= rtol * bn or j == max_it - 1:
-            if abs(gv[j + 1]) > rtol * bn:
+        done = abs(gv[j + 1]) <= rtol * bn  # False for a NaN residual
+        if done or j == max_it - 1 or not math.isfinite(gv[j + 1]):
+            if not done:
                 return None, j + 1
             y = linalg.solve_triangular(Hm[: j + 1, : j + 1], gv[: j + 1], check_finite=False)
             return x0 + prec(V[: j + 1].T @ y), j + 1

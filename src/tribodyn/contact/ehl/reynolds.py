@@ -269,8 +269,16 @@ class Linearization:
         """Compiled GMRES (:func:`.kernels.gmres_lu`) for this system with the LU
         (``fac``, ``piv``) of an earlier Newton matrix as preconditioner; None where the
         products need the DC-FFT operator (no dense K on this grid) or the factors are not
-        LAPACK's column-major ones with 32-bit pivots."""
-        if not (fac.flags.f_contiguous and piv.dtype == np.int32):
+        LAPACK's column-major double-precision ones of this system's size with 32-bit
+        pivots (the kernel reads them by pointer)."""
+        m = self.n + 1
+        if not (
+            fac.dtype == np.float64
+            and fac.shape == (m, m)
+            and fac.flags.f_contiguous
+            and piv.dtype == np.int32
+            and piv.shape == (m,)
+        ):
             return None
         if self.rigid:
             K, ks = _EMPTY2, 0.0
