@@ -118,3 +118,8 @@ def test_interpolation_table_used_by_the_solvers():
         assert np.max(np.abs(df / greenwood_tripp_derivative(n, lam) - 1)) < 1e-6
     f, df = greenwood_tripp_table(2.5, np.array([37.5, 1e3]))
     assert np.all(f == 0) and np.all(df == 0)
+    # the EHL post-processing's contact-area fraction reads the F₂ table
+    r = Roughness(asperity_density=8.3e9, rms=0.408e-6, summit_radius=0.669e-6)
+    gap = np.linspace(-1.0, 6.0, 701) * r.rms
+    direct = r.contact_area_fraction(gap)
+    np.testing.assert_allclose(r.contact_area_fraction(gap, tabulated=True), direct, rtol=1e-8)
