@@ -189,12 +189,12 @@ def test_compiled_gmres_solves_a_random_newton_system(elastic):
     )
     fac, piv = linalg.lu_factor(J * (1.0 + 0.05 * rng.random(J.shape)))  # an earlier matrix
     b = rng.normal(size=n + 1)
-    args = (k.GETRS, k.GEMV, AP, B, col, c, free, cav, D, K, ks, elastic, dX, fac, piv + 1)
-    x, its, ok = k.gmres_lu(*args, b, 1e-12, 30)
+    system = (AP, B, col, c, free, cav, D, K, ks, elastic, dX)
+    x, its, ok = k.gmres_lu(k.GETRS, k.GEMV, system, fac, piv + 1, b, 1e-12, 30)
     assert ok and 0 < its <= 30
     exact = np.linalg.solve(J, b)
     assert np.linalg.norm(x - exact) <= 1e-9 * np.linalg.norm(exact)
     bad = AP.copy()
     bad[2, 40] = np.nan
-    _, _, ok = k.gmres_lu(k.GETRS, k.GEMV, bad, *args[3:], b, 1e-12, 30)
+    _, _, ok = k.gmres_lu(k.GETRS, k.GEMV, (bad, *system[1:]), fac, piv + 1, b, 1e-12, 30)
     assert not ok

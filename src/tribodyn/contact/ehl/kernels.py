@@ -229,10 +229,13 @@ def _lu_solve(getrs, fac, piv1, x, ints, trans):
 
 
 @njit(**_OPTS)
-def _apply(gemv, AP, B, col, c, free, cav, D, K, kscale, elastic, dX, z, out, dh, ints, reals, tr):
-    """Newton-matrix product out = J z with δH = kscale·K v + vh (dense row-major K,
-    by BLAS gemv on its column-major view with trans = "T"); ``dh`` is work space,
-    ``ints`` = [n, n, 1], ``reals`` = [1, 0], ``tr`` = [ord("T")]."""
+def _apply(gemv, system, z, out, work):
+    """Newton-matrix product out = J z for ``system`` = (AP, B, col, c, free, cav, D, K,
+    kscale, elastic, dX), with δH = kscale·K v + vh (dense row-major K, by BLAS gemv on
+    its column-major view with trans = "T"); ``work`` = (dh, [n, n, 1], [1, 0],
+    [ord("T")])."""
+    AP, B, col, c, free, cav, D, K, kscale, elastic, dX = system
+    dh, ints, reals, tr = work
     n = D.size
     vh = z[n]
     if elastic:
@@ -265,11 +268,10 @@ def _norm(v):
 
 
 @njit(**_OPTS)
-def gmres_lu(
-    getrs, gemv, AP, B, col, c, free, cav, D, K, kscale, elastic, dX, fac, piv1, b, rtol, max_it
-):
+def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
     """Right-preconditioned GMRES for J x = b (J: the Newton matrix of
-    :class:`~.reynolds.Linearization` with the dense influence matrix K, M = LU of an
+    :class:`~.reynolds.Linearization`, ``system`` = (AP, B, col, c, free, cav, D, K,
+    kscale, elastic, dX) with the dense influence matrix K, M = LU of an
     earlier Newton matrix, applied by ``getrs`` = :data:`GETRS` with the factors ``fac``
     and 1-based pivots ``piv1`` of ``scipy.linalg.lu_factor``; ``gemv`` = :data:`GEMV`
     for the products with K), started from x₀ = M⁻¹b; Arnoldi with classical Gram–Schmidt
@@ -285,34 +287,17 @@ def gmres_lu(
         return np.zeros(m), 0, True
     ints = np.array([m, 1, m, m, 0], dtype=np.int32)
     trans = np.array([78], dtype=np.uint8)  # "N"
-    n = D.size
-    mv_ints = np.array([n, n, 1], dtype=np.int32)
-    mv_reals = np.array([1.0, 0.0])
-    mv_tr = np.array([84], dtype=np.uint8)  # "T"
-    dh = np.empty(n)
+    n = m - 1
+    work = (
+        np.empty(n),
+        np.array([n, n, 1], dtype=np.int32),
+        np.array([1.0, 0.0]),
+        np.array([84], dtype=np.uint8),  # "T"
+    )
     x0 = b.copy()
     _lu_solve(getrs, fac, piv1, x0, ints, trans)
     w = np.empty(m)
-    _apply(
-        gemv,
-        AP,
-        B,
-        col,
-        c,
-        free,
-        cav,
-        D,
-        K,
-        kscale,
-        elastic,
-        dX,
-        x0,
-        w,
-        dh,
-        mv_ints,
-        mv_reals,
-        mv_tr,
-    )
+    _apply(gemv, system, x0, w, work)
     r0 = b - w
     beta = _norm(r0)
     if not math.isfinite(beta):
@@ -332,26 +317,7 @@ def gmres_lu(
     for j in range(max_it):
         t[:] = V[j]
         _lu_solve(getrs, fac, piv1, t, ints, trans)
-        _apply(
-            gemv,
-            AP,
-            B,
-            col,
-            c,
-            free,
-            cav,
-            D,
-            K,
-            kscale,
-            elastic,
-            dX,
-            t,
-            w,
-            dh,
-            mv_ints,
-            mv_reals,
-            mv_tr,
-        )
+        _apply(gemv, system, t, w, work)
         for i in range(j + 1):
             Hm[i, j] = 0.0
         for _ in range(2):  # CGS2

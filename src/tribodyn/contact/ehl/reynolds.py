@@ -280,52 +280,28 @@ class Linearization:
             and piv.shape == (m,)
         ):
             return None
-        if self.rigid:
-            K, ks = _EMPTY2, 0.0
-        elif self.sysm.g.has_dense:
-            K, ks = np.ascontiguousarray(self.sysm.g.K), self.sysm.kscale
-        else:
+        if not (self.rigid or self.sysm.g.has_dense):
             return None
+        K, ks = self._influence()
+        system = (*self._rows(), np.ascontiguousarray(K), ks, not self.rigid, self.dX)
         x, its, ok = gmres_lu(
-            GETRS,
-            GEMV,
-            self.AP,
-            self.B,
-            self.col,
-            self.c,
-            self.free,
-            self.cav,
-            self.D,
-            K,
-            ks,
-            not self.rigid,
-            self.dX,
-            fac,
-            piv + 1,  # LAPACK's 1-based pivots
-            self.rhs,
-            float(rtol),
-            int(max_it),
-        )
+            GETRS, GEMV, system, fac, piv + 1, self.rhs, float(rtol), int(max_it)
+        )  # piv + 1: LAPACK's 1-based pivots
         return (x if ok else None), its
 
     def dense(self):
+        K, ks = self._influence()
+        return dense_matrix(*self._rows(), K, ks, self.dX, not self.rigid)
+
+    def _rows(self):
+        """(A_P, B, B·1, c, free, cavitated, D): the row data of the Newton matrix."""
+        return self.AP, self.B, self.col, self.c, self.free, self.cav, self.D
+
+    def _influence(self):
+        """The unscaled dense influence matrix and its scale (empty for a rigid system)."""
         if self.rigid:
-            K, ks = _EMPTY2, 0.0
-        else:
-            K, ks = self.sysm.g.K, self.sysm.kscale
-        return dense_matrix(
-            self.AP,
-            self.B,
-            self.col,
-            self.c,
-            self.free,
-            self.cav,
-            self.D,
-            K,
-            ks,
-            self.dX,
-            not self.rigid,
-        )
+            return _EMPTY2, 0.0
+        return self.sysm.g.K, self.sysm.kscale
 
 
 _EMPTY2 = np.zeros((0, 0))
