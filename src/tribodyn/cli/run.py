@@ -240,7 +240,7 @@ def summary_table(summ: dict, name: str) -> Table:
     no vertical rules); the gain and ΔF_b columns are explained in the caption."""
     table = Table(
         title=f"{name}: per tappet surface (cam event)",
-        caption="film gain: max over the event, ΔF_b: of the max boundary friction, vs uncoated",
+        caption="film gain (max in the event) and ΔF_b (of max F_b): vs uncoated",
         box=box.SIMPLE_HEAD,
         padding=(0, 0, 0, 1),  # with the box's space: two between the columns
         pad_edge=False,
@@ -254,6 +254,6 @@ def summary_table(summ: dict, name: str) -> Table:
         cells = []
         for _, key, scale, fmt in _COLUMNS:
             x = v.get(key)
-            cells.append("–" if x is None else format(x * scale if fmt != "d" else x, fmt))
+            cells.append("–" if x is None else format(x * scale + 0.0 if fmt != "d" else x, fmt))
         table.add_row(label, *cells)
     return table

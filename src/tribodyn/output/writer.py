@@ -47,7 +47,7 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from .._system import new_dir
+from .._system import new_dir, new_file
 from .._typing import PathLike
 from .._validation import InputError
 from .dataset import study_to_dataset
@@ -423,8 +423,6 @@ def _keep_foreign(target: Path, tmp: Path, files: dict[str, str]) -> None:
 def mark_folder(folder: PathLike, files: Mapping[str, str], meta: dict | None = None) -> Path:
     """Write the marker of ``folder``: tool, time, ``meta`` and ``files`` (relative path
     → SHA-256 of each file tribodyn wrote), via a temporary file and a rename."""
-    from .._system import new_file
-
     folder = Path(folder)
     info = {
         "tool": "tribodyn",
