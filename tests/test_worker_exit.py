@@ -35,7 +35,11 @@ SCRIPT = textwrap.dedent(
             parts[0].result()
         else:
             import xarray as xr
+            from tribodyn import _system
             from tribodyn.output import figures as F
+
+            if sys.argv[1] == "watch":  # no kernel signal: the watch thread alone
+                _system._PR_SET_PDEATHSIG = 0  # prctl(0, …) fails and is ignored
 
             F.has = lambda *a: True  # every figure wanted; each one "drawn" by busy
             F._draw_held = busy
@@ -60,7 +64,7 @@ def _running(pid: int) -> bool:
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="SIGKILL is POSIX")
-@pytest.mark.parametrize("pool", ["cycle", "figures"])
+@pytest.mark.parametrize("pool", ["cycle", "figures", "watch"])
 def test_workers_end_when_their_parent_is_killed(tmp_path, pool):
     script = tmp_path / "starter.py"
     script.write_text(SCRIPT)
