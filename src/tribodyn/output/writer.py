@@ -12,7 +12,7 @@ one folder, atomically, without ever losing results or replacing someone else's 
   table, an edited report), are the user's (:func:`foreign_files`): a new run keeps them
   in place and replaces only tribodyn's own files. If one of them has the name of a file
   the run writes, the run is refused before computing, naming the file. Folders marked
-  without a list (tribodyn < 0.3) and 0.1 folders count the names tribodyn writes
+  without a list (tribodyn 0.2 and earlier) and 0.1 folders count the names tribodyn writes
   (results.nc, figNN_*.png, …) as its own.
 * **Atomic.** Everything goes to a temporary folder ``.NAME.tmp-PID-XXXX`` next to the
   target (the user's files are hard-linked into it, or copied where links are not
