@@ -261,3 +261,23 @@ def test_unknown_case_name_lists_the_bundled_cases_and_sweeps(tmp_path):
     text = " ".join(r.output.split())
     for name in ("andreou2023", "example_table_cam", "andreou2023_dynamics"):
         assert name in text, r.output
+
+
+def test_a_users_folder_or_file_in_the_way_is_a_clash(tmp_path):
+    out = write_atomic(tmp_path / "res", lambda d: (d / "results.nc").write_text("1"))
+    (out / "report.md").mkdir()  # a folder where tribodyn writes a file
+    with pytest.raises(InputError, match="report.md"):
+        check_output_dir(out)
+    (out / "report.md").rmdir()
+    (out / "inputs").write_text("x")  # a file where tribodyn needs a folder
+    with pytest.raises(InputError, match="inputs"):
+        check_output_dir(out, writes={"inputs/lift.csv": None})
+    (out / "inputs").unlink()
+    (out / "inputs").mkdir()
+    (out / "inputs" / "lift.csv").write_text("0,0\n")  # the same table: no clash
+    src = tmp_path / "lift.csv"
+    src.write_text("0,0\n")
+    assert check_output_dir(out, writes={"inputs/lift.csv": src}) == out
+    src.write_text("0,1\n")  # another table of the same name
+    with pytest.raises(InputError, match="inputs/lift.csv"):
+        check_output_dir(out, writes={"inputs/lift.csv": src})

@@ -197,12 +197,15 @@ def _clashes(folder: Path, writes: Mapping[str, Path | None]) -> list[str]:
     names, or those in ``writes`` unless they are the same as the file copied there)."""
     bad = []
     for f in foreign_files(folder):
-        if f in writes:
-            src = writes[f]
-            if src is not None and _same_file_content(folder / f, src):
-                continue
-            bad.append(f)
-        elif _OWN_NAMES.fullmatch(f) or f.rstrip("/") in writes:
+        g = f.rstrip("/")
+        if g in writes and not f.endswith("/"):
+            src = writes[g]
+            if src is None or not _same_file_content(folder / g, src):
+                bad.append(f)
+        elif _OWN_NAMES.fullmatch(g.split("/")[0]) or any(
+            g == w or g.startswith(w + "/") or (w.startswith(g + "/") and not f.endswith("/"))
+            for w in writes
+        ):  # the same name, below a file tribodyn writes, or a file where it needs a folder
             bad.append(f)
     return bad
 
