@@ -156,7 +156,7 @@ def test_bad_case_leaves_previous_results_untouched(tmp_path):
 def test_atomic_write_keeps_old_folder_when_writing_fails(tmp_path):
     out = tmp_path / "results"
     out.mkdir()
-    (out / "old.txt").write_text("keep me")
+    (out / "report.md").write_text("keep me")  # written by tribodyn (no list: by name)
     (out / MARKER).write_text("{}")  # a previous result folder: may be replaced
 
     def failing(tmp):
@@ -165,12 +165,12 @@ def test_atomic_write_keeps_old_folder_when_writing_fails(tmp_path):
 
     with pytest.raises(RuntimeError):
         write_atomic(out, failing)
-    assert (out / "old.txt").read_text() == "keep me"
+    assert (out / "report.md").read_text() == "keep me"
     assert not (out / "results.nc").exists()
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".results")]
 
     write_atomic(out, lambda tmp: (tmp / "new.txt").write_text("new"))
-    assert (out / "new.txt").read_text() == "new" and not (out / "old.txt").exists()
+    assert (out / "new.txt").read_text() == "new" and not (out / "report.md").exists()
 
 
 def test_python_module_entry_point():

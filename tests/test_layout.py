@@ -79,6 +79,7 @@ LAYERS = {
     "_validation": 0,
     "_version": 0,
     "_typing": 0,
+    "_system": 0,
     "physics": 1,
     "contact": 2,
     "valvetrain": 2,

@@ -8,6 +8,7 @@ import signal
 from pathlib import Path
 
 import typer
+from rich import box
 from rich.console import Console
 from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
@@ -48,21 +49,26 @@ def run_command(
 ):
     """Run the cam-cycle study: dynamics, transient EHL per surface set, figures, report.
 
-    Writes OUT/results.nc, summary.json, report.md, case.toml and the figures; the folder
-    is replaced only when everything has been written, and only if it is a previous result
-    folder (or new, or empty). If writing fails, the results are saved elsewhere and the
-    message says where. Exit codes: 0 done, 1 study or writing failed, 2 bad input,
+    Writes OUT/results.nc, summary.json, report.md, case.toml (with copies of the files it
+    reads in OUT/inputs) and the figures; the folder is replaced only when everything has
+    been written, and only if it is a previous result folder (or new, or empty); files
+    that tribodyn did not write there are kept. If writing fails, the results are saved
+    elsewhere and the message says where. Exit codes: 0 done, 1 study or writing failed, 2 bad input,
     130/143 interrupted (Ctrl-C/SIGTERM; nothing written).
     """
     from ..config import load_case
     from ..output import check_output_dir
+    from ..output.writer import case_inputs
 
     try:
         c = load_case(case)
         if implicit is not None:
             c = c.updated({"numerics.implicit_coupling": implicit})
     except InputError as exc:
-        console.print(f"[red]error in the case:[/red] {escape(str(exc))}")
+        msg = str(exc)
+        if case is not None and not (case.exists() or case.is_symlink()):
+            msg += f"; {_bundled_names()}"
+        console.print(f"[red]error in the case:[/red] {escape(msg)}")
         raise typer.Exit(2)
     try:
         if workers is not None and not 0 <= workers <= 4096:
@@ -70,7 +76,8 @@ def run_command(
                 f"-j/--workers must be an integer >= 0 and <= 4096 (0: one per "
                 f"CPU core) (got {workers})"
             )
-        out = check_output_dir(out, option="-o/--out")  # before hours of computing
+        # before hours of computing
+        out = check_output_dir(out, option="-o/--out", writes=case_inputs(c)[1])
     except InputError as exc:
         console.print(f"[red]error:[/red] {escape(str(exc))}")
         raise typer.Exit(2)
@@ -85,6 +92,16 @@ def run_command(
                 raise
             console.print(f"[red]interrupted:[/red] nothing written; {out} is unchanged")
             raise typer.Exit(143 if _terminated else 130)
+
+
+def _bundled_names() -> str:
+    """The bundled cases and sweeps, for a name that is not a file."""
+    from ..config import bundled_cases, bundled_sweeps
+
+    return (
+        f"bundled cases: {', '.join(bundled_cases())}; bundled sweeps (tribodyn "
+        f"sweep NAME -o DIR): {', '.join(bundled_sweeps())}"
+    )
 
 
 _terminated = False
@@ -187,37 +204,7 @@ def _run(c, out: Path, workers, quiet: bool, scheduler: str | None = None) -> No
         bar.update(t_write, completed=1)
 
     summ = res["summary"]
-    table = Table(title=f"{c.name}: per tappet surface (cam event)")
-    for col in (
-        "surface",
-        "min film µm",
-        "max h_c µm",
-        "film gain %",
-        "max F_b N",
-        "max F_v N",
-        "F_b vs uncoated %",
-        "energy J/cycle",
-        "failed steps",
-    ):
-        table.add_column(col, justify="right")
-
-    def num(v, scale=1.0, fmt=".3g"):
-        return "–" if v is None else format(v * scale, fmt)
-
-    for v in summ["surface_sets"].values():
-        red = v["boundary_friction_reduction_vs_uncoated_pct"]
-        table.add_row(
-            v["label"],
-            num(v["min_film_m"], 1e6, ".3f"),
-            num(v["max_central_film_m"], 1e6, ".2f"),
-            num(v["max_film_gain_vs_uncoated_pct"], 1.0, "+.2f"),
-            num(v["max_boundary_friction_N"]),
-            num(v["max_viscous_friction_N"]),
-            num(None if red is None else -red, 1.0, "+.1f"),
-            num(v["friction_energy_per_cycle_J"], 1.0, ".3f"),
-            str(v["failed_steps"]),
-        )
-    console.print(table)
+    console.print(summary_table(summ, c.name))
     ie = summ["implicit_vs_explicit"]
     if ie.get("max_contact_force_diff_pct") is not None:
         console.print(
@@ -233,3 +220,40 @@ def _run(c, out: Path, workers, quiet: bool, scheduler: str | None = None) -> No
         f"{len(res['figures'])} figures in {summ['runtime_s']:.1f} s "
         f"(+ writing)"
     )
+
+
+#: Columns of the summary table: header (name, then unit), summary key, scale, format.
+_COLUMNS = (
+    ("min\nfilm\nµm", "min_film_m", 1e6, ".3f"),
+    ("max\nh_c\nµm", "max_central_film_m", 1e6, ".2f"),
+    ("film\ngain\n%", "max_film_gain_vs_uncoated_pct", 1.0, "+.2f"),
+    ("max\nF_b\nN", "max_boundary_friction_N", 1.0, ".4g"),
+    ("max\nF_v\nN", "max_viscous_friction_N", 1.0, ".4g"),
+    ("\nΔF_b\n%", "boundary_friction_reduction_vs_uncoated_pct", -1.0, "+.1f"),
+    ("\nenergy\nJ/cycle", "friction_energy_per_cycle_J", 1.0, ".3f"),
+    ("\nfailed\nsteps", "failed_steps", 1.0, "d"),
+)
+
+
+def summary_table(summ: dict, name: str) -> Table:
+    """The per-surface summary of ``tribodyn run``: fits 80 columns (two-line headers,
+    no vertical rules); the gain and ΔF_b columns are explained in the caption."""
+    table = Table(
+        title=f"{name}: per tappet surface (cam event)",
+        caption="film gain (max in the event) and ΔF_b (of max F_b): vs uncoated",
+        box=box.SIMPLE_HEAD,
+        padding=(0, 0, 0, 1),  # with the box's space: two between the columns
+        pad_edge=False,
+    )
+    labels = [str(v["label"]) for v in summ["surface_sets"].values()]
+    # headers (and labels longer than 16 characters) wrap at spaces; numbers do not
+    table.add_column("surface", min_width=min(14, max(map(len, labels), default=7)))
+    for head, *_ in _COLUMNS:
+        table.add_column(head, justify="right")
+    for label, v in zip(labels, summ["surface_sets"].values()):
+        cells = []
+        for _, key, scale, fmt in _COLUMNS:
+            x = v.get(key)
+            cells.append("–" if x is None else format(x * scale + 0.0 if fmt != "d" else x, fmt))
+        table.add_row(label, *cells)
+    return table

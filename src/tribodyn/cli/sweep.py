@@ -6,6 +6,7 @@ from pathlib import Path
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.progress import (
     BarColumn,
     MofNCompleteColumn,
@@ -63,8 +64,9 @@ def sweep_command(
     """Run a design sweep: one task per point on a Dask cluster (local by default).
 
     Writes OUT/points/<key>.nc as each point finishes, then OUT/sweep.nc,
-    sweep_report.md, the figures, sweep.toml and base_case.toml. Exit code 2 on bad
-    input, 1 if any point failed (everything is still written).
+    sweep_report.md, the figures, sweep.toml and base_case.toml. OUT must be new, empty
+    or a tribodyn result folder; files tribodyn did not write there are kept. Exit code
+    2 on bad input, 1 if any point failed (everything is still written).
     """
     from ..config.sweep import load_sweep
     from ..workflow.sweep import connect, estimate_sweep, machine_workers, run_sweep
@@ -99,6 +101,13 @@ def sweep_command(
         )
         raise typer.Exit(0)
 
+    from ..output import check_output_dir
+
+    try:  # before computing: a file, a foreign folder, a name too long, no space
+        out = check_output_dir(out, option="-o/--out")
+    except InputError as exc:
+        console.print(f"[red]error:[/red] {escape(str(exc))}")
+        raise typer.Exit(2)
     client = None
     if scheduler is not None:
         try:
@@ -154,7 +163,12 @@ def sweep_command(
                 client.close()
     from ..output.sweep import write_sweep
 
-    files = write_sweep(result, out)
+    try:
+        files = write_sweep(result, out)
+    except (InputError, OSError) as exc:  # changed meanwhile; the point files are kept
+        console.print(f"[red]error writing the sweep files:[/red] {escape(str(exc))}")
+        console.print(f"the finished points are in {out}/points (rerun with --resume)")
+        raise typer.Exit(1)
     console.print(
         f"{result.n_ok} of {len(result.points)} points finished "
         f"({result.ran} run now, {result.skipped} resumed), {len(result.failed)} "

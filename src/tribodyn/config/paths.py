@@ -38,7 +38,12 @@ __all__ = [
     "set_path",
     "get_path",
     "schema_field",
+    "FILE_KEYS",
 ]
+
+#: Key paths of a case whose values name files (relative to the case file); a result
+#: folder holds copies of them, so that its case.toml runs from anywhere.
+FILE_KEYS = ("cam.path",)
 
 
 class PathError(InputError):

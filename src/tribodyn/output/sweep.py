@@ -2,7 +2,12 @@
 and ``base_case.toml`` next to the point files in the output folder.
 
 Each file is written to a temporary name and renamed into place (the point files in
-``points/`` are the sweep's own record and are never touched here). The report formats
+``points/`` are the sweep's own record and are never touched here), with the permissions
+the umask gives; the folder's marker lists them with their SHA-256. A file of the user's
+in the folder (not written by tribodyn, or changed since, see
+:func:`~tribodyn.output.writer.foreign_files`) is never replaced: if one has the name of a
+file the sweep writes, nothing is written and :class:`~tribodyn.InputError` names it. The
+report formats
 what the combined Dataset holds: inputs, per-point tables, onset speeds of jump and
 bounce, figures, failed points with their errors, and warnings.
 """
@@ -11,13 +16,14 @@ from __future__ import annotations
 
 import math
 import os
-import tempfile
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._system import new_file
 from .._typing import PathLike
+from .._validation import InputError
 
 if TYPE_CHECKING:
     from ..workflow.sweep import SweepResult
@@ -28,19 +34,40 @@ _MAX_ROWS = 60
 
 
 def _atomic_text(path: Path, text: str):
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    with os.fdopen(fd, "w", encoding="utf-8") as f:
-        f.write(text)
-    os.replace(tmp, path)
+    fd, tmp = new_file(path.parent, f".{path.name}.", ".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
 
 
 def write_sweep(result: SweepResult, out_dir: PathLike, *, figures: bool = True) -> dict:
     """Write the files of a :class:`~tribodyn.workflow.sweep.SweepResult` into
-    ``out_dir``; returns ``{"dataset": path, "report": path, "figures": {…}}``."""
+    ``out_dir``; returns ``{"dataset": path, "report": path, "figures": {…}}``.
+    Raises :class:`~tribodyn.InputError`, before writing, if the user's files in
+    ``out_dir`` have the names of files it writes (module docstring)."""
+    from .writer import _clashes, _marker_info, _sha256, is_result_folder, mark_folder
+
     out = Path(out_dir)
+    if out.is_dir() and any(out.iterdir()):
+        if not is_result_folder(out):
+            raise InputError(
+                f"{str(out)!r} is a folder that tribodyn did not write; the sweep "
+                "writes only into its own result folders: give a new or empty folder"
+            )
+        clash = _clashes(out, {})
+        if clash:
+            raise InputError(
+                f"{str(out)!r}: {', '.join(clash)} changed since tribodyn wrote it, or "
+                "was not written by tribodyn, and the sweep would replace it: move it "
+                "elsewhere (the point files stay; write_sweep again)"
+            )
     out.mkdir(parents=True, exist_ok=True)
     ds = result.dataset
-    fd, tmp = tempfile.mkstemp(prefix=".sweep.nc.", suffix=".tmp", dir=out)
+    fd, tmp = new_file(out, ".sweep.nc.", ".tmp")
     os.close(fd)
     try:
         ds.to_netcdf(tmp, engine="h5netcdf")
@@ -56,6 +83,12 @@ def write_sweep(result: SweepResult, out_dir: PathLike, *, figures: bool = True)
 
         figs = sweep_figures(ds, out)
     _atomic_text(out / "sweep_report.md", sweep_report_text(result, figs))
+    written = ["sweep.nc", "sweep.toml", "base_case.toml", "sweep_report.md"]
+    written += [Path(p).name for p in figs.values()]
+    listed = _marker_info(out).get("files")
+    files = dict(listed) if isinstance(listed, dict) else {}
+    files.update({name: _sha256(out / name) for name in written})
+    mark_folder(out, files, {"kind": "sweep", "sweep": result.spec.name})
     return {"dataset": out / "sweep.nc", "report": out / "sweep_report.md", "figures": figs}
 
 

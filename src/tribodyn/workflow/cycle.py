@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._system import exit_with_parent
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from .coating_study import (
     DryCoatingCase,
@@ -127,6 +128,18 @@ def _pool_context():
     if "fork" in methods and _blas_single_threaded():
         return mp.get_context("fork")
     return mp.get_context("forkserver" if "forkserver" in methods else "spawn")
+
+
+def _local_pool(workers: int | None) -> ProcessPoolExecutor:
+    """The study's local process pool (start method: :func:`_pool_context`); its workers
+    end when this process dies, even by SIGKILL (:func:`~tribodyn._system.exit_with_parent`),
+    instead of waiting on their task pipe for ever."""
+    return ProcessPoolExecutor(
+        max_workers=workers,
+        mp_context=_pool_context(),
+        initializer=exit_with_parent,
+        initargs=(os.getpid(),),
+    )
 
 
 def _set_task(case, name, inputs) -> SetCycleResult:
@@ -241,10 +254,9 @@ def run_cycle_study(
         if executor is not None:
             pool = executor
         else:
-            ctx = _pool_context()
             saved = {k: os.environ.get(k) for k in _THREAD_ENV}
             os.environ.update({k: "1" for k in _THREAD_ENV})
-            pool = ProcessPoolExecutor(max_workers=workers, mp_context=ctx)
+            pool = _local_pool(workers)
         try:
             # the coupling chain is the longest task: submitted first
             fut_c = pool.submit(_coupling_task, case, ref_name, dyn, inputs)

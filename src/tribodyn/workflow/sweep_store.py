@@ -14,11 +14,12 @@ from __future__ import annotations
 
 import json
 import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
+
+from .._system import new_file
 
 __all__ = ["PointStore", "combine_points", "POINTS_FOLDER"]
 
@@ -80,7 +81,7 @@ class PointStore:
         )
         if point.case is not None:
             ds.attrs["case_toml"] = point.case.to_toml()
-        fd, tmp = tempfile.mkstemp(prefix=f".{point.key}.", suffix=".tmp", dir=self.dir)
+        fd, tmp = new_file(self.dir, f".{point.key}.", ".tmp")  # mode as the umask gives
         os.close(fd)
         try:
             ds.to_netcdf(tmp, engine="h5netcdf")

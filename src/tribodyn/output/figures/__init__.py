@@ -11,9 +11,11 @@ studies); :mod:`.topography` draws the measured-surface figure (paper Fig. 7).
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable
 from pathlib import Path
 
+from ..._system import exit_with_parent
 from ..._validation import InputError
 from .coating import fig05, fig06
 from .common import EVENT_FRACTION, FIGURES, TITLE_SIZE, has, plt
@@ -118,10 +120,13 @@ def make_figures(
 
     # fork shares the loaded modules and the Dataset (Linux); elsewhere a fresh
     # interpreter per process, which receives the Dataset once
+    # fork shares the loaded modules and the Dataset (Linux); elsewhere a fresh
+    # interpreter per process, which receives the Dataset once; the processes end with
+    # this one, even if it is killed
     ctx = mp.get_context("fork" if sys.platform.startswith("linux") else "spawn")
     written: dict[str, Path] = {}
     with ProcessPoolExecutor(
-        max_workers=k, mp_context=ctx, initializer=_hold, initargs=(ds,)
+        max_workers=k, mp_context=ctx, initializer=_hold, initargs=(ds, os.getpid())
     ) as pool:
         order = sorted(wanted, key=lambda n: -_COST.get(n, 1.0))
         parts = [pool.submit(_draw_held, out, n) for n in order]
@@ -139,7 +144,8 @@ def make_figures(
 _HELD: list = []  # the Dataset of a drawing process
 
 
-def _hold(ds) -> None:
+def _hold(ds, starter: int) -> None:
+    exit_with_parent(starter)
     _HELD[:] = [ds]
 
 
