@@ -307,8 +307,8 @@ def _table(r: dict) -> Table:
         show_header=True,
         caption=None
         if dry
-        else "* Poiseuille (rolling) part of the shear, reported "
-        "separately, not in the friction total",
+        else "* hydrodynamic rolling force (Poiseuille part of Eq. 16): acts on the cam "
+        "and on the tappet alike, > 0 against the entrainment; not in the friction total",
         caption_justify="left",
     )
     t.add_column("quantity")
@@ -387,7 +387,7 @@ def _table(r: dict) -> Table:
         t.add_row("boundary friction", _g(r["boundary_friction_N"]), "N")
         t.add_row("friction", _g(r["friction_N"]), "N")
         t.add_row("friction coefficient", _g(r["friction_coefficient"], 1, 4), "")
-        t.add_row("rolling friction*", _g(r["rolling_friction_N"]), "N")
+        t.add_row("rolling force, each surface*", _g(r["rolling_friction_N"]), "N")
         if r.get("thermal"):
             c = 273.15
             sec("thermal (vs isothermal at the inlet temperature)")
