@@ -226,16 +226,14 @@ def compute_contact(
             entrainment_speed=ue,
             sliding_speed=us,
             dry=dry,
-            lubricant=None if thermal_oil is not None else lub,
+            # --oil/--inlet-temperature without --thermal: the oil at its inlet temperature
+            lubricant=None if thermal else (thermal_oil or lub),
             options=opts,
             n=n,
             thermal_oil=thermal_oil if thermal else None,
         )
     except InputError as exc:
         raise _as_option(exc) from None
-    if thermal_oil is not None and not thermal:  # --oil/--inlet-temperature only
-        r["oil"] = thermal_oil.name
-        r["inlet_temperature_K"] = thermal_oil.inlet_temperature
     return r
 
 
@@ -340,6 +338,12 @@ def _table(r: dict) -> Table:
             )
         else:
             t.add_row("roughness", "smooth", "")
+        if r.get("oil") and not r.get("thermal"):
+            t.add_row(
+                "oil, inlet temperature (isothermal)",
+                f"{escape(str(r['oil']))}, {r['inlet_temperature_K'] - 273.15:.1f}",
+                "°C",
+            )
         t.add_row(
             "lubricant μ₀, α",
             f"{r['viscosity_Pa_s']:.4g}, {r['pressure_viscosity_per_Pa'] * 1e9:.4g}",
@@ -393,7 +397,7 @@ def _table(r: dict) -> Table:
             sec("thermal (vs isothermal at the inlet temperature)")
             t.add_row(
                 "oil, inlet temperature",
-                f"{escape(str(r['oil'] or 'case'))}, {r['inlet_temperature_K'] - c:.1f}",
+                f"{escape(str(r['oil']))}, {r['inlet_temperature_K'] - c:.1f}",
                 "°C",
             )
             t.add_row("max temperature", _g(r["max_temperature_K"] - c, 1, 4), "°C")
@@ -551,7 +555,8 @@ def contact_command(
         None,
         "--oil",
         rich_help_panel=_LUB,
-        help="Bundled datasheet oil: 0W-20, 5W-20, 5W-30, 10W-40.",
+        help="Bundled datasheet oil: 0W-20, 5W-20, 5W-30, 10W-40 (without "
+        "--thermal: the isothermal EHL with this oil at --inlet-temperature).",
     ),
     inlet_temperature: float | None = typer.Option(
         None,
