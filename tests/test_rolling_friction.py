@@ -24,6 +24,7 @@ published references, pure rolling, fully flooded line contacts.
 
 import math
 
+import numpy as np
 import pytest
 from scipy.integrate import quad
 from scipy.optimize import brentq
@@ -81,3 +82,21 @@ def test_rolling_force_ehl_against_biboulet_houpert(w, u):
     # their fit is stated to a few per cent; the EHL asymptote 1.47 U^(3/4) E'R is
     # reached for M ≳ 5
     assert r.rolling_friction == pytest.approx(reference, rel=0.08)
+
+
+@pytest.mark.parametrize("u_s", [0.5, -0.5])
+def test_forces_on_each_surface(u_s):
+    """Eq. 16 per surface (rigid isoviscous, Newtonian, u_e = 1 m/s): the wall shear
+    stresses τ_xz = ∓(h/2) dp/dx − μu_s/h give, on the faster surface 1 (the cam) and the
+    slower surface 2, F₁,₂ = ∓sgn(u_s)∫μ|u_s|/h dx − F_R along the entrainment."""
+    mu = 0.05
+    iso = Lubricant(viscosity=mu, pressure_viscosity=0.0, compressible=False)
+    r = solve_ehl(
+        1e3, R, 1.0, u_s, PAIR, iso, elastic=False, viscous_model="newtonian", limiting_shear=False
+    )
+    assert r.converged, r.message
+    f1, f2 = r.surface_friction()
+    couette = float(np.sum(mu * abs(u_s) / r.film) * (r.x[1] - r.x[0]))  # from the profile
+    assert 0.5 * (f1 + f2) == pytest.approx(-r.rolling_friction, rel=1e-12)
+    assert 0.5 * (f2 - f1) == pytest.approx(math.copysign(couette, u_s), rel=1e-9)
+    assert r.rolling_friction > 0.0 and abs(f1) != pytest.approx(abs(f2), rel=0.1)

@@ -392,6 +392,13 @@ def _table(r: dict) -> Table:
         t.add_row("friction", _g(r["friction_N"]), "N")
         t.add_row("friction coefficient", _g(r["friction_coefficient"], 1, 4), "")
         t.add_row("rolling force, each surface*", _g(r["rolling_friction_N"]), "N")
+        t.add_row(
+            "force on cam, tappet (along u_e)",
+            "–"
+            if r["surface_friction_cam_N"] is None
+            else f"{r['surface_friction_cam_N']:.4g}, {r['surface_friction_tappet_N']:.4g}",
+            "N",
+        )
         if r.get("thermal"):
             c = 273.15
             sec("thermal (vs isothermal at the inlet temperature)")

@@ -294,6 +294,9 @@ def solve_point(
             "viscous_friction_N": tot["viscous_friction"],
             "boundary_friction_N": tot["boundary_friction"],
             "rolling_friction_N": tot["rolling_friction"],
+            # film + asperity force on each surface along the entrainment (Eq. 16 per surface)
+            "surface_friction_cam_N": res.surface_friction()[0] * width,
+            "surface_friction_tappet_N": res.surface_friction()[1] * width,
             "friction_N": tot["friction"],
             "friction_coefficient": res.friction_coefficient,
             "hamrock_W": float(W),
@@ -345,6 +348,8 @@ _SOLUTION_KEYS = (
     "viscous_friction_N",
     "boundary_friction_N",
     "rolling_friction_N",
+    "surface_friction_cam_N",
+    "surface_friction_tappet_N",
     "friction_N",
     "friction_coefficient",
 )

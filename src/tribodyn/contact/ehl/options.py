@@ -162,6 +162,18 @@ class EHLResult:
     def friction_coefficient(self) -> float:
         return self.friction / self.load
 
+    def surface_friction(self) -> tuple[float, float]:
+        """Tangential force [N/m] the film (and asperities) exert on surface 1 (speed
+        u_e + u_s/2; the cam) and surface 2 (u_e − u_s/2; the tappet), positive along the
+        entrainment direction: Couette + boundary against the relative sliding, equal and
+        opposite, plus the rolling force against the entrainment on both (paper Eq. 16,
+        its ±(h/2)dp/dx being the shear stress on the two facing walls)::
+
+            F₁ = −sgn(u_s)(F_v + F_b) − F_R,   F₂ = +sgn(u_s)(F_v + F_b) − F_R
+        """
+        s = self.friction * float(np.sign(self.sliding_speed))
+        return -s - self.rolling_friction, s - self.rolling_friction
+
     def totals(self, width: float) -> dict:
         """Loads [N] and friction forces [N] over a contact width [m]."""
         width = check_positive("width", width, "m")
