@@ -338,10 +338,10 @@ def _table(r: dict) -> Table:
             )
         else:
             t.add_row("roughness", "smooth", "")
-        if r.get("oil") and not r.get("thermal"):
+        if r.get("inlet_temperature_K") is not None and not r.get("thermal"):
             t.add_row(
                 "oil, inlet temperature (isothermal)",
-                f"{escape(str(r['oil']))}, {r['inlet_temperature_K'] - 273.15:.1f}",
+                f"{escape(str(r['oil'] or 'case'))}, {r['inlet_temperature_K'] - 273.15:.1f}",
                 "°C",
             )
         t.add_row(
@@ -404,7 +404,7 @@ def _table(r: dict) -> Table:
             sec("thermal (vs isothermal at the inlet temperature)")
             t.add_row(
                 "oil, inlet temperature",
-                f"{escape(str(r['oil']))}, {r['inlet_temperature_K'] - c:.1f}",
+                f"{escape(str(r['oil'] or 'case'))}, {r['inlet_temperature_K'] - c:.1f}",
                 "°C",
             )
             t.add_row("max temperature", _g(r["max_temperature_K"] - c, 1, 4), "°C")

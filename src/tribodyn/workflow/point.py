@@ -312,7 +312,7 @@ def solve_point(
         }
     )
     out["thermal"] = thermal_oil is not None
-    out["oil"] = None if oil is None else (oil.name or "case")
+    out["oil"] = None if oil is None else (oil.name or None)  # None: the case's oil
     out["inlet_temperature_K"] = None if oil is None else oil.inlet_temperature
     if thermal_oil is not None:
         itot = iso.totals(width)

@@ -89,7 +89,7 @@ def _postprocess(
     tau = shear_stress(p, h, us, lub, opts.viscous_model, opts.limiting_shear)
     dpdx = np.gradient(p, dx)
     f_visc = float(np.sum(np.abs(tau)) * dx)
-    # signed: the Hertzian rise and fall cancel (not ∫(h/2)|dp/dx|, 4–14× too large)
+    # signed: the Hertzian rise and fall cancel (not ∫(h/2)|dp/dx|, 3–11× too large)
     f_roll = float(np.sum(0.5 * h * dpdx) * dx) * (-1.0 if ue < 0.0 else 1.0)
     if g.direction != 0:
         # the cut inlet's share: far upstream h ≈ x²/2R and p ∝ |x|⁻³, so (h/2)dp/dx ∝ x⁻²
