@@ -11,6 +11,9 @@ Steel on steel line contact, w = 500 kN/m, R = 20 mm (p_h ≈ 0.96 GPa), SAE 5W-
   same with the walls held at the bulk temperature (solids of conductivity 1e6 W/(m K), the
   assumption of those inlet analyses) and the Couette heat of the inlet, mid-film
   μ₀u_s²/(8k) between walls at the bulk temperature;
+* pure rolling under all of Murch & Wilson's assumptions (walls at the bulk temperature,
+  k independent of pressure, no compression heating, Barus, incompressible; 21 film nodes):
+  the film reduction against theirs (docs/validation.md, *Known gaps*);
 * viscous traction coefficient, thermal and isothermal, over SRR = 0.005 … 1.2.
 Not a timing; the tests check the rolling point and the traction curve's shape.
 """
@@ -19,7 +22,8 @@ import json
 import math
 
 from tribodyn import Body, Material, solve_ehl
-from tribodyn.contact.ehl.thermal import solve_thermal_ehl
+from tribodyn.contact.ehl.thermal import ThermalOptions, solve_thermal_ehl
+from tribodyn.physics import thermal_oil
 from tribodyn.physics.heat_conduction import ThermalBody, ThermalProperties
 from tribodyn.physics.oils import OILS
 from tribodyn.physics.thermal_oil import ThermalLubricant
@@ -63,6 +67,37 @@ def main():
                 "converged": bool(r.converged and rc.converged),
             }
         )
+    mw_oil = ThermalLubricant(
+        313.15,
+        viscosity=oil.inlet_viscosity,
+        viscosity_temperature_coefficient=oil.temperature_viscosity_coefficient(),
+        pressure_viscosity=oil.inlet_pressure_viscosity,
+        thermal_conductivity=float(oil.conductivity(0.0, oil.inlet_temperature)),
+        thermal_expansion=0.0,
+        viscosity_model="barus",
+        compressible=False,
+    )
+    saved = thermal_oil.CONDUCTIVITY_PRESSURE
+    thermal_oil.CONDUCTIVITY_PRESSURE = (0.0, saved[1])  # k independent of pressure
+    try:
+        mw_iso = solve_ehl(W, R, UE, 0.0, pair, mw_oil.isothermal())
+        mw = solve_thermal_ehl(
+            W,
+            R,
+            UE,
+            0.0,
+            pair,
+            mw_oil,
+            tb_cold,
+            thermal_options=ThermalOptions(film_nodes=21, compression_heating=False),
+        )
+    finally:
+        thermal_oil.CONDUCTIVITY_PRESSURE = saved
+    inlet_analysis = {
+        "h_over_isothermal": mw.central_film / mw_iso.central_film,
+        "murch_wilson_1975": 3.94 / (3.94 + L**0.62),
+        "converged": bool(mw.converged),
+    }
     traction = []
     for srr in (0.005, 0.02, 0.05, 0.1, 0.2, 0.4, 0.8, 1.2):
         r = solve_thermal_ehl(W, R, UE, srr * UE, pair, oil, tb)
@@ -78,7 +113,13 @@ def main():
         )
     print(
         json.dumps(
-            {"thermal_loading_L": L, "hertz_pressure_Pa": ph, "film": film, "traction": traction},
+            {
+                "thermal_loading_L": L,
+                "hertz_pressure_Pa": ph,
+                "film": film,
+                "rolling_under_inlet_analysis_assumptions": inlet_analysis,
+                "traction": traction,
+            },
             indent=2,
         )
     )

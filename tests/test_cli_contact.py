@@ -140,3 +140,33 @@ def test_bad_input_exits_2_naming_the_parameter(args, name):
     assert r.exit_code == 2
     assert name in r.output
     assert "Traceback" not in r.output
+
+
+def test_oil_without_thermal_sets_the_isothermal_lubricant():
+    """``--oil 5W-30 --inlet-temperature 90`` without ``--thermal``: the isothermal solve
+    uses the oil at 90 °C (μ₀, α, ρ₀ as the thermal solver derives them), not the case's
+    0.055 Pa·s, and says so; h_c follows Pan & Hamrock with that oil's μ₀ and α."""
+    from tribodyn import Body, Material, solve_ehl
+    from tribodyn.physics.oils import OILS
+    from tribodyn.physics.thermal_oil import ThermalLubricant
+
+    base = ["--load", "633", "--radius", "0.01", "--ue", "5", "--us", "2", "--json"]
+    r = run(*base, "--oil", "5W-30", "--inlet-temperature", "90")
+    assert r.exit_code == 0, r.output
+    out = json.loads(r.stdout)
+    default = json.loads(run(*base).stdout)
+    sheet = {k: v for k, v in OILS["5W-30"].items() if k != "description"}
+    oil = ThermalLubricant(90.0 + 273.15, **sheet, name="5W-30").isothermal()
+    assert out["oil"] == "5W-30" and out["thermal"] is False
+    assert out["inlet_temperature_K"] == pytest.approx(363.15)
+    assert out["viscosity_Pa_s"] == pytest.approx(oil.viscosity, rel=1e-12)
+    assert out["pressure_viscosity_per_Pa"] == pytest.approx(oil.pressure_viscosity, rel=1e-12)
+    assert out["density_kg_per_m3"] == pytest.approx(oil.density, rel=1e-12)
+    w = 633 / 0.012
+    W, U, G = hamrock_groups(w, 0.01, 5.0, oil.viscosity, oil.pressure_viscosity, E_STEEL_PAIR)
+    assert out["central_film_m"] == pytest.approx(pan_hamrock(W, U, G, 0.01)[0], rel=0.05)
+    steel = Body(Material(210e9, 0.3))
+    api = solve_ehl(w, 0.01, 5.0, 2.0, (steel, steel), oil)
+    assert out["central_film_m"] == pytest.approx(api.central_film, rel=1e-9)
+    assert out["central_film_m"] < 0.6 * default["central_film_m"]  # 0.011 vs 0.055 Pa·s
+    assert default["oil"] is None

@@ -226,16 +226,14 @@ def compute_contact(
             entrainment_speed=ue,
             sliding_speed=us,
             dry=dry,
-            lubricant=None if thermal_oil is not None else lub,
+            # --oil/--inlet-temperature without --thermal: the oil at its inlet temperature
+            lubricant=None if thermal else (thermal_oil or lub),
             options=opts,
             n=n,
             thermal_oil=thermal_oil if thermal else None,
         )
     except InputError as exc:
         raise _as_option(exc) from None
-    if thermal_oil is not None and not thermal:  # --oil/--inlet-temperature only
-        r["oil"] = thermal_oil.name
-        r["inlet_temperature_K"] = thermal_oil.inlet_temperature
     return r
 
 
@@ -307,8 +305,8 @@ def _table(r: dict) -> Table:
         show_header=True,
         caption=None
         if dry
-        else "* Poiseuille (rolling) part of the shear, reported "
-        "separately, not in the friction total",
+        else "* hydrodynamic rolling force (Poiseuille part of Eq. 16): acts on the cam "
+        "and on the tappet alike, > 0 against the entrainment; not in the friction total",
         caption_justify="left",
     )
     t.add_column("quantity")
@@ -340,6 +338,12 @@ def _table(r: dict) -> Table:
             )
         else:
             t.add_row("roughness", "smooth", "")
+        if r.get("inlet_temperature_K") is not None and not r.get("thermal"):
+            t.add_row(
+                "oil, inlet temperature (isothermal)",
+                f"{escape(str(r['oil'] or 'case'))}, {r['inlet_temperature_K'] - 273.15:.1f}",
+                "°C",
+            )
         t.add_row(
             "lubricant μ₀, α",
             f"{r['viscosity_Pa_s']:.4g}, {r['pressure_viscosity_per_Pa'] * 1e9:.4g}",
@@ -387,7 +391,14 @@ def _table(r: dict) -> Table:
         t.add_row("boundary friction", _g(r["boundary_friction_N"]), "N")
         t.add_row("friction", _g(r["friction_N"]), "N")
         t.add_row("friction coefficient", _g(r["friction_coefficient"], 1, 4), "")
-        t.add_row("rolling friction*", _g(r["rolling_friction_N"]), "N")
+        t.add_row("rolling force, each surface*", _g(r["rolling_friction_N"]), "N")
+        t.add_row(
+            "force on cam, tappet (along u_e)",
+            "–"
+            if r["surface_friction_cam_N"] is None
+            else f"{r['surface_friction_cam_N']:.4g}, {r['surface_friction_tappet_N']:.4g}",
+            "N",
+        )
         if r.get("thermal"):
             c = 273.15
             sec("thermal (vs isothermal at the inlet temperature)")
@@ -551,7 +562,8 @@ def contact_command(
         None,
         "--oil",
         rich_help_panel=_LUB,
-        help="Bundled datasheet oil: 0W-20, 5W-20, 5W-30, 10W-40.",
+        help="Bundled datasheet oil: 0W-20, 5W-20, 5W-30, 10W-40 (without "
+        "--thermal: the isothermal EHL with this oil at --inlet-temperature).",
     ),
     inlet_temperature: float | None = typer.Option(
         None,

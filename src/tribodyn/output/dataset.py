@@ -56,7 +56,11 @@ _EHL = {
         "viscous friction with the Eyring law, same film and pressure",
     ),
     "boundary_friction": ("N", "boundary friction force"),
-    "rolling_friction": ("N", "Poiseuille (rolling) part of Eq. 16"),
+    "rolling_friction": (
+        "N",
+        "hydrodynamic rolling force (Poiseuille part of Eq. 16) on each surface, cam and "
+        "tappet alike, > 0 against the entrainment; not in the friction total",
+    ),
     "friction_power": ("W", "friction power (viscous + boundary) × u_s"),
     "lambda_ratio": ("1", "λ = h_min/σ"),
 }

@@ -28,6 +28,7 @@ from ..physics.regimes import (
     moes_central,
     pan_hamrock,
 )
+from ..physics.thermal_oil import ThermalLubricant
 
 __all__ = ["point_surfaces", "solve_point"]
 
@@ -145,14 +146,18 @@ def solve_point(
     entrainment_speed=None,
     sliding_speed=None,
     dry=False,
-    lubricant: Lubricant | None = None,
+    lubricant: Lubricant | ThermalLubricant | None = None,
     options: EHLOptions | None = None,
     n: int | None = None,
     thermal_oil=None,
 ) -> dict:
     """Solve one contact (see the module docstring). ``lubricant`` and ``options``
     default to the case's; ``n`` is the dry grid (default 1024). ``sliding_speed``
-    defaults to 0 for EHL; a dry contact takes no speeds.
+    defaults to 0 for EHL; a dry contact takes no speeds. ``lubricant`` may be a datasheet
+    oil (:class:`~tribodyn.physics.thermal_oil.ThermalLubricant`): the isothermal solve
+    then uses it at its inlet temperature (μ₀, α, ρ₀ as the thermal solver derives them,
+    ``ThermalLubricant.isothermal``) and the output names it (``oil``,
+    ``inlet_temperature_K``).
 
     ``warnings`` lists conditions outside the model's validity (film ≫ R, inertia, …; see
     :mod:`tribodyn.contact.ehl.validity`). A solution whose film is not positive and finite
@@ -220,9 +225,14 @@ def solve_point(
             "entrainment_speed (--ue) must be non-zero [m/s]: a steady film needs entrainment"
         )
     us = check_real("sliding_speed", 0.0 if sliding_speed is None else sliding_speed, "m/s")
-    lub = lubricant or case.lubricant()
-    if thermal_oil is not None:
-        lub = thermal_oil.isothermal()
+    if thermal_oil is not None and lubricant is not None:
+        raise InputError("give either lubricant or thermal_oil (the thermal solve's oil)")
+    oil = thermal_oil if thermal_oil is not None else lubricant
+    if isinstance(oil, ThermalLubricant):
+        lub = oil.isothermal()  # the datasheet oil at its inlet temperature
+    else:
+        oil = None
+        lub = lubricant or case.lubricant()
     opts = options or case.ehl_options(surfaces)
     rough = surfaces.roughness
     res = solve_ehl(w, radius, ue, us, bodies, lub, rough, options=opts)
@@ -284,6 +294,9 @@ def solve_point(
             "viscous_friction_N": tot["viscous_friction"],
             "boundary_friction_N": tot["boundary_friction"],
             "rolling_friction_N": tot["rolling_friction"],
+            # film + asperity force on each surface along the entrainment (Eq. 16 per surface)
+            "surface_friction_cam_N": res.surface_friction()[0] * width,
+            "surface_friction_tappet_N": res.surface_friction()[1] * width,
             "friction_N": tot["friction"],
             "friction_coefficient": res.friction_coefficient,
             "hamrock_W": float(W),
@@ -299,12 +312,12 @@ def solve_point(
         }
     )
     out["thermal"] = thermal_oil is not None
+    out["oil"] = None if oil is None else (oil.name or None)  # None: the case's oil
+    out["inlet_temperature_K"] = None if oil is None else oil.inlet_temperature
     if thermal_oil is not None:
         itot = iso.totals(width)
         out.update(
             {
-                "oil": thermal_oil.name or None,
-                "inlet_temperature_K": thermal_oil.inlet_temperature,
                 "max_temperature_K": res.max_temperature,
                 "max_surface_temperature_cam_K": res.max_surface_temperature[0],
                 "max_surface_temperature_tappet_K": res.max_surface_temperature[1],
@@ -335,6 +348,8 @@ _SOLUTION_KEYS = (
     "viscous_friction_N",
     "boundary_friction_N",
     "rolling_friction_N",
+    "surface_friction_cam_N",
+    "surface_friction_tappet_N",
     "friction_N",
     "friction_coefficient",
 )

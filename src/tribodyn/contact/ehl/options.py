@@ -118,7 +118,9 @@ class EHLOptions:
 # ----------------------------------------------------------------------------- result
 @dataclass
 class EHLResult:
-    """Line-contact EHL solution (per unit length, SI). Friction forces are magnitudes."""
+    """Line-contact EHL solution (per unit length, SI). Viscous and boundary friction are
+    magnitudes (against the relative sliding, equal and opposite on the two surfaces);
+    the rolling force is signed and acts alike on both surfaces (``postprocess``)."""
 
     x: np.ndarray  #: node positions [m] (contact frame)
     pressure: np.ndarray  #: hydrodynamic pressure p [Pa]
@@ -133,7 +135,9 @@ class EHLResult:
     hydrodynamic_load: float  #: ∫p dx [N/m]
     asperity_load: float  #: ∫p_a dx [N/m]
     viscous_friction: float  #: ∫|τ_couette| dx [N/m]
-    rolling_friction: float  #: ∫(h/2)|dp/dx| dx, Poiseuille part of Eq. 16 [N/m]
+    #: hydrodynamic rolling force sgn(u_e)∫(h/2)(dp/dx) dx [N/m], the Poiseuille part of
+    #: Eq. 16: on each surface (cam and tappet alike), > 0 against the entrainment
+    rolling_friction: float
     boundary_friction: float  #: ∫(τ₀ A_a/A + ς p_a) dx [N/m]
     entrainment_speed: float
     sliding_speed: float
@@ -150,12 +154,25 @@ class EHLResult:
 
     @property
     def friction(self) -> float:
-        """Viscous + boundary friction [N/m]."""
+        """Viscous + boundary friction [N/m] (the sliding friction; the rolling force
+        ``rolling_friction`` acts on both surfaces alike and is not included)."""
         return self.viscous_friction + self.boundary_friction
 
     @property
     def friction_coefficient(self) -> float:
         return self.friction / self.load
+
+    def surface_friction(self) -> tuple[float, float]:
+        """Tangential force [N/m] the film (and asperities) exert on surface 1 (speed
+        u_e + u_s/2; the cam) and surface 2 (u_e − u_s/2; the tappet), positive along the
+        entrainment direction: Couette + boundary against the relative sliding, equal and
+        opposite, plus the rolling force against the entrainment on both (paper Eq. 16,
+        its ±(h/2)dp/dx being the shear stress on the two facing walls)::
+
+            F₁ = −sgn(u_s)(F_v + F_b) − F_R,   F₂ = +sgn(u_s)(F_v + F_b) − F_R
+        """
+        s = self.friction * float(np.sign(self.sliding_speed))
+        return -s - self.rolling_friction, s - self.rolling_friction
 
     def totals(self, width: float) -> dict:
         """Loads [N] and friction forces [N] over a contact width [m]."""
