@@ -58,6 +58,8 @@ __all__ = ["StressPeak", "SubsurfaceStress", "StressOperator", "subsurface_stres
 
 #: alias terms are summed until m·d(z) reaches this (correction ∝ e^{−m d})
 _DECAY = 40.0
+#: the periodic length of the correction is at least this many coating thicknesses
+_PERIOD_H = 32.0
 #: at most this many alias terms on each side (reached only for Δ ≫ h)
 _MAX_ALIAS = 400
 
@@ -172,6 +174,18 @@ def _correction_values(sol, k, z, h):
     return f, fs, fss
 
 
+def _long_wave_limits(coating, substrate) -> tuple[float, float]:
+    """m → 0 limits of the coating's σ_xx correction per unit p̃ (L_p) and per unit
+    i·sgn(m)·q̃ (L_q): the layer takes the substrate surface's strain ε_xx, so
+    σ_xx,c = [2G_c ε_xx + ν_c σ_zz]/(1 − ν_c) with the homogeneous surface field
+    σ_xx = −p (pressure) or 2i sgn(m) q̃ (shear, Hilbert transform) beneath it."""
+    g = coating.shear_modulus / substrate.shear_modulus
+    nc, ns = coating.nu, substrate.nu
+    lp = 1.0 - (g * (1.0 - 2.0 * ns) + nc) / (1.0 - nc)
+    lq = 2.0 * (g * (1.0 - ns) / (1.0 - nc) - 1.0)
+    return lp, lq
+
+
 @dataclass(frozen=True)
 class StressPeak:
     """A maximum of a stress measure: value [Pa] at (x, z) [m]; NaN where not defined
@@ -282,7 +296,12 @@ class StressOperator:
         self._in_coating = (
             self._z <= self.h if self.h is not None else np.zeros(self._z.size, dtype=bool)
         )
-        self._nfft = 2 * self.n
+        # periodic length of the layered correction: ≥ 2× the grid (zero padding) and
+        # ≥ 32 h (its tail, on the scale h, then sees images only from ≥ 32 h away)
+        need = 2 * self.n
+        if self.h is not None:
+            need = max(need, self.n + int(math.ceil(_PERIOD_H * self.h / self.dx)))
+        self._nfft = 1 << (need - 1).bit_length()
         self._transfer = self._build()
 
     def _build(self) -> np.ndarray:
@@ -292,14 +311,19 @@ class StressOperator:
         nfreq = nf // 2 + 1
         out = np.empty((self._z.size, 6, nfreq), dtype=complex)
         for i, z in enumerate(self._z):
-            ker = _homogeneous_kernels(n, dx, float(z))
-            wrap = np.zeros((6, nf))
-            wrap[:, :n] = ker[:, n - 1 :]
-            wrap[:, nf - n + 1 :] = ker[:, : n - 1]
-            out[i] = np.fft.rfft(wrap, axis=-1)
+            out[i] = self._homogeneous_transfer(float(z))
         if self.h is not None:
             self._add_correction(out)
         return out
+
+    def _homogeneous_transfer(self, z: float) -> np.ndarray:
+        """DFT (6, nfreq) of the homogeneous hat-load kernels at depth z, wrap-around."""
+        n, nf = self.n, self._nfft
+        ker = _homogeneous_kernels(n, self.dx, z)
+        wrap = np.zeros((6, nf))
+        wrap[:, :n] = ker[:, n - 1 :]
+        wrap[:, nf - n + 1 :] = ker[:, : n - 1]
+        return np.fft.rfft(wrap, axis=-1)
 
     def _add_correction(self, out: np.ndarray) -> None:
         body, h, dx, nf = self.body, float(self.h), self.dx, self._nfft
@@ -321,25 +345,60 @@ class StressOperator:
         sol = np.zeros(k.shape + (6, 2))
         pos = k > 0.0
         sol[pos] = _layer_solutions(k[pos] * h, coat, sub)
+        # long-wave limit of the coating's σ_xx correction (bonded thin layer: ε_xx of the
+        # coating = that of the substrate's surface), finite as m → 0: split off as
+        # L e^{−2|m|h}, whose field is exact in space (homogeneous kernels at depth 2h)
+        lp, lq = _long_wave_limits(coat, sub)
+        cut = np.exp(-2.0 * k * h)
+        hom2 = self._homogeneous_transfer(2.0 * h)
+        lim_p = -0.5 * lp * (hom2[0] + hom2[1])
+        lim_q = 0.5 * lq * (hom2[3] + hom2[4])
+        slope_basis = (hom2[0] - hom2[1]) / (4.0 * h)  # transfer |m| e^{−2|m|h}
+        out_hom = out.copy()  # homogeneous transfers at each depth
+        k0 = np.array([1e-3, 2e-3]) / h
+        sol0 = _layer_solutions(k0 * h, coat, sub)
         for i, z in enumerate(self._z):
             kz = int(kmax[i])
             sl = slice(K - kz, K + kz + 1)
-            f, fs, fss = _correction_values(sol[sl], k[sl], float(z), h)
-            f, fs, fss = (np.where(pos[sl][..., None], a, 0.0) for a in (f, fs, fss))
+            lims = (lp, -lq) if z <= h else (0.0, 0.0)
+            if z <= h:  # the long-wave limit is added back exactly
+                out[i, 0] += lim_p
+                out[i, 3] += lim_q
+            # the remainder's even parts (p → σ_xx, σ_zz; q → σ_xz) start like c|m|, a
+            # 1/x² tail that the periodic images would feel: split off c|m|e^{−2|m|h} too
+            r0 = self._terms(sol0, k0, np.ones(2), float(z), h, lims, np.exp(-2.0 * k0 * h))
+            slopes = {c: (4.0 * r0[c][0] - r0[c][1]).real / (2.0 * k0[0]) for c in (0, 1, 5)}
+            terms = self._terms(sol[sl], k[sl], sg[sl], float(z), h, lims, cut[sl])
             w = sinc2[sl]
-            s_ = sg[sl]
-            # σ_xx = p f1'' − i sg q f2'';  σ_zz = −p f1 + i sg q f2;
-            # σ_xz = −i sg p f1' − q f2'
-            terms = (
-                fss[..., 0],
-                -f[..., 0],
-                -1j * s_ * fs[..., 0],
-                -1j * s_ * fss[..., 1],
-                1j * s_ * f[..., 1],
-                -fs[..., 1],
-            )
+            # decay depth of the split-off slope term: 2h, or z deeper down (then it decays
+            # at least as fast as the correction itself, e^{−|m|z}, and the aliases suffice)
+            d = max(2.0 * h, float(z))
+            basis = slope_basis
+            if d > 2.0 * h:
+                hz = out_hom[i]
+                basis = (hz[0] - hz[1]) / (2.0 * d)
+            cut_d = np.exp(-k[sl] * d)
             for c, tr in enumerate(terms):
-                out[i, c] += np.sum(tr * w, axis=0)
+                if c in slopes:
+                    tr = tr - slopes[c] * k[sl] * cut_d
+                    out[i, c] += slopes[c] * basis
+                out[i, c] += np.sum(np.where(pos[sl], tr, 0.0) * w, axis=0)
+
+    @staticmethod
+    def _terms(sol, k, sg, z, h, lims, cut):
+        """Correction transfers (xx_p, zz_p, xz_p, xx_q, zz_q, xz_q) at depth z, less the
+        long-wave limits ``lims`` · e^{−2|m|h} of σ_xx:
+        σ_xx = p f1'' − i sg q f2'';  σ_zz = −p f1 + i sg q f2;  σ_xz = −i sg p f1' − q f2'."""
+        f, fs, fss = _correction_values(sol, k, z, h)
+        fss = fss - np.stack([lims[0] * cut, lims[1] * cut], axis=-1)
+        return (
+            fss[..., 0],
+            -f[..., 0],
+            -1j * sg * fs[..., 0],
+            -1j * sg * fss[..., 1],
+            1j * sg * f[..., 1],
+            -fs[..., 1],
+        )
 
     def _fields(self, pressure, traction):
         n, nf = self.n, self._nfft
