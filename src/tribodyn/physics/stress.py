@@ -51,6 +51,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._typing import ArrayLike
 from .._validation import InputError, check_array
 from .materials import Body
 
@@ -66,9 +67,7 @@ _MAX_ALIAS = 400
 
 def von_mises(sxx, szz, sxz, syy) -> np.ndarray:
     """σ_vM = √(½[(σx−σy)² + (σy−σz)² + (σz−σx)²] + 3τ²) [Pa]."""
-    return np.sqrt(
-        0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * sxz**2
-    )
+    return np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * sxz**2)
 
 
 def _max_principal(sxx, szz, sxz, syy) -> np.ndarray:
@@ -279,7 +278,7 @@ class StressOperator:
     correction is identically zero and skipped.
     """
 
-    def __init__(self, n: int, dx: float, body: Body, depths):
+    def __init__(self, n: int, dx: float, body: Body, depths: ArrayLike):
         if not isinstance(body, Body):
             raise InputError(f"body must be a Body (got {type(body).__name__})")
         depths = check_array("depths", depths)
@@ -307,8 +306,7 @@ class StressOperator:
     def _build(self) -> np.ndarray:
         """Transfer (depth, 6, nfreq): DFT of the hat-load influence (homogeneous, linear
         convolution in wrap-around order) plus the aliased layered correction."""
-        n, nf, dx = self.n, self._nfft, self.dx
-        nfreq = nf // 2 + 1
+        nfreq = self._nfft // 2 + 1
         out = np.empty((self._z.size, 6, nfreq), dtype=complex)
         for i, z in enumerate(self._z):
             out[i] = self._homogeneous_transfer(float(z))
@@ -326,8 +324,10 @@ class StressOperator:
         return np.fft.rfft(wrap, axis=-1)
 
     def _add_correction(self, out: np.ndarray) -> None:
-        body, h, dx, nf = self.body, float(self.h), self.dx, self._nfft
-        coat, sub = body.coating.material, body.material
+        coating = self.body.coating
+        assert coating is not None and self.h is not None
+        h, dx, nf = float(self.h), self.dx, self._nfft
+        coat, sub = coating.material, self.body.material
         j = np.arange(nf // 2 + 1)
         base = 2.0 * math.pi * j / (nf * dx)  # wavenumbers of the DFT [rad/m]
         period = 2.0 * math.pi / dx
@@ -412,7 +412,9 @@ class StressOperator:
         syy = nu * (sxx + szz)
         return sxx, szz, sxz, syy
 
-    def apply(self, pressure, traction, x=None) -> SubsurfaceStress:
+    def apply(
+        self, pressure: ArrayLike, traction: ArrayLike, x: ArrayLike | None = None
+    ) -> SubsurfaceStress:
         """Stresses of loads ``pressure`` p and ``traction`` q [Pa] on the grid (arrays of
         length n; ``x`` the node positions [m], default 0, Δ, 2Δ, …)."""
         p = check_array("pressure", pressure)
@@ -455,7 +457,9 @@ class StressOperator:
         )
 
 
-def subsurface_stress(x, pressure, traction, body: Body, depths) -> SubsurfaceStress:
+def subsurface_stress(
+    x: ArrayLike, pressure: ArrayLike, traction: ArrayLike, body: Body, depths: ArrayLike
+) -> SubsurfaceStress:
     """Plane-strain stresses of ``body`` (homogeneous or coated) under the surface loads.
 
     Parameters
