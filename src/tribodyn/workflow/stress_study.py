@@ -196,6 +196,8 @@ def stress_along_cycle(
 #: grid classes: spacings Δ₀ 2^(k/2) (a sample's loads are resampled onto the class
 #: spacing at or below its own, so at most √2 finer), one stress operator per class
 _CLASS_STEP = 0.5
+#: a class with fewer samples is merged into the next finer one
+_MIN_CLASS = 8
 #: samples per batched transform (memory: batch × depths × 3 × FFT length doubles)
 _BATCH = 4
 #: depths below the coating, in units of the class spacing: geometric from 2Δ to 400Δ
@@ -213,9 +215,19 @@ def _evaluate(loads: dict, pair, depths) -> dict:
         return {}
     dxs = {i: float(v[0][1] - v[0][0]) for i, v in loads.items()}
     dx0 = min(dxs.values())
+    cls = {i: int(math.floor(math.log2(d / dx0) / _CLASS_STEP + 1e-9)) for i, d in dxs.items()}
+    # a class with few samples joins the next finer populated one (a build costs more
+    # than the few larger transforms)
+    count: dict = {}
+    for k in cls.values():
+        count[k] = count.get(k, 0) + 1
+    target: dict = {}
+    for k in sorted(count):
+        finer = [t for t in target.values() if t < k]
+        target[k] = max(finer) if count[k] < _MIN_CLASS and finer else k
     plan: dict = {}
     for i, (x, p, *_) in loads.items():
-        k = int(math.floor(math.log2(dxs[i] / dx0) / _CLASS_STEP + 1e-9))
+        k = target[cls[i]]
         dxc = dx0 * 2.0 ** (k * _CLASS_STEP)
         # the window: where p > 1e-3 max p, widened by b/3 each side (the film's shear
         # outside it, μu_s/h over a thick film, is below 1e-4 of p_max)
