@@ -54,7 +54,7 @@ import numpy as np
 from scipy import fft as sp_fft
 
 from .._typing import ArrayLike
-from .._validation import InputError, check_array
+from .._validation import InputError, check_array, check_int, check_positive
 from .materials import Body
 
 __all__ = ["StressPeak", "SubsurfaceStress", "StressOperator", "subsurface_stress", "von_mises"]
@@ -296,6 +296,10 @@ class StressOperator:
     def __init__(self, n: int, dx: float, body: Body, depths: ArrayLike):
         if not isinstance(body, Body):
             raise InputError(f"body must be a Body (got {type(body).__name__})")
+        n = check_int("n", n)
+        if n < 3:
+            raise InputError(f"n must be an integer >= 3 (got {n})")
+        dx = check_positive("dx", dx, "m")
         depths = check_array("depths", depths)
         if np.any(depths < 0.0):
             raise InputError(f"depths must be >= 0 [m] (got min {depths.min():.6g})")
