@@ -143,6 +143,7 @@ def _synthetic_cycle():
         name="s",
         crank_angle=crank,
         loaded=np.array([False, True, True, True]),
+        converged=np.array([True, True, True, True]),
         x=x,
         pressure=p,
         film=h,
@@ -203,3 +204,8 @@ def test_cycle_traces_match_direct_evaluation():
     )
     assert math.isnan(sf["coating_yield"])
     assert "coating_yield" not in st.safety_factors["cam"]
+    # a sample whose EHL did not converge is not evaluated
+    res.converged[3] = False
+    st2 = stress_along_cycle(res, inp, (CAM, TAPPET), SMOOTH_OIL)
+    assert st2.evaluated == 2
+    assert math.isnan(st2.tappet.value["max_von_mises_substrate"][3])

@@ -373,9 +373,14 @@ class StressOperator:
         out_hom = out.copy()  # homogeneous transfers at each depth
         k0 = np.array([1e-3, 2e-3]) / h
         sol0 = _layer_solutions(k0 * h, coat, sub)
+        dm = 2.0 * math.pi / (nf * dx)
         for i, z in enumerate(self._z):
             kz = int(kmax[i])
-            sl = slice(K - kz, K + kz + 1)
+            # rows deep enough for the base band alone: only |m| d(z) < 40 matters
+            jm = j.size
+            if kz == 0:
+                jm = min(j.size, int(math.ceil(_DECAY / (dm * max(dist[i], 1e-300)))) + 1)
+            sl = (slice(K - kz, K + kz + 1), slice(0, jm))
             lims = (lp, -lq) if z <= h else (0.0, 0.0)
             if z <= h:  # the long-wave limit is added back exactly
                 out[i, 0] += lim_p
@@ -398,7 +403,7 @@ class StressOperator:
                 if c in slopes:
                     tr = tr - slopes[c] * k[sl] * cut_d
                     out[i, c] += slopes[c] * basis
-                out[i, c] += np.sum(np.where(pos[sl], tr, 0.0) * w, axis=0)
+                out[i, c, :jm] += np.sum(np.where(pos[sl], tr, 0.0) * w, axis=0)
 
     @staticmethod
     def _terms(sol, k, sg, z, h, lims, cut):

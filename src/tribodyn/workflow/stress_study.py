@@ -124,7 +124,8 @@ def stress_along_cycle(
     :class:`~tribodyn.physics.strength.Strength` (default: typical steel, no coating
     strength). ``depths`` [m]: fixed depths for every sample (default: in the coating h/2
     and h, below it geometric levels from half the grid spacing to beyond 1.5 b).
-    ``samples``: indices to evaluate (default: all loaded samples with a profile)."""
+    ``samples``: indices to evaluate (default: all loaded, converged samples with a
+    profile; the others stay NaN)."""
     from ..contact.ehl.options import EHLOptions
 
     t0 = _time.perf_counter()
@@ -143,7 +144,10 @@ def stress_along_cycle(
         for b in names
     }
     if samples is None:
-        ok = np.asarray(result.loaded, bool) & np.all(np.isfinite(result.pressure), axis=1)
+        # samples whose EHL did not converge are left out (NaN): their profile is the
+        # last iterate, not a solution
+        conv = np.asarray(getattr(result, "converged", np.ones(n, bool)), bool)
+        ok = np.asarray(result.loaded, bool) & conv & np.all(np.isfinite(result.pressure), axis=1)
         samples = np.flatnonzero(ok)
     loads = {}
     for i in samples:
