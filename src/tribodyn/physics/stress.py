@@ -469,7 +469,7 @@ class StressOperator:
         sig1 = np.full(sxx.shape, -np.inf)
         sig1[:, rows1] = _max_principal(sxx[:, rows1], szz[:, rows1], sxz[:, rows1], syy[:, rows1])
 
-        def peak(a, rows, f=None):
+        def peak(a, rows, f=None, refine=False):
             if not np.any(rows):
                 nan = np.full(ns, np.nan)
                 return nan, nan.copy(), nan.copy()
@@ -477,11 +477,37 @@ class StressOperator:
             k = np.argmax(sub, axis=1)
             r, c = np.divmod(k, n)
             v = sub[np.arange(ns), k].astype(np.float64)
-            return (f(v) if f else v) * scale, x0 + c * self.dx, z[rows][r]
+            v = f(v) if f else v
+            zr = z[rows][r]
+            nr = int(np.count_nonzero(rows))
+            if refine and nr >= 3:
+                # an interior maximum between depth levels: parabola in ln z through the
+                # level and its neighbours (the levels are geometric below the coating)
+                zz = z[rows]
+                i = np.arange(ns)
+                inner = (r > 0) & (r < nr - 1) & (zz[np.clip(r - 1, 0, nr - 1)] > 0)
+                rm, rp = np.clip(r - 1, 0, nr - 1), np.clip(r + 1, 0, nr - 1)
+                a3 = a[:, rows].reshape(ns, nr, n)
+                vm_, vp_ = a3[i, rm, c].astype(np.float64), a3[i, rp, c].astype(np.float64)
+                if f:
+                    vm_, vp_ = f(vm_), f(vp_)
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    lm = np.log(np.maximum(zz[rm], 1e-300)) - np.log(np.maximum(zr, 1e-300))
+                    lp = np.log(np.maximum(zz[rp], 1e-300)) - np.log(np.maximum(zr, 1e-300))
+                    # quadratic through (lm, vm_), (0, v), (lp, vp_)
+                    d1 = (vm_ - v) / lm
+                    d2 = (vp_ - v) / lp
+                    cc = (d2 - d1) / (lp - lm)
+                    bb = d1 - cc * lm
+                    s = -bb / (2.0 * cc)
+                    ok = inner & (cc < 0) & (s > lm) & (s < lp)
+                    v = np.where(ok, v - bb * bb / (4.0 * cc), v)
+                    zr = np.where(ok, zr * np.exp(np.where(ok, s, 0.0)), zr)
+            return v * scale, x0 + c * self.dx, zr
 
         out = {
             "max_von_mises_coating": peak(vm2, coat, np.sqrt),
-            "max_von_mises_substrate": peak(vm2, ~coat, np.sqrt),
+            "max_von_mises_substrate": peak(vm2, ~coat, np.sqrt, refine=True),
             "max_tension_surface": peak(sig1, surf),
             "max_tension_coating": peak(sig1, coat),
         }

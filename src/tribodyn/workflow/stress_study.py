@@ -206,9 +206,10 @@ _MIN_CLASS = 8
 _BATCH = 4
 #: depths below the coating, in units of the class spacing: geometric from 2Δ to 400Δ
 #: (the EHL profiles resolve the loaded half-width b with 50–200 points, so this reaches
-#: beyond 1.5 b with a relative step of 32 %; peaks between levels are underestimated by
-#: ≲ 1 %, flat maxima)
-_REL_DEPTHS = np.geomspace(2.0, 400.0, 20)
+#: beyond 1.5 b with a relative step of 42 %); the substrate's von Mises peak is refined
+#: by a parabola in ln z through its level and the neighbours: within 0.2 % of a 40-level
+#: evaluation along the paper case's cycle
+_REL_DEPTHS = np.geomspace(2.0, 400.0, 16)
 
 
 def _evaluate(loads: dict, pair, depths) -> dict:
