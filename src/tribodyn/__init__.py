@@ -36,6 +36,7 @@ from .physics.heat_conduction import ThermalBody, ThermalProperties
 from .physics.hertz import hertz_line_contact
 from .physics.lubricant import Lubricant
 from .physics.materials import Body, Coating, Material, reduced_modulus
+from .physics.stress import SubsurfaceStress, subsurface_stress
 from .physics.thermal_oil import ThermalLubricant
 
 __all__ = [
@@ -55,6 +56,8 @@ __all__ = [
     "reduced_modulus",
     "solve_dry_contact",
     "solve_ehl",
+    "SubsurfaceStress",
+    "subsurface_stress",
     "__version__",
     "ThermalBody",
     "ThermalEHLResult",

@@ -1,0 +1,70 @@
+"""Cost of the subsurface stresses along a cycle against the set's EHL pass (prints JSON).
+Not a timed test.
+
+    python benchmarks/bench_stress.py [CASE.toml] [--set NAME] [--crank-step DEG]
+
+Runs the explicit valvetrain dynamics, one transient-EHL pass along the cycle for the
+surface set (default: the first coated set), then the stresses of the cam and the tappet
+at every loaded sample (workflow.stress_study), and reports CPU seconds of both, their
+ratio (target ≤ 0.20), the cycle maxima with crank angles, and the safety factors.
+Run it with one BLAS thread per process (importing tribodyn first sets it).
+"""
+
+import argparse
+import json
+import time
+
+import tribodyn  # noqa: F401  (one BLAS thread, before numpy loads)
+from tribodyn.config import load_case
+from tribodyn.valvetrain.dynamics import simulate_valvetrain
+from tribodyn.workflow.cycle_ehl import CycleInputs, ehl_for_set
+from tribodyn.workflow.postprocess import surface_roles
+from tribodyn.workflow.stress_study import stress_for_set
+
+
+def timed(fn):
+    w, c = time.perf_counter(), time.process_time()
+    out = fn()
+    return out, time.perf_counter() - w, time.process_time() - c
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("case", nargs="?", default=None)
+    ap.add_argument("--set", default=None)
+    ap.add_argument("--crank-step", type=float, default=None)
+    args = ap.parse_args()
+    case = load_case(args.case)
+    sets = case.surface_sets()
+    if args.set:
+        s = case.surface_set(args.set)
+    else:
+        s = next((x for x in sets if x.coating is not None), sets[0])
+    ref = case.surface_set(surface_roles(case)["reference"])
+    dyn = simulate_valvetrain(
+        case.cam(),
+        case.valvetrain_parameters(),
+        tribology=case.analytic_tribology(ref),
+        **case.dynamics_options(),
+    )
+    step = args.crank_step or case.numerics.crank_step_deg
+    inputs = CycleInputs.from_dynamics(dyn, step, case.width)
+    r, w_ehl, c_ehl = timed(lambda: ehl_for_set(case, s, inputs))
+    st, w_st, c_st = timed(lambda: stress_for_set(case, s, r, inputs))
+    out = {
+        "set": s.name,
+        "crank_step_deg": step,
+        "loaded_samples": int(r.loaded.sum()),
+        "stress_samples": st.evaluated,
+        "ehl_pass": {"wall_s": w_ehl, "cpu_s": c_ehl},
+        "stress": {"wall_s": w_st, "cpu_s": c_st},
+        "cpu_ratio_stress_to_ehl": c_st / c_ehl,
+        "target_ratio": 0.20,
+        "maxima": st.maxima,
+        "safety_factors": st.safety_factors,
+    }
+    print(json.dumps(out, indent=2, default=float))
+
+
+if __name__ == "__main__":
+    main()

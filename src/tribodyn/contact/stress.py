@@ -1,0 +1,200 @@
+"""Surface loads and subsurface stresses of the cam and the tappet at an EHL solution.
+
+Loads on each body (per unit area, x along the contact, u₁ the cam's and u₂ the tappet's
+surface speed relative to the contact, u_s = u₁ − u₂; bodies = (cam, tappet)):
+
+* normal: p + p_a, the film pressure plus the local Greenwood–Tripp asperity pressure
+  p_a(h) = K F_5/2(h/σ) (paper Eq. 6, E' of the surface materials);
+* viscous shear of the film (Newtonian velocity profile between the surfaces, the Couette
+  part by the solution's law τ_c, Newtonian or Eyring, capped at the limiting shear
+  stress, signed like u_s; paper Eq. 16 with the Poiseuille part ±(h/2) dp/dx)::
+
+      q_cam    = −τ_c − (h/2) dp/dx        q_tappet = +τ_c − (h/2) dp/dx
+
+  (the faster surface is held back, the slower one dragged along; the pressure gradient
+  pushes the oil, and with it both surfaces, towards lower pressure);
+* boundary shear τ_b = τ₀ A_a/A + ς p_a (Eqs. 17–18) opposing the sliding of each
+  surface: −sgn(u_s) τ_b on the cam, +sgn(u_s) τ_b on the tappet.
+
+Each body's stresses follow from :func:`tribodyn.physics.stress.subsurface_stress` with
+z into that body; the x axis is common to both bodies, so a traction in +x is the same
+physical direction on each.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._typing import ArrayLike
+from .._validation import InputError, check_array, check_real
+from ..physics.asperity import greenwood_tripp_table
+from ..physics.friction import boundary_shear_stress, couette_shear_stress, limit_shear_stress
+from ..physics.materials import Body, as_bodies, reduced_modulus
+from ..physics.stress import StressOperator, SubsurfaceStress
+from .ehl.options import EHLOptions
+
+__all__ = [
+    "SurfaceLoads",
+    "surface_loads",
+    "profile_surface_loads",
+    "default_depths",
+    "ehl_stresses",
+    "loaded_half_width",
+]
+
+#: films below this [m] are taken at this value in the viscous shear (as the solver does)
+_H_FLOOR = 1e-10
+
+
+@dataclass
+class SurfaceLoads:
+    """Loads on the cam and the tappet on a common x grid [m], per unit area [Pa]."""
+
+    x: np.ndarray
+    pressure: np.ndarray  #: p + p_a, the same on both bodies
+    fluid_pressure: np.ndarray  #: p
+    asperity_pressure: np.ndarray  #: p_a
+    viscous_shear: np.ndarray  #: Couette τ_c, signed like u_s (traction +τ_c on the tappet)
+    poiseuille_shear: np.ndarray  #: −(h/2) dp/dx, on both surfaces
+    boundary_shear: np.ndarray  #: τ_b ≥ 0 (magnitude)
+    traction_cam: np.ndarray  #: q on the cam in +x
+    traction_tappet: np.ndarray  #: q on the tappet in +x
+
+
+def profile_surface_loads(
+    x: ArrayLike,
+    pressure: ArrayLike,
+    film: ArrayLike,
+    sliding_speed: float,
+    bodies,
+    lubricant,
+    roughness=None,
+    *,
+    viscous_model: str = "eyring",
+    limiting_shear: bool = True,
+    boundary_shear_coefficient: float | None = None,
+    boundary_shear_strength: float | None = None,
+) -> SurfaceLoads:
+    """Surface loads from a film and pressure profile (see the module docstring).
+
+    ``roughness`` None: no asperity contact (p_a = τ_b = 0). The boundary-shear
+    parameters default to those of :class:`~tribodyn.EHLOptions`."""
+    x = check_array("x", x)
+    p = check_array("pressure", pressure)
+    h = check_array("film", film)
+    if p.shape != x.shape or h.shape != x.shape:
+        raise InputError(f"pressure and film must have the shape of x {x.shape}")
+    us = check_real("sliding_speed", sliding_speed, "m/s")
+    cam, tappet = as_bodies(bodies)
+    defaults = EHLOptions()
+    coef = (
+        defaults.boundary_shear_coefficient
+        if boundary_shear_coefficient is None
+        else boundary_shear_coefficient
+    )
+    tau0 = (
+        defaults.boundary_shear_strength
+        if boundary_shear_strength is None
+        else boundary_shear_strength
+    )
+    hf = np.maximum(h, _H_FLOOR)
+    mu = lubricant.viscosity_at(p)
+    tau_c = couette_shear_stress(mu, us, hf, viscous_model, lubricant.eyring_stress)
+    if limiting_shear:
+        tau_c = limit_shear_stress(
+            tau_c, p, lubricant.limiting_shear_coefficient, lubricant.limiting_shear_stress
+        )
+    dpdx = np.gradient(p, x)
+    pois = -0.5 * hf * dpdx
+    if roughness is not None:
+        e_s = reduced_modulus((cam, tappet), surface=True)
+        if roughness.method == "exact":  # the solvers' F_n tables (relative error < 1e-8)
+            lam = h / roughness.rms
+            pa = roughness.pressure_scale(e_s) * greenwood_tripp_table(2.5, lam)[0]
+        else:
+            pa = np.asarray(roughness.asperity_pressure(h, e_s), float)
+        area = np.asarray(roughness.contact_area_fraction(h, tabulated=True), float)
+        tau_b = boundary_shear_stress(pa, area, coef, tau0)
+    else:
+        pa = np.zeros_like(p)
+        tau_b = np.zeros_like(p)
+    sgn = math.copysign(1.0, us) if us != 0.0 else 0.0
+    return SurfaceLoads(
+        x=x,
+        pressure=p + pa,
+        fluid_pressure=p,
+        asperity_pressure=pa,
+        viscous_shear=tau_c,
+        poiseuille_shear=pois,
+        boundary_shear=tau_b,
+        traction_cam=-tau_c + pois - sgn * tau_b,
+        traction_tappet=tau_c + pois + sgn * tau_b,
+    )
+
+
+def surface_loads(result, bodies, lubricant, roughness=None, options=None) -> SurfaceLoads:
+    """:func:`profile_surface_loads` of an :class:`~tribodyn.EHLResult` (its p, h, u_s)
+    with the friction laws of ``options`` (an :class:`~tribodyn.EHLOptions`, default
+    the defaults)."""
+    opts = options if options is not None else EHLOptions()
+    return profile_surface_loads(
+        result.x,
+        result.pressure,
+        result.film,
+        result.sliding_speed,
+        bodies,
+        lubricant,
+        roughness,
+        viscous_model=opts.viscous_model,
+        limiting_shear=opts.limiting_shear,
+        boundary_shear_coefficient=opts.boundary_shear_coefficient,
+        boundary_shear_strength=opts.boundary_shear_strength,
+    )
+
+
+def loaded_half_width(x: np.ndarray, pressure: np.ndarray, share: float = 0.01) -> float:
+    """Half the extent [m] of the region where p > share · max p (≥ one grid step)."""
+    p = np.asarray(pressure, float)
+    if not np.any(p > 0):
+        return float(abs(x[1] - x[0]))
+    idx = np.flatnonzero(p > share * p.max())
+    return max(0.5 * float(x[idx[-1]] - x[idx[0]]), float(abs(x[1] - x[0])))
+
+
+def default_depths(body: Body, half_width: float, n_coating: int = 8, n_substrate: int = 40):
+    """Depths [m] resolving the coating (n_coating levels down to z = h) and the
+    substrate to max(1.5 b, 3h) (n_substrate levels, denser near the interface)."""
+    b = float(half_width)
+    if body.coating is None:
+        return np.linspace(0.0, 1.5 * b, n_substrate + 1)[1:]
+    h = body.coating.thickness
+    coat = np.linspace(0.0, h, n_coating + 1)[1:]
+    deep = max(1.5 * b, 3.0 * h)
+    s = np.linspace(0.0, 1.0, n_substrate + 1)[1:] ** 1.5  # denser below the interface
+    return np.concatenate([coat, h + (deep - h) * s])
+
+
+def ehl_stresses(
+    result, bodies, lubricant, roughness=None, options=None, depths=None
+) -> tuple[SubsurfaceStress, SubsurfaceStress, SurfaceLoads]:
+    """Stresses of the cam and the tappet at an EHL solution: (cam, tappet, loads).
+
+    ``depths`` [m]: one array for both bodies, or None for :func:`default_depths` of each
+    (from the loaded half-width). The solution grid must be uniform (the solvers' is)."""
+    loads = surface_loads(result, bodies, lubricant, roughness, options)
+    return _stresses(loads, as_bodies(bodies), depths)
+
+
+def _stresses(loads: SurfaceLoads, bodies, depths):
+    x = loads.x
+    dx = float(x[1] - x[0])
+    b = loaded_half_width(x, loads.pressure)
+    out = []
+    for body, q in zip(bodies, (loads.traction_cam, loads.traction_tappet), strict=True):
+        z = default_depths(body, b) if depths is None else depths
+        op = StressOperator(x.size, dx, body, z)
+        out.append(op.apply(loads.pressure, q, x))
+    return out[0], out[1], loads
