@@ -98,6 +98,10 @@ class TransientEHL:
     effort of one step is thus bounded: with k = max_substeps, at most
     2^k + (2k + 1)(k + 2) + 1 solves of at most ``max_iter`` Newton iterations each. If it still fails the result says so
     (``converged=False``) and marching continues from the last iterate.
+
+    A variant (e.g. :class:`~.thermal_transient.ThermalTransientEHL`) keeps this march and
+    overrides only the hooks :meth:`_steady`, :meth:`_steady_on_grid` (the start),
+    :meth:`_prepare`, :meth:`_solve` and :meth:`_result` (one time level).
     """
 
     def __init__(
