@@ -8,6 +8,13 @@ cam on its base circle carries no load) there is no conjunction to solve: those 
 marked unloaded and hold NaN film/pressure values by definition (``loaded`` is False).
 Each loaded event starts from the steady solution at its first loaded sample.
 
+One driver, :func:`march_cycle`, marches every EHL variant: the events, the time-error
+control (:class:`_Marcher`), the sub-steps, the validity warnings and the per-sample
+outputs are written once. A variant is a :class:`CycleMethod` — a transient solver that
+satisfies :class:`EHLStepper` (:class:`~tribodyn.TransientEHL` or a subclass using its
+hooks), the viscous friction of both shear laws on its film, and optional extra
+:class:`Recorder` s (the thermal variant's temperatures) — listed in :data:`METHODS`.
+
 Outputs are totals over the cam width: loads and friction forces [N], friction power
 P = (F_v + F_b) u_s [W]; films [m]; pressures [Pa].
 """
@@ -16,19 +23,48 @@ from __future__ import annotations
 
 import math
 import re
+from abc import ABC, abstractmethod
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from typing import Any, ClassVar, Protocol
 
 import numpy as np
 
+from .._validation import InputError
 from ..contact.ehl import EHLOptions, EHLResult, TransientEHL
 from ..contact.ehl.postprocess import shear_stress
+from ..physics.asperity import Roughness
 from ..physics.lubricant import Lubricant
 
-__all__ = ["CycleInputs", "SetCycleResult", "ehl_along_cycle", "ehl_for_set", "PROFILE_POINTS"]
+__all__ = [
+    "CycleInputs",
+    "SampleConditions",
+    "SetCycleResult",
+    "EHLStepper",
+    "Recorder",
+    "CycleMethod",
+    "IsothermalCycle",
+    "METHODS",
+    "march_cycle",
+    "cycle_for_set",
+    "ehl_along_cycle",
+    "ehl_for_set",
+    "PROFILE_POINTS",
+]
 
 #: Number of points on which p(x), h(x) of every step are stored: the step's whole solver
 #: domain, resampled uniformly (its own x coordinate is stored with it).
 PROFILE_POINTS = 512
+
+
+@dataclass(frozen=True)
+class SampleConditions:
+    """Conjunction conditions at one time (:meth:`CycleInputs.at`)."""
+
+    force: float  #: contact force, total over the width [N]
+    entrainment_speed: float  #: [m/s]
+    sliding_speed: float  #: [m/s]
+    radius: float  #: radius of curvature [m]
 
 
 @dataclass
@@ -46,17 +82,17 @@ class CycleInputs:
     #: conditions between the samples (sub-steps); None: interpolate the samples
     fine: tuple | None = None
 
-    def at(self, t: float) -> tuple[float, float, float, float]:
-        """(F [N], u_e, u_s [m/s], R [m]) at time t [s] (linear interpolation of the
-        finest data available)."""
+    def at(self, t: float) -> SampleConditions:
+        """The conditions at time t [s] (linear interpolation of the finest data
+        available)."""
         if self.fine is not None:
             tt, *cols = self.fine
         else:
             tt, cols = (
                 self.time,
-                (self.contact_force, self.entrainment_speed, self.sliding_speed, self.radius),
+                [self.contact_force, self.entrainment_speed, self.sliding_speed, self.radius],
             )
-        return tuple(float(np.interp(t, tt, c)) for c in cols)
+        return SampleConditions(*(float(np.interp(t, tt, c)) for c in cols))
 
     @classmethod
     def from_dynamics(cls, res, crank_step_deg: float, width: float) -> CycleInputs:
@@ -159,6 +195,30 @@ _GUESS_KEEP = 1.5
 COUPLING_TIME_TOL = 5e-3
 
 
+@dataclass(frozen=True)
+class _FilmLevel:
+    """An accepted level of the march for the time-error estimate."""
+
+    time: float  #: [s]
+    central_film: float  #: [m]
+
+
+class EHLStepper(Protocol):
+    """What :func:`march_cycle` needs of a transient EHL solver (the interface of
+    :class:`~tribodyn.TransientEHL`): a steady start, an implicit step to given conditions
+    (load per unit length [N/m], R [m], u_e, u_s [m/s]) and checkpoints to redo steps."""
+
+    def start_steady(
+        self, load, radius, entrainment_speed, sliding_speed, time=0.0
+    ) -> EHLResult: ...
+
+    def step(self, dt, load, radius, entrainment_speed, sliding_speed) -> EHLResult: ...
+
+    def checkpoint(self) -> Any: ...
+
+    def rollback(self, checkpoint: Any) -> None: ...
+
+
 class _Marcher:
     """Marches one loaded event of the transient EHL sample by sample with time-error
     control. The event starts from the steady solution at its first loaded sample (as
@@ -178,18 +238,21 @@ class _Marcher:
     """
 
     def __init__(
-        self, tr: TransientEHL, inp: CycleInputs, min_load: float, time_tol: float = TIME_TOL
+        self, tr: EHLStepper, inp: CycleInputs, min_load: float, time_tol: float = TIME_TOL
     ):
         self.tr, self.inp, self.min_load = tr, inp, float(min_load)
         self.time_tol = float(time_tol)
-        self.levels = []  # (t, h_c) of the last accepted levels
-        self.t = None
+        self.levels: list[_FilmLevel] = []  # the last accepted levels, newest first
+        self.t = 0.0
         self.substeps = 0
         self.guess = 1  # sub-steps to start the next sample with
 
-    def _args(self, t):
-        F, ue, us, R = self.inp.at(t)
-        return (max(F, self.min_load) / self.inp.width, R, ue, us)
+    def _step(self, t):
+        c = self.inp.at(t)
+        w = max(c.force, self.min_load) / self.inp.width
+        r = self.tr.step(t - self.t, w, c.radius, c.entrainment_speed, c.sliding_speed)
+        self.t = t
+        return r
 
     def start(self, i) -> EHLResult:
         inp = self.inp
@@ -197,11 +260,16 @@ class _Marcher:
         t_i = float(inp.time[i])
         F_i, ue, us, R = F[i], inp.entrainment_speed[i], inp.sliding_speed[i], inp.radius[i]
         r = self.tr.start_steady(F_i / inp.width, R, ue, us, time=t_i)
-        self.levels, self.t, self.substeps, self.guess = [(t_i, r.central_film)], t_i, 1, 1
+        self.levels, self.t, self.substeps, self.guess = (
+            [_FilmLevel(t_i, r.central_film)],
+            t_i,
+            1,
+            1,
+        )
         return r
 
     def _error(self, t, h) -> float:
-        lv = self.levels
+        lv = [(v.time, v.central_film) for v in self.levels]
         if not (np.isfinite(h) and h > 0.0):
             return np.inf
         if len(lv) == 1:
@@ -218,13 +286,8 @@ class _Marcher:
         )
         return (2.0 / 11.0) * abs(h - pred) / h
 
-    def _step(self, t):
-        r = self.tr.step(t - self.t, *self._args(t))
-        self.t = t
-        return r
-
     def _accept(self, t, r):
-        self.levels = [(t, r.central_film), *self.levels][:3]
+        self.levels = [_FilmLevel(t, r.central_film), *self.levels][:3]
 
     def _substeps(self, t_start, t_end, m):
         """March [t_start, t_end] in m equal sub-steps; returns the last result and the
@@ -276,41 +339,159 @@ class _Marcher:
         return r
 
 
-def ehl_along_cycle(
+class Recorder(Protocol):
+    """Per-sample outputs of a march: :meth:`record` is called for every loaded sample
+    that gave a result (``stepper`` as it stands at the sample), :meth:`fields` gives the
+    result's fields at the end."""
+
+    def record(self, i: int, stepper: Any, r: EHLResult) -> None: ...
+
+    def fields(self) -> dict: ...
+
+
+class CycleMethod(ABC):
+    """An EHL variant for :func:`march_cycle`: a fresh transient solver per loaded event,
+    the viscous friction of both shear laws on a result's film, and the variant's own
+    recorders and result fields (none here)."""
+
+    #: the result class (:class:`SetCycleResult` or a subclass with the extra fields)
+    result_type: ClassVar[type[SetCycleResult]] = SetCycleResult
+    roughness: Roughness | None
+
+    @abstractmethod
+    def new_stepper(self) -> EHLStepper:
+        """The transient solver of a new loaded event."""
+
+    @abstractmethod
+    def law_friction(self, stepper: Any, r: EHLResult) -> dict[str, float]:
+        """{"newtonian": …, "eyring": …}: the viscous friction per unit length [N/m] of
+        ``r``'s film and pressure under each shear law (the report compares them)."""
+
+    def recorders(self, n: int) -> list[Recorder]:
+        """Extra recorders over ``n`` samples."""
+        return []
+
+    def result_fields(self) -> dict:
+        """Extra constant fields of the result."""
+        return {}
+
+
+@dataclass
+class IsothermalCycle(CycleMethod):
+    """The isothermal transient EHL (:class:`~tribodyn.TransientEHL`)."""
+
+    bodies: Any
+    lubricant: Lubricant
+    roughness: Roughness | None
+    options: EHLOptions
+
+    def new_stepper(self) -> TransientEHL:
+        return TransientEHL(self.bodies, self.lubricant, self.roughness, options=self.options)
+
+    def law_friction(self, stepper, r) -> dict[str, float]:
+        out = {}
+        for law in ("newtonian", "eyring"):
+            tau = shear_stress(
+                r.pressure,
+                r.film,
+                r.sliding_speed,
+                self.lubricant,
+                law,
+                self.options.limiting_shear,
+            )
+            out[law] = float(np.sum(np.abs(tau))) * (r.x[1] - r.x[0])
+        return out
+
+    @classmethod
+    def for_set(cls, case, surface_set, options: EHLOptions | None = None) -> IsothermalCycle:
+        """The method of one surface set of a case (its bodies, roughness and friction
+        law; the case's lubricant and numerics, or ``options``)."""
+        s = surface_set
+        return cls(s.bodies, case.lubricant(), s.roughness, options or case.ehl_options(s))
+
+
+def _thermal_for_set(case, surface_set) -> CycleMethod:
+    from .thermal_study import ThermalCycle  # builds on this module
+
+    return ThermalCycle.for_set(case, surface_set)
+
+
+#: The EHL variants by name: ``METHODS[name](case, surface_set)`` is the
+#: :class:`CycleMethod` of a surface set (:func:`cycle_for_set`).
+METHODS: dict[str, Callable[[Any, Any], CycleMethod]] = {
+    "isothermal": IsothermalCycle.for_set,
+    "thermal": _thermal_for_set,
+}
+
+
+class _SampleRecorder:
+    """The outputs every variant records: :data:`SAMPLE_OUTPUTS` (totals over the
+    width) and the p(x), h(x) profiles."""
+
+    def __init__(self, n: int, inp: CycleInputs, method: CycleMethod):
+        nan = np.full(n, np.nan)
+        self.out = {k: nan.copy() for k in SAMPLE_OUTPUTS}
+        k = PROFILE_POINTS
+        self.x = np.full((n, k), np.nan)
+        self.p = np.full((n, k), np.nan, dtype=np.float32)
+        self.h = np.full((n, k), np.nan, dtype=np.float32)
+        self.inp, self.method = inp, method
+
+    def record(self, i, stepper, r):
+        out, l, rough = self.out, self.inp.width, self.method.roughness
+        out["central_film"][i] = r.central_film
+        out["min_film"][i] = r.min_film
+        out["max_pressure"][i] = float(r.pressure.max())
+        out["hydrodynamic_load"][i] = r.hydrodynamic_load * l
+        out["asperity_load"][i] = r.asperity_load * l
+        out["viscous_friction"][i] = r.viscous_friction * l
+        for law, f in self.method.law_friction(stepper, r).items():  # same film, both laws
+            out[f"viscous_friction_{law}"][i] = f * l
+        out["boundary_friction"][i] = r.boundary_friction * l
+        out["rolling_friction"][i] = r.rolling_friction * l
+        out["friction_power"][i] = (
+            (r.viscous_friction + r.boundary_friction) * l * abs(self.inp.sliding_speed[i])
+        )
+        if rough is not None:
+            out["lambda_ratio"][i] = r.min_film / rough.rms
+        xs = np.linspace(r.x[0], r.x[-1], PROFILE_POINTS)
+        self.x[i] = xs
+        self.p[i] = np.interp(xs, r.x, r.pressure)
+        self.h[i] = np.interp(xs, r.x, r.film)
+
+    def fields(self) -> dict:
+        return {"x": self.x, "pressure": self.p, "film": self.h, **self.out}
+
+
+def march_cycle(
     inp: CycleInputs,
     name: str,
     label: str,
-    bodies,
-    lubricant: Lubricant,
-    roughness,
-    options: EHLOptions,
+    method: CycleMethod,
     *,
     min_load: float = 5.0,
     progress=None,
     time_tol: float = TIME_TOL,
 ) -> SetCycleResult:
-    """March the transient EHL over the cycle for one surface set.
+    """March an EHL variant (``method``) over the cycle for one surface set: each loaded
+    event (F ≥ ``min_load``) from the steady solution at its first sample, with the
+    time-error control of :class:`_Marcher` (``time_tol``: the local time error of h_c
+    above which a step is sub-stepped). A step that raises or does not converge is
+    reported in ``failures``; validity warnings are counted by kind.
 
-    ``progress(i, n)`` is called after each sample (for progress bars); ``time_tol``: the
-    local time error of h_c above which a step is sub-stepped (:class:`_Marcher`).
+    ``progress(i, n)`` is called after each sample (for progress bars).
     """
     import time as _time
 
     t_start = _time.perf_counter()
     n = inp.crank_angle.size
-    nan = np.full(n, np.nan)
-    out = {k: nan.copy() for k in SAMPLE_OUTPUTS}
     loaded = inp.contact_force >= min_load
     converged = np.ones(n, dtype=bool)
     iterations = np.zeros(n, dtype=int)
     substeps = np.zeros(n, dtype=np.int16)
-    k = PROFILE_POINTS
-    x_prof = np.full((n, k), np.nan)
-    p_prof = np.full((n, k), np.nan, dtype=np.float32)
-    h_prof = np.full((n, k), np.nan, dtype=np.float32)
+    recorders: list[Recorder] = [_SampleRecorder(n, inp, method), *method.recorders(n)]
     failures = []
     validity: dict[str, tuple[int, float, str]] = {}
-    l = inp.width
     tr = None
     march = None
     for i in range(n):
@@ -321,10 +502,11 @@ def ehl_along_cycle(
             continue
         try:
             if tr is None:
-                tr = TransientEHL(bodies, lubricant, roughness, options=options)
+                tr = method.new_stepper()
                 march = _Marcher(tr, inp, min_load, time_tol)
                 r = march.start(i)
             else:
+                assert march is not None  # made with tr
                 r = march.advance(i)
         except Exception as exc:  # a step that raises is reported, not fatal
             converged[i] = False
@@ -342,45 +524,70 @@ def ehl_along_cycle(
             kind = re.sub(r"[-+]?\d[\d.eE+-]*", "#", text)
             count, first, example = validity.get(kind, (0, float(inp.crank_angle[i]), text))
             validity[kind] = (count + 1, first, example)
-        out["central_film"][i] = r.central_film
-        out["min_film"][i] = r.min_film
-        out["max_pressure"][i] = float(r.pressure.max())
-        out["hydrodynamic_load"][i] = r.hydrodynamic_load * l
-        out["asperity_load"][i] = r.asperity_load * l
-        out["viscous_friction"][i] = r.viscous_friction * l
-        for law in ("newtonian", "eyring"):  # both laws on the same film (report)
-            tau = shear_stress(
-                r.pressure, r.film, r.sliding_speed, lubricant, law, options.limiting_shear
-            )
-            out[f"viscous_friction_{law}"][i] = float(np.sum(np.abs(tau))) * (r.x[1] - r.x[0]) * l
-        out["boundary_friction"][i] = r.boundary_friction * l
-        out["rolling_friction"][i] = r.rolling_friction * l
-        out["friction_power"][i] = (
-            (r.viscous_friction + r.boundary_friction) * l * abs(inp.sliding_speed[i])
-        )
-        if roughness is not None:
-            out["lambda_ratio"][i] = r.min_film / roughness.rms
-        xs = np.linspace(r.x[0], r.x[-1], k)
-        x_prof[i] = xs
-        p_prof[i] = np.interp(xs, r.x, r.pressure)
-        h_prof[i] = np.interp(xs, r.x, r.film)
+        for rec in recorders:
+            rec.record(i, tr, r)
         if progress:
             progress(i + 1, n)
-    return SetCycleResult(
+    fields: dict = {}
+    for rec in recorders:
+        fields.update(rec.fields())
+    return method.result_type(
         name=name,
         label=label,
         crank_angle=inp.crank_angle.copy(),
         loaded=loaded,
         converged=converged,
         iterations=iterations,
-        x=x_prof,
-        pressure=p_prof,
-        film=h_prof,
         failures=failures,
         validity=validity,
         runtime_s=_time.perf_counter() - t_start,
         substeps=substeps,
-        **out,
+        **fields,
+        **method.result_fields(),
+    )
+
+
+def ehl_along_cycle(
+    inp: CycleInputs,
+    name: str,
+    label: str,
+    bodies,
+    lubricant: Lubricant,
+    roughness,
+    options: EHLOptions,
+    *,
+    min_load: float = 5.0,
+    progress=None,
+    time_tol: float = TIME_TOL,
+) -> SetCycleResult:
+    """March the isothermal transient EHL over the cycle for one surface set
+    (:func:`march_cycle` with :class:`IsothermalCycle`)."""
+    return march_cycle(
+        inp,
+        name,
+        label,
+        IsothermalCycle(bodies, lubricant, roughness, options),
+        min_load=min_load,
+        progress=progress,
+        time_tol=time_tol,
+    )
+
+
+def cycle_for_set(
+    case, surface_set, inputs: CycleInputs, method: str = "isothermal", progress=None
+) -> SetCycleResult:
+    """:func:`march_cycle` for one surface set of a case with the variant ``method``
+    (a key of :data:`METHODS`) at the case's numerics."""
+    if method not in METHODS:
+        raise InputError(f"method must be one of {sorted(METHODS)} (got {method!r})")
+    s = surface_set
+    return march_cycle(
+        inputs,
+        s.name,
+        s.coating_label,
+        METHODS[method](case, s),
+        min_load=case.numerics.min_load,
+        progress=progress,
     )
 
 

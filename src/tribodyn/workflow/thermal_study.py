@@ -2,10 +2,10 @@
 
 For every surface set the thermal solver (:class:`~tribodyn.contact.ehl.thermal_transient.
 ThermalTransientEHL`: generalized Reynolds, film energy equation, conduction in the cam
-and in the coated tappet) is marched over the same samples as the isothermal one
-(:mod:`.cycle_ehl`), from the oil's inlet (sump) temperature. Results are
-:class:`ThermalSetCycleResult` — the fields of :class:`~.cycle_ehl.SetCycleResult` plus the
-temperatures along the cycle. The study keeps the isothermal results beside them for the
+and in the coated tappet) is marched over the same samples by the same driver as the
+isothermal one (:func:`.cycle_ehl.march_cycle`, with its time-error control), from the
+oil's inlet (sump) temperature. Results are :class:`ThermalSetCycleResult` — the fields
+of :class:`~.cycle_ehl.SetCycleResult` plus the temperatures along the cycle. The study keeps the isothermal results beside them for the
 comparison (film and friction thermal vs isothermal, the coatings' thermal effect).
 
 Body 1 is the cam, body 2 the tappet (the coating's side).
@@ -13,17 +13,30 @@ Body 1 is the cam, body 2 the tappet (the coating's side).
 
 from __future__ import annotations
 
-import time as _time
 from dataclasses import dataclass, field
+from typing import Any, ClassVar
 
 import numpy as np
 
-from ..contact.ehl.thermal import couette_stress
+from ..contact.ehl.options import EHLOptions
+from ..contact.ehl.thermal import ThermalOptions, couette_stress
 from ..contact.ehl.thermal_transient import ThermalTransientEHL
-from .cycle_ehl import PROFILE_POINTS, SAMPLE_OUTPUTS, CycleInputs, SetCycleResult
+from ..physics.asperity import Roughness
+from ..physics.thermal_oil import ThermalLubricant
+from .cycle_ehl import (
+    TIME_TOL,
+    CycleInputs,
+    CycleMethod,
+    Recorder,
+    SetCycleResult,
+    cycle_for_set,
+    march_cycle,
+)
 
 __all__ = [
     "ThermalSetCycleResult",
+    "ThermalCycle",
+    "TemperatureRecorder",
     "thermal_along_cycle",
     "thermal_for_set",
     "thermal_task",
@@ -56,6 +69,90 @@ class ThermalSetCycleResult(SetCycleResult):
     thermal: bool = field(default=True)
 
 
+class TemperatureRecorder:
+    """The thermal variant's per-sample outputs: the temperatures of :data:`_TEMPS` [K]
+    and the pressure ↔ temperature iterations."""
+
+    def __init__(self, n: int):
+        self.out = {k: np.full(n, np.nan) for k in _TEMPS}
+        self.thermal_iterations = np.zeros(n, dtype=int)
+
+    def record(self, i, stepper, r):
+        out, tf = self.out, stepper.tf
+        self.thermal_iterations[i] = r.thermal_iterations
+        out["max_temperature"][i] = r.max_temperature
+        out["mid_film_temperature"][i] = r.central_mid_film_temperature
+        out["surface_temperature_cam"][i] = r.max_surface_temperature[0]
+        out["surface_temperature_tappet"][i] = r.max_surface_temperature[1]
+        out["mean_film_temperature"][i] = float(np.interp(0.0, tf.x, tf.mean_T()))
+
+    def fields(self) -> dict:
+        return {"thermal_iterations": self.thermal_iterations, **self.out}
+
+
+@dataclass
+class ThermalCycle(CycleMethod):
+    """The thermal transient EHL (:class:`~tribodyn.contact.ehl.thermal_transient.
+    ThermalTransientEHL`) for :func:`~.cycle_ehl.march_cycle`, from the oil's inlet
+    temperature; temperatures recorded by :class:`TemperatureRecorder`."""
+
+    result_type: ClassVar[type[SetCycleResult]] = ThermalSetCycleResult
+    bodies: Any
+    oil: ThermalLubricant
+    thermal_bodies: Any
+    roughness: Roughness | None
+    options: EHLOptions
+    thermal_options: ThermalOptions
+
+    def new_stepper(self) -> ThermalTransientEHL:
+        return ThermalTransientEHL(
+            self.bodies,
+            self.oil,
+            self.thermal_bodies,
+            self.roughness,
+            options=self.options,
+            thermal_options=self.thermal_options,
+        )
+
+    def law_friction(self, stepper, r) -> dict[str, float]:
+        """Both laws on the same film and temperatures (the thermal Couette stress)."""
+        _, _, Tm, fl, flim = stepper.tf.factors(r.x, _cond(r))
+        out = {}
+        for law in ("newtonian", "eyring"):
+            tau = couette_stress(
+                r.pressure,
+                r.film,
+                r.sliding_speed,
+                self.oil,
+                Tm,
+                fl,
+                flim,
+                law,
+                self.options.limiting_shear,
+            )
+            out[law] = float(np.sum(tau)) * (r.x[1] - r.x[0])
+        return out
+
+    def recorders(self, n: int) -> list[Recorder]:
+        return [TemperatureRecorder(n)]
+
+    def result_fields(self) -> dict:
+        return {"inlet_temperature": float(self.oil.inlet_temperature)}
+
+    @classmethod
+    def for_set(cls, case, surface_set) -> ThermalCycle:
+        """The thermal method of one surface set of a case."""
+        s = surface_set
+        return cls(
+            s.bodies,
+            case.thermal_lubricant(),
+            case.thermal_bodies(s),
+            s.roughness,
+            case.ehl_options(s),
+            case.thermal_options(),
+        )
+
+
 def thermal_along_cycle(
     inp: CycleInputs,
     name,
@@ -69,109 +166,22 @@ def thermal_along_cycle(
     *,
     min_load=5.0,
     progress=None,
+    time_tol: float = TIME_TOL,
 ) -> ThermalSetCycleResult:
-    """March the thermal transient EHL over the cycle for one surface set (the same
-    samples, outputs and unloaded-sample convention as
-    :func:`~.cycle_ehl.ehl_along_cycle`)."""
-    t_start = _time.perf_counter()
-    n = inp.crank_angle.size
-    nan = np.full(n, np.nan)
-    out = {k: nan.copy() for k in SAMPLE_OUTPUTS + _TEMPS}
-    loaded = inp.contact_force >= min_load
-    converged = np.ones(n, dtype=bool)
-    iterations = np.zeros(n, dtype=int)
-    t_iter = np.zeros(n, dtype=int)
-    k = PROFILE_POINTS
-    x_prof = np.full((n, k), np.nan)
-    p_prof = np.full((n, k), np.nan, dtype=np.float32)
-    h_prof = np.full((n, k), np.nan, dtype=np.float32)
-    failures = []
-    width = inp.width
-    tr = None
-    for i in range(n):
-        if not loaded[i]:
-            tr = None
-            if progress:
-                progress(i + 1, n)
-            continue
-        args = (
-            inp.contact_force[i] / width,
-            inp.radius[i],
-            inp.entrainment_speed[i],
-            inp.sliding_speed[i],
-        )
-        try:
-            if tr is None:
-                tr = ThermalTransientEHL(
-                    bodies,
-                    oil,
-                    thermal_bodies,
-                    roughness,
-                    options=options,
-                    thermal_options=thermal_options,
-                )
-                r = tr.start_steady(*args, time=inp.time[i])
-            else:
-                r = tr.step(inp.time[i] - inp.time[i - 1], *args)
-        except Exception as exc:  # a step that raises is reported, not fatal
-            converged[i] = False
-            failures.append((float(inp.crank_angle[i]), f"{type(exc).__name__}: {exc}"))
-            tr = None
-            if progress:
-                progress(i + 1, n)
-            continue
-        converged[i] = r.converged
-        iterations[i] = r.iterations
-        t_iter[i] = r.thermal_iterations
-        if not r.converged:
-            failures.append((float(inp.crank_angle[i]), r.message))
-        out["central_film"][i] = r.central_film
-        out["min_film"][i] = r.min_film
-        out["max_pressure"][i] = float(r.pressure.max())
-        out["hydrodynamic_load"][i] = r.hydrodynamic_load * width
-        out["asperity_load"][i] = r.asperity_load * width
-        out["viscous_friction"][i] = r.viscous_friction * width
-        tf = tr.tf
-        _, _, Tm, fl, flim = tf.factors(r.x, _cond(r))
-        for law in ("newtonian", "eyring"):  # both laws, same film and temperatures
-            tau = couette_stress(
-                r.pressure, r.film, r.sliding_speed, oil, Tm, fl, flim, law, options.limiting_shear
-            )
-            out[f"viscous_friction_{law}"][i] = float(np.sum(tau)) * (r.x[1] - r.x[0]) * width
-        out["boundary_friction"][i] = r.boundary_friction * width
-        out["rolling_friction"][i] = r.rolling_friction * width
-        out["friction_power"][i] = (
-            (r.viscous_friction + r.boundary_friction) * width * abs(inp.sliding_speed[i])
-        )
-        if roughness is not None:
-            out["lambda_ratio"][i] = r.min_film / roughness.rms
-        out["max_temperature"][i] = r.max_temperature
-        out["mid_film_temperature"][i] = r.central_mid_film_temperature
-        out["surface_temperature_cam"][i] = r.max_surface_temperature[0]
-        out["surface_temperature_tappet"][i] = r.max_surface_temperature[1]
-        out["mean_film_temperature"][i] = float(np.interp(0.0, tf.x, tf.mean_T()))
-        xs = np.linspace(r.x[0], r.x[-1], k)
-        x_prof[i] = xs
-        p_prof[i] = np.interp(xs, r.x, r.pressure)
-        h_prof[i] = np.interp(xs, r.x, r.film)
-        if progress:
-            progress(i + 1, n)
-    return ThermalSetCycleResult(
-        name=name,
-        label=label,
-        crank_angle=inp.crank_angle.copy(),
-        loaded=loaded,
-        converged=converged,
-        iterations=iterations,
-        x=x_prof,
-        pressure=p_prof,
-        film=h_prof,
-        failures=failures,
-        runtime_s=_time.perf_counter() - t_start,
-        inlet_temperature=float(oil.inlet_temperature),
-        thermal_iterations=t_iter,
-        **out,
+    """March the thermal transient EHL over the cycle for one surface set
+    (:func:`~.cycle_ehl.march_cycle` with :class:`ThermalCycle`: the same samples,
+    time-error control, outputs and unloaded-sample convention as the isothermal march)."""
+    res = march_cycle(
+        inp,
+        name,
+        label,
+        ThermalCycle(bodies, oil, thermal_bodies, roughness, options, thermal_options),
+        min_load=min_load,
+        progress=progress,
+        time_tol=time_tol,
     )
+    assert isinstance(res, ThermalSetCycleResult)
+    return res
 
 
 def _cond(r):
@@ -181,21 +191,11 @@ def _cond(r):
 
 
 def thermal_for_set(case, surface_set, inputs: CycleInputs, progress=None) -> ThermalSetCycleResult:
-    """:func:`thermal_along_cycle` for one surface set of a case."""
-    s = surface_set
-    return thermal_along_cycle(
-        inputs,
-        s.name,
-        s.coating_label,
-        s.bodies,
-        case.thermal_lubricant(),
-        case.thermal_bodies(s),
-        s.roughness,
-        case.ehl_options(s),
-        case.thermal_options(),
-        min_load=case.numerics.min_load,
-        progress=progress,
-    )
+    """The thermal march of one surface set of a case (:func:`~.cycle_ehl.cycle_for_set`
+    with the ``"thermal"`` method)."""
+    res = cycle_for_set(case, surface_set, inputs, "thermal", progress)
+    assert isinstance(res, ThermalSetCycleResult)
+    return res
 
 
 def thermal_task(case, name, inputs):

@@ -1,8 +1,8 @@
 """Transient thermal mixed-EHL line contact marched in time.
 
-As :class:`~.transient.TransientEHL` (BDF1/BDF2 for ∂(ρh)/∂t on a grid that follows the
-contact, sub-steps on failure), with the temperature of film and solids marched by
-backward Euler. Each step iterates pressure (Newton, temperatures frozen) ↔ temperature
+The march of :class:`~.transient.TransientEHL` (BDF1/BDF2 for ∂(ρh)/∂t on a grid that
+follows the contact, the Newton predictor, sub-steps on failure), through its hooks, with
+the temperature of film and solids marched by backward Euler. Each step iterates pressure (Newton, temperatures frozen) ↔ temperature
 (energy equation at the new pressure) up to ``ThermalOptions.step_iter`` times, until the
 temperature changes by less than ``ThermalOptions.tol``; a step that stops short of that
 is flagged (``converged`` False, message). The previous step's temperatures are the
@@ -13,14 +13,17 @@ starting point, so one or two iterations usually suffice. Start with :meth:`star
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
+from ..._validation import InputError
 from ...physics.asperity import Roughness
 from ...physics.heat_conduction import ThermalBody
 from ...physics.materials import BodyPair
 from ...physics.thermal_oil import ThermalLubricant
-from .newton import newton
+from .grid import Grid
+from .newton import State, newton
 from .options import Conditions, ContactModel, EHLOptions
 from .reynolds import ReynoldsSystem
 from .steady import state_from_dimensional
@@ -34,9 +37,37 @@ from .thermal import (
     solve_thermal_ehl,
     thermal_result,
 )
-from .transient import EVENT_NODES_FROM_START, TransientEHL
+from .transient import MarchState, StepSolution, TransientEHL
 
 __all__ = ["ThermalTransientEHL"]
+
+
+@dataclass
+class _ThermalState:
+    """The thermal part of a :class:`~.transient.MarchState`."""
+
+    tf: ThermalField | None
+    theta: np.ndarray | None  #: a copy of tf.theta (tf is updated in place)
+    p_T: np.ndarray | None
+    rho_h_T: np.ndarray | None
+    T_nodes: np.ndarray | None
+
+
+@dataclass
+class _Level:
+    """What the energy equation of a time level needs of the previous one, on the
+    level's thermal grid."""
+
+    tf: ThermalField
+    theta_old: np.ndarray  #: temperatures of the previous level
+    p_old: np.ndarray  #: its pressure [Pa] (compression heating)
+    rho_h_old: np.ndarray  #: its ρh [kg/m²] (film continuity)
+
+
+@dataclass
+class _ThermalSolution(StepSolution):
+    thermal_iterations: int = 0
+    change: float = float("inf")  #: the last temperature change [K]
 
 
 class ThermalTransientEHL(TransientEHL):
@@ -72,10 +103,12 @@ class ThermalTransientEHL(TransientEHL):
         self._rho_h_T: np.ndarray | None = None  # ρh on the thermal grid (film continuity)
         self._T_nodes: np.ndarray | None = None  # film-mean temperature on the EHL grid [K]
 
-    def start_steady(
-        self, load, radius, entrainment_speed, sliding_speed, time=0.0
-    ) -> ThermalEHLResult:
-        res = solve_thermal_ehl(
+    def start_film(self, *args, **kwargs):
+        raise InputError("ThermalTransientEHL starts from start_steady() (a thermal state)")
+
+    # -- hooks of TransientEHL
+    def _steady(self, load, radius, entrainment_speed, sliding_speed) -> ThermalEHLResult:
+        return solve_thermal_ehl(
             load,
             radius,
             entrainment_speed,
@@ -87,12 +120,11 @@ class ThermalTransientEHL(TransientEHL):
             options=self.opts,
             thermal_options=self.topts,
         )
-        cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
-        self._grid = None
-        self._n_event = res.x.size if self.opts.n is None and EVENT_NODES_FROM_START else None
-        grid = self._make_grid(cond, None)
-        u1 = entrainment_speed + 0.5 * sliding_speed
-        speeds = (u1, u1 - sliding_speed)
+
+    def _steady_on_grid(self, grid: Grid, cond: Conditions, res):
+        """The steady thermal solution's temperatures carried to ``grid``, and its
+        pressure re-solved there at those temperatures."""
+        speeds = self._speeds(cond)
         steady_field = res.temperature_field
         assert isinstance(steady_field, ThermalField)  # set by solve_thermal_ehl
         tf = (
@@ -102,12 +134,10 @@ class ThermalTransientEHL(TransientEHL):
         )
         self.tf = tf
         Tm = np.interp(grid.x, tf.x, tf.mean_T())
-        sysm = self._system(grid, cond, Tm)
+        sysm = self._frozen_system(grid, cond, Tm)
         st = state_from_dimensional(
             sysm, res.x, res.pressure + res.asperity_pressure, res.rigid_approach
         )
-        # the pressure of the transient's own grid at the steady temperatures, so that
-        # marching at constant conditions stays there (the grids differ)
         ev = sysm.evaluate(st.Q, st.H0)
         tf.refresh(
             grid.x,
@@ -125,74 +155,38 @@ class ThermalTransientEHL(TransientEHL):
             res = thermal_result(
                 sysm, out, self.opts, tf, cond, res.thermal_iterations, True, res.message
             )
-        self._grid, self._lu, self._hist, self._hc_hist = grid, None, [], ()
-        self._commit(sysm, st, None, time)
-        assert self._p is not None and self._h is not None  # set by _commit
-        self._p_T = np.interp(tf.x, grid.x, self._p)
-        self._rho_h_T = tf.rho_h(grid.x, self._p, self._h)
-        res.time = time
-        self.result = res
-        return res
+        return sysm, st, res
 
-    def _system(self, grid, cond, T_nodes, time_coef=0.0):
-        oil = FrozenTemperatureOil(self.oil, T_nodes)
-        self._T_nodes = T_nodes
-        return ReynoldsSystem(
-            grid, cond, ContactModel(self.bodies, oil, self.rough), time_coef=time_coef
+    def _prepare(self, grid: Grid, cond: Conditions, time_coef: float):
+        """The system at the previous level's temperatures carried to ``grid`` (frozen
+        during each Newton solve), and that level's thermal data."""
+        tf_old = self.tf
+        assert tf_old is not None and self._p_T is not None and self._rho_h_T is not None
+        tf = tf_old if grid is self._grid else tf_old.regridded(grid.x, self._speeds(cond))
+        lvl = _Level(
+            tf,
+            tf.theta.copy(),
+            np.interp(tf.x, tf_old.x, self._p_T),
+            np.interp(tf.x, tf_old.x, self._rho_h_T),
         )
-
-    def _commit(self, sysm, st, dt, time):
-        super()._commit(sysm, st, dt, time)
-        x, _, dt_, R = self._hist[0]
-        self._hist[0] = (x, sysm.lub.density_at(self._p) * self._h, dt_, R)
-
-    def _state(self):
-        tf = self.tf
-        return (
-            super()._state(),
-            (tf, None if tf is None else tf.theta.copy(), self._p_T, self._rho_h_T, self._T_nodes),
-        )
-
-    def _set_state(self, snap):
-        base, thermal = snap
-        super()._set_state(base)
-        self.tf, theta, self._p_T, self._rho_h_T, self._T_nodes = thermal
-        if self.tf is not None:
-            self.tf.theta = theta.copy()
-
-    def _advance(self, dt, cond: Conditions) -> ThermalEHLResult:
-        o, t = self.opts, self.topts
-        prev_grid, tf_old = self._grid, self.tf
-        assert prev_grid is not None and tf_old is not None  # started
-        assert self._h is not None and self._q is not None
-        assert self._p_T is not None and self._rho_h_T is not None
-        hc_prev = float(np.interp(0.0, prev_grid.x, self._h))
-        grid = self._make_grid(cond, hc_prev)
-        same = grid is prev_grid
-        R = cond.radius
-        f1 = self._old_on(grid, 0, R)
-        if o.time_order == 2 and len(self._hist) == 2 and self._hist[0][2] is not None:
-            r = dt / self._hist[0][2]
-            a0, a1, a2 = (1 + 2 * r) / (1 + r), -(1 + r), r * r / (1 + r)
-            f_eff = -(a1 * f1 + a2 * self._old_on(grid, 1, R)) / a0
-        else:
-            a0, f_eff = 1.0, f1
-        u1 = cond.entrainment_speed + 0.5 * cond.sliding_speed
-        speeds = (u1, u1 - cond.sliding_speed)
-        tf = tf_old if same else tf_old.regridded(grid.x, speeds)
-        theta_old = tf.theta.copy()
-        p_old = np.interp(tf.x, tf_old.x, self._p_T)
-        rho_h_old = np.interp(tf.x, tf_old.x, self._rho_h_T)
         Tm = np.interp(grid.x, tf.x, tf.mean_T())
-        sysm = self._system(grid, cond, Tm, time_coef=a0 / dt)
-        sysm.f_old = f_eff / (sysm.lub.density * sysm.h_ref)
-        st = state_from_dimensional(sysm, prev_grid.x, self._q, self._h0)
+        return self._frozen_system(grid, cond, Tm, time_coef=time_coef), lvl
+
+    def _solve(self, sysm, ctx: _Level, st: State, dt: float, lu) -> _ThermalSolution:
+        """Pressure (Newton, temperatures frozen) ↔ temperature (energy equation) up to
+        ``step_iter`` times, until the temperature changes by less than ``tol``."""
+        o, t, tf, cond = self.opts, self.topts, ctx.tf, sysm.cond
         ev = sysm.evaluate(st.Q, st.H0)
         tf.refresh(
-            grid.x, ev.P * sysm.p_ref, ev.H * sysm.h_ref, ev.pa * sysm.p_ref, cond, self.rough, o
+            sysm.g.x,
+            ev.P * sysm.p_ref,
+            ev.H * sysm.h_ref,
+            ev.pa * sysm.p_ref,
+            cond,
+            self.rough,
+            o,
         )
-        lu = self._lu if same else None
-        ok_t, change, k = False, float("inf"), 0
+        change, k = float("inf"), 0
         out = None
         for k in range(1, t.step_iter + 1):
             apply_factors(sysm, tf, cond)
@@ -201,19 +195,18 @@ class ThermalTransientEHL(TransientEHL):
             if not out.converged:
                 break
             st = out.state
-            p, h = st.P * sysm.p_ref, st.H * sysm.h_ref
             change = tf.update(
-                grid.x,
-                p,
-                h,
+                sysm.g.x,
+                st.P * sysm.p_ref,
+                st.H * sysm.h_ref,
                 (st.Q - st.P) * sysm.p_ref,
                 cond,
                 self.rough,
                 o,
                 dt=dt,
-                theta_old=theta_old,
-                p_old=p_old,
-                rho_h_old=rho_h_old,
+                theta_old=ctx.theta_old,
+                p_old=ctx.p_old,
+                rho_h_old=ctx.rho_h_old,
                 refresh=k < t.step_iter,
             )
             if not np.isfinite(change):
@@ -221,31 +214,69 @@ class ThermalTransientEHL(TransientEHL):
             if k > 1 and change < t.tol:
                 break
         assert out is not None  # at least one thermal iteration ran
-        ok_t = bool(np.isfinite(change))
-        self._lu = lu
         self.tf = tf
-        self._commit(sysm, out.state if out.converged else st, dt, self.time + dt)
-        assert self._p is not None and self._h is not None  # set by _commit
-        self._p_T = np.interp(tf.x, grid.x, self._p)
-        self._rho_h_T = tf.rho_h(grid.x, self._p, self._h)
-        hc_new = float(np.interp(0.0, grid.x, self._h))
-        msg = out.message
+        # a failed Newton solve keeps the last solved pressure
+        state = out.state if out.converged else st
+        return _ThermalSolution(out, state, lu, thermal_iterations=k, change=change)
+
+    def _result(self, sysm, ctx: _Level, sol, squeeze_velocity: float) -> ThermalEHLResult:
+        assert isinstance(sol, _ThermalSolution)
+        ok_t = bool(np.isfinite(sol.change))
+        msg = sol.out.message
         if not ok_t:
             msg = "energy equation gave a non-finite temperature; " + msg
-        elif t.step_iter > 1:
-            msg += f"; last temperature change {change:.2g} K after {k} thermal iterations"
-        ok = bool(out.converged and ok_t)
-        res = thermal_result(
+        elif self.topts.step_iter > 1:
+            msg += (
+                f"; last temperature change {sol.change:.2g} K after "
+                f"{sol.thermal_iterations} thermal iterations"
+            )
+        return thermal_result(
             sysm,
-            out,
-            o,
-            tf,
-            cond,
-            k,
-            ok,
+            sol.out,
+            self.opts,
+            ctx.tf,
+            sysm.cond,
+            sol.thermal_iterations,
+            bool(sol.out.converged and ok_t),
             msg,
             time=self.time,
-            squeeze_velocity=-(hc_new - hc_prev) / dt,
+            squeeze_velocity=squeeze_velocity,
         )
-        self.result = res
-        return res
+
+    # -- internals
+    @staticmethod
+    def _speeds(cond: Conditions) -> tuple[float, float]:
+        """Surface speeds (u₁, u₂) [m/s] of cam and tappet."""
+        u1 = cond.entrainment_speed + 0.5 * cond.sliding_speed
+        return u1, u1 - cond.sliding_speed
+
+    def _frozen_system(self, grid, cond, T_nodes, time_coef=0.0):
+        oil = FrozenTemperatureOil(self.oil, T_nodes)
+        self._T_nodes = T_nodes
+        return ReynoldsSystem(
+            grid, cond, ContactModel(self.bodies, oil, self.rough), time_coef=time_coef
+        )
+
+    def _commit(self, sysm, st, dt, time):
+        super()._commit(sysm, st, dt, time)
+        tf = self.tf
+        assert tf is not None and self._p is not None and self._h is not None
+        self._p_T = np.interp(tf.x, sysm.g.x, self._p)
+        self._rho_h_T = tf.rho_h(sysm.g.x, self._p, self._h)
+
+    def _state(self) -> MarchState:
+        snap = super()._state()
+        tf = self.tf
+        snap.extra = _ThermalState(
+            tf, None if tf is None else tf.theta.copy(), self._p_T, self._rho_h_T, self._T_nodes
+        )
+        return snap
+
+    def _set_state(self, snap: MarchState):
+        super()._set_state(snap)
+        th = snap.extra
+        assert isinstance(th, _ThermalState)
+        self.tf, self._p_T, self._rho_h_T, self._T_nodes = th.tf, th.p_T, th.rho_h_T, th.T_nodes
+        if self.tf is not None:
+            assert th.theta is not None
+            self.tf.theta = th.theta.copy()

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from contextlib import contextmanager
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -14,13 +14,13 @@ from ...physics.limits import EHL_NODES_TRANSIENT, MAX_SUBSTEPS
 from ...physics.lubricant import Lubricant
 from ...physics.materials import BodyPair
 from .grid import Grid, layout
-from .newton import State, newton
+from .newton import NewtonOutcome, State, newton
 from .options import Conditions, ContactModel, EHLOptions, EHLResult, with_overrides
 from .postprocess import postprocess
 from .reynolds import ReynoldsSystem
 from .steady import solve_ehl, state_from_dimensional
 
-__all__ = ["TransientEHL", "GRID_SLACK", "GRID_MARGIN"]
+__all__ = ["TransientEHL", "GRID_SLACK", "GRID_MARGIN", "Level", "MarchState", "StepSolution"]
 
 #: A transient keeps its grid while the required domain fits inside it and the grid is at
 #: most this many times as long as required (spacing that much coarser) …
@@ -32,6 +32,45 @@ EVENT_NODES_FROM_START = True
 
 #: a step changing the load by more than this factor is sub-stepped from the start
 _SPLIT_RATIO = 8.0
+
+
+@dataclass(frozen=True)
+class Level:
+    """One accepted time level: the BDF history of ρh and the predictor's data."""
+
+    x: np.ndarray  #: grid [m]
+    rho_h: np.ndarray  #: ρh [kg/m²]
+    q: np.ndarray  #: total pressure p + p_a [Pa]
+    central_film: float  #: h(0) [m]
+    dt: float | None  #: the step that reached this level [s]; None: a start
+    radius: float  #: radius of curvature [m]
+
+
+@dataclass
+class MarchState:
+    """Everything a step changes (restored after a failed attempt or a rollback);
+    ``extra``: a variant's own state (e.g. the temperature field)."""
+
+    grid: Grid | None
+    q: np.ndarray | None
+    p: np.ndarray | None
+    h: np.ndarray | None
+    h0: float
+    levels: tuple[Level, ...]
+    time: float
+    lu: object | None
+    result: EHLResult | None
+    extra: object = None
+
+
+@dataclass
+class StepSolution:
+    """The solve of one time level (:meth:`TransientEHL._solve`): the Newton outcome,
+    the state to commit and the factorisation to keep."""
+
+    out: NewtonOutcome
+    state: State
+    lu: object | None
 
 
 class TransientEHL:
@@ -59,6 +98,10 @@ class TransientEHL:
     effort of one step is thus bounded: with k = max_substeps, at most
     2^k + (2k + 1)(k + 2) + 1 solves of at most ``max_iter`` Newton iterations each. If it still fails the result says so
     (``converged=False``) and marching continues from the last iterate.
+
+    A variant (e.g. :class:`~.thermal_transient.ThermalTransientEHL`) keeps this march and
+    overrides only the hooks :meth:`_steady`, :meth:`_steady_on_grid` (the start),
+    :meth:`_prepare`, :meth:`_solve` and :meth:`_result` (one time level).
     """
 
     def __init__(
@@ -82,7 +125,7 @@ class TransientEHL:
             EHL_NODES_TRANSIENT.check("n", opts.n)
         self.opts = opts
         self.max_substeps = MAX_SUBSTEPS.check("max_substeps", max_substeps)
-        self.conditions_before = None
+        self.conditions_before: Conditions | None = None
         self.time = 0.0
         self._grid: Grid | None = None
         # total, fluid pressure [Pa], film [m] on the grid
@@ -90,41 +133,24 @@ class TransientEHL:
         self._p: np.ndarray | None = None
         self._h: np.ndarray | None = None
         self._h0 = 0.0  # rigid approach [m]
-        self._hist: list[tuple] = []  # [(x, ρh, dt, R)] of the last two time levels
-        self._q_hist: list[tuple] = []  # [(x, q)] total pressure of the last two levels
-        self._hc_hist: tuple[float, ...] = ()  # central film [m] of the last two levels
+        self._levels: tuple[Level, ...] = ()  # the last two time levels, newest first
         self._lu: object | None = None
         self._n_event: int | None = None  # automatic grid: the node count of the steady start
         self.result: EHLResult | None = None
 
     # -- starting states
     def start_steady(self, load, radius, entrainment_speed, sliding_speed, time=0.0) -> EHLResult:
-        """Start from the steady solution at the given conditions (u_e ≠ 0)."""
-        res = solve_ehl(
-            load,
-            radius,
-            entrainment_speed,
-            sliding_speed,
-            self.bodies,
-            self.lub,
-            self.rough,
-            options=self.opts,
-        )
+        """Start from the steady solution at the given conditions (u_e ≠ 0), on the
+        transient's own grid, with an empty history (the first step is BDF1)."""
+        res = self._steady(load, radius, entrainment_speed, sliding_speed)
         cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
         self._grid = None
         self._n_event = res.x.size if self.opts.n is None and EVENT_NODES_FROM_START else None
         grid = self._make_grid(cond, None)
-        sysm = ReynoldsSystem(grid, cond, self.model)
-        st = state_from_dimensional(
-            sysm, res.x, res.pressure + res.asperity_pressure, res.rigid_approach
-        )
         # the steady state of the transient's own grid, so that marching at constant
         # conditions stays there (the grids differ in extent and spacing)
-        out = newton(sysm, st, self.opts.tol, self.opts.max_iter)
-        if out.converged:
-            st, res = out.state, postprocess(sysm, out, self.opts)
-        self._grid, self._lu, self._hist, self._hc_hist = grid, None, [], ()
-        self._q_hist = []
+        sysm, st, res = self._steady_on_grid(grid, cond, res)
+        self._reset(grid)
         self._commit(sysm, st, None, time)
         res.time = time
         self.result = res
@@ -140,12 +166,59 @@ class TransientEHL:
         st = State(np.zeros(grid.n), h0 / sysm.h_ref)
         ev = sysm.evaluate(st.Q, st.H0)
         st.P, st.H = ev.P, ev.H
-        self._grid, self._lu, self._hist, self._hc_hist = grid, None, [], ()
-        self._q_hist = []
+        self._reset(grid)
         self._commit(sysm, st, None, time)
         self.result = None
 
+    # -- hooks of a variant (the thermal one: :mod:`.thermal_transient`)
+    def _steady(self, load, radius, entrainment_speed, sliding_speed) -> EHLResult:
+        """The steady solution a march starts from."""
+        return solve_ehl(
+            load,
+            radius,
+            entrainment_speed,
+            sliding_speed,
+            self.bodies,
+            self.lub,
+            self.rough,
+            options=self.opts,
+        )
+
+    def _steady_on_grid(self, grid: Grid, cond: Conditions, res: EHLResult):
+        """(system, state, result): the steady solution ``res`` re-solved on ``grid``
+        (kept as it is if that fails)."""
+        sysm = ReynoldsSystem(grid, cond, self.model)
+        st = state_from_dimensional(
+            sysm, res.x, res.pressure + res.asperity_pressure, res.rigid_approach
+        )
+        out = newton(sysm, st, self.opts.tol, self.opts.max_iter)
+        if out.converged:
+            st, res = out.state, postprocess(sysm, out, self.opts)
+        return sysm, st, res
+
+    def _prepare(self, grid: Grid, cond: Conditions, time_coef: float):
+        """(system, context) of a time level: the Reynolds system with the BDF
+        coefficient a₀/Δt of ∂(ρh)/∂t (its old-level term f_old is set by the caller) and
+        whatever :meth:`_solve` and :meth:`_result` need besides (None here)."""
+        return ReynoldsSystem(grid, cond, self.model, time_coef=time_coef), None
+
+    def _solve(self, sysm: ReynoldsSystem, ctx, st: State, dt: float, lu) -> StepSolution:
+        """Solve one time level from the predicted state ``st`` (Newton; ``lu``: the
+        previous factorisation when the grid is kept)."""
+        out = newton(sysm, st, self.opts.tol, self.opts.max_iter, lu=lu)
+        return StepSolution(out, out.state, out.lu if out.converged else None)
+
+    def _result(self, sysm, ctx, sol: StepSolution, squeeze_velocity: float) -> EHLResult:
+        """The result of a solved time level (at :attr:`time`)."""
+        return postprocess(
+            sysm, sol.out, self.opts, time=self.time, squeeze_velocity=squeeze_velocity
+        )
+
     # -- internals
+    def _reset(self, grid: Grid):
+        """A new start on ``grid``: no history, no factorisation."""
+        self._grid, self._lu, self._levels = grid, None, ()
+
     def _make_grid(self, cond: Conditions, film) -> Grid:
         """The current grid while it still fits the contact (see :data:`GRID_SLACK`), else
         a new one with :data:`GRID_MARGIN` (keeping a grid keeps its factorisation)."""
@@ -166,11 +239,15 @@ class TransientEHL:
         self._p = st.P * sysm.p_ref
         self._h = st.H * sysm.h_ref
         self._h0 = st.H0 * sysm.h_ref
-        rho_h = self.lub.density_at(self._p) * self._h
-        self._hist = ([(sysm.g.x, rho_h, dt, sysm.cond.radius)] + self._hist)[:2]
-        self._q_hist = ([(sysm.g.x, self._q)] + self._q_hist)[:2]
-        hc = float(np.interp(0.0, sysm.g.x, self._h))
-        self._hc_hist = (hc, self._hc_hist[0] if self._hc_hist else hc)
+        level = Level(
+            x=sysm.g.x,
+            rho_h=sysm.lub.density_at(self._p) * self._h,
+            q=self._q,
+            central_film=float(np.interp(0.0, sysm.g.x, self._h)),
+            dt=dt,
+            radius=sysm.cond.radius,
+        )
+        self._levels = (level, *self._levels[:1])
         self._grid = sysm.g
         self.time = time
 
@@ -184,7 +261,8 @@ class TransientEHL:
         change of R is therefore taken quasi-statically: the old film keeps its approach
         and elastic deformation but gets the new parabola. Outside the old domain the old
         film is continued with that parabola (ambient density)."""
-        x_old, f_old, _, R_old = self._hist[k]
+        lv = self._levels[k]
+        x_old, f_old, R_old = lv.x, lv.rho_h, lv.radius
         x = grid.x
         f = np.interp(x, x_old, f_old)
         rho0 = self.lub.density
@@ -201,19 +279,22 @@ class TransientEHL:
         scaled), and h₀ such that the central film continues linearly from the last two
         levels."""
         r = self.result
-        if r is None or not r.converged or len(self._hist) < 2 or self._hist[0][2] is None:
+        lv = self._levels
+        if r is None or not r.converged or len(lv) < 2 or lv[0].dt is None:
             return st
-        q = None
-        if len(self._q_hist) == 2:  # the total pressure extrapolated linearly in time …
-            (x1, q1), (x0, q0) = self._q_hist
-            xg = sysm.g.x
-            a1, a0 = np.interp(xg, x1, q1, 0.0, 0.0), np.interp(xg, x0, q0, 0.0, 0.0)
-            q = np.maximum(a1 + (dt / self._hist[0][2]) * (a1 - a0), 0.0)
-            w = float(np.sum(q) * (xg[1] - xg[0]))
-            q = q * (sysm.cond.load / w) if w > 0.0 else None  # … carrying the new load
-        st.Q = q / sysm.p_ref if q is not None else st.Q * (sysm.cond.load / r.load)
-        hc1, hc0 = self._hc_hist
-        hc = hc1 + (dt / self._hist[0][2]) * (hc1 - hc0)
+        ratio = dt / lv[0].dt
+        # the total pressure extrapolated linearly in time …
+        xg = sysm.g.x
+        a1 = np.interp(xg, lv[0].x, lv[0].q, 0.0, 0.0)
+        a0 = np.interp(xg, lv[1].x, lv[1].q, 0.0, 0.0)
+        q = np.maximum(a1 + ratio * (a1 - a0), 0.0)
+        w = float(np.sum(q) * (xg[1] - xg[0]))
+        # … carrying the new load (else the last pressure scaled)
+        st.Q = (
+            q * (sysm.cond.load / w) / sysm.p_ref if w > 0.0 else st.Q * (sysm.cond.load / r.load)
+        )
+        hc1, hc0 = lv[0].central_film, lv[1].central_film
+        hc = hc1 + ratio * (hc1 - hc0)
         if not hc > 0.0:
             return st
         H = sysm.film(st.Q, 0.0)
@@ -324,40 +405,26 @@ class TransientEHL:
             )
         return last
 
-    def _state(self):
+    def _state(self) -> MarchState:
         """The marching state (restored by :meth:`_set_state`)."""
-        return (
-            self._grid,
-            self._q,
-            self._p,
-            self._h,
-            self._h0,
-            list(self._hist),
-            self.time,
-            self._lu,
-            self._hc_hist,
-            self.result,
-            list(self._q_hist),
+        return MarchState(
+            grid=self._grid,
+            q=self._q,
+            p=self._p,
+            h=self._h,
+            h0=self._h0,
+            levels=self._levels,
+            time=self.time,
+            lu=self._lu,
+            result=self.result,
         )
 
-    def _set_state(self, snap):
-        (
-            self._grid,
-            self._q,
-            self._p,
-            self._h,
-            self._h0,
-            hist,
-            self.time,
-            self._lu,
-            self._hc_hist,
-            self.result,
-            q_hist,
-        ) = snap
-        self._hist = list(hist)
-        self._q_hist = list(q_hist)
+    def _set_state(self, snap: MarchState):
+        self._grid, self._q, self._p, self._h = snap.grid, snap.q, snap.p, snap.h
+        self._h0, self._levels, self.time = snap.h0, snap.levels, snap.time
+        self._lu, self.result = snap.lu, snap.result
 
-    def _snapshot(self):
+    def _snapshot(self) -> MarchState:
         """The state before a step, remembering that step's starting conditions."""
         r = self.result
         self.conditions_before = (
@@ -380,7 +447,8 @@ class TransientEHL:
         self._restore(checkpoint)
 
     def _advance(self, dt, cond: Conditions) -> EHLResult:
-        o = self.opts
+        """One implicit time level: grid, BDF coefficients, predictor, then the
+        variant's hooks :meth:`_prepare`, :meth:`_solve`, :meth:`_result`."""
         prev_grid = self._grid
         assert prev_grid is not None and self._h is not None and self._q is not None  # started
         hc_prev = float(np.interp(0.0, prev_grid.x, self._h))
@@ -389,20 +457,21 @@ class TransientEHL:
         # variable-step BDF for d(ρh)/dt: (a0 f_n + a1 f_{n-1} + a2 f_{n-2})/dt
         R = cond.radius
         f1 = self._old_on(grid, 0, R)
-        if o.time_order == 2 and len(self._hist) == 2 and self._hist[0][2] is not None:
-            r = dt / self._hist[0][2]
+        lv = self._levels
+        if self.opts.time_order == 2 and len(lv) == 2 and lv[0].dt is not None:
+            r = dt / lv[0].dt
             a0, a1, a2 = (1 + 2 * r) / (1 + r), -(1 + r), r * r / (1 + r)
             f_eff = -(a1 * f1 + a2 * self._old_on(grid, 1, R)) / a0
         else:
             a0, f_eff = 1.0, f1
-        sysm = ReynoldsSystem(grid, cond, self.model, time_coef=a0 / dt)
-        sysm.f_old = f_eff / (self.lub.density * sysm.h_ref)
+        sysm, ctx = self._prepare(grid, cond, a0 / dt)
+        sysm.f_old = f_eff / (sysm.lub.density * sysm.h_ref)
         st0 = self._predict(sysm, state_from_dimensional(sysm, prev_grid.x, self._q, self._h0), dt)
-        out = newton(sysm, st0, o.tol, o.max_iter, lu=self._lu if same else None)
-        self._lu = out.lu if out.converged else None
-        self._commit(sysm, out.state, dt, self.time + dt)
+        sol = self._solve(sysm, ctx, st0, dt, self._lu if same else None)
+        self._lu = sol.lu
+        self._commit(sysm, sol.state, dt, self.time + dt)
         assert self._h is not None  # set by _commit
         hc_new = float(np.interp(0.0, grid.x, self._h))
-        res = postprocess(sysm, out, o, time=self.time, squeeze_velocity=-(hc_new - hc_prev) / dt)
+        res = self._result(sysm, ctx, sol, -(hc_new - hc_prev) / dt)
         self.result = res
         return res

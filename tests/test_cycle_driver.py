@@ -1,0 +1,167 @@
+"""The one cycle driver and the one BDF2 stepper: the thermal EHL is marched along the
+cycle like the isothermal one (time-error control, sub-steps, validity warnings), and the
+thermal transient step is the isothermal one through its hooks (Newton predictor, history
+reset at a steady start)."""
+
+import numpy as np
+import pytest
+
+from tribodyn import Body, InputError, Material, TransientEHL
+from tribodyn.config import load_case
+from tribodyn.contact.ehl.thermal_transient import ThermalTransientEHL
+from tribodyn.physics.heat_conduction import ThermalBody, ThermalProperties
+from tribodyn.physics.thermal_oil import ThermalLubricant, kelvin
+from tribodyn.workflow.cycle_ehl import (
+    METHODS,
+    CycleInputs,
+    IsothermalCycle,
+    cycle_for_set,
+    ehl_along_cycle,
+    march_cycle,
+)
+from tribodyn.workflow.thermal_study import ThermalCycle, thermal_along_cycle
+
+# the thermal paper case on a coarse thermal grid (the march is under test)
+CASE = load_case("andreou2023_thermal").updated(
+    {
+        "numerics.thermal_x_nodes": 48,
+        "numerics.thermal_solid_nodes": 8,
+        "numerics.thermal_film_nodes": 5,
+    }
+)
+UNCOATED = CASE.surface_set("uncoated")
+WIDTH = CASE.width
+
+
+def _thermal(inp):
+    s = UNCOATED
+    return thermal_along_cycle(
+        inp,
+        "u",
+        "u",
+        s.bodies,
+        CASE.thermal_lubricant(),
+        CASE.thermal_bodies(s),
+        s.roughness,
+        CASE.ehl_options(s),
+        CASE.thermal_options(),
+    )
+
+
+def _ramp_inputs(step_deg, end_deg=10.0):
+    """Force rising from 0 by 10 N per crank degree (3000 rpm), constant kinematics: an
+    engagement, first sample above 5 N at 3° for 1° and 0.25° steps."""
+    crank = np.arange(0.0, end_deg + 1e-9, step_deg)
+    t = np.radians(crank) / (2 * np.pi * 50.0)
+    F = np.clip((crank - 2.3) * 10.0, 0.0, 400.0)
+    n = crank.size
+    return CycleInputs(crank, t, F, np.full(n, 3.0), np.full(n, 6.0), np.full(n, 0.02), WIDTH)
+
+
+def test_thermal_cycle_has_the_time_error_control():
+    """Through the engagement (the squeeze of the thick start film) the thermal march at
+    1° sub-steps the steps after the steady start, as the isothermal one does, records
+    its sub-steps, and reproduces the films of a 0.25° march within 1 %."""
+    a, b = _thermal(_ramp_inputs(1.0)), _thermal(_ramp_inputs(0.25))
+    iso = ehl_along_cycle(
+        _ramp_inputs(1.0),
+        "u",
+        "u",
+        UNCOATED.bodies,
+        CASE.lubricant(),
+        UNCOATED.roughness,
+        CASE.ehl_options(UNCOATED),
+    )
+    assert a.converged[a.loaded].all() and b.converged[b.loaded].all()
+    assert a.substeps is not None and np.array_equal(a.substeps > 0, a.loaded)
+    first = np.flatnonzero(a.loaded)[1:3]  # the steps after the steady start
+    assert np.all(a.substeps[first] > 1) and np.all(iso.substeps[first] > 1)
+    k = np.searchsorted(_ramp_inputs(0.25).crank_angle, a.crank_angle)
+    both = a.loaded & b.loaded[k]
+    assert both.sum() >= 7
+    assert np.allclose(a.central_film[both], b.central_film[k][both], rtol=0.01)
+    assert np.isfinite(a.max_temperature[a.loaded]).all()
+
+
+def test_thermal_march_reports_validity_warnings():
+    """10 N on a 1 mm radius at 10 m/s: the load-carrying zone reaches a quarter of R
+    (flagged above 0.1 R: the parabolic gap and half-space elasticity no longer hold).
+    The thermal march counts the warning per kind and first crank angle like the
+    isothermal one, so a thermal study reports it."""
+    crank = np.arange(0.0, 3.0 + 1e-9, 1.0)
+    t = np.radians(crank) / (2 * np.pi * 50.0)
+    n = crank.size
+    inp = CycleInputs(
+        crank, t, np.full(n, 10.0), np.full(n, 10.0), np.full(n, 2.0), np.full(n, 1e-3), WIDTH
+    )
+    th = _thermal(inp)
+    iso = march_cycle(inp, "u", "u", IsothermalCycle.for_set(CASE, UNCOATED))
+    assert th.converged.all() and iso.converged.all()
+    assert set(th.validity) == set(iso.validity)
+    (count, first, text), *_ = th.validity.values()
+    assert count == n and first == 0.0
+    assert text.startswith("the load-carrying zone reaches 0.2")
+
+
+def test_methods_table():
+    """Both variants are reached by name through the one driver; an unknown name is an
+    input error."""
+    assert isinstance(METHODS["isothermal"](CASE, UNCOATED), IsothermalCycle)
+    assert isinstance(METHODS["thermal"](CASE, UNCOATED), ThermalCycle)
+    with pytest.raises(InputError, match="method must be one of"):
+        cycle_for_set(CASE, UNCOATED, _ramp_inputs(1.0), "viscoelastic")
+
+
+# ----------------------------------------------------------------------------- the stepper
+STEEL = Material(210e9, 0.3)
+PAIR = (Body(STEEL), Body(STEEL))
+STEEL_T = ThermalProperties(46.0, 7850.0, 470.0)
+OIL = ThermalLubricant(
+    kelvin(40.0), kinematic_viscosity_40=64e-6, kinematic_viscosity_100=11e-6, density=852.0
+)
+W, R = 2e5, 0.02
+
+
+def _stepper(kind):
+    if kind == "thermal":
+        return ThermalTransientEHL(PAIR, OIL, (ThermalBody(STEEL_T), ThermalBody(STEEL_T)), n=128)
+    return TransientEHL(PAIR, OIL.isothermal(), n=128)
+
+
+@pytest.mark.parametrize("kind", ["isothermal", "thermal"])
+def test_steps_use_the_newton_predictor(monkeypatch, kind):
+    """Every step starts Newton from the predictor; from the second step after a start
+    (two levels known) it extrapolates the pressure, i.e. changes the start."""
+    seen = []
+    orig = TransientEHL._predict
+
+    def spy(self, sysm, st, dt):
+        q = st.Q.copy()
+        out = orig(self, sysm, st, dt)
+        seen.append(not np.array_equal(out.Q, q))
+        return out
+
+    monkeypatch.setattr(TransientEHL, "_predict", spy)
+    tr = _stepper(kind)
+    tr.start_steady(W, R, 2.0, 1.0)
+    for k in range(1, 4):
+        assert tr.step(2e-5, W * (1 + 0.1 * k), R, 2.0, 1.0).converged
+    assert seen == [False, True, True]
+
+
+@pytest.mark.parametrize("kind", ["isothermal", "thermal"])
+def test_start_steady_resets_the_history(kind):
+    """A stepper restarted by start_steady holds the one level of its start, the same as
+    a fresh stepper started there, and marches on identically."""
+    a, b = _stepper(kind), _stepper(kind)
+    a.start_steady(W, R, 2.0, 1.0)
+    for k in range(1, 3):
+        a.step(2e-5, W, R, 2.0, 1.0 + 0.2 * k)
+    a.start_steady(1.5 * W, R, 2.5, 1.0, time=1.0)
+    b.start_steady(1.5 * W, R, 2.5, 1.0, time=1.0)
+    assert len(a._levels) == len(b._levels) == 1
+    la, lb = a._levels[0], b._levels[0]
+    assert la.dt is None and np.array_equal(la.q, lb.q) and np.array_equal(la.rho_h, lb.rho_h)
+    for k in range(1, 3):
+        ra, rb = (s.step(2e-5, 1.5 * W * (1 + 0.1 * k), R, 2.5, 1.0) for s in (a, b))
+        assert ra.central_film == rb.central_film and ra.friction == rb.friction
