@@ -7,8 +7,9 @@ each node, and the per-node factors C/C(T̄) and D/D(T̄) of the generalized Rey
 equation (Yang & Wen 1990; :mod:`tribodyn.physics.film_thermal`) carry the variation of
 viscosity and density across the film. The temperature (film + both solids,
 :mod:`.energy`) is then solved for the new pressure, under-relaxed (Aitken's dynamic
-relaxation factor from the last two residuals), and the two are iterated to a fixed point: converged when the temperature changes by less than
-``ThermalOptions.tol`` [K] and the central film by less than 1e-5 (relative).
+relaxation factor from the last two residuals), and the two are iterated to a fixed
+point: converged when the temperature changes by less than ``ThermalOptions.tol`` [K]
+and the central film by less than 1e-5 (relative).
 
 Shear: Couette stress with the Eyring law at the local temperature (τ_E ∝ T), capped by
 the limiting shear stress of the hottest layer; heat from viscous dissipation (Couette +
