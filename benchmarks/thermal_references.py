@@ -13,13 +13,16 @@ Steel on steel line contact, w = 500 kN/m, R = 20 mm (p_h ≈ 0.96 GPa), SAE 5W-
   μ₀u_s²/(8k) between walls at the bulk temperature;
 * pure rolling under all of Murch & Wilson's assumptions (walls at the bulk temperature,
   k independent of pressure, no compression heating, Barus, incompressible; 21 film nodes):
-  the film reduction against theirs (docs/validation.md, *Known gaps*);
+  the film reduction against theirs and against the independent thermal Grubin inlet of
+  tests/independent_inlet.py (docs/validation.md, *Thermal inlet*);
 * viscous traction coefficient, thermal and isothermal, over SRR = 0.005 … 1.2.
 Not a timing; the tests check the rolling point and the traction curve's shape.
 """
 
 import json
 import math
+import sys
+from pathlib import Path
 
 from tribodyn import Body, Material, solve_ehl
 from tribodyn.contact.ehl.thermal import ThermalOptions, solve_thermal_ehl
@@ -93,8 +96,30 @@ def main():
         )
     finally:
         thermal_oil.CONDUCTIVITY_PRESSURE = saved
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+    from independent_inlet import grubin_inlet
+
+    mu0, ti = mw_oil.inlet_viscosity, mw_oil.inlet_temperature
+    beta = oil.temperature_viscosity_coefficient()
+    k0 = float(oil.conductivity(0.0, oil.inlet_temperature))
+    l0 = math.log(mu0) + 9.67
+    s0 = beta * (ti - 138.0) / l0
+    kw = dict(
+        load=W,
+        radius=R,
+        e_prime=e,
+        speed=UE,
+        mu0=mu0,
+        alpha=mw_oil.inlet_pressure_viscosity,
+        beta=beta,
+        k=k0,
+        rho_c=float(mw_oil.volumetric_heat_capacity(0.0, ti)),
+        thinning=lambda th: math.log(mu0) + 9.67 - l0 * ((ti + th - 138.0) / (ti - 138.0)) ** -s0,
+    )
+    grubin = grubin_inlet(**kw)["h0"] / grubin_inlet(**kw, heating=False)["h0"]
     inlet_analysis = {
         "h_over_isothermal": mw.central_film / mw_iso.central_film,
+        "independent_thermal_grubin_inlet": grubin,
         "murch_wilson_1975": 3.94 / (3.94 + L**0.62),
         "converged": bool(mw.converged),
     }

@@ -6,9 +6,10 @@ with the temperature frozen: the lubricant seen by :class:`~.reynolds.ReynoldsSy
 each node, and the per-node factors C/C(T̄) and D/D(T̄) of the generalized Reynolds
 equation (Yang & Wen 1990; :mod:`tribodyn.physics.film_thermal`) carry the variation of
 viscosity and density across the film. The temperature (film + both solids,
-:mod:`.energy`) is then solved for the new pressure, under-relaxed, and the two are
-iterated to a fixed point: converged when the temperature changes by less than
-``ThermalOptions.tol`` [K] and the central film by less than 1e-5 (relative).
+:mod:`.energy`) is then solved for the new pressure, under-relaxed (Aitken's dynamic
+relaxation factor from the last two residuals), and the two are iterated to a fixed
+point: converged when the temperature changes by less than ``ThermalOptions.tol`` [K]
+and the central film by less than 1e-5 (relative).
 
 Shear: Couette stress with the Eyring law at the local temperature (τ_E ∝ T), capped by
 the limiting shear stress of the hottest layer; heat from viscous dissipation (Couette +
@@ -67,7 +68,8 @@ class ThermalOptions:
     pressure of a step is solved with the temperatures of the previous step, then the
     temperatures with the new pressure — staggered; more iterations stop early at
     ``tol``); relaxation : under-relaxation of the
-    temperature; shear_heating, compression_heating : switch the heat sources (False:
+    temperature (steady: of the first step, then Aitken's dynamic relaxation);
+    shear_heating, compression_heating : switch the heat sources (False:
     isothermal-limit checks).
     """
 
@@ -547,22 +549,29 @@ def solve_thermal_ehl(
     hc_prev = iso.central_film
     relax = topts.relaxation
     last_change = float("inf")
-    stalled = 0
+    r_prev: np.ndarray | None = None
     lu = None
     for it in range(1, topts.max_iter + 1):
         p, h = st.P * sysm.p_ref, st.H * sysm.h_ref
         pa = (st.Q - st.P) * sysm.p_ref
         theta_prev = tf.theta.copy()
-        change = tf.update(grid.x, p, h, pa, cond, roughness, opts, relax=relax)
+        change = tf.update(grid.x, p, h, pa, cond, roughness, opts, relax=1.0, refresh=False)
         if not math.isfinite(change):
             msg = "energy equation gave a non-finite temperature"
             break
-        # not contracting (growing or stalled, e.g. a period-2 oscillation): relax more
-        stalled = stalled + 1 if change > 0.9 * last_change else 0
-        if change > 1.2 * last_change or stalled >= 2:
-            relax, stalled = max(0.05, 0.6 * relax), 0
-        elif change < 0.5 * last_change:
-            relax = min(topts.relaxation, 1.2 * relax)
+        # Aitken's dynamic relaxation (Irons & Tuck 1969; Küttler & Wall 2008): with the
+        # residuals r_k = θ_new − θ_k, ω_k = −ω_{k−1} r_{k−1}·(r_k − r_{k−1}) / |r_k −
+        # r_{k−1}|², in [0.05, 1]. A fixed rule on max|r| cannot tell a slow contraction
+        # under strong relaxation from a stall, and ratchets ω down to its floor.
+        r = tf.theta - theta_prev
+        if r_prev is not None:
+            dr = r - r_prev
+            den = float(np.sum(dr * dr))
+            if den > 0.0:
+                relax = min(1.0, max(0.05, -relax * float(np.sum(r_prev * dr)) / den))
+        r_prev = r
+        tf.theta = theta_prev + relax * r
+        tf.refresh(grid.x, p, h, pa, cond, roughness, opts)
         last_change = change
         for _ in range(5):
             apply_factors(sysm, tf, cond)
@@ -573,7 +582,7 @@ def solve_thermal_ehl(
             # too large a temperature step for Newton from here: back off halfway
             tf.theta = theta_prev + 0.5 * (tf.theta - theta_prev)
             tf.refresh(grid.x, p, h, pa, cond, roughness, opts)
-            relax = max(0.1, 0.5 * relax)
+            relax *= 0.5
         assert out is not None  # the loop above ran at least once
         if not out.converged:
             msg = f"Reynolds failed at thermal iteration {it}: {out.message}"
