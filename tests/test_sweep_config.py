@@ -388,3 +388,20 @@ def test_docs_cover_every_sweep_key():
         if f"### `[{k}]`" not in doc and f"### `[[{k}]]`" not in doc
     ]
     assert not missing, missing
+
+
+# ----------------------------------------------------------------------------- file reading
+def test_sweep_file_with_a_byte_order_mark_is_read(tmp_path):
+    f = tmp_path / "bom.toml"
+    f.write_bytes(
+        "\ufeff[sweep]\nmode = 'dynamics'\n[[axes]]\npath = 'engine.speed_rpm'\n"
+        "values = [2000, 3000]\n".encode()
+    )
+    assert load_sweep(f).n_points == 2
+
+
+def test_deeply_nested_sweep_file_is_an_input_error(tmp_path):
+    f = tmp_path / "deep.toml"
+    f.write_text("[fixed]\n'engine.speed_rpm' = " + "[" * 5000 + "]" * 5000 + "\n")
+    with pytest.raises(InputError, match="nested more than 32 levels"):
+        load_sweep(f)

@@ -19,7 +19,6 @@ from __future__ import annotations
 import hashlib
 import itertools
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Annotated, Any, Literal, Optional, Union
@@ -40,6 +39,7 @@ from .case import Case, bundled_cases, load_case, to_toml
 from .errors import Problems, format_validation_error
 from .paths import Key, PathError, parse_path, schema_field, set_path
 from .schema import CAM_MODELS, Section, _q
+from .tomlfile import check_nesting, parse_toml, read_toml_text
 
 __all__ = [
     "SweepInfo",
@@ -322,6 +322,7 @@ class SweepSpec:
         base_dir = Path(base_dir) if base_dir is not None else Path.cwd()
         if not isinstance(data, dict):
             raise InputError(f"a sweep must be a table (got {type(data).__name__})")
+        check_nesting(data, source)
         try:
             cfg = SweepFile.model_validate(data)
         except ValidationError as exc:
@@ -352,24 +353,13 @@ class SweepSpec:
 
     @classmethod
     def from_toml_string(cls, text: str, *, base_dir=None, source=None) -> SweepSpec:
-        try:
-            data = tomllib.loads(text)
-        except tomllib.TOMLDecodeError as exc:
-            where = f"{source}: " if source is not None else ""
-            raise InputError(f"{where}TOML syntax error: {exc}") from None
+        data = parse_toml(text, source)
         return cls.from_dict(data, base_dir=base_dir, source=source)
 
     @classmethod
     def from_toml(cls, path) -> SweepSpec:
         p = Path(path)
-        try:
-            text = p.read_text(encoding="utf-8")
-        except OSError as exc:
-            raise InputError(f"cannot read sweep file {str(p)!r}: {exc.strerror}") from None
-        except UnicodeDecodeError as exc:
-            raise InputError(
-                f"sweep file {str(p)!r} is not UTF-8 text (byte {exc.start}: {exc.reason})"
-            ) from None
+        text = read_toml_text(p, "sweep")
         return cls.from_toml_string(text, base_dir=p.resolve().parent, source=p)
 
 
