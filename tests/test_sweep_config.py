@@ -405,3 +405,44 @@ def test_deeply_nested_sweep_file_is_an_input_error(tmp_path):
     f.write_text("[fixed]\n'engine.speed_rpm' = " + "[" * 5000 + "]" * 5000 + "\n")
     with pytest.raises(InputError, match="nested more than 32 levels"):
         load_sweep(f)
+
+
+# ----------------------------------------------------------------------------- --scheduler
+@pytest.mark.parametrize(
+    "content",
+    [b"garbage\n", b'{"address": 5}', b"[1, 2]", b"\xff\xfe", b'{"address": "nowhere"}'],
+    ids=["text", "address-not-a-string", "not-an-object", "binary", "no-scheme"],
+)
+def test_junk_scheduler_file_names_the_option(tmp_path, content):
+    """A junk scheduler file used to end in an AssertionError from dask."""
+    from tribodyn.workflow.sweep import connect
+
+    f = tmp_path / "scheduler.json"
+    f.write_bytes(content)
+    with pytest.raises(InputError, match="^--scheduler: .* is not a Dask scheduler file"):
+        connect(str(f), timeout=2)
+
+
+@pytest.mark.parametrize("address", ["ucx://a:1", "garbage", "tcp://", "xyz://a:1"])
+def test_malformed_scheduler_address_names_the_option(tmp_path, address):
+    from tribodyn.workflow.sweep import connect
+
+    with pytest.raises(InputError, match="^--scheduler: cannot connect"):
+        connect(address, timeout=2)
+    with pytest.raises(InputError, match="^--scheduler: .* is a folder"):
+        connect(str(tmp_path), timeout=2)
+
+
+@pytest.mark.parametrize("command", ["sweep", "run"])
+def test_cli_junk_scheduler_is_a_clear_error(tmp_path, command):
+    from typer.testing import CliRunner
+
+    from tribodyn.cli import app
+
+    junk = tmp_path / "junk"
+    junk.write_text("garbage")
+    first = ["sweep", "andreou2023_dynamics"] if command == "sweep" else ["run"]
+    r = CliRunner().invoke(app, [*first, "-o", str(tmp_path / "out"), "--scheduler", str(junk)])
+    assert r.exit_code == 2, r.output
+    assert r.exception is None or isinstance(r.exception, SystemExit)
+    assert "--scheduler" in r.output and "not a Dask scheduler file" in " ".join(r.output.split())

@@ -18,6 +18,7 @@ the sweep's dimensions (:func:`combine_points`).
 
 from __future__ import annotations
 
+import json
 import logging
 import math
 import os
@@ -95,36 +96,64 @@ def local_cluster(workers: int | None = None) -> LocalCluster:
     )
 
 
+def _scheduler_file_address(path: Path) -> str:
+    """The address in a Dask scheduler file (JSON with ``"address"``, as written by
+    ``dask scheduler --scheduler-file FILE``), or :class:`InputError` naming
+    ``--scheduler``."""
+    what = (
+        f"--scheduler: {str(path)!r} is not a Dask scheduler file (a JSON file with the "
+        'scheduler\'s "address", written by `dask scheduler --scheduler-file FILE`)'
+    )
+    try:
+        with open(path, "rb") as f:
+            raw = f.read(1_000_001)
+        info = json.loads(raw.decode("utf-8")) if len(raw) <= 1_000_000 else None
+    except (OSError, UnicodeDecodeError, ValueError, RecursionError):
+        raise InputError(what) from None
+    address = info.get("address") if isinstance(info, dict) else None
+    if not isinstance(address, str) or "://" not in address:
+        raise InputError(what)
+    return address
+
+
 def connect(address: str, *, workers: int | None = None, timeout: float = 30.0) -> Client:
     """A client of an existing Dask scheduler: ``tcp://host:port`` (or another Dask
     address) or the path of a scheduler file. ``workers``: wait until that many workers
-    are connected. Raises :class:`InputError` naming ``--scheduler`` if it cannot."""
+    are connected. Raises :class:`InputError` naming ``--scheduler`` if it cannot: a
+    missing scheduler, a malformed address or a file that is not a scheduler file."""
     from distributed import Client
 
     if not isinstance(address, str) or not address.strip():
         raise InputError(
             "--scheduler: give the scheduler's address, e.g. tcp://host:8786, or a scheduler file"
         )
+    shown = address if len(address) <= 80 else address[:77] + "..."
+    target = address
+    if "://" not in address and Path(address).exists():
+        if not Path(address).is_file():
+            raise InputError(
+                f"--scheduler: {shown!r} is a folder; give the scheduler's address, e.g. "
+                "tcp://host:8786, or a scheduler file"
+            )
+        target = _scheduler_file_address(Path(address))
     try:
-        if "://" not in address and Path(address).is_file():
-            client = Client(scheduler_file=address, timeout=timeout)
-        else:
-            client = Client(address, timeout=timeout)
-    except (OSError, TimeoutError, ValueError) as exc:
+        client = Client(target, timeout=timeout)
+    except Exception as exc:  # dask raises OSError, ValueError, TypeError, AssertionError…
+        detail = str(exc) if len(str(exc)) <= 200 else str(exc)[:197] + "..."
         raise InputError(
-            f"--scheduler: cannot connect to {address!r} within {timeout:g} s "
-            f"({type(exc).__name__}: {exc}); start one with `dask scheduler` "
+            f"--scheduler: cannot connect to {shown!r} within {timeout:g} s "
+            f"({type(exc).__name__}: {detail}); start one with `dask scheduler` "
             "or give a running scheduler's address, e.g. tcp://host:8786"
         ) from None
     if workers:
         try:
             client.wait_for_workers(int(workers), timeout=timeout)
-        except TimeoutError:
-            have = len(client.scheduler_info().get("workers", {}))
+        except Exception:  # TimeoutError, or a scheduler gone meanwhile
+            have = _n_workers(client)
             client.close()
             raise InputError(
                 f"--workers: {workers} workers requested, {have} connected to "
-                f"{address} after {timeout:g} s"
+                f"{shown} after {timeout:g} s"
             ) from None
     return client
 
