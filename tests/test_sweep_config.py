@@ -423,11 +423,14 @@ def test_junk_scheduler_file_names_the_option(tmp_path, content):
         connect(str(f), timeout=2)
 
 
-@pytest.mark.parametrize("address", ["ucx://a:1", "garbage", "tcp://", "xyz://a:1"])
+@pytest.mark.parametrize(
+    "address",
+    ["ucx://a:1", "garbage", "tcp://", "xyz://a:1", "tcp://h:notaport", "tcp://h:0", "tcp://[::1"],
+)
 def test_malformed_scheduler_address_names_the_option(tmp_path, address):
     from tribodyn.workflow.sweep import connect
 
-    with pytest.raises(InputError, match="^--scheduler: cannot connect"):
+    with pytest.raises(InputError, match="^--scheduler: .*tcp://host:8786"):
         connect(address, timeout=2)
     with pytest.raises(InputError, match="^--scheduler: .* is a folder"):
         connect(str(tmp_path), timeout=2)
@@ -446,3 +449,65 @@ def test_cli_junk_scheduler_is_a_clear_error(tmp_path, command):
     assert r.exit_code == 2, r.output
     assert r.exception is None or isinstance(r.exception, SystemExit)
     assert "--scheduler" in r.output and "not a Dask scheduler file" in " ".join(r.output.split())
+
+
+# ----------------------------------------------------------------------------- large sweeps
+def _range_sweep(tmp_path, *axes):
+    text = "[sweep]\nmode = 'dynamics'\n" + "".join(
+        f"[[axes]]\npath = '{p}'\nstart = {a}\nstop = {b}\nnum = {n}\n" for p, a, b, n in axes
+    )
+    f = tmp_path / "big.toml"
+    f.write_text(text)
+    return f
+
+
+def test_long_axis_validates_a_bounded_sample(tmp_path, monkeypatch):
+    """Every value of an axis used to be validated with the whole case (~10 ms each: an
+    axis of 10⁶ values took hours); beyond MAX_VALIDATED_VALUES a spread sample is."""
+    from tribodyn.config.sweep import MAX_VALIDATED_VALUES
+
+    calls = []
+    original = Case.updated
+    monkeypatch.setattr(Case, "updated", lambda self, ch: calls.append(ch) or original(self, ch))
+    spec = load_sweep(_range_sweep(tmp_path, ("engine.speed_rpm", 1000, 7000, 3000)))
+    assert spec.n_points == 3000
+    assert len(calls) <= MAX_VALIDATED_VALUES + 2  # (+ the fixed changes)
+    values = [c["engine.speed_rpm"] for c in calls if "engine.speed_rpm" in c]
+    assert min(values) == 1000 and max(values) == 7000
+
+
+def test_long_axis_still_reports_values_out_of_range(tmp_path):
+    f = _range_sweep(tmp_path, ("engine.speed_rpm", 1000, 70000, 5000))
+    with pytest.raises(InputError) as err:
+        load_sweep(f)
+    msg = str(err.value)
+    assert "engine.speed_rpm: must be > 0 rpm and <= 50000 rpm" in msg
+    assert msg.count("range value") == 10 and "more invalid values" in msg
+
+
+def test_dry_run_of_a_million_points_answers_fast(tmp_path, monkeypatch):
+    """--dry-run built and validated every point (10⁶ case validations, hours)."""
+    from typer.testing import CliRunner
+
+    import tribodyn.workflow.sweep as ws
+    from tribodyn.cli import app
+    from tribodyn.config.sweep import SweepSpec
+
+    def no_plan(self):
+        raise AssertionError("the whole plan was built")
+
+    monkeypatch.setattr(SweepSpec, "points", no_plan)
+    monkeypatch.setattr(ws, "estimate_point_seconds", lambda case, mode="study": 2.0)
+    f = _range_sweep(
+        tmp_path,
+        ("engine.speed_rpm", 1000, 7000, 1000),
+        ("valvetrain.spring_preload", 200, 300, 1000),
+    )
+    r = CliRunner().invoke(
+        app, ["sweep", str(f), "-o", str(tmp_path / "out"), "--dry-run", "-j", "4"]
+    )
+    assert r.exit_code == 0, r.output
+    text = " ".join(r.output.split())
+    assert "1000000 points" in text and "1000000 to run" in text
+    assert "validated up to 1000 points only" in text
+    assert "about 138.9 h on 4 worker(s)" in text  # 10⁶ × 2 s / 4

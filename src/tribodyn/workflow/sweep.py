@@ -116,6 +116,33 @@ def _scheduler_file_address(path: Path) -> str:
     return address
 
 
+#: Address schemes of a remote Dask scheduler (inproc is in-process; ucx needs ucx-py).
+SCHEDULER_SCHEMES = ("tcp", "tls", "ws", "wss")
+
+
+def _check_address(address: str, shown: str) -> None:
+    """:class:`InputError` naming ``--scheduler`` unless ``address`` has the form
+    scheme://host:port with a network scheme (malformed addresses are not handed to
+    dask, whose client can stall on them)."""
+    from distributed.comm.addressing import parse_address, parse_host_port
+
+    how = "give a running scheduler's address, e.g. tcp://host:8786, or a scheduler file"
+    if "://" not in address:
+        raise InputError(f"--scheduler: {shown!r} is neither an address nor a file; {how}")
+    scheme, location = parse_address(address)
+    if scheme not in SCHEDULER_SCHEMES:
+        raise InputError(
+            f"--scheduler: {shown!r}: unsupported scheme {scheme!r} (use "
+            f"{', '.join(s + '://' for s in SCHEDULER_SCHEMES)}); {how}"
+        )
+    try:
+        _, port = parse_host_port(location)
+    except (ValueError, TypeError) as exc:
+        raise InputError(f"--scheduler: {shown!r} is not host:port ({exc}); {how}") from None
+    if not 0 < int(port) < 65536:
+        raise InputError(f"--scheduler: port {port} of {shown!r} is not in 1…65535; {how}")
+
+
 def connect(address: str, *, workers: int | None = None, timeout: float = 30.0) -> Client:
     """A client of an existing Dask scheduler: ``tcp://host:port`` (or another Dask
     address) or the path of a scheduler file. ``workers``: wait until that many workers
@@ -136,6 +163,7 @@ def connect(address: str, *, workers: int | None = None, timeout: float = 30.0) 
                 "tcp://host:8786, or a scheduler file"
             )
         target = _scheduler_file_address(Path(address))
+    _check_address(target, shown)
     try:
         client = Client(target, timeout=timeout)
     except Exception as exc:  # dask raises OSError, ValueError, TypeError, AssertionError…
@@ -381,25 +409,45 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
     return t
 
 
+#: A dry run validates every combination of sweeps up to this many points; larger ones
+#: are counted from their shape and calibrated on their first and last point only.
+PLAN_CHECK_LIMIT = 1000
+
+
 def estimate_sweep(spec: SweepSpec, *, workers: int, out_dir: PathLike | None = None) -> dict:
     """Estimated wall time of a sweep on ``workers`` single-threaded workers.
 
     The time per point is the median CPU time of points already finished in ``out_dir``
     (resume) if any, else :func:`estimate_point_seconds` calibrated on the first and the
     last valid point of the plan. Returns points, invalid, done, todo, seconds_per_point,
-    seconds, method."""
-    plan = spec.points()
-    valid = [p for p in plan if p.case is not None]
+    seconds, method, checked. Up to :data:`PLAN_CHECK_LIMIT` points every combination is
+    validated (``checked`` True); a larger plan is not built (seconds, not hours): its
+    ``invalid`` is None, ``done`` counts the point files in ``out_dir``, and it is
+    calibrated on its first and last point."""
+    n = spec.n_points
     store = PointStore(out_dir) if out_dir is not None else None
     done_times = []
     done = 0
-    if store is not None:
-        for p in valid:
-            ds = store.load(p.key) if store.status(p.key) == "ok" else None
-            if ds is not None:
-                done += 1
-                done_times.append(float(ds.attrs.get("cpu_s", ds.attrs.get("runtime_s", math.nan))))
-    todo = len(valid) - done
+    checked = n <= PLAN_CHECK_LIMIT
+    if checked:
+        plan = spec.points()
+        valid = [p for p in plan if p.case is not None]
+        invalid: int | None = n - len(valid)
+        if store is not None:
+            for p in valid:
+                ds = store.load(p.key) if store.status(p.key) == "ok" else None
+                if ds is not None:
+                    done += 1
+                    done_times.append(
+                        float(ds.attrs.get("cpu_s", ds.attrs.get("runtime_s", math.nan)))
+                    )
+        todo = len(valid) - done
+    else:
+        ends = [spec.point(0), spec.point(n - 1)]
+        valid = [p for p in ends if p.case is not None]
+        invalid = None
+        done = len(store.keys()) if store is not None else 0
+        todo = max(n - done, 0)
     done_times = [t for t in done_times if math.isfinite(t)]
     if done_times:
         per = statistics.median(done_times)
@@ -413,12 +461,13 @@ def estimate_sweep(spec: SweepSpec, *, workers: int, out_dir: PathLike | None = 
         per, method = 0.0, "no valid point"
     w = max(1, min(workers, max(todo, 1)))
     return {
-        "points": len(plan),
-        "invalid": len(plan) - len(valid),
+        "points": n,
+        "invalid": invalid,
         "done": done,
         "todo": todo,
         "seconds_per_point": per,
         "seconds": math.ceil(todo / w) * per,
         "workers": w,
         "method": method,
+        "checked": checked,
     }
