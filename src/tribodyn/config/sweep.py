@@ -507,7 +507,7 @@ def _values_to_check(fi, values) -> list[int]:
         for attr in ("gt", "ge", "lt", "le")
         if getattr(m, attr, None) is not None
     ]
-    outside = []
+    outside: list[int] = []
     for j, v in enumerate(values):
         if len(outside) > MAX_REPORTED_VALUES:
             break

@@ -10,7 +10,9 @@ the interpreter's recursion limit while parsing or validating.
 from __future__ import annotations
 
 import tomllib
+from collections.abc import Iterable
 from pathlib import Path
+from typing import Any, NoReturn
 
 from .._validation import InputError
 
@@ -54,6 +56,7 @@ def _depth(data) -> int:
     stack = [(data, 0)]
     while stack:
         value, d = stack.pop()
+        children: Iterable[Any]
         if isinstance(value, dict):
             children = value.values()
         elif isinstance(value, list):
@@ -80,14 +83,12 @@ def parse_toml(text: str, source=None) -> dict:
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"{where}TOML syntax error: {exc}") from None
     except RecursionError:
-        data = None
-    if data is None:
         _too_deep(where)
     check_nesting(data, source)
     return data
 
 
-def _too_deep(where: str):
+def _too_deep(where: str) -> NoReturn:
     raise InputError(
         f"{where}arrays or tables are nested more than {MAX_NESTING} levels deep; "
         "no key takes such values"
