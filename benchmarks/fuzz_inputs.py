@@ -120,7 +120,8 @@ def expect_input_error(group: str, case: str, call, names: str | None = None) ->
         record(group, "hang", f"{case}: more than {LIMIT_S} s")
     except InputError as exc:
         msg = str(exc)
-        if any(w in msg for w in INTERNAL) or (names is not None and names not in msg):
+        internal = [w for w in INTERNAL if names is None or not w.startswith(names)]
+        if any(w in msg for w in internal) or (names is not None and names not in msg):
             record(group, "garbage", f"{case}: message does not name {names}: {msg[:200]}")
         else:
             record(group, "handled", case)
@@ -514,17 +515,21 @@ def fuzz_contact_cli() -> None:
     cli("contact cli", ["contact", "--radius", "0.01", "--ue", "5"])  # no load
     cli("contact cli", ["contact", "--load", "633", "--ue", "5"])  # no radius
     cli("contact cli", ["contact", "--load", "633", "--radius", "0.01"])  # no speed
-    for args in (
-        ["--load", "1e9", "--radius", "0.01", "--ue", "2", "--us", "1"],
-        ["--load", "633", "--radius", "0.01", "--ue", "1e6", "--us", "1e6"],
-        ["--load", "1e-3", "--radius", "0.01", "--ue", "2"],
-        ["--load-per-length", "1e-3", "--radius", "0.01", "--ue", "2"],
-        ["--dry", "--load", "1e9", "--radius", "0.01"],
+    for args, expect in (
+        (["--load", "1e7", "--radius", "1e-4", "--ue", "2", "--us", "1"], (0, 1)),
+        (["--load-per-length", "1", "--radius", "0.01", "--ue", "1e3", "--us", "1e3"], (0, 1)),
+        (["--load", "1e-3", "--radius", "0.01", "--ue", "2"], (0, 1)),
+        (["--load-per-length", "1e-3", "--radius", "0.01", "--ue", "2"], (0, 1)),
+        (["--dry", "--load", "1e7", "--radius", "1e-4"], (0, 1)),
+        # beyond limits.LINE_LOAD and SURFACE_SPEED: refused
+        (["--load", "1e9", "--radius", "0.01", "--ue", "2", "--us", "1"], (2,)),
+        (["--load", "633", "--radius", "0.01", "--ue", "1e6", "--us", "1e6"], (2,)),
+        (["--dry", "--load", "1e9", "--radius", "0.01"], (2,)),
     ):
         cli(
             "contact cli extremes",
             ["contact", *args, "--n", "256", "--json"],
-            expect=(0, 1),
+            expect=expect,
             check=no_bad_film,
         )
 
