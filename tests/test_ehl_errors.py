@@ -119,3 +119,13 @@ def test_nonconvergence_is_reported_without_nans():
     for arr in (r.pressure, r.film, r.asperity_pressure):
         assert np.all(np.isfinite(arr))
     assert np.isfinite(r.central_film) and np.isfinite(r.viscous_friction)
+
+
+def test_a_domain_that_cannot_be_sized_is_said_in_the_users_terms(monkeypatch):
+    """Safety net behind the limits: non-finite scales of the grid (the old
+    'dx must be a finite real number (got nan)') name load, radius and speed."""
+    import tribodyn.contact.ehl.grid as G
+
+    monkeypatch.setattr(G, "_length_scale", lambda *a, **k: (float("nan"), 1e-4, 1e-6))
+    with pytest.raises(InputError, match=r"^load 10000 N/m, radius 0\.01 m and entrainment"):
+        solve_ehl(1e4, 0.01, 1.0, 0.5, PAIR, OIL, n=64)
