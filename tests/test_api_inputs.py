@@ -395,3 +395,22 @@ def test_greenwood_tripp_orders_up_to_the_limit_match_quadrature(n, lam):
         limit=200,
     )
     assert greenwood_tripp(n, lam) == pytest.approx(ref / math.sqrt(2 * math.pi), rel=1e-8)
+
+
+@pytest.mark.parametrize(
+    "kw, name",
+    [
+        (dict(x_nodes=float("nan")), "x_nodes"),  # ValueError from int(nan) before
+        (dict(film_nodes=10**400), "film_nodes"),
+        (dict(max_iter=float("inf")), "max_iter"),
+        (dict(step_iter=2.5), "step_iter"),
+        (dict(solid_nodes="8"), "solid_nodes"),
+        (dict(shear_heating="no"), "shear_heating"),
+        (dict(compression_heating=1), "compression_heating"),
+    ],
+)
+def test_thermal_options_convert_safely(kw, name):
+    from tribodyn.contact.ehl.thermal import ThermalOptions
+
+    with pytest.raises(InputError, match=rf"^{name} must"):
+        ThermalOptions(**kw)
