@@ -9,10 +9,20 @@ Every input is classified as
 * ``traceback`` — any other exception (API), or a CLI run that ends in an exception;
 * ``garbage`` — a bad input accepted silently, a result that says converged with a
   non-positive or non-finite film, a film outside the thin-film range without a warning,
-  or a CLI that starts computing before refusing its output folder.
+  a message naming an internal quantity instead of the user's argument, or a CLI that
+  starts computing before refusing its output folder;
+* ``hang`` — an input that takes longer than the per-input time limit (``LIMIT_S``);
+* ``lost`` — a user's file (kept beside the inputs) deleted or changed.
+
+Besides wrong types and out-of-range values the inputs include deeply nested TOML, ints
+beyond the float range, denormal and huge loads, radii and speeds, junk ``--scheduler``
+files and addresses, case and sweep files with a byte-order mark, a too long ``-o`` name,
+a sweep of 10⁶ points (dry run), topography maps beyond the size limit and datasheet oils
+at 223 K.
 
 Prints JSON: totals, counts per group and the first offending cases. The goal is
-0 tracebacks and 0 garbage. Run: ``python benchmarks/fuzz_inputs.py`` (about two minutes).
+0 tracebacks, 0 hangs, 0 garbage, 0 lost files. Run: ``python benchmarks/fuzz_inputs.py``
+(under a minute to a few minutes, with the machine's load).
 """
 
 from __future__ import annotations
@@ -22,6 +32,7 @@ import io
 import json
 import math
 import os
+import signal
 import sys
 import tempfile
 import time
@@ -60,31 +71,70 @@ STEEL = Material(210e9, 0.3)
 PAIR = (Body(STEEL), Body(STEEL))
 OIL = Lubricant(0.055, 1.05e-8)
 ROUGH = Roughness(2.7e9, 0.347e-6, 0.217e-6)
-WRONG_TYPES = [None, "1", "abc", [1.0, 2.0], {}, 1j, object(), True]
+WRONG_TYPES = [None, "1", "abc", [1.0, 2.0], {}, 1j, object(), True, np.True_, np.complex128(1)]
+HUGE_INTS = [10**400, -(10**400), 10**5000]
 NON_FINITE = [float("nan"), float("inf"), -float("inf")]
 
-results = {"handled": 0, "traceback": 0, "garbage": 0}
+OUTCOMES = ("handled", "traceback", "garbage", "hang", "lost")
+results = dict.fromkeys(OUTCOMES, 0)
 groups: dict[str, dict] = {}
-examples = {"traceback": [], "garbage": []}
+examples: dict[str, list] = {k: [] for k in OUTCOMES if k != "handled"}
+#: per-input time limit [s]: an input that takes longer counts as a hang
+LIMIT_S = 60
+#: words of internal quantities that a message about a user's argument must not show
+INTERNAL = ("dx must", "pressure_viscosity must be >= 0", "h_ref", "p_ref")
+
+
+class Hang(BaseException):
+    """Raised by the alarm when an input exceeds LIMIT_S."""
+
+
+@contextlib.contextmanager
+def time_limit(seconds: float = LIMIT_S):
+    def alarm(signum, frame):
+        raise Hang()
+
+    old = signal.signal(signal.SIGALRM, alarm)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
 
 
 def record(group: str, outcome: str, case: str) -> None:
     results[outcome] += 1
-    g = groups.setdefault(group, {"handled": 0, "traceback": 0, "garbage": 0})
+    g = groups.setdefault(group, dict.fromkeys(OUTCOMES, 0))
     g[outcome] += 1
     if outcome != "handled" and len(examples[outcome]) < 25:
         examples[outcome].append(f"{group}: {case}")
 
 
-def expect_input_error(group: str, case: str, call) -> None:
+def expect_input_error(group: str, case: str, call, names: str | None = None) -> None:
+    """InputError expected (naming ``names`` if given, and no internal quantity)."""
     try:
-        call()
-    except InputError:
-        record(group, "handled", case)
+        with time_limit():
+            call()
+    except Hang:
+        record(group, "hang", f"{case}: more than {LIMIT_S} s")
+    except InputError as exc:
+        msg = str(exc)
+        internal = [w for w in INTERNAL if names is None or not w.startswith(names)]
+        if any(w in msg for w in internal) or (names is not None and names not in msg):
+            record(group, "garbage", f"{case}: message does not name {names}: {msg[:200]}")
+        else:
+            record(group, "handled", case)
     except Exception as exc:
         record(group, "traceback", f"{case} -> {type(exc).__name__}: {exc}"[:300])
     else:
         record(group, "garbage", f"{case} accepted")
+
+
+def _short(v) -> str:
+    if isinstance(v, int) and not isinstance(v, bool) and abs(v) > 10**20:
+        return f"{'-' if v < 0 else ''}10**{len(str(abs(v))) - 1 if abs(v) < 10**4000 else 5000}"
+    return f"{v!r:.20}"
 
 
 def outside(limit) -> list:
@@ -169,14 +219,15 @@ def fuzz_constructors() -> None:
     for name, (build, fields) in specs.items():
         kw = {k: v for k, (v, _) in fields.items() if v is not None}
         for arg, (_, limit) in fields.items():
-            bads = WRONG_TYPES + NON_FINITE + outside(limit)
+            bads = WRONG_TYPES + NON_FINITE + HUGE_INTS + outside(limit)
             for bad in bads:
                 if bad is None and (name, arg) in none_ok:
                     continue
                 expect_input_error(
                     "api constructors",
-                    f"{name}({arg}={bad!r:.20})",
+                    f"{name}({arg}={_short(bad)})",
                     lambda: build(**{**kw, arg: bad}),
+                    names=arg,
                 )
     # flags, choices and objects
     for case, call in [
@@ -334,12 +385,31 @@ def fuzz_extreme_solves() -> None:
 runner = CliRunner()
 
 
+#: a user's files that no input may delete or change: path → content
+KEEP: dict[Path, bytes] = {}
+
+
+def lost_files() -> list[str]:
+    return [str(p) for p, c in KEEP.items() if not p.is_file() or p.read_bytes() != c]
+
+
 def cli(group: str, args: list[str], expect=(2,), check=None) -> None:
-    case = "tribodyn " + " ".join(args)
+    case = "tribodyn " + " ".join(a if len(a) <= 60 else a[:20] + "…" for a in args)
     try:
-        r = runner.invoke(app, args, catch_exceptions=True)
+        with time_limit():
+            r = runner.invoke(app, args, catch_exceptions=True)
+    except Hang:
+        record(group, "hang", f"{case}: more than {LIMIT_S} s")
+        return
     except Exception as exc:
         record(group, "traceback", f"{case} -> {exc!r}"[:300])
+        return
+    gone = lost_files()
+    if gone:
+        record(group, "lost", f"{case}: {', '.join(gone)}")
+        for p in list(KEEP):
+            if str(p) in gone:
+                KEEP.pop(p)
         return
     if r.exception is not None and not isinstance(r.exception, SystemExit):
         tb = "".join(traceback.format_exception(r.exception))[-300:]
@@ -445,17 +515,21 @@ def fuzz_contact_cli() -> None:
     cli("contact cli", ["contact", "--radius", "0.01", "--ue", "5"])  # no load
     cli("contact cli", ["contact", "--load", "633", "--ue", "5"])  # no radius
     cli("contact cli", ["contact", "--load", "633", "--radius", "0.01"])  # no speed
-    for args in (
-        ["--load", "1e9", "--radius", "0.01", "--ue", "2", "--us", "1"],
-        ["--load", "633", "--radius", "0.01", "--ue", "1e6", "--us", "1e6"],
-        ["--load", "1e-3", "--radius", "0.01", "--ue", "2"],
-        ["--load-per-length", "1e-3", "--radius", "0.01", "--ue", "2"],
-        ["--dry", "--load", "1e9", "--radius", "0.01"],
+    for args, expect in (
+        (["--load", "1e7", "--radius", "1e-4", "--ue", "2", "--us", "1"], (0, 1)),
+        (["--load-per-length", "1", "--radius", "0.01", "--ue", "1e3", "--us", "1e3"], (0, 1)),
+        (["--load", "1e-3", "--radius", "0.01", "--ue", "2"], (0, 1)),
+        (["--load-per-length", "1e-3", "--radius", "0.01", "--ue", "2"], (0, 1)),
+        (["--dry", "--load", "1e7", "--radius", "1e-4"], (0, 1)),
+        # beyond limits.LINE_LOAD and SURFACE_SPEED: refused
+        (["--load", "1e9", "--radius", "0.01", "--ue", "2", "--us", "1"], (2,)),
+        (["--load", "633", "--radius", "0.01", "--ue", "1e6", "--us", "1e6"], (2,)),
+        (["--dry", "--load", "1e9", "--radius", "0.01"], (2,)),
     ):
         cli(
             "contact cli extremes",
             ["contact", *args, "--n", "256", "--json"],
-            expect=(0, 1),
+            expect=expect,
             check=no_bad_film,
         )
 
@@ -620,6 +694,151 @@ def fuzz_run_cli(tmp: Path) -> None:
         cycle.run_cycle_study = original
 
 
+# ----------------------------------------------------------------------------- 7 new kinds
+def fuzz_extreme_kinds(tmp: Path) -> None:
+    """Nested TOML, huge ints, denormal/huge operating points, junk schedulers, BOM,
+    long names, huge sweeps, large maps and cold datasheet oils."""
+    from tribodyn.config import Case, load_case
+    from tribodyn.config.sweep import load_sweep
+    from tribodyn.physics.oils import OILS
+    from tribodyn.physics.thermal_oil import ThermalLubricant
+
+    keep = tmp / "user_notes.txt"
+    keep.write_text("a user's file")
+    KEEP[keep] = keep.read_bytes()
+    g = "nested toml"
+    nested = {
+        "arrays": "a = " + "[" * 5000 + "]" * 5000,
+        "inline": "a = " + "{b = " * 3000 + "1" + "}" * 3000,
+        "dotted": "a" + ".b" * 5000 + " = 1",
+        "header": "[" + ".".join(["t"] * 5000) + "]\nx = 1\n",
+        "arrays40": "[engine]\nspeed_rpm = " + "[" * 40 + "1" + "]" * 40,
+    }
+    for name, text in nested.items():
+        f = tmp / f"nested_{name}.toml"
+        f.write_text(text)
+        expect_input_error(g, f"load_case(nested {name})", lambda f=f: load_case(f), "nested")
+        expect_input_error(g, f"load_sweep(nested {name})", lambda f=f: load_sweep(f), "nested")
+        cli(g, ["run", str(f), "-o", str(tmp / "out_nested")])
+        cli(g, ["sweep", str(f), "-o", str(tmp / "out_nested"), "--dry-run"])
+    deep: dict = {}
+    for _ in range(3000):
+        deep = {"x": deep}
+    expect_input_error(g, "Case.from_dict(3000 levels)", lambda: Case.from_dict({"a": deep}))
+
+    g = "operating point"
+    pair_args = dict(bodies=PAIR, lubricant=OIL, n=64, max_iter=10)
+    for arg, bad in [
+        ("load", 5e-324),
+        ("load", 1e-300),
+        ("load", 1e300),
+        ("load", 10**400),
+        ("radius", 5e-324),
+        ("radius", 1e300),
+        ("entrainment_speed", 1e300),
+        ("entrainment_speed", -1e300),
+        ("sliding_speed", 1e300),
+    ]:
+        kw = {**dict(load=1e4, radius=0.01, entrainment_speed=1.0, sliding_speed=0.5), arg: bad}
+        expect_input_error(
+            g, f"solve_ehl({arg}={_short(bad)})", lambda kw=kw: solve_ehl(**kw, **pair_args), arg
+        )
+        expect_input_error(
+            g,
+            f"TransientEHL.start_steady({arg}={_short(bad)})",
+            lambda kw=kw: TransientEHL(PAIR, OIL, n=64).start_steady(**kw),
+            arg,
+        )
+        if arg in ("load", "radius"):
+            expect_input_error(
+                g,
+                f"solve_dry_contact({arg}={_short(bad)})",
+                lambda kw=kw: solve_dry_contact(kw["load"], kw["radius"], PAIR, n=64),
+                arg,
+            )
+
+    g = "scheduler"
+    junk = tmp / "junk_scheduler"
+    junk.write_text("garbage")
+    badjson = tmp / "bad_scheduler.json"
+    badjson.write_text('{"address": 5}')
+    for address in (str(junk), str(badjson), str(tmp), "garbage", "tcp://", "ucx://a:1"):
+        for cmd in (["run"], ["sweep", "andreou2023_dynamics"]):
+            cli(g, [*cmd, "-o", str(tmp / "out_sched"), "--scheduler", address, "-q"])
+
+    g = "byte-order mark"
+    bom_case = tmp / "bom_case.toml"
+    bom_case.write_bytes("\ufeff[engine]\nspeed_rpm = 2000\n".encode())
+    bom_sweep = tmp / "bom_sweep.toml"
+    bom_sweep.write_bytes(
+        "\ufeff[sweep]\nmode = 'dynamics'\n[[axes]]\npath = 'engine.speed_rpm'\n"
+        "values = [2000, 3000]\n".encode()
+    )
+    for case, call, ok in [
+        ("load_case(BOM)", lambda: load_case(bom_case).engine.speed_rpm == 2000, True),
+        ("load_sweep(BOM)", lambda: load_sweep(bom_sweep).n_points == 2, True),
+    ]:
+        try:
+            with time_limit():
+                good = call()
+            record(g, "handled" if good == ok else "garbage", case)
+        except Exception as exc:
+            record(g, "traceback", f"{case} -> {type(exc).__name__}: {exc}"[:300])
+
+    g = "long -o name"
+    for out in (tmp / ("x" * 300), tmp / ("y" * 200) / ("z" * 200)):
+        cli(g, ["topography", str(out) + ".x3p", "--synthetic", "--grid", "32"])
+        cli(g, ["sweep", "andreou2023_dynamics", "-o", str(out), "--scheduler", str(junk)])
+
+    g = "huge sweep"
+    big = tmp / "million.toml"
+    big.write_text(
+        "[sweep]\nmode = 'dynamics'\n"
+        "[[axes]]\npath = 'engine.speed_rpm'\nstart = 1000\nstop = 7000\nnum = 1000\n"
+        "[[axes]]\npath = 'valvetrain.spring_preload'\nstart = 200\nstop = 300\nnum = 1000\n"
+    )
+    cli(g, ["sweep", str(big), "-o", str(tmp / "out_big"), "--dry-run"], expect=(0,))
+    too_big = tmp / "too_many.toml"
+    too_big.write_text(
+        "[[axes]]\npath = 'engine.speed_rpm'\nstart = 1000\nstop = 7000\nnum = 2000\n"
+        "[[axes]]\npath = 'valvetrain.spring_preload'\nstart = 200\nstop = 300\nnum = 1000\n"
+    )
+    cli(g, ["sweep", str(too_big), "-o", str(tmp / "out_big"), "--dry-run"])
+    out_of_range = tmp / "long_axis.toml"
+    out_of_range.write_text(
+        "[[axes]]\npath = 'engine.speed_rpm'\nstart = 1000\nstop = 70000\nnum = 100000\n"
+    )
+    cli(g, ["sweep", str(out_of_range), "-o", str(tmp / "out_big"), "--dry-run"])
+
+    g = "large maps"
+    for grid in ("5000", "100000"):
+        cli(g, ["topography", str(tmp / f"syn{grid}.x3p"), "--synthetic", "--grid", grid])
+    from tribodyn.topography import synthetic_surface
+
+    for shape in ((4097, 4096), (10**400, 16), (1e9, 1e9)):
+        expect_input_error(
+            g, f"synthetic_surface({_short(shape[0])})", lambda s=shape: synthetic_surface(s)
+        )
+
+    g = "cold oils"
+    for grade, sheet in OILS.items():
+        sheet = {k: v for k, v in sheet.items() if k != "description"}
+        for T in (200.0, 223.15, 233.15, 600.0):
+            case = f"ThermalLubricant({grade}, {T:g} K)"
+            try:
+                with time_limit():
+                    oil = ThermalLubricant(inlet_temperature=T, **sheet)
+                    alpha = oil.inlet_pressure_viscosity
+                    oil.isothermal()
+                ok = math.isfinite(alpha) and alpha > 0
+                record(g, "handled" if ok else "garbage", f"{case}: α = {alpha:.3g}")
+            except InputError as exc:
+                good = str(exc).startswith("inlet_temperature")
+                record(g, "handled" if good else "garbage", f"{case}: {exc}"[:250])
+            except Exception as exc:
+                record(g, "traceback", f"{case} -> {type(exc).__name__}: {exc}"[:300])
+
+
 def main() -> None:
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory() as d:
@@ -632,6 +851,7 @@ def main() -> None:
             fuzz_contact_cli()
             fuzz_topography_cli(tmp)
             fuzz_run_cli(tmp)
+            fuzz_extreme_kinds(tmp)
     total = sum(results.values())
     print(
         json.dumps(

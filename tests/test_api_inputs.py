@@ -127,6 +127,50 @@ def test_constructors_reject_wrong_types_and_non_finite_numbers(cls, arg, bad):
         build(**{**kw, arg: bad})
 
 
+#: numbers a float cannot hold, numpy bools and complex scalars (OverflowError before)
+UNCONVERTIBLE = [10**400, -(10**400), 10**5000, np.True_, np.complex128(1.0)]
+EXTREME_CASES = [
+    (cls, arg, bad)
+    for cls, (_, kw) in VALID.items()
+    for arg in kw
+    for bad in UNCONVERTIBLE
+    if not (cls == "EHLOptions" and arg == "n" and isinstance(bad, int) and bad < 0)
+]
+
+
+@pytest.mark.parametrize(
+    "cls, arg, bad",
+    EXTREME_CASES,
+    ids=[f"{c}-{a}-{type(b).__name__}{i}" for i, (c, a, b) in enumerate(EXTREME_CASES)],
+)
+def test_constructors_convert_huge_ints_and_numpy_scalars_safely(cls, arg, bad):
+    build, kw = VALID[cls]
+    with pytest.raises(InputError, match=arg) as err:
+        build(**{**kw, arg: bad})
+    assert len(str(err.value)) < 300  # a 5000-digit number is not printed in full
+
+
+@pytest.mark.parametrize(
+    "call, name",
+    [
+        (lambda: greenwood_tripp(2.5, 10**5000), "lam"),
+        (lambda: greenwood_tripp(2.5, [1.0, 10**400]), "lam"),
+        (lambda: Material(10**400, 0.3), "E"),
+    ],
+)
+def test_huge_ints_give_input_errors(call, name):
+    with pytest.raises(InputError, match=rf"^{name} must"):
+        call()
+
+
+def test_check_array_rejects_strings_complex_and_huge_ints():
+    from tribodyn._validation import check_array
+
+    for bad in (["1", "2"], [1j, 2.0], [1.0, 10**400], [True, False]):
+        with pytest.raises(InputError, match="^x must be an array of real numbers"):
+            check_array("x", bad)
+
+
 @pytest.mark.parametrize(
     "kw, name",
     [
@@ -351,3 +395,22 @@ def test_greenwood_tripp_orders_up_to_the_limit_match_quadrature(n, lam):
         limit=200,
     )
     assert greenwood_tripp(n, lam) == pytest.approx(ref / math.sqrt(2 * math.pi), rel=1e-8)
+
+
+@pytest.mark.parametrize(
+    "kw, name",
+    [
+        (dict(x_nodes=float("nan")), "x_nodes"),  # ValueError from int(nan) before
+        (dict(film_nodes=10**400), "film_nodes"),
+        (dict(max_iter=float("inf")), "max_iter"),
+        (dict(step_iter=2.5), "step_iter"),
+        (dict(solid_nodes="8"), "solid_nodes"),
+        (dict(shear_heating="no"), "shear_heating"),
+        (dict(compression_heating=1), "compression_heating"),
+    ],
+)
+def test_thermal_options_convert_safely(kw, name):
+    from tribodyn.contact.ehl.thermal import ThermalOptions
+
+    with pytest.raises(InputError, match=rf"^{name} must"):
+        ThermalOptions(**kw)

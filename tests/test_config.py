@@ -309,6 +309,45 @@ def test_toml_syntax_error_and_missing_file(tmp_path):
         load_case(tmp_path / "nope.toml")
 
 
+def test_case_file_with_a_byte_order_mark_is_read(tmp_path):
+    f = tmp_path / "bom.toml"
+    f.write_bytes("\ufeff[engine]\nspeed_rpm = 2000\n".encode())
+    assert load_case(f).engine.speed_rpm == 2000
+    assert Case.from_toml_string("\ufeff[engine]\nspeed_rpm = 2500\n").engine.speed_rpm == 2500
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "a = " + "[" * 5000 + "]" * 5000,  # RecursionError in the parser before
+        "a = " + "{b = " * 3000 + "1" + "}" * 3000,
+        "a = " + "[" * 40 + "]" * 40,  # parses, but deeper than any key
+        "a" + ".b" * 5000 + " = 1",
+        "[" + ".".join(["t"] * 5000) + "]\nx = 1\n",
+    ],
+    ids=["arrays", "inline-tables", "arrays-40", "dotted-key", "table-header"],
+)
+def test_deeply_nested_case_files_are_input_errors(tmp_path, text):
+    f = tmp_path / "deep.toml"
+    f.write_text(text)
+    with pytest.raises(InputError, match="nested more than 32 levels"):
+        load_case(f)
+    deep: dict = {}
+    for _ in range(3000):
+        deep = {"x": deep}
+    with pytest.raises(InputError, match="nested more than 32 levels"):
+        Case.from_dict({"engine": deep})
+
+
+def test_oversized_case_file_is_refused_without_reading_it_all(tmp_path):
+    from tribodyn.config.tomlfile import MAX_BYTES
+
+    f = tmp_path / "big.toml"
+    f.write_bytes(b"# " + b"x" * MAX_BYTES + b"\n")
+    with pytest.raises(InputError, match="larger than 10 MB"):
+        load_case(f)
+
+
 # ----------------------------------------------------------------------------- round trip
 def test_round_trip_is_lossless(paper):
     text = paper.to_toml()

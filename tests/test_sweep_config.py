@@ -388,3 +388,126 @@ def test_docs_cover_every_sweep_key():
         if f"### `[{k}]`" not in doc and f"### `[[{k}]]`" not in doc
     ]
     assert not missing, missing
+
+
+# ----------------------------------------------------------------------------- file reading
+def test_sweep_file_with_a_byte_order_mark_is_read(tmp_path):
+    f = tmp_path / "bom.toml"
+    f.write_bytes(
+        "\ufeff[sweep]\nmode = 'dynamics'\n[[axes]]\npath = 'engine.speed_rpm'\n"
+        "values = [2000, 3000]\n".encode()
+    )
+    assert load_sweep(f).n_points == 2
+
+
+def test_deeply_nested_sweep_file_is_an_input_error(tmp_path):
+    f = tmp_path / "deep.toml"
+    f.write_text("[fixed]\n'engine.speed_rpm' = " + "[" * 5000 + "]" * 5000 + "\n")
+    with pytest.raises(InputError, match="nested more than 32 levels"):
+        load_sweep(f)
+
+
+# ----------------------------------------------------------------------------- --scheduler
+@pytest.mark.parametrize(
+    "content",
+    [b"garbage\n", b'{"address": 5}', b"[1, 2]", b"\xff\xfe", b'{"address": "nowhere"}'],
+    ids=["text", "address-not-a-string", "not-an-object", "binary", "no-scheme"],
+)
+def test_junk_scheduler_file_names_the_option(tmp_path, content):
+    """A junk scheduler file used to end in an AssertionError from dask."""
+    from tribodyn.workflow.sweep import connect
+
+    f = tmp_path / "scheduler.json"
+    f.write_bytes(content)
+    with pytest.raises(InputError, match="^--scheduler: .* is not a Dask scheduler file"):
+        connect(str(f), timeout=2)
+
+
+@pytest.mark.parametrize(
+    "address",
+    ["ucx://a:1", "garbage", "tcp://", "xyz://a:1", "tcp://h:notaport", "tcp://h:0", "tcp://[::1"],
+)
+def test_malformed_scheduler_address_names_the_option(tmp_path, address):
+    from tribodyn.workflow.sweep import connect
+
+    with pytest.raises(InputError, match="^--scheduler: .*tcp://host:8786"):
+        connect(address, timeout=2)
+    with pytest.raises(InputError, match="^--scheduler: .* is a folder"):
+        connect(str(tmp_path), timeout=2)
+
+
+@pytest.mark.parametrize("command", ["sweep", "run"])
+def test_cli_junk_scheduler_is_a_clear_error(tmp_path, command):
+    from typer.testing import CliRunner
+
+    from tribodyn.cli import app
+
+    junk = tmp_path / "junk"
+    junk.write_text("garbage")
+    first = ["sweep", "andreou2023_dynamics"] if command == "sweep" else ["run"]
+    r = CliRunner().invoke(app, [*first, "-o", str(tmp_path / "out"), "--scheduler", str(junk)])
+    assert r.exit_code == 2, r.output
+    assert r.exception is None or isinstance(r.exception, SystemExit)
+    assert "--scheduler" in r.output and "not a Dask scheduler file" in " ".join(r.output.split())
+
+
+# ----------------------------------------------------------------------------- large sweeps
+def _range_sweep(tmp_path, *axes):
+    text = "[sweep]\nmode = 'dynamics'\n" + "".join(
+        f"[[axes]]\npath = '{p}'\nstart = {a}\nstop = {b}\nnum = {n}\n" for p, a, b, n in axes
+    )
+    f = tmp_path / "big.toml"
+    f.write_text(text)
+    return f
+
+
+def test_long_axis_validates_a_bounded_sample(tmp_path, monkeypatch):
+    """Every value of an axis used to be validated with the whole case (~10 ms each: an
+    axis of 10⁶ values took hours); beyond MAX_VALIDATED_VALUES a spread sample is."""
+    from tribodyn.config.sweep import MAX_VALIDATED_VALUES
+
+    calls = []
+    original = Case.updated
+    monkeypatch.setattr(Case, "updated", lambda self, ch: calls.append(ch) or original(self, ch))
+    spec = load_sweep(_range_sweep(tmp_path, ("engine.speed_rpm", 1000, 7000, 3000)))
+    assert spec.n_points == 3000
+    assert len(calls) <= MAX_VALIDATED_VALUES + 2  # (+ the fixed changes)
+    values = [c["engine.speed_rpm"] for c in calls if "engine.speed_rpm" in c]
+    assert min(values) == 1000 and max(values) == 7000
+
+
+def test_long_axis_still_reports_values_out_of_range(tmp_path):
+    f = _range_sweep(tmp_path, ("engine.speed_rpm", 1000, 70000, 5000))
+    with pytest.raises(InputError) as err:
+        load_sweep(f)
+    msg = str(err.value)
+    assert "engine.speed_rpm: must be > 0 rpm and <= 50000 rpm" in msg
+    assert msg.count("range value") == 10 and "more invalid values" in msg
+
+
+def test_dry_run_of_a_million_points_answers_fast(tmp_path, monkeypatch):
+    """--dry-run built and validated every point (10⁶ case validations, hours)."""
+    from typer.testing import CliRunner
+
+    import tribodyn.workflow.sweep as ws
+    from tribodyn.cli import app
+    from tribodyn.config.sweep import SweepSpec
+
+    def no_plan(self):
+        raise AssertionError("the whole plan was built")
+
+    monkeypatch.setattr(SweepSpec, "points", no_plan)
+    monkeypatch.setattr(ws, "estimate_point_seconds", lambda case, mode="study": 2.0)
+    f = _range_sweep(
+        tmp_path,
+        ("engine.speed_rpm", 1000, 7000, 1000),
+        ("valvetrain.spring_preload", 200, 300, 1000),
+    )
+    r = CliRunner().invoke(
+        app, ["sweep", str(f), "-o", str(tmp_path / "out"), "--dry-run", "-j", "4"]
+    )
+    assert r.exit_code == 0, r.output
+    text = " ".join(r.output.split())
+    assert "1000000 points" in text and "1000000 to run" in text
+    assert "validated up to 1000 points only" in text
+    assert "about 138.9 h on 4 worker(s)" in text  # 10⁶ × 2 s / 4

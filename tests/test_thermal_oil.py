@@ -89,6 +89,64 @@ def test_so_klaus_correlation():
         so_klaus_alpha(0.9e-6, 850.0, 3.5)
 
 
+@pytest.mark.parametrize("grade", list(OILS))
+def test_cold_datasheet_oil_has_a_rising_positive_alpha(grade):
+    """At 223 K the So–Klaus polynomial is past its maximum (negative α for 5W-20 and
+    5W-30: 'pressure_viscosity must be >= 0' before). Colder than the maximum, α follows
+    Roelands' constant Z: α ∝ ln μ₀ + 9.67, continuous at T*, rising as the oil cools."""
+    sheet = {k: v for k, v in OILS[grade].items() if k != "description"}
+    Ts = [223.15 + 5.0 * k for k in range(30)]
+    oils = []
+    for T in Ts:
+        try:
+            oils.append(ThermalLubricant(inlet_temperature=T, **sheet))
+        except InputError as exc:  # too viscous: the message names the temperature
+            assert str(exc).startswith("inlet_temperature must be >= ")
+            assert oils == []  # only at the cold end
+    alphas = np.array([o.inlet_pressure_viscosity for o in oils])
+    assert np.all(alphas > 1e-8) and np.all(alphas < 6e-8)
+    assert np.all(np.diff(alphas) < 0)  # α falls as the oil warms
+    t_star = [o._c.get("so_klaus_temperature") for o in oils]
+    ts = next(t for t in t_star if t is not None)
+    assert 500.0 < float(oils[-1].kinematic_viscosity(ts)) * 1e6 < 5000.0  # ~2000 cSt
+    from scipy.optimize import minimize_scalar
+
+    def so_klaus_at(T):  # the correlation along the oil's line, computed here
+        o = oils[-1]
+        nu = float(o.kinematic_viscosity(T))
+        return so_klaus_alpha(nu, float(o.density_at(0.0, T)), o.walther_slope)
+
+    peak = minimize_scalar(lambda T: -so_klaus_at(T), bounds=(225.0, 300.0), method="bounded")
+    assert ts == pytest.approx(peak.x, abs=0.05)
+    below = ThermalLubricant(inlet_temperature=ts - 1e-3, **sheet)
+    above = ThermalLubricant(inlet_temperature=ts + 1e-3, **sheet)
+    assert below.inlet_pressure_viscosity == pytest.approx(above.inlet_pressure_viscosity, rel=1e-4)
+    cold = oils[0]
+    ratio = (math.log(cold.inlet_viscosity) + 9.67) / (
+        math.log(float(above.ambient_viscosity(ts))) + 9.67
+    )
+    assert cold.inlet_pressure_viscosity == pytest.approx(
+        above.inlet_pressure_viscosity * ratio, rel=1e-3
+    )
+
+
+def test_oil_outside_its_temperature_range_names_the_inlet_temperature():
+    sheet = {k: v for k, v in OILS["10W-40"].items() if k != "description"}
+    with pytest.raises(InputError, match=r"^inlet_temperature must be >= 229\.\d+ K") as e:
+        ThermalLubricant(inlet_temperature=223.0, **sheet)
+    assert "Pa·s" in str(e.value) and "pressure_viscosity" not in str(e.value)
+    sheet = {k: v for k, v in OILS["5W-20"].items() if k != "description"}
+    with pytest.raises(InputError, match=r"^inlet_temperature must be < 58\d\.\d+ K"):
+        ThermalLubricant(inlet_temperature=600.0, **sheet)
+    with pytest.raises(InputError, match=r"^viscosity must be <= 100"):
+        ThermalLubricant(
+            inlet_temperature=300.0,
+            viscosity=200.0,
+            viscosity_temperature_coefficient=0.03,
+            pressure_viscosity=2e-8,
+        )
+
+
 def test_thermal_properties_cragoe_and_larsson_andersson():
     oil = ThermalLubricant(kelvin(90.0), **SHEET)
     s = 0.852

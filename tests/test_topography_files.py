@@ -261,3 +261,37 @@ def test_cli_pairs_an_areal_map_with_a_profile():
         app, ["topography", str(DATA / "surface.x3p"), str(DATA / "profile.sur"), "--json"]
     )
     assert r.exit_code == 0, r.output
+
+
+# ----------------------------------------------------------------------------- size limits
+def test_map_larger_than_the_limit_is_refused_before_its_heights_are_read(monkeypatch):
+    """A map beyond MAX_MAP_POINTS (4096²) is refused from its header, saying what to
+    do; before, any size was read and analysed (memory of ~10 copies of the map). The
+    limit is lowered here so that a small test file exceeds it."""
+    import tribodyn.topography.filtering as F
+    from tribodyn.topography.errors import TopographyReadError
+
+    f = DATA / "surface.x3p"
+    n = math.prod(read_topography(f).nb_grid_pts)
+    monkeypatch.setattr(F, "MAX_MAP_POINTS", n - 1)
+    with pytest.raises(TopographyReadError, match=f"= {n} points, more than the {n - 1}") as e:
+        read_topography(f)
+    assert "crop it or subsample it" in str(e.value)
+    r = CliRunner().invoke(app, ["topography", str(f)])
+    assert r.exit_code == 2 and "crop it or subsample it" in " ".join(r.output.split())
+
+
+@pytest.mark.parametrize("grid", [4097, 10**6, 10**400])
+def test_synthetic_map_beyond_the_limit_is_an_input_error(grid):
+    from tribodyn import InputError
+
+    with pytest.raises(InputError, match="^nb_grid_pts must"):
+        synthetic_surface((grid, grid))
+
+
+def test_synthetic_map_beyond_the_limit_from_the_cli(tmp_path):
+    r = CliRunner().invoke(
+        app, ["topography", str(tmp_path / "s.x3p"), "--synthetic", "--grid", "100000"]
+    )
+    assert r.exit_code == 2 and "nb_grid_pts must give at most" in " ".join(r.output.split())
+    assert not (tmp_path / "s.x3p").exists()

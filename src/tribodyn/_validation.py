@@ -3,6 +3,10 @@
 Every check raises :class:`InputError` (a ``ValueError``) whose message names the
 argument, the allowed range and the offending value, e.g.
 ``E must be a finite number > 0 [Pa] (got -2.1e+11)``.
+
+Numbers are converted safely: bools, strings, complex numbers and other non-real objects
+are rejected; Python ints beyond the float range (``10**400``), NaN and ±inf give the same
+:class:`InputError` as any other value outside the range (never ``OverflowError``).
 """
 
 from __future__ import annotations
@@ -22,6 +26,7 @@ __all__ = [
     "check_nonnegative",
     "check_range",
     "check_array",
+    "short_repr",
 ]
 
 
@@ -29,33 +34,71 @@ class InputError(ValueError):
     """Invalid input: the message names the argument and the allowed range."""
 
 
+#: integers beyond the int64 range are rejected (no count, size or index reaches it)
+_INT_LIMIT = 2**63
+
+
 def _fmt(value) -> str:
+    """The value for a message: 6 significant digits, also for ints beyond float range."""
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**300:
+        exponent = int(math.log10(abs(value)))  # exact enough for a message
+        return f"{'-' if value < 0 else ''}~1e+{exponent}"
     try:
         return f"{float(value):.6g}"
-    except (TypeError, ValueError):
-        return repr(value)
+    except (TypeError, ValueError, OverflowError):
+        r = repr(value)
+        return r if len(r) <= 60 else r[:57] + "..."
+
+
+def _to_float(value) -> float | None:
+    """float(value), or None if it does not fit (OverflowError) or is not a number."""
+    try:
+        return float(value)
+    except (TypeError, ValueError, OverflowError):
+        return None
 
 
 def check_real(name: str, value, unit: str = "") -> float:
     """Return ``value`` as a finite float or raise naming ``name``."""
     u = f" [{unit}]" if unit else ""
-    if isinstance(value, bool) or not isinstance(value, (Real, np.integer, np.floating)):
-        raise InputError(f"{name} must be a finite real number{u} (got {value!r})")
-    v = float(value)
-    if not math.isfinite(v):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(
+        value, (Real, np.integer, np.floating)
+    ):
+        raise InputError(f"{name} must be a finite real number{u} (got {short_repr(value)})")
+    v = _to_float(value)
+    if v is None or not math.isfinite(v):
         raise InputError(f"{name} must be a finite real number{u} (got {_fmt(value)})")
     return v
+
+
+def short_repr(value) -> str:
+    """repr() for a message: at most 60 characters, safe for ints of any size."""
+    if isinstance(value, int) and not isinstance(value, bool):
+        return str(value) if abs(value) < 10**20 else _fmt(value)
+    try:
+        r = repr(value)
+    except Exception:  # a repr that fails must not hide the input error
+        r = f"<{type(value).__name__}>"
+    return r if len(r) <= 60 else r[:57] + "..."
 
 
 def check_int(name: str, value) -> int:
     """Return ``value`` as an int; integral floats (4.0) are accepted, bools and
     non-integral or non-numeric values are not."""
-    if isinstance(value, bool) or not isinstance(value, (Real, np.integer, np.floating)):
-        raise InputError(f"{name} must be an integer (got {value!r})")
-    v = float(value)
-    if not math.isfinite(v) or v != math.floor(v):
-        raise InputError(f"{name} must be an integer (got {_fmt(value)})")
-    return int(v)
+    if isinstance(value, (bool, np.bool_)) or not isinstance(
+        value, (Real, np.integer, np.floating)
+    ):
+        raise InputError(f"{name} must be an integer (got {short_repr(value)})")
+    if isinstance(value, (int, np.integer)):
+        i = int(value)
+    else:
+        v = _to_float(value)
+        if v is None or not math.isfinite(v) or v != math.floor(v):
+            raise InputError(f"{name} must be an integer (got {_fmt(value)})")
+        i = int(v)
+    if abs(i) >= _INT_LIMIT:
+        raise InputError(f"{name} must be an integer of magnitude below 2**63 (got {_fmt(i)})")
+    return i
 
 
 def check_bool(name: str, value) -> bool:
@@ -116,11 +159,16 @@ def check_range(
 def check_array(
     name: str, value, *, ndim: int | None = 1, min_size: int = 1, finite: bool = True
 ) -> np.ndarray:
-    """Convert to a float array; reject NaN/inf, wrong rank or too few entries."""
+    """Convert to a float array; reject non-numbers (strings, bools, complex), NaN/inf,
+    numbers beyond the float range, wrong rank or too few entries."""
     try:
-        a = np.asarray(value, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise InputError(f"{name} must be an array of real numbers ({exc})") from None
+        raw = np.asarray(value)
+        if raw.dtype.kind in "bcUSV":
+            raise TypeError(f"got {raw.dtype.name} values")
+        a = np.asarray(raw, dtype=float)
+    except (TypeError, ValueError, OverflowError) as exc:
+        msg = str(exc) if len(str(exc)) <= 80 else type(exc).__name__
+        raise InputError(f"{name} must be an array of real numbers ({msg})") from None
     if ndim is not None and a.ndim != ndim:
         raise InputError(f"{name} must be a {ndim}-d array (got shape {a.shape})")
     if a.size < min_size:

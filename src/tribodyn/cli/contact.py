@@ -64,6 +64,7 @@ _OPTION_OF = {
     "surface_set": "--surface-set",
     "shear_coefficient": "--shear-coefficient",
     "load_per_length": "--load-per-length",
+    "load": "load per length (--load / --width, or --load-per-length)",
     "radius": "--radius",
     "width": "--width",
     "entrainment_speed": "--ue",

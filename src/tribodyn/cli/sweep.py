@@ -69,7 +69,13 @@ def sweep_command(
     2 on bad input, 1 if any point failed (everything is still written).
     """
     from ..config.sweep import load_sweep
-    from ..workflow.sweep import connect, estimate_sweep, machine_workers, run_sweep
+    from ..workflow.sweep import (
+        PLAN_CHECK_LIMIT,
+        connect,
+        estimate_sweep,
+        machine_workers,
+        run_sweep,
+    )
 
     try:
         spec = load_sweep(sweep)
@@ -90,10 +96,17 @@ def sweep_command(
         except Exception as exc:  # an estimate that cannot be made is not fatal
             console.print(f"[yellow]no time estimate:[/yellow] {type(exc).__name__}: {exc}")
             raise typer.Exit(0)
-        console.print(
-            f"{est['points']} points: {est['invalid']} invalid combinations, "
-            f"{est['done']} already finished, {est['todo']} to run"
-        )
+        if est["checked"]:
+            console.print(
+                f"{est['points']} points: {est['invalid']} invalid combinations, "
+                f"{est['done']} already finished, {est['todo']} to run"
+            )
+        else:
+            console.print(
+                f"{est['points']} points: {est['done']} already finished, {est['todo']} "
+                f"to run (combinations are validated up to {PLAN_CHECK_LIMIT} points only; "
+                "invalid ones are found when the sweep runs)"
+            )
         console.print(
             f"estimate: {est['seconds_per_point']:.1f} s per point on one core "
             f"({est['method']}) → about {_duration(est['seconds'])} on "

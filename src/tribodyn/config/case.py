@@ -19,7 +19,6 @@ import dataclasses
 import difflib
 import functools
 import math
-import tomllib
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -70,6 +69,7 @@ from .schema import (
     paper_materials,
     paper_surface_sets,
 )
+from .tomlfile import check_nesting, parse_toml, read_toml_text
 
 __all__ = [
     "Case",
@@ -224,6 +224,7 @@ class Case(Section):
         (default: the current folder)."""
         if not isinstance(data, dict):
             raise InputError(f"a case must be a table of sections (got {type(data).__name__})")
+        check_nesting(data, source)
         ctx = {
             "base_dir": Path(base_dir) if base_dir is not None else None,
             "source": Path(source) if source is not None else None,
@@ -238,26 +239,14 @@ class Case(Section):
     @classmethod
     def from_toml_string(cls, text: str, *, base_dir=None, source=None) -> Case:
         """Parse and validate TOML text (see :meth:`from_dict` for ``base_dir``)."""
-        try:
-            data = tomllib.loads(text)
-        except tomllib.TOMLDecodeError as exc:
-            where = f"{source}: " if source is not None else ""
-            raise InputError(f"{where}TOML syntax error: {exc}") from None
+        data = parse_toml(text, source)
         return cls.from_dict(data, base_dir=base_dir, source=source)
 
     @classmethod
     def from_toml(cls, path) -> Case:
         """Read and validate a case file; relative paths resolve against its folder."""
         p = Path(path)
-        try:
-            text = p.read_text(encoding="utf-8")
-        except OSError as exc:
-            raise InputError(f"cannot read case file {str(p)!r}: {exc.strerror}") from None
-        except UnicodeDecodeError as exc:
-            raise InputError(
-                f"case file {str(p)!r} is not UTF-8 text (byte {exc.start}: "
-                f"{exc.reason}); save it as UTF-8 TOML"
-            ) from None
+        text = read_toml_text(p, "case")
         return cls.from_toml_string(text, base_dir=p.resolve().parent, source=p)
 
     def updated(self, changes: dict) -> Case:

@@ -17,9 +17,7 @@ recorded with its error, and does not stop the other points.
 from __future__ import annotations
 
 import hashlib
-import itertools
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Annotated, Any, Literal, Optional, Union
@@ -40,6 +38,7 @@ from .case import Case, bundled_cases, load_case, to_toml
 from .errors import Problems, format_validation_error
 from .paths import Key, PathError, parse_path, schema_field, set_path
 from .schema import CAM_MODELS, Section, _q
+from .tomlfile import check_nesting, parse_toml, read_toml_text
 
 __all__ = [
     "SweepInfo",
@@ -52,6 +51,7 @@ __all__ = [
     "bundled_sweeps",
     "SWEEPS_DIR",
     "MAX_POINTS",
+    "MAX_VALIDATED_VALUES",
     "RESERVED_NAMES",
 ]
 
@@ -59,6 +59,13 @@ __all__ = [
 SWEEPS_DIR = Path(__file__).resolve().parent.parent / "sweeps"
 #: Largest number of points a sweep may have.
 MAX_POINTS = 1_000_000
+#: Axes with more values than this have only this many (spread over the axis, plus any
+#: value outside the key's bounds) validated with the base case; every value is still
+#: compared with the key's range (a value invalid only with the rest of the case then
+#: becomes a failed point, like an invalid combination).
+MAX_VALIDATED_VALUES = 200
+#: Invalid values of one axis listed in the error (the rest are counted).
+MAX_REPORTED_VALUES = 10
 #: Dimension and variable names of the sweep Dataset an axis may not take.
 RESERVED_NAMES = ("surface_set", "crank_angle", "ehl_crank", "point", "status", "error", "warnings")
 _DIM_PATTERN = r"^[A-Za-z][A-Za-z0-9_]*$"
@@ -288,32 +295,42 @@ class SweepSpec:
     def points(self) -> list[SweepPoint]:
         """The plan: every combination, in C order over :attr:`dims`, each with its case
         validated (an invalid combination keeps its error and no case)."""
+        return [self.point(i) for i in range(self.n_points)]
+
+    def point(self, index: int) -> SweepPoint:
+        """Point ``index`` of the plan (C order over :attr:`dims`), built alone: its case
+        validated, or its error if the combination is invalid."""
         from .. import __version__
 
-        out = []
-        ranges = [range(len(axes[0].values)) for _, axes in self.dims]
-        for i, pos in enumerate(itertools.product(*ranges)):
-            values, changes = {}, {}
-            for (_, axes), j in zip(self.dims, pos):
-                for a in axes:
-                    values[a.name] = a.values[j]
-                    changes[a.path] = a.values[j]
-            p = SweepPoint(index=i, position=tuple(pos), values=values, changes=changes)
-            try:
-                p.case = self.base.updated(changes)
-            except InputError as exc:
-                p.error = f"invalid combination: {_problem_text(exc)}"
-            ident = (
-                p.case.to_toml(resolve_paths=True)
-                if p.case is not None
-                else repr(sorted(changes.items()))
-            )
-            h = hashlib.sha256(
-                f"{ident}\n{self.mode}\n{self.traces}\n{__version__}".encode()
-            ).hexdigest()
-            p.key = h[:16]
-            out.append(p)
-        return out
+        n = self.n_points
+        if not 0 <= index < n:
+            raise InputError(f"point index must be in [0, {n - 1}] (got {index})")
+        pos = []
+        rest = index
+        for length in reversed(self.shape):
+            rest, j = divmod(rest, length)
+            pos.append(j)
+        pos.reverse()
+        values, changes = {}, {}
+        for (_, axes), j in zip(self.dims, pos):
+            for a in axes:
+                values[a.name] = a.values[j]
+                changes[a.path] = a.values[j]
+        p = SweepPoint(index=index, position=tuple(pos), values=values, changes=changes)
+        try:
+            p.case = self.base.updated(changes)
+        except InputError as exc:
+            p.error = f"invalid combination: {_problem_text(exc)}"
+        ident = (
+            p.case.to_toml(resolve_paths=True)
+            if p.case is not None
+            else repr(sorted(changes.items()))
+        )
+        h = hashlib.sha256(
+            f"{ident}\n{self.mode}\n{self.traces}\n{__version__}".encode()
+        ).hexdigest()
+        p.key = h[:16]
+        return p
 
     @classmethod
     def from_dict(cls, data: dict, *, base_dir=None, source=None) -> SweepSpec:
@@ -322,6 +339,7 @@ class SweepSpec:
         base_dir = Path(base_dir) if base_dir is not None else Path.cwd()
         if not isinstance(data, dict):
             raise InputError(f"a sweep must be a table (got {type(data).__name__})")
+        check_nesting(data, source)
         try:
             cfg = SweepFile.model_validate(data)
         except ValidationError as exc:
@@ -352,24 +370,13 @@ class SweepSpec:
 
     @classmethod
     def from_toml_string(cls, text: str, *, base_dir=None, source=None) -> SweepSpec:
-        try:
-            data = tomllib.loads(text)
-        except tomllib.TOMLDecodeError as exc:
-            where = f"{source}: " if source is not None else ""
-            raise InputError(f"{where}TOML syntax error: {exc}") from None
+        data = parse_toml(text, source)
         return cls.from_dict(data, base_dir=base_dir, source=source)
 
     @classmethod
     def from_toml(cls, path) -> SweepSpec:
         p = Path(path)
-        try:
-            text = p.read_text(encoding="utf-8")
-        except OSError as exc:
-            raise InputError(f"cannot read sweep file {str(p)!r}: {exc.strerror}") from None
-        except UnicodeDecodeError as exc:
-            raise InputError(
-                f"sweep file {str(p)!r} is not UTF-8 text (byte {exc.start}: {exc.reason})"
-            ) from None
+        text = read_toml_text(p, "sweep")
         return cls.from_toml_string(text, base_dir=p.resolve().parent, source=p)
 
 
@@ -452,16 +459,24 @@ def _axis(base: Case, i: int, ax: AxisConfig, problems) -> Axis | None:
         if bad:
             problems.append((f"{where}.values", f"{ax.path} takes integers (got {_fmt(bad[0])})"))
             return None
-    for j, v in enumerate(values):
+    found = 0
+    checked = _values_to_check(fi, values)
+    for j in checked:
+        v = values[j]
         try:
             base.updated({ax.path: v})
         except InputError as exc:
+            found += 1
+            if found > MAX_REPORTED_VALUES:
+                continue
             key = (
                 f"{where}.values[{j}]"
                 if ax.values is not None
                 else f"{where} (range value {j + 1} of {len(values)})"
             )
             problems.append((key, f"{_fmt(v)}: {_problem_text(exc)}"))
+    if found > MAX_REPORTED_VALUES:
+        problems.append((where, f"and {found - MAX_REPORTED_VALUES} more invalid values"))
     extra = fi.json_schema_extra if isinstance(fi.json_schema_extra, dict) else {}
     tail = parse_path(ax.path)[-1]
     assert isinstance(tail, Key)  # checked by _check_path: a path ends at a key
@@ -475,6 +490,35 @@ def _axis(base: Case, i: int, ax: AxisConfig, problems) -> Axis | None:
         description=fi.description or "",
         dim=ax.group or name,
     )
+
+
+def _values_to_check(fi, values) -> list[int]:
+    """Indices of the axis values validated with the base case: all of them up to
+    :data:`MAX_VALIDATED_VALUES`; beyond, every value is compared with the key's bounds
+    and the values outside them (up to ``MAX_REPORTED_VALUES + 1``) are validated
+    together with ``MAX_VALIDATED_VALUES`` values spread evenly over the axis."""
+    n = len(values)
+    if n <= MAX_VALIDATED_VALUES:
+        return list(range(n))
+    spread = {round(k * (n - 1) / (MAX_VALIDATED_VALUES - 1)) for k in range(MAX_VALIDATED_VALUES)}
+    bounds = [
+        (attr, getattr(m, attr))
+        for m in getattr(fi, "metadata", [])
+        for attr in ("gt", "ge", "lt", "le")
+        if getattr(m, attr, None) is not None
+    ]
+    outside: list[int] = []
+    for j, v in enumerate(values):
+        if len(outside) > MAX_REPORTED_VALUES:
+            break
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            outside.append(j)  # the case validation says what is wrong
+            continue
+        for attr, b in bounds:
+            if not {"gt": v > b, "ge": v >= b, "lt": v < b, "le": v <= b}[attr]:
+                outside.append(j)
+                break
+    return sorted(spread.union(outside))
 
 
 def _dims(cfg: SweepFile, axes: list[Axis], problems) -> list[tuple[str, list[Axis]]]:

@@ -18,7 +18,7 @@ from .._typing import ArrayLike
 from .._validation import InputError, check_int, check_positive
 from ..physics.elasticity import DeformationOperator
 from ..physics.hertz import HertzLineContact, hertz_line_contact
-from ..physics.limits import EHL_NODES, NEWTON_TOL
+from ..physics.limits import CONTACT_RADIUS, EHL_NODES, LINE_LOAD, NEWTON_TOL
 from ..physics.materials import BodyPair, as_bodies, reduced_modulus
 from .ehl.validity import MAX_PRESSURE, MAX_ZONE_TO_RADIUS
 
@@ -136,8 +136,8 @@ def solve_dry_contact(
 
     Parameters
     ----------
-    load : w, normal load per unit length [N/m], > 0.
-    radius : R, reduced radius of curvature [m], > 0.
+    load : w, normal load per unit length [N/m], 1e-3 … 1e9 (``limits.LINE_LOAD``).
+    radius : R, reduced radius of curvature [m], 1e-6 … 1e6 (``limits.CONTACT_RADIUS``).
     bodies : pair of :class:`~tribodyn.Body`; either may carry a coating.
     n : grid nodes (uniform), >= 32.
     domain : half-length of the domain in units of the larger of the Hertz half-widths
@@ -148,8 +148,8 @@ def solve_dry_contact(
     initial_pressure : optional callable p₀(x) [Pa] of the node positions [m] for the
         starting pressure (scaled to the load); default: Hertz with the bulk E'.
     """
-    w = check_positive("load", load, "N/m")
-    r = check_positive("radius", radius, "m")
+    w = LINE_LOAD.check("load", load)
+    r = CONTACT_RADIUS.check("radius", radius)
     bodies = as_bodies(bodies)
     n = EHL_NODES.check("n", n)
     tol = NEWTON_TOL.check("tol", tol)

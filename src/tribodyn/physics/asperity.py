@@ -30,7 +30,7 @@ from numba import njit
 from scipy import special
 
 from .._typing import ArrayLike
-from .._validation import InputError, check_choice
+from .._validation import InputError, check_choice, short_repr
 from .limits import (
     ASPERITY_DENSITY,
     GREENWOOD_TRIPP_ORDER,
@@ -86,8 +86,13 @@ def _lambda_array(lam) -> np.ndarray:
     except (TypeError, ValueError):
         a = np.asarray([None])
     if a.dtype.kind not in "iuf" or a.size == 0:
-        raise InputError(f"lam must be a real number or an array of real numbers (got {lam!r})")
-    a = a.astype(float)
+        raise InputError(
+            f"lam must be a real number or an array of real numbers (got {short_repr(lam)})"
+        )
+    try:
+        a = a.astype(float)
+    except OverflowError:
+        a = np.asarray([np.inf])
     if not np.all(np.isfinite(a)):
         raise InputError("lam must be finite (found NaN or inf)")
     return a

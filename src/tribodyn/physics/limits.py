@@ -16,8 +16,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from numbers import Real
 
-from .._validation import InputError, check_int, check_real
+from .._validation import InputError, _fmt, check_int, check_real
 
 __all__ = [
     "Limit",
@@ -50,6 +51,9 @@ __all__ = [
     "BORE_FRICTION_VELOCITY",
     "LENGTH_BELOW_1M",
     "ENGINE_SPEED",
+    "LINE_LOAD",
+    "CONTACT_RADIUS",
+    "SURFACE_SPEED",
     "EHL_NODES",
     "EHL_NODES_TRANSIENT",
     "DOMAIN_HALF_WIDTHS",
@@ -109,10 +113,18 @@ class Limit:
         """``value`` as float (int if ``integer``) if it is a finite number inside the
         range, else :class:`~tribodyn.InputError` naming ``name``, the range and the value,
         e.g. ``rms must be > 0 and < 0.0001 [m] (got 1)``."""
-        v = check_int(name, value) if self.integer else check_real(name, value, self.unit)
+        u = f" [{self.unit}]" if self.unit else ""
+        what = "an integer " if self.integer else ""
+        try:
+            v = check_int(name, value) if self.integer else check_real(name, value, self.unit)
+        except InputError:
+            if isinstance(value, bool) or not isinstance(value, Real):
+                raise
+            # a number outside the float range, NaN or inf: say the range too
+            raise InputError(
+                f"{name} must be {what}{self.describe(unit=False)}{u} (got {_fmt(value)})"
+            ) from None
         if not self.contains(v):
-            u = f" [{self.unit}]" if self.unit else ""
-            what = "an integer " if self.integer else ""
             raise InputError(f"{name} must be {what}{self.describe(unit=False)}{u} (got {_num(v)})")
         return v
 
@@ -195,6 +207,29 @@ BORE_FRICTION_VELOCITY = Limit(
 )
 LENGTH_BELOW_1M = Limit("m", gt=0.0, lt=1.0, why="valvetrain dimensions below 1 m")
 ENGINE_SPEED = Limit("rpm", gt=0.0, le=50000.0, why="engine speeds below 50 000 rpm")
+
+# -- line-contact operating point (solve_ehl, TransientEHL, solve_dry_contact) ----------
+LINE_LOAD = Limit(
+    "N/m",
+    ge=1e-3,
+    le=1e9,
+    why="load per unit length from a milligram-force per metre to 1 MN per mm; gear "
+    "teeth and rolling bearings carry up to ~1e7 N/m, cam-tappet contacts ~1e5 N/m",
+)
+CONTACT_RADIUS = Limit(
+    "m",
+    ge=1e-6,
+    le=1e6,
+    why="reduced radius from a micrometre (below, continuum EHL does not apply) to "
+    "nearly flat surfaces (a 1000 km radius is a flat to any contact width)",
+)
+SURFACE_SPEED = Limit(
+    "m/s",
+    ge=-1e3,
+    le=1e3,
+    why="entrainment and sliding speeds below 1 km/s: the Reynolds equation assumes "
+    "flow far below the speed of sound in oil (~1.4 km/s)",
+)
 
 # -- numerics --------------------------------------------------------------------------
 EHL_NODES = Limit(

@@ -31,6 +31,13 @@ Equations (T in K, p in Pa, SI unless stated):
       α = 1.216 + 4.143 (log ν)^3.0627 + 2.848e-4 b^5.1903 (log ν)^1.5976
           − 3.999 (log ν)^3.0975 ρ^0.1162                    (ν in cSt, ρ in g/cm³)
 
+  Along an oil's viscosity–temperature line the fitted polynomial has a maximum (near
+  ν ≈ 1000–3000 cSt, −20…0 °C, for engine oils) and falls on the colder side, to negative α
+  below about −45 °C, whereas the α of a cooled oil rises. Colder than the temperature T*
+  of that maximum the estimate is therefore carried by
+  Roelands' constant Z (above): Z from So–Klaus at T*, α(Tᵢ) = 5.1e-9 Z (ln μ₀(Tᵢ) + 9.67)
+  (continuous at T*, rising as the oil cools). Above ν = 1 cSt only (hot end: give α).
+
 * Density: Dowson–Higginson in pressure times a linear thermal expansion (Yang & Wen 1990,
   J. Tribol. 112:631)::
 
@@ -60,6 +67,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from .._validation import InputError, check_nonnegative, check_positive, check_range
+from .limits import VISCOSITY
 from .lubricant import ROELANDS_MU_INF, ROELANDS_P0, Lubricant
 
 __all__ = [
@@ -143,7 +151,8 @@ class ThermalLubricant:
     density, density_temperature : ρ_r [kg/m³] at ambient pressure and T_r [K] (datasheet:
         15 °C).
     thermal_expansion : ε [1/K] of the density.
-    pressure_viscosity : α at Tᵢ [1/Pa]; None: So & Klaus estimate (datasheet form only).
+    pressure_viscosity : α at Tᵢ [1/Pa]; None: So & Klaus estimate (datasheet form only;
+        below the temperature of the correlation's maximum carried by Roelands' Z).
     thermal_conductivity, specific_heat : k [W/(m K)], c_p [J/(kg K)] at Tᵢ and ambient
         pressure; None: Cragoe's estimates from the density.
     eyring_stress : τ_E at Tᵢ [Pa]; limiting_shear_coefficient Λ, limiting_shear_stress
@@ -233,6 +242,16 @@ class ThermalLubricant:
                 f"viscosity at the inlet temperature {mu_i:.3g} Pa·s is below "
                 "Roelands' limit 6.3e-5 Pa·s (oil too thin or too hot)"
             )
+        if not mu_i <= VISCOSITY.le and c["form"] == "inlet":
+            raise InputError(f"viscosity must be <= {VISCOSITY.le:g} Pa·s (got {mu_i:.6g})")
+        if not mu_i <= VISCOSITY.le:
+            coldest = self._temperature_where(lambda T: self.ambient_viscosity(T) - VISCOSITY.le)
+            raise InputError(
+                f"inlet_temperature must be >= {coldest:.5g} K ({coldest - _ZERO_C:.4g} °C) "
+                f"for this oil (got {Ti:.6g} K = {Ti - _ZERO_C:.4g} °C): its viscosity there "
+                f"is {mu_i:.3g} Pa·s, above the {VISCOSITY.le:g} Pa·s the lubricant model "
+                "allows (near the pour point)"
+            )
         c["mu_i"] = mu_i
         if self.pressure_viscosity is None:
             if c["form"] != "datasheet":
@@ -240,9 +259,7 @@ class ThermalLubricant:
                     "pressure_viscosity is required with the inlet form (the So–"
                     "Klaus estimate needs the ASTM D341 slope of a datasheet)"
                 )
-            alpha = so_klaus_alpha(
-                float(self.kinematic_viscosity(Ti)), float(self.density_at(0.0, Ti)), c["B"]
-            )
+            alpha = self._so_klaus_inlet_alpha(Ti, mu_i)
         else:
             alpha = check_range(
                 "pressure_viscosity", self.pressure_viscosity, 0.0, 1e-6, unit="1/Pa"
@@ -267,6 +284,43 @@ class ThermalLubricant:
         )
         c["k_i"] = check_range("thermal_conductivity", k_i, 0.01, 1e8, unit="W/(m K)")
         c["cp_i"] = check_range("specific_heat", c_i, 100.0, 1e4, unit="J/(kg K)")
+
+    def _temperature_where(self, f) -> float:
+        """The temperature in [200, 600] K where ``f`` (falling with T) crosses 0."""
+        lo, hi = 200.0, 600.0
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if float(f(mid)) > 0.0 else (lo, mid)
+        return hi
+
+    def _so_klaus_inlet_alpha(self, Ti: float, mu_i: float) -> float:
+        """α at Tᵢ from So–Klaus; colder than the correlation's maximum (T*), carried
+        from T* by Roelands' constant Z (module docstring)."""
+        B = self._c["B"]
+
+        def estimate(T):  # So–Klaus α at T (−1 where ν ≤ 1 cSt: outside the correlation)
+            nu = float(self.kinematic_viscosity(T))
+            return so_klaus_alpha(nu, float(self.density_at(0.0, T)), B) if nu > 1e-6 else -1.0
+
+        def past_peak(T):  # > 0 colder than the maximum of the estimate over T
+            return estimate(T + 0.01) - estimate(T - 0.01)
+
+        nu_i = float(self.kinematic_viscosity(Ti))
+        if nu_i * 1e6 <= 1.0:
+            hottest = self._temperature_where(lambda T: self.kinematic_viscosity(T) * 1e6 - 1.0)
+            raise InputError(
+                f"inlet_temperature must be < {hottest:.5g} K ({hottest - _ZERO_C:.4g} °C) "
+                f"for the So–Klaus estimate of pressure_viscosity (got {Ti:.6g} K): the oil's "
+                f"kinematic viscosity there is {nu_i * 1e6:.3g} mm²/s, below the "
+                "correlation's 1 mm²/s; give pressure_viscosity"
+            )
+        if past_peak(Ti) <= 0.0:
+            return estimate(Ti)
+        Ts = self._temperature_where(past_peak)
+        self._c["so_klaus_temperature"] = Ts
+        alpha_s = estimate(Ts)
+        mu_s = float(self.ambient_viscosity(Ts))
+        return alpha_s * (math.log(mu_i) + 9.67) / (math.log(mu_s) + 9.67)
 
     # -- viscosity ---------------------------------------------------------------------
     @property

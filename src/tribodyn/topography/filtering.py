@@ -47,9 +47,11 @@ from typing import Any
 import numpy as np
 
 from .._validation import InputError, check_positive, check_range
-from .errors import BandLimitError, InsufficientDataError
+from .errors import BandLimitError, InsufficientDataError, TopographyError
 
 __all__ = [
+    "MAX_MAP_POINTS",
+    "check_map_size",
     "PAPER_BAND",
     "AUTO_BAND",
     "FILTER_KINDS",
@@ -74,6 +76,25 @@ FILTER_KINDS = ("gaussian", "step")
 DETREND_MODES = ("height", "curvature", "center")
 #: Smallest map accepted (grid points per side).
 MIN_GRID_PTS = 16
+#: Largest map accepted (grid points in all, 4096 × 4096): the analysis holds about ten
+#: arrays of the map's size (filters, spectral derivatives), ~2 GB and ~30 s at this
+#: size; a larger scan is cropped or subsampled first (instrument software, Gwyddion).
+MAX_MAP_POINTS = 4096 * 4096
+
+
+def check_map_size(shape, what: str = "the map") -> None:
+    """A map (or profile) of more than :data:`MAX_MAP_POINTS` points is refused with
+    :class:`~.errors.TopographyError` saying what to do."""
+    n = math.prod(int(k) for k in shape)
+    if n > MAX_MAP_POINTS:
+        dims = " × ".join(str(int(k)) for k in shape)
+        raise TopographyError(
+            f"{what} has {dims} = {n} points, more than the {MAX_MAP_POINTS} "
+            "the analysis handles in memory; crop it or subsample it "
+            "(e.g. every second point in each direction) before the analysis"
+        )
+
+
 _LN2 = math.log(2.0)
 
 
@@ -367,6 +388,7 @@ def prepare_topography(
     if detrend not in DETREND_MODES:
         raise InputError(f"detrend must be one of {DETREND_MODES} (got {detrend!r})")
     nx, ny = topography.nb_grid_pts
+    check_map_size((nx, ny))
     if min(nx, ny) < MIN_GRID_PTS:
         raise InsufficientDataError(
             f"the map has {nx} × {ny} points; at least {MIN_GRID_PTS} per side are needed"

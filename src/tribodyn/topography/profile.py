@@ -36,7 +36,15 @@ import numpy as np
 
 from .._validation import InputError, check_range
 from .errors import InsufficientDataError
-from .filtering import AUTO_BAND, DETREND_MODES, Band, BandSpec, check_band, default_band
+from .filtering import (
+    AUTO_BAND,
+    DETREND_MODES,
+    Band,
+    BandSpec,
+    check_band,
+    check_map_size,
+    default_band,
+)
 from .height_statistics import HeightStatistics, height_statistics
 from .results import AsperityParameters, _TomlMixin
 from .spectral_moments import McCoolParameters, SpectralMoments, mccool_parameters
@@ -229,6 +237,7 @@ def analyse_profile(
         raise InputError(f"detrend must be one of {DETREND_MODES} (got {detrend!r})")
     min_defined_fraction = check_range("min_defined_fraction", min_defined_fraction, 0.0, 1.0)
     raw = line.heights()
+    check_map_size(np.shape(raw), "the profile")
     h = np.asarray(np.ma.getdata(raw), dtype=float).ravel()
     filled = np.ma.getmaskarray(raw).ravel() | ~np.isfinite(h)
     n = h.size

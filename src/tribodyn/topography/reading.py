@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from .._typing import PathLike
-from .errors import TopographyReadError
+from .errors import TopographyError, TopographyReadError
 
 __all__ = ["read_topography", "write_topography", "supported_formats", "WRITERS"]
 
@@ -129,6 +129,13 @@ def read_topography(
             "points: not a usable topography map"
         )
 
+    if ch.nb_grid_pts is not None:  # before the heights are read
+        from .filtering import check_map_size
+
+        try:
+            check_map_size(ch.nb_grid_pts, f"'{path}' ({fmt})")
+        except TopographyError as exc:
+            raise TopographyReadError(str(exc)) from None
     kwargs = {}
     if physical_sizes is not None:
         if ch.physical_sizes is not None:

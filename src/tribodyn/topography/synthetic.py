@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from .._validation import InputError, check_positive, check_range
+from .._validation import InputError, check_int, check_positive, check_range, short_repr
 from .spectral_moments import SpectralMoments, isotropic_profile_moments
 
 __all__ = ["synthetic_surface", "synthetic_moments", "DEFAULT_SYNTHETIC"]
@@ -38,12 +38,19 @@ DEFAULT_SYNTHETIC = dict(
 
 
 def _check(nb_grid_pts, pixel_size, rms, hurst, short_cutoff, long_cutoff):
+    from .filtering import MAX_MAP_POINTS
+
     try:
-        nx, ny = (int(n) for n in nb_grid_pts)
+        nx, ny = (check_int("nb_grid_pts", n) for n in nb_grid_pts)
     except (TypeError, ValueError):
-        raise InputError(f"nb_grid_pts must be (nx, ny) (got {nb_grid_pts!r})") from None
+        raise InputError(f"nb_grid_pts must be (nx, ny) (got {short_repr(nb_grid_pts)})") from None
     if min(nx, ny) < 16:
         raise InputError(f"nb_grid_pts must be >= 16 per side (got {nx} × {ny})")
+    if nx * ny > MAX_MAP_POINTS:
+        raise InputError(
+            f"nb_grid_pts must give at most {MAX_MAP_POINTS} points (4096 × 4096: the "
+            f"analysis holds the map in memory several times) (got {nx} × {ny})"
+        )
     dx = check_positive("pixel_size", pixel_size, "m")
     rms = check_positive("rms", rms, "m")
     hurst = check_range("hurst", hurst, 0.0, 1.0, lo_open=True)

@@ -18,6 +18,7 @@ the sweep's dimensions (:func:`combine_points`).
 
 from __future__ import annotations
 
+import json
 import logging
 import math
 import os
@@ -95,36 +96,92 @@ def local_cluster(workers: int | None = None) -> LocalCluster:
     )
 
 
+def _scheduler_file_address(path: Path) -> str:
+    """The address in a Dask scheduler file (JSON with ``"address"``, as written by
+    ``dask scheduler --scheduler-file FILE``), or :class:`InputError` naming
+    ``--scheduler``."""
+    what = (
+        f"--scheduler: {str(path)!r} is not a Dask scheduler file (a JSON file with the "
+        'scheduler\'s "address", written by `dask scheduler --scheduler-file FILE`)'
+    )
+    try:
+        with open(path, "rb") as f:
+            raw = f.read(1_000_001)
+        info = json.loads(raw.decode("utf-8")) if len(raw) <= 1_000_000 else None
+    except (OSError, UnicodeDecodeError, ValueError, RecursionError):
+        raise InputError(what) from None
+    address = info.get("address") if isinstance(info, dict) else None
+    if not isinstance(address, str) or "://" not in address:
+        raise InputError(what)
+    return address
+
+
+#: Address schemes of a remote Dask scheduler (inproc is in-process; ucx needs ucx-py).
+SCHEDULER_SCHEMES = ("tcp", "tls", "ws", "wss")
+
+
+def _check_address(address: str, shown: str) -> None:
+    """:class:`InputError` naming ``--scheduler`` unless ``address`` has the form
+    scheme://host:port with a network scheme (malformed addresses are not handed to
+    dask, whose client can stall on them)."""
+    from distributed.comm.addressing import parse_address, parse_host_port
+
+    how = "give a running scheduler's address, e.g. tcp://host:8786, or a scheduler file"
+    if "://" not in address:
+        raise InputError(f"--scheduler: {shown!r} is neither an address nor a file; {how}")
+    scheme, location = parse_address(address)
+    if scheme not in SCHEDULER_SCHEMES:
+        raise InputError(
+            f"--scheduler: {shown!r}: unsupported scheme {scheme!r} (use "
+            f"{', '.join(s + '://' for s in SCHEDULER_SCHEMES)}); {how}"
+        )
+    try:
+        _, port = parse_host_port(location)
+    except (ValueError, TypeError) as exc:
+        raise InputError(f"--scheduler: {shown!r} is not host:port ({exc}); {how}") from None
+    if not 0 < int(port) < 65536:
+        raise InputError(f"--scheduler: port {port} of {shown!r} is not in 1…65535; {how}")
+
+
 def connect(address: str, *, workers: int | None = None, timeout: float = 30.0) -> Client:
     """A client of an existing Dask scheduler: ``tcp://host:port`` (or another Dask
     address) or the path of a scheduler file. ``workers``: wait until that many workers
-    are connected. Raises :class:`InputError` naming ``--scheduler`` if it cannot."""
+    are connected. Raises :class:`InputError` naming ``--scheduler`` if it cannot: a
+    missing scheduler, a malformed address or a file that is not a scheduler file."""
     from distributed import Client
 
     if not isinstance(address, str) or not address.strip():
         raise InputError(
             "--scheduler: give the scheduler's address, e.g. tcp://host:8786, or a scheduler file"
         )
+    shown = address if len(address) <= 80 else address[:77] + "..."
+    target = address
+    if "://" not in address and Path(address).exists():
+        if not Path(address).is_file():
+            raise InputError(
+                f"--scheduler: {shown!r} is a folder; give the scheduler's address, e.g. "
+                "tcp://host:8786, or a scheduler file"
+            )
+        target = _scheduler_file_address(Path(address))
+    _check_address(target, shown)
     try:
-        if "://" not in address and Path(address).is_file():
-            client = Client(scheduler_file=address, timeout=timeout)
-        else:
-            client = Client(address, timeout=timeout)
-    except (OSError, TimeoutError, ValueError) as exc:
+        client = Client(target, timeout=timeout)
+    except Exception as exc:  # dask raises OSError, ValueError, TypeError, AssertionError…
+        detail = str(exc) if len(str(exc)) <= 200 else str(exc)[:197] + "..."
         raise InputError(
-            f"--scheduler: cannot connect to {address!r} within {timeout:g} s "
-            f"({type(exc).__name__}: {exc}); start one with `dask scheduler` "
+            f"--scheduler: cannot connect to {shown!r} within {timeout:g} s "
+            f"({type(exc).__name__}: {detail}); start one with `dask scheduler` "
             "or give a running scheduler's address, e.g. tcp://host:8786"
         ) from None
     if workers:
         try:
             client.wait_for_workers(int(workers), timeout=timeout)
-        except TimeoutError:
-            have = len(client.scheduler_info().get("workers", {}))
+        except Exception:  # TimeoutError, or a scheduler gone meanwhile
+            have = _n_workers(client)
             client.close()
             raise InputError(
                 f"--workers: {workers} workers requested, {have} connected to "
-                f"{address} after {timeout:g} s"
+                f"{shown} after {timeout:g} s"
             ) from None
     return client
 
@@ -352,25 +409,45 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
     return t
 
 
+#: A dry run validates every combination of sweeps up to this many points; larger ones
+#: are counted from their shape and calibrated on their first and last point only.
+PLAN_CHECK_LIMIT = 1000
+
+
 def estimate_sweep(spec: SweepSpec, *, workers: int, out_dir: PathLike | None = None) -> dict:
     """Estimated wall time of a sweep on ``workers`` single-threaded workers.
 
     The time per point is the median CPU time of points already finished in ``out_dir``
     (resume) if any, else :func:`estimate_point_seconds` calibrated on the first and the
     last valid point of the plan. Returns points, invalid, done, todo, seconds_per_point,
-    seconds, method."""
-    plan = spec.points()
-    valid = [p for p in plan if p.case is not None]
+    seconds, method, checked. Up to :data:`PLAN_CHECK_LIMIT` points every combination is
+    validated (``checked`` True); a larger plan is not built (seconds, not hours): its
+    ``invalid`` is None, ``done`` counts the point files in ``out_dir``, and it is
+    calibrated on its first and last point."""
+    n = spec.n_points
     store = PointStore(out_dir) if out_dir is not None else None
     done_times = []
     done = 0
-    if store is not None:
-        for p in valid:
-            ds = store.load(p.key) if store.status(p.key) == "ok" else None
-            if ds is not None:
-                done += 1
-                done_times.append(float(ds.attrs.get("cpu_s", ds.attrs.get("runtime_s", math.nan))))
-    todo = len(valid) - done
+    checked = n <= PLAN_CHECK_LIMIT
+    if checked:
+        plan = spec.points()
+        valid = [p for p in plan if p.case is not None]
+        invalid: int | None = n - len(valid)
+        if store is not None:
+            for p in valid:
+                ds = store.load(p.key) if store.status(p.key) == "ok" else None
+                if ds is not None:
+                    done += 1
+                    done_times.append(
+                        float(ds.attrs.get("cpu_s", ds.attrs.get("runtime_s", math.nan)))
+                    )
+        todo = len(valid) - done
+    else:
+        ends = [spec.point(0), spec.point(n - 1)]
+        valid = [p for p in ends if p.case is not None]
+        invalid = None
+        done = len(store.keys()) if store is not None else 0
+        todo = max(n - done, 0)
     done_times = [t for t in done_times if math.isfinite(t)]
     if done_times:
         per = statistics.median(done_times)
@@ -384,12 +461,13 @@ def estimate_sweep(spec: SweepSpec, *, workers: int, out_dir: PathLike | None = 
         per, method = 0.0, "no valid point"
     w = max(1, min(workers, max(todo, 1)))
     return {
-        "points": len(plan),
-        "invalid": len(plan) - len(valid),
+        "points": n,
+        "invalid": invalid,
         "done": done,
         "todo": todo,
         "seconds_per_point": per,
         "seconds": math.ceil(todo / w) * per,
         "workers": w,
         "method": method,
+        "checked": checked,
     }

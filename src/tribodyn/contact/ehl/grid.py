@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import linalg
 
+from ..._validation import InputError
 from ...physics.elasticity import influence_coefficients
 from ...physics.regimes import hamrock_groups, moes_central
 from .options import Conditions, ContactModel, EHLOptions
@@ -83,9 +84,19 @@ def auto_nodes(length=None, s=None) -> int:
 def layout(cond: Conditions, model: ContactModel, opts: EHLOptions, squeeze_film=None) -> Layout:
     """The grid :class:`Layout` for these conditions (``squeeze_film``: a film [m] the
     estimate must not fall below, for squeeze films near u_e = 0)."""
-    a, b, h_est = _length_scale(cond, model, squeeze_film)
-    s = math.sqrt(2.0 * cond.radius * h_est)
-    up, down = _domain(b, s, cond, model.lubricant.viscosity, opts)
+    try:
+        a, b, h_est = _length_scale(cond, model, squeeze_film)
+        s = math.sqrt(2.0 * cond.radius * h_est)
+        up, down = _domain(b, s, cond, model.lubricant.viscosity, opts)
+    except (ArithmeticError, ValueError):
+        a = up = down = math.nan
+    if not all(math.isfinite(v) and v > 0.0 for v in (a, up, down)):
+        # cannot happen inside physics.limits; said in the user's terms if it does
+        raise InputError(
+            f"load {cond.load:.6g} N/m, radius {cond.radius:.6g} m and entrainment_speed "
+            f"{cond.entrainment_speed:.6g} m/s give no finite EHL domain for this "
+            "lubricant and these bodies; use values nearer an ordinary contact"
+        )
     length = up + (down if cond.entrainment_speed != 0.0 else up)
     n = int(opts.n) if opts.n is not None else auto_nodes(length, s)
     return Layout(a, b, h_est, up / a, down / a, n)

@@ -18,7 +18,6 @@ from ..._validation import (
     check_choice,
     check_int,
     check_positive,
-    check_real,
 )
 from ...physics import limits as L
 from ...physics.asperity import Roughness
@@ -215,12 +214,14 @@ class Conditions:
 
     @classmethod
     def checked(cls, load, radius, entrainment_speed, sliding_speed) -> Conditions:
-        """Validated conditions (load and radius > 0, speeds finite)."""
+        """Validated conditions: load, radius and speeds inside
+        :data:`~tribodyn.physics.limits.LINE_LOAD`, ``CONTACT_RADIUS`` and
+        ``SURFACE_SPEED``."""
         return cls(
-            check_positive("load", load, "N/m"),
-            check_positive("radius", radius, "m"),
-            check_real("entrainment_speed", entrainment_speed, "m/s"),
-            check_real("sliding_speed", sliding_speed, "m/s"),
+            L.LINE_LOAD.check("load", load),
+            L.CONTACT_RADIUS.check("radius", radius),
+            L.SURFACE_SPEED.check("entrainment_speed", entrainment_speed),
+            L.SURFACE_SPEED.check("sliding_speed", sliding_speed),
         )
 
 

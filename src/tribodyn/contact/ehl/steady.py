@@ -68,11 +68,13 @@ def solve_ehl(
 
     Parameters
     ----------
-    load : w, load per unit length [N/m], > 0 (carried by fluid + asperities).
-    radius : R, reduced radius of curvature [m], > 0.
-    entrainment_speed : u_e = (u₁ + u₂)/2 relative to the contact [m/s], ≠ 0 (either
-        sign: the inlet is on the side the flow comes from).
-    sliding_speed : u_s = u₁ − u₂ [m/s] (friction only).
+    load : w, load per unit length [N/m], 1e-3 … 1e9 (carried by fluid + asperities).
+    radius : R, reduced radius of curvature [m], 1e-6 … 1e6.
+    entrainment_speed : u_e = (u₁ + u₂)/2 relative to the contact [m/s], ≠ 0 and
+        |u_e| ≤ 1000 (either sign: the inlet is on the side the flow comes from).
+    sliding_speed : u_s = u₁ − u₂ [m/s], |u_s| ≤ 1000 (friction only).
+    The ranges are :data:`~tribodyn.physics.limits.LINE_LOAD`, ``CONTACT_RADIUS`` and
+    ``SURFACE_SPEED``; outside them :class:`~tribodyn.InputError` names the argument.
     bodies : pair of :class:`~tribodyn.Body` (coating allowed on either).
     lubricant : :class:`~tribodyn.Lubricant`.
     roughness : composite :class:`~tribodyn.Roughness` or None (smooth).

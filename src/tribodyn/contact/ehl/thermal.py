@@ -27,7 +27,7 @@ from typing import cast
 
 import numpy as np
 
-from ..._validation import InputError, check_positive, check_range
+from ..._validation import InputError, check_bool, check_int, check_positive, check_range
 from ...physics.asperity import Roughness
 from ...physics.film_thermal import FilmFlow, film_flow
 from ...physics.friction import boundary_shear_stress
@@ -85,16 +85,20 @@ class ThermalOptions:
     compression_heating: bool = True
 
     def __post_init__(self):
-        if int(self.x_nodes) < 16 or int(self.x_nodes) > 4096:
-            raise InputError(f"x_nodes must be in [16, 4096] (got {self.x_nodes})")
-        if int(self.film_nodes) < 3 or int(self.film_nodes) > 41:
-            raise InputError(f"film_nodes must be in [3, 41] (got {self.film_nodes})")
-        if int(self.solid_nodes) < 6 or int(self.solid_nodes) > 200:
-            raise InputError(f"solid_nodes must be in [6, 200] (got {self.solid_nodes})")
+        for name, lo, hi in (
+            ("x_nodes", 16, 4096),
+            ("film_nodes", 3, 41),
+            ("solid_nodes", 6, 200),
+            ("max_iter", 1, 10000),
+            ("step_iter", 1, 100),
+        ):
+            v = check_int(name, getattr(self, name))
+            if not lo <= v <= hi:
+                raise InputError(f"{name} must be in [{lo}, {hi}] (got {v})")
+        check_bool("shear_heating", self.shear_heating)
+        check_bool("compression_heating", self.compression_heating)
         check_range("depth", self.depth, 0.05, 20.0)
         check_positive("tol", self.tol, "K")
-        if int(self.max_iter) < 1 or int(self.step_iter) < 1:
-            raise InputError("max_iter and step_iter must be >= 1")
         check_range("relaxation", self.relaxation, 0.0, 1.0, lo_open=True)
 
 

@@ -1,0 +1,102 @@
+"""Reading case and sweep files: UTF-8 TOML text, bounded in size and nesting.
+
+A leading UTF-8 byte-order mark (written by some Windows editors) is accepted. Files
+larger than :data:`MAX_BYTES` and values nested deeper than :data:`MAX_NESTING` levels
+(arrays or tables inside each other) are refused with :class:`~tribodyn.InputError`:
+no case or sweep key needs more than a few levels, and unbounded nesting would exhaust
+the interpreter's recursion limit while parsing or validating.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from collections.abc import Iterable
+from pathlib import Path
+from typing import Any, NoReturn
+
+from .._validation import InputError
+
+__all__ = ["MAX_BYTES", "MAX_NESTING", "check_nesting", "parse_toml", "read_toml_text"]
+
+#: Largest case or sweep file [bytes] (the bundled ones are a few kB).
+MAX_BYTES = 10_000_000
+#: Deepest nesting of arrays and tables in a case or sweep file.
+MAX_NESTING = 32
+
+_BOM = "\ufeff"
+
+
+def read_toml_text(path, what: str) -> str:
+    """The text of the ``what`` file (``"case"``, ``"sweep"``) at ``path``: UTF-8, an
+    optional byte-order mark removed, at most :data:`MAX_BYTES`."""
+    p = Path(path)
+    try:
+        with open(p, "rb") as f:
+            raw = f.read(MAX_BYTES + 1)
+    except OSError as exc:
+        raise InputError(f"cannot read {what} file {str(p)!r}: {exc.strerror}") from None
+    if len(raw) > MAX_BYTES:
+        raise InputError(
+            f"{what} file {str(p)!r} is larger than {MAX_BYTES // 1_000_000} MB; "
+            f"a {what} file is a short TOML text (put large tables in separate files)"
+        )
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(
+            f"{what} file {str(p)!r} is not UTF-8 text (byte {exc.start}: "
+            f"{exc.reason}); save it as UTF-8 TOML"
+        ) from None
+    return text
+
+
+def _depth(data) -> int:
+    """Deepest nesting of dicts and lists in ``data`` (iterative: no recursion)."""
+    deepest = 0
+    stack = [(data, 0)]
+    while stack:
+        value, d = stack.pop()
+        children: Iterable[Any]
+        if isinstance(value, dict):
+            children = value.values()
+        elif isinstance(value, list):
+            children = value
+        else:
+            continue
+        deepest = max(deepest, d + 1)
+        if deepest > MAX_NESTING:
+            return deepest
+        stack.extend((c, d + 1) for c in children)
+    return deepest
+
+
+def parse_toml(text: str, source=None) -> dict:
+    """TOML text → dict, with the syntax error, or a nesting beyond :data:`MAX_NESTING`,
+    as :class:`~tribodyn.InputError` (``source`` names the file in the message)."""
+    where = f"{source}: " if source is not None else ""
+    if not isinstance(text, str):
+        raise InputError(f"{where}TOML text must be a string (got {type(text).__name__})")
+    if text.startswith(_BOM):
+        text = text[1:]
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{where}TOML syntax error: {exc}") from None
+    except RecursionError:
+        _too_deep(where)
+    check_nesting(data, source)
+    return data
+
+
+def _too_deep(where: str) -> NoReturn:
+    raise InputError(
+        f"{where}arrays or tables are nested more than {MAX_NESTING} levels deep; "
+        "no key takes such values"
+    )
+
+
+def check_nesting(data, source=None) -> None:
+    """:class:`~tribodyn.InputError` if dicts and lists in ``data`` nest deeper than
+    :data:`MAX_NESTING` (for data given as Python objects rather than TOML text)."""
+    if _depth(data) > MAX_NESTING:
+        _too_deep(f"{source}: " if source is not None else "")
