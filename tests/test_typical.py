@@ -1,0 +1,69 @@
+"""Typical (sourced) defaults of the physics objects; the paper's values stay in its case."""
+
+from __future__ import annotations
+
+import pytest
+
+from tribodyn import InputError, paper
+from tribodyn.config.schema import LubricantConfig, SurfaceSetConfig
+from tribodyn.contact.ehl.options import EHLOptions
+from tribodyn.physics import typical
+from tribodyn.physics.friction import BOUNDARY_SHEAR_STRENGTH
+from tribodyn.physics.lubricant import SAE_5W20, Lubricant
+from tribodyn.physics.thermal_oil import ThermalLubricant
+
+
+def _all_values():
+    yield typical.EYRING_STRESS
+    yield typical.LIMITING_SHEAR_COEFFICIENT
+    yield typical.LIMITING_SHEAR_STRESS
+    yield typical.BOUNDARY_SHEAR_STRENGTH
+    yield typical.ROUGHNESS_PARAMETER
+    yield typical.RMS_TO_SUMMIT_RADIUS
+    yield from typical.BOUNDARY_FRICTION.values()
+    yield from typical.COMPOSITE_RMS.values()
+
+
+def test_every_typical_value_has_a_source_and_lies_in_its_range():
+    for v in _all_values():
+        assert v.source.strip()
+        assert v.low <= v.value <= v.high
+
+
+def test_published_ranges():
+    # Eyring stress of mineral oils 2-10 MPa (Johnson & Tevaarwerk 1977); ZDDP boundary
+    # friction 0.09-0.14 (Zhang et al. 2021); ηβσ 0.03-0.05 (Arnell et al. 1991)
+    assert (typical.EYRING_STRESS.low, typical.EYRING_STRESS.high) == (2e6, 10e6)
+    zddp = typical.boundary_friction("steel", "ZDDP")
+    assert (zddp.low, zddp.high) == (0.09, 0.14)
+    assert 0.03 <= typical.ROUGHNESS_PARAMETER.value <= 0.05
+    # the boundary data give coatings no large gain over steel in ZDDP oils
+    for coat in ("a-C:H", "ta-C", "WC-C"):
+        assert typical.boundary_friction(coat).value <= zddp.value
+
+
+def test_unknown_pair_is_an_input_error():
+    with pytest.raises(InputError, match="known: steel/zddp"):
+        typical.boundary_friction("brass")
+
+
+def test_physics_defaults_are_typical():
+    oil = Lubricant(0.01, 1.5e-8)
+    assert oil.eyring_stress == typical.EYRING_STRESS.value
+    assert oil.limiting_shear_coefficient == typical.LIMITING_SHEAR_COEFFICIENT.value
+    assert BOUNDARY_SHEAR_STRENGTH == typical.BOUNDARY_SHEAR_STRENGTH.value
+    opts = EHLOptions()
+    assert opts.boundary_shear_coefficient == typical.boundary_friction("steel").value
+    assert opts.boundary_shear_strength == typical.BOUNDARY_SHEAR_STRENGTH.value
+    assert ThermalLubricant.__dataclass_fields__["eyring_stress"].default == 5e6
+
+
+def test_paper_values_stay_with_the_paper():
+    assert SAE_5W20.eyring_stress == paper.LUBRICANT["eyring_stress"]
+    assert SAE_5W20.limiting_shear_coefficient == paper.LUBRICANT["limiting_shear_coefficient"]
+    # an empty case file is the paper's case
+    assert LubricantConfig().eyring_stress == paper.LUBRICANT["eyring_stress"]
+    assert (
+        SurfaceSetConfig.model_fields["boundary_shear_strength"].default
+        == paper.BOUNDARY_SHEAR_STRENGTH
+    )
