@@ -67,3 +67,20 @@ def test_paper_values_stay_with_the_paper():
         SurfaceSetConfig.model_fields["boundary_shear_strength"].default
         == paper.BOUNDARY_SHEAR_STRENGTH
     )
+
+
+def test_rig_case_uses_the_typical_friction_values():
+    from tribodyn.config import load_case
+
+    case = load_case("flat_tappet_rig")
+    oil = case.lubricant()
+    assert oil.eyring_stress == typical.EYRING_STRESS.value
+    assert oil.limiting_shear_coefficient == typical.LIMITING_SHEAR_COEFFICIENT.value
+    sets = {s.name: s for s in case.surface_sets()}
+    assert sets["steel"].boundary_shear_coefficient == typical.boundary_friction("steel").value
+    assert sets["dlc_2um"].boundary_shear_coefficient == typical.boundary_friction("a-C:H").value
+    for s in sets.values():
+        assert s.boundary_shear_strength == typical.BOUNDARY_SHEAR_STRENGTH.value
+        r = s.roughness
+        assert r.roughness_parameter == pytest.approx(typical.ROUGHNESS_PARAMETER.value)
+        assert r.rms / r.summit_radius == pytest.approx(typical.RMS_TO_SUMMIT_RADIUS.value)
