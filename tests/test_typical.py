@@ -84,3 +84,26 @@ def test_rig_case_uses_the_typical_friction_values():
         r = s.roughness
         assert r.roughness_parameter == pytest.approx(typical.ROUGHNESS_PARAMETER.value)
         assert r.rms / r.summit_radius == pytest.approx(typical.RMS_TO_SUMMIT_RADIUS.value)
+
+
+def test_greenwood_tripp_bound_with_typical_roughness():
+    """With typical ηβσ and σ/β the asperities carry at most a few per cent of a Hertz
+    pressure at λ = 0: p_a(0) = (8√2/15)π F_5/2(0) (ηβσ)² √(σ/β) E', with the closed form
+    F_5/2(0) = 2^(3/4) Γ(7/4)/√(2π) = 0.6166 (the constant of the paper's Eq. 7 fit)."""
+    import math
+
+    from tribodyn.physics.asperity import Roughness
+
+    ebs, ratio, sigma = (
+        typical.ROUGHNESS_PARAMETER.value,
+        typical.RMS_TO_SUMMIT_RADIUS.value,
+        0.2e-6,
+    )
+    beta = sigma / ratio
+    rough = Roughness(ebs / (beta * sigma), sigma, beta)
+    e_prime = 210e9 / (1 - 0.3**2)
+    f52 = 2**0.75 * math.gamma(1.75) / math.sqrt(2 * math.pi)
+    assert f52 == pytest.approx(0.6166, abs=1e-4)
+    expected = 8 * math.sqrt(2) / 15 * math.pi * f52 * ebs**2 * math.sqrt(ratio) * e_prime
+    assert rough.asperity_pressure(0.0, e_prime) == pytest.approx(expected, rel=1e-10)
+    assert 15e6 < expected < 20e6  # vs Hertz pressures of 0.3-1 GPa at a cam nose
