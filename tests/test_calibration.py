@@ -149,3 +149,29 @@ def test_cli_bad_csv_is_a_clear_error(tmp_path):
     r = CliRunner().invoke(app, ["calibrate", str(data), *ARGS])
     assert r.exit_code == 2
     assert "entrainment_speed" in r.output and "Traceback" not in r.output
+
+
+def test_cli_json_and_fix(tmp_path):
+    import json
+
+    data = tmp_path / "m.csv"
+    _write_csv(data, _measured(1))
+    r = CliRunner().invoke(
+        app,
+        [
+            "calibrate",
+            str(data),
+            *ARGS,
+            "--fit",
+            "boundary_shear_coefficient,eyring_stress",
+            "--fix",
+            "limiting_shear_coefficient=0.025",
+            "--json",
+        ],
+    )
+    assert r.exit_code == 0, r.output
+    out = json.loads(r.output)
+    assert out["fixed"] == {"limiting_shear_coefficient": 0.025}
+    assert set(out["values"]) == {"boundary_shear_coefficient", "eyring_stress"}
+    r = CliRunner().invoke(app, ["calibrate", str(data), *ARGS, "--fix", "eyring_stress"])
+    assert r.exit_code == 2 and "NAME=VALUE" in r.output
