@@ -256,6 +256,14 @@ def calibrate_friction(
     def residuals(x):
         return model_friction(setup, data, **params_of(x)) - data.friction_coefficient
 
+    r0 = residuals(x0)
+    if not np.all(np.isfinite(r0)):
+        bad = int(np.flatnonzero(~np.isfinite(r0))[0])
+        raise InputError(
+            f"the model friction is not finite at measured point {bad + 1} (u_e = "
+            f"{data.entrainment_speed[bad]:g} m/s, u_s = {data.sliding_speed[bad]:g} m/s, "
+            f"w = {data.load[bad]:g} N/m): check the units of the data and the setup"
+        )
     # The cap τ_L0 + Λp is flat (zero gradient) where it is not reached, so Λ is also
     # started at levels of the measured friction coefficient; the best fit is kept.
     starts = [x0]
