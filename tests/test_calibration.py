@@ -175,3 +175,14 @@ def test_cli_json_and_fix(tmp_path):
     assert set(out["values"]) == {"boundary_shear_coefficient", "eyring_stress"}
     r = CliRunner().invoke(app, ["calibrate", str(data), *ARGS, "--fix", "eyring_stress"])
     assert r.exit_code == 2 and "NAME=VALUE" in r.output
+
+
+def test_bootstrap_agrees_with_the_linearised_uncertainty():
+    d = _measured(0)
+    a = calibrate_friction(d, SETUP, bootstrap=12, seed=1)
+    b = calibrate_friction(d, SETUP, bootstrap=12, seed=1)
+    assert a.bootstrap_std == b.bootstrap_std  # seeded
+    for name in TRUTH:
+        assert 0.5 <= a.bootstrap_std[name] / a.std[name] <= 2.0
+    with pytest.raises(InputError, match="bootstrap"):
+        calibrate_friction(d, SETUP, bootstrap=-1)

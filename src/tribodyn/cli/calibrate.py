@@ -99,6 +99,8 @@ def calibration_toml(cal, source: str, label: str, roughness: dict | None = None
         if name in cal.values:
             sd = cal.std[name]
             unc = f"± {_fmt(sd)}" if math.isfinite(sd) else "± undetermined"
+            if name in cal.bootstrap_std:
+                unc += f", bootstrap ± {_fmt(cal.bootstrap_std[name])}"
             return f"{name} = {_fmt(cal.values[name])}  # {unc} (fitted)"
         if name in cal.fixed:
             return f"{name} = {_fmt(cal.fixed[name])}  # fixed"
@@ -171,6 +173,9 @@ def calibrate_command(
         "limiting_shear_stress, roughness_parameter).",
     ),
     fix: list[str] = typer.Option([], "--fix", help="NAME=VALUE held fixed (repeatable)."),
+    bootstrap: int = typer.Option(
+        0, "--bootstrap", help="also a residual bootstrap with this many refits (e.g. 200)."
+    ),
     label: str = typer.Option("measured pair", "--label", help="name of the pair in comments."),
     output: Path | None = typer.Option(
         None, "--output", "-o", help="write the TOML here (an existing file is never replaced)."
@@ -211,7 +216,7 @@ def calibrate_command(
             roughness=roughness,
             materials=(Material(e1, nu1), Material(e2, nu2)),
         )
-        cal = calibrate_friction(measured, setup, free=free, fixed=fixed)
+        cal = calibrate_friction(measured, setup, free=free, fixed=fixed, bootstrap=bootstrap)
         rough = (
             None
             if roughness is None
@@ -239,6 +244,7 @@ def calibrate_command(
                 {
                     "values": cal.values,
                     "std": {k: (v if math.isfinite(v) else None) for k, v in cal.std.items()},
+                    "bootstrap_std": cal.bootstrap_std,
                     "fixed": cal.fixed,
                     "rms_residual": cal.rms_residual,
                     "n_points": cal.n_points,

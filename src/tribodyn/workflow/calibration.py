@@ -183,6 +183,7 @@ class Calibration:
     rms_residual : RMS of μ_model − μ_measured at the optimum.
     converged : the optimiser met its tolerance and every parameter is determined.
     message : what happened, and what to change if it did not work.
+    bootstrap_std : 1σ from a residual bootstrap (``bootstrap`` > 0), else empty.
     """
 
     free: tuple[str, ...]
@@ -194,6 +195,7 @@ class Calibration:
     n_points: int
     converged: bool
     message: str
+    bootstrap_std: dict[str, float] = field(default_factory=dict)
 
     def within(self, truth: dict[str, float], k: float = 3.0) -> dict[str, bool]:
         """Whether each true value lies within k standard uncertainties of the fit."""
@@ -205,10 +207,16 @@ def calibrate_friction(
     setup: CalibrationSetup,
     free: tuple[str, ...] | list[str] = _DEFAULT_FREE,
     fixed: dict[str, float] | None = None,
+    bootstrap: int = 0,
+    seed: int = 0,
 ) -> Calibration:
     """Fit the parameters ``free`` to the measured friction ``data`` (module docstring).
 
-    ``fixed`` overrides the values of parameters that are not fitted. Raises
+    ``fixed`` overrides the values of parameters that are not fitted. ``bootstrap`` > 0
+    also refits that many synthetic data sets, the fitted model plus residuals drawn with
+    replacement (residual bootstrap, seeded by ``seed``), and reports the standard
+    deviation of the refitted values as ``bootstrap_std``: a check of the linearised
+    uncertainty that does not assume the model is linear in its parameters. Raises
     :class:`~tribodyn.InputError` for unknown names or a free parameter that is also fixed.
     """
     free = tuple(free)
@@ -220,6 +228,8 @@ def calibrate_friction(
         raise InputError("nothing to fit: give at least one free parameter")
     if set(free) & set(fixed):
         raise InputError(f"parameter(s) {sorted(set(free) & set(fixed))} both free and fixed")
+    if not (isinstance(bootstrap, int) and 0 <= bootstrap <= 10000):
+        raise InputError(f"bootstrap must be an integer in [0, 10000] (got {bootstrap!r})")
     if len(data) <= len(free):
         raise InputError(
             f"{len(data)} points cannot determine {len(free)} parameters with an uncertainty; "
@@ -370,7 +380,34 @@ def calibrate_friction(
             f"; {', '.join(at_bound)} at the bound of its allowed range: the model cannot fit "
             "these data with a value inside it (check units and the fixed inputs)"
         )
+    boot: dict[str, float] = {}
+    if bootstrap:
+        rng = np.random.default_rng(seed)
+        fitted = data.friction_coefficient + r  # the model at the optimum
+        samples = []
+        for _ in range(bootstrap):
+            target = fitted + rng.choice(r, size=n, replace=True)
+
+            def res_b(x, target=target):
+                return model_friction(setup, data, **params_of(x)) - target
+
+            b = least_squares(res_b, sol.x, bounds=(lo, hi), x_scale=x_scale, method="trf")
+            samples.append([from_x(nm, xi) for nm, xi in zip(free, b.x, strict=True)])
+        spread = np.std(np.array(samples), axis=0, ddof=1)
+        boot = {nm: float(v) for nm, v in zip(free, spread, strict=True)}
+        ratio = [
+            nm
+            for nm in free
+            if math.isfinite(std[nm]) and std[nm] > 0 and not 0.5 <= boot[nm] / std[nm] <= 2.0
+        ]
+        if ratio:
+            message += (
+                f"; the bootstrap spread of {', '.join(ratio)} differs from the linearised "
+                "uncertainty by more than 2×: the model is not linear in it over its "
+                "uncertainty, trust the bootstrap value"
+            )
     return Calibration(
+        bootstrap_std=boot,
         free=free,
         values={nm: float(values[nm]) for nm in free},
         std=std,
