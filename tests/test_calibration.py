@@ -186,3 +186,29 @@ def test_bootstrap_agrees_with_the_linearised_uncertainty():
         assert 0.5 <= a.bootstrap_std[name] / a.std[name] <= 2.0
     with pytest.raises(InputError, match="bootstrap"):
         calibrate_friction(d, SETUP, bootstrap=-1)
+
+
+def test_per_point_radius_of_a_cam_trace(tmp_path):
+    """A cam trace reduced to its contact conditions: R varies from point to point."""
+    radius = np.linspace(0.004, 0.03, UE.size)
+    base = FrictionData(UE, US, W, np.zeros(UE.size), radius)
+    exact = model_friction(SETUP, base, **TRUTH)
+    assert not np.allclose(exact, model_friction(SETUP, _measured(0), **TRUTH))
+    rng = np.random.default_rng(3)
+    d = FrictionData(UE, US, W, exact + rng.normal(0.0, NOISE, UE.size), radius)
+    cal = calibrate_friction(d, SETUP)
+    assert cal.converged, cal.message
+    assert all(cal.within(TRUTH).values())
+    with pytest.raises(InputError, match="radius must give"):
+        FrictionData(UE, US, W, exact, radius[:-1])
+    # the CLI reads the radius column instead of --radius
+    path = tmp_path / "trace.csv"
+    rows = ["entrainment_speed,sliding_speed,load,radius,friction_coefficient"]
+    rows += [
+        ",".join(f"{v:.9g}" for v in row) for row in zip(UE, US, W, radius, d.friction_coefficient)
+    ]
+    path.write_text("\n".join(rows) + "\n")
+    args = ["--viscosity", "0.02", "--pressure-viscosity", "2e-8", "--rms", "0.3e-6"]
+    args += ["--roughness-parameter", "0.15", "--json"]
+    r = CliRunner().invoke(app, ["calibrate", str(path), *args])
+    assert r.exit_code == 0, r.output

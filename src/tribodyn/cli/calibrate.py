@@ -29,7 +29,8 @@ _COLUMNS = ("entrainment_speed", "friction_coefficient")
 def read_friction_csv(path: Path, load: float | None):
     """Read measured points: columns ``entrainment_speed`` [m/s], ``friction_coefficient``
     [-], and ``sliding_speed`` [m/s] or ``slide_roll_ratio`` [-] (u_s/u_e), optionally
-    ``load`` [N/m] (else ``load`` applies to every row). Lines starting with # are skipped."""
+    ``load`` [N/m] (else ``load`` applies to every row) and ``radius`` [m] (else
+    --radius). Lines starting with # are skipped."""
     import numpy as np
 
     from .._validation import InputError
@@ -46,7 +47,7 @@ def read_friction_csv(path: Path, load: float | None):
     if missing or not ({"sliding_speed", "slide_roll_ratio"} & set(header)):
         raise InputError(
             f"DATA {str(path)!r}: needs the columns entrainment_speed, friction_coefficient and "
-            f"sliding_speed or slide_roll_ratio (optional: load); found {header}"
+            f"sliding_speed or slide_roll_ratio (optional: load, radius); found {header}"
         )
     cols: dict[str, list[float]] = {h: [] for h in header}
     for i, row in enumerate(reader, start=2):
@@ -71,7 +72,8 @@ def read_friction_csv(path: Path, load: float | None):
         w = np.full(ue.size, float(load))
     else:
         raise InputError("give --load (N/m) or a load column in DATA")
-    return FrictionData(ue, np.abs(us), w, np.asarray(cols["friction_coefficient"]))
+    radius = np.asarray(cols["radius"]) if "radius" in cols else None
+    return FrictionData(ue, np.abs(us), w, np.asarray(cols["friction_coefficient"]), radius)
 
 
 def _fmt(v: float) -> str:
@@ -144,7 +146,9 @@ def calibration_toml(cal, source: str, label: str, roughness: dict | None = None
 
 def calibrate_command(
     data: Path = typer.Argument(..., help="CSV of measured friction (see the guide)."),
-    radius: float = typer.Option(..., "--radius", help="reduced radius R of the line contact [m]."),
+    radius: float | None = typer.Option(
+        None, "--radius", help="reduced radius R [m] (unless DATA has a radius column)."
+    ),
     load: float | None = typer.Option(
         None, "--load", help="load per unit length w [N/m] (unless DATA has a load column)."
     ),
@@ -183,6 +187,8 @@ def calibrate_command(
     as_json: bool = typer.Option(False, "--json", help="print the result as JSON."),
 ) -> None:
     """Fit boundary friction and rheology to measured friction; print case-file sections."""
+    import numpy as np
+
     from .._validation import InputError
     from ..physics.asperity import Roughness
     from ..physics.lubricant import Lubricant
@@ -204,6 +210,10 @@ def calibrate_command(
         if output is not None and (output.exists() or output.is_symlink()):
             raise InputError(f"--output {str(output)!r} exists; give a new file name")
         measured = read_friction_csv(data, load)
+        if radius is None:
+            if measured.radius is None:
+                raise InputError("give --radius [m] or a radius column in DATA")
+            radius = float(np.median(measured.radius))  # not used: each row has its own
         roughness = None
         if rms is not None:
             if not (0.0 < rms_to_radius < 1.0 and roughness_parameter > 0.0):

@@ -75,12 +75,15 @@ _LOG = ("eyring_stress", "roughness_parameter")  # fitted as ln(value)
 @dataclass(frozen=True)
 class FrictionData:
     """Measured points: entrainment speed u_e [m/s], sliding speed u_s [m/s], load per
-    unit length w [N/m] and friction coefficient μ [-] (arrays of equal length)."""
+    unit length w [N/m] and friction coefficient μ [-] (arrays of equal length), and
+    optionally the reduced radius R [m] per point (a cam trace reduced to its contact
+    conditions angle by angle; absent: the setup's radius)."""
 
     entrainment_speed: np.ndarray
     sliding_speed: np.ndarray
     load: np.ndarray
     friction_coefficient: np.ndarray
+    radius: np.ndarray | None = None
 
     def __post_init__(self):
         names = ("entrainment_speed", "sliding_speed", "load", "friction_coefficient")
@@ -106,6 +109,11 @@ class FrictionData:
             raise InputError("friction_coefficient must lie in [0, 1]")
         for name, a in zip(names, arrays, strict=True):
             object.__setattr__(self, name, a)
+        if self.radius is not None:
+            r = np.atleast_1d(np.asarray(self.radius, dtype=float))
+            if r.shape != (n,) or not np.all((r > 0.0) & (r < 1.0)):
+                raise InputError(f"radius must give {n} values in (0, 1) m, one per point")
+            object.__setattr__(self, "radius", r)
 
     def __len__(self) -> int:
         return int(self.friction_coefficient.size)
@@ -161,7 +169,7 @@ def model_friction(setup: CalibrationSetup, data: FrictionData, **params: float)
         rough = replace(rough, asperity_density=rough.asperity_density * scale)
     c = analytic_contact(
         data.load,
-        setup.radius,
+        setup.radius if data.radius is None else data.radius,
         data.entrainment_speed,
         data.sliding_speed,
         bodies,
