@@ -167,6 +167,7 @@ def test_bundled_names(paper):
         "andreou2023_flexible",
         "andreou2023_thermal",
         "example_table_cam",
+        "flat_tappet_rig",
     }
     assert load_case("andreou2023") == paper
 

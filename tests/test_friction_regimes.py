@@ -95,7 +95,17 @@ def test_boundary_friction_is_integral_of_local_law():
     R, w, u = 0.01, 2e4, 0.5
     oil = Lubricant(0.055, 1.05e-8)
     rough = Roughness(asperity_density=5e10, rms=0.5e-6, summit_radius=2e-6)
-    r = solve_ehl(w, R, u, 1.0, PAIR, oil, rough, boundary_shear_coefficient=0.185)
+    r = solve_ehl(
+        w,
+        R,
+        u,
+        1.0,
+        PAIR,
+        oil,
+        rough,
+        boundary_shear_coefficient=0.185,
+        boundary_shear_strength=2e6,
+    )
     assert r.converged, r.message
     e_s = E_PRIME
     ebs = 5e10 * 2e-6 * 0.5e-6

@@ -20,7 +20,11 @@ DLC_T = ThermalProperties(1.0, 1900.0, 700.0)
 STEEL = Material(210e9, 0.3)
 E_PRIME = 210e9 / 0.91
 OIL = ThermalLubricant(
-    kelvin(40.0), kinematic_viscosity_40=64e-6, kinematic_viscosity_100=11e-6, density=852.0
+    kelvin(40.0),
+    kinematic_viscosity_40=64e-6,
+    kinematic_viscosity_100=11e-6,
+    density=852.0,
+    eyring_stress=2e6,  # the value these checks were set up with (default: typical 5 MPa)
 )
 B = 1e-4  # half-width of the band heat source [m]
 Q = 1e8  # its heat flux [W/m²]
@@ -130,6 +134,7 @@ def test_isothermal_limit_reproduces_the_isothermal_solver():
         kinematic_viscosity_100=11e-6,
         density=852.0,
         thermal_conductivity=1e5,
+        eyring_stress=2e6,
     )
     conducting = solve_thermal_ehl(
         W, R, 2.0, 1.0, PAIR, oil_k, (ThermalBody(big), ThermalBody(big))

@@ -1,10 +1,12 @@
-"""The ``tribodyn`` command-line application: ``run``, ``sweep``, ``contact``, ``topography``."""
+"""The ``tribodyn`` command-line application: ``run``, ``sweep``, ``contact``, ``topography``,
+``calibrate``."""
 
 from __future__ import annotations
 
 import typer
 
 from .._version import __version__
+from .calibrate import calibrate_command
 from .contact import contact_command
 from .run import run_command
 from .sweep import sweep_command
@@ -42,6 +44,7 @@ app.command("run")(run_command)
 app.command("sweep")(sweep_command)
 app.command("contact")(contact_command)
 app.command("topography")(topography_command)
+app.command("calibrate")(calibrate_command)
 
 
 def main():  # pragma: no cover

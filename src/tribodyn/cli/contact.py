@@ -26,6 +26,7 @@ from rich.table import Table
 
 from .. import paper
 from .._validation import InputError
+from ..physics import typical
 
 __all__ = ["contact_command", "compute_contact"]
 
@@ -526,7 +527,8 @@ def contact_command(
         None,
         "--eyring-stress",
         rich_help_panel=_LUB,
-        help=f"τ_E [Pa] ({paper.LUBRICANT['eyring_stress']:g}).",
+        help=f"τ_E [Pa] (the case's; paper {paper.LUBRICANT['eyring_stress']:g}; "
+        f"with --oil the typical {typical.EYRING_STRESS.value:g}).",
     ),
     limiting_shear_coefficient: float | None = typer.Option(
         None,

@@ -31,12 +31,12 @@ from pydantic import (
     model_validator,
 )
 
+from .. import paper
 from .._typing import PathLike
 from .._validation import InputError
 from ..contact.ehl import EHLOptions
 from ..contact.ehl.thermal import ThermalOptions
 from ..physics.asperity import Roughness
-from ..physics.friction import BOUNDARY_SHEAR_STRENGTH
 from ..physics.heat_conduction import ThermalBody, ThermalProperties
 from ..physics.lubricant import Lubricant
 from ..physics.materials import Body, Coating, Material
@@ -106,7 +106,7 @@ class SurfaceSet:
     roughness: Roughness | None
     boundary_shear_coefficient: float
     coating_label: str
-    boundary_shear_strength: float = BOUNDARY_SHEAR_STRENGTH
+    boundary_shear_strength: float = paper.BOUNDARY_SHEAR_STRENGTH
     coating_material: str | None = None
 
     @property

@@ -15,7 +15,6 @@ from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, model_val
 
 from .. import paper
 from ..physics import limits as L
-from ..physics.friction import BOUNDARY_SHEAR_STRENGTH
 from ..physics.oils import OILS
 from ..valvetrain.parameters import ValvetrainParameters
 from .errors import Problems
@@ -612,7 +611,7 @@ class SurfaceSetConfig(Section):
         "ς of the pair; absent: the coating's (or the substrate's if uncoated)",
     )
     boundary_shear_strength: float = _lim(
-        BOUNDARY_SHEAR_STRENGTH,
+        paper.BOUNDARY_SHEAR_STRENGTH,  # an empty case file is the paper's case
         L.BOUNDARY_SHEAR_STRENGTH,
         "τ₀ of the boundary shear law τ = τ₀ + ς p_a (Eq. 17)",
     )

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import paper
+from . import typical
 from .asperity import Roughness
 from .friction import BOUNDARY_SHEAR_STRENGTH, couette_shear_stress, limit_shear_stress
 from .lubricant import Lubricant
@@ -76,7 +76,7 @@ def analytic_contact(
     lubricant: Lubricant,
     roughness: Roughness | None = None,
     *,
-    boundary_shear_coefficient: float = paper.STEEL["boundary_shear_coefficient"],
+    boundary_shear_coefficient: float = typical.boundary_friction("steel").value,
     boundary_shear_strength: float = BOUNDARY_SHEAR_STRENGTH,
     viscous_model: str = "eyring",
     limiting_shear: bool = True,

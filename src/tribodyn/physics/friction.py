@@ -4,7 +4,7 @@ Viscous (Couette) shear stress on the surfaces for sliding speed u_s, local visc
 and film h:
 
 * ``"newtonian"`` (Eq. 16 as printed): τ = μ u_s / h
-* ``"eyring"``: τ = τ_E asinh(μ u_s / (τ_E h))         (τ_E: Eyring stress, 2 MPa)
+* ``"eyring"``: τ = τ_E asinh(μ u_s / (τ_E h))         (τ_E: Eyring stress)
 
 both capped by the limiting shear stress τ_L = τ_L0 + Λ p unless disabled (paper: Λ = 0.08,
 τ_L0 = 0; the intercept τ_L0 of Bair & Winer's linear law keeps a finite cap where the
@@ -14,16 +14,20 @@ report it separately as the rolling friction.
 
 Boundary friction (Eqs. 17–18, applied locally): the asperity shear strength
 τ = τ₀ + ς p_a acts on the real contact area, so per unit nominal area
-τ_b = τ₀ (A_a/A) + ς p_a,   τ₀ = 2 MPa, ς = pressure coefficient of boundary shear
-strength of the surface pair (steel 0.185, DLC 0.44, WC-C 0.54; paper Table 6).
+τ_b = τ₀ (A_a/A) + ς p_a,   ς = pressure coefficient of boundary shear strength of the
+surface pair (paper: τ₀ = 2 MPa with AFM values steel 0.185, DLC 0.44, WC-C 0.54, Table 6).
+
+Defaults are the typical values of :mod:`tribodyn.physics.typical` (τ_E = 5 MPa; τ₀ = 0,
+so that ς is a measured boundary friction coefficient); the paper's values are in
+:mod:`tribodyn.paper` and its case files.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .. import paper
 from .._validation import InputError
+from . import typical
 
 __all__ = [
     "VISCOUS_MODELS",
@@ -34,8 +38,8 @@ __all__ = [
 ]
 
 VISCOUS_MODELS = ("newtonian", "eyring")
-#: τ₀ of Eq. 17 [Pa].
-BOUNDARY_SHEAR_STRENGTH = paper.BOUNDARY_SHEAR_STRENGTH
+#: τ₀ of Eq. 17 [Pa], typical (0: ς is then the measured boundary friction coefficient).
+BOUNDARY_SHEAR_STRENGTH = typical.BOUNDARY_SHEAR_STRENGTH.value
 
 
 def couette_shear_stress(
@@ -43,7 +47,7 @@ def couette_shear_stress(
     sliding_speed,
     film,
     model: str = "eyring",
-    eyring_stress: float = paper.LUBRICANT["eyring_stress"],
+    eyring_stress: float = typical.EYRING_STRESS.value,
 ) -> np.ndarray:
     """Couette shear stress [Pa], signed like the sliding speed."""
     if model not in VISCOUS_MODELS:

@@ -25,6 +25,7 @@ import numpy as np
 
 from .. import paper
 from .._validation import check_bool, check_choice
+from . import typical
 from .limits import (
     DENSITY,
     EYRING_STRESS,
@@ -50,8 +51,10 @@ class Lubricant:
     viscosity : μ₀, dynamic viscosity at ambient pressure [Pa·s], > 6.31e-5 (Roelands), ≤ 100.
     pressure_viscosity : α, pressure–viscosity coefficient [1/Pa], 0 … 1e-6 (0: isoviscous).
     density : ρ₀ at ambient pressure [kg/m³] (paper: not given, 850 assumed).
-    eyring_stress : τ_E, Eyring stress of the non-Newtonian shear law [Pa].
-    limiting_shear_coefficient : Λ, pressure slope of the limiting shear stress [-].
+    eyring_stress : τ_E, Eyring stress of the non-Newtonian shear law [Pa] (typical 5 MPa,
+        :mod:`tribodyn.physics.typical`; the paper's 2 MPa is set by its case).
+    limiting_shear_coefficient : Λ, pressure slope of the limiting shear stress [-]
+        (typical 0.08).
     compressible : use Dowson–Higginson (True) or constant density (False); a bool.
     (Ranges of all numbers: ``physics.limits``, the same as the case file's.)
     viscosity_model : "roelands" (default, paper Eq. 3) or "barus".
@@ -62,8 +65,8 @@ class Lubricant:
     viscosity: float
     pressure_viscosity: float
     density: float = paper.ASSUMED_DENSITY
-    eyring_stress: float = paper.LUBRICANT["eyring_stress"]
-    limiting_shear_coefficient: float = paper.LUBRICANT["limiting_shear_coefficient"]
+    eyring_stress: float = typical.EYRING_STRESS.value
+    limiting_shear_coefficient: float = typical.LIMITING_SHEAR_COEFFICIENT.value
     compressible: bool = True
     viscosity_model: str = "roelands"
     limiting_shear_stress: float = 0.0
@@ -131,5 +134,8 @@ class Lubricant:
 
 #: The paper's Table 5 lubricant (SAE 5W-20), with the assumed ρ₀ = 850 kg/m³.
 SAE_5W20 = Lubricant(
-    viscosity=paper.LUBRICANT["viscosity"], pressure_viscosity=paper.LUBRICANT["pressure_viscosity"]
+    viscosity=paper.LUBRICANT["viscosity"],
+    pressure_viscosity=paper.LUBRICANT["pressure_viscosity"],
+    eyring_stress=paper.LUBRICANT["eyring_stress"],
+    limiting_shear_coefficient=paper.LUBRICANT["limiting_shear_coefficient"],
 )

@@ -67,6 +67,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from .._validation import InputError, check_nonnegative, check_positive, check_range
+from . import typical
 from .limits import VISCOSITY
 from .lubricant import ROELANDS_MU_INF, ROELANDS_P0, Lubricant
 
@@ -172,8 +173,8 @@ class ThermalLubricant:
     pressure_viscosity: float | None = None
     thermal_conductivity: float | None = None
     specific_heat: float | None = None
-    eyring_stress: float = 2e6
-    limiting_shear_coefficient: float = 0.08
+    eyring_stress: float = typical.EYRING_STRESS.value
+    limiting_shear_coefficient: float = typical.LIMITING_SHEAR_COEFFICIENT.value
     limiting_shear_stress: float = 0.0
     limiting_shear_temperature_coefficient: float = 0.0
     compressible: bool = True

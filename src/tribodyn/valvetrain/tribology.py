@@ -121,6 +121,7 @@ class AnalyticTribology(TribologyModel):
         self.roughness = roughness
         self.kwargs = dict(
             boundary_shear_coefficient=boundary_shear_coefficient,
+            boundary_shear_strength=paper.BOUNDARY_SHEAR_STRENGTH,  # with the paper's ς
             viscous_model=viscous_model,
             film_formula=film_formula,
             limiting_shear=limiting_shear,

@@ -11,7 +11,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ... import paper
 from ..._validation import (
     InputError,
     check_bool,
@@ -20,6 +19,7 @@ from ..._validation import (
     check_positive,
 )
 from ...physics import limits as L
+from ...physics import typical
 from ...physics.asperity import Roughness
 from ...physics.friction import BOUNDARY_SHEAR_STRENGTH, VISCOUS_MODELS
 from ...physics.lubricant import Lubricant
@@ -69,7 +69,7 @@ class EHLOptions:
     viscous_model: str = "eyring"
     limiting_shear: bool = True
     boundary_shear_strength: float = BOUNDARY_SHEAR_STRENGTH
-    boundary_shear_coefficient: float = paper.STEEL["boundary_shear_coefficient"]
+    boundary_shear_coefficient: float = typical.boundary_friction("steel").value
     time_order: int = 2
 
     def __post_init__(self):
