@@ -19,7 +19,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .._validation import InputError, check_positive
+from .._validation import InputError, check_real
+from ..physics import limits as L
 from .cams import CamProfile
 from .compiled import compiled_model, integrate_compiled, lumped_energies
 from .flexible import FlexibleValvetrain
@@ -170,6 +171,18 @@ def resolve_tribology(tribology, params: ValvetrainParameters) -> TribologyModel
     return tribology
 
 
+def _check_atol(atol, size: int) -> float | np.ndarray:
+    """A scalar or one value per state (``size``), each inside L.DYNAMICS_ATOL."""
+    if np.ndim(atol) == 0:
+        return L.DYNAMICS_ATOL.check("atol", atol)
+    a = np.asarray(atol)
+    if a.ndim != 1 or a.size != size:
+        raise InputError(
+            f"atol must be a number or {size} numbers (one per state), got shape {a.shape}"
+        )
+    return np.array([L.DYNAMICS_ATOL.check(f"atol[{i}]", v) for i, v in enumerate(a.tolist())])
+
+
 def simulate_valvetrain(
     cam: CamProfile,
     params: ValvetrainParameters | None = None,
@@ -193,34 +206,40 @@ def simulate_valvetrain(
     params : :class:`ValvetrainParameters` (default: paper Table 7 + assumed values), or a
         :class:`~tribodyn.valvetrain.flexible.FlexibleValvetrain` (Craig–Bampton bodies,
         camshaft compliance; same outputs, valve = its seat face).
-    engine_speed : [rpm], > 0; the cam turns at half of it.
+    engine_speed : [rpm], in (0, 50 000] (L.ENGINE_SPEED); the cam turns at half of it.
     tribology : ``"explicit"`` (default, :class:`AnalyticTribology` over the cam width),
         None (frictionless), or any :class:`TribologyModel` (a model with a film law gives
         the implicit coupling).
-    cycles : engine cycles to integrate (≥ 1); the last one is presented.
-    output_step : crank-angle spacing of the output [deg].
+    cycles : engine cycles to integrate, 1–50; the last one is presented.
+    output_step : crank-angle spacing of the output [deg], in (0, 5].
     method : ``"LSODA"`` (default), ``"Radau"`` or ``"BDF"`` (solve_ivp, analytic Jacobian).
-    rtol, atol : solver tolerances (atol default: 1e-10 m on displacements, 1e-6 m/s on
-        velocities, 1e-6 J on the energy accumulators).
-    max_step : largest step [crank deg].
+    rtol, atol : solver tolerances, rtol in (0, 0.1), atol in (0, 0.01] (scalar or one per
+        state; default: 1e-10 m on displacements, 1e-6 m/s on velocities, 1e-6 J on the
+        energy accumulators).
+    max_step : largest step [crank deg], in (0, 10].
     start_angle : cam angle at t = 0 [rad]; must lie on the base circle.
-    jump_lift_threshold : cam lift above which a contact loss counts as a jump [m].
+    jump_lift_threshold : cam lift above which a contact loss counts as a jump [m], in
+        (0, 1 mm].
+
+    The ranges are those of the case file (:mod:`tribodyn.physics.limits`); a value
+    outside raises :class:`~tribodyn.InputError` naming the argument and its range.
     """
     if not isinstance(cam, CamProfile):
         raise InputError(f"cam must be a CamProfile (got {type(cam).__name__})")
     params = ValvetrainParameters() if params is None else params
     if not isinstance(params, (ValvetrainParameters, FlexibleValvetrain)):
         raise InputError("params must be a ValvetrainParameters or a FlexibleValvetrain")
-    cam.check(params.tappet_radius)
+    # the case file's ranges (physics.limits), checked before any work is done
     w = rpm_to_cam_speed(engine_speed)
-    if isinstance(cycles, bool) or not isinstance(cycles, int) or cycles < 1:
-        raise InputError(f"cycles must be an integer >= 1 (got {cycles!r})")
-    check_positive("output_step", output_step, "deg")
-    check_positive("rtol", rtol)
-    check_positive("max_step", max_step, "deg")
-    check_positive("jump_lift_threshold", jump_lift_threshold, "m")
+    cycles = L.DYNAMICS_CYCLES.check("cycles", cycles)
+    output_step = L.OUTPUT_STEP.check("output_step", output_step)
+    rtol = L.DYNAMICS_RTOL.check("rtol", rtol)
+    max_step = L.MAX_STEP.check("max_step", max_step)
+    jump_lift_threshold = L.JUMP_LIFT_THRESHOLD.check("jump_lift_threshold", jump_lift_threshold)
+    start_angle = check_real("start_angle", start_angle, "rad")
     if method not in ("LSODA", "Radau", "BDF"):
         raise InputError(f"method must be 'LSODA', 'Radau' or 'BDF' (got {method!r})")
+    cam.check(params.tappet_radius)
     trib = resolve_tribology(tribology, params)
 
     if isinstance(params, FlexibleValvetrain):
@@ -239,6 +258,8 @@ def simulate_valvetrain(
     t_eval[-1] = min(t_eval[-1], t_end)
     if atol is None:
         atol = np.concatenate([np.full(n, 1e-10), np.full(n, 1e-6), [1e-6, 1e-6]])
+    else:
+        atol = _check_atol(atol, 2 * n + 2)
     hmax = math.radians(max_step) / (2.0 * w)
 
     thr = jump_lift_threshold

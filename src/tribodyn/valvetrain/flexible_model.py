@@ -40,6 +40,7 @@ from .model import (
     _PALMGREN_EXP,
     ContactLawError,
     _FrictionTable,
+    check_model_inputs,
     contact_film_root,
     smooth_step,
 )
@@ -59,8 +60,7 @@ class FlexibleValvetrainModel:
         tribology: TribologyModel,
         start_angle: float = 0.0,
     ):
-        if not isinstance(flex, FlexibleValvetrain):
-            raise InputError("flex must be a FlexibleValvetrain")
+        check_model_inputs(cam, flex, FlexibleValvetrain, cam_speed, tribology, start_angle)
         self.cam, self.flex, self.w, self.trib = cam, flex, float(cam_speed), tribology
         self.p = p = flex.joints
         self.theta0 = float(start_angle)
