@@ -37,6 +37,7 @@ from .._validation import (
     check_positive,
     check_range,
 )
+from ..physics import limits as L
 
 __all__ = ["CamProfile", "AccelerationCam", "CircularArcCam", "TabulatedCam"]
 
@@ -524,7 +525,9 @@ class TabulatedCam(CamProfile):
     tappet_radius : optional check of max |e|.
 
     ``curvature_jumps`` lists (θ [rad], R before, R after [m]) of the jumps found;
-    ``precision`` is the precision used [m].
+    ``precision`` is the precision used [m]; ``base_circle`` the cam angles (from, to)
+    [rad] where the fit is exactly the base circle (s = s' = s'' = 0, R = r_b).
+    At most 10⁶ rows (``physics.limits.LIFT_TABLE_ROWS``); the fit costs O(n).
     """
 
     def __init__(
@@ -545,6 +548,7 @@ class TabulatedCam(CamProfile):
         )
         th = check_array("angle", angle, min_size=12)
         s = check_array("lift", lift, min_size=12)
+        L.LIFT_TABLE_ROWS.check("number of lift table rows", th.size)
         if th.shape != s.shape:
             raise InputError(
                 f"angle and lift must have the same length (got {th.size} and {s.size})"
@@ -605,6 +609,7 @@ class TabulatedCam(CamProfile):
         fit = fit_periodic_lift(th, s, self.base_radius, self.smoothing, quantum)
         self.precision = fit.precision
         self.fit_rms = fit.rms_residual
+        self.base_circle = fit.base_circle  # (from, to) [rad] where s ≡ 0, or None
         self._x = fit.breaks
         self._c = fit.coeffs  # (6, pieces), highest power first
         self._x0 = float(self._x[0])
