@@ -214,6 +214,15 @@ class FlexibleValvetrainModel:
             u = self.Cc * e / (1.0 + e) * P ** (1.0 + e)
         return u + 0.5 * self.c_bend * P * P
 
+    compilable = False  # no compiled right-hand side (solve_ivp path)
+
+    PARAMS = FlexibleValvetrain
+
+    @classmethod
+    def handles(cls, params) -> bool:
+        """True for a :class:`FlexibleValvetrain`."""
+        return isinstance(params, cls.PARAMS)
+
     def lobe_angle(self, t: float, y) -> float:
         """Lobe angle θ₀ + ωt − φ [rad]."""
         th = self.theta0 + self.w * t

@@ -269,6 +269,24 @@ class ValvetrainModel:
                 f"start_angle must be on the base circle (lift there is {s0 * 1e3:.4g} mm)"
             )
 
+    #: a compiled right-hand side exists (:func:`~tribodyn.valvetrain.compiled.compiled_model`)
+    compilable = True
+
+    PARAMS = ValvetrainParameters
+
+    @classmethod
+    def handles(cls, params) -> bool:
+        """True for a :class:`ValvetrainParameters`."""
+        return isinstance(params, cls.PARAMS)
+
+    def lobe_angle(self, t: float, y) -> float:
+        """Cam angle at the contact [rad]: θ₀ + ωt (rigid camshaft)."""
+        return self.theta0 + self.w * t
+
+    def unresolved_clash(self, Y) -> float:
+        """Coil clash the model cannot see [m]: none (the coils are lumped masses)."""
+        return -math.inf
+
     # -- contact law ---------------------------------------------------------------------
     def film(self, t: float, force: float, ue: float, R: float) -> tuple[float, float]:
         if not self.has_film:
