@@ -456,7 +456,7 @@ def compiled_model(model) -> CompiledLumped | None:
     from .tribology import FilmTableTribology
 
     trib = model.trib
-    if not getattr(model, "_tab", False):
+    if not model._tab:  # friction tabulated over the cam angle (periodic tribology)
         return None
     film = None
     if model.has_film:
