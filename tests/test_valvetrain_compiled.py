@@ -49,9 +49,17 @@ def test_compiled_equations_equal_the_python_model(film):
 
 
 def test_compiled_motion_equals_the_solve_ivp_path(monkeypatch):
-    """Same LSODA, same tolerances: the force histories agree to the integration error
-    (0.5 % of the peak at most, at the closing impact; 0.05 % in RMS), the seating
-    velocity to 0.5 %."""
+    """Same LSODA algorithm and tolerances, two implementations: compare what the
+    integration error defines, not the chaotic details of the small impacts where the
+    tappet takes up the ramp (lift < jump_lift_threshold; there the force history of one
+    impact depends on round-off, e.g. the BLAS kernel, by several N).
+
+    * inside the lift event (cam lift > 10 µm, the follower driven by the cam) the force
+      histories agree to 0.1 % of the peak (measured 0.045 %);
+    * the peak force to 0.02 % and its crank angle to the output step;
+    * the impulse ∫F_c dt over the cycle (momentum, well defined through impacts) to
+      0.01 % (measured 1e-5 relative);
+    * the seating velocity to 0.5 % (measured 0.02 %) and the energy balance to 1e-4."""
     kw = dict(engine_speed=3000.0, tribology="explicit", output_step=0.5)
     fast = simulate_valvetrain(AccelerationCam(), ValvetrainParameters(), **kw)
     monkeypatch.setattr(dynamics_module, "compiled_model", lambda m: None)
@@ -59,9 +67,17 @@ def test_compiled_motion_equals_the_solve_ivp_path(monkeypatch):
     assert fast.converged and slow.converged
     assert "event_intervals" in fast.stats and "event_intervals" not in slow.stats
     peak = slow.contact_force.max()
+    driven = fast.event_mask() & slow.event_mask()
+    assert driven.sum() > 0.4 * driven.size
     d = fast.contact_force - slow.contact_force
-    assert np.abs(d).max() < 5e-3 * peak
-    assert np.sqrt(np.mean(d**2)) < 5e-4 * peak
+    assert np.abs(d[driven]).max() < 1e-3 * peak
+    assert fast.contact_force.max() == pytest.approx(peak, rel=2e-4)
+    assert fast.crank_angle[fast.contact_force.argmax()] == pytest.approx(
+        slow.crank_angle[slow.contact_force.argmax()], abs=0.5
+    )
+    impulse = [np.trapezoid(r.contact_force, r.time) for r in (fast, slow)]
+    assert impulse[0] == pytest.approx(impulse[1], rel=1e-4)
     assert fast.seating_velocity == pytest.approx(slow.seating_velocity, rel=5e-3)
     assert len(fast.seatings) == len(slow.seatings)
     assert abs(fast.energy["relative_residual"]) < 1e-4
+    assert abs(slow.energy["relative_residual"]) < 1e-4

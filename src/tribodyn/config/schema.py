@@ -716,17 +716,13 @@ class Numerics(Section):
     film_formula: Literal["moes", "pan_hamrock", "dowson_toyoda"] = _q(
         "moes", "", "film formula of the explicit (analytic) tribology in the dynamics"
     )
-    cycles: int = _q(2, "", "engine cycles simulated (the last is presented)", ge=1, le=50)
-    output_step_deg: float = _q(
-        0.25, "deg (crank)", "output step of the valvetrain dynamics", gt=0.0, le=5.0
-    )
-    max_step_deg: float = _q(
-        1.0, "deg (crank)", "largest integrator step of the dynamics", gt=0.0, le=10.0
-    )
+    cycles: int = _lim(2, L.DYNAMICS_CYCLES, "engine cycles simulated (the last is presented)")
+    output_step_deg: float = _lim(0.25, L.OUTPUT_STEP, "output step of the valvetrain dynamics")
+    max_step_deg: float = _lim(1.0, L.MAX_STEP, "largest integrator step of the dynamics")
     dynamics_method: Literal["LSODA", "Radau", "BDF"] = _q(
         "LSODA", "", "stiff integrator (LSODA: compiled lumped model; Radau, BDF: solve_ivp)"
     )
-    dynamics_rtol: float = _q(1e-6, "", "relative tolerance of the dynamics", gt=0.0, lt=0.1)
+    dynamics_rtol: float = _lim(1e-6, L.DYNAMICS_RTOL, "relative tolerance of the dynamics")
     implicit_coupling: bool = _q(
         True,
         "",

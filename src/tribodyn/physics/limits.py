@@ -54,6 +54,14 @@ __all__ = [
     "LINE_LOAD",
     "CONTACT_RADIUS",
     "SURFACE_SPEED",
+    "CAM_SPEED",
+    "DYNAMICS_CYCLES",
+    "OUTPUT_STEP",
+    "MAX_STEP",
+    "DYNAMICS_RTOL",
+    "DYNAMICS_ATOL",
+    "JUMP_LIFT_THRESHOLD",
+    "LIFT_TABLE_ROWS",
     "EHL_NODES",
     "EHL_NODES_TRANSIENT",
     "DOMAIN_HALF_WIDTHS",
@@ -207,6 +215,20 @@ BORE_FRICTION_VELOCITY = Limit(
 )
 LENGTH_BELOW_1M = Limit("m", gt=0.0, lt=1.0, why="valvetrain dimensions below 1 m")
 ENGINE_SPEED = Limit("rpm", gt=0.0, le=50000.0, why="engine speeds below 50 000 rpm")
+CAM_SPEED = Limit(
+    "rad/s",
+    gt=0.0,
+    le=50000.0 * math.pi / 60.0,
+    why="the cam speed of ENGINE_SPEED (four-stroke: ω = 2π n/120)",
+)
+LIFT_TABLE_ROWS = Limit(
+    "",
+    ge=12,
+    le=1_000_000,
+    integer=True,
+    why="cam lift table rows: a 0.00036° table at most (fitted in about 5 s; jump "
+    "detection on bin means, at most 7200 spline knots)",
+)
 
 # -- line-contact operating point (solve_ehl, TransientEHL, solve_dry_contact) ----------
 LINE_LOAD = Limit(
@@ -232,6 +254,26 @@ SURFACE_SPEED = Limit(
 )
 
 # -- numerics --------------------------------------------------------------------------
+DYNAMICS_CYCLES = Limit(
+    "", ge=1, le=50, integer=True, why="engine cycles of the dynamics (the last is presented)"
+)
+OUTPUT_STEP = Limit(
+    "deg (crank)",
+    gt=0.0,
+    le=5.0,
+    why="crank-angle output step of the dynamics: coarser grids miss the force peak",
+)
+MAX_STEP = Limit(
+    "deg (crank)", gt=0.0, le=10.0, why="largest integrator step of the dynamics (crank angle)"
+)
+DYNAMICS_RTOL = Limit("", gt=0.0, lt=0.1, why="relative tolerance of the dynamics")
+DYNAMICS_ATOL = Limit("", gt=0.0, le=1e-2, why="absolute tolerances of the dynamics (SI)")
+JUMP_LIFT_THRESHOLD = Limit(
+    "m",
+    gt=0.0,
+    le=1e-3,
+    why="cam lift above which a contact loss counts as a jump (ramps are 0.1–0.5 mm)",
+)
 EHL_NODES = Limit(
     "",
     ge=32,

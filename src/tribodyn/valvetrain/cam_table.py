@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from .._validation import InputError
+from ..physics import limits as L
 
 __all__ = ["read_lift_table", "load_lift_table", "LiftTable", "ANGLE_UNITS", "LIFT_UNITS"]
 
@@ -111,6 +112,12 @@ def load_lift_table(
     text = _decode(p)
     lines = [(i, ln.strip()) for i, ln in enumerate(text.splitlines(), start=1)]
     lines = [(i, ln) for i, ln in lines if ln and not ln.startswith("#")]
+    max_rows = int(L.LIFT_TABLE_ROWS.le or 0)
+    if len(lines) > max_rows + 100:  # before parsing: header lines are few
+        raise InputError(
+            f"lift table {p.name!r} has {len(lines)} lines; at most {max_rows} rows are "
+            "allowed (LIFT_TABLE_ROWS): decimate the table (a 0.01° table is ample)"
+        )
     header: list[str] = []
     rows: list[list[str]] = []
     sep = None
@@ -174,6 +181,11 @@ def load_lift_table(
             )
         return hits[0]
 
+    if len(rows) > max_rows:
+        raise InputError(
+            f"lift table {p.name!r} has {len(rows)} rows; at most {max_rows} are allowed "
+            "(LIFT_TABLE_ROWS): decimate the table (a 0.01° table is ample)"
+        )
     ia = pick(angle_column, "angle_column", 0)
     il = pick(lift_column, "lift_column", 1)
     if ia == il:

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 import time as _time
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -38,28 +39,32 @@ CAM_POINTS = 65536
 _OPTS = dict(cache=True, nogil=True)
 _TWO_PI = 2.0 * math.pi
 
-# indices of the scalar parameter vector
-(
-    _W,
-    _TH0,
-    _RB,
-    _RAMP,
-    _CC,
-    _VR,
-    _MUB,
-    _LASH,
-    _KTV,
-    _CTV,
-    _KS,
-    _CS,
-    _F0,
-    _DSEAT,
-    _GAMMA,
-    _C,
-    _IKC,
-    _HASFILM,
-    _FPER,
-) = range(19)
+
+class LumpedParams(NamedTuple):
+    """Scalar parameters of the compiled lumped model (SI units; a numba-compatible
+    named tuple, read by name in the kernels)."""
+
+    w: float  #: cam speed ω [rad/s]
+    theta0: float  #: cam angle at t = 0 [rad]
+    rb: float  #: base radius [m]
+    ramp: float  #: force over which contact damping phases in [N]
+    cc: float  #: cam contact damping [N·s/m]
+    vr: float  #: bore friction regularisation velocity [m/s]
+    mub: float  #: bore friction coefficient
+    lash: float  #: valve lash [m]
+    ktv: float  #: tappet–valve stiffness [N/m]
+    ctv: float  #: tappet–valve damping [N·s/m]
+    ks: float  #: seat stiffness [N/m]
+    cs: float  #: seat damping [N·s/m]
+    f0: float  #: spring preload [N]
+    d_seat: float  #: static seat compression [m]
+    gamma: float  #: contact law exponent (P = z^γ)
+    C: float  #: contact compliance coefficient
+    ikc: float  #: 1/camshaft stiffness [m/N]
+    has_film: float  #: 1.0 with a film law, else 0.0
+    f_period: float  #: period of the film table [s] (0: not periodic)
+
+
 #: outputs of the evaluation kernel (before the accelerations)
 _OUT = (
     "theta s s1 s2 R ue us dk P Fc Ff Fb Ftv Fs F0s FNs film cam_power diss "
@@ -142,15 +147,15 @@ def _friction(theta, force, th, tab, fl):
 def _contact(t, dk, par, ft, fh, fc, ff):
     """(P, dP/dδ_kin, h, ok) of the elastic contact with the film in series (the Newton
     iteration of ``ValvetrainModel.elastic_contact``)."""
-    C, g, ikc = par[_C], par[_GAMMA], par[_IKC]
-    per = par[_FPER]
-    if par[_HASFILM] == 0.0 and ikc == 0.0:
+    C, g, ikc = par.C, par.gamma, par.ikc
+    per = par.f_period
+    if par.has_film == 0.0 and ikc == 0.0:
         if dk <= 0.0:
             return 0.0, 0.0, 0.0, True
         z = dk / C
         return z**g, g * z ** (g - 1.0) / C, 0.0, True
     h0 = 0.0
-    if par[_HASFILM] != 0.0:
+    if par.has_film != 0.0:
         h0, _ = _film(t, 0.0, ft, fh, fc, ff, per)
     if dk + h0 <= 0.0:
         return 0.0, 0.0, h0, True
@@ -160,7 +165,7 @@ def _contact(t, dk, par, ft, fh, fc, ff):
     for _ in range(80):
         P = z**g
         h, hF = 0.0, 0.0
-        if par[_HASFILM] != 0.0:
+        if par.has_film != 0.0:
             h, hF = _film(t, P, ft, fh, fc, ff, per)
         phi = C * z + P * ikc - h - dk
         if phi > 0.0:
@@ -179,7 +184,7 @@ def _contact(t, dk, par, ft, fh, fc, ff):
         if hi - lo <= 1e-14 * hi:
             P = z**g
             h, hF = 0.0, 0.0
-            if par[_HASFILM] != 0.0:
+            if par.has_film != 0.0:
                 h, hF = _film(t, P, ft, fh, fc, ff, per)
             if z > 0.0:
                 dPdz = g * z ** (g - 1.0)
@@ -195,12 +200,12 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     accelerations into ``acc`` (see the equations in :mod:`.model`)."""
     n = im.size
     N = n - 2
-    w = par[_W]
-    ramp = par[_RAMP]
+    w = par.w
+    ramp = par.ramp
     xt, xv, vt, vv = y[0], y[1], y[n], y[n + 1]
-    theta = par[_TH0] + w * t
-    s, s1, s2 = _cam(theta, par[_TH0], S, S1, S2)
-    rb = par[_RB]
+    theta = par.theta0 + w * t
+    s, s1, s2 = _cam(theta, par.theta0, S, S1, S2)
+    rb = par.rb
     R = rb + s + s2
     ue = 0.5 * w * (rb + s + 2.0 * s2)
     us = w * (rb + s)
@@ -208,29 +213,29 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     dkd = w * s1 - vt
     P, dPdk, hfilm, ok = _contact(t, dk, par, ft, fh, fc, ff)
     gc, dgc = _step(P, ramp)
-    Fc = P + par[_CC] * gc * dkd
+    Fc = P + par.cc * gc * dkd
     on_c = Fc > 0.0
     if not on_c:
         Fc = 0.0
     Ff = _friction(theta, Fc, th, tab, fl) if Fc > 0.0 else 0.0
-    thv = math.tanh(vt / par[_VR])
-    Fb = par[_MUB] * Ff * thv
-    dtv = xt - xv - par[_LASH]
+    thv = math.tanh(vt / par.vr)
+    Fb = par.mub * Ff * thv
+    dtv = xt - xv - par.lash
     dtvd = vt - vv
-    Etv = par[_KTV] * dtv if dtv > 0.0 else 0.0
+    Etv = par.ktv * dtv if dtv > 0.0 else 0.0
     gtv, dgtv = _step(Etv, ramp)
-    Ftv = Etv + par[_CTV] * gtv * dtvd
+    Ftv = Etv + par.ctv * gtv * dtvd
     on_tv = Ftv > 0.0
     if not on_tv:
         Ftv = 0.0
-    ds = par[_DSEAT] - xv
-    Es = par[_KS] * ds if ds > 0.0 else 0.0
+    ds = par.d_seat - xv
+    Es = par.ks * ds if ds > 0.0 else 0.0
     gs, dgs = _step(Es, ramp)
-    Fs = Es - par[_CS] * gs * vv
+    Fs = Es - par.cs * gs * vv
     on_s = Fs > 0.0
     if not on_s:
         Fs = 0.0
-    F0 = par[_F0]
+    F0 = par.f0
     diss = 0.0
     f_prev = 0.0
     F0s = 0.0
@@ -264,13 +269,13 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     out[17] = Fc * w * s1 + Ff * us
     out[18] = (Fc - P) * dkd + (Ftv - Etv) * dtvd + (Fs - Es) * (-vv) + diss + Fb * vt + Ff * us
     # local stiffness and damping (Jacobian)
-    out[19] = dPdk * (1.0 + par[_CC] * dgc * dkd) if on_c else 0.0
-    out[20] = par[_CC] * gc if on_c else 0.0
-    out[21] = par[_MUB] * Ff * (1.0 - thv * thv) / par[_VR]
-    out[22] = par[_KTV] * (1.0 + par[_CTV] * dgtv * dtvd) if (on_tv and dtv > 0.0) else 0.0
-    out[23] = par[_CTV] * gtv if on_tv else 0.0
-    out[24] = par[_KS] * (1.0 - par[_CS] * dgs * vv) if (on_s and ds > 0.0) else 0.0
-    out[25] = par[_CS] * gs if on_s else 0.0
+    out[19] = dPdk * (1.0 + par.cc * dgc * dkd) if on_c else 0.0
+    out[20] = par.cc * gc if on_c else 0.0
+    out[21] = par.mub * Ff * (1.0 - thv * thv) / par.vr
+    out[22] = par.ktv * (1.0 + par.ctv * dgtv * dtvd) if (on_tv and dtv > 0.0) else 0.0
+    out[23] = par.ctv * gtv if on_tv else 0.0
+    out[24] = par.ks * (1.0 - par.cs * dgs * vv) if (on_s and ds > 0.0) else 0.0
+    out[25] = par.cs * gs if on_s else 0.0
     out[26] = 0.0 if ok else 1.0
     _ = kN
 
@@ -330,7 +335,7 @@ def _jac(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl):
     Cm[0, 0] -= out[20] + out[21]
     _element(K, Cm, 1, 0, out[22], out[23])
     _element(K, Cm, 1, -1, out[24], out[25])
-    F0 = par[_F0]
+    F0 = par.f0
     for j in range(N + 1):
         d, dd = _segment(y, n, N, j)
         k, c = kseg[j], cseg[j]
@@ -373,27 +378,32 @@ class CompiledLumped:
 
     def __init__(self, model, film_table, cam_table):
         p = model.p
-        par = np.zeros(19)
-        par[_W], par[_TH0], par[_RB] = model.w, model.theta0, model.cam.base_radius
-        par[_RAMP], par[_CC] = p.damping_force_ramp, p.contact_damping
-        par[_VR], par[_MUB], par[_LASH] = (
-            p.bore_friction_velocity,
-            p.bore_friction_coefficient,
-            p.lash,
+        has_film = film_table is not None
+        par = LumpedParams(
+            w=model.w,
+            theta0=model.theta0,
+            rb=model.cam.base_radius,
+            ramp=p.damping_force_ramp,
+            cc=p.contact_damping,
+            vr=p.bore_friction_velocity,
+            mub=p.bore_friction_coefficient,
+            lash=p.lash,
+            ktv=p.tappet_valve_stiffness,
+            ctv=p.tappet_valve_damping,
+            ks=p.seat_stiffness,
+            cs=p.seat_damping,
+            f0=p.spring_preload,
+            d_seat=model.d_seat,
+            gamma=model.gamma,
+            C=model.C,
+            ikc=model.inv_kcam,
+            has_film=1.0 if has_film else 0.0,
+            f_period=float(film_table.period or 0.0) if has_film else 0.0,
         )
-        par[_KTV], par[_CTV] = p.tappet_valve_stiffness, p.tappet_valve_damping
-        par[_KS], par[_CS], par[_F0] = p.seat_stiffness, p.seat_damping, p.spring_preload
-        par[_DSEAT], par[_GAMMA], par[_C], par[_IKC] = (
-            model.d_seat,
-            model.gamma,
-            model.C,
-            model.inv_kcam,
-        )
+        par = LumpedParams(*(float(v) for v in par))
         if film_table is None:
             film = (np.zeros(1), np.zeros(1), np.zeros(1), np.zeros(1))
         else:
-            par[_HASFILM] = 1.0
-            par[_FPER] = film_table.period or 0.0
             film = (film_table.time, film_table.h, film_table.c, film_table.Fk)
         fr = model.friction_fn
         self.model = model
@@ -446,7 +456,7 @@ def compiled_model(model) -> CompiledLumped | None:
     from .tribology import FilmTableTribology
 
     trib = model.trib
-    if not getattr(model, "_tab", False):
+    if not model._tab:  # friction tabulated over the cam angle (periodic tribology)
         return None
     film = None
     if model.has_film:

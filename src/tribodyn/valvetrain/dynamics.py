@@ -19,14 +19,14 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .._validation import InputError, check_positive
+from .._validation import InputError, check_real
+from ..physics import limits as L
 from .cams import CamProfile
 from .compiled import compiled_model, integrate_compiled, lumped_energies
-from .flexible import FlexibleValvetrain
-from .flexible_model import FlexibleValvetrainModel
 from .kinematics import rpm_to_cam_speed
-from .model import ContactLawError, ValvetrainModel
+from .model import ContactLawError
 from .parameters import ValvetrainParameters
+from .system import SYSTEMS, ValvetrainSystem, make_system
 from .tribology import AnalyticTribology, Frictionless, TribologyModel
 
 __all__ = ["ValvetrainResult", "simulate_valvetrain", "resolve_tribology"]
@@ -170,6 +170,18 @@ def resolve_tribology(tribology, params: ValvetrainParameters) -> TribologyModel
     return tribology
 
 
+def _check_atol(atol, size: int) -> float | np.ndarray:
+    """A scalar or one value per state (``size``), each inside L.DYNAMICS_ATOL."""
+    if np.ndim(atol) == 0:
+        return L.DYNAMICS_ATOL.check("atol", atol)
+    a = np.asarray(atol)
+    if a.ndim != 1 or a.size != size:
+        raise InputError(
+            f"atol must be a number or {size} numbers (one per state), got shape {a.shape}"
+        )
+    return np.array([L.DYNAMICS_ATOL.check(f"atol[{i}]", v) for i, v in enumerate(a.tolist())])
+
+
 def simulate_valvetrain(
     cam: CamProfile,
     params: ValvetrainParameters | None = None,
@@ -193,45 +205,47 @@ def simulate_valvetrain(
     params : :class:`ValvetrainParameters` (default: paper Table 7 + assumed values), or a
         :class:`~tribodyn.valvetrain.flexible.FlexibleValvetrain` (Craig–Bampton bodies,
         camshaft compliance; same outputs, valve = its seat face).
-    engine_speed : [rpm], > 0; the cam turns at half of it.
+    engine_speed : [rpm], in (0, 50 000] (L.ENGINE_SPEED); the cam turns at half of it.
     tribology : ``"explicit"`` (default, :class:`AnalyticTribology` over the cam width),
         None (frictionless), or any :class:`TribologyModel` (a model with a film law gives
         the implicit coupling).
-    cycles : engine cycles to integrate (≥ 1); the last one is presented.
-    output_step : crank-angle spacing of the output [deg].
+    cycles : engine cycles to integrate, 1–50; the last one is presented.
+    output_step : crank-angle spacing of the output [deg], in (0, 5].
     method : ``"LSODA"`` (default), ``"Radau"`` or ``"BDF"`` (solve_ivp, analytic Jacobian).
-    rtol, atol : solver tolerances (atol default: 1e-10 m on displacements, 1e-6 m/s on
-        velocities, 1e-6 J on the energy accumulators).
-    max_step : largest step [crank deg].
+    rtol, atol : solver tolerances, rtol in (0, 0.1), atol in (0, 0.01] (scalar or one per
+        state; default: 1e-10 m on displacements, 1e-6 m/s on velocities, 1e-6 J on the
+        energy accumulators).
+    max_step : largest step [crank deg], in (0, 10].
     start_angle : cam angle at t = 0 [rad]; must lie on the base circle.
-    jump_lift_threshold : cam lift above which a contact loss counts as a jump [m].
+    jump_lift_threshold : cam lift above which a contact loss counts as a jump [m], in
+        (0, 1 mm].
+
+    The ranges are those of the case file (:mod:`tribodyn.physics.limits`); a value
+    outside raises :class:`~tribodyn.InputError` naming the argument and its range.
     """
     if not isinstance(cam, CamProfile):
         raise InputError(f"cam must be a CamProfile (got {type(cam).__name__})")
     params = ValvetrainParameters() if params is None else params
-    if not isinstance(params, (ValvetrainParameters, FlexibleValvetrain)):
-        raise InputError("params must be a ValvetrainParameters or a FlexibleValvetrain")
-    cam.check(params.tappet_radius)
+    if not any(cls.handles(params) for cls in SYSTEMS):
+        names = " or a ".join(c.PARAMS.__name__ for c in SYSTEMS)
+        raise InputError(f"params must be a {names} (got {type(params).__name__})")
+    # the case file's ranges (physics.limits), checked before any work is done
     w = rpm_to_cam_speed(engine_speed)
-    if isinstance(cycles, bool) or not isinstance(cycles, int) or cycles < 1:
-        raise InputError(f"cycles must be an integer >= 1 (got {cycles!r})")
-    check_positive("output_step", output_step, "deg")
-    check_positive("rtol", rtol)
-    check_positive("max_step", max_step, "deg")
-    check_positive("jump_lift_threshold", jump_lift_threshold, "m")
+    cycles = L.DYNAMICS_CYCLES.check("cycles", cycles)
+    output_step = L.OUTPUT_STEP.check("output_step", output_step)
+    rtol = L.DYNAMICS_RTOL.check("rtol", rtol)
+    max_step = L.MAX_STEP.check("max_step", max_step)
+    jump_lift_threshold = L.JUMP_LIFT_THRESHOLD.check("jump_lift_threshold", jump_lift_threshold)
+    start_angle = check_real("start_angle", start_angle, "rad")
     if method not in ("LSODA", "Radau", "BDF"):
         raise InputError(f"method must be 'LSODA', 'Radau' or 'BDF' (got {method!r})")
+    cam.check(params.tappet_radius)
     trib = resolve_tribology(tribology, params)
 
-    if isinstance(params, FlexibleValvetrain):
-        model = FlexibleValvetrainModel(cam, params, w, trib, start_angle=start_angle)
-    else:
-        model = ValvetrainModel(cam, params, w, trib, start_angle=start_angle)
-    lobe = getattr(model, "lobe_angle", lambda t, y: model.theta0 + w * t)
+    model = make_system(cam, params, w, trib, start_angle=start_angle)
     n = model.n
     T_cycle = 2.0 * math.pi / w  # one engine cycle = one cam revolution
     t_end = cycles * T_cycle
-    t0_pres = (cycles - 1) * T_cycle
     crank0 = 720.0 * (cycles - 1)
     n_out = int(round(720.0 / output_step)) + 1
     crank = crank0 + np.linspace(0.0, 720.0, n_out)
@@ -239,9 +253,68 @@ def simulate_valvetrain(
     t_eval[-1] = min(t_eval[-1], t_end)
     if atol is None:
         atol = np.concatenate([np.full(n, 1e-10), np.full(n, 1e-6), [1e-6, 1e-6]])
+    else:
+        atol = _check_atol(atol, 2 * n + 2)
     hmax = math.radians(max_step) / (2.0 * w)
+    base = dict(
+        converged=False,
+        engine_speed=float(engine_speed),
+        cam_speed=w,
+        params=params,
+        cam=cam,
+        tribology=trib.name,
+        jump_lift_threshold=jump_lift_threshold,
+    )
+    run = _integrate(
+        model, method, t_eval, t_end, cycles, output_step, rtol, atol, hmax, jump_lift_threshold
+    )
+    if isinstance(run, str):
+        return ValvetrainResult(**base, message=run)
+    if run.failure is not None:
+        return ValvetrainResult(**base, stats=run.stats, message=run.failure)
+    try:
+        res = _sample(model, run, t_eval, crank, base)
+    except ContactLawError as exc:
+        return ValvetrainResult(**base, stats=run.stats, message=f"output evaluation failed: {exc}")
+    _energy_balance(res, run.Y, n, w)
+    _events(res, model, run, (cycles - 1) * T_cycle, t_end)
+    return res
 
-    thr = jump_lift_threshold
+
+@dataclass
+class _Run:
+    """States on the presented cycle's grid (Y, one column per sample), the located seat
+    and contact events (times and states), solver statistics and, on failure, why."""
+
+    Y: np.ndarray
+    t_seat: np.ndarray
+    y_seat: np.ndarray
+    t_con: np.ndarray
+    y_con: np.ndarray
+    stats: dict
+    compiled: object = None
+    failure: str | None = None
+
+
+def _integrate(
+    model: ValvetrainSystem,
+    method: str,
+    t_eval: np.ndarray,
+    t_end: float,
+    cycles: int,
+    output_step: float,
+    rtol: float,
+    atol,
+    hmax: float,
+    thr: float,
+) -> _Run | str:
+    """Integrate from static equilibrium to t_end: the compiled backend (one LSODA call)
+    where the model has one and LSODA is asked for, else solve_ivp with the analytic
+    Jacobian. Seat contact and cam-contact gap are event functions. Returns the run, or a
+    message if the solver raised before giving statistics."""
+    cam, w = model.cam, model.w
+    lobe = model.lobe_angle
+    empty = np.empty(0)
 
     def ev_seat(t, y):
         return y[1] - model.d_seat
@@ -256,16 +329,8 @@ def simulate_valvetrain(
             h0 = model.film(t, 0.0, 0.5 * w * (rb + s + 2.0 * s2), rb + s + s2)[0]
         return max(s, thr) - y[0] + h0
 
-    base = dict(
-        converged=False,
-        engine_speed=float(engine_speed),
-        cam_speed=w,
-        params=params,
-        cam=cam,
-        tribology=trib.name,
-        jump_lift_threshold=thr,
-    )
-    cm = compiled_model(model) if (method == "LSODA" and type(model) is ValvetrainModel) else None
+    # backend: the compiled right-hand side where the model has one (LSODA), else solve_ivp
+    cm = compiled_model(model) if (method == "LSODA" and model.compilable) else None
     if cm is not None:  # compiled right-hand side, whole run in one LSODA call
         k_out = int(round(720.0 * cycles / output_step))
         t_grid = np.linspace(0.0, t_end, k_out + 1)
@@ -280,103 +345,80 @@ def simulate_valvetrain(
             cm, t_grid, rtol, atol, hmax, [ev_seat, ev_contact], grid_events
         )
         if fail is not None:
-            return ValvetrainResult(**base, stats=stats, message=f"solver failed: {fail}")
-        Y = Yall[:, -t_eval.size :]
+            return _Run(empty, empty, empty, empty, empty, stats, cm, f"solver failed: {fail}")
         (t_seat, t_con), (y_seat, y_con) = t_evs, y_evs
-    else:
-        y0 = model.static_state()
-        wall = _time.perf_counter()
-        try:
-            sol = solve_ivp(
-                model.rhs,
-                (0.0, t_end),
-                y0,
-                method=method,
-                t_eval=t_eval,
-                jac=model.jacobian,
-                rtol=rtol,
-                atol=atol,
-                max_step=hmax,
-                events=[ev_seat, ev_contact],
-            )
-        except (ContactLawError, FloatingPointError, ValueError, ZeroDivisionError) as exc:
-            return ValvetrainResult(**base, message=f"solver failed: {exc}")
-        wall = _time.perf_counter() - wall
-        stats = dict(
-            nfev=int(sol.nfev),
-            njev=int(sol.njev),
-            nlu=int(sol.nlu),
-            wall_time_s=wall,
-            method=method,
-        )
-        if sol.status != 0:
-            t_fail = float(sol.t[-1]) if len(sol.t) else 0.0  # t_eval may hold no point yet
-            return ValvetrainResult(
-                **base, stats=stats, message=f"solver failed at t = {t_fail:.6g} s: {sol.message}"
-            )
-        Y = sol.y
-        if Y.shape[1] != t_eval.size or not np.all(np.isfinite(Y)):
-            return ValvetrainResult(
-                **base, stats=stats, message="solver returned incomplete or non-finite output"
-            )
-        t_seat, y_seat = sol.t_events[0], sol.y_events[0]
-        t_con, y_con = sol.t_events[1], sol.y_events[1]
-
-    # -- outputs on the crank grid ------------------------------------------------------
-    m = t_eval.size
-    cols = {
-        k: np.empty(m)
-        for k in (
-            "s",
-            "s1",
-            "s2",
-            "R",
-            "ue",
-            "us",
-            "Fc",
-            "P",
-            "film",
-            "Ftv",
-            "Fs",
-            "Fb",
-            "acc_t",
-            "acc_v",
-            "F0s",
-            "FNs",
-            "T",
-            "U",
-        )
-    }
+        return _Run(Yall[:, -t_eval.size :], t_seat, y_seat, t_con, y_con, stats, cm)
+    wall = _time.perf_counter()
     try:
-        if cm is not None:
-            f = cm.outputs(t_eval, Y)
-            for k in ("s", "s1", "s2", "R", "ue", "us", "Fc", "P", "film", "Ftv", "Fs", "Fb"):
-                cols[k][:] = f[k]
-            cols["acc_t"][:], cols["acc_v"][:] = f["acc_t"], f["acc_v"]
-            cols["F0s"][:], cols["FNs"][:] = f["F0s"], f["FNs"]
-            cols["T"][:], cols["U"][:] = lumped_energies(model, Y, f["P"])
-        else:
-            for i in range(m):
-                f = model.evaluate(t_eval[i], Y[:, i])
-                for k in ("s", "s1", "s2", "R", "ue", "us", "Fc", "P", "film", "Ftv", "Fs", "Fb"):
-                    cols[k][i] = f[k]
-                cols["acc_t"][i] = f["acc"][0]
-                cols["acc_v"][i] = f["acc"][1]
-                cols["F0s"][i] = f["Fseg"][0]
-                cols["FNs"][i] = f["Fseg"][-1]
-                cols["T"][i], cols["U"][i] = model.energy(t_eval[i], Y[:, i], f)
-        Ff = np.asarray(
-            trib.friction(t_eval, cols["Fc"], cols["ue"], cols["us"], cols["R"]), dtype=float
-        ) * np.ones(m)
-        report = {
-            k: np.broadcast_to(np.asarray(v), (m,)).copy()
-            for k, v in trib.report(t_eval, cols["Fc"], cols["ue"], cols["us"], cols["R"]).items()
-        }
-    except ContactLawError as exc:
-        return ValvetrainResult(**base, stats=stats, message=f"output evaluation failed: {exc}")
+        sol = solve_ivp(
+            model.rhs,
+            (0.0, t_end),
+            model.static_state(),
+            method=method,
+            t_eval=t_eval,
+            jac=model.jacobian,
+            rtol=rtol,
+            atol=atol,
+            max_step=hmax,
+            events=[ev_seat, ev_contact],
+        )
+    except (ContactLawError, FloatingPointError, ValueError, ZeroDivisionError) as exc:
+        return f"solver failed: {exc}"
+    wall = _time.perf_counter() - wall
+    stats = dict(
+        nfev=int(sol.nfev), njev=int(sol.njev), nlu=int(sol.nlu), wall_time_s=wall, method=method
+    )
+    if sol.status != 0:
+        t_fail = float(sol.t[-1]) if len(sol.t) else 0.0  # t_eval may hold no point yet
+        msg = f"solver failed at t = {t_fail:.6g} s: {sol.message}"
+        return _Run(empty, empty, empty, empty, empty, stats, None, msg)
+    if sol.y.shape[1] != t_eval.size or not np.all(np.isfinite(sol.y)):
+        msg = "solver returned incomplete or non-finite output"
+        return _Run(empty, empty, empty, empty, empty, stats, None, msg)
+    t_seat, y_seat = sol.t_events[0], sol.y_events[0]
+    t_con, y_con = sol.t_events[1], sol.y_events[1]
+    return _Run(sol.y, t_seat, y_seat, t_con, y_con, stats)
+
+
+_COLS = ("s", "s1", "s2", "R", "ue", "us", "Fc", "P", "film", "Ftv", "Fs", "Fb")
+
+
+def _sample(
+    model: ValvetrainSystem, run: _Run, t_eval: np.ndarray, crank: np.ndarray, base: dict
+) -> ValvetrainResult:
+    """Forces, kinematics, friction and energies at every output sample (the compiled
+    backend's vectorised outputs, or the model's ``evaluate`` sample by sample)."""
+    Y, n, w, trib, cam = run.Y, model.n, model.w, model.trib, model.cam
+    m = t_eval.size
+    cols = {k: np.empty(m) for k in _COLS + ("acc_t", "acc_v", "F0s", "FNs", "T", "U")}
+    cm = run.compiled
+    if cm is not None:
+        f = cm.outputs(t_eval, Y)  # type: ignore[attr-defined]
+        for k in _COLS:
+            cols[k][:] = f[k]
+        cols["acc_t"][:], cols["acc_v"][:] = f["acc_t"], f["acc_v"]
+        cols["F0s"][:], cols["FNs"][:] = f["F0s"], f["FNs"]
+        cols["T"][:], cols["U"][:] = lumped_energies(model, Y, f["P"])
+    else:
+        for i in range(m):
+            f = model.evaluate(t_eval[i], Y[:, i])
+            for k in _COLS:
+                cols[k][i] = f[k]
+            cols["acc_t"][i] = f["acc"][0]
+            cols["acc_v"][i] = f["acc"][1]
+            cols["F0s"][i] = f["Fseg"][0]
+            cols["FNs"][i] = f["Fseg"][-1]
+            cols["T"][i], cols["U"][i] = model.energy(t_eval[i], Y[:, i], f)
+    Ff = np.asarray(
+        trib.friction(t_eval, cols["Fc"], cols["ue"], cols["us"], cols["R"]), dtype=float
+    ) * np.ones(m)
+    report = {
+        k: np.broadcast_to(np.asarray(v), (m,)).copy()
+        for k, v in trib.report(t_eval, cols["Fc"], cols["ue"], cols["us"], cols["R"]).items()
+    }
     rb = cam.base_radius
     note = None  # flexible spring: a clash its reduction cannot see
-    unresolved = getattr(model, "unresolved_clash", lambda Y: -math.inf)(Y)
+    unresolved = model.unresolved_clash(Y)
     if unresolved > 0.0:
         note = (
             f"coil clash in a spring segment reduced to modes (overlap "
@@ -385,7 +427,7 @@ def simulate_valvetrain(
     res = ValvetrainResult(
         **{**base, "converged": True},
         message="ok" if note is None else f"ok; warning: {note}",
-        stats=stats,
+        stats=run.stats,
         tribology_report=report,
         time=t_eval,
         crank_angle=crank,
@@ -415,34 +457,46 @@ def simulate_valvetrain(
         cam_torque=cols["Fc"] * cols["s1"] + Ff * (rb + cols["s"]),
         friction_power=Ff * cols["us"],
     )
-
-    # -- energy balance over the presented cycle ----------------------------------------
-    res.cam_work = Y[2 * n] - Y[2 * n, 0]
-    res.dissipated_energy = Y[2 * n + 1] - Y[2 * n + 1, 0]
     res.kinetic_energy = cols["T"]
     res.elastic_energy = cols["U"]
-    Ta, Ua, Tb, Ub = cols["T"][0], cols["U"][0], cols["T"][-1], cols["U"][-1]
+    return res
+
+
+def _energy_balance(res: ValvetrainResult, Y: np.ndarray, n: int, w: float) -> None:
+    """Cycle balance W = ΔT + ΔU + D of the presented cycle, from the integrated cam-work
+    and dissipation accumulators (state entries 2n, 2n + 1), and its residual."""
+    res.cam_work = Y[2 * n] - Y[2 * n, 0]
+    res.dissipated_energy = Y[2 * n + 1] - Y[2 * n + 1, 0]
+    T, U = res.kinetic_energy, res.elastic_energy
     W = res.cam_work[-1]
     D = res.dissipated_energy[-1]
-    resid = W - (Tb - Ta + Ub - Ua + D)
-    gross = float(np.sum(np.abs(res.cam_torque * w) * np.gradient(t_eval)))
+    resid = W - (T[-1] - T[0] + U[-1] - U[0] + D)
+    gross = float(np.sum(np.abs(res.cam_torque * w) * np.gradient(res.time)))
     res.energy = dict(
         cam_work=W,
-        kinetic_change=Tb - Ta,
-        elastic_change=Ub - Ua,
+        kinetic_change=T[-1] - T[0],
+        elastic_change=U[-1] - U[0],
         dissipation=D,
         residual=resid,
         relative_residual=resid / max(abs(W), gross, 1e-300),
         gross_cam_work=gross,
     )
 
-    # -- events --------------------------------------------------------------------------
+
+def _events(
+    res: ValvetrainResult, model: ValvetrainSystem, run: _Run, t0_pres: float, t_end: float
+) -> None:
+    """Seatings, seating velocity, valve bounces and jumps of the presented cycle
+    [t0_pres, t_end] from the located seat and contact events."""
+    cam, w, n, thr = model.cam, model.w, model.n, res.jump_lift_threshold
+    t_eval = res.time
+
     def crank_of(t):
         return float(math.degrees(2.0 * w * t))
 
     in_win = lambda t: t0_pres - 1e-12 <= t <= t_end + 1e-12  # noqa: E731
     seat_ev = []  # (t, v_valve)
-    for t, y in zip(t_seat, y_seat):
+    for t, y in zip(run.t_seat, run.y_seat):
         seat_ev.append((t, y[n + 1]))
     seatings = [(crank_of(t), v) for t, v in seat_ev if in_win(t) and v < 0.0]
     res.seatings = seatings
@@ -467,7 +521,7 @@ def simulate_valvetrain(
         res.bounces.append((crank_of(t), crank_of(t_back), max(hmax_b, 0.0)))
     # Jumps: contact lost while the cam lifts (direction from the gap rate ω s' − v_t).
     losses, regains = [], []
-    for t, y in zip(t_con, y_con):
+    for t, y in zip(run.t_con, run.y_con):
         s, s1, _ = cam.scalar_derivatives(model.theta0 + w * t)
         rate = (w * s1 if s > thr else 0.0) - y[n]
         (losses if rate < 0.0 else regains).append(t)
@@ -482,4 +536,3 @@ def simulate_valvetrain(
         t_back = next((tr for tr in regains if tr > pre[-1]), t_end)
         if t_back > t0_pres:
             res.jumps.insert(0, (crank_of(t0_pres), crank_of(min(t_back, t_end))))
-    return res

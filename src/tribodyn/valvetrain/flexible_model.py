@@ -40,6 +40,7 @@ from .model import (
     _PALMGREN_EXP,
     ContactLawError,
     _FrictionTable,
+    check_model_inputs,
     contact_film_root,
     smooth_step,
 )
@@ -59,8 +60,7 @@ class FlexibleValvetrainModel:
         tribology: TribologyModel,
         start_angle: float = 0.0,
     ):
-        if not isinstance(flex, FlexibleValvetrain):
-            raise InputError("flex must be a FlexibleValvetrain")
+        check_model_inputs(cam, flex, FlexibleValvetrain, cam_speed, tribology, start_angle)
         self.cam, self.flex, self.w, self.trib = cam, flex, float(cam_speed), tribology
         self.p = p = flex.joints
         self.theta0 = float(start_angle)
@@ -213,6 +213,15 @@ class FlexibleValvetrainModel:
             e = 1.0 / self.gamma
             u = self.Cc * e / (1.0 + e) * P ** (1.0 + e)
         return u + 0.5 * self.c_bend * P * P
+
+    compilable = False  # no compiled right-hand side (solve_ivp path)
+
+    PARAMS = FlexibleValvetrain
+
+    @classmethod
+    def handles(cls, params) -> bool:
+        """True for a :class:`FlexibleValvetrain`."""
+        return isinstance(params, cls.PARAMS)
 
     def lobe_angle(self, t: float, y) -> float:
         """Lobe angle θ₀ + ωt − φ [rad]."""

@@ -23,7 +23,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._typing import ArrayLike
-from .._validation import InputError, check_array, check_positive
+from .._validation import InputError, check_array, check_int
+from ..physics import limits as L
 from .cams import CamProfile
 
 __all__ = [
@@ -35,8 +36,9 @@ __all__ = [
 
 
 def rpm_to_cam_speed(engine_speed: float) -> float:
-    """Cam speed ω [rad/s] of a four-stroke engine at ``engine_speed`` [rpm] (cam = crank/2)."""
-    n = check_positive("engine_speed", engine_speed, "rpm")
+    """Cam speed ω [rad/s] of a four-stroke engine at ``engine_speed`` [rpm] (cam = crank/2);
+    engine_speed in (0, 50 000] rpm (the case file's range, L.ENGINE_SPEED)."""
+    n = L.ENGINE_SPEED.check("engine_speed", engine_speed)
     return n / 2.0 * 2.0 * math.pi / 60.0
 
 
@@ -66,10 +68,11 @@ def flat_follower_kinematics(
     cam: CamProfile, cam_speed: float, angle: ArrayLike
 ) -> FlatFollowerKinematics:
     """Kinematics of a flat follower on ``cam`` at constant ``cam_speed`` ω [rad/s] (> 0)
-    at cam angles ``angle`` [rad] (scalar or array)."""
+    at cam angles ``angle`` [rad] (scalar or array); ω in L.CAM_SPEED (≤ 2618 rad/s, the
+    cam speed of 50 000 rpm)."""
     if not isinstance(cam, CamProfile):
         raise InputError(f"cam must be a CamProfile (got {type(cam).__name__})")
-    w = check_positive("cam_speed", cam_speed, "rad/s")
+    w = L.CAM_SPEED.check("cam_speed", cam_speed)
     th = check_array("angle", np.atleast_1d(np.asarray(angle, dtype=float)), ndim=1)
     s, s1, s2 = cam.derivatives(th)
     rb = cam.base_radius
@@ -102,10 +105,15 @@ def quasi_static_jump_speed(
     opening side gives the same value; the closing side (s' < 0) is used, where
     the spring decelerates the train towards the seat. Multiply ω by 60/π to get engine rpm.
     """
-    F0 = check_positive("preload", preload, "N")
-    k = check_positive("spring_rate", spring_rate, "N/m")
-    m = check_positive("effective_mass", effective_mass, "kg")
-    th = np.linspace(0.0, 2.0 * math.pi, int(n), endpoint=False)
+    if not isinstance(cam, CamProfile):
+        raise InputError(f"cam must be a CamProfile (got {type(cam).__name__})")
+    F0 = L.SPRING_PRELOAD.check("preload", preload)
+    k = L.SPRING_RATE.check("spring_rate", spring_rate)
+    m = L.MASS.check("effective_mass", effective_mass)
+    n = check_int("n", n)
+    if n < 360:
+        raise InputError(f"n must be an integer >= 360 (got {n})")
+    th = np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)
     s, s1, s2 = cam.derivatives(th)
     mask = (s2 < 0.0) & (s1 < 0.0)
     if not mask.any():

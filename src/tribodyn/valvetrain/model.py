@@ -34,12 +34,13 @@ import math
 
 import numpy as np
 
-from .._validation import InputError
+from .._validation import InputError, check_real
+from ..physics import limits as L
 from .cams import CamProfile
 from .parameters import ValvetrainParameters
 from .tribology import TribologyModel
 
-__all__ = ["ValvetrainModel", "ContactLawError", "smooth_step"]
+__all__ = ["ValvetrainModel", "ContactLawError", "smooth_step", "check_model_inputs"]
 
 _PALMGREN_EXP = 0.9
 _HUGE = float("inf")
@@ -174,6 +175,19 @@ def contact_film_root(film, t, dk, ue, R, C, g, ikc) -> tuple[float, float, floa
     )
 
 
+def check_model_inputs(cam, params, params_type, cam_speed, tribology, start_angle) -> None:
+    """Types and ranges of a valvetrain model's arguments (the case file's ranges,
+    :mod:`tribodyn.physics.limits`): :class:`InputError` naming the argument."""
+    if not isinstance(cam, CamProfile):
+        raise InputError(f"cam must be a CamProfile (got {type(cam).__name__})")
+    if not isinstance(params, params_type):
+        raise InputError(f"params must be a {params_type.__name__} (got {type(params).__name__})")
+    L.CAM_SPEED.check("cam_speed", cam_speed)
+    if not isinstance(tribology, TribologyModel):
+        raise InputError(f"tribology must be a TribologyModel (got {type(tribology).__name__})")
+    check_real("start_angle", start_angle, "rad")
+
+
 class ValvetrainModel:
     """Right-hand side, Jacobian, forces and energies of the valvetrain.
 
@@ -192,6 +206,7 @@ class ValvetrainModel:
         tribology: TribologyModel,
         start_angle: float = 0.0,
     ):
+        check_model_inputs(cam, params, ValvetrainParameters, cam_speed, tribology, start_angle)
         self.cam, self.p, self.w, self.trib = cam, params, float(cam_speed), tribology
         self.theta0 = float(start_angle)
         p = params
@@ -253,6 +268,24 @@ class ValvetrainModel:
             raise InputError(
                 f"start_angle must be on the base circle (lift there is {s0 * 1e3:.4g} mm)"
             )
+
+    #: a compiled right-hand side exists (:func:`~tribodyn.valvetrain.compiled.compiled_model`)
+    compilable = True
+
+    PARAMS = ValvetrainParameters
+
+    @classmethod
+    def handles(cls, params) -> bool:
+        """True for a :class:`ValvetrainParameters`."""
+        return isinstance(params, cls.PARAMS)
+
+    def lobe_angle(self, t: float, y) -> float:
+        """Cam angle at the contact [rad]: θ₀ + ωt (rigid camshaft)."""
+        return self.theta0 + self.w * t
+
+    def unresolved_clash(self, Y) -> float:
+        """Coil clash the model cannot see [m]: none (the coils are lumped masses)."""
+        return -math.inf
 
     # -- contact law ---------------------------------------------------------------------
     def film(self, t: float, force: float, ue: float, R: float) -> tuple[float, float]:
