@@ -39,6 +39,14 @@ EXEMPT = {
         "a film law that raises must be reported as a failed run: the error comes from the "
         "film law, whatever the integrator does"
     ),
+    **{
+        f"tests/test_ehl_errors.py::test_corners_of_the_allowed_range_end_honestly[{case}]": (
+            "at the corners of the allowed ranges an honest 'not converged' with a message is an "
+            "accepted answer: the test checks that the solver never returns a converged garbage "
+            "film there, which a do-nothing solver does not do either"
+        )
+        for case in ("0.001-1000000.0-5e-324", "1000000000.0-1e-06-1000.0")
+    },
 }
 
 
