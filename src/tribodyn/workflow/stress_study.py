@@ -203,7 +203,7 @@ _CLASS_STEP = 0.5
 #: a class with fewer samples is merged into the next finer one
 _MIN_CLASS = 8
 #: samples per batched transform (memory: batch × depths × 3 × FFT length doubles)
-_BATCH = 4
+_BATCH = 8
 #: depths below the coating, in units of the class spacing: geometric from 2Δ to 400Δ
 #: (the EHL profiles resolve the loaded half-width b with 50–200 points, so this reaches
 #: beyond 1.5 b with a relative step of 42 %); the substrate's von Mises peak is refined
@@ -258,7 +258,8 @@ def _evaluate(loads: dict, pair, depths) -> dict:
                 z = dxc * _REL_DEPTHS
                 if body.coating is not None:
                     hc = body.coating.thickness
-                    z = np.concatenate([[0.5 * hc, hc], z[z > hc]])
+                    # z = h itself is always evaluated (StressOperator: both sides)
+                    z = np.concatenate([[0.5 * hc], z[z > hc]])
             op = StressOperator(n, dxc, body, z)
             pr = np.zeros((len(members), n))
             qr = np.zeros((len(members), n))
