@@ -134,3 +134,31 @@ def test_wear_per_cycle_and_hours_against_an_independent_sum(light_study):
     )
     assert e["worn_through_in_running_hours"] is False
     assert study.analyse().summary["surface_sets"]["uncoated"]["hours_to_wear_through"] is None
+
+
+def test_stress_map_and_report_section(light_study, tmp_path):
+    from tribodyn.output.dataset import study_to_dataset
+    from tribodyn.output.figures.stress import greatest_risk, stress_field_at, stress_maps
+    from tribodyn.output.report_stress import stress_section
+
+    study = light_study
+    summ = study.analyse().summary
+    ds = study_to_dataset(study)
+    r = greatest_risk(ds, "dlc_4um")
+    w = summ["surface_sets"]["dlc_4um"]["stress_closest_failure"]
+    assert (r["body"], r["mode"], r["crank_deg"]) == (w["body"], w["mode"], w["crank_deg"])
+    # the map's field, rebuilt from results.nc alone, has the recorded peak
+    st, hc, _ = stress_field_at(ds, "dlc_4um", r["index"], "tappet")
+    assert hc == 4e-6
+    assert st.max_von_mises_substrate.value == pytest.approx(
+        float(ds["stress_tappet_max_von_mises_substrate"].sel(surface_set="dlc_4um")[r["index"]]),
+        rel=0.03,
+    )
+    png = stress_maps(ds, tmp_path / "stress.png")
+    assert png.stat().st_size > 10_000
+    lines = stress_section(summ)
+    assert lines[0] == "## Coating integrity"
+    rows = [ln for ln in lines if ln.startswith(("| uncoated", "| DLC 4 µm"))]
+    assert len(rows) == 2 and f"| {w['safety_factor']:.2f} |" in rows[1]
+    assert any("Closest to failure" in ln for ln in lines)
+    assert stress_section({"surface_sets": {"a": {"label": "a"}}}) == []
