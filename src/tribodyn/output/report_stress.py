@@ -50,7 +50,7 @@ def stress_section(summary: dict, heading: str = "## Coating integrity") -> list
         out.append(
             "| {label} | {mode} | {body} | {x} | {z} | {c} | {s} | {sf} | {wear} | {hrs} |".format(
                 label=e.get("label", name),
-                mode=_MODES.get(w.get("mode"), "–"),
+                mode=_MODES.get(str(w.get("mode")), "–"),
                 body=w.get("body", "–"),
                 x=_f(w.get("x_m"), ".1f", 1e6),
                 z=_f(w.get("z_m"), ".2f", 1e6),

@@ -8,6 +8,7 @@ pressure and film profile of that sample, the surface loads of
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -29,7 +30,7 @@ def greatest_risk(ds, name: str) -> dict | None:
     """Smallest safety factor of surface set ``name`` over both bodies and all modes in
     ``results.nc``: {body, mode, safety_factor, index (EHL sample), crank_deg, x_m,
     z_m}; None without stress results."""
-    best = None
+    best: dict[str, Any] | None = None
     for body in ("cam", "tappet"):
         for mode, peak in _MODE_PEAK.items():
             key = f"safety_factor_{body}_{mode}"
