@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..contact.stress import loaded_half_width, profile_surface_loads
+from ..contact.stress import batch_surface_loads, loaded_half_width
 from ..physics.materials import as_bodies
 from ..physics.strength import (
     TYPICAL_STRENGTH,
@@ -153,13 +153,14 @@ def stress_along_cycle(
         ok = np.asarray(result.loaded, bool) & conv & np.all(np.isfinite(result.pressure), axis=1)
         samples = np.flatnonzero(ok)
     loads = {}
-    for i in samples:
-        x = np.asarray(result.x[i], float)
-        ld = profile_surface_loads(
-            x,
-            np.asarray(result.pressure[i], float),
-            np.asarray(result.film[i], float),
-            float(inputs.sliding_speed[i]),
+    samples = np.asarray(samples, dtype=int)
+    if samples.size:  # all profiles at once (the recorded ones share their length)
+        xs = np.asarray(result.x, float)[samples]
+        ld = batch_surface_loads(
+            xs,
+            np.asarray(result.pressure, float)[samples],
+            np.asarray(result.film, float)[samples],
+            np.asarray(inputs.sliding_speed, float)[samples],
             pair,
             lubricant,
             roughness,
@@ -168,7 +169,8 @@ def stress_along_cycle(
             boundary_shear_coefficient=opts.boundary_shear_coefficient,
             boundary_shear_strength=opts.boundary_shear_strength,
         )
-        loads[i] = (x, ld.pressure, ld.traction_cam, ld.traction_tappet)
+        for r, i in enumerate(samples):
+            loads[int(i)] = (xs[r], ld.pressure[r], ld.traction_cam[r], ld.traction_tappet[r])
     for i, pk in _evaluate(loads, pair, depths).items():
         for name in names:
             tr = traces[name]
