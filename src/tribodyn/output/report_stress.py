@@ -41,7 +41,7 @@ def stress_section(summary: dict, heading: str = "## Coating integrity") -> list
         "strengths and wear coefficients are *assumed* values (tribodyn.physics.strength): "
         "give measured ones in `[strength.<material>]`.",
         "",
-        "| surface | closest failure | body | x [µm] | z [µm] | crank [°] | stress [MPa] "
+        "| surface | closest failure | body | x [µm] | z [µm] | crank in cycle [°] | stress [MPa] "
         "| safety factor | wear / cycle [nm] | hours to wear through |",
         "|---|---|---|---|---|---|---|---|---|---|",
     ]
@@ -54,7 +54,7 @@ def stress_section(summary: dict, heading: str = "## Coating integrity") -> list
                 body=w.get("body", "–"),
                 x=_f(w.get("x_m"), ".1f", 1e6),
                 z=_f(w.get("z_m"), ".2f", 1e6),
-                c=_f(w.get("crank_deg"), ".0f"),
+                c=_f(w.get("crank_in_cycle_deg", w.get("crank_deg")), ".0f"),
                 s=_f(w.get("stress_Pa"), ".0f", 1e-6),
                 sf=_f(w.get("safety_factor"), ".2f"),
                 wear=_f(e.get("wear_depth_per_cycle_m"), ".2e", 1e9),
@@ -67,7 +67,8 @@ def stress_section(summary: dict, heading: str = "## Coating integrity") -> list
         out += [
             "",
             f"Closest to failure: **{worst[1].get('label', worst[0])}**, "
-            f"{_MODES[w['mode']]} of the {w['body']} at {w['crank_deg']:.0f}° crank, "
+            f"{_MODES[w['mode']]} of the {w['body']} at "
+            f"{w.get('crank_in_cycle_deg', w['crank_deg']):.0f}° crank (presented cycle), "
             f"x = {w['x_m'] * 1e6:.1f} µm, z = {w['z_m'] * 1e6:.2f} µm, "
             f"safety factor {w['safety_factor']:.2f}.",
         ]

@@ -379,6 +379,8 @@ def set_stress_summary(study, name: str) -> dict:
     case = study.case
     s = case.surface_set(name)
     worst = closest_failure(cs)
+    if worst is not None:  # also within the presented cycle (0–720°), as the figures
+        worst["crank_in_cycle_deg"] = worst["crank_deg"] - float(study.dynamics.crank_angle[0])
     out: dict = {
         "stress_closest_failure": worst,
         "min_safety_factor": worst["safety_factor"] if worst else None,
