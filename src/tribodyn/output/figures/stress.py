@@ -120,9 +120,14 @@ def stress_maps(ds, path, sets=None):
             ax.axhline(hc * UM, color="tab:cyan", ls="--", lw=1.2, label="interface")
             ax.legend(loc="lower right", fontsize=8)
         ax.plot(r["x_m"] * UM, r["z_m"] * UM, "x", color="tab:green", ms=9, mew=2)
+        if hc is not None:  # √z axis: the coating stays visible above the deep maximum
+            ax.set_yscale("function", functions=(np.sqrt, np.square))
+            zmax = float(st.depths[-1]) * UM
+            ticks = [0.0, hc * UM] + [v for v in (10, 25, 50, 100, 200, 400) if v < zmax]
+            ax.set_yticks(ticks, [f"{t:g}" for t in ticks])
         ax.invert_yaxis()
         ax.set_xlabel("x [µm]")
-        ax.set_ylabel("depth z [µm]")
+        ax.set_ylabel("depth z [µm]" + (" (√ scale)" if hc is not None else ""))
         label = str(ds["surface_label"].sel(surface_set=name).values)
         ax.set_title(
             f"{label}: {r['body']}, {r['mode'].replace('_', ' ')}, "
