@@ -170,3 +170,30 @@ def test_oil_without_thermal_sets_the_isothermal_lubricant():
     assert out["central_film_m"] == pytest.approx(api.central_film, rel=1e-9)
     assert out["central_film_m"] < 0.6 * default["central_film_m"]  # 0.011 vs 0.055 Pa·s
     assert default["oil"] is None
+
+
+def test_stress_peaks_and_margins_in_json_and_table():
+    """--stress: the cam's (steel, homogeneous) von Mises peak of a heavily loaded, slowly
+    entrained contact is Johnson's 0.557 p0 at 0.70 b of the Hertz pressure (the EHL
+    pressure is nearly Hertzian there); its margin is Tabor's H/3 of steel over it."""
+    args = ["--surface-set", "dlc_4um", "--load-per-length", "4e5", "--radius", "0.01"]
+    args += ["--ue", "0.5", "--us", "0.0", "--n", "512", "--stress"]
+    r = run(*args, "--json")
+    assert r.exit_code == 0, r.output
+    out = json.loads(r.stdout)
+    st = out["stress"]
+    p0, b = out["hertz_max_pressure_Pa"], out["hertz_half_width_m"]
+    assert st["cam_max_von_mises_substrate_Pa"] == pytest.approx(0.557 * p0, rel=0.03)
+    assert st["cam_max_von_mises_substrate_z_m"] == pytest.approx(0.70 * b, abs=0.06 * b)
+    assert st["cam_max_von_mises_coating_Pa"] is None  # the cam is uncoated
+    assert st["safety_factor_cam_substrate_yield"] == pytest.approx(
+        7e9 / 3.0 / st["cam_max_von_mises_substrate_Pa"], rel=1e-12
+    )
+    w = st["closest_failure"]
+    factors = {k: v for k, v in st.items() if k.startswith("safety_factor_") and v is not None}
+    assert w["safety_factor"] == min(factors.values())
+    t = run(*args)
+    assert t.exit_code == 0, t.output
+    assert "closest to failure" in t.stdout and "interface shear" in t.stdout
+    d = run("--dry", "--load", "633", "--radius", "0.01", "--stress")
+    assert d.exit_code == 2 and "--dry" in d.output

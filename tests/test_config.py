@@ -418,6 +418,8 @@ def test_docs_cover_every_key():
         cfg.RoughnessConfig,
         cfg.SurfaceSetConfig,
         cfg.Numerics,
+        cfg.StrengthConfig,
+        cfg.StressConfig,
     ]
     missing = [f"{m.__name__}.{k}" for m in models for k in m.model_fields if f"`{k}`" not in doc]
     assert not missing, missing

@@ -213,3 +213,20 @@ def test_cycle_traces_match_direct_evaluation():
     st2 = stress_along_cycle(res, inp, (CAM, TAPPET), SMOOTH_OIL)
     assert st2.evaluated == 2
     assert math.isnan(st2.tappet.value["max_von_mises_substrate"][3])
+
+
+def test_batched_surface_loads_equal_the_single_profile_ones(mixed):
+    """The cycle's batched surface loads are those of each profile alone (mixed EHL with
+    asperity contact, sliding of either sign, two different grids)."""
+    from tribodyn.contact.stress import batch_surface_loads
+
+    r, rough = mixed
+    x2 = 1.5 * r.x
+    xs = np.stack([r.x, x2])
+    ps, hs, us = np.stack([r.pressure, r.pressure]), np.stack([r.film, r.film]), [0.4, -0.7]
+    b = batch_surface_loads(xs, ps, hs, np.array(us), (CAM, TAPPET), OIL, rough)
+    for j in range(2):
+        one = profile_surface_loads(xs[j], ps[j], hs[j], us[j], (CAM, TAPPET), OIL, rough)
+        for f in ("pressure", "traction_cam", "traction_tappet", "boundary_shear"):
+            a, c = getattr(b, f)[j], getattr(one, f)
+            assert np.allclose(a, c, rtol=1e-12, atol=1e-12 * np.abs(c).max()), f

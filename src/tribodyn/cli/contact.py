@@ -109,6 +109,7 @@ def compute_contact(
     thermal=False,
     oil=None,
     inlet_temperature=None,
+    stress=False,
 ) -> dict:
     """Parse the options of ``tribodyn contact`` (strings as typed) and solve.
 
@@ -233,6 +234,7 @@ def compute_contact(
             options=opts,
             n=n,
             thermal_oil=thermal_oil if thermal else None,
+            stress=stress,
         )
     except InputError as exc:
         raise _as_option(exc) from None
@@ -427,6 +429,8 @@ def _table(r: dict) -> Table:
                 f"{r['viscous_friction_N']:.4g}, {r['isothermal_viscous_friction_N']:.4g}",
                 "N",
             )
+        if "stress" in r:
+            _stress_rows(t, sec, r["stress"])
         sec("regime (Greenwood chart)")
         t.add_row("g_V, g_E", f"{r['greenwood_gV']:.4g}, {r['greenwood_gE']:.4g}", "")
         t.add_row("regime", r["regime"], _REGIME_NAMES.get(r["regime"], ""))
@@ -435,6 +439,50 @@ def _table(r: dict) -> Table:
     t.add_row("converged", ok, "")
     t.add_row("grid nodes, iterations", f"{r['grid_points']}, {r['iterations']}", "")
     return t
+
+
+_MODE_NAMES = {
+    "substrate_yield": "substrate yield",
+    "surface_tension": "surface tension",
+    "coating_tension": "coating tension",
+    "coating_yield": "coating yield",
+    "interface_shear": "interface shear",
+    "interface_tension": "interface tension",
+}
+
+
+def _stress_rows(t: Table, sec, st: dict | None) -> None:
+    """Rows of ``--stress``: the peaks of each body and the safety factors."""
+    sec("subsurface stress (peak; x, z)")
+    if st is None:
+        t.add_row("stresses", "–", "no EHL solution")
+        return
+    for body in ("cam", "tappet"):
+        for k, label in (
+            ("max_von_mises_substrate", "von Mises, substrate"),
+            ("max_von_mises_coating", "von Mises, coating"),
+            ("max_tension_surface", "tension, surface"),
+            ("max_interface_shear", "|shear|, interface"),
+            ("max_interface_tension", "tension, interface"),
+        ):
+            v = st.get(f"{body}_{k}_Pa")
+            if v is None:
+                continue
+            x, z = st[f"{body}_{k}_x_m"] * 1e6, st[f"{body}_{k}_z_m"] * 1e6
+            t.add_row(f"{body}: {label}", f"{v * 1e-6:.4g}", f"MPa at {x:.3g}, {z:.3g} µm")
+    sec("safety factors (strength / peak)")
+    for body in ("cam", "tappet"):
+        for mode, label in _MODE_NAMES.items():
+            v = st.get(f"safety_factor_{body}_{mode}")
+            if v is not None:
+                t.add_row(f"{body}: {label}", "∞" if v == float("inf") else f"{v:.3g}", "")
+    w = st.get("closest_failure")
+    if w:
+        t.add_row(
+            "closest to failure",
+            f"{w['safety_factor']:.3g}",
+            f"{w['body']}, {_MODE_NAMES[w['mode']]}",
+        )
 
 
 # ----------------------------------------------------------------------------- command
@@ -574,6 +622,12 @@ def contact_command(
         rich_help_panel=_LUB,
         help="Oil supply (sump) temperature [°C].",
     ),
+    stress: bool = typer.Option(
+        False,
+        "--stress",
+        help="Also the subsurface stresses of cam and tappet (EHL only): peaks per body, "
+        "safety factors against the case's strengths.",
+    ),
     as_json: bool = typer.Option(False, "--json", help="Print a JSON object (SI units)."),
 ):
     """Single-point line contact: Hertz, EHL film, loads, friction and regime.
@@ -621,6 +675,7 @@ def contact_command(
             thermal=thermal,
             oil=oil,
             inlet_temperature=inlet_temperature,
+            stress=stress,
         )
     except InputError as exc:
         err.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)

@@ -62,6 +62,8 @@ from .schema import (
     Numerics,
     Section,
     SpringConfig,
+    StrengthConfig,
+    StressConfig,
     SurfaceSetConfig,
     TappetConfig,
     ValveConfig,
@@ -138,6 +140,10 @@ class Case(Section):
         default_factory=paper_surface_sets, min_length=1, alias="surface_sets"
     )
     numerics: Numerics = Field(default_factory=Numerics)
+    strength_configs: dict[Annotated[str, Field(min_length=1)], StrengthConfig] = Field(
+        default_factory=dict, alias="strength"
+    )
+    stress: StressConfig = Field(default_factory=StressConfig)
 
     _base_dir: Path = PrivateAttr(default_factory=Path.cwd)
     _source: Path | None = PrivateAttr(default=None)
@@ -163,6 +169,8 @@ class Case(Section):
             return True
 
         check_material("cam.material", self.cam_config.material)
+        for name in self.strength_configs:
+            check_material(f"strength.{name}", name)
         seen: dict[str, int] = {}
         for i, s in enumerate(self.surface_set_configs):
             p = f"surface_sets[{i}]"
@@ -609,6 +617,55 @@ class Case(Section):
     @property
     def surface_set_names(self) -> list[str]:
         return [s.name for s in self.surface_set_configs]
+
+    def material_strength(self, name: str):
+        """:class:`~tribodyn.physics.strength.Strength` of material ``name``: the keys of
+        ``[strength.<name>]`` over the typical values of steel, dlc or wcc when the
+        material has that name; None when neither gives a tensile strength and a
+        hardness."""
+        from ..physics.strength import TYPICAL_STRENGTH, Strength
+
+        base = TYPICAL_STRENGTH.get(name.lower())
+        cfg = self.strength_configs.get(name)
+        given = cfg.model_dump(exclude_none=True) if cfg is not None else {}
+        given.pop("wear_coefficient", None)
+        vals = dataclasses.asdict(base) if base is not None else {}
+        vals.update(given)
+        if given:
+            vals["source"] = f"case [strength.{name}]" + (
+                f"; otherwise {base.source}" if base else ""
+            )
+        if "tensile_strength" not in vals or "hardness" not in vals:
+            return None
+        return Strength(**vals)
+
+    def strengths(self, surface_set) -> dict:
+        """{"cam": (substrate, None), "tappet": (substrate, coating)} strengths of a
+        surface set for :func:`~tribodyn.workflow.stress_study.stress_along_cycle`."""
+        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
+        cfg = next(c for c in self.surface_set_configs if c.name == s.name)
+        cam = self.material_strength(self.cam_config.material)
+        sub = self.material_strength(cfg.substrate)
+        coat = self.material_strength(cfg.coating) if cfg.coating is not None else None
+        return {"cam": (cam, None), "tappet": (sub, coat)}
+
+    def wear_coefficient(self, surface_set) -> tuple[float | None, str]:
+        """Archard coefficient k [m³/(N m)] of the tappet's surface material (coating, or
+        substrate if uncoated) and where it comes from: the case's ``[strength.<m>]``,
+        else the ASSUMED typical value of physics.strength for steel, dlc, wcc (labelled
+        so), else None."""
+        from ..physics.strength import TYPICAL_WEAR_COEFFICIENT
+
+        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
+        cfg = next(c for c in self.surface_set_configs if c.name == s.name)
+        mat = cfg.coating if cfg.coating is not None else cfg.substrate
+        sc = self.strength_configs.get(mat)
+        if sc is not None and sc.wear_coefficient is not None:
+            return float(sc.wear_coefficient), f"case [strength.{mat}]"
+        k = TYPICAL_WEAR_COEFFICIENT.get(mat.lower())
+        if k is not None:
+            return float(k), "assumed typical value (tribodyn.physics.strength), not measured"
+        return None, ""
 
     def _build_set(self, s: SurfaceSetConfig) -> SurfaceSet:
         cam = Body(self.material(self.cam_config.material))

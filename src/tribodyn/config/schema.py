@@ -37,6 +37,8 @@ __all__ = [
     "MaterialConfig",
     "RoughnessConfig",
     "SurfaceSetConfig",
+    "StrengthConfig",
+    "StressConfig",
     "Numerics",
     "paper_materials",
     "paper_surface_sets",
@@ -570,6 +572,54 @@ class MaterialConfig(Section):
     density: float | None = _q(None, "kg/m³", "density ρ (numerics.thermal)", ge=10.0, le=1e5)
     specific_heat: float | None = _q(
         None, "J/(kg K)", "specific heat c (numerics.thermal)", ge=10.0, le=1e5
+    )
+
+
+class StrengthConfig(Section):
+    """``[strength.<material>]``: strength of a material of the case (a key of
+    ``[materials]``) for the safety factors and wear of the cycle's stresses
+    (:mod:`tribodyn.physics.strength`). Keys not given take the typical values of
+    steel, dlc or wcc when the material has that name (assumed or sourced: see the
+    module), otherwise the factors that need them are not computed."""
+
+    tensile_strength: float | None = _q(
+        None, "Pa", "stress at which the material cracks in tension", gt=1e6, le=1e11
+    )
+    hardness: float | None = _q(None, "Pa", "indentation hardness H", gt=1e6, le=2e11)
+    yield_strength: float | None = _q(
+        None, "Pa", "tensile yield strength Y (absent: Tabor's H/3)", gt=1e6, le=1e11
+    )
+    adhesion_shear: float | None = _q(
+        None, "Pa", "shear strength of its interface to the substrate (coatings)", gt=1e5, le=1e11
+    )
+    adhesion_tensile: float | None = _q(
+        None,
+        "Pa",
+        "tensile strength of its interface to the substrate (coatings)",
+        gt=1e5,
+        le=1e11,
+    )
+    wear_coefficient: float | None = _q(
+        None,
+        "m³/(N m)",
+        "dimensional Archard wear coefficient k measured for this surface "
+        "(e.g. 1e-17 = 1e-8 mm³/(N m))",
+        ge=0.0,
+        le=1e-9,
+    )
+
+
+class StressConfig(Section):
+    """``[stress]``: subsurface stresses, safety factors and wear along the cycle."""
+
+    enabled: bool = _q(True, "", "compute the stresses of every surface set along the cycle")
+    running_hours: float | None = _q(
+        None,
+        "h",
+        "service life to check: wear depth after this many hours of running at the "
+        "case's engine speed (needs a wear coefficient)",
+        gt=0.0,
+        le=1e7,
     )
 
 

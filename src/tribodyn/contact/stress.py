@@ -23,7 +23,6 @@ physical direction on each.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -88,6 +87,68 @@ def profile_surface_loads(
     if p.shape != x.shape or h.shape != x.shape:
         raise InputError(f"pressure and film must have the shape of x {x.shape}")
     us = check_real("sliding_speed", sliding_speed, "m/s")
+    return _loads(
+        x,
+        p,
+        h,
+        us,
+        bodies,
+        lubricant,
+        roughness,
+        viscous_model,
+        limiting_shear,
+        boundary_shear_coefficient,
+        boundary_shear_strength,
+    )
+
+
+def batch_surface_loads(
+    x: np.ndarray,
+    pressure: np.ndarray,
+    film: np.ndarray,
+    sliding_speed: np.ndarray,
+    bodies,
+    lubricant,
+    roughness=None,
+    *,
+    viscous_model: str = "eyring",
+    limiting_shear: bool = True,
+    boundary_shear_coefficient: float | None = None,
+    boundary_shear_strength: float | None = None,
+) -> SurfaceLoads:
+    """:func:`profile_surface_loads` of many profiles at once (the fast path of a cycle):
+    ``x``, ``pressure``, ``film`` (samples, k) on uniform rows, ``sliding_speed``
+    (samples,); finite float arrays, unchecked. The fields are (samples, k)."""
+    x = np.asarray(x, float)
+    us = np.asarray(sliding_speed, float)[:, None]
+    return _loads(
+        x,
+        np.asarray(pressure, float),
+        np.asarray(film, float),
+        us,
+        bodies,
+        lubricant,
+        roughness,
+        viscous_model,
+        limiting_shear,
+        boundary_shear_coefficient,
+        boundary_shear_strength,
+    )
+
+
+def _loads(
+    x,
+    p,
+    h,
+    us,
+    bodies,
+    lubricant,
+    roughness,
+    viscous_model,
+    limiting_shear,
+    boundary_shear_coefficient,
+    boundary_shear_strength,
+) -> SurfaceLoads:
     cam, tappet = as_bodies(bodies)
     defaults = EHLOptions()
     coef = (
@@ -107,7 +168,10 @@ def profile_surface_loads(
         tau_c = limit_shear_stress(
             tau_c, p, lubricant.limiting_shear_coefficient, lubricant.limiting_shear_stress
         )
-    dpdx = np.gradient(p, x)
+    if p.ndim == 1:
+        dpdx = np.gradient(p, x)
+    else:  # uniform rows
+        dpdx = np.gradient(p, axis=-1) / (x[:, 1:2] - x[:, 0:1])
     pois = -0.5 * hf * dpdx
     if roughness is not None:
         e_s = reduced_modulus((cam, tappet), surface=True)
@@ -121,7 +185,7 @@ def profile_surface_loads(
     else:
         pa = np.zeros_like(p)
         tau_b = np.zeros_like(p)
-    sgn = math.copysign(1.0, us) if us != 0.0 else 0.0
+    sgn = np.sign(us)
     return SurfaceLoads(
         x=x,
         pressure=p + pa,

@@ -171,6 +171,7 @@ def study_to_dataset(study: CycleStudy) -> xr.Dataset:
         "point", an.point_crank, "deg", "crank angle of the representative points (Fig. 13)"
     )
     _coating_studies(ds, study)
+    _stresses(ds, study)
     from .thermal import add_thermal
 
     add_thermal(ds, study)
@@ -250,3 +251,58 @@ def _coating_studies(ds, study):
                 dim, np.array([r.converged for r in items], dtype=np.int8)
             )
         ds.attrs["ehl_coating_conditions"] = json.dumps(e.conditions)
+
+
+#: long names of the stress peaks (workflow.stress_study.PEAKS)
+_PEAK_NAMES = {
+    "max_von_mises_coating": "largest von Mises stress in the coating",
+    "max_von_mises_substrate": "largest von Mises stress in the substrate (whole body if uncoated)",
+    "max_tension_surface": "largest tensile principal stress on the surface",
+    "max_tension_coating": "largest tensile principal stress in the coating",
+    "max_interface_shear": "largest |shear stress| at the coating–substrate interface",
+    "max_interface_tension": "largest tensile normal stress at the coating–substrate interface",
+}
+
+
+def _stresses(ds, study):
+    """Subsurface stress traces (``stress_<body>_<peak>`` over surface_set × ehl_crank,
+    with ``_x``/``_z`` positions) and safety factors (``safety_factor_<body>_<mode>``
+    over surface_set) of the sets whose stresses were computed; NaN elsewhere."""
+    stresses = getattr(study, "stresses", None) or {}
+    if not stresses:
+        return
+    from ..workflow.stress_study import MODE_PEAK, PEAKS
+
+    sets = study.sets
+    n = ds.sizes["ehl_crank"]
+    two = ("surface_set", "ehl_crank")
+    for body in ("cam", "tappet"):
+        for peak in PEAKS:
+            arr = {q: np.full((len(sets), n), np.nan) for q in ("value", "x", "z")}
+            for i, s in enumerate(sets):
+                cs = stresses.get(s.name)
+                if cs is None:
+                    continue
+                tr = getattr(cs, body)
+                arr["value"][i] = tr.value[peak]
+                arr["x"][i] = tr.x[peak]
+                arr["z"][i] = tr.z[peak]
+            name = f"stress_{body}_{peak}"
+            long = f"{_PEAK_NAMES[peak]}, {body}"
+            ds[name] = _var(two, arr["value"], "Pa", long)
+            ds[name + "_x"] = _var(two, arr["x"], "m", f"position along the contact of: {long}")
+            ds[name + "_z"] = _var(two, arr["z"], "m", f"depth below the surface of: {long}")
+        for mode in MODE_PEAK:
+            v = [
+                float(stresses[s.name].safety_factors[body].get(mode, np.nan))
+                if s.name in stresses
+                else np.nan
+                for s in sets
+            ]
+            ds[f"safety_factor_{body}_{mode}"] = _var(
+                "surface_set",
+                v,
+                "1",
+                f"safety factor (strength / cycle maximum) of the {body} against "
+                f"{mode.replace('_', ' ')}; inf: not loaded in this mode, NaN: no strength",
+            )

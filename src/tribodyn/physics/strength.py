@@ -1,30 +1,44 @@
 """Strength of the tappet's materials, safety factors of the contact stresses, and
 Archard wear.
 
-The values below are TYPICAL orders of magnitude from the literature, for first estimates
-only; a design needs the measured properties of the actual coating and heat treatment.
+The values below are TYPICAL orders of magnitude, for first estimates only; a design
+needs the measured properties of the actual coating and heat treatment. Each value is
+marked "sourced" (checked against the source named) or "assumed" (no published value
+was found for it; an engineering guess to be replaced by a measurement).
 
 * Hardness-based yield (Tabor, *The Hardness of Metals*, 1951): Y ≈ H/3 for fully plastic
   indentation of metals. For hard coatings (high Y/E) the indentation is not fully plastic
   and H/Y is nearer 1.5–2.5 (Johnson, *Contact Mechanics*, 1985, §6.3), so H/3 is a
   conservative (low) yield estimate for DLC and WC-C.
-* Steel tappet, case-hardened (e.g. 16MnCr5 carburised) or through-hardened (100Cr6 /
-  AISI 52100) to 58–62 HRC: H ≈ 7 GPa (≈ 700 HV, ASTM E140 conversion); ultimate tensile
-  strength of hardened 100Cr6 ≈ 2.0–2.4 GPa.
-* a-C:H (DLC): nanoindentation hardness 10–25 GPa (Robertson, Mater. Sci. Eng. R 37 (2002)
-  129; Erdemir & Donnet, J. Phys. D 39 (2006) R311); typical 20 GPa.
-* WC/a-C:H (WC-C): hardness 10–15 GPa (Erdemir & Donnet 2006; commercial WC/C coatings
-  ≈ 1000–1500 HV); typical 12 GPa.
-* Coating tensile (cracking) strength: crack-onset strains of ≈ 1 % are typical of
-  a-C:H and WC/C films on steel in tensile and bending tests, i.e. σ_f ≈ 0.01 E ≈
-  1.5–2 GPa; typical 1.8 GPa (DLC) and 1.7 GPa (WC-C).
-* Interface adhesion of PVD/PACVD coatings with a Cr/CrN bond layer on steel: interfacial
-  shear strengths of a few hundred MPa to ≈ 1 GPa are inferred from scratch tests (Bull &
-  Berasetegui, Tribol. Int. 39 (2006) 99); typical 0.5 GPa in shear and in tension.
+* Steel tappet, through-hardened 100Cr6 (AISI 52100) or case-hardened, 58–62 HRC:
+  653–746 HV (ASTM E140 conversion table), H = 7 GPa [sourced: 697 HV at 60 HRC ×
+  9.807 MPa]. Ultimate tensile strength 2.0 GPa [sourced: ≈ 2.05 GPa at 58 HRC and
+  2.17 GPa at 60 HRC in the approximate E140/SAE J417 conversion; 2.3–2.4 GPa for
+  100Cr6 oil-quenched and tempered at 150–200 °C, 62–63 HRC, Lucefin technical card
+  100Cr6 to EN ISO 683-17]; the lower end is taken.
+* a-C:H (DLC): H = 20 GPa [sourced: 2000–2500 HV ≈ 20–25 GPa, Certess DCC a-C:H
+  datasheet (IHI Hauzer); 27 GPa, E = 259 GPa for an a-C:H in Ayestarán Latorre et al.,
+  Nat. Commun. 12 (2021), doi:10.1038/s41467-021-24766-6, Table 1; 12.8–22.2 GPa universal hardness of PACVD
+  a-C:H, Dorner et al., Wear 249 (2001) 489].
+* WC/a-C:H (WC-C): H = 12 GPa [sourced range, conservative end: 16–23 GPa for
+  nanocomposite WC/a-C films, El Mrabet, Abad & Sánchez-López, Surf. Coat. Technol. 206
+  (2011) 1913; metal-doped DLC 1000–2000 HV ≈ 10–20 GPa in suppliers' data].
+* Coating tensile (cracking) strength: 1.8 GPa (DLC), 1.7 GPa (WC-C) [assumed: a
+  crack-onset strain of ≈ 1 % times E; no published tensile strength of these films
+  was found. Published data are fracture toughness instead, e.g. K_c ≈ 10 MPa√m for
+  DLC on Si, Nastasi et al., J. Mater. Res. 14 (1999) 2173].
+* Interface adhesion strength, shear and tension: 0.5 GPa [assumed: scratch tests give
+  critical loads, not strengths (Bull, Surf. Coat. Technol. 50 (1991) 25; Bull, Tribol.
+  Int. 30 (1997) 491); converting them needs a stress analysis of the scratch (e.g.
+  Cemin, Boeira & Figueroa, Tribol. Int., doi:10.1016/j.triboint.2015.09.044); no
+  value for a Cr-bonded a-C:H or WC/C on steel was found].
 * Archard wear coefficients (dimensional, k = V/(F s)) in lubricated boundary sliding:
-  a-C:H 1e-9–1e-7 mm³/(N m), WC/C 1e-8–1e-7 mm³/(N m) (Erdemir & Donnet 2006; Holmberg &
-  Matthews, *Coatings Tribology*, 2009); hardened steel 1e-8–1e-6 mm³/(N m). Typical
-  values below (1 mm³/(N m) = 1e-9 m³/(N m) = 1e-9 Pa⁻¹).
+  steel 1e-7, a-C:H 1e-8, WC/C 3e-8 mm³/(N m) [assumed: orders of magnitude only; no
+  source with these conditions was found. Podgornik et al., Surf. Coat. Technol.
+  177–178 (2004) 558, report WC/C wear under starved, boundary and EHD lubrication
+  without a k for these conditions; a WC/a-C:H roller survived 1.7 GPa contact pressure
+  in boundary-lubricated rolling without measurable wear (PCS Instruments MPR study)].
+  Use the coefficient measured on one's own tribometer. 1 mm³/(N m) = 1e-9 m³/(N m).
 """
 
 from __future__ import annotations
@@ -85,28 +99,29 @@ TYPICAL_STRENGTH = {
     "steel": Strength(
         tensile_strength=2.0e9,
         hardness=7.0e9,
-        source="typical case-/through-hardened tappet steel, 58-62 HRC; Y = H/3 (Tabor)",
+        source="100Cr6/case-hardened 58-62 HRC: H sourced (ASTM E140), UTS sourced (EN ISO "
+        "683-17 tempering table, lower end); Y = H/3 (Tabor)",
     ),
     "dlc": Strength(
         tensile_strength=1.8e9,
         hardness=20e9,
         adhesion_shear=0.5e9,
         adhesion_tensile=0.5e9,
-        source="typical a-C:H: H 10-25 GPa (Robertson 2002), crack onset ~1 % strain, "
-        "adhesion from scratch tests (Bull & Berasetegui 2006)",
+        source="a-C:H: H sourced (Certess DCC 2000-2500 HV; Ayestaran Latorre 2021); "
+        "tensile strength assumed (~1 % crack-onset strain x E); adhesion assumed",
     ),
     "wcc": Strength(
         tensile_strength=1.7e9,
         hardness=12e9,
         adhesion_shear=0.5e9,
         adhesion_tensile=0.5e9,
-        source="typical WC/a-C:H: H 10-15 GPa (Erdemir & Donnet 2006), crack onset ~1 % "
-        "strain, adhesion from scratch tests (Bull & Berasetegui 2006)",
+        source="WC/a-C:H: H sourced, conservative end (El Mrabet 2011: 16-23 GPa; Me-DLC "
+        "1000-2000 HV); tensile strength assumed (~1 % strain x E); adhesion assumed",
     ),
 }
 
-#: TYPICAL dimensional Archard coefficients k [m³/(N m) = 1/Pa], lubricated boundary
-#: sliding (module docstring); the wear functions take k from the user.
+#: ASSUMED dimensional Archard coefficients k [m³/(N m) = 1/Pa], lubricated boundary
+#: sliding (module docstring: no source found); the wear functions take k from the user.
 TYPICAL_WEAR_COEFFICIENT = {"steel": 1e-16, "dlc": 1e-17, "wcc": 3e-17}
 
 

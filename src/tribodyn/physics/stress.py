@@ -160,24 +160,25 @@ def _layer_solutions(t: np.ndarray, coating, substrate) -> np.ndarray:
 
 
 def _correction_values(sol, k, z, h):
-    """Correction (layered − homogeneous) of f, f_s, f_ss at depth z for wavenumbers
-    k ≥ 0 (shape of k), both unit loads: arrays (..., 2)."""
-    s = (k * z)[..., None]
+    """Correction (layered − homogeneous) of f, f_s, f_ss at depths z (all in the
+    coating, z ≤ h, or all in the substrate) for wavenumbers k ≥ 0, both unit loads:
+    arrays (len(z), *k.shape, 2)."""
+    z = np.atleast_1d(np.asarray(z, dtype=float))
+    s = (k * z.reshape((-1,) + (1,) * k.ndim))[..., None]
     t = (k * h)[..., None]
     A, B, C, D, E, F = (sol[..., i, :] for i in range(6))
     e = np.exp(-s)
     # homogeneous: pressure f = (1 + s)e^{-s}, shear f = s e^{-s}
     a0 = np.array([1.0, 0.0])
     b0 = np.array([1.0, 1.0])
-    if z <= h:
-        g = np.exp(s - t)
-        w = s - t
+    w = s - t
+    if z[0] <= h:
+        g = np.exp(w)
         dA, dB = A - a0, B - b0
         f = (dA + dB * s) * e + (C + D * w) * g
         fs = (-dA + dB * (1.0 - s)) * e + (C + D * (1.0 + w)) * g
         fss = (dA + dB * (s - 2.0)) * e + (C + D * (2.0 + w)) * g
     else:
-        w = s - t
         g = np.exp(-w)
         hom0 = a0 * e
         hom1 = b0 * e
@@ -374,36 +375,53 @@ class StressOperator:
         k0 = np.array([1e-3, 2e-3]) / h
         sol0 = _layer_solutions(k0 * h, coat, sub)
         dm = 2.0 * math.pi / (nf * dx)
-        for i, z in enumerate(self._z):
-            kz = int(kmax[i])
-            # rows deep enough for the base band alone: only |m| d(z) < 40 matters
-            jm = j.size
-            if kz == 0:
-                jm = min(j.size, int(math.ceil(_DECAY / (dm * max(dist[i], 1e-300)))) + 1)
+        # rows deep enough for the base band alone: only |m| d(z) < 40 matters
+        jms = np.full(self._z.size, j.size)
+        zero = kmax == 0
+        jms[zero] = np.minimum(j.size, np.ceil(_DECAY / (dm * np.maximum(dist[zero], 1e-300))) + 1)
+        side = self._z <= h
+        # the remainder's even parts (p → σ_xx, σ_zz; q → σ_xz) start like c|m|, a 1/x²
+        # tail that the periodic images would feel: split off c|m|e^{−2|m|h} too (slopes
+        # c of every row, by side of the interface at once)
+        slopes = np.zeros((self._z.size, 6))
+        for sd in (True, False):
+            rows = np.flatnonzero(side == sd)
+            if rows.size:
+                lims = (lp, -lq) if sd else (0.0, 0.0)
+                r0 = self._terms(
+                    sol0, k0, np.ones(2), self._z[rows], h, lims, np.exp(-2.0 * k0 * h)
+                )
+                for c in (0, 1, 5):
+                    slopes[rows, c] = (4.0 * r0[c][:, 0] - r0[c][:, 1]).real / (2.0 * k0[0])
+        out[side, 0] += lim_p  # the coating's long-wave limit, added back exactly
+        out[side, 3] += lim_q
+        # rows with the same side, alias count and band are evaluated together
+        groups: dict = {}
+        for i in range(self._z.size):
+            groups.setdefault((bool(side[i]), int(kmax[i]), int(jms[i])), []).append(i)
+        for (sd, kz, jm), idx in groups.items():
+            rows = np.array(idx)
+            zr = self._z[rows]
             sl = (slice(K - kz, K + kz + 1), slice(0, jm))
-            lims = (lp, -lq) if z <= h else (0.0, 0.0)
-            if z <= h:  # the long-wave limit is added back exactly
-                out[i, 0] += lim_p
-                out[i, 3] += lim_q
-            # the remainder's even parts (p → σ_xx, σ_zz; q → σ_xz) start like c|m|, a
-            # 1/x² tail that the periodic images would feel: split off c|m|e^{−2|m|h} too
-            r0 = self._terms(sol0, k0, np.ones(2), float(z), h, lims, np.exp(-2.0 * k0 * h))
-            slopes = {c: (4.0 * r0[c][0] - r0[c][1]).real / (2.0 * k0[0]) for c in (0, 1, 5)}
-            terms = self._terms(sol[sl], k[sl], sg[sl], float(z), h, lims, cut[sl])
-            w = sinc2[sl]
+            lims = (lp, -lq) if sd else (0.0, 0.0)
+            terms = self._terms(sol[sl], k[sl], sg[sl], zr, h, lims, cut[sl])
+            posw = np.where(pos[sl], sinc2[sl], 0.0)[None]
+            kk = k[sl][None]
             # decay depth of the split-off slope term: 2h, or z deeper down (then it decays
             # at least as fast as the correction itself, e^{−|m|z}, and the aliases suffice)
-            d = max(2.0 * h, float(z))
-            basis = slope_basis
-            if d > 2.0 * h:
-                hz = out_hom[i]
-                basis = (hz[0] - hz[1]) / (2.0 * d)
-            cut_d = np.exp(-k[sl] * d)
+            d = np.maximum(2.0 * h, zr)
+            basis = np.broadcast_to(slope_basis, (rows.size, slope_basis.size)).copy()
+            deep = d > 2.0 * h
+            if np.any(deep):
+                hz = out_hom[rows[deep]]
+                basis[deep] = (hz[:, 0] - hz[:, 1]) / (2.0 * d[deep, None])
+            cut_d = np.exp(-kk * d[:, None, None])
             for c, tr in enumerate(terms):
-                if c in slopes:
-                    tr = tr - slopes[c] * k[sl] * cut_d
-                    out[i, c] += slopes[c] * basis
-                out[i, c, :jm] += np.sum(np.where(pos[sl], tr, 0.0) * w, axis=0)
+                if c in (0, 1, 5):
+                    sc = slopes[rows, c][:, None, None]
+                    tr = tr - sc * kk * cut_d
+                    out[rows, c] += slopes[rows, c][:, None] * basis
+                out[rows, c, :jm] += np.sum(tr * posw, axis=1)
 
     @staticmethod
     def _terms(sol, k, sg, z, h, lims, cut):

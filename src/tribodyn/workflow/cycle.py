@@ -73,6 +73,9 @@ class CycleStudy:
     #: with ``numerics.thermal``: ``sets`` are the thermal results and these the
     #: isothermal ones at the same inlet temperature (None for an isothermal study)
     isothermal_sets: list[SetCycleResult] | None = None
+    #: subsurface stresses along the cycle per set name (workflow.stress_study.CycleStress;
+    #: from the isothermal pass), empty with ``[stress] enabled = false``
+    stresses: dict = field(default_factory=dict)
 
     @property
     def implicit(self) -> ValvetrainResult | None:
@@ -142,20 +145,38 @@ def _local_pool(workers: int | None) -> ProcessPoolExecutor:
     )
 
 
-def _set_task(case, name, inputs) -> SetCycleResult:
-    """EHL along the cycle for one surface set (a picklable top-level task)."""
+def _stress_step(case, s, res, inputs):
+    """The set's subsurface stresses along its EHL pass (the last step of its task):
+    a CycleStress, None when ``[stress] enabled = false``, or the error text."""
+    if not case.stress.enabled:
+        return None
+    from .stress_study import stress_for_set
+
+    try:
+        return stress_for_set(case, s, res, inputs, strengths=case.strengths(s))
+    except Exception as exc:  # the EHL results stay usable; the study warns
+        return f"{type(exc).__name__}: {exc}"
+
+
+def _set_task(case, name, inputs):
+    """EHL along the cycle for one surface set, then its stresses (a picklable
+    top-level task). Returns (SetCycleResult, stresses)."""
     _limit_threads()
-    return ehl_for_set(case, case.surface_set(name), inputs)
+    s = case.surface_set(name)
+    res = ehl_for_set(case, s, inputs)
+    return res, _stress_step(case, s, res, inputs)
 
 
 def _coupling_task(case, name, dynamics, inputs, first=None):
-    """Reference set: its EHL on the explicit dynamics (unless given as ``first``), then
-    the implicit coupling iterations. Returns (first, CouplingResult)."""
+    """Reference set: its EHL on the explicit dynamics (unless given as ``first``), its
+    stresses, then the implicit coupling iterations. Returns (first, CouplingResult,
+    stresses)."""
     _limit_threads()
     s = case.surface_set(name)
     if first is None:
         first = ehl_for_set(case, s, inputs)
-    return first, run_coupling(case, s, dynamics, inputs, first)
+    stress = _stress_step(case, s, first, inputs)
+    return first, run_coupling(case, s, dynamics, inputs, first), stress
 
 
 def _coating_studies_task(case, reference: str, nose):
@@ -230,6 +251,7 @@ def run_cycle_study(
     workers = max(1, min(int(workers), len(sets) + 1))
     t0 = time.perf_counter()
     results: dict = {}
+    stresses: dict = {}
     thermal = {}  # thermal EHL per set (numerics.thermal)
     if executor is None and workers == 1:
         # serial, in this process
@@ -237,8 +259,12 @@ def run_cycle_study(
             for s in sets:
                 report("set", name=s.name, done=0, total=total)
                 results[s.name] = ehl_for_set(case, s, inputs)
+                if s.name != ref_name:
+                    stresses[s.name] = _stress_step(case, s, results[s.name], inputs)
                 report("set", name=s.name, done=total, total=total)
-            _, coupling = _coupling_task(case, ref_name, dyn, inputs, first=results[ref_name])
+            _, coupling, stresses[ref_name] = _coupling_task(
+                case, ref_name, dyn, inputs, first=results[ref_name]
+            )
             coating = _coating_studies_task(case, ref_name, nose)
             if n.thermal:
                 from .thermal_study import thermal_for_set
@@ -287,9 +313,9 @@ def run_cycle_study(
                     continue
                 name = futs[f]
                 if f is fut_c:
-                    results[name], coupling = f.result()
+                    results[name], coupling, stresses[name] = f.result()
                 else:
-                    results[name] = f.result()
+                    results[name], stresses[name] = f.result()
                 report("set", name=name, done=total, total=total)
         finally:
             if own:
@@ -323,6 +349,13 @@ def run_cycle_study(
         timings=timings,
         isothermal_sets=isothermal,
     )
+    for s in sets:
+        st = stresses.get(s.name)
+        if isinstance(st, str):
+            study.warnings.append(f"{s.name}: subsurface stresses not computed ({st})")
+        elif st is not None:
+            study.stresses[s.name] = st
+            timings[f"stress_{s.name}_s"] = st.runtime_s
     for res in study.sets:
         if res.failures:
             study.warnings.append(

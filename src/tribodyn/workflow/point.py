@@ -150,6 +150,7 @@ def solve_point(
     options: EHLOptions | None = None,
     n: int | None = None,
     thermal_oil=None,
+    stress: bool = False,
 ) -> dict:
     """Solve one contact (see the module docstring). ``lubricant`` and ``options``
     default to the case's; ``n`` is the dry grid (default 1024). ``sliding_speed``
@@ -165,7 +166,14 @@ def solve_point(
     ``None``: there is no meaningful value to print. ``thermal_oil``
     (:class:`~tribodyn.physics.thermal_oil.ThermalLubricant`): solve the thermal EHL
     with the case's material thermal properties; the isothermal solution at the inlet
-    temperature is reported beside it (keys ``isothermal_*``)."""
+    temperature is reported beside it (keys ``isothermal_*``).
+
+    ``stress``: also the subsurface stresses of the cam and the tappet at the (isothermal)
+    EHL solution (EHL pressure with the mean asperity pressure, viscous and boundary
+    shear; :func:`~tribodyn.contact.stress.ehl_stresses`): the six peaks of each body
+    (``stress_<body>_<peak>_Pa`` with ``_x_m``, ``_z_m``), the safety factors against
+    the case's strengths (``safety_factor_<body>_<mode>``: strength / peak; inf where
+    the mode is not loaded, None without a strength) and ``stress_closest_failure``."""
     w = check_positive("load_per_length", load_per_length, "N/m")
     radius = check_positive("radius", radius, "m")
     width = check_positive("width", width, "m")
@@ -195,6 +203,11 @@ def solve_point(
         "hertz_max_pressure_Pa": hz.max_pressure,
     }
     if dry:
+        if stress:
+            raise InputError(
+                "stress: the subsurface stresses are computed at an EHL solution "
+                "(drop --dry, give --ue and --us)"
+            )
         if entrainment_speed is not None or sliding_speed is not None:
             raise InputError(
                 "a dry contact takes no entrainment or sliding speed "
@@ -330,8 +343,62 @@ def solve_point(
                 "isothermal_converged": bool(iso.converged),
             }
         )
-    if not (res.min_film > 0.0 and np.isfinite(res.min_film) and np.all(np.isfinite(res.pressure))):
+    solved = res.min_film > 0.0 and np.isfinite(res.min_film) and np.all(np.isfinite(res.pressure))
+    if not solved:
         out.update({k: None for k in _SOLUTION_KEYS})  # no lubricated solution
+    if stress:
+        out["stress"] = _point_stresses(case, surfaces, iso, lub, opts) if solved else None
+    return out
+
+
+def _point_stresses(case, surfaces: SurfaceSet, result, lubricant, options) -> dict:
+    """The stress keys of :func:`solve_point` (see there)."""
+    import math
+
+    from ..contact.stress import ehl_stresses
+    from ..physics.strength import safety_factors
+    from .stress_study import MODE_PEAK
+
+    cam, tappet, _ = ehl_stresses(
+        result, surfaces.bodies, lubricant, surfaces.roughness, options=options
+    )
+    if surfaces.name in case.surface_set_names:
+        strengths = case.strengths(surfaces.name)
+    else:  # an ad-hoc pair: the cam's material, a steel tappet, the named coating
+        cam_s = case.material_strength(case.cam_config.material)
+        sub = case.material_strength("steel") if "steel" in case.materials else cam_s
+        coat = (
+            case.material_strength(surfaces.coating_material)
+            if surfaces.coating_material is not None
+            else None
+        )
+        strengths = {"cam": (cam_s, None), "tappet": (sub, coat)}
+    out: dict = {"note": "isothermal EHL solution; elastic stresses, typical or case strengths"}
+    worst = None
+    for name, st, body in (("cam", cam, surfaces.cam), ("tappet", tappet, surfaces.tappet)):
+        peaks = st.peaks()
+        for k, pk in peaks.items():
+            fin = math.isfinite(pk.value)
+            out[f"{name}_{k}_Pa"] = pk.value if fin else None
+            out[f"{name}_{k}_x_m"] = pk.x if fin else None
+            out[f"{name}_{k}_z_m"] = pk.z if fin else None
+        sub, coat = strengths[name]
+        if sub is None:
+            continue
+        sf = safety_factors(st, sub, coat if body.is_coated else None)
+        for mode, v in sf.items():
+            out[f"safety_factor_{name}_{mode}"] = None if math.isnan(v) else v
+            if math.isfinite(v) and (worst is None or v < worst["safety_factor"]):
+                pk = peaks[MODE_PEAK[mode]]
+                worst = {
+                    "mode": mode,
+                    "body": name,
+                    "safety_factor": v,
+                    "stress_Pa": pk.value,
+                    "x_m": pk.x,
+                    "z_m": pk.z,
+                }
+    out["closest_failure"] = worst
     return out
 
 

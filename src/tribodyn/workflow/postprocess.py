@@ -343,6 +343,10 @@ def summary(study, an: Analysis) -> dict:
             "min_lambda": _finite(np.nanmin(s.lambda_ratio[C])) if any_c else None,
             "failed_steps": len(s.failures),
         }
+        if getattr(study, "stresses", None):  # subsurface stresses, margins and wear
+            from .stress_study import set_stress_summary
+
+            out["surface_sets"][s.name].update(set_stress_summary(study, s.name))
     out["implicit_vs_explicit"] = _implicit_vs_explicit(study)
     if getattr(study, "isothermal_sets", None) is not None:  # numerics.thermal
         from .thermal_study import thermal_summary

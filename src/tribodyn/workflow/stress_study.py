@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..contact.stress import loaded_half_width, profile_surface_loads
+from ..contact.stress import batch_surface_loads, loaded_half_width
 from ..physics.materials import as_bodies
 from ..physics.strength import (
     TYPICAL_STRENGTH,
@@ -38,6 +38,9 @@ __all__ = [
     "stress_for_set",
     "default_strengths",
     "wear_for_set",
+    "MODE_PEAK",
+    "closest_failure",
+    "set_stress_summary",
 ]
 
 #: The peaks traced for each body (attributes of SubsurfaceStress).
@@ -150,13 +153,14 @@ def stress_along_cycle(
         ok = np.asarray(result.loaded, bool) & conv & np.all(np.isfinite(result.pressure), axis=1)
         samples = np.flatnonzero(ok)
     loads = {}
-    for i in samples:
-        x = np.asarray(result.x[i], float)
-        ld = profile_surface_loads(
-            x,
-            np.asarray(result.pressure[i], float),
-            np.asarray(result.film[i], float),
-            float(inputs.sliding_speed[i]),
+    samples = np.asarray(samples, dtype=int)
+    if samples.size:  # all profiles at once (the recorded ones share their length)
+        xs = np.asarray(result.x, float)[samples]
+        ld = batch_surface_loads(
+            xs,
+            np.asarray(result.pressure, float)[samples],
+            np.asarray(result.film, float)[samples],
+            np.asarray(inputs.sliding_speed, float)[samples],
             pair,
             lubricant,
             roughness,
@@ -165,7 +169,8 @@ def stress_along_cycle(
             boundary_shear_coefficient=opts.boundary_shear_coefficient,
             boundary_shear_strength=opts.boundary_shear_strength,
         )
-        loads[i] = (x, ld.pressure, ld.traction_cam, ld.traction_tappet)
+        for r, i in enumerate(samples):
+            loads[int(i)] = (xs[r], ld.pressure[r], ld.traction_cam[r], ld.traction_tappet[r])
     for i, pk in _evaluate(loads, pair, depths).items():
         for name in names:
             tr = traces[name]
@@ -184,7 +189,13 @@ def stress_along_cycle(
         out.maxima[name] = {k: tr.maximum(k, crank) for k in PEAKS}
         sub, coat = strengths.get(name, (TYPICAL_STRENGTH["steel"], None))
         peaks = {k: out.maxima[name][k]["value"] for k in PEAKS}
-        sf = safety_factors(peaks, sub, coat if body.is_coated else None)
+        if sub is None:  # no strength of the substrate material: its factors are NaN
+            sf = {"substrate_yield": math.nan, "surface_tension": math.nan}
+            if coat is not None and body.is_coated:
+                sf.update(safety_factors(peaks, TYPICAL_STRENGTH["steel"], coat))
+                sf["substrate_yield"] = math.nan
+        else:
+            sf = safety_factors(peaks, sub, coat if body.is_coated else None)
         if body.is_coated and coat is None:
             sf.update(
                 coating_tension=math.nan,
@@ -203,7 +214,7 @@ _CLASS_STEP = 0.5
 #: a class with fewer samples is merged into the next finer one
 _MIN_CLASS = 8
 #: samples per batched transform (memory: batch × depths × 3 × FFT length doubles)
-_BATCH = 4
+_BATCH = 8
 #: depths below the coating, in units of the class spacing: geometric from 2Δ to 400Δ
 #: (the EHL profiles resolve the loaded half-width b with 50–200 points, so this reaches
 #: beyond 1.5 b with a relative step of 42 %); the substrate's von Mises peak is refined
@@ -258,7 +269,8 @@ def _evaluate(loads: dict, pair, depths) -> dict:
                 z = dxc * _REL_DEPTHS
                 if body.coating is not None:
                     hc = body.coating.thickness
-                    z = np.concatenate([[0.5 * hc, hc], z[z > hc]])
+                    # z = h itself is always evaluated (StressOperator: both sides)
+                    z = np.concatenate([[0.5 * hc], z[z > hc]])
             op = StressOperator(n, dxc, body, z)
             pr = np.zeros((len(members), n))
             qr = np.zeros((len(members), n))
@@ -310,4 +322,100 @@ def wear_for_set(
     out = {"depth_per_cycle_m": depth}
     if thickness is not None and cycles_per_hour is not None:
         out["hours_to_wear_through"] = hours_to_wear_through(thickness, depth, cycles_per_hour)
+    return out
+
+
+#: failure mode (physics.strength.safety_factors) → the peak it is measured against
+MODE_PEAK = {
+    "substrate_yield": "max_von_mises_substrate",
+    "surface_tension": "max_tension_surface",
+    "coating_tension": "max_tension_coating",
+    "coating_yield": "max_von_mises_coating",
+    "interface_shear": "max_interface_shear",
+    "interface_tension": "max_interface_tension",
+}
+
+
+def _finite(v):
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
+def closest_failure(cs: CycleStress) -> dict | None:
+    """The failure mode with the smallest safety factor over both bodies: mode, body,
+    safety factor (strength / cycle maximum), the stress [Pa], and where (x along the
+    contact, z depth [m]) and when (crank angle [deg]) it peaks. None when no factor is
+    finite (no strengths, or nothing loaded)."""
+    best = None
+    for body in ("cam", "tappet"):
+        for mode, sf in cs.safety_factors.get(body, {}).items():
+            if not math.isfinite(sf) or (best is not None and sf >= best["safety_factor"]):
+                continue
+            mx = cs.maxima[body][MODE_PEAK[mode]]
+            best = {
+                "mode": mode,
+                "body": body,
+                "safety_factor": float(sf),
+                "stress_Pa": mx["value"],
+                "crank_deg": mx["crank_angle"],
+                "x_m": mx["x"],
+                "z_m": mx["z"],
+            }
+    return best
+
+
+def set_stress_summary(study, name: str) -> dict:
+    """The stress and wear entries of surface set ``name`` in ``summary.json``: the
+    closest failure mode (where and when, its margin), the smallest safety factor, the
+    tappet's factors by mode (flat keys ``safety_factor_<mode>``, also sweep outputs),
+    both bodies' factors and cycle maxima, and the Archard wear of the tappet surface:
+    depth per cycle, hours to wear through the coating, and the depth after
+    ``[stress] running_hours``. The wear is spread over the band of the tappet face
+    swept by the contact (range of the contact offset e over the cycle; a tappet that
+    does not rotate). Empty when the set's stresses were not computed."""
+    cs = study.stresses.get(name)
+    if cs is None:
+        return {}
+    case = study.case
+    s = case.surface_set(name)
+    worst = closest_failure(cs)
+    if worst is not None:  # also within the presented cycle (0–720°), as the figures
+        worst["crank_in_cycle_deg"] = worst["crank_deg"] - float(study.dynamics.crank_angle[0])
+    out: dict = {
+        "stress_closest_failure": worst,
+        "min_safety_factor": worst["safety_factor"] if worst else None,
+    }
+    for mode in MODE_PEAK:
+        v = cs.safety_factors["tappet"].get(mode)
+        out[f"safety_factor_{mode}"] = _finite(v) if v is not None else None
+    out["safety_factors"] = {
+        b: {m: _finite(v) for m, v in sf.items()} for b, sf in cs.safety_factors.items()
+    }
+    out["stress_maxima"] = {
+        b: {k: {kk: _finite(vv) for kk, vv in v.items()} for k, v in mx.items()}
+        for b, mx in cs.maxima.items()
+    }
+    k, src = case.wear_coefficient(s)
+    out.update(
+        wear_coefficient_m3_per_Nm=k,
+        wear_coefficient_source=src or None,
+        wear_depth_per_cycle_m=None,
+        hours_to_wear_through=None,
+    )
+    if k is not None:
+        swept = float(np.ptp(study.dynamics.contact_offset))
+        cph = case.cam_speed / (2.0 * math.pi) * 3600.0  # cam revolutions (cycles) per hour
+        thick = s.coating.thickness if s.coating is not None else None
+        w = wear_for_set(study.set(name), study.inputs, k, swept, thick, cph)
+        out["wear_depth_per_cycle_m"] = w["depth_per_cycle_m"]
+        out["wear_swept_length_m"] = swept
+        if "hours_to_wear_through" in w:
+            out["hours_to_wear_through"] = _finite(w["hours_to_wear_through"])
+        hours = case.stress.running_hours
+        if hours is not None:
+            depth = w["depth_per_cycle_m"] * cph * hours
+            out["running_hours"] = hours
+            out["wear_depth_after_running_hours_m"] = depth
+            if thick is not None:
+                out["worn_through_in_running_hours"] = bool(depth >= thick)
     return out

@@ -93,6 +93,15 @@ SET_SCALARS = {
     "friction_energy_per_cycle_eyring_J": ("J", "friction energy per cycle, Eyring viscous law"),
     "mean_friction_power_W": ("W", "mean friction power over the engine cycle"),
     "failed_steps": ("1", "transient-EHL steps that did not converge"),
+    "min_safety_factor": ("1", "smallest safety factor of the cam and tappet stresses"),
+    "safety_factor_substrate_yield": ("1", "tappet: substrate yield / von Mises maximum"),
+    "safety_factor_surface_tension": ("1", "tappet: surface tensile strength / max tension"),
+    "safety_factor_coating_tension": ("1", "tappet: coating tensile strength / max tension"),
+    "safety_factor_coating_yield": ("1", "tappet: coating yield / von Mises maximum"),
+    "safety_factor_interface_shear": ("1", "tappet: adhesion (shear) / interface shear"),
+    "safety_factor_interface_tension": ("1", "tappet: adhesion (tension) / interface tension"),
+    "wear_depth_per_cycle_m": ("m", "Archard wear depth of the tappet surface per cycle"),
+    "hours_to_wear_through": ("h", "running hours until the coating is worn through"),
 }
 
 _DYN_TRACES = {
@@ -258,7 +267,7 @@ def _study_point(case, traces: bool) -> tuple[xr.Dataset, list]:
     for k, (units, long) in SET_SCALARS.items():
         ds[k] = xr.Variable(
             "surface_set",
-            np.array([_num(summ["surface_sets"][n][k]) for n in names]),
+            np.array([_num(summ["surface_sets"][n].get(k)) for n in names]),
             {"units": units, "long_name": long},
         )
     ds.attrs["reference_set"] = summ["reference_set"]

@@ -1,0 +1,91 @@
+"""The report's section on coating integrity: per surface set the failure mode closest
+to its strength, where (cam or tappet, x along the contact, depth z) and when (crank
+angle) it peaks, the margin (safety factor = strength / cycle maximum), and the Archard
+wear of the tappet surface. Built from ``summary.json`` (see
+:func:`tribodyn.workflow.stress_study.set_stress_summary`)."""
+
+from __future__ import annotations
+
+import math
+
+__all__ = ["stress_section"]
+
+_MODES = {
+    "substrate_yield": "substrate yield (von Mises / Tabor H/3)",
+    "surface_tension": "surface cracking (tension)",
+    "coating_tension": "coating cracking (tension)",
+    "coating_yield": "coating yield (von Mises / H/3)",
+    "interface_shear": "delamination (interface shear)",
+    "interface_tension": "delamination (interface tension)",
+}
+
+
+def _f(v, fmt, scale=1.0, none="–"):
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return none
+    return format(v * scale, fmt)
+
+
+def stress_section(summary: dict, heading: str = "## Coating integrity") -> list[str]:
+    """Markdown lines of the section (empty list when no set has stress results)."""
+    sets = {n: e for n, e in summary.get("surface_sets", {}).items() if "min_safety_factor" in e}
+    if not sets:
+        return []
+    out = [
+        heading,
+        "",
+        "Subsurface stresses of the cam and the tappet at every loaded EHL sample (EHL "
+        "pressure with the mean asperity pressure, viscous and boundary shear), against "
+        "typical or case-given strengths. Safety factor = strength / cycle maximum "
+        "(> 1 survives, elastic analysis). The typical coating tensile and adhesion "
+        "strengths and wear coefficients are *assumed* values (tribodyn.physics.strength): "
+        "give measured ones in `[strength.<material>]`.",
+        "",
+        "| surface | closest failure | body | x [µm] | z [µm] | crank in cycle [°] | stress [MPa] "
+        "| safety factor | wear / cycle [nm] | hours to wear through |",
+        "|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for name, e in sets.items():
+        w = e.get("stress_closest_failure") or {}
+        out.append(
+            "| {label} | {mode} | {body} | {x} | {z} | {c} | {s} | {sf} | {wear} | {hrs} |".format(
+                label=e.get("label", name),
+                mode=_MODES.get(str(w.get("mode")), "–"),
+                body=w.get("body", "–"),
+                x=_f(w.get("x_m"), ".1f", 1e6),
+                z=_f(w.get("z_m"), ".2f", 1e6),
+                c=_f(w.get("crank_in_cycle_deg", w.get("crank_deg")), ".0f"),
+                s=_f(w.get("stress_Pa"), ".0f", 1e-6),
+                sf=_f(w.get("safety_factor"), ".2f"),
+                wear=_f(e.get("wear_depth_per_cycle_m"), ".2e", 1e9),
+                hrs=_f(e.get("hours_to_wear_through"), ".3g"),
+            )
+        )
+    worst = min(sets.items(), key=lambda kv: kv[1]["min_safety_factor"] or math.inf)
+    w = worst[1].get("stress_closest_failure")
+    if w:
+        out += [
+            "",
+            f"Closest to failure: **{worst[1].get('label', worst[0])}**, "
+            f"{_MODES[w['mode']]} of the {w['body']} at "
+            f"{w.get('crank_in_cycle_deg', w['crank_deg']):.0f}° crank (presented cycle), "
+            f"x = {w['x_m'] * 1e6:.1f} µm, z = {w['z_m'] * 1e6:.2f} µm, "
+            f"safety factor {w['safety_factor']:.2f}.",
+        ]
+    srcs = {e.get("wear_coefficient_source") for e in sets.values()} - {None}
+    if srcs:
+        out += ["", "Wear coefficients: " + "; ".join(sorted(srcs)) + "."]
+    hours = {e.get("running_hours") for e in sets.values()} - {None}
+    if hours:
+        h = hours.pop()
+        worn = [
+            e.get("label", n) for n, e in sets.items() if e.get("worn_through_in_running_hours")
+        ]
+        out += [
+            "",
+            f"After {h:g} running hours: "
+            + (("worn through: " + ", ".join(worn)) if worn else "no coating worn through")
+            + ".",
+        ]
+    out.append("")
+    return out
