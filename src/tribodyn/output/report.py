@@ -421,8 +421,8 @@ def _inputs_section(study, summ) -> list[str]:
     if c.get("table_points"):
         src = case.cam_table_path.name if case.cam_table_path is not None else "table"
         table = (
-            f" from the table {src} ({c['table_points']} points, fit residual RMS "
-            f"{_fmt(c['table_fit_rms_residual_m'] * 1e6, 'µm')})"
+            f" {src}: {c['table_points']} points incl. the base circle, fit residual "
+            f"RMS {_fmt(c['table_fit_rms_residual_m'] * 1e6, 'µm')}"
         )
     lines += [
         f"- Cam ({kind}{table}): base radius {cam.base_radius * 1e3:g} mm, width "
