@@ -1,5 +1,5 @@
 """The ``tribodyn`` command-line application: ``run``, ``export``, ``sweep``, ``contact``,
-``topography``."""
+``topography``, ``warmup``."""
 
 from __future__ import annotations
 
@@ -11,6 +11,7 @@ from .export import export_command
 from .run import run_command
 from .sweep import sweep_command
 from .topography import topography_command
+from .warmup import warmup_command
 
 __all__ = ["app", "main"]
 
@@ -45,6 +46,7 @@ app.command("export")(export_command)
 app.command("sweep")(sweep_command)
 app.command("contact")(contact_command)
 app.command("topography")(topography_command)
+app.command("warmup")(warmup_command)
 
 
 def main():  # pragma: no cover
