@@ -316,3 +316,11 @@ def test_asperity_share_inconsistent_with_lambda_is_named():
     msgs = plausibility_warnings(_fake_study(case, 0.02, 0.008))
     assert len(msgs) == 1 and "λ = 0.02" in msgs[0] and "0.8 %" in msgs[0]
     assert plausibility_warnings(_fake_study(case, 0.02, 0.9)) == []
+
+
+def test_warmup_numerics_are_a_valid_case():
+    """``tribodyn warmup`` (run by ``make run`` at installation) uses a valid case."""
+    from tribodyn.cli.warmup import WARMUP_NUMERICS
+
+    case = load_case().updated(WARMUP_NUMERICS)
+    assert case.numerics.crank_step_deg == WARMUP_NUMERICS["numerics.crank_step_deg"]

@@ -18,7 +18,7 @@ __all__ = ["warmup_command", "warm_up"]
 #: Coarse numerics of the warm-up study (every kernel is reached; sizes do not matter
 #: to numba's compiled signatures).
 WARMUP_NUMERICS = {
-    "numerics.crank_step_deg": 10.0,
+    "numerics.crank_step_deg": 5.0,
     "numerics.n": 128,
     "numerics.coupling_iterations": 1,
     "numerics.output_step_deg": 2.0,

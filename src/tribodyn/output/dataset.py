@@ -189,6 +189,9 @@ def study_to_dataset(study: CycleStudy) -> xr.Dataset:
             "roughness_sensitivity": json.dumps(
                 study.sensitivity.to_dict() if study.sensitivity is not None else {}
             ),
+            "surface_sets_at_nose": json.dumps(
+                ns.to_dict() if (ns := getattr(study, "nose_sets", None)) is not None else {}
+            ),
         }
     )
     return ds

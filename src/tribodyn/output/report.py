@@ -517,25 +517,33 @@ def _engineering_section(study, summ) -> list[str]:
 
 
 def _nose_section(study) -> list[str]:
-    """The single-contact study at the case's own nose (steady EHL, reference set)."""
+    """The single-contact studies at the case's own nose (steady EHL): every surface set,
+    then the reference set's variants."""
     sens = study.sensitivity
+    own = getattr(study, "nose_sets", None)
     if sens is None or not sens.cases:
         return []
     n = sens.conditions
     lines = [
         "## Single contact at the cam nose",
         "",
-        f"Steady mixed EHL of the {study.labels.get(sens.surface_set, sens.surface_set)} "
-        f"surface at this case's nose ({n.crank_deg:.0f}° crank: W = {n.force:.0f} N, "
-        f"R = {n.radius * 1e3:.3g} mm, u_e = {n.entrainment_speed:.3g} m/s), with variants:",
+        f"Steady mixed EHL at this case's nose ({n.crank_deg:.0f}° crank: W = "
+        f"{n.force:.0f} N, R = {n.radius * 1e3:.3g} mm, u_e = {n.entrainment_speed:.3g} "
+        f"m/s, u_s = {n.sliding_speed:.3g} m/s).",
         "",
-        "| variant | μ | asperity load share | viscous friction |",
-        "|---|---|---|---|",
+        "| surface / variant | h_c | h_min | μ | asperity load share | viscous friction "
+        "| boundary friction |",
+        "|---|---|---|---|---|---|---|",
     ]
-    for k, c in sens.cases.items():
+    ref = study.labels.get(sens.surface_set, sens.surface_set)
+    rows = [(k, c) for k, c in (own.cases.items() if own is not None else [])]
+    rows += [(f"{ref}: {k}", c) for k, c in sens.cases.items() if k != "case roughness"]
+    for k, c in rows:
         lines.append(
-            f"| {k} | {c.friction_coefficient:.3f} | {c.asperity_load_share * 100:.2g} % | "
-            f"{_fmt(c.viscous_friction_N, 'N')} |"
+            f"| {k}{'' if c.converged else ' (not converged)'} | "
+            f"{_fmt(c.central_film_m * 1e6, 'µm')} | {_fmt(c.min_film_m * 1e6, 'µm')} | "
+            f"{c.friction_coefficient:.3f} | {c.asperity_load_share * 100:.2g} % | "
+            f"{_fmt(c.viscous_friction_N, 'N')} | {_fmt(c.boundary_friction_N, 'N')} |"
         )
     return lines + [""]
 

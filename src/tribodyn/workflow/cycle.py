@@ -48,7 +48,12 @@ from .engineering import (
 )
 from .model_comparison import ModelComparison, compare_lumped_flexible
 from .postprocess import Analysis, analyse, surface_roles
-from .sensitivity import RoughnessSensitivity, nose_condition, roughness_sensitivity
+from .sensitivity import (
+    RoughnessSensitivity,
+    nose_condition,
+    roughness_sensitivity,
+    surface_sets_at_nose,
+)
 
 if TYPE_CHECKING:
     from ..config.case import Case
@@ -73,6 +78,8 @@ class CycleStudy:
     dry: list[DryCoatingCase] = field(default_factory=list)  #: Fig. 5 cases
     ehl_coating: EHLCoatingStudy | None = None  #: Fig. 6 results
     sensitivity: RoughnessSensitivity | None = None  #: at the cam nose
+    #: every surface set at the case's own nose (a case other than the paper's)
+    nose_sets: RoughnessSensitivity | None = None
     model_comparison: ModelComparison | None = None  #: lumped vs flexible (flexible cases)
     analysis: Analysis | None = None
     runtime_s: float = 0.0
@@ -177,14 +184,16 @@ def _coupling_task(case, name, dynamics, inputs, first=None):
 
 def _coating_studies_task(case, reference: str, nose, paper_studies: bool = True):
     """The sensitivity study at the case's nose; with ``paper_studies`` also the
-    paper's Figs. 5/6 single-contact studies (at the paper's conditions)."""
+    paper's Figs. 5/6 single-contact studies (at the paper's conditions), without them
+    every surface set of the case at its own nose."""
     _limit_threads()
     dry = dry_coating_study() if paper_studies else []
     ehl = ehl_coating_study(case.lubricant(), case) if paper_studies else None
     sens = (
         roughness_sensitivity(case, case.surface_set(reference), nose) if nose is not None else None
     )
-    return dry, ehl, sens
+    own = surface_sets_at_nose(case, nose) if nose is not None and not paper_studies else None
+    return dry, ehl, sens, own
 
 
 @contextmanager
@@ -344,6 +353,7 @@ def run_cycle_study(
         dry=coating[0],
         ehl_coating=coating[1],
         sensitivity=coating[2],
+        nose_sets=coating[3],
         timings=timings,
         isothermal_sets=isothermal,
         compare_paper=paper_cmp,

@@ -163,8 +163,8 @@ def make_figures(
         except BaseException:
             pool.shutdown(wait=True, cancel_futures=True)  # no figures after a failure
             raise
-    names = {n: n if paper_numbers else content_name(n) for n in wanted}
-    return {names[n]: written[names[n]] for n in wanted if names[n] in written}
+    files = [n if paper_numbers else content_name(n) for n in wanted]
+    return {f: written[f] for f in files if f in written}
 
 
 _HELD: list = []  # the Dataset of a drawing process
