@@ -324,3 +324,23 @@ def test_warmup_numerics_are_a_valid_case():
 
     case = load_case().updated(WARMUP_NUMERICS)
     assert case.numerics.crank_step_deg == WARMUP_NUMERICS["numerics.crank_step_deg"]
+
+
+@pytest.mark.parametrize(
+    "text, advice",
+    [
+        (
+            "film h_c = 1e-05 m is 0.002 R and 0.2 of the length over which it varies "
+            "(ℓ = 5e-05 m): Reynolds' thin-film approximation needs h/ℓ ≪ 1",
+            "light load",
+        ),
+        ("the load-carrying zone reaches 0.2 R (Hertz b = 0.1 R): the parabolic", "minimum radius"),
+        ("modified Reynolds number ρu_e h_c²/(μ₀ℓ) = 0.3: fluid inertia", "uncertain by Re*"),
+        ("peak contact pressure 5 GPa exceeds 4 GPa: beyond the elastic limit", "beyond 4 GPa"),
+    ],
+)
+def test_every_validity_warning_says_what_to_change(text, advice):
+    """Each kind of the EHL validity checks (contact.ehl.validity) gets its own advice."""
+    from tribodyn.workflow.cycle import _validity_advice
+
+    assert advice in _validity_advice(text)
