@@ -106,6 +106,12 @@ def has(ds, *names) -> bool:
     return all(n in ds.variables for n in names)
 
 
+def compares_paper(ds) -> bool:
+    """Whether the figures carry the paper's comparison (the Dataset's ``compare_paper``
+    attribute; absent: yes)."""
+    return bool(ds.attrs.get("compare_paper", 1))
+
+
 def arr(ds, name) -> np.ndarray:
     return np.asarray(ds[name].values, dtype=float)
 
