@@ -344,3 +344,14 @@ def test_every_validity_warning_says_what_to_change(text, advice):
     from tribodyn.workflow.cycle import _validity_advice
 
     assert advice in _validity_advice(text)
+
+
+def test_the_papers_case_keeps_its_comparison(reduced_results):
+    """The paper's case (reduced numerics, shared with other tests): the claims table,
+    the numbered paper figures with the engineering ones, and every figure in the HTML."""
+    text = (reduced_results / "report.md").read_text()
+    assert "## The paper's claims beside tribodyn" in text and "(paper Fig. 9)" in text
+    names = {p.name for p in reduced_results.glob("*.png")}
+    assert {"fig05_dry_pressure.png", "fig06_ehl_pressure_film.png"} <= names
+    assert {"fig23_camshaft_torque.png", "fig25_cam_kinematics.png"} <= names
+    _check_html(reduced_results / "report.html", names)

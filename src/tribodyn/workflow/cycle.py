@@ -353,7 +353,7 @@ def run_cycle_study(
         dry=coating[0],
         ehl_coating=coating[1],
         sensitivity=coating[2],
-        nose_sets=coating[3],
+        nose_sets=coating[3] if len(coating) > 3 else None,
         timings=timings,
         isothermal_sets=isothermal,
         compare_paper=paper_cmp,
