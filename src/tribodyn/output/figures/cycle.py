@@ -9,6 +9,7 @@ from .common import (
     TITLE_SIZE,
     UM,
     arr,
+    compares_paper,
     crank_axis,
     cycle_seconds_per_deg,
     event_window,
@@ -118,7 +119,8 @@ def fig15(ds, path):
         "%",
         2,
         "h_c change vs uncoated [%]",
-        "(b) film change relative to uncoated (paper claims up to +41 %)",
+        "(b) film change relative to uncoated"
+        + (" (paper claims up to +41 %)" if compares_paper(ds) else ""),
     )
     return finish(fig, path, FIGURES[path.name], f"cam event only; {failure_note(ds)}")
 
@@ -212,7 +214,7 @@ def fig16(ds, path):
 
 def fig17(ds, path):
     sub = _reduction_note(ds, "boundary_friction", "∫F_b dt over the cycle")
-    if sub:
+    if sub and compares_paper(ds):
         sub += " (paper: > 95 % lower for WC-C)"
     return _linear_and_log(ds, path, "boundary_friction", "boundary friction F_b [N]", sub)
 
@@ -250,7 +252,8 @@ def fig18(ds, path):
         "N",
         3,
         "F_v − F_v(uncoated) [N]",
-        "(b) difference to uncoated (paper: WC-C up to +0.43 N)",
+        "(b) difference to uncoated"
+        + (" (paper: WC-C up to +0.43 N)" if compares_paper(ds) else ""),
     )
     return finish(fig, path, FIGURES[path.name], f"cam event only; {failure_note(ds)}")
 

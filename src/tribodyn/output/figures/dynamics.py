@@ -9,6 +9,7 @@ from .common import (
     MM,
     TITLE_SIZE,
     arr,
+    compares_paper,
     crank_axis,
     dynamics_event,
     finish,
@@ -137,7 +138,7 @@ def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False)
             mfc="white",
             mec="k",
             mew=1.5,
-            label="representative points 1–6 (Fig. 13)",
+            label="representative points 1–6" + (" (Fig. 13)" if compares_paper(ds) else ""),
         )
     ax.legend(fontsize=9, loc="upper left")
     sub = None if has_imp else "implicit run not in the results: explicit only"

@@ -13,6 +13,7 @@ from .common import (
     TITLE_SIZE,
     UM,
     arr,
+    compares_paper,
     finish,
     legend_below,
     loaded_mask,
@@ -157,7 +158,8 @@ def fig13(ds, path):
     ]
     legend_below(fig, handles, names, ncol=4, fontsize=10)
     sub = (
-        f"{labels[sets[0]]} solid, {labels[sets[1]]} dashed (as in the paper); "
+        f"{labels[sets[0]]} solid, {labels[sets[1]]} dashed"
+        f"{' (as in the paper)' if compares_paper(ds) else ''}; "
         f"h_c given as {labels[sets[0]]} / {labels[sets[1]]}; "
         "x positive in the direction of positive u_e"
     )

@@ -8,6 +8,7 @@ from .common import (
     EVENT_FRACTION,
     FIGURES,
     arr,
+    compares_paper,
     finish,
     loaded_mask,
     place_labels,
@@ -153,7 +154,7 @@ def fig12(ds, path):
             mfc="white",
             mec="k",
             mew=1.5,
-            label="representative points 1–6 (Fig. 13)",
+            label="representative points 1–6" + (" (Fig. 13)" if compares_paper(ds) else ""),
         )
     ax.set_xlabel("elasticity parameter g_E = W' U^(−1/2)")
     ax.set_ylabel("viscosity parameter g_V = G W'^(3/2) U^(−1/2)")
