@@ -47,6 +47,8 @@ _CAPTIONS = {
     "of the fitted profile (with the table's points and the fit residual for a table cam).",
     "fig26": "Lift harmonics of the cam at n·f_cam against the valve spring's surge "
     "frequencies (resonance where a surge line meets a strong harmonic).",
+    "fig27": "Subsurface von Mises stress of the body closest to failure, per surface set, at "
+    "the crank angle of its smallest safety factor (interface dashed, governing peak marked).",
 }
 #: Captions of a case other than the paper's where the paper's caption names its own
 #: surfaces or conditions (by content name, :func:`~tribodyn.output.figures.content_name`).
@@ -622,6 +624,9 @@ def report_text(study, ds, figures: dict) -> str:
         "",
     ]
     lines += _engineering_section(study, summ)
+    from .report_stress import stress_section
+
+    lines += stress_section(summ)
     if not paper_cmp:
         lines += _nose_section(study)
 

@@ -82,7 +82,7 @@ _CONTENT_FIGURES = (
     "|entrainment_speed|greenwood_chart|pressure_film_points|coatings_pressure_film"
     "|central_film|boundary_load|boundary_friction|viscous_friction|friction_power"
     "|min_film_lambda|temperatures|thermal_vs_isothermal|camshaft_torque"
-    "|contact_pressure|cam_kinematics|spring_surge",
+    "|contact_pressure|cam_kinematics|spring_surge|stress_map",
 )
 #: Names of the files tribodyn writes in a result folder (cycle study and sweep); in a
 #: folder whose marker does not list its files, these are tribodyn's own.

@@ -7,7 +7,8 @@ energy, 20: minimum film and λ). One module per family: :mod:`.coating` (5, 6),
 :mod:`.dynamics` (8–11), :mod:`.regimes` (12), :mod:`.profiles` (13, 14), :mod:`.cycle`
 (15–20), :mod:`.thermal` (21, 22: temperatures, thermal vs isothermal, in thermal
 studies), :mod:`.engineering` (23–26: camshaft torque, contact pressure, cam kinematics,
-spring surge); :mod:`.topography` draws the measured-surface figure (paper Fig. 7).
+spring surge), :mod:`.stress` (27: stress map at the instant of greatest risk);
+:mod:`.topography` draws the measured-surface figure (paper Fig. 7).
 
 File names: the paper's case (``compare_paper`` attribute of the Dataset true or absent)
 keeps the numbered names ``figNN_content.png``; any other case gets the content names
@@ -29,6 +30,7 @@ from .dynamics import fig08, fig09, fig10, fig11
 from .engineering import fig23, fig24, fig25, fig26
 from .profiles import fig13, fig14
 from .regimes import fig12
+from .stress import fig27
 from .thermal import fig21, fig22
 
 __all__ = ["FIGURES", "EVENT_FRACTION", "content_name", "make_figures"]
@@ -73,6 +75,7 @@ _MAKERS = {
     "fig24_contact_pressure.png": (fig24, ("hertz_pressure", "max_pressure", "loaded")),
     "fig25_cam_kinematics.png": (fig25, ("kinematic_lift", "kinematic_radius")),
     "fig26_spring_surge.png": (fig26, ("harmonic_amplitude", "surge_frequency")),
+    "fig27_stress_map.png": (fig27, ("safety_factor_tappet_interface_shear", "pressure")),
 }
 
 
@@ -143,8 +146,6 @@ def make_figures(
     import sys
     from concurrent.futures import ProcessPoolExecutor
 
-    # fork shares the loaded modules and the Dataset (Linux); elsewhere a fresh
-    # interpreter per process, which receives the Dataset once
     # fork shares the loaded modules and the Dataset (Linux); elsewhere a fresh
     # interpreter per process, which receives the Dataset once; the processes end with
     # this one, even if it is killed

@@ -45,6 +45,7 @@ FIGURES = {
     "fig24_contact_pressure.png": "Contact pressure over the cycle: Hertz and EHL peak",
     "fig25_cam_kinematics.png": "Cam kinematics as used (fitted profile)",
     "fig26_spring_surge.png": "Valve-spring surge modes against the cam's excitation harmonics",
+    "fig27_stress_map.png": "Subsurface von Mises stress at the instant of greatest risk",
 }
 
 

@@ -8,13 +8,14 @@ pressure and film profile of that sample, the surface loads of
 from __future__ import annotations
 
 import math
+import tomllib
 from typing import Any
 
 import numpy as np
 
 from .common import MPA, TITLE_SIZE, UM, finish, plt
 
-__all__ = ["stress_maps", "greatest_risk", "stress_field_at"]
+__all__ = ["stress_maps", "greatest_risk", "stress_field_at", "fig27"]
 
 _MODE_PEAK = {
     "substrate_yield": "max_von_mises_substrate",
@@ -63,7 +64,11 @@ def stress_field_at(ds, name: str, index: int, body: str, nz: int = 121):
     from ...contact.stress import loaded_half_width, profile_surface_loads
     from ...physics.stress import subsurface_stress
 
-    case = Case.from_toml_string(ds.attrs["case_toml"])
+    # only the surfaces, the oil and the EHL options are needed: the cam section is left
+    # out, so a lift table that is not where results.nc is read does not matter
+    data = tomllib.loads(ds.attrs["case_toml"])
+    data.pop("cam", None)
+    case = Case.from_dict(data)
     s = case.surface_set(name)
     opts = case.ehl_options(s)
     x = ds["profile_x"].sel(surface_set=name).values[index]
@@ -140,3 +145,12 @@ def stress_maps(ds, path, sets=None):
         "Subsurface von Mises stress at the instant of greatest risk",
         "cross: peak of the governing mode; SF: strength / cycle maximum",
     )
+
+
+def fig27(ds, path):
+    """The report's stress map (:func:`stress_maps` of every set with stress results);
+    None when no set has a finite safety factor (its stress step failed or was off)."""
+    names = [str(n) for n in ds["surface_set"].values]
+    if not any(greatest_risk(ds, n) is not None for n in names):
+        return None
+    return stress_maps(ds, path)
