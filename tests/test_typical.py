@@ -61,12 +61,19 @@ def test_physics_defaults_are_typical():
 def test_paper_values_stay_with_the_paper():
     assert SAE_5W20.eyring_stress == paper.LUBRICANT["eyring_stress"]
     assert SAE_5W20.limiting_shear_coefficient == paper.LUBRICANT["limiting_shear_coefficient"]
-    # an empty case file is the paper's case
-    assert LubricantConfig().eyring_stress == paper.LUBRICANT["eyring_stress"]
+    # case-file defaults are the typical values; the paper's case states its own
+    assert LubricantConfig().eyring_stress == typical.EYRING_STRESS.value
     assert (
         SurfaceSetConfig.model_fields["boundary_shear_strength"].default
-        == paper.BOUNDARY_SHEAR_STRENGTH
+        == typical.BOUNDARY_SHEAR_STRENGTH.value
     )
+    from tribodyn.config import load_case
+
+    case = load_case("andreou2023")
+    assert case.lubricant().eyring_stress == paper.LUBRICANT["eyring_stress"]
+    assert {s.boundary_shear_strength for s in case.surface_sets()} == {
+        paper.BOUNDARY_SHEAR_STRENGTH
+    }
 
 
 def test_rig_case_uses_the_typical_friction_values():

@@ -3,8 +3,9 @@
 A case file describes one study: engine speed, cam, valvetrain, lubricant, materials, the
 surface sets to compare (uncoated, DLC, WC-C, …) and the numerical settings. Every key is
 in SI units unless its name says otherwise (``speed_rpm``, ``*_deg``); see
-``docs/case-files.md``. An empty file is the paper's case (bundled as
-``cases/andreou2023.toml``).
+``docs/case-files.md``. An empty file is the paper's engine with typical sourced
+friction, rheology and roughness (:mod:`tribodyn.physics.typical`); the paper's own case,
+with every paper value stated, is ``cases/andreou2023.toml``.
 
 Validation errors (unknown keys, values out of range, wrong types, cross-field rules such
 as a surface set naming an undefined material) raise :class:`~tribodyn.InputError` with
@@ -31,11 +32,11 @@ from pydantic import (
     model_validator,
 )
 
-from .. import paper
 from .._typing import PathLike
 from .._validation import InputError
 from ..contact.ehl import EHLOptions
 from ..contact.ehl.thermal import ThermalOptions
+from ..physics import typical
 from ..physics.asperity import Roughness
 from ..physics.heat_conduction import ThermalBody, ThermalProperties
 from ..physics.lubricant import Lubricant
@@ -66,8 +67,8 @@ from .schema import (
     TappetConfig,
     ValveConfig,
     Valvetrain,
-    paper_materials,
-    paper_surface_sets,
+    typical_materials,
+    typical_surface_sets,
 )
 from .tomlfile import check_nesting, parse_toml, read_toml_text
 
@@ -106,7 +107,7 @@ class SurfaceSet:
     roughness: Roughness | None
     boundary_shear_coefficient: float
     coating_label: str
-    boundary_shear_strength: float = paper.BOUNDARY_SHEAR_STRENGTH
+    boundary_shear_strength: float = typical.BOUNDARY_SHEAR_STRENGTH.value
     coating_material: str | None = None
 
     @property
@@ -124,7 +125,7 @@ class SurfaceSet:
 
 class Case(Section):
     """A validated case. Build it with :func:`load_case`, :meth:`from_toml_string` or
-    :meth:`from_dict`; every section has defaults (the paper's case)."""
+    :meth:`from_dict`; every section has defaults (module text)."""
 
     case: CaseInfo = Field(default_factory=CaseInfo)
     engine: Engine = Field(default_factory=Engine)
@@ -132,10 +133,10 @@ class Case(Section):
     valvetrain: Valvetrain = Field(default_factory=Valvetrain)
     lubricant_config: LubricantConfig = Field(default_factory=LubricantConfig, alias="lubricant")
     materials: dict[Annotated[str, Field(min_length=1)], MaterialConfig] = Field(
-        default_factory=paper_materials, min_length=1
+        default_factory=typical_materials, min_length=1
     )
     surface_set_configs: list[SurfaceSetConfig] = Field(
-        default_factory=paper_surface_sets, min_length=1, alias="surface_sets"
+        default_factory=typical_surface_sets, min_length=1, alias="surface_sets"
     )
     numerics: Numerics = Field(default_factory=Numerics)
 
