@@ -49,6 +49,7 @@ from ..valvetrain.flexible import FlexibleValvetrain, TappetGeometry, ValveGeome
 from ..valvetrain.kinematics import rpm_to_cam_speed
 from ..valvetrain.parameters import ValvetrainParameters
 from ..valvetrain.spring import HelicalSpring
+from ..valvetrain.tappet_rotation import TappetRotation
 from .errors import CamTableError, Problems, format_validation_error
 from .paths import set_path
 from .schema import (
@@ -65,6 +66,7 @@ from .schema import (
     SpringConfig,
     SurfaceSetConfig,
     TappetConfig,
+    TappetRotationConfig,
     ValveConfig,
     Valvetrain,
     typical_materials,
@@ -139,6 +141,9 @@ class Case(Section):
         default_factory=typical_surface_sets, min_length=1, alias="surface_sets"
     )
     numerics: Numerics = Field(default_factory=Numerics)
+    tappet_rotation_config: TappetRotationConfig = Field(
+        default_factory=TappetRotationConfig, alias="tappet_rotation"
+    )
 
     _base_dir: Path = PrivateAttr(default_factory=Path.cwd)
     _source: Path | None = PrivateAttr(default=None)
@@ -338,6 +343,11 @@ class Case(Section):
             return None
         p = Path(self.cam_config.path).expanduser()
         return p if p.is_absolute() else (self._base_dir / p)
+
+    def tappet_rotation(self) -> TappetRotation:
+        """``[tappet_rotation]`` as a :class:`TappetRotation` (speed ratio 0: none)."""
+        c = self.tappet_rotation_config
+        return TappetRotation(c.speed_ratio, c.cam_offset)
 
     def lubricant(self) -> Lubricant:
         """The :class:`~tribodyn.Lubricant` of ``[lubricant]`` (a datasheet oil at its

@@ -45,6 +45,7 @@ __all__ = [
     "paper_surface_sets",
     "typical_materials",
     "typical_surface_sets",
+    "TappetRotationConfig",
 ]
 
 _VT_DEFAULTS = {f.name: f.default for f in dataclasses.fields(ValvetrainParameters)}
@@ -817,7 +818,7 @@ def typical_materials() -> dict:
     mu = {"steel": "steel", "dlc": "a-C:H", "wcc": "WC-C"}
     out = {}
     for k, v in paper.MATERIALS.items():
-        d = dict(v)
+        d: dict[str, Any] = dict(v)
         d["boundary_shear_coefficient"] = typical.boundary_friction(mu[k]).value
         out[k] = MaterialConfig(**d)
     return out
@@ -843,3 +844,20 @@ def typical_surface_sets() -> list:
                 )
             )
     return sets
+
+
+class TappetRotationConfig(Section):
+    """``[tappet_rotation]``: a bucket tappet turning about its axis
+    (:class:`~tribodyn.valvetrain.tappet_rotation.TappetRotation`; docs/case-files.md)."""
+
+    speed_ratio: float = _q(
+        0.0,
+        "",
+        "tappet speed over cam speed ω_t/ω (0: the tappet does not turn; no typical "
+        "value was found in the sources)",
+        ge=-1.0,
+        le=1.0,
+    )
+    cam_offset: float = _q(
+        0.0, "m", "offset e_o of the cam from the tappet axis, along the cam axis", ge=0.0, lt=0.05
+    )
