@@ -89,6 +89,10 @@ def test_cycle_inputs_with_rotation():
     assert c.entrainment_speed == pytest.approx(rot.entrainment_speed[1])
     # rotation lowers the sliding along the cam motion: partial rolling
     assert np.all(rot.sliding_speed < inp.sliding_speed)
+    # applied once: the same rotation again changes nothing, another one is refused
+    assert rot.with_rotation(TappetRotation(ratio, e_o)) is rot
+    with pytest.raises(InputError, match="already include"):
+        rot.with_rotation(TappetRotation(0.1, e_o))
 
 
 def test_rotation_without_offsets_is_an_input_error():

@@ -89,6 +89,8 @@ class CycleInputs:
     #: share s_x/|s| of the friction force against the cam's rotation (tappet rotation;
     #: None: 1, the friction acts along the cam motion)
     torque_share: np.ndarray | None = None
+    #: the tappet rotation these speeds already include (None: a tappet that does not turn)
+    rotation: Any = None
 
     def at(self, t: float) -> SampleConditions:
         """The conditions at time t [s] (linear interpolation of the finest data
@@ -142,8 +144,13 @@ class CycleInputs:
         ω_t e_o/2 and the sliding speed |s| = √((u_s − ω_t e_o)² + (ω_t e)²) with the
         sign of its x part; :attr:`torque_share` = s_x/|s|. Unchanged when the tappet
         does not turn."""
-        if rotation is None or not rotation.active:
+        if rotation is None or not rotation.active or rotation == self.rotation:
             return self
+        if self.rotation is not None:
+            raise InputError(
+                f"the inputs already include the tappet rotation {self.rotation}; "
+                f"cannot apply {rotation} on top"
+            )
         if self.contact_offset is None or self.cam_speed is None:
             raise InputError(
                 "tappet rotation needs the contact offset and cam speed of the dynamics"
@@ -162,6 +169,7 @@ class CycleInputs:
             sliding_speed=v.signed_sliding_speed,
             fine=fine,
             torque_share=v.torque_share,
+            rotation=rotation,
         )
 
 
