@@ -154,11 +154,34 @@ def test_bundled_file_itself_holds_the_numbers_and_comments():
             assert "ASSUMED" in line, line
 
 
-def test_empty_file_is_the_paper_case(paper):
+def test_empty_file_is_the_paper_engine_with_typical_friction(paper):
+    """Defaults: the paper's engine, cam and valvetrain; typical sourced friction,
+    rheology and roughness. The paper's friction values live in its case file."""
+    from tribodyn.physics import typical
+
     d_default = Case.from_toml_string("").to_dict()
     d_paper = paper.to_dict()
-    d_default.pop("case"), d_paper.pop("case")
-    assert d_default == d_paper
+    for key in ("engine", "cam", "valvetrain", "numerics"):
+        assert d_default[key] == d_paper[key], key
+    lub = d_default["lubricant"]
+    assert (
+        lub["eyring_stress"] == typical.EYRING_STRESS.value != d_paper["lubricant"]["eyring_stress"]
+    )
+    assert lub["limiting_shear_coefficient"] == typical.LIMITING_SHEAR_COEFFICIENT.value
+    mats = d_default["materials"]
+    assert mats["steel"]["boundary_shear_coefficient"] == typical.boundary_friction("steel").value
+    assert mats["dlc"]["boundary_shear_coefficient"] == typical.boundary_friction("a-C:H").value
+    assert mats["wcc"]["boundary_shear_coefficient"] == typical.boundary_friction("WC-C").value
+    for s in d_default["surface_sets"]:
+        assert s["boundary_shear_strength"] == 0.0
+        r = s["roughness"]
+        eta_beta_sigma = r["asperity_density"] * r["summit_radius"] * r["rms"]
+        assert eta_beta_sigma == pytest.approx(typical.ROUGHNESS_PARAMETER.value)
+        assert r["rms"] / r["summit_radius"] == pytest.approx(typical.RMS_TO_SUMMIT_RADIUS.value)
+    # the paper's case states the paper's friction values itself
+    assert d_paper["lubricant"]["eyring_stress"] == 2e6
+    assert {s["boundary_shear_strength"] for s in d_paper["surface_sets"]} == {2e6}
+    assert d_paper["materials"]["dlc"]["boundary_shear_coefficient"] == 0.44
 
 
 def test_bundled_names(paper):

@@ -30,6 +30,18 @@ def test_every_typical_value_has_a_source_and_lies_in_its_range():
         assert v.low <= v.value <= v.high
 
 
+def test_every_value_says_how_far_its_source_was_checked():
+    for v in _all_values():
+        assert v.status in typical.STATUSES
+        if v.status != "verified":  # a number not seen in its source is labelled
+            assert "ASSUMED" in v.note, v
+    # checked against the source's text: Zhang et al. (2021), 0.09-0.14, secondary 0.115
+    zddp = typical.boundary_friction("steel", "zddp")
+    assert zddp.status == "verified" and zddp.value == 0.115
+    with pytest.raises(ValueError, match="status"):
+        typical.TypicalValue(1.0, 0.0, 2.0, "-", "x", status="checked")
+
+
 def test_published_ranges():
     # Eyring stress of mineral oils 2-10 MPa (Johnson & Tevaarwerk 1977); ZDDP boundary
     # friction 0.09-0.14 (Zhang et al. 2021); ηβσ 0.03-0.05 (Arnell et al. 1991)
@@ -61,12 +73,19 @@ def test_physics_defaults_are_typical():
 def test_paper_values_stay_with_the_paper():
     assert SAE_5W20.eyring_stress == paper.LUBRICANT["eyring_stress"]
     assert SAE_5W20.limiting_shear_coefficient == paper.LUBRICANT["limiting_shear_coefficient"]
-    # an empty case file is the paper's case
-    assert LubricantConfig().eyring_stress == paper.LUBRICANT["eyring_stress"]
+    # case-file defaults are the typical values; the paper's case states its own
+    assert LubricantConfig().eyring_stress == typical.EYRING_STRESS.value
     assert (
         SurfaceSetConfig.model_fields["boundary_shear_strength"].default
-        == paper.BOUNDARY_SHEAR_STRENGTH
+        == typical.BOUNDARY_SHEAR_STRENGTH.value
     )
+    from tribodyn.config import load_case
+
+    case = load_case("andreou2023")
+    assert case.lubricant().eyring_stress == paper.LUBRICANT["eyring_stress"]
+    assert {s.boundary_shear_strength for s in case.surface_sets()} == {
+        paper.BOUNDARY_SHEAR_STRENGTH
+    }
 
 
 def test_rig_case_uses_the_typical_friction_values():

@@ -3,8 +3,9 @@
 A case file describes one study: engine speed, cam, valvetrain, lubricant, materials, the
 surface sets to compare (uncoated, DLC, WC-C, …) and the numerical settings. Every key is
 in SI units unless its name says otherwise (``speed_rpm``, ``*_deg``); see
-``docs/case-files.md``. An empty file is the paper's case (bundled as
-``cases/andreou2023.toml``).
+``docs/case-files.md``. An empty file is the paper's engine with typical sourced
+friction, rheology and roughness (:mod:`tribodyn.physics.typical`); the paper's own case,
+with every paper value stated, is ``cases/andreou2023.toml``.
 
 Validation errors (unknown keys, values out of range, wrong types, cross-field rules such
 as a surface set naming an undefined material) raise :class:`~tribodyn.InputError` with
@@ -31,11 +32,11 @@ from pydantic import (
     model_validator,
 )
 
-from .. import paper
 from .._typing import PathLike
 from .._validation import InputError
 from ..contact.ehl import EHLOptions
 from ..contact.ehl.thermal import ThermalOptions
+from ..physics import typical
 from ..physics.asperity import Roughness
 from ..physics.heat_conduction import ThermalBody, ThermalProperties
 from ..physics.lubricant import Lubricant
@@ -48,6 +49,7 @@ from ..valvetrain.flexible import FlexibleValvetrain, TappetGeometry, ValveGeome
 from ..valvetrain.kinematics import rpm_to_cam_speed
 from ..valvetrain.parameters import ValvetrainParameters
 from ..valvetrain.spring import HelicalSpring
+from ..valvetrain.tappet_rotation import TappetRotation
 from .errors import CamTableError, Problems, format_validation_error
 from .paths import set_path
 from .schema import (
@@ -66,10 +68,11 @@ from .schema import (
     StressConfig,
     SurfaceSetConfig,
     TappetConfig,
+    TappetRotationConfig,
     ValveConfig,
     Valvetrain,
-    paper_materials,
-    paper_surface_sets,
+    typical_materials,
+    typical_surface_sets,
 )
 from .tomlfile import check_nesting, parse_toml, read_toml_text
 
@@ -108,7 +111,7 @@ class SurfaceSet:
     roughness: Roughness | None
     boundary_shear_coefficient: float
     coating_label: str
-    boundary_shear_strength: float = paper.BOUNDARY_SHEAR_STRENGTH
+    boundary_shear_strength: float = typical.BOUNDARY_SHEAR_STRENGTH.value
     coating_material: str | None = None
 
     @property
@@ -126,7 +129,7 @@ class SurfaceSet:
 
 class Case(Section):
     """A validated case. Build it with :func:`load_case`, :meth:`from_toml_string` or
-    :meth:`from_dict`; every section has defaults (the paper's case)."""
+    :meth:`from_dict`; every section has defaults (module text)."""
 
     case: CaseInfo = Field(default_factory=CaseInfo)
     engine: Engine = Field(default_factory=Engine)
@@ -134,16 +137,19 @@ class Case(Section):
     valvetrain: Valvetrain = Field(default_factory=Valvetrain)
     lubricant_config: LubricantConfig = Field(default_factory=LubricantConfig, alias="lubricant")
     materials: dict[Annotated[str, Field(min_length=1)], MaterialConfig] = Field(
-        default_factory=paper_materials, min_length=1
+        default_factory=typical_materials, min_length=1
     )
     surface_set_configs: list[SurfaceSetConfig] = Field(
-        default_factory=paper_surface_sets, min_length=1, alias="surface_sets"
+        default_factory=typical_surface_sets, min_length=1, alias="surface_sets"
     )
     numerics: Numerics = Field(default_factory=Numerics)
     strength_configs: dict[Annotated[str, Field(min_length=1)], StrengthConfig] = Field(
         default_factory=dict, alias="strength"
     )
     stress: StressConfig = Field(default_factory=StressConfig)
+    tappet_rotation_config: TappetRotationConfig = Field(
+        default_factory=TappetRotationConfig, alias="tappet_rotation"
+    )
 
     _base_dir: Path = PrivateAttr(default_factory=Path.cwd)
     _source: Path | None = PrivateAttr(default=None)
@@ -345,6 +351,11 @@ class Case(Section):
             return None
         p = Path(self.cam_config.path).expanduser()
         return p if p.is_absolute() else (self._base_dir / p)
+
+    def tappet_rotation(self) -> TappetRotation:
+        """``[tappet_rotation]`` as a :class:`TappetRotation` (speed ratio 0: none)."""
+        c = self.tappet_rotation_config
+        return TappetRotation(c.speed_ratio, c.cam_offset)
 
     def lubricant(self) -> Lubricant:
         """The :class:`~tribodyn.Lubricant` of ``[lubricant]`` (a datasheet oil at its

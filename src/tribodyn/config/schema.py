@@ -2,8 +2,10 @@
 
 Every field records its unit (``json_schema_extra={"unit": …}``), its allowed range and a
 one-line description; ``docs/case-files.md`` documents them and the error messages quote
-them. Defaults are the paper's case (:mod:`tribodyn.paper`) and tribodyn's numerical
-defaults. Sections are strict (no type coercion), frozen, and reject unknown keys.
+them. Friction, rheology and roughness default to typical sourced values
+(:mod:`tribodyn.physics.typical`); the engine, cam and valvetrain default to the paper's
+engine (:mod:`tribodyn.paper`, no typical values exist for them); the paper's friction
+values are stated in its case files. Numerical settings are tribodyn's defaults. Sections are strict (no type coercion), frozen, and reject unknown keys.
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, model_val
 
 from .. import paper
 from ..physics import limits as L
+from ..physics import typical
 from ..physics.oils import OILS
 from ..valvetrain.parameters import ValvetrainParameters
 from .errors import Problems
@@ -42,6 +45,9 @@ __all__ = [
     "Numerics",
     "paper_materials",
     "paper_surface_sets",
+    "typical_materials",
+    "typical_surface_sets",
+    "TappetRotationConfig",
 ]
 
 _VT_DEFAULTS = {f.name: f.default for f in dataclasses.fields(ValvetrainParameters)}
@@ -445,10 +451,10 @@ class LubricantConfig(Section):
     )
     density: float = _lim(paper.ASSUMED_DENSITY, L.DENSITY, "density ρ₀ at ambient pressure")
     eyring_stress: float = _lim(
-        paper.LUBRICANT["eyring_stress"], L.EYRING_STRESS, "Eyring stress τ_E"
+        typical.EYRING_STRESS.value, L.EYRING_STRESS, "Eyring stress τ_E (typical)"
     )
     limiting_shear_coefficient: float = _lim(
-        paper.LUBRICANT["limiting_shear_coefficient"],
+        typical.LIMITING_SHEAR_COEFFICIENT.value,
         L.LIMITING_SHEAR_COEFFICIENT,
         "pressure slope Λ of the limiting shear stress τ_L = τ_L0 + Λ p",
     )
@@ -661,7 +667,7 @@ class SurfaceSetConfig(Section):
         "ς of the pair; absent: the coating's (or the substrate's if uncoated)",
     )
     boundary_shear_strength: float = _lim(
-        paper.BOUNDARY_SHEAR_STRENGTH,  # an empty case file is the paper's case
+        typical.BOUNDARY_SHEAR_STRENGTH.value,  # ς is then a measured boundary μ_b
         L.BOUNDARY_SHEAR_STRENGTH,
         "τ₀ of the boundary shear law τ = τ₀ + ς p_a (Eq. 17)",
     )
@@ -848,3 +854,56 @@ def paper_surface_sets() -> list:
                 )
             )
     return sets
+
+
+def typical_materials() -> dict:
+    """Default ``[materials]``: the moduli of Table 6 (elastic constants of steel, a-C:H
+    DLC and WC-C) with ς = the typical boundary friction coefficient of each surface
+    against steel in a ZDDP oil (:data:`tribodyn.physics.typical.BOUNDARY_FRICTION`, used
+    with τ₀ = 0)."""
+    mu = {"steel": "steel", "dlc": "a-C:H", "wcc": "WC-C"}
+    out = {}
+    for k, v in paper.MATERIALS.items():
+        d: dict[str, Any] = dict(v)
+        d["boundary_shear_coefficient"] = typical.boundary_friction(mu[k]).value
+        out[k] = MaterialConfig(**d)
+    return out
+
+
+def typical_surface_sets() -> list:
+    """Default surface sets: the names of the paper's sets, each with the typical composite
+    roughness of a ground cam on a ground tappet: σ from
+    :data:`~tribodyn.physics.typical.COMPOSITE_RMS`, β = σ/(σ/β) and η = ηβσ/(βσ)."""
+    sigma = typical.COMPOSITE_RMS["ground"].value
+    beta = sigma / typical.RMS_TO_SUMMIT_RADIUS.value
+    eta = typical.ROUGHNESS_PARAMETER.value / (beta * sigma)
+    rough = RoughnessConfig(asperity_density=eta, rms=sigma, summit_radius=beta)
+    sets = [SurfaceSetConfig(name="uncoated", roughness=rough)]
+    for coat in ("dlc", "wcc"):
+        for t_um in (1, 4):
+            sets.append(
+                SurfaceSetConfig(
+                    name=f"{coat}_{t_um}um",
+                    coating=coat,
+                    coating_thickness=t_um * 1e-6,
+                    roughness=rough,
+                )
+            )
+    return sets
+
+
+class TappetRotationConfig(Section):
+    """``[tappet_rotation]``: a bucket tappet turning about its axis
+    (:class:`~tribodyn.valvetrain.tappet_rotation.TappetRotation`; docs/case-files.md)."""
+
+    speed_ratio: float = _q(
+        0.0,
+        "",
+        "tappet speed over cam speed ω_t/ω (0: the tappet does not turn; no typical "
+        "value was found in the sources)",
+        ge=-1.0,
+        le=1.0,
+    )
+    cam_offset: float = _q(
+        0.0, "m", "offset e_o of the cam from the tappet axis, along the cam axis", ge=0.0, lt=0.05
+    )

@@ -6,8 +6,18 @@ them when nothing better is known; replace them by your own measurements (``trib
 calibrate``, docs/guides/calibration.md) when friction matters. The paper's values
 (Andreou et al. 2023) stay in :mod:`tribodyn.paper` and in the paper's case files.
 
-Each entry is a :class:`TypicalValue`: value, published range, unit, source, and a note
-on the conditions. SI units throughout.
+Each entry is a :class:`TypicalValue`: value, published range, unit, source, a note on
+the conditions and a ``status`` that says how far the source was checked:
+
+* ``"verified"``: the number and its range were found in the cited source's text.
+* ``"qualitative"``: the cited source was found and supports the statement in the note
+  (for example "close to steel/steel"), but its number was not seen; the value is an
+  ASSUMED reading of it.
+* ``"assumed"``: no source text giving the number was found; the value is ASSUMED (a
+  commonly quoted magnitude). Replace it by a measurement when friction matters.
+
+Citations that were given before but could not be found are named in the note as "not
+found". SI units throughout.
 
 Boundary friction in Eq. 17 of the friction law, τ_b = τ₀ A_a/A + ς p_a: a lubricated
 boundary test (λ ≪ 1, asperities carry the load) measures the ratio μ_b = F/W of the
@@ -23,6 +33,7 @@ from dataclasses import dataclass
 
 __all__ = [
     "TypicalValue",
+    "STATUSES",
     "EYRING_STRESS",
     "LIMITING_SHEAR_COEFFICIENT",
     "LIMITING_SHEAR_STRESS",
@@ -35,9 +46,14 @@ __all__ = [
 ]
 
 
+#: How far the source of a typical value was checked (module text).
+STATUSES = ("verified", "qualitative", "assumed")
+
+
 @dataclass(frozen=True)
 class TypicalValue:
-    """A typical value with the range it is taken from and the source of both."""
+    """A typical value with the range it is taken from, the source of both and how far
+    that source was checked (``status``: module text)."""
 
     value: float
     low: float
@@ -45,8 +61,11 @@ class TypicalValue:
     unit: str
     source: str
     note: str = ""
+    status: str = "assumed"
 
     def __post_init__(self):
+        if self.status not in STATUSES:
+            raise ValueError(f"status {self.status!r} is not one of {STATUSES}")
         if not self.low <= self.value <= self.high:
             raise ValueError(
                 f"typical value {self.value} outside its range [{self.low}, {self.high}]"
@@ -61,24 +80,27 @@ EYRING_STRESS = TypicalValue(
     10e6,
     "Pa",
     "K. L. Johnson, J. L. Tevaarwerk, Shear behaviour of elastohydrodynamic oil films, "
-    "Proc. R. Soc. Lond. A 356 (1977) 215-236; C. R. Evans, K. L. Johnson, The rheological "
-    "properties of elastohydrodynamic lubricants, Proc. IMechE C 200 (1986) 303-312",
-    "τ_E of mineral oils from traction curves lies between about 2 and 10 MPa and rises "
-    "with pressure; 5 MPa is the middle of that range, not a fit to any one oil. The "
-    "paper's 2 MPa is the low end.",
+    "Proc. R. Soc. Lond. A 356 (1977) 215-236",
+    "ASSUMED: the 2–10 MPa range (τ_E of mineral oils from traction curves, rising with "
+    "pressure) and its middle, 5 MPa, were not found in source text here; the citation "
+    "(where the Eyring model of EHL traction was fitted) was found. Evans & Johnson, "
+    "Proc. IMechE C 200 (1986) 303: not found. The paper's 2 MPa is the low end.",
+    status="assumed",
 )
 #: Pressure slope Λ of the limiting shear stress τ_L = τ_L0 + Λ p.
 LIMITING_SHEAR_COEFFICIENT = TypicalValue(
     0.08,
-    0.04,
-    0.11,
+    0.05,
+    0.12,
     "-",
-    "S. Bair, W. O. Winer, A rheological model for elastohydrodynamic contacts based on "
-    "primary laboratory data, J. Lubr. Technol. 101 (1979) 258-265; E. Höglund, "
-    "Influence of lubricant properties on elastohydrodynamic lubrication, Wear 232 "
-    "(1999) 176-184",
-    "Λ of mineral and synthetic oils measured in high-pressure shear and traction; it "
-    "falls with temperature (Höglund).",
+    "Investigation of parameters affecting the limiting shear stress-pressure "
+    "coefficient: a new model incorporating temperature, J. Tribol. 116 (1994) 612",
+    "ASSUMED number: a review text found here gives Λ (disc machine, high-pressure "
+    "viscometer and impact tests) 'generally in the range 0.05–0.12', temperature "
+    "dependent; the J. Tribol. 116 paper (found) shows Λ depends on oil type, viscosity, "
+    "pressure and temperature. Bair & Winer, J. Lubr. Technol. 101 (1979) 258 and "
+    "Höglund, Wear 232 (1999) 176: not found.",
+    status="qualitative",
 )
 #: Intercept τ_L0 of the limiting shear stress.
 LIMITING_SHEAR_STRESS = TypicalValue(
@@ -86,8 +108,9 @@ LIMITING_SHEAR_STRESS = TypicalValue(
     0.0,
     5e6,
     "Pa",
-    "Bair & Winer (1979), as above",
-    "A few MPa at most; 0 keeps τ_L = Λ p, the usual form.",
+    "convention",
+    "ASSUMED: 0 keeps τ_L = Λ p, the usual form; measured intercepts are a few MPa.",
+    status="assumed",
 )
 
 # ----------------------------------------------------------------------------- boundary
@@ -99,24 +122,28 @@ BOUNDARY_SHEAR_STRENGTH = TypicalValue(
     "Pa",
     "definition: a lubricated boundary test measures μ_b = F/W = ς when τ₀ = 0",
     "Set τ₀ > 0 only with a ς that excludes it (for example AFM values).",
+    status="verified",
 )
 
 _ZHANG = (
     "J. Zhang, M. Ueda, S. Campen, H. Spikes, Boundary friction of ZDDP tribofilms, "
-    "Tribol. Lett. 69 (2021), issue 1 (MTM rolling-sliding and pure sliding, 100 °C)"
+    "Tribol. Lett. 69 (2021), issue 1 (MTM, rolling-sliding and pure sliding)"
 )
-_GRAHAM = (
-    "J. Graham, H. Spikes, S. Korcek, The friction reducing properties of molybdenum "
-    "dialkyldithiocarbamate additives: Part I, Tribol. Trans. 44 (2001) 626-636"
-)
-_TOPOLOVEC = (
-    "T. Topolovec-Miklozic, F. Lockwood, H. Spikes, Behaviour of boundary lubricating "
-    "additives on DLC coatings, Wear 265 (2008) 1893-1901"
+_TUNG = (
+    "S. C. Tung, Impacts of molybdenum dithiocarbamate (MoDTC) friction modifier on "
+    "tribological performance of fully-formulated GF-3 engine oil, Lubrication "
+    "Engineering (Runhua yu Mifeng) 2004 (4), doi:10.3969/j.issn.0254-0150.2004.04.019"
 )
 _KALIN = (
-    "M. Kalin, J. Vižintin, A comparison of the tribological behaviour of steel/steel, "
-    "steel/DLC and DLC/DLC contacts when lubricated with mineral and biodegradable oils, "
-    "Wear 261 (2006) 22-31"
+    "M. Kalin, J. Vižintin, Differences in the tribological mechanisms when using "
+    "non-doped, metal-doped (Ti, WC), and non-metal-doped (Si) diamond-like carbon against "
+    "steel under boundary lubrication, with and without oil additives, Thin Solid Films "
+    "515 (2006) 2734-2747"
+)
+_NOT_FOUND = (
+    "Not found: Graham, Spikes & Korcek, Tribol. Trans. 44 (2001) 626; "
+    "Topolovec-Miklozic, Lockwood & Spikes, Wear 265 (2008) 1893; Kalin & Vižintin, "
+    "Wear 261 (2006) 22."
 )
 _TASDEMIR = (
     "H. A. Tasdemir et al., The effect of oil temperature and additive concentration on "
@@ -138,25 +165,40 @@ BOUNDARY_FRICTION: dict[tuple[str, str], TypicalValue] = {
         "-",
         _ZHANG,
         "ZDDP tribofilm on steel; 0.09–0.14 with alkyl structure, secondary ZDDPs ≈ 0.115.",
+        status="verified",
     ),
     ("steel", "modtc"): TypicalValue(
-        0.05, 0.04, 0.07, "-", _GRAHAM, "MoDTC friction modifier once its MoS₂ film has formed."
+        0.05,
+        0.03,
+        0.07,
+        "-",
+        _TUNG,
+        "MoDTC friction modifier once its MoS₂ film has formed. The source (SRV, "
+        "formulated GF-3 oil, nitrided ring on bore) gives a lowest value of 0.03; 0.05 "
+        f"is ASSUMED for a steel cam/tappet. {_NOT_FOUND}",
+        status="qualitative",
     ),
     ("a-C:H", "zddp"): TypicalValue(
         0.09,
         0.06,
         0.12,
         "-",
-        f"{_TOPOLOVEC}; {_KALIN}",
-        "Hydrogenated DLC against steel: close to steel/steel in ZDDP oils, no large gain.",
+        _KALIN,
+        "Hydrogenated DLC against steel: the source finds friction similar to steel/steel "
+        "for every DLC it tested (paraffinic mineral oil with and without AW/EP "
+        "additives); 0.09, a little below steel's 0.115, is ASSUMED. " + _NOT_FOUND,
+        status="qualitative",
     ),
     ("a-C:H", "modtc"): TypicalValue(
         0.07,
         0.04,
         0.10,
         "-",
-        _TOPOLOVEC,
-        "MoDTC lowers friction on a-C:H less than on steel (and wears it).",
+        _PODGORNIK,
+        "ASSUMED number. The source finds that antiwear and friction-modifier additives "
+        "change DLC friction only a little, so MoDTC lowers friction on a-C:H less than on "
+        "steel. " + _NOT_FOUND,
+        status="qualitative",
     ),
     ("ta-C", "zddp"): TypicalValue(
         0.07,
@@ -164,8 +206,10 @@ BOUNDARY_FRICTION: dict[tuple[str, str], TypicalValue] = {
         0.10,
         "-",
         _TASDEMIR,
-        "Non-hydrogenated ta-C pin against steel, formulated/ZDDP oils, 80–100 °C. "
-        "Ester/GMO oils give far lower values on ta-C (superlow friction); not typical.",
+        "ASSUMED number: the source (found; ta-C pin on steel disc, oil temperature and "
+        "additive concentration varied) was not read for its friction values. Ester/GMO "
+        "oils give far lower values on ta-C (superlow friction); not typical.",
+        status="assumed",
     ),
     ("WC-C", "zddp"): TypicalValue(
         0.09,
@@ -173,7 +217,10 @@ BOUNDARY_FRICTION: dict[tuple[str, str], TypicalValue] = {
         0.12,
         "-",
         f"{_PODGORNIK}; {_KALIN}",
-        "W-doped a-C:H against steel; S-based EP additives can lower it (WS₂).",
+        "W-doped a-C:H against steel: similar to steel/steel (Kalin & Vižintin); S-based "
+        "EP additives can lower it through WS₂ (Podgornik & Vižintin). The number is "
+        "ASSUMED.",
+        status="qualitative",
     ),
 }
 
@@ -203,7 +250,14 @@ _ARNELL = (
 )
 #: ηβσ of ground and superfinished steel surfaces.
 ROUGHNESS_PARAMETER = TypicalValue(
-    0.04, 0.03, 0.05, "-", _ARNELL, "Nearly independent of the finishing process."
+    0.04,
+    0.03,
+    0.05,
+    "-",
+    _ARNELL,
+    "ASSUMED: the commonly quoted range of ηβσ, nearly independent of the finish; the "
+    "cited book and paper were not found.",
+    status="assumed",
 )
 #: σ/β, composite RMS roughness over mean summit radius.
 RMS_TO_SUMMIT_RADIUS = TypicalValue(
@@ -212,7 +266,8 @@ RMS_TO_SUMMIT_RADIUS = TypicalValue(
     1e-2,
     "-",
     _ARNELL,
-    "With σ = 0.2 µm, β = 200 µm and η = ηβσ/(βσ) = 1e9 1/m².",
+    "ASSUMED (cited sources not found). With σ = 0.2 µm: β = 200 µm, η = ηβσ/(βσ) = 1e9 1/m².",
+    status="assumed",
 )
 #: Composite RMS roughness σ of a cam against a flat tappet, by finish of the tappet.
 #: σ ≈ 1.25 R_a for a Gaussian profile; composite σ = √(σ_cam² + σ_tappet²).
@@ -224,7 +279,9 @@ COMPOSITE_RMS: dict[str, TypicalValue] = {
         "m",
         "Andreou et al. (2023) Table 4: 0.35–0.41 µm measured on ground tappets; "
         "ground finishes R_a 0.1–0.4 µm (machining finish charts, e.g. ISO 1302 classes)",
-        "Ground cam and ground tappet, R_a ≈ 0.1–0.25 µm each.",
+        "Ground cam and ground tappet, R_a ≈ 0.1–0.25 µm each. The measured 0.347–0.408 "
+        "µm of Table 4 (tribodyn.paper.ROUGHNESS) lie in the range; 0.3 µm is ASSUMED.",
+        status="qualitative",
     ),
     "superfinished": TypicalValue(
         0.08e-6,
@@ -233,6 +290,7 @@ COMPOSITE_RMS: dict[str, TypicalValue] = {
         "m",
         "superfinishing/lapping R_a 0.025–0.1 µm (machining finish charts, e.g. ISO 1302 "
         "classes N1–N3)",
-        "Superfinished cam and shim, R_a ≈ 0.03–0.08 µm each.",
+        "ASSUMED: superfinished cam and shim, R_a ≈ 0.03–0.08 µm each.",
+        status="assumed",
     ),
 }

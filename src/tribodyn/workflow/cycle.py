@@ -271,6 +271,7 @@ def run_cycle_study(
     if not dyn.converged:
         raise StudyError(f"valvetrain dynamics failed: {dyn.message}")
     inputs = CycleInputs.from_dynamics(dyn, n.crank_step_deg, case.width)
+    inputs = inputs.with_rotation(case.tappet_rotation())  # outputs show the EHL's speeds
     if not np.any(inputs.contact_force >= n.min_load):
         raise StudyError(
             f"no EHL sample carries numerics.min_load = {n.min_load:g} N: the peak contact "

@@ -81,6 +81,16 @@ class CycleInputs:
     #: the dynamics' own output (time, F, u_e, u_s, R) at its finer output step, for
     #: conditions between the samples (sub-steps); None: interpolate the samples
     fine: tuple | None = None
+    #: contact offset e = s' at the samples and at the fine output [m], and the cam
+    #: speed ω [rad/s]: what :meth:`with_rotation` needs (None: not known)
+    contact_offset: np.ndarray | None = None
+    fine_contact_offset: np.ndarray | None = None
+    cam_speed: float | None = None
+    #: share s_x/|s| of the friction force against the cam's rotation (tappet rotation;
+    #: None: 1, the friction acts along the cam motion)
+    torque_share: np.ndarray | None = None
+    #: the tappet rotation these speeds already include (None: a tappet that does not turn)
+    rotation: Any = None
 
     def at(self, t: float) -> SampleConditions:
         """The conditions at time t [s] (linear interpolation of the finest data
@@ -112,6 +122,8 @@ class CycleInputs:
             np.asarray(res.sliding_speed, float),
             np.asarray(res.radius_of_curvature, float),
         )
+        e = getattr(res, "contact_offset", None)
+        has_e = e is not None and len(e) == len(res.time)
         return cls(
             crank,
             at(res.time),
@@ -121,6 +133,43 @@ class CycleInputs:
             at(res.radius_of_curvature),
             float(width),
             fine,
+            contact_offset=at(e) if has_e else None,
+            fine_contact_offset=np.asarray(e, float) if has_e else None,
+            cam_speed=getattr(res, "cam_speed", None),
+        )
+
+    def with_rotation(self, rotation) -> CycleInputs:
+        """The inputs of a rotating bucket tappet
+        (:class:`~tribodyn.valvetrain.tappet_rotation.TappetRotation`): u_e' = u_e +
+        ω_t e_o/2 and the sliding speed |s| = √((u_s − ω_t e_o)² + (ω_t e)²) with the
+        sign of its x part; :attr:`torque_share` = s_x/|s|. Unchanged when the tappet
+        does not turn."""
+        if rotation is None or not rotation.active or rotation == self.rotation:
+            return self
+        if self.rotation is not None:
+            raise InputError(
+                f"the inputs already include the tappet rotation {self.rotation}; "
+                f"cannot apply {rotation} on top"
+            )
+        if self.contact_offset is None or self.cam_speed is None:
+            raise InputError(
+                "tappet rotation needs the contact offset and cam speed of the dynamics"
+            )
+        v = rotation.speeds(
+            self.cam_speed, self.contact_offset, self.entrainment_speed, self.sliding_speed
+        )
+        fine = self.fine
+        if fine is not None and self.fine_contact_offset is not None:
+            tt, F, ue, us, R = fine
+            vf = rotation.speeds(self.cam_speed, self.fine_contact_offset, ue, us)
+            fine = (tt, F, vf.entrainment_speed, vf.signed_sliding_speed, R)
+        return replace(
+            self,
+            entrainment_speed=v.entrainment_speed,
+            sliding_speed=v.signed_sliding_speed,
+            fine=fine,
+            torque_share=v.torque_share,
+            rotation=rotation,
         )
 
 
@@ -573,6 +622,12 @@ def ehl_along_cycle(
     )
 
 
+def _rotation(case):
+    """The case's tappet rotation (None for objects without ``[tappet_rotation]``)."""
+    rot = getattr(case, "tappet_rotation", None)
+    return rot() if callable(rot) else rot
+
+
 def cycle_for_set(
     case, surface_set, inputs: CycleInputs, method: str = "isothermal", progress=None
 ) -> SetCycleResult:
@@ -581,6 +636,7 @@ def cycle_for_set(
     if method not in METHODS:
         raise InputError(f"method must be one of {sorted(METHODS)} (got {method!r})")
     s = surface_set
+    inputs = inputs.with_rotation(_rotation(case))
     return march_cycle(
         inputs,
         s.name,
@@ -602,6 +658,7 @@ def ehl_for_set(
     ``numerics.coupling_n`` nodes (at most ``numerics.n`` when that is set) and the
     time-error tolerance is :data:`COUPLING_TIME_TOL`."""
     s = surface_set
+    inputs = inputs.with_rotation(_rotation(case))
     opts = case.ehl_options(s)
     time_tol = TIME_TOL
     if film_law_only:
