@@ -1,12 +1,14 @@
 # Two commands do all set-up on a fresh machine:
 #   make test   create .venv if missing, install tribodyn with its test extras, lint, run pytest
-#   make run    same set-up, then run the main job on the bundled paper case
+#   make run    install what running needs (no test tools), compile the numerical kernels
+#               into numba's cache (tribodyn warmup), then run the main job on the paper case
 #   make docs   build the documentation site into docs/_build/html (warnings are errors)
 PYTHON ?= python3
 VENV   ?= .venv
 PY      = $(VENV)/bin/python
 OUT    ?= results
 STAMP   = $(VENV)/.installed
+RUN_STAMP = $(VENV)/.installed-run
 
 .PHONY: test lint run bench docs clean
 
@@ -24,7 +26,15 @@ lint: $(STAMP)
 test: lint
 	$(PY) -m pytest -q
 
-run: $(STAMP)
+# running needs the package alone; the kernels are compiled once here, not in the first run
+$(RUN_STAMP): pyproject.toml
+	test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e .
+	$(VENV)/bin/tribodyn warmup
+	touch $(RUN_STAMP)
+
+run: $(RUN_STAMP)
 	$(VENV)/bin/tribodyn run -o $(OUT)
 
 DOCS_STAMP = $(VENV)/.docs-installed

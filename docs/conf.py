@@ -4,9 +4,14 @@ Sphinx with the PyData theme and MyST: the pages are Markdown (as the existing d
 README are), the API reference comes from the docstrings through autodoc, and the
 case-file and sweep-file key references are generated from the pydantic schema by the
 local ``key_reference`` extension, so they cannot drift from the validator.
+
+Math is rendered in the browser by MathJax 3 served from the site itself (the files of the
+``django-static-mathjax`` package, copied into ``_static/mathjax``): the site needs no
+network.
 """
 
 import re
+import shutil
 import sys
 from pathlib import Path
 
@@ -55,6 +60,35 @@ html_theme_options = {
     "secondary_sidebar_items": {"reference/*": []},
 }
 html_static_path = ["_static"]
+# MathJax from the docs extra's django-static-mathjax (MathJax 3, Apache-2.0), not a CDN:
+# the combined TeX→HTML script, its fonts and the TeX extensions it loads on demand
+mathjax_path = "mathjax/tex-chtml.js"
+_MATHJAX_PARTS = ("tex-chtml.js", "input", "output/chtml", "ui", "a11y", "adaptors")
+
+
+def _mathjax_source() -> Path:
+    try:
+        import mathjax  # django-static-mathjax
+    except ImportError as exc:
+        raise RuntimeError(
+            "the documentation serves MathJax itself: pip install -e '.[docs]' "
+            "(django-static-mathjax)"
+        ) from exc
+    return Path(mathjax.__file__).parent / "static" / "mathjax" / "es5"
+
+
+def _copy_mathjax(app, exc):
+    if exc is not None or app.builder.format != "html":
+        return
+    src, dst = _mathjax_source(), Path(app.outdir) / "_static" / "mathjax"
+    for part in _MATHJAX_PARTS:
+        s, d = src / part, dst / part
+        d.parent.mkdir(parents=True, exist_ok=True)
+        if s.is_dir():
+            shutil.copytree(s, d, dirs_exist_ok=True)
+        else:
+            shutil.copy2(s, d)
+
 html_css_files = ["tribodyn.css"]
 # no left sidebar: the navigation bar holds the site's sections; tables get the width
 html_sidebars = {"**": []}
@@ -104,3 +138,5 @@ def _docstring_to_rst(app, what, name, obj, options, lines):
 
 def setup(app):
     app.connect("autodoc-process-docstring", _docstring_to_rst, priority=600)
+    _mathjax_source()  # fail early, before building, if MathJax is not installed
+    app.connect("build-finished", _copy_mathjax)

@@ -161,6 +161,34 @@ def synthetic_dataset(implicit=True, failed_step=True) -> xr.Dataset:
         ds[f"{dim}_central_film"] = (dim, he[:, np.argmin(np.abs(xe))])
         ds[f"{dim}_min_film"] = (dim, he.min(axis=1))
         ds[f"{dim}_converged"] = (dim, np.ones(k.size, np.int8))
+    # engineering outputs: torque, pressure, kinematics, surge
+    two = ("surface_set", "ehl_crank")
+    lift_e, off_e = lift[ie], np.gradient(lift, np.deg2rad(ca / 2))[ie]
+    tf = np.where(L, 0.02 * (1 + np.arange(3)[:, None]) * (base + lift_e), 0.0)
+    ds["camshaft_friction_torque"] = (two, tf)
+    ds["camshaft_drive_torque"] = (two, F * off_e + tf)
+    ds["hertz_pressure"] = (
+        two,
+        np.where(L, np.sqrt(F / width * 2.3e11 / (2 * np.pi * Rr)), np.nan),
+    )
+    th = np.arange(0.0, 360.0, 0.5)
+    ds = ds.assign_coords(cam_angle_deg=("cam_angle_deg", th))
+    s_th = 9.3e-3 * np.clip(np.cos(np.radians(th - 180) * 1.05), 0, None) ** 3
+    ds["kinematic_lift"] = ("cam_angle_deg", s_th)
+    ds["kinematic_velocity"] = ("cam_angle_deg", np.gradient(s_th, np.radians(th)) * omega)
+    ds["kinematic_acceleration"] = (
+        "cam_angle_deg",
+        np.gradient(np.gradient(s_th, np.radians(th)), np.radians(th)) * omega**2,
+    )
+    ds["kinematic_radius"] = ("cam_angle_deg", base + s_th + 0.003)
+    ds = ds.assign_coords(table_angle_deg=("table_angle_deg", th[::4]))
+    ds["table_lift"] = ("table_angle_deg", s_th[::4])
+    ds["table_fit_residual"] = ("table_angle_deg", 1e-8 * np.sin(th[::4]))
+    n_h = np.arange(1, 41)
+    ds = ds.assign_coords(harmonic=("harmonic", n_h), surge_mode=("surge_mode", [1, 2, 3]))
+    ds["harmonic_frequency"] = ("harmonic", n_h * 25.0)
+    ds["harmonic_amplitude"] = ("harmonic", 3e-3 * n_h**-3.0)
+    ds["surge_frequency"] = ("surge_mode", 484.0 * np.array([1, 2, 3]))
     ds.attrs.update(
         engine_speed_rpm=rpm,
         cam_width_m=width,
@@ -193,6 +221,21 @@ def test_make_figures_writes_every_png(tmp_path):
     assert set(paths) == set(FIGURES)
     assert all(name.startswith("fig") and name.endswith(".png") for name in FIGURES)
     _check_pngs(paths, tmp_path)
+
+
+def test_a_case_other_than_the_papers_gets_figures_named_by_content(tmp_path):
+    """compare_paper = 0: no figNN_ names, no paper figure numbers in the titles; the
+    paper's single-contact figures only where their data are."""
+    from tribodyn.output.figures import content_name
+
+    ds = synthetic_dataset()
+    ds.attrs["compare_paper"] = 0
+    paths = make_figures(ds, tmp_path, only=["camshaft_torque.png", "fig25_cam_kinematics.png"])
+    assert set(paths) == {"camshaft_torque.png", "cam_kinematics.png"}
+    _check_pngs(paths, tmp_path)
+    assert content_name("fig23_camshaft_torque.png") == "camshaft_torque.png"
+    for name in FIGURES:
+        assert "paper Fig" not in FIGURES[content_name(name)]
 
 
 def test_figures_drawn_in_processes_match_serial(tmp_path):

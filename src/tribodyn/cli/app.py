@@ -1,4 +1,5 @@
-"""The ``tribodyn`` command-line application: ``run``, ``sweep``, ``contact``, ``topography``."""
+"""The ``tribodyn`` command-line application: ``run``, ``export``, ``sweep``, ``contact``,
+``topography``, ``warmup``."""
 
 from __future__ import annotations
 
@@ -6,9 +7,11 @@ import typer
 
 from .._version import __version__
 from .contact import contact_command
+from .export import export_command
 from .run import run_command
 from .sweep import sweep_command
 from .topography import topography_command
+from .warmup import warmup_command
 
 __all__ = ["app", "main"]
 
@@ -39,9 +42,11 @@ def _main(
 
 
 app.command("run")(run_command)
+app.command("export")(export_command)
 app.command("sweep")(sweep_command)
 app.command("contact")(contact_command)
 app.command("topography")(topography_command)
+app.command("warmup")(warmup_command)
 
 
 def main():  # pragma: no cover

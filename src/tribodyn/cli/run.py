@@ -45,12 +45,19 @@ def run_command(
         "scheduler (tcp://host:8786, or a scheduler file) instead of local "
         "processes",
     ),
+    compare_paper: bool | None = typer.Option(
+        None,
+        "--compare-paper/--no-compare-paper",
+        help="add the paper's comparison (claims table, paper figure numbers, Figs. 5/6 "
+        "at the paper's conditions); default: only for the paper's case",
+    ),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress bar"),
 ):
     """Run the cam-cycle study: dynamics, transient EHL per surface set, figures, report.
 
-    Writes OUT/results.nc, summary.json, report.md, case.toml (with copies of the files it
-    reads in OUT/inputs) and the figures; the folder is replaced only when everything has
+    Writes OUT/results.nc, summary.json, report.md, report.html (self-contained),
+    traces.csv, dynamics.csv, case.toml (with copies of the files it reads in OUT/inputs)
+    and the figures; the folder is replaced only when everything has
     been written, and only if it is a previous result folder (or new, or empty); files
     that tribodyn did not write there are kept. If writing fails, the results are saved
     elsewhere and the message says where. Exit codes: 0 done, 1 study or writing failed, 2 bad input,
@@ -83,7 +90,7 @@ def run_command(
         raise typer.Exit(2)
     with _terminate_as_interrupt():
         try:
-            _run(c, out, workers, quiet, scheduler)
+            _run(c, out, workers, quiet, scheduler, compare_paper)
         except typer.Exit:
             raise
         except BaseException as exc:
@@ -140,7 +147,14 @@ class _terminate_as_interrupt:
         return False
 
 
-def _run(c, out: Path, workers, quiet: bool, scheduler: str | None = None) -> None:
+def _run(
+    c,
+    out: Path,
+    workers,
+    quiet: bool,
+    scheduler: str | None = None,
+    compare_paper: bool | None = None,
+) -> None:
     """Compute the study, write it, print the summary table."""
     from ..output import OutputWriteError, write_results
     from ..workflow.cycle import StudyError, run_cycle_study
@@ -186,7 +200,13 @@ def _run(c, out: Path, workers, quiet: bool, scheduler: str | None = None) -> No
                 bar.update(tasks[name], completed=info["done"])
 
         try:
-            study = run_cycle_study(c, workers=n_workers, progress=progress, executor=executor)
+            study = run_cycle_study(
+                c,
+                workers=n_workers,
+                progress=progress,
+                executor=executor,
+                compare_paper=compare_paper,
+            )
         except StudyError as exc:
             console.print(f"[red]study failed:[/red] {exc}")
             raise typer.Exit(1)
@@ -216,7 +236,7 @@ def _run(c, out: Path, workers, quiet: bool, scheduler: str | None = None) -> No
     for w in summ["warnings"]:
         console.print(f"[yellow]warning:[/yellow] {w}")
     console.print(
-        f"wrote {out}/results.nc, summary.json, report.md and "
+        f"wrote {out}/results.nc, summary.json, report.md, report.html, traces.csv and "
         f"{len(res['figures'])} figures in {summ['runtime_s']:.1f} s "
         f"(+ writing)"
     )

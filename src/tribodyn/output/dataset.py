@@ -171,6 +171,7 @@ def study_to_dataset(study: CycleStudy) -> xr.Dataset:
         "point", an.point_crank, "deg", "crank angle of the representative points (Fig. 13)"
     )
     _coating_studies(ds, study)
+    _engineering(ds, study)
     from .thermal import add_thermal
 
     add_thermal(ds, study)
@@ -192,9 +193,101 @@ def study_to_dataset(study: CycleStudy) -> xr.Dataset:
             "roughness_sensitivity": json.dumps(
                 study.sensitivity.to_dict() if study.sensitivity is not None else {}
             ),
+            "surface_sets_at_nose": json.dumps(
+                ns.to_dict() if (ns := getattr(study, "nose_sets", None)) is not None else {}
+            ),
         }
     )
     return ds
+
+
+def _engineering(ds, study):
+    """Camshaft torque and contact pressure per set, the cam kinematics as used (with the
+    table's points and fit residual), the surge spectrum and the oil as used
+    (:mod:`tribodyn.workflow.engineering`)."""
+    from ..workflow.engineering import oil_as_used
+
+    two = ("surface_set", "ehl_crank")
+    eng = study.engineering_outputs() if hasattr(study, "engineering_outputs") else None
+    if eng is not None:
+        ds["camshaft_friction_torque"] = _var(
+            two,
+            eng.friction_torque,
+            "N m",
+            "camshaft friction torque T_f = F_f (r_b + s), F_f = viscous + boundary "
+            "friction of the EHL signed by the sliding direction (0 where unloaded)",
+        )
+        ds["camshaft_drive_torque"] = _var(
+            two,
+            eng.drive_torque,
+            "N m",
+            "camshaft drive torque T = W s' + F_f (r_b + s) (W contact force, s' = ds/dθ "
+            "the contact offset on the tappet)",
+        )
+        ds["hertz_pressure"] = _var(
+            two, eng.hertz_pressure, "Pa", "Hertz maximum pressure p_h = √(w E'/(2πR))"
+        )
+        ds["ehl_lift"] = _var("ehl_crank", eng.lift, "m", "cam lift s at the EHL samples")
+        ds["ehl_contact_offset"] = _var(
+            "ehl_crank", eng.lift_velocity, "m", "contact offset e = s' at the EHL samples"
+        )
+        ds.coords["cam_angle_deg"] = _var(
+            "cam_angle_deg", eng.cam_angle_deg, "deg", "cam angle (kinematics grid)"
+        )
+        k = eng.kinematics
+        for name, key, units, long in (
+            ("kinematic_lift", "lift", "m", "cam lift s(θ) of the fitted profile"),
+            ("kinematic_velocity", "velocity", "m/s", "tappet velocity s'ω (rigid)"),
+            ("kinematic_acceleration", "acceleration", "m/s²", "tappet acceleration s''ω²"),
+            ("kinematic_radius", "radius", "m", "radius of curvature r_b + s + s''"),
+        ):
+            ds[name] = _var("cam_angle_deg", k[key], units, long)
+        if eng.table is not None:
+            ds.coords["table_angle_deg"] = _var(
+                "table_angle_deg", eng.table["angle_deg"], "deg", "cam angle of the table points"
+            )
+            ds["table_lift"] = _var("table_angle_deg", eng.table["lift"], "m", "lift table")
+            ds["table_fit_residual"] = _var(
+                "table_angle_deg",
+                eng.table["residual"],
+                "m",
+                "table lift minus the fitted profile at the table points",
+            )
+        sg = eng.surge
+        ds.coords["harmonic"] = _var(
+            "harmonic", np.arange(1, sg["harmonic_amplitude_m"].size + 1), "1"
+        )
+        ds["harmonic_frequency"] = _var(
+            "harmonic", sg["harmonic_frequency_Hz"], "Hz", "cam excitation harmonic n f_cam"
+        )
+        ds["harmonic_amplitude"] = _var(
+            "harmonic", sg["harmonic_amplitude_m"], "m", "amplitude of the lift's harmonic n"
+        )
+        ds.coords["surge_mode"] = _var(
+            "surge_mode", np.arange(1, sg["surge_frequency_Hz"].size + 1), "1"
+        )
+        ds["surge_frequency"] = _var(
+            "surge_mode",
+            sg["surge_frequency_Hz"],
+            "Hz",
+            "valve-spring surge frequency (k/2)√(k_s/m_s), both ends fixed",
+        )
+    oil = oil_as_used(study.case)
+    for name, key, units, long in (
+        ("oil_viscosity", "viscosity_Pa_s", "Pa s", "oil dynamic viscosity μ₀ at the inlet"),
+        ("oil_pressure_viscosity", "pressure_viscosity_1_Pa", "1/Pa", "oil α (inlet)"),
+        ("oil_density", "density_kg_m3", "kg/m³", "oil density ρ₀ at the inlet"),
+    ):
+        ds[name] = _var((), oil[key], units, long)
+    t_in = oil["inlet_temperature_C"]
+    ds["oil_inlet_temperature"] = _var(
+        (),
+        np.nan if t_in is None else t_in,
+        "degC",
+        "oil inlet temperature (NaN: not given; the viscosity was given directly)",
+    )
+    ds.attrs["lubricant_as_used"] = json.dumps(oil)
+    ds.attrs["compare_paper"] = int(bool(getattr(study, "compare_paper", False)))
 
 
 def _coating_studies(ds, study):

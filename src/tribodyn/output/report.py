@@ -1,4 +1,6 @@
-"""``report.md`` of a cam-cycle study: inputs, assumptions, results, figures, and the
+"""``report.md`` of a cam-cycle study: the inputs as used (cam, oil, surfaces), warnings,
+results per surface set (films, friction, camshaft torque, contact pressure), the cam and
+spring, figures and numerics. For the paper's case (or with ``--compare-paper``) also the
 paper's headline claims beside tribodyn's numbers with an explanation of each difference.
 
 Built from the study (its case, analysis and single-contact studies) and the results
@@ -8,6 +10,7 @@ Dataset; no solver calls, no re-reading of the case.
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -37,6 +40,23 @@ _CAPTIONS = {
     "fig21": "Temperatures over the cycle: tappet and cam surfaces, mid-film and maximum "
     "(thermal EHL).",
     "fig22": "Central film and viscous friction, thermal vs isothermal at the inlet temperature.",
+    "fig23": "Camshaft drive torque T = W s' + F_f (r_b + s) and friction torque "
+    "T_f = F_f (r_b + s) over the cycle, per surface set.",
+    "fig24": "Contact pressure over the cycle: Hertz p_h (dashed) and the EHL peak (solid).",
+    "fig25": "Cam kinematics as used: lift, velocity, acceleration and radius of curvature "
+    "of the fitted profile (with the table's points and the fit residual for a table cam).",
+    "fig26": "Lift harmonics of the cam at n·f_cam against the valve spring's surge "
+    "frequencies (resonance where a surge line meets a strong harmonic).",
+}
+#: Captions of a case other than the paper's where the paper's caption names its own
+#: surfaces or conditions (by content name, :func:`~tribodyn.output.figures.content_name`).
+_CONTENT_CAPTIONS = {
+    "tappet_velocity.png": "Tappet velocity, implicit vs explicit dynamics.",
+    "contact_force.png": "Contact force, implicit vs explicit, with the six representative points.",
+    "tappet_acceleration.png": "Tappet acceleration, implicit vs explicit dynamics.",
+    "pressure_film_points.png": "Pressure and film at the six representative points, per "
+    "surface set.",
+    "coatings_pressure_film.png": "Pressure and film of the coated surfaces.",
 }
 
 
@@ -388,11 +408,153 @@ def model_comparison_section(study) -> list[str]:
     return lines + [""]
 
 
+def _inputs_section(study, summ) -> list[str]:
+    """The inputs as the study used them: cam, oil, surface sets, valvetrain."""
+    case = study.case
+    cam = case.cam()
+    c = summ.get("cam", {})
+    lines = ["## Inputs as used", ""]
+    if case.case.description:
+        lines += [f"{case.case.description}.", ""]
+    kind = case.cam_config.type
+    table = ""
+    if c.get("table_points"):
+        src = case.cam_table_path.name if case.cam_table_path is not None else "table"
+        table = (
+            f" {src}: {c['table_points']} points incl. the base circle, fit residual "
+            f"RMS {_fmt(c['table_fit_rms_residual_m'] * 1e6, 'µm')}"
+        )
+    lines += [
+        f"- Cam ({kind}{table}): base radius {cam.base_radius * 1e3:g} mm, width "
+        f"{case.width * 1e3:g} mm, max lift {_fmt(c.get('max_lift_m', 0) * 1e3, 'mm', 4)}, "
+        f"max tappet velocity {_fmt(c.get('max_velocity_m_s'), 'm/s')}, acceleration "
+        f"{_fmt(c.get('min_acceleration_m_s2'), 'm/s²')} to "
+        f"{_fmt(c.get('max_acceleration_m_s2'), 'm/s²')}, minimum radius of curvature "
+        f"{_fmt((c.get('min_radius_of_curvature_m') or math.nan) * 1e3, 'mm')}; engine "
+        f"{case.engine_speed:g} rpm (cam {case.engine_speed / 2:g} rpm).",
+    ]
+    oil = summ.get("lubricant", {})
+    t_in = oil.get("inlet_temperature_C")
+    lines.append(
+        "- Oil as used"
+        + (f" ({oil['oil']})" if oil.get("oil") else "")
+        + (
+            f" at {t_in:g} °C inlet"
+            if t_in is not None
+            else " (temperature not given: viscosity given directly)"
+        )
+        + f": viscosity μ₀ = {_fmt(oil.get('viscosity_Pa_s'), 'Pa s', 4)}, "
+        f"pressure–viscosity α = {_fmt(oil.get('pressure_viscosity_1_Pa'), '1/Pa', 4)}, "
+        f"density ρ₀ = {_fmt(oil.get('density_kg_m3'), 'kg/m³', 4)}, "
+        f"Eyring stress {_fmt(oil.get('eyring_stress_Pa'), 'Pa')}, limiting-shear "
+        f"coefficient {_fmt(oil.get('limiting_shear_coefficient'))}, "
+        f"{oil.get('viscosity_model', '')} piezo-viscosity"
+        + (", Dowson–Higginson density." if oil.get("compressible") else ", incompressible.")
+    )
+    lines += [
+        "",
+        "| surface set | coating | σ | β | η | ηβσ | ς |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for s in case.surface_sets():
+        r = s.roughness
+        coat = (
+            f"{s.coating_material} {s.coating.thickness * 1e6:g} µm"
+            if s.coating is not None
+            else "none"
+        )
+        lines.append(
+            f"| {s.coating_label} | {coat} | {r.rms * 1e6:.3g} µm | "
+            f"{r.summit_radius * 1e6:.3g} µm | {r.asperity_density:.3g} /m² | "
+            f"{r.roughness_parameter:.2g} | {s.boundary_shear_coefficient:g} |"
+        )
+    return lines + [""]
+
+
+def _engineering_section(study, summ) -> list[str]:
+    """Camshaft torque, friction power and contact pressure per set; spring surge."""
+    sets = summ["surface_sets"]
+    if not any("mean_friction_torque_Nm" in v for v in sets.values()):
+        return []
+    lines = [
+        "## Camshaft torque and contact pressure",
+        "",
+        "T_f = F_f (r_b + s), T = W s' + T_f (F_f: viscous + boundary friction of the "
+        "EHL, signed by the sliding direction; W contact force; s' contact offset); mean "
+        "friction torque = ∮T_f dθ / 2π; friction power = mean T_f ω.",
+        "",
+        "| surface | mean friction torque | max friction torque | peak drive torque | "
+        "friction energy per cycle | mean friction power | max Hertz p_h | max EHL "
+        "pressure |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for v in sets.values():
+        ph, pe = v.get("max_hertz_pressure_Pa"), v.get("max_ehl_pressure_Pa")
+        lines.append(
+            f"| {v['label']} | {_fmt(v.get('mean_friction_torque_Nm'), 'N m')} | "
+            f"{_fmt(v.get('max_friction_torque_Nm'), 'N m')} | "
+            f"{_fmt(v.get('peak_drive_torque_Nm'), 'N m')} | "
+            f"{_fmt(v.get('friction_energy_per_cycle_from_torque_J'), 'J')} | "
+            f"{_fmt(v.get('mean_friction_power_from_torque_W'), 'W')} | "
+            f"{_fmt(ph and ph / 1e6, 'MPa')} | {_fmt(pe and pe / 1e6, 'MPa')} |"
+        )
+    sg = summ.get("spring_surge")
+    if sg:
+        f_cam = sg["cam_frequency_Hz"]
+        parts = [
+            f"mode {k} at {f:.0f} Hz ≈ cam harmonic {n} ({n * f_cam:.0f} Hz)"
+            for k, (f, n) in enumerate(
+                zip(sg["surge_frequencies_Hz"], sg["nearest_cam_harmonic"]), 1
+            )
+        ]
+        lines += [
+            "",
+            f"Valve-spring surge (both ends fixed, (k/2)√(k_s/m_s)): {'; '.join(parts)}. "
+            f"The cam frequency is {f_cam:.3g} Hz; the lift's harmonic amplitudes are "
+            "in results.nc (harmonic_amplitude) and the spring-surge figure.",
+        ]
+    return lines + [""]
+
+
+def _nose_section(study) -> list[str]:
+    """The single-contact studies at the case's own nose (steady EHL): every surface set,
+    then the reference set's variants."""
+    sens = study.sensitivity
+    own = getattr(study, "nose_sets", None)
+    if sens is None or not sens.cases:
+        return []
+    n = sens.conditions
+    lines = [
+        "## Single contact at the cam nose",
+        "",
+        f"Steady mixed EHL at this case's nose ({n.crank_deg:.0f}° crank: W = "
+        f"{n.force:.0f} N, R = {n.radius * 1e3:.3g} mm, u_e = {n.entrainment_speed:.3g} "
+        f"m/s, u_s = {n.sliding_speed:.3g} m/s).",
+        "",
+        "| surface / variant | h_c | h_min | μ | asperity load share | viscous friction "
+        "| boundary friction |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    ref = study.labels.get(sens.surface_set, sens.surface_set)
+    rows = [(k, c) for k, c in (own.cases.items() if own is not None else [])]
+    rows += [(f"{ref}: {k}", c) for k, c in sens.cases.items() if k != "case roughness"]
+    for k, c in rows:
+        lines.append(
+            f"| {k}{'' if c.converged else ' (not converged)'} | "
+            f"{_fmt(c.central_film_m * 1e6, 'µm')} | {_fmt(c.min_film_m * 1e6, 'µm')} | "
+            f"{c.friction_coefficient:.3f} | {c.asperity_load_share * 100:.2g} % | "
+            f"{_fmt(c.viscous_friction_N, 'N')} | {_fmt(c.boundary_friction_N, 'N')} |"
+        )
+    return lines + [""]
+
+
 def report_text(study, ds, figures: dict) -> str:
-    """The report as Markdown."""
+    """The report as Markdown: about the case itself; with the paper's comparison (claims
+    table, paper figure numbers) only when ``study.compare_paper``."""
     summ = study.analyse().summary
     case = study.case
     coupling = study.coupling
+    paper_cmp = bool(getattr(study, "compare_paper", False))
     lines = [f"# tribodyn report — {summ.get('case', '')}", ""]
     lines += [
         f"Engine speed {summ['engine_speed_rpm']:g} rpm (cam {summ['engine_speed_rpm'] / 2:g} "
@@ -400,16 +562,23 @@ def report_text(study, ds, figures: dict) -> str:
         f"{ds.attrs.get('tribodyn_version', '')}; run time {summ['runtime_s']:.1f} s.",
         "",
         "Method: valvetrain multi-body dynamics over two engine cycles from static "
-        "equilibrium (the second is presented), explicit analytic tribology (the paper's "
-        "choice); transient mixed-EHL (Reynolds with Roelands and Dowson–Higginson, "
+        "equilibrium (the second is presented), explicit analytic tribology; transient "
+        "mixed-EHL (Reynolds with Roelands and Dowson–Higginson, "
         "Reynolds cavitation, coated DC-FFT elasticity, Greenwood–Tripp asperities, "
         f"{case.numerics.viscous_model} shear capped at the limiting shear stress, boundary "
-        "friction τ₀ + ς p_a) along the presented cycle for each tappet surface; implicit "
-        "dynamics with the numerical EHL for the comparison of Figs. 8–10.",
+        "friction τ₀ + ς p_a) along the presented cycle for each tappet surface"
+        + (
+            "; implicit dynamics with the numerical EHL for the comparison"
+            + (" of the paper's Figs. 8–10" if paper_cmp else "")
+            if case.numerics.implicit_coupling
+            else ""
+        )
+        + ".",
         "",
     ]
     if study.warnings:
         lines += ["## Warnings", ""] + [f"- {w}" for w in study.warnings] + [""]
+    lines += _inputs_section(study, summ)
 
     lines += [
         "## Results per tappet surface",
@@ -452,20 +621,24 @@ def report_text(study, ds, figures: dict) -> str:
         f"velocity {_fmt(d.get('seating_velocity_m_s'), 'm/s')}.",
         "",
     ]
+    lines += _engineering_section(study, summ)
+    if not paper_cmp:
+        lines += _nose_section(study)
 
     lines += model_comparison_section(study)
     from .report_thermal import thermal_section
 
     lines += thermal_section(study, summ)
-    lines += [
-        "## The paper's claims beside tribodyn",
-        "",
-        "| claim | paper | tribodyn | why |",
-        "|---|---|---|---|",
-    ]
-    for claim, pap, ours, why in claims(study, summ):
-        lines.append(f"| {claim} | {pap} | {ours} | {why} |")
-    lines.append("")
+    if paper_cmp:
+        lines += [
+            "## The paper's claims beside tribodyn",
+            "",
+            "| claim | paper | tribodyn | why |",
+            "|---|---|---|---|",
+        ]
+        for claim, pap, ours, why in claims(study, summ):
+            lines.append(f"| {claim} | {pap} | {ours} | {why} |")
+        lines.append("")
 
     lines += ["## Figures", ""]
     u = (
@@ -473,11 +646,18 @@ def report_text(study, ds, figures: dict) -> str:
         if study.ehl_coating is not None
         else paper.FIG5["entrainment_speed"]
     )
-    for key, path in sorted(figures.items()):
-        cap = next(
-            (c.format(u=u) for k, c in _CAPTIONS.items() if Path(path).name.startswith(k)), key
-        )
-        lines += [f"![{cap}]({Path(path).name})", "", f"*{cap}*", ""]
+    from .figures import FIGURES, content_name
+
+    numbered = {content_name(n): n for n in FIGURES}
+    for key, path in sorted(figures.items(), key=lambda kv: numbered.get(kv[0], kv[0])):
+        name = Path(path).name
+        k = numbered.get(name, name)[:5]  # figNN of a numbered or content name
+        cap = _CONTENT_CAPTIONS.get(name) if not paper_cmp else None
+        if cap is None:
+            cap = _CAPTIONS[k].format(u=u) if k in _CAPTIONS else key
+            if not paper_cmp:
+                cap = re.sub(r" ?\(paper Fig\. \d+[^)]*\)", "", cap)
+        lines += [f"![{cap}]({name})", "", f"*{cap}*", ""]
 
     lines += ["## Numerics", ""]
     loaded = np.array([s.loaded for s in study.sets])
@@ -506,15 +686,18 @@ def report_text(study, ds, figures: dict) -> str:
         "- EHL NaN values in results.nc mark unloaded samples (the cam on its base "
         "circle carries no load): `loaded` = 0."
     )
+    lines += ["", "## Case as run", ""]
+    if paper_cmp:
+        lines += [
+            "The paper does not give the cam profile, tappet mass, spring preload, joint "
+            "stiffness and damping, lubricant density or the radius of Figs. 5/6; those "
+            "values are assumptions (marked ASSUMED in the bundled case file), and the "
+            "paper's errata are corrected (Table 6 moduli are GPa, Table 4's ζ is the "
+            "summit density η).",
+            "",
+        ]
     lines += [
-        "",
-        "## Inputs and assumptions",
-        "",
-        "The paper does not give the cam profile, tappet mass, spring preload, joint "
-        "stiffness and damping, lubricant density or the radius of Figs. 5/6; those "
-        "values are assumptions (marked ASSUMED in the bundled case file), and the "
-        "paper's errata are corrected (Table 6 moduli are GPa, Table 4's ζ is the "
-        "summit density η). The complete case as run:",
+        "The complete case as run (every key, defaults included):",
         "",
         "```toml",
         case.to_toml().strip(),
@@ -525,7 +708,7 @@ def report_text(study, ds, figures: dict) -> str:
 
 
 def write_report(study, ds, figures: dict, path) -> Path:
-    """Write report.md (atomically: temporary file, then rename)."""
+    """Write report.md (atomically: temporary file, then rename); returns its path."""
     path = Path(path)
     tmp = path.with_name(path.name + ".tmp")
     tmp.write_text(report_text(study, ds, figures), encoding="utf-8")

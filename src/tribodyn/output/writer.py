@@ -76,10 +76,19 @@ __all__ = [
 MARKER = ".tribodyn-results"
 #: Files of a result folder written before the marker existed (tribodyn 0.1).
 _LEGACY_FILES = ("results.nc", "summary.json", "case.toml")
+#: Figures of a case other than the paper's, named by content (without ``figNN_``).
+_CONTENT_FIGURES = (
+    "dry_pressure|ehl_pressure_film|tappet_velocity|contact_force|tappet_acceleration"
+    "|entrainment_speed|greenwood_chart|pressure_film_points|coatings_pressure_film"
+    "|central_film|boundary_load|boundary_friction|viscous_friction|friction_power"
+    "|min_film_lambda|temperatures|thermal_vs_isothermal|camshaft_torque"
+    "|contact_pressure|cam_kinematics|spring_surge",
+)
 #: Names of the files tribodyn writes in a result folder (cycle study and sweep); in a
 #: folder whose marker does not list its files, these are tribodyn's own.
 _OWN_NAMES = re.compile(
     r"results\.nc|summary\.json|case\.toml|report\.md|fig\d\d_[A-Za-z0-9_-]+\.png"
+    r"|report\.html|traces\.csv|dynamics\.csv|(?:" + "|".join(_CONTENT_FIGURES) + r")\.png"
     r"|sweep\.nc|sweep\.toml|sweep_report\.md|base_case\.toml|sweep_[A-Za-z0-9_-]+\.png"
 )
 #: Point files of a sweep (``points/<key>.nc``): always tribodyn's own.
@@ -558,7 +567,8 @@ def write_results(
     workers: int | None = None,
 ) -> dict:
     """Write results.nc, summary.json, case.toml (with copies of the files the case reads
-    in ``inputs/``), figures and report.md atomically into ``out_dir``. Returns ``{"summary": …, "figures": {name: path}, "path": out_dir}``.
+    in ``inputs/``), traces.csv and dynamics.csv (:mod:`.export`), figures, report.md and
+    the self-contained report.html atomically into ``out_dir``. Returns ``{"summary": …, "figures": {name: path}, "path": out_dir}``.
     ``figures``: all (True), none (False) or a list of file names; they are drawn in
     ``workers`` processes (default: the CPU count, at most 4).
 
@@ -578,9 +588,12 @@ def write_results(
     }
 
     def essentials(folder: Path):
+        from .export import write_csv
+
         ds.to_netcdf(folder / "results.nc", engine="h5netcdf", encoding=enc)
         (folder / "summary.json").write_text(json.dumps(summ, indent=2))
         _write_case(study.case, folder)
+        write_csv(ds, folder)
 
     def writer(tmp: Path):
         figs = {}
@@ -594,9 +607,11 @@ def write_results(
         else:
             essentials(tmp)
         if report:
+            from .export import write_html
             from .report import write_report
 
             write_report(study, ds, figs, tmp / "report.md")
+            write_html((tmp / "report.md").read_text(encoding="utf-8"), tmp)
         written.update(figures=figs)
 
     target = Path(out_dir).expanduser().absolute()

@@ -8,8 +8,10 @@
 3. Implicit dynamics for the comparison (paper Figs. 8–10): the numerical EHL film in
    series with the contact stiffness and the EHL friction, coupled by under-relaxed
    waveform iteration (:mod:`tribodyn.workflow.coupling`) for the reference set.
-4. The single-contact coating studies of the paper's Figs. 5 and 6 and the sensitivity
-   study at the cam nose (:mod:`tribodyn.workflow.sensitivity`).
+4. The sensitivity study at the case's own cam nose with its reference set
+   (:mod:`tribodyn.workflow.sensitivity`); the single-contact coating studies of the
+   paper's Figs. 5 and 6 (the paper's conditions) only for the paper's case or with
+   ``compare_paper`` (:func:`tribodyn.workflow.engineering.compares_paper`).
 5. The analysis (:mod:`tribodyn.workflow.postprocess`): roles, event, representative
    points, regimes, film-gain statistics, the summary.
 
@@ -38,9 +40,20 @@ from .coating_study import (
 )
 from .coupling import CouplingResult, run_coupling
 from .cycle_ehl import CycleInputs, SetCycleResult, ehl_for_set
+from .engineering import (
+    Engineering,
+    compares_paper,
+    engineering_outputs,
+    plausibility_warnings,
+)
 from .model_comparison import ModelComparison, compare_lumped_flexible
 from .postprocess import Analysis, analyse, surface_roles
-from .sensitivity import RoughnessSensitivity, nose_condition, roughness_sensitivity
+from .sensitivity import (
+    RoughnessSensitivity,
+    nose_condition,
+    roughness_sensitivity,
+    surface_sets_at_nose,
+)
 
 if TYPE_CHECKING:
     from ..config.case import Case
@@ -65,6 +78,8 @@ class CycleStudy:
     dry: list[DryCoatingCase] = field(default_factory=list)  #: Fig. 5 cases
     ehl_coating: EHLCoatingStudy | None = None  #: Fig. 6 results
     sensitivity: RoughnessSensitivity | None = None  #: at the cam nose
+    #: every surface set at the case's own nose (a case other than the paper's)
+    nose_sets: RoughnessSensitivity | None = None
     model_comparison: ModelComparison | None = None  #: lumped vs flexible (flexible cases)
     analysis: Analysis | None = None
     runtime_s: float = 0.0
@@ -73,6 +88,15 @@ class CycleStudy:
     #: with ``numerics.thermal``: ``sets`` are the thermal results and these the
     #: isothermal ones at the same inlet temperature (None for an isothermal study)
     isothermal_sets: list[SetCycleResult] | None = None
+    #: the report carries the paper's comparison (claims, Figs. 5/6 at its conditions)
+    compare_paper: bool = False
+    engineering: Engineering | None = None  #: torque, pressure, kinematics, surge
+
+    def engineering_outputs(self) -> Engineering:
+        """Compute (once) and return the :class:`Engineering` outputs of the study."""
+        if self.engineering is None:
+            self.engineering = engineering_outputs(self)
+        return self.engineering
 
     @property
     def implicit(self) -> ValvetrainResult | None:
@@ -158,14 +182,18 @@ def _coupling_task(case, name, dynamics, inputs, first=None):
     return first, run_coupling(case, s, dynamics, inputs, first)
 
 
-def _coating_studies_task(case, reference: str, nose):
+def _coating_studies_task(case, reference: str, nose, paper_studies: bool = True):
+    """The sensitivity study at the case's nose; with ``paper_studies`` also the
+    paper's Figs. 5/6 single-contact studies (at the paper's conditions), without them
+    every surface set of the case at its own nose."""
     _limit_threads()
-    dry = dry_coating_study()
-    ehl = ehl_coating_study(case.lubricant(), case)
+    dry = dry_coating_study() if paper_studies else []
+    ehl = ehl_coating_study(case.lubricant(), case) if paper_studies else None
     sens = (
         roughness_sensitivity(case, case.surface_set(reference), nose) if nose is not None else None
     )
-    return dry, ehl, sens
+    own = surface_sets_at_nose(case, nose) if nose is not None and not paper_studies else None
+    return dry, ehl, sens, own
 
 
 @contextmanager
@@ -183,6 +211,7 @@ def run_cycle_study(
     workers: int | None = None,
     progress: Callable[..., None] | None = None,
     executor: Executor | None = None,
+    compare_paper: bool | None = None,
 ) -> CycleStudy:
     """Run the whole study for a validated :class:`~tribodyn.config.Case`.
 
@@ -196,7 +225,11 @@ def run_cycle_study(
     total=)`` (done = 0 when a set is submitted, = total when its result is in) and
     ``("done", …)`` events (the CLI drives a progress bar with them); it runs in this
     process only.
+
+    ``compare_paper``: add the paper's comparison (its Figs. 5/6 single-contact studies
+    at its conditions, its claims in the report); None: only for the paper's case.
     """
+    paper_cmp = compares_paper(case, compare_paper)
     t_start = time.perf_counter()
     n = case.numerics
     report = progress or (lambda *a, **k: None)
@@ -239,7 +272,7 @@ def run_cycle_study(
                 results[s.name] = ehl_for_set(case, s, inputs)
                 report("set", name=s.name, done=total, total=total)
             _, coupling = _coupling_task(case, ref_name, dyn, inputs, first=results[ref_name])
-            coating = _coating_studies_task(case, ref_name, nose)
+            coating = _coating_studies_task(case, ref_name, nose, paper_cmp)
             if n.thermal:
                 from .thermal_study import thermal_for_set
 
@@ -265,7 +298,7 @@ def run_cycle_study(
                 for s in sets
                 if s.name != ref_name
             }
-            fut_coat = pool.submit(_coating_studies_task, case, ref_name, nose)
+            fut_coat = pool.submit(_coating_studies_task, case, ref_name, nose, paper_cmp)
             futs[fut_c] = ref_name
             fut_th = {}
             if n.thermal:
@@ -320,14 +353,20 @@ def run_cycle_study(
         dry=coating[0],
         ehl_coating=coating[1],
         sensitivity=coating[2],
+        nose_sets=coating[3],
         timings=timings,
         isothermal_sets=isothermal,
+        compare_paper=paper_cmp,
     )
     for res in study.sets:
         if res.failures:
             study.warnings.append(
                 f"{res.name}: {len(res.failures)} EHL step(s) did not converge "
-                f"(first at {res.failures[0][0]:.0f}°: {res.failures[0][1]})"
+                f"(first at {res.failures[0][0]:.0f}°: {res.failures[0][1]}): the film, "
+                "pressure and friction of this set at those crank angles (converged = 0 in "
+                "results.nc) are the last iterate, not a solution, and are left out of the "
+                "film and friction maxima; a finer numerics.crank_step_deg or more "
+                "numerics.n usually helps"
             )
     # validity warnings, one line per kind (sets with the same count and start together)
     kinds: dict[tuple, list[str]] = {}
@@ -338,12 +377,21 @@ def run_cycle_study(
         who = ", ".join(names) if len(names) < len(study.sets) else "every surface set"
         study.warnings.append(
             f"{who}: {count} EHL step(s) outside the model's validity "
-            f"(first at {first:.0f}°: {text})"
+            f"(first at {first:.0f}°: {text}): the films, pressures and friction there "
+            "are computed but beyond the assumptions of the line-contact model, so treat "
+            "them as estimates; " + _validity_advice(text)
         )
     if n.implicit_coupling and not coupling.converged:
-        study.warnings.append(f"implicit coupling: {coupling.message}")
+        study.warnings.append(
+            f"implicit coupling: {coupling.message}: only the implicit curves "
+            "(*_implicit in results.nc, the implicit-vs-explicit comparison) are affected; "
+            "the explicit dynamics, the EHL along the cycle and the torque are not; raise "
+            "numerics.coupling_iterations to converge it, or set "
+            "numerics.implicit_coupling = false if the comparison is not needed"
+        )
     if dyn.jump:
         study.warnings.append(_jump_warning(dyn))
+    study.warnings += plausibility_warnings(study)
     if case.valvetrain_model == "flexible":
         t0 = time.perf_counter()
         report("dynamics")
@@ -354,6 +402,27 @@ def run_cycle_study(
     study.analyse()
     report("done", runtime_s=study.runtime_s)
     return study
+
+
+#: What a user can change when EHL steps are outside the model's validity: by a word of
+#: the check's message (:mod:`tribodyn.contact.ehl.validity`).
+_VALIDITY_ADVICE = {
+    "thin-film": "thick films relative to the contact length occur at light load: "
+    "they carry little friction; nothing to change unless those samples matter",
+    "load-carrying zone": "the contact is wide against the radius of curvature: check the "
+    "cam's minimum radius (nose) and the load",
+    "Reynolds number": "fluid inertia matters at high speed and thick film: the pressure there "
+    "is uncertain by Re*",
+    "pressure": "peak pressures beyond 4 GPa: check the load and the radius of "
+    "curvature, or the materials",
+}
+
+
+def _validity_advice(text: str) -> str:
+    for word, advice in _VALIDITY_ADVICE.items():
+        if word in text:
+            return advice
+    return "see the validity checks in the physics documentation"
 
 
 def _jump_warning(dyn) -> str:

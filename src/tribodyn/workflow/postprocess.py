@@ -343,6 +343,7 @@ def summary(study, an: Analysis) -> dict:
             "min_lambda": _finite(np.nanmin(s.lambda_ratio[C])) if any_c else None,
             "failed_steps": len(s.failures),
         }
+    _engineering_summary(study, out)
     out["implicit_vs_explicit"] = _implicit_vs_explicit(study)
     if getattr(study, "isothermal_sets", None) is not None:  # numerics.thermal
         from .thermal_study import thermal_summary
@@ -354,6 +355,38 @@ def summary(study, an: Analysis) -> dict:
     if getattr(study, "model_comparison", None) is not None:
         out["lumped_vs_flexible"] = study.model_comparison.to_dict()
     return out
+
+
+def _engineering_summary(study, out: dict) -> None:
+    """The oil as used, torque and pressure scalars per set, the cam kinematics' key
+    numbers and the spring's surge modes (:mod:`tribodyn.workflow.engineering`)."""
+    from .engineering import oil_as_used
+
+    out["compare_paper"] = bool(getattr(study, "compare_paper", False))
+    out["lubricant"] = oil_as_used(study.case)
+    if not hasattr(study, "engineering_outputs"):
+        return
+    eng = study.engineering_outputs()
+    for name, v in eng.scalars.items():
+        out["surface_sets"][name].update({k: _finite(x) for k, x in v.items()})
+    k = eng.kinematics
+    out["cam"] = {
+        "max_lift_m": _finite(np.max(k["lift"])),
+        "max_velocity_m_s": _finite(np.max(np.abs(k["velocity"]))),
+        "max_acceleration_m_s2": _finite(np.max(k["acceleration"])),
+        "min_acceleration_m_s2": _finite(np.min(k["acceleration"])),
+        "min_radius_of_curvature_m": _finite(np.min(k["radius"])),
+        "table_points": None if eng.table is None else int(eng.table["lift"].size),
+        "table_fit_rms_residual_m": None
+        if eng.table is None
+        else _finite(np.sqrt(np.mean(eng.table["residual"] ** 2))),
+    }
+    sg = eng.surge
+    out["spring_surge"] = {
+        "cam_frequency_Hz": _finite(sg["cam_frequency_Hz"]),
+        "surge_frequencies_Hz": [_finite(f) for f in sg["surge_frequency_Hz"]],
+        "nearest_cam_harmonic": [int(c[1]) for c in sg["closest"]],
+    }
 
 
 def _implicit_vs_explicit(study) -> dict:

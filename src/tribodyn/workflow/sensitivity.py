@@ -6,6 +6,7 @@ friction and film depend on: the case roughness; the other viscous law (Newtonia
 or Eyring); the same σ and β with a summit density giving ηβσ = 0.04, typical of measured
 Gaussian surfaces (isotropic Gaussian surfaces have ηβσ ≥ 0.025; the paper's Table 4
 gives 2e-4 … 2.3e-3); and the case roughness without the limiting-shear cap.
+:func:`surface_sets_at_nose` solves every surface set of the case at the same condition.
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ __all__ = [
     "RoughnessSensitivity",
     "nose_condition",
     "roughness_sensitivity",
+    "surface_sets_at_nose",
     "GAUSSIAN_ETA_BETA_SIGMA",
 ]
 
@@ -99,7 +101,6 @@ def roughness_sensitivity(case, surface_set, nose: NoseCondition) -> RoughnessSe
     """Steady EHL of ``surface_set`` at the ``nose`` condition with the variants of the
     module docstring."""
     s = surface_set
-    w = nose.force / case.width
     r0 = s.roughness
     alt = Roughness(
         asperity_density=GAUSSIAN_ETA_BETA_SIGMA / (r0.rms * r0.summit_radius),
@@ -116,30 +117,46 @@ def roughness_sensitivity(case, surface_set, nose: NoseCondition) -> RoughnessSe
         ("no limiting-shear cap", r0, {"limiting_shear": False}),
     )
     out = RoughnessSensitivity(nose, s.name)
-    lub = case.lubricant()
     for label, rough, over in variants:
-        r = solve_ehl(
-            w,
-            nose.radius,
-            nose.entrainment_speed,
-            nose.sliding_speed,
-            s.bodies,
-            lub,
-            rough,
-            options=opts,
-            **over,
-        )
-        out.cases[label] = SensitivityCase(
-            label=label,
-            eta_beta_sigma=rough.roughness_parameter,
-            viscous_model=over.get("viscous_model", opts.viscous_model),
-            limiting_shear=bool(over.get("limiting_shear", opts.limiting_shear)),
-            central_film_m=r.central_film,
-            min_film_m=r.min_film,
-            asperity_load_share=r.asperity_load / w,
-            boundary_friction_N=r.boundary_friction * case.width,
-            viscous_friction_N=r.viscous_friction * case.width,
-            friction_coefficient=r.friction_coefficient,
-            converged=r.converged,
+        out.cases[label] = _steady(case, s, nose, rough, label, opts, over)
+    return out
+
+
+def surface_sets_at_nose(case, nose: NoseCondition) -> RoughnessSensitivity:
+    """Steady EHL of every surface set of ``case`` at its own ``nose`` condition (its
+    roughness, coating and options), keyed by the sets' labels; ``surface_set`` is
+    ``"*"``."""
+    out = RoughnessSensitivity(nose, "*")
+    for s in case.surface_sets():
+        out.cases[s.coating_label] = _steady(
+            case, s, nose, s.roughness, s.coating_label, case.ehl_options(s), {}
         )
     return out
+
+
+def _steady(case, s, nose, rough, label, opts, over) -> SensitivityCase:
+    w = nose.force / case.width
+    r = solve_ehl(
+        w,
+        nose.radius,
+        nose.entrainment_speed,
+        nose.sliding_speed,
+        s.bodies,
+        case.lubricant(),
+        rough,
+        options=opts,
+        **over,
+    )
+    return SensitivityCase(
+        label=label,
+        eta_beta_sigma=rough.roughness_parameter,
+        viscous_model=over.get("viscous_model", opts.viscous_model),
+        limiting_shear=bool(over.get("limiting_shear", opts.limiting_shear)),
+        central_film_m=r.central_film,
+        min_film_m=r.min_film,
+        asperity_load_share=r.asperity_load / w,
+        boundary_friction_N=r.boundary_friction * case.width,
+        viscous_friction_N=r.viscous_friction * case.width,
+        friction_coefficient=r.friction_coefficient,
+        converged=r.converged,
+    )

@@ -6,7 +6,12 @@
 energy, 20: minimum film and λ). One module per family: :mod:`.coating` (5, 6),
 :mod:`.dynamics` (8–11), :mod:`.regimes` (12), :mod:`.profiles` (13, 14), :mod:`.cycle`
 (15–20), :mod:`.thermal` (21, 22: temperatures, thermal vs isothermal, in thermal
-studies); :mod:`.topography` draws the measured-surface figure (paper Fig. 7).
+studies), :mod:`.engineering` (23–26: camshaft torque, contact pressure, cam kinematics,
+spring surge); :mod:`.topography` draws the measured-surface figure (paper Fig. 7).
+
+File names: the paper's case (``compare_paper`` attribute of the Dataset true or absent)
+keeps the numbered names ``figNN_content.png``; any other case gets the content names
+(``content.png``, :func:`~.common.content_name`) and titles without paper figure numbers.
 """
 
 from __future__ import annotations
@@ -18,14 +23,15 @@ from pathlib import Path
 from ..._system import exit_with_parent
 from ..._validation import InputError
 from .coating import fig05, fig06
-from .common import EVENT_FRACTION, FIGURES, TITLE_SIZE, has, plt
+from .common import EVENT_FRACTION, FIGURES, TITLE_SIZE, content_name, has, plt
 from .cycle import fig15, fig16, fig17, fig18, fig19, fig20
 from .dynamics import fig08, fig09, fig10, fig11
+from .engineering import fig23, fig24, fig25, fig26
 from .profiles import fig13, fig14
 from .regimes import fig12
 from .thermal import fig21, fig22
 
-__all__ = ["FIGURES", "EVENT_FRACTION", "make_figures"]
+__all__ = ["FIGURES", "EVENT_FRACTION", "content_name", "make_figures"]
 
 _MAKERS = {
     "fig05_dry_pressure.png": (fig05, ("dry_ratio", "dry_x", "dry_pressure")),
@@ -60,6 +66,13 @@ _MAKERS = {
         fig22,
         ("central_film_isothermal", "viscous_friction_isothermal", "loaded"),
     ),
+    "fig23_camshaft_torque.png": (
+        fig23,
+        ("camshaft_drive_torque", "camshaft_friction_torque", "loaded"),
+    ),
+    "fig24_contact_pressure.png": (fig24, ("hertz_pressure", "max_pressure", "loaded")),
+    "fig25_cam_kinematics.png": (fig25, ("kinematic_lift", "kinematic_radius")),
+    "fig26_spring_surge.png": (fig26, ("harmonic_amplitude", "surge_frequency")),
 }
 
 
@@ -79,7 +92,13 @@ _COST = {
 
 
 def make_figures(
-    ds, out_dir, *, only=None, workers: int = 1, meanwhile: Callable[[], object] | None = None
+    ds,
+    out_dir,
+    *,
+    only=None,
+    workers: int = 1,
+    meanwhile: Callable[[], object] | None = None,
+    paper_numbers: bool | None = None,
 ) -> dict[str, Path]:
     """Write the report figures of a cycle-study Dataset into ``out_dir``.
 
@@ -93,7 +112,11 @@ def make_figures(
     written atomically by its own process; the result is the same as drawing them in
     turn). ``meanwhile``: called in this process while the other processes draw (e.g.
     to write the data files), or before drawing when there are none.
+    ``paper_numbers``: numbered file names (module docstring); None: from the Dataset's
+    ``compare_paper`` attribute (absent: numbered). ``only`` takes either name.
     """
+    if paper_numbers is None:
+        paper_numbers = bool(ds.attrs.get("compare_paper", 1))
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     ref = ds.attrs.get("reference_set")
@@ -103,6 +126,8 @@ def make_figures(
             k = names.index(ref)
             ds = ds.isel(surface_set=[k] + [i for i in range(len(names)) if i != k])
     if only is not None:
+        by_content = {content_name(n): n for n in _MAKERS}
+        only = [by_content.get(n, n) for n in only]
         unknown = sorted(set(only) - set(_MAKERS))
         if unknown:
             raise InputError(
@@ -113,7 +138,7 @@ def make_figures(
     if k <= 1:
         if meanwhile is not None:
             meanwhile()
-        return _draw(ds, out, wanted)
+        return _draw(ds, out, wanted, paper_numbers)
     import multiprocessing as mp
     import sys
     from concurrent.futures import ProcessPoolExecutor
@@ -129,7 +154,7 @@ def make_figures(
         max_workers=k, mp_context=ctx, initializer=_hold, initargs=(ds, os.getpid())
     ) as pool:
         order = sorted(wanted, key=lambda n: -_COST.get(n, 1.0))
-        parts = [pool.submit(_draw_held, out, n) for n in order]
+        parts = [pool.submit(_draw_held, out, n, paper_numbers) for n in order]
         try:
             if meanwhile is not None:
                 meanwhile()
@@ -138,7 +163,8 @@ def make_figures(
         except BaseException:
             pool.shutdown(wait=True, cancel_futures=True)  # no figures after a failure
             raise
-    return {n: written[n] for n in wanted if n in written}
+    files = [n if paper_numbers else content_name(n) for n in wanted]
+    return {f: written[f] for f in files if f in written}
 
 
 _HELD: list = []  # the Dataset of a drawing process
@@ -149,18 +175,19 @@ def _hold(ds, starter: int) -> None:
     _HELD[:] = [ds]
 
 
-def _draw_held(out: Path, name: str) -> dict[str, Path]:
-    return _draw(_HELD[0], out, [name])
+def _draw_held(out: Path, name: str, paper_numbers: bool = True) -> dict[str, Path]:
+    return _draw(_HELD[0], out, [name], paper_numbers)
 
 
-def _draw(ds, out: Path, names) -> dict[str, Path]:
-    """Draw ``names`` in this process."""
+def _draw(ds, out: Path, names, paper_numbers: bool = True) -> dict[str, Path]:
+    """Draw ``names`` in this process (file names: module docstring)."""
     written = {}
     with plt.rc_context(
         {"font.size": 10, "axes.titlesize": TITLE_SIZE, "figure.dpi": 100, "savefig.dpi": 150}
     ):
         for name in names:
-            path = _MAKERS[name][0](ds, out / name)
+            file = name if paper_numbers else content_name(name)
+            path = _MAKERS[name][0](ds, out / file)
             if path is not None:
-                written[name] = path
+                written[file] = path
     return written

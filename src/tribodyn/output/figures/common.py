@@ -9,6 +9,7 @@ margin); EHL steps that did not converge are marked with red crosses.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import matplotlib
@@ -40,7 +41,31 @@ FIGURES = {
     "fig20_min_film_lambda.png": "Minimum film thickness and λ = h_min/σ over the cycle",
     "fig21_temperatures.png": "Temperatures over the cycle (thermal EHL)",
     "fig22_thermal_vs_isothermal.png": "Film and viscous friction, thermal vs isothermal",
+    "fig23_camshaft_torque.png": "Camshaft drive and friction torque over the cycle",
+    "fig24_contact_pressure.png": "Contact pressure over the cycle: Hertz and EHL peak",
+    "fig25_cam_kinematics.png": "Cam kinematics as used (fitted profile)",
+    "fig26_spring_surge.png": "Valve-spring surge modes against the cam's excitation harmonics",
 }
+
+
+def content_name(name: str) -> str:
+    """The file name of a figure named by its content: ``fig23_camshaft_torque.png`` →
+    ``camshaft_torque.png`` (a case other than the paper's gets these names)."""
+    return re.sub(r"^fig\d\d_", "", name)
+
+
+class _Titles(dict):
+    """Figure titles by file name; a content name (:func:`content_name`) gets its
+    numbered figure's title without the paper's figure number."""
+
+    def __missing__(self, key):
+        for name, title in self.items():
+            if content_name(name) == key:
+                return re.sub(r" \(paper Fig\. \d+\)", "", title)
+        raise KeyError(key)
+
+
+FIGURES = _Titles(FIGURES)
 
 #: A sample belongs to the cam event where the contact force exceeds this share of its max.
 EVENT_FRACTION = 0.05

@@ -1,0 +1,159 @@
+"""Exports of a cam-cycle study's results: CSV traces and a self-contained HTML report.
+
+* ``traces.csv``: one row per transient-EHL sample (crank angle), the conjunction
+  conditions and, per surface set, films, pressures, loads, friction, friction power and
+  camshaft torque (column names ``quantity [unit]`` and ``set:quantity [unit]``).
+* ``dynamics.csv``: one row per dynamics output sample (crank angle), the valvetrain's
+  kinematics and forces.
+* ``report.html``: report.md rendered (CommonMark with tables, ``markdown-it-py``), every
+  figure embedded as a ``data:image/png;base64`` URI, inline CSS, no external resource:
+  it opens offline and can be shared as one file.
+
+Both are written with the results and by ``tribodyn export RESULTS`` from results.nc
+and report.md.
+"""
+
+from __future__ import annotations
+
+import base64
+import csv
+import html
+import re
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["CSV_FILES", "write_csv", "report_html", "write_html"]
+
+#: The CSV files :func:`write_csv` writes.
+CSV_FILES = ("traces.csv", "dynamics.csv")
+
+#: Per-set EHL variables of traces.csv, in order.
+_SET_COLUMNS = (
+    "central_film",
+    "min_film",
+    "lambda_ratio",
+    "max_pressure",
+    "hertz_pressure",
+    "asperity_load",
+    "viscous_friction",
+    "boundary_friction",
+    "friction_power",
+    "camshaft_friction_torque",
+    "camshaft_drive_torque",
+    "converged",
+)
+_CONDITIONS = (
+    "ehl_contact_force",
+    "ehl_entrainment_speed",
+    "ehl_sliding_speed",
+    "ehl_radius",
+    "ehl_lift",
+    "ehl_contact_offset",
+)
+_DYNAMICS = (
+    "cam_lift",
+    "contact_offset",
+    "radius_of_curvature",
+    "entrainment_speed",
+    "sliding_speed",
+    "contact_force",
+    "tappet_displacement",
+    "tappet_velocity",
+    "tappet_acceleration",
+    "valve_lift",
+    "seat_force",
+    "cam_torque",
+)
+
+
+def _head(ds, name, prefix=""):
+    u = ds[name].attrs.get("units", "")
+    return f"{prefix}{name} [{u}]" if u else f"{prefix}{name}"
+
+
+def _write(path: Path, header: list[str], cols: list[np.ndarray]) -> Path:
+    tmp = path.with_name(path.name + ".tmp")
+    with open(tmp, "w", newline="", encoding="utf-8") as f:
+        w = csv.writer(f)
+        w.writerow(header)
+        for row in zip(*cols):
+            w.writerow(["" if not np.isfinite(v) else f"{v:.9g}" for v in row])
+    tmp.replace(path)
+    return path
+
+
+def write_csv(ds, folder) -> list[Path]:
+    """Write :data:`CSV_FILES` from a results Dataset into ``folder`` (empty cells: no
+    value, e.g. EHL quantities where the contact is unloaded)."""
+    folder = Path(folder)
+    if "ehl_crank" not in ds.coords or "crank_angle" not in ds.coords:
+        return []  # not a cycle study's Dataset
+    sets = [str(s) for s in ds["surface_set"].values]
+    header = ["crank_angle [deg]"]
+    cols = [np.asarray(ds["ehl_crank"].values, float)]
+    for name in _CONDITIONS:
+        if name in ds:
+            header.append(_head(ds, name))
+            cols.append(np.asarray(ds[name].values, float))
+    for k, s in enumerate(sets):
+        for name in _SET_COLUMNS:
+            if name in ds:
+                header.append(_head(ds, name, f"{s}:"))
+                cols.append(np.asarray(ds[name].values[k], float))
+    out = [_write(folder / "traces.csv", header, cols)]
+    header = ["crank_angle [deg]"]
+    cols = [np.asarray(ds["crank_angle"].values, float)]
+    for name in _DYNAMICS:
+        if name in ds:
+            header.append(_head(ds, name))
+            cols.append(np.asarray(ds[name].values, float))
+    out.append(_write(folder / "dynamics.csv", header, cols))
+    return out
+
+
+_CSS = """
+body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222;
+line-height:1.45}
+table{border-collapse:collapse;margin:1em 0;font-size:90%}
+th,td{border:1px solid #bbb;padding:3px 6px;vertical-align:top}
+th{background:#eee}
+img{max-width:100%;height:auto;border:1px solid #ddd}
+pre{background:#f6f6f6;padding:.6em;overflow-x:auto;font-size:85%}
+code{background:#f6f6f6}
+"""
+
+
+def report_html(markdown_text: str, folder) -> str:
+    """report.md as one HTML page with the figures it shows (files in ``folder``)
+    embedded as data URIs; a figure file that is missing is named in the text instead."""
+    from markdown_it import MarkdownIt
+
+    md = MarkdownIt("commonmark", {"html": False}).enable("table")
+    body = md.render(markdown_text)
+    folder = Path(folder)
+
+    def embed(m: re.Match) -> str:
+        name = html.unescape(m.group(1))
+        p = folder / name
+        if "/" in name or not name.endswith(".png") or not p.is_file():
+            return f'alt="missing figure {html.escape(name)}" src=""'
+        data = base64.b64encode(p.read_bytes()).decode("ascii")
+        return f'src="data:image/png;base64,{data}"'
+
+    body = re.sub(r'src="([^"]*)"', embed, body)
+    title = markdown_text.splitlines()[0].lstrip("# ").strip() if markdown_text else "report"
+    return (
+        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+        f"<title>{html.escape(title)}</title><style>{_CSS}</style></head>\n"
+        f"<body>\n{body}</body></html>\n"
+    )
+
+
+def write_html(markdown_text: str, folder, path=None) -> Path:
+    """Write :func:`report_html` to ``path`` (default ``folder/report.html``) atomically."""
+    path = Path(path) if path is not None else Path(folder) / "report.html"
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(report_html(markdown_text, folder), encoding="utf-8")
+    tmp.replace(path)
+    return path

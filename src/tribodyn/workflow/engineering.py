@@ -1,0 +1,259 @@
+"""Engineering outputs of a cam-cycle study: camshaft torque, contact pressure, the cam
+kinematics as used, the spring's surge modes against the cam's harmonics, the oil as used,
+and plausibility checks of the inputs.
+
+Camshaft torque of a flat-faced follower (DESIGN.md "Engineering outputs"; cam angle θ,
+lift s, s' = ds/dθ, base radius r_b): the normal force W acts at the contact offset
+e = s' from the follower axis and the tappet face lies at r_b + s from the cam centre, so
+
+    T_f = F_f (r_b + s),        T_drive = W s' + T_f        [N m]
+
+with F_f = (F_v + F_b) sign(u_s) the viscous plus boundary friction of the transient EHL
+in the face plane, signed by the sliding direction. ∮T_f dθ over one cam revolution is the
+friction energy per cycle (T_f ω = F_f u_s is the friction power, since u_s = ω(r_b + s)),
+and for a conservative (frictionless, undamped) train ∮W s' dθ = ∮W ds = 0.
+
+Contact pressure: Hertz p_h = √(w E'/(2πR)) with w = W/l (Johnson, *Contact Mechanics*,
+1985, §4.2; E' as in DESIGN.md), beside the EHL peak pressure of each surface set.
+
+Spring surge: a helical spring fixed at both ends with active mass m_s and rate k has the
+surge frequencies f_k = (k_mode/2)√(k/m_s), k_mode = 1, 2, … (Wahl, *Mechanical Springs*,
+1963, ch. 25); the cam excites at the harmonics n·f_cam of the cam frequency with the
+amplitudes of the lift's Fourier series (Norton, *Cam Design and Manufacturing Handbook*,
+2009, ch. 11). A surge frequency close to a strong harmonic means spring resonance.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..physics.asperity import greenwood_tripp
+from ..physics.materials import reduced_modulus
+
+__all__ = [
+    "PAPER_CASES",
+    "MEASURED_ETA_BETA_SIGMA",
+    "Engineering",
+    "camshaft_torque",
+    "compares_paper",
+    "engineering_outputs",
+    "oil_as_used",
+    "plausibility_warnings",
+    "surge_spectrum",
+]
+
+#: Case names of the paper's bundled case and its variants: their report carries the
+#: paper's comparison (claims table, paper figure numbers, Figs. 5/6 at its conditions).
+PAPER_CASES = ("andreou2023", "andreou2023_flexible", "andreou2023_thermal")
+
+#: Range of ηβσ of measured engineering surfaces (Greenwood & Williamson 1966: 0.03–0.05;
+#: McCool 1986: 0.02–0.08 for ground and honed steel); outside it a warning is given.
+MEASURED_ETA_BETA_SIGMA = (0.01, 0.1)
+
+
+def compares_paper(case, compare_paper: bool | None = None) -> bool:
+    """Whether the study carries the paper's comparison: ``compare_paper`` if given,
+    else whether ``case`` is the paper's bundled case (:data:`PAPER_CASES`)."""
+    if compare_paper is not None:
+        return bool(compare_paper)
+    return case.name in PAPER_CASES
+
+
+def camshaft_torque(
+    contact_force, friction, lift, lift_velocity, base_radius: float, sliding_speed
+) -> tuple[np.ndarray, np.ndarray]:
+    """(T_f, T_drive) [N m] from the contact force W [N], the friction magnitude
+    F_v + F_b [N] (NaN or unloaded: 0), the lift s [m], s' = ds/dθ [m/rad], r_b [m] and
+    the sliding speed u_s [m/s] (its sign is the friction's): T_f = F_f (r_b + s),
+    T_drive = W s' + T_f (module docstring)."""
+    f = np.nan_to_num(np.asarray(friction, float), nan=0.0) * np.sign(sliding_speed)
+    t_f = f * (base_radius + np.asarray(lift, float))
+    return t_f, np.asarray(contact_force, float) * np.asarray(lift_velocity, float) + t_f
+
+
+def cycle_integral(values, crank_deg) -> float:
+    """∮ values dθ over the cam angle θ = crank/2 [rad] (trapezoids on the samples) —
+    with a torque in N m: the work per cam revolution [J]."""
+    theta = np.radians(np.asarray(crank_deg, float)) / 2.0
+    v = np.nan_to_num(np.asarray(values, float))
+    return float(np.sum(0.5 * (v[1:] + v[:-1]) * np.diff(theta)))
+
+
+def surge_spectrum(cam, params, cam_speed: float, harmonics: int = 40, modes: int = 3) -> dict:
+    """The lift's harmonic amplitudes at n·f_cam [Hz] (at least ``harmonics``, and up to
+    the highest surge mode) and the spring's first ``modes`` surge frequencies (module
+    docstring). Returns ``{"harmonic_frequency_Hz", "harmonic_amplitude_m",
+    "surge_frequency_Hz", "closest": [(mode, harmonic n, f_n, f_surge)]}``."""
+    f_cam = cam_speed / (2.0 * math.pi)
+    f1 = 0.5 * math.sqrt(params.spring_rate / params.spring_mass)
+    f_s = f1 * np.arange(1, modes + 1)
+    harmonics = max(harmonics, int(math.ceil(f_s[-1] / f_cam)) + 2)  # up to the last mode
+    n = max(2048, 4 * harmonics)
+    theta = np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)
+    c = np.fft.rfft(np.asarray(cam.lift(theta), float)) / n
+    amp = 2.0 * np.abs(c[1 : harmonics + 1])
+    f_h = f_cam * np.arange(1, harmonics + 1)
+    closest = []
+    for k, f in enumerate(f_s, 1):
+        h = int(round(f / f_cam))
+        closest.append((k, h, h * f_cam, float(f)))
+    return {
+        "cam_frequency_Hz": f_cam,
+        "harmonic_frequency_Hz": f_h,
+        "harmonic_amplitude_m": amp,
+        "surge_frequency_Hz": f_s,
+        "closest": closest,
+    }
+
+
+@dataclass
+class Engineering:
+    """Engineering outputs of a study (see the module docstring); per-set arrays are
+    (set, EHL sample), in study order."""
+
+    lift: np.ndarray  #: s at the EHL samples [m]
+    lift_velocity: np.ndarray  #: s' = ds/dθ at the EHL samples [m/rad]
+    friction_torque: np.ndarray  #: (set, sample) [N m]
+    drive_torque: np.ndarray  #: (set, sample) [N m]
+    hertz_pressure: np.ndarray  #: (set, sample) [Pa], NaN where unloaded
+    cam_angle_deg: np.ndarray  #: kinematics grid (cam degrees)
+    kinematics: dict  #: lift [m], velocity [m/s], acceleration [m/s²], radius [m]
+    table: dict | None  #: table points: angle_deg, lift [m], residual [m]; None: no table
+    surge: dict
+    scalars: dict = field(default_factory=dict)  #: per set name: summary scalars
+
+
+def engineering_outputs(study) -> Engineering:
+    """The :class:`Engineering` outputs of a :class:`~tribodyn.workflow.cycle.CycleStudy`."""
+    case, dyn, inp = study.case, study.dynamics, study.inputs
+    cam = case.cam()
+    rb = float(cam.base_radius)
+    s = np.interp(inp.crank_angle, dyn.crank_angle, dyn.cam_lift)
+    s1 = np.interp(inp.crank_angle, dyn.crank_angle, dyn.lift_velocity)
+    w = case.cam_speed
+    period = 2.0 * math.pi / w
+    tf, td, ph = [], [], []
+    scalars = {}
+    for res in study.sets:
+        fr = np.where(res.loaded, res.viscous_friction + res.boundary_friction, 0.0)
+        t_f, t_d = camshaft_torque(inp.contact_force, fr, s, s1, rb, inp.sliding_speed)
+        tf.append(t_f)
+        td.append(t_d)
+        e = reduced_modulus(case.surface_set(res.name).bodies)
+        load = np.where(res.loaded, inp.contact_force, np.nan) / inp.width
+        ph.append(np.sqrt(load * e / (2.0 * math.pi * inp.radius)))
+        energy = cycle_integral(t_f, inp.crank_angle)
+        L = res.loaded & res.converged
+        scalars[res.name] = {
+            "mean_friction_torque_Nm": energy / (2.0 * math.pi),
+            "max_friction_torque_Nm": float(np.max(t_f)),
+            "peak_drive_torque_Nm": float(t_d[np.argmax(np.abs(t_d))]),
+            "friction_energy_per_cycle_from_torque_J": energy,
+            "mean_friction_power_from_torque_W": energy / period,
+            "max_hertz_pressure_Pa": float(np.nanmax(ph[-1]))
+            if np.isfinite(ph[-1]).any()
+            else None,
+            "max_ehl_pressure_Pa": float(np.nanmax(res.max_pressure[L])) if L.any() else None,
+        }
+    theta = np.radians(np.arange(0.0, 360.0, 0.5))
+    ls, l1, l2 = cam.derivatives(theta)
+    kin = {
+        "lift": ls,
+        "velocity": l1 * w,
+        "acceleration": l2 * w * w,
+        "radius": rb + ls + l2,
+    }
+    table = None
+    if hasattr(cam, "lift_table"):
+        fitted = cam.derivatives(np.asarray(cam.angle))[0]
+        table = {
+            "angle_deg": np.degrees(np.asarray(cam.angle)),
+            "lift": np.asarray(cam.lift_table),
+            "residual": np.asarray(cam.lift_table) - fitted,
+        }
+    return Engineering(
+        lift=s,
+        lift_velocity=s1,
+        friction_torque=np.array(tf),
+        drive_torque=np.array(td),
+        hertz_pressure=np.array(ph),
+        cam_angle_deg=np.degrees(theta),
+        kinematics=kin,
+        table=table,
+        surge=surge_spectrum(cam, case.valvetrain_parameters(), w),
+        scalars=scalars,
+    )
+
+
+def oil_as_used(case) -> dict:
+    """The oil the study used (at the inlet): μ₀ [Pa s], α [1/Pa], ρ₀ [kg/m³], inlet
+    temperature [°C] (None: not given, the viscosity was given directly), its laws."""
+    lub = case.lubricant()
+    c = case.lubricant_config
+    return {
+        "oil": c.oil,
+        "inlet_temperature_C": c.inlet_temperature_c,
+        "viscosity_Pa_s": float(lub.viscosity),
+        "pressure_viscosity_1_Pa": float(lub.pressure_viscosity),
+        "density_kg_m3": float(lub.density),
+        "eyring_stress_Pa": float(lub.eyring_stress),
+        "limiting_shear_coefficient": float(lub.limiting_shear_coefficient),
+        "viscosity_model": lub.viscosity_model,
+        "compressible": bool(lub.compressible),
+        "from_datasheet": bool(c.datasheet),
+    }
+
+
+def plausibility_warnings(study) -> list[str]:
+    """Inputs and results that are physically suspicious, each with what it affects and
+    what to change:
+
+    * ηβσ of a surface outside :data:`MEASURED_ETA_BETA_SIGMA` (measured engineering
+      surfaces; Greenwood & Williamson 1966, McCool 1986).
+    * λ = h_min/σ < 1 while the asperities carry less than a tenth of what Greenwood–Tripp
+      gives there for a measured surface (ηβσ = 0.04, the set's σ and β): at λ < 1 real
+      surfaces are in boundary lubrication and carry a large share of the load.
+    """
+    case, inp = study.case, study.inputs
+    lo, hi = MEASURED_ETA_BETA_SIGMA
+    out = []
+    for res in study.sets:
+        s = case.surface_set(res.name)
+        r = s.roughness
+        ebs = r.roughness_parameter
+        if not lo <= ebs <= hi:
+            out.append(
+                f"{res.name}: roughness ηβσ = {ebs:.2g} is outside {lo:g}–{hi:g}, the range "
+                "of measured engineering surfaces (Greenwood & Williamson 1966, McCool "
+                "1986): the asperity load, boundary friction and friction energy of this "
+                f"set are {'too low' if ebs < lo else 'too high'} if the surface is real; "
+                "check asperity_density, summit_radius and rms of its roughness (from a "
+                "profile: tribodyn topography)"
+            )
+        ok = res.loaded & res.converged & np.isfinite(res.lambda_ratio)
+        if not ok.any():
+            continue
+        i = int(np.flatnonzero(ok)[np.argmin(res.lambda_ratio[ok])])
+        lam = float(res.lambda_ratio[i])
+        if lam >= 1.0:
+            continue
+        share = float(res.asperity_load[i] / max(inp.contact_force[i], 1e-12))
+        e = reduced_modulus(s.bodies)
+        k_ref = (
+            8.0 * math.sqrt(2.0) / 15.0 * math.pi * 0.04**2 * math.sqrt(r.rms / r.summit_radius) * e
+        )
+        w = inp.contact_force[i] / inp.width
+        b = math.sqrt(8.0 * w * inp.radius[i] / (math.pi * e))
+        ref = min(1.0, k_ref * float(greenwood_tripp(2.5, lam)) * 2.0 * b / w)
+        if share < 0.1 * ref:
+            out.append(
+                f"{res.name}: at λ = {lam:.2g} ({inp.crank_angle[i]:.0f}° crank) the "
+                f"asperities carry {share * 100:.2g} % of the load; Greenwood–Tripp with a "
+                f"measured surface's ηβσ = 0.04 gives about {ref * 100:.2g} % there: the "
+                "boundary friction and asperity load of this set are likely far too low; "
+                "check the roughness (ηβσ) of the set"
+            )
+    return out
