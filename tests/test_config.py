@@ -404,6 +404,8 @@ def test_docs_cover_every_key():
     models = [
         cfg.CaseInfo,
         cfg.Engine,
+        cfg.LobeConfig,
+        cfg.AuxiliaryFrictionConfig,
         cfg.AccelerationCamConfig,
         cfg.CircularArcCamConfig,
         cfg.TableCamConfig,
