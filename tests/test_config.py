@@ -166,6 +166,7 @@ def test_bundled_names(paper):
         "andreou2023",
         "andreou2023_flexible",
         "andreou2023_thermal",
+        "engine_dohc16",
         "example_table_cam",
     }
     assert load_case("andreou2023") == paper

@@ -1,5 +1,5 @@
 """The ``tribodyn`` command-line application: ``run``, ``export``, ``sweep``, ``contact``,
-``topography``, ``warmup``."""
+``topography``, ``warmup``, ``engine``."""
 
 from __future__ import annotations
 
@@ -7,6 +7,7 @@ import typer
 
 from .._version import __version__
 from .contact import contact_command
+from .engine import engine_command
 from .export import export_command
 from .run import run_command
 from .sweep import sweep_command
@@ -47,6 +48,7 @@ app.command("sweep")(sweep_command)
 app.command("contact")(contact_command)
 app.command("topography")(topography_command)
 app.command("warmup")(warmup_command)
+app.command("engine")(engine_command)
 
 
 def main():  # pragma: no cover

@@ -91,8 +91,11 @@ class SweepInfo(Section):
         "base case: a bundled case name or a case file (relative to the sweep file)",
         min_length=1,
     )
-    mode: Literal["study", "dynamics"] = _q(
-        "study", "", "per point: the full cam-cycle study, or the valvetrain dynamics alone"
+    mode: Literal["study", "dynamics", "engine"] = _q(
+        "study",
+        "",
+        "per point: the full cam-cycle study, the valvetrain dynamics alone, or the whole "
+        "engine's valvetrain (a case with [engine] cylinders)",
     )
     combine: Literal["product", "zip"] = _q(
         "product", "", "axes crossed (full factorial) or zipped (equal lengths)"
