@@ -114,3 +114,57 @@ def test_engine_case_errors_name_the_key():
         )
     with pytest.raises(InputError, match="engine.cylinders"):
         run_engine_study(load_case())
+
+
+def test_engine_sweep_point_and_bundled_map():
+    from tribodyn.config import load_sweep
+    from tribodyn.workflow.sweep_point import run_point
+
+    ds = run_point(_case(), mode="engine")
+    assert ds.attrs["status"] == "ok", ds.attrs.get("error")
+    assert list(ds["surface_set"].values) == ["uncoated", "dlc_1um"]
+    e = ds["engine_friction_energy_per_cycle_J"].values
+    parts = sum(
+        ds[k].values
+        for k in (
+            "cam_tappet_energy_J",
+            "tappet_bore_energy_J",
+            "valve_guide_energy_J",
+            "camshaft_journal_energy_J",
+        )
+    )
+    assert np.allclose(e, parts)
+    assert ds["valvetrain_friction_mep_Pa"].attrs["units"] == "Pa"
+    spec = load_sweep("engine_dohc16_map")
+    assert spec.mode == "engine" and len(spec.points()) == 21
+    assert spec.base.engine.cylinders == 4 and len(spec.base.surface_set_names) == 3
+
+
+def test_engine_cli_writes_results(tmp_path):
+    import json
+
+    from typer.testing import CliRunner
+
+    from tribodyn.cli import app
+
+    path = tmp_path / "engine.toml"
+    _case().write_toml(path)
+    out = tmp_path / "out"
+    r = CliRunner().invoke(app, ["engine", str(path), "-o", str(out), "-j", "1"])
+    assert r.exit_code == 0, r.output
+    s = json.loads((out / "summary.json").read_text())["engine"]
+    d = s["surface_sets"]["uncoated"]
+    assert d["valvetrain_friction_mep_Pa"] == pytest.approx(
+        d["engine_friction_energy_per_cycle_J"] / 0.0016
+    )
+    assert (out / "engine_camshaft_torque.png").stat().st_size > 0
+    assert (out / "engine_lobe_contributions.png").stat().st_size > 0
+    import xarray as xr
+
+    with xr.open_dataset(out / "results.nc") as ds:
+        assert ds["camshaft_friction_torque"].attrs["units"] == "N m"
+    # a single-valve case is refused with the key named, not a traceback
+    single = tmp_path / "single.toml"
+    load_case().write_toml(single)
+    r = CliRunner().invoke(app, ["engine", str(single), "-o", str(tmp_path / "o2")])
+    assert r.exit_code == 2 and "engine.cylinders" in r.output
