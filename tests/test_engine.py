@@ -168,3 +168,11 @@ def test_engine_cli_writes_results(tmp_path):
     load_case().write_toml(single)
     r = CliRunner().invoke(app, ["engine", str(single), "-o", str(tmp_path / "o2")])
     assert r.exit_code == 2 and "engine.cylinders" in r.output
+
+
+def test_engine_sweep_needs_an_engine_case():
+    from tribodyn.config import SweepSpec
+
+    text = '[sweep]\nname = "e"\nmode = "engine"\n[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0]\n'
+    with pytest.raises(InputError, match=r"sweep\.mode.*cylinders"):
+        SweepSpec.from_toml_string(text)

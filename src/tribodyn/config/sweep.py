@@ -356,6 +356,14 @@ class SweepSpec:
         base = _apply_fixed(base, cfg.fixed, problems)
         if base is None:
             raise InputError(_message(problems, source))
+        if cfg.sweep.mode == "engine" and base.engine.cylinders is None:
+            problems.append(
+                (
+                    "sweep.mode",
+                    f'"engine" needs a base case with [engine] cylinders ({base.name!r} '
+                    "describes one valve; see the guide: My engine's valvetrain friction)",
+                )
+            )
         axes = [
             a
             for a in (_axis(base, i, ax, problems) for i, ax in enumerate(cfg.axes))
