@@ -189,6 +189,7 @@ def test_bundled_names(paper):
         "andreou2023",
         "andreou2023_flexible",
         "andreou2023_thermal",
+        "engine_dohc16",
         "example_table_cam",
         "flat_tappet_rig",
     }
@@ -428,6 +429,8 @@ def test_docs_cover_every_key():
     models = [
         cfg.CaseInfo,
         cfg.Engine,
+        cfg.LobeConfig,
+        cfg.AuxiliaryFrictionConfig,
         cfg.AccelerationCamConfig,
         cfg.CircularArcCamConfig,
         cfg.TableCamConfig,

@@ -1,5 +1,5 @@
 """The ``tribodyn`` command-line application: ``run``, ``export``, ``sweep``, ``contact``,
-``topography``, ``calibrate``, ``warmup``."""
+``topography``, ``calibrate``, ``warmup``, ``engine``."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ import typer
 from .._version import __version__
 from .calibrate import calibrate_command
 from .contact import contact_command
+from .engine import engine_command
 from .export import export_command
 from .run import run_command
 from .sweep import sweep_command
@@ -49,6 +50,7 @@ app.command("contact")(contact_command)
 app.command("topography")(topography_command)
 app.command("calibrate")(calibrate_command)
 app.command("warmup")(warmup_command)
+app.command("engine")(engine_command)
 
 
 def main():  # pragma: no cover

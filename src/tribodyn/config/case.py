@@ -227,9 +227,42 @@ class Case(Section):
             problems.append((exc.key, str(exc)))
         except InputError as exc:
             problems.append(("cam", str(exc)))
+        problems += self._engine_lobe_problems()
         if problems:
             raise Problems(problems)
         return self
+
+    def _engine_lobe_problems(self) -> list[tuple[str, str]]:
+        """Each lobe kind's case (``[engine.intake]`` changes applied) must validate."""
+        out = []
+        for kind in ("intake", "exhaust"):
+            if getattr(self.engine, kind) is None:
+                continue
+            try:
+                self.engine_lobe_case(kind)
+            except InputError as exc:
+                lines = str(exc).splitlines()
+                if len(lines) > 1 and lines[0].startswith("invalid case"):
+                    lines = lines[1:]
+                out.append((f"engine.{kind}.changes", "; ".join(x.strip() for x in lines)))
+        return out
+
+    def engine_lobe_case(self, kind: str) -> Case:
+        """The single-valve case of the engine's ``kind`` ("intake"/"exhaust") lobes: this
+        case without the engine's layout, with ``[engine.<kind>] changes`` applied."""
+        lobe = getattr(self.engine, kind)
+        data = self.to_dict()
+        data["engine"] = {"speed_rpm": self.engine.speed_rpm}
+        for key, value in lobe.changes.items():
+            if key.split(".")[0].split("[")[0] in ("engine", "case", "numerics"):
+                raise InputError(
+                    f"{key!r}: the lobes share the engine's speed, name and numerics; "
+                    "change only cam, valvetrain, lubricant, materials or surface_sets"
+                )
+            set_dotted(data, key, value)
+        new = Case.from_dict(data, base_dir=self._base_dir)
+        new._source = self._source
+        return new
 
     # -- construction -------------------------------------------------------------------
     @classmethod

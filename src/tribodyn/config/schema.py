@@ -25,6 +25,8 @@ from .errors import Problems
 __all__ = [
     "CaseInfo",
     "Engine",
+    "LobeConfig",
+    "AuxiliaryFrictionConfig",
     "AccelerationCamConfig",
     "CircularArcCamConfig",
     "TableCamConfig",
@@ -88,12 +90,91 @@ class CaseInfo(Section):
     description: str = _q("", "", "free text")
 
 
+class LobeConfig(Section):
+    """``[engine.intake]`` / ``[engine.exhaust]``: the lobes of one kind. Their cam,
+    spring, masses and surfaces are the case's own with ``changes`` applied (dotted keys
+    as in :meth:`~tribodyn.config.Case.updated`, validated as the case is)."""
+
+    valves: int = _q(2, "", "valves of this kind per cylinder", ge=1, le=3)
+    centre_angle_deg: float = _q(
+        ..., "°", "crank angle of maximum lift after the cylinder's firing TDC", ge=0.0, lt=720.0
+    )
+    changes: dict[Annotated[str, Field(min_length=1)], float | int | str | bool] = _q(
+        {}, "", 'keys of this case changed for these lobes, e.g. {"cam.max_lift" = 0.008}'
+    )
+
+
+class AuxiliaryFrictionConfig(Section):
+    """``[engine.auxiliary]``: tappet bore, camshaft journals and valve guides
+    (:mod:`tribodyn.physics.valvetrain_friction`). Defaults are ASSUMED typical values of a
+    passenger-car direct-acting valvetrain."""
+
+    bore_diameter: float | None = _q(
+        None, "m", "tappet bore diameter (absent: 2 × valvetrain.tappet_radius)", gt=0.0, lt=0.2
+    )
+    bore_guided_length: float = _q(0.018, "m", "guided length of the bucket", gt=0.0, lt=0.2)
+    bore_clearance: float = _q(2.5e-5, "m", "radial clearance in the bore", gt=0.0, lt=1e-3)
+    bore_edge_offset: float = _q(0.0, "m", "lower bore edge above the face", ge=0.0, lt=0.2)
+    bore_friction_coefficient: float | None = _q(
+        None, "", "boundary μ at the bore edges (absent: valvetrain's)", ge=0.0, le=1.0
+    )
+    journal_radius: float = _q(0.0125, "m", "camshaft journal radius", gt=0.0, lt=0.2)
+    journal_length: float = _q(0.018, "m", "camshaft journal length", gt=0.0, lt=0.2)
+    journal_clearance: float = _q(3e-5, "m", "journal radial clearance", gt=0.0, lt=1e-3)
+    guide_stem_diameter: float = _q(0.006, "m", "valve stem diameter", gt=0.0, lt=0.1)
+    guide_length: float = _q(0.035, "m", "valve guide length", gt=0.0, lt=0.3)
+    guide_clearance: float = _q(2e-5, "m", "stem radial clearance", gt=0.0, lt=1e-3)
+    guide_friction_coefficient: float = _q(0.1, "", "boundary μ in the guide", ge=0.0, le=1.0)
+    guide_side_load: float = _q(0.0, "N", "side load on the stem", ge=0.0, le=1e4)
+
+
 class Engine(Section):
-    """``[engine]``: operating point. The cam turns at half the engine speed (4-stroke)."""
+    """``[engine]``: operating point. The cam turns at half the engine speed (4-stroke).
+    With ``cylinders``: a whole engine's direct-acting valvetrain (``tribodyn engine``)."""
 
     speed_rpm: float = _lim(
         paper.ENGINE_SPEED_RPM, L.ENGINE_SPEED, "engine (crank) speed; cam speed = speed_rpm/2"
     )
+    cylinders: int | None = _q(None, "", "cylinders (absent: one valve)", ge=1, le=16)
+    firing_order: list[int] | None = _q(
+        None, "", "cylinder numbers 1…n in firing order (absent: 1, 2, …, n)"
+    )
+    displacement: float | None = _q(None, "m³", "swept volume of the engine", gt=0.0, le=0.1)
+    camshafts: int = _q(2, "", "1: intake and exhaust lobes on one shaft; 2: DOHC", ge=1, le=2)
+    intake: LobeConfig | None = None
+    exhaust: LobeConfig | None = None
+    #: absent: the ASSUMED defaults of :class:`AuxiliaryFrictionConfig`
+    auxiliary: AuxiliaryFrictionConfig | None = None
+
+    @model_validator(mode="after")
+    def _engine_keys(self):
+        problems = []
+        if self.cylinders is None:
+            for k in ("firing_order", "displacement", "intake", "exhaust"):
+                if getattr(self, k) is not None:
+                    problems.append((k, "needs engine.cylinders"))
+        else:
+            n = self.cylinders
+            for k in ("displacement", "intake", "exhaust"):
+                if getattr(self, k) is None:
+                    problems.append((k, "required with engine.cylinders"))
+            fo = self.firing_order
+            if fo is not None and sorted(fo) != list(range(1, n + 1)):
+                problems.append(("firing_order", f"must list each cylinder 1…{n} once, got {fo}"))
+        if problems:
+            raise Problems(problems)
+        return self
+
+    def auxiliary_friction(self) -> AuxiliaryFrictionConfig:
+        """``[engine.auxiliary]`` (its defaults when absent)."""
+        return self.auxiliary or AuxiliaryFrictionConfig()
+
+    def firing_angles(self) -> dict[int, float]:
+        """Crank angle [°] of each cylinder's firing TDC (evenly spaced over 720°, in
+        firing order; cylinder 1 of the order at 0°)."""
+        n = self.cylinders or 1
+        order = self.firing_order or list(range(1, n + 1))
+        return {c: 720.0 * i / n for i, c in enumerate(order)}
 
 
 class _CamBase(Section):

@@ -91,8 +91,11 @@ class SweepInfo(Section):
         "base case: a bundled case name or a case file (relative to the sweep file)",
         min_length=1,
     )
-    mode: Literal["study", "dynamics"] = _q(
-        "study", "", "per point: the full cam-cycle study, or the valvetrain dynamics alone"
+    mode: Literal["study", "dynamics", "engine"] = _q(
+        "study",
+        "",
+        "per point: the full cam-cycle study, the valvetrain dynamics alone, or the whole "
+        "engine's valvetrain (a case with [engine] cylinders)",
     )
     combine: Literal["product", "zip"] = _q(
         "product", "", "axes crossed (full factorial) or zipped (equal lengths)"
@@ -353,6 +356,14 @@ class SweepSpec:
         base = _apply_fixed(base, cfg.fixed, problems)
         if base is None:
             raise InputError(_message(problems, source))
+        if cfg.sweep.mode == "engine" and base.engine.cylinders is None:
+            problems.append(
+                (
+                    "sweep.mode",
+                    f'"engine" needs a base case with [engine] cylinders ({base.name!r} '
+                    "describes one valve; see the guide: My engine's valvetrain friction)",
+                )
+            )
         axes = [
             a
             for a in (_axis(base, i, ax, problems) for i, ax in enumerate(cfg.axes))

@@ -92,6 +92,14 @@ def write_sweep(result: SweepResult, out_dir: PathLike, *, figures: bool = True)
     return {"dataset": out / "sweep.nc", "report": out / "sweep_report.md", "figures": figs}
 
 
+#: What a point of each sweep mode computes (report text).
+_MODE_TEXT = {
+    "study": "the full cam-cycle study",
+    "dynamics": "the valvetrain dynamics alone",
+    "engine": "the whole engine's valvetrain (each lobe kind once, phase-shifted)",
+}
+
+
 def _f(v, fmt=".4g") -> str:
     if v is None or (isinstance(v, float) and not math.isfinite(v)):
         return "–"
@@ -132,7 +140,7 @@ def sweep_report_text(result, figures: dict | None = None) -> str:
     lines += [
         f"* base case: `{spec.base_source}` (`{spec.base.name}`; complete case in "
         "`base_case.toml` and in the `base_case_toml` attribute of `sweep.nc`)",
-        f"* per point: {'the full cam-cycle study' if spec.mode == 'study' else 'the valvetrain dynamics alone'}"
+        f"* per point: {_MODE_TEXT.get(spec.mode, spec.mode)}"
         f"{' with cycle traces' if spec.traces else ''}",
         f"* points: {n} ({n - nf} finished, {nf} failed); {result.ran} run now, "
         f"{result.skipped} taken from an earlier run",
@@ -215,6 +223,20 @@ def _results_tables(result) -> list[str]:
     sets = [str(s) for s in ds["surface_set"].values]
     for name, title, scale, fmt in (
         ("friction_energy_per_cycle_J", "Friction energy per engine cycle [J]", 1, ".4g"),
+        ("valvetrain_friction_mep_Pa", "Valvetrain friction MEP of the engine [kPa]", 1e-3, ".4g"),
+        (
+            "engine_friction_torque_Nm",
+            "Mean camshaft friction torque, all camshafts [N m]",
+            1,
+            ".4g",
+        ),
+        ("engine_friction_power_W", "Valvetrain friction power of the engine [W]", 1, ".4g"),
+        (
+            "engine_friction_reduction_vs_uncoated_pct",
+            "Engine valvetrain friction below the reference set [%]",
+            1,
+            ".3g",
+        ),
         ("mean_friction_power_W", "Mean friction power [W]", 1, ".4g"),
         ("min_film_m", "Minimum film thickness in the cam event [µm]", 1e6, ".4g"),
         ("min_lambda", "Minimum λ = h_min/σ in the cam event", 1, ".3g"),

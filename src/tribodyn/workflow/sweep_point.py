@@ -16,6 +16,9 @@ Variables (study mode; dynamics mode has the point scalars and dynamics traces o
 * per ``surface_set`` — minimum film and λ, maximum central film, film gain over the
   reference, peak boundary and viscous friction, friction energy per cycle and mean
   friction power, failed EHL steps;
+* engine mode (a case with ``[engine] cylinders``): per ``surface_set`` the engine's
+  valvetrain friction energy per cycle, FMEP, mean power and torque, the reduction below
+  the reference set and the parts (cam–tappet, bores, guides, journals);
 * traces (``[sweep] traces = true``) — dynamics over ``crank_angle`` (crank angle in the
   presented cycle, 0–720°) and transient-EHL quantities over ``(surface_set,
   ehl_crank)``.
@@ -32,7 +35,7 @@ import traceback
 import numpy as np
 import xarray as xr
 
-__all__ = ["run_point", "failed_point", "POINT_SCALARS", "SET_SCALARS"]
+__all__ = ["run_point", "failed_point", "POINT_SCALARS", "SET_SCALARS", "ENGINE_SCALARS"]
 
 #: Point scalars: name → (units, long name). Booleans are stored as 0/1.
 POINT_SCALARS = {
@@ -307,6 +310,58 @@ def _study_point(case, traces: bool) -> tuple[xr.Dataset, list]:
     return ds, list(study.warnings)
 
 
+#: Per-set scalars of an engine point (``mode = "engine"``): name → (units, long name).
+ENGINE_SCALARS = {
+    "engine_friction_energy_per_cycle_J": ("J", "valvetrain friction energy per engine cycle"),
+    "valvetrain_friction_mep_Pa": ("Pa", "valvetrain friction mean effective pressure"),
+    "engine_friction_power_W": ("W", "mean valvetrain friction power"),
+    "engine_friction_torque_Nm": ("N·m", "mean camshaft friction torque, all camshafts"),
+    "engine_friction_reduction_vs_uncoated_pct": ("%", "engine friction below the reference"),
+    "cam_tappet_energy_J": ("J", "cam–tappet contacts' friction energy per cycle"),
+    "tappet_bore_energy_J": ("J", "tappet bores' friction energy per cycle"),
+    "valve_guide_energy_J": ("J", "valve guides' friction energy per cycle"),
+    "camshaft_journal_energy_J": ("J", "camshaft journals' friction energy per cycle"),
+}
+
+
+def _engine_point(case) -> tuple[xr.Dataset, list]:
+    """A whole engine (:func:`~tribodyn.workflow.engine.run_engine_study`; the coatings
+    share each lobe's dynamics) reduced to per-set scalars."""
+    from .engine import run_engine_study
+
+    study = run_engine_study(case, workers=1)
+    summ = study.summary()
+    ds = xr.Dataset()
+    for k, v in _dynamics_scalars(study.lobes["intake"].study.dynamics).items():
+        ds[k] = _scalar(k, v)
+    names = study.set_names
+    ds.coords["surface_set"] = xr.Variable("surface_set", names)
+    sets = summ["surface_sets"]
+    parts = sets[names[0]]["friction_energy_per_cycle_J"]
+    values = {
+        "engine_friction_energy_per_cycle_J": "engine_friction_energy_per_cycle_J",
+        "valvetrain_friction_mep_Pa": "valvetrain_friction_mep_Pa",
+        "engine_friction_power_W": "mean_friction_power_W",
+        "engine_friction_torque_Nm": "mean_friction_torque_Nm",
+        "engine_friction_reduction_vs_uncoated_pct": "friction_reduction_vs_uncoated_pct",
+    }
+    for k, src in values.items():
+        units, long = ENGINE_SCALARS[k]
+        ds[k] = xr.Variable(
+            "surface_set", [_num(sets[n][src]) for n in names], {"units": units, "long_name": long}
+        )
+    for part in parts:
+        k = f"{part}_energy_J"
+        units, long = ENGINE_SCALARS[k]
+        ds[k] = xr.Variable(
+            "surface_set",
+            [_num(sets[n]["friction_energy_per_cycle_J"][part]) for n in names],
+            {"units": units, "long_name": long},
+        )
+    ds.attrs["reference_set"] = summ["reference_set"]
+    return ds, list(study.warnings)
+
+
 class _PointFailure(RuntimeError):
     """A point whose run cannot give results (the message says why)."""
 
@@ -328,8 +383,10 @@ def run_point(case, mode: str = "study", traces: bool = False) -> xr.Dataset:
                 ds, warnings = _dynamics_point(case, traces)
             elif mode == "study":
                 ds, warnings = _study_point(case, traces)
+            elif mode == "engine":
+                ds, warnings = _engine_point(case)
             else:
-                raise ValueError(f"mode must be 'study' or 'dynamics' (got {mode!r})")
+                raise ValueError(f"mode must be 'study', 'dynamics' or 'engine' (got {mode!r})")
     except (_PointFailure, StudyError) as exc:
         return failed_point(str(exc), time.perf_counter() - t0)
     except Exception as exc:  # any other error of this point is recorded, not fatal

@@ -188,6 +188,35 @@ def fig_friction(ds, path):
     return _finish(fig, axes, path, "Cam–tappet friction loss (transient mixed EHL)", note)
 
 
+def fig_engine_map(ds, path):
+    """Engine sweep (``mode = "engine"``): valvetrain FMEP, mean camshaft friction torque
+    and power, and each surface's reduction below the reference, over the x axis, one
+    line per surface set and combination of the other axes (e.g. oil temperature)."""
+    xd = x_dim(ds)
+    combos, note = _combos(ds, xd)
+    fig, axes = plt.subplots(2, 2, figsize=(11, 8), layout="constrained")
+    a = axes.ravel()
+    _line_panel(a[0], ds, "valvetrain_friction_mep_Pa", xd, combos, 1e-3, "valvetrain FMEP [kPa]")
+    _line_panel(
+        a[1],
+        ds,
+        "engine_friction_torque_Nm",
+        xd,
+        combos,
+        ylabel="mean camshaft friction torque [N m]",
+    )
+    _line_panel(a[2], ds, "engine_friction_power_W", xd, combos, ylabel="friction power [W]")
+    _line_panel(
+        a[3],
+        ds,
+        "engine_friction_reduction_vs_uncoated_pct",
+        xd,
+        combos,
+        ylabel="friction below the reference surface [%]",
+    )
+    return _finish(fig, list(a), path, "Valvetrain friction map of the engine", note)
+
+
 def fig_film(ds, path):
     xd = x_dim(ds)
     combos, note = _combos(ds, xd)
@@ -421,6 +450,7 @@ def sweep_figures(ds, out_dir) -> dict[str, Path]:
     made = {}
     makers = [
         ("sweep_friction.png", fig_friction, ("friction_energy_per_cycle_J",)),
+        ("sweep_engine_map.png", fig_engine_map, ("valvetrain_friction_mep_Pa",)),
         ("sweep_film.png", fig_film, ("min_film_m", "min_lambda")),
         ("sweep_dynamics.png", fig_dynamics, ("peak_contact_force_N",)),
         ("sweep_heatmap.png", fig_heatmap, ("status",)),

@@ -1,0 +1,80 @@
+"""``tribodyn engine``: a whole engine's direct-acting valvetrain (camshaft torque,
+friction energy per cycle, valvetrain FMEP, auxiliary friction) from a case with
+``[engine] cylinders``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+from rich.console import Console
+from rich.markup import escape
+
+from .._validation import InputError
+
+__all__ = ["engine_command"]
+
+console = Console()
+
+
+def engine_command(
+    case: Path = typer.Argument(
+        ..., help="case file (TOML) with [engine] cylinders, or a bundled name"
+    ),
+    out: Path = typer.Option(Path("results_engine"), "-o", "--out", help="output folder"),
+    workers: int | None = typer.Option(
+        None, "--workers", "-j", help="processes (default: the case's numerics.workers)"
+    ),
+    no_figures: bool = typer.Option(False, "--no-figures", help="skip the figures"),
+):
+    """Run the engine's valvetrain: each lobe kind once, phase-shifted to every valve.
+
+    Writes OUT/results.nc, summary.json, case.toml and the figures
+    (engine_camshaft_torque.png, engine_lobe_contributions.png). Exit codes: 0 done,
+    1 study or writing failed, 2 bad input.
+    """
+    from ..config import load_case
+    from ..output import check_output_dir
+    from ..output.engine import write_engine_results
+    from ..workflow.cycle import StudyError
+    from ..workflow.engine import run_engine_study
+
+    try:
+        c = load_case(case)
+        if c.engine.cylinders is None:
+            raise InputError(
+                "engine.cylinders: the case describes one valve; add [engine] cylinders, "
+                "firing_order, displacement, [engine.intake] and [engine.exhaust] "
+                "(docs: case files, [engine]) or use tribodyn run"
+            )
+        if workers is not None and not 0 <= workers <= 4096:
+            raise InputError(f"-j/--workers must be an integer >= 0 and <= 4096 (got {workers})")
+        out = check_output_dir(out, option="-o/--out")
+    except InputError as exc:
+        console.print(f"[red]error in the case:[/red] {escape(str(exc))}")
+        raise typer.Exit(2)
+    n_workers = workers if workers is not None else (c.numerics.workers or None)
+    console.print(
+        f"engine [bold]{c.name}[/bold]: {c.engine.cylinders} cylinders, "
+        f"{c.engine.speed_rpm:g} rpm, {len(c.surface_set_names)} surface sets → {out}"
+    )
+    try:
+        study = run_engine_study(c, workers=n_workers)
+    except StudyError as exc:
+        console.print(f"[red]study failed:[/red] {escape(str(exc))}")
+        raise typer.Exit(1)
+    try:
+        res = write_engine_results(study, out, figures=not no_figures)
+    except (OSError, InputError) as exc:
+        console.print(f"[red]error:[/red] {escape(str(exc))}")
+        raise typer.Exit(1)
+    for name, d in res["summary"]["engine"]["surface_sets"].items():
+        console.print(
+            f"{name:>12}: {d['engine_friction_energy_per_cycle_J']:.3f} J/cycle, "
+            f"FMEP {d['valvetrain_friction_mep_Pa'] / 1e3:.2f} kPa, "
+            f"{d['mean_friction_power_W']:.1f} W, "
+            f"{d['friction_reduction_vs_uncoated_pct']:+.2f} % vs {res['summary']['engine']['reference_set']}"
+        )
+    for w in study.warnings:
+        console.print(f"[yellow]warning:[/yellow] {escape(w)}")
+    console.print(f"wrote {out}/results.nc, summary.json, case.toml in {study.runtime_s:.1f} s")

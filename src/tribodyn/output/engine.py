@@ -1,0 +1,46 @@
+"""Writing an engine valvetrain study (:mod:`tribodyn.workflow.engine`): results.nc
+(camshaft torque traces with units and descriptions), summary.json (``engine``: per
+surface set the engine friction energy per cycle, the valvetrain FMEP, mean power and
+torque, the parts, per camshaft), case.toml and the engine figures, atomically."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from .._typing import PathLike
+from .writer import _write_case, write_atomic
+
+__all__ = ["engine_summary", "write_engine_results"]
+
+
+def engine_summary(study) -> dict:
+    """summary.json of an :class:`~tribodyn.workflow.engine.EngineStudy`."""
+    return {
+        "case": study.case.name,
+        "engine": study.summary(),
+        "warnings": list(study.warnings),
+        "runtime_s": study.runtime_s,
+        "timings": study.timings,
+    }
+
+
+def write_engine_results(study, out_dir: PathLike, *, figures: bool = True) -> dict:
+    """Write results.nc, summary.json, case.toml and the figures into ``out_dir`` (the
+    rules of :func:`~tribodyn.output.writer.write_atomic`). Returns ``{"summary": …,
+    "figures": [names], "path": out_dir}``."""
+    ds = study.to_dataset()
+    summ = engine_summary(study)
+    names: list[str] = []
+
+    def writer(tmp: Path) -> None:
+        ds.to_netcdf(tmp / "results.nc")
+        (tmp / "summary.json").write_text(json.dumps(summ, indent=1) + "\n", encoding="utf-8")
+        _write_case(study.case, tmp)
+        if figures:
+            from .figures.engine import engine_figures
+
+            names.extend(p.name for p in engine_figures(ds, tmp))
+
+    path = write_atomic(Path(out_dir), writer, meta={"case": study.case.name})
+    return {"summary": summ, "figures": names, "path": path}

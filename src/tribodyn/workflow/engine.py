@@ -1,0 +1,399 @@
+"""A whole engine's direct-acting valvetrain: camshaft torque per camshaft and in total,
+per surface set, over one engine cycle (720° crank), with the auxiliary friction of the
+tappet bores, camshaft journals and valve guides beside the cam–tappet contact.
+
+Lobes of one kind (intake or exhaust) are identical: each kind's single-valve study
+(:func:`~tribodyn.workflow.cycle.run_cycle_study`: dynamics once, then the transient EHL
+of every surface set on the same dynamics) runs once, and its traces are phase-shifted to
+every valve of that kind. If the exhaust lobes equal the intake lobes, one study serves
+both. The valve of kind k on cylinder c reaches maximum lift at the crank angle
+
+    θ_ck = (θ_fire,c + θ_centre,k) mod 720°
+
+(θ_fire,c: firing TDC of cylinder c, evenly spaced over 720° in firing order), and its
+torque trace T_k(θ − θ_ck) is its single-valve trace relative to the crank angle of
+maximum lift, interpolated (linear, periodic in 720°) on the engine's crank grid.
+
+Per camshaft j (DOHC: intake, exhaust; one camshaft: all lobes) and surface set:
+
+    T_f,j(θ) = Σ_{valves on j} T_f,valve(θ),     T_drive,j = Σ T_drive,valve      [N m]
+
+the cam–tappet friction and drive torque (:func:`~tribodyn.workflow.engineering.
+camshaft_torque`); friction power P_j = T_f,j ω [W] with ω the cam speed. The engine's
+friction energy per cycle is E = ∮ (T_f + T_aux) dθ_cam over one cam revolution (one
+engine cycle) and the valvetrain friction mean effective pressure FMEP = E / V_d (V_d the
+displacement; Heywood, *Internal Combustion Engine Fundamentals*, 1988, §13.1).
+
+Auxiliary friction (:mod:`tribodyn.physics.valvetrain_friction`; all in the oil of the
+case at its inlet temperature): tappet–bore friction of each valve from its contact force,
+cam friction and offset; valve stem in its guide; camshaft journal bearings (cylinders + 1
+per camshaft, the lobes of each cylinder at mid-span between two of them; quasi-static,
+rigid shaft, no drive-belt load), with the lobes' normal forces along the tappet axes and
+their friction across them.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..config import Case
+from ..physics import valvetrain_friction as vf
+from .cycle import CycleStudy, run_cycle_study
+from .engineering import camshaft_torque, cycle_integral
+
+__all__ = ["LobeTraces", "EngineStudy", "run_engine_study", "lobe_traces", "place_trace"]
+
+#: Crank-angle step of the engine grid [°].
+ENGINE_GRID_STEP_DEG = 0.5
+
+
+@dataclass
+class LobeTraces:
+    """One lobe kind's single-valve traces on its study's EHL samples, relative to the
+    crank angle of maximum lift; per-set arrays are (set, sample)."""
+
+    kind: str
+    relative_crank: np.ndarray  #: crank angle − crank angle of maximum lift [°]
+    contact_force: np.ndarray  #: W [N]
+    lift_velocity: np.ndarray  #: s' [m/rad]
+    friction: np.ndarray  #: signed F_f [N] (set, sample)
+    friction_torque: np.ndarray  #: cam–tappet T_f [N m] (set, sample)
+    drive_torque: np.ndarray  #: T_drive [N m] (set, sample)
+    bore_torque: np.ndarray  #: tappet–bore [N m] (set, sample)
+    guide_torque: np.ndarray  #: valve guide [N m] (sample)
+    energy: dict  #: set → ∮T_f dθ of one valve [J]
+    study: CycleStudy | None = None
+
+
+def lobe_traces(kind: str, study: CycleStudy, engine_case: Case) -> LobeTraces:
+    """The :class:`LobeTraces` of a single-valve study, with the auxiliary friction of the
+    engine's ``[engine.auxiliary]``."""
+    case, dyn, inp = study.case, study.dynamics, study.inputs
+    rb = float(case.cam().base_radius)
+    s = np.interp(inp.crank_angle, dyn.crank_angle, dyn.cam_lift)
+    s1 = np.interp(inp.crank_angle, dyn.crank_angle, dyn.lift_velocity)
+    nose = float(dyn.crank_angle[int(np.argmax(dyn.cam_lift))])
+    w = case.cam_speed
+    eta = float(case.lubricant().viscosity)
+    aux = engine_case.engine.auxiliary_friction()
+    vt = case.valvetrain_parameters()
+    bore = vf.BoreGeometry(
+        diameter=aux.bore_diameter or 2.0 * vt.tappet_radius,
+        guided_length=aux.bore_guided_length,
+        clearance=aux.bore_clearance,
+        edge_offset=aux.bore_edge_offset,
+        friction_coefficient=(
+            aux.bore_friction_coefficient
+            if aux.bore_friction_coefficient is not None
+            else vt.bore_friction_coefficient
+        ),
+    )
+    guide = vf.GuideGeometry(
+        stem_diameter=aux.guide_stem_diameter,
+        length=aux.guide_length,
+        clearance=aux.guide_clearance,
+        friction_coefficient=aux.guide_friction_coefficient,
+        side_load=aux.guide_side_load,
+    )
+    ff, tf, td, tb, energy = [], [], [], [], {}
+    for res in study.sets:
+        fr = np.where(res.loaded, res.viscous_friction + res.boundary_friction, 0.0)
+        fr = np.nan_to_num(fr)
+        t_f, t_d = camshaft_torque(inp.contact_force, fr, s, s1, rb, inp.sliding_speed)
+        f_signed = fr * np.sign(inp.sliding_speed)
+        _, t_b, _ = vf.tappet_bore_friction(inp.contact_force, f_signed, s1, w, eta, bore)
+        ff.append(f_signed)
+        tf.append(t_f)
+        td.append(t_d)
+        tb.append(t_b)
+        energy[res.name] = cycle_integral(t_f, inp.crank_angle)
+    _, t_g, _ = vf.valve_guide_friction(s1, w, eta, guide)
+    return LobeTraces(
+        kind=kind,
+        relative_crank=np.asarray(inp.crank_angle, float) - nose,
+        contact_force=np.asarray(inp.contact_force, float),
+        lift_velocity=s1,
+        friction=np.array(ff),
+        friction_torque=np.array(tf),
+        drive_torque=np.array(td),
+        bore_torque=np.array(tb),
+        guide_torque=t_g,
+        energy=energy,
+        study=study,
+    )
+
+
+def place_trace(relative_crank, values, nose_deg: float, crank) -> np.ndarray:
+    """A valve's trace ``values`` (on ``relative_crank`` = crank − crank of maximum lift,
+    covering 720°) at the engine crank angles ``crank`` for a valve whose maximum lift is
+    at ``nose_deg``: linear interpolation, periodic in 720°. The last sample is dropped if
+    it repeats the first one a period later."""
+    x = np.asarray(relative_crank, float)
+    v = np.asarray(values, float)
+    if x.size > 1 and math.isclose(x[-1] - x[0], 720.0, abs_tol=1e-9):
+        x, v = x[:-1], v[..., :-1]
+    q = np.asarray(crank, float) - nose_deg
+    if v.ndim == 1:
+        return np.interp(q, x, v, period=720.0)
+    return np.array([np.interp(q, x, row, period=720.0) for row in v])
+
+
+@dataclass
+class EngineStudy:
+    """A whole engine's valvetrain (module docstring). Arrays (set, camshaft, crank)."""
+
+    case: Case
+    set_names: list[str]
+    camshafts: list[str]
+    crank_angle: np.ndarray  #: engine crank grid, 0…720° inclusive
+    cam_speed: float  #: ω [rad/s]
+    friction_torque: np.ndarray  #: cam–tappet [N m]
+    drive_torque: np.ndarray  #: [N m]
+    bore_torque: np.ndarray  #: tappet–bore [N m]
+    guide_torque: np.ndarray  #: valve guides [N m]
+    journal_torque: np.ndarray  #: camshaft journals [N m]
+    valves: list[dict]  #: cylinder, kind, camshaft, nose_deg per valve
+    lobe_friction_torque: np.ndarray  #: (set, valve, crank) cam–tappet T_f per valve
+    lobes: dict[str, LobeTraces]
+    runtime_s: float = 0.0
+    timings: dict = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def auxiliary_torque(self) -> np.ndarray:
+        """Bore + guide + journal torque [N m] (set, camshaft, crank)."""
+        return self.bore_torque + self.guide_torque + self.journal_torque
+
+    def energy(self, torque) -> np.ndarray:
+        """∮ torque dθ_cam over the cycle [J] for each leading index."""
+        t = np.asarray(torque, float)
+        flat = t.reshape(-1, t.shape[-1])
+        e = [cycle_integral(row, self.crank_angle) for row in flat]
+        return np.array(e).reshape(t.shape[:-1])
+
+    def summary(self) -> dict:
+        """``engine`` block of summary.json: per set and camshaft, energies [J], mean
+        torques [N m], mean powers [W], FMEP [Pa], and each coating's benefit in %."""
+        period = 2.0 * math.pi / self.cam_speed
+        vd = float(self.case.engine.displacement or float("nan"))
+        parts = {
+            "cam_tappet": self.friction_torque,
+            "tappet_bore": self.bore_torque,
+            "valve_guide": self.guide_torque,
+            "camshaft_journal": self.journal_torque,
+        }
+        e_parts = {k: self.energy(v) for k, v in parts.items()}  # (set, camshaft)
+        out: dict = {
+            "cylinders": self.case.engine.cylinders,
+            "camshafts": self.camshafts,
+            "valves": len(self.valves),
+            "speed_rpm": self.case.engine.speed_rpm,
+            "displacement_m3": vd,
+            "surface_sets": {},
+        }
+        totals = {}
+        for i, name in enumerate(self.set_names):
+            total = float(sum(e[i].sum() for e in e_parts.values()))
+            totals[name] = total
+            d = {
+                "engine_friction_energy_per_cycle_J": total,
+                "valvetrain_friction_mep_Pa": total / vd,
+                "mean_friction_power_W": total / period,
+                "mean_friction_torque_Nm": total / (2.0 * math.pi),
+                "peak_camshaft_drive_torque_Nm": float(
+                    np.max(np.abs(self.drive_torque[i].sum(axis=0)))
+                ),
+                "friction_energy_per_cycle_J": {k: float(e[i].sum()) for k, e in e_parts.items()},
+                "camshafts": {
+                    c: {
+                        "friction_energy_per_cycle_J": float(
+                            sum(e[i, j] for e in e_parts.values())
+                        ),
+                        "cam_tappet_friction_energy_per_cycle_J": float(
+                            e_parts["cam_tappet"][i, j]
+                        ),
+                        "mean_friction_torque_Nm": float(
+                            sum(e[i, j] for e in e_parts.values()) / (2.0 * math.pi)
+                        ),
+                        "max_friction_torque_Nm": float(
+                            np.max(self.friction_torque[i, j] + self.auxiliary_torque[i, j])
+                        ),
+                    }
+                    for j, c in enumerate(self.camshafts)
+                },
+            }
+            out["surface_sets"][name] = d
+        ref = self.set_names[0]
+        for name, d in out["surface_sets"].items():
+            d["friction_reduction_vs_uncoated_pct"] = 100.0 * (1.0 - totals[name] / totals[ref])
+        out["reference_set"] = ref
+        return out
+
+    def to_dataset(self):
+        """xarray Dataset of the traces with units and descriptions."""
+        import xarray as xr
+
+        dims = ("engine_set", "camshaft", "engine_crank")
+        w = self.cam_speed
+
+        def var(values, units, desc, d=dims):
+            return xr.Variable(d, np.asarray(values), {"units": units, "description": desc})
+
+        tf = self.friction_torque
+        ds = xr.Dataset(
+            {
+                "camshaft_friction_torque": var(
+                    tf, "N m", "cam–tappet friction torque on the camshaft, all its lobes"
+                ),
+                "camshaft_drive_torque": var(
+                    self.drive_torque, "N m", "camshaft drive torque of the cam–tappet contacts"
+                ),
+                "camshaft_friction_power": var(
+                    (tf + self.auxiliary_torque) * w,
+                    "W",
+                    "valvetrain friction power of the camshaft (contact + auxiliary)",
+                ),
+                "tappet_bore_torque": var(
+                    self.bore_torque, "N m", "tappet–bore friction torque (side load + Couette)"
+                ),
+                "valve_guide_torque": var(
+                    self.guide_torque, "N m", "valve stem–guide friction torque"
+                ),
+                "camshaft_journal_torque": var(
+                    self.journal_torque, "N m", "camshaft journal bearings (short bearing)"
+                ),
+                "lobe_friction_torque": var(
+                    self.lobe_friction_torque,
+                    "N m",
+                    "cam–tappet friction torque of each valve",
+                    ("engine_set", "valve", "engine_crank"),
+                ),
+            },
+            coords={
+                "engine_set": list(self.set_names),
+                "camshaft": list(self.camshafts),
+                "engine_crank": ("engine_crank", self.crank_angle, {"units": "deg"}),
+                "valve": [f"{v['kind']}{v['cylinder']}" for v in self.valves],
+                "valve_nose_deg": ("valve", [v["nose_deg"] for v in self.valves], {"units": "deg"}),
+            },
+        )
+        ds["engine_crank"].attrs["description"] = "crank angle from cylinder 1's firing TDC"
+        return ds
+
+
+def _journal_torque(lobes, valves, set_index, camshafts, case, crank, cam_speed, eta):
+    """(camshaft, crank) journal-bearing torque from the lobes' force vectors."""
+    aux = case.engine.auxiliary_friction()
+    g = vf.JournalGeometry(aux.journal_radius, aux.journal_length, aux.journal_clearance)
+    n = case.engine.cylinders
+    bearings = np.arange(n + 1, dtype=float)
+    out = []
+    for shaft in camshafts:
+        on = [v for v in valves if v["camshaft"] == shaft]
+        forces = np.zeros((n, crank.size, 2))
+        for v in on:
+            lt = lobes[v["kind"]]
+            wn = place_trace(lt.relative_crank, lt.contact_force, v["nose_deg"], crank)
+            ft = place_trace(lt.relative_crank, lt.friction[set_index], v["nose_deg"], crank)
+            forces[v["cylinder"] - 1, :, 0] += wn
+            forces[v["cylinder"] - 1, :, 1] += ft
+        loads = vf.journal_bearing_loads(forces, bearings[:-1] + 0.5, bearings)
+        t, _ = vf.short_bearing_torque(loads, eta, g, cam_speed)
+        out.append(t.sum(axis=0))
+    return np.array(out)
+
+
+def run_engine_study(
+    case: Case, *, workers: int | None = None, executor=None, progress=None
+) -> EngineStudy:
+    """Run the engine's valvetrain (module docstring) for a case with ``engine.cylinders``.
+    Each distinct lobe kind is one :func:`run_cycle_study` (``workers``/``executor`` as
+    there)."""
+    from .. import InputError
+
+    e = case.engine
+    if e.cylinders is None:
+        raise InputError("engine.cylinders: the case describes one valve, not an engine")
+    t0 = time.perf_counter()
+    kinds = ("intake", "exhaust")
+    lobe_cases = {k: case.engine_lobe_case(k) for k in kinds}
+    studies: dict[str, CycleStudy] = {}
+    timings = {}
+    for k in kinds:
+        same = [j for j in studies if lobe_cases[j] == lobe_cases[k]]
+        if same:  # identical lobes: solved once
+            studies[k] = studies[same[0]]
+            continue
+        t1 = time.perf_counter()
+        studies[k] = run_cycle_study(
+            lobe_cases[k],
+            workers=workers,
+            executor=executor,
+            progress=progress,
+            compare_paper=False,
+        )
+        timings[f"{k}_study_s"] = time.perf_counter() - t1
+    lobes = {k: lobe_traces(k, studies[k], case) for k in kinds}
+    set_names = [r.name for r in studies["intake"].sets]
+    if [r.name for r in studies["exhaust"].sets] != set_names:
+        raise InputError("engine.exhaust.changes: the lobes must keep the case's surface sets")
+    camshafts = ["intake", "exhaust"] if e.camshafts == 2 else ["camshaft"]
+    fire = e.firing_angles()
+    valves = []
+    for c in sorted(fire):
+        for k in kinds:
+            lobe = getattr(e, k)
+            for _ in range(lobe.valves):
+                valves.append(
+                    {
+                        "cylinder": c,
+                        "kind": k,
+                        "camshaft": k if e.camshafts == 2 else "camshaft",
+                        "nose_deg": (fire[c] + lobe.centre_angle_deg) % 720.0,
+                    }
+                )
+    crank = np.linspace(0.0, 720.0, int(round(720.0 / ENGINE_GRID_STEP_DEG)) + 1)
+    ns, nc = len(set_names), len(camshafts)
+    tf = np.zeros((ns, nc, crank.size))
+    td, tb, tg = np.zeros_like(tf), np.zeros_like(tf), np.zeros_like(tf)
+    per_valve = np.zeros((ns, len(valves), crank.size))
+    for m, v in enumerate(valves):
+        lt = lobes[v["kind"]]
+        j = camshafts.index(v["camshaft"])
+        f = place_trace(lt.relative_crank, lt.friction_torque, v["nose_deg"], crank)
+        per_valve[:, m] = f
+        tf[:, j] += f
+        td[:, j] += place_trace(lt.relative_crank, lt.drive_torque, v["nose_deg"], crank)
+        tb[:, j] += place_trace(lt.relative_crank, lt.bore_torque, v["nose_deg"], crank)
+        tg[:, j] += place_trace(lt.relative_crank, lt.guide_torque, v["nose_deg"], crank)
+    w = case.cam_speed
+    eta = float(case.lubricant().viscosity)
+    tj = np.array(
+        [_journal_torque(lobes, valves, i, camshafts, case, crank, w, eta) for i in range(ns)]
+    )
+    warnings = []
+    for k in kinds:
+        if studies[k] is not studies.get("intake") or k == "intake":
+            warnings += [f"{k} lobes: {x}" for x in studies[k].warnings]
+    return EngineStudy(
+        case=case,
+        set_names=set_names,
+        camshafts=camshafts,
+        crank_angle=crank,
+        cam_speed=w,
+        friction_torque=tf,
+        drive_torque=td,
+        bore_torque=tb,
+        guide_torque=tg,
+        journal_torque=tj,
+        valves=valves,
+        lobe_friction_torque=per_valve,
+        lobes=lobes,
+        runtime_s=time.perf_counter() - t0,
+        timings=timings,
+        warnings=warnings,
+    )

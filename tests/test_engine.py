@@ -1,0 +1,178 @@
+"""A whole engine's valvetrain: lobe phasing, the energy identity, lobes solved once,
+auxiliary friction beside the contact, the case's [engine] layout."""
+
+import math
+
+import numpy as np
+import pytest
+
+from conftest import REDUCED
+from tribodyn import InputError
+from tribodyn.config import load_case
+from tribodyn.workflow.engine import place_trace, run_engine_study
+from tribodyn.workflow.engineering import cycle_integral
+
+ENGINE = {
+    "engine.cylinders": 4,
+    "engine.firing_order": [1, 3, 4, 2],
+    "engine.displacement": 0.0016,
+    "engine.intake": {"centre_angle_deg": 470.0},
+    "engine.exhaust": {"centre_angle_deg": 250.0},
+}
+
+
+def _case(**more):
+    base = load_case()
+    sets = base.to_dict()["surface_sets"][:2]  # uncoated and DLC 1 µm
+    return base.updated({**REDUCED, "surface_sets": sets, **ENGINE, **more})
+
+
+@pytest.fixture(scope="module")
+def engine():
+    return run_engine_study(_case(), workers=1)
+
+
+def test_identical_lobes_repeat_every_180_deg_of_crank(engine):
+    crank = engine.crank_angle
+    i180 = int(np.flatnonzero(np.isclose(crank, 180.0))[0])
+    i90 = int(np.flatnonzero(np.isclose(crank, 90.0))[0])
+    for j, shaft in enumerate(engine.camshafts):
+        for t in (engine.friction_torque[0, j], engine.drive_torque[0, j]):
+            scale = np.max(np.abs(t))
+            assert scale > 0
+            assert np.max(np.abs(t[i180:] - t[: t.size - i180])) < 1e-9 * scale, shaft
+            # not a trivial constant: a quarter of that period is another torque
+            assert np.max(np.abs(t[i90:] - t[: t.size - i90])) > 0.05 * scale, shaft
+
+
+def test_lobe_of_cylinder_3_is_cylinder_1_shifted_by_its_firing_interval(engine):
+    names = [f"{v['kind']}{v['cylinder']}" for v in engine.valves]
+    t1 = engine.lobe_friction_torque[0, names.index("intake1")]
+    t3 = engine.lobe_friction_torque[0, names.index("intake3")]  # fires 180° after 1
+    k = int(np.flatnonzero(np.isclose(engine.crank_angle, 180.0))[0])
+    assert np.allclose(t3[k:], t1[: t1.size - k], rtol=0, atol=1e-12 * np.abs(t1).max())
+    assert not np.allclose(t3, t1)
+
+
+def test_cycle_integral_of_torque_equals_summed_valve_energy(engine):
+    for i, name in enumerate(engine.set_names):
+        total = cycle_integral(engine.friction_torque[i].sum(axis=0), engine.crank_angle)
+        valves = sum(engine.lobes[v["kind"]].energy[name] for v in engine.valves)
+        assert len(engine.valves) == 16
+        assert total == pytest.approx(valves, rel=0.01)
+        # and the single-valve study's own energy (its engineering outputs)
+        study = engine.lobes["intake"].study
+        e1 = study.engineering_outputs().scalars[name]["friction_energy_per_cycle_from_torque_J"]
+        assert total == pytest.approx(16 * e1, rel=0.01)
+
+
+def test_identical_lobes_are_solved_once(engine):
+    assert engine.lobes["intake"].study is engine.lobes["exhaust"].study
+    assert list(engine.timings) == ["intake_study_s"]
+
+
+def test_summary_fmep_and_parts(engine):
+    s = engine.summary()
+    for d in s["surface_sets"].values():
+        e = d["engine_friction_energy_per_cycle_J"]
+        assert e == pytest.approx(sum(d["friction_energy_per_cycle_J"].values()))
+        assert d["valvetrain_friction_mep_Pa"] == pytest.approx(e / 0.0016)
+        assert d["mean_friction_power_W"] == pytest.approx(e * engine.cam_speed / (2 * math.pi))
+        assert all(v > 0 for v in d["friction_energy_per_cycle_J"].values())
+    ds = engine.to_dataset()
+    for k in ("camshaft_friction_torque", "camshaft_drive_torque", "camshaft_friction_power"):
+        assert ds[k].attrs["units"] in ("N m", "W") and ds[k].attrs["description"]
+        assert ds[k].dims == ("engine_set", "camshaft", "engine_crank")
+
+
+def test_one_camshaft_carries_all_lobes(engine):
+    one = run_engine_study(_case(**{"engine.camshafts": 1}), workers=1)
+    assert one.camshafts == ["camshaft"]
+    assert np.allclose(one.friction_torque[:, 0], engine.friction_torque.sum(axis=1))
+
+
+def test_place_trace_periodic_shift():
+    x = np.arange(-360.0, 361.0, 4.0)
+    v = np.cos(np.radians(x) / 4.0) ** 2  # period 720°, 1 at the nose, 0 opposite
+    crank = np.arange(0.0, 720.5, 0.5)
+    a = place_trace(x, v, 100.0, crank)
+    assert a[np.isclose(crank, 100.0)][0] == pytest.approx(1.0)
+    assert a[np.isclose(crank, 100.0 + 360.0)][0] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_engine_case_errors_name_the_key():
+    with pytest.raises(InputError, match=r"engine\.displacement: required"):
+        load_case().updated({"engine.cylinders": 4})
+    with pytest.raises(InputError, match=r"engine\.firing_order"):
+        load_case().updated({**ENGINE, "engine.firing_order": [1, 2, 2, 4]})
+    with pytest.raises(InputError, match=r"engine\.exhaust\.changes: cam\.max_lift"):
+        load_case().updated(
+            {
+                **ENGINE,
+                "engine.exhaust": {"centre_angle_deg": 250.0, "changes": {"cam.max_lift": -1.0}},
+            }
+        )
+    with pytest.raises(InputError, match="engine.cylinders"):
+        run_engine_study(load_case())
+
+
+def test_engine_sweep_point_and_bundled_map():
+    from tribodyn.config import load_sweep
+    from tribodyn.workflow.sweep_point import run_point
+
+    ds = run_point(_case(), mode="engine")
+    assert ds.attrs["status"] == "ok", ds.attrs.get("error")
+    assert list(ds["surface_set"].values) == ["uncoated", "dlc_1um"]
+    e = ds["engine_friction_energy_per_cycle_J"].values
+    parts = sum(
+        ds[k].values
+        for k in (
+            "cam_tappet_energy_J",
+            "tappet_bore_energy_J",
+            "valve_guide_energy_J",
+            "camshaft_journal_energy_J",
+        )
+    )
+    assert np.allclose(e, parts)
+    assert ds["valvetrain_friction_mep_Pa"].attrs["units"] == "Pa"
+    spec = load_sweep("engine_dohc16_map")
+    assert spec.mode == "engine" and len(spec.points()) == 21
+    assert spec.base.engine.cylinders == 4 and len(spec.base.surface_set_names) == 3
+
+
+def test_engine_cli_writes_results(tmp_path):
+    import json
+
+    from typer.testing import CliRunner
+
+    from tribodyn.cli import app
+
+    path = tmp_path / "engine.toml"
+    _case().write_toml(path)
+    out = tmp_path / "out"
+    r = CliRunner().invoke(app, ["engine", str(path), "-o", str(out), "-j", "1"])
+    assert r.exit_code == 0, r.output
+    s = json.loads((out / "summary.json").read_text())["engine"]
+    d = s["surface_sets"]["uncoated"]
+    assert d["valvetrain_friction_mep_Pa"] == pytest.approx(
+        d["engine_friction_energy_per_cycle_J"] / 0.0016
+    )
+    assert (out / "engine_camshaft_torque.png").stat().st_size > 0
+    assert (out / "engine_lobe_contributions.png").stat().st_size > 0
+    import xarray as xr
+
+    with xr.open_dataset(out / "results.nc") as ds:
+        assert ds["camshaft_friction_torque"].attrs["units"] == "N m"
+    # a single-valve case is refused with the key named, not a traceback
+    single = tmp_path / "single.toml"
+    load_case().write_toml(single)
+    r = CliRunner().invoke(app, ["engine", str(single), "-o", str(tmp_path / "o2")])
+    assert r.exit_code == 2 and "engine.cylinders" in r.output
+
+
+def test_engine_sweep_needs_an_engine_case():
+    from tribodyn.config import SweepSpec
+
+    text = '[sweep]\nname = "e"\nmode = "engine"\n[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0]\n'
+    with pytest.raises(InputError, match=r"sweep\.mode.*cylinders"):
+        SweepSpec.from_toml_string(text)
