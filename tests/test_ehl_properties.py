@@ -65,7 +65,7 @@ coating = st.one_of(
     suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
 )
 @given(
-    load=log_uniform(1e-2, 1e10),
+    load=log_uniform(1e-2, 1e9),  # the allowed range (physics.limits.LINE_LOAD)
     radius=log_uniform(1e-4, 1.0),
     ue=signed_speed,
     us=st.floats(-100.0, 100.0),
