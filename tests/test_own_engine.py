@@ -318,6 +318,29 @@ def test_asperity_share_inconsistent_with_lambda_is_named():
     assert plausibility_warnings(_fake_study(case, 0.02, 0.9)) == []
 
 
+def test_asperity_share_reference_is_a_typical_surface():
+    """The share Greenwood–Tripp gives for comparison uses a typical surface's ηβσ and σ/β,
+    not the set's: the paper's σ/β = 1.6 (β = 0.22 µm) would give ~100 % at λ = 0.22.
+    Reference by hand: K = (8√2/15)π(0.04)²√(1e-3)E', F_5/2(0.22) ≈ 0.40, p_mean = w/(2b)."""
+    import math
+    import re
+
+    from tribodyn.physics.asperity import greenwood_tripp
+    from tribodyn.physics.materials import reduced_modulus
+
+    paper = load_case("andreou2023")
+    s = paper.surface_sets()[0]
+    msgs = [m for m in plausibility_warnings(_fake_study(paper, 0.22, 2.4e-4)) if "λ =" in m]
+    assert len(msgs) == 1
+    got = float(re.search(r"gives about ([0-9.e+-]+) %", msgs[0]).group(1))
+    e = reduced_modulus(s.bodies)
+    k = 8 * math.sqrt(2) / 15 * math.pi * 0.04**2 * math.sqrt(1e-3) * e
+    w = 500.0 / paper.width
+    b = math.sqrt(8 * w * 0.005 / (math.pi * e))
+    expect = 100 * k * float(greenwood_tripp(2.5, 0.22)) * 2 * b / w
+    assert 0.5 < expect < 10 and got == pytest.approx(expect, rel=0.05)
+
+
 def test_warmup_numerics_are_a_valid_case():
     """``tribodyn warmup`` (run by ``make run`` at installation) uses a valid case."""
     from tribodyn.cli.warmup import WARMUP_NUMERICS

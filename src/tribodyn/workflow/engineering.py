@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..physics import typical
 from ..physics.asperity import greenwood_tripp
 from ..physics.materials import reduced_modulus
 
@@ -214,8 +215,12 @@ def plausibility_warnings(study) -> list[str]:
     * ηβσ of a surface outside :data:`MEASURED_ETA_BETA_SIGMA` (measured engineering
       surfaces; Greenwood & Williamson 1966, McCool 1986).
     * λ = h_min/σ < 1 while the asperities carry less than a tenth of what Greenwood–Tripp
-      gives there for a measured surface (ηβσ = 0.04, the set's σ and β): at λ < 1 real
-      surfaces are in boundary lubrication and carry a large share of the load.
+      gives there for a typical measured surface (ηβσ and σ/β of
+      :mod:`tribodyn.physics.typical`): the share p_a/p_mean, p_a = K F_5/2(λ),
+      K = (8√2/15)π(ηβσ)²√(σ/β)E', p_mean = w/(2b) of the Hertz contact.
+    * λ < 0.1 while the asperities carry less than half of the load: a film thinner than a
+      tenth of the roughness cannot carry most of the load on real surfaces, whatever the
+      asperity model's parameters give (a rule of thumb, flagged as such).
     """
     case, inp = study.case, study.inputs
     lo, hi = MEASURED_ETA_BETA_SIGMA
@@ -242,9 +247,8 @@ def plausibility_warnings(study) -> list[str]:
             continue
         share = float(res.asperity_load[i] / max(inp.contact_force[i], 1e-12))
         e = reduced_modulus(s.bodies)
-        k_ref = (
-            8.0 * math.sqrt(2.0) / 15.0 * math.pi * 0.04**2 * math.sqrt(r.rms / r.summit_radius) * e
-        )
+        ebs_t, sb_t = typical.ROUGHNESS_PARAMETER.value, typical.RMS_TO_SUMMIT_RADIUS.value
+        k_ref = 8.0 * math.sqrt(2.0) / 15.0 * math.pi * ebs_t**2 * math.sqrt(sb_t) * e
         w = inp.contact_force[i] / inp.width
         b = math.sqrt(8.0 * w * inp.radius[i] / (math.pi * e))
         ref = min(1.0, k_ref * float(greenwood_tripp(2.5, lam)) * 2.0 * b / w)
@@ -252,8 +256,18 @@ def plausibility_warnings(study) -> list[str]:
             out.append(
                 f"{res.name}: at λ = {lam:.2g} ({inp.crank_angle[i]:.0f}° crank) the "
                 f"asperities carry {share * 100:.2g} % of the load; Greenwood–Tripp with a "
-                f"measured surface's ηβσ = 0.04 gives about {ref * 100:.2g} % there: the "
-                "boundary friction and asperity load of this set are likely far too low; "
-                "check the roughness (ηβσ) of the set"
+                f"typical measured surface (ηβσ = {ebs_t:g}, σ/β = {sb_t:g}) gives about "
+                f"{ref * 100:.2g} % there: the boundary friction and asperity load of this "
+                "set are likely far too low; check the roughness (ηβσ, σ/β) of the set"
+            )
+        elif lam < 0.1 and share < 0.5:
+            out.append(
+                f"{res.name}: at λ = {lam:.2g} ({inp.crank_angle[i]:.0f}° crank) the film is "
+                f"thinner than a tenth of the roughness, yet the asperities carry only "
+                f"{share * 100:.2g} % of the load (Greenwood–Tripp with a typical measured "
+                f"surface gives about {ref * 100:.2g} % at this λ): real surfaces "
+                "carry most of the load there, so the boundary friction and asperity load "
+                "near this angle are likely too low and the film too optimistic; check the "
+                "roughness (ηβσ, σ/β, from a measured topography) of the set"
             )
     return out
