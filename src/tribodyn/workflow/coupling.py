@@ -46,6 +46,7 @@ __all__ = [
     "COUPLING_MAX_TOL",
     "DIVERGENCE_FACTOR",
     "valve_timing",
+    "diagnose_coupling",
     "implicit_vs_explicit_metrics",
 ]
 
@@ -229,6 +230,74 @@ def _unpack(v, like: FilmTableTribology, period) -> FilmTableTribology:
     )
 
 
+def diagnose_coupling(
+    changes: list[np.ndarray], history: list[CouplingIteration], loaded: np.ndarray, f_peak: float
+) -> str:
+    """Why a coupling did not converge, what that leaves uncertain and what to change.
+
+    ``changes`` are the contact-force changes d_k = F_k − F_{k−1} on the output samples,
+    ``loaded`` marks the cam event. Classified, in this order:
+
+    - *chatter*: more than half of the last change's Σd² lies outside the cam event (the
+      tappet on the base circle after seating, lightly loaded on the film, impacting
+      again and again); the loaded event is then determined better than the last change;
+    - *divergence*: the RMS change grew in each of the last two iterations (or by the
+      DIVERGENCE_FACTOR over its smallest value);
+    - *oscillation*: successive changes point against each other (cosine of d_k and
+      d_{k−1} below −0.5) without shrinking by half: the iterate flips between two states,
+      typically two timings of the valve-closing impact;
+    - *slow contraction*: otherwise; the number of further iterations is estimated from
+      the last contraction ratio q = r_k / r_{k−1} as ln(tol / r_k) / ln q."""
+    rms = [h.rms_force_change_N for h in history]
+    last = history[-1]
+    d = changes[-1]
+    tol = COUPLING_RMS_TOL * f_peak
+    total = float(np.sum(d**2))
+    outside = float(np.sum(d[~loaded] ** 2)) / total if total > 0 else 0.0
+    where = "at the valve-closing impact and after it"
+    uncertain = (
+        f"the implicit dynamics (Figs. 8–10 and the implicit-vs-explicit metrics) are "
+        f"uncertain by about the last change (RMS {last.rms_force_change_N:.2f} N, max "
+        f"{last.max_force_change_N:.1f} N); the EHL results of every surface set follow the "
+        f"explicit dynamics and are not affected"
+    )
+    if outside > 0.5:
+        return (
+            f"chatter: {100 * outside:.0f} % of the last change lies outside the cam event "
+            f"(the unloaded tappet impacting on the film after seating); {uncertain}, "
+            f"mostly outside the event. Allow more iterations (numerics.coupling_iterations) "
+            f"or a finer time resolution there (numerics.crank_step_deg)"
+        )
+    if (len(rms) >= 3 and rms[-1] > rms[-2] > rms[-3]) or rms[-1] > DIVERGENCE_FACTOR * min(rms):
+        return (
+            f"divergence: the RMS change grew to {rms[-1]:.3g} N (smallest {min(rms):.3g} N); "
+            f"{uncertain}, {where}. Use finer EHL time steps (numerics.crank_step_deg), "
+            f"or compare explicit runs only (numerics.implicit_coupling = false)"
+        )
+    if len(changes) >= 2:
+        a, b = changes[-1], changes[-2]
+        nab = float(np.linalg.norm(a) * np.linalg.norm(b))
+        cos = float(a @ b) / nab if nab > 0 else 0.0
+        if cos < -0.5 and rms[-1] > 0.5 * rms[-2]:
+            return (
+                f"oscillation: successive changes point against each other (cosine "
+                f"{cos:.2f}) and do not shrink; {uncertain}, {where}. The iterate flips "
+                f"between two timings of the closing impact: use finer EHL time steps "
+                f"(numerics.crank_step_deg) there"
+            )
+    q = rms[-1] / rms[-2] if len(rms) >= 2 and rms[-2] > 0 else math.nan
+    more = (
+        f" (about {math.ceil(math.log(tol / rms[-1]) / math.log(q))} more at the last "
+        f"contraction ratio {q:.2f})"
+        if 0 < q < 1 and rms[-1] > tol
+        else ""
+    )
+    return (
+        f"slow contraction: the changes shrink but not below the tolerance; {uncertain}, "
+        f"{where}. Allow more iterations (numerics.coupling_iterations){more}"
+    )
+
+
 def run_coupling(
     case,
     surface_set,
@@ -261,6 +330,7 @@ def run_coupling(
     mixer, scale = AndersonMixer(), None
     best = None  # (iteration, RMS change, dynamics) with the smallest change
     msg = f"not converged in {n.coupling_iterations} iterations"
+    changes: list[np.ndarray] = []
     for k in range(1, n.coupling_iterations + 1):
         g = ehl_tribology(inp, ehl, lub, e_prime, period)
         if table is None:
@@ -282,6 +352,7 @@ def run_coupling(
             msg = f"implicit dynamics failed at iteration {k}: {new.message}"
             break
         d = new.contact_force - prev.contact_force
+        changes.append(d)
         rms = float(np.sqrt(np.mean(d[ev] ** 2))) if ev.any() else float(np.abs(d).max())
         mx = float(np.abs(d).max())
         out.history.append(CouplingIteration(k, rms, mx))
@@ -322,6 +393,7 @@ def run_coupling(
             # report the most self-consistent iterate, not a diverged one
             out.implicit = best[2]
             msg += f"; the implicit run reported is iteration {best[0]}'s (smallest change)"
+        msg += "; " + diagnose_coupling(changes, out.history, ev, f_peak)
     out.message = msg
     out.runtime_s = time.perf_counter() - t0
     return out
