@@ -105,8 +105,11 @@ def signal():
 def test_diagnosis_chatter(signal):
     t, loaded = signal
     d = np.where(loaded, 0.1, 2.0) * np.sin(50 * t)
-    msg = diagnose_coupling([d, d], _history([3.0, 3.0]), loaded, 500.0)
+    crank = 720.0 + 720.0 * t
+    msg = diagnose_coupling([d, d], _history([3.0, 3.0]), loaded, 500.0, crank)
     assert msg.startswith("chatter") and "outside the cam event" in msg
+    k = np.argmax(np.abs(d))
+    assert f"largest at {crank[k]:.1f}° crank" in msg
 
 
 def test_diagnosis_divergence(signal):

@@ -231,15 +231,20 @@ def _unpack(v, like: FilmTableTribology, period) -> FilmTableTribology:
 
 
 def diagnose_coupling(
-    changes: list[np.ndarray], history: list[CouplingIteration], loaded: np.ndarray, f_peak: float
+    changes: list[np.ndarray],
+    history: list[CouplingIteration],
+    loaded: np.ndarray,
+    f_peak: float,
+    crank: np.ndarray | None = None,
 ) -> str:
     """Why a coupling did not converge, what that leaves uncertain and what to change.
 
     ``changes`` are the contact-force changes d_k = F_k − F_{k−1} on the output samples,
-    ``loaded`` marks the cam event. Classified, in this order:
+    ``loaded`` marks the cam event, ``crank`` (optional) the samples' crank angles [°] to
+    say where the largest change sits. Classified, in this order:
 
     - *chatter*: more than half of the last change's Σd² lies outside the cam event (the
-      tappet on the base circle after seating, lightly loaded on the film, impacting
+      tappet lightly loaded on the film off the lobe, e.g. after seating, impacting
       again and again); the loaded event is then determined better than the last change;
     - *divergence*: the RMS change grew in each of the last two iterations (or by the
       DIVERGENCE_FACTOR over its smallest value);
@@ -255,6 +260,9 @@ def diagnose_coupling(
     total = float(np.sum(d**2))
     outside = float(np.sum(d[~loaded] ** 2)) / total if total > 0 else 0.0
     where = "at the valve-closing impact and after it"
+    if crank is not None:
+        k = int(np.argmax(np.abs(d)))
+        where = f"largest at {crank[k]:.1f}° crank ({abs(d[k]):.0f} N)"
     uncertain = (
         f"the implicit dynamics (Figs. 8–10 and the implicit-vs-explicit metrics) are "
         f"uncertain by about the last change (RMS {last.rms_force_change_N:.2f} N, max "
@@ -264,8 +272,9 @@ def diagnose_coupling(
     if outside > 0.5:
         return (
             f"chatter: {100 * outside:.0f} % of the last change lies outside the cam event "
-            f"(the unloaded tappet impacting on the film after seating); {uncertain}, "
-            f"mostly outside the event. Allow more iterations (numerics.coupling_iterations) "
+            f"(the lightly loaded tappet impacting on the film off the cam lobe); "
+            f"{uncertain}, mostly outside the event ({where}). Allow more iterations "
+            f"(numerics.coupling_iterations) "
             f"or a finer time resolution there (numerics.crank_step_deg)"
         )
     if (len(rms) >= 3 and rms[-1] > rms[-2] > rms[-3]) or rms[-1] > DIVERGENCE_FACTOR * min(rms):
@@ -393,7 +402,7 @@ def run_coupling(
             # report the most self-consistent iterate, not a diverged one
             out.implicit = best[2]
             msg += f"; the implicit run reported is iteration {best[0]}'s (smallest change)"
-        msg += "; " + diagnose_coupling(changes, out.history, ev, f_peak)
+        msg += "; " + diagnose_coupling(changes, out.history, ev, f_peak, prev.crank_angle)
     out.message = msg
     out.runtime_s = time.perf_counter() - t0
     return out
