@@ -236,12 +236,15 @@ def diagnose_coupling(
     loaded: np.ndarray,
     f_peak: float,
     crank: np.ndarray | None = None,
+    reported: CouplingIteration | None = None,
 ) -> str:
     """Why a coupling did not converge, what that leaves uncertain and what to change.
 
     ``changes`` are the contact-force changes d_k = F_k − F_{k−1} on the output samples,
     ``loaded`` marks the cam event, ``crank`` (optional) the samples' crank angles [°] to
-    say where the largest change sits. Classified, in this order:
+    say where the largest change sits; ``reported`` the iteration whose dynamics are
+    reported (default the last), whose change bounds their uncertainty. Classified, in
+    this order:
 
     - *chatter*: more than half of the last change's Σd² lies outside the cam event (the
       tappet lightly loaded on the film off the lobe, e.g. after seating, impacting
@@ -254,7 +257,7 @@ def diagnose_coupling(
     - *slow contraction*: otherwise; the number of further iterations is estimated from
       the last contraction ratio q = r_k / r_{k−1} as ln(tol / r_k) / ln q."""
     rms = [h.rms_force_change_N for h in history]
-    last = history[-1]
+    last = reported if reported is not None else history[-1]
     d = changes[-1]
     tol = COUPLING_RMS_TOL * f_peak
     total = float(np.sum(d**2))
@@ -265,7 +268,8 @@ def diagnose_coupling(
         where = f"largest at {crank[k]:.1f}° crank ({abs(d[k]):.0f} N)"
     uncertain = (
         f"the implicit dynamics (Figs. 8–10 and the implicit-vs-explicit metrics) are "
-        f"uncertain by about the last change (RMS {last.rms_force_change_N:.2f} N, max "
+        f"uncertain by about the change of the reported iteration {last.iteration} (RMS "
+        f"{last.rms_force_change_N:.2f} N, max "
         f"{last.max_force_change_N:.1f} N); the EHL results of every surface set follow the "
         f"explicit dynamics and are not affected"
     )
@@ -402,7 +406,10 @@ def run_coupling(
             # report the most self-consistent iterate, not a diverged one
             out.implicit = best[2]
             msg += f"; the implicit run reported is iteration {best[0]}'s (smallest change)"
-        msg += "; " + diagnose_coupling(changes, out.history, ev, f_peak, prev.crank_angle)
+        shown = out.history[best[0] - 1] if best is not None else None
+        msg += "; " + diagnose_coupling(
+            changes, out.history, ev, f_peak, prev.crank_angle, reported=shown
+        )
     out.message = msg
     out.runtime_s = time.perf_counter() - t0
     return out
