@@ -277,9 +277,11 @@ def diagnose_coupling(
         return (
             f"chatter: {100 * outside:.0f} % of the last change lies outside the cam event "
             f"(the lightly loaded tappet impacting on the film off the cam lobe); "
-            f"{uncertain}, mostly outside the event ({where}). Allow more iterations "
-            f"(numerics.coupling_iterations) "
-            f"or a finer time resolution there (numerics.crank_step_deg)"
+            f"{uncertain}, mostly outside the event ({where}): the RMS difference over "
+            f"the event and the valve timing shifts are usable, the maximum and peak force "
+            f"differences are not. More iterations do not remove repeated impacts; compare "
+            f"the explicit runs only (numerics.implicit_coupling = false) where the "
+            f"impacts matter"
         )
     if (len(rms) >= 3 and rms[-1] > rms[-2] > rms[-3]) or rms[-1] > DIVERGENCE_FACTOR * min(rms):
         return (
