@@ -79,7 +79,14 @@ def test_summary_keys_and_physics(run_dir):
         )
         assert v["mean_friction_power_W"] > 0
         assert 300 < v["peak_contact_force_N"] < 1000
-    assert {"max_contact_force_diff_pct", "max_velocity_diff_pct"} <= set(s["implicit_vs_explicit"])
+    assert {
+        "max_contact_force_diff_pct",
+        "rms_contact_force_diff_pct",
+        "peak_contact_force_diff_pct",
+        "valve_opening_shift_deg",
+        "valve_closing_shift_deg",
+        "max_velocity_diff_pct",
+    } <= set(s["implicit_vs_explicit"])
     assert s["runtime_s"] > 0
     with xr.open_dataset(run_dir / "results.nc", engine="h5netcdf") as ds:
         assert ds.attrs["tribodyn_version"] == tribodyn.__version__

@@ -227,10 +227,15 @@ def _run(
     console.print(summary_table(summ, c.name))
     ie = summ["implicit_vs_explicit"]
     if ie.get("max_contact_force_diff_pct") is not None:
+        stable = ""
+        if ie.get("rms_contact_force_diff_pct") is not None:
+            stable += f"; RMS over the event {ie['rms_contact_force_diff_pct']:.2f} %"
+        if ie.get("valve_closing_shift_deg") is not None:
+            stable += f", valve closing shifted by {ie['valve_closing_shift_deg']:+.2f}°"
         console.print(
             f"implicit vs explicit: contact force differs by at most "
             f"{ie['max_contact_force_diff_pct']:.1f} % of its peak (at "
-            f"{ie['max_contact_force_diff_crank_deg']:.1f}°), tappet velocity by "
+            f"{ie['max_contact_force_diff_crank_deg']:.1f}°{stable}), tappet velocity by "
             f"{ie['max_velocity_diff_pct']:.2f} %"
         )
     for w in summ["warnings"]:

@@ -32,6 +32,7 @@ from ..physics.regimes import (
     lubrication_regime,
     moes_central,
 )
+from .coupling import implicit_vs_explicit_metrics
 
 __all__ = [
     "Analysis",
@@ -399,21 +400,19 @@ def _implicit_vs_explicit(study) -> dict:
     if imp is None:
         return {
             "max_contact_force_diff_pct": None,
+            "rms_contact_force_diff_pct": None,
+            "peak_contact_force_diff_pct": None,
+            "valve_opening_shift_deg": None,
+            "valve_closing_shift_deg": None,
             "max_velocity_diff_pct": None,
             "note": "implicit coupling disabled in the case"
             if not study.case.numerics.implicit_coupling
             else cp.message,
         }
-    fi = np.interp(dyn.crank_angle, imp.crank_angle, imp.contact_force)
-    vi = np.interp(dyn.crank_angle, imp.crank_angle, imp.tappet_velocity)
-    dF = np.abs(fi - dyn.contact_force)
-    dv = np.abs(vi - dyn.tappet_velocity)
+    m = implicit_vs_explicit_metrics(dyn, imp)
     last = cp.history[-1] if cp.history else None
     return {
-        "max_contact_force_diff_pct": _finite(dF.max() / dyn.contact_force.max() * 100),
-        "max_contact_force_diff_crank_deg": _finite(dyn.crank_angle[dF.argmax()]),
-        "max_velocity_diff_pct": _finite(dv.max() / np.abs(dyn.tappet_velocity).max() * 100),
-        "max_velocity_diff_crank_deg": _finite(dyn.crank_angle[dv.argmax()]),
+        **{k: _finite(v) for k, v in m.items()},
         "coupling_converged": bool(cp.converged),
         "coupling_iterations": len(cp.history),
         "coupling_last_rms_force_change_N": _finite(last.rms_force_change_N) if last else None,
