@@ -60,8 +60,16 @@ def _table(path, eps):
 
 
 def _coupled_metrics(tmp_path, eps):
+    # the paper's oil and uncoated roughness (a film that moves the valve timing), stated
+    # here so the test does not follow the example case's own oil and surfaces
+    paper = load_case("andreou2023").to_dict()
     case = load_case("example_table_cam").updated(
-        {**FAST, "cam.path": str(_table(tmp_path / f"cam_{eps:g}.csv", eps))}
+        {
+            **FAST,
+            "cam.path": str(_table(tmp_path / f"cam_{eps:g}.csv", eps)),
+            "lubricant": paper["lubricant"],
+            "surface_sets[0].roughness": paper["surface_sets"][0]["roughness"],
+        }
     )
     s = case.surface_set("uncoated")
     dyn = simulate_valvetrain(
@@ -79,12 +87,15 @@ def _coupled_metrics(tmp_path, eps):
 def test_the_comparison_is_stable_to_round_off(tmp_path):
     """Two coupled studies whose cam tables differ by a relative 1e-12: the RMS force
     difference, the valve timing shifts, and here also the maximum differences agree within
-    1 % of their values; the peak-force difference (a difference of two nearly equal
-    peaks, < 1 % of the peak) within 0.02 % of the peak force."""
+    1 % of their values (a timing shift within 1 % or 0.005° crank, whichever is larger: a
+    shift of a few hundredths of a degree is itself at the resolution of the event
+    detection); the peak-force difference (a difference of two nearly equal peaks, < 1 % of
+    the peak) within 0.02 % of the peak force."""
     a = _coupled_metrics(tmp_path, 0.0)
     b = _coupled_metrics(tmp_path, 1e-12)
     for key in STABLE:
-        assert b[key] == pytest.approx(a[key], rel=1e-2), key
+        floor = 5e-3 if key.endswith("_shift_deg") else 0.0
+        assert b[key] == pytest.approx(a[key], rel=1e-2, abs=floor), (key, a[key], b[key])
     assert abs(a["valve_closing_shift_deg"]) > 0.1  # a film that moves the timing
     assert b["peak_contact_force_diff_pct"] == pytest.approx(
         a["peak_contact_force_diff_pct"], abs=2e-2
