@@ -217,9 +217,11 @@ def simulate_valvetrain(
         energy accumulators).
     max_step : largest step [crank deg], in (0, 10].
     start_angle : cam angle at t = 0 [rad]; must lie on the base circle.
-    jump_lift_threshold : cam lift above which a contact loss counts as a jump [m], in
-        (0, 1 mm].
+    jump_lift_threshold : cam lift above which a contact loss counts as a jump [m],
+        in (0, 1 mm].
 
+    Notes
+    -----
     The ranges are those of the case file (:mod:`tribodyn.physics.limits`); a value
     outside raises :class:`~tribodyn.InputError` naming the argument and its range.
     """

@@ -12,7 +12,7 @@ The tappet surface there moves at
 
 taking ω_t > 0 in the sense in which the cam's friction drives it (its surface at the
 cam moves with the cam surface). The cam surface slides over a non-rotating tappet at
-u_s along x (:mod:`tribodyn.valvetrain.kinematics`), so
+u_s along x (:mod:`tribodyn.valvetrain.kinematics`), so::
 
     sliding vector        s = (u_s − ω_t e_o, ω_t e)
     sliding speed         |s| = √((u_s − ω_t e_o)² + (ω_t e)²)

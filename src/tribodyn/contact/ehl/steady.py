@@ -73,12 +73,15 @@ def solve_ehl(
     entrainment_speed : u_e = (u₁ + u₂)/2 relative to the contact [m/s], ≠ 0 and
         |u_e| ≤ 1000 (either sign: the inlet is on the side the flow comes from).
     sliding_speed : u_s = u₁ − u₂ [m/s], |u_s| ≤ 1000 (friction only).
-    The ranges are :data:`~tribodyn.physics.limits.LINE_LOAD`, ``CONTACT_RADIUS`` and
-    ``SURFACE_SPEED``; outside them :class:`~tribodyn.InputError` names the argument.
     bodies : pair of :class:`~tribodyn.Body` (coating allowed on either).
     lubricant : :class:`~tribodyn.Lubricant`.
     roughness : composite :class:`~tribodyn.Roughness` or None (smooth).
     options / option_overrides : :class:`EHLOptions` fields (n, inlet, outlet, tol, …).
+
+    Notes
+    -----
+    The ranges are :data:`~tribodyn.physics.limits.LINE_LOAD`, ``CONTACT_RADIUS`` and
+    ``SURFACE_SPEED``; outside them :class:`~tribodyn.InputError` names the argument.
     """
     cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
     model = ContactModel.checked(bodies, lubricant, roughness)
