@@ -15,7 +15,7 @@ cams, ramps) and measurement noise; an interpolating spline rings across a jump 
    ``_DETECT_POINTS`` points, so the cost is O(n)) and several window widths, a local
    least-squares fit y ≈ cubic(u) + c₂u₊² + c₃u₊³ (u = x − ξ; solved by QR, rank-deficient
    windows report nothing) estimates Δs'' = 2c₂ and its standard error from σ; a jump is
-   reported where |Δs''| exceeds 8 standard errors and 1 % of the base radius, at the
+   reported where |Δs''| exceeds 8 standard errors and 25 % of the base radius, at the
    position of least residual, if the jump model explains the window significantly better
    than a smooth quintic (so a fast but continuous change of s'' is not taken for a jump);
 4. fits a periodic quintic B-spline, minimising Σ(y − s)² + λ∫(s''')² (the smoothing
