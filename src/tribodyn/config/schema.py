@@ -16,6 +16,7 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag, model_validator
 
 from .. import paper
+from ..contact.ehl.options import EHLOptions
 from ..physics import limits as L
 from ..physics import typical
 from ..physics.oils import OILS
@@ -53,6 +54,8 @@ __all__ = [
 ]
 
 _VT_DEFAULTS = {f.name: f.default for f in dataclasses.fields(ValvetrainParameters)}
+#: the EHL solver's defaults (contact layer): the one source of [numerics]' shared defaults
+_EHL_DEFAULTS = {f.name: f.default for f in dataclasses.fields(EHLOptions)}
 _NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9_.+\-]*$"
 
 
@@ -812,28 +815,40 @@ class Numerics(Section):
         le=1e4,
     )
     inlet: float = _lim(
-        4.0, L.DOMAIN_HALF_WIDTHS, "EHL domain upstream of the centre, in Hertz half-widths"
+        _EHL_DEFAULTS["inlet"],
+        L.DOMAIN_HALF_WIDTHS,
+        "EHL domain upstream of the centre, in Hertz half-widths",
     )
     outlet: float = _lim(
-        1.75, L.DOMAIN_HALF_WIDTHS, "EHL domain downstream of the centre, in Hertz half-widths"
+        _EHL_DEFAULTS["outlet"],
+        L.DOMAIN_HALF_WIDTHS,
+        "EHL domain downstream of the centre, in Hertz half-widths",
     )
     inlet_truncation: float = _lim(
-        0.005,
+        _EHL_DEFAULTS["inlet_truncation"],
         L.INLET_TRUNCATION,
         "EHL domain upstream at least as far as the cut-off inlet "
         "loses this share of the load (far-field estimate)",
     )
     inlet_rigid: float = _lim(
-        4.0,
+        _EHL_DEFAULTS["inlet_rigid"],
         L.DOMAIN_RIGID_LENGTHS,
         "EHL domain upstream at least this many rigid inlet lengths √(2R h) (squeeze films)",
     )
     outlet_rigid: float = _lim(
-        2.0, L.DOMAIN_RIGID_LENGTHS, "EHL domain downstream, in rigid inlet lengths"
+        _EHL_DEFAULTS["outlet_rigid"],
+        L.DOMAIN_RIGID_LENGTHS,
+        "EHL domain downstream, in rigid inlet lengths",
     )
-    tol: float = _lim(1e-9, L.NEWTON_TOL, "EHL Newton tolerance (scaled update and residual)")
-    max_iter: int = _lim(60, L.NEWTON_MAX_ITER, "EHL Newton iterations per solve")
-    time_order: Literal[1, 2] = _q(2, "", "EHL time discretisation: 1 backward Euler, 2 BDF2")
+    tol: float = _lim(
+        _EHL_DEFAULTS["tol"], L.NEWTON_TOL, "EHL Newton tolerance (scaled update and residual)"
+    )
+    max_iter: int = _lim(
+        _EHL_DEFAULTS["max_iter"], L.NEWTON_MAX_ITER, "EHL Newton iterations per solve"
+    )
+    time_order: Literal[1, 2] = _q(
+        _EHL_DEFAULTS["time_order"], "", "EHL time discretisation: 1 backward Euler, 2 BDF2"
+    )
     crank_step_deg: float = _q(
         1.0,
         "deg (crank)",
@@ -843,8 +858,10 @@ class Numerics(Section):
         gt=0.0,
         le=5.0,
     )
-    viscous_model: Literal["eyring", "newtonian"] = _q("eyring", "", "viscous friction law")
-    limiting_shear: bool = _q(True, "", "cap viscous shear at Λp")
+    viscous_model: Literal["eyring", "newtonian"] = _q(
+        _EHL_DEFAULTS["viscous_model"], "", "viscous friction law"
+    )
+    limiting_shear: bool = _q(_EHL_DEFAULTS["limiting_shear"], "", "cap viscous shear at Λp")
     greenwood_tripp: Literal["exact", "paper"] = _q(
         "exact",
         "",
