@@ -71,9 +71,6 @@ def _pct_change(reduction, is_reference):
     return f"{-reduction:+.1f} %".replace("-", "−")
 
 
-# ----------------------------------------------------------------------------- claims
-
-
 # ----------------------------------------------------------------------------- report
 def model_comparison_section(study) -> list[str]:
     """ "Lumped vs flexible" table of a flexible case (empty for a lumped case)."""

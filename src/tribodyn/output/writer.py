@@ -101,9 +101,6 @@ class OutputWriteError(RuntimeError):
         self.target, self.rescued, self.cause = target, rescued, cause
 
 
-# ----------------------------------------------------------------------------- checks
-
-
 # ----------------------------------------------------------------------------- writing
 def write_atomic(
     target: Path, writer: Callable[[Path], object], *, meta: dict | None = None
