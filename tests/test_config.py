@@ -184,6 +184,36 @@ def test_empty_file_is_the_paper_engine_with_typical_friction(paper):
     assert d_paper["materials"]["dlc"]["boundary_shear_coefficient"] == 0.44
 
 
+def test_numerics_defaults_are_the_ehl_solvers():
+    """Every default [numerics] shares with EHLOptions is the same value, and an empty
+    case's EHL options are EHLOptions() in those fields (one source: EHLOptions)."""
+    import dataclasses
+
+    from tribodyn.config.schema import Numerics
+
+    ehl = {f.name: f.default for f in dataclasses.fields(EHLOptions)}
+    # n differs by design: 0 (automatic) in the case file, None in EHLOptions
+    shared = (set(Numerics.model_fields) & set(ehl)) - {"n"}
+    assert shared >= {
+        "inlet",
+        "outlet",
+        "inlet_truncation",
+        "inlet_rigid",
+        "outlet_rigid",
+        "tol",
+        "max_iter",
+        "time_order",
+        "viscous_model",
+        "limiting_shear",
+    }
+    differ = {k: (Numerics.model_fields[k].default, ehl[k]) for k in sorted(shared)}
+    differ = {k: v for k, v in differ.items() if v[0] != v[1] or type(v[0]) is not type(v[1])}
+    assert not differ, f"[numerics] default != EHLOptions default: {differ}"
+    built = Case.from_toml_string("").ehl_options()
+    for k in shared:
+        assert getattr(built, k) == getattr(EHLOptions(), k), k
+
+
 def test_bundled_names(paper):
     assert set(bundled_cases()) == {
         "andreou2023",

@@ -133,3 +133,28 @@ def test_the_layer_check_sees_an_import():
     """config/case.py imports the EHL options (downwards); the check finds that import."""
     mods = {m for m, _ in _imports(SRC / "config" / "case.py")}
     assert any(m.startswith("tribodyn.contact.ehl") for m in mods)
+
+
+#: Largest module [lines]: a longer module is split by job (docs/architecture.md).
+MAX_MODULE_LINES = 600
+
+
+def _too_long(paths, limit=MAX_MODULE_LINES):
+    out = []
+    for p in paths:
+        n = len(p.read_text(encoding="utf-8").splitlines())
+        if n > limit:
+            out.append(f"{p.relative_to(SRC) if p.is_relative_to(SRC) else p.name}: {n} lines")
+    return out
+
+
+def test_no_module_is_over_600_lines():
+    too_long = _too_long(_modules())
+    assert not too_long, f"modules over {MAX_MODULE_LINES} lines:\n" + "\n".join(too_long)
+
+
+def test_the_length_check_sees_a_long_module(tmp_path):
+    """The check above is able to fail: it finds a 601-line file."""
+    p = tmp_path / "long.py"
+    p.write_text("x = 1\n" * (MAX_MODULE_LINES + 1), encoding="utf-8")
+    assert _too_long([p]) == [f"long.py: {MAX_MODULE_LINES + 1} lines"]

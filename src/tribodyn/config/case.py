@@ -1,4 +1,6 @@
 """The validated case: :class:`Case`, its builders of tribodyn objects, and loading.
+The builders of the cam and valvetrain, the thermal model and the strengths are
+inherited from :mod:`.case_valvetrain`, :mod:`.case_thermal` and :mod:`.case_strength`.
 
 A case file describes one study: engine speed, cam, valvetrain, lubricant, materials, the
 surface sets to compare (uncoated, DLC, WC-C, …) and the numerical settings. Every key is
@@ -19,7 +21,6 @@ from __future__ import annotations
 import dataclasses
 import difflib
 import functools
-import math
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -35,21 +36,15 @@ from pydantic import (
 from .._typing import PathLike
 from .._validation import InputError
 from ..contact.ehl import EHLOptions
-from ..contact.ehl.thermal import ThermalOptions
 from ..physics import typical
 from ..physics.asperity import Roughness
-from ..physics.heat_conduction import ThermalBody, ThermalProperties
 from ..physics.lubricant import Lubricant
 from ..physics.materials import Body, Coating, Material
-from ..physics.oils import OILS, THERMAL_MATERIALS
-from ..physics.thermal_oil import ThermalLubricant
-from ..valvetrain.cams import AccelerationCam, CamProfile, CircularArcCam, TabulatedCam
-from ..valvetrain.camshaft import Camshaft
-from ..valvetrain.flexible import FlexibleValvetrain, TappetGeometry, ValveGeometry
 from ..valvetrain.kinematics import rpm_to_cam_speed
-from ..valvetrain.parameters import ValvetrainParameters
-from ..valvetrain.spring import HelicalSpring
 from ..valvetrain.tappet_rotation import TappetRotation
+from .case_strength import StrengthBuilders
+from .case_thermal import ThermalBuilders
+from .case_valvetrain import CamValvetrainBuilders
 from .errors import CamTableError, Problems, format_validation_error
 from .paths import set_path
 from .schema import (
@@ -63,13 +58,10 @@ from .schema import (
     MaterialConfig,
     Numerics,
     Section,
-    SpringConfig,
     StrengthConfig,
     StressConfig,
     SurfaceSetConfig,
-    TappetConfig,
     TappetRotationConfig,
-    ValveConfig,
     Valvetrain,
     typical_materials,
     typical_surface_sets,
@@ -127,7 +119,7 @@ class SurfaceSet:
         return self.bodies[1].coating
 
 
-class Case(Section):
+class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
     """A validated case. Build it with :func:`load_case`, :meth:`from_toml_string` or
     :meth:`from_dict`; every section has defaults (module text)."""
 
@@ -407,211 +399,12 @@ class Case(Section):
             viscosity_model=c.viscosity_model,
         )
 
-    def thermal_lubricant(self) -> ThermalLubricant:
-        """The temperature- and pressure-dependent oil of ``[lubricant]``
-        (:class:`~tribodyn.physics.thermal_oil.ThermalLubricant`): a datasheet, or the
-        viscosity at ``inlet_temperature_c`` with its ``viscosity_temperature_coefficient``."""
-        c = self.lubricant_config
-        if c.inlet_temperature_c is None:
-            raise InputError(
-                "lubricant.inlet_temperature_c: required for the thermal model "
-                "(the oil supply temperature, °C)"
-            )
-        common: dict[str, Any] = dict(
-            inlet_temperature=c.inlet_temperature_c + 273.15,
-            thermal_expansion=c.thermal_expansion,
-            thermal_conductivity=c.thermal_conductivity,
-            specific_heat=c.specific_heat,
-            eyring_stress=c.eyring_stress,
-            limiting_shear_coefficient=c.limiting_shear_coefficient,
-            limiting_shear_stress=c.limiting_shear_stress,
-            limiting_shear_temperature_coefficient=(c.limiting_shear_temperature_coefficient),
-            compressible=c.compressible,
-            viscosity_model=c.viscosity_model,
-        )
-        given = c.model_fields_set
-        if c.datasheet:
-            sheet: dict[str, Any] = dict(OILS[c.oil]) if c.oil is not None else {}
-            name = c.oil or "datasheet oil"
-            sheet.pop("description", None)
-            if c.kinematic_viscosity_40_cst is not None:
-                sheet["kinematic_viscosity_40"] = c.kinematic_viscosity_40_cst * 1e-6
-            if c.kinematic_viscosity_100_cst is not None:
-                sheet["kinematic_viscosity_100"] = c.kinematic_viscosity_100_cst * 1e-6
-            if c.density_15 is not None:
-                sheet["density"] = c.density_15
-            alpha = c.pressure_viscosity if "pressure_viscosity" in given else None
-            return ThermalLubricant(**common, **sheet, pressure_viscosity=alpha, name=name)
-        if c.viscosity_temperature_coefficient is None:
-            raise InputError(
-                "lubricant.viscosity_temperature_coefficient: required for the "
-                "thermal model with a viscosity (or give a datasheet: oil, "
-                "kinematic_viscosity_40_cst/_100_cst)"
-            )
-        return ThermalLubricant(
-            **common,
-            viscosity=c.viscosity,
-            viscosity_temperature_coefficient=(c.viscosity_temperature_coefficient),
-            density=c.density,
-            density_temperature=c.inlet_temperature_c + 273.15,
-            pressure_viscosity=c.pressure_viscosity,
-            name="lubricant",
-        )
-
-    def thermal_properties(self, name: str) -> ThermalProperties:
-        """k, ρ, c of ``[materials.<name>]`` (steel, dlc and wcc default to the literature
-        values of :mod:`tribodyn.physics.oils`)."""
-        m = self.materials[name]
-        d = dict(THERMAL_MATERIALS.get(name, {}))
-        for key, val in (
-            ("conductivity", m.thermal_conductivity),
-            ("density", m.density),
-            ("specific_heat", m.specific_heat),
-        ):
-            if val is not None:
-                d[key] = val
-        missing = [k for k in ("conductivity", "density", "specific_heat") if k not in d]
-        if missing:
-            names = {"conductivity": "thermal_conductivity"}
-            raise InputError(
-                "; ".join(
-                    f"materials.{name}.{names.get(k, k)}: required for the thermal model"
-                    for k in missing
-                )
-            )
-        return ThermalProperties(**d)
-
-    def thermal_bodies(self, surface_set: SurfaceSet | str) -> tuple:
-        """(cam, tappet) as :class:`~tribodyn.physics.heat_conduction.ThermalBody`."""
-        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
-        cfg = next(c for c in self.surface_set_configs if c.name == s.name) if s.name else None
-        cam = ThermalBody(self.thermal_properties(self.cam_config.material))
-        sub = (
-            cfg.substrate
-            if cfg is not None
-            else ("steel" if "steel" in self.materials else self.cam_config.material)
-        )
-        coat = s.coating_material if cfg is None else cfg.coating
-        if coat is None:
-            tappet = ThermalBody(self.thermal_properties(sub))
-        else:
-            coating = s.bodies[1].coating
-            assert coating is not None  # a coated set's tappet carries its coating
-            tappet = ThermalBody(
-                self.thermal_properties(sub), self.thermal_properties(coat), coating.thickness
-            )
-        return cam, tappet
-
-    def thermal_options(self) -> ThermalOptions:
-        """:class:`~tribodyn.contact.ehl.thermal.ThermalOptions` from ``[numerics]``."""
-        n = self.numerics
-        return ThermalOptions(
-            x_nodes=n.thermal_x_nodes,
-            film_nodes=n.thermal_film_nodes,
-            solid_nodes=n.thermal_solid_nodes,
-            step_iter=n.thermal_iterations,
-            tol=n.thermal_tol,
-        )
-
     def material(self, name: str) -> Material:
         """The :class:`~tribodyn.Material` of ``[materials.<name>]``."""
         if name not in self.materials:
             raise InputError(f"unknown material {name!r} (defined: {', '.join(self.materials)})")
         m = self.materials[name]
         return Material(E=m.E, nu=m.nu)
-
-    def _build_cam(self) -> CamProfile:
-        c = self.cam_config
-        tr = self.valvetrain.tappet_radius
-        if c.type == "acceleration":
-            return AccelerationCam(
-                c.base_radius,
-                c.max_lift,
-                event_angle=math.radians(c.event_angle_deg),
-                nose_radius=c.nose_radius,
-                ramp_height=c.ramp_height,
-                ramp_angle=math.radians(c.ramp_angle_deg),
-                pulse_share=c.pulse_share,
-                ramp_pulse_share=c.ramp_pulse_share,
-                nose_angle=math.radians(c.nose_angle_deg),
-                tappet_radius=tr,
-            )
-        if c.type == "circular_arc":
-            return CircularArcCam(
-                c.base_radius,
-                c.max_lift,
-                flank_radius=c.flank_radius,
-                nose_radius=c.nose_radius,
-                nose_angle=math.radians(c.nose_angle_deg),
-                tappet_radius=tr,
-            )
-        try:
-            cam = TabulatedCam.from_csv(
-                self.cam_table_path,
-                c.base_radius,
-                smoothing=c.smoothing,
-                angle_unit=c.angle_unit,
-                lift_unit=c.lift_unit,
-                angle_column=c.angle_column,
-                lift_column=c.lift_column,
-                tappet_radius=tr,
-            )
-        except InputError as exc:  # the table's own message, filed under cam.path
-            msg = str(exc)
-            if str(self.cam_table_path) not in msg:
-                msg = f"{self.cam_table_path}: {msg}"
-            raise CamTableError("path", msg) from None
-        if c.max_lift is not None and abs(cam.max_lift / c.max_lift - 1.0) > 0.01:
-            raise CamTableError(
-                "max_lift",
-                f"{c.max_lift:g} m disagrees with the lift "
-                f"table's maximum {cam.max_lift:g} m by more "
-                "than 1 %",
-            )
-        return cam
-
-    def cam(self) -> CamProfile:
-        """The cam profile (built and checked during validation)."""
-        if self._cam is None:
-            self._cam = self._build_cam()
-        return self._cam
-
-    def valvetrain_parameters(self):
-        """The valvetrain of the case: :class:`~tribodyn.valvetrain.ValvetrainParameters`
-        (``model = "lumped"``) or :class:`~tribodyn.valvetrain.flexible.FlexibleValvetrain`
-        (``"flexible"``); either runs in :func:`~tribodyn.valvetrain.simulate_valvetrain`."""
-        joints = self._joint_parameters()
-        if self.valvetrain.model == "lumped":
-            return joints
-        return self._flexible(joints)
-
-    def lumped_companion(self) -> ValvetrainParameters:
-        """The lumped model with the same masses, rate, preload and static compliances
-        (of a flexible case; a lumped case returns its own parameters)."""
-        vp = self.valvetrain_parameters()
-        return vp if isinstance(vp, ValvetrainParameters) else vp.lumped_equivalent()
-
-    @property
-    def valvetrain_model(self) -> str:
-        """``"lumped"`` or ``"flexible"``."""
-        return self.valvetrain.model
-
-    def _joint_parameters(self) -> ValvetrainParameters:
-        d = self.valvetrain.model_dump(exclude={"model", "valve", "tappet", "spring", "camshaft"})
-        return ValvetrainParameters(**d, cam_width=self.cam_config.width)
-
-    def _flexible(self, joints: ValvetrainParameters) -> FlexibleValvetrain:
-        v = self.valvetrain
-        vc = v.valve or ValveConfig()
-        tc = v.tappet or TappetConfig()
-        sc = v.spring or SpringConfig()
-        valve = ValveGeometry(**vc.model_dump())
-        tappet = TappetGeometry(**tc.model_dump(), radius=v.tappet_radius)
-        sd = sc.model_dump()
-        sd["pitches"] = None if sd["pitches"] is None else tuple(sd["pitches"])
-        spring = HelicalSpring(**sd)
-        cs = None if v.camshaft is None else Camshaft(**v.camshaft.model_dump())
-        return FlexibleValvetrain(valve, tappet, spring, joints, cs)
 
     def ehl_options(self, surface_set: SurfaceSet | str | None = None) -> EHLOptions:
         """:class:`~tribodyn.EHLOptions` from ``[numerics]``; with a surface set (object or
@@ -662,55 +455,6 @@ class Case(Section):
     def surface_set_names(self) -> list[str]:
         return [s.name for s in self.surface_set_configs]
 
-    def material_strength(self, name: str):
-        """:class:`~tribodyn.physics.strength.Strength` of material ``name``: the keys of
-        ``[strength.<name>]`` over the typical values of steel, dlc or wcc when the
-        material has that name; None when neither gives a tensile strength and a
-        hardness."""
-        from ..physics.strength import TYPICAL_STRENGTH, Strength
-
-        base = TYPICAL_STRENGTH.get(name.lower())
-        cfg = self.strength_configs.get(name)
-        given = cfg.model_dump(exclude_none=True) if cfg is not None else {}
-        given.pop("wear_coefficient", None)
-        vals = dataclasses.asdict(base) if base is not None else {}
-        vals.update(given)
-        if given:
-            vals["source"] = f"case [strength.{name}]" + (
-                f"; otherwise {base.source}" if base else ""
-            )
-        if "tensile_strength" not in vals or "hardness" not in vals:
-            return None
-        return Strength(**vals)
-
-    def strengths(self, surface_set) -> dict:
-        """{"cam": (substrate, None), "tappet": (substrate, coating)} strengths of a
-        surface set for :func:`~tribodyn.workflow.stress_study.stress_along_cycle`."""
-        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
-        cfg = next(c for c in self.surface_set_configs if c.name == s.name)
-        cam = self.material_strength(self.cam_config.material)
-        sub = self.material_strength(cfg.substrate)
-        coat = self.material_strength(cfg.coating) if cfg.coating is not None else None
-        return {"cam": (cam, None), "tappet": (sub, coat)}
-
-    def wear_coefficient(self, surface_set) -> tuple[float | None, str]:
-        """Archard coefficient k [m³/(N m)] of the tappet's surface material (coating, or
-        substrate if uncoated) and where it comes from: the case's ``[strength.<m>]``,
-        else the ASSUMED typical value of physics.strength for steel, dlc, wcc (labelled
-        so), else None."""
-        from ..physics.strength import TYPICAL_WEAR_COEFFICIENT
-
-        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
-        cfg = next(c for c in self.surface_set_configs if c.name == s.name)
-        mat = cfg.coating if cfg.coating is not None else cfg.substrate
-        sc = self.strength_configs.get(mat)
-        if sc is not None and sc.wear_coefficient is not None:
-            return float(sc.wear_coefficient), f"case [strength.{mat}]"
-        k = TYPICAL_WEAR_COEFFICIENT.get(mat.lower())
-        if k is not None:
-            return float(k), "assumed typical value (tribodyn.physics.strength), not measured"
-        return None, ""
-
     def _build_set(self, s: SurfaceSetConfig) -> SurfaceSet:
         cam = Body(self.material(self.cam_config.material))
         substrate = self.material(s.substrate)
@@ -747,41 +491,6 @@ class Case(Section):
             boundary_shear_strength=s.boundary_shear_strength,
             coating_material=s.coating,
         )
-
-    def dynamics_options(self) -> dict:
-        """Keyword arguments of :func:`~tribodyn.valvetrain.simulate_valvetrain` from the
-        case (engine speed and ``[numerics]``)."""
-        n = self.numerics
-        return dict(
-            engine_speed=self.engine.speed_rpm,
-            cycles=n.cycles,
-            output_step=n.output_step_deg,
-            method=n.dynamics_method,
-            rtol=n.dynamics_rtol,
-            max_step=n.max_step_deg,
-        )
-
-    def analytic_tribology(self, surface_set: SurfaceSet | str):
-        """Explicit tribology of the dynamics for one surface set
-        (:class:`~tribodyn.valvetrain.AnalyticTribology` over the cam width)."""
-        from ..valvetrain.tribology import AnalyticTribology
-
-        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
-        n = self.numerics
-        model = AnalyticTribology(
-            self.cam_config.width,
-            bodies=s.bodies,
-            lubricant=self.lubricant(),
-            roughness=s.roughness,
-            boundary_shear_coefficient=s.boundary_shear_coefficient,
-            viscous_model=n.viscous_model,
-            film_formula=n.film_formula,
-            limiting_shear=n.limiting_shear,
-        )
-        # τ₀ is not a constructor argument of AnalyticTribology; it is forwarded through
-        # the keyword arguments it passes to analytic_contact.
-        model.kwargs["boundary_shear_strength"] = s.boundary_shear_strength
-        return model
 
 
 # ----------------------------------------------------------------------------- loading

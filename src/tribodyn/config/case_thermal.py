@@ -1,0 +1,138 @@
+"""Builders of the thermal model's inputs from a validated case (:class:`~tribodyn.config.case.Case`
+inherits them): the temperature- and pressure-dependent oil, the materials' thermal
+properties, the thermal bodies of a surface set and the thermal solver's options.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from .._validation import InputError
+from ..contact.ehl.thermal import ThermalOptions
+from ..physics.heat_conduction import ThermalBody, ThermalProperties
+from ..physics.oils import OILS, THERMAL_MATERIALS
+from ..physics.thermal_oil import ThermalLubricant
+
+if TYPE_CHECKING:
+    from .case import SurfaceSet
+    from .schema import CamConfig, LubricantConfig, MaterialConfig, Numerics, SurfaceSetConfig
+
+
+class ThermalBuilders:
+    """The thermal oil, thermal bodies and thermal options of a
+    :class:`~tribodyn.config.case.Case`."""
+
+    if TYPE_CHECKING:  # the fields and methods of Case these builders use
+        lubricant_config: LubricantConfig
+        materials: dict[str, MaterialConfig]
+        surface_set_configs: list[SurfaceSetConfig]
+        cam_config: CamConfig
+        numerics: Numerics
+
+        def surface_set(self, name: str) -> SurfaceSet: ...
+
+    def thermal_lubricant(self) -> ThermalLubricant:
+        """The temperature- and pressure-dependent oil of ``[lubricant]``
+        (:class:`~tribodyn.physics.thermal_oil.ThermalLubricant`): a datasheet, or the
+        viscosity at ``inlet_temperature_c`` with its ``viscosity_temperature_coefficient``."""
+        c = self.lubricant_config
+        if c.inlet_temperature_c is None:
+            raise InputError(
+                "lubricant.inlet_temperature_c: required for the thermal model "
+                "(the oil supply temperature, °C)"
+            )
+        common: dict[str, Any] = dict(
+            inlet_temperature=c.inlet_temperature_c + 273.15,
+            thermal_expansion=c.thermal_expansion,
+            thermal_conductivity=c.thermal_conductivity,
+            specific_heat=c.specific_heat,
+            eyring_stress=c.eyring_stress,
+            limiting_shear_coefficient=c.limiting_shear_coefficient,
+            limiting_shear_stress=c.limiting_shear_stress,
+            limiting_shear_temperature_coefficient=(c.limiting_shear_temperature_coefficient),
+            compressible=c.compressible,
+            viscosity_model=c.viscosity_model,
+        )
+        given = c.model_fields_set
+        if c.datasheet:
+            sheet: dict[str, Any] = dict(OILS[c.oil]) if c.oil is not None else {}
+            name = c.oil or "datasheet oil"
+            sheet.pop("description", None)
+            if c.kinematic_viscosity_40_cst is not None:
+                sheet["kinematic_viscosity_40"] = c.kinematic_viscosity_40_cst * 1e-6
+            if c.kinematic_viscosity_100_cst is not None:
+                sheet["kinematic_viscosity_100"] = c.kinematic_viscosity_100_cst * 1e-6
+            if c.density_15 is not None:
+                sheet["density"] = c.density_15
+            alpha = c.pressure_viscosity if "pressure_viscosity" in given else None
+            return ThermalLubricant(**common, **sheet, pressure_viscosity=alpha, name=name)
+        if c.viscosity_temperature_coefficient is None:
+            raise InputError(
+                "lubricant.viscosity_temperature_coefficient: required for the "
+                "thermal model with a viscosity (or give a datasheet: oil, "
+                "kinematic_viscosity_40_cst/_100_cst)"
+            )
+        return ThermalLubricant(
+            **common,
+            viscosity=c.viscosity,
+            viscosity_temperature_coefficient=(c.viscosity_temperature_coefficient),
+            density=c.density,
+            density_temperature=c.inlet_temperature_c + 273.15,
+            pressure_viscosity=c.pressure_viscosity,
+            name="lubricant",
+        )
+
+    def thermal_properties(self, name: str) -> ThermalProperties:
+        """k, ρ, c of ``[materials.<name>]`` (steel, dlc and wcc default to the literature
+        values of :mod:`tribodyn.physics.oils`)."""
+        m = self.materials[name]
+        d = dict(THERMAL_MATERIALS.get(name, {}))
+        for key, val in (
+            ("conductivity", m.thermal_conductivity),
+            ("density", m.density),
+            ("specific_heat", m.specific_heat),
+        ):
+            if val is not None:
+                d[key] = val
+        missing = [k for k in ("conductivity", "density", "specific_heat") if k not in d]
+        if missing:
+            names = {"conductivity": "thermal_conductivity"}
+            raise InputError(
+                "; ".join(
+                    f"materials.{name}.{names.get(k, k)}: required for the thermal model"
+                    for k in missing
+                )
+            )
+        return ThermalProperties(**d)
+
+    def thermal_bodies(self, surface_set: SurfaceSet | str) -> tuple:
+        """(cam, tappet) as :class:`~tribodyn.physics.heat_conduction.ThermalBody`."""
+        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
+        cfg = next(c for c in self.surface_set_configs if c.name == s.name) if s.name else None
+        cam = ThermalBody(self.thermal_properties(self.cam_config.material))
+        sub = (
+            cfg.substrate
+            if cfg is not None
+            else ("steel" if "steel" in self.materials else self.cam_config.material)
+        )
+        coat = s.coating_material if cfg is None else cfg.coating
+        if coat is None:
+            tappet = ThermalBody(self.thermal_properties(sub))
+        else:
+            coating = s.bodies[1].coating
+            assert coating is not None  # a coated set's tappet carries its coating
+            tappet = ThermalBody(
+                self.thermal_properties(sub), self.thermal_properties(coat), coating.thickness
+            )
+        return cam, tappet
+
+    def thermal_options(self) -> ThermalOptions:
+        """:class:`~tribodyn.contact.ehl.thermal.ThermalOptions` from ``[numerics]``."""
+        n = self.numerics
+        return ThermalOptions(
+            x_nodes=n.thermal_x_nodes,
+            film_nodes=n.thermal_film_nodes,
+            solid_nodes=n.thermal_solid_nodes,
+            step_iter=n.thermal_iterations,
+            tol=n.thermal_tol,
+        )

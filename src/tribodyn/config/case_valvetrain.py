@@ -1,0 +1,172 @@
+"""Builders of the cam, the valvetrain and the dynamics' options and explicit tribology from
+a validated case (:class:`~tribodyn.config.case.Case` inherits them).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+from .._validation import InputError
+from ..valvetrain.cams import AccelerationCam, CamProfile, CircularArcCam, TabulatedCam
+from ..valvetrain.camshaft import Camshaft
+from ..valvetrain.flexible import FlexibleValvetrain, TappetGeometry, ValveGeometry
+from ..valvetrain.parameters import ValvetrainParameters
+from ..valvetrain.spring import HelicalSpring
+from .errors import CamTableError
+from .schema import SpringConfig, TappetConfig, ValveConfig
+
+if TYPE_CHECKING:
+    from pathlib import Path
+    from typing import Any
+
+    from ..physics.lubricant import Lubricant
+    from .case import SurfaceSet
+    from .schema import CamConfig, Engine, Numerics, Valvetrain
+
+
+class CamValvetrainBuilders:
+    """The cam profile, valvetrain parameters (lumped or flexible), dynamics options and
+    explicit tribology of a :class:`~tribodyn.config.case.Case`."""
+
+    if TYPE_CHECKING:  # the fields and methods of Case these builders use
+        cam_config: CamConfig
+        valvetrain: Valvetrain
+        numerics: Numerics
+        engine: Engine
+        _cam: Any
+
+        @property
+        def cam_table_path(self) -> Path | None: ...
+
+        def surface_set(self, name: str) -> SurfaceSet: ...
+
+        def lubricant(self) -> Lubricant: ...
+
+    def _build_cam(self) -> CamProfile:
+        c = self.cam_config
+        tr = self.valvetrain.tappet_radius
+        if c.type == "acceleration":
+            return AccelerationCam(
+                c.base_radius,
+                c.max_lift,
+                event_angle=math.radians(c.event_angle_deg),
+                nose_radius=c.nose_radius,
+                ramp_height=c.ramp_height,
+                ramp_angle=math.radians(c.ramp_angle_deg),
+                pulse_share=c.pulse_share,
+                ramp_pulse_share=c.ramp_pulse_share,
+                nose_angle=math.radians(c.nose_angle_deg),
+                tappet_radius=tr,
+            )
+        if c.type == "circular_arc":
+            return CircularArcCam(
+                c.base_radius,
+                c.max_lift,
+                flank_radius=c.flank_radius,
+                nose_radius=c.nose_radius,
+                nose_angle=math.radians(c.nose_angle_deg),
+                tappet_radius=tr,
+            )
+        try:
+            cam = TabulatedCam.from_csv(
+                self.cam_table_path,
+                c.base_radius,
+                smoothing=c.smoothing,
+                angle_unit=c.angle_unit,
+                lift_unit=c.lift_unit,
+                angle_column=c.angle_column,
+                lift_column=c.lift_column,
+                tappet_radius=tr,
+            )
+        except InputError as exc:  # the table's own message, filed under cam.path
+            msg = str(exc)
+            if str(self.cam_table_path) not in msg:
+                msg = f"{self.cam_table_path}: {msg}"
+            raise CamTableError("path", msg) from None
+        if c.max_lift is not None and abs(cam.max_lift / c.max_lift - 1.0) > 0.01:
+            raise CamTableError(
+                "max_lift",
+                f"{c.max_lift:g} m disagrees with the lift "
+                f"table's maximum {cam.max_lift:g} m by more "
+                "than 1 %",
+            )
+        return cam
+
+    def cam(self) -> CamProfile:
+        """The cam profile (built and checked during validation)."""
+        if self._cam is None:
+            self._cam = self._build_cam()
+        return self._cam
+
+    def valvetrain_parameters(self):
+        """The valvetrain of the case: :class:`~tribodyn.valvetrain.ValvetrainParameters`
+        (``model = "lumped"``) or :class:`~tribodyn.valvetrain.flexible.FlexibleValvetrain`
+        (``"flexible"``); either runs in :func:`~tribodyn.valvetrain.simulate_valvetrain`."""
+        joints = self._joint_parameters()
+        if self.valvetrain.model == "lumped":
+            return joints
+        return self._flexible(joints)
+
+    def lumped_companion(self) -> ValvetrainParameters:
+        """The lumped model with the same masses, rate, preload and static compliances
+        (of a flexible case; a lumped case returns its own parameters)."""
+        vp = self.valvetrain_parameters()
+        return vp if isinstance(vp, ValvetrainParameters) else vp.lumped_equivalent()
+
+    @property
+    def valvetrain_model(self) -> str:
+        """``"lumped"`` or ``"flexible"``."""
+        return self.valvetrain.model
+
+    def _joint_parameters(self) -> ValvetrainParameters:
+        d = self.valvetrain.model_dump(exclude={"model", "valve", "tappet", "spring", "camshaft"})
+        return ValvetrainParameters(**d, cam_width=self.cam_config.width)
+
+    def _flexible(self, joints: ValvetrainParameters) -> FlexibleValvetrain:
+        v = self.valvetrain
+        vc = v.valve or ValveConfig()
+        tc = v.tappet or TappetConfig()
+        sc = v.spring or SpringConfig()
+        valve = ValveGeometry(**vc.model_dump())
+        tappet = TappetGeometry(**tc.model_dump(), radius=v.tappet_radius)
+        sd = sc.model_dump()
+        sd["pitches"] = None if sd["pitches"] is None else tuple(sd["pitches"])
+        spring = HelicalSpring(**sd)
+        cs = None if v.camshaft is None else Camshaft(**v.camshaft.model_dump())
+        return FlexibleValvetrain(valve, tappet, spring, joints, cs)
+
+    def dynamics_options(self) -> dict:
+        """Keyword arguments of :func:`~tribodyn.valvetrain.simulate_valvetrain` from the
+        case (engine speed and ``[numerics]``)."""
+        n = self.numerics
+        return dict(
+            engine_speed=self.engine.speed_rpm,
+            cycles=n.cycles,
+            output_step=n.output_step_deg,
+            method=n.dynamics_method,
+            rtol=n.dynamics_rtol,
+            max_step=n.max_step_deg,
+        )
+
+    def analytic_tribology(self, surface_set: SurfaceSet | str):
+        """Explicit tribology of the dynamics for one surface set
+        (:class:`~tribodyn.valvetrain.AnalyticTribology` over the cam width)."""
+        from ..valvetrain.tribology import AnalyticTribology
+
+        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
+        n = self.numerics
+        model = AnalyticTribology(
+            self.cam_config.width,
+            bodies=s.bodies,
+            lubricant=self.lubricant(),
+            roughness=s.roughness,
+            boundary_shear_coefficient=s.boundary_shear_coefficient,
+            viscous_model=n.viscous_model,
+            film_formula=n.film_formula,
+            limiting_shear=n.limiting_shear,
+        )
+        # τ₀ is not a constructor argument of AnalyticTribology; it is forwarded through
+        # the keyword arguments it passes to analytic_contact.
+        model.kwargs["boundary_shear_strength"] = s.boundary_shear_strength
+        return model

@@ -1,0 +1,350 @@
+"""Case-file sections of the lubricant and the surfaces: ``[lubricant]``, ``[materials]``
+(with strength and stress settings), roughness and ``[[surface_sets]]``, and the paper's
+(Table 6) and typical (:mod:`tribodyn.physics.typical`) materials and surface sets.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Literal
+
+from pydantic import model_validator
+
+from .. import paper
+from ..physics import limits as L
+from ..physics import typical
+from ..physics.oils import OILS
+from .errors import Problems
+from .schema_fields import _NAME_PATTERN, Section, _lim, _q
+
+
+class LubricantConfig(Section):
+    """``[lubricant]``: :class:`~tribodyn.Lubricant` (Roelands + Dowson–Higginson)."""
+
+    viscosity: float = _lim(
+        paper.LUBRICANT["viscosity"],
+        L.VISCOSITY,
+        "dynamic viscosity μ₀ at ambient pressure (Roelands needs μ₀ > exp(−9.67))",
+    )
+    pressure_viscosity: float = _lim(
+        paper.LUBRICANT["pressure_viscosity"],
+        L.PRESSURE_VISCOSITY,
+        "pressure–viscosity coefficient α",
+    )
+    density: float = _lim(paper.ASSUMED_DENSITY, L.DENSITY, "density ρ₀ at ambient pressure")
+    eyring_stress: float = _lim(
+        typical.EYRING_STRESS.value, L.EYRING_STRESS, "Eyring stress τ_E (typical)"
+    )
+    limiting_shear_coefficient: float = _lim(
+        typical.LIMITING_SHEAR_COEFFICIENT.value,
+        L.LIMITING_SHEAR_COEFFICIENT,
+        "pressure slope Λ of the limiting shear stress τ_L = τ_L0 + Λ p",
+    )
+    limiting_shear_stress: float = _lim(
+        0.0, L.LIMITING_SHEAR_STRESS, "intercept τ_L0 of the limiting shear stress (paper: 0)"
+    )
+    compressible: bool = _q(True, "", "Dowson–Higginson density (false: constant density)")
+    viscosity_model: Literal["roelands", "barus"] = _q("roelands", "", "piezo-viscosity law")
+    # -- datasheet form and thermal properties (numerics.thermal)
+    oil: Literal[tuple(OILS)] | None = _q(  # type: ignore[valid-type]
+        None, "", "bundled oil (datasheet values; the keys below override them)"
+    )
+    kinematic_viscosity_40_cst: float | None = _q(
+        None, "mm²/s", "kinematic viscosity at 40 °C (datasheet, ASTM D445)", gt=1.5, le=1e5
+    )
+    kinematic_viscosity_100_cst: float | None = _q(
+        None, "mm²/s", "kinematic viscosity at 100 °C (datasheet)", ge=1.5, le=1e4
+    )
+    density_15: float | None = _q(
+        None, "kg/m³", "density at 15 °C (datasheet)", gt=500.0, le=2000.0
+    )
+    thermal_expansion: float = _q(
+        6.5e-4, "1/K", "thermal expansion of the density ε", ge=0.0, le=3e-3
+    )
+    inlet_temperature_c: float | None = _q(
+        None,
+        "°C",
+        "oil supply (sump) temperature, also that of the solids far from the "
+        "contact; required with a datasheet or numerics.thermal",
+        gt=-40.0,
+        le=250.0,
+    )
+    viscosity_temperature_coefficient: float | None = _q(
+        None,
+        "1/K",
+        "β = −d ln μ/dT at the inlet temperature (viscosity form with numerics.thermal)",
+        gt=0.0,
+        le=0.5,
+    )
+    thermal_conductivity: float | None = _q(
+        None,
+        "W/(m K)",
+        "oil conductivity at the inlet temperature (absent: Cragoe's estimate from the density)",
+        gt=0.01,
+        le=10.0,
+    )
+    specific_heat: float | None = _q(
+        None,
+        "J/(kg K)",
+        "oil specific heat at the inlet temperature (absent: Cragoe)",
+        gt=100.0,
+        le=1e4,
+    )
+    limiting_shear_temperature_coefficient: float = _q(
+        0.0,
+        "1/K",
+        "c_L: τ_L falls by the factor 1 − c_L (T − T_inlet) (0: temperature independent)",
+        ge=0.0,
+        le=0.05,
+    )
+
+    @property
+    def datasheet(self) -> bool:
+        """Given as a datasheet (bundled oil or kinematic viscosities)."""
+        return (
+            self.oil is not None
+            or self.kinematic_viscosity_40_cst is not None
+            or self.kinematic_viscosity_100_cst is not None
+        )
+
+    @model_validator(mode="after")
+    def _forms(self):
+        problems = []
+        given = self.model_fields_set
+        if self.datasheet:
+            for k in ("viscosity", "density", "viscosity_temperature_coefficient"):
+                if k in given and getattr(self, k) is not None:
+                    problems.append(
+                        (
+                            k,
+                            "not with a datasheet oil (oil or kinematic_viscosity_"
+                            "*_cst): the viscosity and density follow from it",
+                        )
+                    )
+            if self.oil is None:
+                for k in ("kinematic_viscosity_40_cst", "kinematic_viscosity_100_cst"):
+                    if getattr(self, k) is None:
+                        problems.append((k, "required with the other kinematic viscosity"))
+            if self.inlet_temperature_c is None:
+                problems.append(
+                    (
+                        "inlet_temperature_c",
+                        "required with a datasheet oil (the temperature it is supplied at)",
+                    )
+                )
+        elif self.density_15 is not None:
+            problems.append(("density_15", "only with a datasheet oil; give density"))
+        if problems:
+            raise Problems(problems)
+        return self
+
+
+class MaterialConfig(Section):
+    """``[materials.<name>]``: an isotropic elastic material (substrate or coating)."""
+
+    E: float = _lim(..., L.YOUNGS_MODULUS, "Young's modulus")
+    nu: float = _lim(..., L.POISSON_RATIO, "Poisson's ratio")
+    boundary_shear_coefficient: float | None = _lim(
+        None,
+        L.BOUNDARY_SHEAR_COEFFICIENT,
+        "pressure coefficient ς of the boundary shear strength of its asperities (paper Eq. 17)",
+    )
+    label: str | None = _q(None, "", "display name (default: the table key)", min_length=1)
+    thermal_conductivity: float | None = _q(
+        None,
+        "W/(m K)",
+        "thermal conductivity k (numerics.thermal; steel, dlc, wcc have literature defaults)",
+        ge=1e-3,
+        le=1e4,
+    )
+    density: float | None = _q(None, "kg/m³", "density ρ (numerics.thermal)", ge=10.0, le=1e5)
+    specific_heat: float | None = _q(
+        None, "J/(kg K)", "specific heat c (numerics.thermal)", ge=10.0, le=1e5
+    )
+
+
+class StrengthConfig(Section):
+    """``[strength.<material>]``: strength of a material of the case (a key of
+    ``[materials]``) for the safety factors and wear of the cycle's stresses
+    (:mod:`tribodyn.physics.strength`). Keys not given take the typical values of
+    steel, dlc or wcc when the material has that name (assumed or sourced: see the
+    module), otherwise the factors that need them are not computed."""
+
+    tensile_strength: float | None = _q(
+        None, "Pa", "stress at which the material cracks in tension", gt=1e6, le=1e11
+    )
+    hardness: float | None = _q(None, "Pa", "indentation hardness H", gt=1e6, le=2e11)
+    yield_strength: float | None = _q(
+        None, "Pa", "tensile yield strength Y (absent: Tabor's H/3)", gt=1e6, le=1e11
+    )
+    adhesion_shear: float | None = _q(
+        None, "Pa", "shear strength of its interface to the substrate (coatings)", gt=1e5, le=1e11
+    )
+    adhesion_tensile: float | None = _q(
+        None,
+        "Pa",
+        "tensile strength of its interface to the substrate (coatings)",
+        gt=1e5,
+        le=1e11,
+    )
+    wear_coefficient: float | None = _q(
+        None,
+        "m³/(N m)",
+        "dimensional Archard wear coefficient k measured for this surface "
+        "(e.g. 1e-17 = 1e-8 mm³/(N m))",
+        ge=0.0,
+        le=1e-9,
+    )
+
+
+class StressConfig(Section):
+    """``[stress]``: subsurface stresses, safety factors and wear along the cycle."""
+
+    enabled: bool = _q(True, "", "compute the stresses of every surface set along the cycle")
+    running_hours: float | None = _q(
+        None,
+        "h",
+        "service life to check: wear depth after this many hours of running at the "
+        "case's engine speed (needs a wear coefficient)",
+        gt=0.0,
+        le=1e7,
+    )
+
+
+class RoughnessConfig(Section):
+    """``roughness = {…}``: composite Greenwood–Tripp roughness of the pair (paper Table 4)."""
+
+    asperity_density: float = _lim(..., L.ASPERITY_DENSITY, "summit density η (the paper's ζ)")
+    rms: float = _lim(..., L.ROUGHNESS_RMS, "composite RMS roughness σ")
+    summit_radius: float = _lim(..., L.SUMMIT_RADIUS, "mean summit radius β")
+
+
+class SurfaceSetConfig(Section):
+    """``[[surface_sets]]``: one tappet surface to study (the cam is uncoated)."""
+
+    name: str = _q(
+        ...,
+        "",
+        "identifier (letters, digits, _ . + -), unique",
+        min_length=1,
+        max_length=64,
+        pattern=_NAME_PATTERN,
+    )
+    coating: str | None = _q(
+        None,
+        "",
+        "coating material on the tappet (a key of [materials]); absent: uncoated",
+        min_length=1,
+    )
+    coating_thickness: float | None = _lim(
+        None, L.COATING_THICKNESS, "coating thickness (required with a coating)"
+    )
+    substrate: str = _q(
+        "steel", "", "tappet substrate material (a key of [materials])", min_length=1
+    )
+    roughness: RoughnessConfig = _q(..., "", "composite roughness of the cam/tappet pair")
+    boundary_shear_coefficient: float | None = _lim(
+        None,
+        L.BOUNDARY_SHEAR_COEFFICIENT,
+        "ς of the pair; absent: the coating's (or the substrate's if uncoated)",
+    )
+    boundary_shear_strength: float = _lim(
+        typical.BOUNDARY_SHEAR_STRENGTH.value,  # ς is then a measured boundary μ_b
+        L.BOUNDARY_SHEAR_STRENGTH,
+        "τ₀ of the boundary shear law τ = τ₀ + ς p_a (Eq. 17)",
+    )
+
+    @model_validator(mode="before")
+    @classmethod
+    def _none_coating(cls, data):
+        # ``coating = "none"`` is accepted as "uncoated" (TOML has no null).
+        if (
+            isinstance(data, dict)
+            and isinstance(data.get("coating"), str)
+            and data["coating"].strip().lower() in ("none", "")
+        ):
+            data = {k: v for k, v in data.items() if k != "coating"}
+        return data
+
+    @model_validator(mode="after")
+    def _coating_thickness(self):
+        if self.coating is not None and self.coating_thickness is None:
+            raise Problems(
+                [
+                    (
+                        "coating_thickness",
+                        f"required when a coating is named (coating = {self.coating!r}); "
+                        "give the thickness in m, e.g. 4e-6",
+                    )
+                ]
+            )
+        if self.coating is None and self.coating_thickness is not None:
+            raise Problems(
+                [
+                    (
+                        "coating_thickness",
+                        'given but no coating is named; add `coating = "<material>"` or '
+                        "remove the thickness",
+                    )
+                ]
+            )
+        return self
+
+
+def paper_materials() -> dict:
+    """Table 6 as ``[materials]`` (moduli in GPa: the paper prints "MPa")."""
+    return {k: MaterialConfig(**v) for k, v in paper.MATERIALS.items()}
+
+
+def paper_surface_sets() -> list:
+    """The bundled case's surface sets: uncoated, DLC and WC-C at 1 and 4 µm, with the
+    Table 4 roughness of the coating type (the same for both thicknesses)."""
+    sets = [
+        SurfaceSetConfig(name="uncoated", roughness=RoughnessConfig(**paper.ROUGHNESS["uncoated"]))
+    ]
+    for coat in ("dlc", "wcc"):
+        for t_um in (1, 4):
+            sets.append(
+                SurfaceSetConfig(
+                    name=f"{coat}_{t_um}um",
+                    coating=coat,
+                    coating_thickness=t_um * 1e-6,
+                    roughness=RoughnessConfig(**paper.ROUGHNESS[coat]),
+                )
+            )
+    return sets
+
+
+def typical_materials() -> dict:
+    """Default ``[materials]``: the moduli of Table 6 (elastic constants of steel, a-C:H
+    DLC and WC-C) with ς = the typical boundary friction coefficient of each surface
+    against steel in a ZDDP oil (:data:`tribodyn.physics.typical.BOUNDARY_FRICTION`, used
+    with τ₀ = 0)."""
+    mu = {"steel": "steel", "dlc": "a-C:H", "wcc": "WC-C"}
+    out = {}
+    for k, v in paper.MATERIALS.items():
+        d: dict[str, Any] = dict(v)
+        d["boundary_shear_coefficient"] = typical.boundary_friction(mu[k]).value
+        out[k] = MaterialConfig(**d)
+    return out
+
+
+def typical_surface_sets() -> list:
+    """Default surface sets: the names of the paper's sets, each with the typical composite
+    roughness of a ground cam on a ground tappet: σ from
+    :data:`~tribodyn.physics.typical.COMPOSITE_RMS`, β = σ/(σ/β) and η = ηβσ/(βσ)."""
+    sigma = typical.COMPOSITE_RMS["ground"].value
+    beta = sigma / typical.RMS_TO_SUMMIT_RADIUS.value
+    eta = typical.ROUGHNESS_PARAMETER.value / (beta * sigma)
+    rough = RoughnessConfig(asperity_density=eta, rms=sigma, summit_radius=beta)
+    sets = [SurfaceSetConfig(name="uncoated", roughness=rough)]
+    for coat in ("dlc", "wcc"):
+        for t_um in (1, 4):
+            sets.append(
+                SurfaceSetConfig(
+                    name=f"{coat}_{t_um}um",
+                    coating=coat,
+                    coating_thickness=t_um * 1e-6,
+                    roughness=rough,
+                )
+            )
+    return sets
