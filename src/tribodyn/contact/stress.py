@@ -42,6 +42,7 @@ __all__ = [
     "default_depths",
     "ehl_stresses",
     "loaded_half_width",
+    "shear_options",
 ]
 
 #: films below this [m] are taken at this value in the viscous shear (as the solver does)
@@ -61,6 +62,17 @@ class SurfaceLoads:
     boundary_shear: np.ndarray  #: τ_b ≥ 0 (magnitude)
     traction_cam: np.ndarray  #: q on the cam in +x
     traction_tappet: np.ndarray  #: q on the tappet in +x
+
+
+def shear_options(options: EHLOptions) -> dict:
+    """The surface-shear keywords of :func:`profile_surface_loads` and
+    :func:`batch_surface_loads` taken from an :class:`~tribodyn.EHLOptions`."""
+    return {
+        "viscous_model": options.viscous_model,
+        "limiting_shear": options.limiting_shear,
+        "boundary_shear_coefficient": options.boundary_shear_coefficient,
+        "boundary_shear_strength": options.boundary_shear_strength,
+    }
 
 
 def profile_surface_loads(
@@ -212,10 +224,7 @@ def surface_loads(result, bodies, lubricant, roughness=None, options=None) -> Su
         bodies,
         lubricant,
         roughness,
-        viscous_model=opts.viscous_model,
-        limiting_shear=opts.limiting_shear,
-        boundary_shear_coefficient=opts.boundary_shear_coefficient,
-        boundary_shear_strength=opts.boundary_shear_strength,
+        **shear_options(opts),
     )
 
 

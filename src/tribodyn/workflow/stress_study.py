@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..contact.stress import batch_surface_loads, loaded_half_width
+from ..contact.stress import batch_surface_loads, loaded_half_width, shear_options
 from ..physics.materials import as_bodies
 from ..physics.strength import (
     TYPICAL_STRENGTH,
@@ -164,10 +164,7 @@ def stress_along_cycle(
             pair,
             lubricant,
             roughness,
-            viscous_model=opts.viscous_model,
-            limiting_shear=opts.limiting_shear,
-            boundary_shear_coefficient=opts.boundary_shear_coefficient,
-            boundary_shear_strength=opts.boundary_shear_strength,
+            **shear_options(opts),
         )
         for r, i in enumerate(samples):
             loads[int(i)] = (xs[r], ld.pressure[r], ld.traction_cam[r], ld.traction_tappet[r])

@@ -61,7 +61,7 @@ def stress_field_at(ds, name: str, index: int, body: str, nz: int = 121):
     """Stress field of ``body`` ("cam"/"tappet") of set ``name`` at EHL sample ``index``
     of ``results.nc``: (SubsurfaceStress, coating thickness [m] or None, half-width b)."""
     from ...config.case import Case
-    from ...contact.stress import loaded_half_width, profile_surface_loads
+    from ...contact.stress import loaded_half_width, profile_surface_loads, shear_options
     from ...physics.stress import subsurface_stress
 
     # only the surfaces, the oil and the EHL options are needed: the cam section is left
@@ -82,10 +82,7 @@ def stress_field_at(ds, name: str, index: int, body: str, nz: int = 121):
         s.bodies,
         case.lubricant(),
         s.roughness,
-        viscous_model=opts.viscous_model,
-        limiting_shear=opts.limiting_shear,
-        boundary_shear_coefficient=opts.boundary_shear_coefficient,
-        boundary_shear_strength=opts.boundary_shear_strength,
+        **shear_options(opts),
     )
     b = loaded_half_width(x, ld.pressure)
     bod = s.cam if body == "cam" else s.tappet
