@@ -198,3 +198,9 @@ def test_asperity_scale_estimate_in_summary_and_report(light_study):
     )
     lines = stress_section(summ)
     assert sum(ln.startswith(("| cam | ", "| tappet | ")) for ln in lines) == 4
+    # the paper's Table 4 summits (β ≈ σ) are far too sharp for Hertz: said so
+    assert (
+        summ["surface_sets"]["uncoated"]["asperity_scale_estimate"]["cam"]["radius_over_summit"]
+        > 0.3
+    )
+    assert any("a/β > 0.3" in ln for ln in lines)

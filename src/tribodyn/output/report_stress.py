@@ -96,12 +96,14 @@ def _asperity_lines(sets: dict) -> list[str]:
     """The asperity-scale ESTIMATE (physics.asperity_stress) of each set, beside the
     EHL-scale margins above."""
     rows = []
+    outside = 0  # rows with a/β above 0.3: outside small-strain Hertz theory
     for name, e in sets.items():
         a = e.get("asperity_scale_estimate")
         if not a:
             continue
         for body in ("cam", "tappet"):
             b = a[body]
+            outside += (b.get("radius_over_summit") or 0.0) > 0.3
             rows.append(
                 "| {body} | {label} | {lam} | {pm} | {rad} | {ab} | {vm} | {z} | {sfy} | {sft} |".format(
                     label=e.get("label", name),
@@ -130,4 +132,12 @@ def _asperity_lines(sets: dict) -> list[str]:
         "| yield factor | tension factor |",
         "|---|---|---|---|---|---|---|---|---|---|",
         *rows,
-    ]
+    ] + (
+        [
+            "",
+            f"In {outside} of these rows a/β > 0.3: the summits are too sharp for Hertz "
+            "theory, and the rows only say that they are loaded far beyond yield.",
+        ]
+        if outside
+        else []
+    )

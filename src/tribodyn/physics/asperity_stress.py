@@ -30,9 +30,11 @@ What this is and is not:
 
 * an ESTIMATE of the typical micro-contact, not of the most loaded one (the highest
   summits carry more than the mean pressure);
-* elastic and frictionless: the local boundary traction (τ_b per real area) is not
-  included; it raises the tension at the trailing edge and moves the von Mises maximum
-  towards the surface;
+* elastic and frictionless: the local boundary traction (τ_b per real area, ratio
+  τ_b/p_a to the pressure) is not included. On the axis the traction's own σ_xx, σ_yy,
+  σ_zz vanish (they are odd in x) and it adds only σ_xz, so the subsurface von Mises
+  maximum changes by O((τ_b/p_a)²) while small; the tension at the trailing edge grows
+  in proportion to it and is underestimated here;
 * homogeneous: valid for a coating when the micro-contact is small against its thickness
   (a ≪ h); the ratio a/h is reported;
 * Hertz theory needs a ≪ β: the ratio a/β is reported. At a/β ≳ 0.3 (sharp summits,
