@@ -126,6 +126,12 @@ def test_cycle_estimate_at_the_smallest_film_with_the_surface_strengths():
     assert est["tappet"]["radius_over_thickness"] == pytest.approx(est["tappet"]["radius_m"] / 2e-6)
     assert "radius_over_thickness" not in est["cam"]
     assert asperity_estimate(result, (cam, tappet), None, strengths) is None
+    # no summit touches: no numbers (None in summary.json, not NaN)
+    far = SimpleNamespace(**{**vars(result), "min_film": np.full(5, 40.0 * rough.rms)})
+    est = asperity_estimate(far, (cam, tappet), rough, strengths)
+    assert est["cam"]["max_von_mises_Pa"] is None
+    assert est["tappet"]["safety_factor_yield"] is None
+    assert est["tappet"]["radius_over_thickness"] is None
 
 
 def test_bad_inputs_are_input_errors():

@@ -95,13 +95,13 @@ def mean_micro_contact_pressure(roughness: Roughness, gap, reduced_modulus: floa
     (module docstring), with the model's own p_a and A_a/A (paper Eqs. 6, 18)."""
     e = check_positive("reduced_modulus", reduced_modulus, "Pa")
     lam = np.asarray(gap, dtype=float) / roughness.rms
-    f52 = greenwood_tripp(2.5, lam, roughness.method)
-    f2 = greenwood_tripp(2.0, lam, roughness.method)
+    f52 = np.asarray(greenwood_tripp(2.5, lam, roughness.method), dtype=float)
+    f2 = np.asarray(greenwood_tripp(2.0, lam, roughness.method), dtype=float)
     scale = (
         8.0 * math.sqrt(2.0) / (15.0 * math.pi) * math.sqrt(roughness.rms / roughness.summit_radius)
     )
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(f2 > 0.0, scale * e * f52 / f2, np.nan)
+    touching = f2 > 0.0  # F_2 underflows to 0 where no summit touches
+    return np.where(touching, scale * e * f52 / np.where(touching, f2, 1.0), np.nan)
 
 
 @dataclass(frozen=True)
@@ -123,7 +123,9 @@ def micro_contact_estimate(
     roughness: Roughness, gap: float, reduced_modulus: float, nu: float
 ) -> MicroContactEstimate:
     """The micro-contact estimate at gap h [m] for the surface material of Poisson's ratio
-    ``nu`` (``reduced_modulus``: E' of the two surface materials, 1/E' = ½Σ(1−ν²)/E)."""
+    ``nu`` (``reduced_modulus``: E' of the two surface materials, 1/E' = ½Σ(1−ν²)/E).
+    Its stresses and radius are NaN where no summit touches (F_2 = 0 in double precision,
+    h/σ ≳ 37)."""
     e = check_positive("reduced_modulus", reduced_modulus, "Pa")
     nu = POISSON_RATIO.check("nu", nu)
     pm = float(mean_micro_contact_pressure(roughness, gap, e))

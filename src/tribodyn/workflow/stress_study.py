@@ -385,15 +385,16 @@ def asperity_estimate(result, bodies, roughness, strengths: dict | None = None) 
         est = micro_contact_estimate(roughness, float(hmin[i]), e_s, body.surface.nu)
         sub, coat = (strengths or {}).get(name, (None, None))
         mat = coat if body.is_coated else sub
+        # None where no summit touches (F_2 = 0 beyond h/σ ≈ 37)
         entry = {
-            "gap_ratio": est.gap_ratio,
-            "mean_pressure_Pa": est.mean_pressure,
-            "peak_pressure_Pa": est.peak_pressure,
-            "radius_m": est.radius,
-            "radius_over_summit": est.radius_over_summit,
-            "max_von_mises_Pa": est.max_von_mises,
-            "depth_m": est.depth,
-            "edge_tension_Pa": est.edge_tension,
+            "gap_ratio": _finite(est.gap_ratio),
+            "mean_pressure_Pa": _finite(est.mean_pressure),
+            "peak_pressure_Pa": _finite(est.peak_pressure),
+            "radius_m": _finite(est.radius),
+            "radius_over_summit": _finite(est.radius_over_summit),
+            "max_von_mises_Pa": _finite(est.max_von_mises),
+            "depth_m": _finite(est.depth),
+            "edge_tension_Pa": _finite(est.edge_tension),
             "safety_factor_yield": _finite(mat.yield_stress / est.max_von_mises)
             if mat is not None
             else None,
@@ -402,7 +403,7 @@ def asperity_estimate(result, bodies, roughness, strengths: dict | None = None) 
             else None,
         }
         if body.coating is not None:
-            entry["radius_over_thickness"] = est.radius / body.coating.thickness
+            entry["radius_over_thickness"] = _finite(est.radius / body.coating.thickness)
         out[name] = entry
     return out
 
