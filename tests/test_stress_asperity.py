@@ -4,7 +4,8 @@ mean micro-contact pressure of the Greenwood–Tripp model.
 References: Boussinesq's point-load field integrated numerically over the Hertz pressure
 (independent of the closed form under test); Hertz's sphere (Johnson, Contact Mechanics,
 §4.2); the published maximum shear 0.31 p0 at 0.47–0.48a for ν = 0.3 and the edge
-tension (1 − 2ν)p0/3 (Johnson Eqs. 3.44–3.45)."""
+tension (1 − 2ν)p0/3 (Johnson §3.4; both as quoted in secondary sources, e.g.
+"Rules of Thumb for Mechanical Engineers", p. 230, for the edge tension)."""
 
 from __future__ import annotations
 
@@ -32,7 +33,7 @@ def _boussinesq_axis(zeta: float, nu: float) -> tuple[float, float]:
     """σ_z/p0, σ_r/p0 on the axis of the Hertz pressure p0√(1 − r²) (a = 1), summed from
     Boussinesq's point loads on rings: a ring of load dP at radius r gives on the axis
     σ_z = −3 dP z³/(2πρ⁵) and σ_r = ½(σ_r + σ_θ) of the point load,
-    dP/(4π)[(1 − 2ν) z/ρ³ − 3 z r²/ρ⁵], ρ² = r² + z² (Johnson Eqs. 3.2)."""
+    dP/(4π)[(1 − 2ν) z/ρ³ − 3 z r²/ρ⁵], ρ² = r² + z² (Boussinesq; Johnson §3.2)."""
     z = zeta
 
     def dp(r):
@@ -57,7 +58,7 @@ def test_axis_field_against_boussinesq_quadrature(nu):
         sz, sr = hertz_sphere_axis_stress(zeta, nu)
         assert float(sz) == pytest.approx(sz_ref, abs=1e-8)
         assert float(sr) == pytest.approx(sr_ref, abs=1e-8)
-    # at the surface: σ_z = −p0, σ_r = −(1 + 2ν)p0/2 (Johnson Eq. 3.43 at r = 0)
+    # at the surface: σ_z = −p0, σ_r = −(1 + 2ν)p0/2 (Johnson §3.4, at r = 0)
     sz0, sr0 = hertz_sphere_axis_stress(0.0, nu)
     assert float(sz0) == pytest.approx(-1.0, abs=1e-12)
     assert float(sr0) == pytest.approx(-(1.0 + 2.0 * nu) / 2.0, abs=1e-12)

@@ -11,12 +11,12 @@ load over real contact area)::
 (paper Eqs. 6 and 18, :mod:`.asperity`; F_{5/2}/F_2 falls monotonically with λ, so p_m
 is largest at the smallest gap). A summit is a sphere of radius β (Greenwood &
 Williamson, Proc. R. Soc. A 295 (1966) 300) pressed on a flat with the Hertz mean
-pressure p_m (Johnson, *Contact Mechanics*, 1985, §4.2, Eq. 4.23–4.24, with
+pressure p_m (Johnson, *Contact Mechanics*, 1985, §4.2, with
 E* = E'/2 in this project's convention)::
 
     p0 = 3 p_m / 2,   a = 3π β p_m / (4 E*)
 
-Its stresses on the axis (Johnson Eq. 3.45; compression negative, ζ = z/a)::
+Its stresses on the axis (Johnson §3.4; compression negative, ζ = z/a)::
 
     σ_z/p0 = −1/(1 + ζ²)
     σ_r/p0 = σ_θ/p0 = −(1 + ν)(1 − ζ arctan(1/ζ)) + 1/(2(1 + ζ²))
@@ -24,7 +24,7 @@ Its stresses on the axis (Johnson Eq. 3.45; compression negative, ζ = z/a)::
 so the von Mises stress on the axis is |σ_r − σ_z| (two equal principal stresses); its
 maximum (≈ 0.62 p0 at ≈ 0.48a for ν = 0.3, twice the maximum shear 0.31 p0 quoted in the
 literature) is found numerically. The largest tensile stress is the radial stress at
-the edge of the contact circle, σ_r = (1 − 2ν) p0/3 (Johnson Eq. 3.44).
+the edge of the contact circle, σ_r = (1 − 2ν) p0/3 (Johnson §3.4).
 
 What this is and is not:
 
@@ -67,7 +67,7 @@ __all__ = [
 
 def hertz_sphere_axis_stress(zeta, nu: float) -> tuple[np.ndarray, np.ndarray]:
     """σ_z/p0 and σ_r/p0 (= σ_θ/p0) on the axis of a Hertzian circular contact at depths
-    ζ = z/a ≥ 0 (Johnson Eq. 3.45; compression negative)."""
+    ζ = z/a ≥ 0 (Johnson §3.4; compression negative)."""
     nu = POISSON_RATIO.check("nu", nu)
     z = np.asarray(zeta, dtype=float)
     if np.any(~np.isfinite(z)) or np.any(z < 0.0):
