@@ -35,7 +35,12 @@ def main():
         rows = {
             n: {
                 k: e.get(k)
-                for k in ("stress_closest_failure", "min_safety_factor", "safety_factors")
+                for k in (
+                    "stress_closest_failure",
+                    "min_safety_factor",
+                    "safety_factors",
+                    "asperity_scale_estimate",
+                )
             }
             for n, e in summ["surface_sets"].items()
         }

@@ -173,3 +173,34 @@ def test_disabled_stresses_are_not_computed(light_study):
     assert _stress_step(off, s, study.set("dlc_4um"), study.inputs) is None
     on = _stress_step(study.case, s, study.set("dlc_4um"), study.inputs)
     assert on.safety_factors == study.stresses["dlc_4um"].safety_factors
+
+
+def test_asperity_scale_estimate_in_summary_and_report(light_study):
+    from tribodyn.output.report_stress import stress_section
+    from tribodyn.physics.asperity_stress import micro_contact_estimate
+    from tribodyn.physics.materials import reduced_modulus
+
+    study = light_study
+    summ = study.analyse().summary
+    for name in ("uncoated", "dlc_4um"):
+        a = summ["surface_sets"][name]["asperity_scale_estimate"]
+        res = study.set(name)
+        ok = res.loaded & res.converged
+        i = int(np.nanargmin(np.where(ok, res.min_film, np.nan)))
+        assert a["crank_deg"] == float(res.crank_angle[i])
+        s = study.case.surface_set(name)
+        e_s = reduced_modulus(s.bodies, surface=True)
+        ref = micro_contact_estimate(s.roughness, float(res.min_film[i]), e_s, 0.3)
+        assert a["cam"]["max_von_mises_Pa"] == pytest.approx(ref.max_von_mises)
+    assert (
+        "radius_over_thickness"
+        in summ["surface_sets"]["dlc_4um"]["asperity_scale_estimate"]["tappet"]
+    )
+    lines = stress_section(summ)
+    assert sum(ln.startswith(("| cam | ", "| tappet | ")) for ln in lines) == 4
+    # the paper's Table 4 summits (β ≈ σ) are far too sharp for Hertz: said so
+    assert (
+        summ["surface_sets"]["uncoated"]["asperity_scale_estimate"]["cam"]["radius_over_summit"]
+        > 0.3
+    )
+    assert any("a/β > 0.3" in ln for ln in lines)

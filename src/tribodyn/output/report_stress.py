@@ -72,6 +72,7 @@ def stress_section(summary: dict, heading: str = "## Coating integrity") -> list
             f"x = {w['x_m'] * 1e6:.1f} µm, z = {w['z_m'] * 1e6:.2f} µm, "
             f"safety factor {w['safety_factor']:.2f}.",
         ]
+    out += _asperity_lines(sets)
     srcs = {e.get("wear_coefficient_source") for e in sets.values()} - {None}
     if srcs:
         out += ["", "Wear coefficients: " + "; ".join(sorted(srcs)) + "."]
@@ -89,3 +90,54 @@ def stress_section(summary: dict, heading: str = "## Coating integrity") -> list
         ]
     out.append("")
     return out
+
+
+def _asperity_lines(sets: dict) -> list[str]:
+    """The asperity-scale ESTIMATE (physics.asperity_stress) of each set, beside the
+    EHL-scale margins above."""
+    rows = []
+    outside = 0  # rows with a/β above 0.3: outside small-strain Hertz theory
+    for name, e in sets.items():
+        a = e.get("asperity_scale_estimate")
+        if not a:
+            continue
+        for body in ("cam", "tappet"):
+            b = a[body]
+            outside += (b.get("radius_over_summit") or 0.0) > 0.3
+            rows.append(
+                "| {body} | {label} | {lam} | {pm} | {rad} | {ab} | {vm} | {z} | {sfy} | {sft} |".format(
+                    label=e.get("label", name),
+                    body=body,
+                    lam=_f(b.get("gap_ratio"), ".2f"),
+                    pm=_f(b.get("mean_pressure_Pa"), ".0f", 1e-6),
+                    rad=_f(b.get("radius_m"), ".2f", 1e6),
+                    ab=_f(b.get("radius_over_summit"), ".2f"),
+                    vm=_f(b.get("max_von_mises_Pa"), ".0f", 1e-6),
+                    z=_f(b.get("depth_m"), ".2f", 1e6),
+                    sfy=_f(b.get("safety_factor_yield"), ".2f"),
+                    sft=_f(b.get("safety_factor_tension"), ".2f"),
+                )
+            )
+    if not rows:
+        return []
+    return [
+        "",
+        "Asperity scale, an ESTIMATE (tribodyn.physics.asperity_stress): one Hertzian "
+        "summit of radius β at the mean micro-contact pressure p_a/(A_a/A) at the "
+        "smallest film of the cycle; elastic, frictionless, homogeneous. Hertz needs "
+        "a/β ≪ 1; a factor below 1 means the summits yield (running-in), not that the "
+        "coating fails.",
+        "",
+        "| body | surface | h/σ | p_m [MPa] | a [µm] | a/β | von Mises [MPa] | z [µm] "
+        "| yield factor | tension factor |",
+        "|---|---|---|---|---|---|---|---|---|---|",
+        *rows,
+    ] + (
+        [
+            "",
+            f"In {outside} of these rows a/β > 0.3: the summits are too sharp for Hertz "
+            "theory, and the rows only say that they are loaded far beyond yield.",
+        ]
+        if outside
+        else []
+    )

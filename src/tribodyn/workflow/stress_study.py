@@ -21,7 +21,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..contact.stress import batch_surface_loads, loaded_half_width, shear_options
-from ..physics.materials import as_bodies
+from ..physics.asperity_stress import micro_contact_estimate
+from ..physics.materials import as_bodies, reduced_modulus
 from ..physics.strength import (
     TYPICAL_STRENGTH,
     archard_wear_depth_per_cycle,
@@ -41,6 +42,7 @@ __all__ = [
     "MODE_PEAK",
     "closest_failure",
     "set_stress_summary",
+    "asperity_estimate",
 ]
 
 #: The peaks traced for each body (attributes of SubsurfaceStress).
@@ -361,6 +363,51 @@ def closest_failure(cs: CycleStress) -> dict | None:
     return best
 
 
+def asperity_estimate(result, bodies, roughness, strengths: dict | None = None) -> dict | None:
+    """ESTIMATE of the asperity-scale stresses (:mod:`tribodyn.physics.asperity_stress`:
+    one Hertzian summit at the mean micro-contact pressure p_a/(A_a/A), frictionless,
+    homogeneous) at the smallest film of the cycle, where that pressure is largest, for
+    the surface material of each body; with the factors yield / von Mises and tensile
+    strength / edge tension of that material (``strengths`` as for
+    :func:`stress_along_cycle`; None: no factors). None without roughness or a loaded,
+    converged sample. Reported beside the EHL-scale margins, never mixed with them."""
+    if roughness is None:
+        return None
+    ok = np.asarray(result.loaded, bool) & np.asarray(result.converged, bool)
+    hmin = np.where(ok, np.asarray(result.min_film, float), np.nan)
+    if not np.any(np.isfinite(hmin)):
+        return None
+    i = int(np.nanargmin(hmin))
+    pair = as_bodies(bodies)
+    e_s = reduced_modulus(pair, surface=True)
+    out: dict = {"crank_deg": float(result.crank_angle[i]), "gap_m": float(hmin[i])}
+    for name, body in zip(("cam", "tappet"), pair, strict=True):
+        est = micro_contact_estimate(roughness, float(hmin[i]), e_s, body.surface.nu)
+        sub, coat = (strengths or {}).get(name, (None, None))
+        mat = coat if body.is_coated else sub
+        # None where no summit touches (F_2 = 0 beyond h/σ ≈ 37)
+        entry = {
+            "gap_ratio": _finite(est.gap_ratio),
+            "mean_pressure_Pa": _finite(est.mean_pressure),
+            "peak_pressure_Pa": _finite(est.peak_pressure),
+            "radius_m": _finite(est.radius),
+            "radius_over_summit": _finite(est.radius_over_summit),
+            "max_von_mises_Pa": _finite(est.max_von_mises),
+            "depth_m": _finite(est.depth),
+            "edge_tension_Pa": _finite(est.edge_tension),
+            "safety_factor_yield": _finite(mat.yield_stress / est.max_von_mises)
+            if mat is not None
+            else None,
+            "safety_factor_tension": _finite(mat.tensile_strength / est.edge_tension)
+            if mat is not None
+            else None,
+        }
+        if body.coating is not None:
+            entry["radius_over_thickness"] = _finite(est.radius / body.coating.thickness)
+        out[name] = entry
+    return out
+
+
 def set_stress_summary(study, name: str) -> dict:
     """The stress and wear entries of surface set ``name`` in ``summary.json``: the
     closest failure mode (where and when, its margin), the smallest safety factor, the
@@ -382,6 +429,10 @@ def set_stress_summary(study, name: str) -> dict:
         "stress_closest_failure": worst,
         "min_safety_factor": worst["safety_factor"] if worst else None,
     }
+    est = asperity_estimate(study.set(name), s.bodies, s.roughness, case.strengths(s))
+    if est is not None:
+        est["crank_in_cycle_deg"] = est["crank_deg"] - float(study.dynamics.crank_angle[0])
+        out["asperity_scale_estimate"] = est
     for mode in MODE_PEAK:
         v = cs.safety_factors["tappet"].get(mode)
         out[f"safety_factor_{mode}"] = _finite(v) if v is not None else None
