@@ -451,6 +451,48 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
         more = f"; did you mean {hint[0]!r}?" if hint else ""
         raise InputError(f"unknown surface set {name!r} (defined: {', '.join(names)}){more}")
 
+    def _measured_roughness(self, s: SurfaceSetConfig, rough: Roughness, bodies) -> Roughness:
+        """The set's roughness with the load–separation law of its ``measured_surface``
+        (computed at the pair's surface E' and the given hardness; cached per process)."""
+        from ..physics.materials import reduced_modulus
+        from ..topography.load_separation import (
+            measured_load_separation,
+            synthetic_load_separation,
+        )
+
+        m = s.measured_surface
+        assert m is not None  # schema validator
+        e_s = reduced_modulus(bodies, surface=True)
+        where = f"surface_sets.{s.name}.measured_surface"
+        try:
+            if m.topography is None:
+                assert m.hurst is not None and m.short_cutoff is not None
+                assert m.long_cutoff is not None
+                law = synthetic_load_separation(
+                    rough.rms,
+                    m.hurst,
+                    m.short_cutoff,
+                    m.long_cutoff,
+                    e_s,
+                    m.hardness,
+                    m.grid,
+                    m.seed,
+                )
+                return dataclasses.replace(rough, law=law)
+            p = Path(m.topography).expanduser()
+            law, sigma = measured_load_separation(
+                p if p.is_absolute() else self._base_dir / p, e_s, m.hardness
+            )
+        except InputError as e:
+            raise InputError(f"{where}: {e}") from None
+        if abs(sigma - rough.rms) > 0.1 * rough.rms:
+            raise InputError(
+                f"{where}.topography: the map's RMS height is {sigma:.4g} m but "
+                f"surface_sets.{s.name}.roughness.rms is {rough.rms:.4g} m; set rms to the "
+                "map's value (the law is in h/σ of the map)"
+            )
+        return dataclasses.replace(rough, rms=sigma, law=law)
+
     @property
     def surface_set_names(self) -> list[str]:
         return [s.name for s in self.surface_set_configs]
@@ -482,6 +524,8 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
             summit_radius=r.summit_radius,
             method=self.numerics.greenwood_tripp,
         )
+        if s.asperity_model == "measured":
+            rough = self._measured_roughness(s, rough, (cam, tappet))
         return SurfaceSet(
             name=s.name,
             bodies=(cam, tappet),

@@ -145,11 +145,18 @@ def periodic_heights(topography, max_points: int = 128) -> tuple[np.ndarray, flo
 
 def measured_load_separation(
     path, reduced_modulus: float, hardness: float = math.inf, max_points: int = 128
-) -> LoadSeparationLaw:
-    """Law of a measured map read from ``path`` (any format of
-    :func:`tribodyn.topography.read_topography`); see :func:`periodic_heights`."""
+) -> tuple[LoadSeparationLaw, float]:
+    """(law, RMS height σ [m]) of a measured map read from ``path`` (any format of
+    :func:`tribodyn.topography.read_topography`); see :func:`periodic_heights`. A read
+    error is raised as InputError."""
+    from .errors import TopographyReadError
     from .reading import read_topography
 
-    t = read_topography(path)
+    try:
+        t = read_topography(path)
+    except TopographyReadError as e:
+        raise InputError(str(e)) from None
     z, dx = periodic_heights(t, max_points)
-    return load_separation_law(z, dx, reduced_modulus, hardness, source=f"measured map {path}")
+    z = z - z.mean()
+    law = load_separation_law(z, dx, reduced_modulus, hardness, source=f"measured map {path}")
+    return law, float(np.sqrt(np.mean(z**2)))
