@@ -176,3 +176,57 @@ def test_law_from_elastic_plastic_contact_is_monotone_and_capped():
     assert np.all(rough.asperity_pressure_derivative(h, e_prime) <= 0.0)
     a = rough.contact_area_fraction(h)
     assert np.all((a >= 0) & (a <= 1))
+
+
+# ----------------------------------------------------------------------------- case file
+_SET = """
+[[surface_sets]]
+name = "m"
+roughness = {{ asperity_density = 1e9, rms = 0.2e-6, summit_radius = 200e-6 }}
+{extra}
+"""
+
+
+def _case(extra):
+    from tribodyn.config import Case
+
+    return Case.from_toml_string(_SET.format(extra=extra))
+
+
+@pytest.mark.parametrize(
+    "extra, match",
+    [
+        ('asperity_model = "measured"', "measured_surface"),
+        ("measured_surface = { topography = 'x.sdf' }", "asperity_model"),
+        ('asperity_model = "measured"\nmeasured_surface = { hurst = 0.8 }', "short_cutoff"),
+        (
+            'asperity_model = "measured"\nmeasured_surface = { topography = "x.sdf", hurst = 0.8 }',
+            "topography",
+        ),
+        (
+            'asperity_model = "measured"\nmeasured_surface = { hurst = 0.8, '
+            "short_cutoff = 1e-7, long_cutoff = 25e-6 }",
+            "4 pixels",
+        ),
+        ('asperity_model = "persson"', "asperity_model"),
+    ],
+)
+def test_case_asperity_model_errors_name_the_field(extra, match):
+    with pytest.raises(InputError, match=match):
+        _case(extra)
+
+
+def test_case_measured_surface_builds_a_law(tmp_path):
+    case = _case(
+        'asperity_model = "measured"\nmeasured_surface = { hurst = 0.8, short_cutoff = 3.2e-6,'
+        " long_cutoff = 6.4e-6, grid = 32, hardness = 7e9 }"
+    )
+    rough = case.surface_set("m").roughness
+    assert rough.asperity_model == "measured" and rough.law.hardness == 7e9
+    assert rough.rms == 0.2e-6
+    assert rough.asperity_pressure(0.3 * 0.2e-6, 2.3e11) > 100 * Roughness(
+        1e9, 0.2e-6, 200e-6
+    ).asperity_pressure(0.3 * 0.2e-6, 2.3e11)
+    missing = _case('asperity_model = "measured"\nmeasured_surface = { topography = "no.sdf" }')
+    with pytest.raises(InputError, match="measured_surface.*no such file"):
+        missing.surface_set("m")
