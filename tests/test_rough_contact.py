@@ -230,3 +230,19 @@ def test_case_measured_surface_builds_a_law(tmp_path):
     missing = _case('asperity_model = "measured"\nmeasured_surface = { topography = "no.sdf" }')
     with pytest.raises(InputError, match="measured_surface.*no such file"):
         missing.surface_set("m")
+
+
+def test_calibration_refuses_greenwood_tripp_parameter_with_a_law():
+    from tribodyn.physics.lubricant import Lubricant
+    from tribodyn.workflow.calibration import CalibrationSetup, FrictionData, calibrate_friction
+
+    gt = Roughness(1e9, 0.2e-6, 200e-6)
+    setup = CalibrationSetup(
+        radius=0.01,
+        lubricant=Lubricant(0.02, 2e-8),
+        roughness=Roughness(1e9, 0.2e-6, 200e-6, law=_gt_law(2.31e11, gt)),
+    )
+    ue = np.geomspace(0.01, 1.0, 8)
+    data = FrictionData(ue, 0.2 * ue, np.full(8, 2e5), np.full(8, 0.1))
+    with pytest.raises(InputError, match="roughness_parameter"):
+        calibrate_friction(data, setup, free=("roughness_parameter",))
