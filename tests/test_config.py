@@ -474,6 +474,7 @@ def test_docs_cover_every_key():
         cfg.MaterialConfig,
         cfg.RoughnessConfig,
         cfg.SurfaceSetConfig,
+        cfg.MeasuredSurfaceConfig,
         cfg.Numerics,
         cfg.StrengthConfig,
         cfg.StressConfig,
