@@ -67,9 +67,9 @@ def test_rigid_plastic_limit_is_the_bearing_area():
         assert r.mean_pressure == pytest.approx(hard * r.area_fraction, rel=1e-6)
 
 
-def test_light_load_area_coefficient_in_published_range():
-    # A/A₀ = κ p̄/(E* ∇z_rms) at light load; numerical κ lies between Persson's √(8/π) ≈ 1.60
-    # and Bush–Gibson–Thomas' √(2π) ≈ 2.51 (Paggi & Ciavarella, Wear 268 (2010) 1020)
+@pytest.fixture(scope="module")
+def light_load():
+    """Elastic contact of a 128² self-affine surface (σ 0.2 µm, H 0.8) at light loads."""
     n, dx = 128, 0.4e-6
     t = synthetic_surface(
         (n, n), dx, rms=0.2e-6, hurst=0.8, short_cutoff=3.2e-6, long_cutoff=25.6e-6, seed=1
@@ -78,14 +78,36 @@ def test_light_load_area_coefficient_in_published_range():
     q = 2 * np.pi * np.fft.fftfreq(n, dx)
     zq = np.fft.fft2(z - z.mean())
     slope = math.sqrt(float(np.sum((q[:, None] ** 2 + q[None, :] ** 2) * abs(zq) ** 2)) / n**4)
-    init = None
-    for lam in (2.0, 1.5, 1.0):
+    init, out = None, {}
+    for lam in (2.0, 1.75, 1.5, 1.25, 1.0):
         r = solve_rough_contact(z, dx, E_STAR, lam * 0.2e-6, initial=init)
         init = r.pressure
-        assert r.converged
+        assert r.converged, r.message
+        out[lam] = r
+    return slope, out
+
+
+def test_light_load_area_coefficient_in_published_range(light_load):
+    # A/A₀ = κ p̄/(E* ∇z_rms) at light load; numerical κ lies between Persson's √(8/π) ≈ 1.60
+    # and Bush–Gibson–Thomas' √(2π) ≈ 2.51 (Paggi & Ciavarella, Wear 268 (2010) 1020)
+    slope, res = light_load
+    for lam in (2.0, 1.5, 1.0):
+        r = res[lam]
         kappa = r.area_fraction * E_STAR * slope / r.mean_pressure
         assert 0.005 < r.area_fraction < 0.12
         assert math.sqrt(8 / math.pi) <= kappa <= math.sqrt(2 * math.pi), (lam, kappa)
+
+
+def test_light_load_pressure_is_exponential_in_separation(light_load):
+    # Persson, PRL 99 (2007) 125502: at small pressure p ∝ exp(−ū/u₀), u₀ of the order of
+    # the RMS roughness (Lorenz & Persson 2009: u₀ "a constant of order the rms roughness")
+    _, res = light_load
+    lam = np.array(sorted(res))
+    lnp = np.log([res[k].mean_pressure for k in lam])
+    slope, icpt = np.polyfit(lam, lnp, 1)
+    assert np.max(np.abs(lnp - (icpt + slope * lam))) < 0.1  # within 10 % of the exponential
+    u0 = -1.0 / slope  # in units of σ
+    assert 0.2 < u0 < 1.0, u0
 
 
 def test_contact_reports_non_convergence():
