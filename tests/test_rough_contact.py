@@ -249,9 +249,8 @@ def test_case_measured_surface_builds_a_law(tmp_path):
     assert rough.asperity_pressure(0.3 * 0.2e-6, 2.3e11) > 100 * Roughness(
         1e9, 0.2e-6, 200e-6
     ).asperity_pressure(0.3 * 0.2e-6, 2.3e11)
-    missing = _case('asperity_model = "measured"\nmeasured_surface = { topography = "no.sdf" }')
     with pytest.raises(InputError, match="measured_surface.*no such file"):
-        missing.surface_set("m")
+        _case('asperity_model = "measured"\nmeasured_surface = { topography = "no.sdf" }')
 
 
 def test_calibration_refuses_greenwood_tripp_parameter_with_a_law():
@@ -268,3 +267,27 @@ def test_calibration_refuses_greenwood_tripp_parameter_with_a_law():
     data = FrictionData(ue, 0.2 * ue, np.full(8, 2e5), np.full(8, 0.1))
     with pytest.raises(InputError, match="roughness_parameter"):
         calibrate_friction(data, setup, free=("roughness_parameter",))
+
+
+def test_case_measured_map_file(tmp_path):
+    # a measured map file: read, made periodic (mirrored), σ checked against roughness.rms
+    from tribodyn.config import Case
+    from tribodyn.topography import write_topography
+
+    t = synthetic_surface(
+        (48, 48), 0.4e-6, rms=0.2e-6, hurst=0.8, short_cutoff=3.2e-6, long_cutoff=9.6e-6, seed=4
+    )
+    write_topography(t, tmp_path / "pair.nc")
+    text = _SET.format(
+        extra='asperity_model = "measured"\nmeasured_surface = { topography = "pair.nc" }'
+    )
+    case = Case.from_toml_string(text, base_dir=tmp_path)
+    rough = case.surface_set("m").roughness
+    assert rough.law is not None and rough.rms == pytest.approx(0.2e-6, rel=0.1)
+    assert rough.asperity_pressure(0.0, 2.3e11) > 1e8
+    d = case.to_dict(resolve_paths=True)
+    assert d["surface_sets"][0]["measured_surface"]["topography"] == str(tmp_path / "pair.nc")
+    with pytest.raises(InputError, match=r"topography.*RMS height"):
+        Case.from_toml_string(text.replace("rms = 0.2e-6", "rms = 0.4e-6"), base_dir=tmp_path)
+    with pytest.raises(InputError, match=r"measured_surface.topography.*no such file"):
+        Case.from_toml_string(text.replace("pair.nc", "other.nc"), base_dir=tmp_path)

@@ -193,6 +193,11 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
                             f"required: material {mat!r} has no boundary_shear_coefficient",
                         )
                     )
+            if s.measured_surface is not None and s.measured_surface.topography is not None:
+                try:  # cheap checks before any computing: the map reads, its σ matches
+                    self._measured_map(s)
+                except InputError as exc:
+                    problems.append((f"{p}.measured_surface.topography", str(exc)))
         builds = [
             ("lubricant", self.lubricant),
             ("valvetrain", self.valvetrain_parameters),
@@ -315,7 +320,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
     # -- serialisation ------------------------------------------------------------------
     def to_dict(self, *, resolve_paths: bool = False) -> dict:
         """Plain dict of all keys (absent optional keys omitted: TOML has no null).
-        ``resolve_paths=True`` makes the cam table path absolute."""
+        ``resolve_paths=True`` makes the cam table path and measured maps absolute."""
         d = self.model_dump(mode="python", exclude_none=True, by_alias=True)
         d["cam"] = {"type": d["cam"].pop("type"), **d["cam"]}
         if self.valvetrain.model == "flexible":  # the bodies give these
@@ -328,6 +333,13 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
                     d["lubricant"].pop(k, None)
         if resolve_paths and self.cam_config.type == "table":
             d["cam"]["path"] = str(self.cam_table_path)
+        if resolve_paths:  # measured maps of the surface sets, absolute
+            for i, sc in enumerate(self.surface_set_configs):
+                m = sc.measured_surface
+                if m is not None and m.topography is not None:
+                    p = Path(m.topography).expanduser()
+                    p = p if p.is_absolute() else self._base_dir / p
+                    d["surface_sets"][i]["measured_surface"]["topography"] = str(p)
         return d
 
     def to_toml(self, *, resolve_paths: bool = False) -> str:
@@ -456,7 +468,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
         (computed at the pair's surface E' and the given hardness; cached per process)."""
         from ..physics.materials import reduced_modulus
         from ..topography.load_separation import (
-            measured_load_separation,
+            load_separation_law,
             synthetic_load_separation,
         )
 
@@ -465,33 +477,45 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
         e_s = reduced_modulus(bodies, surface=True)
         where = f"surface_sets.{s.name}.measured_surface"
         try:
-            if m.topography is None:
-                assert m.hurst is not None and m.short_cutoff is not None
-                assert m.long_cutoff is not None
-                law = synthetic_load_separation(
-                    rough.rms,
-                    m.hurst,
-                    m.short_cutoff,
-                    m.long_cutoff,
-                    e_s,
-                    m.hardness,
-                    m.grid,
-                    m.seed,
+            if m.topography is not None:
+                z, dx = self._measured_map(s)
+                law = load_separation_law(
+                    z, dx, e_s, m.hardness, source=f"measured map {m.topography}"
                 )
-                return dataclasses.replace(rough, law=law)
-            p = Path(m.topography).expanduser()
-            law, sigma = measured_load_separation(
-                p if p.is_absolute() else self._base_dir / p, e_s, m.hardness
+                return dataclasses.replace(rough, rms=float(z.std()), law=law)
+            assert m.hurst is not None and m.short_cutoff is not None
+            assert m.long_cutoff is not None
+            law = synthetic_load_separation(
+                rough.rms,
+                m.hurst,
+                m.short_cutoff,
+                m.long_cutoff,
+                e_s,
+                m.hardness,
+                m.grid,
+                m.seed,
             )
+            return dataclasses.replace(rough, law=law)
         except InputError as e:
             raise InputError(f"{where}: {e}") from None
-        if abs(sigma - rough.rms) > 0.1 * rough.rms:
+
+    def _measured_map(self, s: SurfaceSetConfig):
+        """(heights, pixel) of a set's measured map, periodic and with zero mean; its RMS
+        must match ``roughness.rms`` within 10 % (the law is in h/σ of the map)."""
+        from ..topography.load_separation import read_periodic_heights
+
+        m = s.measured_surface
+        assert m is not None and m.topography is not None
+        path = Path(m.topography).expanduser()
+        z, dx = read_periodic_heights(path if path.is_absolute() else self._base_dir / path)
+        sigma = float(z.std())
+        rms = s.roughness.rms
+        if abs(sigma - rms) > 0.1 * rms:
             raise InputError(
-                f"{where}.topography: the map's RMS height is {sigma:.4g} m but "
-                f"surface_sets.{s.name}.roughness.rms is {rough.rms:.4g} m; set rms to the "
-                "map's value (the law is in h/σ of the map)"
+                f"the map's RMS height is {sigma:.4g} m but surface_sets.{s.name}.roughness."
+                f"rms is {rms:.4g} m; set rms to the map's value (the law is in h/σ of the map)"
             )
-        return dataclasses.replace(rough, rms=sigma, law=law)
+        return z, dx
 
     @property
     def surface_set_names(self) -> list[str]:

@@ -28,6 +28,8 @@ __all__ = [
     "load_separation_law",
     "synthetic_load_separation",
     "measured_load_separation",
+    "periodic_heights",
+    "read_periodic_heights",
 ]
 
 #: λ = ū/σ of the computed points (from light to heavy load).
@@ -143,20 +145,19 @@ def periodic_heights(topography, max_points: int = 128) -> tuple[np.ndarray, flo
     return z, dx
 
 
-def measured_load_separation(
-    path, reduced_modulus: float, hardness: float = math.inf, max_points: int = 128
-) -> tuple[LoadSeparationLaw, float]:
-    """(law, RMS height σ [m]) of a measured map read from ``path`` (any format of
-    :func:`tribodyn.topography.read_topography`); see :func:`periodic_heights`. A read
-    error is raised as InputError."""
-    from .errors import TopographyReadError
+def read_periodic_heights(path, max_points: int = 128) -> tuple[np.ndarray, float]:
+    """(heights with zero mean [m], pixel size [m]) of a measured map read from ``path``
+    (any format of :func:`tribodyn.topography.read_topography`), made periodic by
+    :func:`periodic_heights`. A file that cannot be read raises InputError."""
     from .reading import read_topography
 
-    try:
-        t = read_topography(path)
-    except TopographyReadError as e:
-        raise InputError(str(e)) from None
-    z, dx = periodic_heights(t, max_points)
-    z = z - z.mean()
-    law = load_separation_law(z, dx, reduced_modulus, hardness, source=f"measured map {path}")
-    return law, float(np.sqrt(np.mean(z**2)))
+    z, dx = periodic_heights(read_topography(path), max_points)
+    return z - z.mean(), dx
+
+
+def measured_load_separation(
+    path, reduced_modulus: float, hardness: float = math.inf, max_points: int = 128
+) -> LoadSeparationLaw:
+    """Law of a measured map read from ``path`` (see :func:`read_periodic_heights`)."""
+    z, dx = read_periodic_heights(path, max_points)
+    return load_separation_law(z, dx, reduced_modulus, hardness, source=f"measured map {path}")
