@@ -46,6 +46,7 @@ from .case_strength import StrengthBuilders
 from .case_thermal import ThermalBuilders
 from .case_valvetrain import CamValvetrainBuilders
 from .errors import CamTableError, Problems, format_validation_error
+from .measured_surface import measured_map, measured_roughness
 from .paths import set_path
 from .schema import (
     CAM_MODELS,
@@ -195,7 +196,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
                     )
             if s.measured_surface is not None and s.measured_surface.topography is not None:
                 try:  # cheap checks before any computing: the map reads, its σ matches
-                    self._measured_map(s)
+                    measured_map(s, self._base_dir)
                 except InputError as exc:
                     problems.append((f"{p}.measured_surface.topography", str(exc)))
         builds = [
@@ -463,60 +464,6 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
         more = f"; did you mean {hint[0]!r}?" if hint else ""
         raise InputError(f"unknown surface set {name!r} (defined: {', '.join(names)}){more}")
 
-    def _measured_roughness(self, s: SurfaceSetConfig, rough: Roughness, bodies) -> Roughness:
-        """The set's roughness with the load–separation law of its ``measured_surface``
-        (computed at the pair's surface E' and the given hardness; cached per process)."""
-        from ..physics.materials import reduced_modulus
-        from ..topography.load_separation import (
-            load_separation_law,
-            synthetic_load_separation,
-        )
-
-        m = s.measured_surface
-        assert m is not None  # schema validator
-        e_s = reduced_modulus(bodies, surface=True)
-        where = f"surface_sets.{s.name}.measured_surface"
-        try:
-            if m.topography is not None:
-                z, dx = self._measured_map(s)
-                law = load_separation_law(
-                    z, dx, e_s, m.hardness, source=f"measured map {m.topography}"
-                )
-                return dataclasses.replace(rough, rms=float(z.std()), law=law)
-            assert m.hurst is not None and m.short_cutoff is not None
-            assert m.long_cutoff is not None
-            law = synthetic_load_separation(
-                rough.rms,
-                m.hurst,
-                m.short_cutoff,
-                m.long_cutoff,
-                e_s,
-                m.hardness,
-                m.grid,
-                m.seed,
-            )
-            return dataclasses.replace(rough, law=law)
-        except InputError as e:
-            raise InputError(f"{where}: {e}") from None
-
-    def _measured_map(self, s: SurfaceSetConfig):
-        """(heights, pixel) of a set's measured map, periodic and with zero mean; its RMS
-        must match ``roughness.rms`` within 10 % (the law is in h/σ of the map)."""
-        from ..topography.load_separation import read_periodic_heights
-
-        m = s.measured_surface
-        assert m is not None and m.topography is not None
-        path = Path(m.topography).expanduser()
-        z, dx = read_periodic_heights(path if path.is_absolute() else self._base_dir / path)
-        sigma = float(z.std())
-        rms = s.roughness.rms
-        if abs(sigma - rms) > 0.1 * rms:
-            raise InputError(
-                f"the map's RMS height is {sigma:.4g} m but surface_sets.{s.name}.roughness."
-                f"rms is {rms:.4g} m; set rms to the map's value (the law is in h/σ of the map)"
-            )
-        return z, dx
-
     @property
     def surface_set_names(self) -> list[str]:
         return [s.name for s in self.surface_set_configs]
@@ -549,7 +496,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
             method=self.numerics.greenwood_tripp,
         )
         if s.asperity_model == "measured":
-            rough = self._measured_roughness(s, rough, (cam, tappet))
+            rough = measured_roughness(s, rough, (cam, tappet), self._base_dir)
         return SurfaceSet(
             name=s.name,
             bodies=(cam, tappet),
