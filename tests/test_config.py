@@ -222,6 +222,7 @@ def test_bundled_names(paper):
         "engine_dohc16",
         "example_table_cam",
         "flat_tappet_rig",
+        "flat_tappet_rig_measured",
     }
     assert load_case("andreou2023") == paper
 
@@ -473,6 +474,7 @@ def test_docs_cover_every_key():
         cfg.MaterialConfig,
         cfg.RoughnessConfig,
         cfg.SurfaceSetConfig,
+        cfg.MeasuredSurfaceConfig,
         cfg.Numerics,
         cfg.StrengthConfig,
         cfg.StressConfig,

@@ -46,6 +46,7 @@ from .case_strength import StrengthBuilders
 from .case_thermal import ThermalBuilders
 from .case_valvetrain import CamValvetrainBuilders
 from .errors import CamTableError, Problems, format_validation_error
+from .measured_surface import measured_map, measured_roughness
 from .paths import set_path
 from .schema import (
     CAM_MODELS,
@@ -193,6 +194,11 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
                             f"required: material {mat!r} has no boundary_shear_coefficient",
                         )
                     )
+            if s.measured_surface is not None and s.measured_surface.topography is not None:
+                try:  # cheap checks before any computing: the map reads, its σ matches
+                    measured_map(s, self._base_dir)
+                except InputError as exc:
+                    problems.append((f"{p}.measured_surface.topography", str(exc)))
         builds = [
             ("lubricant", self.lubricant),
             ("valvetrain", self.valvetrain_parameters),
@@ -315,7 +321,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
     # -- serialisation ------------------------------------------------------------------
     def to_dict(self, *, resolve_paths: bool = False) -> dict:
         """Plain dict of all keys (absent optional keys omitted: TOML has no null).
-        ``resolve_paths=True`` makes the cam table path absolute."""
+        ``resolve_paths=True`` makes the cam table path and measured maps absolute."""
         d = self.model_dump(mode="python", exclude_none=True, by_alias=True)
         d["cam"] = {"type": d["cam"].pop("type"), **d["cam"]}
         if self.valvetrain.model == "flexible":  # the bodies give these
@@ -328,6 +334,13 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
                     d["lubricant"].pop(k, None)
         if resolve_paths and self.cam_config.type == "table":
             d["cam"]["path"] = str(self.cam_table_path)
+        if resolve_paths:  # measured maps of the surface sets, absolute
+            for i, sc in enumerate(self.surface_set_configs):
+                m = sc.measured_surface
+                if m is not None and m.topography is not None:
+                    p = Path(m.topography).expanduser()
+                    p = p if p.is_absolute() else self._base_dir / p
+                    d["surface_sets"][i]["measured_surface"]["topography"] = str(p)
         return d
 
     def to_toml(self, *, resolve_paths: bool = False) -> str:
@@ -482,6 +495,8 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
             summit_radius=r.summit_radius,
             method=self.numerics.greenwood_tripp,
         )
+        if s.asperity_model == "measured":
+            rough = measured_roughness(s, rough, (cam, tappet), self._base_dir)
         return SurfaceSet(
             name=s.name,
             bodies=(cam, tappet),

@@ -27,6 +27,7 @@ from .schema_fields import _NAME_PATTERN, Section, _lim, _q
 from .schema_surfaces import (
     LubricantConfig,
     MaterialConfig,
+    MeasuredSurfaceConfig,
     RoughnessConfig,
     StrengthConfig,
     StressConfig,
@@ -69,6 +70,7 @@ __all__ = [
     "LUMPED_ONLY",
     "LubricantConfig",
     "MaterialConfig",
+    "MeasuredSurfaceConfig",
     "RoughnessConfig",
     "SurfaceSetConfig",
     "StrengthConfig",

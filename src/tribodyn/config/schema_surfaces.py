@@ -218,6 +218,71 @@ class RoughnessConfig(Section):
     summit_radius: float = _lim(..., L.SUMMIT_RADIUS, "mean summit radius β")
 
 
+class MeasuredSurfaceConfig(Section):
+    """``measured_surface = {…}``: the composite surface whose boundary-element contact
+    gives the asperity load–separation law (``asperity_model = "measured"``;
+    :mod:`tribodyn.topography.load_separation`). Either a measured map (``topography``)
+    or a self-affine spectrum (``hurst``, ``short_cutoff``, ``long_cutoff``) with the
+    set's roughness ``rms``."""
+
+    topography: str | None = _q(
+        None, "", "measured composite height map (any format `tribodyn topography` reads)"
+    )
+    hurst: float | None = _q(None, "", "Hurst exponent of the spectrum", gt=0.0, le=1.0)
+    short_cutoff: float | None = _q(
+        None, "m", "shortest wavelength of the spectrum (instrument resolution)", gt=1e-8, lt=1e-3
+    )
+    long_cutoff: float | None = _q(
+        None, "m", "longest wavelength of the self-affine range", gt=1e-8, lt=1e-2
+    )
+    grid: int = _q(128, "", "points per side of the synthetic map", ge=32, le=512)
+    seed: int = _q(1, "", "seed of the synthetic map", ge=0)
+    hardness: float = _q(
+        7e9,
+        "Pa",
+        "hardness of the softer surface, where asperity pressure is capped (default: "
+        "hardened steel 60 HRC, 697 HV, ASTM E140; tribodyn.physics.strength)",
+        gt=1e8,
+        le=1e11,
+    )
+
+    @model_validator(mode="after")
+    def _one_source(self):
+        spectrum = (self.hurst, self.short_cutoff, self.long_cutoff)
+        given = [v is not None for v in spectrum]
+        if self.topography is not None and any(given):
+            raise Problems(
+                [("topography", "give either a topography file or hurst/short_cutoff/long_cutoff")]
+            )
+        if self.topography is None and not all(given):
+            missing = [n for n, g in zip(("hurst", "short_cutoff", "long_cutoff"), given) if not g]
+            raise Problems(
+                [
+                    (
+                        missing[0],
+                        "required (a measured_surface needs a topography file or all of "
+                        "hurst, short_cutoff and long_cutoff)",
+                    )
+                ]
+            )
+        if self.topography is None:
+            assert self.short_cutoff is not None and self.long_cutoff is not None
+            if not 2.0 * self.short_cutoff <= self.long_cutoff:
+                raise Problems([("short_cutoff", "must be at most half of long_cutoff")])
+            if self.short_cutoff < 4.0 * (2.0 * self.long_cutoff / self.grid):
+                raise Problems(
+                    [
+                        (
+                            "short_cutoff",
+                            f"must be ≥ 4 pixels of the map (2·long_cutoff/grid = "
+                            f"{2.0 * self.long_cutoff / self.grid:.3g} m); raise grid or "
+                            "short_cutoff",
+                        )
+                    ]
+                )
+        return self
+
+
 class SurfaceSetConfig(Section):
     """``[[surface_sets]]``: one tappet surface to study (the cam is uncoated)."""
 
@@ -242,6 +307,15 @@ class SurfaceSetConfig(Section):
         "steel", "", "tappet substrate material (a key of [materials])", min_length=1
     )
     roughness: RoughnessConfig = _q(..., "", "composite roughness of the cam/tappet pair")
+    asperity_model: Literal["greenwood_tripp", "measured"] = _q(
+        "greenwood_tripp",
+        "",
+        "asperity load and area: Greenwood–Tripp from the roughness, or the law of a "
+        "measured/synthetic surface's boundary-element contact (needs measured_surface)",
+    )
+    measured_surface: MeasuredSurfaceConfig | None = _q(
+        None, "", 'the surface of asperity_model = "measured"'
+    )
     boundary_shear_coefficient: float | None = _lim(
         None,
         L.BOUNDARY_SHEAR_COEFFICIENT,
@@ -264,6 +338,24 @@ class SurfaceSetConfig(Section):
         ):
             data = {k: v for k, v in data.items() if k != "coating"}
         return data
+
+    @model_validator(mode="after")
+    def _asperity_model(self):
+        if self.asperity_model == "measured" and self.measured_surface is None:
+            raise Problems(
+                [
+                    (
+                        "measured_surface",
+                        'required with asperity_model = "measured": give { topography = '
+                        '"map.sdf" } or { hurst, short_cutoff, long_cutoff }',
+                    )
+                ]
+            )
+        if self.asperity_model == "greenwood_tripp" and self.measured_surface is not None:
+            raise Problems(
+                [("asperity_model", 'must be "measured" when measured_surface is given')]
+            )
+        return self
 
     @model_validator(mode="after")
     def _coating_thickness(self):

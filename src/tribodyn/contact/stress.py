@@ -29,7 +29,6 @@ import numpy as np
 
 from .._typing import ArrayLike
 from .._validation import InputError, check_array, check_real
-from ..physics.asperity import greenwood_tripp_table
 from ..physics.friction import boundary_shear_stress, couette_shear_stress, limit_shear_stress
 from ..physics.materials import Body, as_bodies, reduced_modulus
 from ..physics.stress import StressOperator, SubsurfaceStress
@@ -187,9 +186,9 @@ def _loads(
     pois = -0.5 * hf * dpdx
     if roughness is not None:
         e_s = reduced_modulus((cam, tappet), surface=True)
-        if roughness.method == "exact":  # the solvers' F_n tables (relative error < 1e-8)
+        if roughness.method == "exact" or roughness.law is not None:  # the solvers' path
             lam = h / roughness.rms
-            pa = roughness.pressure_scale(e_s) * greenwood_tripp_table(2.5, lam)[0]
+            pa = roughness.pressure_scale(e_s) * roughness.load_function(lam)[0]
         else:
             pa = np.asarray(roughness.asperity_pressure(h, e_s), float)
         area = np.asarray(roughness.contact_area_fraction(h, tabulated=True), float)

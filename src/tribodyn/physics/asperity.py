@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -247,12 +248,17 @@ class Roughness:
     rms : σ, composite RMS roughness of the pair [m], < 1e-4.
     summit_radius : β, mean summit radius of curvature [m], < 1e-2.
     method : "exact" F_n (default) or the paper's polynomial fits ("paper").
+    law : a :class:`~tribodyn.physics.asperity_law.LoadSeparationLaw` (the load and area
+        against h/σ of a measured surface) that replaces Greenwood–Tripp's F_5/2 and F_2;
+        None (default): Greenwood–Tripp. η and β then only describe the summits (used by
+        the Greenwood–Tripp comparisons); σ must be the RMS the law was computed with.
     """
 
     asperity_density: float
     rms: float
     summit_radius: float
     method: str = "exact"
+    law: Any = None
 
     def __post_init__(self):
         # ranges shared with the case file (physics.limits)
@@ -263,6 +269,28 @@ class Roughness:
         ):
             object.__setattr__(self, name, limit.check(name, getattr(self, name)))
         check_choice("method", self.method, ("exact", "paper"))
+        if self.law is not None and not hasattr(self.law, "pressure_ratio"):
+            raise InputError(
+                f"law must be a LoadSeparationLaw or None (got {type(self.law).__name__})"
+            )
+
+    @property
+    def asperity_model(self) -> str:
+        """``"greenwood_tripp"`` or ``"measured"`` (a tabulated load–separation law)."""
+        return "greenwood_tripp" if self.law is None else "measured"
+
+    def load_function(self, lam) -> tuple[np.ndarray, np.ndarray]:
+        """(F(λ), dF/dλ) with p_a = :meth:`pressure_scale` · F(h/σ): F_5/2 (solvers'
+        table for ``"exact"``) or the law's Φ = p_a/E'."""
+        lam = np.asarray(lam, dtype=float)
+        if self.law is not None:
+            return self.law.pressure_ratio(lam)
+        if self.method == "exact":
+            return greenwood_tripp_table(2.5, lam)
+        return (
+            np.asarray(greenwood_tripp(2.5, lam, self.method), float),
+            np.asarray(greenwood_tripp_derivative(2.5, lam, self.method), float),
+        )
 
     @property
     def roughness_parameter(self) -> float:
@@ -270,7 +298,10 @@ class Roughness:
         return self.asperity_density * self.summit_radius * self.rms
 
     def pressure_scale(self, reduced_modulus: float) -> float:
-        """K = (8√2/15) π (ηβσ)² √(σ/β) E'  [Pa], so that p_a = K F_{5/2}(h/σ)."""
+        """K = (8√2/15) π (ηβσ)² √(σ/β) E'  [Pa], so that p_a = K F_{5/2}(h/σ);
+        K = E' with a load–separation law (p_a = E' Φ(h/σ))."""
+        if self.law is not None:
+            return float(reduced_modulus)
         return (
             8.0
             * math.sqrt(2.0)
@@ -284,11 +315,16 @@ class Roughness:
     def asperity_pressure(self, gap: ArrayLike, reduced_modulus: float) -> np.ndarray | float:
         """Local asperity pressure p_a(h) [Pa] at gap h [m] (Eq. 6 per unit area)."""
         lam = np.asarray(gap, dtype=float) / self.rms
+        if self.law is not None:
+            out = reduced_modulus * self.law.pressure_ratio(lam)[0]
+            return out if out.ndim else float(out)
         return self.pressure_scale(reduced_modulus) * greenwood_tripp(2.5, lam, self.method)
 
     def asperity_pressure_derivative(self, gap, reduced_modulus: float) -> np.ndarray:
         """dp_a/dh [Pa/m] (negative: more gap, fewer contacts)."""
         lam = np.asarray(gap, dtype=float) / self.rms
+        if self.law is not None:
+            return reduced_modulus / self.rms * self.law.pressure_ratio(lam)[1]
         return (
             self.pressure_scale(reduced_modulus)
             / self.rms
@@ -296,11 +332,15 @@ class Roughness:
         )
 
     def contact_area_fraction(self, gap: ArrayLike, tabulated: bool = False) -> np.ndarray | float:
-        """Real-contact-area fraction A_a/A = π²(ηβσ)² F₂(h/σ) (Eq. 18 per unit area).
+        """Real-contact-area fraction A_a/A = π²(ηβσ)² F₂(h/σ) (Eq. 18 per unit area), or
+        the law's A/A₀(h/σ).
 
         ``tabulated``: the exact F₂ read from the solvers' interpolation table (relative
         error < 1e-8, several times faster on arrays); the paper's polynomial is direct."""
         lam = np.asarray(gap, dtype=float) / self.rms
+        if self.law is not None:
+            out = self.law.area_fraction(lam)
+            return out if out.ndim else float(out)
         if tabulated and self.method == "exact":
             f2 = greenwood_tripp_table(2.0, lam)[0]
         else:

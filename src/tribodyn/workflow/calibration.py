@@ -250,6 +250,16 @@ def calibrate_friction(
     boundary = {"boundary_shear_coefficient", "boundary_shear_strength", "roughness_parameter"}
     if setup.roughness is None and boundary & (set(free) | set(fixed)):
         raise InputError("boundary parameters cannot be fitted without a roughness")
+    rough = setup.roughness
+    if (
+        rough is not None
+        and rough.law is not None
+        and "roughness_parameter" in set(free) | set(fixed)
+    ):
+        raise InputError(
+            "roughness_parameter (ηβσ) is a Greenwood–Tripp parameter; this roughness uses "
+            "a measured load–separation law, which has none: fit ς, τ₀, τ_E or Λ instead"
+        )
 
     def to_x(name, v):
         return math.log(v) if name in _LOG else v

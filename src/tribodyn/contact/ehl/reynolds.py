@@ -4,7 +4,7 @@ Scaled variables: P = p a/w, H = h R/a², X = x/a (a: length scale of the grid).
 the total pressure Q = P + P_a (fluid + asperity) at the nodes and the rigid approach H₀.
 
 * film (Eq. 9)          H = H₀ + X²/2 + K Q        (K: DC-FFT influence operator)
-* asperities (Eq. 6)    P_a = k_a F_5/2(H/σ̄)       (Greenwood–Tripp, local)
+* asperities (Eq. 6)    P_a = k_a F(H/σ̄)           (F_5/2 of Greenwood–Tripp or a law)
 * Reynolds (Eq. 1)      d/dX(ε dP/dX) − ū d(ρ̄H)/dX − c_t (ρ̄H − f_old) = 0,
                         ε = λ ρ̄ H³ μ₀/μ, λ = h_ref² p_ref/(12 μ₀ a U)
 * load balance (Eq. 8)  ΔX Σ Q = 1
@@ -22,11 +22,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...physics.asperity import (
-    greenwood_tripp,
-    greenwood_tripp_derivative,
-    greenwood_tripp_table,
-)
 from ...physics.elasticity import DeformationOperator
 from .grid import Grid
 from .kernels import (
@@ -107,16 +102,12 @@ class ReynoldsSystem:
 
     # -- asperities and film
     def asperity(self, H):
-        """Scaled Greenwood–Tripp pressure Pa(H) and D = dPa/dH."""
+        """Scaled asperity pressure Pa(H) and D = dPa/dH (Greenwood–Tripp or the
+        roughness's load–separation law, through ``Roughness.load_function``)."""
         if self.rough is None:
             z = np.zeros_like(H)
             return z, z
-        lam = H / self.sig
-        m = self.rough.method
-        if m == "exact":
-            f, df = greenwood_tripp_table(2.5, lam)
-        else:
-            f, df = greenwood_tripp(2.5, lam, m), greenwood_tripp_derivative(2.5, lam, m)
+        f, df = self.rough.load_function(H / self.sig)
         return self.ka * f, self.ka / self.sig * df
 
     def film(self, Q, H0):

@@ -1,0 +1,61 @@
+"""Builders of a surface set's ``asperity_model = "measured"``: the load–separation law of
+its ``measured_surface`` (a measured map or a self-affine spectrum), see
+:mod:`tribodyn.topography.load_separation`."""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+
+from .._validation import InputError
+from ..physics.asperity import Roughness
+from ..physics.materials import reduced_modulus
+
+__all__ = ["measured_map", "measured_roughness"]
+
+
+def measured_map(s, base_dir: Path) -> tuple[np.ndarray, float]:
+    """(heights, pixel) of a surface set's measured map (relative paths against
+    ``base_dir``), periodic and with zero mean. Its RMS must match ``roughness.rms``
+    within 10 %: the law is in h/σ of the map."""
+    from ..topography.load_separation import read_periodic_heights
+
+    m = s.measured_surface
+    assert m is not None and m.topography is not None
+    path = Path(m.topography).expanduser()
+    z, dx = read_periodic_heights(path if path.is_absolute() else Path(base_dir) / path)
+    sigma = float(z.std())
+    rms = s.roughness.rms
+    if abs(sigma - rms) > 0.1 * rms:
+        raise InputError(
+            f"the map's RMS height is {sigma:.4g} m but surface_sets.{s.name}.roughness."
+            f"rms is {rms:.4g} m; set rms to the map's value (the law is in h/σ of the map)"
+        )
+    return z, dx
+
+
+def measured_roughness(s, rough: Roughness, bodies, base_dir: Path) -> Roughness:
+    """``rough`` with the load–separation law of the set's ``measured_surface``, computed
+    at the pair's surface E' and the given hardness (synthetic laws are cached per
+    process). Errors name the set's field."""
+    from ..topography.load_separation import load_separation_law, synthetic_load_separation
+
+    m = s.measured_surface
+    assert m is not None  # schema validator
+    e_s = reduced_modulus(bodies, surface=True)
+    where = f"surface_sets.{s.name}.measured_surface"
+    try:
+        if m.topography is not None:
+            z, dx = measured_map(s, base_dir)
+            law = load_separation_law(z, dx, e_s, m.hardness, source=f"measured map {m.topography}")
+            return dataclasses.replace(rough, rms=float(z.std()), law=law)
+        assert m.hurst is not None and m.short_cutoff is not None
+        assert m.long_cutoff is not None
+        law = synthetic_load_separation(
+            rough.rms, m.hurst, m.short_cutoff, m.long_cutoff, e_s, m.hardness, m.grid, m.seed
+        )
+        return dataclasses.replace(rough, law=law)
+    except InputError as e:
+        raise InputError(f"{where}: {e}") from None

@@ -1,0 +1,163 @@
+"""Asperity load–separation law of a measured or synthetic surface, for the EHL solver.
+
+The composite topography z of the pair is pressed against a flat elastic half-space of
+composite modulus E* = E'/2 with the contact pressure capped at the hardness H
+(:func:`tribodyn.physics.rough_contact.solve_rough_contact`) at a series of mean-plane
+separations ū = λσ. The mean pressure p̄(λ) and real-contact fraction A/A₀(λ) form a
+:class:`~tribodyn.physics.asperity_law.LoadSeparationLaw`, which a
+:class:`~tribodyn.Roughness` (``law=``) uses in place of Greenwood–Tripp.
+
+Maps: periodic maps are used as they are; a measured (non-periodic) map is detrended,
+sampled down by an integer stride to at most ``max_points`` per side, and mirrored in x
+and y into a periodic map of twice the size (continuous heights, no wrap-around step).
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import numpy as np
+
+from .._validation import InputError, check_int, check_positive
+from ..physics.asperity_law import LoadSeparationLaw
+from ..physics.rough_contact import solve_rough_contact
+
+__all__ = [
+    "DEFAULT_SEPARATIONS",
+    "load_separation_law",
+    "synthetic_load_separation",
+    "measured_load_separation",
+    "periodic_heights",
+    "read_periodic_heights",
+]
+
+#: λ = ū/σ of the computed points (from light to heavy load).
+DEFAULT_SEPARATIONS = (3.5, 3.0, 2.5, 2.0, 1.75, 1.5, 1.25, 1.0, 0.8, 0.6, 0.45, 0.3, 0.2, 0.1, 0.0)
+
+
+def load_separation_law(
+    heights,
+    pixel_size: float,
+    reduced_modulus: float,
+    hardness: float = math.inf,
+    separations=DEFAULT_SEPARATIONS,
+    source: str = "",
+) -> LoadSeparationLaw:
+    """Load–separation law of a periodic height map.
+
+    Parameters
+    ----------
+    heights : periodic 2-D map z [m] (composite topography of the pair).
+    pixel_size : [m].
+    reduced_modulus : E' [Pa] of the pair (paper convention, E' = 2E*).
+    hardness : H [Pa] of the softer surface (``inf``: elastic; then λ must stay > 0).
+    separations : λ = ū/σ of the points, σ the map's RMS height.
+
+    Raises InputError when a point does not converge (the law would be wrong there).
+    """
+    z = np.asarray(heights, dtype=float)
+    z = z - z.mean()
+    sigma = float(np.sqrt(np.mean(z**2)))
+    e_star = 0.5 * check_positive("reduced_modulus", reduced_modulus, "Pa")
+    lams = np.sort(np.asarray(separations, dtype=float))[::-1]
+    if not math.isfinite(hardness):
+        lams = lams[lams > 0.0]
+    p, a, init = [], [], None
+    for lam in lams:
+        r = solve_rough_contact(z, pixel_size, e_star, lam * sigma, hardness, initial=init)
+        if not r.converged:
+            raise InputError(f"load–separation law at h/σ = {lam:g}: {r.message}")
+        p.append(r.mean_pressure)
+        a.append(r.area_fraction)
+        init = r.pressure
+    order = np.argsort(lams)
+    return LoadSeparationLaw(
+        lams[order],
+        np.asarray(p)[order],
+        np.asarray(a)[order],
+        reduced_modulus,
+        hardness,
+        source,
+    )
+
+
+@lru_cache(maxsize=16)
+def synthetic_load_separation(
+    rms: float,
+    hurst: float,
+    short_cutoff: float,
+    long_cutoff: float,
+    reduced_modulus: float,
+    hardness: float = math.inf,
+    grid: int = 128,
+    seed: int = 1,
+) -> LoadSeparationLaw:
+    """Law of a synthetic Gaussian self-affine surface (:func:`.synthetic_surface`) of
+    RMS σ, Hurst exponent H and wavelengths ``short_cutoff``–``long_cutoff`` [m] on a
+    ``grid`` × ``grid`` periodic map of side 2 × ``long_cutoff`` (pixel = side/grid;
+    needs short_cutoff ≥ 2 pixels). Cached per process."""
+    from .synthetic import synthetic_surface
+
+    n = check_int("grid", grid)
+    if not 32 <= n <= 512:
+        raise InputError(f"grid must be within 32–512 points per side (got {n})")
+    size = 2.0 * check_positive("long_cutoff", long_cutoff, "m")
+    dx = size / n
+    t = synthetic_surface(
+        (n, n),
+        dx,
+        rms=rms,
+        hurst=hurst,
+        short_cutoff=short_cutoff,
+        long_cutoff=long_cutoff,
+        seed=seed,
+    )
+    src = (
+        f"synthetic surface σ {rms:.3g} m, H {hurst:g}, wavelengths {short_cutoff:.3g}–"
+        f"{long_cutoff:.3g} m, {n}² points, seed {seed}"
+    )
+    return load_separation_law(t.heights(), dx, reduced_modulus, hardness, source=src)
+
+
+def periodic_heights(topography, max_points: int = 128) -> tuple[np.ndarray, float]:
+    """(heights, pixel size) of an areal SurfaceTopography map ready for the periodic
+    contact: detrended; non-periodic maps sampled down to ≤ ``max_points`` per side and
+    mirrored into a periodic map (module docstring)."""
+    if getattr(topography, "dim", 2) != 2:
+        raise InputError("a load–separation law needs an areal (2-D) topography map")
+    if getattr(topography, "has_undefined_data", False):
+        topography = topography.interpolate_undefined_data()
+    t = topography.detrend("height") if not topography.is_periodic else topography
+    z = np.asarray(t.heights(), dtype=float)
+    sx, sy = t.physical_sizes
+    nx, ny = z.shape
+    if abs(sx / nx - sy / ny) > 1e-6 * sx / nx:
+        raise InputError("a load–separation law needs square pixels")
+    dx = sx / nx
+    if topography.is_periodic:
+        return z, dx
+    stride = max(1, math.ceil(max(nx, ny) / max_points))
+    z = z[::stride, ::stride]
+    dx *= stride
+    z = np.concatenate([z, z[::-1]], axis=0)
+    z = np.concatenate([z, z[:, ::-1]], axis=1)
+    return z, dx
+
+
+def read_periodic_heights(path, max_points: int = 128) -> tuple[np.ndarray, float]:
+    """(heights with zero mean [m], pixel size [m]) of a measured map read from ``path``
+    (any format of :func:`tribodyn.topography.read_topography`), made periodic by
+    :func:`periodic_heights`. A file that cannot be read raises InputError."""
+    from .reading import read_topography
+
+    z, dx = periodic_heights(read_topography(path), max_points)
+    return z - z.mean(), dx
+
+
+def measured_load_separation(
+    path, reduced_modulus: float, hardness: float = math.inf, max_points: int = 128
+) -> LoadSeparationLaw:
+    """Law of a measured map read from ``path`` (see :func:`read_periodic_heights`)."""
+    z, dx = read_periodic_heights(path, max_points)
+    return load_separation_law(z, dx, reduced_modulus, hardness, source=f"measured map {path}")
