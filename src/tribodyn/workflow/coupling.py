@@ -12,10 +12,13 @@ solution:
    μ_k(t) = F_f/F; repeat until the contact force stops changing.
 
 At the fixed point F = F_k, so the linearisation c_k = dh/dF only speeds convergence; it is
-taken from the local logarithmic slope of the Moes film formula, c = h_c (∂ln h/∂ln w)/F.
-Only changes of the film act on the motion: h_k is measured from the film at the start of
-each loaded event (the base circle carries no load and has no film). The EHL of the
-presented cycle drives both simulated cycles (the tables are periodic in the cam angle).
+the secant of the Moes film formula, limited by the squeeze film's damping over one
+sample (:func:`film_law_from_ehl`). Only changes of the film act on the motion: h_k is
+measured from the film where the cam lobe starts (a fixed lift, the same in every
+iteration); off the lobe the film has no compliance and returns slowly to that datum,
+since the lightly loaded tappet's thick base-circle film changes on a squeeze time scale
+of many crank degrees, far longer than the impacts there. The EHL of the presented cycle drives both
+simulated cycles (the tables are periodic in the cam angle).
 """
 
 from __future__ import annotations
