@@ -161,9 +161,7 @@ def film_law_from_ehl(inputs, ehl, lubricant, e_prime: float, lobe=None):
         w1 = F[i] / inputs.width
         w2 = (F[i] + SECANT_SHARE * f_peak) / inputs.width
         hm = [
-            moes_central(
-                *hamrock_groups(w, R, u, eta, lubricant.pressure_viscosity, e_prime), R
-            )
+            moes_central(*hamrock_groups(w, R, u, eta, lubricant.pressure_viscosity, e_prime), R)
             for w in (w1, w2)
         ]
         k_moes = SECANT_SHARE * f_peak / max(float(hm[0] - hm[1]), 1e-300)
