@@ -19,7 +19,9 @@ Models here: :class:`Frictionless`, :class:`AnalyticTribology` (explicit default
 formula + Greenwood–Tripp boundary friction + viscous friction, per unit length × width),
 and :class:`FilmTableTribology`, the hook for the implicit coupling: a friction model plus
 a film law linearised about reference forces, h = h_k(t) + c_k(t)(F − F_k(t)), c_k ≤ 0,
-tabulated in time (what transient-EHL runs provide, iterated by waveform relaxation).
+tabulated in time (what transient-EHL runs provide, iterated by waveform relaxation);
+:func:`squeeze_film_load`, the rigid-cylinder squeeze film that limits how fast such a
+film can thin.
 """
 
 from __future__ import annotations
