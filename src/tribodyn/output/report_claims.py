@@ -209,9 +209,10 @@ def claims(study, summ) -> list[tuple[str, str, str, str]]:
                 "Agrees in where the differences are: through the loaded event the curves "
                 "coincide; they differ where the contact engages and disengages, where the "
                 "lightly loaded (hydrodynamic, h ∝ 1/F) film is several µm and comparable to "
-                "the contact deflection. There the implicit result depends on the film the "
-                "contact has when it is first loaded (at `numerics.min_load`), because a "
-                "zero-lash contact on the base circle has no well-defined film.",
+                "the contact deflection. A zero-lash contact on the base circle has no "
+                "well-defined film: the implicit film is measured from the film where the "
+                "cam lobe starts (a fixed lift), so its squeeze on the opening ramp below "
+                "that lift is not included.",
             )
         )
     rows.append(_viscous_law_row(study, summ))

@@ -19,7 +19,9 @@ Models here: :class:`Frictionless`, :class:`AnalyticTribology` (explicit default
 formula + Greenwood–Tripp boundary friction + viscous friction, per unit length × width),
 and :class:`FilmTableTribology`, the hook for the implicit coupling: a friction model plus
 a film law linearised about reference forces, h = h_k(t) + c_k(t)(F − F_k(t)), c_k ≤ 0,
-tabulated in time (what transient-EHL runs provide, iterated by waveform relaxation).
+tabulated in time (what transient-EHL runs provide, iterated by waveform relaxation);
+:func:`squeeze_film_load`, the rigid-cylinder squeeze film that limits how fast such a
+film can thin.
 """
 
 from __future__ import annotations
@@ -43,10 +45,35 @@ __all__ = [
     "AnalyticTribology",
     "FilmTableTribology",
     "PAPER_ROUGHNESS_UNCOATED",
+    "squeeze_film_load",
 ]
 
 #: Paper Table 4, uncoated tappet: η = 8.3e9 m⁻², σ = 0.408 µm, β = 0.669 µm.
 PAPER_ROUGHNESS_UNCOATED = Roughness(**paper.ROUGHNESS["uncoated"])
+
+
+def squeeze_film_load(film, approach_speed, radius, viscosity):
+    """Load per unit length [N/m] carried by squeeze of an isoviscous film between a rigid
+    cylinder of radius R [m] and a plane approaching each other at V = −dh/dt [m/s], at
+    minimum film h [m] and viscosity η [Pa s]::
+
+        w' = 3√2 π η V R^(3/2) / h^(3/2)
+
+    (Reynolds equation d/dx(h³ p'/12η) = dh/dt with h = h₀ + x²/2R, p → 0 as |x| → ∞,
+    integrated twice: p = 6ηVR/h(x)², ∫ dx/h(x)² = π√(2R)/(2h₀^(3/2)); e.g. Hamrock,
+    Schmid & Jacobson, *Fundamentals of Fluid Film Lubrication*, 2004, ch. 15). The
+    film follows h(t) = (h_i^(−1/2) + k t/2)^(−2), k = w'/(3√2 π η R^(3/2)), under a
+    constant load. Negative for separating surfaces (Sommerfeld; a real film cavitates)."""
+    h = np.asarray(film, dtype=float)
+    return (
+        3.0
+        * np.sqrt(2.0)
+        * np.pi
+        * viscosity
+        * np.asarray(approach_speed, dtype=float)
+        * np.asarray(radius, dtype=float) ** 1.5
+        / h**1.5
+    )
 
 
 class TribologyModel(ABC):

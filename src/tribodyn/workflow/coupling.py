@@ -12,10 +12,13 @@ solution:
    μ_k(t) = F_f/F; repeat until the contact force stops changing.
 
 At the fixed point F = F_k, so the linearisation c_k = dh/dF only speeds convergence; it is
-taken from the local logarithmic slope of the Moes film formula, c = h_c (∂ln h/∂ln w)/F.
-Only changes of the film act on the motion: h_k is measured from the film at the start of
-each loaded event (the base circle carries no load and has no film). The EHL of the
-presented cycle drives both simulated cycles (the tables are periodic in the cam angle).
+the secant of the Moes film formula, limited by the squeeze film's damping over one
+sample (:func:`film_law_from_ehl`). Only changes of the film act on the motion: h_k is
+measured from the film where the cam lobe starts (a fixed lift, the same in every
+iteration); off the lobe the film has no compliance and returns slowly to that datum,
+since the lightly loaded tappet's thick base-circle film changes on a squeeze time scale
+of many crank degrees, far longer than the impacts there. The EHL of the presented cycle drives both
+simulated cycles (the tables are periodic in the cam angle).
 """
 
 from __future__ import annotations
@@ -29,7 +32,7 @@ import numpy as np
 from ..physics.materials import reduced_modulus
 from ..physics.regimes import hamrock_groups, moes_central
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
-from ..valvetrain.tribology import FilmTableTribology, TribologyModel
+from ..valvetrain.tribology import FilmTableTribology, TribologyModel, squeeze_film_load
 from .cycle_ehl import CycleInputs, SetCycleResult, ehl_for_set
 
 __all__ = [
@@ -95,41 +98,87 @@ def _bridge(values, loaded):
     return v
 
 
-def film_law_from_ehl(inputs, ehl, lubricant, e_prime: float):
-    """(h_k, c_k, F_k) over the samples of ``inputs`` from a transient-EHL cycle result."""
+#: The compliance of the film law is the secant of the Moes film over this share of the
+#: cycle's peak force above the sample's force (the tangent at light loads would let a
+#: later impact sink through microns of film within one sample).
+SECANT_SHARE = 0.2
+
+
+def _runs(mask):
+    """(start, stop) index pairs of the runs of True in ``mask``."""
+    m = np.concatenate([[False], np.asarray(mask, dtype=bool), [False]])
+    d = np.flatnonzero(np.diff(m.astype(np.int8)))
+    return list(zip(d[::2].tolist(), d[1::2].tolist()))
+
+
+def film_law_from_ehl(inputs, ehl, lubricant, e_prime: float, lobe=None):
+    """(h_k, c_k, F_k) over the samples of ``inputs`` from a transient-EHL cycle result.
+
+    Reduced film model of the dynamics, tabulated in time:
+
+    - *datum*: the film at the first loaded sample on the cam lobe (``lobe``: samples
+      with cam lift above the jump threshold; a kinematic mask, the same in every
+      iteration; default all). h_k = h_c − datum on the lobe's loaded samples,
+      interpolated over samples where the tappet is off the cam; off the lobe h_k
+      returns linearly to the datum over the base circle (no step at the lobe's end);
+    - *compliance* on the loaded lobe: the Moes film's secant slope over
+      [F_k, F_k + SECANT_SHARE·F̂], limited by the squeeze film's damping over one sample
+      interval τ: 1/|c_k| = 1/|c_Moes| + D/τ, with D = 3√2 π η R^(3/2) L / h_c^(3/2)
+      (rigid-cylinder squeeze, :func:`~tribodyn.valvetrain.tribology.squeeze_film_load`,
+      over the width L): a film cannot thin faster than its squeeze flow allows;
+    - *off the lobe* c_k = 0: on the base circle the lightly loaded tappet rests on a
+      thick film (several µm) whose squeeze time τ_sq = D|c| is many crank degrees, far
+      longer than an impact there, so the film acts as a rigid spacer at the datum.
+
+    At a fixed point F = F_k, so c_k affects only the convergence, not the result."""
     F = inputs.contact_force
-    loaded = ehl.loaded
-    hc = _bridge(ehl.central_film, loaded)
-    h = np.zeros_like(F)
-    c = np.zeros_like(F)
-    start = None
-    for i in range(F.size):
-        if not loaded[i] or not np.isfinite(hc[i]):
-            start = None
-            continue
-        if start is None:
-            start = hc[i]
-        h[i] = hc[i] - start
-        w = F[i] / inputs.width
-        u = max(abs(inputs.entrainment_speed[i]), 1e-3)
+    n = F.size
+    lobe = np.ones(n, dtype=bool) if lobe is None else np.asarray(lobe, dtype=bool)
+    hc = _bridge(ehl.central_film, ehl.loaded)
+    valid = lobe & ehl.loaded & np.isfinite(hc) & (hc > 0)
+    h = np.zeros(n)
+    c = np.zeros(n)
+    kx: list[float] = []
+    kv: list[float] = []
+    for a, b in _runs(lobe):
+        idx = np.arange(a, b)
+        ok = idx[valid[a:b]]
+        kx.append(a - 1.0)  # the datum just before the lobe
+        kv.append(0.0)
+        if ok.size:
+            kx.extend(ok.tolist())
+            kv.extend((hc[ok] - hc[ok[0]]).tolist())
+    if kx:
+        order = np.argsort(kx)
+        period = n - 1 if n > 1 else None  # the last sample repeats the first's phase
+        h = np.interp(np.arange(n), np.asarray(kx)[order], np.asarray(kv)[order], period=period)
+    f_peak = float(F.max()) if n else 0.0
+    tau = float(np.median(np.diff(inputs.time))) if n > 1 else 0.0
+    eta = lubricant.viscosity
+    for i in np.flatnonzero(valid):
         R = inputs.radius[i]
-        W1, U, G = hamrock_groups(
-            w, R, u, lubricant.viscosity, lubricant.pressure_viscosity, e_prime
-        )
-        W2, _, _ = hamrock_groups(
-            1.01 * w, R, u, lubricant.viscosity, lubricant.pressure_viscosity, e_prime
-        )
-        slope = np.log(moes_central(W2, U, G, R) / moes_central(W1, U, G, R)) / np.log(1.01)
-        c[i] = min(0.0, hc[i] * slope / F[i])
+        u = max(abs(inputs.entrainment_speed[i]), 1e-3)
+        w1 = F[i] / inputs.width
+        w2 = (F[i] + SECANT_SHARE * f_peak) / inputs.width
+        hm = [
+            moes_central(*hamrock_groups(w, R, u, eta, lubricant.pressure_viscosity, e_prime), R)
+            for w in (w1, w2)
+        ]
+        k_moes = SECANT_SHARE * f_peak / max(float(hm[0] - hm[1]), 1e-300)
+        damping = float(squeeze_film_load(hc[i], 1.0, R, eta)) * inputs.width
+        c[i] = -1.0 / (k_moes + (damping / tau if tau > 0 else 0.0))
     return h, c, F
 
 
-def ehl_tribology(inputs, ehl, lubricant, e_prime: float, period: float) -> FilmTableTribology:
-    """Tribology model of the implicit coupling from one transient-EHL cycle."""
+def ehl_tribology(
+    inputs, ehl, lubricant, e_prime: float, period: float, lobe=None
+) -> FilmTableTribology:
+    """Tribology model of the implicit coupling from one transient-EHL cycle (``lobe``:
+    see :func:`film_law_from_ehl`)."""
     ff = _bridge(ehl.friction, ehl.loaded)
     mu = np.where(ehl.loaded & np.isfinite(ff), ff / np.maximum(inputs.contact_force, 1e-12), 0.0)
     friction = FrictionCoefficientTable(inputs.time, mu, period)
-    h, c, F = film_law_from_ehl(inputs, ehl, lubricant, e_prime)
+    h, c, F = film_law_from_ehl(inputs, ehl, lubricant, e_prime, lobe)
     return FilmTableTribology(friction, inputs.time, h, c, F, period=period)
 
 
@@ -347,7 +396,10 @@ def run_coupling(
     msg = f"not converged in {n.coupling_iterations} iterations"
     changes: list[np.ndarray] = []
     for k in range(1, n.coupling_iterations + 1):
-        g = ehl_tribology(inp, ehl, lub, e_prime, period)
+        lobe = np.interp(inp.crank_angle, dynamics.crank_angle, dynamics.cam_lift) > (
+            dynamics.jump_lift_threshold
+        )
+        g = ehl_tribology(inp, ehl, lub, e_prime, period, lobe)
         if table is None:
             table = g
         else:
