@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -58,6 +58,7 @@ __all__ = [
     "DETREND_MODES",
     "Band",
     "Sampling",
+    "SamplingLike",
     "check_band",
     "default_band",
     "band_pass",
@@ -98,6 +99,28 @@ def check_map_size(shape, what: str = "the map") -> None:
 _LN2 = math.log(2.0)
 
 
+class SamplingLike(Protocol):
+    """What the band checks read of a sampling: a map's :class:`Sampling` or a profile's
+    :class:`~tribodyn.topography.profile.ProfileSampling` (lengths in m)."""
+
+    @property
+    def pixel_size(self) -> tuple[float, ...]: ...
+
+    @property
+    def periodic(self) -> bool: ...
+
+    @property
+    def undefined_fraction(self) -> float: ...
+
+    @property
+    def nyquist_wavelength(self) -> float: ...
+
+    @property
+    def longest_wavelength(self) -> float: ...
+
+    def describe(self) -> str: ...
+
+
 @dataclass(frozen=True)
 class Sampling:
     """Sampling of a topography map. Lengths in m.
@@ -116,10 +139,15 @@ class Sampling:
 
     @classmethod
     def of(cls, topography, undefined_fraction: float = 0.0) -> Sampling:
+        (nx, ny), (dx, dy), (lx, ly) = (
+            topography.nb_grid_pts,
+            topography.pixel_size,
+            topography.physical_sizes,
+        )
         return cls(
-            tuple(int(n) for n in topography.nb_grid_pts),
-            tuple(float(p) for p in topography.pixel_size),
-            tuple(float(s) for s in topography.physical_sizes),
+            (int(nx), int(ny)),
+            (float(dx), float(dy)),
+            (float(lx), float(ly)),
             bool(topography.is_periodic),
             float(undefined_fraction),
         )
@@ -174,12 +202,20 @@ class Band:
     def clipped(self) -> bool:
         return self.requested is not None
 
+    @property
+    def wavelengths(self) -> tuple[float, float]:
+        """(λ_s, λ_L) [m]; a band of kind "none" has none (ValueError)."""
+        if self.short_wavelength is None or self.long_wavelength is None:
+            raise ValueError("a band of kind 'none' has no cutoff wavelengths")
+        return self.short_wavelength, self.long_wavelength
+
     def transfer(self, q):
         """Transfer function H(|q|) of the filter (q in rad/m)."""
         q = np.asarray(q, dtype=float)
         if self.kind == "none":
             return np.ones_like(q)
-        qs, ql = 2.0 * np.pi / self.short_wavelength, 2.0 * np.pi / self.long_wavelength
+        lo, hi = self.wavelengths
+        qs, ql = 2.0 * np.pi / lo, 2.0 * np.pi / hi
         if self.kind == "step":
             return ((q <= qs) & (q >= ql)).astype(float)
         return np.exp(-_LN2 * (q / qs) ** 2) * -np.expm1(-_LN2 * (q / ql) ** 2)
@@ -192,8 +228,9 @@ class Band:
             if self.kind == "gaussian"
             else "ideal step"
         )
-        text = f"{_um(self.short_wavelength)}–{_um(self.long_wavelength)} µm ({kind})"
-        if self.clipped:
+        lo, hi = self.wavelengths
+        text = f"{_um(lo)}–{_um(hi)} µm ({kind})"
+        if self.requested is not None:
             text += (
                 f", clipped from the requested {_um(self.requested[0])}–"
                 f"{_um(self.requested[1])} µm to the measurement's range"
@@ -217,7 +254,7 @@ def _um(x: float) -> str:
 
 def check_band(
     band,
-    sampling: Sampling,
+    sampling: SamplingLike,
     *,
     kind: str = "gaussian",
     clip: bool = False,
@@ -281,7 +318,7 @@ def check_band(
 
 
 def default_band(
-    sampling: Sampling, *, kind: str = "gaussian", reliability_cutoff: float | None = None
+    sampling: SamplingLike, *, kind: str = "gaussian", reliability_cutoff: float | None = None
 ) -> Band:
     """The paper's band clipped to what the measurement resolves (module docstring).
 

@@ -120,11 +120,11 @@ class ProfileAnalysis(_TomlMixin):
     notes: tuple[str, ...] = ()
     warnings: tuple[str, ...] = ()
     source: dict | None = None
-    profile: np.ndarray = field(default=None, repr=False, compare=False)
-    filled: np.ndarray = field(default=None, repr=False, compare=False)
-    topography: object = field(default=None, repr=False, compare=False)  # not a map
-    summit_stats: object = None
-    mccool: McCoolParameters = None
+    profile: np.ndarray | None = field(default=None, repr=False, compare=False)
+    filled: np.ndarray | None = field(default=None, repr=False, compare=False)
+    topography: None = field(default=None, repr=False, compare=False)  # not a map
+    summit_stats: None = None
+    mccool: McCoolParameters = field(init=False)  # = isotropic
 
     kind = "profile"
 
@@ -269,7 +269,10 @@ def analyse_profile(
         margin = 1
     else:
         hf, d1, d2 = _filter_profile(h, dx, applied, periodic)
-        margin = 0 if periodic else max(1, int(math.ceil(applied.short_wavelength / dx - 1e-9)))
+        if periodic:
+            margin = 0
+        else:  # one λ_s at each end (a filtered, non-periodic profile)
+            margin = max(1, int(math.ceil(applied.wavelengths[0] / dx - 1e-9)))
     region = np.zeros(n, dtype=bool)
     region[margin : n - margin] = True
     ok = measured & np.roll(measured, 1) & np.roll(measured, -1)  # with measured neighbours
@@ -321,7 +324,7 @@ def _with_profile_notes(r: ProfileAnalysis) -> ProfileAnalysis:
 
     notes = [f"η and β are an {ISOTROPIC_LABEL}"]
     if r.band.kind != "none":
-        px = r.band.short_wavelength / r.sampling.pixel_size[0]
+        px = r.band.wavelengths[0] / r.sampling.pixel_size[0]
         if px < 16.0 * (1 - 1e-6):
             notes.append(
                 f"λ_s spans {px:.3g} points (< 16): counted peaks depend on the "

@@ -246,7 +246,7 @@ def place_labels(
     tr = ax.transData
     pts = tr.transform(np.column_stack([xs, ys])) * scale
     # merge (nearly) coincident points
-    merged = []
+    merged: list[list[int]] = []
     for k in range(len(xs)):
         for grp in merged:
             if np.hypot(*(pts[k] - pts[grp[0]])) < 6.0:
@@ -264,7 +264,7 @@ def place_labels(
     bbox = ax.get_window_extent()
     x0, y0, x1, y1 = np.array([bbox.x0, bbox.y0, bbox.x1, bbox.y1]) * scale
     angles = np.deg2rad(np.arange(0, 360, 30) + 15)
-    placed = []
+    placed: list[tuple[float, float]] = []
     for grp in merged:
         px, py = pts[grp[0]]
         text = ",".join(texts[k] for k in grp)

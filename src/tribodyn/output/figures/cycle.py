@@ -46,7 +46,7 @@ def _cycle_lines(ax, ds, values, window, styles, *, label_fmt=None, floor=None):
 def _groups(values, tol):
     """Group sorted positions closer than ``tol``: list of index lists."""
     order = np.argsort(values)
-    groups = []
+    groups: list[list[int]] = []
     for k in order:
         if groups and values[k] - values[groups[-1][-1]] < tol:
             groups[-1].append(int(k))
@@ -281,7 +281,14 @@ def fig19(ds, path):
         if y > 0 and energy[0] > 0:
             txt += f" ({signed((en / energy[0] - 1) * 100, 2)} %)"
         b.text(
-            en * 0.02, y, txt, va="center", ha="left", fontsize=9, color="white", fontweight="bold"
+            en * 0.02,
+            float(y),
+            txt,
+            va="center",
+            ha="left",
+            fontsize=9,
+            color="white",
+            fontweight="bold",
         )
     b.set_yticks(ypos, labels)
     b.invert_yaxis()

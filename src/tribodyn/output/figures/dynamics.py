@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from .common import (
@@ -40,8 +42,10 @@ def _zoom_windows(ds) -> list[tuple[float, float]]:
     return [(w[0], w[1]) for w in wins]
 
 
-_EXPLICIT_STYLE = dict(color="tab:blue", lw=1.5, label="explicit (analytic film in the dynamics)")
-_IMPLICIT_STYLE = dict(
+_EXPLICIT_STYLE: dict[str, Any] = dict(
+    color="tab:blue", lw=1.5, label="explicit (analytic film in the dynamics)"
+)
+_IMPLICIT_STYLE: dict[str, Any] = dict(
     color="tab:orange", lw=1.3, ls="--", label="implicit (numerical EHL in the dynamics)"
 )
 
@@ -61,7 +65,7 @@ def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False)
     full = (float(ca[0]), float(ca[-1]))
     for a in [ax] + zooms:
         a.plot(ca, y, **_EXPLICIT_STYLE)
-        if has_imp:
+        if yi is not None:
             a.plot(ca, yi, **_IMPLICIT_STYLE)
         a.axhline(0, color="0.5", lw=0.6)
         a.set_ylabel(ylabel)
@@ -87,7 +91,7 @@ def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False)
         pad = 0.08 * (hi - lo) or 1.0
         a.set_ylim(lo - pad, hi + pad)
         a.set_title(f"({'cd'[k]}) zoom: {('engagement', 'disengagement')[k]}", fontsize=TITLE_SIZE)
-    if has_imp:
+    if yi is not None:
         d = yi - y
         ad.plot(ca, d, color="tab:purple", lw=1.0)
         i = int(np.nanargmax(np.abs(d)))

@@ -99,8 +99,7 @@ def stress_maps(ds, path, sets=None):
     over x and depth z [µm] of the body closest to failure at its riskiest crank angle,
     the interface (dashed) and the peak of the governing mode (cross)."""
     names = [str(n) for n in ds["surface_set"].values] if sets is None else list(sets)
-    risks = [(n, greatest_risk(ds, n)) for n in names]
-    risks = [(n, r) for n, r in risks if r is not None]
+    risks = [(n, r) for n in names if (r := greatest_risk(ds, n)) is not None]
     if not risks:
         raise ValueError("results.nc has no stress results ([stress] enabled = false?)")
     ncol = min(len(risks), 3)

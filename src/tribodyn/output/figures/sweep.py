@@ -363,7 +363,7 @@ def fig_heatmap(ds, path):
             ("friction_energy_per_cycle_J", 1.0, "friction energy per cycle [J]"),
             ("min_film_m", UM, "minimum film [µm]"),
         ]
-        cols = list(range(ds.sizes["surface_set"]))
+        cols: list[int | None] = list(range(ds.sizes["surface_set"]))
         labels = [
             str(v)
             for v in (
