@@ -120,6 +120,31 @@ class SamplingLike(Protocol):
 
     def describe(self) -> str: ...
 
+    @property
+    def nb_grid_pts(self) -> tuple[int, ...]: ...
+
+    @property
+    def physical_sizes(self) -> tuple[float, ...]: ...
+
+
+def filled_note(sampling: SamplingLike, text: str) -> str:
+    """``text`` (a sampling's description) with the share of filled points, if any."""
+    if sampling.undefined_fraction > 0:
+        text += f", {sampling.undefined_fraction:.2%} undefined points filled"
+    return text
+
+
+def sampling_dict(sampling: SamplingLike) -> dict:
+    """A sampling as a dict: points, pixel size and lengths [m], periodic, filled share."""
+    return {
+        "nb_grid_pts": list(sampling.nb_grid_pts),
+        "pixel_size": list(sampling.pixel_size),
+        "physical_sizes": list(sampling.physical_sizes),
+        "periodic": sampling.periodic,
+        "undefined_fraction": sampling.undefined_fraction,
+        "units": dict(Sampling.UNITS),
+    }
+
 
 @dataclass(frozen=True)
 class Sampling:
@@ -164,23 +189,14 @@ class Sampling:
 
     def describe(self) -> str:
         (nx, ny), (dx, dy), (lx, ly) = self.nb_grid_pts, self.pixel_size, self.physical_sizes
-        text = (
+        return filled_note(
+            self,
             f"{nx} × {ny} points, pixel {_um(dx)} × {_um(dy)} µm, "
-            f"area {_um(lx)} × {_um(ly)} µm, {'periodic' if self.periodic else 'non-periodic'}"
+            f"area {_um(lx)} × {_um(ly)} µm, {'periodic' if self.periodic else 'non-periodic'}",
         )
-        if self.undefined_fraction > 0:
-            text += f", {self.undefined_fraction:.2%} undefined points filled"
-        return text
 
     def to_dict(self) -> dict:
-        return {
-            "nb_grid_pts": list(self.nb_grid_pts),
-            "pixel_size": list(self.pixel_size),
-            "physical_sizes": list(self.physical_sizes),
-            "periodic": self.periodic,
-            "undefined_fraction": self.undefined_fraction,
-            "units": dict(self.UNITS),
-        }
+        return sampling_dict(self)
 
 
 @dataclass(frozen=True)
@@ -252,6 +268,22 @@ def _um(x: float) -> str:
     return f"{x * 1e6:.4g}"
 
 
+def _shortest_wavelength(
+    sampling: SamplingLike, reliability_cutoff: float | None
+) -> tuple[float, str]:
+    """The shortest wavelength the measurement resolves [m] and why: its Nyquist
+    wavelength 2Δ, or the instrument's reliability cutoff where that is longer."""
+    if reliability_cutoff is not None and reliability_cutoff > sampling.nyquist_wavelength:
+        return reliability_cutoff, (
+            f"the instrument's reliability cutoff {_um(reliability_cutoff)} µm"
+        )
+    nyq = sampling.nyquist_wavelength
+    return (
+        nyq,
+        f"the Nyquist wavelength 2Δ = {_um(nyq)} µm (pixel {_um(max(sampling.pixel_size))} µm)",
+    )
+
+
 def check_band(
     band,
     sampling: SamplingLike,
@@ -278,18 +310,7 @@ def check_band(
         raise BandLimitError(
             f"band limits must satisfy short < long (got {_um(lo)} µm ≥ {_um(hi)} µm)"
         )
-    lo_min, why = (
-        sampling.nyquist_wavelength,
-        (
-            f"the Nyquist wavelength 2Δ = {_um(sampling.nyquist_wavelength)} µm "
-            f"(pixel {_um(max(sampling.pixel_size))} µm)"
-        ),
-    )
-    if reliability_cutoff is not None and reliability_cutoff > lo_min:
-        lo_min, why = (
-            reliability_cutoff,
-            (f"the instrument's reliability cutoff {_um(reliability_cutoff)} µm"),
-        )
+    lo_min, why = _shortest_wavelength(sampling, reliability_cutoff)
     hi_max = sampling.longest_wavelength
     new_lo, new_hi = lo, hi
     if lo < lo_min * (1 - 1e-9):
@@ -328,20 +349,9 @@ def default_band(
         raise InputError(f"filter kind must be one of {FILTER_KINDS} (got {kind!r})")
     lo0, hi0 = PAPER_BAND
     lo, why_lo = lo0, ""
-    nyq = sampling.nyquist_wavelength
-    if nyq > lo:
-        lo, why_lo = (
-            nyq,
-            (
-                f"λ_s raised to the Nyquist wavelength 2Δ = {_um(nyq)} µm "
-                f"(pixel {_um(max(sampling.pixel_size))} µm)"
-            ),
-        )
-    if reliability_cutoff is not None and reliability_cutoff > lo:
-        lo, why_lo = (
-            reliability_cutoff,
-            (f"λ_s raised to the instrument's reliability cutoff {_um(reliability_cutoff)} µm"),
-        )
+    lo_min, why = _shortest_wavelength(sampling, reliability_cutoff)
+    if lo_min > lo:
+        lo, why_lo = lo_min, f"λ_s raised to {why}"
     field = sampling.longest_wavelength
     usable = field - (0.0 if sampling.periodic else 2.0 * lo)
     hi, why_hi = hi0, ""

@@ -44,6 +44,8 @@ from .filtering import (
     check_band,
     check_map_size,
     default_band,
+    filled_note,
+    sampling_dict,
 )
 from .height_statistics import HeightStatistics, height_statistics
 from .results import AsperityParameters, _TomlMixin
@@ -83,23 +85,14 @@ class ProfileSampling:
         return self.physical_sizes[0]
 
     def describe(self) -> str:
-        text = (
+        return filled_note(
+            self,
             f"profile of {self.nb_grid_pts[0]} points, spacing {_um(self.pixel_size[0])} "
-            f"µm, length {_um(self.physical_sizes[0])} µm"
+            f"µm, length {_um(self.physical_sizes[0])} µm",
         )
-        if self.undefined_fraction > 0:
-            text += f", {self.undefined_fraction:.2%} undefined points filled"
-        return text
 
     def to_dict(self) -> dict:
-        return {
-            "nb_grid_pts": list(self.nb_grid_pts),
-            "pixel_size": list(self.pixel_size),
-            "physical_sizes": list(self.physical_sizes),
-            "periodic": self.periodic,
-            "undefined_fraction": self.undefined_fraction,
-            "units": {"pixel_size": "m", "physical_sizes": "m"},
-        }
+        return sampling_dict(self)
 
 
 @dataclass(frozen=True)
