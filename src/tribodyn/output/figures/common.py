@@ -107,6 +107,20 @@ def has(ds, *names) -> bool:
     return all(n in ds.variables for n in names)
 
 
+def point_legend_entry(ax, ds) -> None:
+    """The legend entry of the numbered representative-point markers (no data drawn)."""
+    ax.plot(
+        [],
+        [],
+        "o",
+        ms=6,
+        mfc="white",
+        mec="k",
+        mew=1.5,
+        label="representative points 1–6" + (" (Fig. 13)" if compares_paper(ds) else ""),
+    )
+
+
 def compares_paper(ds) -> bool:
     """Whether the figures carry the paper's comparison (the Dataset's ``compare_paper``
     attribute; absent: yes)."""

@@ -11,7 +11,6 @@ from .common import (
     MM,
     TITLE_SIZE,
     arr,
-    compares_paper,
     crank_axis,
     dynamics_event,
     finish,
@@ -19,6 +18,7 @@ from .common import (
     log_ticks,
     place_labels,
     plt,
+    point_legend_entry,
 )
 
 # ----------------------------------------------------------------------------- Figs. 8–10
@@ -134,16 +134,7 @@ def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False)
             avoid=(ca[ev][::4], y[ev][::4]),
             radius_pt=16,
         )
-        ax.plot(
-            [],
-            [],
-            "o",
-            ms=6,
-            mfc="white",
-            mec="k",
-            mew=1.5,
-            label="representative points 1–6" + (" (Fig. 13)" if compares_paper(ds) else ""),
-        )
+        point_legend_entry(ax, ds)
     ax.legend(fontsize=9, loc="upper left")
     sub = None if has_imp else "implicit run not in the results: explicit only"
     return finish(fig, path, FIGURES[path.name], sub)
