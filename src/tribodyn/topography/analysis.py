@@ -307,13 +307,8 @@ def _with_notes(r: SurfaceAnalysis) -> SurfaceAnalysis:
             f"anisotropic texture (mean-square slope ratio {r.slope_anisotropy:.2f} "
             "between x and y): McCool's formulas assume isotropy"
         )
-    h = r.heights
-    if abs(h.skewness) > 0.5 or abs(h.kurtosis - 3.0) > 1.0:
-        notes.append(
-            f"height distribution not Gaussian (Ssk = {h.skewness:.2f}, "
-            f"Sku = {h.kurtosis:.2f}; Gaussian 0 and 3): Greenwood–Tripp's F_n assume "
-            "Gaussian summit heights"
-        )
+    if (note := r.heights.gaussian_note("S")) is not None:
+        notes.append(f"{note}: Greenwood–Tripp's F_n assume Gaussian summit heights")
     if r.summits.roughness_parameter < MIN_ETA_BETA_SIGMA:
         notes.append(
             f"summit ηβσ = {r.summits.roughness_parameter:.3g} is below "

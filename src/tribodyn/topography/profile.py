@@ -323,12 +323,8 @@ def _with_profile_notes(r: ProfileAnalysis) -> ProfileAnalysis:
                 f"λ_s spans {px:.3g} points (< 16): counted peaks depend on the "
                 "sampling; the moment estimates do not"
             )
-    h = r.heights
-    if abs(h.skewness) > 0.5 or abs(h.kurtosis - 3.0) > 1.0:
-        notes.append(
-            f"height distribution not Gaussian (Rsk = {h.skewness:.2f}, Rku = "
-            f"{h.kurtosis:.2f}; Gaussian 0 and 3)"
-        )
+    if (note := r.heights.gaussian_note("R")) is not None:
+        notes.append(note)
     if r.peak_count < 200:
         notes.append(
             f"only {r.peak_count} peaks: statistical uncertainty of order "
