@@ -14,38 +14,21 @@ BLAS is limited to one thread (as in the cycle study's workers).
 import argparse
 import json
 import platform
-import time
 
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from tribodyn import Body, Material, solve_ehl
+from timing import best_of, steel_5w30
+from tribodyn import solve_ehl
 from tribodyn.config import load_case
 from tribodyn.contact.ehl.thermal import solve_thermal_ehl
-from tribodyn.physics.heat_conduction import ThermalBody, ThermalProperties
-from tribodyn.physics.oils import OILS
-from tribodyn.physics.thermal_oil import ThermalLubricant
 from tribodyn.valvetrain import simulate_valvetrain
 from tribodyn.workflow.cycle_ehl import CycleInputs, ehl_for_set
 from tribodyn.workflow.thermal_study import thermal_for_set
 
 
-def best_of(fn, repeat):
-    times, out = [], None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t0)
-    return min(times), out
-
-
 def steady():
-    sheet = {k: v for k, v in OILS["5W-30"].items() if k != "description"}
-    oil = ThermalLubricant(313.15, **sheet)
-    steel = Material(210e9, 0.3)
-    pair = (Body(steel), Body(steel))
-    ts = ThermalProperties(46.0, 7850.0, 470.0)
-    tb = (ThermalBody(ts), ThermalBody(ts))
+    oil, pair, tb = steel_5w30()
     args = (2e5, 0.02, 2.0, 1.0, pair)
     t_iso, iso = best_of(lambda: solve_ehl(*args, oil.isothermal()), 3)
     t_th, th = best_of(lambda: solve_thermal_ehl(*args, oil, tb), 3)

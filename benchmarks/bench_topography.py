@@ -11,26 +11,17 @@ from __future__ import annotations
 import json
 import platform
 import tempfile
-import time
 import warnings
 from pathlib import Path
 
 import numpy as np
 
+from timing import best_of
 from tribodyn.topography import analyse_surface, synthetic_surface, write_topography
 
 PIXEL = 0.1e-6
 BAND = (16 * PIXEL, 256 * PIXEL)
 REPEAT = 2
-
-
-def best_of(fn, repeat=REPEAT):
-    times, out = [], None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t0)
-    return min(times), out
 
 
 def summary(r) -> dict:
@@ -60,15 +51,16 @@ def main():
                 short_cutoff=2 * PIXEL,
                 long_cutoff=n // 4 * PIXEL,
                 seed=1,
-            )
+            ),
+            REPEAT,
         )
-        t_per, r_per = best_of(lambda: analyse_surface(topo, band=BAND))
+        t_per, r_per = best_of(lambda: analyse_surface(topo, band=BAND), REPEAT)
         m = n - n // 16
         crop = Topography(topo.heights()[:m, :m], (m * PIXEL, m * PIXEL), periodic=False, unit="m")
-        t_non, r_non = best_of(lambda: analyse_surface(crop, band=BAND))
+        t_non, r_non = best_of(lambda: analyse_surface(crop, band=BAND), REPEAT)
         with tempfile.TemporaryDirectory() as tmp:
             path = write_topography(crop, Path(tmp) / "map.x3p")
-            t_file, _ = best_of(lambda: analyse_surface(path, band=BAND))
+            t_file, _ = best_of(lambda: analyse_surface(path, band=BAND), REPEAT)
         results.append(
             {
                 "grid": [n, n],

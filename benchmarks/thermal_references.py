@@ -24,23 +24,18 @@ import math
 import sys
 from pathlib import Path
 
-from tribodyn import Body, Material, solve_ehl
+from timing import steel_5w30
+from tribodyn import solve_ehl
 from tribodyn.contact.ehl.thermal import ThermalOptions, solve_thermal_ehl
 from tribodyn.physics import thermal_oil
 from tribodyn.physics.heat_conduction import ThermalBody, ThermalProperties
-from tribodyn.physics.oils import OILS
 from tribodyn.physics.thermal_oil import ThermalLubricant
 
 W, R, UE = 5e5, 0.02, 5.0
 
 
 def main():
-    sheet = {k: v for k, v in OILS["5W-30"].items() if k != "description"}
-    oil = ThermalLubricant(313.15, **sheet)
-    steel = Material(210e9, 0.3)
-    pair = (Body(steel), Body(steel))
-    ts = ThermalProperties(46.0, 7850.0, 470.0)
-    tb = (ThermalBody(ts), ThermalBody(ts))
+    oil, pair, tb = steel_5w30()
     cold = ThermalProperties(1e6, 7850.0, 470.0)
     tb_cold = (ThermalBody(cold), ThermalBody(cold))
     e = 210e9 / 0.91

@@ -56,3 +56,19 @@ def reduced_results(tmp_path_factory):
     r = CliRunner().invoke(app, ["run", str(path), "-o", str(out), "--quiet"])
     assert r.exit_code == 0, r.output
     return out
+
+
+def explicit_run(case, set_name="uncoated"):
+    """(surface set, explicit dynamics, cycle inputs) of ``case``: the valvetrain driven
+    with the set's analytic tribology, sampled on the case's crank step."""
+    from tribodyn.valvetrain import simulate_valvetrain
+    from tribodyn.workflow.cycle_ehl import CycleInputs
+
+    s = case.surface_set(set_name)
+    dyn = simulate_valvetrain(
+        case.cam(),
+        case.valvetrain_parameters(),
+        tribology=case.analytic_tribology(s),
+        **case.dynamics_options(),
+    )
+    return s, dyn, CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)

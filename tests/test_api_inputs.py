@@ -9,6 +9,8 @@ import numpy as np
 import pytest
 from scipy import integrate
 
+from ehl_cases import OIL_055 as OIL
+from ehl_cases import PAIR, STEEL
 from tribodyn import (
     Body,
     Coating,
@@ -27,10 +29,6 @@ from tribodyn import (
 from tribodyn.config import Case
 from tribodyn.physics import limits as L
 from tribodyn.valvetrain import ValvetrainParameters
-
-STEEL = Material(210e9, 0.3)
-PAIR = (Body(STEEL), Body(STEEL))
-OIL = Lubricant(0.055, 1.05e-8)
 
 #: values of the wrong type for a number
 WRONG_TYPES = [None, "1", "a", [1.0, 2.0], {}, 1j, object(), True]

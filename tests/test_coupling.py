@@ -4,6 +4,7 @@ iteration converges, and its fixed point is consistent with the EHL it was built
 import numpy as np
 import pytest
 
+from conftest import explicit_run
 from tribodyn.config import load_case
 from tribodyn.valvetrain import simulate_valvetrain
 from tribodyn.workflow.coupling import COUPLING_MAX_TOL, COUPLING_RMS_TOL, run_coupling
@@ -21,14 +22,7 @@ REDUCED = {
 @pytest.fixture(scope="module")
 def coupled():
     case = load_case().updated(REDUCED)
-    s = case.surface_set("uncoated")
-    dyn = simulate_valvetrain(
-        case.cam(),
-        case.valvetrain_parameters(),
-        tribology=case.analytic_tribology(s),
-        **case.dynamics_options(),
-    )
-    inputs = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
+    s, dyn, inputs = explicit_run(case)
     first = ehl_for_set(case, s, inputs)
     return dyn, run_coupling(case, s, dyn, inputs, first)
 

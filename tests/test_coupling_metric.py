@@ -8,8 +8,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from conftest import explicit_run
 from tribodyn.config import load_case
-from tribodyn.valvetrain import simulate_valvetrain
 from tribodyn.workflow.coupling import (
     CouplingIteration,
     diagnose_coupling,
@@ -17,7 +17,7 @@ from tribodyn.workflow.coupling import (
     run_coupling,
     valve_timing,
 )
-from tribodyn.workflow.cycle_ehl import CycleInputs, ehl_for_set
+from tribodyn.workflow.cycle_ehl import ehl_for_set
 
 # fast: 5° EHL samples, 192 nodes (re-passes on 128)
 FAST = {
@@ -71,14 +71,7 @@ def _coupled_metrics(tmp_path, eps):
             "surface_sets[0].roughness": paper["surface_sets"][0]["roughness"],
         }
     )
-    s = case.surface_set("uncoated")
-    dyn = simulate_valvetrain(
-        case.cam(),
-        case.valvetrain_parameters(),
-        tribology=case.analytic_tribology(s),
-        **case.dynamics_options(),
-    )
-    inputs = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
+    s, dyn, inputs = explicit_run(case)
     c = run_coupling(case, s, dyn, inputs, ehl_for_set(case, s, inputs))
     assert c.converged, c.message
     return implicit_vs_explicit_metrics(dyn, c.implicit)

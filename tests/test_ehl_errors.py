@@ -3,22 +3,18 @@
 import numpy as np
 import pytest
 
+from ehl_cases import OIL_055 as OIL
+from ehl_cases import PAIR, STEEL
 from tribodyn import (
     Body,
     EHLOptions,
     InputError,
-    Lubricant,
-    Material,
     Roughness,
     TransientEHL,
     solve_dry_contact,
     solve_ehl,
 )
 from tribodyn.physics import limits as L
-
-STEEL = Material(210e9, 0.3)
-PAIR = (Body(STEEL), Body(STEEL))
-OIL = Lubricant(0.055, 1.05e-8)
 
 
 @pytest.mark.parametrize(

@@ -5,7 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from tribodyn import Body, Lubricant, Material, Roughness, solve_ehl
+from ehl_cases import PAIR
+from tribodyn import Lubricant, Roughness, solve_ehl
 from tribodyn.physics.analytic_contact import analytic_contact
 from tribodyn.physics.friction import couette_shear_stress, limit_shear_stress
 from tribodyn.physics.regimes import (
@@ -16,8 +17,6 @@ from tribodyn.physics.regimes import (
     moes_groups,
 )
 
-STEEL = Material(210e9, 0.3)
-PAIR = (Body(STEEL), Body(STEEL))
 E_PRIME = 210e9 / 0.91
 
 

@@ -10,12 +10,10 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from ehl_cases import OIL_055 as OIL
+from ehl_cases import PAIR, ROUGH
 from tribodyn import (
-    Body,
     InputError,
-    Lubricant,
-    Material,
-    Roughness,
     TransientEHL,
     solve_dry_contact,
     solve_ehl,
@@ -25,10 +23,6 @@ from tribodyn.config import load_case
 from tribodyn.contact.ehl import transient as transient_module
 from tribodyn.contact.ehl.validity import MAX_ASPECT_RATIO
 
-STEEL = Material(210e9, 0.3)
-PAIR = (Body(STEEL), Body(STEEL))
-OIL = Lubricant(0.055, 1.05e-8)
-ROUGH = Roughness(2.7e9, 0.347e-6, 0.217e-6)
 runner = CliRunner()
 
 

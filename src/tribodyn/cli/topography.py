@@ -9,7 +9,7 @@ from __future__ import annotations
 import json
 import sys
 from pathlib import Path
-from typing import Any, cast
+from typing import Any
 
 import typer
 from rich.console import Console, JustifyMethod
@@ -43,14 +43,15 @@ def _parameter_table(title: str, summits, spectral, count=None, alpha=None) -> T
         "(1986) from spectral moments; Δ = summits/spectral − 1",
         caption_justify="left",
     )
-    for name, justify in (
+    columns: tuple[tuple[str, JustifyMethod], ...] = (
         ("quantity", "left"),
         ("unit", "left"),
         ("summits", "right"),
         ("spectral", "right"),
         ("Δ", "right"),
-    ):
-        t.add_column(name, justify=cast(JustifyMethod, justify))
+    )
+    for name, justify in columns:
+        t.add_column(name, justify=justify)
     rows = [
         ("σ  RMS height", "µm", "rms", _um),
         ("η  summit density", "1/m²", "asperity_density", lambda v: f"{v:.4g}"),
@@ -86,7 +87,9 @@ def _print_surface(console: Console, r) -> None:
     for w in r.warnings:
         console.print(f"  warning: {w}", markup=False, style="yellow", soft_wrap=True)
     h = r.heights
-    if getattr(r, "kind", "") == "profile":
+    from ..topography.profile import ProfileAnalysis
+
+    if isinstance(r, ProfileAnalysis):
         _print_profile(console, r)
     else:
         console.print(
@@ -118,8 +121,13 @@ def _print_profile(console: Console, r) -> None:
         caption=f"η, β: {ISOTROPIC_LABEL}",
         caption_justify="left",
     )
-    for name, justify in (("quantity", "left"), ("unit", "left"), ("value", "right")):
-        t.add_column(name, justify=cast(JustifyMethod, justify))
+    columns: tuple[tuple[str, JustifyMethod], ...] = (
+        ("quantity", "left"),
+        ("unit", "left"),
+        ("value", "right"),
+    )
+    for name, justify in columns:
+        t.add_column(name, justify=justify)
     m, h, p = r.moments, r.heights, r.spectral
     for label, unit, value in (
         ("σ = Rq  RMS height", "µm", _um(h.rms)),
@@ -283,8 +291,8 @@ def topography_command(
         )
         use_band = None if no_filter else ("auto" if band is None else band)
         analyses = [analyse_surface(f, use_band, **kwargs) for f in files]
-        result: Any = composite_roughness(*analyses) if len(analyses) == 2 else analyses[0]
-        if method == "summits" and getattr(result, "summits", None) is None:
+        result = composite_roughness(*analyses) if len(analyses) == 2 else analyses[0]
+        if method == "summits" and result.summits is None:
             method = "spectral"  # profiles (and mixed pairs) have no summits
         block = result.toml_block(method)
         fig_path = None

@@ -29,10 +29,11 @@ import numpy as np
 
 from .._typing import ArrayLike
 from .._validation import InputError, check_array, check_real
-from ..physics.friction import boundary_shear_stress, couette_shear_stress, limit_shear_stress
+from ..physics.friction import boundary_shear_stress
 from ..physics.materials import Body, as_bodies, reduced_modulus
 from ..physics.stress import StressOperator, SubsurfaceStress
 from .ehl.options import EHLOptions
+from .ehl.postprocess import shear_stress
 
 __all__ = [
     "SurfaceLoads",
@@ -173,12 +174,7 @@ def _loads(
         else boundary_shear_strength
     )
     hf = np.maximum(h, _H_FLOOR)
-    mu = lubricant.viscosity_at(p)
-    tau_c = couette_shear_stress(mu, us, hf, viscous_model, lubricant.eyring_stress)
-    if limiting_shear:
-        tau_c = limit_shear_stress(
-            tau_c, p, lubricant.limiting_shear_coefficient, lubricant.limiting_shear_stress
-        )
+    tau_c = shear_stress(p, h, us, lubricant, viscous_model, limiting_shear)
     if p.ndim == 1:
         dpdx = np.gradient(p, x)
     else:  # uniform rows

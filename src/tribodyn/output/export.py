@@ -72,6 +72,16 @@ def _head(ds, name, prefix=""):
     return f"{prefix}{name} [{u}]" if u else f"{prefix}{name}"
 
 
+def _add_columns(ds, names, header: list[str], cols: list[np.ndarray], prefix="", row=None):
+    """Append the variables ``names`` present in ``ds`` (their row ``row`` for a per-set
+    variable) to a table's header and columns."""
+    for name in names:
+        if name in ds:
+            header.append(_head(ds, name, prefix))
+            v = ds[name].values
+            cols.append(np.asarray(v if row is None else v[row], float))
+
+
 def _write(path: Path, header: list[str], cols: list[np.ndarray]) -> Path:
     tmp = path.with_name(path.name + ".tmp")
     with open(tmp, "w", newline="", encoding="utf-8") as f:
@@ -92,22 +102,13 @@ def write_csv(ds, folder) -> list[Path]:
     sets = [str(s) for s in ds["surface_set"].values]
     header = ["crank_angle [deg]"]
     cols = [np.asarray(ds["ehl_crank"].values, float)]
-    for name in _CONDITIONS:
-        if name in ds:
-            header.append(_head(ds, name))
-            cols.append(np.asarray(ds[name].values, float))
+    _add_columns(ds, _CONDITIONS, header, cols)
     for k, s in enumerate(sets):
-        for name in _SET_COLUMNS:
-            if name in ds:
-                header.append(_head(ds, name, f"{s}:"))
-                cols.append(np.asarray(ds[name].values[k], float))
+        _add_columns(ds, _SET_COLUMNS, header, cols, f"{s}:", k)
     out = [_write(folder / "traces.csv", header, cols)]
     header = ["crank_angle [deg]"]
     cols = [np.asarray(ds["crank_angle"].values, float)]
-    for name in _DYNAMICS:
-        if name in ds:
-            header.append(_head(ds, name))
-            cols.append(np.asarray(ds[name].values, float))
+    _add_columns(ds, _DYNAMICS, header, cols)
     out.append(_write(folder / "dynamics.csv", header, cols))
     return out
 

@@ -99,7 +99,10 @@ def coated_half_plane_frf(
     m, coating: Coating | Material, substrate: Material, thickness: float | None = None
 ) -> np.ndarray:
     """Coated half-plane FRF g̃(m) [m/Pa per rad/m] (paper Eqs. 13–14)."""
-    h = thickness if thickness is not None else getattr(coating, "thickness", None)
+    if thickness is not None:
+        h: float | None = thickness
+    else:
+        h = coating.thickness if isinstance(coating, Coating) else None
     if h is None:
         raise InputError("thickness must be given for a coated half-plane")
     h = check_positive("thickness", h, "m")

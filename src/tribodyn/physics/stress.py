@@ -67,7 +67,24 @@ from .stress_kernels import (
     von_mises,
 )
 
-__all__ = ["StressPeak", "SubsurfaceStress", "StressOperator", "subsurface_stress", "von_mises"]
+__all__ = [
+    "PEAKS",
+    "StressPeak",
+    "SubsurfaceStress",
+    "StressOperator",
+    "subsurface_stress",
+    "von_mises",
+]
+
+#: The peaks of a :class:`SubsurfaceStress` (attribute names), as traced along a cycle.
+PEAKS = (
+    "max_von_mises_coating",
+    "max_von_mises_substrate",
+    "max_tension_surface",
+    "max_tension_coating",
+    "max_interface_shear",
+    "max_interface_tension",
+)
 
 
 @dataclass(frozen=True)
@@ -122,18 +139,8 @@ class SubsurfaceStress:
         return _max_principal(self.sxx, self.szz, self.sxz, self.syy)
 
     def peaks(self) -> dict[str, StressPeak]:
-        """The six peaks by name."""
-        return {
-            k: getattr(self, k)
-            for k in (
-                "max_von_mises_coating",
-                "max_von_mises_substrate",
-                "max_tension_surface",
-                "max_tension_coating",
-                "max_interface_shear",
-                "max_interface_tension",
-            )
-        }
+        """The six peaks by name (:data:`PEAKS`)."""
+        return {k: getattr(self, k) for k in PEAKS}
 
 
 def _peak(values: np.ndarray, x: np.ndarray, z: np.ndarray) -> StressPeak:

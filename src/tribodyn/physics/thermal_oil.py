@@ -243,10 +243,12 @@ class ThermalLubricant:
                 f"viscosity at the inlet temperature {mu_i:.3g} Pa·s is below "
                 "Roelands' limit 6.3e-5 Pa·s (oil too thin or too hot)"
             )
-        if not mu_i <= VISCOSITY.le and c["form"] == "inlet":
-            raise InputError(f"viscosity must be <= {VISCOSITY.le:g} Pa·s (got {mu_i:.6g})")
-        if not mu_i <= VISCOSITY.le:
-            coldest = self._temperature_where(lambda T: self.ambient_viscosity(T) - VISCOSITY.le)
+        mu_max = VISCOSITY.le
+        assert mu_max is not None  # the lubricant model's upper viscosity bound
+        if not mu_i <= mu_max and c["form"] == "inlet":
+            raise InputError(f"viscosity must be <= {mu_max:g} Pa·s (got {mu_i:.6g})")
+        if not mu_i <= mu_max:
+            coldest = self._temperature_where(lambda T: self.ambient_viscosity(T) - mu_max)
             raise InputError(
                 f"inlet_temperature must be >= {coldest:.5g} K ({coldest - _ZERO_C:.4g} °C) "
                 f"for this oil (got {Ti:.6g} K = {Ti - _ZERO_C:.4g} °C): its viscosity there "

@@ -31,14 +31,14 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 
 from .._typing import PathLike
 from .composite import composite_moments, sum_on_common_grid
 from .errors import InsufficientDataError
-from .filtering import AUTO_BAND, Band, BandSpec, Sampling, prepare_topography
+from .filtering import AUTO_BAND, Band, BandSpec, Sampling, SamplingLike, prepare_topography
 from .height_statistics import height_statistics
 from .profile import ProfileAnalysis
 from .reading import read_topography
@@ -88,7 +88,8 @@ def analysis_margin(band: Band | None, pixel_size, periodic: bool) -> tuple[int,
         return 0, 0
     if band is None or band.kind == "none":
         return 1, 1
-    return tuple(max(1, int(np.ceil(band.short_wavelength / p - 1e-9))) for p in pixel_size)
+    wx, wy = (max(1, int(np.ceil(band.wavelengths[0] / p - 1e-9))) for p in pixel_size)
+    return wx, wy
 
 
 def analysis_region(shape, margin) -> np.ndarray:
@@ -179,7 +180,7 @@ def reliable_points(measured: np.ndarray, band: Band, pixel_size, periodic: bool
     reach = 1.0 if band.kind == "none" else band.short_wavelength / min(pixel_size) / 4.0
     r_big = max(1, int(math.ceil(reach)))
     pad = r_big + 1
-    mode = "wrap" if periodic else "constant"
+    mode: Literal["wrap", "constant"] = "wrap" if periodic else "constant"
     f = np.pad(filled, pad, mode=mode)
     labels, _ = ndimage.label(f, structure=np.ones((3, 3), dtype=bool))
     big = np.zeros_like(f)
@@ -257,7 +258,7 @@ def _sampling_note(band: Band, sampling: Sampling) -> str:
             "pixel size and the instrument's noise; prefer a band with λ_s ≥ "
             f"{MIN_PIXELS_PER_WAVELENGTH:g} pixels"
         )
-    ratio = band.short_wavelength / dx
+    ratio = band.wavelengths[0] / dx
     text = f"λ_s spans {ratio:.3g} pixels"
     if ratio < MIN_PIXELS_PER_WAVELENGTH * (1 - 1e-6):  # tolerate float32 pixel sizes
         text += (
@@ -270,12 +271,13 @@ def _sampling_note(band: Band, sampling: Sampling) -> str:
     return text
 
 
-def input_warnings(band: Band, sampling: Sampling) -> tuple[str, ...]:
+def input_warnings(band: Band, sampling: SamplingLike) -> tuple[str, ...]:
     """Warnings about what was done to the input: band clipped, dropouts filled."""
     out = []
-    if band.clipped:
+    if band.requested is not None:
+        lo, hi = band.wavelengths
         out.append(
-            f"band {_um(band.short_wavelength)}–{_um(band.long_wavelength)} µm used "
+            f"band {_um(lo)}–{_um(hi)} µm used "
             f"instead of the requested {_um(band.requested[0])}–"
             f"{_um(band.requested[1])} µm: {band.reason or 'clipped to the measurement'}"
         )
@@ -305,13 +307,8 @@ def _with_notes(r: SurfaceAnalysis) -> SurfaceAnalysis:
             f"anisotropic texture (mean-square slope ratio {r.slope_anisotropy:.2f} "
             "between x and y): McCool's formulas assume isotropy"
         )
-    h = r.heights
-    if abs(h.skewness) > 0.5 or abs(h.kurtosis - 3.0) > 1.0:
-        notes.append(
-            f"height distribution not Gaussian (Ssk = {h.skewness:.2f}, "
-            f"Sku = {h.kurtosis:.2f}; Gaussian 0 and 3): Greenwood–Tripp's F_n assume "
-            "Gaussian summit heights"
-        )
+    if (note := r.heights.gaussian_note("S")) is not None:
+        notes.append(f"{note}: Greenwood–Tripp's F_n assume Gaussian summit heights")
     if r.summits.roughness_parameter < MIN_ETA_BETA_SIGMA:
         notes.append(
             f"summit ηβσ = {r.summits.roughness_parameter:.3g} is below "
@@ -482,9 +479,9 @@ def analyse_pair(
     :func:`analyse_surface` (``name`` is not accepted; file names label the surfaces).
     """
     a = analyse_surface(
-        first, band, **kwargs, **({} if isinstance(first, (str, Path)) else {"name": "surface 1"})
+        first, band, **kwargs, name=None if isinstance(first, (str, Path)) else "surface 1"
     )
     b = analyse_surface(
-        second, band, **kwargs, **({} if isinstance(second, (str, Path)) else {"name": "surface 2"})
+        second, band, **kwargs, name=None if isinstance(second, (str, Path)) else "surface 2"
     )
     return composite_roughness(a, b)

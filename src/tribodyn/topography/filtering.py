@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -58,6 +58,7 @@ __all__ = [
     "DETREND_MODES",
     "Band",
     "Sampling",
+    "SamplingLike",
     "check_band",
     "default_band",
     "band_pass",
@@ -98,6 +99,53 @@ def check_map_size(shape, what: str = "the map") -> None:
 _LN2 = math.log(2.0)
 
 
+class SamplingLike(Protocol):
+    """What the band checks read of a sampling: a map's :class:`Sampling` or a profile's
+    :class:`~tribodyn.topography.profile.ProfileSampling` (lengths in m)."""
+
+    @property
+    def pixel_size(self) -> tuple[float, ...]: ...
+
+    @property
+    def periodic(self) -> bool: ...
+
+    @property
+    def undefined_fraction(self) -> float: ...
+
+    @property
+    def nyquist_wavelength(self) -> float: ...
+
+    @property
+    def longest_wavelength(self) -> float: ...
+
+    def describe(self) -> str: ...
+
+    @property
+    def nb_grid_pts(self) -> tuple[int, ...]: ...
+
+    @property
+    def physical_sizes(self) -> tuple[float, ...]: ...
+
+
+def filled_note(sampling: SamplingLike, text: str) -> str:
+    """``text`` (a sampling's description) with the share of filled points, if any."""
+    if sampling.undefined_fraction > 0:
+        text += f", {sampling.undefined_fraction:.2%} undefined points filled"
+    return text
+
+
+def sampling_dict(sampling: SamplingLike) -> dict:
+    """A sampling as a dict: points, pixel size and lengths [m], periodic, filled share."""
+    return {
+        "nb_grid_pts": list(sampling.nb_grid_pts),
+        "pixel_size": list(sampling.pixel_size),
+        "physical_sizes": list(sampling.physical_sizes),
+        "periodic": sampling.periodic,
+        "undefined_fraction": sampling.undefined_fraction,
+        "units": dict(Sampling.UNITS),
+    }
+
+
 @dataclass(frozen=True)
 class Sampling:
     """Sampling of a topography map. Lengths in m.
@@ -116,10 +164,15 @@ class Sampling:
 
     @classmethod
     def of(cls, topography, undefined_fraction: float = 0.0) -> Sampling:
+        (nx, ny), (dx, dy), (lx, ly) = (
+            topography.nb_grid_pts,
+            topography.pixel_size,
+            topography.physical_sizes,
+        )
         return cls(
-            tuple(int(n) for n in topography.nb_grid_pts),
-            tuple(float(p) for p in topography.pixel_size),
-            tuple(float(s) for s in topography.physical_sizes),
+            (int(nx), int(ny)),
+            (float(dx), float(dy)),
+            (float(lx), float(ly)),
             bool(topography.is_periodic),
             float(undefined_fraction),
         )
@@ -136,23 +189,14 @@ class Sampling:
 
     def describe(self) -> str:
         (nx, ny), (dx, dy), (lx, ly) = self.nb_grid_pts, self.pixel_size, self.physical_sizes
-        text = (
+        return filled_note(
+            self,
             f"{nx} × {ny} points, pixel {_um(dx)} × {_um(dy)} µm, "
-            f"area {_um(lx)} × {_um(ly)} µm, {'periodic' if self.periodic else 'non-periodic'}"
+            f"area {_um(lx)} × {_um(ly)} µm, {'periodic' if self.periodic else 'non-periodic'}",
         )
-        if self.undefined_fraction > 0:
-            text += f", {self.undefined_fraction:.2%} undefined points filled"
-        return text
 
     def to_dict(self) -> dict:
-        return {
-            "nb_grid_pts": list(self.nb_grid_pts),
-            "pixel_size": list(self.pixel_size),
-            "physical_sizes": list(self.physical_sizes),
-            "periodic": self.periodic,
-            "undefined_fraction": self.undefined_fraction,
-            "units": dict(self.UNITS),
-        }
+        return sampling_dict(self)
 
 
 @dataclass(frozen=True)
@@ -174,12 +218,20 @@ class Band:
     def clipped(self) -> bool:
         return self.requested is not None
 
+    @property
+    def wavelengths(self) -> tuple[float, float]:
+        """(λ_s, λ_L) [m]; a band of kind "none" has none (ValueError)."""
+        if self.short_wavelength is None or self.long_wavelength is None:
+            raise ValueError("a band of kind 'none' has no cutoff wavelengths")
+        return self.short_wavelength, self.long_wavelength
+
     def transfer(self, q):
         """Transfer function H(|q|) of the filter (q in rad/m)."""
         q = np.asarray(q, dtype=float)
         if self.kind == "none":
             return np.ones_like(q)
-        qs, ql = 2.0 * np.pi / self.short_wavelength, 2.0 * np.pi / self.long_wavelength
+        lo, hi = self.wavelengths
+        qs, ql = 2.0 * np.pi / lo, 2.0 * np.pi / hi
         if self.kind == "step":
             return ((q <= qs) & (q >= ql)).astype(float)
         return np.exp(-_LN2 * (q / qs) ** 2) * -np.expm1(-_LN2 * (q / ql) ** 2)
@@ -192,8 +244,9 @@ class Band:
             if self.kind == "gaussian"
             else "ideal step"
         )
-        text = f"{_um(self.short_wavelength)}–{_um(self.long_wavelength)} µm ({kind})"
-        if self.clipped:
+        lo, hi = self.wavelengths
+        text = f"{_um(lo)}–{_um(hi)} µm ({kind})"
+        if self.requested is not None:
             text += (
                 f", clipped from the requested {_um(self.requested[0])}–"
                 f"{_um(self.requested[1])} µm to the measurement's range"
@@ -215,9 +268,25 @@ def _um(x: float) -> str:
     return f"{x * 1e6:.4g}"
 
 
+def _shortest_wavelength(
+    sampling: SamplingLike, reliability_cutoff: float | None
+) -> tuple[float, str]:
+    """The shortest wavelength the measurement resolves [m] and why: its Nyquist
+    wavelength 2Δ, or the instrument's reliability cutoff where that is longer."""
+    if reliability_cutoff is not None and reliability_cutoff > sampling.nyquist_wavelength:
+        return reliability_cutoff, (
+            f"the instrument's reliability cutoff {_um(reliability_cutoff)} µm"
+        )
+    nyq = sampling.nyquist_wavelength
+    return (
+        nyq,
+        f"the Nyquist wavelength 2Δ = {_um(nyq)} µm (pixel {_um(max(sampling.pixel_size))} µm)",
+    )
+
+
 def check_band(
     band,
-    sampling: Sampling,
+    sampling: SamplingLike,
     *,
     kind: str = "gaussian",
     clip: bool = False,
@@ -241,18 +310,7 @@ def check_band(
         raise BandLimitError(
             f"band limits must satisfy short < long (got {_um(lo)} µm ≥ {_um(hi)} µm)"
         )
-    lo_min, why = (
-        sampling.nyquist_wavelength,
-        (
-            f"the Nyquist wavelength 2Δ = {_um(sampling.nyquist_wavelength)} µm "
-            f"(pixel {_um(max(sampling.pixel_size))} µm)"
-        ),
-    )
-    if reliability_cutoff is not None and reliability_cutoff > lo_min:
-        lo_min, why = (
-            reliability_cutoff,
-            (f"the instrument's reliability cutoff {_um(reliability_cutoff)} µm"),
-        )
+    lo_min, why = _shortest_wavelength(sampling, reliability_cutoff)
     hi_max = sampling.longest_wavelength
     new_lo, new_hi = lo, hi
     if lo < lo_min * (1 - 1e-9):
@@ -281,7 +339,7 @@ def check_band(
 
 
 def default_band(
-    sampling: Sampling, *, kind: str = "gaussian", reliability_cutoff: float | None = None
+    sampling: SamplingLike, *, kind: str = "gaussian", reliability_cutoff: float | None = None
 ) -> Band:
     """The paper's band clipped to what the measurement resolves (module docstring).
 
@@ -291,20 +349,9 @@ def default_band(
         raise InputError(f"filter kind must be one of {FILTER_KINDS} (got {kind!r})")
     lo0, hi0 = PAPER_BAND
     lo, why_lo = lo0, ""
-    nyq = sampling.nyquist_wavelength
-    if nyq > lo:
-        lo, why_lo = (
-            nyq,
-            (
-                f"λ_s raised to the Nyquist wavelength 2Δ = {_um(nyq)} µm "
-                f"(pixel {_um(max(sampling.pixel_size))} µm)"
-            ),
-        )
-    if reliability_cutoff is not None and reliability_cutoff > lo:
-        lo, why_lo = (
-            reliability_cutoff,
-            (f"λ_s raised to the instrument's reliability cutoff {_um(reliability_cutoff)} µm"),
-        )
+    lo_min, why = _shortest_wavelength(sampling, reliability_cutoff)
+    if lo_min > lo:
+        lo, why_lo = lo_min, f"λ_s raised to {why}"
     field = sampling.longest_wavelength
     usable = field - (0.0 if sampling.periodic else 2.0 * lo)
     hi, why_hi = hi0, ""

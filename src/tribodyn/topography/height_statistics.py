@@ -35,6 +35,16 @@ class HeightStatistics:
 
     UNITS = {"rms": "m", "mean": "m", "skewness": "-", "kurtosis": "-"}
 
+    def gaussian_note(self, prefix: str = "S") -> str | None:
+        """A note if the heights are not near-Gaussian (|Ssk| > 0.5 or |Sku − 3| > 1),
+        naming the parameters ``prefix`` + "sk"/"ku" ("S" areal, "R" profile); else None."""
+        if abs(self.skewness) > 0.5 or abs(self.kurtosis - 3.0) > 1.0:
+            return (
+                f"height distribution not Gaussian ({prefix}sk = {self.skewness:.2f}, "
+                f"{prefix}ku = {self.kurtosis:.2f}; Gaussian 0 and 3)"
+            )
+        return None
+
     def to_dict(self) -> dict:
         return {
             "rms": self.rms,

@@ -44,6 +44,8 @@ from .filtering import (
     check_band,
     check_map_size,
     default_band,
+    filled_note,
+    sampling_dict,
 )
 from .height_statistics import HeightStatistics, height_statistics
 from .results import AsperityParameters, _TomlMixin
@@ -83,23 +85,14 @@ class ProfileSampling:
         return self.physical_sizes[0]
 
     def describe(self) -> str:
-        text = (
+        return filled_note(
+            self,
             f"profile of {self.nb_grid_pts[0]} points, spacing {_um(self.pixel_size[0])} "
-            f"µm, length {_um(self.physical_sizes[0])} µm"
+            f"µm, length {_um(self.physical_sizes[0])} µm",
         )
-        if self.undefined_fraction > 0:
-            text += f", {self.undefined_fraction:.2%} undefined points filled"
-        return text
 
     def to_dict(self) -> dict:
-        return {
-            "nb_grid_pts": list(self.nb_grid_pts),
-            "pixel_size": list(self.pixel_size),
-            "physical_sizes": list(self.physical_sizes),
-            "periodic": self.periodic,
-            "undefined_fraction": self.undefined_fraction,
-            "units": {"pixel_size": "m", "physical_sizes": "m"},
-        }
+        return sampling_dict(self)
 
 
 @dataclass(frozen=True)
@@ -120,11 +113,11 @@ class ProfileAnalysis(_TomlMixin):
     notes: tuple[str, ...] = ()
     warnings: tuple[str, ...] = ()
     source: dict | None = None
-    profile: np.ndarray = field(default=None, repr=False, compare=False)
-    filled: np.ndarray = field(default=None, repr=False, compare=False)
-    topography: object = field(default=None, repr=False, compare=False)  # not a map
-    summit_stats: object = None
-    mccool: McCoolParameters = None
+    profile: np.ndarray | None = field(default=None, repr=False, compare=False)
+    filled: np.ndarray | None = field(default=None, repr=False, compare=False)
+    topography: None = field(default=None, repr=False, compare=False)  # not a map
+    summit_stats: None = None
+    mccool: McCoolParameters = field(init=False)  # = isotropic
 
     kind = "profile"
 
@@ -269,7 +262,10 @@ def analyse_profile(
         margin = 1
     else:
         hf, d1, d2 = _filter_profile(h, dx, applied, periodic)
-        margin = 0 if periodic else max(1, int(math.ceil(applied.short_wavelength / dx - 1e-9)))
+        if periodic:
+            margin = 0
+        else:  # one λ_s at each end (a filtered, non-periodic profile)
+            margin = max(1, int(math.ceil(applied.wavelengths[0] / dx - 1e-9)))
     region = np.zeros(n, dtype=bool)
     region[margin : n - margin] = True
     ok = measured & np.roll(measured, 1) & np.roll(measured, -1)  # with measured neighbours
@@ -321,18 +317,14 @@ def _with_profile_notes(r: ProfileAnalysis) -> ProfileAnalysis:
 
     notes = [f"η and β are an {ISOTROPIC_LABEL}"]
     if r.band.kind != "none":
-        px = r.band.short_wavelength / r.sampling.pixel_size[0]
+        px = r.band.wavelengths[0] / r.sampling.pixel_size[0]
         if px < 16.0 * (1 - 1e-6):
             notes.append(
                 f"λ_s spans {px:.3g} points (< 16): counted peaks depend on the "
                 "sampling; the moment estimates do not"
             )
-    h = r.heights
-    if abs(h.skewness) > 0.5 or abs(h.kurtosis - 3.0) > 1.0:
-        notes.append(
-            f"height distribution not Gaussian (Rsk = {h.skewness:.2f}, Rku = "
-            f"{h.kurtosis:.2f}; Gaussian 0 and 3)"
-        )
+    if (note := r.heights.gaussian_note("R")) is not None:
+        notes.append(note)
     if r.peak_count < 200:
         notes.append(
             f"only {r.peak_count} peaks: statistical uncertainty of order "

@@ -136,7 +136,7 @@ def read_topography(
             check_map_size(ch.nb_grid_pts, f"'{path}' ({fmt})")
         except TopographyError as exc:
             raise TopographyReadError(str(exc)) from None
-    kwargs = {}
+    kwargs: dict[str, Any] = {}
     if physical_sizes is not None:
         if ch.physical_sizes is not None:
             raise TopographyReadError(

@@ -6,7 +6,11 @@ radius depend strongly on both (η grows and β shrinks as shorter wavelengths a
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Protocol
+
+import numpy as np
 
 from .._validation import InputError
 from ..physics.asperity import Roughness
@@ -14,6 +18,9 @@ from .filtering import Band, Sampling
 from .height_statistics import HeightStatistics
 from .spectral_moments import McCoolParameters, SpectralMoments
 from .summits import SummitStatistics
+
+if TYPE_CHECKING:
+    from .profile import ProfileAnalysis
 
 __all__ = ["METHODS", "AsperityParameters", "SurfaceAnalysis", "PairAnalysis"]
 
@@ -93,7 +100,37 @@ def _check_method(method: str) -> str:
     return method
 
 
-class _TomlMixin:
+class HeightMap(Protocol):
+    """What the analysis keeps of a filtered map (a SurfaceTopography ``Topography``,
+    lengths in m)."""
+
+    @property
+    def nb_grid_pts(self) -> tuple[int, int]: ...
+
+    @property
+    def pixel_size(self) -> tuple[float, float]: ...
+
+    @property
+    def is_periodic(self) -> bool: ...
+
+    def heights(self) -> np.ndarray: ...
+
+
+class _TomlMixin(ABC):
+    """Roughness block and ``Roughness`` from a result's estimators."""
+
+    @abstractmethod
+    def parameters(self, method: str = "summits") -> AsperityParameters:
+        """η, σ, β of one estimator (:data:`METHODS`)."""
+
+    @abstractmethod
+    def describe_source(self) -> str:
+        """What was analysed (one line)."""
+
+    @abstractmethod
+    def describe_conditions(self) -> list[str]:
+        """Band, sampling and notes (one line each)."""
+
     def to_roughness(self, method: str = "summits") -> Roughness:
         """tribodyn ``Roughness`` (η, σ, β) from the chosen estimator."""
         return self.parameters(method).to_roughness()
@@ -139,7 +176,7 @@ class SurfaceAnalysis(_TomlMixin):
     slope_anisotropy: float
     notes: tuple[str, ...] = ()
     source: dict | None = None
-    topography: object = field(default=None, repr=False, compare=False)
+    topography: HeightMap | None = field(default=None, repr=False, compare=False)
     #: what was done to the input (band clipped, dropouts filled); shown as warnings
     warnings: tuple[str, ...] = ()
     #: points that were not measured (filled before filtering); None: all measured
@@ -196,8 +233,8 @@ class PairAnalysis(_TomlMixin):
     h₁ + h₂ on the common grid (``None`` if the two maps are sampled differently).
     """
 
-    first: SurfaceAnalysis
-    second: SurfaceAnalysis
+    first: SurfaceAnalysis | ProfileAnalysis
+    second: SurfaceAnalysis | ProfileAnalysis
     moments: SpectralMoments
     mccool: McCoolParameters
     summit_stats: SummitStatistics | None
@@ -222,12 +259,13 @@ class PairAnalysis(_TomlMixin):
     def parameters(self, method: str = "summits") -> AsperityParameters:
         if _check_method(method) == "spectral":
             return self.spectral
-        if self.summit_stats is None:
+        summits = self.summits
+        if summits is None:
             raise InputError(
                 "no composite summit analysis (the two maps are sampled "
                 "differently); use method='spectral'"
             )
-        return self.summits
+        return summits
 
     def describe_source(self) -> str:
         return f"composite of '{self.first.name}' + '{self.second.name}'"

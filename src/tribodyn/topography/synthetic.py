@@ -16,7 +16,7 @@ M_n = (1/2π) ∫ qⁿ⁺¹ C²ᴰ(q) dq and m0 = M0, m2 = M2/2, m4 = 3M4/8 (see
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, TypedDict
 
 import numpy as np
 
@@ -25,9 +25,19 @@ from .spectral_moments import SpectralMoments, isotropic_profile_moments
 
 __all__ = ["synthetic_surface", "synthetic_moments", "DEFAULT_SYNTHETIC"]
 
+
 #: Default synthetic surface: a ≈ 51 µm square scan at 0.1 µm pixels (like the paper's
 #: 50× white-light measurement), σ = 0.25 µm, H = 0.8, wavelengths 2–25 µm.
-DEFAULT_SYNTHETIC = dict(
+class _SyntheticDefaults(TypedDict):
+    nb_grid_pts: tuple[int, int]
+    pixel_size: float  # [m]
+    rms: float  # [m]
+    hurst: float  # [-]
+    short_cutoff: float  # [m]
+    long_cutoff: float  # [m]
+
+
+DEFAULT_SYNTHETIC: _SyntheticDefaults = dict(
     nb_grid_pts=(512, 512),
     pixel_size=0.1e-6,
     rms=0.25e-6,

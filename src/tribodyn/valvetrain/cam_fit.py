@@ -151,7 +151,7 @@ def find_curvature_jumps(
     clusters.append(cur)
     if len(clusters) > 1 and (clusters[0][0] + x.size - clusters[-1][-1]) <= 2 * scales[0]:
         clusters[0] = clusters.pop() + clusters[0]
-    out = []
+    out: list[tuple[float, float]] = []
     for cl in clusters:
         # located with the most significant window (least residual), then tested with
         # every window from the narrowest (least model error) up, centred there

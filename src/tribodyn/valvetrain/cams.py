@@ -288,7 +288,7 @@ class AccelerationCam(CamProfile):
 
         # Ramp: half-sine acceleration pulse then constant velocity.
         br, hr = self.ramp_angle, self.ramp_height
-        segs = []  # (kind, beta, params)
+        segs: list[tuple[str, float, tuple[float, ...]]] = []  # (kind, beta, params)
         if br > 0.0:
             ba = self.ramp_pulse_share * br
             vr = hr / (br - 0.5 * ba)

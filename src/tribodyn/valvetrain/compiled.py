@@ -456,7 +456,7 @@ def compiled_model(model) -> CompiledLumped | None:
     from .tribology import FilmTableTribology
 
     trib = model.trib
-    if not model._tab:  # friction tabulated over the cam angle (periodic tribology)
+    if model.friction_fn is None:  # the kernels need the friction tabulated over the cam angle
         return None
     film = None
     if model.has_film:
@@ -509,7 +509,8 @@ def integrate_compiled(cm: CompiledLumped, t_grid, rtol, atol, hmax, events, gri
     if info["message"] != "Integration successful." or not np.all(np.isfinite(Y)):
         return None, None, None, stats, f"LSODA failed: {info['message']}"
     Y = Y.T
-    t_ev, y_ev = [[] for _ in events], [[] for _ in events]
+    t_ev: list[list[float]] = [[] for _ in events]
+    y_ev: list[list[np.ndarray]] = [[] for _ in events]
     g = np.asarray(grid_events(t_grid, Y))
     sign = np.signbit(g)
     todo = sorted({int(i) for k in range(len(events)) for i in np.nonzero(np.diff(sign[k]))[0]})

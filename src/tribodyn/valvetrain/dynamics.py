@@ -14,7 +14,9 @@ from __future__ import annotations
 
 import math
 import time as _time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Protocol, TypedDict, runtime_checkable
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -22,7 +24,8 @@ from scipy.integrate import solve_ivp
 from .._validation import InputError, check_real
 from ..physics import limits as L
 from .cams import CamProfile
-from .compiled import compiled_model, integrate_compiled, lumped_energies
+from .compiled import CompiledLumped, compiled_model, integrate_compiled, lumped_energies
+from .flexible import FlexibleValvetrain
 from .kinematics import rpm_to_cam_speed
 from .model import ContactLawError
 from .parameters import ValvetrainParameters
@@ -61,7 +64,7 @@ class ValvetrainResult:
     message: str
     engine_speed: float
     cam_speed: float
-    params: ValvetrainParameters
+    params: ValvetrainParameters | FlexibleValvetrain
     cam: CamProfile
     tribology: str
     jumps: list = field(default_factory=list)
@@ -149,7 +152,16 @@ class ValvetrainResult:
         }
 
 
-def resolve_tribology(tribology, params: ValvetrainParameters) -> TribologyModel:
+@runtime_checkable
+class _HasWidth(Protocol):
+    """A tribology law for a given contact width [m] (checked against the cam's)."""
+
+    width: float
+
+
+def resolve_tribology(
+    tribology, params: ValvetrainParameters | FlexibleValvetrain
+) -> TribologyModel:
     """Map ``"explicit"`` / None / a model to a :class:`TribologyModel`."""
     if tribology is None or tribology == "none":
         return Frictionless()
@@ -164,7 +176,7 @@ def resolve_tribology(tribology, params: ValvetrainParameters) -> TribologyModel
             f"tribology must be 'explicit', None or a TribologyModel (got "
             f"{type(tribology).__name__})"
         )
-    w = getattr(tribology, "width", None)
+    w = tribology.width if isinstance(tribology, _HasWidth) else None
     if w is not None and abs(w - params.cam_width) > 1e-12:
         raise InputError(f"tribology width {w:g} m differs from cam_width {params.cam_width:g} m")
     return tribology
@@ -184,7 +196,7 @@ def _check_atol(atol, size: int) -> float | np.ndarray:
 
 def simulate_valvetrain(
     cam: CamProfile,
-    params: ValvetrainParameters | None = None,
+    params: ValvetrainParameters | FlexibleValvetrain | None = None,
     *,
     engine_speed: float = 3000.0,
     tribology: TribologyModel | str | None = "explicit",
@@ -192,7 +204,7 @@ def simulate_valvetrain(
     output_step: float = 0.25,
     method: str = "LSODA",
     rtol: float = 1e-6,
-    atol: float | None = None,
+    atol: float | Sequence[float] | np.ndarray | None = None,
     max_step: float = 1.0,
     start_angle: float = 0.0,
     jump_lift_threshold: float = 10e-6,
@@ -254,12 +266,13 @@ def simulate_valvetrain(
     t_eval = np.radians(crank) / (2.0 * w)
     t_eval[-1] = min(t_eval[-1], t_end)
     if atol is None:
-        atol = np.concatenate([np.full(n, 1e-10), np.full(n, 1e-6), [1e-6, 1e-6]])
+        abs_tol: float | np.ndarray = np.concatenate(
+            [np.full(n, 1e-10), np.full(n, 1e-6), [1e-6, 1e-6]]
+        )
     else:
-        atol = _check_atol(atol, 2 * n + 2)
+        abs_tol = _check_atol(atol, 2 * n + 2)
     hmax = math.radians(max_step) / (2.0 * w)
-    base = dict(
-        converged=False,
+    base = _Header(
         engine_speed=float(engine_speed),
         cam_speed=w,
         params=params,
@@ -268,19 +281,31 @@ def simulate_valvetrain(
         jump_lift_threshold=jump_lift_threshold,
     )
     run = _integrate(
-        model, method, t_eval, t_end, cycles, output_step, rtol, atol, hmax, jump_lift_threshold
+        model, method, t_eval, t_end, cycles, output_step, rtol, abs_tol, hmax, jump_lift_threshold
     )
     if isinstance(run, str):
-        return ValvetrainResult(**base, message=run)
+        return ValvetrainResult(**base, converged=False, message=run)
     if run.failure is not None:
-        return ValvetrainResult(**base, stats=run.stats, message=run.failure)
+        return ValvetrainResult(**base, converged=False, stats=run.stats, message=run.failure)
     try:
         res = _sample(model, run, t_eval, crank, base)
     except ContactLawError as exc:
-        return ValvetrainResult(**base, stats=run.stats, message=f"output evaluation failed: {exc}")
+        msg = f"output evaluation failed: {exc}"
+        return ValvetrainResult(**base, converged=False, stats=run.stats, message=msg)
     _energy_balance(res, run.Y, n, w)
     _events(res, model, run, (cycles - 1) * T_cycle, t_end)
     return res
+
+
+class _Header(TypedDict):
+    """The fields of :class:`ValvetrainResult` known before the integration."""
+
+    engine_speed: float
+    cam_speed: float
+    params: ValvetrainParameters | FlexibleValvetrain
+    cam: CamProfile
+    tribology: str
+    jump_lift_threshold: float
 
 
 @dataclass
@@ -294,7 +319,7 @@ class _Run:
     t_con: np.ndarray
     y_con: np.ndarray
     stats: dict
-    compiled: object = None
+    compiled: CompiledLumped | None = None
     failure: str | None = None
 
 
@@ -386,7 +411,7 @@ _COLS = ("s", "s1", "s2", "R", "ue", "us", "Fc", "P", "film", "Ftv", "Fs", "Fb")
 
 
 def _sample(
-    model: ValvetrainSystem, run: _Run, t_eval: np.ndarray, crank: np.ndarray, base: dict
+    model: ValvetrainSystem, run: _Run, t_eval: np.ndarray, crank: np.ndarray, base: _Header
 ) -> ValvetrainResult:
     """Forces, kinematics, friction and energies at every output sample (the compiled
     backend's vectorised outputs, or the model's ``evaluate`` sample by sample)."""
@@ -395,7 +420,7 @@ def _sample(
     cols = {k: np.empty(m) for k in _COLS + ("acc_t", "acc_v", "F0s", "FNs", "T", "U")}
     cm = run.compiled
     if cm is not None:
-        f = cm.outputs(t_eval, Y)  # type: ignore[attr-defined]
+        f = cm.outputs(t_eval, Y)
         for k in _COLS:
             cols[k][:] = f[k]
         cols["acc_t"][:], cols["acc_v"][:] = f["acc_t"], f["acc_v"]
@@ -427,7 +452,8 @@ def _sample(
             f"{unresolved * 1e6:.3g} µm): raise the spring's clash_margin"
         )
     res = ValvetrainResult(
-        **{**base, "converged": True},
+        **base,
+        converged=True,
         message="ok" if note is None else f"ok; warning: {note}",
         stats=run.stats,
         tribology_report=report,
@@ -522,7 +548,8 @@ def _events(
         hmax_b = float(res.valve_lift[msk].max()) if msk.any() else 0.0
         res.bounces.append((crank_of(t), crank_of(t_back), max(hmax_b, 0.0)))
     # Jumps: contact lost while the cam lifts (direction from the gap rate ω s' − v_t).
-    losses, regains = [], []
+    losses: list[float] = []
+    regains: list[float] = []
     for t, y in zip(run.t_con, run.y_con):
         s, s1, _ = cam.scalar_derivatives(model.theta0 + w * t)
         rate = (w * s1 if s > thr else 0.0) - y[n]

@@ -185,11 +185,17 @@ class TappetGeometry:
     @property
     def total_mass(self) -> float:
         if self.model == "lumped":
-            return float(self.mass)
+            return self._lumped_mass()
         r, t = self.radius, self.skirt_thickness
         crown = math.pi * r * r * self.crown_thickness
         skirt = math.pi * (r * r - (r - t) ** 2) * self.skirt_length
         return self.density * (crown + skirt)
+
+    def _lumped_mass(self) -> float:
+        """The one mass of ``model = "lumped"`` [kg] (required there)."""
+        if self.mass is None:
+            raise InputError("tappet mass is required with model = 'lumped'")
+        return float(self.mass)
 
     def fe_model(self) -> AxialFEModel:
         """The crown as a rigid disc on the face node, the skirt as ``elements`` bars
@@ -199,7 +205,7 @@ class TappetGeometry:
         m = AxialFEModel("tappet")
         face = m.node("face")
         if self.model == "lumped":
-            m.mass(face, self.mass)
+            m.mass(face, self._lumped_mass())
             return m
         r, t = self.radius, self.skirt_thickness
         m.mass(face, self.density * math.pi * r * r * self.crown_thickness)

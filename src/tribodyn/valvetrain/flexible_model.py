@@ -35,21 +35,14 @@ import numpy as np
 
 from .._validation import InputError
 from .cams import CamProfile
+from .contact_law import _PALMGREN_EXP, CamContactModel, check_model_inputs, smooth_step
 from .flexible import FlexibleValvetrain
-from .model import (
-    _PALMGREN_EXP,
-    ContactLawError,
-    _FrictionTable,
-    check_model_inputs,
-    contact_film_root,
-    smooth_step,
-)
 from .tribology import TribologyModel
 
 __all__ = ["FlexibleValvetrainModel"]
 
 
-class FlexibleValvetrainModel:
+class FlexibleValvetrainModel(CamContactModel):
     """Right-hand side, Jacobian, forces and energies of the flexible valvetrain."""
 
     def __init__(
@@ -167,61 +160,12 @@ class FlexibleValvetrainModel:
             fs[a] -= Qs
             fs[b] += Qs
         self.f_static = fs
-        # contact law δ_el = C z + z^γ (c_bend) ; P = z^γ
-        if p.contact_stiffness is None:
-            self.gamma = 1.0 / _PALMGREN_EXP
-            self.Cc = p.contact_compliance_coefficient
-        else:
-            self.gamma = 1.0
-            self.Cc = 1.0 / p.contact_stiffness
-        self.has_film = bool(tribology.has_film)
-        if tribology.periodic_in_cam_angle:
-            self.friction_fn = _FrictionTable(tribology, cam, self.w, self.theta0)
-        else:
-            self.friction_fn = None
+        self._init_contact(tribology, self.c_bend)  # camshaft bending in series
         self._Kl = K.tolist()
-
-    # -- contact law (as the lumped model, with the camshaft bending in series) ----------
-    def film(self, t: float, force: float, ue: float, R: float) -> tuple[float, float]:
-        if not self.has_film:
-            return 0.0, 0.0
-        h, hF = self.trib.film(t, force, ue, R)
-        h, hF = float(h), float(hF)
-        if not (math.isfinite(h) and math.isfinite(hF)) or hF > 0.0:
-            raise ContactLawError(
-                f"film law returned h = {h:g} m, dh/dF = {hF:g} m/N at "
-                f"t = {t:.6g} s (need finite, dh/dF <= 0)"
-            )
-        return h, hF
-
-    def elastic_contact(self, t, dk, ue=0.0, R=1.0):
-        """Elastic contact force P [N], dP/dδ_kin [N/m] and film h [m]."""
-        C, g, ikc = self.Cc, self.gamma, self.c_bend
-        if not self.has_film and ikc == 0.0:
-            if dk <= 0.0:
-                return 0.0, 0.0, 0.0
-            z = dk / C
-            return z**g, g * z ** (g - 1.0) / C, 0.0
-        return contact_film_root(self.film, t, dk, ue, R, C, g, ikc)
-
-    def contact_potential(self, P: float) -> float:
-        if P <= 0.0:
-            return 0.0
-        if self.gamma == 1.0:
-            u = 0.5 * self.Cc * P * P
-        else:
-            e = 1.0 / self.gamma
-            u = self.Cc * e / (1.0 + e) * P ** (1.0 + e)
-        return u + 0.5 * self.c_bend * P * P
 
     compilable = False  # no compiled right-hand side (solve_ivp path)
 
     PARAMS = FlexibleValvetrain
-
-    @classmethod
-    def handles(cls, params) -> bool:
-        """True for a :class:`FlexibleValvetrain`."""
-        return isinstance(params, cls.PARAMS)
 
     def lobe_angle(self, t: float, y) -> float:
         """Lobe angle θ₀ + ωt − φ [rad]."""
@@ -237,54 +181,32 @@ class FlexibleValvetrainModel:
         iphi = self.iphi
         phi = ql[iphi] if iphi is not None else 0.0
         phid = vl[iphi] if iphi is not None else 0.0
-        th = self.theta0 + w * t - phi
-        wl = w - phid
-        s, s1, s2 = self.cam.scalar_derivatives(th)
-        rb = self.cam.base_radius
-        R = rb + s + s2
-        ue = 0.5 * wl * (rb + s + 2.0 * s2)
-        us = wl * (rb + s)
         ramp = p.damping_force_ramp
         fj = [0.0] * n
         elems = []  # (gradient dict, k, c) for the Jacobian
         diss = 0.0
-        # cam contact
+        # cam contact (lobe angle θ₀ + ωt − φ, lobe speed ω − φ̇), friction there and in
+        # the bore
         i_f = self.i_face
-        xf, vf = ql[i_f], vl[i_f]
-        dk = s - xf
-        dkd = wl * s1 - vf
-        P, dPdk, hfilm = self.elastic_contact(t, dk, ue, R)
-        gc, dgc = smooth_step(P, ramp)
-        Fc = P + p.contact_damping * gc * dkd
-        on_c = Fc > 0.0
-        if not on_c:
-            Fc = 0.0
+        vf = vl[i_f]
+        con = self.cam_contact(t, self.theta0 + w * t - phi, w - phid, ql[i_f], vf)
+        P, Fc, Ff, Fb, s1, us = con.P, con.Fc, con.Ff, con.Fb, con.s1, con.us
         fj[i_f] += Fc
         if iphi is not None:
             fj[iphi] += Fc * s1
-        diss += (Fc - P) * dkd
-        if Fc > 0.0:
-            Ff = (
-                self.friction_fn(th, Fc)
-                if self.friction_fn is not None
-                else float(self.trib.friction(t, Fc, ue, us, R))
-            )
-        else:
-            Ff = 0.0
+        diss += (Fc - P) * con.dkd
         if iphi is not None:
-            fj[iphi] += Ff * (rb + s)
-        th_v = math.tanh(vf / p.bore_friction_velocity)
-        Fb = p.bore_friction_coefficient * Ff * th_v
+            fj[iphi] += Ff * (self.cam.base_radius + con.s)
         fj[i_f] -= Fb
         diss += Fb * vf + Ff * us
-        if jac and on_c:
+        if jac and con.on:
             gvec = {i_f: -1.0}
             if iphi is not None:
                 gvec[iphi] = -s1
-            elems.append(
-                (gvec, dPdk * (1.0 + p.contact_damping * dgc * dkd), p.contact_damping * gc)
-            )
+            kc = con.dPdk * (1.0 + p.contact_damping * con.dgc * con.dkd)
+            elems.append((gvec, kc, p.contact_damping * con.gc))
         if jac:
+            th_v = con.th_v
             cb = p.bore_friction_coefficient * Ff * (1.0 - th_v * th_v) / p.bore_friction_velocity
             elems.append(({i_f: 1.0}, 0.0, cb))
 
@@ -369,42 +291,14 @@ class FlexibleValvetrainModel:
         accl = acc.tolist()
         # output order: acc[0] tappet face, acc[1] valve seat face; Fseg[0] spring force on
         # the valve (spring seat), Fseg[-1] support force on the head
-        out = dict(
-            theta=th,
-            s=s,
-            s1=s1,
-            s2=s2,
-            R=R,
-            ue=ue,
-            us=us,
-            dk=dk,
-            P=P,
-            Fc=Fc,
-            Ff=Ff,
-            Fb=Fb,
-            Ftv=Ftv,
-            Fs=Fs,
-            Fseg=[Fss, Fsp],
-            acc=accl,
-            film=hfilm,
-            cam_power=cam_power,
-            dissipation_rate=diss,
+        out = con.outputs(
+            Ftv=Ftv, Fs=Fs, Fseg=[Fss, Fsp], acc=accl, cam_power=cam_power, dissipation_rate=diss
         )
         if jac:
             out["elements"] = elems
         return out
 
     # -- ODE interface -----------------------------------------------------------------
-    def rhs(self, t, y):
-        n = self.n
-        f = self.evaluate(t, y)
-        dy = np.empty(2 * n + 2)
-        dy[:n] = y[n : 2 * n]
-        dy[n : 2 * n] = f["acc"]
-        dy[2 * n] = f["cam_power"]
-        dy[2 * n + 1] = f["dissipation_rate"]
-        return dy
-
     def jacobian(self, t, y):
         """∂ẏ/∂y from the bodies' K, C and each active joint's k g gᵀ, c g gᵀ (friction's
         force dependence and the accumulator rows omitted, as in the lumped model)."""

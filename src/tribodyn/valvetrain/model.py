@@ -29,166 +29,27 @@ in the residual).
 
 from __future__ import annotations
 
-import bisect
 import math
 
 import numpy as np
 
-from .._validation import InputError, check_real
-from ..physics import limits as L
+from .._validation import InputError
 from .cams import CamProfile
+from .contact_law import (
+    CamContactModel,
+    ContactLawError,
+    check_model_inputs,
+    contact_film_root,
+    smooth_step,
+)
 from .parameters import ValvetrainParameters
 from .tribology import TribologyModel
 
 __all__ = ["ValvetrainModel", "ContactLawError", "smooth_step", "check_model_inputs"]
-
-_PALMGREN_EXP = 0.9
-_HUGE = float("inf")
+__all__ += ["contact_film_root"]  # re-exported from .contact_law
 
 
-class ContactLawError(RuntimeError):
-    """The implicit contact/film law could not be solved (reported, not hidden)."""
-
-
-def smooth_step(force: float, ramp: float) -> tuple[float, float]:
-    """Cubic step g(F) = 3r² − 2r³, r = min(F/ramp, 1), and dg/dF."""
-    if force <= 0.0:
-        return 0.0, 0.0
-    r = force / ramp
-    if r >= 1.0:
-        return 1.0, 0.0
-    return r * r * (3.0 - 2.0 * r), 6.0 * r * (1.0 - r) / ramp
-
-
-class _FrictionTable:
-    """Bilinear table of F_f(θ mod 2π, F) from a periodic tribology model (fast RHS).
-
-    Angles: a 1° grid, refined to 0.1° within ±2° of every sign change of u_e, where the
-    film formulas make friction peak sharply (|u_e| → 0). Forces: 19 levels to 3 kN,
-    constant friction coefficient beyond."""
-
-    FORCES = (
-        0.0,
-        2.0,
-        5.0,
-        10.0,
-        20.0,
-        40.0,
-        70.0,
-        100.0,
-        150.0,
-        200.0,
-        275.0,
-        350.0,
-        450.0,
-        600.0,
-        800.0,
-        1100.0,
-        1500.0,
-        2000.0,
-        3000.0,
-    )
-
-    def __init__(
-        self, model: TribologyModel, cam: CamProfile, cam_speed: float, start_angle: float = 0.0
-    ):
-        two_pi = 2.0 * math.pi
-        rb = cam.base_radius
-        fine = np.linspace(0.0, two_pi, 7200, endpoint=False)  # 0.05°
-        s, _, s2 = cam.derivatives(fine)
-        flip = np.nonzero(np.diff(np.sign(rb + s + 2.0 * s2)))[0]
-        th = [np.linspace(0.0, two_pi, 361)]
-        for k in flip:
-            th.append(fine[k] + np.radians(np.arange(-2.0, 2.01, 0.1)))
-        th = np.unique(np.concatenate(th) % two_pi)
-        th = np.append(th, th[0] + two_pi)  # wrap point
-        self.F = np.asarray(self.FORCES)
-        s, _, s2 = cam.derivatives(th)
-        R = rb + s + s2
-        ue = 0.5 * cam_speed * (rb + s + 2.0 * s2)
-        us = cam_speed * (rb + s)
-        # simulation time of cam angle θ in the first revolution: t = (θ − θ₀)/ω mod 2π/ω
-        t_of = np.mod(th - start_angle, two_pi) / cam_speed
-        TT, FF = np.meshgrid(t_of, self.F, indexing="ij")
-        tab = np.asarray(model.friction(TT, FF, ue[:, None], us[:, None], R[:, None]), dtype=float)
-        if not np.all(np.isfinite(tab)) or np.any(tab < 0.0):
-            raise InputError("tribology model returned negative or non-finite friction")
-        self.th = th.tolist()
-        self.th0 = float(th[0])
-        self.tab = tab.tolist()
-        self.Fl = self.F.tolist()
-        self.Fmax = float(self.F[-1])
-
-    def __call__(self, theta: float, force: float) -> float:
-        if force <= 0.0:
-            return 0.0
-        th = self.th
-        u = (theta - self.th0) % (2.0 * math.pi) + self.th0
-        i = min(max(bisect.bisect_right(th, u) - 1, 0), len(th) - 2)
-        a = (u - th[i]) / (th[i + 1] - th[i])
-        ti, tj = self.tab[i], self.tab[i + 1]
-        Fl = self.Fl
-        if force >= self.Fmax:  # beyond the table: constant coefficient
-            return ((1.0 - a) * ti[-1] + a * tj[-1]) * force / self.Fmax
-        lo = bisect.bisect_right(Fl, force) - 1
-        hi = lo + 1
-        b = (force - Fl[lo]) / (Fl[hi] - Fl[lo])
-        return (1.0 - a) * ((1.0 - b) * ti[lo] + b * ti[hi]) + a * ((1.0 - b) * tj[lo] + b * tj[hi])
-
-
-def contact_film_root(film, t, dk, ue, R, C, g, ikc) -> tuple[float, float, float]:
-    """Solve the cam contact in series with the film for P = z^g [N]:
-    φ(z) = C z + P/k_cam − h(t, P) − δ_kin = 0, with ``film(t, P, ue, R) -> (h, dh/dP)``,
-    C the contact compliance coefficient, g the contact exponent and ``ikc`` = 1/k_cam.
-    Safeguarded Newton from the upper bracket (monotone for convex φ) with bisection;
-    returns (P [N], dP/dδ_kin [N/m], h [m]). Shared by the lumped and flexible models."""
-    h0, _ = film(t, 0.0, ue, R)
-    if dk + h0 <= 0.0:
-        return 0.0, 0.0, h0
-    lo, hi = 0.0, (dk + h0) / C  # bracket in z (see module docstring)
-    z = hi
-    # φ is a difference of terms of size |δ_kin| and |h|: its round-off scales with them,
-    # not with the (possibly tiny) net interference δ_kin + h(0)
-    tol = 1e-13 * max(dk + h0, abs(dk), abs(h0), 1e-9)
-    for _ in range(80):
-        P = z**g
-        h, hF = film(t, P, ue, R)
-        phi = C * z + P * ikc - h - dk
-        if phi > 0.0:
-            hi = z
-        else:
-            lo = z
-        dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
-        dphi = C + dPdz * (ikc - hF)
-        if abs(phi) <= tol:
-            return P, dPdz / dphi, h
-        zn = z - phi / dphi
-        z = zn if lo < zn < hi else 0.5 * (lo + hi)
-        if hi - lo <= 1e-14 * hi:  # bracket collapsed onto the root
-            P = z**g
-            h, hF = film(t, P, ue, R)
-            dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
-            return P, dPdz / (C + dPdz * (ikc - hF)), h
-    raise ContactLawError(
-        f"contact/film law did not converge at t = {t:.6g} s "
-        f"(δ_kin = {dk:.4g} m, h(0) = {h0:.4g} m)"
-    )
-
-
-def check_model_inputs(cam, params, params_type, cam_speed, tribology, start_angle) -> None:
-    """Types and ranges of a valvetrain model's arguments (the case file's ranges,
-    :mod:`tribodyn.physics.limits`): :class:`InputError` naming the argument."""
-    if not isinstance(cam, CamProfile):
-        raise InputError(f"cam must be a CamProfile (got {type(cam).__name__})")
-    if not isinstance(params, params_type):
-        raise InputError(f"params must be a {params_type.__name__} (got {type(params).__name__})")
-    L.CAM_SPEED.check("cam_speed", cam_speed)
-    if not isinstance(tribology, TribologyModel):
-        raise InputError(f"tribology must be a TribologyModel (got {type(tribology).__name__})")
-    check_real("start_angle", start_angle, "rad")
-
-
-class ValvetrainModel:
+class ValvetrainModel(CamContactModel):
     """Right-hand side, Jacobian, forces and energies of the valvetrain.
 
     Parameters
@@ -248,21 +109,9 @@ class ValvetrainModel:
         self.inv_mass = 1.0 / self.mass
         self.inv_mass_l = self.inv_mass.tolist()
         self.d_seat = p.spring_preload / p.seat_stiffness  # static seat compression
-        # Contact law δ_el = C z + z^γ/k_cam, P = z^γ.
-        if p.contact_stiffness is None:
-            self.gamma = 1.0 / _PALMGREN_EXP
-            self.C = p.contact_compliance_coefficient
-        else:
-            self.gamma = 1.0
-            self.C = 1.0 / p.contact_stiffness
-        self.inv_kcam = 0.0 if p.camshaft_stiffness is None else 1.0 / p.camshaft_stiffness
-        self.has_film = bool(tribology.has_film)
-        if tribology.periodic_in_cam_angle:
-            self.friction_fn = _FrictionTable(tribology, cam, self.w, self.theta0)
-            self._tab = True
-        else:
-            self.friction_fn = None
-            self._tab = False
+        self._init_contact(
+            tribology, 0.0 if p.camshaft_stiffness is None else 1.0 / p.camshaft_stiffness
+        )
         s0 = cam.scalar_derivatives(self.theta0)[0]
         if abs(s0) > 1e-9:
             raise InputError(
@@ -274,10 +123,15 @@ class ValvetrainModel:
 
     PARAMS = ValvetrainParameters
 
-    @classmethod
-    def handles(cls, params) -> bool:
-        """True for a :class:`ValvetrainParameters`."""
-        return isinstance(params, cls.PARAMS)
+    @property
+    def C(self) -> float:
+        """Contact compliance coefficient C [m/N^(1/γ)] (δ_el = C P^(1/γ))."""
+        return self.contact_C
+
+    @property
+    def inv_kcam(self) -> float:
+        """Camshaft bending compliance 1/k_cam [m/N] (0: rigid)."""
+        return self.contact_ikc
 
     def lobe_angle(self, t: float, y) -> float:
         """Cam angle at the contact [rad]: θ₀ + ωt (rigid camshaft)."""
@@ -286,43 +140,6 @@ class ValvetrainModel:
     def unresolved_clash(self, Y) -> float:
         """Coil clash the model cannot see [m]: none (the coils are lumped masses)."""
         return -math.inf
-
-    # -- contact law ---------------------------------------------------------------------
-    def film(self, t: float, force: float, ue: float, R: float) -> tuple[float, float]:
-        if not self.has_film:
-            return 0.0, 0.0
-        h, hF = self.trib.film(float(t), float(force), ue, R)
-        h, hF = float(h), float(hF)
-        if not (-_HUGE < h < _HUGE and -_HUGE < hF <= 0.0):  # finite, dh/dF <= 0
-            raise ContactLawError(
-                f"film law returned h = {h:g} m, dh/dF = {hF:g} m/N at "
-                f"t = {t:.6g} s, F = {force:.6g} N (need finite, dh/dF <= 0)"
-            )
-        return h, hF
-
-    def elastic_contact(
-        self, t: float, dk: float, ue: float = 0.0, R: float = 1.0
-    ) -> tuple[float, float, float]:
-        """Elastic contact force P [N], dP/dδ_kin [N/m] and film h [m] at interference dk."""
-        C, g, ikc = self.C, self.gamma, self.inv_kcam
-        if not self.has_film and ikc == 0.0:
-            if dk <= 0.0:
-                return 0.0, 0.0, 0.0
-            z = dk / C
-            P = z**g
-            return P, g * z ** (g - 1.0) / C, 0.0
-        return contact_film_root(self.film, t, dk, ue, R, C, g, ikc)
-
-    def contact_potential(self, P: float) -> float:
-        """Elastic energy stored in the contact at force P [J] (Palmgren/linear + camshaft)."""
-        if P <= 0.0:
-            return 0.0
-        if self.gamma == 1.0:
-            u = 0.5 * self.C * P * P
-        else:
-            e = 1.0 / self.gamma  # 0.9
-            u = self.C * e / (1.0 + e) * P ** (1.0 + e)
-        return u + 0.5 * self.inv_kcam * P * P
 
     # -- forces ------------------------------------------------------------------------
     def evaluate(self, t: float, y, jac: bool = False):
@@ -334,33 +151,10 @@ class ValvetrainModel:
         p, w, n, N = self.p, self.w, self.n, self.N
         yl = y.tolist() if hasattr(y, "tolist") else list(y)
         xt, xv, vt, vv = yl[0], yl[1], yl[n], yl[n + 1]
-        th = self.theta0 + w * t
-        s, s1, s2 = self.cam.scalar_derivatives(th)
-        rb = self.cam.base_radius
-        R = rb + s + s2
-        ue = 0.5 * w * (rb + s + 2.0 * s2)
-        us = w * (rb + s)
         ramp = p.damping_force_ramp
-        # cam–tappet contact
-        dk = s - xt
-        dkd = w * s1 - vt
-        P, dPdk, hfilm = self.elastic_contact(t, dk, ue, R)
-        gc, dgc = smooth_step(P, ramp)
-        Fc = P + p.contact_damping * gc * dkd
-        on_c = Fc > 0.0
-        if not on_c:
-            Fc = 0.0
-        # friction at the contact and in the bore
-        if Fc > 0.0:
-            Ff = (
-                self.friction_fn(th, Fc)
-                if self._tab
-                else float(self.trib.friction(t, Fc, ue, us, R))
-            )
-        else:
-            Ff = 0.0
-        th_v = math.tanh(vt / p.bore_friction_velocity)
-        Fb = p.bore_friction_coefficient * Ff * th_v
+        # cam–tappet contact, friction at the contact and in the bore
+        c = self.cam_contact(t, self.theta0 + w * t, w, xt, vt)
+        P, Fc, Ff, Fb = c.P, c.Fc, c.Ff, c.Fb
         # tappet–valve
         dtv = xt - xv - p.lash
         dtvd = vt - vv
@@ -408,33 +202,26 @@ class ValvetrainModel:
         acc[1] = (Ftv - Fseg[0] + Fs) * im[1]
         for i in range(1, N + 1):
             acc[i + 1] = (Fseg[i - 1] - Fseg[i]) * im[i + 1]
-        out = dict(
-            theta=th,
-            s=s,
-            s1=s1,
-            s2=s2,
-            R=R,
-            ue=ue,
-            us=us,
-            dk=dk,
-            P=P,
-            Fc=Fc,
-            Ff=Ff,
-            Fb=Fb,
+        us, dkd = c.us, c.dkd
+        out = c.outputs(
             Ftv=Ftv,
             Fs=Fs,
             Fseg=Fseg,
             acc=acc,
-            film=hfilm,
-            cam_power=Fc * w * s1 + Ff * us,
+            cam_power=Fc * w * c.s1 + Ff * us,
             dissipation_rate=(
                 (Fc - P) * dkd + (Ftv - Etv) * dtvd + (Fs - Es) * (-vv) + diss + Fb * vt + Ff * us
             ),
         )
         if jac:
-            kc = dPdk * (1.0 + p.contact_damping * dgc * dkd) if on_c else 0.0
-            cc = p.contact_damping * gc if on_c else 0.0
-            cb = p.bore_friction_coefficient * Ff * (1.0 - th_v * th_v) / p.bore_friction_velocity
+            kc = c.dPdk * (1.0 + p.contact_damping * c.dgc * dkd) if c.on else 0.0
+            cc = p.contact_damping * c.gc if c.on else 0.0
+            cb = (
+                p.bore_friction_coefficient
+                * Ff
+                * (1.0 - c.th_v * c.th_v)
+                / p.bore_friction_velocity
+            )
             ktv = (
                 p.tappet_valve_stiffness * (1.0 + p.tappet_valve_damping * dgtv * dtvd)
                 if (on_tv and dtv > 0.0)
@@ -455,16 +242,6 @@ class ValvetrainModel:
         return out
 
     # -- ODE interface -----------------------------------------------------------------
-    def rhs(self, t, y):
-        n = self.n
-        f = self.evaluate(t, y)
-        dy = np.empty(2 * n + 2)
-        dy[:n] = y[n : 2 * n]
-        dy[n : 2 * n] = f["acc"]
-        dy[2 * n] = f["cam_power"]
-        dy[2 * n + 1] = f["dissipation_rate"]
-        return dy
-
     def jacobian(self, t, y):
         """Analytic ∂ẏ/∂y from the local stiffness and damping of every element
         (friction's dependence on F and the accumulator rows are omitted: the friction

@@ -25,7 +25,7 @@ from .flexible_model import FlexibleValvetrainModel
 from .model import ValvetrainModel
 from .tribology import TribologyModel
 
-__all__ = ["ValvetrainSystem", "SYSTEMS", "make_system"]
+__all__ = ["ValvetrainSystem", "SystemClass", "SYSTEMS", "make_system"]
 
 
 @runtime_checkable
@@ -46,7 +46,11 @@ class ValvetrainSystem(Protocol):
     d_seat: float
     has_film: bool
     compilable: bool
-    PARAMS: type  # the parameter class it is built from
+
+    @property
+    def PARAMS(self) -> type:
+        """The parameter class it is built from."""
+        ...
 
     @classmethod
     def handles(cls, params: Any) -> bool:
@@ -87,8 +91,28 @@ class ValvetrainSystem(Protocol):
         ...
 
 
+class SystemClass(Protocol):
+    """A valvetrain model class as :func:`make_system` uses it: ``PARAMS`` (the parameter
+    class it is built from), ``handles(params)`` and the constructor."""
+
+    @property
+    def PARAMS(self) -> type: ...
+
+    def handles(self, params: Any) -> bool: ...
+
+    def __call__(
+        self,
+        cam: CamProfile,
+        params: Any,
+        cam_speed: float,
+        tribology: TribologyModel,
+        /,
+        start_angle: float = 0.0,
+    ) -> ValvetrainSystem: ...
+
+
 #: The valvetrain models, asked in this order by :func:`make_system`.
-SYSTEMS: list[type] = [ValvetrainModel, FlexibleValvetrainModel]
+SYSTEMS: list[SystemClass] = [ValvetrainModel, FlexibleValvetrainModel]
 
 
 def make_system(

@@ -163,7 +163,7 @@ class SetCycleResult:
     runtime_s: float = 0.0
     #: solver steps taken to reach each sample (1: the sample step itself; more where the
     #: time-error control or an engagement subdivided it; 0 where unloaded)
-    substeps: np.ndarray = None
+    substeps: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
 
     @property
     def friction(self) -> np.ndarray:

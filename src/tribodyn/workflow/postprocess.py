@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from scipy.optimize import brentq
@@ -33,6 +34,9 @@ from ..physics.regimes import (
     moes_central,
 )
 from .coupling import implicit_vs_explicit_metrics
+
+if TYPE_CHECKING:
+    from .cycle import CycleStudy
 
 __all__ = [
     "Analysis",
@@ -287,7 +291,7 @@ def analyse(study) -> Analysis:
     return an
 
 
-def summary(study, an: Analysis) -> dict:
+def summary(study: CycleStudy, an: Analysis) -> dict:
     """The numbers users and scripts read (``summary.json``); totals over the cam width."""
     dyn, inp = study.dynamics, study.inputs
     period = 2.0 * math.pi / study.case.cam_speed  # one engine cycle = one cam rev
@@ -295,7 +299,7 @@ def summary(study, an: Analysis) -> dict:
     ref = study.set(an.roles["reference"])
     ev = an.in_event
     ref_bf = np.nansum(np.where(ref.loaded & ev, ref.boundary_friction, 0.0) * dt)
-    out = {
+    out: dict[str, Any] = {
         "case": study.case.name,
         "engine_speed_rpm": float(study.case.engine_speed),
         "statistics_over": "cam event (lift > 10 µm), converged EHL samples, for films "
@@ -344,33 +348,31 @@ def summary(study, an: Analysis) -> dict:
             "min_lambda": _finite(np.nanmin(s.lambda_ratio[C])) if any_c else None,
             "failed_steps": len(s.failures),
         }
-        if getattr(study, "stresses", None):  # subsurface stresses, margins and wear
+        if study.stresses:  # subsurface stresses, margins and wear
             from .stress_study import set_stress_summary
 
             out["surface_sets"][s.name].update(set_stress_summary(study, s.name))
     _engineering_summary(study, out)
     out["implicit_vs_explicit"] = _implicit_vs_explicit(study)
-    if getattr(study, "isothermal_sets", None) is not None:  # numerics.thermal
+    if study.isothermal_sets is not None:  # numerics.thermal
         from .thermal_study import thermal_summary
 
         out["thermal"] = thermal_summary(study, an)
     out["dynamics"] = {k: v for k, v in dyn.summary().items() if k != "converged"}
     out["warnings"] = list(study.warnings)
     out["runtime_s"] = float(study.runtime_s)
-    if getattr(study, "model_comparison", None) is not None:
+    if study.model_comparison is not None:
         out["lumped_vs_flexible"] = study.model_comparison.to_dict()
     return out
 
 
-def _engineering_summary(study, out: dict) -> None:
+def _engineering_summary(study: CycleStudy, out: dict) -> None:
     """The oil as used, torque and pressure scalars per set, the cam kinematics' key
     numbers and the spring's surge modes (:mod:`tribodyn.workflow.engineering`)."""
     from .engineering import oil_as_used
 
-    out["compare_paper"] = bool(getattr(study, "compare_paper", False))
+    out["compare_paper"] = bool(study.compare_paper)
     out["lubricant"] = oil_as_used(study.case)
-    if not hasattr(study, "engineering_outputs"):
-        return
     eng = study.engineering_outputs()
     for name, v in eng.scalars.items():
         out["surface_sets"][name].update({k: _finite(x) for k, x in v.items()})

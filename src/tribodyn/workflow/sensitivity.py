@@ -110,7 +110,7 @@ def roughness_sensitivity(case, surface_set, nose: NoseCondition) -> RoughnessSe
     )
     opts = case.ehl_options(s)
     other = "newtonian" if opts.viscous_model == "eyring" else "eyring"
-    variants = (
+    variants: tuple[tuple[str, Roughness, dict[str, object]], ...] = (
         ("case roughness", r0, {}),
         (f"{other} viscous law", r0, {"viscous_model": other}),
         (f"Gaussian ηβσ = {GAUSSIAN_ETA_BETA_SIGMA:g}", alt, {}),

@@ -29,7 +29,7 @@ from ..physics.strength import (
     hours_to_wear_through,
     safety_factors,
 )
-from ..physics.stress import StressOperator
+from ..physics.stress import PEAKS, StressOperator  # PEAKS: the peaks traced per body
 
 __all__ = [
     "PEAKS",
@@ -44,16 +44,6 @@ __all__ = [
     "set_stress_summary",
     "asperity_estimate",
 ]
-
-#: The peaks traced for each body (attributes of SubsurfaceStress).
-PEAKS = (
-    "max_von_mises_coating",
-    "max_von_mises_substrate",
-    "max_tension_surface",
-    "max_tension_coating",
-    "max_interface_shear",
-    "max_interface_tension",
-)
 
 
 @dataclass

@@ -52,6 +52,11 @@ _TEMPS = (
 )
 
 
+def _unset() -> np.ndarray:
+    """Default of a per-sample field (the cycle driver always sets it)."""
+    return np.empty(0)
+
+
 @dataclass
 class ThermalSetCycleResult(SetCycleResult):
     """:class:`SetCycleResult` of the thermal model, with temperatures [K] per sample:
@@ -59,13 +64,13 @@ class ThermalSetCycleResult(SetCycleResult):
     maximum surface temperatures of cam and tappet, the film-mean temperature at the
     centre; and the inlet temperature."""
 
-    max_temperature: np.ndarray = None
-    mid_film_temperature: np.ndarray = None
-    surface_temperature_cam: np.ndarray = None
-    surface_temperature_tappet: np.ndarray = None
-    mean_film_temperature: np.ndarray = None
+    max_temperature: np.ndarray = field(default_factory=_unset)
+    mid_film_temperature: np.ndarray = field(default_factory=_unset)
+    surface_temperature_cam: np.ndarray = field(default_factory=_unset)
+    surface_temperature_tappet: np.ndarray = field(default_factory=_unset)
+    mean_film_temperature: np.ndarray = field(default_factory=_unset)
     inlet_temperature: float = float("nan")
-    thermal_iterations: np.ndarray = None
+    thermal_iterations: np.ndarray = field(default_factory=_unset)
     thermal: bool = field(default=True)
 
 
@@ -265,7 +270,7 @@ def thermal_summary(study, an) -> dict:
     dt = np.gradient(inp.time)
     us = np.abs(inp.sliding_speed)
     iso = {s.name: s for s in study.isothermal_sets}
-    out = {"inlet_temperature_K": None, "surface_sets": {}}
+    out: dict[str, Any] = {"inlet_temperature_K": None, "surface_sets": {}}
     ev = an.in_event
 
     def fin(v):

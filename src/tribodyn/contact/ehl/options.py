@@ -8,6 +8,7 @@ needs (operating point; bodies, lubricant and roughness with their reduced modul
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Protocol
 
 import numpy as np
 
@@ -25,7 +26,7 @@ from ...physics.friction import BOUNDARY_SHEAR_STRENGTH, VISCOUS_MODELS
 from ...physics.lubricant import Lubricant
 from ...physics.materials import Body, as_bodies, reduced_modulus
 
-__all__ = ["EHLOptions", "EHLResult", "Conditions", "ContactModel"]
+__all__ = ["EHLOptions", "EHLResult", "Conditions", "ContactModel", "LubricantModel"]
 
 
 @dataclass(frozen=True)
@@ -225,6 +226,43 @@ class Conditions:
         )
 
 
+class LubricantModel(Protocol):
+    """The lubricant as the EHL solvers read it: a :class:`~tribodyn.Lubricant`, or the
+    thermal solver's oil at frozen node temperatures
+    (:class:`~tribodyn.contact.ehl.thermal_field.FrozenTemperatureOil`). Scales: μ₀
+    [Pa·s], α [1/Pa], ρ₀ [kg/m³], Eyring stress τ₀ [Pa], limiting-shear coefficient
+    [-] and stress [Pa]; functions of the pressure p [Pa]: ρ(p), dρ/dp, ln(μ(p)/μ₀),
+    d ln μ/dp [1/Pa] and μ(p)."""
+
+    @property
+    def viscosity(self) -> float: ...
+
+    @property
+    def pressure_viscosity(self) -> float: ...
+
+    @property
+    def density(self) -> float: ...
+
+    @property
+    def eyring_stress(self) -> float: ...
+
+    @property
+    def limiting_shear_coefficient(self) -> float: ...
+
+    @property
+    def limiting_shear_stress(self) -> float: ...
+
+    def density_at(self, p): ...
+
+    def ddensity_dp(self, p): ...
+
+    def log_viscosity_ratio(self, p): ...
+
+    def dlog_viscosity_dp(self, p): ...
+
+    def viscosity_at(self, p): ...
+
+
 @dataclass(frozen=True)
 class ContactModel:
     """The physical model of a contact: bodies, lubricant, composite roughness (or None)
@@ -232,7 +270,7 @@ class ContactModel:
     (scales the asperity pressure)."""
 
     bodies: tuple[Body, Body]
-    lubricant: Lubricant
+    lubricant: LubricantModel
     roughness: Roughness | None
     e_bulk: float = field(init=False)
     e_surface: float = field(init=False)

@@ -98,6 +98,7 @@ class ReynoldsSystem:
         (LU paths), DC-FFT otherwise."""
         if self.g.has_dense:
             return self.kscale * (self.g.K @ v)
+        assert self.Kop is not None  # only an elastic system deforms
         return self.Kop(v)
 
     # -- asperities and film

@@ -23,14 +23,12 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
-from typing import cast
 
 import numpy as np
 
 from ..._validation import InputError
 from ...physics.asperity import Roughness
 from ...physics.heat_conduction import ThermalBody
-from ...physics.lubricant import Lubricant
 from ...physics.materials import BodyPair
 from ...physics.thermal_oil import ThermalLubricant
 from .grid import Grid, layout
@@ -175,8 +173,8 @@ def solve_thermal_ehl(
     direction = 1 if cond.entrainment_speed >= 0 else -1
     grid = Grid(iso_model.bodies, lay, direction, opts.elastic)
     standin = FrozenTemperatureOil(oil, np.full(grid.n, oil.inlet_temperature))
-    # the stand-in has the interface of Lubricant that the Reynolds system reads
-    model = ContactModel(iso_model.bodies, cast(Lubricant, standin), roughness)
+    # the stand-in is a LubricantModel: the lubricant as the Reynolds system reads it
+    model = ContactModel(iso_model.bodies, standin, roughness)
     sysm = ReynoldsSystem(grid, cond, model)
     st = state_from_dimensional(
         sysm, iso.x, iso.pressure + iso.asperity_pressure, iso.rigid_approach

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from typing import Any
 
 import numpy as np
 
@@ -28,7 +29,7 @@ def fig05(ds, path):
     from ...physics.hertz import hertz_line_contact
     from ...physics.materials import STEEL
 
-    cond = (
+    cond: dict[str, Any] = (
         json.loads(ds.attrs["dry_coating_conditions"])
         if "dry_coating_conditions" in ds.attrs
         else paper.FIG5

@@ -107,6 +107,20 @@ def has(ds, *names) -> bool:
     return all(n in ds.variables for n in names)
 
 
+def point_legend_entry(ax, ds) -> None:
+    """The legend entry of the numbered representative-point markers (no data drawn)."""
+    ax.plot(
+        [],
+        [],
+        "o",
+        ms=6,
+        mfc="white",
+        mec="k",
+        mew=1.5,
+        label="representative points 1–6" + (" (Fig. 13)" if compares_paper(ds) else ""),
+    )
+
+
 def compares_paper(ds) -> bool:
     """Whether the figures carry the paper's comparison (the Dataset's ``compare_paper``
     attribute; absent: yes)."""
@@ -246,7 +260,7 @@ def place_labels(
     tr = ax.transData
     pts = tr.transform(np.column_stack([xs, ys])) * scale
     # merge (nearly) coincident points
-    merged = []
+    merged: list[list[int]] = []
     for k in range(len(xs)):
         for grp in merged:
             if np.hypot(*(pts[k] - pts[grp[0]])) < 6.0:
@@ -264,7 +278,7 @@ def place_labels(
     bbox = ax.get_window_extent()
     x0, y0, x1, y1 = np.array([bbox.x0, bbox.y0, bbox.x1, bbox.y1]) * scale
     angles = np.deg2rad(np.arange(0, 360, 30) + 15)
-    placed = []
+    placed: list[tuple[float, float]] = []
     for grp in merged:
         px, py = pts[grp[0]]
         text = ",".join(texts[k] for k in grp)

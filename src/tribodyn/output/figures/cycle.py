@@ -46,7 +46,7 @@ def _cycle_lines(ax, ds, values, window, styles, *, label_fmt=None, floor=None):
 def _groups(values, tol):
     """Group sorted positions closer than ``tol``: list of index lists."""
     order = np.argsort(values)
-    groups = []
+    groups: list[list[int]] = []
     for k in order:
         if groups and values[k] - values[groups[-1][-1]] < tol:
             groups[-1].append(int(k))
@@ -83,31 +83,40 @@ def _point_ticks(ax, ds):
     ax.set_title(ax.get_title(), pad=14)
 
 
-def fig15(ds, path):
+def _cycle_figure(ds, height_ratios=None):
+    """Two panels over the crank angle of the cam event (shared axis): (fig, (a, b),
+    event window, set styles, EHL samples inside the window)."""
     win = event_window(ds)
-    styles = set_styles(ds)
-    hc = masked(ds, "central_film")
-    ref = hc[0]
-    gain = (hc / ref - 1.0) * 100.0
-    e = arr(ds, "ehl_crank")
-    sel = in_window(e, win)
     fig, (a, b) = plt.subplots(
         2,
         1,
         figsize=(11, 9),
         sharex=True,
         layout="constrained",
-        gridspec_kw=dict(height_ratios=(1.6, 1)),
+        gridspec_kw=None if height_ratios is None else dict(height_ratios=height_ratios),
     )
+    return fig, (a, b), win, set_styles(ds), in_window(arr(ds, "ehl_crank"), win)
+
+
+def _top_panel(ax, ds, title, *, ncol):
+    """Legend, title and point ticks of the upper of two panels (its x label dropped)."""
+    ax.set_xlabel("")
+    ax.legend(fontsize=9, ncol=ncol, loc="best")
+    ax.set_title(title, fontsize=TITLE_SIZE)
+    _point_ticks(ax, ds)
+
+
+def fig15(ds, path):
+    fig, (a, b), win, styles, sel = _cycle_figure(ds, (1.6, 1))
+    hc = masked(ds, "central_film")
+    ref = hc[0]
+    gain = (hc / ref - 1.0) * 100.0
     _cycle_lines(a, ds, hc * UM, win, styles)
     a.set_yscale("log")
     log_ticks(a)
     a.set_ylabel("central film h_c [µm]")
     a.grid(alpha=0.3, which="both")
-    a.set_xlabel("")
-    a.legend(fontsize=9, ncol=3, loc="best")
-    a.set_title("(a) central film thickness", fontsize=TITLE_SIZE)
-    _point_ticks(a, ds)
+    _top_panel(a, ds, "(a) central film thickness", ncol=3)
 
     _difference_panel(
         b,
@@ -153,12 +162,8 @@ def _difference_panel(ax, ds, diff, sel, win, styles, unit, digits, ylabel, titl
 
 
 def _linear_and_log(ds, path, name, ylabel, sub, *, decades=4):
-    win = event_window(ds)
-    styles = set_styles(ds)
+    fig, (a, b), win, styles, sel = _cycle_figure(ds)
     v = masked(ds, name)
-    e = arr(ds, "ehl_crank")
-    sel = in_window(e, win)
-    fig, (a, b) = plt.subplots(2, 1, figsize=(11, 9), sharex=True, layout="constrained")
 
     def fmt(j, lab):
         m = np.nanmax(v[j][sel]) if np.isfinite(v[j][sel]).any() else np.nan
@@ -167,10 +172,7 @@ def _linear_and_log(ds, path, name, ylabel, sub, *, decades=4):
     _cycle_lines(a, ds, v, win, styles, label_fmt=fmt)
     a.set_ylabel(ylabel)
     a.set_ylim(bottom=0)
-    a.set_xlabel("")
-    a.legend(fontsize=9, ncol=2, loc="best")
-    a.set_title("(a) linear scale", fontsize=TITLE_SIZE)
-    _point_ticks(a, ds)
+    _top_panel(a, ds, "(a) linear scale", ncol=2)
     floor = _log_floor(v[:, sel], decades)
     _cycle_lines(b, ds, np.where(v > floor, v, np.nan), win, styles)
     b.set_yscale("log")
@@ -220,27 +222,13 @@ def fig17(ds, path):
 
 
 def fig18(ds, path):
-    win = event_window(ds)
-    styles = set_styles(ds)
+    fig, (a, b), win, styles, sel = _cycle_figure(ds, (1.5, 1))
     v = masked(ds, "viscous_friction")
     d = v - v[0]
-    e = arr(ds, "ehl_crank")
-    sel = in_window(e, win)
-    fig, (a, b) = plt.subplots(
-        2,
-        1,
-        figsize=(11, 9),
-        sharex=True,
-        layout="constrained",
-        gridspec_kw=dict(height_ratios=(1.5, 1)),
-    )
     _cycle_lines(a, ds, v, win, styles)
     a.set_ylabel("viscous friction F_v [N]")
     a.set_ylim(bottom=0)
-    a.set_xlabel("")
-    a.legend(fontsize=9, ncol=3, loc="best")
-    a.set_title("(a) viscous (Couette) friction", fontsize=TITLE_SIZE)
-    _point_ticks(a, ds)
+    _top_panel(a, ds, "(a) viscous (Couette) friction", ncol=3)
 
     _difference_panel(
         b,
@@ -281,7 +269,14 @@ def fig19(ds, path):
         if y > 0 and energy[0] > 0:
             txt += f" ({signed((en / energy[0] - 1) * 100, 2)} %)"
         b.text(
-            en * 0.02, y, txt, va="center", ha="left", fontsize=9, color="white", fontweight="bold"
+            en * 0.02,
+            float(y),
+            txt,
+            va="center",
+            ha="left",
+            fontsize=9,
+            color="white",
+            fontweight="bold",
         )
     b.set_yticks(ypos, labels)
     b.invert_yaxis()
@@ -300,13 +295,9 @@ def fig19(ds, path):
 
 
 def fig20(ds, path):
-    win = event_window(ds)
-    styles = set_styles(ds)
+    fig, (a, b), win, styles, sel = _cycle_figure(ds)
     hm = masked(ds, "min_film") * UM
     lam = masked(ds, "lambda_ratio")
-    fig, (a, b) = plt.subplots(2, 1, figsize=(11, 9), sharex=True, layout="constrained")
-    e = arr(ds, "ehl_crank")
-    sel = in_window(e, win)
 
     def fmt_h(j, lab):
         return f"{lab}: min {np.nanmin(hm[j][sel]):.3f} µm"
@@ -316,10 +307,7 @@ def fig20(ds, path):
     log_ticks(a)
     a.set_ylabel("minimum film h_min [µm]")
     a.grid(alpha=0.3, which="both")
-    a.set_xlabel("")
-    a.legend(fontsize=9, ncol=2, loc="best")
-    a.set_title("(a) minimum film thickness", fontsize=TITLE_SIZE)
-    _point_ticks(a, ds)
+    _top_panel(a, ds, "(a) minimum film thickness", ncol=2)
 
     def fmt_l(j, lab):
         return f"{lab}: min λ = {np.nanmin(lam[j][sel]):.2f}"

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from .common import (
@@ -9,7 +11,6 @@ from .common import (
     MM,
     TITLE_SIZE,
     arr,
-    compares_paper,
     crank_axis,
     dynamics_event,
     finish,
@@ -17,6 +18,7 @@ from .common import (
     log_ticks,
     place_labels,
     plt,
+    point_legend_entry,
 )
 
 # ----------------------------------------------------------------------------- Figs. 8–10
@@ -40,8 +42,10 @@ def _zoom_windows(ds) -> list[tuple[float, float]]:
     return [(w[0], w[1]) for w in wins]
 
 
-_EXPLICIT_STYLE = dict(color="tab:blue", lw=1.5, label="explicit (analytic film in the dynamics)")
-_IMPLICIT_STYLE = dict(
+_EXPLICIT_STYLE: dict[str, Any] = dict(
+    color="tab:blue", lw=1.5, label="explicit (analytic film in the dynamics)"
+)
+_IMPLICIT_STYLE: dict[str, Any] = dict(
     color="tab:orange", lw=1.3, ls="--", label="implicit (numerical EHL in the dynamics)"
 )
 
@@ -61,7 +65,7 @@ def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False)
     full = (float(ca[0]), float(ca[-1]))
     for a in [ax] + zooms:
         a.plot(ca, y, **_EXPLICIT_STYLE)
-        if has_imp:
+        if yi is not None:
             a.plot(ca, yi, **_IMPLICIT_STYLE)
         a.axhline(0, color="0.5", lw=0.6)
         a.set_ylabel(ylabel)
@@ -87,7 +91,7 @@ def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False)
         pad = 0.08 * (hi - lo) or 1.0
         a.set_ylim(lo - pad, hi + pad)
         a.set_title(f"({'cd'[k]}) zoom: {('engagement', 'disengagement')[k]}", fontsize=TITLE_SIZE)
-    if has_imp:
+    if yi is not None:
         d = yi - y
         ad.plot(ca, d, color="tab:purple", lw=1.0)
         i = int(np.nanargmax(np.abs(d)))
@@ -130,16 +134,7 @@ def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False)
             avoid=(ca[ev][::4], y[ev][::4]),
             radius_pt=16,
         )
-        ax.plot(
-            [],
-            [],
-            "o",
-            ms=6,
-            mfc="white",
-            mec="k",
-            mew=1.5,
-            label="representative points 1–6" + (" (Fig. 13)" if compares_paper(ds) else ""),
-        )
+        point_legend_entry(ax, ds)
     ax.legend(fontsize=9, loc="upper left")
     sub = None if has_imp else "implicit run not in the results: explicit only"
     return finish(fig, path, FIGURES[path.name], sub)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from typing import Any
 
 import numpy as np
 
@@ -81,8 +82,11 @@ def fig13(ds, path):
     conv = np.asarray(ds["converged"].values) if "converged" in ds else None
     fig, axes = plt.subplots(2, 3, figsize=(15, 9.4), layout="constrained")
     # uncoated: broad light line; coated: thin dark dashed line on top (they often coincide)
-    pst = [dict(color="tab:blue", ls="-", lw=2.6, alpha=0.55), dict(color="navy", ls="--", lw=1.3)]
-    hst = [
+    pst: list[dict[str, Any]] = [
+        dict(color="tab:blue", ls="-", lw=2.6, alpha=0.55),
+        dict(color="navy", ls="--", lw=1.3),
+    ]
+    hst: list[dict[str, Any]] = [
         dict(color="tab:red", ls="-", lw=2.6, alpha=0.55),
         dict(color="darkred", ls="--", lw=1.3),
     ]

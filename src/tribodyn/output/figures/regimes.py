@@ -8,12 +8,12 @@ from .common import (
     EVENT_FRACTION,
     FIGURES,
     arr,
-    compares_paper,
     finish,
     loaded_mask,
     place_labels,
     plt,
     point_indices,
+    point_legend_entry,
 )
 
 # ----------------------------------------------------------------------------- Fig. 12
@@ -146,16 +146,7 @@ def fig12(ds, path):
             avoid=(gE[event], gV[event]),
             radius_pt=18,
         )
-        ax.plot(
-            [],
-            [],
-            "o",
-            ms=6,
-            mfc="white",
-            mec="k",
-            mew=1.5,
-            label="representative points 1–6" + (" (Fig. 13)" if compares_paper(ds) else ""),
-        )
+        point_legend_entry(ax, ds)
     ax.set_xlabel("elasticity parameter g_E = W' U^(−1/2)")
     ax.set_ylabel("viscosity parameter g_V = G W'^(3/2) U^(−1/2)")
     ax.legend(loc="lower right", fontsize=9, framealpha=0.9)

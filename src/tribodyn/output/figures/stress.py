@@ -13,18 +13,10 @@ from typing import Any
 
 import numpy as np
 
+from ...workflow.stress_study import MODE_PEAK
 from .common import MPA, TITLE_SIZE, UM, finish, plt
 
 __all__ = ["stress_maps", "greatest_risk", "stress_field_at", "fig27"]
-
-_MODE_PEAK = {
-    "substrate_yield": "max_von_mises_substrate",
-    "surface_tension": "max_tension_surface",
-    "coating_tension": "max_tension_coating",
-    "coating_yield": "max_von_mises_coating",
-    "interface_shear": "max_interface_shear",
-    "interface_tension": "max_interface_tension",
-}
 
 
 def greatest_risk(ds, name: str) -> dict | None:
@@ -33,7 +25,7 @@ def greatest_risk(ds, name: str) -> dict | None:
     crank_in_cycle_deg, x_m, z_m}; None without stress results."""
     best: dict[str, Any] | None = None
     for body in ("cam", "tappet"):
-        for mode, peak in _MODE_PEAK.items():
+        for mode, peak in MODE_PEAK.items():
             key = f"safety_factor_{body}_{mode}"
             if key not in ds:
                 return None
@@ -99,8 +91,7 @@ def stress_maps(ds, path, sets=None):
     over x and depth z [µm] of the body closest to failure at its riskiest crank angle,
     the interface (dashed) and the peak of the governing mode (cross)."""
     names = [str(n) for n in ds["surface_set"].values] if sets is None else list(sets)
-    risks = [(n, greatest_risk(ds, n)) for n in names]
-    risks = [(n, r) for n, r in risks if r is not None]
+    risks = [(n, r) for n in names if (r := greatest_risk(ds, n)) is not None]
     if not risks:
         raise ValueError("results.nc has no stress results ([stress] enabled = false?)")
     ncol = min(len(risks), 3)

@@ -147,6 +147,12 @@ def _series(ds, name, xd, i, sel):
     return np.asarray(v.transpose(xd, ...).values, float)
 
 
+def _mark_events(ax, x, y, hit, label):
+    """Red crosses at the points where an event (jump, bounce) occurred (``hit``)."""
+    if hit.any():
+        ax.plot(x[hit], y[hit], "x", color="red", ms=9, mew=2, label=label, zorder=5)
+
+
 def _line_panel(ax, ds, name, xd, combos, scale=1.0, ylabel="", log=False):
     x, xlabel = _x_values(ds, xd)
     order = np.argsort(x)
@@ -260,33 +266,13 @@ def fig_dynamics(ds, path):
             label=f"minimum in the cam event{sfx}",
         )
         jump = _series(ds, "jump", xd, None, sel)[order] == 1
-        if jump.any():
-            axes[0].plot(
-                x[order][jump],
-                mn[jump],
-                "x",
-                color="red",
-                ms=9,
-                mew=2,
-                label="jump (contact lost)" if j == 0 else None,
-                zorder=5,
-            )
+        _mark_events(axes[0], x[order], mn, jump, "jump (contact lost)" if j == 0 else None)
         sv = _series(ds, "seating_velocity_m_s", xd, None, sel)[order]
         axes[1].plot(
             x[order], sv, ls=ls, marker="o", ms=3.5, color="k", label=f"seating velocity{sfx}"
         )
         bounce = _series(ds, "valve_bounce", xd, None, sel)[order] == 1
-        if bounce.any():
-            axes[1].plot(
-                x[order][bounce],
-                sv[bounce],
-                "x",
-                color="red",
-                ms=9,
-                mew=2,
-                label="valve bounce" if j == 0 else None,
-                zorder=5,
-            )
+        _mark_events(axes[1], x[order], sv, bounce, "valve bounce" if j == 0 else None)
     speed = xlabel.startswith("engine speed")
     for ax, var, name in ((axes[0], "jump", "jump"), (axes[1], "valve_bounce", "bounce")):
         for k, (_lab, lo, hi) in enumerate(onset_speeds(ds, var)[: len(combos)]):
@@ -363,7 +349,7 @@ def fig_heatmap(ds, path):
             ("friction_energy_per_cycle_J", 1.0, "friction energy per cycle [J]"),
             ("min_film_m", UM, "minimum film [µm]"),
         ]
-        cols = list(range(ds.sizes["surface_set"]))
+        cols: list[int | None] = list(range(ds.sizes["surface_set"]))
         labels = [
             str(v)
             for v in (

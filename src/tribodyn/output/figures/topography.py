@@ -10,6 +10,7 @@ import numpy as np
 
 from ...topography.composite import sum_on_common_grid
 from ...topography.height_statistics import gaussian_pdf, height_statistics
+from ...topography.profile import ProfileAnalysis
 from ...topography.results import PairAnalysis, SurfaceAnalysis
 from .common import plt, save_figure
 
@@ -18,10 +19,7 @@ __all__ = ["plot_height_distribution"]
 
 def _panels(results):
     """(title, heights [m]) per surface; a pair adds its sum surface h₁ + h₂."""
-    if (
-        isinstance(results, (SurfaceAnalysis, PairAnalysis))
-        or getattr(results, "kind", "") == "profile"
-    ):
+    if isinstance(results, (SurfaceAnalysis, PairAnalysis, ProfileAnalysis)):
         results = [results]
     panels = []
     for r in results:
@@ -50,7 +48,7 @@ def _panels(results):
                 raise TypeError(f"analysis '{r.name}' carries no height map to plot")
             h = np.asarray(r.topography.heights(), dtype=float)
             panels.append((r.name, h if r.filled is None else h[~np.asarray(r.filled)]))
-        elif getattr(r, "kind", "") == "profile":
+        elif isinstance(r, ProfileAnalysis):
             h = np.asarray(r.profile, dtype=float)
             panels.append((f"profile {r.name}", h if r.filled is None else h[~r.filled]))
         else:

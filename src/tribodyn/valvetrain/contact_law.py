@@ -1,0 +1,357 @@
+"""The cam–tappet contact that the valvetrain models share.
+
+* the contact law δ_el(P) = C P^(1/γ) (Palmgren, γ = 1/0.9) or P/k, plus P/k_cam
+  (camshaft, optional), solved with the film in series (:func:`contact_film_root`);
+* the damped contact force F_c = max(0, P + c_c g(P) δ̇_kin), g the cubic step
+  (:func:`smooth_step`), the contact friction F_f (tribology law or its cam-angle table,
+  :class:`_FrictionTable`) and the bore friction μ_b F_f tanh(ẋ_t/v_r);
+* :class:`CamContactModel`, the base of the lumped and flexible models: the contact and
+  film laws, the stored contact energy, the right-hand side ẏ from ``evaluate`` and
+  :meth:`CamContactModel.cam_contact`, the contact state at one instant.
+
+Units SI (m, N, s, rad).
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from .._validation import InputError, check_real
+from ..physics import limits as L
+from .cams import CamProfile
+from .tribology import TribologyModel
+
+__all__ = [
+    "ContactLawError",
+    "smooth_step",
+    "contact_film_root",
+    "check_model_inputs",
+    "CamContact",
+    "CamContactModel",
+]
+
+_PALMGREN_EXP = 0.9
+_HUGE = float("inf")
+
+
+class ContactLawError(RuntimeError):
+    """The implicit contact/film law could not be solved (reported, not hidden)."""
+
+
+def smooth_step(force: float, ramp: float) -> tuple[float, float]:
+    """Cubic step g(F) = 3r² − 2r³, r = min(F/ramp, 1), and dg/dF."""
+    if force <= 0.0:
+        return 0.0, 0.0
+    r = force / ramp
+    if r >= 1.0:
+        return 1.0, 0.0
+    return r * r * (3.0 - 2.0 * r), 6.0 * r * (1.0 - r) / ramp
+
+
+class _FrictionTable:
+    """Bilinear table of F_f(θ mod 2π, F) from a periodic tribology model (fast RHS).
+
+    Angles: a 1° grid, refined to 0.1° within ±2° of every sign change of u_e, where the
+    film formulas make friction peak sharply (|u_e| → 0). Forces: 19 levels to 3 kN,
+    constant friction coefficient beyond."""
+
+    FORCES = (
+        0.0,
+        2.0,
+        5.0,
+        10.0,
+        20.0,
+        40.0,
+        70.0,
+        100.0,
+        150.0,
+        200.0,
+        275.0,
+        350.0,
+        450.0,
+        600.0,
+        800.0,
+        1100.0,
+        1500.0,
+        2000.0,
+        3000.0,
+    )
+
+    def __init__(
+        self, model: TribologyModel, cam: CamProfile, cam_speed: float, start_angle: float = 0.0
+    ):
+        two_pi = 2.0 * math.pi
+        rb = cam.base_radius
+        fine = np.linspace(0.0, two_pi, 7200, endpoint=False)  # 0.05°
+        s, _, s2 = cam.derivatives(fine)
+        flip = np.nonzero(np.diff(np.sign(rb + s + 2.0 * s2)))[0]
+        pieces = [np.linspace(0.0, two_pi, 361)]
+        for k in flip:
+            pieces.append(fine[k] + np.radians(np.arange(-2.0, 2.01, 0.1)))
+        th = np.unique(np.concatenate(pieces) % two_pi)
+        th = np.append(th, th[0] + two_pi)  # wrap point
+        self.F = np.asarray(self.FORCES)
+        s, _, s2 = cam.derivatives(th)
+        R = rb + s + s2
+        ue = 0.5 * cam_speed * (rb + s + 2.0 * s2)
+        us = cam_speed * (rb + s)
+        # simulation time of cam angle θ in the first revolution: t = (θ − θ₀)/ω mod 2π/ω
+        t_of = np.mod(th - start_angle, two_pi) / cam_speed
+        TT, FF = np.meshgrid(t_of, self.F, indexing="ij")
+        tab = np.asarray(model.friction(TT, FF, ue[:, None], us[:, None], R[:, None]), dtype=float)
+        if not np.all(np.isfinite(tab)) or np.any(tab < 0.0):
+            raise InputError("tribology model returned negative or non-finite friction")
+        self.th = th.tolist()
+        self.th0 = float(th[0])
+        self.tab = tab.tolist()
+        self.Fl = self.F.tolist()
+        self.Fmax = float(self.F[-1])
+
+    def __call__(self, theta: float, force: float) -> float:
+        if force <= 0.0:
+            return 0.0
+        th = self.th
+        u = (theta - self.th0) % (2.0 * math.pi) + self.th0
+        i = min(max(bisect.bisect_right(th, u) - 1, 0), len(th) - 2)
+        a = (u - th[i]) / (th[i + 1] - th[i])
+        ti, tj = self.tab[i], self.tab[i + 1]
+        Fl = self.Fl
+        if force >= self.Fmax:  # beyond the table: constant coefficient
+            return ((1.0 - a) * ti[-1] + a * tj[-1]) * force / self.Fmax
+        lo = bisect.bisect_right(Fl, force) - 1
+        hi = lo + 1
+        b = (force - Fl[lo]) / (Fl[hi] - Fl[lo])
+        return (1.0 - a) * ((1.0 - b) * ti[lo] + b * ti[hi]) + a * ((1.0 - b) * tj[lo] + b * tj[hi])
+
+
+def contact_film_root(film, t, dk, ue, R, C, g, ikc) -> tuple[float, float, float]:
+    """Solve the cam contact in series with the film for P = z^g [N]:
+    φ(z) = C z + P/k_cam − h(t, P) − δ_kin = 0, with ``film(t, P, ue, R) -> (h, dh/dP)``,
+    C the contact compliance coefficient, g the contact exponent and ``ikc`` = 1/k_cam.
+    Safeguarded Newton from the upper bracket (monotone for convex φ) with bisection;
+    returns (P [N], dP/dδ_kin [N/m], h [m]). Shared by the lumped and flexible models."""
+    h0, _ = film(t, 0.0, ue, R)
+    if dk + h0 <= 0.0:
+        return 0.0, 0.0, h0
+    lo, hi = 0.0, (dk + h0) / C  # bracket in z (see module docstring)
+    z = hi
+    # φ is a difference of terms of size |δ_kin| and |h|: its round-off scales with them,
+    # not with the (possibly tiny) net interference δ_kin + h(0)
+    tol = 1e-13 * max(dk + h0, abs(dk), abs(h0), 1e-9)
+    for _ in range(80):
+        P = z**g
+        h, hF = film(t, P, ue, R)
+        phi = C * z + P * ikc - h - dk
+        if phi > 0.0:
+            hi = z
+        else:
+            lo = z
+        dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
+        dphi = C + dPdz * (ikc - hF)
+        if abs(phi) <= tol:
+            return P, dPdz / dphi, h
+        zn = z - phi / dphi
+        z = zn if lo < zn < hi else 0.5 * (lo + hi)
+        if hi - lo <= 1e-14 * hi:  # bracket collapsed onto the root
+            P = z**g
+            h, hF = film(t, P, ue, R)
+            dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
+            return P, dPdz / (C + dPdz * (ikc - hF)), h
+    raise ContactLawError(
+        f"contact/film law did not converge at t = {t:.6g} s "
+        f"(δ_kin = {dk:.4g} m, h(0) = {h0:.4g} m)"
+    )
+
+
+def check_model_inputs(cam, params, params_type, cam_speed, tribology, start_angle) -> None:
+    """Types and ranges of a valvetrain model's arguments (the case file's ranges,
+    :mod:`tribodyn.physics.limits`): :class:`InputError` naming the argument."""
+    if not isinstance(cam, CamProfile):
+        raise InputError(f"cam must be a CamProfile (got {type(cam).__name__})")
+    if not isinstance(params, params_type):
+        raise InputError(f"params must be a {params_type.__name__} (got {type(params).__name__})")
+    L.CAM_SPEED.check("cam_speed", cam_speed)
+    if not isinstance(tribology, TribologyModel):
+        raise InputError(f"tribology must be a TribologyModel (got {type(tribology).__name__})")
+    check_real("start_angle", start_angle, "rad")
+
+
+class CamContact(NamedTuple):
+    """The cam–tappet contact at one instant: lobe angle θ [rad], lift s [m] and its
+    derivatives s' [m/rad], s'' [m/rad²], radius of curvature R [m], entrainment and
+    sliding speeds u_e, u_s [m/s], interference δ_kin [m] and its rate [m/s], elastic
+    force P [N], dP/dδ_kin [N/m], film h [m], damping step g(P) and dg/dP, contact force
+    F_c [N] (and whether it is positive), friction F_f [N], tanh(ẋ_t/v_r) and bore
+    friction F_b [N]."""
+
+    theta: float
+    s: float
+    s1: float
+    s2: float
+    R: float
+    ue: float
+    us: float
+    dk: float
+    dkd: float
+    P: float
+    dPdk: float
+    film: float
+    gc: float
+    dgc: float
+    Fc: float
+    on: bool
+    Ff: float
+    th_v: float
+    Fb: float
+
+    def outputs(self, **joints: Any) -> dict:
+        """The ``evaluate`` dict of a model: the contact's keys, then ``joints`` (Ftv,
+        Fs, Fseg, acc, cam_power, dissipation_rate)."""
+        return dict(
+            theta=self.theta,
+            s=self.s,
+            s1=self.s1,
+            s2=self.s2,
+            R=self.R,
+            ue=self.ue,
+            us=self.us,
+            dk=self.dk,
+            P=self.P,
+            Fc=self.Fc,
+            Ff=self.Ff,
+            Fb=self.Fb,
+            film=self.film,
+            **joints,
+        )
+
+
+class CamContactModel:
+    """What the lumped and flexible valvetrain models share: the contact law (``gamma``,
+    compliance ``contact_C``, camshaft compliance ``contact_ikc``), the film in series,
+    the friction at the contact and in the bore, and ẏ = [q̇, q̈, P_cam, D'] from
+    ``evaluate`` (a subclass sets ``cam``, ``p``, ``w``, ``trib``, ``n``, ``has_film``
+    and ``friction_fn``, and implements ``evaluate``)."""
+
+    PARAMS: type
+    cam: CamProfile
+    p: Any
+    w: float
+    trib: TribologyModel
+    n: int
+    has_film: bool
+    friction_fn: _FrictionTable | None
+    gamma: float
+    contact_C: float
+    contact_ikc: float
+
+    @classmethod
+    def handles(cls, params: Any) -> bool:
+        """True if ``params`` is this model's parameter class (``PARAMS``)."""
+        return isinstance(params, cls.PARAMS)
+
+    def _init_contact(self, tribology: TribologyModel, cam_bending: float) -> None:
+        """Contact law δ_el = C z + z^γ/k_cam, P = z^γ (``cam_bending`` = 1/k_cam [m/N]),
+        the film flag and the friction table of a cam-periodic tribology."""
+        p = self.p
+        if p.contact_stiffness is None:
+            self.gamma = 1.0 / _PALMGREN_EXP
+            self.contact_C = p.contact_compliance_coefficient
+        else:
+            self.gamma = 1.0
+            self.contact_C = 1.0 / p.contact_stiffness
+        self.contact_ikc = cam_bending
+        self.has_film = bool(tribology.has_film)
+        self.friction_fn = (
+            _FrictionTable(tribology, self.cam, self.w, self.theta0)
+            if tribology.periodic_in_cam_angle
+            else None
+        )
+
+    theta0: float
+
+    def film(self, t: float, force: float, ue: float, R: float) -> tuple[float, float]:
+        """Series film h [m] and dh/dP [m/N] (0, 0 without a film law)."""
+        if not self.has_film:
+            return 0.0, 0.0
+        h, hF = self.trib.film(float(t), float(force), ue, R)
+        h, hF = float(h), float(hF)
+        if not (-_HUGE < h < _HUGE and -_HUGE < hF <= 0.0):  # finite, dh/dF <= 0
+            raise ContactLawError(
+                f"film law returned h = {h:g} m, dh/dF = {hF:g} m/N at "
+                f"t = {t:.6g} s, F = {force:.6g} N (need finite, dh/dF <= 0)"
+            )
+        return h, hF
+
+    def elastic_contact(
+        self, t: float, dk: float, ue: float = 0.0, R: float = 1.0
+    ) -> tuple[float, float, float]:
+        """Elastic contact force P [N], dP/dδ_kin [N/m] and film h [m] at interference dk."""
+        C, g, ikc = self.contact_C, self.gamma, self.contact_ikc
+        if not self.has_film and ikc == 0.0:
+            if dk <= 0.0:
+                return 0.0, 0.0, 0.0
+            z = dk / C
+            P = z**g
+            return P, g * z ** (g - 1.0) / C, 0.0
+        return contact_film_root(self.film, t, dk, ue, R, C, g, ikc)
+
+    def contact_potential(self, P: float) -> float:
+        """Elastic energy stored in the contact at force P [J] (Palmgren/linear + camshaft)."""
+        if P <= 0.0:
+            return 0.0
+        if self.gamma == 1.0:
+            u = 0.5 * self.contact_C * P * P
+        else:
+            e = 1.0 / self.gamma  # 0.9
+            u = self.contact_C * e / (1.0 + e) * P ** (1.0 + e)
+        return u + 0.5 * self.contact_ikc * P * P
+
+    def cam_contact(self, t: float, th: float, wl: float, x: float, v: float) -> CamContact:
+        """The contact at time t [s] for lobe angle θ [rad], lobe speed ω_l [rad/s] and
+        tappet-face displacement x [m] and velocity v [m/s]."""
+        p = self.p
+        s, s1, s2 = self.cam.scalar_derivatives(th)
+        rb = self.cam.base_radius
+        R = rb + s + s2
+        ue = 0.5 * wl * (rb + s + 2.0 * s2)
+        us = wl * (rb + s)
+        dk = s - x
+        dkd = wl * s1 - v
+        P, dPdk, hfilm = self.elastic_contact(t, dk, ue, R)
+        gc, dgc = smooth_step(P, p.damping_force_ramp)
+        Fc = P + p.contact_damping * gc * dkd
+        on_c = Fc > 0.0
+        if not on_c:
+            Fc = 0.0
+        if Fc > 0.0:
+            Ff = (
+                self.friction_fn(th, Fc)
+                if self.friction_fn is not None
+                else float(self.trib.friction(t, Fc, ue, us, R))
+            )
+        else:
+            Ff = 0.0
+        th_v = math.tanh(v / p.bore_friction_velocity)
+        Fb = p.bore_friction_coefficient * Ff * th_v
+        return CamContact(
+            th, s, s1, s2, R, ue, us, dk, dkd, P, dPdk, hfilm, gc, dgc, Fc, on_c, Ff, th_v, Fb
+        )
+
+    def evaluate(self, t: float, y, jac: bool = False) -> dict:
+        """Forces and kinematics at one state (see the models)."""
+        raise NotImplementedError
+
+    def rhs(self, t, y):
+        """ẏ = [q̇, q̈, P_cam, D']."""
+        n = self.n
+        f = self.evaluate(t, y)
+        dy = np.empty(2 * n + 2)
+        dy[:n] = y[n : 2 * n]
+        dy[n : 2 * n] = f["acc"]
+        dy[2 * n] = f["cam_power"]
+        dy[2 * n + 1] = f["dissipation_rate"]
+        return dy
