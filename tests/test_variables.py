@@ -7,6 +7,7 @@ from collections import defaultdict
 import numpy as np
 import xarray as xr
 
+from test_sweep_run import STUDY_FIXED
 from tribodyn.config import load_case
 from tribodyn.config.sweep import load_sweep
 from tribodyn.workflow.sweep_point import run_point
@@ -57,24 +58,15 @@ def test_results_nc_variables_come_from_the_registry(reduced_results):
         # engineering outputs
         for name in ("contact_force_implicit", "dry_pressure", "ehl_pair_film", "surge_mode"):
             assert name in ds
-    assert n > 150
+    assert n > 100
 
 
-SWEEP = """
+SWEEP = f"""
 [sweep]
 name = "registry_check"
 mode = "study"
 traces = true
-
-[fixed]
-"numerics.cycles" = 1
-"numerics.output_step_deg" = 2.0
-"numerics.max_step_deg" = 2.0
-"numerics.crank_step_deg" = 5.0
-"numerics.n" = 128
-"numerics.implicit_coupling" = false
-"surface_sets" = [{ name = "uncoated", roughness = { asperity_density = 8.3e9, rms = 0.408e-6, summit_radius = 0.669e-6 } }]
-
+{STUDY_FIXED}
 [[axes]]
 path = "engine.speed_rpm"
 values = [3000.0]

@@ -11,8 +11,9 @@ with the condition under which they exist (e.g. only in a thermal study).
 place where an output variable's attributes are made.
 
 The tables are in :mod:`~tribodyn.workflow.variables_study` (the study Dataset, including
-the thermal, stress and engineering variables) and
-:mod:`~tribodyn.workflow.variables_sweep` (sweep points and the combined sweep). The
+the thermal, stress and engineering variables),
+:mod:`~tribodyn.workflow.variables_sweep` (sweep points and the combined sweep) and
+:mod:`~tribodyn.workflow.variables_engine` (an engine study's Dataset). The
 registry lives in ``workflow`` so that the sweep points (workflow) and the results
 Dataset (output) share it without an upward import. A name used in several tables has
 the same units everywhere (``tests/test_variables.py``).
@@ -114,9 +115,10 @@ def number(v) -> float:
 
 def registry() -> tuple[Variable, ...]:
     """Every registered variable (a name may occur in several tables, with one unit)."""
-    from . import variables_study, variables_sweep
+    from . import variables_engine, variables_study, variables_sweep
 
-    rows = (*variables_study.ALL, *variables_sweep.ALL)  # the sweep reuses study rows
+    # the sweep reuses study rows
+    rows = (*variables_study.ALL, *variables_sweep.ALL, *variables_engine.ALL)
     return tuple({id(v): v for v in rows}.values())
 
 
