@@ -4,14 +4,15 @@ its starting state and reports convergence, and record which tests still pass.
 A good solver test fails under this replacement, because it checks the answer, not the
 start. Enabled only with ``-p do_nothing`` and the environment variable
 ``TRIBODYN_DO_NOTHING`` set to ``dry``, ``ehl``, ``dynamics``, ``thermal`` or ``coupling``;
-the outcome of every test
-that called the replaced iteration is appended (JSON lines) to the file named by
-``TRIBODYN_DO_NOTHING_REPORT``. Run all three with ``python tests/check_do_nothing.py``.
+the outcome of every test that called the replaced iteration is appended (JSON lines) to
+the file named by ``TRIBODYN_DO_NOTHING_REPORT``. Run them all with
+``python tests/check_do_nothing.py``.
 """
 
 import importlib
 import json
 import os
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -89,7 +90,7 @@ def _coupling_nothing(case, surface_set, dynamics, inputs, first, progress=None)
 
 #: solver → [(module, attribute, replacement)]: every place the iteration is looked up
 #: (``attribute`` may be ``Class.method``).
-PATCHES = {
+PATCHES: dict[str, list[tuple[str, str, Callable]]] = {
     "dry": [("tribodyn.contact.dry", "_cgm", _dry_nothing)],
     "ehl": [
         ("tribodyn.contact.ehl.steady", "newton", _newton_nothing),

@@ -22,7 +22,7 @@ def assert_registered(ds: xr.Dataset, exempt=()) -> int:
     rows = defaultdict(list)
     for v in registry():
         rows[v.name].append(v)
-    bad = []
+    bad: list[tuple] = []
     names = [n for n in ds.variables if n not in exempt]
     for name in names:
         a = ds[name].attrs
