@@ -412,7 +412,9 @@ def test_low_conductivity_coating_runs_hotter_with_less_viscous_friction():
 
 def test_transient_staggered_coupling_and_steady_start():
     """A transient march from the steady thermal state: at constant conditions it
-    stays there. With sliding rising fast (0.2 m/s every 20 µs) the cycle's default
+    stays there, at once (restarted from its own solution, the step needs at most two
+    Newton and two thermal iterations; measured: 2 and 1–2, Δh_c/h_c ≤ 9e-6, ΔT_max
+    0.04 K). With sliding rising fast (0.2 m/s every 20 µs) the cycle's default
     coupling (two pressure ↔ temperature iterations per step) is within 0.5 % of the
     iterated one in film and friction, the staggered one (a single iteration) within 1 %."""
     tb = STEEL_BODIES
@@ -422,8 +424,9 @@ def test_transient_staggered_coupling_and_steady_start():
         r0 = tr.start_steady(W, R, 2.0, 1.0)
         r1 = tr.step(2e-5, W, R, 2.0, 1.0)
         assert r1.converged, r1.message
-        assert r1.central_film == pytest.approx(r0.central_film, rel=2e-3)
-        assert r1.max_temperature == pytest.approx(r0.max_temperature, abs=0.3)
+        assert r1.iterations <= 2 and r1.thermal_iterations <= 2, r1.message
+        assert r1.central_film == pytest.approx(r0.central_film, rel=5e-5)
+        assert r1.max_temperature == pytest.approx(r0.max_temperature, abs=0.1)
         out = []
         for k in range(1, 9):
             r = tr.step(2e-5, W, R, 2.0, 1.0 + 0.2 * k)
