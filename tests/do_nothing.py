@@ -3,14 +3,16 @@ its starting state and reports convergence, and record which tests still pass.
 
 A good solver test fails under this replacement, because it checks the answer, not the
 start. Enabled only with ``-p do_nothing`` and the environment variable
-``TRIBODYN_DO_NOTHING`` set to ``dry``, ``ehl`` or ``dynamics``; the outcome of every test
-that called the replaced iteration is appended (JSON lines) to the file named by
-``TRIBODYN_DO_NOTHING_REPORT``. Run all three with ``python tests/check_do_nothing.py``.
+``TRIBODYN_DO_NOTHING`` set to ``dry``, ``ehl``, ``dynamics``, ``thermal`` or ``coupling``;
+the outcome of every test that called the replaced iteration is appended (JSON lines) to
+the file named by ``TRIBODYN_DO_NOTHING_REPORT``. Run them all with
+``python tests/check_do_nothing.py``.
 """
 
 import importlib
 import json
 import os
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -63,8 +65,32 @@ def _odeint_nothing(func, y0, t, *args, full_output=False, **kw):
     return Y, {"nfe": n, "nje": n, "message": "Integration successful."}
 
 
-#: solver → [(module, attribute, replacement)]: every place the iteration is looked up.
-PATCHES = {
+def _energy_nothing(self, x, p, h, pa, cond, rough, opts, *, refresh=True, **kw):
+    """The thermal EHL's energy-equation solve (ThermalField.update) doing nothing: the
+    temperature stays where it started (the inlet), and the change reported is 0 K."""
+    _calls["n"] += 1
+    if refresh:
+        self.refresh(x, p, h, pa, cond, rough, opts)
+    return 0.0
+
+
+def _coupling_nothing(case, surface_set, dynamics, inputs, first, progress=None):
+    """The implicit coupling doing nothing: the explicit dynamics returned as the implicit
+    run, 'converged' after one iteration with zero change."""
+    from tribodyn.workflow.coupling import CouplingIteration, CouplingResult
+
+    _calls["n"] += 1
+    out = CouplingResult()
+    if not case.numerics.implicit_coupling:
+        return out
+    out.history.append(CouplingIteration(1, 0.0, 0.0))
+    out.implicit, out.converged, out.message = dynamics, True, "converged (do-nothing)"
+    return out
+
+
+#: solver → [(module, attribute, replacement)]: every place the iteration is looked up
+#: (``attribute`` may be ``Class.method``).
+PATCHES: dict[str, list[tuple[str, str, Callable]]] = {
     "dry": [("tribodyn.contact.dry", "_cgm", _dry_nothing)],
     "ehl": [
         ("tribodyn.contact.ehl.steady", "newton", _newton_nothing),
@@ -75,6 +101,11 @@ PATCHES = {
         ("tribodyn.valvetrain.compiled", "odeint", _odeint_nothing),
         ("tribodyn.valvetrain.compiled", "solve_ivp", _ivp_nothing),
     ],
+    "thermal": [("tribodyn.contact.ehl.thermal_field", "ThermalField.update", _energy_nothing)],
+    "coupling": [
+        ("tribodyn.workflow.coupling", "run_coupling", _coupling_nothing),
+        ("tribodyn.workflow.cycle", "run_coupling", _coupling_nothing),
+    ],
 }
 
 
@@ -83,10 +114,13 @@ def pytest_configure(config):
     if not which:
         return
     for mod, attr, fn in PATCHES[which]:
-        m = importlib.import_module(mod)
-        if not hasattr(m, attr):
+        owner = importlib.import_module(mod)
+        *path, name = attr.split(".")
+        for part in path:
+            owner = getattr(owner, part)
+        if not hasattr(owner, name):
             raise RuntimeError(f"do-nothing check: {mod}.{attr} not found (update PATCHES)")
-        setattr(m, attr, fn)
+        setattr(owner, name, fn)
 
 
 _fixture_uses_solver: set[str] = set()

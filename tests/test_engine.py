@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from conftest import REDUCED
+from test_variables import assert_registered
 from tribodyn import InputError
 from tribodyn.config import load_case
 from tribodyn.workflow.engine import place_trace, run_engine_study
@@ -81,8 +82,9 @@ def test_summary_fmep_and_parts(engine):
         assert all(v > 0 for v in d["friction_energy_per_cycle_J"].values())
     ds = engine.to_dataset()
     for k in ("camshaft_friction_torque", "camshaft_drive_torque", "camshaft_friction_power"):
-        assert ds[k].attrs["units"] in ("N m", "W") and ds[k].attrs["description"]
+        assert ds[k].attrs["units"] in ("N m", "W") and ds[k].attrs["long_name"]
         assert ds[k].dims == ("engine_set", "camshaft", "engine_crank")
+    assert_registered(ds)  # every variable's units and description from the registry
 
 
 def test_one_camshaft_carries_all_lobes(engine):

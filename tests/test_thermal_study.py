@@ -7,6 +7,7 @@ import pytest
 import xarray as xr
 from typer.testing import CliRunner
 
+from test_variables import assert_registered
 from tribodyn.cli import app
 from tribodyn.config import Case, load_case
 
@@ -132,6 +133,7 @@ def test_thermal_run_outputs(thermal_run):
     ):
         assert v in ds and ds[v].attrs["units"]
     assert ds.attrs["thermal"] == 1
+    assert_registered(ds)  # every variable's units and description from the registry
     ds.close()
     report = (thermal_run / "report.md").read_text()
     assert "## Thermal EHL" in report and "Coatings' thermal effect" in report

@@ -234,55 +234,14 @@ class EngineStudy:
         return out
 
     def to_dataset(self):
-        """xarray Dataset of the traces with units and descriptions."""
+        """xarray Dataset of the traces with units and descriptions (the table of
+        :mod:`~tribodyn.workflow.variables_engine`)."""
         import xarray as xr
 
-        dims = ("engine_set", "camshaft", "engine_crank")
-        w = self.cam_speed
+        from .variables import build
+        from .variables_engine import ENGINE
 
-        def var(values, units, desc, d=dims):
-            return xr.Variable(d, np.asarray(values), {"units": units, "description": desc})
-
-        tf = self.friction_torque
-        ds = xr.Dataset(
-            {
-                "camshaft_friction_torque": var(
-                    tf, "N m", "cam–tappet friction torque on the camshaft, all its lobes"
-                ),
-                "camshaft_drive_torque": var(
-                    self.drive_torque, "N m", "camshaft drive torque of the cam–tappet contacts"
-                ),
-                "camshaft_friction_power": var(
-                    (tf + self.auxiliary_torque) * w,
-                    "W",
-                    "valvetrain friction power of the camshaft (contact + auxiliary)",
-                ),
-                "tappet_bore_torque": var(
-                    self.bore_torque, "N m", "tappet–bore friction torque (side load + Couette)"
-                ),
-                "valve_guide_torque": var(
-                    self.guide_torque, "N m", "valve stem–guide friction torque"
-                ),
-                "camshaft_journal_torque": var(
-                    self.journal_torque, "N m", "camshaft journal bearings (short bearing)"
-                ),
-                "lobe_friction_torque": var(
-                    self.lobe_friction_torque,
-                    "N m",
-                    "cam–tappet friction torque of each valve",
-                    ("engine_set", "valve", "engine_crank"),
-                ),
-            },
-            coords={
-                "engine_set": list(self.set_names),
-                "camshaft": list(self.camshafts),
-                "engine_crank": ("engine_crank", self.crank_angle, {"units": "deg"}),
-                "valve": [f"{v['kind']}{v['cylinder']}" for v in self.valves],
-                "valve_nose_deg": ("valve", [v["nose_deg"] for v in self.valves], {"units": "deg"}),
-            },
-        )
-        ds["engine_crank"].attrs["description"] = "crank angle from cylinder 1's firing TDC"
-        return ds
+        return build(xr.Dataset(), [ENGINE], self)
 
 
 def _journal_torque(lobes, valves, set_index, camshafts, case, crank, cam_speed, eta):

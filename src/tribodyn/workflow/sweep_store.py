@@ -20,12 +20,14 @@ import numpy as np
 import xarray as xr
 
 from .._system import new_file
+from .variables_study import SET_DESCRIPTION
+from .variables_sweep import SWEEP_STATUS
 
 __all__ = ["PointStore", "combine_points", "POINTS_FOLDER"]
 
 POINTS_FOLDER = "points"
 #: Coordinates along ``surface_set`` kept in the combined Dataset when all points agree.
-SET_COORDS = ("surface_label", "coating_material", "coating_thickness")
+SET_COORDS = tuple(v.name for v in SET_DESCRIPTION)
 
 
 class PointStore:
@@ -182,22 +184,14 @@ def combine_points(spec, plan, results: dict) -> xr.Dataset:
             warnings[p.index] = "; ".join(json.loads(ds.attrs.get("warnings", "[]")))
         else:
             error[p.index] = str(ds.attrs.get("error", "failed"))
-    out["status"] = xr.Variable(
-        dims, status.reshape(shape), {"long_name": "point finished (1) or failed (0)"}
-    )
-    out["error"] = xr.Variable(
-        dims,
-        error.astype(str).reshape(shape),
-        {"long_name": "why the point failed ('' if it did not)"},
-    )
-    out["warnings"] = xr.Variable(
-        dims,
-        warnings.astype(str).reshape(shape),
-        {"long_name": "warnings of the point's study ('' if none)"},
-    )
-    out["point_key"] = xr.Variable(
-        dims, keys.astype(str).reshape(shape), {"long_name": "point file points/<key>.nc"}
-    )
+    bookkeeping = {
+        "status": status.reshape(shape),
+        "error": error.astype(str).reshape(shape),
+        "warnings": warnings.astype(str).reshape(shape),
+        "point_key": keys.astype(str).reshape(shape),
+    }
+    for name, row in SWEEP_STATUS.items():
+        out[name] = row.make(bookkeeping, tuple(dims))
     refs = {ds.attrs.get("reference_set") for ds in ok.values()} - {None}
     out.attrs.update(
         {
