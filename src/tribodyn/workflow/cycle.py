@@ -59,7 +59,7 @@ from .sensitivity import (
 from .tasks import InlineExecutor, Task, run_tasks
 
 if TYPE_CHECKING:
-    from ..config.case import Case
+    from ..config.case import Case, SurfaceSet
 
 __all__ = ["CycleStudy", "StudyError", "run_cycle_study"]
 
@@ -153,17 +153,15 @@ def _local_pool(workers: int | None) -> ProcessPoolExecutor:
     )
 
 
-def _stress_step(built: BuiltCase, name: str, res, inputs):
+def _stress_step(case: Case, s: SurfaceSet, res, inputs):
     """The set's subsurface stresses along its EHL pass (the last step of its task):
     a CycleStress, None when ``[stress] enabled = false``, or the error text."""
-    case = built.case
     if not case.stress.enabled:
         return None
     from .stress_study import stress_for_set
 
-    bs = built.set(name)
-    try:
-        return stress_for_set(case, bs.surface, res, inputs, strengths=bs.strengths)
+    try:  # the strengths built with the case
+        return stress_for_set(case, s, res, inputs, strengths=case.strengths(s))
     except Exception as exc:  # the EHL results stay usable; the study warns
         return f"{type(exc).__name__}: {exc}"
 
@@ -172,8 +170,9 @@ def _set_task(built: BuiltCase, name: str, inputs):
     """EHL along the cycle for one surface set, then its stresses (a picklable
     top-level task). Returns (SetCycleResult, stresses)."""
     with single_blas_thread():
-        res = ehl_for_set(built.case, built.set(name).surface, inputs)
-        return res, _stress_step(built, name, res, inputs)
+        s = built.set(name).surface
+        res = ehl_for_set(built.case, s, inputs)
+        return res, _stress_step(built.case, s, res, inputs)
 
 
 def _coupling_task(built: BuiltCase, name: str, dynamics, inputs):
@@ -182,7 +181,7 @@ def _coupling_task(built: BuiltCase, name: str, dynamics, inputs):
     with single_blas_thread():
         s = built.set(name).surface
         first = ehl_for_set(built.case, s, inputs)
-        stress = _stress_step(built, name, first, inputs)
+        stress = _stress_step(built.case, s, first, inputs)
         return first, run_coupling(built.case, s, dynamics, inputs, first), stress
 
 
@@ -203,14 +202,6 @@ def _coating_studies_task(built: BuiltCase, reference: str, nose, paper_studies:
         return dry, ehl, sens, own
 
 
-def _thermal_task(built: BuiltCase, name: str, inputs):
-    """The thermal EHL along the cycle of one surface set (``numerics.thermal``)."""
-    from .thermal_study import thermal_for_set
-
-    with single_blas_thread():
-        return thermal_for_set(built.case, built.set(name).surface, inputs)
-
-
 def study_tasks(
     built: BuiltCase, reference: str, dynamics, inputs, nose, paper_studies: bool
 ) -> list[Task]:
@@ -228,8 +219,10 @@ def study_tasks(
     ]
     tasks.append(Task("coating", _coating_studies_task, (built, reference, nose, paper_studies)))
     if built.case.numerics.thermal:
+        from .thermal_study import thermal_task
+
         tasks += [
-            Task(f"thermal:{name}", _thermal_task, (built, name, inputs)) for name in built.sets
+            Task(f"thermal:{name}", thermal_task, (built.case, name, inputs)) for name in built.sets
         ]
     return tasks
 
@@ -369,7 +362,7 @@ def run_cycle_study(
         dry=coating[0],
         ehl_coating=coating[1],
         sensitivity=coating[2],
-        nose_sets=coating[3],
+        nose_sets=coating[3] if len(coating) > 3 else None,
         timings=timings,
         isothermal_sets=isothermal,
         compare_paper=paper_cmp,
