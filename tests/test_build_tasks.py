@@ -131,11 +131,11 @@ def test_run_tasks_reports_each_result_once_and_raises_task_errors():
         run_tasks(InlineExecutor(), [Task("a", _square, (1,))] * 2, lambda k, r: None)
 
 
-def _python(code: str) -> str:
+def _python(code: str, extra_path: str = "") -> str:
     """Run ``code`` in a fresh interpreter without the BLAS thread variables."""
     env = {k: v for k, v in os.environ.items() if not k.endswith("_NUM_THREADS")}
     src = os.path.join(os.path.dirname(__file__), "..", "src")
-    env["PYTHONPATH"] = os.pathsep.join([src, env.get("PYTHONPATH", "")])
+    env["PYTHONPATH"] = os.pathsep.join(p for p in [src, extra_path, env.get("PYTHONPATH")] if p)
     r = subprocess.run(
         [sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120
     )
@@ -155,3 +155,37 @@ def test_import_is_lazy_and_the_command_line_sets_one_blas_thread():
     assert out.splitlines() == ["False None", "True"]
     out = _python("import os, tribodyn.cli; print(os.environ['OPENBLAS_NUM_THREADS'])")
     assert out == "1"
+
+
+PROBE = """
+import os
+
+
+def blas_threads():
+    import numpy  # noqa: F401  (loads BLAS)
+    from threadpoolctl import threadpool_info
+
+    return max(i.get("num_threads", 1) for i in threadpool_info())
+"""
+
+
+def test_pool_workers_start_with_one_blas_thread(tmp_path):
+    """A parent with multi-threaded BLAS starts the study's pool in fresh interpreters;
+    they start (on the first submission) with the one-thread environment, and the
+    parent's environment is restored afterwards."""
+    (tmp_path / "blas_probe.py").write_text(PROBE, encoding="utf-8")
+    out = _python(
+        "import os, sys\n"
+        f"sys.path.insert(0, {str(tmp_path)!r})\n"
+        "from blas_probe import blas_threads\n"
+        "from tribodyn.workflow.cycle import _study_executor\n"
+        "print(blas_threads())\n"
+        "with _study_executor(None, 2) as pool:\n"
+        "    print(pool.submit(blas_threads).result())\n"
+        "print(os.environ.get('OPENBLAS_NUM_THREADS'))\n",
+        extra_path=str(tmp_path),
+    )
+    lines = out.splitlines()
+    if (os.cpu_count() or 1) > 1:
+        assert int(lines[0]) > 1  # the parent's default: one thread per CPU
+    assert lines[1:] == ["1", "None"]

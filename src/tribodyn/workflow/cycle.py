@@ -236,12 +236,14 @@ def _study_executor(executor: Executor | None, workers: int):
     elif workers == 1:
         yield InlineExecutor()
     else:
-        with single_blas_thread_env():  # inherited by the pool's fresh interpreters
+        # one BLAS thread in the environment while the pool lives: its workers start on
+        # demand (at a submission), in fresh interpreters unless forked
+        with single_blas_thread_env():
             pool = _local_pool(workers)
-        try:
-            yield pool
-        finally:
-            pool.shutdown(wait=True, cancel_futures=True)
+            try:
+                yield pool
+            finally:
+                pool.shutdown(wait=True, cancel_futures=True)
 
 
 # ----------------------------------------------------------------------------- driver
