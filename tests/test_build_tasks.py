@@ -189,3 +189,20 @@ def test_pool_workers_start_with_one_blas_thread(tmp_path):
     if (os.cpu_count() or 1) > 1:
         assert int(lines[0]) > 1  # the parent's default: one thread per CPU
     assert lines[1:] == ["1", "None"]
+
+
+def test_the_runtime_limit_holds_until_the_outer_block_closes():
+    """single_blas_thread: an inner block does not lift the limit of the outer one; the
+    outer one restores the default."""
+    out = _python(
+        "import numpy\n"
+        "from tribodyn._threads import single_blas_thread as one, blas_single_threaded as q\n"
+        "r = [q()]\n"
+        "with one():\n"
+        "    with one(): r.append(q())\n"
+        "    r.append(q())\n"
+        "r.append(q())\n"
+        "print(r)\n"
+    )
+    single = "False" if (os.cpu_count() or 1) > 1 else "True"
+    assert out == f"[{single}, True, True, {single}]"
