@@ -197,3 +197,39 @@ def test_stress_peaks_and_margins_in_json_and_table():
     assert "closest to failure" in t.stdout and "interface shear" in t.stdout
     d = run("--dry", "--load", "633", "--radius", "0.01", "--stress")
     assert d.exit_code == 2 and "--dry" in d.output
+
+
+@pytest.mark.parametrize(
+    "option, value, section, key, toml_value",
+    [
+        ("--viscosity", "1e-6", "lubricant", "viscosity", "1e-6"),
+        ("--viscous-model", "foo", "numerics", "viscous_model", '"foo"'),
+        ("--eyring-stress", "-3", "lubricant", "eyring_stress", "-3.0"),
+    ],
+)
+def test_bad_override_gives_the_case_file_error(tmp_path, option, value, section, key, toml_value):
+    """A lubricant or numerics option is a case update: its error is the case file's
+    message for the same key, with the option named in front."""
+    from tribodyn import InputError
+    from tribodyn.config import load_case
+
+    path = tmp_path / "bad.toml"
+    path.write_text(f"[{section}]\n{key} = {toml_value}\n", encoding="utf-8")
+    with pytest.raises(InputError) as info:
+        load_case(path)
+    lines = [ln.strip() for ln in str(info.value).splitlines()]
+    line = [ln for ln in lines if ln.startswith(f"{section}.{key}:")]
+    assert len(line) == 1, lines
+    r = run("--load", "600", "--radius", "0.01", "--ue", "1", option, value)
+    assert r.exit_code == 2 and "Traceback" not in r.output
+    assert option in r.output and line[0] in r.output
+
+
+def test_contact_request_is_the_keyword_call():
+    """compute_contact takes one ContactRequest, or its fields as keywords (as before)."""
+    from tribodyn.cli.contact import ContactRequest, compute_contact
+
+    kw = dict(load=633.0, radius=0.01, ue=5.0, us=2.0, viscosity=0.03, n=256)
+    a = compute_contact(ContactRequest(**kw))
+    b = compute_contact(**kw)
+    assert a == b and a["viscosity_Pa_s"] == 0.03

@@ -80,6 +80,7 @@ LAYERS = {
     "_version": 0,
     "_typing": 0,
     "_system": 0,
+    "_threads": 0,
     "physics": 1,
     "contact": 2,
     "valvetrain": 2,

@@ -6,38 +6,41 @@ uncoated and coated (DLC, WC-C) tappets. Method after Andreou et al., Appl. Sci.
 7815. All quantities are SI.
 """
 
-import os as _os
-import sys as _sys
+# The names below load on first use (PEP 562), so that importing tribodyn does not import
+# numpy: the command line sets its BLAS thread environment first (tribodyn._threads).
+import importlib as _importlib
+from typing import TYPE_CHECKING
 
-if "numpy" not in _sys.modules:
-    # The solvers' dense matrices are small (a few hundred nodes): multi-threaded BLAS
-    # costs several times the single-threaded time on them, and a runtime limit does not
-    # remove that overhead. Imported before numpy, tribodyn therefore asks for one BLAS
-    # thread unless the environment says otherwise.
-    for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-        _os.environ.setdefault(_var, "1")
-
-from ._validation import InputError
 from ._version import __version__
-from .contact.dry import DryContactResult, solve_dry_contact
-from .contact.ehl import (
-    EHLOptions,
-    EHLResult,
-    ThermalEHLResult,
-    ThermalOptions,
-    ThermalTransientEHL,
-    TransientEHL,
-    solve_ehl,
-    solve_thermal_ehl,
-)
-from .physics.asperity import Roughness, greenwood_tripp
-from .physics.elasticity import DeformationOperator
-from .physics.heat_conduction import ThermalBody, ThermalProperties
-from .physics.hertz import hertz_line_contact
-from .physics.lubricant import Lubricant
-from .physics.materials import Body, Coating, Material, reduced_modulus
-from .physics.stress import SubsurfaceStress, subsurface_stress
-from .physics.thermal_oil import ThermalLubricant
+
+#: public name → module that defines it
+_EXPORTS = {
+    "InputError": "._validation",
+    "DryContactResult": ".contact.dry",
+    "solve_dry_contact": ".contact.dry",
+    "EHLOptions": ".contact.ehl",
+    "EHLResult": ".contact.ehl",
+    "ThermalEHLResult": ".contact.ehl",
+    "ThermalOptions": ".contact.ehl",
+    "ThermalTransientEHL": ".contact.ehl",
+    "TransientEHL": ".contact.ehl",
+    "solve_ehl": ".contact.ehl",
+    "solve_thermal_ehl": ".contact.ehl",
+    "Roughness": ".physics.asperity",
+    "greenwood_tripp": ".physics.asperity",
+    "DeformationOperator": ".physics.elasticity",
+    "ThermalBody": ".physics.heat_conduction",
+    "ThermalProperties": ".physics.heat_conduction",
+    "hertz_line_contact": ".physics.hertz",
+    "Lubricant": ".physics.lubricant",
+    "Body": ".physics.materials",
+    "Coating": ".physics.materials",
+    "Material": ".physics.materials",
+    "reduced_modulus": ".physics.materials",
+    "SubsurfaceStress": ".physics.stress",
+    "subsurface_stress": ".physics.stress",
+    "ThermalLubricant": ".physics.thermal_oil",
+}
 
 __all__ = [
     "Body",
@@ -67,3 +70,39 @@ __all__ = [
     "ThermalTransientEHL",
     "solve_thermal_ehl",
 ]
+
+
+def __getattr__(name: str):
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'tribodyn' has no attribute {name!r}")
+    value = getattr(_importlib.import_module(module, __name__), name)
+    globals()[name] = value  # later look-ups skip this function
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_EXPORTS))
+
+
+if TYPE_CHECKING:
+    from ._validation import InputError
+    from .contact.dry import DryContactResult, solve_dry_contact
+    from .contact.ehl import (
+        EHLOptions,
+        EHLResult,
+        ThermalEHLResult,
+        ThermalOptions,
+        ThermalTransientEHL,
+        TransientEHL,
+        solve_ehl,
+        solve_thermal_ehl,
+    )
+    from .physics.asperity import Roughness, greenwood_tripp
+    from .physics.elasticity import DeformationOperator
+    from .physics.heat_conduction import ThermalBody, ThermalProperties
+    from .physics.hertz import hertz_line_contact
+    from .physics.lubricant import Lubricant
+    from .physics.materials import Body, Coating, Material, reduced_modulus
+    from .physics.stress import SubsurfaceStress, subsurface_stress
+    from .physics.thermal_oil import ThermalLubricant

@@ -17,7 +17,9 @@ import json
 import math
 import re
 import sys
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import typer
 from rich.console import Console
@@ -28,7 +30,7 @@ from .._validation import InputError
 from ..physics import typical
 from .contact_table import _table
 
-__all__ = ["contact_command", "compute_contact"]
+__all__ = ["ContactRequest", "contact_command", "compute_contact"]
 
 _LUB = "Lubricant (default: the paper's Table 5, or the case's)"
 _SURF = "Surfaces (cam: steel; tappet: coated or not)"
@@ -81,37 +83,90 @@ def _as_option(exc: InputError) -> InputError:
     return InputError(msg)
 
 
-def compute_contact(
-    *,
-    load=None,
-    load_per_length=None,
-    width=None,
-    radius=None,
-    ue=None,
-    us=None,
-    dry=False,
-    coating=None,
-    coating_material=None,
-    coating_thickness=None,
-    roughness=None,
-    surface_set=None,
-    case_file=None,
-    shear_coefficient=None,
-    viscosity=None,
-    pressure_viscosity=None,
-    density=None,
-    eyring_stress=None,
-    limiting_shear_coefficient=None,
-    viscosity_model=None,
-    viscous_model=None,
-    limiting_shear=None,
-    n=None,
-    thermal=False,
-    oil=None,
-    inlet_temperature=None,
-    stress=False,
-) -> dict:
-    """Parse the options of ``tribodyn contact`` (strings as typed) and solve.
+@dataclass(frozen=True)
+class ContactRequest:
+    """The options of ``tribodyn contact`` (values as typed; None: not given), built once
+    from the command line or by a Python caller; :func:`compute_contact` solves it.
+
+    ``coating`` and ``roughness`` are the option strings ``"E,NU,THICKNESS"`` and
+    ``"ETA,SIGMA,BETA"``. The lubricant options (``viscosity`` … ``viscosity_model``) and
+    the numerics options (``n``, ``viscous_model``, ``limiting_shear``) of an EHL contact
+    change the case's keys (:data:`CASE_KEYS`) through
+    :meth:`~tribodyn.config.Case.updated`, so they are validated as in a case file.
+    """
+
+    load: float | None = None
+    load_per_length: float | None = None
+    width: float | None = None
+    radius: float | None = None
+    ue: float | None = None
+    us: float | None = None
+    dry: bool = False
+    coating: str | None = None
+    coating_material: str | None = None
+    coating_thickness: float | None = None
+    roughness: str | None = None
+    surface_set: str | None = None
+    case_file: Path | str | None = None
+    shear_coefficient: float | None = None
+    viscosity: float | None = None
+    pressure_viscosity: float | None = None
+    density: float | None = None
+    eyring_stress: float | None = None
+    limiting_shear_coefficient: float | None = None
+    viscosity_model: str | None = None
+    viscous_model: str | None = None
+    limiting_shear: bool | None = None
+    n: int | None = None
+    thermal: bool = False
+    oil: str | None = None
+    inlet_temperature: float | None = None
+    stress: bool = False
+
+    def case_changes(self) -> dict[str, Any]:
+        """The given lubricant and numerics options as case updates (dotted key → value)."""
+        return {
+            key: getattr(self, name)
+            for name, key in CASE_KEYS.items()
+            if getattr(self, name) is not None
+        }
+
+
+#: Option of :class:`ContactRequest` → the case key it changes.
+CASE_KEYS = {
+    "viscosity": "lubricant.viscosity",
+    "pressure_viscosity": "lubricant.pressure_viscosity",
+    "density": "lubricant.density",
+    "eyring_stress": "lubricant.eyring_stress",
+    "limiting_shear_coefficient": "lubricant.limiting_shear_coefficient",
+    "viscosity_model": "lubricant.viscosity_model",
+    "viscous_model": "numerics.viscous_model",
+    "limiting_shear": "numerics.limiting_shear",
+    "n": "numerics.n",
+}
+
+
+def _updated(case, changes: dict[str, Any]):
+    """``case`` with the option changes applied (validated as a case file); an error
+    names the option, then the case file's message for its key."""
+    if not changes:
+        return case
+    try:
+        return case.updated(changes)
+    except InputError as exc:
+        option = {key: "--" + name.replace("_", "-") for name, key in CASE_KEYS.items()}
+        out = []
+        for line in str(exc).splitlines():
+            if line.startswith("invalid case"):
+                continue
+            key = line.strip().split(":", 1)[0]
+            out.append(f"{option[key]} ({line.strip()})" if key in option else line.strip())
+        raise InputError("; ".join(out)) from None
+
+
+def compute_contact(request: ContactRequest | None = None, /, **options: Any) -> dict:
+    """Solve one :class:`ContactRequest` (or its fields as keyword arguments, as typed on
+    the command line).
 
     Raises :class:`~tribodyn.InputError` naming the offending option on bad input.
     """
@@ -120,18 +175,23 @@ def compute_contact(
     from ..physics.materials import Coating
     from ..workflow.point import point_surfaces, solve_point
 
-    if case_file is not None:
-        case = load_case(case_file)
-    elif surface_set is not None:
+    if request is None:
+        request = ContactRequest(**options)
+    elif options:
+        raise TypeError("give a ContactRequest or its fields as keywords, not both")
+    q = request
+    if q.case_file is not None:
+        case = load_case(q.case_file)
+    elif q.surface_set is not None:
         case = load_case()  # the bundled paper case
     else:
         case = Case()  # the paper's defaults
     coat = rough = None
-    if coating is not None:
-        E, nu, t = _triple(coating, "--coating", "E [Pa], nu [-], thickness [m]")
+    if q.coating is not None:
+        E, nu, t = _triple(q.coating, "--coating", "E [Pa], nu [-], thickness [m]")
         coat = _prefixed("--coating", lambda: Coating(E=E, nu=nu, thickness=t))
-    if roughness is not None:
-        eta, sig, beta = _triple(roughness, "--roughness", "eta [1/m²], sigma [m], beta [m]")
+    if q.roughness is not None:
+        eta, sig, beta = _triple(q.roughness, "--roughness", "eta [1/m²], sigma [m], beta [m]")
         rough = _prefixed(
             "--roughness",
             lambda: Roughness(
@@ -144,97 +204,72 @@ def compute_contact(
     try:
         surfaces = point_surfaces(
             case,
-            surface_set=surface_set,
+            surface_set=q.surface_set,
             coating=coat,
-            coating_material=coating_material,
-            coating_thickness=coating_thickness,
+            coating_material=q.coating_material,
+            coating_thickness=q.coating_thickness,
             roughness=rough,
-            shear_coefficient=shear_coefficient,
+            shear_coefficient=q.shear_coefficient,
         )
     except InputError as exc:
         raise _as_option(exc) from None
 
+    width = q.width
     if width is None:
-        width = case.cam_config.width if case_file is not None else paper.CAM_WIDTH
+        width = case.cam_config.width if q.case_file is not None else paper.CAM_WIDTH
     _check_positive("--width", width, "m")
-    if (load is None) == (load_per_length is None):
+    if (q.load is None) == (q.load_per_length is None):
         raise InputError(
             "give exactly one of --load [N, total over --width] and --load-per-length [N/m]"
         )
-    _check_positive("--load", load, "N")
-    _check_positive("--load-per-length", load_per_length, "N/m")
-    w = load_per_length if load_per_length is not None else load / width
-    if radius is None:
+    _check_positive("--load", q.load, "N")
+    _check_positive("--load-per-length", q.load_per_length, "N/m")
+    if q.load_per_length is not None:
+        w = q.load_per_length
+    else:
+        assert q.load is not None  # exactly one of the two (checked above)
+        w = q.load / width
+    if q.radius is None:
         raise InputError("--radius [m] is required (reduced radius of curvature)")
-    _check_positive("--radius", radius, "m")
-    if n is not None and n < 32:
-        raise InputError(f"--n must be >= 32 grid nodes (got {n})")
+    _check_positive("--radius", q.radius, "m")
+    if q.n is not None and q.n < 32:
+        raise InputError(f"--n must be >= 32 grid nodes (got {q.n})")
     lub = opts = None
     thermal_oil = None
-    if not dry and (thermal or oil is not None or inlet_temperature is not None):
+    if not q.dry and (q.thermal or q.oil is not None or q.inlet_temperature is not None):
         thermal_oil = _thermal_oil(
             case,
-            oil,
-            inlet_temperature,
+            q.oil,
+            q.inlet_temperature,
             {
-                "--viscosity": viscosity,
-                "--pressure-viscosity": pressure_viscosity,
-                "--density": density,
-                "--viscosity-model": viscosity_model,
+                "--viscosity": q.viscosity,
+                "--pressure-viscosity": q.pressure_viscosity,
+                "--density": q.density,
+                "--viscosity-model": q.viscosity_model,
             },
         )
-    if dry and (thermal or oil is not None):
+    if q.dry and (q.thermal or q.oil is not None):
         raise InputError("--thermal and --oil need an EHL contact (drop --dry)")
-    if not dry:
-        over = {
-            k: v
-            for k, v in (
-                ("viscosity", viscosity),
-                ("pressure_viscosity", pressure_viscosity),
-                ("density", density),
-                ("eyring_stress", eyring_stress),
-                ("limiting_shear_coefficient", limiting_shear_coefficient),
-                ("viscosity_model", viscosity_model),
-            )
-            if v is not None
-        }
-        try:
-            lub = dataclasses.replace(case.lubricant(), **over)
-        except InputError as exc:
-            msg = str(exc)
-            field = msg.split(" ", 1)[0]
-            opt = "--" + field.replace("_", "-") if field in over else "lubricant"
-            raise InputError(f"{opt}: {msg}") from None
-        if viscous_model is not None and viscous_model not in ("eyring", "newtonian"):
-            raise InputError(
-                f"--viscous-model must be 'eyring' or 'newtonian' (got {viscous_model!r})"
-            )
-        ov = {
-            k: v
-            for k, v in (
-                ("n", n),
-                ("viscous_model", viscous_model),
-                ("limiting_shear", limiting_shear),
-            )
-            if v is not None
-        }
-        opts = _prefixed("numerics", lambda: dataclasses.replace(case.ehl_options(surfaces), **ov))
+    if not q.dry:  # the lubricant and numerics options: case updates
+        case = _updated(case, q.case_changes())
+        lub = case.lubricant()
+        opts = case.ehl_options(surfaces)
     try:
         r = solve_point(
             case,
             surfaces,
             load_per_length=w,
-            radius=radius,
+            radius=q.radius,
             width=width,
-            entrainment_speed=ue,
-            sliding_speed=us,
-            dry=dry,
+            entrainment_speed=q.ue,
+            sliding_speed=q.us,
+            dry=q.dry,
             # --oil/--inlet-temperature without --thermal: the oil at its inlet temperature
-            lubricant=None if thermal else (thermal_oil or lub),
+            lubricant=None if q.thermal else (thermal_oil or lub),
             options=opts,
-            n=n,
-            thermal_oil=thermal_oil if thermal else None,
-            stress=stress,
+            n=q.n,
+            thermal_oil=thermal_oil if q.thermal else None,
+            stress=q.stress,
         )
     except InputError as exc:
         raise _as_option(exc) from None
@@ -261,7 +296,7 @@ def _thermal_oil(case, oil, inlet_temperature, lub_options):
             raise InputError(f"--oil must be one of {', '.join(OILS)} (got {oil!r})")
         if inlet_temperature is None:
             raise InputError("--oil needs --inlet-temperature [°C] (the sump temperature)")
-        sheet = {k: v for k, v in OILS[oil].items() if k != "description"}
+        sheet: dict[str, Any] = {k: v for k, v in OILS[oil].items() if k != "description"}
         return ThermalLubricant(inlet_temperature + 273.15, **sheet, name=oil)
     try:
         base = case.thermal_lubricant()
@@ -443,36 +478,12 @@ def contact_command(
     Exit code 1 if the solver did not converge, 2 on bad input.
     """
     err = Console(stderr=True)
+    options = locals()
+    request = ContactRequest(
+        **{f.name: options[f.name] for f in dataclasses.fields(ContactRequest)}
+    )
     try:
-        r = compute_contact(
-            load=load,
-            load_per_length=load_per_length,
-            width=width,
-            radius=radius,
-            ue=ue,
-            us=us,
-            dry=dry,
-            coating=coating,
-            coating_material=coating_material,
-            coating_thickness=coating_thickness,
-            roughness=roughness,
-            surface_set=surface_set,
-            case_file=case_file,
-            shear_coefficient=shear_coefficient,
-            viscosity=viscosity,
-            pressure_viscosity=pressure_viscosity,
-            density=density,
-            eyring_stress=eyring_stress,
-            limiting_shear_coefficient=limiting_shear_coefficient,
-            viscosity_model=viscosity_model,
-            viscous_model=viscous_model,
-            limiting_shear=limiting_shear,
-            n=n,
-            thermal=thermal,
-            oil=oil,
-            inlet_temperature=inlet_temperature,
-            stress=stress,
-        )
+        r = compute_contact(request)
     except InputError as exc:
         err.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
         raise typer.Exit(code=2) from None

@@ -11,16 +11,16 @@ with every paper value stated, is ``cases/andreou2023.toml``.
 
 Validation errors (unknown keys, values out of range, wrong types, cross-field rules such
 as a surface set naming an undefined material) raise :class:`~tribodyn.InputError` with
-one line per problem. The cam profile, lubricant and valvetrain parameters are built once
-during validation, so a case that loads can be run. Models are frozen; change a validated
-case with :meth:`Case.updated` (validates again).
+one line per problem. Every object the case describes is built once, during validation
+(:func:`tribodyn.config.build.build`), so a case that loads can be run; the builder
+methods below return those objects. Models are frozen; change a validated case with
+:meth:`Case.updated` (validates again).
 """
 
 from __future__ import annotations
 
 import dataclasses
 import difflib
-import functools
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -42,10 +42,11 @@ from ..physics.lubricant import Lubricant
 from ..physics.materials import Body, Coating, Material
 from ..valvetrain.kinematics import rpm_to_cam_speed
 from ..valvetrain.tappet_rotation import TappetRotation
+from .build import BuiltCase, build, collect, options_for
 from .case_strength import StrengthBuilders
 from .case_thermal import ThermalBuilders
 from .case_valvetrain import CamValvetrainBuilders
-from .errors import CamTableError, Problems, format_validation_error
+from .errors import Problems, format_validation_error
 from .measured_surface import measured_map, measured_roughness
 from .paths import set_path
 from .schema import (
@@ -146,7 +147,8 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
 
     _base_dir: Path = PrivateAttr(default_factory=Path.cwd)
     _source: Path | None = PrivateAttr(default=None)
-    _cam: Any = PrivateAttr(default=None)
+    #: the objects built at validation (:func:`tribodyn.config.build.build`)
+    _built: Any = PrivateAttr(default=None)
 
     # -- validation ---------------------------------------------------------------------
     @model_validator(mode="after")
@@ -199,32 +201,11 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
                     measured_map(s, self._base_dir)
                 except InputError as exc:
                     problems.append((f"{p}.measured_surface.topography", str(exc)))
-        builds = [
-            ("lubricant", self.lubricant),
-            ("valvetrain", self.valvetrain_parameters),
-            ("numerics", self.ehl_options),
-        ]
-        if self.numerics.thermal or self.lubricant_config.datasheet:
-            builds.append(("lubricant", self.thermal_lubricant))
-        if self.numerics.thermal and not any(p == "lubricant" for p, _ in problems):
-            builds += [
-                ("materials", functools.partial(self.thermal_bodies, s.name))
-                for s in self.surface_set_configs
-            ]
-        done = set()
-        for path, build in builds:
-            try:
-                build()
-            except InputError as exc:
-                if (path, str(exc)) not in done:
-                    problems.append((path, str(exc)))
-                    done.add((path, str(exc)))
-        try:
-            self._cam = self._build_cam()
-        except CamTableError as exc:
-            problems.append((exc.key, str(exc)))
-        except InputError as exc:
-            problems.append(("cam", str(exc)))
+        # every object built once, its constructor's errors filed under the case keys;
+        # the case keeps them (config.build)
+        built, build_problems = collect(self, materials_ok=not problems)
+        problems += build_problems
+        self._built = built
         problems += self._engine_lobe_problems()
         if problems:
             raise Problems(problems)
@@ -390,17 +371,27 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
         p = Path(self.cam_config.path).expanduser()
         return p if p.is_absolute() else (self._base_dir / p)
 
+    def built(self) -> BuiltCase:
+        """Every object of the case, built once (:func:`tribodyn.config.build.build`)."""
+        return build(self)
+
     def tappet_rotation(self) -> TappetRotation:
         """``[tappet_rotation]`` as a :class:`TappetRotation` (speed ratio 0: none)."""
+        return build(self).tappet_rotation
+
+    def _new_tappet_rotation(self) -> TappetRotation:
         c = self.tappet_rotation_config
         return TappetRotation(c.speed_ratio, c.cam_offset)
 
     def lubricant(self) -> Lubricant:
         """The :class:`~tribodyn.Lubricant` of ``[lubricant]`` (a datasheet oil at its
         inlet temperature)."""
+        return build(self).lubricant
+
+    def _new_lubricant(self) -> Lubricant:
         c = self.lubricant_config
         if c.datasheet:
-            return self.thermal_lubricant().isothermal()
+            return self._new_thermal_lubricant().isothermal()
         return Lubricant(
             viscosity=c.viscosity,
             pressure_viscosity=c.pressure_viscosity,
@@ -422,6 +413,9 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
     def ehl_options(self, surface_set: SurfaceSet | str | None = None) -> EHLOptions:
         """:class:`~tribodyn.EHLOptions` from ``[numerics]``; with a surface set (object or
         name), its ς and τ₀ of the boundary friction law."""
+        return options_for(build(self), surface_set)
+
+    def _new_ehl_options(self) -> EHLOptions:
         n = self.numerics
         if 0 < n.n < 32:
             raise InputError(f"numerics.n: must be 0 (automatic) or >= 32 (got {n.n})")
@@ -442,27 +436,15 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
             limiting_shear=n.limiting_shear,
             time_order=n.time_order,
         )
-        if surface_set is not None:
-            s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
-            kw.update(
-                boundary_shear_coefficient=s.boundary_shear_coefficient,
-                boundary_shear_strength=s.boundary_shear_strength,
-            )
         return EHLOptions(**kw)
 
     def surface_sets(self) -> list[SurfaceSet]:
         """All surface sets as :class:`SurfaceSet` objects, in file order."""
-        return [self._build_set(s) for s in self.surface_set_configs]
+        return build(self).surface_sets
 
     def surface_set(self, name: str) -> SurfaceSet:
         """One surface set by name."""
-        for s in self.surface_set_configs:
-            if s.name == name:
-                return self._build_set(s)
-        names = self.surface_set_names
-        hint = difflib.get_close_matches(name, names, n=1)
-        more = f"; did you mean {hint[0]!r}?" if hint else ""
-        raise InputError(f"unknown surface set {name!r} (defined: {', '.join(names)}){more}")
+        return build(self).set(name).surface
 
     @property
     def surface_set_names(self) -> list[str]:

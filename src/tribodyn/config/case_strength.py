@@ -6,7 +6,9 @@ typical values of :mod:`tribodyn.physics.strength`.
 from __future__ import annotations
 
 import dataclasses
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
+
+from .build import build
 
 if TYPE_CHECKING:
     from .case import SurfaceSet
@@ -21,6 +23,7 @@ class StrengthBuilders:
         strength_configs: dict[str, StrengthConfig]
         surface_set_configs: list[SurfaceSetConfig]
         cam_config: CamConfig
+        _built: Any
 
         def surface_set(self, name: str) -> SurfaceSet: ...
 
@@ -47,8 +50,15 @@ class StrengthBuilders:
 
     def strengths(self, surface_set) -> dict:
         """{"cam": (substrate, None), "tappet": (substrate, coating)} strengths of a
-        surface set for :func:`~tribodyn.workflow.stress_study.stress_along_cycle`."""
+        surface set for :func:`~tribodyn.workflow.stress_study.stress_along_cycle` (built
+        once per surface set)."""
         s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
+        own = build(self).sets.get(s.name)  # type: ignore[arg-type]  # self is a Case
+        if own is not None and own.surface == s:
+            return own.strengths
+        return self._new_strengths(s)
+
+    def _new_strengths(self, s: SurfaceSet) -> dict:
         cfg = next(c for c in self.surface_set_configs if c.name == s.name)
         cam = self.material_strength(self.cam_config.material)
         sub = self.material_strength(cfg.substrate)

@@ -13,6 +13,7 @@ from ..valvetrain.camshaft import Camshaft
 from ..valvetrain.flexible import FlexibleValvetrain, TappetGeometry, ValveGeometry
 from ..valvetrain.parameters import ValvetrainParameters
 from ..valvetrain.spring import HelicalSpring
+from .build import build
 from .errors import CamTableError
 from .schema import SpringConfig, TappetConfig, ValveConfig
 
@@ -21,6 +22,7 @@ if TYPE_CHECKING:
     from typing import Any
 
     from ..physics.lubricant import Lubricant
+    from ..valvetrain.tribology import AnalyticTribology
     from .case import SurfaceSet
     from .schema import CamConfig, Engine, Numerics, Valvetrain
 
@@ -34,7 +36,7 @@ class CamValvetrainBuilders:
         valvetrain: Valvetrain
         numerics: Numerics
         engine: Engine
-        _cam: Any
+        _built: Any
 
         @property
         def cam_table_path(self) -> Path | None: ...
@@ -95,14 +97,15 @@ class CamValvetrainBuilders:
 
     def cam(self) -> CamProfile:
         """The cam profile (built and checked during validation)."""
-        if self._cam is None:
-            self._cam = self._build_cam()
-        return self._cam
+        return build(self).cam  # type: ignore[arg-type]  # self is a Case
 
-    def valvetrain_parameters(self):
+    def valvetrain_parameters(self) -> ValvetrainParameters | FlexibleValvetrain:
         """The valvetrain of the case: :class:`~tribodyn.valvetrain.ValvetrainParameters`
         (``model = "lumped"``) or :class:`~tribodyn.valvetrain.flexible.FlexibleValvetrain`
         (``"flexible"``); either runs in :func:`~tribodyn.valvetrain.simulate_valvetrain`."""
+        return build(self).valvetrain  # type: ignore[arg-type]  # self is a Case
+
+    def _new_valvetrain_parameters(self) -> ValvetrainParameters | FlexibleValvetrain:
         joints = self._joint_parameters()
         if self.valvetrain.model == "lumped":
             return joints
@@ -111,8 +114,7 @@ class CamValvetrainBuilders:
     def lumped_companion(self) -> ValvetrainParameters:
         """The lumped model with the same masses, rate, preload and static compliances
         (of a flexible case; a lumped case returns its own parameters)."""
-        vp = self.valvetrain_parameters()
-        return vp if isinstance(vp, ValvetrainParameters) else vp.lumped_equivalent()
+        return build(self).lumped  # type: ignore[arg-type]  # self is a Case
 
     @property
     def valvetrain_model(self) -> str:
@@ -149,17 +151,20 @@ class CamValvetrainBuilders:
             max_step=n.max_step_deg,
         )
 
-    def analytic_tribology(self, surface_set: SurfaceSet | str):
+    def analytic_tribology(self, surface_set: SurfaceSet | str) -> AnalyticTribology:
         """Explicit tribology of the dynamics for one surface set
         (:class:`~tribodyn.valvetrain.AnalyticTribology` over the cam width)."""
+        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
+        return self._analytic_tribology(s, self.lubricant())
+
+    def _analytic_tribology(self, s: SurfaceSet, lubricant: Lubricant) -> AnalyticTribology:
         from ..valvetrain.tribology import AnalyticTribology
 
-        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
         n = self.numerics
         model = AnalyticTribology(
             self.cam_config.width,
             bodies=s.bodies,
-            lubricant=self.lubricant(),
+            lubricant=lubricant,
             roughness=s.roughness,
             boundary_shear_coefficient=s.boundary_shear_coefficient,
             viscous_model=n.viscous_model,

@@ -23,7 +23,7 @@ from __future__ import annotations
 import os
 import time
 from collections.abc import Callable
-from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
+from concurrent.futures import Executor, ProcessPoolExecutor
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -31,6 +31,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .._system import exit_with_parent
+from .._threads import blas_single_threaded, single_blas_thread, single_blas_thread_env
+from ..config.build import BuiltCase, build
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from .coating_study import (
     DryCoatingCase,
@@ -54,9 +56,10 @@ from .sensitivity import (
     roughness_sensitivity,
     surface_sets_at_nose,
 )
+from .tasks import InlineExecutor, Task, run_tasks
 
 if TYPE_CHECKING:
-    from ..config.case import Case
+    from ..config.case import Case, SurfaceSet
 
 __all__ = ["CycleStudy", "StudyError", "run_cycle_study"]
 
@@ -125,34 +128,15 @@ class CycleStudy:
 
 
 # ----------------------------------------------------------------------------- workers
-#: BLAS/OpenMP thread settings of worker processes: the solvers' dense matrices are small,
-#: and multi-threaded BLAS on them costs several times the single-threaded time.
-_THREAD_ENV = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
-
-
-def _limit_threads():
-    """One BLAS thread per process (a runtime limit; see :func:`_pool_context` for the
-    start-up setting that also avoids the threads' start-up costs)."""
-    from threadpoolctl import threadpool_limits
-
-    threadpool_limits(1)
-
-
-def _blas_single_threaded() -> bool:
-    from threadpoolctl import threadpool_info
-
-    return all(i.get("num_threads", 1) <= 1 for i in threadpool_info())
-
-
 def _pool_context():
     """Start method of the local process pool: fork when this process already runs
     single-threaded BLAS (the command line sets it before numpy loads), else a fresh
-    interpreter per worker with one BLAS thread set in its environment (a runtime limit
-    does not remove the threaded BLAS's overhead on small matrices)."""
+    interpreter per worker, started with one BLAS thread in its environment
+    (:func:`~tribodyn._threads.single_blas_thread_env`)."""
     import multiprocessing as mp
 
     methods = mp.get_all_start_methods()
-    if "fork" in methods and _blas_single_threaded():
+    if "fork" in methods and blas_single_threaded():
         return mp.get_context("fork")
     return mp.get_context("forkserver" if "forkserver" in methods else "spawn")
 
@@ -169,60 +153,97 @@ def _local_pool(workers: int | None) -> ProcessPoolExecutor:
     )
 
 
-def _stress_step(case, s, res, inputs):
+def _stress_step(case: Case, s: SurfaceSet, res, inputs):
     """The set's subsurface stresses along its EHL pass (the last step of its task):
     a CycleStress, None when ``[stress] enabled = false``, or the error text."""
     if not case.stress.enabled:
         return None
     from .stress_study import stress_for_set
 
-    try:
+    try:  # the strengths built with the case
         return stress_for_set(case, s, res, inputs, strengths=case.strengths(s))
     except Exception as exc:  # the EHL results stay usable; the study warns
         return f"{type(exc).__name__}: {exc}"
 
 
-def _set_task(case, name, inputs):
+def _set_task(built: BuiltCase, name: str, inputs):
     """EHL along the cycle for one surface set, then its stresses (a picklable
     top-level task). Returns (SetCycleResult, stresses)."""
-    _limit_threads()
-    s = case.surface_set(name)
-    res = ehl_for_set(case, s, inputs)
-    return res, _stress_step(case, s, res, inputs)
+    with single_blas_thread():
+        s = built.set(name).surface
+        res = ehl_for_set(built.case, s, inputs)
+        return res, _stress_step(built.case, s, res, inputs)
 
 
-def _coupling_task(case, name, dynamics, inputs, first=None):
-    """Reference set: its EHL on the explicit dynamics (unless given as ``first``), its
-    stresses, then the implicit coupling iterations. Returns (first, CouplingResult,
-    stresses)."""
-    _limit_threads()
-    s = case.surface_set(name)
-    if first is None:
-        first = ehl_for_set(case, s, inputs)
-    stress = _stress_step(case, s, first, inputs)
-    return first, run_coupling(case, s, dynamics, inputs, first), stress
+def _coupling_task(built: BuiltCase, name: str, dynamics, inputs):
+    """Reference set: its EHL on the explicit dynamics, its stresses, then the implicit
+    coupling iterations. Returns (first, CouplingResult, stresses)."""
+    with single_blas_thread():
+        s = built.set(name).surface
+        first = ehl_for_set(built.case, s, inputs)
+        stress = _stress_step(built.case, s, first, inputs)
+        return first, run_coupling(built.case, s, dynamics, inputs, first), stress
 
 
-def _coating_studies_task(case, reference: str, nose, paper_studies: bool = True):
+def _coating_studies_task(built: BuiltCase, reference: str, nose, paper_studies: bool = True):
     """The sensitivity study at the case's nose; with ``paper_studies`` also the
     paper's Figs. 5/6 single-contact studies (at the paper's conditions), without them
     every surface set of the case at its own nose."""
-    _limit_threads()
-    dry = dry_coating_study() if paper_studies else []
-    ehl = ehl_coating_study(case.lubricant(), case) if paper_studies else None
-    sens = (
-        roughness_sensitivity(case, case.surface_set(reference), nose) if nose is not None else None
-    )
-    own = surface_sets_at_nose(case, nose) if nose is not None and not paper_studies else None
-    return dry, ehl, sens, own
+    case = built.case
+    with single_blas_thread():
+        dry = dry_coating_study() if paper_studies else []
+        ehl = ehl_coating_study(built.lubricant, case) if paper_studies else None
+        sens = (
+            roughness_sensitivity(case, built.set(reference).surface, nose)
+            if nose is not None
+            else None
+        )
+        own = surface_sets_at_nose(case, nose) if nose is not None and not paper_studies else None
+        return dry, ehl, sens, own
+
+
+def study_tasks(
+    built: BuiltCase, reference: str, dynamics, inputs, nose, paper_studies: bool
+) -> list[Task]:
+    """The study's task graph, declared once: the coupling chain of the reference set
+    (its EHL pass, stresses and implicit iterations; the longest task, so first), the EHL
+    pass and stresses of every other set, the single-contact studies and, with
+    ``numerics.thermal``, the thermal pass of every set. The tasks are independent given
+    the dynamics and the cycle's samples. Keys: ``"coupling"``, ``"set:<name>"``,
+    ``"coating"``, ``"thermal:<name>"``."""
+    tasks = [Task("coupling", _coupling_task, (built, reference, dynamics, inputs))]
+    tasks += [
+        Task(f"set:{name}", _set_task, (built, name, inputs))
+        for name in built.sets
+        if name != reference
+    ]
+    tasks.append(Task("coating", _coating_studies_task, (built, reference, nose, paper_studies)))
+    if built.case.numerics.thermal:
+        from .thermal_study import thermal_task
+
+        tasks += [
+            Task(f"thermal:{name}", thermal_task, (built.case, name, inputs)) for name in built.sets
+        ]
+    return tasks
 
 
 @contextmanager
-def _single_blas_thread():
-    from threadpoolctl import threadpool_limits
-
-    with threadpool_limits(1):
-        yield
+def _study_executor(executor: Executor | None, workers: int):
+    """The given executor; else :class:`~tribodyn.workflow.tasks.InlineExecutor` for one
+    worker, or a local process pool of ``workers`` processes (shut down on exit)."""
+    if executor is not None:
+        yield executor
+    elif workers == 1:
+        yield InlineExecutor()
+    else:
+        # one BLAS thread in the environment while the pool lives: its workers start on
+        # demand (at a submission), in fresh interpreters unless forked
+        with single_blas_thread_env():
+            pool = _local_pool(workers)
+            try:
+                yield pool
+            finally:
+                pool.shutdown(wait=True, cancel_futures=True)
 
 
 # ----------------------------------------------------------------------------- driver
@@ -236,11 +257,13 @@ def run_cycle_study(
 ) -> CycleStudy:
     """Run the whole study for a validated :class:`~tribodyn.config.Case`.
 
-    The surface sets, the coupling chain (reference set, then the implicit iterations)
-    and the single-contact studies are independent tasks, submitted to ``executor`` (any
-    :class:`concurrent.futures.Executor`, e.g. a Dask client's ``get_executor()``; every
-    task is a picklable top-level function with picklable arguments) or, by default, to
-    a local process pool of ``workers`` processes (``workers=1``: in this process).
+    The objects of the case are built once (:func:`~tribodyn.config.build.build`). The
+    surface sets, the coupling chain (reference set, then the implicit iterations) and
+    the single-contact studies are independent tasks (:func:`study_tasks`), submitted to
+    ``executor`` (any :class:`concurrent.futures.Executor`, e.g. a Dask client's
+    ``get_executor()``; every task is a picklable top-level function with picklable
+    arguments) or, by default, to a local process pool of ``workers`` processes
+    (``workers=1``: in this process, :class:`~tribodyn.workflow.tasks.InlineExecutor`).
 
     ``progress(event, **info)`` receives ``("dynamics", …)``, ``("set", name=, done=,
     total=)`` (done = 0 when a set is submitted, = total when its result is in) and
@@ -252,26 +275,28 @@ def run_cycle_study(
     """
     paper_cmp = compares_paper(case, compare_paper)
     t_start = time.perf_counter()
+    built = build(case)
     n = case.numerics
     report = progress or (lambda *a, **k: None)
     timings = {}
-    sets = case.surface_sets()
+    sets = built.surface_sets
     ref_name = surface_roles(case)["reference"]
-    ref = case.surface_set(ref_name)
 
     t0 = time.perf_counter()
     report("dynamics")
-    dyn = simulate_valvetrain(
-        case.cam(),
-        case.valvetrain_parameters(),
-        tribology=case.analytic_tribology(ref),
-        **case.dynamics_options(),
-    )
+    with single_blas_thread():
+        dyn = simulate_valvetrain(
+            built.cam,
+            # lumped or flexible: simulate_valvetrain takes either (its make_system)
+            built.valvetrain,  # type: ignore[arg-type]
+            tribology=built.analytic_tribology(ref_name),
+            **built.simulate_options(),
+        )
     timings["dynamics_explicit_s"] = time.perf_counter() - t0
     if not dyn.converged:
         raise StudyError(f"valvetrain dynamics failed: {dyn.message}")
     inputs = CycleInputs.from_dynamics(dyn, n.crank_step_deg, case.width)
-    inputs = inputs.with_rotation(case.tappet_rotation())  # outputs show the EHL's speeds
+    inputs = inputs.with_rotation(built.tappet_rotation)  # outputs show the EHL's speeds
     if not np.any(inputs.contact_force >= n.min_load):
         raise StudyError(
             f"no EHL sample carries numerics.min_load = {n.min_load:g} N: the peak contact "
@@ -287,78 +312,37 @@ def run_cycle_study(
     results: dict = {}
     stresses: dict = {}
     thermal = {}  # thermal EHL per set (numerics.thermal)
-    if executor is None and workers == 1:
-        # serial, in this process
-        with _single_blas_thread():
-            for s in sets:
-                report("set", name=s.name, done=0, total=total)
-                results[s.name] = ehl_for_set(case, s, inputs)
-                if s.name != ref_name:
-                    stresses[s.name] = _stress_step(case, s, results[s.name], inputs)
-                report("set", name=s.name, done=total, total=total)
-            _, coupling, stresses[ref_name] = _coupling_task(
-                case, ref_name, dyn, inputs, first=results[ref_name]
-            )
-            coating = _coating_studies_task(case, ref_name, nose, paper_cmp)
-            if n.thermal:
-                from .thermal_study import thermal_for_set
+    coupling = CouplingResult()
+    coating: tuple = ([], None, None, None)
 
-                for s in sets:
-                    label = f"{s.name} (thermal)"
-                    report("set", name=label, done=0, total=total)
-                    thermal[s.name] = thermal_for_set(case, s, inputs)
-                    report("set", name=label, done=total, total=total)
-    else:
-        own = executor is None
-        pool: Executor
-        if executor is not None:
-            pool = executor
+    def label(key: str) -> str | None:
+        """The progress label of a task (None: no progress line)."""
+        kind, _, name = key.partition(":")
+        if kind == "coupling":
+            return ref_name
+        return {"set": name, "thermal": f"{name} (thermal)"}.get(kind)
+
+    def started(key: str) -> None:
+        if (name := label(key)) is not None:
+            report("set", name=name, done=0, total=total)
+
+    def done(key: str, result) -> None:
+        nonlocal coupling, coating
+        kind, _, name = key.partition(":")
+        if kind == "coupling":
+            results[ref_name], coupling, stresses[ref_name] = result
+        elif kind == "set":
+            results[name], stresses[name] = result
+        elif kind == "thermal":
+            thermal[name] = result
         else:
-            saved = {k: os.environ.get(k) for k in _THREAD_ENV}
-            os.environ.update({k: "1" for k in _THREAD_ENV})
-            pool = _local_pool(workers)
-        try:
-            # the coupling chain is the longest task: submitted first
-            fut_c = pool.submit(_coupling_task, case, ref_name, dyn, inputs)
-            futs = {
-                pool.submit(_set_task, case, s.name, inputs): s.name
-                for s in sets
-                if s.name != ref_name
-            }
-            fut_coat = pool.submit(_coating_studies_task, case, ref_name, nose, paper_cmp)
-            futs[fut_c] = ref_name
-            fut_th = {}
-            if n.thermal:
-                from .thermal_study import thermal_task
+            coating = result
+        if (text := label(key)) is not None:
+            report("set", name=text, done=total, total=total)
 
-                fut_th = {pool.submit(thermal_task, case, s.name, inputs): s.name for s in sets}
-            for s in sets:
-                report("set", name=s.name, done=0, total=total)
-                if n.thermal:
-                    report("set", name=f"{s.name} (thermal)", done=0, total=total)
-            for f in as_completed([*futs, fut_coat, *fut_th]):
-                if f is fut_coat:
-                    coating = f.result()
-                    continue
-                if f in fut_th:
-                    name = fut_th[f]
-                    thermal[name] = f.result()
-                    report("set", name=f"{name} (thermal)", done=total, total=total)
-                    continue
-                name = futs[f]
-                if f is fut_c:
-                    results[name], coupling, stresses[name] = f.result()
-                else:
-                    results[name], stresses[name] = f.result()
-                report("set", name=name, done=total, total=total)
-        finally:
-            if own:
-                pool.shutdown(wait=True, cancel_futures=True)
-                for k, v in saved.items():
-                    if v is None:
-                        os.environ.pop(k, None)
-                    else:
-                        os.environ[k] = v
+    tasks = study_tasks(built, ref_name, dyn, inputs, nose, paper_cmp)
+    with _study_executor(executor, workers) as pool:
+        run_tasks(pool, tasks, done, started)
     timings["ehl_and_coupling_s"] = time.perf_counter() - t0
     for name, r in results.items():  # inside the tasks (their own clocks)
         timings[f"ehl_pass_{name}_s"] = r.runtime_s
@@ -429,7 +413,9 @@ def run_cycle_study(
     if case.valvetrain_model == "flexible":
         t0 = time.perf_counter()
         report("dynamics")
-        study.model_comparison = compare_lumped_flexible(case, case.analytic_tribology(ref), dyn)
+        study.model_comparison = compare_lumped_flexible(
+            case, built.analytic_tribology(ref_name), dyn
+        )
         study.warnings += study.model_comparison.messages
         timings["lumped_vs_flexible_s"] = time.perf_counter() - t0
     study.runtime_s = time.perf_counter() - t_start

@@ -1,0 +1,88 @@
+"""The BLAS/OpenMP thread policy: one thread for the solvers.
+
+The solvers' dense matrices are small (a few hundred nodes); multi-threaded BLAS costs
+several times the single-threaded time on them (docs/architecture.md, "BLAS threads":
+a steady EHL solve takes 0.03 s with one thread, 0.16 s median with two on two cores).
+A runtime limit (threadpoolctl) measured as fast as the environment variable, so:
+
+* the command line sets the environment variables before numpy loads
+  (:func:`set_blas_env`, called by :mod:`tribodyn.cli`; ``tribodyn`` itself imports
+  nothing until a name is used), which child processes inherit;
+* a local process pool starts its fresh interpreters with them
+  (:func:`single_blas_thread_env`);
+* the workflow's entry points and every task run under a runtime limit
+  (:func:`single_blas_thread`), which also covers Dask workers and Python API callers.
+
+A variable the user set is never changed.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator
+from contextlib import contextmanager
+
+__all__ = [
+    "BLAS_ENV",
+    "blas_single_threaded",
+    "set_blas_env",
+    "single_blas_thread",
+    "single_blas_thread_env",
+]
+
+#: The thread-count variables of OpenBLAS, OpenMP and MKL.
+BLAS_ENV = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+
+_depth = 0  # nesting of single_blas_thread in this process
+
+
+def set_blas_env() -> None:
+    """One BLAS thread for this process and its children, unless the environment says
+    otherwise; effective only before numpy is imported."""
+    for var in BLAS_ENV:
+        os.environ.setdefault(var, "1")
+
+
+@contextmanager
+def single_blas_thread_env() -> Iterator[None]:
+    """Set the variables to one thread for the processes started inside (restored
+    after; a value the user set is kept)."""
+    saved = {k: os.environ.get(k) for k in BLAS_ENV}
+    set_blas_env()
+    try:
+        yield
+    finally:
+        for k, v in saved.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
+
+
+@contextmanager
+def single_blas_thread() -> Iterator[None]:
+    """Limit BLAS/OpenMP to one thread in this process while inside (threadpoolctl);
+    nested uses cost nothing."""
+    global _depth
+    if _depth:
+        _depth += 1
+        try:
+            yield
+        finally:
+            _depth -= 1
+        return
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(1):
+        _depth = 1
+        try:
+            yield
+        finally:
+            _depth = 0
+
+
+def blas_single_threaded() -> bool:
+    """Whether every BLAS/OpenMP library loaded in this process runs one thread."""
+    from threadpoolctl import threadpool_info
+
+    return all(i.get("num_threads", 1) <= 1 for i in threadpool_info())

@@ -1,0 +1,228 @@
+"""Building a case: every tribodyn object a validated :class:`~tribodyn.config.Case`
+describes, built once.
+
+A :class:`~tribodyn.config.Case` is data (the validated keys of a case file).
+:func:`build` turns it into a :class:`BuiltCase`: the cam profile, the lubricant (and the
+thermal oil of a thermal or datasheet case), the valvetrain parameters (lumped or
+flexible), the EHL, thermal and dynamics options, the tappet rotation and, per surface
+set, its bodies, roughness and boundary-friction law (:class:`~tribodyn.config.SurfaceSet`),
+its EHL options (ς, τ₀), its thermal bodies and its materials' strengths. The workflow
+reads these objects instead of building them again.
+
+Validating a case builds it (that is how the physics constructors' range checks reach the
+case file's keys): :func:`collect` builds every object, files each constructor's
+:class:`~tribodyn.InputError` under the case key it comes from, and the case keeps the
+result, so ``build(case)`` of a loaded case returns the objects built at validation.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import functools
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, TypeVar
+
+from .._validation import InputError
+from .errors import CamTableError, Problems
+
+if TYPE_CHECKING:
+    from ..contact.ehl import EHLOptions
+    from ..contact.ehl.thermal import ThermalOptions
+    from ..physics.heat_conduction import ThermalBody
+    from ..physics.lubricant import Lubricant
+    from ..physics.thermal_oil import ThermalLubricant
+    from ..valvetrain.cams import CamProfile
+    from ..valvetrain.flexible import FlexibleValvetrain
+    from ..valvetrain.parameters import ValvetrainParameters
+    from ..valvetrain.tappet_rotation import TappetRotation
+    from ..valvetrain.tribology import AnalyticTribology
+    from .case import Case, SurfaceSet
+
+__all__ = ["BuiltCase", "BuiltSet", "build", "collect"]
+
+T = TypeVar("T")
+
+
+@dataclass(frozen=True)
+class BuiltSet:
+    """One surface set, built.
+
+    surface : bodies, roughness, ς, τ₀ and labels (:class:`~tribodyn.config.SurfaceSet`).
+    options : :class:`~tribodyn.EHLOptions` of ``[numerics]`` with this set's ς and τ₀.
+    thermal_bodies : (cam, tappet) :class:`~tribodyn.ThermalBody` (None unless
+        ``numerics.thermal``).
+    strengths : ``{"cam": (substrate, None), "tappet": (substrate, coating)}``
+        :class:`~tribodyn.physics.strength.Strength` (None where unknown).
+    """
+
+    surface: SurfaceSet
+    options: EHLOptions
+    thermal_bodies: tuple[ThermalBody, ThermalBody] | None
+    strengths: dict
+
+    @property
+    def name(self) -> str:
+        return self.surface.name
+
+
+@dataclass(frozen=True)
+class BuiltCase:
+    """Every object of a validated case, built once by :func:`build` (module text).
+
+    ``thermal_lubricant`` is None unless the case is thermal or its oil a datasheet,
+    ``thermal_options`` unless it is thermal;
+    ``dynamics_options`` are the keyword arguments of
+    :func:`~tribodyn.valvetrain.simulate_valvetrain` (engine speed and ``[numerics]``).
+    """
+
+    case: Case
+    cam: CamProfile
+    lubricant: Lubricant
+    thermal_lubricant: ThermalLubricant | None
+    valvetrain: ValvetrainParameters | FlexibleValvetrain
+    options: EHLOptions
+    thermal_options: ThermalOptions | None
+    tappet_rotation: TappetRotation
+    dynamics_options: dict[str, Any]
+    sets: dict[str, BuiltSet] = field(default_factory=dict)
+
+    def set(self, name: str) -> BuiltSet:
+        """The built surface set ``name`` (an InputError naming the defined sets if none)."""
+        if name in self.sets:
+            return self.sets[name]
+        names = list(self.sets)
+        hint = difflib.get_close_matches(name, names, n=1)
+        more = f"; did you mean {hint[0]!r}?" if hint else ""
+        raise InputError(f"unknown surface set {name!r} (defined: {', '.join(names)}){more}")
+
+    @property
+    def surface_sets(self) -> list[SurfaceSet]:
+        """The surface sets in case order."""
+        return [s.surface for s in self.sets.values()]
+
+    @property
+    def lumped(self) -> ValvetrainParameters:
+        """The lumped valvetrain (a flexible case's lumped equivalent)."""
+        from ..valvetrain.parameters import ValvetrainParameters
+
+        vp = self.valvetrain
+        return vp if isinstance(vp, ValvetrainParameters) else vp.lumped_equivalent()
+
+    def analytic_tribology(self, name: str) -> AnalyticTribology:
+        """The explicit tribology of the dynamics for surface set ``name`` (a new model
+        object over the built bodies, roughness and lubricant)."""
+        return self.case._analytic_tribology(self.set(name).surface, self.lubricant)
+
+    def simulate_options(self) -> dict[str, Any]:
+        """A copy of :attr:`dynamics_options` (callers may add keys)."""
+        return dict(self.dynamics_options)
+
+
+def build(case: Case) -> BuiltCase:
+    """The :class:`BuiltCase` of ``case``: the one built when the case was validated, or
+    (a case constructed without validation) built now; raises
+    :class:`~tribodyn.InputError` listing every problem."""
+    built = case._built
+    if built is None:
+        built, problems = collect(case)
+        if problems or built is None:
+            raise Problems(problems)
+        case._built = built
+    return built
+
+
+def collect(
+    case: Case, *, materials_ok: bool = True
+) -> tuple[BuiltCase | None, list[tuple[str, str]]]:
+    """Build every object of ``case``; each constructor's InputError becomes a
+    ``(case key, message)`` problem. Returns the BuiltCase (None if any object failed)
+    and the problems in the order of the case file's sections. ``materials_ok=False``
+    (a surface set names an undefined material): the surface sets are not built."""
+    problems: list[tuple[str, str]] = []
+    seen: set[tuple[str, str]] = set()
+
+    def attempt(path: str, make: Callable[[], T]) -> T | None:
+        try:
+            return make()
+        except CamTableError as exc:
+            problem = (exc.key, str(exc))
+        except InputError as exc:
+            problem = (path, str(exc))
+        if problem not in seen:
+            problems.append(problem)
+            seen.add(problem)
+        return None
+
+    n = case.numerics
+    thermal_lubricant = lubricant = None
+    if case.lubricant_config.datasheet:  # the isothermal oil is the datasheet's at its inlet
+        thermal_lubricant = attempt("lubricant", case._new_thermal_lubricant)
+        lubricant = thermal_lubricant.isothermal() if thermal_lubricant is not None else None
+    else:
+        lubricant = attempt("lubricant", case._new_lubricant)
+    valvetrain = attempt("valvetrain", case._new_valvetrain_parameters)
+    options = attempt("numerics", case._new_ehl_options)
+    if n.thermal and not case.lubricant_config.datasheet:
+        thermal_lubricant = attempt("lubricant", case._new_thermal_lubricant)
+    lubricant_ok = lubricant is not None and not any(p == "lubricant" for p, _ in problems)
+    sets: dict[str, BuiltSet] = {}
+    if materials_ok:
+        for cfg in case.surface_set_configs:
+            surface = attempt(f"surface_sets[{cfg.name}]", functools.partial(case._build_set, cfg))
+            if surface is None or options is None:
+                continue
+            bodies = None
+            if n.thermal and lubricant_ok:
+                bodies = attempt("materials", functools.partial(case._new_thermal_bodies, surface))
+            strengths = attempt("strength", functools.partial(case._new_strengths, surface))
+            sets[cfg.name] = BuiltSet(
+                surface=surface,
+                options=_with_friction(options, surface),
+                thermal_bodies=bodies,
+                strengths=strengths or {},
+            )
+    thermal_options = attempt("numerics", case._new_thermal_options) if n.thermal else None
+    cam = attempt("cam", case._build_cam)
+    if problems or not materials_ok:
+        return None, problems
+    assert cam is not None and lubricant is not None and valvetrain is not None
+    assert options is not None
+    return (
+        BuiltCase(
+            case=case,
+            cam=cam,
+            lubricant=lubricant,
+            thermal_lubricant=thermal_lubricant,
+            valvetrain=valvetrain,
+            options=options,
+            thermal_options=thermal_options,
+            tappet_rotation=case._new_tappet_rotation(),
+            dynamics_options=case.dynamics_options(),
+            sets=sets,
+        ),
+        problems,
+    )
+
+
+def _with_friction(options: EHLOptions, surface: SurfaceSet) -> EHLOptions:
+    """``options`` with the boundary-friction law (ς, τ₀) of ``surface``."""
+    return dataclasses.replace(
+        options,
+        boundary_shear_coefficient=surface.boundary_shear_coefficient,
+        boundary_shear_strength=surface.boundary_shear_strength,
+    )
+
+
+def options_for(built: BuiltCase, surface: SurfaceSet | str | None) -> EHLOptions:
+    """The EHL options of a surface set (object or name) of ``built``: the built ones for
+    one of its sets, else ``[numerics]`` with the given set's ς and τ₀."""
+    if surface is None:
+        return built.options
+    if isinstance(surface, str):
+        return built.set(surface).options
+    own = built.sets.get(surface.name)
+    if own is not None and own.surface == surface:
+        return own.options
+    return _with_friction(built.options, surface)

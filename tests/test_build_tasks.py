@@ -1,0 +1,208 @@
+"""The build step and the study's task graph: a case's objects are built once (at
+validation) and the study reads them; the tasks are declared once and give the same
+study in this process (InlineExecutor) and in a process pool."""
+
+import os
+import subprocess
+import sys
+from concurrent.futures import Future
+
+import numpy as np
+import pytest
+
+import tribodyn.config.case as case_module
+import tribodyn.config.case_valvetrain as vt_module
+from tribodyn.config import Case, load_case
+from tribodyn.workflow.cycle import run_cycle_study
+from tribodyn.workflow.tasks import InlineExecutor, Task, run_tasks
+
+
+def _tiny_data() -> dict:
+    """The paper's case, two surface sets, one engine cycle, coarse steps and grid, no
+    implicit coupling or stresses: the plumbing is under test, not the physics."""
+    data = (
+        load_case()
+        .updated(
+            {
+                "numerics.crank_step_deg": 4.0,
+                "numerics.n": 128,
+                "numerics.implicit_coupling": False,
+                "numerics.cycles": 1,
+                "numerics.output_step_deg": 1.0,
+                "stress.enabled": False,
+            }
+        )
+        .to_dict()
+    )
+    data["surface_sets"] = data["surface_sets"][:2]  # uncoated (reference), dlc_1um
+    return data
+
+
+def _counting(monkeypatch, module, name, calls):
+    original = getattr(module, name)
+
+    def make(*args, **kwargs):
+        calls[name] = calls.get(name, 0) + 1
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(module, name, make)
+
+
+def test_the_study_builds_each_object_once(monkeypatch):
+    """Loading the case and running its study (in this process) constructs the cam, the
+    lubricant, the valvetrain, the EHL options once and each set's roughness once: the
+    study reads the objects built at validation. (The code before the build step built
+    the lubricant and options again for every set and task.)"""
+    data = _tiny_data()
+    calls: dict[str, int] = {}
+    for module, name in [
+        (case_module, "Lubricant"),
+        (case_module, "EHLOptions"),
+        (case_module, "Roughness"),
+        (vt_module, "AccelerationCam"),
+        (vt_module, "ValvetrainParameters"),
+    ]:
+        _counting(monkeypatch, module, name, calls)
+    case = Case.from_dict(data)
+    assert calls == {
+        "Lubricant": 1,
+        "EHLOptions": 1,
+        "Roughness": 2,
+        "AccelerationCam": 1,
+        "ValvetrainParameters": 1,
+    }
+    study = run_cycle_study(case, workers=1, compare_paper=False)
+    assert [s.name for s in study.sets] == ["uncoated", "dlc_1um"]
+    assert calls == {
+        "Lubricant": 1,
+        "EHLOptions": 1,
+        "Roughness": 2,
+        "AccelerationCam": 1,
+        "ValvetrainParameters": 1,
+    }
+    built = case.built()
+    assert case.lubricant() is built.lubricant and case.cam() is built.cam
+    assert case.ehl_options("dlc_1um") is built.set("dlc_1um").options
+    assert built.set("dlc_1um").options.boundary_shear_coefficient == pytest.approx(
+        case.surface_set("dlc_1um").boundary_shear_coefficient
+    )
+
+
+def test_serial_and_pool_give_the_same_study():
+    """The one task graph run by InlineExecutor (workers=1) and by the local process pool
+    (workers=2) gives bit-identical per-set results and the same summary."""
+    case = Case.from_dict(_tiny_data())
+    serial = run_cycle_study(case, workers=1, compare_paper=False)
+    pool = run_cycle_study(case, workers=2, compare_paper=False)
+    assert [s.name for s in serial.sets] == [s.name for s in pool.sets]
+    compared = 0
+    for x, y in zip(serial.sets, pool.sets, strict=True):
+        for key, value in vars(x).items():
+            if isinstance(value, np.ndarray):
+                assert np.array_equal(value, getattr(y, key), equal_nan=True), (x.name, key)
+                compared += 1
+        assert x.failures == y.failures and x.validity == y.validity
+    assert compared >= 2 * 15
+    assert serial.analyse().summary["surface_sets"] == pool.analyse().summary["surface_sets"]
+    assert serial.nose_sets is not None and pool.nose_sets is not None
+    assert serial.nose_sets.to_dict() == pool.nose_sets.to_dict()
+
+
+def _square(x):
+    return x * x
+
+
+def _fail(x):
+    raise ValueError(f"bad {x}")
+
+
+def test_run_tasks_reports_each_result_once_and_raises_task_errors():
+    seen, started = [], []
+    tasks = [Task(f"t{i}", _square, (i,)) for i in range(4)]
+    run_tasks(InlineExecutor(), tasks, lambda k, r: seen.append((k, r)), started.append)
+    # inline: each result is handed over before the next task starts
+    assert started == ["t0", "t1", "t2", "t3"]
+    assert seen == [("t0", 0), ("t1", 1), ("t2", 4), ("t3", 9)]
+    f = InlineExecutor().submit(_fail, 3)
+    assert isinstance(f, Future) and isinstance(f.exception(), ValueError)
+    with pytest.raises(ValueError, match="bad 2"):
+        run_tasks(InlineExecutor(), [Task("a", _fail, (2,))], lambda k, r: None)
+    with pytest.raises(ValueError, match="not unique"):
+        run_tasks(InlineExecutor(), [Task("a", _square, (1,))] * 2, lambda k, r: None)
+
+
+def _python(code: str, extra_path: str = "") -> str:
+    """Run ``code`` in a fresh interpreter without the BLAS thread variables."""
+    env = {k: v for k, v in os.environ.items() if not k.endswith("_NUM_THREADS")}
+    src = os.path.join(os.path.dirname(__file__), "..", "src")
+    env["PYTHONPATH"] = os.pathsep.join(p for p in [src, extra_path, env.get("PYTHONPATH")] if p)
+    r = subprocess.run(
+        [sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120
+    )
+    assert r.returncode == 0, r.stderr
+    return r.stdout.strip()
+
+
+def test_import_is_lazy_and_the_command_line_sets_one_blas_thread():
+    """``import tribodyn`` loads no numpy (its names load on first use), so the command
+    line's BLAS environment (set by ``tribodyn.cli`` before numpy loads) takes effect;
+    the Python API leaves the user's environment alone."""
+    out = _python(
+        "import sys, os, tribodyn; print('numpy' in sys.modules, "
+        "os.environ.get('OPENBLAS_NUM_THREADS')); tribodyn.solve_ehl; "
+        "print('numpy' in sys.modules)"
+    )
+    assert out.splitlines() == ["False None", "True"]
+    out = _python("import os, tribodyn.cli; print(os.environ['OPENBLAS_NUM_THREADS'])")
+    assert out == "1"
+
+
+PROBE = """
+import os
+
+
+def blas_threads():
+    import numpy  # noqa: F401  (loads BLAS)
+    from threadpoolctl import threadpool_info
+
+    return max(i.get("num_threads", 1) for i in threadpool_info())
+"""
+
+
+def test_pool_workers_start_with_one_blas_thread(tmp_path):
+    """A parent with multi-threaded BLAS starts the study's pool in fresh interpreters;
+    they start (on the first submission) with the one-thread environment, and the
+    parent's environment is restored afterwards."""
+    (tmp_path / "blas_probe.py").write_text(PROBE, encoding="utf-8")
+    out = _python(
+        "import os, sys\n"
+        f"sys.path.insert(0, {str(tmp_path)!r})\n"
+        "from blas_probe import blas_threads\n"
+        "from tribodyn.workflow.cycle import _study_executor\n"
+        "print(blas_threads())\n"
+        "with _study_executor(None, 2) as pool:\n"
+        "    print(pool.submit(blas_threads).result())\n"
+        "print(os.environ.get('OPENBLAS_NUM_THREADS'))\n",
+        extra_path=str(tmp_path),
+    )
+    lines = out.splitlines()
+    if (os.cpu_count() or 1) > 1:
+        assert int(lines[0]) > 1  # the parent's default: one thread per CPU
+    assert lines[1:] == ["1", "None"]
+
+
+def test_the_runtime_limit_holds_until_the_outer_block_closes():
+    """single_blas_thread: an inner block does not lift the limit of the outer one; the
+    outer one restores the default."""
+    out = _python(
+        "import numpy\n"
+        "from tribodyn._threads import single_blas_thread as one, blas_single_threaded as q\n"
+        "r = [q()]\n"
+        "with one():\n"
+        "    with one(): r.append(q())\n"
+        "    r.append(q())\n"
+        "r.append(q())\n"
+        "print(r)\n"
+    )
+    single = "False" if (os.cpu_count() or 1) > 1 else "True"
+    assert out == f"[{single}, True, True, {single}]"
