@@ -291,3 +291,22 @@ def test_case_measured_map_file(tmp_path):
         Case.from_toml_string(text.replace("rms = 0.2e-6", "rms = 0.4e-6"), base_dir=tmp_path)
     with pytest.raises(InputError, match=r"measured_surface.topography.*no such file"):
         Case.from_toml_string(text.replace("pair.nc", "other.nc"), base_dir=tmp_path)
+
+
+def test_report_method_names_the_asperity_model_of_the_sets():
+    from types import SimpleNamespace
+
+    from tribodyn.output.report import _asperity_models
+
+    e_prime = 2.31e11
+    gt = Roughness(1e9, 0.2e-6, 200e-6)
+    law = Roughness(1e9, 0.2e-6, 200e-6, law=_gt_law(e_prime, gt))
+
+    def case(*roughs):
+        sets = [SimpleNamespace(name=f"s{i}", roughness=r) for i, r in enumerate(roughs)]
+        return SimpleNamespace(surface_sets=lambda: sets)
+
+    assert _asperity_models(case(gt, gt)) == "Greenwood–Tripp asperities"
+    assert "Greenwood" not in _asperity_models(case(law, law))
+    mixed = _asperity_models(case(gt, law))
+    assert "s1" in mixed and "Greenwood–Tripp for the other sets" in mixed

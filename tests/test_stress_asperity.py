@@ -143,3 +143,23 @@ def test_bad_inputs_are_input_errors():
         micro_contact_estimate(rough, 0.2e-6, -1.0, 0.3)
     with pytest.raises(InputError, match="zeta"):
         hertz_sphere_axis_stress(-0.1, 0.3)
+
+
+def test_no_summit_estimate_for_a_measured_surface_law():
+    """A measured-surface law has no Greenwood–Tripp summit radius: no Hertzian summit
+    is built from it (the estimate would mix the law's pressure with an unrelated β)."""
+    from tribodyn.physics.asperity_law import LoadSeparationLaw
+
+    steel = Material(E=210e9, nu=0.3)
+    pair = (Body(steel), Body(steel))
+    lam = np.array([0.0, 1.0, 2.0, 3.0])
+    law = LoadSeparationLaw(lam, [1e9, 1e8, 1e7, 1e6], [0.5, 0.1, 0.01, 0.001], 2.3e11)
+    rough = Roughness(asperity_density=2e9, rms=0.2e-6, summit_radius=20e-6, law=law)
+    result = SimpleNamespace(
+        crank_angle=np.array([340.0]),
+        loaded=np.array([True]),
+        converged=np.array([True]),
+        min_film=np.array([0.1e-6]),
+    )
+    assert asperity_estimate(result, pair, rough) is None
+    assert asperity_estimate(result, pair, Roughness(2e9, 0.2e-6, 20e-6)) is not None

@@ -63,6 +63,17 @@ _CONTENT_CAPTIONS = {
 }
 
 
+def _asperity_models(case) -> str:
+    """The asperity model(s) of the case's surface sets, for the method sentence."""
+    measured = [s.name for s in case.surface_sets() if s.roughness.law is not None]
+    if not measured:
+        return "Greenwood–Tripp asperities"
+    law = "asperity load–separation law of a surface by boundary-element contact"
+    if len(measured) == len(case.surface_sets()):
+        return law
+    return f"{law} ({', '.join(measured)}; Greenwood–Tripp for the other sets)"
+
+
 def _pct_change(reduction, is_reference):
     if is_reference:
         return "reference"
@@ -277,7 +288,7 @@ def report_text(study, ds, figures: dict) -> str:
         "Method: valvetrain multi-body dynamics over two engine cycles from static "
         "equilibrium (the second is presented), explicit analytic tribology; transient "
         "mixed-EHL (Reynolds with Roelands and Dowson–Higginson, "
-        "Reynolds cavitation, coated DC-FFT elasticity, Greenwood–Tripp asperities, "
+        f"Reynolds cavitation, coated DC-FFT elasticity, {_asperity_models(case)}, "
         f"{case.numerics.viscous_model} shear capped at the limiting shear stress, boundary "
         "friction τ₀ + ς p_a) along the presented cycle for each tappet surface"
         + (

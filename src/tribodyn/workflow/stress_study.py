@@ -361,7 +361,9 @@ def asperity_estimate(result, bodies, roughness, strengths: dict | None = None) 
     strength / edge tension of that material (``strengths`` as for
     :func:`stress_along_cycle`; None: no factors). None without roughness or a loaded,
     converged sample. Reported beside the EHL-scale margins, never mixed with them."""
-    if roughness is None:
+    if roughness is None or roughness.law is not None:
+        # a measured-surface law has no Greenwood–Tripp summit radius β to build a
+        # Hertzian summit from; its micro-contact pressure is the boundary-element one
         return None
     ok = np.asarray(result.loaded, bool) & np.asarray(result.converged, bool)
     hmin = np.where(ok, np.asarray(result.min_film, float), np.nan)
