@@ -177,8 +177,8 @@ def _inputs_section(study, summ) -> list[str]:
     )
     lines += [
         "",
-        "| surface set | coating | σ | β | η | ηβσ | ς |",
-        "|---|---|---|---|---|---|---|",
+        "| surface set | coating | σ | asperity model | β | η | ηβσ | ς |",
+        "|---|---|---|---|---|---|---|---|",
     ]
     for s in case.surface_sets():
         r = s.roughness
@@ -187,10 +187,18 @@ def _inputs_section(study, summ) -> list[str]:
             if s.coating is not None
             else "none"
         )
+        if r.law is None:
+            model = "Greenwood–Tripp"
+            gt = (
+                f"{r.summit_radius * 1e6:.3g} µm | {r.asperity_density:.3g} /m² | "
+                f"{r.roughness_parameter:.2g}"
+            )
+        else:  # β, η, ηβσ are not used by a surface's load–separation law
+            model = "surface law (boundary elements)"
+            gt = "– | – | –"
         lines.append(
-            f"| {s.coating_label} | {coat} | {r.rms * 1e6:.3g} µm | "
-            f"{r.summit_radius * 1e6:.3g} µm | {r.asperity_density:.3g} /m² | "
-            f"{r.roughness_parameter:.2g} | {s.boundary_shear_coefficient:g} |"
+            f"| {s.coating_label} | {coat} | {r.rms * 1e6:.3g} µm | {model} | {gt} | "
+            f"{s.boundary_shear_coefficient:g} |"
         )
     return lines + [""]
 
