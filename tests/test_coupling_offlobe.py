@@ -5,9 +5,9 @@ iterates is continuous, rigid off the lobe and no softer than the squeeze film a
 import numpy as np
 import pytest
 
+from conftest import explicit_run
 from tribodyn.config import load_case
 from tribodyn.physics.materials import reduced_modulus
-from tribodyn.valvetrain import simulate_valvetrain
 from tribodyn.valvetrain.tribology import squeeze_film_load
 from tribodyn.workflow.coupling import (
     COUPLING_MAX_TOL,
@@ -15,7 +15,7 @@ from tribodyn.workflow.coupling import (
     film_law_from_ehl,
     run_coupling,
 )
-from tribodyn.workflow.cycle_ehl import CycleInputs, ehl_for_set
+from tribodyn.workflow.cycle_ehl import ehl_for_set
 
 COARSE = {
     "engine.speed_rpm": 4000.0,
@@ -29,14 +29,7 @@ COARSE = {
 @pytest.fixture(scope="module")
 def paper_4000():
     case = load_case().updated(COARSE)
-    s = case.surface_set("uncoated")
-    dyn = simulate_valvetrain(
-        case.cam(),
-        case.valvetrain_parameters(),
-        tribology=case.analytic_tribology(s),
-        **case.dynamics_options(),
-    )
-    inputs = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
+    s, dyn, inputs = explicit_run(case)
     first = ehl_for_set(case, s, inputs)
     return case, s, dyn, inputs, first
 

@@ -175,6 +175,15 @@ def test_flexible_case_and_its_lumped_companion(flex):
     )
 
 
+def test_flexible_model_checks_its_arguments_as_the_lumped_one(flex):
+    """Both models start from static equilibrium on the base circle and name a bad
+    argument (one shared check)."""
+    with pytest.raises(InputError, match="start_angle must be on the base circle"):
+        FlexibleValvetrainModel(AccelerationCam(), flex, 157.08, Frictionless(), math.pi)
+    with pytest.raises(InputError, match="params must be a FlexibleValvetrain"):
+        FlexibleValvetrainModel(AccelerationCam(), flex.lumped_equivalent(), 157.08, Frictionless())
+
+
 def test_analytic_jacobian_matches_finite_differences(flex):
     cam = AccelerationCam()
     m = FlexibleValvetrainModel(cam, flex, 157.08, Frictionless())

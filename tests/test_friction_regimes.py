@@ -131,22 +131,6 @@ def test_boundary_friction_is_integral_of_local_law():
     assert tot["friction"] == pytest.approx((r.viscous_friction + r.boundary_friction) * 0.012)
 
 
-@pytest.mark.parametrize(
-    "gV, gE, regime",
-    [
-        (1.0, 1.80, "IR"),
-        (1.0, 1.90, "IE"),
-        (5.0, 0.1, "IR"),
-        (5.2, 0.1, "PR"),
-        (1e4, 1e2, "PE"),
-        (1e3, 0.5, "PR"),
-        (0.1, 50.0, "IE"),
-    ],
-)
-def test_greenwood_chart_regimes(gV, gE, regime):
-    assert lubrication_regime(gV, gE) == regime
-
-
 def test_chart_groups_from_the_dimensional_inputs():
     """Johnson's groups written from the physical inputs (Johnson, Proc. IMechE 184 (1970);
     Contact Mechanics, 1985, §13.6): g_V = α w^(3/2)/(R √(μ₀u)), g_E = w/√(μ₀ u E' R)."""
@@ -164,8 +148,16 @@ def test_chart_groups_from_the_dimensional_inputs():
 @pytest.mark.parametrize(
     "gV, gE, regime",
     [
-        # boundaries where Johnson's asymptotes meet: IR Ĥ = 4.9 = IE 3.01 g_E^0.8 at
-        # g_E = (4.9/3.01)^1.25 = 1.838; IR 4.9 = PR 1.66 g_V^(2/3) at g_V = (4.9/1.66)^1.5 = 5.07
+        (1.0, 1.80, "IR"),
+        (1.0, 1.90, "IE"),
+        (5.0, 0.1, "IR"),
+        (5.2, 0.1, "PR"),
+        (1e4, 1e2, "PE"),
+        (1e3, 0.5, "PR"),
+        (0.1, 50.0, "IE"),
+        # either side of the boundaries where Johnson's asymptotes meet: IR Ĥ = 4.9 = IE
+        # 3.01 g_E^0.8 at g_E = (4.9/3.01)^1.25 = 1.838; IR 4.9 = PR 1.66 g_V^(2/3) at
+        # g_V = (4.9/1.66)^1.5 = 5.07
         (1.0, 1.70, "IR"),
         (1.0, 2.00, "IE"),
         (4.8, 0.5, "IR"),
@@ -174,7 +166,9 @@ def test_chart_groups_from_the_dimensional_inputs():
         (1e3, 2e4, "IE"),
     ],
 )
-def test_regime_boundaries_from_the_asymptotes(gV, gE, regime):
+def test_greenwood_chart_regimes(gV, gE, regime):
+    """Regimes of Johnson's chart (Johnson 1970), inside each and at its asymptotes'
+    boundaries."""
     assert lubrication_regime(gV, gE) == regime
 
 

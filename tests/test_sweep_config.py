@@ -451,6 +451,24 @@ def test_cli_junk_scheduler_is_a_clear_error(tmp_path, command):
     assert "--scheduler" in r.output and "not a Dask scheduler file" in " ".join(r.output.split())
 
 
+@pytest.mark.parametrize("command", ["sweep", "run"])
+def test_cli_error_shows_brackets_in_the_message_as_text(tmp_path, command):
+    """The message names the user's path as typed: rich markup in it (here ``[/x]``) is
+    shown, not read as a closing tag (which ended ``tribodyn sweep`` in a MarkupError)."""
+    from typer.testing import CliRunner
+
+    from tribodyn.cli import app
+
+    (tmp_path / "[").mkdir()
+    junk = tmp_path / "[" / "x] junk"
+    junk.write_text("garbage")
+    first = ["sweep", "andreou2023_dynamics"] if command == "sweep" else ["run"]
+    r = CliRunner().invoke(app, [*first, "-o", str(tmp_path / "out"), "--scheduler", str(junk)])
+    assert r.exit_code == 2, r.output
+    assert r.exception is None or isinstance(r.exception, SystemExit)
+    assert "[/x] junk" in r.output and "not a Dask scheduler file" in r.output
+
+
 # ----------------------------------------------------------------------------- large sweeps
 def _range_sweep(tmp_path, *axes):
     text = "[sweep]\nmode = 'dynamics'\n" + "".join(

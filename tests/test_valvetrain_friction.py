@@ -120,3 +120,15 @@ def test_geometry_validated():
         vf.JournalGeometry(radius=0.01, length=0.01, clearance=0.001)
     with pytest.raises(InputError, match="diameter"):
         vf.BoreGeometry(diameter=-1, guided_length=0.02, clearance=2e-5)
+    bore = dict(diameter=0.033, guided_length=0.02, clearance=2e-5)
+    guide = dict(stem_diameter=0.006, length=0.04, clearance=2e-5)
+    for cls, kw, field, bad in [
+        (vf.BoreGeometry, bore, "edge_offset", -1e-3),
+        (vf.BoreGeometry, bore, "friction_coefficient", 1.5),
+        (vf.BoreGeometry, bore, "guided_length", "long"),
+        (vf.GuideGeometry, guide, "side_load", "10 N"),
+        (vf.GuideGeometry, guide, "friction_coefficient", float("nan")),
+        (vf.JournalGeometry, dict(radius=0.01, length=0.01, clearance=2e-5), "length", None),
+    ]:
+        with pytest.raises(InputError, match=field):
+            cls(**{**kw, field: bad})

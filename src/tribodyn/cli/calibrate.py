@@ -18,6 +18,7 @@ from rich.console import Console
 from rich.markup import escape
 
 from .. import paper
+from .failure import fail
 
 __all__ = ["calibrate_command", "read_friction_csv", "calibration_toml"]
 
@@ -246,8 +247,7 @@ def calibrate_command(
                     f"--output: cannot write {str(output)!r} ({exc.strerror or exc})"
                 ) from None
     except InputError as exc:
-        err.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
-        raise typer.Exit(code=2) from None
+        fail(err, exc)
     if as_json:
         typer.echo(
             json.dumps(

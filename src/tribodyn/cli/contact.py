@@ -23,12 +23,12 @@ from typing import Any
 
 import typer
 from rich.console import Console
-from rich.markup import escape
 
 from .. import paper
 from .._validation import InputError
 from ..physics import typical
 from .contact_table import _table
+from .failure import fail
 
 __all__ = ["ContactRequest", "contact_command", "compute_contact"]
 
@@ -485,8 +485,7 @@ def contact_command(
     try:
         r = compute_contact(request)
     except InputError as exc:
-        err.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
-        raise typer.Exit(code=2) from None
+        fail(err, exc)
     if as_json:
         sys.stdout.write(json.dumps(r, indent=2, ensure_ascii=False) + "\n")
     else:

@@ -11,6 +11,7 @@ from rich.console import Console
 from rich.markup import escape
 
 from .._validation import InputError
+from .failure import fail
 
 __all__ = ["engine_command"]
 
@@ -51,8 +52,7 @@ def engine_command(
             raise InputError(f"-j/--workers must be an integer >= 0 and <= 4096 (got {workers})")
         out = check_output_dir(out, option="-o/--out")
     except InputError as exc:
-        console.print(f"[red]error in the case:[/red] {escape(str(exc))}")
-        raise typer.Exit(2)
+        fail(console, exc, label="error in the case")
     n_workers = workers if workers is not None else (c.numerics.workers or None)
     console.print(
         f"engine [bold]{c.name}[/bold]: {c.engine.cylinders} cylinders, "
@@ -61,13 +61,11 @@ def engine_command(
     try:
         study = run_engine_study(c, workers=n_workers)
     except StudyError as exc:
-        console.print(f"[red]study failed:[/red] {escape(str(exc))}")
-        raise typer.Exit(1)
+        fail(console, exc, code=1, label="study failed")
     try:
         res = write_engine_results(study, out, figures=not no_figures)
     except (OSError, InputError) as exc:
-        console.print(f"[red]error:[/red] {escape(str(exc))}")
-        raise typer.Exit(1)
+        fail(console, exc, code=1)
     for name, d in res["summary"]["engine"]["surface_sets"].items():
         console.print(
             f"{name:>12}: {d['engine_friction_energy_per_cycle_J']:.3f} J/cycle, "

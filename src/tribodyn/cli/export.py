@@ -7,9 +7,9 @@ from pathlib import Path
 
 import typer
 from rich.console import Console
-from rich.markup import escape
 
 from .._validation import InputError
+from .failure import fail
 
 __all__ = ["export_command"]
 
@@ -32,8 +32,7 @@ def export_command(
     try:
         _export(results, out if out is not None else results)
     except InputError as exc:
-        console.print(f"[red]error:[/red] {escape(str(exc))}")
-        raise typer.Exit(2)
+        fail(console, exc)
 
 
 def _export(results: Path, out: Path) -> None:

@@ -10,11 +10,11 @@ from pathlib import Path
 import typer
 from rich import box
 from rich.console import Console
-from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from .._validation import InputError
+from .failure import fail
 
 __all__ = ["run_command"]
 
@@ -75,8 +75,7 @@ def run_command(
         msg = str(exc)
         if case is not None and not (case.exists() or case.is_symlink()):
             msg += f"; {_bundled_names()}"
-        console.print(f"[red]error in the case:[/red] {escape(msg)}")
-        raise typer.Exit(2)
+        fail(console, msg, label="error in the case")
     try:
         if workers is not None and not 0 <= workers <= 4096:
             raise InputError(
@@ -86,8 +85,7 @@ def run_command(
         # before hours of computing
         out = check_output_dir(out, option="-o/--out", writes=case_inputs(c)[1])
     except InputError as exc:
-        console.print(f"[red]error:[/red] {escape(str(exc))}")
-        raise typer.Exit(2)
+        fail(console, exc)
     with _terminate_as_interrupt():
         try:
             _run(c, out, workers, quiet, scheduler, compare_paper)
@@ -167,8 +165,7 @@ def _run(
         try:
             client = connect(scheduler)
         except InputError as exc:
-            console.print(f"[red]error:[/red] {escape(str(exc))}")
-            raise typer.Exit(2)
+            fail(console, exc)
         executor = client.get_executor(pure=False)
         console.print(
             f"Dask scheduler {scheduler}: {len(client.scheduler_info().get('workers', {}))} workers"
@@ -208,8 +205,7 @@ def _run(
                 compare_paper=compare_paper,
             )
         except StudyError as exc:
-            console.print(f"[red]study failed:[/red] {exc}")
-            raise typer.Exit(1)
+            fail(console, exc, code=1, label="study failed")
         finally:
             if client is not None:
                 client.close()
@@ -219,8 +215,7 @@ def _run(
         try:
             res = write_results(study, out, workers=n_workers)
         except OutputWriteError as exc:
-            console.print(f"[red]error:[/red] {escape(str(exc))}")
-            raise typer.Exit(1)
+            fail(console, exc, code=1)
         bar.update(t_write, completed=1)
 
     summ = res["summary"]

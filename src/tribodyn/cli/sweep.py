@@ -17,6 +17,7 @@ from rich.progress import (
 )
 
 from .._validation import InputError
+from .failure import fail
 
 __all__ = ["sweep_command"]
 
@@ -82,8 +83,7 @@ def sweep_command(
         if workers is not None and workers < 1:
             raise InputError(f"--workers: must be >= 1 (got {workers})")
     except InputError as exc:
-        console.print(f"[red]error in the sweep:[/red] {exc}")
-        raise typer.Exit(2)
+        fail(console, exc, label="error in the sweep")
     shape = " × ".join(f"{d} {len(a[0].values)}" for d, a in spec.dims)
     console.print(
         f"sweep [bold]{spec.name}[/bold]: {spec.n_points} points ({shape}), "
@@ -119,15 +119,13 @@ def sweep_command(
     try:  # before computing: a file, a foreign folder, a name too long, no space
         out = check_output_dir(out, option="-o/--out")
     except InputError as exc:
-        console.print(f"[red]error:[/red] {escape(str(exc))}")
-        raise typer.Exit(2)
+        fail(console, exc)
     client = None
     if scheduler is not None:
         try:
             client = connect(scheduler, workers=workers)
         except InputError as exc:
-            console.print(f"[red]error:[/red] {exc}")
-            raise typer.Exit(2)
+            fail(console, exc)
     with Progress(
         TextColumn("{task.description}"),
         BarColumn(),
@@ -169,8 +167,7 @@ def sweep_command(
                 spec, client, out_dir=out, resume=resume, workers=workers, progress=progress
             )
         except InputError as exc:
-            console.print(f"[red]error:[/red] {exc}")
-            raise typer.Exit(2)
+            fail(console, exc)
         finally:
             if client is not None:
                 client.close()

@@ -16,6 +16,8 @@ from rich.console import Console, JustifyMethod
 from rich.markup import escape
 from rich.table import Table
 
+from .failure import fail
+
 __all__ = ["topography_command"]
 
 _SYN = "Synthetic surfaces (--synthetic)"
@@ -311,8 +313,7 @@ def topography_command(
                     f"--figure: cannot write {str(figure)!r} ({exc.strerror or exc})"
                 ) from None
     except InputError as exc:
-        err.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
-        raise typer.Exit(code=2) from None
+        fail(err, exc)
 
     if as_json:
         for r in analyses:

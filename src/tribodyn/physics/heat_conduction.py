@@ -95,21 +95,21 @@ class DepthGrid:
     def cells(self) -> np.ndarray:
         return np.diff(self.s)
 
-    def node_capacity(self) -> np.ndarray:
-        """ρc × control-volume length of nodes 0…n−1 [J/(m² K)] (node 0: half cell)."""
-        L = self.cells
-        c = 0.5 * self.rc * L
+    def _node_sum(self, per_cell: np.ndarray) -> np.ndarray:
+        """Σ over the control volume of nodes 0…n−1 of a per-cell property × length:
+        node j gets half of cells j−1 and j (node 0: half of cell 0)."""
+        c = 0.5 * per_cell * self.cells
         out = c.copy()
         out[1:] += c[:-1]
         return out
 
+    def node_capacity(self) -> np.ndarray:
+        """ρc × control-volume length of nodes 0…n−1 [J/(m² K)] (node 0: half cell)."""
+        return self._node_sum(self.rc)
+
     def node_x_conductance(self) -> np.ndarray:
         """k × control-volume length of nodes 0…n−1 [W/K] (x conduction)."""
-        L = self.cells
-        c = 0.5 * self.k * L
-        out = c.copy()
-        out[1:] += c[:-1]
-        return out
+        return self._node_sum(self.k)
 
     def face_conductance(self) -> np.ndarray:
         """k/L of each cell [W/(m² K)] (conductance between nodes j and j+1)."""

@@ -60,7 +60,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import InputError
+from .._validation import InputError, check_nonnegative, check_positive, check_range
 
 __all__ = [
     "BoreGeometry",
@@ -82,13 +82,6 @@ __all__ = [
 TAPPET_BORE_SHARE_MEASURED = 0.13
 
 
-def _positive(name: str, value: float) -> float:
-    v = float(value)
-    if not (math.isfinite(v) and v > 0):
-        raise InputError(f"{name} must be a positive finite number, got {value!r}")
-    return v
-
-
 @dataclass(frozen=True)
 class BoreGeometry:
     """Tappet bore: diameter D [m], guided length L_g [m], radial clearance c [m], lower
@@ -102,11 +95,9 @@ class BoreGeometry:
 
     def __post_init__(self):
         for k in ("diameter", "guided_length", "clearance"):
-            _positive(f"bore {k}", getattr(self, k))
-        if not (math.isfinite(self.edge_offset) and self.edge_offset >= 0):
-            raise InputError(f"bore edge_offset must be ≥ 0 m, got {self.edge_offset!r}")
-        if not (math.isfinite(self.friction_coefficient) and 0 <= self.friction_coefficient <= 1):
-            raise InputError("bore friction_coefficient must be in [0, 1]")
+            check_positive(f"bore {k}", getattr(self, k), "m")
+        check_nonnegative("bore edge_offset", self.edge_offset, "m")
+        check_range("bore friction_coefficient", self.friction_coefficient, 0.0, 1.0)
         if self.clearance >= 0.05 * self.diameter:
             raise InputError("bore clearance must be below 5 % of the diameter (a thin film)")
 
@@ -121,7 +112,7 @@ class JournalGeometry:
 
     def __post_init__(self):
         for k in ("radius", "length", "clearance"):
-            _positive(f"journal {k}", getattr(self, k))
+            check_positive(f"journal {k}", getattr(self, k), "m")
         if self.clearance >= 0.05 * self.radius:
             raise InputError("journal clearance must be below 5 % of the radius (a thin film)")
 
@@ -139,11 +130,9 @@ class GuideGeometry:
 
     def __post_init__(self):
         for k in ("stem_diameter", "length", "clearance"):
-            _positive(f"guide {k}", getattr(self, k))
-        if not (math.isfinite(self.side_load) and self.side_load >= 0):
-            raise InputError("guide side_load must be ≥ 0 N")
-        if not (math.isfinite(self.friction_coefficient) and 0 <= self.friction_coefficient <= 1):
-            raise InputError("guide friction_coefficient must be in [0, 1]")
+            check_positive(f"guide {k}", getattr(self, k), "m")
+        check_nonnegative("guide side_load", self.side_load, "N")
+        check_range("guide friction_coefficient", self.friction_coefficient, 0.0, 1.0)
 
 
 def annulus_couette_force(viscosity, diameter, length, clearance, velocity):

@@ -253,6 +253,21 @@ class CamContactModel:
         """True if ``params`` is this model's parameter class (``PARAMS``)."""
         return isinstance(params, cls.PARAMS)
 
+    def _bind(
+        self, cam: CamProfile, params: Any, cam_speed: float, tribology, start_angle: float
+    ) -> None:
+        """Check a model's arguments (:func:`check_model_inputs`, ``params`` of class
+        ``PARAMS``) and keep the cam, ω [rad/s], the tribology and θ₀ [rad]; θ₀ must lie
+        on the base circle, where the models start from static equilibrium."""
+        check_model_inputs(cam, params, self.PARAMS, cam_speed, tribology, start_angle)
+        self.cam, self.w, self.trib = cam, float(cam_speed), tribology
+        self.theta0 = float(start_angle)
+        s0 = cam.scalar_derivatives(self.theta0)[0]
+        if abs(s0) > 1e-9:
+            raise InputError(
+                f"start_angle must be on the base circle (lift there is {s0 * 1e3:.4g} mm)"
+            )
+
     def _init_contact(self, tribology: TribologyModel, cam_bending: float) -> None:
         """Contact law δ_el = C z + z^γ/k_cam, P = z^γ (``cam_bending`` = 1/k_cam [m/N]),
         the film flag and the friction table of a cam-periodic tribology."""

@@ -33,9 +33,8 @@ import math
 
 import numpy as np
 
-from .._validation import InputError
 from .cams import CamProfile
-from .contact_law import _PALMGREN_EXP, CamContactModel, check_model_inputs, smooth_step
+from .contact_law import _PALMGREN_EXP, CamContactModel, smooth_step
 from .flexible import FlexibleValvetrain
 from .tribology import TribologyModel
 
@@ -53,15 +52,9 @@ class FlexibleValvetrainModel(CamContactModel):
         tribology: TribologyModel,
         start_angle: float = 0.0,
     ):
-        check_model_inputs(cam, flex, FlexibleValvetrain, cam_speed, tribology, start_angle)
-        self.cam, self.flex, self.w, self.trib = cam, flex, float(cam_speed), tribology
+        self._bind(cam, flex, cam_speed, tribology, start_angle)
+        self.flex = flex
         self.p = p = flex.joints
-        self.theta0 = float(start_angle)
-        s0 = cam.scalar_derivatives(self.theta0)[0]
-        if abs(s0) > 1e-9:
-            raise InputError(
-                f"start_angle must be on the base circle (lift there is {s0 * 1e3:.4g} mm)"
-            )
         bodies = flex.reduced_bodies(cam.max_lift)
         self.bodies = bodies
         spring = flex.spring

@@ -33,7 +33,6 @@ import math
 
 import numpy as np
 
-from .._validation import InputError
 from .cams import CamProfile
 from .contact_law import (
     CamContactModel,
@@ -67,10 +66,8 @@ class ValvetrainModel(CamContactModel):
         tribology: TribologyModel,
         start_angle: float = 0.0,
     ):
-        check_model_inputs(cam, params, ValvetrainParameters, cam_speed, tribology, start_angle)
-        self.cam, self.p, self.w, self.trib = cam, params, float(cam_speed), tribology
-        self.theta0 = float(start_angle)
-        p = params
+        self._bind(cam, params, cam_speed, tribology, start_angle)
+        self.p = p = params
         N = p.spring_masses
         self.N = N
         self.n = N + 2  # q size
@@ -112,11 +109,6 @@ class ValvetrainModel(CamContactModel):
         self._init_contact(
             tribology, 0.0 if p.camshaft_stiffness is None else 1.0 / p.camshaft_stiffness
         )
-        s0 = cam.scalar_derivatives(self.theta0)[0]
-        if abs(s0) > 1e-9:
-            raise InputError(
-                f"start_angle must be on the base circle (lift there is {s0 * 1e3:.4g} mm)"
-            )
 
     #: a compiled right-hand side exists (:func:`~tribodyn.valvetrain.compiled.compiled_model`)
     compilable = True

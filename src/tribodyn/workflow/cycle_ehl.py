@@ -242,10 +242,18 @@ class CycleMethod(ABC):
     def new_stepper(self) -> EHLStepper:
         """The transient solver of a new loaded event."""
 
-    @abstractmethod
     def law_friction(self, stepper: Any, r: EHLResult) -> dict[str, float]:
-        """{"newtonian": …, "eyring": …}: the viscous friction per unit length [N/m] of
-        ``r``'s film and pressure under each shear law (the report compares them)."""
+        """{"newtonian": …, "eyring": …}: the viscous friction per unit length ∫|τ_c| dx
+        [N/m] of ``r``'s film and pressure under each shear law (the report compares
+        them), on the uniform grid of ``r``."""
+        shear = self.law_shear(stepper, r)
+        dx = r.x[1] - r.x[0]
+        return {law: float(np.sum(np.abs(shear(law)))) * dx for law in ("newtonian", "eyring")}
+
+    @abstractmethod
+    def law_shear(self, stepper: Any, r: EHLResult) -> Callable[[str], np.ndarray]:
+        """τ_c(law) [Pa]: the Couette shear stress of ``r``'s film and pressure under the
+        shear law ``law`` ("newtonian" or "eyring")."""
 
     def recorders(self, n: int) -> list[Recorder]:
         """Extra recorders over ``n`` samples."""
@@ -268,19 +276,10 @@ class IsothermalCycle(CycleMethod):
     def new_stepper(self) -> TransientEHL:
         return TransientEHL(self.bodies, self.lubricant, self.roughness, options=self.options)
 
-    def law_friction(self, stepper, r) -> dict[str, float]:
-        out = {}
-        for law in ("newtonian", "eyring"):
-            tau = shear_stress(
-                r.pressure,
-                r.film,
-                r.sliding_speed,
-                self.lubricant,
-                law,
-                self.options.limiting_shear,
-            )
-            out[law] = float(np.sum(np.abs(tau))) * (r.x[1] - r.x[0])
-        return out
+    def law_shear(self, stepper, r) -> Callable[[str], np.ndarray]:
+        return lambda law: shear_stress(
+            r.pressure, r.film, r.sliding_speed, self.lubricant, law, self.options.limiting_shear
+        )
 
     @classmethod
     def for_set(cls, case, surface_set, options: EHLOptions | None = None) -> IsothermalCycle:

@@ -13,6 +13,7 @@ Body 1 is the cam, body 2 the tappet (the coating's side).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
@@ -119,24 +120,20 @@ class ThermalCycle(CycleMethod):
             thermal_options=self.thermal_options,
         )
 
-    def law_friction(self, stepper, r) -> dict[str, float]:
+    def law_shear(self, stepper, r) -> Callable[[str], np.ndarray]:
         """Both laws on the same film and temperatures (the thermal Couette stress)."""
         _, _, Tm, fl, flim = stepper.tf.factors(r.x, _cond(r))
-        out = {}
-        for law in ("newtonian", "eyring"):
-            tau = couette_stress(
-                r.pressure,
-                r.film,
-                r.sliding_speed,
-                self.oil,
-                Tm,
-                fl,
-                flim,
-                law,
-                self.options.limiting_shear,
-            )
-            out[law] = float(np.sum(tau)) * (r.x[1] - r.x[0])
-        return out
+        return lambda law: couette_stress(
+            r.pressure,
+            r.film,
+            r.sliding_speed,
+            self.oil,
+            Tm,
+            fl,
+            flim,
+            law,
+            self.options.limiting_shear,
+        )
 
     def recorders(self, n: int) -> list[Recorder]:
         return [TemperatureRecorder(n)]
