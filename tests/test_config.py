@@ -481,3 +481,36 @@ def test_docs_cover_every_key():
     ]
     missing = [f"{m.__name__}.{k}" for m in models for k in m.model_fields if f"`{k}`" not in doc]
     assert not missing, missing
+
+
+def test_surface_sets_boundary_shear_strength_reaches_the_dynamics_tribology():
+    # τ₀ of a surface set is the analytic tribology's; the friction follows analytic_contact
+    # with that τ₀ (the paper's Eq. 17 boundary shear τ₀ + ςp)
+    from tribodyn.physics.analytic_contact import analytic_contact
+
+    base = load_case()
+    sets = base.to_dict()["surface_sets"][:1]
+    sets[0]["boundary_shear_strength"] = 5e6
+    case = base.updated({"surface_sets": sets})
+    trib = case.analytic_tribology("uncoated")
+    assert trib.boundary_shear_strength == 5e6 and trib.kwargs["boundary_shear_strength"] == 5e6
+    with pytest.raises(TypeError):
+        trib.kwargs["boundary_shear_strength"] = 0.0  # a read-only view
+    force, ue, us, R = 400.0, 0.3, 0.3, 0.01  # thin film: mixed lubrication
+    s = case.surface_set("uncoated")
+    c = analytic_contact(
+        force / trib.width,
+        R,
+        ue,
+        us,
+        s.bodies,
+        case.lubricant(),
+        s.roughness,
+        boundary_shear_coefficient=s.boundary_shear_coefficient,
+        boundary_shear_strength=5e6,
+    )
+    assert float(c.boundary_friction) > 0.0
+    f = trib.friction(0.0, force, ue, us, R)
+    assert float(f) == pytest.approx(float(c.friction) * trib.width, rel=1e-12)
+    f0 = base.updated({"surface_sets": base.to_dict()["surface_sets"][:1]})
+    assert float(f0.analytic_tribology("uncoated").friction(0.0, force, ue, us, R)) < float(f)

@@ -167,11 +167,9 @@ class CamValvetrainBuilders:
             lubricant=lubricant,
             roughness=s.roughness,
             boundary_shear_coefficient=s.boundary_shear_coefficient,
+            boundary_shear_strength=s.boundary_shear_strength,
             viscous_model=n.viscous_model,
             film_formula=n.film_formula,
             limiting_shear=n.limiting_shear,
         )
-        # τ₀ is not a constructor argument of AnalyticTribology; it is forwarded through
-        # the keyword arguments it passes to analytic_contact.
-        model.kwargs["boundary_shear_strength"] = s.boundary_shear_strength
         return model

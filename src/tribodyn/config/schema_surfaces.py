@@ -108,7 +108,7 @@ class LubricantConfig(Section):
 
     @model_validator(mode="after")
     def _forms(self):
-        problems = []
+        problems: list[tuple[str, str]] = []
         given = self.model_fields_set
         if self.datasheet:
             for k in ("viscosity", "density", "viscosity_temperature_coefficient"):

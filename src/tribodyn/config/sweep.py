@@ -164,17 +164,18 @@ class AxisConfig(Section):
             return self
         if not rng:
             raise Problems([("", "give values = [...] or a range: start, stop and num (or step)")])
-        for k in ("start", "stop"):
-            if getattr(self, k) is None:
-                raise Problems([(k, "required key is missing (a range needs start and stop)")])
+        start, stop = self.start, self.stop
+        if start is None or stop is None:
+            k = "start" if start is None else "stop"
+            raise Problems([(k, "required key is missing (a range needs start and stop)")])
         if (self.num is None) == (self.step is None):
             raise Problems([("num", "give exactly one of num and step")])
         if self.step is not None and self.spacing == "log":
             raise Problems([("step", "a log range is given by num, not step")])
-        if self.spacing == "log" and not (self.start > 0 and self.stop > 0):
+        if self.spacing == "log" and not (start > 0 and stop > 0):
             raise Problems([("start", "a log range needs start > 0 and stop > 0")])
         if self.step is not None:
-            n = math.floor(abs(self.stop - self.start) / self.step * (1 + 1e-12)) + 1
+            n = math.floor(abs(stop - start) / self.step * (1 + 1e-12)) + 1
             if n > MAX_POINTS:
                 raise Problems([("step", f"gives {n} values (at most {MAX_POINTS})")])
         return self

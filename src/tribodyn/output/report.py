@@ -241,7 +241,8 @@ def _engineering_section(study, summ) -> list[str]:
         ]
         lines += [
             "",
-            f"Valve-spring surge (both ends fixed, (k/2)√(k_s/m_s)): {'; '.join(parts)}. "
+            "Valve-spring surge (both ends fixed: (k/2)√(k_s/m_s) of a lumped spring, the "
+            f"coil continuum at its installed length of a flexible one): {'; '.join(parts)}. "
             f"The cam frequency is {f_cam:.3g} Hz; the lift's harmonic amplitudes are "
             "in results.nc (harmonic_amplitude) and the spring-surge figure.",
         ]

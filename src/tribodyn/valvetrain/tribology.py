@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import bisect
 from abc import ABC, abstractmethod
+from types import MappingProxyType
 
 import numpy as np
 
@@ -49,7 +50,11 @@ __all__ = [
 ]
 
 #: Paper Table 4, uncoated tappet: η = 8.3e9 m⁻², σ = 0.408 µm, β = 0.669 µm.
-PAPER_ROUGHNESS_UNCOATED = Roughness(**paper.ROUGHNESS["uncoated"])
+PAPER_ROUGHNESS_UNCOATED = Roughness(
+    asperity_density=paper.ROUGHNESS["uncoated"]["asperity_density"],
+    rms=paper.ROUGHNESS["uncoated"]["rms"],
+    summit_radius=paper.ROUGHNESS["uncoated"]["summit_radius"],
+)
 
 
 def squeeze_film_load(film, approach_speed, radius, viscosity):
@@ -123,6 +128,8 @@ class AnalyticTribology(TribologyModel):
     lubricant : default SAE 5W-20 (paper Table 5).
     roughness : Greenwood–Tripp roughness or None (default paper Table 4, uncoated).
     boundary_shear_coefficient : ς (steel 0.185, DLC 0.44, WC-C 0.54; paper Table 6).
+    boundary_shear_strength : τ₀ [Pa] of the boundary shear τ₀ + ςp (paper Eq. 17;
+        default the paper's 2 MPa).
     viscous_model, film_formula, limiting_shear : passed to ``analytic_contact``.
     """
 
@@ -136,6 +143,7 @@ class AnalyticTribology(TribologyModel):
         lubricant: Lubricant = SAE_5W20,
         roughness: Roughness | None = PAPER_ROUGHNESS_UNCOATED,
         boundary_shear_coefficient: float = paper.STEEL["boundary_shear_coefficient"],
+        boundary_shear_strength: float = paper.BOUNDARY_SHEAR_STRENGTH,
         viscous_model: str = "eyring",
         film_formula: str = "moes",
         limiting_shear: bool = True,
@@ -146,12 +154,23 @@ class AnalyticTribology(TribologyModel):
             raise InputError(f"lubricant must be a Lubricant (got {type(lubricant).__name__})")
         self.lubricant = lubricant
         self.roughness = roughness
-        self.kwargs = dict(
-            boundary_shear_coefficient=boundary_shear_coefficient,
-            boundary_shear_strength=paper.BOUNDARY_SHEAR_STRENGTH,  # with the paper's ς
-            viscous_model=viscous_model,
-            film_formula=film_formula,
-            limiting_shear=limiting_shear,
+        self.boundary_shear_coefficient = boundary_shear_coefficient
+        self.boundary_shear_strength = boundary_shear_strength
+        self.viscous_model = viscous_model
+        self.film_formula = film_formula
+        self.limiting_shear = limiting_shear
+
+    @property
+    def kwargs(self) -> MappingProxyType[str, object]:
+        """The keyword arguments passed to ``analytic_contact`` (read-only)."""
+        return MappingProxyType(
+            {
+                "boundary_shear_coefficient": self.boundary_shear_coefficient,
+                "boundary_shear_strength": self.boundary_shear_strength,
+                "viscous_model": self.viscous_model,
+                "film_formula": self.film_formula,
+                "limiting_shear": self.limiting_shear,
+            }
         )
 
     def _contact(self, force, ue, us, R):
@@ -167,7 +186,11 @@ class AnalyticTribology(TribologyModel):
                 self.bodies,
                 self.lubricant,
                 self.roughness,
-                **self.kwargs,
+                boundary_shear_coefficient=self.boundary_shear_coefficient,
+                boundary_shear_strength=self.boundary_shear_strength,
+                viscous_model=self.viscous_model,
+                limiting_shear=self.limiting_shear,
+                film_formula=self.film_formula,
             )
         if self.roughness is not None:
             far = np.asarray(c.central_film) > 38.0 * self.roughness.rms

@@ -86,6 +86,14 @@ class FrictionCoefficientTable(TribologyModel):
         return mu * np.maximum(np.asarray(force, dtype=float), 0.0)
 
 
+def _mu(table: FilmTableTribology) -> np.ndarray:
+    """μ_k of a coupling table (its friction model is a :class:`FrictionCoefficientTable`)."""
+    fm = table.friction_model
+    if not isinstance(fm, FrictionCoefficientTable):
+        raise TypeError(f"not a coupling table: its friction is a {type(fm).__name__}")
+    return fm.mu
+
+
 def _bridge(values, loaded):
     """Fill non-finite values of loaded samples (failed steps) by linear interpolation
     from their loaded neighbours, so a failed step does not reset the tables."""
@@ -160,10 +168,10 @@ def film_law_from_ehl(inputs, ehl, lubricant, e_prime: float, lobe=None):
         u = max(abs(inputs.entrainment_speed[i]), 1e-3)
         w1 = F[i] / inputs.width
         w2 = (F[i] + SECANT_SHARE * f_peak) / inputs.width
-        hm = [
-            moes_central(*hamrock_groups(w, R, u, eta, lubricant.pressure_viscosity, e_prime), R)
-            for w in (w1, w2)
-        ]
+        hm = []
+        for w in (w1, w2):
+            W, U, G = hamrock_groups(w, R, u, eta, lubricant.pressure_viscosity, e_prime)
+            hm.append(moes_central(W, U, G, R))
         k_moes = SECANT_SHARE * f_peak / max(float(hm[0] - hm[1]), 1e-300)
         damping = float(squeeze_film_load(hc[i], 1.0, R, eta)) * inputs.width
         c[i] = -1.0 / (k_moes + (damping / tau if tau > 0 else 0.0))
@@ -221,7 +229,7 @@ def _relax(new: FilmTableTribology, old: FilmTableTribology | None, theta: float
     def mix(a, b_time, b):
         return theta * a + (1.0 - theta) * np.interp(t, b_time, b)
 
-    mu = mix(new.friction_model.mu, old.time, old.friction_model.mu)
+    mu = mix(_mu(new), old.time, _mu(old))
     return FilmTableTribology(
         FrictionCoefficientTable(t, mu, period),
         t,
@@ -245,7 +253,8 @@ class AndersonMixer:
 
     def __init__(self, beta: float = RELAXATION, memory: int = ANDERSON_MEMORY):
         self.beta, self.m = float(beta), int(memory)
-        self.x, self.f = [], []
+        self.x: list[np.ndarray] = []
+        self.f: list[np.ndarray] = []
 
     def __call__(self, x, gx):
         f = gx - x
@@ -263,7 +272,7 @@ class AndersonMixer:
 
 
 def _pack(table: FilmTableTribology):
-    return np.concatenate([table.h, table.c, table.Fk, table.friction_model.mu])
+    return np.concatenate([table.h, table.c, table.Fk, _mu(table)])
 
 
 def _unpack(v, like: FilmTableTribology, period) -> FilmTableTribology:
@@ -408,7 +417,7 @@ def run_coupling(
             if scale is None:
                 n_t = g.time.size
                 scale = np.repeat(
-                    [max(np.abs(v).max(), 1e-300) for v in (g.h, g.c, g.Fk, g.friction_model.mu)],
+                    [max(np.abs(v).max(), 1e-300) for v in (g.h, g.c, g.Fk, _mu(g))],
                     n_t,
                 )
             table = _unpack(scale * mixer(_pack(table) / scale, _pack(g) / scale), g, period)

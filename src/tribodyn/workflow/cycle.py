@@ -287,8 +287,7 @@ def run_cycle_study(
     with single_blas_thread():
         dyn = simulate_valvetrain(
             built.cam,
-            # lumped or flexible: simulate_valvetrain takes either (its make_system)
-            built.valvetrain,  # type: ignore[arg-type]
+            built.valvetrain,  # lumped or flexible: simulate_valvetrain takes either
             tribology=built.analytic_tribology(ref_name),
             **built.simulate_options(),
         )

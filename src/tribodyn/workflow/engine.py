@@ -80,7 +80,9 @@ def lobe_traces(kind: str, study: CycleStudy, engine_case: Case) -> LobeTraces:
     w = case.cam_speed
     eta = float(case.lubricant().viscosity)
     aux = engine_case.engine.auxiliary_friction()
-    vt = case.valvetrain_parameters()
+    # tappet radius and bore friction: joint parameters, the same in a flexible case's
+    # lumped companion
+    vt = case.lumped_companion()
     bore = vf.BoreGeometry(
         diameter=aux.bore_diameter or 2.0 * vt.tappet_radius,
         guided_length=aux.bore_guided_length,

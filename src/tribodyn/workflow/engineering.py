@@ -18,7 +18,11 @@ Contact pressure: Hertz p_h = √(w E'/(2πR)) with w = W/l (Johnson, *Contact M
 
 Spring surge: a helical spring fixed at both ends with active mass m_s and rate k has the
 surge frequencies f_k = (k_mode/2)√(k/m_s), k_mode = 1, 2, … (Wahl, *Mechanical Springs*,
-1963, ch. 25); the cam excites at the harmonics n·f_cam of the cam frequency with the
+1963, ch. 25): those of a lumped valvetrain. A flexible valvetrain's spring is a coil
+continuum of its own (:class:`~tribodyn.valvetrain.spring.HelicalSpring`): its surge
+frequencies are the natural frequencies of that continuum held at both ends at the
+installed length (valve closed; the same as Wahl's for a uniform pitch, higher for a
+progressive spring whose coils touch at installation). The cam excites at the harmonics n·f_cam of the cam frequency with the
 amplitudes of the lift's Fourier series (Norton, *Cam Design and Manufacturing Handbook*,
 2009, ch. 11). A surge frequency close to a strong harmonic means spring resonance.
 """
@@ -33,6 +37,8 @@ import numpy as np
 from ..physics import typical
 from ..physics.asperity import greenwood_tripp
 from ..physics.materials import reduced_modulus
+from ..valvetrain.flexible import FlexibleValvetrain
+from ..valvetrain.parameters import ValvetrainParameters
 
 __all__ = [
     "PAPER_CASES",
@@ -43,6 +49,7 @@ __all__ = [
     "engineering_outputs",
     "oil_as_used",
     "plausibility_warnings",
+    "surge_frequencies",
     "surge_spectrum",
 ]
 
@@ -83,14 +90,35 @@ def cycle_integral(values, crank_deg) -> float:
     return float(np.sum(0.5 * (v[1:] + v[:-1]) * np.diff(theta)))
 
 
-def surge_spectrum(cam, params, cam_speed: float, harmonics: int = 40, modes: int = 3) -> dict:
-    """The lift's harmonic amplitudes at n·f_cam [Hz] (at least ``harmonics``, and up to
-    the highest surge mode) and the spring's first ``modes`` surge frequencies (module
-    docstring). Returns ``{"harmonic_frequency_Hz", "harmonic_amplitude_m",
-    "surge_frequency_Hz", "closest": [(mode, harmonic n, f_n, f_surge)]}``."""
-    f_cam = cam_speed / (2.0 * math.pi)
+def surge_frequencies(
+    params: ValvetrainParameters | FlexibleValvetrain, modes: int = 3
+) -> np.ndarray:
+    """The valve spring's first ``modes`` surge frequencies [Hz] (module docstring): of a
+    lumped valvetrain f_k = (k/2)√(k_s/m_s) from its spring rate k_s and active mass m_s;
+    of a flexible one the natural frequencies of its spring's continuum with both ends
+    fixed at the installed length
+    (:meth:`~tribodyn.valvetrain.spring.HelicalSpring.surge_frequencies`)."""
+    if isinstance(params, FlexibleValvetrain):
+        spring = params.spring
+        return spring.surge_frequencies(spring.installed_compression, modes)
     f1 = 0.5 * math.sqrt(params.spring_rate / params.spring_mass)
-    f_s = f1 * np.arange(1, modes + 1)
+    return f1 * np.arange(1, modes + 1)
+
+
+def surge_spectrum(
+    cam,
+    params: ValvetrainParameters | FlexibleValvetrain,
+    cam_speed: float,
+    harmonics: int = 40,
+    modes: int = 3,
+) -> dict:
+    """The lift's harmonic amplitudes at n·f_cam [Hz] (at least ``harmonics``, and up to
+    the highest surge mode) and the spring's first ``modes`` surge frequencies
+    (:func:`surge_frequencies`) of a lumped or flexible valvetrain. Returns
+    ``{"harmonic_frequency_Hz", "harmonic_amplitude_m", "surge_frequency_Hz", "closest":
+    [(mode, harmonic n, f_n, f_surge)]}``."""
+    f_cam = cam_speed / (2.0 * math.pi)
+    f_s = surge_frequencies(params, modes)
     harmonics = max(harmonics, int(math.ceil(f_s[-1] / f_cam)) + 2)  # up to the last mode
     n = max(2048, 4 * harmonics)
     theta = np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)

@@ -10,13 +10,15 @@ totals over ``width``.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from .. import paper
 from .._validation import InputError, check_positive, check_real
 from ..config import SurfaceSet
 from ..contact.dry import solve_dry_contact
-from ..contact.ehl import EHLOptions, solve_ehl
+from ..contact.ehl import EHLOptions, EHLResult, solve_ehl
 from ..physics.asperity import Roughness
 from ..physics.hertz import hertz_line_contact
 from ..physics.lubricant import Lubricant
@@ -29,6 +31,9 @@ from ..physics.regimes import (
     pan_hamrock,
 )
 from ..physics.thermal_oil import ThermalLubricant
+
+if TYPE_CHECKING:
+    from ..contact.ehl.thermal import ThermalEHLResult
 
 __all__ = ["point_surfaces", "solve_point"]
 
@@ -149,7 +154,7 @@ def solve_point(
     lubricant: Lubricant | ThermalLubricant | None = None,
     options: EHLOptions | None = None,
     n: int | None = None,
-    thermal_oil=None,
+    thermal_oil: ThermalLubricant | None = None,
     stress: bool = False,
 ) -> dict:
     """Solve one contact (see the module docstring). ``lubricant`` and ``options``
@@ -213,17 +218,17 @@ def solve_point(
                 "a dry contact takes no entrainment or sliding speed "
                 "(drop --ue/--us, or drop --dry for an EHL solution)"
             )
-        res = solve_dry_contact(w, radius, bodies, n=1024 if n is None else n)
+        d = solve_dry_contact(w, radius, bodies, n=1024 if n is None else n)
         out.update(
             {
-                "half_width_m": res.half_width,
-                "max_pressure_Pa": res.max_pressure,
-                "contact_center_m": res.contact_center,
-                "grid_points": res.x.size,
-                "converged": bool(res.converged),
-                "iterations": int(res.iterations),
-                "message": res.message,
-                "warnings": list(res.warnings),
+                "half_width_m": d.half_width,
+                "max_pressure_Pa": d.max_pressure,
+                "contact_center_m": d.contact_center,
+                "grid_points": d.x.size,
+                "converged": bool(d.converged),
+                "iterations": int(d.iterations),
+                "message": d.message,
+                "warnings": list(d.warnings),
             }
         )
         return out
@@ -241,15 +246,25 @@ def solve_point(
     if thermal_oil is not None and lubricant is not None:
         raise InputError("give either lubricant or thermal_oil (the thermal solve's oil)")
     oil = thermal_oil if thermal_oil is not None else lubricant
+    lub: Lubricant
     if isinstance(oil, ThermalLubricant):
         lub = oil.isothermal()  # the datasheet oil at its inlet temperature
     else:
         oil = None
-        lub = lubricant or case.lubricant()
+        if lubricant is None:
+            lub = case.lubricant()
+        elif isinstance(lubricant, Lubricant):
+            lub = lubricant
+        else:
+            raise InputError(
+                "lubricant must be a Lubricant or a ThermalLubricant "
+                f"(got {type(lubricant).__name__})"
+            )
     opts = options or case.ehl_options(surfaces)
     rough = surfaces.roughness
-    res = solve_ehl(w, radius, ue, us, bodies, lub, rough, options=opts)
-    iso = res
+    iso = solve_ehl(w, radius, ue, us, bodies, lub, rough, options=opts)
+    res: EHLResult = iso  # the thermal solution replaces it when thermal_oil is given
+    th: ThermalEHLResult | None = None
     if thermal_oil is not None:
         from ..contact.ehl.thermal import solve_thermal_ehl
 
@@ -258,7 +273,7 @@ def solve_point(
                 "thermal: the coating needs a material with thermal properties "
                 "(give coating_material, not E, nu, thickness)"
             )
-        res = solve_thermal_ehl(
+        th = res = solve_thermal_ehl(
             w,
             radius,
             ue,
@@ -327,15 +342,15 @@ def solve_point(
     out["thermal"] = thermal_oil is not None
     out["oil"] = None if oil is None else (oil.name or None)  # None: the case's oil
     out["inlet_temperature_K"] = None if oil is None else oil.inlet_temperature
-    if thermal_oil is not None:
+    if th is not None:
         itot = iso.totals(width)
         out.update(
             {
-                "max_temperature_K": res.max_temperature,
-                "max_surface_temperature_cam_K": res.max_surface_temperature[0],
-                "max_surface_temperature_tappet_K": res.max_surface_temperature[1],
-                "central_mid_film_temperature_K": res.central_mid_film_temperature,
-                "thermal_iterations": int(res.thermal_iterations),
+                "max_temperature_K": th.max_temperature,
+                "max_surface_temperature_cam_K": th.max_surface_temperature[0],
+                "max_surface_temperature_tappet_K": th.max_surface_temperature[1],
+                "central_mid_film_temperature_K": th.central_mid_film_temperature,
+                "thermal_iterations": int(th.thermal_iterations),
                 "isothermal_central_film_m": iso.central_film,
                 "isothermal_min_film_m": iso.min_film,
                 "isothermal_viscous_friction_N": itot["viscous_friction"],
