@@ -310,3 +310,19 @@ def test_report_method_names_the_asperity_model_of_the_sets():
     assert "Greenwood" not in _asperity_models(case(law, law))
     mixed = _asperity_models(case(gt, law))
     assert "s1" in mixed and "Greenwood–Tripp for the other sets" in mixed
+
+
+def test_law_hands_the_pair_modulus_to_the_contact_as_e_star():
+    """The law takes E' (paper convention, E' = 2E*) and must solve the contact with
+    E* = E'/2: on the wavy surface each tabulated point obeys Westergaard's
+    p̄ = p* sin²(πa/ℓ), p* = π(E'/2)Δ/ℓ, with 2a/ℓ the law's contact fraction (a factor 2
+    in the hand-off would put every point off by 2×)."""
+    z, dx = _wavy(n=256)
+    ell, amp, e_prime = 1e-4, 1e-6, 2e11
+    sigma = float(np.sqrt(np.mean(z**2)))
+    law = load_separation_law(z, dx, e_prime, separations=(1.2, 0.9, 0.6, 0.3, 0.1))
+    p_star = math.pi * 0.5 * e_prime * amp / ell
+    for lam, p, area in zip(law.lam, law.pressure, law.area, strict=True):
+        assert 0.0 < area < 1.0, lam
+        a_exact = ell / math.pi * math.asin(math.sqrt(p / p_star))
+        assert abs(0.5 * area * ell - a_exact) <= 1.0 * dx, (lam, sigma)
