@@ -201,3 +201,35 @@ def test_the_runtime_limit_holds_until_the_outer_block_closes():
     )
     single = "False" if (os.cpu_count() or 1) > 1 else "True"
     assert out == f"[{single}, True, True, {single}]"
+
+
+def test_the_runtime_limit_is_shared_by_overlapping_threads():
+    """Two threads (ThreadPoolExecutor) inside single_blas_thread with overlapping
+    blocks: the limit holds while either runs (also after the first one left), the
+    default is restored after both, the count returns to 0 and a later block limits
+    again."""
+    out = _python(
+        "import threading\n"
+        "from concurrent.futures import ThreadPoolExecutor\n"
+        "import numpy\n"
+        "from tribodyn import _threads\n"
+        "from tribodyn._threads import single_blas_thread as one, blas_single_threaded as q\n"
+        "a_in, b_in, a_out = threading.Event(), threading.Event(), threading.Event()\n"
+        "def a():\n"
+        "    with one():\n"
+        "        a_in.set(); b_in.wait(10); r = q()\n"
+        "    a_out.set(); return r\n"
+        "def b():\n"
+        "    a_in.wait(10)\n"
+        "    with one():\n"
+        "        b_in.set(); a_out.wait(10); return q()\n"
+        "with ThreadPoolExecutor(2) as pool:\n"
+        "    fa, fb = pool.submit(a), pool.submit(b)\n"
+        "    r = [fa.result(), fb.result()]\n"
+        "r += [q(), _threads._depth]\n"
+        "with one(): r.append(q())\n"
+        "r += [q(), _threads._depth]\n"
+        "print(r)\n"
+    )
+    single = "False" if (os.cpu_count() or 1) > 1 else "True"
+    assert out == f"[True, True, {single}, 0, True, {single}, 0]"

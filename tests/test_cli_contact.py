@@ -233,3 +233,77 @@ def test_contact_request_is_the_keyword_call():
     a = compute_contact(ContactRequest(**kw))
     b = compute_contact(**kw)
     assert a == b and a["viscosity_Pa_s"] == 0.03
+
+
+def test_shear_options_set_the_oil_of_oil_and_thermal():
+    """--eyring-stress and --limiting-shear-coefficient with --oil (isothermal) or
+    --thermal: the oil's τ_E and Λ are the given ones; the output shows them and its
+    friction is the solver's with that oil (Python API), not the oil's default."""
+    import dataclasses
+
+    from tribodyn import Body, Material, solve_ehl
+    from tribodyn.config import load_case
+    from tribodyn.physics.oils import OILS
+    from tribodyn.physics.thermal_oil import ThermalLubricant
+    from tribodyn.workflow.point import point_surfaces, solve_point
+
+    base = ["--load", "2400", "--radius", "0.01", "--ue", "2", "--us", "2", "--json"]
+    shear = ["--eyring-stress", "5e7", "--limiting-shear-coefficient", "0.05"]
+    r = run(*base, "--oil", "5W-30", "--inlet-temperature", "90", *shear)
+    assert r.exit_code == 0, r.output
+    out = json.loads(r.stdout)
+    assert out["eyring_stress_Pa"] == 5e7 and out["limiting_shear_coefficient"] == 0.05
+    sheet = {k: v for k, v in OILS["5W-30"].items() if k != "description"}
+    oil = ThermalLubricant(
+        363.15, **sheet, eyring_stress=5e7, limiting_shear_coefficient=0.05, name="5W-30"
+    )
+    steel = Body(Material(210e9, 0.3))
+    api = solve_ehl(2400 / 0.012, 0.01, 2.0, 2.0, (steel, steel), oil.isothermal())
+    assert out["friction_coefficient"] == pytest.approx(api.friction_coefficient, rel=1e-9)
+    plain = json.loads(run(*base, "--oil", "5W-30", "--inlet-temperature", "90").stdout)
+    assert plain["eyring_stress_Pa"] == 5e6  # the oil's default, typical τ_E
+    assert out["friction_coefficient"] > 1.2 * plain["friction_coefficient"]  # 0.048, 0.036
+
+    r = run(*base, "--thermal", "--case", "andreou2023_thermal", "--n", "128", *shear[:2])
+    assert r.exit_code == 0, r.output
+    out = json.loads(r.stdout)
+    assert out["eyring_stress_Pa"] == 5e7 and out["thermal"] is True
+    case = load_case("andreou2023_thermal").updated({"numerics.n": 128})
+    thermal_oil = dataclasses.replace(case.thermal_lubricant(), eyring_stress=5e7)
+    ref = solve_point(
+        case,
+        point_surfaces(case),
+        load_per_length=2400 / case.cam_config.width,
+        radius=0.01,
+        width=case.cam_config.width,
+        entrainment_speed=2.0,
+        sliding_speed=2.0,
+        thermal_oil=thermal_oil,
+    )
+    assert out["friction_N"] == pytest.approx(ref["friction_N"], rel=1e-9)
+
+
+@pytest.mark.parametrize(
+    "extra",
+    [
+        ["--viscous-model", "foo"],
+        ["--viscosity", "0.02"],
+        ["--eyring-stress", "5e7"],
+        ["--no-limiting-shear"],
+        ["--inlet-temperature", "90"],
+        ["--oil", "5W-30", "--inlet-temperature", "90"],
+        ["--thermal"],
+    ],
+)
+def test_dry_rejects_the_lubricant_and_numerics_options(extra):
+    """--dry has no oil or film: a lubricant or EHL numerics option is an error naming it
+    (not silently dropped); --n (the dry grid) is allowed."""
+    r = run("--dry", "--load", "633", "--radius", "0.01", *extra)
+    assert r.exit_code == 2 and "Traceback" not in r.output
+    named = extra[0].replace("--no-", "--")
+    assert named in r.output and "not with --dry" in r.output
+
+
+def test_dry_takes_its_grid():
+    r = run("--dry", "--load", "633", "--radius", "0.01", "--n", "256", "--json")
+    assert r.exit_code == 0, r.output

@@ -65,6 +65,23 @@ def test_bundled_case_loads_and_builds_everything(paper):
     assert trib.width == 0.012 and trib.kwargs["boundary_shear_coefficient"] == 0.54
 
 
+def test_a_copy_with_changes_builds_its_own_objects(paper):
+    """``model_copy(update=…)`` keeps the original's built objects; they are rebuilt for
+    the copy (its lubricant has the new viscosity), while deepcopy and pickle keep a
+    consistent case and its objects."""
+    import copy
+    import pickle
+
+    assert paper.lubricant().viscosity == 0.055
+    lub = paper.lubricant_config.model_copy(update={"viscosity": 0.02})
+    changed = paper.model_copy(update={"lubricant_config": lub})
+    assert changed.lubricant().viscosity == 0.02
+    assert changed.built().case is changed
+    assert paper.lubricant().viscosity == 0.055 and paper.built().case is paper
+    for twin in (copy.deepcopy(paper), pickle.loads(pickle.dumps(paper))):
+        assert twin.built().case is twin and twin.lubricant().viscosity == 0.055
+
+
 def test_paper_numbers(paper):
     # Table 7
     assert paper.engine.speed_rpm == 3000.0
@@ -302,6 +319,9 @@ def test_out_of_range_values_name_the_key():
         "2 problems",
     )
     reject("[numerics]\ncoupling_n = 10\n", "numerics.coupling_n: must be 0", ">= 32 (got 10)")
+    # the key once, not under its section as well ("numerics: numerics.n: …")
+    msg = reject("[numerics]\nn = 16\n", "\n  numerics.n: must be 0 (automatic) or >= 32 (got 16)")
+    assert "numerics: " not in msg
     reject("[engine]\nspeed_rpm = '3000'\n", "engine.speed_rpm: must be a number")
     reject("[lubricant]\nviscosity = nan\n", "lubricant.viscosity: must be a finite number")
 

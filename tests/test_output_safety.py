@@ -248,3 +248,19 @@ def test_sigterm_stops_a_run_cleanly(tmp_path, delay):
     assert "interrupted" in stdout and "Traceback" not in stdout + stderr
     assert not out.exists()
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".out")]
+
+
+def test_the_interrupted_message_shows_the_folder_as_given(tmp_path, monkeypatch):
+    """Ctrl-C during a run: the message prints the output folder literally (a bracket
+    in its name is not taken for rich markup)."""
+    import tribodyn.cli.run as R
+
+    def interrupt(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(R, "_run", interrupt)
+    out = tmp_path / "res[bold]"
+    r = CliRunner().invoke(app, ["run", "-o", str(out), "-q"])
+    assert r.exit_code == 130, r.output
+    assert "interrupted" in r.output and "res[bold]" in r.output.replace("\n", "")
+    assert not out.exists()

@@ -46,3 +46,26 @@ def test_public_signature_is_annotated(name, fn, check_return):
     assert not missing, f"{name}: parameters without a type: {missing}"
     if check_return:
         assert sig.return_annotation is not inspect.Signature.empty, f"{name}: no return type"
+
+
+def test_subpackages_are_attributes_of_the_package():
+    """``import tribodyn; tribodyn.physics`` works (the subpackage is imported on first
+    use); ``cli`` is not imported that way (it sets the BLAS thread environment)."""
+    import os
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, tribodyn\n"
+        "names = ['config', 'contact', 'output', 'physics', 'topography', 'valvetrain',"
+        " 'workflow']\n"
+        "print([getattr(tribodyn, n).__name__ == 'tribodyn.' + n for n in names])\n"
+        "print(hasattr(tribodyn, 'cli'), 'tribodyn.cli' in sys.modules)\n"
+    )
+    src = os.path.join(os.path.dirname(__file__), "..", "src")
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([src, os.environ.get("PYTHONPATH", "")]))
+    r = subprocess.run(
+        [sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120
+    )
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.split("\n")[:2] == [str([True] * 7), "False False"]

@@ -72,7 +72,16 @@ __all__ = [
 ]
 
 
+#: subpackages imported on first attribute use (``tribodyn.physics``); not ``cli``, whose
+#: import sets the BLAS thread environment
+_SUBPACKAGES = frozenset(
+    {"config", "contact", "output", "physics", "topography", "valvetrain", "workflow"}
+)
+
+
 def __getattr__(name: str):
+    if name in _SUBPACKAGES:
+        return _importlib.import_module(f".{name}", __name__)  # binds it in globals()
     module = _EXPORTS.get(name)
     if module is None:
         raise AttributeError(f"module 'tribodyn' has no attribute {name!r}")
@@ -82,7 +91,7 @@ def __getattr__(name: str):
 
 
 def __dir__():
-    return sorted(set(globals()) | set(_EXPORTS))
+    return sorted(set(globals()) | set(_EXPORTS) | _SUBPACKAGES)
 
 
 if TYPE_CHECKING:

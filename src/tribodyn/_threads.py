@@ -19,8 +19,10 @@ A variable the user set is never changed.
 from __future__ import annotations
 
 import os
+import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
+from typing import Any
 
 __all__ = [
     "BLAS_ENV",
@@ -33,7 +35,11 @@ __all__ = [
 #: The thread-count variables of OpenBLAS, OpenMP and MKL.
 BLAS_ENV = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 
-_depth = 0  # nesting of single_blas_thread in this process
+# The limit is process-wide, so it is one limiter shared by all threads: applied when the
+# first single_blas_thread() is entered, restored when the last one (in any thread) leaves.
+_lock = threading.Lock()
+_depth = 0  # single_blas_thread() blocks open in this process (all threads)
+_limiter: Any = None  # the shared threadpoolctl limiter while _depth > 0
 
 
 def set_blas_env() -> None:
@@ -61,24 +67,46 @@ def single_blas_thread_env() -> Iterator[None]:
 
 @contextmanager
 def single_blas_thread() -> Iterator[None]:
-    """Limit BLAS/OpenMP to one thread in this process while inside (threadpoolctl);
-    nested uses cost nothing."""
-    global _depth
-    if _depth:
-        _depth += 1
-        try:
-            yield
-        finally:
-            _depth -= 1
-        return
-    from threadpoolctl import threadpool_limits
+    """Limit BLAS/OpenMP to one thread in this process while inside (threadpoolctl).
 
-    with threadpool_limits(1):
-        _depth = 1
-        try:
-            yield
-        finally:
-            _depth = 0
+    Thread-safe and nestable: a lock-protected count of open blocks (in any thread); the
+    first applies the limit, the last to leave restores the original thread counts.
+    """
+    global _depth, _limiter
+    with _lock:
+        if _depth == 0:
+            from threadpoolctl import threadpool_limits
+
+            _release_openblas_control()
+            _limiter = threadpool_limits(limits=1)
+            _release_openblas_control()
+        _depth += 1
+    try:
+        yield
+    finally:
+        with _lock:
+            _depth -= 1
+            if _depth == 0:
+                limiter, _limiter = _limiter, None
+                _release_openblas_control()
+                limiter.restore_original_limits()
+                _release_openblas_control()
+
+
+def _release_openblas_control() -> None:
+    """Let the calling thread set OpenBLAS's process-wide thread count.
+
+    threadpoolctl >= 3.8 lets only the first thread that set it change it while that
+    thread lives (later calls from other threads are ignored); the shared limiter is
+    applied and restored by whichever thread opens the first and closes the last block,
+    under the lock, so the hold is released around each change.
+    """
+    import threadpoolctl
+
+    controller = getattr(threadpoolctl, "OpenBLASController", None)
+    release = getattr(controller, "clear_controlling_thread", None)
+    if release is not None:
+        release(force=True)
 
 
 def blas_single_threaded() -> bool:

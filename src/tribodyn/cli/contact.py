@@ -92,7 +92,9 @@ class ContactRequest:
     ``"ETA,SIGMA,BETA"``. The lubricant options (``viscosity`` … ``viscosity_model``) and
     the numerics options (``n``, ``viscous_model``, ``limiting_shear``) of an EHL contact
     change the case's keys (:data:`CASE_KEYS`) through
-    :meth:`~tribodyn.config.Case.updated`, so they are validated as in a case file.
+    :meth:`~tribodyn.config.Case.updated`, so they are validated as in a case file;
+    ``eyring_stress`` and ``limiting_shear_coefficient`` also set τ_E and Λ of the
+    ``thermal``/``oil`` oil. A ``dry`` contact takes none of them (``n`` is its grid).
     """
 
     load: float | None = None
@@ -234,6 +236,8 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
     _check_positive("--radius", q.radius, "m")
     if q.n is not None and q.n < 32:
         raise InputError(f"--n must be >= 32 grid nodes (got {q.n})")
+    if q.dry:
+        _check_dry(q)
     lub = opts = None
     thermal_oil = None
     if not q.dry and (q.thermal or q.oil is not None or q.inlet_temperature is not None):
@@ -248,12 +252,13 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
                 "--viscosity-model": q.viscosity_model,
             },
         )
-    if q.dry and (q.thermal or q.oil is not None):
-        raise InputError("--thermal and --oil need an EHL contact (drop --dry)")
     if not q.dry:  # the lubricant and numerics options: case updates
         case = _updated(case, q.case_changes())
         lub = case.lubricant()
         opts = case.ehl_options(surfaces)
+    if thermal_oil is not None:  # its shear law: the options given (validated just above)
+        shear = {k: getattr(q, k) for k in _OIL_SHEAR if getattr(q, k) is not None}
+        thermal_oil = dataclasses.replace(thermal_oil, **shear)
     try:
         r = solve_point(
             case,
@@ -274,6 +279,33 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
     except InputError as exc:
         raise _as_option(exc) from None
     return r
+
+
+#: options that set the shear law of the --thermal/--oil oil (τ_E, Λ)
+_OIL_SHEAR = ("eyring_stress", "limiting_shear_coefficient")
+
+#: options of a lubricated contact, not for --dry (option → ContactRequest field)
+_NOT_DRY = {
+    "--thermal": "thermal",
+    "--oil": "oil",
+    "--inlet-temperature": "inlet_temperature",
+    **{"--" + name.replace("_", "-"): name for name in CASE_KEYS if name != "n"},
+}
+
+
+def _check_dry(q: ContactRequest) -> None:
+    """A dry contact has no oil or film: the lubricant and EHL options are errors (``--n``
+    is the dry grid)."""
+    given = [
+        opt
+        for opt, name in _NOT_DRY.items()
+        if (q.thermal if name == "thermal" else getattr(q, name) is not None)
+    ]
+    if given:
+        raise InputError(
+            f"{', '.join(given)}: not with --dry (a dry contact has no lubricant or film; "
+            "drop them, or drop --dry for an EHL solution)"
+        )
 
 
 def _thermal_oil(case, oil, inlet_temperature, lub_options):

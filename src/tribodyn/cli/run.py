@@ -10,6 +10,7 @@ from pathlib import Path
 import typer
 from rich import box
 from rich.console import Console
+from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
@@ -95,7 +96,9 @@ def run_command(
             # Ctrl-C, SIGTERM, or an error raised while the workers are being stopped
             if not (isinstance(exc, KeyboardInterrupt) or _terminated):
                 raise
-            console.print(f"[red]interrupted:[/red] nothing written; {out} is unchanged")
+            console.print(
+                f"[red]interrupted:[/red] nothing written; {escape(str(out))} is unchanged"
+            )
             raise typer.Exit(143 if _terminated else 130)
 
 

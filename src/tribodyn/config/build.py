@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from .._validation import InputError
-from .errors import CamTableError, Problems
+from .errors import CaseKeyError, Problems
 
 if TYPE_CHECKING:
     from ..contact.ehl import EHLOptions
@@ -122,10 +122,11 @@ class BuiltCase:
 
 def build(case: Case) -> BuiltCase:
     """The :class:`BuiltCase` of ``case``: the one built when the case was validated, or
-    (a case constructed without validation) built now; raises
-    :class:`~tribodyn.InputError` listing every problem."""
+    (a case constructed without validation, or a copy such as ``model_copy(update=…)``
+    that kept the original's objects) built now; raises :class:`~tribodyn.InputError`
+    listing every problem."""
     built = case._built
-    if built is None:
+    if built is None or built.case is not case:
         built, problems = collect(case)
         if problems or built is None:
             raise Problems(problems)
@@ -146,7 +147,7 @@ def collect(
     def attempt(path: str, make: Callable[[], T]) -> T | None:
         try:
             return make()
-        except CamTableError as exc:
+        except CaseKeyError as exc:  # the key itself (numerics.n, cam.path)
             problem = (exc.key, str(exc))
         except InputError as exc:
             problem = (path, str(exc))

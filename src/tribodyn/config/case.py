@@ -46,7 +46,7 @@ from .build import BuiltCase, build, collect, options_for
 from .case_strength import StrengthBuilders
 from .case_thermal import ThermalBuilders
 from .case_valvetrain import CamValvetrainBuilders
-from .errors import Problems, format_validation_error
+from .errors import CaseKeyError, Problems, format_validation_error
 from .measured_surface import measured_map, measured_roughness
 from .paths import set_path
 from .schema import (
@@ -418,10 +418,11 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
     def _new_ehl_options(self) -> EHLOptions:
         n = self.numerics
         if 0 < n.n < 32:
-            raise InputError(f"numerics.n: must be 0 (automatic) or >= 32 (got {n.n})")
+            raise CaseKeyError("numerics.n", f"must be 0 (automatic) or >= 32 (got {n.n})")
         if 0 < n.coupling_n < 32:
-            raise InputError(
-                f"numerics.coupling_n: must be 0 (as numerics.n) or >= 32 (got {n.coupling_n})"
+            raise CaseKeyError(
+                "numerics.coupling_n",
+                f"must be 0 (as numerics.n) or >= 32 (got {n.coupling_n})",
             )
         kw: dict[str, Any] = dict(
             n=n.n or None,

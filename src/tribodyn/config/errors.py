@@ -18,7 +18,7 @@ from pydantic import BaseModel, ValidationError
 
 from .._validation import InputError
 
-__all__ = ["Problems", "CamTableError", "format_validation_error"]
+__all__ = ["Problems", "CamTableError", "CaseKeyError", "format_validation_error"]
 
 
 class Problems(ValueError):
@@ -29,12 +29,19 @@ class Problems(ValueError):
         self.items = items
 
 
-class CamTableError(InputError):
-    """A lift-table problem, with the ``[cam]`` key it belongs to."""
+class CaseKeyError(InputError):
+    """A problem of one case key (``numerics.n``), filed under that key."""
 
     def __init__(self, key: str, message: str):
         super().__init__(message)
-        self.key = f"cam.{key}"
+        self.key = key
+
+
+class CamTableError(CaseKeyError):
+    """A lift-table problem, with the ``[cam]`` key it belongs to."""
+
+    def __init__(self, key: str, message: str):
+        super().__init__(f"cam.{key}", message)
 
 
 def _unit_of(fi) -> str:
