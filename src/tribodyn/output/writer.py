@@ -22,8 +22,9 @@ one folder, atomically, without ever losing results or replacing someone else's 
   killed (their process no longer exists) are cleaned up by the next write, after moving
   any user file found only there back into the target.
 * **Re-runnable.** ``case.toml`` refers to copies of the files the case reads (the cam
-  table, :data:`~tribodyn.config.paths.FILE_KEYS`) in ``inputs/``, by relative path, so
-  a moved or shared result folder runs again with ``tribodyn run FOLDER/case.toml``.
+  table, measured maps: :data:`~tribodyn.config.paths.FILE_KEYS`) in ``inputs/``, by
+  relative path, so a moved or shared result folder runs again with
+  ``tribodyn run FOLDER/case.toml``.
 * **Permissions** follow the umask (folders 0o777, files 0o666, masked).
 * **Never lost.** If writing still fails after the computation (disk full, folder
   removed, permissions changed), the results (results.nc, summary.json, case.toml) are
