@@ -280,6 +280,36 @@ def test_result_folder_copies_every_sets_measured_map(tmp_path):
         check_output_dir(moved, writes=W.case_inputs(case)[1])
 
 
+def test_stress_figure_of_a_relative_map_drawn_from_another_folder(tmp_path, monkeypatch):
+    """The stress figure rebuilds the sets from results.nc's case; a map given relative
+    to the case file must still be found when tribodyn runs in another folder (before:
+    the writing failed and the results went to a rescue folder)."""
+    import tomli_w
+
+    from tribodyn.topography import write_topography
+    from tribodyn.topography.synthetic import synthetic_surface
+    from tribodyn.workflow.cycle import run_cycle_study
+
+    (tmp_path / "case" / "maps").mkdir(parents=True)
+    t = synthetic_surface(
+        (48, 48), 0.4e-6, rms=0.2e-6, hurst=0.8, short_cutoff=3.2e-6, long_cutoff=9.6e-6, seed=4
+    )
+    write_topography(t, tmp_path / "case" / "maps" / "pair.nc")
+    data = load_case("flat_tappet_rig_measured").to_dict()
+    data["surface_sets"] = data["surface_sets"][:1]
+    data["surface_sets"][0]["measured_surface"] = {"topography": "maps/pair.nc"}
+    data["numerics"].update(crank_step_deg=5.0, n=128, coupling_iterations=1, workers=1)
+    (tmp_path / "case" / "case.toml").write_text(tomli_w.dumps(data), encoding="utf-8")
+    (tmp_path / "elsewhere").mkdir()
+    monkeypatch.chdir(tmp_path / "elsewhere")
+    study = run_cycle_study(load_case(tmp_path / "case" / "case.toml"), workers=1)
+    out = write_results(
+        study, tmp_path / "res", figures=["stress_map.png"], report=False, workers=1
+    )
+    assert (out["path"] / "stress_map.png").is_file()
+    assert (out["path"] / "inputs" / "pair.nc").is_file()
+
+
 # ----------------------------------------------------------------------------- console
 def test_run_table_reads_well_at_80_columns(tmp_path, fake_run, monkeypatch):
     import tribodyn.cli.run as run_mod
