@@ -225,6 +225,91 @@ def test_a_moved_result_folder_runs_again(tmp_path):
             assert second[name][key] == pytest.approx(first[name][key], rel=1e-12)
 
 
+def test_result_folder_copies_every_sets_measured_map(tmp_path):
+    """Each surface set's measured map is copied to inputs/ and its own key names its
+    copy: one file read by two sets is copied once, two files of the same name get
+    distinct names; the moved folder reads back with the originals gone."""
+    from tribodyn.topography import write_topography
+    from tribodyn.topography.synthetic import synthetic_surface
+
+    for folder, seed in (("a", 4), ("b", 5)):
+        (tmp_path / folder).mkdir()
+        t = synthetic_surface(
+            (48, 48), 0.4e-6, rms=0.2e-6, hurst=0.8, short_cutoff=3.2e-6,
+            long_cutoff=9.6e-6, seed=seed,
+        )  # fmt: skip
+        write_topography(t, tmp_path / folder / "pair.nc")
+    rough = "roughness = { asperity_density = 1e9, rms = 0.2e-6, summit_radius = 200e-6 }"
+    sets = [("gt", ""), ("m1", "a/pair.nc"), ("m2", "b/pair.nc"), ("m3", "a/pair.nc")]
+    text = "".join(
+        f'[[surface_sets]]\nname = "{name}"\n{rough}\n'
+        + (
+            f'asperity_model = "measured"\nmeasured_surface = {{ topography = "{m}" }}\n'
+            if m
+            else ""
+        )
+        for name, m in sets
+    )
+    (tmp_path / "case.toml").write_text(text, encoding="utf-8")
+    case = load_case(tmp_path / "case.toml")
+    data, copies = W.case_inputs(case)
+    assert copies == {
+        "inputs/pair.nc": tmp_path / "a" / "pair.nc",
+        "inputs/pair-2.nc": tmp_path / "b" / "pair.nc",
+    }
+    maps = [s.get("measured_surface", {}).get("topography") for s in data["surface_sets"]]
+    assert maps == [None, "inputs/pair.nc", "inputs/pair-2.nc", "inputs/pair.nc"]
+    folder = write_atomic(tmp_path / "res", lambda d: W._write_case(case, d))
+    moved = tmp_path / "elsewhere" / "shared"
+    moved.parent.mkdir()
+    folder.rename(moved)
+    shutil.rmtree(tmp_path / "a")
+    shutil.rmtree(tmp_path / "b")
+    again = load_case(moved / "case.toml")
+    for name in ("m1", "m2", "m3"):
+        law, law0 = again.surface_set(name).roughness.law, case.surface_set(name).roughness.law
+        np.testing.assert_array_equal(law.pressure, law0.pressure)
+    assert not np.array_equal(
+        again.surface_set("m1").roughness.law.pressure,
+        again.surface_set("m2").roughness.law.pressure,
+    )
+    assert check_output_dir(moved, writes=W.case_inputs(again)[1]) == moved  # its own copies
+    # a user's own file of that name in the folder is never replaced
+    (moved / "inputs" / "pair-2.nc").write_bytes(b"my notes")
+    with pytest.raises(InputError, match=r"inputs/pair-2\.nc in this result folder changed"):
+        check_output_dir(moved, writes=W.case_inputs(case)[1])
+
+
+def test_stress_figure_of_a_relative_map_drawn_from_another_folder(tmp_path, monkeypatch):
+    """The stress figure rebuilds the sets from results.nc's case; a map given relative
+    to the case file must still be found when tribodyn runs in another folder (before:
+    the writing failed and the results went to a rescue folder)."""
+    import tomli_w
+
+    from tribodyn.topography import write_topography
+    from tribodyn.topography.synthetic import synthetic_surface
+    from tribodyn.workflow.cycle import run_cycle_study
+
+    (tmp_path / "case" / "maps").mkdir(parents=True)
+    t = synthetic_surface(
+        (48, 48), 0.4e-6, rms=0.2e-6, hurst=0.8, short_cutoff=3.2e-6, long_cutoff=9.6e-6, seed=4
+    )
+    write_topography(t, tmp_path / "case" / "maps" / "pair.nc")
+    data = load_case("flat_tappet_rig_measured").to_dict()
+    data["surface_sets"] = data["surface_sets"][:1]
+    data["surface_sets"][0]["measured_surface"] = {"topography": "maps/pair.nc"}
+    data["numerics"].update(crank_step_deg=5.0, n=128, coupling_iterations=1, workers=1)
+    (tmp_path / "case" / "case.toml").write_text(tomli_w.dumps(data), encoding="utf-8")
+    (tmp_path / "elsewhere").mkdir()
+    monkeypatch.chdir(tmp_path / "elsewhere")
+    study = run_cycle_study(load_case(tmp_path / "case" / "case.toml"), workers=1)
+    out = write_results(
+        study, tmp_path / "res", figures=["stress_map.png"], report=False, workers=1
+    )
+    assert (out["path"] / "stress_map.png").is_file()
+    assert (out["path"] / "inputs" / "pair.nc").is_file()
+
+
 # ----------------------------------------------------------------------------- console
 def test_run_table_reads_well_at_80_columns(tmp_path, fake_run, monkeypatch):
     import tribodyn.cli.run as run_mod

@@ -326,3 +326,117 @@ def test_law_hands_the_pair_modulus_to_the_contact_as_e_star():
         assert 0.0 < area < 1.0, lam
         a_exact = ell / math.pi * math.asin(math.sqrt(p / p_star))
         assert abs(0.5 * area * ell - a_exact) <= 1.0 * dx, (lam, sigma)
+
+
+def _write_map(path, seed=4, scale=1.0):
+    from tribodyn.topography import write_topography
+
+    t = synthetic_surface(
+        (48, 48), 0.4e-6, rms=0.2e-6, hurst=0.8, short_cutoff=3.2e-6, long_cutoff=9.6e-6, seed=seed
+    )
+    write_topography(t, path)
+    return t.heights()
+
+
+def test_case_measured_map_without_calibration_takes_unit_and_physical_sizes(tmp_path):
+    """A bare height matrix (.npy, plain text) stores neither lateral size nor unit: the
+    case gives them (measured_surface.unit, physical_sizes) and the law equals that of
+    the same heights in a calibrated file (netCDF, metres)."""
+    from SurfaceTopography import Topography
+
+    from tribodyn.config import Case
+    from tribodyn.topography import write_topography
+
+    z = _write_map(tmp_path / "periodic.nc")
+    # a measured map: not periodic (detrended and mirrored, as a bare matrix is)
+    write_topography(
+        Topography(z, (19.2e-6, 19.2e-6), periodic=False, unit="m"), tmp_path / "pair.nc"
+    )
+    np.save(tmp_path / "pair.npy", z * 1e6)  # µm, 48 × 0.4 µm = 19.2 µm
+    np.savetxt(tmp_path / "pair.txt", z * 1e9)  # nm
+
+    def case(ms):
+        text = _SET.format(extra=f'asperity_model = "measured"\nmeasured_surface = {{ {ms} }}')
+        return Case.from_toml_string(text, base_dir=tmp_path)
+
+    ref = case('topography = "pair.nc"').surface_set("m").roughness.law
+    for ms in (
+        'topography = "pair.npy", unit = "µm", physical_sizes = [19.2, 19.2]',
+        'topography = "pair.txt", unit = "nm", physical_sizes = [19200.0]',
+    ):
+        law = case(ms).surface_set("m").roughness.law
+        assert law is not ref
+        np.testing.assert_allclose(law.lam, ref.lam)
+        # heights differ by rounding only: equal to the contact solver's tolerance
+        np.testing.assert_allclose(law.pressure, ref.pressure, rtol=1e-6)
+        np.testing.assert_allclose(law.area, ref.area, rtol=1e-6, atol=1e-9)
+    # the size matters: twice the pixel halves the slopes (not the same law)
+    wide = case('topography = "pair.npy", unit = "µm", physical_sizes = [38.4]')
+    wide_p = wide.surface_set("m").roughness.law.pressure
+    assert np.max(np.abs(wide_p - ref.pressure) / ref.pressure.max()) > 0.05
+    with pytest.raises(InputError, match=r"topography.*no lateral calibration.*physical_sizes"):
+        case('topography = "pair.npy"')
+    with pytest.raises(InputError, match=r"measured_surface\.unit: must be 'm', 'mm'"):
+        case('topography = "pair.npy", unit = "furlong", physical_sizes = [19.2]')
+    with pytest.raises(InputError, match=r"measured_surface\.physical_sizes: lengths must be > 0"):
+        case('topography = "pair.npy", unit = "µm", physical_sizes = [19.2, 0.0]')
+    with pytest.raises(InputError, match=r"measured_surface\.physical_sizes: must be an array \("):
+        case('topography = "pair.npy", unit = "µm", physical_sizes = 19.2')
+    with pytest.raises(InputError, match=r"measured_surface\.physical_sizes.*at most 2"):
+        case('topography = "pair.npy", unit = "µm", physical_sizes = [1.0, 2.0, 3.0]')
+    with pytest.raises(InputError, match=r"topography.*already stores its lateral size"):
+        case('topography = "periodic.nc", physical_sizes = [19.2]')
+    with pytest.raises(InputError, match=r"measured_surface\.unit: only with a topography"):
+        case('hurst = 0.8, short_cutoff = 3.2e-6, long_cutoff = 25.6e-6, unit = "µm"')
+
+
+def test_measured_map_law_is_computed_once_per_file_and_pair(tmp_path, monkeypatch):
+    """Validating the case again (Case.updated, the points of a sweep) reuses the law of
+    an unchanged map; a changed file, another hardness or another E' compute it anew."""
+    import os
+
+    from tribodyn.config import load_case
+    from tribodyn.config.sweep import SweepSpec
+    from tribodyn.topography import load_separation as ls
+    from tribodyn.topography import reading
+
+    calls = {"law": 0, "read": 0}
+    law_fn, read_fn = ls.load_separation_law, reading.read_topography
+
+    def counted_law(*a, **k):
+        calls["law"] += 1
+        return law_fn(*a, **k)
+
+    def counted_read(*a, **k):
+        calls["read"] += 1
+        return read_fn(*a, **k)
+
+    monkeypatch.setattr(ls, "load_separation_law", counted_law)
+    monkeypatch.setattr(reading, "read_topography", counted_read)
+    _write_map(tmp_path / "pair.nc")
+    text = _SET.format(
+        extra='asperity_model = "measured"\nmeasured_surface = { topography = "pair.nc" }'
+    )
+    (tmp_path / "case.toml").write_text(text, encoding="utf-8")
+    case = load_case(tmp_path / "case.toml")
+    law = case.surface_set("m").roughness.law
+    assert calls == {"law": 1, "read": 1}
+    for change in ({"engine.speed_rpm": 2000.0}, {"numerics.tol": 1e-8}):
+        assert case.updated(change).surface_set("m").roughness.law is law
+    sweep = SweepSpec.from_toml_string(
+        '[sweep]\ncase = "case.toml"\n[[axes]]\npath = "engine.speed_rpm"\n'
+        "values = [1000.0, 1500.0, 2500.0]",
+        base_dir=tmp_path,
+    )
+    assert all(p.case.surface_set("m").roughness.law is law for p in sweep.points())
+    assert calls == {"law": 1, "read": 1}
+    harder = case.updated({"surface_sets[0].measured_surface.hardness": 9e9})
+    assert harder.surface_set("m").roughness.law is not law and calls["law"] == 2
+    stiffer = case.updated({"materials.steel.E": 2.5e11})
+    assert stiffer.surface_set("m").roughness.law is not law and calls["law"] == 3
+    st = os.stat(tmp_path / "pair.nc")
+    _write_map(tmp_path / "pair.nc", seed=5)  # the map measured again
+    os.utime(tmp_path / "pair.nc", ns=(st.st_atime_ns, st.st_mtime_ns + 10**9))
+    again = case.updated({"engine.speed_rpm": 2000.0}).surface_set("m").roughness.law
+    assert again is not law and calls == {"law": 4, "read": 2}
+    assert not np.allclose(again.pressure, law.pressure)

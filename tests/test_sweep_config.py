@@ -529,3 +529,21 @@ def test_dry_run_of_a_million_points_answers_fast(tmp_path, monkeypatch):
     assert "1000000 points" in text and "1000000 to run" in text
     assert "validated up to 1000 points only" in text
     assert "about 138.9 h on 4 worker(s)" in text  # 10⁶ × 2 s / 4
+
+
+def test_find_paths_gives_each_place_its_own_address():
+    from tribodyn.config.paths import find_paths
+
+    d = {"s": [{"n": "a", "m": {"t": "x"}}, {"n": "b"}, {"n": "c", "m": {"t": "y"}}]}
+    assert find_paths(d, "s[*].m.t") == [("s[0].m.t", "x"), ("s[2].m.t", "y")]
+    assert find_paths(d, "s[n=c].m.t") == [("s[2].m.t", "y")]
+    assert find_paths(d, "s[1].m.t") == [] and find_paths(d, "cam.path") == []
+    assert find_paths({"t": {"a": {"v": 1}, "b": {"v": 2}}}, "t[*].v") == [
+        ("t.a.v", 1),
+        ("t.b.v", 2),
+    ]
+    for where, _ in find_paths(d, "s[*].m.t"):
+        set_path(d, where, where)
+    assert [e.get("m", {}).get("t") for e in d["s"]] == ["s[0].m.t", None, "s[2].m.t"]
+    with pytest.raises(PathError, match="ends with a key"):
+        find_paths(d, "s[*]")

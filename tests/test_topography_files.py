@@ -295,3 +295,18 @@ def test_synthetic_map_beyond_the_limit_from_the_cli(tmp_path):
     )
     assert r.exit_code == 2 and "nb_grid_pts must give at most" in " ".join(r.output.split())
     assert not (tmp_path / "s.x3p").exists()
+
+
+def test_an_unknown_unit_is_an_input_error(tmp_path):
+    # a bare matrix needs --unit; a unit SurfaceTopography does not know was a traceback
+    np.save(tmp_path / "m.npy", np.random.default_rng(1).normal(size=(16, 16)))
+    from tribodyn.topography import TopographyReadError
+
+    t = read_topography(tmp_path / "m.npy", unit="µm", physical_sizes=(16.0, 16.0))
+    assert np.allclose(t.physical_sizes, (16e-6, 16e-6))
+    with pytest.raises(TopographyReadError, match=r"unit must be a length unit \(.*µm.*'furlong'"):
+        read_topography(tmp_path / "m.npy", unit="furlong", physical_sizes=(16.0, 16.0))
+    r = CliRunner().invoke(
+        app, ["topography", str(tmp_path / "m.npy"), "--unit", "furlong", "--size", "16", "16"]
+    )
+    assert r.exit_code == 2 and "unit must be a length unit" in " ".join(r.output.split())

@@ -183,6 +183,9 @@ def _error_lines(err: Mapping[str, Any], root, variants) -> list[tuple[str, str]
     if typ in ("union_tag_not_found", "model_type", "model_attributes_type", "dict_type"):
         return [(path, f"must be a table{got}")]
     if typ == "list_type":
+        item = get_args(_strip_optional(fi.annotation)) if fi is not None else ()
+        if item and not (isinstance(item[0], type) and issubclass(item[0], BaseModel)):
+            return [(path, f"must be an array ([…]){got}")]
         return [(path, f"must be an array of tables ([[{path}]]){got}")]
     if typ == "too_short":
         return [

@@ -16,16 +16,23 @@ from ..physics.materials import reduced_modulus
 __all__ = ["measured_map", "measured_roughness"]
 
 
+def _map_path(m, base_dir: Path) -> Path:
+    path = Path(m.topography).expanduser()
+    return path if path.is_absolute() else Path(base_dir) / path
+
+
 def measured_map(s, base_dir: Path) -> tuple[np.ndarray, float]:
     """(heights, pixel) of a surface set's measured map (relative paths against
-    ``base_dir``), periodic and with zero mean. Its RMS must match ``roughness.rms``
+    ``base_dir``; ``unit`` and ``physical_sizes`` for files without them), periodic and
+    with zero mean (read-only: cached per process). Its RMS must match ``roughness.rms``
     within 10 %: the law is in h/σ of the map."""
     from ..topography.load_separation import read_periodic_heights
 
     m = s.measured_surface
     assert m is not None and m.topography is not None
-    path = Path(m.topography).expanduser()
-    z, dx = read_periodic_heights(path if path.is_absolute() else Path(base_dir) / path)
+    z, dx = read_periodic_heights(
+        _map_path(m, base_dir), unit=m.unit, physical_sizes=m.physical_sizes
+    )
     sigma = float(z.std())
     rms = s.roughness.rms
     if abs(sigma - rms) > 0.1 * rms:
@@ -38,9 +45,13 @@ def measured_map(s, base_dir: Path) -> tuple[np.ndarray, float]:
 
 def measured_roughness(s, rough: Roughness, bodies, base_dir: Path) -> Roughness:
     """``rough`` with the load–separation law of the set's ``measured_surface``, computed
-    at the pair's surface E' and the given hardness (synthetic laws are cached per
-    process). Errors name the set's field."""
-    from ..topography.load_separation import load_separation_law, synthetic_load_separation
+    at the pair's surface E' and the given hardness. Laws are cached per process (a map
+    by its file's path, modification time and size), so validating the case again does
+    not compute them again. Errors name the set's field."""
+    from ..topography.load_separation import (
+        measured_load_separation,
+        synthetic_load_separation,
+    )
 
     m = s.measured_surface
     assert m is not None  # schema validator
@@ -48,8 +59,14 @@ def measured_roughness(s, rough: Roughness, bodies, base_dir: Path) -> Roughness
     where = f"surface_sets.{s.name}.measured_surface"
     try:
         if m.topography is not None:
-            z, dx = measured_map(s, base_dir)
-            law = load_separation_law(z, dx, e_s, m.hardness, source=f"measured map {m.topography}")
+            z, _ = measured_map(s, base_dir)
+            law = measured_load_separation(
+                _map_path(m, base_dir),
+                e_s,
+                m.hardness,
+                unit=m.unit,
+                physical_sizes=m.physical_sizes,
+            )
             return dataclasses.replace(rough, rms=float(z.std()), law=law)
         assert m.hurst is not None and m.short_cutoff is not None
         assert m.long_cutoff is not None

@@ -37,13 +37,14 @@ __all__ = [
     "format_path",
     "set_path",
     "get_path",
+    "find_paths",
     "schema_field",
     "FILE_KEYS",
 ]
 
 #: Key paths of a case whose values name files (relative to the case file); a result
 #: folder holds copies of them, so that its case.toml runs from anywhere.
-FILE_KEYS = ("cam.path",)
+FILE_KEYS = ("cam.path", "surface_sets[*].measured_surface.topography")
 
 
 class PathError(InputError):
@@ -239,6 +240,44 @@ def get_path(data: dict, path: str | list) -> list:
     tokens = parse_path(path) if isinstance(path, str) else tuple(path)
     curs, last = _walk(data, tokens, create=False)
     return [c[last] for c in curs if last in c]
+
+
+def find_paths(data: dict, path: str | list) -> list[tuple[str, Any]]:
+    """``(address, value)`` of every place ``path`` addresses that holds a value, each
+    address a path of its own (``[*]`` and ``[key=value]`` replaced by the index or key
+    they select), e.g. ``surface_sets[*].measured_surface.topography`` →
+    ``[("surface_sets[1].measured_surface.topography", "pair.x3p")]``. Places where a
+    key is absent are skipped."""
+    tokens = parse_path(path) if isinstance(path, str) else tuple(path)
+    if not tokens or not isinstance(tokens[0], Key) or not isinstance(tokens[-1], Key):
+        raise PathError(f"{format_path(tokens)}: a key path starts and ends with a key")
+    out: list[tuple[str, Any]] = []
+
+    def visit(cur, i: int, done: list) -> None:
+        if i == len(tokens):
+            out.append((format_path(done), cur))
+            return
+        t = tokens[i]
+        if isinstance(t, Key):
+            if isinstance(cur, dict) and t.name in cur:
+                visit(cur[t.name], i + 1, [*done, t])
+        elif isinstance(t, Index):
+            if isinstance(cur, list) and 0 <= t.index < len(cur):
+                visit(cur[t.index], i + 1, [*done, t])
+        elif isinstance(t, All):
+            if isinstance(cur, list):
+                for j, x in enumerate(cur):
+                    visit(x, i + 1, [*done, Index(j)])
+            elif isinstance(cur, dict):
+                for k, x in cur.items():
+                    visit(x, i + 1, [*done, Key(k)])
+        elif isinstance(cur, list):
+            for j, x in enumerate(cur):
+                if isinstance(x, dict) and t.field in x and _text(x[t.field]) == t.value:
+                    visit(x, i + 1, [*done, Index(j)])
+
+    visit(data, 0, [])
+    return out
 
 
 # ----------------------------------------------------------------------------- schema

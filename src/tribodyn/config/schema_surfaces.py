@@ -5,6 +5,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any, Literal
 
 from pydantic import model_validator
@@ -218,6 +219,10 @@ class RoughnessConfig(Section):
     summit_radius: float = _lim(..., L.SUMMIT_RADIUS, "mean summit radius β")
 
 
+#: Length units of ``measured_surface.unit`` (all are SurfaceTopography length units).
+MAP_UNITS = ("m", "mm", "µm", "um", "nm", "pm", "Å")
+
+
 class MeasuredSurfaceConfig(Section):
     """``measured_surface = {…}``: the composite surface whose boundary-element contact
     gives the asperity load–separation law (``asperity_model = "measured"``;
@@ -227,6 +232,20 @@ class MeasuredSurfaceConfig(Section):
 
     topography: str | None = _q(
         None, "", "measured composite height map (any format `tribodyn topography` reads)"
+    )
+    unit: Literal[MAP_UNITS] | None = _q(  # type: ignore[valid-type]
+        None,
+        "",
+        "length unit of the map file's numbers (heights and physical_sizes), for files "
+        "that store none (.npy, plain text)",
+    )
+    physical_sizes: list[float] | None = _q(
+        None,
+        "unit",
+        "lateral size [Lx, Ly] of the map in `unit` ([L]: square), for files without "
+        "lateral calibration (.npy, plain text)",
+        min_length=1,
+        max_length=2,
     )
     hurst: float | None = _q(None, "", "Hurst exponent of the spectrum", gt=0.0, le=1.0)
     short_cutoff: float | None = _q(
@@ -254,6 +273,14 @@ class MeasuredSurfaceConfig(Section):
             raise Problems(
                 [("topography", "give either a topography file or hurst/short_cutoff/long_cutoff")]
             )
+        if self.topography is None:
+            for key in ("unit", "physical_sizes"):
+                if getattr(self, key) is not None:
+                    raise Problems([(key, "only with a topography file (not with a spectrum)")])
+        if self.physical_sizes is not None and not all(
+            math.isfinite(v) and v > 0.0 for v in self.physical_sizes
+        ):
+            raise Problems([("physical_sizes", f"lengths must be > 0 (got {self.physical_sizes})")])
         if self.topography is None and not all(given):
             missing = [n for n, g in zip(("hurst", "short_cutoff", "long_cutoff"), given) if not g]
             raise Problems(

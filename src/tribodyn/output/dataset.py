@@ -56,7 +56,8 @@ def study_to_dataset(study: CycleStudy) -> xr.Dataset:
         {
             "title": f"tribodyn cam-cycle study: {case.name}",
             "tribodyn_version": __version__,
-            "case_toml": case.to_toml(),
+            # files by absolute path: the stress figures rebuild the sets (measured maps)
+            "case_toml": case.to_toml(resolve_paths=True),
             "engine_speed_rpm": float(case.engine_speed),
             "cam_width_m": float(case.width),
             "runtime_s": float(study.runtime_s),

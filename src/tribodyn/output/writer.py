@@ -22,8 +22,9 @@ one folder, atomically, without ever losing results or replacing someone else's 
   killed (their process no longer exists) are cleaned up by the next write, after moving
   any user file found only there back into the target.
 * **Re-runnable.** ``case.toml`` refers to copies of the files the case reads (the cam
-  table, :data:`~tribodyn.config.paths.FILE_KEYS`) in ``inputs/``, by relative path, so
-  a moved or shared result folder runs again with ``tribodyn run FOLDER/case.toml``.
+  table, measured maps: :data:`~tribodyn.config.paths.FILE_KEYS`) in ``inputs/``, by
+  relative path, so a moved or shared result folder runs again with
+  ``tribodyn run FOLDER/case.toml``.
 * **Permissions** follow the umask (folders 0o777, files 0o666, masked).
 * **Never lost.** If writing still fails after the computation (disk full, folder
   removed, permissions changed), the results (results.nc, summary.json, case.toml) are
@@ -46,7 +47,6 @@ from typing import TYPE_CHECKING, Any
 
 from .._system import new_dir
 from .._typing import PathLike
-from .._validation import InputError
 from .dataset import study_to_dataset
 
 # the `x as x` imports are re-exports (output.sweep, cli.export and tests import them here)
@@ -164,30 +164,32 @@ def _rescue_dirs(case_name: str):
 
 def case_inputs(case) -> tuple[dict, dict[str, Path]]:
     """The files a case reads, to copy into a result folder: ``(data, copies)`` with
-    ``data`` the case's dict in which each file key (:data:`~tribodyn.config.paths.FILE_KEYS`)
-    names ``inputs/NAME``, relative to the folder, and ``copies`` mapping that relative
-    path to the source file."""
-    from ..config.paths import FILE_KEYS, get_path, set_path
+    ``data`` the case's dict in which each file key (:data:`~tribodyn.config.paths.FILE_KEYS`,
+    every place it addresses: each surface set's map) names ``inputs/NAME``, relative to
+    the folder, and ``copies`` mapping that relative path to the source file. One file
+    read at several places is copied once; different files of the same name get
+    distinct names (``NAME-2.SUF``, …)."""
+    from ..config.paths import FILE_KEYS, find_paths, set_path
 
     data = case.to_dict(resolve_paths=True)
     base = case.source.parent if getattr(case, "source", None) is not None else Path.cwd()
     copies: dict[str, Path] = {}
+    named: dict[Path, str] = {}  # resolved source -> its name in inputs/
     for key in FILE_KEYS:
-        try:
-            values = get_path(data, key)
-        except InputError:  # the case has no such table (e.g. an analytic cam)
-            continue
-        if not values:
-            continue
-        src = Path(values[0]).expanduser()
-        src = src if src.is_absolute() else base / src
-        rel = f"{INPUTS}/{src.name}"
-        n = 1
-        while rel in copies:  # two files of the same name
-            n += 1
-            rel = f"{INPUTS}/{src.stem}-{n}{src.suffix}"
-        set_path(data, key, rel)
-        copies[rel] = src
+        for where, value in find_paths(data, key):
+            src = Path(value).expanduser()
+            src = src if src.is_absolute() else base / src
+            same = Path(os.path.realpath(src))
+            rel = named.get(same)
+            if rel is None:
+                rel = f"{INPUTS}/{src.name}"
+                n = 1
+                while rel in copies:  # two files of the same name
+                    n += 1
+                    rel = f"{INPUTS}/{src.stem}-{n}{src.suffix}"
+                copies[rel] = src
+                named[same] = rel
+            set_path(data, where, rel)
     return data, copies
 
 

@@ -20,7 +20,9 @@ and y into a periodic map of twice the size (continuous heights, no wrap-around 
 from __future__ import annotations
 
 import math
+import stat
 from functools import lru_cache
+from pathlib import Path
 
 import numpy as np
 
@@ -150,19 +152,88 @@ def periodic_heights(topography, max_points: int = 128) -> tuple[np.ndarray, flo
     return z, dx
 
 
-def read_periodic_heights(path, max_points: int = 128) -> tuple[np.ndarray, float]:
-    """(heights with zero mean [m], pixel size [m]) of a measured map read from ``path``
-    (any format of :func:`tribodyn.topography.read_topography`), made periodic by
-    :func:`periodic_heights`. A file that cannot be read raises InputError."""
+def _file_identity(path) -> tuple | None:
+    """(resolved path, inode, mtime_ns, ctime_ns, size) of an existing regular file: a
+    file rewritten in place or replaced changes it. ``None`` if it cannot be stat-ed."""
+    try:
+        p = Path(path).expanduser().resolve()
+        st = p.stat()
+    except (OSError, RuntimeError):
+        return None
+    if not stat.S_ISREG(st.st_mode):
+        return None
+    return (str(p), st.st_ino, st.st_mtime_ns, st.st_ctime_ns, st.st_size)
+
+
+def _sizes_key(physical_sizes) -> tuple[float, ...] | None:
+    if physical_sizes is None:
+        return None
+    try:
+        return tuple(float(s) for s in np.atleast_1d(physical_sizes))
+    except (TypeError, ValueError):
+        raise InputError(
+            f"physical_sizes must be one or two positive lengths (got {physical_sizes!r})"
+        ) from None
+
+
+def _read_periodic(path, max_points, unit, physical_sizes) -> tuple[np.ndarray, float]:
     from .reading import read_topography
 
-    z, dx = periodic_heights(read_topography(path), max_points)
-    return z - z.mean(), dx
+    topo = read_topography(path, unit=unit, physical_sizes=physical_sizes)
+    z, dx = periodic_heights(topo, max_points)
+    z = z - z.mean()
+    z.setflags(write=False)  # shared through the cache
+    return z, dx
+
+
+@lru_cache(maxsize=8)
+def _read_periodic_cached(ident, max_points, unit, physical_sizes):
+    return _read_periodic(ident[0], max_points, unit, physical_sizes)
+
+
+def read_periodic_heights(
+    path, max_points: int = 128, *, unit: str | None = None, physical_sizes=None
+) -> tuple[np.ndarray, float]:
+    """(heights with zero mean [m], pixel size [m]) of a measured map read from ``path``
+    (any format of :func:`tribodyn.topography.read_topography`; ``unit`` and
+    ``physical_sizes`` (Lx, Ly) in that unit only for files without them), made periodic
+    by :func:`periodic_heights`. A file that cannot be read raises InputError.
+
+    Cached per process by the file's resolved path, inode, modification time and size
+    and the arguments; the cached heights are read-only (copy to change them)."""
+    sizes = _sizes_key(physical_sizes)
+    ident = _file_identity(path)
+    if ident is None:  # missing or not a file: the reader says so
+        return _read_periodic(path, max_points, unit, sizes)
+    return _read_periodic_cached(ident, max_points, unit, sizes)
+
+
+@lru_cache(maxsize=16)
+def _measured_law_cached(ident, reduced_modulus, hardness, max_points, unit, physical_sizes):
+    z, dx = _read_periodic_cached(ident, max_points, unit, physical_sizes)
+    return load_separation_law(z, dx, reduced_modulus, hardness, source=f"measured map {ident[0]}")
 
 
 def measured_load_separation(
-    path, reduced_modulus: float, hardness: float = math.inf, max_points: int = 128
+    path,
+    reduced_modulus: float,
+    hardness: float = math.inf,
+    max_points: int = 128,
+    *,
+    unit: str | None = None,
+    physical_sizes=None,
 ) -> LoadSeparationLaw:
-    """Law of a measured map read from ``path`` (see :func:`read_periodic_heights`)."""
-    z, dx = read_periodic_heights(path, max_points)
-    return load_separation_law(z, dx, reduced_modulus, hardness, source=f"measured map {path}")
+    """Law of a measured map read from ``path`` (see :func:`read_periodic_heights`).
+
+    Cached per process: the same file (resolved path, inode, modification time, size),
+    E', H, ``max_points``, ``unit`` and ``physical_sizes`` give the same law object, so
+    a case validated again (``Case.updated``, sweep points, engine lobes) does not
+    compute it again; a changed file is computed anew."""
+    sizes = _sizes_key(physical_sizes)
+    ident = _file_identity(path)
+    if ident is None:
+        z, dx = _read_periodic(path, max_points, unit, sizes)  # raises the reader's error
+        return load_separation_law(z, dx, reduced_modulus, hardness, source=f"measured map {path}")
+    return _measured_law_cached(
+        ident, float(reduced_modulus), float(hardness), int(max_points), unit, sizes
+    )

@@ -160,6 +160,12 @@ def read_topography(
             "(physical_sizes and unit; CLI: --size LX LY --unit UNIT)"
         )
     if unit is not None:
+        from SurfaceTopography.Support.UnitConversion import length_units
+
+        if unit not in length_units:
+            raise TopographyReadError(
+                f"unit must be a length unit ({', '.join(length_units)}) (got {unit!r})"
+            )
         if ch.unit is not None:
             raise TopographyReadError(
                 f"'{path}' already stores its unit ({ch.unit}); do not pass unit"
