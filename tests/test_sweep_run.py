@@ -337,6 +337,16 @@ def test_failing_point_is_reported_and_the_rest_complete(tmp_path):
     assert 1e-9 < float(ok["min_film_m"]) < float(ok["max_central_film_m"]) < 1e-5
     assert 0 < float(ok["friction_energy_per_cycle_J"]) < 1
     assert int(ok["failed_steps"]) == 0
+    # the implicit-vs-explicit comparison is stored in full, NaN without the coupling
+    for k in (
+        "max_contact_force_diff_pct",
+        "rms_contact_force_diff_pct",
+        "peak_contact_force_diff_pct",
+        "valve_opening_shift_deg",
+        "valve_closing_shift_deg",
+        "coupling_iterations",
+    ):
+        assert np.isnan(float(ok[k])), k
     assert np.isnan(ds["friction_energy_per_cycle_J"].isel(min_load=1, g=0)).all()
     from tribodyn.output.sweep import write_sweep
 

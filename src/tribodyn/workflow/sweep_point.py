@@ -145,7 +145,12 @@ def _study_point(case, traces: bool) -> tuple[xr.Dataset, list]:
                 k: ie.get(k)
                 for k in (
                     "max_contact_force_diff_pct",
+                    "rms_contact_force_diff_pct",
+                    "peak_contact_force_diff_pct",
+                    "valve_opening_shift_deg",
+                    "valve_closing_shift_deg",
                     "max_velocity_diff_pct",
+                    "coupling_iterations",
                     "coupling_converged",
                 )
             },

@@ -76,10 +76,32 @@ POINT_SCALARS = _scalars(
             "implicit vs explicit dynamics: largest contact-force difference, % of its peak",
         ),
         (
+            "rms_contact_force_diff_pct",
+            "%",
+            "implicit vs explicit dynamics: RMS contact-force difference over the cam event, "
+            "% of its peak",
+        ),
+        (
+            "peak_contact_force_diff_pct",
+            "%",
+            "implicit vs explicit dynamics: difference of the peak contact forces, % of the peak",
+        ),
+        (
+            "valve_opening_shift_deg",
+            "deg",
+            "implicit vs explicit dynamics: shift of the valve opening (lift leaves zero)",
+        ),
+        (
+            "valve_closing_shift_deg",
+            "deg",
+            "implicit vs explicit dynamics: shift of the valve closing (lift returns to zero)",
+        ),
+        (
             "max_velocity_diff_pct",
             "%",
             "implicit vs explicit dynamics: largest tappet-velocity difference, % of its peak",
         ),
+        ("coupling_iterations", "1", "implicit coupling iterations"),
         ("coupling_converged", "1", "implicit coupling converged (1 yes, 0 no)"),
         ("n_warnings", "1", "warnings of the study (non-converged EHL steps, jumps, coupling)"),
         ("runtime_s", "s", "run time (wall clock) of the point on its worker"),
