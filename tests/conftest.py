@@ -41,6 +41,16 @@ REDUCED = {
 }
 
 
+# A four-cylinder in-line engine (firing order 1-3-4-2, 1.6 l) around the paper's valvetrain.
+ENGINE = {
+    "engine.cylinders": 4,
+    "engine.firing_order": [1, 3, 4, 2],
+    "engine.displacement": 0.0016,
+    "engine.intake": {"centre_angle_deg": 470.0},
+    "engine.exhaust": {"centre_angle_deg": 250.0},
+}
+
+
 @pytest.fixture(scope="session")
 def reduced_results(tmp_path_factory):
     """A result folder of ``tribodyn run`` on the reduced paper case (run once per session;

@@ -6,20 +6,12 @@ import math
 import numpy as np
 import pytest
 
-from conftest import REDUCED
+from conftest import ENGINE, REDUCED
 from test_variables import assert_registered
 from tribodyn import InputError
 from tribodyn.config import load_case
 from tribodyn.workflow.engine import place_trace, run_engine_study
 from tribodyn.workflow.engineering import cycle_integral
-
-ENGINE = {
-    "engine.cylinders": 4,
-    "engine.firing_order": [1, 3, 4, 2],
-    "engine.displacement": 0.0016,
-    "engine.intake": {"centre_angle_deg": 470.0},
-    "engine.exhaust": {"centre_angle_deg": 250.0},
-}
 
 
 def _case(**more):

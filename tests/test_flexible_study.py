@@ -6,18 +6,10 @@ import math
 import numpy as np
 import pytest
 
-from conftest import REDUCED
+from conftest import ENGINE, REDUCED
 from tribodyn.config import load_case
 from tribodyn.workflow.cycle import run_cycle_study
 from tribodyn.workflow.engine import lobe_traces
-
-ENGINE = {
-    "engine.cylinders": 4,
-    "engine.firing_order": [1, 3, 4, 2],
-    "engine.displacement": 0.0016,
-    "engine.intake": {"centre_angle_deg": 470.0},
-    "engine.exhaust": {"centre_angle_deg": 250.0},
-}
 
 
 def _case(**more):

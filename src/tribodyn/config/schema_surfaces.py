@@ -414,12 +414,10 @@ def paper_materials() -> dict:
     return {k: MaterialConfig(**v) for k, v in paper.MATERIALS.items()}
 
 
-def paper_surface_sets() -> list:
-    """The bundled case's surface sets: uncoated, DLC and WC-C at 1 and 4 µm, with the
-    Table 4 roughness of the coating type (the same for both thicknesses)."""
-    sets = [
-        SurfaceSetConfig(name="uncoated", roughness=RoughnessConfig(**paper.ROUGHNESS["uncoated"]))
-    ]
+def _paper_sets_with(roughness) -> list:
+    """The paper's five surface sets (uncoated; DLC and WC-C at 1 and 4 µm), each with
+    ``roughness(coating)`` (coating None for the uncoated set)."""
+    sets = [SurfaceSetConfig(name="uncoated", roughness=roughness(None))]
     for coat in ("dlc", "wcc"):
         for t_um in (1, 4):
             sets.append(
@@ -427,10 +425,16 @@ def paper_surface_sets() -> list:
                     name=f"{coat}_{t_um}um",
                     coating=coat,
                     coating_thickness=t_um * 1e-6,
-                    roughness=RoughnessConfig(**paper.ROUGHNESS[coat]),
+                    roughness=roughness(coat),
                 )
             )
     return sets
+
+
+def paper_surface_sets() -> list:
+    """The bundled case's surface sets: uncoated, DLC and WC-C at 1 and 4 µm, with the
+    Table 4 roughness of the coating type (the same for both thicknesses)."""
+    return _paper_sets_with(lambda coat: RoughnessConfig(**paper.ROUGHNESS[coat or "uncoated"]))
 
 
 def typical_materials() -> dict:
@@ -455,15 +459,4 @@ def typical_surface_sets() -> list:
     beta = sigma / typical.RMS_TO_SUMMIT_RADIUS.value
     eta = typical.ROUGHNESS_PARAMETER.value / (beta * sigma)
     rough = RoughnessConfig(asperity_density=eta, rms=sigma, summit_radius=beta)
-    sets = [SurfaceSetConfig(name="uncoated", roughness=rough)]
-    for coat in ("dlc", "wcc"):
-        for t_um in (1, 4):
-            sets.append(
-                SurfaceSetConfig(
-                    name=f"{coat}_{t_um}um",
-                    coating=coat,
-                    coating_thickness=t_um * 1e-6,
-                    roughness=rough,
-                )
-            )
-    return sets
+    return _paper_sets_with(lambda coat: rough)

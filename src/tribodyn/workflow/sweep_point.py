@@ -38,6 +38,7 @@ import xarray as xr
 from .variables import Group, build
 from .variables_study import StudySource
 from .variables_sweep import (
+    COMPARISON_SCALARS,
     DYNAMICS_TRACES,
     EHL_TRACES,
     ENGINE_SCALARS,
@@ -141,19 +142,7 @@ def _study_point(case, traces: bool) -> tuple[xr.Dataset, list]:
         xr.Dataset(),
         {
             **_dynamics_scalars(study.dynamics),
-            **{
-                k: ie.get(k)
-                for k in (
-                    "max_contact_force_diff_pct",
-                    "rms_contact_force_diff_pct",
-                    "peak_contact_force_diff_pct",
-                    "valve_opening_shift_deg",
-                    "valve_closing_shift_deg",
-                    "max_velocity_diff_pct",
-                    "coupling_iterations",
-                    "coupling_converged",
-                )
-            },
+            **{k: ie.get(k) for k in COMPARISON_SCALARS},
             "n_warnings": len(study.warnings),
         },
     )

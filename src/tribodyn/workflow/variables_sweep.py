@@ -24,6 +24,7 @@ from .variables_study import (
 )
 
 __all__ = [
+    "COMPARISON_SCALARS",
     "POINT_SCALARS",
     "SET_SCALARS",
     "ENGINE_SCALARS",
@@ -42,6 +43,47 @@ def _scalar(name):
 
 def _scalars(rows) -> dict[str, Variable]:
     return {k: var(k, (), u, d, _scalar(k)) for k, u, d in rows}
+
+
+#: The implicit-vs-explicit comparison of a study point (``summary.json``'s
+#: ``implicit_vs_explicit``; NaN without implicit coupling).
+_COMPARISON_ROWS = (
+    (
+        "max_contact_force_diff_pct",
+        "%",
+        "implicit vs explicit dynamics: largest contact-force difference, % of its peak",
+    ),
+    (
+        "rms_contact_force_diff_pct",
+        "%",
+        "implicit vs explicit dynamics: RMS contact-force difference over the cam event, "
+        "% of its peak",
+    ),
+    (
+        "peak_contact_force_diff_pct",
+        "%",
+        "implicit vs explicit dynamics: difference of the peak contact forces, % of the peak",
+    ),
+    (
+        "valve_opening_shift_deg",
+        "deg",
+        "implicit vs explicit dynamics: shift of the valve opening (lift leaves zero)",
+    ),
+    (
+        "valve_closing_shift_deg",
+        "deg",
+        "implicit vs explicit dynamics: shift of the valve closing (lift returns to zero)",
+    ),
+    (
+        "max_velocity_diff_pct",
+        "%",
+        "implicit vs explicit dynamics: largest tappet-velocity difference, % of its peak",
+    ),
+    ("coupling_iterations", "1", "implicit coupling iterations"),
+    ("coupling_converged", "1", "implicit coupling converged (1 yes, 0 no)"),
+)
+#: Their names, in the order of the rows.
+COMPARISON_SCALARS = tuple(r[0] for r in _COMPARISON_ROWS)
 
 
 #: Point scalars (values from a mapping of name → value; booleans stored as 0/1).
@@ -70,39 +112,7 @@ POINT_SCALARS = _scalars(
         ("valve_bounce", "1", "valve lifts off its seat after closing (1 yes, 0 no)"),
         ("seating_velocity_m_s", "m/s", "valve velocity at the first closing seat impact"),
         ("energy_residual_rel", "1", "relative residual of the cycle energy balance"),
-        (
-            "max_contact_force_diff_pct",
-            "%",
-            "implicit vs explicit dynamics: largest contact-force difference, % of its peak",
-        ),
-        (
-            "rms_contact_force_diff_pct",
-            "%",
-            "implicit vs explicit dynamics: RMS contact-force difference over the cam event, "
-            "% of its peak",
-        ),
-        (
-            "peak_contact_force_diff_pct",
-            "%",
-            "implicit vs explicit dynamics: difference of the peak contact forces, % of the peak",
-        ),
-        (
-            "valve_opening_shift_deg",
-            "deg",
-            "implicit vs explicit dynamics: shift of the valve opening (lift leaves zero)",
-        ),
-        (
-            "valve_closing_shift_deg",
-            "deg",
-            "implicit vs explicit dynamics: shift of the valve closing (lift returns to zero)",
-        ),
-        (
-            "max_velocity_diff_pct",
-            "%",
-            "implicit vs explicit dynamics: largest tappet-velocity difference, % of its peak",
-        ),
-        ("coupling_iterations", "1", "implicit coupling iterations"),
-        ("coupling_converged", "1", "implicit coupling converged (1 yes, 0 no)"),
+        *_COMPARISON_ROWS,
         ("n_warnings", "1", "warnings of the study (non-converged EHL steps, jumps, coupling)"),
         ("runtime_s", "s", "run time (wall clock) of the point on its worker"),
         ("cpu_s", "s", "CPU time of the point on its worker (one thread)"),
