@@ -1,9 +1,11 @@
 """Shared smooth-EHL test conditions: steel on steel, R = 10 mm, μ₀ = 0.04 Pa·s, G = 5000,
 with load and speed chosen from the Moes groups (M, L)."""
 
+import contextlib
 import math
 
 from tribodyn import Body, Lubricant, Material, Roughness
+from tribodyn.contact.ehl import transient
 from tribodyn.physics.thermal_oil import ThermalLubricant
 
 STEEL = Material(210e9, 0.3)
@@ -56,3 +58,23 @@ def murch_wilson_oil(sheet):
         rho_c=float(oil.volumetric_heat_capacity(0.0, oil.inlet_temperature)),
     )
     return oil, fluid
+
+
+@contextlib.contextmanager
+def counted_advances():
+    """Count the transient solves (sub-step attempts) while the block runs: yields a list
+    that gets, per call of ``TransientEHL._advance``, whether it converged. The method is
+    restored on leaving the block."""
+    calls = []
+    orig = transient.TransientEHL._advance
+
+    def counted(self, dt, cond):
+        res = orig(self, dt, cond)
+        calls.append(res.converged)
+        return res
+
+    transient.TransientEHL._advance = counted
+    try:
+        yield calls
+    finally:
+        transient.TransientEHL._advance = orig
