@@ -1,5 +1,7 @@
 """Shared smooth-EHL test conditions: steel on steel, R = 10 mm, μ₀ = 0.04 Pa·s, G = 5000,
-with load and speed chosen from the Moes groups (M, L)."""
+with load and speed chosen from the Moes groups (M, L); the bad-input oil and roughness,
+the thermal inlet analyses' fluid and a counter of transient solves, which the benchmarks
+use too."""
 
 import contextlib
 import math
