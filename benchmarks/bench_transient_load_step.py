@@ -14,32 +14,25 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import sys
 import time
+from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from tribodyn import Body, Lubricant, Material, Roughness, TransientEHL
-from tribodyn.contact.ehl import transient
+from tribodyn import TransientEHL
+
+# the contact and the solve counter of tests/test_validity.py
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from ehl_cases import OIL_055, PAIR, ROUGH, counted_advances
 
 
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--n", type=int, default=256)
     args = ap.parse_args()
-    steel = Material(210e9, 0.3)
-    oil = Lubricant(0.055, 1.05e-8)
-    rough = Roughness(2.7e9, 0.347e-6, 0.217e-6)
     kw = {"n": args.n} if args.n else {}
-    solves = []
-    orig = transient.TransientEHL._advance
-
-    def counted(self, dt, cond):
-        res = orig(self, dt, cond)
-        solves.append(res.converged)
-        return res
-
-    transient.TransientEHL._advance = counted
-    tr = TransientEHL((Body(steel), Body(steel)), oil, rough, **kw)
+    tr = TransientEHL(PAIR, OIL_055, ROUGH, **kw)
     tr.start_steady(4e4, 0.01, 2.0, 3.0)
     out = {
         "benchmark": "transient_load_step",
@@ -47,9 +40,9 @@ def main() -> None:
         "max_substeps": tr.max_substeps,
     }
     for label, w in (("up", 4e6), ("down", 4e4)):
-        solves.clear()
         t0 = time.perf_counter()
-        r = tr.step(1e-4, w, 0.01, 2.0, 3.0)
+        with counted_advances() as solves:
+            r = tr.step(1e-4, w, 0.01, 2.0, 3.0)
         out[label] = {
             "load_N_per_m": w,
             "wall_s": round(time.perf_counter() - t0, 2),

@@ -29,7 +29,6 @@ from tribodyn import solve_ehl
 from tribodyn.contact.ehl.thermal import ThermalOptions, solve_thermal_ehl
 from tribodyn.physics import thermal_oil
 from tribodyn.physics.heat_conduction import ThermalBody, ThermalProperties
-from tribodyn.physics.thermal_oil import ThermalLubricant
 
 W, R, UE = 5e5, 0.02, 5.0
 
@@ -65,16 +64,11 @@ def main():
                 "converged": bool(r.converged and rc.converged),
             }
         )
-    mw_oil = ThermalLubricant(
-        313.15,
-        viscosity=oil.inlet_viscosity,
-        viscosity_temperature_coefficient=oil.temperature_viscosity_coefficient(),
-        pressure_viscosity=oil.inlet_pressure_viscosity,
-        thermal_conductivity=float(oil.conductivity(0.0, oil.inlet_temperature)),
-        thermal_expansion=0.0,
-        viscosity_model="barus",
-        compressible=False,
-    )
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+    from ehl_cases import murch_wilson_oil
+    from independent_inlet import grubin_inlet, roelands_thinning
+
+    mw_oil, fluid = murch_wilson_oil(oil)
     saved = thermal_oil.CONDUCTIVITY_PRESSURE
     thermal_oil.CONDUCTIVITY_PRESSURE = (0.0, saved[1])  # k independent of pressure
     try:
@@ -91,26 +85,8 @@ def main():
         )
     finally:
         thermal_oil.CONDUCTIVITY_PRESSURE = saved
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-    from independent_inlet import grubin_inlet
-
-    mu0, ti = mw_oil.inlet_viscosity, mw_oil.inlet_temperature
-    beta = oil.temperature_viscosity_coefficient()
-    k0 = float(oil.conductivity(0.0, oil.inlet_temperature))
-    l0 = math.log(mu0) + 9.67
-    s0 = beta * (ti - 138.0) / l0
-    kw = dict(
-        load=W,
-        radius=R,
-        e_prime=e,
-        speed=UE,
-        mu0=mu0,
-        alpha=mw_oil.inlet_pressure_viscosity,
-        beta=beta,
-        k=k0,
-        rho_c=float(mw_oil.volumetric_heat_capacity(0.0, ti)),
-        thinning=lambda th: math.log(mu0) + 9.67 - l0 * ((ti + th - 138.0) / (ti - 138.0)) ** -s0,
-    )
+    thinning = roelands_thinning(fluid["mu0"], mw_oil.inlet_temperature, fluid["beta"])
+    kw = dict(load=W, radius=R, e_prime=e, speed=UE, **fluid, thinning=thinning)
     grubin = grubin_inlet(**kw)["h0"] / grubin_inlet(**kw, heating=False)["h0"]
     inlet_analysis = {
         "h_over_isothermal": mw.central_film / mw_iso.central_film,

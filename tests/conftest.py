@@ -82,3 +82,37 @@ def explicit_run(case, set_name="uncoated"):
         **case.dynamics_options(),
     )
     return s, dyn, CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
+
+
+def cycle_inputs(crank, force, ue, us, radius, width):
+    """Cycle inputs at the crank angles ``crank`` [deg] of a crankshaft at 3000 rpm
+    (t = crank/(360° · 50 Hz)): contact force ``force`` [N] (array or constant), constant
+    u_e = ``ue``, u_s = ``us`` [m/s] and cam radius ``radius`` [m]; cam width [m]."""
+    from tribodyn.workflow.cycle_ehl import CycleInputs
+
+    t = np.radians(crank) / (2 * np.pi * 50.0)
+
+    def full(value):
+        return np.full(crank.size, value, dtype=float)
+
+    return CycleInputs(crank, t, full(force), full(ue), full(us), full(radius), width)
+
+
+def ramp_inputs(step_deg, end_deg, width):
+    """An engagement: the force rises from 0 by 10 N per crank degree from 2.3° (at most
+    400 N) at u_e = 3 m/s, u_s = 6 m/s, R = 20 mm (:func:`cycle_inputs`), sampled every
+    ``step_deg`` up to ``end_deg``; the first sample above 5 N is at 3° for 1° and 0.25°
+    steps."""
+    crank = np.arange(0.0, end_deg + 1e-9, step_deg)
+    return cycle_inputs(crank, np.clip((crank - 2.3) * 10.0, 0.0, 400.0), 3.0, 6.0, 0.02, width)
+
+
+def isothermal_cycle(case, surface_set, inputs):
+    """The isothermal EHL march (``ehl_along_cycle``) of ``inputs`` on ``surface_set`` of
+    ``case``: its bodies, roughness and EHL options, the case's lubricant."""
+    from tribodyn.workflow.cycle_ehl import ehl_along_cycle
+
+    s = surface_set
+    return ehl_along_cycle(
+        inputs, "u", "u", s.bodies, case.lubricant(), s.roughness, case.ehl_options(s)
+    )

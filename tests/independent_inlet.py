@@ -204,6 +204,20 @@ def _energy(shape, h, dx, dz, M, F, phi, k, rho_c, convection):
     return splinalg.spsolve(A, rhs).reshape(nx, nz)
 
 
+def roelands_thinning(mu0, t0, beta):
+    """λ(θ) = ln(μ(T₀)/μ(T₀ + θ)) of Roelands' temperature law at ambient pressure, for
+    :func:`grubin_inlet`'s ``thinning``: ln μ + 9.67 = (ln μ₀ + 9.67)((T − 138)/(T₀ − 138))^−S₀
+    (μ in Pa s, T in K), with S₀ = β(T₀ − 138)/(ln μ₀ + 9.67) so that −d ln μ/dT = β at T₀.
+    mu0 [Pa s], t0 [K], beta [1/K]."""
+    l0 = math.log(mu0) + 9.67
+    s0 = beta * (t0 - 138.0) / l0
+
+    def thinning(th):
+        return math.log(mu0) + 9.67 - l0 * ((t0 + th - 138.0) / (t0 - 138.0)) ** (-s0)
+
+    return thinning
+
+
 def grubin_isothermal_h0(*, load, radius, e_prime, speed, mu0, alpha):
     """Grubin's isothermal h₀ [m] by adaptive quadrature of 1/α = 12μ₀u∫(h−h₀)/h³ dx
     over the whole inlet (−∞ < X ≤ −1), to check the finite-volume quadrature."""

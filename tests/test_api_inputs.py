@@ -172,6 +172,7 @@ def test_check_array_rejects_strings_complex_and_huge_ints():
 @pytest.mark.parametrize(
     "kw, name",
     [
+        # wrong types
         (dict(elastic="yes"), "elastic"),
         (dict(limiting_shear=1), "limiting_shear"),
         (dict(viscous_model=3), "viscous_model"),
@@ -179,9 +180,18 @@ def test_check_array_rejects_strings_complex_and_huge_ints():
         (dict(n=100.5), "n"),
         (dict(n=True), "n"),
         (dict(max_iter=2.5), "max_iter"),
+        # values out of range
+        (dict(n=8), "n"),
+        (dict(inlet=0.5), "inlet"),
+        (dict(outlet=-1.0), "outlet"),
+        (dict(viscous_model="bingham"), "viscous_model"),
+        (dict(time_order=3), "time_order"),
+        (dict(max_iter=0), "max_iter"),
+        (dict(tol=0.0), "tol"),
     ],
 )
-def test_option_flags_and_integers_are_typed(kw, name):
+def test_bad_ehl_options_name_the_option(kw, name):
+    """Option flags and integers are typed, and values out of range are refused."""
     with pytest.raises(InputError, match=name):
         EHLOptions(**kw)
 

@@ -6,6 +6,7 @@ reset at a steady start)."""
 import numpy as np
 import pytest
 
+from conftest import cycle_inputs, isothermal_cycle, ramp_inputs
 from tribodyn import Body, InputError, Material, TransientEHL
 from tribodyn.config import load_case
 from tribodyn.contact.ehl.thermal_transient import ThermalTransientEHL
@@ -13,10 +14,8 @@ from tribodyn.physics.heat_conduction import ThermalBody, ThermalProperties
 from tribodyn.physics.thermal_oil import ThermalLubricant, kelvin
 from tribodyn.workflow.cycle_ehl import (
     METHODS,
-    CycleInputs,
     IsothermalCycle,
     cycle_for_set,
-    ehl_along_cycle,
     march_cycle,
 )
 from tribodyn.workflow.thermal_study import ThermalCycle, thermal_along_cycle
@@ -48,14 +47,8 @@ def _thermal(inp):
     )
 
 
-def _ramp_inputs(step_deg, end_deg=10.0):
-    """Force rising from 0 by 10 N per crank degree (3000 rpm), constant kinematics: an
-    engagement, first sample above 5 N at 3° for 1° and 0.25° steps."""
-    crank = np.arange(0.0, end_deg + 1e-9, step_deg)
-    t = np.radians(crank) / (2 * np.pi * 50.0)
-    F = np.clip((crank - 2.3) * 10.0, 0.0, 400.0)
-    n = crank.size
-    return CycleInputs(crank, t, F, np.full(n, 3.0), np.full(n, 6.0), np.full(n, 0.02), WIDTH)
+def _ramp_inputs(step_deg):
+    return ramp_inputs(step_deg, 10.0, WIDTH)
 
 
 def test_thermal_cycle_has_the_time_error_control():
@@ -63,15 +56,7 @@ def test_thermal_cycle_has_the_time_error_control():
     1° sub-steps the steps after the steady start, as the isothermal one does, records
     its sub-steps, and reproduces the films of a 0.25° march within 1 %."""
     a, b = _thermal(_ramp_inputs(1.0)), _thermal(_ramp_inputs(0.25))
-    iso = ehl_along_cycle(
-        _ramp_inputs(1.0),
-        "u",
-        "u",
-        UNCOATED.bodies,
-        CASE.lubricant(),
-        UNCOATED.roughness,
-        CASE.ehl_options(UNCOATED),
-    )
+    iso = isothermal_cycle(CASE, UNCOATED, _ramp_inputs(1.0))
     assert a.converged[a.loaded].all() and b.converged[b.loaded].all()
     assert a.substeps is not None and np.array_equal(a.substeps > 0, a.loaded)
     first = np.flatnonzero(a.loaded)[1:3]  # the steps after the steady start
@@ -89,11 +74,8 @@ def test_thermal_march_reports_validity_warnings():
     The thermal march counts the warning per kind and first crank angle like the
     isothermal one, so a thermal study reports it."""
     crank = np.arange(0.0, 3.0 + 1e-9, 1.0)
-    t = np.radians(crank) / (2 * np.pi * 50.0)
     n = crank.size
-    inp = CycleInputs(
-        crank, t, np.full(n, 10.0), np.full(n, 10.0), np.full(n, 2.0), np.full(n, 1e-3), WIDTH
-    )
+    inp = cycle_inputs(crank, 10.0, 10.0, 2.0, 1e-3, WIDTH)
     th = _thermal(inp)
     iso = march_cycle(inp, "u", "u", IsothermalCycle.for_set(CASE, UNCOATED))
     assert th.converged.all() and iso.converged.all()

@@ -8,11 +8,12 @@ from concurrent.futures import Executor, Future
 import numpy as np
 import pytest
 
+from conftest import cycle_inputs, isothermal_cycle, ramp_inputs
 from tribodyn import solve_ehl
 from tribodyn.config import load_case
 from tribodyn.workflow.coupling import AndersonMixer
 from tribodyn.workflow.cycle import run_cycle_study
-from tribodyn.workflow.cycle_ehl import CycleInputs, ehl_along_cycle, ehl_for_set
+from tribodyn.workflow.cycle_ehl import ehl_along_cycle, ehl_for_set
 
 CASE = load_case()
 UNCOATED = CASE.surface_set("uncoated")
@@ -47,13 +48,7 @@ def test_default_grid_is_accurate_at_cycle_conditions(F, R, ue, us, surface):
 
 
 def _ramp_inputs(step_deg):
-    """Force rising linearly from 0 to 400 N over 40° crank (3000 rpm), constant
-    kinematics: an engagement (first sample above 5 N at 3° for 1° and 0.25° steps)."""
-    crank = np.arange(0.0, 60.0 + 1e-9, step_deg)
-    t = np.radians(crank) / (2 * np.pi * 50.0)
-    F = np.clip((crank - 2.3) * 10.0, 0.0, 400.0)
-    n = crank.size
-    return CycleInputs(crank, t, F, np.full(n, 3.0), np.full(n, 6.0), np.full(n, 0.02), WIDTH)
+    return ramp_inputs(step_deg, 60.0, WIDTH)
 
 
 def test_time_error_control_resolves_the_engagement():
@@ -146,21 +141,8 @@ def test_validity_warnings_of_the_steps_reach_the_study():
     """Steps outside the model's validity (here: a 0.5 mm radius under 5 kN, contact
     pressure beyond the elastic limit) are collected per kind with their first crank angle
     and count, so the study's warnings (report, summary.json) name them."""
-    crank = np.arange(0.0, 6.0 + 1e-9, 1.0)
-    t = np.radians(crank) / (2 * np.pi * 50.0)
-    n = crank.size
-    inp = CycleInputs(
-        crank, t, np.full(n, 5000.0), np.full(n, 3.0), np.full(n, 6.0), np.full(n, 5e-4), WIDTH
-    )
-    r = ehl_along_cycle(
-        inp,
-        "u",
-        "u",
-        UNCOATED.bodies,
-        CASE.lubricant(),
-        UNCOATED.roughness,
-        CASE.ehl_options(UNCOATED),
-    )
+    inp = cycle_inputs(np.arange(0.0, 6.0 + 1e-9, 1.0), 5000.0, 3.0, 6.0, 5e-4, WIDTH)
+    r = isothermal_cycle(CASE, UNCOATED, inp)
     assert r.loaded.all()
     kinds = {text.split(" ")[0]: (count, first) for count, first, text in r.validity.values()}
     assert "peak" in kinds  # "peak contact pressure … GPa exceeds …"

@@ -7,7 +7,6 @@ from ehl_cases import OIL_055 as OIL
 from ehl_cases import PAIR, STEEL
 from tribodyn import (
     Body,
-    EHLOptions,
     InputError,
     Roughness,
     TransientEHL,
@@ -80,23 +79,6 @@ def test_corners_of_the_allowed_range_end_honestly(w, R, u):
 def test_zero_entrainment_needs_the_transient_solver():
     with pytest.raises(InputError, match="entrainment_speed must be non-zero"):
         solve_ehl(1e4, 0.01, 0.0, 1.0, PAIR, OIL)
-
-
-@pytest.mark.parametrize(
-    "kw, name",
-    [
-        (dict(n=8), "n"),
-        (dict(inlet=0.5), "inlet"),
-        (dict(outlet=-1.0), "outlet"),
-        (dict(viscous_model="bingham"), "viscous_model"),
-        (dict(time_order=3), "time_order"),
-        (dict(max_iter=0), "max_iter"),
-        (dict(tol=0.0), "tol"),
-    ],
-)
-def test_bad_options(kw, name):
-    with pytest.raises(InputError, match=name):
-        EHLOptions(**kw)
 
 
 def test_wrong_model_objects():

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from scipy import integrate, special
 
+from ehl_cases import murch_wilson_oil
 from tribodyn import Body, Coating, InputError, Material, TransientEHL, solve_ehl
 from tribodyn.contact.ehl.energy import solve_solid
 from tribodyn.contact.ehl.thermal import ThermalEHLResult, ThermalOptions, solve_thermal_ehl
@@ -181,26 +182,13 @@ def test_inlet_heating_in_rolling_against_published_thermal_corrections():
 
 
 def _murch_wilson_oil(monkeypatch):
-    """The inlet analyses' fluid: Newtonian, Barus, incompressible, no thermal expansion,
-    k independent of pressure; μᵢ, β = −d ln μ/dT and α of the 5W-30-like OIL at 40 °C.
-    Returns (oil, β [1/K], k [W/(m K)], ρc [J/(m³ K)])."""
+    """The inlet analyses' fluid (ehl_cases.murch_wilson_oil), k independent of pressure,
+    from the 5W-30-like OIL at 40 °C. Returns (oil, the fluid's grubin_inlet arguments)."""
     import tribodyn.physics.thermal_oil as thermal_oil
 
     monkeypatch.setattr(thermal_oil, "CONDUCTIVITY_PRESSURE", (0.0, 0.54e-9))
     sheet = ThermalLubricant(313.15, kinematic_viscosity_40=64e-6, kinematic_viscosity_100=11e-6)
-    beta = sheet.temperature_viscosity_coefficient()
-    k0 = float(sheet.conductivity(0.0, sheet.inlet_temperature))
-    oil = ThermalLubricant(
-        313.15,
-        viscosity=sheet.inlet_viscosity,
-        viscosity_temperature_coefficient=beta,
-        pressure_viscosity=sheet.inlet_pressure_viscosity,
-        thermal_conductivity=k0,
-        thermal_expansion=0.0,
-        viscosity_model="barus",
-        compressible=False,
-    )
-    return oil, beta, k0, float(oil.volumetric_heat_capacity(0.0, oil.inlet_temperature))
+    return murch_wilson_oil(sheet)
 
 
 def test_independent_thermal_inlet_reference():
@@ -263,16 +251,10 @@ def test_rolling_inlet_reduction_against_an_independent_thermal_inlet(monkeypatc
     inlet and its finite pressure at x = −b account for it: docs/validation.md). Murch &
     Wilson's (1975) fit φ = 3.94/(3.94 + L^0.62) gives 12.7 % and 19.4 %: the independent
     solution has half and 60 % of that."""
-    from independent_inlet import grubin_inlet
+    from independent_inlet import grubin_inlet, roelands_thinning
 
-    oil, beta, k0, rc = _murch_wilson_oil(monkeypatch)
-    mu0, Ti = oil.inlet_viscosity, oil.inlet_temperature
-    l0 = math.log(mu0) + 9.67
-    S0 = beta * (Ti - 138.0) / l0
-
-    def thinning(th):  # ln(μᵢ/μ(Tᵢ + θ)), Roelands' temperature term
-        return math.log(mu0) + 9.67 - l0 * ((Ti + th - 138.0) / (Ti - 138.0)) ** (-S0)
-
+    oil, fluid = _murch_wilson_oil(monkeypatch)
+    mu0, beta, k0 = fluid["mu0"], fluid["beta"], fluid["k"]
     cold = ThermalProperties(1e6, 7850.0, 470.0)
     w, r2 = 5e5, 0.02
     iso = solve_ehl(w, r2, speed, 0.0, PAIR, oil.isothermal())
@@ -287,19 +269,9 @@ def test_rolling_inlet_reduction_against_an_independent_thermal_inlet(monkeypatc
         thermal_options=ThermalOptions(film_nodes=41, compression_heating=False),
     )
     assert th.converged, th.message
-    kw = dict(
-        load=w,
-        radius=r2,
-        e_prime=E_PRIME,
-        speed=speed,
-        mu0=mu0,
-        alpha=oil.inlet_pressure_viscosity,
-        beta=beta,
-        k=k0,
-        rho_c=rc,
-    )
+    kw = dict(load=w, radius=r2, e_prime=E_PRIME, speed=speed, **fluid)
     g_iso = grubin_inlet(**kw, heating=False)
-    g_th = grubin_inlet(**kw, thinning=thinning)
+    g_th = grubin_inlet(**kw, thinning=roelands_thinning(mu0, oil.inlet_temperature, beta))
     reference = 1 - g_th["h0"] / g_iso["h0"]
     L = beta * mu0 * speed**2 / k0
     assert 1 - th.central_film / iso.central_film == pytest.approx(reference, rel=0.15)

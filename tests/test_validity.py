@@ -11,7 +11,7 @@ import pytest
 from typer.testing import CliRunner
 
 from ehl_cases import OIL_055 as OIL
-from ehl_cases import PAIR, ROUGH
+from ehl_cases import PAIR, ROUGH, counted_advances
 from tribodyn import (
     InputError,
     TransientEHL,
@@ -20,7 +20,6 @@ from tribodyn import (
 )
 from tribodyn.cli import app
 from tribodyn.config import load_case
-from tribodyn.contact.ehl import transient as transient_module
 from tribodyn.contact.ehl.validity import MAX_ASPECT_RATIO
 
 runner = CliRunner()
@@ -67,30 +66,17 @@ def test_dry_contact_beyond_hertz_is_flagged():
 
 
 # ----------------------------------------------------------------------------- transient effort
-def _count_advances(monkeypatch):
-    calls = []
-    orig = transient_module.TransientEHL._advance
-
-    def counted(self, dt, cond):
-        res = orig(self, dt, cond)
-        calls.append(res.converged)
-        return res
-
-    monkeypatch.setattr(transient_module.TransientEHL, "_advance", counted)
-    return calls
-
-
 @pytest.mark.parametrize("n", [128, 256])
-def test_hundredfold_load_step_ends_in_bounded_effort(monkeypatch, n):
+def test_hundredfold_load_step_ends_in_bounded_effort(n):
     """4e4 → 4e6 N/m in one step: sub-stepped along a linear ramp (at most 2^max_substeps
     equal sub-steps, halved on failure) in bounded effort, converged with a positive film
     or reported as not converged, with a warning about the coarse step."""
     tr = TransientEHL(PAIR, OIL, ROUGH, n=n)
     tr.start_steady(4e4, 0.01, 2.0, 3.0)
-    calls = _count_advances(monkeypatch)
-    t0 = time.perf_counter()
-    r = tr.step(1e-4, 4e6, 0.01, 2.0, 3.0)
-    elapsed = time.perf_counter() - t0
+    with counted_advances() as calls:
+        t0 = time.perf_counter()
+        r = tr.step(1e-4, 4e6, 0.01, 2.0, 3.0)
+        elapsed = time.perf_counter() - t0
     k = tr.max_substeps
     # ≤ 2^k marks, ≤ 2k + 1 failures each followed by ≤ k + 1 successes before the next
     # mark, and one final attempt
@@ -102,11 +88,11 @@ def test_hundredfold_load_step_ends_in_bounded_effort(monkeypatch, n):
     assert any("changed by a factor 100 within one step" in w for w in r.warnings)
 
 
-def test_a_step_that_cannot_converge_gives_up(monkeypatch):
+def test_a_step_that_cannot_converge_gives_up():
     tr = TransientEHL(PAIR, OIL, ROUGH, n=128, max_iter=2, max_substeps=2)
     tr.start_steady(4e4, 0.01, 2.0, 3.0)
-    calls = _count_advances(monkeypatch)
-    r = tr.step(1e-4, 4e6, 0.01, 2.0, 3.0)
+    with counted_advances() as calls:
+        r = tr.step(1e-4, 4e6, 0.01, 2.0, 3.0)
     assert r.converged is False and "gave up" in r.message
     assert len(calls) <= 2**2 + (2 * 2 + 1) * (2 + 2) + 1
     assert tr.time == pytest.approx(1e-4)  # the march stays on time
