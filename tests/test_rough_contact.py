@@ -374,20 +374,48 @@ def test_case_measured_map_without_calibration_takes_unit_and_physical_sizes(tmp
     wide = case('topography = "pair.npy", unit = "µm", physical_sizes = [38.4]')
     wide_p = wide.surface_set("m").roughness.law.pressure
     assert np.max(np.abs(wide_p - ref.pressure) / ref.pressure.max()) > 0.05
-    with pytest.raises(InputError, match=r"topography.*no lateral calibration.*physical_sizes"):
-        case('topography = "pair.npy"')
-    with pytest.raises(InputError, match=r"measured_surface\.unit: must be 'm', 'mm'"):
-        case('topography = "pair.npy", unit = "furlong", physical_sizes = [19.2]')
-    with pytest.raises(InputError, match=r"measured_surface\.physical_sizes: lengths must be > 0"):
-        case('topography = "pair.npy", unit = "µm", physical_sizes = [19.2, 0.0]')
-    with pytest.raises(InputError, match=r"measured_surface\.physical_sizes: must be an array \("):
-        case('topography = "pair.npy", unit = "µm", physical_sizes = 19.2')
-    with pytest.raises(InputError, match=r"measured_surface\.physical_sizes.*at most 2"):
-        case('topography = "pair.npy", unit = "µm", physical_sizes = [1.0, 2.0, 3.0]')
-    with pytest.raises(InputError, match=r"topography.*already stores its lateral size"):
-        case('topography = "periodic.nc", physical_sizes = [19.2]')
-    with pytest.raises(InputError, match=r"measured_surface\.unit: only with a topography"):
-        case('hurst = 0.8, short_cutoff = 3.2e-6, long_cutoff = 25.6e-6, unit = "µm"')
+
+
+_MAP_ERRORS = [
+    ('topography = "pair.npy"', r"topography.*no lateral calibration.*physical_sizes"),
+    (
+        'topography = "pair.npy", unit = "furlong", physical_sizes = [19.2]',
+        r"measured_surface\.unit: must be 'm', 'mm'",
+    ),
+    (
+        'topography = "pair.npy", unit = "µm", physical_sizes = [19.2, 0.0]',
+        r"measured_surface\.physical_sizes: lengths must be > 0",
+    ),
+    (
+        'topography = "pair.npy", unit = "µm", physical_sizes = 19.2',
+        r"measured_surface\.physical_sizes: must be an array \(",
+    ),
+    (
+        'topography = "pair.npy", unit = "µm", physical_sizes = [1.0, 2.0, 3.0]',
+        r"measured_surface\.physical_sizes.*at most 2",
+    ),
+    (
+        'topography = "periodic.nc", physical_sizes = [19.2]',
+        r"topography.*already stores its lateral size",
+    ),
+    (
+        'hurst = 0.8, short_cutoff = 3.2e-6, long_cutoff = 25.6e-6, unit = "µm"',
+        r"measured_surface\.unit: only with a topography",
+    ),
+]
+
+
+@pytest.mark.parametrize("ms, match", _MAP_ERRORS)
+def test_case_measured_map_calibration_errors_name_the_field(tmp_path, ms, match):
+    """A map's lateral calibration given wrongly, or where it does not belong, is refused
+    with the field named."""
+    from tribodyn.config import Case
+
+    z = _write_map(tmp_path / "periodic.nc")
+    np.save(tmp_path / "pair.npy", z * 1e6)
+    text = _SET.format(extra=f'asperity_model = "measured"\nmeasured_surface = {{ {ms} }}')
+    with pytest.raises(InputError, match=match):
+        Case.from_toml_string(text, base_dir=tmp_path)
 
 
 def test_measured_map_law_is_computed_once_per_file_and_pair(tmp_path, monkeypatch):
