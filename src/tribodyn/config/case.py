@@ -22,7 +22,7 @@ from __future__ import annotations
 import dataclasses
 import difflib
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated, Any, ClassVar
 
 import tomli_w
 from pydantic import (
@@ -68,7 +68,7 @@ from .schema import (
     typical_materials,
     typical_surface_sets,
 )
-from .tomlfile import check_nesting, parse_toml, read_toml_text
+from .tomlfile import TomlFile, check_nesting
 
 __all__ = [
     "Case",
@@ -121,9 +121,11 @@ class SurfaceSet:
         return self.bodies[1].coating
 
 
-class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
+class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, TomlFile):
     """A validated case. Build it with :func:`load_case`, :meth:`from_toml_string` or
     :meth:`from_dict`; every section has defaults (module text)."""
+
+    toml_kind: ClassVar[str] = "case"
 
     case: CaseInfo = Field(default_factory=CaseInfo)
     engine: Engine = Field(default_factory=Engine)
@@ -261,19 +263,6 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
             raise InputError(
                 format_validation_error(exc, cls, source, variants={"cam": CAM_MODELS})
             ) from None
-
-    @classmethod
-    def from_toml_string(cls, text: str, *, base_dir=None, source=None) -> Case:
-        """Parse and validate TOML text (see :meth:`from_dict` for ``base_dir``)."""
-        data = parse_toml(text, source)
-        return cls.from_dict(data, base_dir=base_dir, source=source)
-
-    @classmethod
-    def from_toml(cls, path) -> Case:
-        """Read and validate a case file; relative paths resolve against its folder."""
-        p = Path(path)
-        text = read_toml_text(p, "case")
-        return cls.from_toml_string(text, base_dir=p.resolve().parent, source=p)
 
     def updated(self, changes: dict) -> Case:
         """A new case with some keys changed and everything validated again.

@@ -12,11 +12,18 @@ from __future__ import annotations
 import tomllib
 from collections.abc import Iterable
 from pathlib import Path
-from typing import Any, NoReturn
+from typing import Any, ClassVar, NoReturn, Self
 
 from .._validation import InputError
 
-__all__ = ["MAX_BYTES", "MAX_NESTING", "check_nesting", "parse_toml", "read_toml_text"]
+__all__ = [
+    "MAX_BYTES",
+    "MAX_NESTING",
+    "TomlFile",
+    "check_nesting",
+    "parse_toml",
+    "read_toml_text",
+]
 
 #: Largest case or sweep file [bytes] (the bundled ones are a few kB).
 MAX_BYTES = 10_000_000
@@ -100,3 +107,27 @@ def check_nesting(data, source=None) -> None:
     :data:`MAX_NESTING` (for data given as Python objects rather than TOML text)."""
     if _depth(data) > MAX_NESTING:
         _too_deep(f"{source}: " if source is not None else "")
+
+
+class TomlFile:
+    """Loading from TOML for a class with ``from_dict(data, *, base_dir, source)``: the
+    :class:`~tribodyn.config.Case` (``toml_kind = "case"``) and the sweep spec."""
+
+    toml_kind: ClassVar[str]
+
+    @classmethod
+    def from_dict(cls, data: dict, *, base_dir=None, source=None) -> Self:
+        raise NotImplementedError
+
+    @classmethod
+    def from_toml_string(cls, text: str, *, base_dir=None, source=None) -> Self:
+        """Parse and validate TOML text (see ``from_dict`` for ``base_dir``)."""
+        data = parse_toml(text, source)
+        return cls.from_dict(data, base_dir=base_dir, source=source)
+
+    @classmethod
+    def from_toml(cls, path) -> Self:
+        """Read and validate a file; relative paths resolve against its folder."""
+        p = Path(path)
+        text = read_toml_text(p, cls.toml_kind)
+        return cls.from_toml_string(text, base_dir=p.resolve().parent, source=p)
