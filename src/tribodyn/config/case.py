@@ -68,7 +68,7 @@ from .schema import (
     typical_materials,
     typical_surface_sets,
 )
-from .tomlfile import TomlFile, check_nesting
+from .tomlfile import TomlFile, check_nesting, file_or_bundled
 
 __all__ = [
     "Case",
@@ -494,12 +494,7 @@ def load_case(path: PathLike | None = None) -> Case:
     """
     if path is None:
         return Case.from_toml(DEFAULT_CASE)
-    p = Path(path)
-    if not p.exists():
-        bundled = bundled_cases()
-        if p.stem in bundled and p.parent == Path(".") and p.suffix in ("", ".toml"):
-            return Case.from_toml(bundled[p.stem])
-    return Case.from_toml(p)
+    return Case.from_toml(file_or_bundled(path, bundled_cases()))
 
 
 def to_toml(data: dict, *, header: list[str] | None = None) -> str:

@@ -38,7 +38,7 @@ from .case import Case, bundled_cases, load_case, to_toml
 from .errors import Problems, format_validation_error
 from .paths import Key, PathError, parse_path, schema_field, set_path
 from .schema import CAM_MODELS, Section, _q
-from .tomlfile import TomlFile, check_nesting
+from .tomlfile import TomlFile, check_nesting, file_or_bundled, is_bundled_name
 
 __all__ = [
     "SweepInfo",
@@ -405,7 +405,7 @@ def _load_base(name: str, base_dir: Path, problems):
         if cand.exists():
             case = load_case(cand)
             return case, str(cand.resolve())
-        if p.stem in bundled_cases() and p.parent == Path(".") and p.suffix in ("", ".toml"):
+        if is_bundled_name(p, bundled_cases()):
             return load_case(p.stem), p.stem
         problems.append(
             (
@@ -574,9 +574,4 @@ def bundled_sweeps() -> dict[str, Path]:
 
 def load_sweep(path: PathLike) -> SweepSpec:
     """Load and validate a sweep file (or a bundled sweep by name)."""
-    p = Path(path)
-    if not p.exists():
-        bundled = bundled_sweeps()
-        if p.stem in bundled and p.parent == Path(".") and p.suffix in ("", ".toml"):
-            return SweepSpec.from_toml(bundled[p.stem])
-    return SweepSpec.from_toml(p)
+    return SweepSpec.from_toml(file_or_bundled(path, bundled_sweeps()))

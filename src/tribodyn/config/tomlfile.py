@@ -10,7 +10,7 @@ the interpreter's recursion limit while parsing or validating.
 from __future__ import annotations
 
 import tomllib
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any, ClassVar, NoReturn, Self
 
@@ -21,6 +21,8 @@ __all__ = [
     "MAX_NESTING",
     "TomlFile",
     "check_nesting",
+    "file_or_bundled",
+    "is_bundled_name",
     "parse_toml",
     "read_toml_text",
 ]
@@ -31,6 +33,20 @@ MAX_BYTES = 10_000_000
 MAX_NESTING = 32
 
 _BOM = "\ufeff"
+
+
+def is_bundled_name(path: Path, bundled: Mapping[str, Path]) -> bool:
+    """``path`` is the bare name of a bundled file (no folder; no suffix, or ``.toml``)."""
+    return path.stem in bundled and path.parent == Path(".") and path.suffix in ("", ".toml")
+
+
+def file_or_bundled(path, bundled: Mapping[str, Path]) -> Path:
+    """``path`` if it exists; else the bundled file it names (:func:`is_bundled_name`),
+    such as ``"andreou2023"``; else ``path`` (reading it then says that it is missing)."""
+    p = Path(path)
+    if not p.exists() and is_bundled_name(p, bundled):
+        return bundled[p.stem]
+    return p
 
 
 def read_toml_text(path, what: str) -> str:
