@@ -41,8 +41,9 @@ actually used is reported with a warning.
 from __future__ import annotations
 
 import math
+from abc import ABC, abstractmethod
 from dataclasses import dataclass
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 
@@ -99,68 +100,62 @@ def check_map_size(shape, what: str = "the map") -> None:
 _LN2 = math.log(2.0)
 
 
-class SamplingLike(Protocol):
-    """What the band checks read of a sampling: a map's :class:`Sampling` or a profile's
-    :class:`~tribodyn.topography.profile.ProfileSampling` (lengths in m)."""
+class SamplingLike(ABC):
+    """A map's :class:`Sampling` or a profile's
+    :class:`~tribodyn.topography.profile.ProfileSampling` (lengths in m): what the band
+    checks read, and the description and dict the two share. ``undefined_fraction`` is the
+    share of points that were undefined in the file and filled before the analysis."""
+
+    nb_grid_pts: tuple[int, ...]
+    pixel_size: tuple[float, ...]
+    physical_sizes: tuple[float, ...]
+    periodic: bool
+    undefined_fraction: float
+
+    UNITS = {"pixel_size": "m", "physical_sizes": "m"}
 
     @property
-    def pixel_size(self) -> tuple[float, ...]: ...
+    @abstractmethod
+    def nyquist_wavelength(self) -> float:
+        """Shortest wavelength resolved in every direction [m]."""
 
     @property
-    def periodic(self) -> bool: ...
+    @abstractmethod
+    def longest_wavelength(self) -> float:
+        """Longest wavelength contained in every direction [m]."""
 
-    @property
-    def undefined_fraction(self) -> float: ...
+    @abstractmethod
+    def _layout(self) -> str:
+        """Points, spacing and extent, in words."""
 
-    @property
-    def nyquist_wavelength(self) -> float: ...
+    def describe(self) -> str:
+        """The layout, with the share of filled points if any."""
+        text = self._layout()
+        if self.undefined_fraction > 0:
+            text += f", {self.undefined_fraction:.2%} undefined points filled"
+        return text
 
-    @property
-    def longest_wavelength(self) -> float: ...
-
-    def describe(self) -> str: ...
-
-    @property
-    def nb_grid_pts(self) -> tuple[int, ...]: ...
-
-    @property
-    def physical_sizes(self) -> tuple[float, ...]: ...
-
-
-def filled_note(sampling: SamplingLike, text: str) -> str:
-    """``text`` (a sampling's description) with the share of filled points, if any."""
-    if sampling.undefined_fraction > 0:
-        text += f", {sampling.undefined_fraction:.2%} undefined points filled"
-    return text
-
-
-def sampling_dict(sampling: SamplingLike) -> dict:
-    """A sampling as a dict: points, pixel size and lengths [m], periodic, filled share."""
-    return {
-        "nb_grid_pts": list(sampling.nb_grid_pts),
-        "pixel_size": list(sampling.pixel_size),
-        "physical_sizes": list(sampling.physical_sizes),
-        "periodic": sampling.periodic,
-        "undefined_fraction": sampling.undefined_fraction,
-        "units": dict(Sampling.UNITS),
-    }
+    def to_dict(self) -> dict:
+        """Points, pixel size and lengths [m], periodic, filled share."""
+        return {
+            "nb_grid_pts": list(self.nb_grid_pts),
+            "pixel_size": list(self.pixel_size),
+            "physical_sizes": list(self.physical_sizes),
+            "periodic": self.periodic,
+            "undefined_fraction": self.undefined_fraction,
+            "units": dict(self.UNITS),
+        }
 
 
 @dataclass(frozen=True)
-class Sampling:
-    """Sampling of a topography map. Lengths in m.
-
-    ``undefined_fraction`` is the share of points that were undefined in the file and
-    filled before the analysis.
-    """
+class Sampling(SamplingLike):
+    """Sampling of a topography map. Lengths in m (:class:`SamplingLike`)."""
 
     nb_grid_pts: tuple[int, int]
     pixel_size: tuple[float, float]
     physical_sizes: tuple[float, float]
     periodic: bool
     undefined_fraction: float = 0.0
-
-    UNITS = {"pixel_size": "m", "physical_sizes": "m"}
 
     @classmethod
     def of(cls, topography, undefined_fraction: float = 0.0) -> Sampling:
@@ -187,16 +182,12 @@ class Sampling:
         """min(L_x, L_y): longest wavelength contained in every direction [m]."""
         return min(self.physical_sizes)
 
-    def describe(self) -> str:
+    def _layout(self) -> str:
         (nx, ny), (dx, dy), (lx, ly) = self.nb_grid_pts, self.pixel_size, self.physical_sizes
-        return filled_note(
-            self,
+        return (
             f"{nx} × {ny} points, pixel {_um(dx)} × {_um(dy)} µm, "
-            f"area {_um(lx)} × {_um(ly)} µm, {'periodic' if self.periodic else 'non-periodic'}",
+            f"area {_um(lx)} × {_um(ly)} µm, {'periodic' if self.periodic else 'non-periodic'}"
         )
-
-    def to_dict(self) -> dict:
-        return sampling_dict(self)
 
 
 @dataclass(frozen=True)

@@ -41,11 +41,10 @@ from .filtering import (
     DETREND_MODES,
     Band,
     BandSpec,
+    SamplingLike,
     check_band,
     check_map_size,
     default_band,
-    filled_note,
-    sampling_dict,
 )
 from .height_statistics import HeightStatistics, height_statistics
 from .results import AsperityParameters, _TomlMixin
@@ -67,7 +66,7 @@ def _um(x: float) -> str:
 
 
 @dataclass(frozen=True)
-class ProfileSampling:
+class ProfileSampling(SamplingLike):
     """Sampling of a profile: points, spacing Δ [m], length L [m], filled share."""
 
     nb_grid_pts: tuple[int]
@@ -84,15 +83,11 @@ class ProfileSampling:
     def longest_wavelength(self) -> float:
         return self.physical_sizes[0]
 
-    def describe(self) -> str:
-        return filled_note(
-            self,
+    def _layout(self) -> str:
+        return (
             f"profile of {self.nb_grid_pts[0]} points, spacing {_um(self.pixel_size[0])} "
-            f"µm, length {_um(self.physical_sizes[0])} µm",
+            f"µm, length {_um(self.physical_sizes[0])} µm"
         )
-
-    def to_dict(self) -> dict:
-        return sampling_dict(self)
 
 
 @dataclass(frozen=True)
