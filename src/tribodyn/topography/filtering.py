@@ -389,6 +389,29 @@ def band_pass(topography, band: Band):
     )
 
 
+def check_filtering(detrend: str, min_defined_fraction: float) -> float:
+    """The checks of the filtering options a map and a profile share: ``detrend`` one of
+    :data:`DETREND_MODES`, ``min_defined_fraction`` in [0, 1] (returned as a float)."""
+    if detrend not in DETREND_MODES:
+        raise InputError(f"detrend must be one of {DETREND_MODES} (got {detrend!r})")
+    return check_range("min_defined_fraction", min_defined_fraction, 0.0, 1.0)
+
+
+def applied_band(
+    band: BandSpec,
+    sampling: SamplingLike,
+    *,
+    kind: str,
+    clip: bool,
+    reliability_cutoff: float | None = None,
+) -> Band:
+    """The band a filter applies: :func:`default_band` for ``"auto"``, else the given
+    band checked against the sampling (:func:`check_band`)."""
+    if isinstance(band, str) and band == AUTO_BAND:
+        return default_band(sampling, kind=kind, reliability_cutoff=reliability_cutoff)
+    return check_band(band, sampling, kind=kind, clip=clip, reliability_cutoff=reliability_cutoff)
+
+
 def prepare_topography(
     topography: Any,
     band: BandSpec = AUTO_BAND,
@@ -422,9 +445,7 @@ def prepare_topography(
         raise InsufficientDataError("an areal (2-D) map is needed to identify summits")
     if topography.unit not in ("m", None):
         topography = topography.to_unit("m")
-    min_defined_fraction = check_range("min_defined_fraction", min_defined_fraction, 0.0, 1.0)
-    if detrend not in DETREND_MODES:
-        raise InputError(f"detrend must be one of {DETREND_MODES} (got {detrend!r})")
+    min_defined_fraction = check_filtering(detrend, min_defined_fraction)
     nx, ny = topography.nb_grid_pts
     check_map_size((nx, ny))
     if min(nx, ny) < MIN_GRID_PTS:
@@ -446,12 +467,9 @@ def prepare_topography(
         reliability = topography.short_reliability_cutoff()
     except Exception:  # instrument metadata incomplete: no cutoff
         reliability = None
-    if isinstance(band, str) and band == AUTO_BAND:
-        applied = default_band(sampling, kind=kind, reliability_cutoff=reliability)
-    else:
-        applied = check_band(
-            band, sampling, kind=kind, clip=clip_band, reliability_cutoff=reliability
-        )
+    applied = applied_band(
+        band, sampling, kind=kind, clip=clip_band, reliability_cutoff=reliability
+    )
 
     if n_defined < n_total:
         from SurfaceTopography import Topography

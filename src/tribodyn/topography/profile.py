@@ -34,17 +34,16 @@ from typing import Any
 
 import numpy as np
 
-from .._validation import InputError, check_range
+from .._validation import InputError
 from .errors import InsufficientDataError
 from .filtering import (
     AUTO_BAND,
-    DETREND_MODES,
     Band,
     BandSpec,
     SamplingLike,
-    check_band,
+    applied_band,
+    check_filtering,
     check_map_size,
-    default_band,
 )
 from .height_statistics import HeightStatistics, height_statistics
 from .results import AsperityParameters, _TomlMixin
@@ -221,9 +220,7 @@ def analyse_profile(
     name = "profile" if name is None else name
     if getattr(line, "unit", "m") not in ("m", None):
         line = line.to_unit("m")
-    if detrend not in DETREND_MODES:
-        raise InputError(f"detrend must be one of {DETREND_MODES} (got {detrend!r})")
-    min_defined_fraction = check_range("min_defined_fraction", min_defined_fraction, 0.0, 1.0)
+    min_defined_fraction = check_filtering(detrend, min_defined_fraction)
     raw = line.heights()
     check_map_size(np.shape(raw), "the profile")
     h = np.asarray(np.ma.getdata(raw), dtype=float).ravel()
@@ -240,11 +237,7 @@ def analyse_profile(
             f"only {int(measured.sum())} of {n} points ({share:.1%}) are measured"
         )
     sampling = ProfileSampling((n,), (dx,), (n * dx,), periodic, float(1.0 - share))
-    applied = (
-        default_band(sampling, kind=kind)
-        if isinstance(band, str) and band == AUTO_BAND
-        else check_band(band, sampling, kind=kind, clip=clip_band)
-    )
+    applied = applied_band(band, sampling, kind=kind, clip=clip_band)
     x = np.arange(n) * dx
     if filled.any():  # 1-D harmonic interpolation = linear
         h = h.copy()
