@@ -44,7 +44,7 @@ from ..valvetrain.kinematics import rpm_to_cam_speed
 from ..valvetrain.tappet_rotation import TappetRotation
 from .build import BuiltCase, build, collect, options_for
 from .case_strength import StrengthBuilders
-from .case_thermal import ThermalBuilders
+from .case_thermal import OIL_LAW_KEYS, ThermalBuilders
 from .case_valvetrain import CamValvetrainBuilders
 from .errors import CaseKeyError, Problems, format_validation_error
 from .measured_surface import measured_map, measured_roughness
@@ -385,11 +385,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             viscosity=c.viscosity,
             pressure_viscosity=c.pressure_viscosity,
             density=c.density,
-            eyring_stress=c.eyring_stress,
-            limiting_shear_coefficient=c.limiting_shear_coefficient,
-            limiting_shear_stress=c.limiting_shear_stress,
-            compressible=c.compressible,
-            viscosity_model=c.viscosity_model,
+            **c.model_dump(include=OIL_LAW_KEYS),
         )
 
     def material(self, name: str) -> Material:
