@@ -61,6 +61,8 @@ __all__ = [
     "Sampling",
     "SamplingLike",
     "check_band",
+    "check_filtering",
+    "applied_band",
     "default_band",
     "band_pass",
     "prepare_topography",

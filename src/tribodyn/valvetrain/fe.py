@@ -29,7 +29,14 @@ import scipy.linalg as sla
 
 from .._validation import InputError, check_positive, check_range
 
-__all__ = ["AxialFEModel", "ReducedBody", "craig_bampton", "MASS_MIXING"]
+__all__ = [
+    "AxialFEModel",
+    "ReducedBody",
+    "craig_bampton",
+    "ModalBody",
+    "check_count",
+    "MASS_MIXING",
+]
 
 #: share of the consistent mass in the element mass matrix (0.5: fourth-order accurate)
 MASS_MIXING = 0.5
