@@ -18,7 +18,7 @@ from rich.console import Console
 from rich.markup import escape
 
 from .. import paper
-from .failure import fail
+from .failure import fail, writing
 
 __all__ = ["calibrate_command", "read_friction_csv", "calibration_toml"]
 
@@ -239,13 +239,8 @@ def calibrate_command(
         )
         text = calibration_toml(cal, data.name, label, rough)
         if output is not None:
-            try:
-                with open(output, "x", encoding="utf-8") as f:
-                    f.write(text)
-            except OSError as exc:
-                raise InputError(
-                    f"--output: cannot write {str(output)!r} ({exc.strerror or exc})"
-                ) from None
+            with writing("--output", output), open(output, "x", encoding="utf-8") as f:
+                f.write(text)
     except InputError as exc:
         fail(err, exc)
     if as_json:

@@ -5,13 +5,15 @@ a closing ``[/…]``."""
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import NoReturn
 
 import typer
 from rich.console import Console
 from rich.markup import escape
 
-__all__ = ["fail"]
+__all__ = ["fail", "writing"]
 
 
 def fail(console: Console, message: object, *, code: int = 2, label: str = "error") -> NoReturn:
@@ -19,3 +21,15 @@ def fail(console: Console, message: object, *, code: int = 2, label: str = "erro
     and leave the command with exit ``code``."""
     console.print(f"[red]{label}:[/red] {escape(str(message))}", highlight=False, soft_wrap=True)
     raise typer.Exit(code)
+
+
+@contextmanager
+def writing(option: str, path: object) -> Iterator[None]:
+    """Inside: an :class:`OSError` becomes an :class:`~tribodyn.InputError`
+    ``option: cannot write 'path' (reason)`` (the file a command option names)."""
+    try:
+        yield
+    except OSError as exc:
+        from .._validation import InputError  # numpy: only once a command runs
+
+        raise InputError(f"{option}: cannot write {str(path)!r} ({exc.strerror or exc})") from None

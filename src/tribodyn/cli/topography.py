@@ -16,7 +16,7 @@ from rich.console import Console, JustifyMethod
 from rich.markup import escape
 from rich.table import Table
 
-from .failure import fail
+from .failure import fail, writing
 
 __all__ = ["topography_command"]
 
@@ -306,12 +306,8 @@ def topography_command(
                     f"--figure must be a file name ending in .png, .pdf or .svg "
                     f"(got {str(figure)!r})"
                 )
-            try:
+            with writing("--figure", figure):
                 fig_path = plot_height_distribution(result, figure)
-            except OSError as exc:
-                raise InputError(
-                    f"--figure: cannot write {str(figure)!r} ({exc.strerror or exc})"
-                ) from None
     except InputError as exc:
         fail(err, exc)
 

@@ -14,74 +14,19 @@ selectors) · :mod:`.sweep` (sweep files). Usage::
                       options=case.ehl_options(s))
 """
 
-from .case import (
-    CASES_DIR,
-    DEFAULT_CASE,
-    Case,
-    SurfaceSet,
-    bundled_cases,
-    load_case,
-    set_dotted,
-    to_toml,
-)
+from . import case as _case
+from . import schema as _schema
+from .case import *  # noqa: F403 (the names in its __all__)
 from .errors import format_validation_error
 from .paths import PathError, get_path, parse_path, set_path
-from .schema import (
-    CAM_MODELS,
-    AccelerationCamConfig,
-    AuxiliaryFrictionConfig,
-    CamshaftConfig,
-    CaseInfo,
-    CircularArcCamConfig,
-    Engine,
-    LobeConfig,
-    LubricantConfig,
-    MaterialConfig,
-    MeasuredSurfaceConfig,
-    Numerics,
-    RoughnessConfig,
-    SpringConfig,
-    StrengthConfig,
-    StressConfig,
-    SurfaceSetConfig,
-    TableCamConfig,
-    TappetConfig,
-    ValveConfig,
-    Valvetrain,
-)
+from .schema import *  # noqa: F403 (the names in its __all__)
 from .sweep import SweepPoint, SweepSpec, bundled_sweeps, load_sweep
 
+#: the public names of :mod:`.case` and :mod:`.schema`, and a few of the others
 __all__ = [
-    "Case",
-    "SurfaceSet",
-    "load_case",
-    "bundled_cases",
-    "DEFAULT_CASE",
-    "CASES_DIR",
-    "to_toml",
-    "set_dotted",
+    *_case.__all__,
+    *_schema.__all__,
     "format_validation_error",
-    "CAM_MODELS",
-    "CaseInfo",
-    "Engine",
-    "LobeConfig",
-    "AuxiliaryFrictionConfig",
-    "AccelerationCamConfig",
-    "CircularArcCamConfig",
-    "TableCamConfig",
-    "Valvetrain",
-    "LubricantConfig",
-    "MaterialConfig",
-    "MeasuredSurfaceConfig",
-    "RoughnessConfig",
-    "StrengthConfig",
-    "StressConfig",
-    "SurfaceSetConfig",
-    "Numerics",
-    "ValveConfig",
-    "TappetConfig",
-    "SpringConfig",
-    "CamshaftConfig",
     "PathError",
     "parse_path",
     "set_path",

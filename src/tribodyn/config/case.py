@@ -22,7 +22,7 @@ from __future__ import annotations
 import dataclasses
 import difflib
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated, Any, ClassVar
 
 import tomli_w
 from pydantic import (
@@ -44,7 +44,7 @@ from ..valvetrain.kinematics import rpm_to_cam_speed
 from ..valvetrain.tappet_rotation import TappetRotation
 from .build import BuiltCase, build, collect, options_for
 from .case_strength import StrengthBuilders
-from .case_thermal import ThermalBuilders
+from .case_thermal import OIL_LAW_KEYS, ThermalBuilders
 from .case_valvetrain import CamValvetrainBuilders
 from .errors import CaseKeyError, Problems, format_validation_error
 from .measured_surface import measured_map, measured_roughness
@@ -68,7 +68,7 @@ from .schema import (
     typical_materials,
     typical_surface_sets,
 )
-from .tomlfile import check_nesting, parse_toml, read_toml_text
+from .tomlfile import TomlFile, check_nesting, file_or_bundled
 
 __all__ = [
     "Case",
@@ -121,9 +121,11 @@ class SurfaceSet:
         return self.bodies[1].coating
 
 
-class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
+class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, TomlFile):
     """A validated case. Build it with :func:`load_case`, :meth:`from_toml_string` or
     :meth:`from_dict`; every section has defaults (module text)."""
+
+    toml_kind: ClassVar[str] = "case"
 
     case: CaseInfo = Field(default_factory=CaseInfo)
     engine: Engine = Field(default_factory=Engine)
@@ -262,19 +264,6 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
                 format_validation_error(exc, cls, source, variants={"cam": CAM_MODELS})
             ) from None
 
-    @classmethod
-    def from_toml_string(cls, text: str, *, base_dir=None, source=None) -> Case:
-        """Parse and validate TOML text (see :meth:`from_dict` for ``base_dir``)."""
-        data = parse_toml(text, source)
-        return cls.from_dict(data, base_dir=base_dir, source=source)
-
-    @classmethod
-    def from_toml(cls, path) -> Case:
-        """Read and validate a case file; relative paths resolve against its folder."""
-        p = Path(path)
-        text = read_toml_text(p, "case")
-        return cls.from_toml_string(text, base_dir=p.resolve().parent, source=p)
-
     def updated(self, changes: dict) -> Case:
         """A new case with some keys changed and everything validated again.
 
@@ -396,11 +385,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section):
             viscosity=c.viscosity,
             pressure_viscosity=c.pressure_viscosity,
             density=c.density,
-            eyring_stress=c.eyring_stress,
-            limiting_shear_coefficient=c.limiting_shear_coefficient,
-            limiting_shear_stress=c.limiting_shear_stress,
-            compressible=c.compressible,
-            viscosity_model=c.viscosity_model,
+            **c.model_dump(include=OIL_LAW_KEYS),
         )
 
     def material(self, name: str) -> Material:
@@ -505,12 +490,7 @@ def load_case(path: PathLike | None = None) -> Case:
     """
     if path is None:
         return Case.from_toml(DEFAULT_CASE)
-    p = Path(path)
-    if not p.exists():
-        bundled = bundled_cases()
-        if p.stem in bundled and p.parent == Path(".") and p.suffix in ("", ".toml"):
-            return Case.from_toml(bundled[p.stem])
-    return Case.from_toml(p)
+    return Case.from_toml(file_or_bundled(path, bundled_cases()))
 
 
 def to_toml(data: dict, *, header: list[str] | None = None) -> str:

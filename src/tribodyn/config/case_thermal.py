@@ -19,6 +19,16 @@ if TYPE_CHECKING:
     from .schema import CamConfig, LubricantConfig, MaterialConfig, Numerics, SurfaceSetConfig
 
 
+#: ``[lubricant]`` keys that the isothermal and the thermal oil take unchanged
+OIL_LAW_KEYS = {
+    "eyring_stress",
+    "limiting_shear_coefficient",
+    "limiting_shear_stress",
+    "compressible",
+    "viscosity_model",
+}
+
+
 class ThermalBuilders:
     """The thermal oil, thermal bodies and thermal options of a
     :class:`~tribodyn.config.case.Case`."""
@@ -50,16 +60,12 @@ class ThermalBuilders:
                 "(the oil supply temperature, °C)"
             )
         common: dict[str, Any] = dict(
+            c.model_dump(include=OIL_LAW_KEYS),
             inlet_temperature=c.inlet_temperature_c + 273.15,
             thermal_expansion=c.thermal_expansion,
             thermal_conductivity=c.thermal_conductivity,
             specific_heat=c.specific_heat,
-            eyring_stress=c.eyring_stress,
-            limiting_shear_coefficient=c.limiting_shear_coefficient,
-            limiting_shear_stress=c.limiting_shear_stress,
             limiting_shear_temperature_coefficient=(c.limiting_shear_temperature_coefficient),
-            compressible=c.compressible,
-            viscosity_model=c.viscosity_model,
         )
         given = c.model_fields_set
         if c.datasheet:

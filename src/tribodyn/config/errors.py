@@ -10,13 +10,13 @@ from __future__ import annotations
 
 import difflib
 import re
-import types
 from collections.abc import Mapping
-from typing import Any, Union, get_args, get_origin
+from typing import Any, get_args, get_origin
 
 from pydantic import BaseModel, ValidationError
 
 from .._validation import InputError
+from .paths import keyed_fields, strip_optional
 
 __all__ = ["Problems", "CamTableError", "CaseKeyError", "format_validation_error"]
 
@@ -89,19 +89,6 @@ def _given(v) -> str:
     return repr(v)
 
 
-def _strip_optional(ann):
-    if get_origin(ann) in (Union, types.UnionType):  # Optional[X] and X | None
-        args = [a for a in get_args(ann) if a is not type(None)]
-        if len(args) == 1:
-            return args[0]
-    return ann
-
-
-def _fields_by_key(model) -> dict:
-    """Fields of a model keyed as they appear in the file (alias if any)."""
-    return {(fi.alias or name): fi for name, fi in model.model_fields.items()}
-
-
 def _resolve_loc(root, loc, variants) -> tuple[str, Any, Any]:
     """Dotted path of ``loc`` plus the FieldInfo and the model owning the last key."""
     path = ""
@@ -114,7 +101,7 @@ def _resolve_loc(root, loc, variants) -> tuple[str, Any, Any]:
         item = items[i]
         if isinstance(cur, type) and issubclass(cur, BaseModel):
             owner = cur
-            fi = _fields_by_key(cur).get(item) if isinstance(item, str) else None
+            fi = keyed_fields(cur).get(item) if isinstance(item, str) else None
             path = f"{path}.{item}" if path else str(item)
             if fi is None:
                 cur = None
@@ -125,7 +112,7 @@ def _resolve_loc(root, loc, variants) -> tuple[str, Any, Any]:
                     cur = variants[item][items[i + 1]]
                     i += 1
             else:
-                cur = _strip_optional(fi.annotation)
+                cur = strip_optional(fi.annotation)
         elif get_origin(cur) is list:
             path = f"{path}[{item}]"
             cur = get_args(cur)[0]
@@ -145,7 +132,7 @@ def _resolve_loc(root, loc, variants) -> tuple[str, Any, Any]:
 
 def _allowed_keys(model) -> list[str]:
     if isinstance(model, type) and issubclass(model, BaseModel):
-        return list(_fields_by_key(model))
+        return list(keyed_fields(model))
     return []
 
 
@@ -183,7 +170,7 @@ def _error_lines(err: Mapping[str, Any], root, variants) -> list[tuple[str, str]
     if typ in ("union_tag_not_found", "model_type", "model_attributes_type", "dict_type"):
         return [(path, f"must be a table{got}")]
     if typ == "list_type":
-        item = get_args(_strip_optional(fi.annotation)) if fi is not None else ()
+        item = get_args(strip_optional(fi.annotation)) if fi is not None else ()
         if item and not (isinstance(item[0], type) and issubclass(item[0], BaseModel)):
             return [(path, f"must be an array ([…]){got}")]
         return [(path, f"must be an array of tables ([[{path}]]){got}")]
@@ -197,16 +184,8 @@ def _error_lines(err: Mapping[str, Any], root, variants) -> list[tuple[str, str]
         ]
     if typ in ("float_type", "float_parsing"):
         return [(path, f"must be a number{_unit_hint(fi)}{got}")]
-    if typ in ("int_type", "int_parsing", "int_from_float"):
-        return [(path, f"must be an integer{got}")]
-    if typ == "bool_type":
-        return [(path, f"must be true or false{got}")]
-    if typ == "string_type":
-        return [(path, f"must be a string{got}")]
-    if typ == "finite_number":
-        return [(path, f"must be a finite number{got}")]
-    if typ == "string_too_short":
-        return [(path, f"must not be empty{got}")]
+    if typ in _TYPE_MESSAGES:
+        return [(path, f"{_TYPE_MESSAGES[typ]}{got}")]
     if typ == "string_too_long":
         return [(path, f"must have at most {ctx.get('max_length')} characters{got}")]
     if typ == "string_pattern_mismatch":
@@ -220,6 +199,18 @@ def _error_lines(err: Mapping[str, Any], root, variants) -> list[tuple[str, str]
     if typ == "value_error":
         return [(path, f"{ctx.get('error', err['msg'])}")]
     return [(path, f"{err['msg']}{got}")]
+
+
+#: pydantic error types whose message is fixed text (then the value given)
+_TYPE_MESSAGES = {
+    "int_type": "must be an integer",
+    "int_parsing": "must be an integer",
+    "int_from_float": "must be an integer",
+    "bool_type": "must be true or false",
+    "string_type": "must be a string",
+    "finite_number": "must be a finite number",
+    "string_too_short": "must not be empty",
+}
 
 
 def _unit_hint(fi) -> str:

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import difflib
 import re
+import types
 from dataclasses import dataclass
 from typing import Any, Union, get_args, get_origin
 
@@ -281,15 +282,17 @@ def find_paths(data: dict, path: str | list) -> list[tuple[str, Any]]:
 
 
 # ----------------------------------------------------------------------------- schema
-def _strip_optional(ann):
-    if get_origin(ann) is Union:
+def strip_optional(ann):
+    """X of an ``Optional[X]`` or ``X | None`` annotation; any other annotation as is."""
+    if get_origin(ann) in (Union, types.UnionType):
         args = [a for a in get_args(ann) if a is not type(None)]
         if len(args) == 1:
             return args[0]
     return ann
 
 
-def _keyed_fields(model) -> dict:
+def keyed_fields(model) -> dict:
+    """Fields of a model keyed as they appear in the file (alias if any)."""
     return {(fi.alias or name): fi for name, fi in model.model_fields.items()}
 
 
@@ -309,7 +312,7 @@ def schema_field(root, path, data: dict | None = None, variants: dict | None = N
     for t in tokens:
         if isinstance(t, Key):
             if isinstance(cur, type) and issubclass(cur, BaseModel):
-                fields = _keyed_fields(cur)
+                fields = keyed_fields(cur)
                 if t.name not in fields:
                     hint = difflib.get_close_matches(t.name, list(fields), n=1)
                     more = f"; did you mean {hint[0]!r}?" if hint else ""
@@ -322,7 +325,7 @@ def schema_field(root, path, data: dict | None = None, variants: dict | None = N
                         tag = node[t.name].get("type")
                     cur = variants[t.name].get(tag or next(iter(variants[t.name])))
                 else:
-                    cur = _strip_optional(fi.annotation)
+                    cur = strip_optional(fi.annotation)
                 node = node.get(t.name) if isinstance(node, dict) else None
             elif get_origin(cur) is dict:
                 cur = get_args(cur)[1]
@@ -349,6 +352,6 @@ def schema_field(root, path, data: dict | None = None, variants: dict | None = N
     if isinstance(cur, type) and issubclass(cur, BaseModel):
         raise PathError(
             f"{format_path(tokens)}: is a table; give one of its keys "
-            f"({', '.join(_keyed_fields(cur))})"
+            f"({', '.join(keyed_fields(cur))})"
         )
     return fi

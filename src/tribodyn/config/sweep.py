@@ -20,7 +20,7 @@ import hashlib
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Annotated, Any, Literal, Optional, Union
+from typing import Annotated, Any, ClassVar, Literal, Optional, Union
 
 from pydantic import (
     Field,
@@ -38,7 +38,7 @@ from .case import Case, bundled_cases, load_case, to_toml
 from .errors import Problems, format_validation_error
 from .paths import Key, PathError, parse_path, schema_field, set_path
 from .schema import CAM_MODELS, Section, _q
-from .tomlfile import check_nesting, parse_toml, read_toml_text
+from .tomlfile import TomlFile, check_nesting, file_or_bundled, is_bundled_name
 
 __all__ = [
     "SweepInfo",
@@ -258,8 +258,10 @@ def _fmt(v) -> str:
 
 
 @dataclass
-class SweepSpec:
+class SweepSpec(TomlFile):
     """A validated sweep: base case (with the fixed changes), axes and dimensions."""
+
+    toml_kind: ClassVar[str] = "sweep"
 
     config: SweepFile
     base: Case
@@ -380,17 +382,6 @@ class SweepSpec:
             raise InputError(_message(problems, source))
         return spec
 
-    @classmethod
-    def from_toml_string(cls, text: str, *, base_dir=None, source=None) -> SweepSpec:
-        data = parse_toml(text, source)
-        return cls.from_dict(data, base_dir=base_dir, source=source)
-
-    @classmethod
-    def from_toml(cls, path) -> SweepSpec:
-        p = Path(path)
-        text = read_toml_text(p, "sweep")
-        return cls.from_toml_string(text, base_dir=p.resolve().parent, source=p)
-
 
 def _message(problems, source) -> str:
     n = len(problems)
@@ -414,7 +405,7 @@ def _load_base(name: str, base_dir: Path, problems):
         if cand.exists():
             case = load_case(cand)
             return case, str(cand.resolve())
-        if p.stem in bundled_cases() and p.parent == Path(".") and p.suffix in ("", ".toml"):
+        if is_bundled_name(p, bundled_cases()):
             return load_case(p.stem), p.stem
         problems.append(
             (
@@ -583,9 +574,4 @@ def bundled_sweeps() -> dict[str, Path]:
 
 def load_sweep(path: PathLike) -> SweepSpec:
     """Load and validate a sweep file (or a bundled sweep by name)."""
-    p = Path(path)
-    if not p.exists():
-        bundled = bundled_sweeps()
-        if p.stem in bundled and p.parent == Path(".") and p.suffix in ("", ".toml"):
-            return SweepSpec.from_toml(bundled[p.stem])
-    return SweepSpec.from_toml(p)
+    return SweepSpec.from_toml(file_or_bundled(path, bundled_sweeps()))

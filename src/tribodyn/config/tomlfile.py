@@ -10,13 +10,22 @@ the interpreter's recursion limit while parsing or validating.
 from __future__ import annotations
 
 import tomllib
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any, NoReturn
+from typing import Any, ClassVar, NoReturn, Self
 
 from .._validation import InputError
 
-__all__ = ["MAX_BYTES", "MAX_NESTING", "check_nesting", "parse_toml", "read_toml_text"]
+__all__ = [
+    "MAX_BYTES",
+    "MAX_NESTING",
+    "TomlFile",
+    "check_nesting",
+    "file_or_bundled",
+    "is_bundled_name",
+    "parse_toml",
+    "read_toml_text",
+]
 
 #: Largest case or sweep file [bytes] (the bundled ones are a few kB).
 MAX_BYTES = 10_000_000
@@ -24,6 +33,20 @@ MAX_BYTES = 10_000_000
 MAX_NESTING = 32
 
 _BOM = "\ufeff"
+
+
+def is_bundled_name(path: Path, bundled: Mapping[str, Path]) -> bool:
+    """``path`` is the bare name of a bundled file (no folder; no suffix, or ``.toml``)."""
+    return path.stem in bundled and path.parent == Path(".") and path.suffix in ("", ".toml")
+
+
+def file_or_bundled(path, bundled: Mapping[str, Path]) -> Path:
+    """``path`` if it exists; else the bundled file it names (:func:`is_bundled_name`),
+    such as ``"andreou2023"``; else ``path`` (reading it then says that it is missing)."""
+    p = Path(path)
+    if not p.exists() and is_bundled_name(p, bundled):
+        return bundled[p.stem]
+    return p
 
 
 def read_toml_text(path, what: str) -> str:
@@ -100,3 +123,27 @@ def check_nesting(data, source=None) -> None:
     :data:`MAX_NESTING` (for data given as Python objects rather than TOML text)."""
     if _depth(data) > MAX_NESTING:
         _too_deep(f"{source}: " if source is not None else "")
+
+
+class TomlFile:
+    """Loading from TOML for a class with ``from_dict(data, *, base_dir, source)``: the
+    :class:`~tribodyn.config.Case` (``toml_kind = "case"``) and the sweep spec."""
+
+    toml_kind: ClassVar[str]
+
+    @classmethod
+    def from_dict(cls, data: dict, *, base_dir=None, source=None) -> Self:
+        raise NotImplementedError
+
+    @classmethod
+    def from_toml_string(cls, text: str, *, base_dir=None, source=None) -> Self:
+        """Parse and validate TOML text (see ``from_dict`` for ``base_dir``)."""
+        data = parse_toml(text, source)
+        return cls.from_dict(data, base_dir=base_dir, source=source)
+
+    @classmethod
+    def from_toml(cls, path) -> Self:
+        """Read and validate a file; relative paths resolve against its folder."""
+        p = Path(path)
+        text = read_toml_text(p, cls.toml_kind)
+        return cls.from_toml_string(text, base_dir=p.resolve().parent, source=p)

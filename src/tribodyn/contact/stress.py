@@ -65,8 +65,8 @@ class SurfaceLoads:
 
 
 def shear_options(options: EHLOptions) -> dict:
-    """The surface-shear keywords of :func:`profile_surface_loads` and
-    :func:`batch_surface_loads` taken from an :class:`~tribodyn.EHLOptions`."""
+    """The surface-shear keywords of :func:`profile_surface_loads` taken from an
+    :class:`~tribodyn.EHLOptions`."""
     return {
         "viscous_model": options.viscous_model,
         "limiting_shear": options.limiting_shear,
@@ -107,10 +107,10 @@ def profile_surface_loads(
         bodies,
         lubricant,
         roughness,
-        viscous_model,
-        limiting_shear,
-        boundary_shear_coefficient,
-        boundary_shear_strength,
+        viscous_model=viscous_model,
+        limiting_shear=limiting_shear,
+        boundary_shear_coefficient=boundary_shear_coefficient,
+        boundary_shear_strength=boundary_shear_strength,
     )
 
 
@@ -122,15 +122,13 @@ def batch_surface_loads(
     bodies,
     lubricant,
     roughness=None,
-    *,
-    viscous_model: str = "eyring",
-    limiting_shear: bool = True,
-    boundary_shear_coefficient: float | None = None,
-    boundary_shear_strength: float | None = None,
+    options: EHLOptions | None = None,
 ) -> SurfaceLoads:
     """:func:`profile_surface_loads` of many profiles at once (the fast path of a cycle):
     ``x``, ``pressure``, ``film`` (samples, k) on uniform rows, ``sliding_speed``
-    (samples,); finite float arrays, unchecked. The fields are (samples, k)."""
+    (samples,); finite float arrays, unchecked. The friction laws are those of
+    ``options`` (an :class:`~tribodyn.EHLOptions`, default the defaults). The fields are
+    (samples, k)."""
     x = np.asarray(x, float)
     us = np.asarray(sliding_speed, float)[:, None]
     return _loads(
@@ -141,10 +139,7 @@ def batch_surface_loads(
         bodies,
         lubricant,
         roughness,
-        viscous_model,
-        limiting_shear,
-        boundary_shear_coefficient,
-        boundary_shear_strength,
+        **shear_options(options if options is not None else EHLOptions()),
     )
 
 
@@ -156,6 +151,7 @@ def _loads(
     bodies,
     lubricant,
     roughness,
+    *,
     viscous_model,
     limiting_shear,
     boundary_shear_coefficient,

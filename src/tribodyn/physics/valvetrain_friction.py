@@ -82,6 +82,18 @@ __all__ = [
 TAPPET_BORE_SHARE_MEASURED = 0.13
 
 
+def _check_part(part: str, geometry, lengths, thin_film_of: str | None = None) -> None:
+    """Checks of a lubricated part's geometry (messages name ``part``): the ``lengths``
+    [m] positive; a friction coefficient, if it has one, in [0, 1]; with ``thin_film_of``,
+    the radial clearance below 5 % of that length (a thin film)."""
+    for k in lengths:
+        check_positive(f"{part} {k}", getattr(geometry, k), "m")
+    if hasattr(geometry, "friction_coefficient"):
+        check_range(f"{part} friction_coefficient", geometry.friction_coefficient, 0.0, 1.0)
+    if thin_film_of is not None and geometry.clearance >= 0.05 * getattr(geometry, thin_film_of):
+        raise InputError(f"{part} clearance must be below 5 % of the {thin_film_of} (a thin film)")
+
+
 @dataclass(frozen=True)
 class BoreGeometry:
     """Tappet bore: diameter D [m], guided length L_g [m], radial clearance c [m], lower
@@ -94,12 +106,8 @@ class BoreGeometry:
     friction_coefficient: float = 0.1
 
     def __post_init__(self):
-        for k in ("diameter", "guided_length", "clearance"):
-            check_positive(f"bore {k}", getattr(self, k), "m")
+        _check_part("bore", self, ("diameter", "guided_length", "clearance"), "diameter")
         check_nonnegative("bore edge_offset", self.edge_offset, "m")
-        check_range("bore friction_coefficient", self.friction_coefficient, 0.0, 1.0)
-        if self.clearance >= 0.05 * self.diameter:
-            raise InputError("bore clearance must be below 5 % of the diameter (a thin film)")
 
 
 @dataclass(frozen=True)
@@ -111,10 +119,7 @@ class JournalGeometry:
     clearance: float
 
     def __post_init__(self):
-        for k in ("radius", "length", "clearance"):
-            check_positive(f"journal {k}", getattr(self, k), "m")
-        if self.clearance >= 0.05 * self.radius:
-            raise InputError("journal clearance must be below 5 % of the radius (a thin film)")
+        _check_part("journal", self, ("radius", "length", "clearance"), "radius")
 
 
 @dataclass(frozen=True)
@@ -129,10 +134,8 @@ class GuideGeometry:
     side_load: float = 0.0
 
     def __post_init__(self):
-        for k in ("stem_diameter", "length", "clearance"):
-            check_positive(f"guide {k}", getattr(self, k), "m")
+        _check_part("guide", self, ("stem_diameter", "length", "clearance"))
         check_nonnegative("guide side_load", self.side_load, "N")
-        check_range("guide friction_coefficient", self.friction_coefficient, 0.0, 1.0)
 
 
 def annulus_couette_force(viscosity, diameter, length, clearance, velocity):

@@ -372,27 +372,14 @@ def analyse_surface(
     else:
         topo = source
         name = "surface" if name is None else name
+    filtering: dict[str, Any] = dict(
+        kind=kind, detrend=detrend, clip_band=clip_band, min_defined_fraction=min_defined_fraction
+    )
     if topo.dim == 1:
         from .profile import analyse_profile
 
-        return analyse_profile(
-            topo,
-            band,
-            kind=kind,
-            detrend=detrend,
-            clip_band=clip_band,
-            min_defined_fraction=min_defined_fraction,
-            name=name,
-            source=src,
-        )
-    filtered, applied, sampling, filled = prepare_topography(
-        topo,
-        band,
-        kind=kind,
-        detrend=detrend,
-        clip_band=clip_band,
-        min_defined_fraction=min_defined_fraction,
-    )
+        return analyse_profile(topo, band, name=name, source=src, **filtering)
+    filtered, applied, sampling, filled = prepare_topography(topo, band, **filtering)
     return analyse_filtered(filtered, applied, sampling, name=name, source=src, filled=filled)
 
 

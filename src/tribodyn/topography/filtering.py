@@ -41,8 +41,9 @@ actually used is reported with a warning.
 from __future__ import annotations
 
 import math
+from abc import ABC, abstractmethod
 from dataclasses import dataclass
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 
@@ -60,6 +61,8 @@ __all__ = [
     "Sampling",
     "SamplingLike",
     "check_band",
+    "check_filtering",
+    "applied_band",
     "default_band",
     "band_pass",
     "prepare_topography",
@@ -99,68 +102,62 @@ def check_map_size(shape, what: str = "the map") -> None:
 _LN2 = math.log(2.0)
 
 
-class SamplingLike(Protocol):
-    """What the band checks read of a sampling: a map's :class:`Sampling` or a profile's
-    :class:`~tribodyn.topography.profile.ProfileSampling` (lengths in m)."""
+class SamplingLike(ABC):
+    """A map's :class:`Sampling` or a profile's
+    :class:`~tribodyn.topography.profile.ProfileSampling` (lengths in m): what the band
+    checks read, and the description and dict the two share. ``undefined_fraction`` is the
+    share of points that were undefined in the file and filled before the analysis."""
+
+    nb_grid_pts: tuple[int, ...]
+    pixel_size: tuple[float, ...]
+    physical_sizes: tuple[float, ...]
+    periodic: bool
+    undefined_fraction: float
+
+    UNITS = {"pixel_size": "m", "physical_sizes": "m"}
 
     @property
-    def pixel_size(self) -> tuple[float, ...]: ...
+    @abstractmethod
+    def nyquist_wavelength(self) -> float:
+        """Shortest wavelength resolved in every direction [m]."""
 
     @property
-    def periodic(self) -> bool: ...
+    @abstractmethod
+    def longest_wavelength(self) -> float:
+        """Longest wavelength contained in every direction [m]."""
 
-    @property
-    def undefined_fraction(self) -> float: ...
+    @abstractmethod
+    def _layout(self) -> str:
+        """Points, spacing and extent, in words."""
 
-    @property
-    def nyquist_wavelength(self) -> float: ...
+    def describe(self) -> str:
+        """The layout, with the share of filled points if any."""
+        text = self._layout()
+        if self.undefined_fraction > 0:
+            text += f", {self.undefined_fraction:.2%} undefined points filled"
+        return text
 
-    @property
-    def longest_wavelength(self) -> float: ...
-
-    def describe(self) -> str: ...
-
-    @property
-    def nb_grid_pts(self) -> tuple[int, ...]: ...
-
-    @property
-    def physical_sizes(self) -> tuple[float, ...]: ...
-
-
-def filled_note(sampling: SamplingLike, text: str) -> str:
-    """``text`` (a sampling's description) with the share of filled points, if any."""
-    if sampling.undefined_fraction > 0:
-        text += f", {sampling.undefined_fraction:.2%} undefined points filled"
-    return text
-
-
-def sampling_dict(sampling: SamplingLike) -> dict:
-    """A sampling as a dict: points, pixel size and lengths [m], periodic, filled share."""
-    return {
-        "nb_grid_pts": list(sampling.nb_grid_pts),
-        "pixel_size": list(sampling.pixel_size),
-        "physical_sizes": list(sampling.physical_sizes),
-        "periodic": sampling.periodic,
-        "undefined_fraction": sampling.undefined_fraction,
-        "units": dict(Sampling.UNITS),
-    }
+    def to_dict(self) -> dict:
+        """Points, pixel size and lengths [m], periodic, filled share."""
+        return {
+            "nb_grid_pts": list(self.nb_grid_pts),
+            "pixel_size": list(self.pixel_size),
+            "physical_sizes": list(self.physical_sizes),
+            "periodic": self.periodic,
+            "undefined_fraction": self.undefined_fraction,
+            "units": dict(self.UNITS),
+        }
 
 
 @dataclass(frozen=True)
-class Sampling:
-    """Sampling of a topography map. Lengths in m.
-
-    ``undefined_fraction`` is the share of points that were undefined in the file and
-    filled before the analysis.
-    """
+class Sampling(SamplingLike):
+    """Sampling of a topography map. Lengths in m (:class:`SamplingLike`)."""
 
     nb_grid_pts: tuple[int, int]
     pixel_size: tuple[float, float]
     physical_sizes: tuple[float, float]
     periodic: bool
     undefined_fraction: float = 0.0
-
-    UNITS = {"pixel_size": "m", "physical_sizes": "m"}
 
     @classmethod
     def of(cls, topography, undefined_fraction: float = 0.0) -> Sampling:
@@ -187,16 +184,12 @@ class Sampling:
         """min(L_x, L_y): longest wavelength contained in every direction [m]."""
         return min(self.physical_sizes)
 
-    def describe(self) -> str:
+    def _layout(self) -> str:
         (nx, ny), (dx, dy), (lx, ly) = self.nb_grid_pts, self.pixel_size, self.physical_sizes
-        return filled_note(
-            self,
+        return (
             f"{nx} × {ny} points, pixel {_um(dx)} × {_um(dy)} µm, "
-            f"area {_um(lx)} × {_um(ly)} µm, {'periodic' if self.periodic else 'non-periodic'}",
+            f"area {_um(lx)} × {_um(ly)} µm, {'periodic' if self.periodic else 'non-periodic'}"
         )
-
-    def to_dict(self) -> dict:
-        return sampling_dict(self)
 
 
 @dataclass(frozen=True)
@@ -398,6 +391,29 @@ def band_pass(topography, band: Band):
     )
 
 
+def check_filtering(detrend: str, min_defined_fraction: float) -> float:
+    """The checks of the filtering options a map and a profile share: ``detrend`` one of
+    :data:`DETREND_MODES`, ``min_defined_fraction`` in [0, 1] (returned as a float)."""
+    if detrend not in DETREND_MODES:
+        raise InputError(f"detrend must be one of {DETREND_MODES} (got {detrend!r})")
+    return check_range("min_defined_fraction", min_defined_fraction, 0.0, 1.0)
+
+
+def applied_band(
+    band: BandSpec,
+    sampling: SamplingLike,
+    *,
+    kind: str,
+    clip: bool,
+    reliability_cutoff: float | None = None,
+) -> Band:
+    """The band a filter applies: :func:`default_band` for ``"auto"``, else the given
+    band checked against the sampling (:func:`check_band`)."""
+    if isinstance(band, str) and band == AUTO_BAND:
+        return default_band(sampling, kind=kind, reliability_cutoff=reliability_cutoff)
+    return check_band(band, sampling, kind=kind, clip=clip, reliability_cutoff=reliability_cutoff)
+
+
 def prepare_topography(
     topography: Any,
     band: BandSpec = AUTO_BAND,
@@ -431,9 +447,7 @@ def prepare_topography(
         raise InsufficientDataError("an areal (2-D) map is needed to identify summits")
     if topography.unit not in ("m", None):
         topography = topography.to_unit("m")
-    min_defined_fraction = check_range("min_defined_fraction", min_defined_fraction, 0.0, 1.0)
-    if detrend not in DETREND_MODES:
-        raise InputError(f"detrend must be one of {DETREND_MODES} (got {detrend!r})")
+    min_defined_fraction = check_filtering(detrend, min_defined_fraction)
     nx, ny = topography.nb_grid_pts
     check_map_size((nx, ny))
     if min(nx, ny) < MIN_GRID_PTS:
@@ -455,12 +469,9 @@ def prepare_topography(
         reliability = topography.short_reliability_cutoff()
     except Exception:  # instrument metadata incomplete: no cutoff
         reliability = None
-    if isinstance(band, str) and band == AUTO_BAND:
-        applied = default_band(sampling, kind=kind, reliability_cutoff=reliability)
-    else:
-        applied = check_band(
-            band, sampling, kind=kind, clip=clip_band, reliability_cutoff=reliability
-        )
+    applied = applied_band(
+        band, sampling, kind=kind, clip=clip_band, reliability_cutoff=reliability
+    )
 
     if n_defined < n_total:
         from SurfaceTopography import Topography

@@ -20,6 +20,7 @@ import numpy as np
 
 from .._typing import ArrayLike
 from .._validation import InputError, check_array, check_positive
+from .records import record_dict
 
 __all__ = ["HeightStatistics", "height_statistics", "gaussian_pdf"]
 
@@ -46,13 +47,7 @@ class HeightStatistics:
         return None
 
     def to_dict(self) -> dict:
-        return {
-            "rms": self.rms,
-            "mean": self.mean,
-            "skewness": self.skewness,
-            "kurtosis": self.kurtosis,
-            "units": dict(self.UNITS),
-        }
+        return record_dict(self)
 
 
 def height_statistics(heights: ArrayLike) -> HeightStatistics:

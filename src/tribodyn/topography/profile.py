@@ -34,18 +34,16 @@ from typing import Any
 
 import numpy as np
 
-from .._validation import InputError, check_range
+from .._validation import InputError
 from .errors import InsufficientDataError
 from .filtering import (
     AUTO_BAND,
-    DETREND_MODES,
     Band,
     BandSpec,
-    check_band,
+    SamplingLike,
+    applied_band,
+    check_filtering,
     check_map_size,
-    default_band,
-    filled_note,
-    sampling_dict,
 )
 from .height_statistics import HeightStatistics, height_statistics
 from .results import AsperityParameters, _TomlMixin
@@ -67,7 +65,7 @@ def _um(x: float) -> str:
 
 
 @dataclass(frozen=True)
-class ProfileSampling:
+class ProfileSampling(SamplingLike):
     """Sampling of a profile: points, spacing Δ [m], length L [m], filled share."""
 
     nb_grid_pts: tuple[int]
@@ -84,15 +82,11 @@ class ProfileSampling:
     def longest_wavelength(self) -> float:
         return self.physical_sizes[0]
 
-    def describe(self) -> str:
-        return filled_note(
-            self,
+    def _layout(self) -> str:
+        return (
             f"profile of {self.nb_grid_pts[0]} points, spacing {_um(self.pixel_size[0])} "
-            f"µm, length {_um(self.physical_sizes[0])} µm",
+            f"µm, length {_um(self.physical_sizes[0])} µm"
         )
-
-    def to_dict(self) -> dict:
-        return sampling_dict(self)
 
 
 @dataclass(frozen=True)
@@ -226,9 +220,7 @@ def analyse_profile(
     name = "profile" if name is None else name
     if getattr(line, "unit", "m") not in ("m", None):
         line = line.to_unit("m")
-    if detrend not in DETREND_MODES:
-        raise InputError(f"detrend must be one of {DETREND_MODES} (got {detrend!r})")
-    min_defined_fraction = check_range("min_defined_fraction", min_defined_fraction, 0.0, 1.0)
+    min_defined_fraction = check_filtering(detrend, min_defined_fraction)
     raw = line.heights()
     check_map_size(np.shape(raw), "the profile")
     h = np.asarray(np.ma.getdata(raw), dtype=float).ravel()
@@ -245,11 +237,7 @@ def analyse_profile(
             f"only {int(measured.sum())} of {n} points ({share:.1%}) are measured"
         )
     sampling = ProfileSampling((n,), (dx,), (n * dx,), periodic, float(1.0 - share))
-    applied = (
-        default_band(sampling, kind=kind)
-        if isinstance(band, str) and band == AUTO_BAND
-        else check_band(band, sampling, kind=kind, clip=clip_band)
-    )
+    applied = applied_band(band, sampling, kind=kind, clip=clip_band)
     x = np.arange(n) * dx
     if filled.any():  # 1-D harmonic interpolation = linear
         h = h.copy()

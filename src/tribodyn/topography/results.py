@@ -16,6 +16,7 @@ from .._validation import InputError
 from ..physics.asperity import Roughness
 from .filtering import Band, Sampling
 from .height_statistics import HeightStatistics
+from .records import record_dict
 from .spectral_moments import McCoolParameters, SpectralMoments
 from .summits import SummitStatistics
 
@@ -60,16 +61,7 @@ class AsperityParameters:
         )
 
     def to_dict(self) -> dict:
-        return {
-            "method": self.method,
-            "asperity_density": self.asperity_density,
-            "rms": self.rms,
-            "summit_radius": self.summit_radius,
-            "roughness_parameter": self.roughness_parameter,
-            "summit_height_mean": self.summit_height_mean,
-            "summit_height_std": self.summit_height_std,
-            "units": dict(self.UNITS),
-        }
+        return record_dict(self, "roughness_parameter")
 
 
 def _summit_parameters(s: SummitStatistics, rms: float) -> AsperityParameters:

@@ -38,6 +38,7 @@ import math
 from dataclasses import dataclass
 
 from .._validation import InputError, check_positive
+from .records import record_dict
 
 __all__ = [
     "SpectralMoments",
@@ -59,7 +60,7 @@ class SpectralMoments:
     m2: float
     m4: float
 
-    UNITS = {"m0": "m²", "m2": "-", "m4": "1/m²"}
+    UNITS = {"m0": "m²", "m2": "-", "m4": "1/m²", "alpha": "-"}
 
     @property
     def alpha(self) -> float:
@@ -71,13 +72,7 @@ class SpectralMoments:
         return SpectralMoments(self.m0 + other.m0, self.m2 + other.m2, self.m4 + other.m4)
 
     def to_dict(self) -> dict:
-        return {
-            "m0": self.m0,
-            "m2": self.m2,
-            "m4": self.m4,
-            "alpha": self.alpha,
-            "units": dict(self.UNITS, alpha="-"),
-        }
+        return record_dict(self, "alpha")
 
 
 @dataclass(frozen=True)

@@ -27,9 +27,16 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg as sla
 
-from .._validation import InputError, check_positive
+from .._validation import InputError, check_positive, check_range
 
-__all__ = ["AxialFEModel", "ReducedBody", "craig_bampton", "MASS_MIXING"]
+__all__ = [
+    "AxialFEModel",
+    "ReducedBody",
+    "craig_bampton",
+    "ModalBody",
+    "check_count",
+    "MASS_MIXING",
+]
 
 #: share of the consistent mass in the element mass matrix (0.5: fourth-order accurate)
 MASS_MIXING = 0.5
@@ -249,3 +256,39 @@ def craig_bampton(
         modal_frequencies=f_all[:kk].copy(),
         interior_frequencies=f_all,
     )
+
+
+def check_count(name: str, v, lo: int, hi: int, allow_none: bool = False) -> None:
+    """An integer ``v`` in [lo, hi] (or None with ``allow_none``), else an InputError."""
+    if v is None and allow_none:
+        return
+    if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi:
+        raise InputError(f"{name} must be an integer in [{lo}, {hi}] (got {v!r})")
+
+
+@dataclass(frozen=True, kw_only=True)
+class ModalBody:
+    """The Craig–Bampton settings of an FE body (keyword-only fields): ``modes``, the
+    fixed-interface modes kept, or all up to ``cutoff`` [Hz] when modes is None (default
+    5 kHz, well above the cam's harmonics and the spring's first surge modes);
+    ``damping_ratio``, the modal ζ (:func:`craig_bampton`)."""
+
+    modes: int | None = None
+    cutoff: float | None = 5000.0
+    damping_ratio: float = 0.02
+
+    def _check_modal(self) -> None:
+        check_count("modes", self.modes, 0, 400, allow_none=True)
+        check_range("damping_ratio", self.damping_ratio, 0.0, 1.0, hi_open=True)
+
+    def reduce(self, fe: AxialFEModel, boundary, name: str) -> ReducedBody:
+        """:func:`craig_bampton` of the body's FE model ``fe`` with these settings."""
+        return craig_bampton(
+            fe.M,
+            fe.K,
+            boundary,
+            modes=self.modes,
+            cutoff=self.cutoff,
+            damping_ratio=self.damping_ratio,
+            name=name,
+        )

@@ -28,9 +28,9 @@ import math
 from dataclasses import dataclass, replace
 
 from .. import paper
-from .._validation import InputError, check_positive, check_range
+from .._validation import InputError, check_positive
 from .camshaft import Camshaft
-from .fe import AxialFEModel, ReducedBody, craig_bampton
+from .fe import AxialFEModel, ModalBody, ReducedBody, check_count
 from .parameters import ValvetrainParameters
 from .spring import HelicalSpring
 
@@ -40,21 +40,13 @@ STEEL_DENSITY = 7850.0  # kg/m³ (ASSUMED where a case gives none)
 STEEL_E = paper.STEEL["E"]  # Pa (paper Table 6)
 
 
-def _check_count(name, v, lo, hi, allow_none=False):
-    if v is None and allow_none:
-        return
-    if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi:
-        raise InputError(f"{name} must be an integer in [{lo}, {hi}] (got {v!r})")
-
-
 @dataclass(frozen=True)
-class ValveGeometry:
+class ValveGeometry(ModalBody):
     """Poppet valve: stem_diameter, stem_length (tip to stem end) [m], retainer_position
     (tip to collet groove) [m], retainer_mass (retainer + collets) [kg], head_mass [kg],
     head_stiffness [N/m], seat_stiffness (seat insert + seat contact) [N/m], E [Pa],
-    density [kg/m³], elements (stem bar elements), modes / cutoff [Hz] (Craig–Bampton: k
-    modes, or all up to the cut-off when modes is None; default 5 kHz, well above the cam's
-    harmonics and the spring's first surge modes), damping_ratio (modal ζ)."""
+    density [kg/m³], elements (stem bar elements); modes, cutoff, damping_ratio
+    (:class:`~tribodyn.valvetrain.fe.ModalBody`)."""
 
     stem_diameter: float
     stem_length: float
@@ -66,9 +58,6 @@ class ValveGeometry:
     E: float = STEEL_E
     density: float = STEEL_DENSITY
     elements: int = 12
-    modes: int | None = None
-    cutoff: float | None = 5000.0
-    damping_ratio: float = 0.02
 
     def __post_init__(self):
         for n, u in (
@@ -88,9 +77,8 @@ class ValveGeometry:
                 f"retainer_position must be < stem_length (got "
                 f"{self.retainer_position:g} m >= {self.stem_length:g} m)"
             )
-        _check_count("elements", self.elements, 2, 400)
-        _check_count("modes", self.modes, 0, 400, allow_none=True)
-        check_range("damping_ratio", self.damping_ratio, 0.0, 1.0, hi_open=True)
+        check_count("elements", self.elements, 2, 400)
+        self._check_modal()
 
     @property
     def stem_area(self) -> float:
@@ -141,10 +129,11 @@ class ValveGeometry:
 
 
 @dataclass(frozen=True)
-class TappetGeometry:
+class TappetGeometry(ModalBody):
     """Bucket tappet: ``model`` "fe" (crown + skirt bars) or "lumped" (one mass ``mass``);
     radius (outer) [m], crown_thickness, skirt_length, skirt_thickness [m], E [Pa],
-    density [kg/m³], elements (skirt; the crown gets 2), modes / cutoff, damping_ratio."""
+    density [kg/m³], elements (skirt; the crown gets 2); modes, cutoff, damping_ratio
+    (:class:`~tribodyn.valvetrain.fe.ModalBody`)."""
 
     model: str = "fe"
     mass: float | None = None
@@ -155,9 +144,6 @@ class TappetGeometry:
     E: float = STEEL_E
     density: float = STEEL_DENSITY
     elements: int = 6
-    modes: int | None = None
-    cutoff: float | None = 5000.0
-    damping_ratio: float = 0.02
 
     def __post_init__(self):
         if self.model not in ("fe", "lumped"):
@@ -178,9 +164,8 @@ class TappetGeometry:
             check_positive(n, getattr(self, n), u)
         if self.skirt_thickness >= self.radius:
             raise InputError("skirt_thickness must be below the tappet radius")
-        _check_count("elements", self.elements, 1, 400)
-        _check_count("modes", self.modes, 0, 400, allow_none=True)
-        check_range("damping_ratio", self.damping_ratio, 0.0, 1.0, hi_open=True)
+        check_count("elements", self.elements, 1, 400)
+        self._check_modal()
 
     @property
     def total_mass(self) -> float:
@@ -303,38 +288,13 @@ class FlexibleValvetrain:
         v, t, s = self.valve, self.tappet, self.spring
         out = {}
         fv = v.fe_model()
-        out["valve"] = craig_bampton(
-            fv.M,
-            fv.K,
-            [fv.labels[k] for k in ("seat", "retainer")],
-            modes=v.modes,
-            cutoff=v.cutoff,
-            damping_ratio=v.damping_ratio,
-            name="valve",
-        )
+        out["valve"] = v.reduce(fv, [fv.labels[k] for k in ("seat", "retainer")], "valve")
         ft = t.fe_model()
-        bt = [ft.labels["face"]]
-        out["tappet"] = craig_bampton(
-            ft.M,
-            ft.K,
-            bt,
-            modes=t.modes,
-            cutoff=t.cutoff,
-            damping_ratio=t.damping_ratio,
-            name="tappet",
-        )
+        out["tappet"] = t.reduce(ft, [ft.labels["face"]], "tappet")
         fs = s.fe_model()
         clash = s.clash_nodes(self.max_spring_force(max_lift))
         bs = [0] + [j for j in clash if 0 < j < fs.n - 1] + [fs.n - 1]
-        out["spring"] = craig_bampton(
-            fs.M,
-            fs.K,
-            bs,
-            modes=s.modes,
-            cutoff=s.cutoff,
-            damping_ratio=s.damping_ratio,
-            name="spring",
-        )
+        out["spring"] = s.reduce(fs, bs, "spring")
         return out
 
     # -- the lumped companion --------------------------------------------------------------

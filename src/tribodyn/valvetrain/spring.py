@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._validation import InputError, check_positive, check_range
-from .fe import AxialFEModel
+from .fe import AxialFEModel, ModalBody, check_count
 from .parameters import PALMGREN_COEFFICIENT
 
 __all__ = ["HelicalSpring", "SpringStatics"]
@@ -48,7 +48,7 @@ class SpringStatics:
 
 
 @dataclass(frozen=True)
-class HelicalSpring:
+class HelicalSpring(ModalBody):
     """Cylindrical helical compression spring (SI units).
 
     wire_diameter d, mean_diameter D [m]; active_coils n_a (may be fractional);
@@ -58,8 +58,9 @@ class HelicalSpring:
         (n_a must then be an integer) and sets the free length of the active part;
     dead_coils : closed end coils at each end (their mass at the retainer end moves with it);
     shear_modulus G [Pa], density ρ [kg/m³];
-    elements_per_coil : FE mesh of the continuum; modes : fixed-interface modes kept
-        (Craig–Bampton), or all up to ``cutoff`` [Hz] when modes is None; damping_ratio : modal ζ of the surge modes;
+    elements_per_coil : FE mesh of the continuum; modes, cutoff, damping_ratio : the
+        Craig–Bampton settings (:class:`~tribodyn.valvetrain.fe.ModalBody`; ζ of the
+        surge modes);
     clash_margin : coils whose static closing force is below clash_margin × the largest
         working force are kept as interface nodes (their clash is resolved exactly);
     clash_damping : damping of a closed coil contact [N·s/m].
@@ -75,9 +76,6 @@ class HelicalSpring:
     shear_modulus: float = 79.3e9
     density: float = 7850.0
     elements_per_coil: int = 2
-    modes: int | None = None
-    cutoff: float | None = 5000.0
-    damping_ratio: float = 0.02
     clash_margin: float = 1.25
     clash_damping: float = 50.0
     _derived: dict = field(default_factory=dict, init=False, repr=False, compare=False)
@@ -95,11 +93,9 @@ class HelicalSpring:
         ):
             check_positive(name, getattr(self, name), unit)
         check_range("dead_coils", self.dead_coils, 0.0, 10.0)
-        check_range("damping_ratio", self.damping_ratio, 0.0, 1.0, hi_open=True)
+        self._check_modal()
         check_range("clash_damping", self.clash_damping, 0.0, 1e6)
-        e = self.elements_per_coil
-        if isinstance(e, bool) or not isinstance(e, int) or not 1 <= e <= 20:
-            raise InputError(f"elements_per_coil must be an integer in [1, 20] (got {e!r})")
+        check_count("elements_per_coil", self.elements_per_coil, 1, 20)
         d, D = self.wire_diameter, self.mean_diameter
         if not D > d:
             raise InputError(

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..contact.stress import batch_surface_loads, loaded_half_width, shear_options
+from ..contact.stress import batch_surface_loads, loaded_half_width
 from ..physics.asperity_stress import micro_contact_estimate
 from ..physics.materials import as_bodies, reduced_modulus
 from ..physics.strength import (
@@ -156,7 +156,7 @@ def stress_along_cycle(
             pair,
             lubricant,
             roughness,
-            **shear_options(opts),
+            opts,
         )
         for r, i in enumerate(samples):
             loads[int(i)] = (xs[r], ld.pressure[r], ld.traction_cam[r], ld.traction_tappet[r])

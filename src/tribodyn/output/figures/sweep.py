@@ -178,19 +178,27 @@ def _finish(fig, axes, path, title, note):
     return save_figure(fig, path)
 
 
-def fig_friction(ds, path):
+def _line_figure(ds, panels, rows=1, height=4.4):
+    """(fig, axes, note): a line panel per ``(name, scale, ylabel)`` of ``panels`` over
+    the sweep's x axis (one line per surface set and combination of the other axes), in
+    ``rows`` rows; ``height`` of the figure [in]."""
     xd = x_dim(ds)
     combos, note = _combos(ds, xd)
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.4), layout="constrained")
-    _line_panel(
-        axes[0],
+    fig, axes = plt.subplots(rows, len(panels) // rows, figsize=(11, height), layout="constrained")
+    axes = list(np.ravel(axes))
+    for ax, (name, scale, ylabel) in zip(axes, panels, strict=True):
+        _line_panel(ax, ds, name, xd, combos, scale, ylabel)
+    return fig, axes, note
+
+
+def fig_friction(ds, path):
+    fig, axes, note = _line_figure(
         ds,
-        "friction_energy_per_cycle_J",
-        xd,
-        combos,
-        ylabel="friction energy per cycle [J]",
+        (
+            ("friction_energy_per_cycle_J", 1.0, "friction energy per cycle [J]"),
+            ("mean_friction_power_W", 1.0, "mean friction power [W]"),
+        ),
     )
-    _line_panel(axes[1], ds, "mean_friction_power_W", xd, combos, ylabel="mean friction power [W]")
     return _finish(fig, axes, path, "Cam–tappet friction loss (transient mixed EHL)", note)
 
 
@@ -198,37 +206,32 @@ def fig_engine_map(ds, path):
     """Engine sweep (``mode = "engine"``): valvetrain FMEP, mean camshaft friction torque
     and power, and each surface's reduction below the reference, over the x axis, one
     line per surface set and combination of the other axes (e.g. oil temperature)."""
-    xd = x_dim(ds)
-    combos, note = _combos(ds, xd)
-    fig, axes = plt.subplots(2, 2, figsize=(11, 8), layout="constrained")
-    a = axes.ravel()
-    _line_panel(a[0], ds, "valvetrain_friction_mep_Pa", xd, combos, 1e-3, "valvetrain FMEP [kPa]")
-    _line_panel(
-        a[1],
+    fig, axes, note = _line_figure(
         ds,
-        "engine_friction_torque_Nm",
-        xd,
-        combos,
-        ylabel="mean camshaft friction torque [N m]",
+        (
+            ("valvetrain_friction_mep_Pa", 1e-3, "valvetrain FMEP [kPa]"),
+            ("engine_friction_torque_Nm", 1.0, "mean camshaft friction torque [N m]"),
+            ("engine_friction_power_W", 1.0, "friction power [W]"),
+            (
+                "engine_friction_reduction_vs_uncoated_pct",
+                1.0,
+                "friction below the reference surface [%]",
+            ),
+        ),
+        rows=2,
+        height=8,
     )
-    _line_panel(a[2], ds, "engine_friction_power_W", xd, combos, ylabel="friction power [W]")
-    _line_panel(
-        a[3],
-        ds,
-        "engine_friction_reduction_vs_uncoated_pct",
-        xd,
-        combos,
-        ylabel="friction below the reference surface [%]",
-    )
-    return _finish(fig, list(a), path, "Valvetrain friction map of the engine", note)
+    return _finish(fig, axes, path, "Valvetrain friction map of the engine", note)
 
 
 def fig_film(ds, path):
-    xd = x_dim(ds)
-    combos, note = _combos(ds, xd)
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.4), layout="constrained")
-    _line_panel(axes[0], ds, "min_film_m", xd, combos, scale=UM, ylabel="minimum film h_min [µm]")
-    _line_panel(axes[1], ds, "min_lambda", xd, combos, ylabel="minimum λ = h_min/σ")
+    fig, axes, note = _line_figure(
+        ds,
+        (
+            ("min_film_m", UM, "minimum film h_min [µm]"),
+            ("min_lambda", 1.0, "minimum λ = h_min/σ"),
+        ),
+    )
     axes[1].axhline(1.0, color="0.5", lw=0.8, ls="--")
     axes[1].axhline(3.0, color="0.5", lw=0.8, ls=":")
     axes[1].text(
