@@ -170,3 +170,62 @@ def test_engine_sweep_needs_an_engine_case():
     text = '[sweep]\nname = "e"\nmode = "engine"\n[[axes]]\npath = "engine.speed_rpm"\nvalues = [1000.0]\n'
     with pytest.raises(InputError, match=r"sweep\.mode.*cylinders"):
         SweepSpec.from_toml_string(text)
+
+
+def _study_with_a_failed_sample(case):
+    """Four samples: unloaded, solved, loaded with a failed EHL step (no friction known),
+    solved; lift 1 mm and s' = 2 mm/rad throughout."""
+    from types import SimpleNamespace
+
+    nan = math.nan
+    res = SimpleNamespace(
+        name=case.surface_set_names[0],
+        loaded=np.array([False, True, True, True]),
+        converged=np.array([True, True, False, True]),
+        viscous_friction=np.array([nan, 1.0, nan, 2.0]),
+        boundary_friction=np.array([nan, 0.5, nan, 0.0]),
+        max_pressure=np.array([nan, 1e9, nan, 1e9]),
+    )
+    inputs = SimpleNamespace(
+        crank_angle=np.array([0.0, 10.0, 20.0, 30.0]),
+        contact_force=np.array([0.0, 500.0, 500.0, 500.0]),
+        sliding_speed=np.ones(4),
+        width=case.width,
+        radius=np.full(4, 0.01),
+    )
+    dyn = SimpleNamespace(
+        crank_angle=np.array([0.0, 720.0]),
+        cam_lift=np.full(2, 1e-3),
+        lift_velocity=np.full(2, 2e-3),
+    )
+    return SimpleNamespace(case=case, dynamics=dyn, inputs=inputs, sets=[res])
+
+
+def test_failed_sample_has_unknown_torques_not_zero():
+    """A loaded sample whose EHL step failed has no friction: its cam–tappet torques are
+    NaN in the study's and the engine's traces (they used to be 0, an invented number),
+    and they are left out of the cycle integral and the maxima. By hand, T_f = F_f (r_b + s),
+    T_drive = W s' + T_f."""
+    from tribodyn.workflow.engine import lobe_traces
+    from tribodyn.workflow.engineering import engineering_outputs
+
+    case = _case()
+    study = _study_with_a_failed_sample(case)
+    rb = case.cam().base_radius
+    t_f = np.array([0.0, 1.5 * (rb + 1e-3), math.nan, 2.0 * (rb + 1e-3)])
+    eng = engineering_outputs(study)
+    lobe = lobe_traces("intake", study, case)
+    for got_f, got_d in (
+        (eng.friction_torque, eng.drive_torque),
+        (lobe.friction_torque, lobe.drive_torque),
+    ):
+        np.testing.assert_allclose(got_f[0], t_f, rtol=1e-12)
+        np.testing.assert_allclose(got_d[0], 500.0 * 2e-3 * (np.arange(4) > 0) + t_f)
+    assert np.isnan(lobe.bore_torque[0, 2]) and np.isfinite(lobe.bore_torque[0, [0, 1, 3]]).all()
+    s = eng.scalars[case.surface_set_names[0]]
+    assert s["max_friction_torque_Nm"] == pytest.approx(t_f[3])
+    assert s["peak_drive_torque_Nm"] == pytest.approx(1.0 + t_f[3])
+    known = np.nan_to_num(t_f)  # trapezoids over the known samples, the failed one as 0
+    energy = np.sum(0.5 * (known[1:] + known[:-1])) * math.radians(10.0) / 2.0
+    assert s["friction_energy_per_cycle_from_torque_J"] == pytest.approx(energy)
+    assert lobe.energy[case.surface_set_names[0]] == pytest.approx(energy)

@@ -348,121 +348,102 @@ def _check_positive(option: str, value: float | None, unit: str) -> None:
         raise InputError(f"{option} must be a finite number > 0 [{unit}] (got {value:g})")
 
 
+def _option(flag: str, *, help: str, panel: str | None = None, **more: Any) -> Any:
+    """The command's option ``flag``: None when not given (the case's or the paper's value
+    applies), listed under ``panel`` in ``--help``."""
+    return typer.Option(None, flag, rich_help_panel=panel, help=help, **more)
+
+
 # ----------------------------------------------------------------------------- command
 def contact_command(
-    load: float | None = typer.Option(None, "--load", help="Normal load [N], total over --width."),
-    load_per_length: float | None = typer.Option(
-        None, "--load-per-length", help="Normal load per unit length [N/m] (instead of --load)."
+    load: float | None = _option("--load", help="Normal load [N], total over --width."),
+    load_per_length: float | None = _option(
+        "--load-per-length", help="Normal load per unit length [N/m] (instead of --load)."
     ),
-    width: float | None = typer.Option(
-        None,
+    width: float | None = _option(
         "--width",
         help="Contact width \\[m] (default "
         f"{paper.CAM_WIDTH:g}, the paper's cam width, or the case's).",
     ),
-    radius: float | None = typer.Option(
-        None, "--radius", help="Reduced radius of curvature R \\[m]."
-    ),
-    ue: float | None = typer.Option(
-        None, "--ue", help="Entrainment speed u_e \\[m/s] (EHL; either sign)."
-    ),
-    us: float | None = typer.Option(
-        None, "--us", help="Sliding speed u_s \\[m/s] (viscous friction; default 0)."
+    radius: float | None = _option("--radius", help="Reduced radius of curvature R \\[m]."),
+    ue: float | None = _option("--ue", help="Entrainment speed u_e \\[m/s] (EHL; either sign)."),
+    us: float | None = _option(
+        "--us", help="Sliding speed u_s \\[m/s] (viscous friction; default 0)."
     ),
     dry: bool = typer.Option(False, "--dry", help="Dry (frictionless) contact instead of EHL."),
-    coating: str | None = typer.Option(
-        None,
+    coating: str | None = _option(
         "--coating",
+        panel=_SURF,
         metavar="E,NU,THICKNESS",
-        rich_help_panel=_SURF,
         help="Tappet coating: E [Pa], ν, thickness \\[m].",
     ),
-    coating_material: str | None = typer.Option(
-        None,
+    coating_material: str | None = _option(
         "--coating-material",
-        rich_help_panel=_SURF,
+        panel=_SURF,
         help="Tappet coating material: dlc, wcc or steel (paper Table 6), or a material of --case.",
     ),
-    coating_thickness: float | None = typer.Option(
-        None, "--coating-thickness", rich_help_panel=_SURF, help="Coating thickness \\[m]."
+    coating_thickness: float | None = _option(
+        "--coating-thickness", panel=_SURF, help="Coating thickness \\[m]."
     ),
-    roughness: str | None = typer.Option(
-        None,
+    roughness: str | None = _option(
         "--roughness",
+        panel=_SURF,
         metavar="ETA,SIGMA,BETA",
-        rich_help_panel=_SURF,
         help="Composite roughness: summit density "
         "[1/m²], RMS \\[m], summit radius \\[m] "
         "(default: smooth).",
     ),
-    surface_set: str | None = typer.Option(
-        None,
+    surface_set: str | None = _option(
         "--surface-set",
-        rich_help_panel=_SURF,
+        panel=_SURF,
         help="Take bodies, roughness and ς from this "
         "surface set of --case (default case: "
         "the paper's).",
     ),
-    case_file: Path | None = typer.Option(
-        None,
+    case_file: Path | None = _option(
         "--case",
-        rich_help_panel=_SURF,
+        panel=_SURF,
         help="Case file for materials, lubricant, numerics and --surface-set.",
     ),
-    shear_coefficient: float | None = typer.Option(
-        None,
+    shear_coefficient: float | None = _option(
         "--shear-coefficient",
-        rich_help_panel=_SURF,
+        panel=_SURF,
         help="Boundary shear coefficient ς (default: of the coating, else steel's, "
         f"{paper.STEEL['boundary_shear_coefficient']:g}).",
     ),
-    viscosity: float | None = typer.Option(
-        None,
-        "--viscosity",
-        rich_help_panel=_LUB,
-        help=f"μ₀ [Pa·s] ({paper.LUBRICANT['viscosity']:g}).",
+    viscosity: float | None = _option(
+        "--viscosity", panel=_LUB, help=f"μ₀ [Pa·s] ({paper.LUBRICANT['viscosity']:g})."
     ),
-    pressure_viscosity: float | None = typer.Option(
-        None,
+    pressure_viscosity: float | None = _option(
         "--pressure-viscosity",
-        rich_help_panel=_LUB,
+        panel=_LUB,
         help=f"α [1/Pa] ({paper.LUBRICANT['pressure_viscosity']:g}).",
     ),
-    density: float | None = typer.Option(
-        None,
-        "--density",
-        rich_help_panel=_LUB,
-        help=f"ρ₀ \\[kg/m³] ({paper.ASSUMED_DENSITY:g}, assumed).",
+    density: float | None = _option(
+        "--density", panel=_LUB, help=f"ρ₀ \\[kg/m³] ({paper.ASSUMED_DENSITY:g}, assumed)."
     ),
-    eyring_stress: float | None = typer.Option(
-        None,
+    eyring_stress: float | None = _option(
         "--eyring-stress",
-        rich_help_panel=_LUB,
+        panel=_LUB,
         help=f"τ_E [Pa] (the case's; paper {paper.LUBRICANT['eyring_stress']:g}; "
         f"with --oil the typical {typical.EYRING_STRESS.value:g}).",
     ),
-    limiting_shear_coefficient: float | None = typer.Option(
-        None,
+    limiting_shear_coefficient: float | None = _option(
         "--limiting-shear-coefficient",
-        rich_help_panel=_LUB,
+        panel=_LUB,
         help=f"Λ ({paper.LUBRICANT['limiting_shear_coefficient']:g}).",
     ),
-    viscosity_model: str | None = typer.Option(
-        None, "--viscosity-model", rich_help_panel=_LUB, help="roelands or barus."
+    viscosity_model: str | None = _option(
+        "--viscosity-model", panel=_LUB, help="roelands or barus."
     ),
-    viscous_model: str | None = typer.Option(
-        None, "--viscous-model", rich_help_panel=_NUM, help="eyring or newtonian."
-    ),
-    limiting_shear: bool | None = typer.Option(
-        None,
+    viscous_model: str | None = _option("--viscous-model", panel=_NUM, help="eyring or newtonian."),
+    limiting_shear: bool | None = _option(
         "--limiting-shear/--no-limiting-shear",
-        rich_help_panel=_NUM,
-        help="Cap viscous shear at Λp.",
+        panel=_NUM,
         show_default=False,
+        help="Cap viscous shear at Λp.",
     ),
-    n: int | None = typer.Option(
-        None, "--n", rich_help_panel=_NUM, help="Grid nodes (default: 512 EHL, 1024 dry)."
-    ),
+    n: int | None = _option("--n", panel=_NUM, help="Grid nodes (default: 512 EHL, 1024 dry)."),
     thermal: bool = typer.Option(
         False,
         "--thermal",
@@ -472,18 +453,14 @@ def contact_command(
         "--inlet-temperature or a --case with a sump "
         "temperature.",
     ),
-    oil: str | None = typer.Option(
-        None,
+    oil: str | None = _option(
         "--oil",
-        rich_help_panel=_LUB,
+        panel=_LUB,
         help="Bundled datasheet oil: 0W-20, 5W-20, 5W-30, 10W-40 (without "
         "--thermal: the isothermal EHL with this oil at --inlet-temperature).",
     ),
-    inlet_temperature: float | None = typer.Option(
-        None,
-        "--inlet-temperature",
-        rich_help_panel=_LUB,
-        help="Oil supply (sump) temperature [°C].",
+    inlet_temperature: float | None = _option(
+        "--inlet-temperature", panel=_LUB, help="Oil supply (sump) temperature [°C]."
     ),
     stress: bool = typer.Option(
         False,

@@ -15,7 +15,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from .._validation import InputError
-from .failure import fail
+from .failure import dask_client, fail
 
 __all__ = ["run_command"]
 
@@ -161,31 +161,27 @@ def _run(
     from ..workflow.cycle import StudyError, run_cycle_study
 
     n_workers = workers if workers is not None else (c.numerics.workers or None)
-    client = executor = None
-    if scheduler is not None:
-        from ..workflow.sweep import connect
-
-        try:
-            client = connect(scheduler)
-        except InputError as exc:
-            fail(console, exc)
-        executor = client.get_executor(pure=False)
-        console.print(
-            f"Dask scheduler {scheduler}: {len(client.scheduler_info().get('workers', {}))} workers"
-        )
     console.print(
         f"case [bold]{c.name}[/bold]: {len(c.surface_set_names)} surface sets, "
         f"{c.engine_speed:g} rpm → {out}"
     )
-    with Progress(
-        TextColumn("{task.description:<24}"),
-        BarColumn(),
-        TextColumn("{task.percentage:>5.1f} %"),
-        TimeElapsedColumn(),
-        console=console,
-        disable=quiet,
-        transient=False,
-    ) as bar:
+    with (
+        dask_client(console, scheduler) as client,
+        Progress(
+            TextColumn("{task.description:<24}"),
+            BarColumn(),
+            TextColumn("{task.percentage:>5.1f} %"),
+            TimeElapsedColumn(),
+            console=console,
+            disable=quiet,
+            transient=False,
+        ) as bar,
+    ):
+        executor = None
+        if client is not None:
+            executor = client.get_executor(pure=False)
+            n_dask = len(client.scheduler_info().get("workers", {}))
+            bar.console.print(f"Dask scheduler {scheduler}: {n_dask} workers")
         tasks = {}
 
         def progress(event, **info):
@@ -209,9 +205,6 @@ def _run(
             )
         except StudyError as exc:
             fail(console, exc, code=1, label="study failed")
-        finally:
-            if client is not None:
-                client.close()
         if "dyn" in tasks:
             bar.update(tasks["dyn"], completed=1)
         t_write = bar.add_task("figures and report", total=1)

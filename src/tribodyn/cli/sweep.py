@@ -17,7 +17,7 @@ from rich.progress import (
 )
 
 from .._validation import InputError
-from .failure import fail
+from .failure import dask_client, fail
 
 __all__ = ["sweep_command"]
 
@@ -72,7 +72,6 @@ def sweep_command(
     from ..config.sweep import load_sweep
     from ..workflow.sweep import (
         PLAN_CHECK_LIMIT,
-        connect,
         estimate_sweep,
         machine_workers,
         run_sweep,
@@ -120,24 +119,21 @@ def sweep_command(
         out = check_output_dir(out, option="-o/--out")
     except InputError as exc:
         fail(console, exc)
-    client = None
-    if scheduler is not None:
-        try:
-            client = connect(scheduler, workers=workers)
-        except InputError as exc:
-            fail(console, exc)
-    with Progress(
-        TextColumn("{task.description}"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TextColumn("[red]{task.fields[failed]} failed"),
-        TimeElapsedColumn(),
-        TextColumn("ETA"),
-        TimeRemainingColumn(),
-        console=console,
-        disable=quiet,
-        transient=False,
-    ) as bar:
+    with (
+        dask_client(console, scheduler, workers=workers) as client,
+        Progress(
+            TextColumn("{task.description}"),
+            BarColumn(),
+            MofNCompleteColumn(),
+            TextColumn("[red]{task.fields[failed]} failed"),
+            TimeElapsedColumn(),
+            TextColumn("ETA"),
+            TimeRemainingColumn(),
+            console=console,
+            disable=quiet,
+            transient=False,
+        ) as bar,
+    ):
         task = bar.add_task("points", total=spec.n_points, failed=0)
 
         def progress(event, **info):
@@ -168,9 +164,6 @@ def sweep_command(
             )
         except InputError as exc:
             fail(console, exc)
-        finally:
-            if client is not None:
-                client.close()
     from ..output.sweep import write_sweep
 
     try:

@@ -146,9 +146,10 @@ def annulus_couette_force(viscosity, diameter, length, clearance, velocity):
 
 def tappet_side_loads(contact_force, friction, lift_velocity, geometry: BoreGeometry):
     """(N_a, N_b) [N]: the bore's edge reactions on a bucket (module docstring) from the
-    cam's normal force W [N], its signed friction F_f [N] and s' = e [m/rad]."""
+    cam's normal force W [N], its signed friction F_f [N] (NaN, unknown: NaN loads) and
+    s' = e [m/rad]."""
     w = np.asarray(contact_force, float)
-    f = np.nan_to_num(np.asarray(friction, float))
+    f = np.asarray(friction, float)
     e = np.asarray(lift_velocity, float)
     nb = (w * e - geometry.edge_offset * f) / geometry.guided_length
     return f - nb, nb
@@ -183,7 +184,8 @@ def short_bearing_load(eps, viscosity, geometry: JournalGeometry, cam_speed: flo
 
 
 def short_bearing_eccentricity(load, viscosity, geometry: JournalGeometry, cam_speed: float):
-    """ε solving W(ε) = |load| (W is monotonic in ε ∈ [0, 1); bisection to 1e-12)."""
+    """ε solving W(ε) = |load| (W is monotonic in ε ∈ [0, 1); bisection to 1e-12); NaN
+    where the load is unknown (NaN)."""
     target = np.abs(np.asarray(load, float))
     lo = np.zeros_like(target)
     hi = np.full_like(target, 1.0 - 1e-12)
@@ -193,7 +195,7 @@ def short_bearing_eccentricity(load, viscosity, geometry: JournalGeometry, cam_s
         big = w > target
         hi = np.where(big, mid, hi)
         lo = np.where(big, lo, mid)
-    return 0.5 * (lo + hi)
+    return np.where(np.isnan(target), np.nan, 0.5 * (lo + hi))
 
 
 def short_bearing_torque(load, viscosity, geometry: JournalGeometry, cam_speed: float):

@@ -43,7 +43,7 @@ import numpy as np
 from ..config import Case
 from ..physics import valvetrain_friction as vf
 from .cycle import CycleStudy, run_cycle_study
-from .engineering import camshaft_torque, cycle_integral
+from .engineering import cycle_integral, set_torques
 
 __all__ = ["LobeTraces", "EngineStudy", "run_engine_study", "lobe_traces", "place_trace"]
 
@@ -101,27 +101,18 @@ def lobe_traces(kind: str, study: CycleStudy, engine_case: Case) -> LobeTraces:
         friction_coefficient=aux.guide_friction_coefficient,
         side_load=aux.guide_side_load,
     )
-    ff, tf, td, tb, energy = [], [], [], [], {}
-    for res in study.sets:
-        fr = np.where(res.loaded, res.viscous_friction + res.boundary_friction, 0.0)
-        fr = np.nan_to_num(fr)
-        t_f, t_d = camshaft_torque(inp.contact_force, fr, s, s1, rb, inp.sliding_speed)
-        f_signed = fr * np.sign(inp.sliding_speed)
-        _, t_b, _ = vf.tappet_bore_friction(inp.contact_force, f_signed, s1, w, eta, bore)
-        ff.append(f_signed)
-        tf.append(t_f)
-        td.append(t_d)
-        tb.append(t_b)
-        energy[res.name] = cycle_integral(t_f, inp.crank_angle)
+    ff, tf, td = set_torques(study, s, s1, rb)
+    tb = [vf.tappet_bore_friction(inp.contact_force, f, s1, w, eta, bore)[1] for f in ff]
+    energy = {r.name: cycle_integral(t_f, inp.crank_angle) for r, t_f in zip(study.sets, tf)}
     _, t_g, _ = vf.valve_guide_friction(s1, w, eta, guide)
     return LobeTraces(
         kind=kind,
         relative_crank=np.asarray(inp.crank_angle, float) - nose,
         contact_force=np.asarray(inp.contact_force, float),
         lift_velocity=s1,
-        friction=np.array(ff),
-        friction_torque=np.array(tf),
-        drive_torque=np.array(td),
+        friction=ff,
+        friction_torque=tf,
+        drive_torque=td,
         bore_torque=np.array(tb),
         guide_torque=t_g,
         energy=energy,
@@ -207,7 +198,7 @@ class EngineStudy:
                 "mean_friction_power_W": total / period,
                 "mean_friction_torque_Nm": total / (2.0 * math.pi),
                 "peak_camshaft_drive_torque_Nm": float(
-                    np.max(np.abs(self.drive_torque[i].sum(axis=0)))
+                    np.nanmax(np.abs(self.drive_torque[i].sum(axis=0)))
                 ),
                 "friction_energy_per_cycle_J": {k: float(e[i].sum()) for k, e in e_parts.items()},
                 "camshafts": {
@@ -222,7 +213,7 @@ class EngineStudy:
                             sum(e[i, j] for e in e_parts.values()) / (2.0 * math.pi)
                         ),
                         "max_friction_torque_Nm": float(
-                            np.max(self.friction_torque[i, j] + self.auxiliary_torque[i, j])
+                            np.nanmax(self.friction_torque[i, j] + self.auxiliary_torque[i, j])
                         ),
                     }
                     for j, c in enumerate(self.camshafts)

@@ -45,6 +45,7 @@ __all__ = [
     "MEASURED_ETA_BETA_SIGMA",
     "Engineering",
     "camshaft_torque",
+    "set_torques",
     "compares_paper",
     "engineering_outputs",
     "oil_as_used",
@@ -74,12 +75,32 @@ def camshaft_torque(
     contact_force, friction, lift, lift_velocity, base_radius: float, sliding_speed
 ) -> tuple[np.ndarray, np.ndarray]:
     """(T_f, T_drive) [N m] from the contact force W [N], the friction magnitude
-    F_v + F_b [N] (NaN or unloaded: 0), the lift s [m], s' = ds/dθ [m/rad], r_b [m] and
-    the sliding speed u_s [m/s] (its sign is the friction's): T_f = F_f (r_b + s),
-    T_drive = W s' + T_f (module docstring)."""
-    f = np.nan_to_num(np.asarray(friction, float), nan=0.0) * np.sign(sliding_speed)
+    F_v + F_b [N], the lift s [m], s' = ds/dθ [m/rad], r_b [m] and the sliding speed
+    u_s [m/s] (its sign is the friction's): T_f = F_f (r_b + s), T_drive = W s' + T_f
+    (module docstring). A NaN friction (unknown) gives NaN torques."""
+    f = np.asarray(friction, float) * np.sign(sliding_speed)
     t_f = f * (base_radius + np.asarray(lift, float))
     return t_f, np.asarray(contact_force, float) * np.asarray(lift_velocity, float) + t_f
+
+
+def set_torques(study, lift, lift_velocity, base_radius: float):
+    """Per surface set of ``study`` (rows in study order, one column per EHL sample): the
+    signed friction F_f = (F_v + F_b) sign(u_s) [N], T_f and T_drive [N m]
+    (:func:`camshaft_torque`) at the lift s [m] and s' = ds/dθ [m/rad] of the samples.
+    An unloaded sample has no friction (0); a loaded one whose EHL step failed has an
+    unknown friction, so NaN torques: they are left out of the cycle integrals (as of the
+    summary's friction energy, with the failed steps counted) and of the maxima."""
+    inp = study.inputs
+    ff, tf, td = [], [], []
+    for res in study.sets:
+        fr = np.where(res.loaded, res.viscous_friction + res.boundary_friction, 0.0)
+        t_f, t_d = camshaft_torque(
+            inp.contact_force, fr, lift, lift_velocity, base_radius, inp.sliding_speed
+        )
+        ff.append(fr * np.sign(inp.sliding_speed))
+        tf.append(t_f)
+        td.append(t_d)
+    return np.array(ff), np.array(tf), np.array(td)
 
 
 def cycle_integral(values, crank_deg) -> float:
@@ -164,13 +185,10 @@ def engineering_outputs(study) -> Engineering:
     s1 = np.interp(inp.crank_angle, dyn.crank_angle, dyn.lift_velocity)
     w = case.cam_speed
     period = 2.0 * math.pi / w
-    tf, td, ph = [], [], []
+    _, tf, td = set_torques(study, s, s1, rb)
+    ph = []
     scalars = {}
-    for res in study.sets:
-        fr = np.where(res.loaded, res.viscous_friction + res.boundary_friction, 0.0)
-        t_f, t_d = camshaft_torque(inp.contact_force, fr, s, s1, rb, inp.sliding_speed)
-        tf.append(t_f)
-        td.append(t_d)
+    for res, t_f, t_d in zip(study.sets, tf, td):
         e = reduced_modulus(case.surface_set(res.name).bodies)
         load = np.where(res.loaded, inp.contact_force, np.nan) / inp.width
         ph.append(np.sqrt(load * e / (2.0 * math.pi * inp.radius)))
@@ -178,8 +196,8 @@ def engineering_outputs(study) -> Engineering:
         L = res.loaded & res.converged
         scalars[res.name] = {
             "mean_friction_torque_Nm": energy / (2.0 * math.pi),
-            "max_friction_torque_Nm": float(np.max(t_f)),
-            "peak_drive_torque_Nm": float(t_d[np.argmax(np.abs(t_d))]),
+            "max_friction_torque_Nm": _nan_peak(t_f, signed=False),
+            "peak_drive_torque_Nm": _nan_peak(t_d),
             "friction_energy_per_cycle_from_torque_J": energy,
             "mean_friction_power_from_torque_W": energy / period,
             "max_hertz_pressure_Pa": float(np.nanmax(ph[-1]))
@@ -206,8 +224,8 @@ def engineering_outputs(study) -> Engineering:
     return Engineering(
         lift=s,
         lift_velocity=s1,
-        friction_torque=np.array(tf),
-        drive_torque=np.array(td),
+        friction_torque=tf,
+        drive_torque=td,
         hertz_pressure=np.array(ph),
         cam_angle_deg=np.degrees(theta),
         kinematics=kin,
@@ -215,6 +233,16 @@ def engineering_outputs(study) -> Engineering:
         surge=surge_spectrum(cam, case.valvetrain_parameters(), w),
         scalars=scalars,
     )
+
+
+def _nan_peak(values, *, signed: bool = True) -> float | None:
+    """The largest value (``signed``: the value of largest magnitude, with its sign) of
+    the known (not NaN) ``values``; None if none is known."""
+    v = np.asarray(values, float)
+    known = v[~np.isnan(v)]
+    if known.size == 0:
+        return None
+    return float(known[np.argmax(np.abs(known))] if signed else known.max())
 
 
 def oil_as_used(case) -> dict:

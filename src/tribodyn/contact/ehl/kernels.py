@@ -24,6 +24,7 @@ __all__ = [
     "newton_matvec",
     "dense_matrix",
     "jacobi_diagonal",
+    "givens_step",
     "GETRS",
     "GEMV",
     "gmres_lu",
@@ -268,6 +269,29 @@ def _norm(v):
 
 
 @njit(**_OPTS)
+def givens_step(Hm, cs, sn, gv, j):
+    """GMRES's least-squares update for the new column ``j`` of the Hessenberg matrix
+    ``Hm`` (Saad 2003, §6.5.3): the earlier Givens rotations (cos ``cs``, sin ``sn``)
+    applied to it, then rotation j, c = H_jj/d, s = H_j+1,j/d with d = √(H_jj² + H_j+1,j²),
+    which zeroes H_j+1,j and turns the residual vector: g_j+1 = −s g_j, g_j = c g_j; the
+    residual norm is |g_j+1|. In place; returns False for a breakdown (d = 0)."""
+    for i in range(j):
+        tt = cs[i] * Hm[i, j] + sn[i] * Hm[i + 1, j]
+        Hm[i + 1, j] = -sn[i] * Hm[i, j] + cs[i] * Hm[i + 1, j]
+        Hm[i, j] = tt
+    den = math.hypot(Hm[j, j], Hm[j + 1, j])
+    if den == 0.0:
+        return False
+    cs[j] = Hm[j, j] / den
+    sn[j] = Hm[j + 1, j] / den
+    Hm[j, j] = den
+    Hm[j + 1, j] = 0.0
+    gv[j + 1] = -sn[j] * gv[j]
+    gv[j] = cs[j] * gv[j]
+    return True
+
+
+@njit(**_OPTS)
 def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
     """Right-preconditioned GMRES for J x = b (J: the Newton matrix of
     :class:`~.reynolds.Linearization`, ``system`` = (AP, B, col, c, free, cav, D, K,
@@ -336,19 +360,8 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
         if hn > 0.0:
             for k in range(m):
                 V[j + 1, k] = w[k] / hn
-        for i in range(j):
-            tt = cs[i] * Hm[i, j] + sn[i] * Hm[i + 1, j]
-            Hm[i + 1, j] = -sn[i] * Hm[i, j] + cs[i] * Hm[i + 1, j]
-            Hm[i, j] = tt
-        den = math.hypot(Hm[j, j], Hm[j + 1, j])
-        if den == 0.0:
+        if not givens_step(Hm, cs, sn, gv, j):
             return x0, j + 1, False
-        cs[j] = Hm[j, j] / den
-        sn[j] = Hm[j + 1, j] / den
-        Hm[j, j] = den
-        Hm[j + 1, j] = 0.0
-        gv[j + 1] = -sn[j] * gv[j]
-        gv[j] = cs[j] * gv[j]
         done = abs(gv[j + 1]) <= rtol * bn  # False for a NaN residual
         if done or j == max_it - 1 or not math.isfinite(gv[j + 1]):
             if not done:

@@ -16,7 +16,7 @@ import numpy as np
 from scipy import linalg
 from scipy.linalg import lapack
 
-from .kernels import jacobi_diagonal
+from .kernels import givens_step, jacobi_diagonal
 from .reynolds import Linearization, ReynoldsSystem
 
 __all__ = [
@@ -97,18 +97,8 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
         Hm[j + 1, j] = np.linalg.norm(w)
         if Hm[j + 1, j] > 0.0:
             V[j + 1] = w / Hm[j + 1, j]
-        for i in range(j):
-            t = cs[i] * Hm[i, j] + sn[i] * Hm[i + 1, j]
-            Hm[i + 1, j] = -sn[i] * Hm[i, j] + cs[i] * Hm[i + 1, j]
-            Hm[i, j] = t
-        den = math.hypot(Hm[j, j], Hm[j + 1, j])
-        if den == 0.0:
+        if not givens_step(Hm, cs, sn, gv, j):
             return None, j + 1
-        cs[j], sn[j] = Hm[j, j] / den, Hm[j + 1, j] / den
-        Hm[j, j] = den
-        Hm[j + 1, j] = 0.0
-        gv[j + 1] = -sn[j] * gv[j]
-        gv[j] = cs[j] * gv[j]
         done = abs(gv[j + 1]) <= rtol * bn  # False for a NaN residual
         if done or j == max_it - 1 or not math.isfinite(gv[j + 1]):
             if not done:
