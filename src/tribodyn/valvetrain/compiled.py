@@ -458,6 +458,8 @@ def compiled_model(model) -> CompiledLumped | None:
     trib = model.trib
     if model.friction_fn is None:  # the kernels need the friction tabulated over the cam angle
         return None
+    if model.film_state:
+        return None
     film = None
     if model.has_film:
         if not isinstance(trib, FilmTableTribology):
