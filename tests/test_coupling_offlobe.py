@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from conftest import explicit_run
+from tribodyn import InputError
 from tribodyn.config import load_case
 from tribodyn.physics.materials import reduced_modulus
 from tribodyn.valvetrain.dynamics import simulate_valvetrain
@@ -99,3 +100,9 @@ def test_force_between_samples_does_not_depend_on_their_spacing(paper_4000):
 
     rms_old, mx_old = spread(old)
     assert rms_old > 0.01 * peak or mx_old > 0.05 * peak  # the bound can fail
+
+
+@pytest.mark.parametrize("value", [0.0, -1e-6, 2e-3])
+def test_supply_film_out_of_range_is_an_input_error(value):
+    with pytest.raises(InputError, match="coupling_supply_film"):
+        load_case().updated({"numerics.coupling_supply_film": value})

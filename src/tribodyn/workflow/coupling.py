@@ -5,32 +5,43 @@ film acts in series with the contact stiffness and the EHL friction acts on the 
 Here the two are coupled by waveform relaxation, which converges to the same coupled
 solution:
 
-1. dynamics with a film law (initially none: the explicit run) → F(t), u_e, u_s, R;
-2. transient EHL along the presented cycle → central film h_c(t), friction F_f(t);
-3. dynamics again with h(t, F) = h_k(t) + c_k(t)(F − F_k(t)) in series with the contact
-   stiffness (valvetrain ``FilmTableTribology``) and the EHL friction coefficient
-   μ_k(t) = F_f/F; repeat until the contact force stops changing.
+1. dynamics with a film model (initially none: the explicit run) → F(t), u_e, u_s, R;
+2. transient EHL along the presented cycle → central film h_E(t), friction F_f(t);
+3. dynamics again with the film thickness h as a state, in series with the contact
+   stiffness (valvetrain ``FilmStateTribology``):
+   F_c = F_ent(h; u_e, R, r(t)) + F_sq(h, ḣ), the load of a steady entraining film
+   (Martin + Moes elastic-piezoviscous, bounded by the oil supply h_s =
+   ``numerics.coupling_supply_film``) plus the rigid-cylinder squeeze film, and the EHL
+   friction coefficient μ_k(t) = F_f/F; repeat until the contact force stops changing.
 
-At the EHL samples the fixed point has F = F_k, so there c_k = dh/dF does not enter;
-between samples the dynamics follows the interpolated law h_k + c_k(F − F_k), so c_k
-shapes the force there (see *Limits*). c_k is the secant of the Moes film formula,
-limited by the squeeze film's damping over one sample (:func:`film_law_from_ehl`). Only
-changes of the film act on the motion: h_k is measured from the film where the cam lobe
-starts (a fixed lift, the same in every iteration); off the lobe the film is held at that
-datum (no compliance).
+What is iterated is only a correction r_k of the reduced film model towards the
+transient EHL at its samples (:func:`film_correction_from_ehl`: the factor on the
+model's flooded film for which its entraining film carries F_k + D ḣ_E at the EHL's film
+h_E), and μ_k. Between the samples the film's physics (entrainment, squeeze, supply)
+shapes the force; r varies slowly and is interpolated in ln r. Off the lobe the tappet
+rides on the film: the opening ramp squeezes the base-circle film while it picks up the
+load, off-lobe impacts squeeze it, and an unloaded film recovers towards h_s.
 
 Limits (measured; docs/convergence.md):
 
-- the converged force depends on the sample interval τ and ``SECANT_SHARE`` between the
-  samples: at 4000 rpm (4°, 128 nodes) scaling τ by 0.25 or 4 moves it by 7.6 / 4.3 N
-  RMS over the event (36 / 21 N max; peak 665 N);
-- the film off the lobe is not modelled, only held: the squeeze of the base-circle film
-  while the opening ramp picks up the load below the lobe threshold (µm of film, as
-  much as the ramp's lift there) and its squeeze by off-lobe impacts are left out.
-  Modelling them needs the film as a state of the dynamics (F = F_ent(h) + F_sq(h, ḣ)).
+- h_s is an assumed supply (default 10 µm, about the flooded EHL film under the
+  off-lobe contact loads of the paper case); the squeeze-out of the base-circle film
+  on the opening ramp delays the valve opening and advances its closing by about the
+  ramp's time to lift h_s (paper case: ±2.5–2.8° at h_s = 10 µm);
+- the squeeze film is isoviscous: near u_e = 0 (the nose of a flat tappet) the EHL's
+  piezoviscous squeeze holds a film the reduced model lets collapse; samples whose
+  correction would exceed a factor CORRECTION_LIMIT are left out and r is interpolated
+  across them;
+- the converged force still depends a little on the EHL sample interval: the same EHL
+  at every 4° or 8° moves it by 3.3 N RMS over the event (21 N max; peak 650 N) at
+  4000 rpm, against 11 N (47 N) with the earlier linearised film law; halving the EHL
+  step of the whole coupling (4° → 2°) moves it by 4.9 N RMS (24 N max), against
+  11.7 N (42 N) before — that includes the EHL's own time discretisation.
 
-The EHL of the presented cycle drives both
-simulated cycles (the tables are periodic in the cam angle).
+The EHL of the presented cycle drives both simulated cycles (the tables are periodic
+in the cam angle). :func:`film_law_from_ehl` and :func:`ehl_tribology` build the
+earlier linearised film-table law (valvetrain ``FilmTableTribology``), still a public
+hook.
 """
 
 from __future__ import annotations
@@ -568,6 +579,7 @@ def run_coupling(
     period = 2.0 * math.pi / case.cam_speed
     ev = dynamics.event_mask()
     f_peak = float(dynamics.contact_force.max())
+    supply = n.coupling_supply_film
     prev, ehl, inp = dynamics, first, inputs
     table: FilmStateTribology | None = None
     mixer, scale = AndersonMixer(), None
@@ -575,7 +587,7 @@ def run_coupling(
     msg = f"not converged in {n.coupling_iterations} iterations"
     changes: list[np.ndarray] = []
     for k in range(1, n.coupling_iterations + 1):
-        g = film_state_tribology(inp, ehl, lub, e_prime, period, case.width)
+        g = film_state_tribology(inp, ehl, lub, e_prime, period, case.width, supply_film=supply)
         if table is None:
             table = g
         else:
