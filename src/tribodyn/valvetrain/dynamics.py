@@ -42,7 +42,8 @@ class ValvetrainResult:
     Kinematic inputs (from the cam): cam_lift s, lift_velocity s', lift_acceleration s'',
     radius_of_curvature R, contact_offset e, entrainment_speed u_e, sliding_speed u_s.
     Dynamic outputs: contact_force F_c (total over the width, incl. damping),
-    elastic_contact_force P, series_film h (implicit coupling; 0 when explicit), tappet
+    elastic_contact_force P, series_film h (implicit coupling; 0 when explicit; with the
+    film as a state h − h_s, the film itself in ``tribology_report["film_thickness"]``), tappet
     displacement/velocity/acceleration, valve_lift (from the seat contact position;
     slightly negative when pressed into the seat), valve velocity/acceleration,
     seat_force, tappet_valve_force, spring_force (on the valve), spring_support_force (on

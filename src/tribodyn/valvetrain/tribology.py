@@ -517,6 +517,7 @@ class FilmStateTribology(TribologyModel):
     def film_rate(self, t: float, h: float, force: float, ue: float, R: float):
         """(ḣ [m/s], ∂ḣ/∂h [1/s], ∂ḣ/∂F_c [m/(N s)]) of the film h [m] carrying F_c [N]."""
         r = self.correction_at(t)
+        R = max(R, 1e-9)  # a flat face's radius is positive; guard the powers below
         w, dw = _entraining_scalar(
             h, ue, R, self._eta, self._alpha, self.e_prime, self.supply_film, r
         )
