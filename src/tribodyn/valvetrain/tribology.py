@@ -430,7 +430,9 @@ class FilmStateTribology(TribologyModel):
     δ_el = δ_kin + h − h_s: the dynamics' displacements are measured from static
     equilibrium on the base circle, where the unloaded film has recovered to h_s.
     Without load (F_c = 0) the film recovers towards h_s; a load squeezes it at the rate
-    the squeeze film allows; with u_e = 0 only the squeeze carries the load.
+    the squeeze film allows; with u_e = 0 only the squeeze carries the load. F_c includes
+    the contact damping, which acts on δ̇_kin as without a film. The film's work −P ḣ is
+    counted in the dynamics' dissipation, so the energy balance stays closed.
 
     ``correction`` r(t) (default 1) scales the flooded film of the entraining law,
     tabulated at ``time`` [s] and interpolated linearly (periodic with ``period``): the
