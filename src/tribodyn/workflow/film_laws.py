@@ -93,11 +93,11 @@ def film_law_from_ehl(inputs, ehl, lubricant, e_prime: float, lobe=None):
       interval τ: 1/|c_k| = 1/|c_Moes| + D/τ, with D = 3√2 π η R^(3/2) L / h_c^(3/2)
       (rigid-cylinder squeeze, :func:`~tribodyn.valvetrain.tribology.squeeze_film_load`,
       over the width L): a film cannot thin faster than its squeeze flow allows;
-    - *off the lobe* c_k = 0: the film is held at the datum (not modelled there; see the
-      module's *Limits*).
+    - *off the lobe* c_k = 0: the film is held at the datum (not modelled there).
 
-    At the samples a fixed point has F = F_k; between them c_k shapes the force (module
-    docstring, *Limits*). D uses the central film, the closed form the minimum film
+    The earlier law of the coupling (now :func:`film_state_tribology`): at the samples a
+    fixed point has F = F_k, between them c_k and the sample interval shape the force
+    (docs/convergence.md). D uses the central film, the closed form the minimum film
     (h_min ≈ 0.75 h_c: D is about 1.5× low), and is isoviscous."""
     F = inputs.contact_force
     n = F.size
