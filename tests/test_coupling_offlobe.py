@@ -1,19 +1,25 @@
 """The implicit coupling where the unloaded tappet used to chatter on the film off the
-cam lobe: the paper's case at 4000 rpm (coarse EHL) converges, and the film law it
-iterates is continuous, rigid off the lobe and no softer than the squeeze film allows."""
+cam lobe: the paper's case at 4000 rpm (coarse EHL) converges, with the film as a state
+of the dynamics (modelled off the lobe, tests/test_squeeze_film_state.py), and the force
+between the EHL samples no longer depends on their spacing."""
+
+import dataclasses
 
 import numpy as np
 import pytest
 
 from conftest import explicit_run
+from tribodyn import InputError
 from tribodyn.config import load_case
 from tribodyn.physics.materials import reduced_modulus
-from tribodyn.valvetrain.tribology import squeeze_film_load
+from tribodyn.valvetrain.dynamics import simulate_valvetrain
 from tribodyn.workflow.coupling import (
     COUPLING_MAX_TOL,
     COUPLING_RMS_TOL,
-    film_law_from_ehl,
+    ehl_tribology,
+    film_state_tribology,
     run_coupling,
+    valve_timing,
 )
 from tribodyn.workflow.cycle_ehl import ehl_for_set
 
@@ -45,25 +51,68 @@ def test_the_coupling_converges_where_the_tappet_chattered(paper_4000):
     last = c.history[-1]
     assert last.rms_force_change_N < COUPLING_RMS_TOL * peak
     assert last.max_force_change_N < COUPLING_MAX_TOL * peak
+    # the implicit run rides on the film: the opening ramp squeezes the supply film out
+    # (delaying the opening by the ramp's time to lift it: ≈ 2.5° at 10 µm) and the
+    # tappet lands on a film again after seating
+    im = c.implicit
+    h = im.tribology_report["film_thickness"]
+    hs = case.numerics.coupling_supply_film
+    (o_e, c_e), (o_i, c_i) = valve_timing(dyn), valve_timing(im)
+    assert 1.0 < o_i - o_e < 5.0 and -5.0 < c_i - c_e < -1.0
+    assert h.min() < 0.1 * hs and h[-1] > 0.9 * hs
 
 
-def test_film_law_table_has_the_documented_shape(paper_4000):
-    """Properties of the tabulated film law (not a physics reference): no compliance
-    off the lobe, the datum at the lobe's start, no step where the lobe ends, and the
-    compliance limited by the squeeze flow over one sample as documented."""
+def _every(obj, k):
+    """The dataclass ``obj`` with its per-sample arrays taken at every k-th sample."""
+    n = obj.crank_angle.size
+    arrays = {
+        f.name: v[::k]
+        for f in dataclasses.fields(obj)
+        if isinstance(v := getattr(obj, f.name), np.ndarray) and v.shape[:1] == (n,)
+    }
+    return dataclasses.replace(obj, **arrays)
+
+
+def test_force_between_samples_does_not_depend_on_their_spacing(paper_4000):
+    """The same transient EHL, tabulated at every sample (4°) and at every other one
+    (8°): the implicit dynamics' contact force differs by less than 1 % of the peak in
+    RMS over the event and 5 % at most. Between the samples the film's physics shapes
+    the force, not an interpolated law; the linearised film law of earlier versions
+    (``ehl_tribology``; measured 11 N RMS, 47 N max, peak 650 N) fails the same bound."""
     case, s, dyn, inputs, first = paper_4000
-    lobe = np.interp(inputs.crank_angle, dyn.crank_angle, dyn.cam_lift) > dyn.jump_lift_threshold
+    period = 2.0 * np.pi / case.cam_speed
+    e_prime = reduced_modulus(s.bodies)
     lub = case.lubricant()
-    h, c, F = film_law_from_ehl(inputs, first, lub, reduced_modulus(s.bodies), lobe)
-    assert np.all(c[~lobe] == 0.0) and np.all(c <= 0.0)
-    assert np.all(np.isfinite(h))
-    on = lobe & first.loaded
-    a = int(np.flatnonzero(on)[0])
-    assert h[a] == 0.0  # the datum: the film where the lobe starts
-    # no step where the lobe ends: off the lobe the film returns slowly to the datum
-    steps = np.abs(np.diff(h))[~lobe[:-1] & ~lobe[1:]]
-    assert steps.max() <= 0.05 * np.abs(h).max()
-    # compliance never softer than the squeeze flow allows within one sample
-    tau = np.median(np.diff(inputs.time))
-    d = squeeze_film_load(first.central_film[on], 1.0, inputs.radius[on], lub.viscosity)
-    assert np.all(-c[on] <= tau / (d * inputs.width) * (1 + 1e-12))
+    ev = dyn.event_mask()
+    peak = dyn.contact_force.max()
+
+    def spread(build):
+        F = []
+        for k in (1, 2):
+            inp, ehl = _every(inputs, k), _every(first, k)
+            r = simulate_valvetrain(
+                case.cam(),
+                case.valvetrain_parameters(),
+                tribology=build(inp, ehl),
+                **case.dynamics_options(),
+            )
+            assert r.converged, r.message
+            F.append(r.contact_force)
+        d = F[1] - F[0]
+        return float(np.sqrt(np.mean(d[ev] ** 2))), float(np.abs(d).max())
+
+    rms, mx = spread(lambda i, e: film_state_tribology(i, e, lub, e_prime, period, case.width))
+    assert rms < 0.01 * peak and mx < 0.05 * peak, (rms, mx)
+
+    def old(i, e):
+        lobe = np.interp(i.crank_angle, dyn.crank_angle, dyn.cam_lift) > dyn.jump_lift_threshold
+        return ehl_tribology(i, e, lub, e_prime, period, lobe)
+
+    rms_old, mx_old = spread(old)
+    assert rms_old > 0.01 * peak or mx_old > 0.05 * peak  # the bound can fail
+
+
+@pytest.mark.parametrize("value", [0.0, -1e-6, 2e-3])
+def test_supply_film_out_of_range_is_an_input_error(value):
+    with pytest.raises(InputError, match="coupling_supply_film"):
+        load_case().updated({"numerics.coupling_supply_film": value})

@@ -297,6 +297,14 @@ class Numerics(Section):
         ge=0,
         le=4096,
     )
+    coupling_supply_film: float = _q(
+        10e-6,
+        "m",
+        "oil supply layer that bounds the film of the implicit dynamics (the tappet rides "
+        "on it off the cam lobe; assumed)",
+        gt=0.0,
+        le=1e-3,
+    )
     workers: int = _q(
         0,
         "",

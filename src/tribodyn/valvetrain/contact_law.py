@@ -186,7 +186,8 @@ class CamContact(NamedTuple):
     sliding speeds u_e, u_s [m/s], interference δ_kin [m] and its rate [m/s], elastic
     force P [N], dP/dδ_kin [N/m], film h [m], damping step g(P) and dg/dP, contact force
     F_c [N] (and whether it is positive), friction F_f [N], tanh(ẋ_t/v_r) and bore
-    friction F_b [N]."""
+    friction F_b [N]; with the film as a state, its rate ḣ [m/s] and ∂ḣ/∂h [1/s],
+    ∂ḣ/∂F_c [m/(N s)] (``film`` is then h − h_s)."""
 
     theta: float
     s: float
@@ -207,6 +208,9 @@ class CamContact(NamedTuple):
     Ff: float
     th_v: float
     Fb: float
+    hdot: float = 0.0
+    dhdot_dh: float = 0.0
+    dhdot_dF: float = 0.0
 
     def outputs(self, **joints: Any) -> dict:
         """The ``evaluate`` dict of a model: the contact's keys, then ``joints`` (Ftv,
@@ -225,6 +229,9 @@ class CamContact(NamedTuple):
             Ff=self.Ff,
             Fb=self.Fb,
             film=self.film,
+            hdot=self.hdot,
+            dhdot_dh=self.dhdot_dh,
+            dhdot_dF=self.dhdot_dF,
             **joints,
         )
 
@@ -280,6 +287,9 @@ class CamContactModel:
             self.contact_C = 1.0 / p.contact_stiffness
         self.contact_ikc = cam_bending
         self.has_film = bool(tribology.has_film)
+        # the film as a state (FilmStateTribology): y gains h at index 2n + 2
+        self.film_state = bool(getattr(tribology, "has_film_state", False))
+        self.h_supply = float(getattr(tribology, "supply_film", 0.0)) if self.film_state else 0.0
         self.friction_fn = (
             _FrictionTable(tribology, self.cam, self.w, self.theta0)
             if tribology.periodic_in_cam_angle
@@ -325,9 +335,12 @@ class CamContactModel:
             u = self.contact_C * e / (1.0 + e) * P ** (1.0 + e)
         return u + 0.5 * self.contact_ikc * P * P
 
-    def cam_contact(self, t: float, th: float, wl: float, x: float, v: float) -> CamContact:
-        """The contact at time t [s] for lobe angle θ [rad], lobe speed ω_l [rad/s] and
-        tappet-face displacement x [m] and velocity v [m/s]."""
+    def cam_contact(
+        self, t: float, th: float, wl: float, x: float, v: float, hf: float = 0.0
+    ) -> CamContact:
+        """The contact at time t [s] for lobe angle θ [rad], lobe speed ω_l [rad/s],
+        tappet-face displacement x [m] and velocity v [m/s], and (film state) film h_f [m]:
+        δ_el = δ_kin + h_f − h_s."""
         p = self.p
         s, s1, s2 = self.cam.scalar_derivatives(th)
         rb = self.cam.base_radius
@@ -336,7 +349,12 @@ class CamContactModel:
         us = wl * (rb + s)
         dk = s - x
         dkd = wl * s1 - v
-        P, dPdk, hfilm = self.elastic_contact(t, dk, ue, R)
+        if self.film_state:
+            hs = hf - self.h_supply
+            P, dPdk, _ = self.elastic_contact(t, dk + hs, ue, R)
+            hfilm = hs
+        else:
+            P, dPdk, hfilm = self.elastic_contact(t, dk, ue, R)
         gc, dgc = smooth_step(P, p.damping_force_ramp)
         Fc = P + p.contact_damping * gc * dkd
         on_c = Fc > 0.0
@@ -352,6 +370,12 @@ class CamContactModel:
             Ff = 0.0
         th_v = math.tanh(v / p.bore_friction_velocity)
         Fb = p.bore_friction_coefficient * Ff * th_v
+        if self.film_state:
+            rate, r_h, r_f = self.trib.film_rate(t, hf, Fc, ue, R)  # type: ignore[attr-defined]
+            return CamContact(
+                th, s, s1, s2, R, ue, us, dk, dkd, P, dPdk, hfilm, gc, dgc, Fc, on_c, Ff,
+                th_v, Fb, rate, r_h, r_f,
+            )  # fmt: skip
         return CamContact(
             th, s, s1, s2, R, ue, us, dk, dkd, P, dPdk, hfilm, gc, dgc, Fc, on_c, Ff, th_v, Fb
         )
@@ -361,12 +385,33 @@ class CamContactModel:
         raise NotImplementedError
 
     def rhs(self, t, y):
-        """ẏ = [q̇, q̈, P_cam, D']."""
+        """ẏ = [q̇, q̈, P_cam, D'] (+ [ḣ] with the film as a state)."""
         n = self.n
         f = self.evaluate(t, y)
-        dy = np.empty(2 * n + 2)
+        dy = np.empty(2 * n + 2 + self.film_state)
         dy[:n] = y[n : 2 * n]
         dy[n : 2 * n] = f["acc"]
         dy[2 * n] = f["cam_power"]
         dy[2 * n + 1] = f["dissipation_rate"]
+        if self.film_state:
+            dy[2 * n + 2] = f["hdot"]
         return dy
+
+    def film_jacobian(self, J: np.ndarray, f: dict, grad: dict, Minv_g: np.ndarray) -> None:
+        """Add the film state's rows and columns to the Jacobian J (size 2n + 3) from an
+        ``evaluate(jac=True)`` output ``f``: ``grad`` = ∂δ_kin/∂q (index → value) and
+        ``Minv_g`` = M⁻¹ times the contact force's generalised direction (−∂δ_kin/∂q).
+        F_c depends on h as on δ_kin (∂F_c/∂h = k_c, the contact's local stiffness)::
+
+            ∂q̈/∂h = M⁻¹(−g) k_c,  ∂ḣ/∂h = ∂ḣ/∂h|_F + ∂ḣ/∂F k_c,
+            ∂ḣ/∂q = ∂ḣ/∂F k_c g,  ∂ḣ/∂q̇ = ∂ḣ/∂F c_c g  (g = ∂δ_kin/∂q = ∂δ̇_kin/∂q̇)
+        """
+        n = self.n
+        k = 2 * n + 2
+        kc, cc = (f["kc"], f["cc"]) if f["Fc"] > 0.0 else (0.0, 0.0)
+        rf = f["dhdot_dF"]
+        J[n : 2 * n, k] = Minv_g * kc
+        J[k, k] = f["dhdot_dh"] + rf * kc
+        for i, gi in grad.items():
+            J[k, i] += rf * kc * gi
+            J[k, n + i] += rf * cc * gi

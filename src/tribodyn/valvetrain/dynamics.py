@@ -42,7 +42,8 @@ class ValvetrainResult:
     Kinematic inputs (from the cam): cam_lift s, lift_velocity s', lift_acceleration s'',
     radius_of_curvature R, contact_offset e, entrainment_speed u_e, sliding_speed u_s.
     Dynamic outputs: contact_force F_c (total over the width, incl. damping),
-    elastic_contact_force P, series_film h (implicit coupling; 0 when explicit), tappet
+    elastic_contact_force P, series_film h (implicit coupling; 0 when explicit; with the
+    film as a state h − h_s, the film itself in ``tribology_report["film_thickness"]``), tappet
     displacement/velocity/acceleration, valve_lift (from the seat contact position;
     slightly negative when pressed into the seat), valve velocity/acceleration,
     seat_force, tappet_valve_force, spring_force (on the valve), spring_support_force (on
@@ -226,7 +227,8 @@ def simulate_valvetrain(
     method : ``"LSODA"`` (default), ``"Radau"`` or ``"BDF"`` (solve_ivp, analytic Jacobian).
     rtol, atol : solver tolerances, rtol in (0, 0.1), atol in (0, 0.01] (scalar or one per
         state; default: 1e-10 m on displacements, 1e-6 m/s on velocities, 1e-6 J on the
-        energy accumulators).
+        energy accumulators, 1e-10 m on the film state of a
+        :class:`~tribodyn.valvetrain.tribology.FilmStateTribology`).
     max_step : largest step [crank deg], in (0, 10].
     start_angle : cam angle at t = 0 [rad]; must lie on the base circle.
     jump_lift_threshold : cam lift above which a contact loss counts as a jump [m],
@@ -267,10 +269,10 @@ def simulate_valvetrain(
     t_eval[-1] = min(t_eval[-1], t_end)
     if atol is None:
         abs_tol: float | np.ndarray = np.concatenate(
-            [np.full(n, 1e-10), np.full(n, 1e-6), [1e-6, 1e-6]]
+            [np.full(n, 1e-10), np.full(n, 1e-6), [1e-6, 1e-6], [1e-10] * model.film_state]
         )
     else:
-        abs_tol = _check_atol(atol, 2 * n + 2)
+        abs_tol = _check_atol(atol, 2 * n + 2 + model.film_state)
     hmax = math.radians(max_step) / (2.0 * w)
     base = _Header(
         engine_speed=float(engine_speed),
@@ -351,7 +353,9 @@ def _integrate(
         circle so that a floating zero-lash tappet does not trigger events there."""
         s, _, s2 = cam.scalar_derivatives(lobe(t, y))
         h0 = 0.0
-        if model.has_film:
+        if model.film_state:
+            h0 = y[2 * model.n + 2] - model.h_supply
+        elif model.has_film:
             rb = cam.base_radius
             h0 = model.film(t, 0.0, 0.5 * w * (rb + s + 2.0 * s2), rb + s + s2)[0]
         return max(s, thr) - y[0] + h0
@@ -365,7 +369,10 @@ def _integrate(
 
         def grid_events(T, Y):
             s = cm.outputs(T, Y)["s"]
-            h0 = model.trib.film(T, np.zeros_like(T), 0.0, 1.0)[0] if model.has_film else 0.0
+            if model.film_state:
+                h0 = Y[2 * model.n + 2] - model.h_supply
+            else:
+                h0 = model.trib.film(T, np.zeros_like(T), 0.0, 1.0)[0] if model.has_film else 0.0
             return np.vstack([Y[1] - model.d_seat, np.maximum(s, thr) - Y[0] + h0])
 
         Yall, t_evs, y_evs, stats, fail = integrate_compiled(
@@ -443,6 +450,8 @@ def _sample(
         k: np.broadcast_to(np.asarray(v), (m,)).copy()
         for k, v in trib.report(t_eval, cols["Fc"], cols["ue"], cols["us"], cols["R"]).items()
     }
+    if model.film_state:  # the film state itself [m]
+        report["film_thickness"] = Y[2 * n + 2].copy()
     rb = cam.base_radius
     note = None  # flexible spring: a clash its reduction cannot see
     unresolved = model.unresolved_clash(Y)

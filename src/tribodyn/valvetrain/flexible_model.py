@@ -3,7 +3,8 @@
 Coordinates q (deviations from static equilibrium on the base circle, +x = valve
 opening): the boundary DOFs of the reduced bodies — tappet face (index 0), valve seat
 face (index 1), valve groove, spring top, clash nodes, spring bottom — then the bodies' fixed-interface modal coordinates, then the camshaft twist φ
-(lobe lag) when the camshaft is flexible. State y = [q, q̇, W_cam, D] as in
+(lobe lag) when the camshaft is flexible. State y = [q, q̇, W_cam, D] (+ the film h with
+a :class:`~tribodyn.valvetrain.tribology.FilmStateTribology`) as in
 :class:`~tribodyn.valvetrain.model.ValvetrainModel`, which this class mirrors (same
 ``evaluate`` outputs, so :func:`~tribodyn.valvetrain.simulate_valvetrain` runs either).
 
@@ -182,22 +183,25 @@ class FlexibleValvetrainModel(CamContactModel):
         # the bore
         i_f = self.i_face
         vf = vl[i_f]
-        con = self.cam_contact(t, self.theta0 + w * t - phi, w - phid, ql[i_f], vf)
+        hf = float(y[2 * n + 2]) if self.film_state else 0.0
+        con = self.cam_contact(t, self.theta0 + w * t - phi, w - phid, ql[i_f], vf, hf)
         P, Fc, Ff, Fb, s1, us = con.P, con.Fc, con.Ff, con.Fb, con.s1, con.us
         fj[i_f] += Fc
         if iphi is not None:
             fj[iphi] += Fc * s1
-        diss += (Fc - P) * con.dkd
+        diss += (Fc - P) * con.dkd - P * con.hdot  # contact damping, work into the film
         if iphi is not None:
             fj[iphi] += Ff * (self.cam.base_radius + con.s)
         fj[i_f] -= Fb
         diss += Fb * vf + Ff * us
+        gvec = {i_f: -1.0}  # ∂δ_kin/∂q
+        if iphi is not None:
+            gvec[iphi] = -s1
+        kc = cc = 0.0
         if jac and con.on:
-            gvec = {i_f: -1.0}
-            if iphi is not None:
-                gvec[iphi] = -s1
             kc = con.dPdk * (1.0 + p.contact_damping * con.dgc * con.dkd)
-            elems.append((gvec, kc, p.contact_damping * con.gc))
+            cc = p.contact_damping * con.gc
+            elems.append((gvec, kc, cc))
         if jac:
             th_v = con.th_v
             cb = p.bore_friction_coefficient * Ff * (1.0 - th_v * th_v) / p.bore_friction_velocity
@@ -288,7 +292,7 @@ class FlexibleValvetrainModel(CamContactModel):
             Ftv=Ftv, Fs=Fs, Fseg=[Fss, Fsp], acc=accl, cam_power=cam_power, dissipation_rate=diss
         )
         if jac:
-            out["elements"] = elems
+            out.update(elements=elems, kc=kc, cc=cc, grad=gvec)
         return out
 
     # -- ODE interface -----------------------------------------------------------------
@@ -305,10 +309,16 @@ class FlexibleValvetrainModel(CamContactModel):
                 for j, gj in items:
                     K[i, j] += k * gi * gj
                     C[i, j] += c * gi * gj
-        J = np.zeros((2 * n + 2, 2 * n + 2))
+        m = 2 * n + 2 + self.film_state
+        J = np.zeros((m, m))
         J[:n, n : 2 * n] = np.eye(n)
         J[n : 2 * n, :n] = -self.Minv @ K
         J[n : 2 * n, n : 2 * n] = -self.Minv @ C
+        if self.film_state:
+            g = np.zeros(n)
+            for i, gi in f["grad"].items():
+                g[i] = gi
+            self.film_jacobian(J, f, f["grad"], -(self.Minv @ g))
         return J
 
     # -- energy ------------------------------------------------------------------------
@@ -346,7 +356,11 @@ class FlexibleValvetrainModel(CamContactModel):
         return T, U
 
     def static_state(self) -> np.ndarray:
-        return np.zeros(2 * self.n + 2)
+        """Static equilibrium (zero deviations; the film state, if any, at h_s)."""
+        y = np.zeros(2 * self.n + 2 + self.film_state)
+        if self.film_state:
+            y[-1] = self.h_supply
+        return y
 
     # -- diagnostics -----------------------------------------------------------------------
     def physical_spring(self, y) -> np.ndarray:

@@ -2,7 +2,10 @@
 
 Generalised coordinates (displacements from static equilibrium on the base circle, +x =
 valve opening): q = [x_t, x_v, x_1 … x_N] (tappet, valve, coil masses). State
-y = [q, q̇, W_cam, D] with two energy accumulators (cam work and dissipation).
+y = [q, q̇, W_cam, D] with two energy accumulators (cam work and dissipation), and the
+film thickness h last when the tribology has the film as a state
+(:class:`~tribodyn.valvetrain.tribology.FilmStateTribology`: δ_el = δ_kin + h − h_s,
+ḣ = (F_ent(h) − F_c)/D(h); the film's work −P ḣ counts as dissipation).
 
 Forces (F_c, F_tv, F_seat, F_j ≥ 0 are compressive joint forces)::
 
@@ -145,7 +148,8 @@ class ValvetrainModel(CamContactModel):
         xt, xv, vt, vv = yl[0], yl[1], yl[n], yl[n + 1]
         ramp = p.damping_force_ramp
         # cam–tappet contact, friction at the contact and in the bore
-        c = self.cam_contact(t, self.theta0 + w * t, w, xt, vt)
+        hf = yl[2 * n + 2] if self.film_state else 0.0
+        c = self.cam_contact(t, self.theta0 + w * t, w, xt, vt, hf)
         P, Fc, Ff, Fb = c.P, c.Fc, c.Ff, c.Fb
         # tappet–valve
         dtv = xt - xv - p.lash
@@ -202,7 +206,13 @@ class ValvetrainModel(CamContactModel):
             acc=acc,
             cam_power=Fc * w * c.s1 + Ff * us,
             dissipation_rate=(
-                (Fc - P) * dkd + (Ftv - Etv) * dtvd + (Fs - Es) * (-vv) + diss + Fb * vt + Ff * us
+                (Fc - P) * dkd
+                + (Ftv - Etv) * dtvd
+                + (Fs - Es) * (-vv)
+                + diss
+                + Fb * vt
+                + Ff * us
+                - P * c.hdot  # work into the film state (0 without one)
             ),
         )
         if jac:
@@ -263,10 +273,15 @@ class ValvetrainModel(CamContactModel):
         kseg, cseg = f["kseg"], f["cseg"]
         for j in range(N + 1):  # coil segment j: nodes j+1, j+2 (q index)
             element(j + 1, j + 2 if j < N else None, kseg[j], cseg[j])
-        J = np.zeros((2 * n + 2, 2 * n + 2))
+        m = 2 * n + 2 + self.film_state
+        J = np.zeros((m, m))
         J[:n, n : 2 * n] = np.eye(n)
         J[n : 2 * n, :n] = K * self.inv_mass[:, None]
         J[n : 2 * n, n : 2 * n] = Cm * self.inv_mass[:, None]
+        if self.film_state:
+            mg = np.zeros(n)
+            mg[0] = self.inv_mass[0]  # F_c pushes the tappet (+x)
+            self.film_jacobian(J, f, {0: -1.0}, mg)
         return J
 
     # -- energy ------------------------------------------------------------------------
@@ -294,8 +309,12 @@ class ValvetrainModel(CamContactModel):
         return T, U + float(np.sum(Useg))
 
     def static_state(self) -> np.ndarray:
-        """Static equilibrium on the base circle: all displacements and velocities zero."""
-        return np.zeros(2 * self.n + 2)
+        """Static equilibrium on the base circle: all displacements and velocities zero
+        (the film state, if any, at the supply film h_s)."""
+        y = np.zeros(2 * self.n + 2 + self.film_state)
+        if self.film_state:
+            y[-1] = self.h_supply
+        return y
 
     def surge_matrices(self) -> tuple[np.ndarray, np.ndarray]:
         """(M, K) of the coil masses with the valve held fixed (fixed–fixed spring)."""

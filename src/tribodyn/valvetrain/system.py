@@ -34,9 +34,11 @@ class ValvetrainSystem(Protocol):
 
     Attributes: ``cam``, ``trib`` (tribology), ``w`` (cam speed ω [rad/s]), ``theta0``
     (cam angle at t = 0 [rad]), ``n`` (number of generalised coordinates; the state has
-    2n + 2 entries), ``d_seat`` (static seat compression [m]: valve lift = y[1] − d_seat),
-    ``has_film`` (the tribology has a film law), ``compilable`` (a compiled right-hand
-    side exists: :func:`~tribodyn.valvetrain.compiled.compiled_model`)."""
+    2n + 2 entries, 2n + 3 with ``film_state``), ``d_seat`` (static seat compression [m]:
+    valve lift = y[1] − d_seat), ``has_film`` (the tribology has a film law),
+    ``film_state`` (the film h is the last state, ``h_supply`` its rest value [m]),
+    ``compilable`` (a compiled right-hand side exists:
+    :func:`~tribodyn.valvetrain.compiled.compiled_model`)."""
 
     cam: CamProfile
     trib: TribologyModel
@@ -45,6 +47,8 @@ class ValvetrainSystem(Protocol):
     n: int
     d_seat: float
     has_film: bool
+    film_state: bool
+    h_supply: float
     compilable: bool
 
     @property

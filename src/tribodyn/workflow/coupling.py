@@ -5,32 +5,43 @@ film acts in series with the contact stiffness and the EHL friction acts on the 
 Here the two are coupled by waveform relaxation, which converges to the same coupled
 solution:
 
-1. dynamics with a film law (initially none: the explicit run) → F(t), u_e, u_s, R;
-2. transient EHL along the presented cycle → central film h_c(t), friction F_f(t);
-3. dynamics again with h(t, F) = h_k(t) + c_k(t)(F − F_k(t)) in series with the contact
-   stiffness (valvetrain ``FilmTableTribology``) and the EHL friction coefficient
-   μ_k(t) = F_f/F; repeat until the contact force stops changing.
+1. dynamics with a film model (initially none: the explicit run) → F(t), u_e, u_s, R;
+2. transient EHL along the presented cycle → central film h_E(t), friction F_f(t);
+3. dynamics again with the film thickness h as a state, in series with the contact
+   stiffness (valvetrain ``FilmStateTribology``):
+   F_c = F_ent(h; u_e, R, r(t)) + F_sq(h, ḣ), the load of a steady entraining film
+   (Martin + Moes elastic-piezoviscous, bounded by the oil supply h_s =
+   ``numerics.coupling_supply_film``) plus the rigid-cylinder squeeze film, and the EHL
+   friction coefficient μ_k(t) = F_f/F; repeat until the contact force stops changing.
 
-At the EHL samples the fixed point has F = F_k, so there c_k = dh/dF does not enter;
-between samples the dynamics follows the interpolated law h_k + c_k(F − F_k), so c_k
-shapes the force there (see *Limits*). c_k is the secant of the Moes film formula,
-limited by the squeeze film's damping over one sample (:func:`film_law_from_ehl`). Only
-changes of the film act on the motion: h_k is measured from the film where the cam lobe
-starts (a fixed lift, the same in every iteration); off the lobe the film is held at that
-datum (no compliance).
+What is iterated is only a correction r_k of the reduced film model towards the
+transient EHL at its samples (:func:`film_correction_from_ehl`: the factor on the
+model's flooded film for which its entraining film carries F_k + D ḣ_E at the EHL's film
+h_E), and μ_k. Between the samples the film's physics (entrainment, squeeze, supply)
+shapes the force; r varies slowly and is interpolated in ln r. Off the lobe the tappet
+rides on the film: the opening ramp squeezes the base-circle film while it picks up the
+load, off-lobe impacts squeeze it, and an unloaded film recovers towards h_s.
 
 Limits (measured; docs/convergence.md):
 
-- the converged force depends on the sample interval τ and ``SECANT_SHARE`` between the
-  samples: at 4000 rpm (4°, 128 nodes) scaling τ by 0.25 or 4 moves it by 7.6 / 4.3 N
-  RMS over the event (36 / 21 N max; peak 665 N);
-- the film off the lobe is not modelled, only held: the squeeze of the base-circle film
-  while the opening ramp picks up the load below the lobe threshold (µm of film, as
-  much as the ramp's lift there) and its squeeze by off-lobe impacts are left out.
-  Modelling them needs the film as a state of the dynamics (F = F_ent(h) + F_sq(h, ḣ)).
+- h_s is an assumed supply (default 10 µm, about the flooded EHL film under the
+  off-lobe contact loads of the paper case); the squeeze-out of the base-circle film
+  on the opening ramp delays the valve opening and advances its closing by about the
+  ramp's time to lift h_s (paper case: ±2.5–2.8° at h_s = 10 µm);
+- the squeeze film is isoviscous: near u_e = 0 (the nose of a flat tappet) the EHL's
+  piezoviscous squeeze holds a film the reduced model lets collapse; samples whose
+  correction would exceed a factor CORRECTION_LIMIT are left out and r is interpolated
+  across them;
+- the converged force still depends a little on the EHL sample interval: the same EHL
+  at every 4° or 8° moves it by 3.3 N RMS over the event (21 N max; peak 650 N) at
+  4000 rpm, against 11 N (47 N) with the earlier linearised film law; halving the EHL
+  step of the whole coupling (4° → 2°) moves it by 4.9 N RMS (24 N max), against
+  11.7 N (42 N) before — that includes the EHL's own time discretisation.
 
-The EHL of the presented cycle drives both
-simulated cycles (the tables are periodic in the cam angle).
+The EHL of the presented cycle drives both simulated cycles (the tables are periodic
+in the cam angle). :func:`film_law_from_ehl` and :func:`ehl_tribology` build the
+earlier linearised film-table law (valvetrain ``FilmTableTribology``), still a public
+hook.
 """
 
 from __future__ import annotations
@@ -42,15 +53,31 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..physics.materials import reduced_modulus
-from ..physics.regimes import hamrock_groups, moes_central
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
-from ..valvetrain.tribology import FilmTableTribology, TribologyModel, squeeze_film_load
+from ..valvetrain.tribology import FilmStateTribology
 from .cycle_ehl import CycleInputs, SetCycleResult, ehl_for_set
+from .film_laws import (
+    CORRECTION_LIMIT,
+    CORRECTION_MAX_SUPPLY_SHARE,
+    CORRECTION_MIN_ENTRAINING_SHARE,
+    CORRECTION_MIN_LOAD_SHARE,
+    CORRECTION_TAPER_DEG,
+    SECANT_SHARE,
+    FrictionCoefficientTable,
+    ehl_tribology,
+    film_correction_from_ehl,
+    film_law_from_ehl,
+    film_state_tribology,
+    state_from_vector,
+    state_vector,
+)
 
 __all__ = [
     "FrictionCoefficientTable",
     "film_law_from_ehl",
     "ehl_tribology",
+    "film_correction_from_ehl",
+    "film_state_tribology",
     "CouplingIteration",
     "CouplingResult",
     "run_coupling",
@@ -63,6 +90,12 @@ __all__ = [
     "valve_timing",
     "diagnose_coupling",
     "implicit_vs_explicit_metrics",
+    "SECANT_SHARE",
+    "CORRECTION_LIMIT",
+    "CORRECTION_MAX_SUPPLY_SHARE",
+    "CORRECTION_MIN_ENTRAINING_SHARE",
+    "CORRECTION_MIN_LOAD_SHARE",
+    "CORRECTION_TAPER_DEG",
 ]
 
 #: Mixing of the film/friction tables between coupling iterations (Anderson β) …
@@ -78,129 +111,6 @@ COUPLING_MAX_TOL = 5e-2
 #: smallest change so far; a coupling that does not converge reports the iterate with the
 #: smallest change.
 DIVERGENCE_FACTOR = 20.0
-
-
-class FrictionCoefficientTable(TribologyModel):
-    """Friction F_f = μ(t) F from a tabulated coefficient (periodic in time)."""
-
-    name = "ehl-friction-table"
-    periodic_in_cam_angle = True
-
-    def __init__(self, time, coefficient, period: float):
-        self.time = np.asarray(time, dtype=float)
-        self.mu = np.asarray(coefficient, dtype=float)
-        self.period = float(period)
-        self._t0 = float(self.time[0])
-
-    def friction(self, t, force, entrainment_speed, sliding_speed, radius):
-        tt = self._t0 + np.mod(np.asarray(t, dtype=float) - self._t0, self.period)
-        mu = np.interp(tt, self.time, self.mu)
-        return mu * np.maximum(np.asarray(force, dtype=float), 0.0)
-
-
-def _mu(table: FilmTableTribology) -> np.ndarray:
-    """μ_k of a coupling table (its friction model is a :class:`FrictionCoefficientTable`)."""
-    fm = table.friction_model
-    if not isinstance(fm, FrictionCoefficientTable):
-        raise TypeError(f"not a coupling table: its friction is a {type(fm).__name__}")
-    return fm.mu
-
-
-def _bridge(values, loaded):
-    """Fill non-finite values of loaded samples (failed steps) by linear interpolation
-    from their loaded neighbours, so a failed step does not reset the tables."""
-    v = np.array(values, dtype=float)
-    good = loaded & np.isfinite(v)
-    bad = loaded & ~good
-    if bad.any() and good.sum() >= 2:
-        idx = np.arange(v.size)
-        v[bad] = np.interp(idx[bad], idx[good], v[good])
-    return v
-
-
-#: The compliance of the film law is the secant of the Moes film over this share of the
-#: cycle's peak force above the sample's force (the tangent at light loads would let a
-#: later impact sink through microns of film within one sample).
-SECANT_SHARE = 0.2
-
-
-def _runs(mask):
-    """(start, stop) index pairs of the runs of True in ``mask``."""
-    m = np.concatenate([[False], np.asarray(mask, dtype=bool), [False]])
-    d = np.flatnonzero(np.diff(m.astype(np.int8)))
-    return list(zip(d[::2].tolist(), d[1::2].tolist()))
-
-
-def film_law_from_ehl(inputs, ehl, lubricant, e_prime: float, lobe=None):
-    """(h_k, c_k, F_k) over the samples of ``inputs`` from a transient-EHL cycle result.
-
-    Reduced film model of the dynamics, tabulated in time:
-
-    - *datum*: the film at the first loaded sample on the cam lobe (``lobe``: samples
-      with cam lift above the jump threshold; a kinematic mask, the same in every
-      iteration; default all). h_k = h_c − datum on the lobe's loaded samples,
-      interpolated over samples where the tappet is off the cam; off the lobe h_k
-      returns linearly to the datum over the base circle (no step at the lobe's end);
-    - *compliance* on the loaded lobe: the Moes film's secant slope over
-      [F_k, F_k + SECANT_SHARE·F̂], limited by the squeeze film's damping over one sample
-      interval τ: 1/|c_k| = 1/|c_Moes| + D/τ, with D = 3√2 π η R^(3/2) L / h_c^(3/2)
-      (rigid-cylinder squeeze, :func:`~tribodyn.valvetrain.tribology.squeeze_film_load`,
-      over the width L): a film cannot thin faster than its squeeze flow allows;
-    - *off the lobe* c_k = 0: the film is held at the datum (not modelled there; see the
-      module's *Limits*).
-
-    At the samples a fixed point has F = F_k; between them c_k shapes the force (module
-    docstring, *Limits*). D uses the central film, the closed form the minimum film
-    (h_min ≈ 0.75 h_c: D is about 1.5× low), and is isoviscous."""
-    F = inputs.contact_force
-    n = F.size
-    lobe = np.ones(n, dtype=bool) if lobe is None else np.asarray(lobe, dtype=bool)
-    hc = _bridge(ehl.central_film, ehl.loaded)
-    valid = lobe & ehl.loaded & np.isfinite(hc) & (hc > 0)
-    h = np.zeros(n)
-    c = np.zeros(n)
-    kx: list[float] = []
-    kv: list[float] = []
-    for a, b in _runs(lobe):
-        idx = np.arange(a, b)
-        ok = idx[valid[a:b]]
-        kx.append(a - 1.0)  # the datum just before the lobe
-        kv.append(0.0)
-        if ok.size:
-            kx.extend(ok.tolist())
-            kv.extend((hc[ok] - hc[ok[0]]).tolist())
-    if kx:
-        order = np.argsort(kx)
-        period = n - 1 if n > 1 else None  # the last sample repeats the first's phase
-        h = np.interp(np.arange(n), np.asarray(kx)[order], np.asarray(kv)[order], period=period)
-    f_peak = float(F.max()) if n else 0.0
-    tau = float(np.median(np.diff(inputs.time))) if n > 1 else 0.0
-    eta = lubricant.viscosity
-    for i in np.flatnonzero(valid):
-        R = inputs.radius[i]
-        u = max(abs(inputs.entrainment_speed[i]), 1e-3)
-        w1 = F[i] / inputs.width
-        w2 = (F[i] + SECANT_SHARE * f_peak) / inputs.width
-        hm = []
-        for w in (w1, w2):
-            W, U, G = hamrock_groups(w, R, u, eta, lubricant.pressure_viscosity, e_prime)
-            hm.append(moes_central(W, U, G, R))
-        k_moes = SECANT_SHARE * f_peak / max(float(hm[0] - hm[1]), 1e-300)
-        damping = float(squeeze_film_load(hc[i], 1.0, R, eta)) * inputs.width
-        c[i] = -1.0 / (k_moes + (damping / tau if tau > 0 else 0.0))
-    return h, c, F
-
-
-def ehl_tribology(
-    inputs, ehl, lubricant, e_prime: float, period: float, lobe=None
-) -> FilmTableTribology:
-    """Tribology model of the implicit coupling from one transient-EHL cycle (``lobe``:
-    see :func:`film_law_from_ehl`)."""
-    ff = _bridge(ehl.friction, ehl.loaded)
-    mu = np.where(ehl.loaded & np.isfinite(ff), ff / np.maximum(inputs.contact_force, 1e-12), 0.0)
-    friction = FrictionCoefficientTable(inputs.time, mu, period)
-    h, c, F = film_law_from_ehl(inputs, ehl, lubricant, e_prime, lobe)
-    return FilmTableTribology(friction, inputs.time, h, c, F, period=period)
 
 
 @dataclass
@@ -234,25 +144,6 @@ class CouplingResult:
         }
 
 
-def _relax(new: FilmTableTribology, old: FilmTableTribology | None, theta: float, period):
-    if old is None:
-        return new
-    t = new.time
-
-    def mix(a, b_time, b):
-        return theta * a + (1.0 - theta) * np.interp(t, b_time, b)
-
-    mu = mix(_mu(new), old.time, _mu(old))
-    return FilmTableTribology(
-        FrictionCoefficientTable(t, mu, period),
-        t,
-        mix(new.h, old.time, old.h),
-        mix(new.c, old.time, old.c),
-        mix(new.Fk, old.time, old.Fk),
-        period=period,
-    )
-
-
 class AndersonMixer:
     """Anderson acceleration (Walker & Ni, SIAM J. Numer. Anal. 49 (2011) 1715) of the
     fixed point x = G(x) of the film/friction tables, with mixing β and memory m:
@@ -282,23 +173,6 @@ class AndersonMixer:
             if np.all(np.isfinite(gamma)):
                 new = new - (dX + self.beta * dF) @ gamma
         return new
-
-
-def _pack(table: FilmTableTribology):
-    return np.concatenate([table.h, table.c, table.Fk, _mu(table)])
-
-
-def _unpack(v, like: FilmTableTribology, period) -> FilmTableTribology:
-    n = like.time.size
-    h, c, F, mu = (v[k * n : (k + 1) * n] for k in range(4))
-    return FilmTableTribology(
-        FrictionCoefficientTable(like.time, np.maximum(mu, 0.0), period),
-        like.time,
-        h,
-        np.minimum(c, 0.0),
-        F,
-        period=period,
-    )
 
 
 def diagnose_coupling(
@@ -412,28 +286,31 @@ def run_coupling(
     period = 2.0 * math.pi / case.cam_speed
     ev = dynamics.event_mask()
     f_peak = float(dynamics.contact_force.max())
-    prev, table, ehl, inp = dynamics, None, first, inputs
+    supply = n.coupling_supply_film
+    prev, ehl, inp = dynamics, first, inputs
+    table: FilmStateTribology | None = None
     mixer, scale = AndersonMixer(), None
     best = None  # (iteration, RMS change, dynamics) with the smallest change
     msg = f"not converged in {n.coupling_iterations} iterations"
     changes: list[np.ndarray] = []
     for k in range(1, n.coupling_iterations + 1):
-        lobe = np.interp(inp.crank_angle, dynamics.crank_angle, dynamics.cam_lift) > (
-            dynamics.jump_lift_threshold
-        )
-        g = ehl_tribology(inp, ehl, lub, e_prime, period, lobe)
+        g = film_state_tribology(inp, ehl, lub, e_prime, period, case.width, supply_film=supply)
         if table is None:
             table = g
         else:
+            x_old = state_vector(table)
             if g.time.size != table.time.size or np.any(g.time != table.time):
-                g = _relax(g, table, 1.0, period)  # onto the same samples
+                # onto the same samples
+                x_old = np.concatenate(
+                    [np.interp(g.time, table.time, v) for v in np.split(x_old, 2)]
+                )
             if scale is None:
                 n_t = g.time.size
-                scale = np.repeat(
-                    [max(np.abs(v).max(), 1e-300) for v in (g.h, g.c, g.Fk, _mu(g))],
-                    n_t,
-                )
-            table = _unpack(scale * mixer(_pack(table) / scale, _pack(g) / scale), g, period)
+                lg, mg = np.split(state_vector(g), 2)
+                scale = np.repeat([max(np.abs(lg).max(), 1e-3), max(mg.max(), 1e-300)], n_t)
+            table = state_from_vector(
+                scale * mixer(x_old / scale, state_vector(g) / scale), g, period
+            )
         new = simulate_valvetrain(
             case.cam(), case.valvetrain_parameters(), tribology=table, **case.dynamics_options()
         )

@@ -1,0 +1,164 @@
+"""The film as a state of the dynamics (FilmStateTribology): its laws against closed
+forms integrated by hand, its Jacobian, and the film off the lobe in a dynamics run."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from tribodyn.config import load_case
+from tribodyn.physics.lubricant import Lubricant
+from tribodyn.physics.materials import reduced_modulus
+from tribodyn.physics.regimes import hamrock_groups, moes_central
+from tribodyn.valvetrain.compiled import compiled_model
+from tribodyn.valvetrain.dynamics import simulate_valvetrain
+from tribodyn.valvetrain.kinematics import rpm_to_cam_speed
+from tribodyn.valvetrain.system import make_system
+from tribodyn.valvetrain.tribology import FilmStateTribology, Frictionless
+
+ETA, R, L, E = 0.05, 0.015, 0.012, 2.3e11
+ISO = Lubricant(viscosity=ETA, pressure_viscosity=0.0)
+
+
+def _film(lub=ISO, hs=10e-6, **kw):
+    return FilmStateTribology(
+        Frictionless(), width=L, lubricant=lub, e_prime=E, supply_film=hs, **kw
+    )
+
+
+def _integrate(model, h0, force, ue, t_end):
+    def f(t, y):
+        return [model.film_rate(t, float(y[0]), force, ue, R)[0]]
+
+    def jac(t, y):
+        return [[model.film_rate(t, float(y[0]), force, ue, R)[1]]]
+
+    t = np.linspace(0.0, t_end, 21)
+    sol = solve_ivp(f, (0.0, t_end), [h0], method="Radau", jac=jac, t_eval=t, rtol=1e-9, atol=1e-15)
+    assert sol.success
+    return t, sol.y[0]
+
+
+def test_squeeze_under_a_step_load_follows_the_closed_form():
+    # u_e = 0: no entraining film, only the squeeze w' = 3√2π η V R^(3/2)/h^(3/2). Its
+    # integral under constant load: h(t) = (h_i^(−1/2) + k t/2)^(−2), k = w'/(3√2π η R^1.5)
+    F, h0 = 200.0, 5e-6
+    t, h = _integrate(_film(), h0, F, 0.0, 2e-3)
+    k = F / L / (3.0 * math.sqrt(2.0) * math.pi * ETA * R**1.5)
+    exact = (h0**-0.5 + 0.5 * k * t) ** -2
+    assert h[-1] < 0.2 * h0  # the film is squeezed substantially
+    np.testing.assert_allclose(h, exact, rtol=1e-6)
+
+
+def test_unloaded_film_recovers_towards_the_supply_in_closed_form():
+    # F = 0, isoviscous (α = 0: the piezoviscous load is 0), rigid: Martin's load of the
+    # starved film, w' = 4.894 η u R (h_s − h)/(h h_s), against the squeeze gives
+    # ẋ = c (1 − x²)/(2√h_s), x = √(h/h_s), c = 4.894 u/(3√2π√R), so
+    # h(t) = h_s tanh²(artanh √(h_0/h_s) + c t/(2√h_s))
+    hs, h0, u = 10e-6, 1e-6, 1.5
+    t, h = _integrate(_film(hs=hs), h0, 0.0, u, 3e-3)
+    c = 4.894 * u / (3.0 * math.sqrt(2.0) * math.pi * math.sqrt(R))
+    exact = hs * np.tanh(math.atanh(math.sqrt(h0 / hs)) + c * t / (2.0 * math.sqrt(hs))) ** 2
+    assert h[-1] > 0.9 * hs and np.all(np.diff(h) > 0.0)
+    np.testing.assert_allclose(h, exact, rtol=1e-6)
+
+
+def test_steady_film_inverts_to_the_moes_film_in_the_elastic_piezoviscous_regime():
+    # flooded (h_s → ∞), paper-like oil and load: within 7 % of Moes (1992); at light
+    # load Martin's rigid film, 1/1.2247 of Moes' rigid asymptote (3/M vs 4.894/W·U)
+    lub = Lubricant(viscosity=0.055, pressure_viscosity=1.05e-8)
+    m = _film(lub=lub, hs=1.0)
+    for F, u, tol in ((600.0, 1.5, 0.07), (1500.0, 5.0, 0.07)):
+        W, U, G = hamrock_groups(F / L, R, u, lub.viscosity, lub.pressure_viscosity, E)
+        assert m.steady_film(0.0, F, u, R) == pytest.approx(moes_central(W, U, G, R), rel=tol)
+    W, U, G = hamrock_groups(1.0 / L, R, 1.5, lub.viscosity, lub.pressure_viscosity, E)
+    ratio = m.steady_film(0.0, 1.0, 1.5, R) / moes_central(W, U, G, R)
+    assert ratio == pytest.approx(4.894 / 6.0, rel=2e-3)
+
+
+@pytest.mark.parametrize("name", [None, "andreou2023_flexible"])
+def test_film_state_jacobian_matches_finite_differences(name):
+    case = load_case(name)
+    s = case.surface_sets()[0]
+    ft = FilmStateTribology(
+        Frictionless(),
+        width=case.width,
+        lubricant=case.lubricant(),
+        e_prime=reduced_modulus(s.bodies),
+    )
+    w = rpm_to_cam_speed(case.engine.speed_rpm)
+    m = make_system(case.cam(), case.valvetrain_parameters(), w, ft)
+    assert m.film_state and compiled_model(m) is None  # the compiled backend hands over
+    n, t = m.n, math.radians(100.0) / w  # on the opening flank
+    y = m.static_state()
+    y[0] = case.cam().scalar_derivatives(m.lobe_angle(t, y))[0] - 20e-6
+    y[n], y[-1] = 0.3, 1.5e-6
+    J = m.jacobian(t, y)
+    k = 2 * n + 2
+    assert m.evaluate(t, y)["Fc"] > 100.0
+    for j in (0, n, k):
+        e = 1e-12 if j != n else 1e-7
+        yp, ym = y.copy(), y.copy()
+        yp[j] += e
+        ym[j] -= e
+        col = (m.rhs(t, yp) - m.rhs(t, ym)) / (2 * e)
+        np.testing.assert_allclose(J[:, j][[0 + n, k]], col[[0 + n, k]], rtol=1e-5)
+
+
+@pytest.fixture(scope="module")
+def paper_film_run():
+    case = load_case().updated({"engine.speed_rpm": 4000.0, "numerics.output_step_deg": 0.5})
+    s = case.surface_sets()[0]
+    trib = case.analytic_tribology(s)
+    ft = FilmStateTribology(
+        trib, width=case.width, lubricant=case.lubricant(), e_prime=reduced_modulus(s.bodies)
+    )
+    r = simulate_valvetrain(
+        case.cam(), case.valvetrain_parameters(), tribology=ft, **case.dynamics_options()
+    )
+    assert r.converged, r.message
+    return case, ft, r
+
+
+def test_film_state_closes_the_energy_balance(paper_film_run):
+    _, _, r = paper_film_run
+    assert abs(r.energy["relative_residual"]) < 1e-5
+
+
+def test_off_lobe_impacts_squeeze_the_film_within_the_squeeze_bound(paper_film_run):
+    """Off the lobe the tappet rides on the film: each light impact thins it (far more
+    than the contact deflects), never faster than the pure squeeze allows,
+    h_after^(−1/2) − h_before^(−1/2) ≤ ∫F dt / (2·3√2π η R^(3/2) L), and the film then
+    recovers towards the supply film."""
+    case, ft, r = paper_film_run
+    h = r.tribology_report["film_thickness"]
+    off = ~r.event_mask() & (r.crank_angle > 1300.0)  # after seating, film recovered
+    F = np.where(off, r.contact_force, 0.0)
+    runs = np.flatnonzero(np.diff((F > 0.0).astype(int)))
+    assert runs.size >= 2, "no contact off the lobe"
+    c = 3.0 * math.sqrt(2.0) * math.pi * ft.lubricant.viscosity * case.cam().base_radius ** 1.5
+    squeezed = 0
+    for a, e in zip(runs[::2], runs[1::2] + 1):  # a: last sample before, e: first after
+        seg = slice(a, e + 1)
+        impulse = float(np.trapezoid(F[seg], r.time[seg]))
+        hmin = float(h[seg].min())
+        bound = (h[a] ** -0.5 + impulse / (2.0 * c * ft.width)) ** -2
+        assert hmin >= bound * (1.0 - 1e-3)  # never thinner than pure squeeze allows
+        deflection = case.valvetrain_parameters().contact_compliance_coefficient * (
+            F[seg].max() ** 0.9
+        )
+        if h[a] - hmin > 10.0 * deflection:
+            squeezed += 1
+    assert squeezed >= 1
+    assert h[-1] > 0.98 * ft.supply_film  # recovered by the end of the cycle
+
+
+def test_load_pickup_squeezes_the_base_circle_film(paper_film_run):
+    # the opening ramp picks up the load below the lobe threshold: the film falls from
+    # the supply towards the loaded film while the lift is still below 10 µm
+    _, ft, r = paper_film_run
+    h = r.tribology_report["film_thickness"]
+    ramp = (r.cam_lift > 0.0) & (r.cam_lift < r.jump_lift_threshold) & (r.crank_angle < 1080.0)
+    assert h[ramp][0] > 0.9 * ft.supply_film
+    assert h[ramp][-1] < 0.6 * ft.supply_film
