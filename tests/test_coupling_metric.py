@@ -89,8 +89,8 @@ def test_the_comparison_is_stable_to_round_off(tmp_path):
     for key in STABLE:
         floor = 5e-3 if key.endswith("_shift_deg") else 0.0
         assert b[key] == pytest.approx(a[key], rel=1e-2, abs=floor), (key, a[key], b[key])
-    # a film that changes the motion: 2.2 % of the peak in RMS, the closing by −0.067°
-    assert a["rms_contact_force_diff_pct"] > 1.0
+    # a film that changes the motion: 0.73 % of the peak in RMS, the closing by ≈ 0.3°
+    assert a["rms_contact_force_diff_pct"] > 0.3
     assert abs(a["valve_closing_shift_deg"]) > 0.03
     assert b["peak_contact_force_diff_pct"] == pytest.approx(
         a["peak_contact_force_diff_pct"], abs=2e-2

@@ -51,15 +51,26 @@ def test_the_coupling_converges_where_the_tappet_chattered(paper_4000):
     last = c.history[-1]
     assert last.rms_force_change_N < COUPLING_RMS_TOL * peak
     assert last.max_force_change_N < COUPLING_MAX_TOL * peak
-    # the implicit run rides on the film: the opening ramp squeezes the supply film out
-    # (delaying the opening by the ramp's time to lift it: ≈ 2.5° at 10 µm) and the
-    # tappet lands on a film again after seating
+    # the implicit run rides on the film: the load squeezes the base-circle film on the
+    # lobe, and after seating the tappet lands on a recovered film again
     im = c.implicit
     h = im.tribology_report["film_thickness"]
-    hs = case.numerics.coupling_supply_film
+    ev = dyn.event_mask()
+    assert np.median(h[~ev]) > 3.0 * np.median(h[ev])
+    assert h.min() < 0.1 * h[-1] and h[-1] > 0.5e-6
+    # the film separates the surfaces from metal contact (the explicit run's datum): the
+    # valve timing moves by a fraction of a degree (the paper: insignificant, Figs. 8-10)
+    # and does not depend on the assumed oil supply, which only bounds the film; the
+    # earlier datum at the supply film acted as a lash of h_s (+2.5 deg at 10 um)
     (o_e, c_e), (o_i, c_i) = valve_timing(dyn), valve_timing(im)
-    assert 1.0 < o_i - o_e < 5.0 and -5.0 < c_i - c_e < -1.0
-    assert h.min() < 0.1 * hs and h[-1] > 0.9 * hs
+    assert abs(o_i - o_e) < 1.0 and abs(c_i - c_e) < 1.0
+    twice = case.updated(
+        {"numerics.coupling_supply_film": 2.0 * case.numerics.coupling_supply_film}
+    )
+    c2 = run_coupling(twice, s, dyn, inputs, first)
+    assert c2.converged, c2.message
+    o_2, c_2 = valve_timing(c2.implicit)
+    assert abs(o_2 - o_i) < 0.1 and abs(c_2 - c_i) < 0.1
 
 
 def _every(obj, k):

@@ -126,39 +126,31 @@ def test_film_state_closes_the_energy_balance(paper_film_run):
     assert abs(r.energy["relative_residual"]) < 1e-5
 
 
-def test_off_lobe_impacts_squeeze_the_film_within_the_squeeze_bound(paper_film_run):
-    """Off the lobe the tappet rides on the film: each light impact thins it (far more
-    than the contact deflects), never faster than the pure squeeze allows,
-    h_after^(−1/2) − h_before^(−1/2) ≤ ∫F dt / (2·3√2π η R^(3/2) L), and the film then
-    recovers towards the supply film."""
+def test_off_lobe_the_tappet_rides_on_the_film_within_the_squeeze_bound(paper_film_run):
+    """Off the lobe after seating the tappet rides on the film with a light load (the
+    film separates the surfaces from metal contact, the zero-lash datum): the film never
+    thins faster than the pure squeeze allows from any earlier instant,
+    h(t)^(−1/2) − h(t₀)^(−1/2) ≤ ∫F dt / (2·3√2π η R^(3/2) L), and it settles (the
+    entraining film carries the load: within a factor 2 of its median, well below the
+    supply film) rather than collapsing or growing to the supply."""
     case, ft, r = paper_film_run
     h = r.tribology_report["film_thickness"]
-    off = ~r.event_mask() & (r.crank_angle > 1300.0)  # after seating, film recovered
-    F = np.where(off, r.contact_force, 0.0)
-    runs = np.flatnonzero(np.diff((F > 0.0).astype(int)))
-    assert runs.size >= 2, "no contact off the lobe"
+    off = np.flatnonzero(~r.event_mask() & (r.crank_angle > 1300.0))
+    F, t, hh = r.contact_force[off], r.time[off], h[off]
+    assert F.min() > 0.0
     c = 3.0 * math.sqrt(2.0) * math.pi * ft.lubricant.viscosity * case.cam().base_radius ** 1.5
-    squeezed = 0
-    for a, e in zip(runs[::2], runs[1::2] + 1):  # a: last sample before, e: first after
-        seg = slice(a, e + 1)
-        impulse = float(np.trapezoid(F[seg], r.time[seg]))
-        hmin = float(h[seg].min())
-        bound = (h[a] ** -0.5 + impulse / (2.0 * c * ft.width)) ** -2
-        assert hmin >= bound * (1.0 - 1e-3)  # never thinner than pure squeeze allows
-        deflection = case.valvetrain_parameters().contact_compliance_coefficient * (
-            F[seg].max() ** 0.9
-        )
-        if h[a] - hmin > 10.0 * deflection:
-            squeezed += 1
-    assert squeezed >= 1
-    assert h[-1] > 0.98 * ft.supply_film  # recovered by the end of the cycle
+    impulse = np.concatenate([[0.0], np.cumsum(0.5 * (F[1:] + F[:-1]) * np.diff(t))])
+    for k in range(0, off.size, 10):  # every earlier instant t₀ as the start
+        bound = (hh[k] ** -0.5 + (impulse[k:] - impulse[k]) / (2.0 * c * ft.width)) ** -2
+        assert np.all(hh[k:] >= bound * (1.0 - 1e-3))
+    med = np.median(hh)
+    assert np.all((hh > 0.5 * med) & (hh < 2.0 * med)) and med < 0.5 * ft.supply_film
 
 
 def test_load_pickup_squeezes_the_base_circle_film(paper_film_run):
     # the opening ramp picks up the load below the lobe threshold: the film falls from
-    # the supply towards the loaded film while the lift is still below 10 µm
+    # the base-circle film towards the loaded film while the lift is still below 10 µm
     _, ft, r = paper_film_run
     h = r.tribology_report["film_thickness"]
     ramp = (r.cam_lift > 0.0) & (r.cam_lift < r.jump_lift_threshold) & (r.crank_angle < 1080.0)
-    assert h[ramp][0] > 0.9 * ft.supply_film
-    assert h[ramp][-1] < 0.6 * ft.supply_film
+    assert h[ramp][-1] < 0.8 * h[ramp][0]  # 1.52 → 1.08 µm at 4000 rpm

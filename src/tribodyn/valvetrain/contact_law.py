@@ -187,7 +187,7 @@ class CamContact(NamedTuple):
     force P [N], dP/dδ_kin [N/m], film h [m], damping step g(P) and dg/dP, contact force
     F_c [N] (and whether it is positive), friction F_f [N], tanh(ẋ_t/v_r) and bore
     friction F_b [N]; with the film as a state, its rate ḣ [m/s] and ∂ḣ/∂h [1/s],
-    ∂ḣ/∂F_c [m/(N s)] (``film`` is then h − h_s)."""
+    ∂ḣ/∂F_c [m/(N s)] (``film`` is then the film state h)."""
 
     theta: float
     s: float
@@ -335,12 +335,37 @@ class CamContactModel:
             u = self.contact_C * e / (1.0 + e) * P ** (1.0 + e)
         return u + 0.5 * self.contact_ikc * P * P
 
+    def film_at_rest(self) -> float:
+        """Film h₀ [m] of the film state on the base circle at static equilibrium: the
+        entraining film carries the elastic force of its own thickness,
+        L w'_ent(h₀; u_e = ω r_b/2, R = r_b) = P(δ_kin = 0 + h₀), found by bisection in
+        ln h between 1e-10 m and the supply film h_s (where w'_ent = 0)."""
+        rb = self.cam.base_radius
+        ue, t0 = 0.5 * self.w * rb, 0.0
+        hs = self.h_supply
+
+        def excess(h: float) -> float:
+            rate, _, _ = self.trib.film_rate(t0, h, self.elastic_contact(t0, h, ue, rb)[0], ue, rb)
+            return rate  # ∝ L w'_ent(h) − P(h)
+
+        lo, hi = math.log(1e-10), math.log(hs)
+        if ue == 0.0 or excess(math.exp(lo)) <= 0.0:
+            return hs if ue != 0.0 else 1e-10
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            if excess(math.exp(mid)) > 0.0:
+                lo = mid
+            else:
+                hi = mid
+        return math.exp(0.5 * (lo + hi))
+
     def cam_contact(
         self, t: float, th: float, wl: float, x: float, v: float, hf: float = 0.0
     ) -> CamContact:
         """The contact at time t [s] for lobe angle θ [rad], lobe speed ω_l [rad/s],
         tappet-face displacement x [m] and velocity v [m/s], and (film state) film h_f [m]:
-        δ_el = δ_kin + h_f − h_s."""
+        δ_el = δ_kin + h_f. The film separates the surfaces: the kinematic interference
+        δ_kin is measured from metal contact, the datum of the explicit run (zero lash)."""
         p = self.p
         s, s1, s2 = self.cam.scalar_derivatives(th)
         rb = self.cam.base_radius
@@ -350,9 +375,8 @@ class CamContactModel:
         dk = s - x
         dkd = wl * s1 - v
         if self.film_state:
-            hs = hf - self.h_supply
-            P, dPdk, _ = self.elastic_contact(t, dk + hs, ue, R)
-            hfilm = hs
+            P, dPdk, _ = self.elastic_contact(t, dk + hf, ue, R)
+            hfilm = hf
         else:
             P, dPdk, hfilm = self.elastic_contact(t, dk, ue, R)
         gc, dgc = smooth_step(P, p.damping_force_ramp)

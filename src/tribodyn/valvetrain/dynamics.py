@@ -43,7 +43,7 @@ class ValvetrainResult:
     radius_of_curvature R, contact_offset e, entrainment_speed u_e, sliding_speed u_s.
     Dynamic outputs: contact_force F_c (total over the width, incl. damping),
     elastic_contact_force P, series_film h (implicit coupling; 0 when explicit; with the
-    film as a state h − h_s, the film itself in ``tribology_report["film_thickness"]``), tappet
+    film as a state h, the film itself in ``tribology_report["film_thickness"]``), tappet
     displacement/velocity/acceleration, valve_lift (from the seat contact position;
     slightly negative when pressed into the seat), valve velocity/acceleration,
     seat_force, tappet_valve_force, spring_force (on the valve), spring_support_force (on
@@ -354,7 +354,7 @@ def _integrate(
         s, _, s2 = cam.scalar_derivatives(lobe(t, y))
         h0 = 0.0
         if model.film_state:
-            h0 = y[2 * model.n + 2] - model.h_supply
+            h0 = y[2 * model.n + 2]
         elif model.has_film:
             rb = cam.base_radius
             h0 = model.film(t, 0.0, 0.5 * w * (rb + s + 2.0 * s2), rb + s + s2)[0]
@@ -370,7 +370,7 @@ def _integrate(
         def grid_events(T, Y):
             s = cm.outputs(T, Y)["s"]
             if model.film_state:
-                h0 = Y[2 * model.n + 2] - model.h_supply
+                h0 = Y[2 * model.n + 2]
             else:
                 h0 = model.trib.film(T, np.zeros_like(T), 0.0, 1.0)[0] if model.has_film else 0.0
             return np.vstack([Y[1] - model.d_seat, np.maximum(s, thr) - Y[0] + h0])

@@ -356,10 +356,10 @@ class FlexibleValvetrainModel(CamContactModel):
         return T, U
 
     def static_state(self) -> np.ndarray:
-        """Static equilibrium (zero deviations; the film state, if any, at h_s)."""
+        """Static equilibrium (zero deviations; the film state, if any, at its rest film h₀)."""
         y = np.zeros(2 * self.n + 2 + self.film_state)
         if self.film_state:
-            y[-1] = self.h_supply
+            y[-1] = self.film_at_rest()
         return y
 
     # -- diagnostics -----------------------------------------------------------------------

@@ -4,7 +4,7 @@ Generalised coordinates (displacements from static equilibrium on the base circl
 valve opening): q = [x_t, x_v, x_1 … x_N] (tappet, valve, coil masses). State
 y = [q, q̇, W_cam, D] with two energy accumulators (cam work and dissipation), and the
 film thickness h last when the tribology has the film as a state
-(:class:`~tribodyn.valvetrain.tribology.FilmStateTribology`: δ_el = δ_kin + h − h_s,
+(:class:`~tribodyn.valvetrain.tribology.FilmStateTribology`: δ_el = δ_kin + h,
 ḣ = (F_ent(h) − F_c)/D(h); the film's work −P ḣ counts as dissipation).
 
 Forces (F_c, F_tv, F_seat, F_j ≥ 0 are compressive joint forces)::
@@ -310,10 +310,10 @@ class ValvetrainModel(CamContactModel):
 
     def static_state(self) -> np.ndarray:
         """Static equilibrium on the base circle: all displacements and velocities zero
-        (the film state, if any, at the supply film h_s)."""
+        (the film state, if any, at its rest film h₀ (``film_at_rest``))."""
         y = np.zeros(2 * self.n + 2 + self.film_state)
         if self.film_state:
-            y[-1] = self.h_supply
+            y[-1] = self.film_at_rest()
         return y
 
     def surge_matrices(self) -> tuple[np.ndarray, np.ndarray]:

@@ -36,7 +36,7 @@ class ValvetrainSystem(Protocol):
     (cam angle at t = 0 [rad]), ``n`` (number of generalised coordinates; the state has
     2n + 2 entries, 2n + 3 with ``film_state``), ``d_seat`` (static seat compression [m]:
     valve lift = y[1] − d_seat), ``has_film`` (the tribology has a film law),
-    ``film_state`` (the film h is the last state, ``h_supply`` its rest value [m]),
+    ``film_state`` (the film h is the last state, ``h_supply`` its supply bound [m]),
     ``compilable`` (a compiled right-hand side exists:
     :func:`~tribodyn.valvetrain.compiled.compiled_model`)."""
 
