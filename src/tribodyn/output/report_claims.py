@@ -209,10 +209,11 @@ def claims(study, summ) -> list[tuple[str, str, str, str]]:
                 "Agrees in where the differences are: through the loaded event the curves "
                 "coincide; they differ where the contact engages and disengages, where the "
                 "lightly loaded (hydrodynamic, h ∝ 1/F) film is several µm and comparable to "
-                "the contact deflection. A zero-lash contact on the base circle has no "
-                "well-defined film: the implicit film is measured from the film where the "
-                "cam lobe starts (a fixed lift), so its squeeze on the opening ramp below "
-                "that lift is not included.",
+                "the contact deflection. The implicit film is a state of the dynamics that "
+                "separates the surfaces from metal contact (the explicit run's zero-lash "
+                "datum); the opening ramp squeezes the base-circle film, so the timing "
+                "moves by a fraction of a degree. A lash or an adjuster's preload is not "
+                "modelled.",
             )
         )
     rows.append(_viscous_law_row(study, summ))

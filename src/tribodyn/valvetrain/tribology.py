@@ -427,8 +427,9 @@ class FilmStateTribology(TribologyModel):
     (L the cam width; w'_ent the entraining film of :func:`entraining_film_load`, bounded
     by the oil supply h_s; w'_sq = D V/L the rigid-cylinder squeeze film of
     :func:`squeeze_film_load`, isoviscous). The elastic approach is
-    δ_el = δ_kin + h − h_s: the dynamics' displacements are measured from static
-    equilibrium on the base circle, where the unloaded film has recovered to h_s.
+    δ_el = δ_kin + h: the film separates the surfaces from metal contact, the datum of
+    the explicit run (zero lash); h_s only bounds the film. On the base circle the film
+    settles where its entraining load equals the elastic force of its own thickness.
     Without load (F_c = 0) the film recovers towards h_s; a load squeezes it at the rate
     the squeeze film allows; with u_e = 0 only the squeeze carries the load. F_c includes
     the contact damping, which acts on δ̇_kin as without a film. The film's work −P ḣ is
