@@ -345,7 +345,8 @@ class CamContactModel:
         hs = self.h_supply
 
         def excess(h: float) -> float:
-            rate, _, _ = self.trib.film_rate(t0, h, self.elastic_contact(t0, h, ue, rb)[0], ue, rb)
+            P = self.elastic_contact(t0, h, ue, rb)[0]
+            rate, _, _ = self.trib.film_rate(t0, h, P, ue, rb)  # type: ignore[attr-defined]
             return rate  # ∝ L w'_ent(h) − P(h)
 
         lo, hi = math.log(1e-10), math.log(hs)
