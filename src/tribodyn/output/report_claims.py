@@ -211,9 +211,9 @@ def claims(study, summ) -> list[tuple[str, str, str, str]]:
                 "lightly loaded (hydrodynamic, h ∝ 1/F) film is several µm and comparable to "
                 "the contact deflection. The implicit film is a state of the dynamics that "
                 "separates the surfaces from metal contact (the explicit run's zero-lash "
-                "datum); the opening ramp squeezes the base-circle film, so the timing "
-                "moves by a fraction of a degree. A lash or an adjuster's preload is not "
-                "modelled.",
+                "datum); on the base circle it preloads the valvetrain chain with tens of N, "
+                "so the valve opens slightly earlier and closes slightly later. A lash or "
+                "an adjuster's own preload is not modelled.",
             )
         )
     rows.append(_viscous_law_row(study, summ))

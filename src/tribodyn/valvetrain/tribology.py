@@ -429,7 +429,8 @@ class FilmStateTribology(TribologyModel):
     :func:`squeeze_film_load`, isoviscous). The elastic approach is
     δ_el = δ_kin + h: the film separates the surfaces from metal contact, the datum of
     the explicit run (zero lash); h_s only bounds the film. On the base circle the film
-    settles where its entraining load equals the elastic force of its own thickness.
+    lifts the tappet off metal contact, compressing the valvetrain chain in series, and
+    settles where its entraining load equals that chain's force.
     Without load (F_c = 0) the film recovers towards h_s; a load squeezes it at the rate
     the squeeze film allows; with u_e = 0 only the squeeze carries the load. F_c includes
     the contact damping, which acts on δ̇_kin as without a film. The film's work −P ḣ is
