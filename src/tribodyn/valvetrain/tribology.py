@@ -226,6 +226,15 @@ class AnalyticTribology(TribologyModel):
         }
 
 
+def _checked_friction_model(friction_model: TribologyModel) -> TribologyModel:
+    """``friction_model``, the model that supplies a wrapping model's friction, checked."""
+    if not isinstance(friction_model, TribologyModel):
+        raise InputError(
+            f"friction_model must be a TribologyModel (got {type(friction_model).__name__})"
+        )
+    return friction_model
+
+
 class FilmTableTribology(TribologyModel):
     """Hook for the implicit coupling: friction model + tabulated, linearised film law.
 
@@ -264,11 +273,7 @@ class FilmTableTribology(TribologyModel):
         *,
         period: float | None = None,
     ):
-        if not isinstance(friction_model, TribologyModel):
-            raise InputError(
-                f"friction_model must be a TribologyModel (got {type(friction_model).__name__})"
-            )
-        self.friction_model = friction_model
+        self.friction_model = _checked_friction_model(friction_model)
         self.periodic_in_cam_angle = friction_model.periodic_in_cam_angle
         t = check_array("time", np.atleast_1d(time), min_size=1)
         if t.size > 1 and np.any(np.diff(t) <= 0.0):
@@ -465,14 +470,10 @@ class FilmStateTribology(TribologyModel):
         correction: ArrayLike | None = None,
         period: float | None = None,
     ):
-        if not isinstance(friction_model, TribologyModel):
-            raise InputError(
-                f"friction_model must be a TribologyModel (got {type(friction_model).__name__})"
-            )
+        self.friction_model = _checked_friction_model(friction_model)
+        self.periodic_in_cam_angle = friction_model.periodic_in_cam_angle
         if not isinstance(lubricant, Lubricant):
             raise InputError(f"lubricant must be a Lubricant (got {type(lubricant).__name__})")
-        self.friction_model = friction_model
-        self.periodic_in_cam_angle = friction_model.periodic_in_cam_angle
         self.width = check_positive("width", width, "m")
         self.lubricant = lubricant
         self.e_prime = check_positive("e_prime", e_prime, "Pa")
