@@ -229,3 +229,35 @@ def test_failed_sample_has_unknown_torques_not_zero():
     energy = np.sum(0.5 * (known[1:] + known[:-1])) * math.radians(10.0) / 2.0
     assert s["friction_energy_per_cycle_from_torque_J"] == pytest.approx(energy)
     assert lobe.energy[case.surface_set_names[0]] == pytest.approx(energy)
+
+
+def test_a_failed_sample_of_one_valve_does_not_erase_the_others(monkeypatch):
+    """One unconverged EHL sample per lobe (its friction unknown): the camshaft sums keep
+    every other valve's known friction (the engine's cam–tappet energy equals the sum of
+    the valves' own energies, which leave the unknown sample out), the bore and journal
+    torques stay known, and the summary counts the failed steps."""
+    import tribodyn.workflow.engine as engine_module
+
+    real = engine_module.run_cycle_study
+
+    def one_failure(case, **kw):
+        study = real(case, **kw)
+        for r in study.sets:
+            i = int(np.argmax(np.where(r.loaded, study.inputs.contact_force, 0.0)))
+            r.viscous_friction = r.viscous_friction.copy()
+            r.viscous_friction[i] = np.nan
+            r.converged = r.converged.copy()
+            r.converged[i] = False
+            r.failures = [*r.failures, (float(study.inputs.crank_angle[i]), "injected")]
+        return study
+
+    monkeypatch.setattr(engine_module, "run_cycle_study", one_failure)
+    es = run_engine_study(_case(), workers=1)
+    name = es.set_names[0]
+    assert np.isnan(es.lobes["intake"].friction_torque[0]).any()  # the lobe's trace says so
+    total = cycle_integral(es.friction_torque[0].sum(axis=0), es.crank_angle)
+    valves = sum(es.lobes[v["kind"]].energy[name] for v in es.valves)
+    assert total == pytest.approx(valves, rel=0.01)
+    for t in (es.friction_torque, es.bore_torque, es.journal_torque, es.drive_torque):
+        assert np.isfinite(t).all()
+    assert es.summary()["surface_sets"][name]["failed_steps"] == {"intake": 1, "exhaust": 1}

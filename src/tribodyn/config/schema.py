@@ -22,6 +22,7 @@ from pydantic import Field, model_validator
 from .. import paper
 from ..contact.ehl.options import EHLOptions
 from ..physics import limits as L
+from ..valvetrain.tribology import SUPPLY_FILM, SUPPLY_FILM_MAX
 from .errors import Problems
 from .schema_fields import _NAME_PATTERN, Section, _lim, _q
 from .schema_surfaces import (
@@ -298,12 +299,12 @@ class Numerics(Section):
         le=4096,
     )
     coupling_supply_film: float = _q(
-        10e-6,
+        SUPPLY_FILM,
         "m",
         "oil supply layer that bounds the film of the implicit dynamics (the tappet rides "
         "on it off the cam lobe; assumed)",
         gt=0.0,
-        le=1e-3,
+        le=SUPPLY_FILM_MAX,
     )
     workers: int = _q(
         0,

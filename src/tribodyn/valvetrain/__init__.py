@@ -21,6 +21,7 @@ from .sweep import SpeedSweepResult, jump_speed, speed_sweep
 from .tribology import (
     PAPER_ROUGHNESS_UNCOATED,
     AnalyticTribology,
+    FilmStateTribology,
     FilmTableTribology,
     Frictionless,
     TribologyModel,
@@ -47,6 +48,7 @@ __all__ = [
     "TribologyModel",
     "Frictionless",
     "AnalyticTribology",
+    "FilmStateTribology",
     "FilmTableTribology",
     "PAPER_ROUGHNESS_UNCOATED",
 ]

@@ -354,7 +354,7 @@ class CamContactModel:
 
         lo, hi = math.log(1e-10), math.log(hs)
         if ue == 0.0 or excess(math.exp(lo)) <= 0.0:
-            return hs if ue != 0.0 else 1e-10
+            return 1e-10  # no entraining film, or its equilibrium lies below the floor
         for _ in range(60):
             mid = 0.5 * (lo + hi)
             if excess(math.exp(mid)) > 0.0:

@@ -53,6 +53,7 @@ __all__ = [
     "entraining_film_load",
     "FilmStateTribology",
     "SUPPLY_FILM",
+    "SUPPLY_FILM_MAX",
 ]
 
 #: Paper Table 4, uncoated tappet: η = 8.3e9 m⁻², σ = 0.408 µm, β = 0.669 µm.
@@ -354,6 +355,9 @@ class FilmTableTribology(TribologyModel):
 #: there): about the flooded EHL film of the paper case under the 5–10 N contacts of the
 #: tappet on the base circle.
 SUPPLY_FILM = 10e-6
+#: largest supply film a case file accepts [m] (1 mm: far above any film a cam contact
+#: holds)
+SUPPLY_FILM_MAX = 1e-3
 #: Martin's rigid isoviscous line contact, central film (Reynolds exit): h w' = 4.894 η u R.
 _MARTIN = 4.894
 #: smallest film the film state's laws are evaluated at [m] (the state itself is free)
@@ -477,6 +481,8 @@ class FilmStateTribology(TribologyModel):
         self.width = check_positive("width", width, "m")
         self.lubricant = lubricant
         self.e_prime = check_positive("e_prime", e_prime, "Pa")
+        # any positive h_s (a large one is the flooded limit); case files cap it at
+        # SUPPLY_FILM_MAX
         self.supply_film = check_positive("supply_film", supply_film, "m")
         t = np.zeros(1) if time is None else check_array("time", np.atleast_1d(time), min_size=1)
         if t.size > 1 and np.any(np.diff(t) <= 0.0):

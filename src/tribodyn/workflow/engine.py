@@ -193,6 +193,13 @@ class EngineStudy:
             total = float(sum(e[i].sum() for e in e_parts.values()))
             totals[name] = total
             d = {
+                # transient-EHL steps that did not converge, per lobe kind: their
+                # friction is unknown and left out of the energies and sums below
+                "failed_steps": {
+                    k: len(lt.study.sets[i].failures)
+                    for k, lt in self.lobes.items()
+                    if lt.study is not None
+                },
                 "engine_friction_energy_per_cycle_J": total,
                 "valvetrain_friction_mep_Pa": total / vd,
                 "mean_friction_power_W": total / period,
@@ -237,6 +244,14 @@ class EngineStudy:
         return build(xr.Dataset(), [ENGINE], self)
 
 
+def place_known(relative_crank, values, nose_deg: float, crank) -> np.ndarray:
+    """:func:`place_trace` of a valve's trace with its unknown (NaN: failed EHL) samples
+    counted as 0, as the valve's own cycle energy counts them: for the camshaft sums, in
+    which a sample one valve does not know must not erase the other valves'
+    contributions (the sets' ``failed_steps`` say what is missing)."""
+    return place_trace(relative_crank, np.nan_to_num(values), nose_deg, crank)
+
+
 def _journal_torque(lobes, valves, set_index, camshafts, case, crank, cam_speed, eta):
     """(camshaft, crank) journal-bearing torque from the lobes' force vectors."""
     aux = case.engine.auxiliary_friction()
@@ -250,7 +265,7 @@ def _journal_torque(lobes, valves, set_index, camshafts, case, crank, cam_speed,
         for v in on:
             lt = lobes[v["kind"]]
             wn = place_trace(lt.relative_crank, lt.contact_force, v["nose_deg"], crank)
-            ft = place_trace(lt.relative_crank, lt.friction[set_index], v["nose_deg"], crank)
+            ft = place_known(lt.relative_crank, lt.friction[set_index], v["nose_deg"], crank)
             forces[v["cylinder"] - 1, :, 0] += wn
             forces[v["cylinder"] - 1, :, 1] += ft
         loads = vf.journal_bearing_loads(forces, bearings[:-1] + 0.5, bearings)
@@ -316,11 +331,14 @@ def run_engine_study(
     for m, v in enumerate(valves):
         lt = lobes[v["kind"]]
         j = camshafts.index(v["camshaft"])
-        f = place_trace(lt.relative_crank, lt.friction_torque, v["nose_deg"], crank)
-        per_valve[:, m] = f
-        tf[:, j] += f
-        td[:, j] += place_trace(lt.relative_crank, lt.drive_torque, v["nose_deg"], crank)
-        tb[:, j] += place_trace(lt.relative_crank, lt.bore_torque, v["nose_deg"], crank)
+        per_valve[:, m] = place_trace(  # NaN where this valve's EHL failed (unknown)
+            lt.relative_crank, lt.friction_torque, v["nose_deg"], crank
+        )
+
+        rel, nose = lt.relative_crank, v["nose_deg"]
+        tf[:, j] += place_known(rel, lt.friction_torque, nose, crank)
+        td[:, j] += place_known(rel, lt.drive_torque, nose, crank)
+        tb[:, j] += place_known(rel, lt.bore_torque, nose, crank)
         tg[:, j] += place_trace(lt.relative_crank, lt.guide_torque, v["nose_deg"], crank)
     w = case.cam_speed
     eta = float(case.lubricant().viscosity)
