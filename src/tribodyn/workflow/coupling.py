@@ -342,7 +342,8 @@ def run_coupling(
         if rms < COUPLING_RMS_TOL * f_peak and mx < COUPLING_MAX_TOL * f_peak:
             out.converged = True
             msg = (
-                f"converged in {k} iterations (last change of the contact force: RMS "
+                f"converged in {k} iteration{'s' if k != 1 else ''} (last change of the "
+                f"contact force: RMS "
                 f"{rms:.2f} N, max {mx:.1f} N)"
             )
             break
