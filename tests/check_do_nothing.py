@@ -30,7 +30,7 @@ FILES = {
     ],
     "dynamics": ["test_valvetrain_dynamics.py", "test_valvetrain_compiled.py"],
     "thermal": ["test_thermal_ehl.py"],
-    "coupling": ["test_coupling.py", "test_coupling_metric.py"],
+    "coupling": ["test_coupling.py", "test_coupling_metric.py", "test_coupling_offlobe.py"],
 }
 
 
