@@ -3,7 +3,9 @@
 * the contact law δ_el(P) = C P^(1/γ) (Palmgren, γ = 1/0.9) or P/k, plus P/k_cam
   (camshaft, optional), solved with the film in series (:func:`contact_film_root`);
 * the damped contact force F_c = max(0, P + c_c g(P) δ̇_kin), g the cubic step
-  (:func:`smooth_step`), the contact friction F_f (tribology law or its cam-angle table,
+  (:func:`smooth_step`); with the film as a state the damper acts on the elastic rate,
+  F_c = P + c_c g (δ̇_kin + ḣ), ḣ = a(h) − F_c/D(h), solved for F_c in closed form; the
+  contact friction F_f (tribology law or its cam-angle table,
   :class:`_FrictionTable`) and the bore friction μ_b F_f tanh(ẋ_t/v_r);
 * :class:`CamContactModel`, the base of the lumped and flexible models: the contact and
   film laws, the stored contact energy, the right-hand side ẏ from ``evaluate`` and
@@ -211,6 +213,9 @@ class CamContact(NamedTuple):
     hdot: float = 0.0
     dhdot_dh: float = 0.0
     dhdot_dF: float = 0.0
+    kc: float = 0.0
+    cc: float = 0.0
+    kh: float = 0.0
 
     def outputs(self, **joints: Any) -> dict:
         """The ``evaluate`` dict of a model: the contact's keys, then ``joints`` (Ftv,
@@ -378,16 +383,31 @@ class CamContactModel:
         us = wl * (rb + s)
         dk = s - x
         dkd = wl * s1 - v
+        c = p.contact_damping
         if self.film_state:
+            # the film in series with the contact's spring and damper: one force F_c
+            # through both, F_c = P(δ_el) + c g(P) δ̇_el with δ̇_el = δ̇_kin + ḣ and
+            # ḣ = a(h) − F_c/D(h) (a = L w'_ent/D): closed form in F_c
             P, dPdk, _ = self.elastic_contact(t, dk + hf, ue, R)
             hfilm = hf
+            gc, dgc = smooth_step(P, p.damping_force_ramp)
+            trib = self.trib
+            a, a_h, m_inv = trib.film_rate(t, hf, 0.0, ue, R)  # type: ignore[attr-defined]
+            inv_d = -m_inv
+            inv_d_h = a_h - trib.film_rate(t, hf, 1.0, ue, R)[1]  # type: ignore[attr-defined]
+            den = 1.0 + c * gc * inv_d
+            Fc = (P + c * gc * (dkd + a)) / den
+            kc = dPdk * (1.0 + c * dgc * (dkd + a) - Fc * c * dgc * inv_d) / den
+            cc = c * gc / den
+            kh = kc + c * gc * (a_h - Fc * inv_d_h) / den
         else:
             P, dPdk, hfilm = self.elastic_contact(t, dk, ue, R)
-        gc, dgc = smooth_step(P, p.damping_force_ramp)
-        Fc = P + p.contact_damping * gc * dkd
+            gc, dgc = smooth_step(P, p.damping_force_ramp)
+            Fc = P + c * gc * dkd
+            kc, cc, kh = dPdk * (1.0 + c * dgc * dkd), c * gc, 0.0
         on_c = Fc > 0.0
         if not on_c:
-            Fc = 0.0
+            Fc = kc = cc = kh = 0.0
         if Fc > 0.0:
             Ff = (
                 self.friction_fn(th, Fc)
@@ -399,14 +419,15 @@ class CamContactModel:
         th_v = math.tanh(v / p.bore_friction_velocity)
         Fb = p.bore_friction_coefficient * Ff * th_v
         if self.film_state:
-            rate, r_h, r_f = self.trib.film_rate(t, hf, Fc, ue, R)  # type: ignore[attr-defined]
             return CamContact(
                 th, s, s1, s2, R, ue, us, dk, dkd, P, dPdk, hfilm, gc, dgc, Fc, on_c, Ff,
-                th_v, Fb, rate, r_h, r_f,
+                th_v, Fb, hdot=a - inv_d * Fc, dhdot_dh=a_h - inv_d_h * Fc,
+                dhdot_dF=-inv_d, kc=kc, cc=cc, kh=kh,
             )  # fmt: skip
         return CamContact(
-            th, s, s1, s2, R, ue, us, dk, dkd, P, dPdk, hfilm, gc, dgc, Fc, on_c, Ff, th_v, Fb
-        )
+            th, s, s1, s2, R, ue, us, dk, dkd, P, dPdk, hfilm, gc, dgc, Fc, on_c, Ff, th_v, Fb,
+            kc=kc, cc=cc, kh=kh,
+        )  # fmt: skip
 
     def evaluate(self, t: float, y, jac: bool = False) -> dict:
         """Forces and kinematics at one state (see the models)."""
@@ -429,17 +450,18 @@ class CamContactModel:
         """Add the film state's rows and columns to the Jacobian J (size 2n + 3) from an
         ``evaluate(jac=True)`` output ``f``: ``grad`` = ∂δ_kin/∂q (index → value) and
         ``Minv_g`` = M⁻¹ times the contact force's generalised direction (−∂δ_kin/∂q).
-        F_c depends on h as on δ_kin (∂F_c/∂h = k_c, the contact's local stiffness)::
+        F_c depends on h through the elastic approach and the film's own rate
+        (∂F_c/∂h = k_h, ``cam_contact``)::
 
-            ∂q̈/∂h = M⁻¹(−g) k_c,  ∂ḣ/∂h = ∂ḣ/∂h|_F + ∂ḣ/∂F k_c,
+            ∂q̈/∂h = M⁻¹(−g) k_h,  ∂ḣ/∂h = ∂ḣ/∂h|_F + ∂ḣ/∂F k_h,
             ∂ḣ/∂q = ∂ḣ/∂F k_c g,  ∂ḣ/∂q̇ = ∂ḣ/∂F c_c g  (g = ∂δ_kin/∂q = ∂δ̇_kin/∂q̇)
         """
         n = self.n
         k = 2 * n + 2
-        kc, cc = (f["kc"], f["cc"]) if f["Fc"] > 0.0 else (0.0, 0.0)
+        kc, cc, kh = (f["kc"], f["cc"], f["kh"]) if f["Fc"] > 0.0 else (0.0, 0.0, 0.0)
         rf = f["dhdot_dF"]
-        J[n : 2 * n, k] = Minv_g * kc
-        J[k, k] = f["dhdot_dh"] + rf * kc
+        J[n : 2 * n, k] = Minv_g * kh
+        J[k, k] = f["dhdot_dh"] + rf * kh
         for i, gi in grad.items():
             J[k, i] += rf * kc * gi
             J[k, n + i] += rf * cc * gi

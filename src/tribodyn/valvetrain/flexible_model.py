@@ -197,10 +197,8 @@ class FlexibleValvetrainModel(CamContactModel):
         gvec = {i_f: -1.0}  # ∂δ_kin/∂q
         if iphi is not None:
             gvec[iphi] = -s1
-        kc = cc = 0.0
+        kc, cc = con.kc, con.cc  # ∂F_c/∂δ_kin, ∂F_c/∂δ̇_kin (0 when the contact is open)
         if jac and con.on:
-            kc = con.dPdk * (1.0 + p.contact_damping * con.dgc * con.dkd)
-            cc = p.contact_damping * con.gc
             elems.append((gvec, kc, cc))
         if jac:
             th_v = con.th_v
@@ -292,7 +290,7 @@ class FlexibleValvetrainModel(CamContactModel):
             Ftv=Ftv, Fs=Fs, Fseg=[Fss, Fsp], acc=accl, cam_power=cam_power, dissipation_rate=diss
         )
         if jac:
-            out.update(elements=elems, kc=kc, cc=cc, grad=gvec)
+            out.update(elements=elems, kc=kc, cc=cc, kh=con.kh, grad=gvec)
         return out
 
     # -- ODE interface -----------------------------------------------------------------

@@ -16,7 +16,8 @@ Forces (F_c, F_tv, F_seat, F_j ≥ 0 are compressive joint forces)::
 * cam–tappet: δ_kin = s(θ) − x_t, elastic law δ_el(P) = C P^0.9 (Palmgren) or P/k,
   plus P/k_cam (camshaft, optional), solved with the film in series:
   δ_el(P) = δ_kin + h(t, P)  (unique root: δ_el' > 0, h' ≤ 0);  P = 0 if δ_kin + h(t, 0) ≤ 0.
-  F_c = max(0, P + c_c g(P) δ̇_kin), g the cubic step 3r² − 2r³, r = min(P/F_ramp, 1).
+  F_c = max(0, P + c_c g(P) δ̇_kin), g the cubic step 3r² − 2r³, r = min(P/F_ramp, 1)
+  (with the film as a state: δ̇_kin + ḣ, the elastic rate).
 * tappet–valve: δ = x_t − x_v − lash, F_tv = max(0, k δ⁺ + c g δ̇).
 * valve seat: δ = F₀/k_seat − x_v, F_seat = max(0, k δ⁺ + c g δ̇).
 * coil segment j (node j = valve side, node j+1; node 0 = valve, node N+1 = head):
@@ -216,8 +217,7 @@ class ValvetrainModel(CamContactModel):
             ),
         )
         if jac:
-            kc = c.dPdk * (1.0 + p.contact_damping * c.dgc * dkd) if c.on else 0.0
-            cc = p.contact_damping * c.gc if c.on else 0.0
+            kc, cc = c.kc, c.cc  # ∂F_c/∂δ_kin, ∂F_c/∂δ̇_kin (0 when the contact is open)
             cb = (
                 p.bore_friction_coefficient
                 * Ff
@@ -240,7 +240,9 @@ class ValvetrainModel(CamContactModel):
                     kseg[j] = cseg[j] = 0.0
                 elif F0 + ks[j] * D[j] < 0.0:
                     kseg[j] = 0.0
-            out.update(kc=kc, cc=cc, cb=cb, ktv=ktv, ctv=ctv, ks=kst, cs=cst, kseg=kseg, cseg=cseg)
+            out.update(
+                kc=kc, cc=cc, kh=c.kh, cb=cb, ktv=ktv, ctv=ctv, ks=kst, cs=cst, kseg=kseg, cseg=cseg
+            )
         return out
 
     # -- ODE interface -----------------------------------------------------------------

@@ -441,9 +441,11 @@ class FilmStateTribology(TribologyModel):
     lifts the tappet off metal contact, compressing the valvetrain chain in series, and
     settles where its entraining load equals that chain's force.
     Without load (F_c = 0) the film recovers towards h_s; a load squeezes it at the rate
-    the squeeze film allows; with u_e = 0 only the squeeze carries the load. F_c includes
-    the contact damping, which acts on δ̇_kin as without a film. The film's work −P ḣ is
-    counted in the dynamics' dissipation, so the energy balance stays closed.
+    the squeeze film allows; with u_e = 0 only the squeeze carries the load. One force
+    F_c passes through the film and the contact's spring and damper in series: the
+    damper acts on the elastic rate δ̇_kin + ḣ (``cam_contact`` solves for F_c in
+    closed form). The film's work −P ḣ is counted in the dynamics' dissipation, so the
+    energy balance stays closed.
 
     ``correction`` r(t) (default 1) scales the flooded film of the entraining law,
     tabulated at ``time`` [s] and interpolated linearly (periodic with ``period``): the

@@ -32,9 +32,8 @@ Limits (measured; docs/convergence.md):
   1.35–1.63 µm at 4000 rpm, 1.12–1.35 µm at h_s = 3 µm), and the valve timing moves by
   0.01° when h_s doubles from 10 to 20 µm (tested: < 0.1°); a lash or an adjuster's
   own preload is not modelled: the datum is zero lash;
-- the contact damping acts on δ̇_kin, not on δ̇_kin + ḣ (at most 6 N, 0.9 % of the peak
-  at 4000 rpm); the squeeze film is full-Sommerfeld, so it also resists separation,
-  which cavitation would limit;
+- the squeeze film is full-Sommerfeld, so it also resists separation, which cavitation
+  would limit;
 - the squeeze film is isoviscous: near u_e = 0 (the nose of a flat tappet) the EHL's
   piezoviscous squeeze holds a film the reduced model lets collapse; samples whose
   correction would exceed a factor CORRECTION_LIMIT are left out and r is interpolated
@@ -42,7 +41,7 @@ Limits (measured; docs/convergence.md):
 - the converged force still depends a little on the EHL sample interval: the same EHL
   at every 4° or 8° moves it by 3.3 N RMS over the event (21 N max; peak 650 N) at
   4000 rpm, against 11 N (47 N) with the earlier linearised film law; halving the EHL
-  step of the whole coupling (4° → 2°) moves it by 4.9 N RMS (24 N max), against
+  step of the whole coupling (4° → 2°) moves it by 4.7 N RMS (24 N max), against
   11.7 N (42 N) before — that includes the EHL's own time discretisation.
 
 The EHL of the presented cycle drives both simulated cycles (the tables are periodic
