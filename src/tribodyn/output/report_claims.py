@@ -199,8 +199,8 @@ def claims(study, summ) -> list[tuple[str, str, str, str]]:
                 "Implicit vs explicit dynamics",
                 "insignificant, except where lightly loaded (engagement/disengagement)",
                 f"max contact-force difference {imp['max_contact_force_diff_pct']:.1f} % of the "
-                f"peak at {imp['max_contact_force_diff_crank_deg']:.1f}° crank (the closing "
-                f"impact's timing); RMS over the event "
+                f"peak at {imp['max_contact_force_diff_crank_deg']:.1f}° crank; RMS over the "
+                f"event "
                 f"{_fmt(imp.get('rms_contact_force_diff_pct'), '%')}, peak force "
                 f"{_fmt(imp.get('peak_contact_force_diff_pct'), '%')}, valve closing "
                 f"{_fmt(imp.get('valve_closing_shift_deg'), '°')} and opening "
