@@ -224,30 +224,87 @@ def test_a_target_taken_meanwhile_is_rescued_too(tmp_path, monkeypatch, fake_stu
 
 
 # ----------------------------------------------------------------------------- SIGTERM
-@pytest.mark.parametrize("delay", [1.0, 10.0])  # in the dynamics; among the EHL workers
-def test_sigterm_stops_a_run_cleanly(tmp_path, delay):
-    """SIGTERM during the computation: workers stopped, nothing written, no temporary
-    folder, exit code 143, a message instead of a traceback."""
+@pytest.mark.parametrize("phase", ["dynamics", "ehl", "writing"])
+def test_sigterm_stops_a_run_cleanly(tmp_path, phase):
+    """SIGTERM during the computation or while the results are written: workers (EHL or
+    drawing processes) stopped, nothing written, no temporary folder, exit code 143, a
+    message instead of a traceback. The writing phase is found by its temporary folder
+    (``.out.tmp-…``), so the test does not depend on the machine's speed."""
     case = tmp_path / "c.toml"
     load_case().updated({"numerics.workers": 2, "numerics.crank_step_deg": 2.0}).write_toml(case)
     out = tmp_path / "out"
+    rescue_area = tmp_path / "tmp"  # a rescue folder, if any, stays inside the test's folder
+    rescue_area.mkdir()
     proc = subprocess.Popen(
         [sys.executable, "-m", "tribodyn", "run", str(case), "-o", str(out), "-q"],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
+        env={**os.environ, "TMPDIR": str(rescue_area)},
     )
     deadline = time.time() + 60
     line = ""
     while time.time() < deadline and "case" not in line:
         line = proc.stdout.readline()
-    time.sleep(delay)
+    if phase == "writing":
+        while time.time() < deadline and not any(
+            p.name.startswith(".out") for p in tmp_path.iterdir()
+        ):
+            time.sleep(0.02)
+        assert proc.poll() is None, "the run ended before its results were written"
+        time.sleep(0.5)  # among the drawing processes
+    else:
+        time.sleep(1.0 if phase == "dynamics" else 4.0)
     proc.send_signal(signal.SIGTERM)
     stdout, stderr = proc.communicate(timeout=60)
     assert proc.returncode == 143, stdout + stderr
     assert "interrupted" in stdout and "Traceback" not in stdout + stderr
     assert not out.exists()
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".out")]
+
+
+class _RaisesWhenCollected:
+    def __del__(self):
+        raise KeyboardInterrupt
+
+
+@pytest.mark.filterwarnings("error::pytest.PytestUnraisableExceptionWarning")
+@pytest.mark.parametrize("where", ["study", "writing"])
+def test_a_signal_lost_in_a_callback_still_ends_as_interrupted(tmp_path, monkeypatch, capfd, where):
+    """SIGTERM whose KeyboardInterrupt is raised inside a callback (a weakref's) is lost
+    there; the stopped workers then fail the study or the drawing. That failure is the
+    signal's, so the run ends as interrupted (143) with the rescue folder named, and the
+    lost interrupt prints no traceback."""
+    import tribodyn.cli.run as R
+    from tribodyn.output import OutputWriteError
+    from tribodyn.workflow.cycle import StudyError
+
+    monkeypatch.setattr(R, "_terminated", False)  # restored afterwards
+    rescued = tmp_path / "rescue"
+
+    def signal_then_fail(*args, **kwargs):
+        R._terminated = True  # what the handler sets before its interrupt is lost
+        lost = _RaisesWhenCollected()  # an interrupt raised where Python cannot pass it on
+        del lost
+        if where == "study":
+            raise StudyError("BrokenProcessPool: a process was terminated abruptly")
+        raise OutputWriteError(
+            "cannot write: BrokenProcessPool", tmp_path / "out", rescued, OSError()
+        )
+
+    if where == "study":
+        monkeypatch.setattr("tribodyn.workflow.cycle.run_cycle_study", signal_then_fail)
+    else:
+        monkeypatch.setattr("tribodyn.output.write_results", signal_then_fail)
+        monkeypatch.setattr(
+            "tribodyn.workflow.cycle.run_cycle_study", lambda c, **kw: SimpleNamespace(case=c)
+        )
+    out = tmp_path / "out"
+    r = CliRunner().invoke(app, ["run", "-o", str(out), "-q"])
+    assert r.exit_code == 143, r.output
+    assert "interrupted" in r.output and "ignored" not in r.output + capfd.readouterr().err
+    assert (str(rescued) in r.output.replace("\n", "")) == (where == "writing")
+    assert not out.exists()
 
 
 def test_the_interrupted_message_shows_the_folder_as_given(tmp_path, monkeypatch):

@@ -5,6 +5,7 @@ from __future__ import annotations
 import multiprocessing
 import os
 import signal
+import sys
 from pathlib import Path
 
 import typer
@@ -96,10 +97,21 @@ def run_command(
             # Ctrl-C, SIGTERM, or an error raised while the workers are being stopped
             if not (isinstance(exc, KeyboardInterrupt) or _terminated):
                 raise
+            rescued = getattr(exc.__cause__, "rescued", None)
             console.print(
                 f"[red]interrupted:[/red] nothing written; {escape(str(out))} is unchanged"
+                + (
+                    f"; the computed results were saved to {escape(str(rescued))}"
+                    if rescued
+                    else ""
+                )
             )
             raise typer.Exit(143 if _terminated else 130)
+        if _terminated:  # the signal came after the results were complete
+            console.print(
+                f"[red]terminated[/red] after the results were written to {escape(str(out))}"
+            )
+            raise typer.Exit(143)
 
 
 def _bundled_names() -> str:
@@ -136,15 +148,24 @@ class _terminate_as_interrupt:
                     child.kill()  # workers hold no output: stop them at once
             raise KeyboardInterrupt
 
+        def unraisable(info):
+            # the interrupt raised inside a callback (a weakref's, a finaliser) is lost
+            # there; the stopped workers then fail the run, which is reported as interrupted
+            if not (_terminated and isinstance(info.exc_value, KeyboardInterrupt)):
+                self._old_hook(info)
+
         try:
             self._old = signal.signal(signal.SIGTERM, handler)
         except ValueError:  # not the main thread: leave signals alone
             self._old = None
+        self._old_hook = sys.unraisablehook
+        sys.unraisablehook = unraisable
         return self
 
     def __exit__(self, *exc):
         if self._old is not None:
             signal.signal(signal.SIGTERM, self._old)
+        sys.unraisablehook = self._old_hook
         return False
 
 
@@ -204,6 +225,8 @@ def _run(
                 compare_paper=compare_paper,
             )
         except StudyError as exc:
+            if _terminated:  # the workers were stopped by the signal
+                raise KeyboardInterrupt from exc
             fail(console, exc, code=1, label="study failed")
         if "dyn" in tasks:
             bar.update(tasks["dyn"], completed=1)
@@ -211,6 +234,8 @@ def _run(
         try:
             res = write_results(study, out, workers=n_workers)
         except OutputWriteError as exc:
+            if _terminated:  # the drawing processes were stopped by the signal
+                raise KeyboardInterrupt from exc
             fail(console, exc, code=1)
         bar.update(t_write, completed=1)
 
