@@ -12,7 +12,11 @@ tabulated cams built here (written to ``--out``, default a temporary folder):
   flanks: F·e + ρ_f, base: r_b), exact on tangent arcs, with steps of acceleration where
   the arcs meet (event 139°);
 - ``ramps``: the acceleration-designed cam with long ramps (0.35 mm over 30°), a 180° event
-  and 8 mm lift, tabulated.
+  and 8 mm lift, tabulated;
+- ``poly9``: lift L(1 − u²)²(1 + u²/2), L = 9 mm over a Φ = 140° event, no ramp: zero
+  lift and velocity at the ends, but a step of acceleration (12 L/(Φ/2)², from the base
+  circle's 15 mm the contact radius steps to 87 mm); nose radius r_b + L − 3L/(Φ/2)² =
+  5.9 mm; also at 6000 rpm (``table_poly9_6000``).
 
 For each: iterations, last change of the contact force (RMS, max), converged, the message,
 the implicit-vs-explicit metrics and the wall and CPU time of the coupling chain.
@@ -61,6 +65,11 @@ def three_arc_lift(phi_deg, lift=8e-3, flank=45e-3, nose_r=6e-3, nose=180.0):
     return h - R_B
 
 
+def poly9_lift(phi_deg, lift=9e-3, event=140.0, nose=180.0):
+    u = np.clip((phi_deg - nose) / (event / 2.0), -1.0, 1.0)
+    return lift * (1.0 - u**2) ** 2 * (1.0 + 0.5 * u**2)
+
+
 def ramps_lift(phi_deg):
     cam = AccelerationCam(
         max_lift=8e-3,
@@ -71,7 +80,12 @@ def ramps_lift(phi_deg):
     return cam.lift(np.radians(phi_deg))
 
 
-TABLES = {"poly": poly_lift, "three_arc": three_arc_lift, "ramps": ramps_lift}
+TABLES = {
+    "poly": poly_lift,
+    "three_arc": three_arc_lift,
+    "ramps": ramps_lift,
+    "poly9": poly9_lift,
+}
 
 
 def table_case(name, folder: Path):
@@ -90,6 +104,10 @@ def cases(folder):
     yield "flexible", lambda: load_case("andreou2023_flexible")
     for name in TABLES:
         yield f"table_{name}", lambda name=name: table_case(name, folder)
+    yield (
+        "table_poly9_6000",
+        lambda: table_case("poly9", folder).updated({"engine.speed_rpm": 6000.0}),
+    )
 
 
 def run(case):
