@@ -25,7 +25,7 @@ import numpy as np
 from .._validation import InputError, check_real
 from ..physics import limits as L
 from .cams import CamProfile
-from .tribology import TribologyModel
+from .tribology import TribologyModel, limited_growth
 
 __all__ = [
     "ContactLawError",
@@ -241,6 +241,34 @@ class CamContact(NamedTuple):
         )
 
 
+def _film_free_rate(K: float, m: float, xt: float) -> float:
+    """The root x of x + m H(x) = K (H = ``limited_growth``, m ≥ 0): the film's free
+    rate x = a − F_c/D where one force F_c passes through the film and the contact's
+    spring and damper, F_c = P + c g (δ̇_kin + H(x)), K = a − (P + c g δ̇_kin)/D,
+    m = c g/D. Closed form where the film thins (K ≤ 0: x = K/(1 + m)); else
+    x + m H(x) is increasing from 0 at x = 0 to above K at x = K, and Newton's method
+    from the unlimited root, kept inside the bracket, converges to round-off."""
+    if K <= 0.0 or m == 0.0:
+        return K / (1.0 + m)
+    lo, hi = 0.0, K
+    x = K / (1.0 + m)
+    for _ in range(60):
+        H, dH, _ = limited_growth(x, xt)
+        f = x + m * H - K
+        if f > 0.0:
+            hi = x
+        else:
+            lo = x
+        step = f / (1.0 + m * dH)
+        x_new = x - step
+        if not lo < x_new < hi:
+            x_new = 0.5 * (lo + hi)
+        if abs(x_new - x) <= 1e-15 * K:
+            return x_new
+        x = x_new
+    return x
+
+
 class CamContactModel:
     """What the lumped and flexible valvetrain models share: the contact law (``gamma``,
     compliance ``contact_C``, camshaft compliance ``contact_ikc``), the film in series,
@@ -387,7 +415,8 @@ class CamContactModel:
         if self.film_state:
             # the film in series with the contact's spring and damper: one force F_c
             # through both, F_c = P(δ_el) + c g(P) δ̇_el with δ̇_el = δ̇_kin + ḣ and
-            # ḣ = a(h) − F_c/D(h) (a = L w'_ent/D): closed form in F_c
+            # ḣ = H(a(h) − F_c/D(h)) (a = L w'_ent/D; H limits the film's growth to its
+            # transport rate x_t, ``limited_growth``)
             P, dPdk, _ = self.elastic_contact(t, dk + hf, ue, R)
             hfilm = hf
             gc, dgc = smooth_step(P, p.damping_force_ramp)
@@ -395,17 +424,25 @@ class CamContactModel:
             a, a_h, m_inv = trib.film_rate(t, hf, 0.0, ue, R)  # type: ignore[attr-defined]
             inv_d = -m_inv
             inv_d_h = a_h - trib.film_rate(t, hf, 1.0, ue, R)[1]  # type: ignore[attr-defined]
-            den = 1.0 + c * gc * inv_d
-            Fc = (P + c * gc * (dkd + a)) / den
-            kc = dPdk * (1.0 + c * dgc * (dkd + a) - Fc * c * dgc * inv_d) / den
-            cc = c * gc / den
-            kh = kc + c * gc * (a_h - Fc * inv_d_h) / den
+            xt, xt_h = trib.growth_limit(hf, ue, R)  # type: ignore[attr-defined]
+            x = _film_free_rate(a - inv_d * (P + c * gc * dkd), c * gc * inv_d, xt)
+            Fc = P + c * gc * (dkd + limited_growth(x, xt)[0])
         else:
             P, dPdk, hfilm = self.elastic_contact(t, dk, ue, R)
             gc, dgc = smooth_step(P, p.damping_force_ramp)
             Fc = P + c * gc * dkd
             kc, cc, kh = dPdk * (1.0 + c * dgc * dkd), c * gc, 0.0
         on_c = Fc > 0.0
+        if self.film_state:
+            if not on_c:
+                Fc = 0.0
+            hd, hd_x, hd_xt = limited_growth(a - inv_d * Fc, xt)
+            hd_F = -hd_x * inv_d  # ∂ḣ/∂F_c and ∂ḣ/∂h at fixed F_c
+            hd_h = hd_x * (a_h - inv_d_h * Fc) + hd_xt * xt_h
+            den = 1.0 - c * gc * hd_F
+            kc = dPdk * (1.0 + c * dgc * (dkd + hd)) / den
+            cc = c * gc / den
+            kh = kc + c * gc * hd_h / den
         if not on_c:
             Fc = kc = cc = kh = 0.0
         if Fc > 0.0:
@@ -421,8 +458,7 @@ class CamContactModel:
         if self.film_state:
             return CamContact(
                 th, s, s1, s2, R, ue, us, dk, dkd, P, dPdk, hfilm, gc, dgc, Fc, on_c, Ff,
-                th_v, Fb, hdot=a - inv_d * Fc, dhdot_dh=a_h - inv_d_h * Fc,
-                dhdot_dF=-inv_d, kc=kc, cc=cc, kh=kh,
+                th_v, Fb, hdot=hd, dhdot_dh=hd_h, dhdot_dF=hd_F, kc=kc, cc=cc, kh=kh,
             )  # fmt: skip
         return CamContact(
             th, s, s1, s2, R, ue, us, dk, dkd, P, dPdk, hfilm, gc, dgc, Fc, on_c, Ff, th_v, Fb,

@@ -53,9 +53,6 @@ class ValvetrainResult:
     (integrated with the motion), kinetic_energy and elastic_energy (relative to static
     equilibrium); ``energy`` holds the cycle balance W = ΔT + ΔU + D and its residual.
     Units SI; crank_angle in degrees, cam_angle in rad, time in s from the run start.
-    With the film as a state, every sample is the left limit at its instant
-    (:data:`LEFT_LIMIT_ANGLE`): a step of the cam's acceleration on a sample does not show
-    the film's sub-microsecond transient there.
 
     Events (presented cycle, crank degrees): ``jumps`` — contact-loss intervals while the
     cam lifts (s > jump_lift_threshold) as (start, end); ``bounces`` — valve lift-offs
@@ -417,14 +414,6 @@ def _integrate(
     return _Run(sol.y, t_seat, y_seat, t_con, y_con, stats)
 
 
-#: A film-state run's outputs are its left limits: evaluated this cam angle [rad] before
-#: each sample. Where the cam's acceleration steps (a table node without a ramp), u_e and
-#: R step and the film's entraining load jumps; the film follows within about 0.02°, and
-#: the force through it spikes (7e5 N for < 0.005° at 6000 rpm, a 9 mm / 140° cam) while
-#: it does. A sample on the step's instant took that spike (the coupling's next EHL pass
-#: was loaded with it); a step between two samples never showed it.
-LEFT_LIMIT_ANGLE = 1e-9
-
 _COLS = ("s", "s1", "s2", "R", "ue", "us", "Fc", "P", "film", "Ftv", "Fs", "Fb")
 
 
@@ -437,9 +426,6 @@ def _sample(
     m = t_eval.size
     cols = {k: np.empty(m) for k in _COLS + ("acc_t", "acc_v", "F0s", "FNs", "T", "U")}
     cm = run.compiled
-    t_at = t_eval
-    if model.film_state:
-        t_at = t_eval - LEFT_LIMIT_ANGLE / w
     if cm is not None:
         f = cm.outputs(t_eval, Y)
         for k in _COLS:
@@ -449,20 +435,20 @@ def _sample(
         cols["T"][:], cols["U"][:] = lumped_energies(model, Y, f["P"])
     else:
         for i in range(m):
-            f = model.evaluate(t_at[i], Y[:, i])
+            f = model.evaluate(t_eval[i], Y[:, i])
             for k in _COLS:
                 cols[k][i] = f[k]
             cols["acc_t"][i] = f["acc"][0]
             cols["acc_v"][i] = f["acc"][1]
             cols["F0s"][i] = f["Fseg"][0]
             cols["FNs"][i] = f["Fseg"][-1]
-            cols["T"][i], cols["U"][i] = model.energy(t_at[i], Y[:, i], f)
+            cols["T"][i], cols["U"][i] = model.energy(t_eval[i], Y[:, i], f)
     Ff = np.asarray(
-        trib.friction(t_at, cols["Fc"], cols["ue"], cols["us"], cols["R"]), dtype=float
+        trib.friction(t_eval, cols["Fc"], cols["ue"], cols["us"], cols["R"]), dtype=float
     ) * np.ones(m)
     report = {
         k: np.broadcast_to(np.asarray(v), (m,)).copy()
-        for k, v in trib.report(t_at, cols["Fc"], cols["ue"], cols["us"], cols["R"]).items()
+        for k, v in trib.report(t_eval, cols["Fc"], cols["ue"], cols["us"], cols["R"]).items()
     }
     if model.film_state:  # the film state itself [m]
         report["film_thickness"] = Y[2 * n + 2].copy()

@@ -38,13 +38,13 @@ Limits (measured; docs/convergence.md):
   piezoviscous squeeze holds a film the reduced model lets collapse; samples whose
   correction would exceed a factor CORRECTION_LIMIT are left out and r is interpolated
   across them;
-- the entraining load follows a step of u_e or R at once (a ramp-less cam's step of
-  acceleration): the film thickens within about 0.02° and presses the tappet up (a kink
-  of about 450 N above the explicit run at 6000 rpm, 9 mm / 140° cam); film changes cross
-  the contact in 2b/u_e ≈ 3–20 µs there, so a transit lag would spread the growth over
-  up to 0.7° but leave the kink (the chain's response takes about a millisecond); no
-  measurement here checks it; the run's outputs are left limits, so a sample on the step
-  does not hold the film's sub-microsecond force spike;
+- where u_e or R step (a ramp-less cam's step of acceleration) the entraining load at
+  the current film jumps by orders of magnitude; the film then thickens at its transport
+  limit (``FilmStateTribology.growth_limit``: oil carried from the supply's meniscus,
+  0.16 m/s at 6000 rpm on a 9 mm / 140° cam), over about 0.35°, and presses the tappet
+  up (190–330 N above the explicit run at 940.25°, 3000–6000 rpm); without the limit it grew
+  within 0.02° and the force through it spiked to 7e5 N, which diverged the coupling;
+  that limit is a transport estimate, not checked against a measured film response;
 - the converged force still depends a little on the EHL sample interval: the same EHL
   at every 4° or 8° moves it by 3.3 N RMS over the event (21 N max; peak 650 N) at
   4000 rpm, against 11 N (47 N) with the earlier linearised film law; halving the EHL
