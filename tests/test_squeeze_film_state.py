@@ -86,10 +86,14 @@ def test_limited_growth_is_a_smooth_minimum():
         H, dx, dxt = limited_growth(x, xt)
         e = 1e-7
         assert dx == pytest.approx(
-            (limited_growth(x + e, xt)[0] - limited_growth(x - e, xt)[0]) / (2 * e), rel=1e-6, abs=1e-9
+            (limited_growth(x + e, xt)[0] - limited_growth(x - e, xt)[0]) / (2 * e),
+            rel=1e-6,
+            abs=1e-9,
         )
         assert dxt == pytest.approx(
-            (limited_growth(x, xt + e)[0] - limited_growth(x, xt - e)[0]) / (2 * e), rel=1e-6, abs=1e-9
+            (limited_growth(x, xt + e)[0] - limited_growth(x, xt - e)[0]) / (2 * e),
+            rel=1e-6,
+            abs=1e-9,
         )
 
 
