@@ -24,8 +24,9 @@ import numpy as np
 
 from .._validation import InputError, check_real
 from ..physics import limits as L
+from ..physics.film_state_laws import limited_growth
 from .cams import CamProfile
-from .tribology import TribologyModel, limited_growth
+from .tribology import TribologyModel
 
 __all__ = [
     "ContactLawError",
@@ -248,24 +249,26 @@ def _film_free_rate(K: float, m: float, xt: float) -> float:
     m = c g/D. Closed form where the film thins (K ≤ 0: x = K/(1 + m)); else
     x + m H(x) is increasing from 0 at x = 0 to above K at x = K, and Newton's method
     from the unlimited root, kept inside the bracket, converges to round-off."""
-    if K <= 0.0 or m == 0.0:
+    if K <= 0.0 or m == 0.0 or xt == math.inf:
         return K / (1.0 + m)
+    if xt <= 0.0:
+        return K  # no growth: H = 0
     lo, hi = 0.0, K
     x = K / (1.0 + m)
     for _ in range(60):
         H, dH, _ = limited_growth(x, xt)
         f = x + m * H - K
+        if f == 0.0:
+            return x
         if f > 0.0:
             hi = x
         else:
             lo = x
         step = f / (1.0 + m * dH)
+        if abs(step) <= 1e-15 * K:
+            return x - step
         x_new = x - step
-        if not lo < x_new < hi:
-            x_new = 0.5 * (lo + hi)
-        if abs(x_new - x) <= 1e-15 * K:
-            return x_new
-        x = x_new
+        x = x_new if lo <= x_new <= hi else 0.5 * (lo + hi)
     return x
 
 

@@ -40,6 +40,9 @@ from .._typing import ArrayLike
 from .._validation import InputError, check_array, check_positive
 from ..physics.analytic_contact import analytic_contact
 from ..physics.asperity import Roughness
+from ..physics.film_state_laws import FILM_FLOOR as _FILM_FLOOR
+from ..physics.film_state_laws import SUPPLY_FILM, SUPPLY_FILM_MAX, entraining_film_load
+from ..physics.film_state_laws import entraining_scalar as _entraining_scalar
 from ..physics.lubricant import SAE_5W20, Lubricant
 from ..physics.materials import STEEL, Body, BodyPair
 
@@ -351,107 +354,6 @@ class FilmTableTribology(TribologyModel):
         return out
 
 
-#: Oil supply layer h_s [m] bounding the film of :class:`FilmStateTribology` (assumed, see
-#: there): about the flooded EHL film of the paper case under the 5–10 N contacts of the
-#: tappet on the base circle.
-SUPPLY_FILM = 10e-6
-#: largest supply film a case file accepts [m] (1 mm: far above any film a cam contact
-#: holds)
-SUPPLY_FILM_MAX = 1e-3
-#: Martin's rigid isoviscous line contact, central film (Reynolds exit): h w' = 4.894 η u R.
-_MARTIN = 4.894
-#: smallest film the film state's laws are evaluated at [m] (the state itself is free)
-_FILM_FLOOR = 1e-10
-
-
-#: sharpness p of the smooth minimum of the film's free growth rate and its transport
-#: limit (:func:`limited_growth`)
-GROWTH_SHARPNESS = 4.0
-
-
-def limited_growth(x: float, xt: float) -> tuple[float, float, float]:
-    """The film's rate ḣ = H(x) from its free rate x = a − F_c/D [m/s] (squeeze-limited)
-    and the transport limit x_t ≥ 0 [m/s] of its growth (:meth:`FilmStateTribology.
-    growth_limit`): H = x where the film thins (x ≤ 0), else the smooth minimum
-
-        H = x / (1 + (x/x_t)^p)^(1/p),  p = GROWTH_SHARPNESS,
-
-    which is x within 0.06 % for x < x_t/4 and tends to x_t for x ≫ x_t. Returns
-    (H, ∂H/∂x, ∂H/∂x_t)."""
-    if x <= 0.0:
-        return x, 1.0, 0.0
-    if xt <= 0.0:
-        return 0.0, 0.0, 1.0
-    if xt == math.inf:
-        return x, 1.0, 0.0
-    p = GROWTH_SHARPNESS
-    q = (x / xt) ** p
-    f = (1.0 + q) ** (-1.0 / p)
-    # ∂H/∂x = f − x f q/(x(1 + q)) = f/(1 + q); ∂H/∂x_t = f q x/(x_t(1 + q))
-    return x * f, f / (1.0 + q), f * q * x / (xt * (1.0 + q))
-
-
-def _entraining_scalar(h, ue, R, eta, alpha, e_prime, supply, r):
-    """Scalar core of :func:`entraining_film_load`: (w' [N/m], dw'/dh [N/m²])."""
-    if h >= supply or ue == 0.0:
-        return 0.0, 0.0
-    h = max(h, _FILM_FLOOR)
-    d = supply - h
-    he = h * supply / d / r  # flooded-equivalent film, corrected
-    dhe = supply * supply / (d * d) / r
-    au = abs(ue)
-    w_ri = _MARTIN * eta * au * R / he
-    u2 = 2.0 * eta * au / (e_prime * R)
-    x = 1.311 * (alpha * e_prime * u2) ** 0.75 * R / he
-    x2 = x * x
-    x4 = x2 * x2
-    w_ep = e_prime * R * x4 * x4
-    return w_ri + w_ep, -(w_ri + 8.0 * w_ep) / he * dhe
-
-
-def entraining_film_load(
-    film, entrainment_speed, radius, lubricant, e_prime, supply, correction=1.0
-):
-    """Load per unit length w' [N/m] that a steady entraining film of thickness h [m]
-    carries between a cylinder of radius R [m] and a plane at entrainment speed u_e [m/s]
-    (vectorised; with dw'/dh [N/m²]): the inverse of a steady film formula, limited by the
-    oil supply. With U = η₀|u_e|/(E'R), G = αE' (η₀, α of ``lubricant``, E' [Pa]):
-
-    - *starvation*: the film is the series (harmonic) combination of the flooded film h_f
-      and the supply layer h_s, 1/h = 1/h_f + 1/h_s, i.e. h_f = h h_s/(h_s − h), and no
-      load for h ≥ h_s. It is the γ = 1 member of the family h/h_f = ρ/(1 + ρ^γ)^(1/γ),
-      ρ = h_s/h_f, that Chevalier, Lubrecht, Cann, Colin & Dalmaz (ASME J. Tribol. 120
-      (1998) 126) fitted to starved EHL films (measured γ ≈ 2–3: sharper than here). It
-      has the flooded film for h_f ≪ h_s, the supply layer as h_f → ∞ (no load) and a
-      finite stiffness there; near h_s the film recovers with the time constant
-      2.72 √(R h_s)/|u_e| (the inlet length √(R h_s) swept at u_e, with the squeeze
-      film of :func:`squeeze_film_load`);
-    - *flooded*: the loads that the rigid-isoviscous (Martin 1916, central film,
-      Reynolds exit) and the elastic-piezoviscous (Moes 1992 asymptote H_EP) films of
-      thickness h_e = h_f/r carry, added:
-
-          w' = 4.894 η₀ |u_e| R / h_e + E'R (1.311 G^(3/4) (2U)^(3/4) R / h_e)^8
-
-      Its inverse agrees with the Moes central film (:func:`~tribodyn.physics.regimes.
-      moes_central`) within 7 % in the elastic-piezoviscous regime and gives Martin's
-      film (Moes' rigid asymptote is 22 % higher) at light loads; in the isoviscous-
-      elastic regime (low speed, high load) it is up to 27 % thinner. ``correction`` r
-      scales the flooded film (the implicit coupling sets it from the transient EHL).
-
-    w' → 0 as u_e → 0 (only squeeze then); w' = 0 for h ≥ h_s."""
-    h, u, R, r = np.broadcast_arrays(
-        *(np.asarray(v, dtype=float) for v in (film, entrainment_speed, radius, correction))
-    )
-    w = np.zeros(h.shape)
-    dw = np.zeros(h.shape)
-    eta, alpha = lubricant.viscosity, lubricant.pressure_viscosity
-    for i in np.ndindex(h.shape):
-        w[i], dw[i] = _entraining_scalar(
-            float(h[i]), float(u[i]), float(R[i]), eta, alpha, e_prime, supply, float(r[i])
-        )
-    return (w[()], dw[()]) if w.ndim == 0 else (w, dw)
-
-
 class FilmStateTribology(TribologyModel):
     """The film thickness h as a state of the dynamics (implicit coupling).
 
@@ -469,11 +371,12 @@ class FilmStateTribology(TribologyModel):
     settles where its entraining load equals that chain's force.
     Without load (F_c = 0) the film recovers towards h_s; a load squeezes it at the rate
     the squeeze film allows; with u_e = 0 only the squeeze carries the load. The film
-    thickens no faster than oil reaches it from the supply: H (:func:`limited_growth`)
+    thickens no faster than oil reaches it from the supply: H
+    (:func:`~tribodyn.physics.film_state_laws.limited_growth`)
     is a smooth minimum of the free rate and the transport limit x_t of
-    :meth:`growth_limit`, which binds only where u_e or R step (a ramp-less cam's step
-    of acceleration; without it the film grew 2 µm within 0.02° there and the force
-    through it spiked to 7e5 N). One force F_c passes through the film and the
+    :meth:`growth_limit`, which binds where u_e or R step (a ramp-less cam's step of
+    acceleration; without it the film grew from 0.71 to 2.1 µm within 0.02° there and
+    the force through it spiked to 2e5–7e5 N). One force F_c passes through the film and the
     contact's spring and damper in series: the damper acts on the elastic rate
     δ̇_kin + ḣ (``cam_contact`` solves for F_c: closed form where the film thins, a
     bracketed Newton iteration where it grows). The film's work −P ḣ is counted in the dynamics' dissipation, so the
@@ -491,7 +394,8 @@ class FilmStateTribology(TribologyModel):
     supply_film : h_s [m] (default :data:`SUPPLY_FILM`, an assumed oil supply layer).
     time, correction, period : the correction table (optional).
     growth_limited : the film thickens no faster than oil can reach it from the supply
-        (:meth:`growth_limit`, :func:`limited_growth`; default True).
+        (:meth:`growth_limit`, :func:`~tribodyn.physics.film_state_laws.limited_growth`;
+        default True).
     """
 
     has_film = False
@@ -588,7 +492,10 @@ class FilmStateTribology(TribologyModel):
         or R step (a ramp-less cam's step of acceleration: 413 m/s against 0.16 m/s at
         6000 rpm, 9 mm / 140° cam); elsewhere it is far slower (an unloaded
         rigid-isoviscous film recovers at c√h (1 − h/h_s) ≤ 0.26 x_t, where the smooth
-        minimum slows it by at most 0.11 %)."""
+        minimum slows it by at most 0.11 %; a piezoviscous film near u_e = 0 reaches
+        0.45 x_t in the paper case, slowed by at most 1 %, 0.5 N of force). x_m is far
+        longer than the Hertz width, so x_t errs on the slow side; it scales with
+        √(h_s − h), with the assumed supply."""
         if not self.growth_limited:
             return math.inf, 0.0
         gap = self.supply_film - h

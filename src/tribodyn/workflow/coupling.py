@@ -41,9 +41,9 @@ Limits (measured; docs/convergence.md):
 - where u_e or R step (a ramp-less cam's step of acceleration) the entraining load at
   the current film jumps by orders of magnitude; the film then thickens at its transport
   limit (``FilmStateTribology.growth_limit``: oil carried from the supply's meniscus,
-  0.16 m/s at 6000 rpm on a 9 mm / 140° cam), over about 0.35°, and presses the tappet
+  0.16–0.18 m/s at 6000 rpm on a 9 mm / 140° cam), over about 0.35°, and presses the tappet
   up (190–330 N above the explicit run at 940.25°, 3000–6000 rpm); without the limit it grew
-  within 0.02° and the force through it spiked to 7e5 N, which diverged the coupling;
+  within 0.02° and the force through it spiked to 2e5–7e5 N, which diverged the coupling;
   that limit is a transport estimate, not checked against a measured film response;
 - the converged force still depends a little on the EHL sample interval: the same EHL
   at every 4° or 8° moves it by 3.3 N RMS over the event (21 N max; peak 650 N) at
