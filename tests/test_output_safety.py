@@ -307,6 +307,32 @@ def test_a_signal_lost_in_a_callback_still_ends_as_interrupted(tmp_path, monkeyp
     assert not out.exists()
 
 
+@pytest.mark.parametrize("terminated", [False, True])
+def test_an_interrupt_through_exec_keeps_the_exit_code(tmp_path, terminated):
+    """``python -m``: an interrupt that passed through ``exec`` of source text (as in a
+    dataclass's creation) left CPython's unhandled-interrupt flag set, and the process
+    ended as killed by SIGINT (-2) instead of with 130 or 143."""
+    (tmp_path / "interrupted_run.py").write_text(
+        "import sys\n"
+        "import tribodyn.cli.run as R\n"
+        "from tribodyn.cli import app\n"
+        "def _run(*args, **kwargs):\n"
+        f"    R._terminated = {terminated}\n"
+        "    exec('raise KeyboardInterrupt')\n"
+        "R._run = _run\n"
+        "app(prog_name='tribodyn', args=['run', '-o', sys.argv[1], '-q'])\n"
+    )
+    proc = subprocess.run(
+        [sys.executable, "-m", "interrupted_run", str(tmp_path / "out")],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert proc.returncode == (143 if terminated else 130), proc.stdout + proc.stderr
+    assert "interrupted" in proc.stdout and "Traceback" not in proc.stdout + proc.stderr
+
+
 def test_the_interrupted_message_shows_the_folder_as_given(tmp_path, monkeypatch):
     """Ctrl-C during a run: the message prints the output folder literally (a bracket
     in its name is not taken for rich markup)."""

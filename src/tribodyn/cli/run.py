@@ -97,6 +97,7 @@ def run_command(
             # Ctrl-C, SIGTERM, or an error raised while the workers are being stopped
             if not (isinstance(exc, KeyboardInterrupt) or _terminated):
                 raise
+            _clear_interrupt_flag()
             rescued = getattr(exc.__cause__, "rescued", None)
             console.print(
                 f"[red]interrupted:[/red] nothing written; {escape(str(out))} is unchanged"
@@ -108,6 +109,7 @@ def run_command(
             )
             raise typer.Exit(143 if _terminated else 130)
         if _terminated:  # the signal came after the results were complete
+            _clear_interrupt_flag()
             console.print(
                 f"[red]terminated[/red] after the results were written to {escape(str(out))}"
             )
@@ -125,6 +127,15 @@ def _bundled_names() -> str:
 
 
 _terminated = False
+
+
+def _clear_interrupt_flag() -> None:
+    """Let the exit code stand after a handled interrupt. A KeyboardInterrupt that passed
+    through ``exec`` of source text (dataclasses and namedtuples are made that way) sets
+    CPython's flag of an unhandled interrupt even when it is caught later, and
+    ``python -m`` then ends the process as killed by SIGINT (-2) instead of with its exit
+    code; running any source text clears the flag."""
+    exec("pass")
 
 
 class _terminate_as_interrupt:
