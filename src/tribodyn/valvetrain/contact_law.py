@@ -426,7 +426,7 @@ class CamContactModel:
             trib = self.trib
             a, a_h, m_inv = trib.film_rate(t, hf, 0.0, ue, R)  # type: ignore[attr-defined]
             inv_d = -m_inv
-            inv_d_h = a_h - trib.film_rate(t, hf, 1.0, ue, R)[1]  # type: ignore[attr-defined]
+            inv_d_h = trib.squeeze_compliance_slope(hf, ue, R)  # type: ignore[attr-defined]
             xt, xt_h = trib.growth_limit(hf, ue, R)  # type: ignore[attr-defined]
             x = _film_free_rate(a - inv_d * (P + c * gc * dkd), c * gc * inv_d, xt)
             Fc = P + c * gc * (dkd + limited_growth(x, xt)[0])

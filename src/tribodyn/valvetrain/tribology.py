@@ -479,6 +479,13 @@ class FilmStateTribology(TribologyModel):
         rate = (self.width * w - force) * inv_d
         return rate, self.width * dw * inv_d + 1.5 * rate / hh, -inv_d
 
+    def squeeze_compliance_slope(self, h: float, ue: float, R: float) -> float:
+        """∂(1/D)/∂h [1/(N s)] of the squeeze film's 1/D = h^(3/2)/(3√2π η₀ R^(3/2) L)
+        at h [m] (the mixed derivative −∂²ḣ/∂h∂F_c of :meth:`film_rate`): 1.5/(D h), with
+        h held at the floor below it as there."""
+        hh = max(h, _FILM_FLOOR)
+        return 1.5 * hh**0.5 / (self._sq * max(R, 1e-9) ** 1.5)
+
     def growth_limit(self, h: float, ue: float, R: float) -> tuple[float, float]:
         """(x_t [m/s], ∂x_t/∂h [1/s]): the fastest the film can thicken. A thicker film
         needs oil from the supply layer h_s, carried at u_e from the inlet meniscus, where
