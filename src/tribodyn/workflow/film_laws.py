@@ -299,4 +299,5 @@ def state_from_vector(v, like: FilmStateTribology, period) -> FilmStateTribology
         time=like.time,
         correction=np.exp(np.clip(v[:n], -lim, lim)),
         period=period,
+        growth_limited=like.growth_limited,
     )
