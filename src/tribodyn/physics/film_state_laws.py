@@ -18,9 +18,9 @@ __all__ = [
     "limited_growth",
 ]
 
-#: Oil supply layer h_s [m] bounding the film of :class:`~tribodyn.valvetrain.tribology.FilmStateTribology` (assumed, see
-#: there): about the flooded EHL film of the paper case under the 5–10 N contacts of the
-#: tappet on the base circle.
+#: Oil supply layer h_s [m] bounding the film of the film state (valvetrain
+#: ``FilmStateTribology``; assumed, see there): about the flooded EHL film of the paper
+#: case under the 5–10 N contacts of the tappet on the base circle.
 SUPPLY_FILM = 10e-6
 #: largest supply film a case file accepts [m] (1 mm: far above any film a cam contact
 #: holds)
@@ -29,8 +29,6 @@ SUPPLY_FILM_MAX = 1e-3
 _MARTIN = 4.894
 #: smallest film the film state's laws are evaluated at [m] (the state itself is free)
 FILM_FLOOR = 1e-10
-
-
 #: sharpness p of the smooth minimum of the film's free growth rate and its transport
 #: limit (:func:`limited_growth`)
 GROWTH_SHARPNESS = 4.0
@@ -38,8 +36,9 @@ GROWTH_SHARPNESS = 4.0
 
 def limited_growth(x: float, xt: float) -> tuple[float, float, float]:
     """The film's rate ḣ = H(x) from its free rate x = a − F_c/D [m/s] (squeeze-limited)
-    and the transport limit x_t ≥ 0 [m/s] of its growth (:meth:`~tribodyn.valvetrain.tribology.
-    FilmStateTribology.growth_limit`): H = x where the film thins (x ≤ 0), else the smooth minimum
+    and the transport limit x_t ≥ 0 [m/s] of its growth (valvetrain
+    ``FilmStateTribology.growth_limit``): H = x where the film thins (x ≤ 0), else the
+    smooth minimum
 
         H = x / (1 + (x/x_t)^p)^(1/p),  p = GROWTH_SHARPNESS,
 
@@ -93,7 +92,7 @@ def entraining_film_load(
       has the flooded film for h_f ≪ h_s, the supply layer as h_f → ∞ (no load) and a
       finite stiffness there; near h_s the film recovers with the time constant
       2.72 √(R h_s)/|u_e| (the inlet length √(R h_s) swept at u_e, with the squeeze
-      film of :func:`squeeze_film_load`);
+      film of :func:`~tribodyn.valvetrain.tribology.squeeze_film_load`);
     - *flooded*: the loads that the rigid-isoviscous (Martin 1916, central film,
       Reynolds exit) and the elastic-piezoviscous (Moes 1992 asymptote H_EP) films of
       thickness h_e = h_f/r carry, added:
