@@ -429,7 +429,8 @@ class CamContactModel:
             inv_d_h = trib.squeeze_compliance_slope(hf, ue, R)  # type: ignore[attr-defined]
             xt, xt_h = trib.growth_limit(hf, ue, R)  # type: ignore[attr-defined]
             x = _film_free_rate(a - inv_d * (P + c * gc * dkd), c * gc * inv_d, xt)
-            Fc = P + c * gc * (dkd + limited_growth(x, xt)[0])
+            hd, hd_x, hd_xt = limited_growth(x, xt)
+            Fc = P + c * gc * (dkd + hd)
         else:
             P, dPdk, hfilm = self.elastic_contact(t, dk, ue, R)
             gc, dgc = smooth_step(P, p.damping_force_ramp)
@@ -437,9 +438,9 @@ class CamContactModel:
             kc, cc, kh = dPdk * (1.0 + c * dgc * dkd), c * gc, 0.0
         on_c = Fc > 0.0
         if self.film_state:
-            if not on_c:
+            if not on_c:  # the contact is open: the film's free rate is a
                 Fc = 0.0
-            hd, hd_x, hd_xt = limited_growth(a - inv_d * Fc, xt)
+                hd, hd_x, hd_xt = limited_growth(a, xt)
             hd_F = -hd_x * inv_d  # ∂ḣ/∂F_c and ∂ḣ/∂h at fixed F_c
             hd_h = hd_x * (a_h - inv_d_h * Fc) + hd_xt * xt_h
             den = 1.0 - c * gc * hd_F
