@@ -8,13 +8,20 @@ per setting:
 
 - ``env1``: ``OPENBLAS_NUM_THREADS=1`` (and OpenMP/MKL) set before numpy loads;
 - ``default``: as many threads as CPUs (the variables set to the CPU count);
+- ``untouched``: the variables removed, as in a plain Python script (BLAS picks its own
+  thread count);
 - ``limit``: as ``default``, with a runtime limit of one thread
   (``threadpoolctl.threadpool_limits(1)``) around the solves.
+
+``solve_ehl`` limits itself to one thread inside the call, so ``default`` and
+``untouched`` should take the ``env1`` time. Each line also gives the ratio of its median
+to the ``env1`` median of the same round.
 
 Also the cost of entering and leaving the runtime limit once.
 """
 
 import argparse
+import json
 import os
 import subprocess
 import sys
@@ -38,7 +45,7 @@ def child(mode: str, repeat: int) -> None:
 
     solve()  # compiles the kernels
     times = []
-    with threadpool_limits(1 if mode == "limit" else None):
+    with threadpool_limits(1 if mode == "limit" else None):  # None: as the environment says
         threads = [i.get("num_threads") for i in threadpool_info()]
         for _ in range(repeat):
             t = time.perf_counter()
@@ -46,15 +53,23 @@ def child(mode: str, repeat: int) -> None:
             times.append(time.perf_counter() - t)
     times.sort()
     print(
-        f"{mode:8s} threads={threads} min={times[0]:.3f} s median={times[len(times) // 2]:.3f} s "
-        f"converged={r.converged} h_c={r.central_film:.6e} m"
+        json.dumps(
+            {
+                "mode": mode,
+                "threads_outside_solve": threads,
+                "min_s": round(times[0], 5),
+                "median_s": round(times[len(times) // 2], 5),
+                "converged": bool(r.converged),
+                "h_c_m": r.central_film,
+            }
+        )
     )
     if mode == "limit":
         t = time.perf_counter()
         for _ in range(100):
             with threadpool_limits(1):
                 pass
-        print(f"threadpool_limits enter/exit: {(time.perf_counter() - t) * 10:.2f} ms")
+        print(json.dumps({"threadpool_limits_enter_exit_ms": (time.perf_counter() - t) * 10}))
 
 
 def main() -> None:
@@ -68,11 +83,21 @@ def main() -> None:
         return
     ncpu = str(os.cpu_count() or 1)
     for _ in range(a.rounds):
-        for mode in ("env1", "default", "limit"):
+        medians = {}
+        for mode in ("env1", "default", "untouched", "limit"):
             env = dict(os.environ)
-            env.update({v: "1" if mode == "env1" else ncpu for v in VARS})
+            for v in VARS:
+                env.pop(v, None)
+            if mode != "untouched":
+                env.update({v: "1" if mode == "env1" else ncpu for v in VARS})
             cmd = [sys.executable, __file__, "--child", mode, "--repeat", str(a.repeat)]
-            subprocess.run(cmd, env=env, check=True)
+            out = subprocess.run(cmd, env=env, check=True, capture_output=True, text=True)
+            for line in out.stdout.splitlines():
+                rec = json.loads(line)
+                if "median_s" in rec:
+                    medians[mode] = rec["median_s"]
+                    rec["ratio_to_env1"] = round(rec["median_s"] / medians["env1"], 3)
+                print(json.dumps(rec))
 
 
 if __name__ == "__main__":

@@ -11,22 +11,29 @@ A runtime limit (threadpoolctl) measured as fast as the environment variable, so
 * a local process pool starts its fresh interpreters with them
   (:func:`single_blas_thread_env`);
 * the workflow's entry points and every task run under a runtime limit
-  (:func:`single_blas_thread`), which also covers Dask workers and Python API callers.
+  (:func:`single_blas_thread`), which also covers Dask workers;
+* the public solvers (``solve_ehl``, ``solve_dry_contact``, ``solve_thermal_ehl``, the
+  transient stepper's calls) carry the same limit themselves (:func:`one_blas_thread`),
+  so a Python caller who set nothing gets the one-thread speed; the limit is lifted when
+  the call returns, so the caller's own BLAS work keeps its threads. Entering and leaving
+  it costs about 0.1 ms (``benchmarks/bench_blas_threads.py``).
 
 A variable the user set is never changed.
 """
 
 from __future__ import annotations
 
+import functools
 import os
 import threading
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from typing import Any
+from typing import Any, ParamSpec, TypeVar
 
 __all__ = [
     "BLAS_ENV",
     "blas_single_threaded",
+    "one_blas_thread",
     "set_blas_env",
     "single_blas_thread",
     "single_blas_thread_env",
@@ -91,6 +98,21 @@ def single_blas_thread() -> Iterator[None]:
                 _release_openblas_control()
                 limiter.restore_original_limits()
                 _release_openblas_control()
+
+
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
+
+
+def one_blas_thread(func: Callable[_P, _R]) -> Callable[_P, _R]:
+    """Run ``func`` under :func:`single_blas_thread` (a decorator for the public solvers)."""
+
+    @functools.wraps(func)
+    def wrapper(*args: _P.args, **kwargs: _P.kwargs) -> _R:
+        with single_blas_thread():
+            return func(*args, **kwargs)
+
+    return wrapper
 
 
 def _release_openblas_control() -> None:

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._threads import one_blas_thread
 from .._typing import ArrayLike
 from .._validation import InputError, check_int, check_positive
 from ..physics.elasticity import DeformationOperator
@@ -120,6 +121,7 @@ def _cgm(
     return p, None, False, it, f"not converged after {max_iter} iterations (change {err:.1e})"
 
 
+@one_blas_thread
 def solve_dry_contact(
     load: float,
     radius: float,

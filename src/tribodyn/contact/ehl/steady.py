@@ -13,6 +13,7 @@ import math
 
 import numpy as np
 
+from ..._threads import one_blas_thread
 from ..._validation import InputError
 from ...physics.asperity import Roughness
 from ...physics.lubricant import Lubricant
@@ -52,6 +53,7 @@ def state_from_dimensional(sysm: ReynoldsSystem, x, q, h0) -> State:
     return State(Q, h0 / sysm.h_ref)
 
 
+@one_blas_thread
 def solve_ehl(
     load: float,
     radius: float,

@@ -26,6 +26,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..._threads import one_blas_thread
 from ..._validation import InputError
 from ...physics.asperity import Roughness
 from ...physics.heat_conduction import ThermalBody
@@ -129,6 +130,7 @@ def checked_thermal_bodies(tbodies, bodies):
     return tb
 
 
+@one_blas_thread
 def solve_thermal_ehl(
     load: float,
     radius: float,

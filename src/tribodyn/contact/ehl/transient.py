@@ -8,6 +8,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..._threads import one_blas_thread
 from ..._validation import InputError, check_positive
 from ...physics.asperity import Roughness
 from ...physics.limits import EHL_NODES_TRANSIENT, MAX_SUBSTEPS
@@ -139,6 +140,7 @@ class TransientEHL:
         self.result: EHLResult | None = None
 
     # -- starting states
+    @one_blas_thread
     def start_steady(self, load, radius, entrainment_speed, sliding_speed, time=0.0) -> EHLResult:
         """Start from the steady solution at the given conditions (u_e ≠ 0), on the
         transient's own grid, with an empty history (the first step is BDF1)."""
@@ -156,6 +158,7 @@ class TransientEHL:
         self.result = res
         return res
 
+    @one_blas_thread
     def start_film(self, film, load, radius, entrainment_speed=0.0, sliding_speed=0.0, time=0.0):
         """Start from an unloaded film h(x) = film + x²/(2R) (no pressure yet)."""
         h0 = check_positive("film", film, "m")
@@ -301,6 +304,7 @@ class TransientEHL:
         st.H0 = hc / sysm.h_ref - float(np.interp(0.0, sysm.g.X, H))
         return st
 
+    @one_blas_thread
     def step(self, dt, load, radius, entrainment_speed, sliding_speed) -> EHLResult:
         """Advance by dt [s] to the given conditions (load per unit length [N/m])."""
         dt = check_positive("dt", dt, "s")
