@@ -212,3 +212,83 @@ def test_per_point_radius_of_a_cam_trace(tmp_path):
     args += ["--roughness-parameter", "0.15", "--json"]
     r = CliRunner().invoke(app, ["calibrate", str(path), *args])
     assert r.exit_code == 0, r.output
+
+
+# ----------------------------------------------------------------------------- repeated rows
+def test_exact_repeats_are_counted_once():
+    """A copied row is not a new measurement: the ± values stay those of the distinct
+    points (before, 10 copied rows shrank them as if they were new data)."""
+    d = _measured(0)
+    first = calibrate_friction(d, SETUP)
+    rep = np.r_[np.arange(len(d)), np.arange(10)]
+    copied = FrictionData(
+        d.entrainment_speed[rep], d.sliding_speed[rep], d.load[rep], d.friction_coefficient[rep]
+    )
+    cal = calibrate_friction(copied, SETUP)
+    assert cal.n_points == len(d)
+    for name in TRUTH:
+        assert cal.std[name] == pytest.approx(first.std[name], rel=1e-6)
+        assert cal.values[name] == pytest.approx(first.values[name], rel=1e-6)
+    (warning,) = cal.warnings
+    assert "10 measured point(s) repeat an earlier one exactly (points 29, 30" in warning
+    # a repeated measurement (same conditions, another μ) is data: kept
+    again = FrictionData(
+        d.entrainment_speed[rep],
+        d.sliding_speed[rep],
+        d.load[rep],
+        np.r_[d.friction_coefficient, d.friction_coefficient[:10] + 1e-4],
+    )
+    assert calibrate_friction(again, SETUP).n_points == len(d) + 10
+
+
+def test_too_few_distinct_points():
+    with pytest.raises(InputError, match="only 2 distinct measured points"):
+        calibrate_friction(
+            FrictionData([1.0, 1.0, 2.0], [0.1] * 3, [1e5] * 3, [0.05] * 3),
+            SETUP,
+            free=("boundary_shear_coefficient",),
+        )
+
+
+# ----------------------------------------------------------------------------- wrong units
+def _stribeck(lo, hi):
+    """A Stribeck curve (slide-to-roll 0.2) from u_e = lo to hi and a traction curve at hi,
+    measured with the true viscosity of SETUP (0.02 Pa·s)."""
+    ue = np.r_[np.geomspace(lo, hi, 14), np.full(14, hi)]
+    us = np.r_[0.2 * ue[:14], np.geomspace(hi / 1000, 2 * hi, 14)]
+    return _measured(0, ue, us, np.full(ue.size, 2e5))
+
+
+def _with_viscosity(mu0):
+    from dataclasses import replace
+
+    return replace(SETUP, lubricant=Lubricant(mu0, 2e-8))
+
+
+RHEOLOGY = {"eyring_stress": 3e6, "limiting_shear_coefficient": 0.025}
+
+
+def test_viscosity_in_mpas_given_as_pas_is_named():
+    """20 (mPa·s) given as Pa·s: the film is ~125× too thick and ς came out 5.6× too large
+    with "converged". The measured friction keeps rising towards low speed where these
+    inputs put the contact in full film, so the model cannot follow the Stribeck curve."""
+    d = _stribeck(1e-3, 0.2)
+    kw = {"free": ("boundary_shear_coefficient",), "fixed": RHEOLOGY}
+    right = calibrate_friction(d, _with_viscosity(0.02), **kw)
+    assert right.converged, right.message
+    wrong = calibrate_friction(d, _with_viscosity(20.0), **kw)
+    assert not wrong.converged
+    msg = wrong.message
+    assert "viscosity 20 Pa·s is probably 1000× too high" in msg, msg
+    assert "with 0.02 Pa·s" in msg and "mPa·s" in msg
+    assert "boundary_shear_coefficient = 0.6" in msg  # the implausible value is shown
+
+
+def test_wrong_viscosity_flagged_when_fitting_rheology_too():
+    """All three default parameters free, a Stribeck curve at low speed: before, ς came
+    out 3× too large and the fit said converged."""
+    d = _stribeck(1e-5, 0.01)
+    assert calibrate_friction(d, _with_viscosity(0.02)).converged
+    wrong = calibrate_friction(d, _with_viscosity(20.0))
+    assert not wrong.converged
+    assert "viscosity" in wrong.message and "Pa·s" in wrong.message
