@@ -292,3 +292,131 @@ def test_wrong_viscosity_flagged_when_fitting_rheology_too():
     wrong = calibrate_friction(d, _with_viscosity(20.0))
     assert not wrong.converged
     assert "viscosity" in wrong.message and "Pa·s" in wrong.message
+
+
+# ----------------------------------------------------------------------------- the data file
+def _csv_text(d, sep=",", decimal="."):
+    lines = [
+        "# twin disc, 90 °C",
+        sep.join(("entrainment_speed", "slide_roll_ratio", "friction_coefficient")),
+    ]
+    for a, b, c in zip(d.entrainment_speed, d.sliding_speed, d.friction_coefficient, strict=True):
+        lines.append(sep.join(f"{v:.9g}".replace(".", decimal) for v in (a, b / a, c)))
+    return "\n".join(lines) + "\n"
+
+
+def _fit_json(path, *extra):
+    import json
+
+    r = CliRunner().invoke(app, ["calibrate", str(path), *ARGS, "--json", *extra])
+    return r, (json.loads(r.stdout) if r.exit_code == 0 else None)
+
+
+@pytest.mark.parametrize(
+    "encode, note",
+    [
+        (lambda t: t.encode("cp1252"), "read as Windows-1252"),
+        (lambda t: t.encode("latin-1"), "read as Windows-1252"),
+        (lambda t: t.encode("utf-16"), None),
+        (lambda t: b"\xef\xbb\xbf" + t.encode("utf-8"), None),  # Excel "CSV UTF-8"
+        (lambda t: t.replace("\n", "\r\n").encode("utf-8"), None),
+    ],
+    ids=["cp1252", "latin-1", "utf-16", "utf-8-bom", "crlf"],
+)
+def test_cli_reads_data_as_spreadsheets_save_it(tmp_path, encode, note):
+    """The same points in other encodings give the same fit (the UTF-8 file is the
+    reference); a guessed code page is noted. Before, the BOM was a missing column and
+    the others were not UTF-8."""
+    d = _measured(0)
+    ref = tmp_path / "utf8.csv"
+    ref.write_text(_csv_text(d), encoding="utf-8")
+    other = tmp_path / "other.csv"
+    other.write_bytes(encode(_csv_text(d)))
+    _, want = _fit_json(ref)
+    r, got = _fit_json(other)
+    assert r.exit_code == 0, r.output
+    assert got["values"] == want["values"]
+    guessed = [w for w in got["warnings"] if "read as" in w]
+    if note is None:
+        assert guessed == []
+    else:
+        assert len(guessed) == 1 and note in guessed[0]
+
+
+def test_cli_semicolons_with_decimal_commas(tmp_path):
+    d = _measured(0)
+    ref = tmp_path / "ref.csv"
+    ref.write_text(_csv_text(d))
+    semi = tmp_path / "semi.csv"
+    semi.write_text(_csv_text(d, sep=";", decimal=","))
+    assert _fit_json(semi)[1]["values"] == _fit_json(ref)[1]["values"]
+
+
+def test_cli_decimal_commas_in_a_comma_separated_file_are_refused(tmp_path):
+    """Before, '0,002,0,2,0,0302' was cut to its first three fields without a word."""
+    bad = tmp_path / "comma.csv"
+    bad.write_text(_csv_text(_measured(0), decimal=","))
+    r = CliRunner().invoke(app, ["calibrate", str(bad), *ARGS])
+    text = " ".join(r.output.split())
+    assert r.exit_code == 2 and "Traceback" not in r.output
+    assert "line 3: 6 fields, but the header has 3 columns" in text
+    assert "decimal commas" in text and "';'" in text
+
+
+@pytest.mark.timeout(60)
+def test_cli_data_that_is_a_pipe_or_a_device_is_refused(tmp_path):
+    import os
+    from pathlib import Path
+
+    cases = []
+    if hasattr(os, "mkfifo"):
+        os.mkfifo(tmp_path / "pipe.csv")
+        cases.append((tmp_path / "pipe.csv", "named pipe"))
+    if Path("/dev/zero").exists():
+        cases.append((Path("/dev/zero"), "character device"))
+    for path, what in cases:
+        r = CliRunner().invoke(app, ["calibrate", str(path), *ARGS])
+        assert r.exit_code == 2 and what in r.output and "DATA" in r.output, r.output
+
+
+def test_cli_repeated_rows_are_noted(tmp_path):
+    d = _measured(0)
+    text = _csv_text(d)
+    rows = text.splitlines()
+    path = tmp_path / "dup.csv"
+    path.write_text(text + "\n".join(rows[2:5]) + "\n")
+    r, out = _fit_json(path)
+    assert r.exit_code == 0, r.output
+    assert out["n_points"] == len(d)
+    assert any("3 measured point(s) repeat" in w for w in out["warnings"])
+
+
+# ----------------------------------------------------------------------------- the TOML made
+def test_cli_label_with_control_characters_is_refused(tmp_path):
+    data = tmp_path / "m.csv"
+    _write_csv(data, _measured(0))
+    label = 'pair\n[numerics]\nn = 1\n"'
+    r = CliRunner().invoke(app, ["calibrate", str(data), *ARGS, "--label", label])
+    assert r.exit_code == 2 and "--label" in r.output and "Traceback" not in r.output
+
+
+def test_toml_of_a_calibration_cannot_be_injected():
+    """Text from the user (label, file name, message) stays inside comments and strings:
+    the TOML parses to exactly the sections the calibration writes."""
+    from tribodyn.cli.calibrate import calibration_toml
+
+    cal = calibrate_friction(_measured(0), SETUP)
+    evil = 'x\n[numerics]\nn = 1\n# "\r\n[[surface_sets]]\nname = "y'
+    rough = {"asperity_density": 5e8, "rms": 3e-7, "summit_radius": 3e-4}
+    text = calibration_toml(cal, evil, evil, rough, notes=[evil])
+    doc = tomllib.loads(text)
+    assert set(doc) == {"lubricant", "surface_sets"}
+    (surface,) = doc["surface_sets"]
+    assert set(surface) == {
+        "name",
+        "roughness",
+        "boundary_shear_coefficient",
+        "boundary_shear_strength",
+    }
+    SurfaceSetConfig(**surface)
+    assert "from the Jacobian covariance s²(JᵀJ)⁻¹" in text  # how the ± is computed
