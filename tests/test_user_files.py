@@ -222,3 +222,33 @@ def test_marker_linked_to_a_device_is_not_read(tmp_path):
         pytest.skip("needs /dev/zero")
     (tmp_path / MARKER).symlink_to("/dev/zero")
     assert _marker_info(tmp_path) == {}
+
+
+@pytest.mark.timeout(20)
+@pytest.mark.parametrize("kind", ["nul", "pipe", "device"])
+def test_measured_map_that_is_not_a_file_is_filed_under_its_key(tmp_path, kind):
+    """Before, a NUL in measured_surface.topography gave '(top level): embedded null byte'
+    and a pipe or device 'no such file'."""
+    import tomllib
+
+    from tribodyn.config import Case
+    from tribodyn.config.case import bundled_cases
+
+    if kind == "pipe":
+        if not hasattr(os, "mkfifo"):
+            pytest.skip("needs named pipes")
+        name, says = str(_fifo(tmp_path, "map.x3p")), "named pipe"
+    elif kind == "device":
+        if not Path("/dev/zero").exists():
+            pytest.skip("needs /dev/zero")
+        name, says = "/dev/zero", "character device"
+    else:
+        name, says = "map\x00.x3p", "NUL character"
+    d = tomllib.loads(bundled_cases()["flat_tappet_rig_measured"].read_text(encoding="utf-8"))
+    d["surface_sets"] = d["surface_sets"][:1]
+    d["surface_sets"][0]["measured_surface"] = {"topography": name, "hardness": 7e9}
+    with pytest.raises(InputError) as ei:
+        Case.from_dict(d, base_dir=tmp_path)
+    msg = str(ei.value)
+    assert "surface_sets[0].measured_surface.topography: topography file" in msg, msg
+    assert says in msg and "(top level)" not in msg

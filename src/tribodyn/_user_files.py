@@ -47,6 +47,7 @@ __all__ = [
     "MAX_TABLE_BYTES",
     "MAX_MARKER_BYTES",
     "UserText",
+    "check_regular_file",
     "read_user_bytes",
     "decode_user_text",
     "read_user_text",
@@ -97,10 +98,15 @@ def _size(n: int) -> str:
     return f"{n / 1e6:g} MB" if n >= 1_000_000 else f"{n} bytes"
 
 
-def read_user_bytes(path: PathLike, what: str, *, limit: int, hint: str = "") -> bytes:
-    """The bytes of the regular file ``path`` (at most ``limit``), or
-    :class:`~tribodyn.InputError` starting with ``what`` and the file's name (module
-    docstring); ``hint`` is added to the message of a file that is too large."""
+def _cannot(what: str, shown: str, exc: OSError) -> InputError:
+    why = "no such file" if isinstance(exc, FileNotFoundError) else (exc.strerror or str(exc))
+    return InputError(f"cannot read {what} {shown}: {why}")
+
+
+def check_regular_file(path: PathLike, what: str) -> os.stat_result:
+    """The ``stat`` of ``path`` if it names a regular file (or a link to one), else
+    :class:`~tribodyn.InputError` starting with ``what`` and the file's name: a NUL in
+    the name, a missing file, a pipe, device, socket or folder. Opens nothing."""
     shown = _shown(path)
     if "\x00" in os.fspath(path):
         raise InputError(
@@ -109,9 +115,18 @@ def read_user_bytes(path: PathLike, what: str, *, limit: int, hint: str = "") ->
     try:
         st = os.stat(path)
     except OSError as exc:
-        raise InputError(f"cannot read {what} {shown}: {exc.strerror or exc}") from None
+        raise _cannot(what, shown, exc) from None
     if not stat.S_ISREG(st.st_mode):
         raise InputError(f"{what} {shown} is {_kind(st.st_mode)}, not a regular file")
+    return st
+
+
+def read_user_bytes(path: PathLike, what: str, *, limit: int, hint: str = "") -> bytes:
+    """The bytes of the regular file ``path`` (at most ``limit``), or
+    :class:`~tribodyn.InputError` starting with ``what`` and the file's name (module
+    docstring); ``hint`` is added to the message of a file that is too large."""
+    shown = _shown(path)
+    st = check_regular_file(path, what)
     too_big = f"{what} {shown} is larger than {_size(limit)}" + (f"; {hint}" if hint else "")
     if st.st_size > limit:
         raise InputError(too_big)
@@ -125,7 +140,7 @@ def read_user_bytes(path: PathLike, what: str, *, limit: int, hint: str = "") ->
     try:
         fd = os.open(path, flags)
     except OSError as exc:
-        raise InputError(f"cannot read {what} {shown}: {exc.strerror or exc}") from None
+        raise _cannot(what, shown, exc) from None
     try:
         mode = os.fstat(fd).st_mode
         if not stat.S_ISREG(mode):  # replaced since the stat above
@@ -139,7 +154,7 @@ def read_user_bytes(path: PathLike, what: str, *, limit: int, hint: str = "") ->
             chunks.append(block)
             size += len(block)
     except OSError as exc:
-        raise InputError(f"cannot read {what} {shown}: {exc.strerror or exc}") from None
+        raise _cannot(what, shown, exc) from None
     finally:
         os.close(fd)
     if size > limit:
