@@ -839,6 +839,208 @@ def fuzz_extreme_kinds(tmp: Path) -> None:
                 record(g, "traceback", f"{case} -> {type(exc).__name__}: {exc}"[:300])
 
 
+# ----------------------------------------------------------------------------- 8 users' files
+def fuzz_user_files(tmp: Path) -> None:
+    """Users' files as they come: calibration data in other encodings, with a BOM, with
+    decimal commas, repeated rows, a viscosity in mPa·s; pipes and devices where a file
+    is expected (DATA, cam.path, a case file, the result-folder marker); a NUL in cam.path;
+    a --label that would inject TOML."""
+    from tribodyn.config import Case
+    from tribodyn.output.result_folder import MARKER, _marker_info
+    from tribodyn.workflow.calibration import (
+        CalibrationSetup,
+        FrictionData,
+        model_friction,
+    )
+
+    g = "users' files"
+    d = tmp / "user_files"
+    d.mkdir()
+    # the calibration guide's contact and oil; a Stribeck curve (slide-to-roll 0.2) and a
+    # traction curve at its top speed, with 0.001 noise
+    sigma, beta = 0.3e-6, 0.3e-3
+    setup = CalibrationSetup(
+        radius=0.01,
+        lubricant=OIL.__class__(0.02, 2e-8),
+        roughness=Roughness(0.15 / (beta * sigma), sigma, beta),
+    )
+    truth = {
+        "boundary_shear_coefficient": 0.11,
+        "eyring_stress": 3e6,
+        "limiting_shear_coefficient": 0.025,
+    }
+
+    def measured(lo, hi):
+        ue = np.r_[np.geomspace(lo, hi, 14), np.full(14, hi)]
+        us = np.r_[0.2 * ue[:14], np.geomspace(hi / 1000, 2 * hi, 14)]
+        w = np.full(ue.size, 2e5)
+        mu = model_friction(setup, FrictionData(ue, us, w, np.zeros(ue.size)), **truth)
+        mu = mu + np.random.default_rng(0).normal(0.0, 0.001, mu.size)
+        return ue, us / ue, mu
+
+    def csv_text(pts, sep=",", decimal="."):
+        rows = [
+            "# twin disc, R = 10 mm, 200 kN/m, 90 °C",
+            sep.join(("entrainment_speed", "slide_roll_ratio", "friction_coefficient")),
+        ]
+        rows += [sep.join(f"{v:.9g}".replace(".", decimal) for v in r) for r in zip(*pts)]
+        return "\n".join(rows) + "\n"
+
+    args = [
+        "--radius",
+        "0.01",
+        "--load",
+        "2e5",
+        "--pressure-viscosity",
+        "2e-8",
+        "--rms",
+        "0.3e-6",
+        "--roughness-parameter",
+        "0.15",
+    ]
+    pts = measured(1e-3, 0.2)
+    ref = d / "utf8.csv"
+    ref.write_text(csv_text(pts), encoding="utf-8")
+    r = runner.invoke(app, ["calibrate", str(ref), *args, "--viscosity", "0.02", "--json"])
+    want = json.loads(r.stdout)["values"] if r.exit_code == 0 else None
+
+    def same_fit(res):
+        try:
+            got = json.loads(res.stdout)["values"]
+        except (ValueError, KeyError):
+            return "no JSON result"
+        return None if got == want else f"another fit than the UTF-8 file: {got} vs {want}"
+
+    text = csv_text(pts)
+    for name, raw in {
+        "cp1252.csv": text.encode("cp1252"),
+        "latin1.csv": text.encode("latin-1"),
+        "utf16.csv": text.encode("utf-16"),
+        "utf16be.csv": b"\xfe\xff" + text.encode("utf-16-be"),
+        "excel_bom.csv": b"\xef\xbb\xbf" + text.encode("utf-8"),
+        "semicolon_decimal_comma.csv": csv_text(pts, ";", ",").encode("cp1252"),
+    }.items():
+        (d / name).write_bytes(raw)
+        cli(
+            f"{g}: encodings",
+            ["calibrate", str(d / name), *args, "--viscosity", "0.02", "--json"],
+            expect=(0,),
+            check=same_fit,
+        )
+
+    def says(*words):
+        def check(res):
+            flat = " ".join(res.output.split())
+            missing = [w for w in words if w not in flat]
+            return f"message lacks {missing}: {flat[-200:]}" if missing else None
+
+        return check
+
+    (d / "decimal_comma.csv").write_text(csv_text(pts, ",", ","))
+    cli(
+        f"{g}: decimal commas",
+        ["calibrate", str(d / "decimal_comma.csv"), *args, "--viscosity", "0.02"],
+        check=says("decimal commas"),
+    )
+    rows = text.splitlines()
+    (d / "repeated.csv").write_text(text + "\n".join(rows[2:8]) + "\n")
+
+    def counted_once(res):
+        out = json.loads(res.stdout)
+        if out["n_points"] != len(pts[0]):
+            return f"{out['n_points']} points fitted, {len(pts[0])} distinct"
+        return None if any("repeat" in w for w in out.get("warnings", [])) else "no warning"
+
+    cli(
+        f"{g}: repeated rows",
+        ["calibrate", str(d / "repeated.csv"), *args, "--viscosity", "0.02", "--json"],
+        expect=(0,),
+        check=counted_once,
+    )
+    # viscosity in mPa·s given as Pa·s (×1000): not converged, the viscosity named
+    fixed = [
+        "--fit",
+        "boundary_shear_coefficient",
+        "--fix",
+        "eyring_stress=3e6",
+        "--fix",
+        "limiting_shear_coefficient=0.025",
+    ]
+    cli(
+        f"{g}: viscosity x1000",
+        ["calibrate", str(ref), *args, "--viscosity", "20", *fixed],
+        expect=(1,),
+        check=says("viscosity", "1000×"),
+    )
+    low = d / "low_speed.csv"
+    low.write_text(csv_text(measured(1e-5, 0.01)))
+    cli(
+        f"{g}: viscosity x1000",
+        ["calibrate", str(low), *args, "--viscosity", "20"],
+        expect=(1,),
+        check=says("viscosity"),
+    )
+    cli(
+        f"{g}: label",
+        [
+            "calibrate",
+            str(ref),
+            *args,
+            "--viscosity",
+            "0.02",
+            "--label",
+            "pair\n[numerics]\nn = 1\n",
+        ],
+        check=says("--label"),
+    )
+    # pipes and devices where a file is expected
+    specials = []
+    if hasattr(os, "mkfifo"):
+        for name in ("pipe.csv", "pipe.toml"):
+            os.mkfifo(d / name)
+        specials.append(d / "pipe.csv")
+        cli(
+            f"{g}: pipe",
+            ["run", str(d / "pipe.toml"), "-o", str(d / "out")],
+            check=says("named pipe"),
+        )
+    if Path("/dev/zero").exists():
+        specials.append(Path("/dev/zero"))
+    for p in specials:
+        cli(
+            f"{g}: pipe or device",
+            ["calibrate", str(p), *args, "--viscosity", "0.02"],
+            check=says("DATA"),
+        )
+        expect_input_error(
+            f"{g}: pipe or device",
+            f"cam.path = {p}",
+            lambda p=p: Case.from_toml_string(f"[cam]\ntype = 'table'\npath = '{p}'\n", base_dir=d),
+            names="cam.path",
+        )
+        folder = d / f"results_{p.stem}"
+        folder.mkdir()
+        if p.name == "pipe.csv":
+            os.mkfifo(folder / MARKER)
+        else:
+            (folder / MARKER).symlink_to(p)
+        case = f"result-folder marker = {p}"
+        try:
+            with time_limit():
+                info = _marker_info(folder)
+            record(g, "handled" if info == {} else "garbage", f"{case}: {info!r:.80}")
+        except Hang:
+            record(g, "hang", f"{case}: more than {LIMIT_S} s")
+        except Exception as exc:
+            record(g, "traceback", f"{case} -> {type(exc).__name__}: {exc}"[:300])
+    expect_input_error(
+        f"{g}: NUL in a path",
+        "cam.path with a NUL",
+        lambda: Case.from_dict({"cam": {"type": "table", "path": "lift\x00.csv"}}, base_dir=d),
+        names="cam.path",
+    )
+
+
 def main() -> None:
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory() as d:
@@ -852,6 +1054,7 @@ def main() -> None:
             fuzz_topography_cli(tmp)
             fuzz_run_cli(tmp)
             fuzz_extreme_kinds(tmp)
+            fuzz_user_files(tmp)
     total = sum(results.values())
     print(
         json.dumps(

@@ -212,3 +212,211 @@ def test_per_point_radius_of_a_cam_trace(tmp_path):
     args += ["--roughness-parameter", "0.15", "--json"]
     r = CliRunner().invoke(app, ["calibrate", str(path), *args])
     assert r.exit_code == 0, r.output
+
+
+# ----------------------------------------------------------------------------- repeated rows
+def test_exact_repeats_are_counted_once():
+    """A copied row is not a new measurement: the ± values stay those of the distinct
+    points (before, 10 copied rows shrank them as if they were new data)."""
+    d = _measured(0)
+    first = calibrate_friction(d, SETUP)
+    rep = np.r_[np.arange(len(d)), np.arange(10)]
+    copied = FrictionData(
+        d.entrainment_speed[rep], d.sliding_speed[rep], d.load[rep], d.friction_coefficient[rep]
+    )
+    cal = calibrate_friction(copied, SETUP)
+    assert cal.n_points == len(d)
+    for name in TRUTH:
+        assert cal.std[name] == pytest.approx(first.std[name], rel=1e-6)
+        assert cal.values[name] == pytest.approx(first.values[name], rel=1e-6)
+    (warning,) = cal.warnings
+    assert "10 measured point(s) repeat an earlier one exactly (points 29, 30" in warning
+    # a repeated measurement (same conditions, another μ) is data: kept
+    again = FrictionData(
+        d.entrainment_speed[rep],
+        d.sliding_speed[rep],
+        d.load[rep],
+        np.r_[d.friction_coefficient, d.friction_coefficient[:10] + 1e-4],
+    )
+    assert calibrate_friction(again, SETUP).n_points == len(d) + 10
+
+
+def test_too_few_distinct_points():
+    with pytest.raises(InputError, match="only 2 distinct measured points"):
+        calibrate_friction(
+            FrictionData([1.0, 1.0, 2.0], [0.1] * 3, [1e5] * 3, [0.05] * 3),
+            SETUP,
+            free=("boundary_shear_coefficient",),
+        )
+
+
+# ----------------------------------------------------------------------------- wrong units
+def _stribeck(lo, hi):
+    """A Stribeck curve (slide-to-roll 0.2) from u_e = lo to hi and a traction curve at hi,
+    measured with the true viscosity of SETUP (0.02 Pa·s)."""
+    ue = np.r_[np.geomspace(lo, hi, 14), np.full(14, hi)]
+    us = np.r_[0.2 * ue[:14], np.geomspace(hi / 1000, 2 * hi, 14)]
+    return _measured(0, ue, us, np.full(ue.size, 2e5))
+
+
+def _with_viscosity(mu0):
+    from dataclasses import replace
+
+    return replace(SETUP, lubricant=Lubricant(mu0, 2e-8))
+
+
+RHEOLOGY = {"eyring_stress": 3e6, "limiting_shear_coefficient": 0.025}
+
+
+def test_viscosity_in_mpas_given_as_pas_is_named():
+    """20 (mPa·s) given as Pa·s: the film is ~125× too thick and ς came out 5.6× too large
+    with "converged". The measured friction keeps rising towards low speed where these
+    inputs put the contact in full film, so the model cannot follow the Stribeck curve."""
+    d = _stribeck(1e-3, 0.2)
+    kw = {"free": ("boundary_shear_coefficient",), "fixed": RHEOLOGY}
+    right = calibrate_friction(d, _with_viscosity(0.02), **kw)
+    assert right.converged, right.message
+    wrong = calibrate_friction(d, _with_viscosity(20.0), **kw)
+    assert not wrong.converged
+    msg = wrong.message
+    assert "viscosity 20 Pa·s is probably 1000× too high" in msg, msg
+    assert "with 0.02 Pa·s" in msg and "mPa·s" in msg
+    assert "boundary_shear_coefficient = 0.6" in msg  # the implausible value is shown
+
+
+def test_wrong_viscosity_flagged_when_fitting_rheology_too():
+    """All three default parameters free, a Stribeck curve at low speed: before, ς came
+    out 3× too large and the fit said converged."""
+    d = _stribeck(1e-5, 0.01)
+    assert calibrate_friction(d, _with_viscosity(0.02)).converged
+    wrong = calibrate_friction(d, _with_viscosity(20.0))
+    assert not wrong.converged
+    assert "viscosity" in wrong.message and "Pa·s" in wrong.message
+
+
+# ----------------------------------------------------------------------------- the data file
+def _csv_text(d, sep=",", decimal="."):
+    lines = [
+        "# twin disc, 90 °C",
+        sep.join(("entrainment_speed", "slide_roll_ratio", "friction_coefficient")),
+    ]
+    for a, b, c in zip(d.entrainment_speed, d.sliding_speed, d.friction_coefficient, strict=True):
+        lines.append(sep.join(f"{v:.9g}".replace(".", decimal) for v in (a, b / a, c)))
+    return "\n".join(lines) + "\n"
+
+
+def _fit_json(path, *extra):
+    import json
+
+    r = CliRunner().invoke(app, ["calibrate", str(path), *ARGS, "--json", *extra])
+    return r, (json.loads(r.stdout) if r.exit_code == 0 else None)
+
+
+@pytest.mark.parametrize(
+    "encode, note",
+    [
+        (lambda t: t.encode("cp1252"), "read as Windows-1252"),
+        (lambda t: t.encode("latin-1"), "read as Windows-1252"),
+        (lambda t: t.encode("utf-16"), None),
+        (lambda t: b"\xef\xbb\xbf" + t.encode("utf-8"), None),  # Excel "CSV UTF-8"
+        (lambda t: t.replace("\n", "\r\n").encode("utf-8"), None),
+    ],
+    ids=["cp1252", "latin-1", "utf-16", "utf-8-bom", "crlf"],
+)
+def test_cli_reads_data_as_spreadsheets_save_it(tmp_path, encode, note):
+    """The same points in other encodings give the same fit (the UTF-8 file is the
+    reference); a guessed code page is noted. Before, the BOM was a missing column and
+    the others were not UTF-8."""
+    d = _measured(0)
+    ref = tmp_path / "utf8.csv"
+    ref.write_text(_csv_text(d), encoding="utf-8")
+    other = tmp_path / "other.csv"
+    other.write_bytes(encode(_csv_text(d)))
+    _, want = _fit_json(ref)
+    r, got = _fit_json(other)
+    assert r.exit_code == 0, r.output
+    assert got["values"] == want["values"]
+    guessed = [w for w in got["warnings"] if "read as" in w]
+    if note is None:
+        assert guessed == []
+    else:
+        assert len(guessed) == 1 and note in guessed[0]
+
+
+def test_cli_semicolons_with_decimal_commas(tmp_path):
+    d = _measured(0)
+    ref = tmp_path / "ref.csv"
+    ref.write_text(_csv_text(d))
+    semi = tmp_path / "semi.csv"
+    semi.write_text(_csv_text(d, sep=";", decimal=","))
+    assert _fit_json(semi)[1]["values"] == _fit_json(ref)[1]["values"]
+
+
+def test_cli_decimal_commas_in_a_comma_separated_file_are_refused(tmp_path):
+    """Before, '0,002,0,2,0,0302' was cut to its first three fields without a word."""
+    bad = tmp_path / "comma.csv"
+    bad.write_text(_csv_text(_measured(0), decimal=","))
+    r = CliRunner().invoke(app, ["calibrate", str(bad), *ARGS])
+    text = " ".join(r.output.split())
+    assert r.exit_code == 2 and "Traceback" not in r.output
+    assert "line 3: 6 fields, but the header has 3 columns" in text
+    assert "decimal commas" in text and "';'" in text
+
+
+@pytest.mark.timeout(60)
+def test_cli_data_that_is_a_pipe_or_a_device_is_refused(tmp_path):
+    import os
+    from pathlib import Path
+
+    cases = []
+    if hasattr(os, "mkfifo"):
+        os.mkfifo(tmp_path / "pipe.csv")
+        cases.append((tmp_path / "pipe.csv", "named pipe"))
+    if Path("/dev/zero").exists():
+        cases.append((Path("/dev/zero"), "character device"))
+    for path, what in cases:
+        r = CliRunner().invoke(app, ["calibrate", str(path), *ARGS])
+        assert r.exit_code == 2 and what in r.output and "DATA" in r.output, r.output
+
+
+def test_cli_repeated_rows_are_noted(tmp_path):
+    d = _measured(0)
+    text = _csv_text(d)
+    rows = text.splitlines()
+    path = tmp_path / "dup.csv"
+    path.write_text(text + "\n".join(rows[2:5]) + "\n")
+    r, out = _fit_json(path)
+    assert r.exit_code == 0, r.output
+    assert out["n_points"] == len(d)
+    assert any("3 measured point(s) repeat" in w for w in out["warnings"])
+
+
+# ----------------------------------------------------------------------------- the TOML made
+def test_cli_label_with_control_characters_is_refused(tmp_path):
+    data = tmp_path / "m.csv"
+    _write_csv(data, _measured(0))
+    label = 'pair\n[numerics]\nn = 1\n"'
+    r = CliRunner().invoke(app, ["calibrate", str(data), *ARGS, "--label", label])
+    assert r.exit_code == 2 and "--label" in r.output and "Traceback" not in r.output
+
+
+def test_toml_of_a_calibration_cannot_be_injected():
+    """Text from the user (label, file name, message) stays inside comments and strings:
+    the TOML parses to exactly the sections the calibration writes."""
+    from tribodyn.cli.calibrate import calibration_toml
+
+    cal = calibrate_friction(_measured(0), SETUP)
+    evil = 'x\n[numerics]\nn = 1\n# "\r\n[[surface_sets]]\nname = "y'
+    rough = {"asperity_density": 5e8, "rms": 3e-7, "summit_radius": 3e-4}
+    text = calibration_toml(cal, evil, evil, rough, notes=[evil])
+    doc = tomllib.loads(text)
+    assert set(doc) == {"lubricant", "surface_sets"}
+    (surface,) = doc["surface_sets"]
+    assert set(surface) == {
+        "name",
+        "roughness",
+        "boundary_shear_coefficient",
+        "boundary_shear_strength",
+    }
+    SurfaceSetConfig(**surface)
+    assert "from the Jacobian covariance s²(JᵀJ)⁻¹" in text  # how the ± is computed

@@ -11,8 +11,11 @@ import csv
 import json
 import math
 import re
+import textwrap
+import unicodedata
 from pathlib import Path
 
+import tomli_w
 import typer
 from rich.console import Console
 from rich.markup import escape
@@ -27,39 +30,99 @@ _STEEL_E = paper.STEEL["E"]
 _COLUMNS = ("entrainment_speed", "friction_coefficient")
 
 
-def read_friction_csv(path: Path, load: float | None):
+#: A number written with a decimal comma (``0,5``, ``-1,25e-3``).
+_DECIMAL_COMMA = re.compile(r"[+-]?\d*,\d+(?:[eE][+-]?\d+)?")
+
+
+def _table_rows(path: Path, notes: list[str] | None) -> tuple[list[str], list[tuple[int, list]]]:
+    """Header (lower case) and ``(line number, fields)`` of the data rows of DATA.
+
+    The file is read by :mod:`tribodyn._user_files` (a regular file of at most 64 MB;
+    UTF-8 with or without BOM, UTF-16/32 with a BOM, else Windows-1252 with a note). The
+    separator is the header's: ``;`` or tab if it has one (then a decimal comma, ``0,5``,
+    is a decimal point), else ``,``. A row with another number of fields than the header
+    is an error (with a comma separator, decimal commas are the usual cause)."""
+    from .._user_files import MAX_TABLE_BYTES, read_user_text
+    from .._validation import InputError
+
+    got = read_user_text(path, "DATA", limit=MAX_TABLE_BYTES)
+    if got.note is not None and notes is not None:
+        notes.append(got.note)
+    shown = repr(str(path))
+    lines = [
+        (i, ln)
+        for i, ln in enumerate(got.text.splitlines(), start=1)
+        if ln.strip() and not ln.lstrip().startswith("#")
+    ]
+    if not lines:
+        raise InputError(f"DATA {shown} has no header line and no data (see the guide)")
+    sep = next((c for c in (";", "\t") if c in lines[0][1]), ",")
+    split = list(csv.reader([ln for _, ln in lines], delimiter=sep))
+
+    def trimmed(fields: list[str]) -> list[str]:  # a separator at the end of the line
+        fields = [f.strip() for f in fields]
+        while fields and not fields[-1]:
+            fields.pop()
+        return fields
+
+    header = [h.lower() for h in trimmed(split[0])]
+    twice = sorted({h for h in header if header.count(h) > 1})
+    if twice:
+        raise InputError(f"DATA {shown}: column(s) {', '.join(twice)} appear twice in the header")
+    rows = []
+    for (lineno, line), fields in zip(lines[1:], split[1:], strict=True):
+        fields = trimmed(fields)
+        if len(fields) != len(header):
+            hint = ""
+            if sep == "," and _DECIMAL_COMMA.search(line):
+                hint = (
+                    ": decimal commas (0,5)? Write numbers with a decimal point, or separate "
+                    "the columns with ';' (then 0,5 is read as 0.5)"
+                )
+            raise InputError(
+                f"DATA {shown}, line {lineno}: {len(fields)} fields, but the header has "
+                f"{len(header)} columns ({', '.join(header)}){hint or '; give one value per column'}"
+            )
+        if sep != ",":
+            fields = [f.replace(",", ".") if _DECIMAL_COMMA.fullmatch(f) else f for f in fields]
+        rows.append((lineno, fields))
+    return header, rows
+
+
+def read_friction_csv(path: Path, load: float | None, notes: list[str] | None = None):
     """Read measured points: columns ``entrainment_speed`` [m/s], ``friction_coefficient``
     [-], and ``sliding_speed`` [m/s] or ``slide_roll_ratio`` [-] (u_s/u_e), optionally
     ``load`` [N/m] (else ``load`` applies to every row) and ``radius`` [m] (else
-    --radius). Lines starting with # are skipped."""
+    --radius). Lines starting with # are skipped; the file, its encoding, separator and
+    decimal commas as in :func:`_table_rows`. Notes on the file (an encoding guessed) are
+    appended to ``notes``."""
     import numpy as np
 
     from .._validation import InputError
     from ..workflow.calibration import FrictionData
 
-    try:
-        with open(path, newline="", encoding="utf-8") as f:
-            rows = [r for r in f if r.strip() and not r.lstrip().startswith("#")]
-    except OSError as exc:
-        raise InputError(f"DATA: cannot read {str(path)!r} ({exc.strerror or exc})") from None
-    reader = csv.DictReader(rows)
-    header = [h.strip() for h in (reader.fieldnames or [])]
+    header, rows = _table_rows(path, notes)
+    shown = repr(str(path))
     missing = [c for c in _COLUMNS if c not in header]
     if missing or not ({"sliding_speed", "slide_roll_ratio"} & set(header)):
         raise InputError(
-            f"DATA {str(path)!r}: needs the columns entrainment_speed, friction_coefficient and "
+            f"DATA {shown}: needs the columns entrainment_speed, friction_coefficient and "
             f"sliding_speed or slide_roll_ratio (optional: load, radius); found {header}"
         )
-    cols: dict[str, list[float]] = {h: [] for h in header}
-    for i, row in enumerate(reader, start=2):
-        for key, value in row.items():
-            if key is None or key.strip() not in cols:
+    known = {*_COLUMNS, "sliding_speed", "slide_roll_ratio", "load", "radius"}
+    cols: dict[str, list[float]] = {h: [] for h in header if h in known}
+    for lineno, fields in rows:
+        for key, value in zip(header, fields, strict=True):
+            if key not in cols:
                 continue
             try:
-                cols[key.strip()].append(float(value))
-            except (TypeError, ValueError):
+                cols[key].append(float(value))
+            except ValueError:
+                hint = ""
+                if _DECIMAL_COMMA.fullmatch(value):
+                    hint = " (a decimal comma: write 0.5, or separate the columns with ';')"
                 raise InputError(
-                    f"DATA {str(path)!r}, data row {i - 1}: {key.strip()} = {value!r} is not a number"
+                    f"DATA {shown}, line {lineno}: {key} = {value!r} is not a number{hint}"
                 ) from None
     ue = np.asarray(cols["entrainment_speed"])
     us = (
@@ -77,6 +140,24 @@ def read_friction_csv(path: Path, load: float | None):
     return FrictionData(ue, np.abs(us), w, np.asarray(cols["friction_coefficient"]), radius)
 
 
+#: Longest --label [characters] (it names the pair in a comment and the surface set).
+MAX_LABEL = 200
+
+
+def _check_label(label: str) -> None:
+    """--label: one line of at most :data:`MAX_LABEL` printable characters."""
+    from .._validation import InputError
+
+    bad = sorted({repr(c)[1:-1] for c in label if unicodedata.category(c) == "Cc"})
+    if bad:
+        raise InputError(
+            f"--label must be one line of text without control characters (found "
+            f"{', '.join(bad)}: line breaks, tabs, NUL are not allowed)"
+        )
+    if len(label) > MAX_LABEL:
+        raise InputError(f"--label must have at most {MAX_LABEL} characters (got {len(label)})")
+
+
 def _fmt(v: float) -> str:
     return f"{v:.4g}"
 
@@ -87,16 +168,35 @@ def _name(label: str) -> str:
     return out[:64] or "measured"
 
 
-def calibration_toml(cal, source: str, label: str, roughness: dict | None = None) -> str:
-    """Case-file sections of a calibration (TOML text with the uncertainties as comments)."""
-    lines = [
-        f"# Calibrated by `tribodyn calibrate` from {source}: {cal.n_points} points,",
-        f"# RMS residual of the friction coefficient {cal.rms_residual:.3g}. ± values are 1σ",
-        "# (Jacobian covariance). Isothermal effective values: use them at the test's oil",
-        "# temperature.",
-    ]
+def _comment(text: str) -> list[str]:
+    """``text`` as TOML comment lines: control characters (a line break would end the
+    comment and start TOML of its own) shown escaped, long text wrapped."""
+    safe = "".join(
+        c if c == "\t" or unicodedata.category(c) != "Cc" else repr(c)[1:-1] for c in text
+    )
+    return ["# " + ln for ln in textwrap.wrap(safe, 86, break_on_hyphens=False)] or ["#"]
+
+
+def _toml_string(key: str, value: str) -> str:
+    """``key = "value"`` with the value escaped as TOML requires."""
+    return tomli_w.dumps({key: value}).rstrip("\n")
+
+
+def calibration_toml(cal, source: str, label: str, roughness: dict | None = None, notes=()) -> str:
+    """Case-file sections of a calibration (TOML text with the uncertainties as comments;
+    ``notes``: remarks on the data file, as comments)."""
+    lines = _comment(
+        f"Calibrated by `tribodyn calibrate` from {source}: {cal.n_points} distinct points, "
+        f"RMS residual of the friction coefficient {cal.rms_residual:.3g}. ± values are 1σ "
+        "from the Jacobian covariance s²(JᵀJ)⁻¹ at the optimum, with s² = Σr²/(n − k) the "
+        "scatter of the n points about the fit (k fitted parameters): they assume "
+        "independent points of equal scatter (an exact repeat of a row is counted once). "
+        "Isothermal effective values: use them at the test's oil temperature."
+    )
+    for note in (*notes, *getattr(cal, "warnings", ())):
+        lines += _comment(f"NOTE: {note}")
     if not cal.converged:
-        lines.append(f"# WARNING: not converged: {cal.message}")
+        lines += _comment(f"WARNING: not converged: {cal.message}")
 
     def entry(name):
         if name in cal.values:
@@ -126,10 +226,12 @@ def calibration_toml(cal, source: str, label: str, roughness: dict | None = None
         r = roughness or {}
         lines += [
             "",
-            f"# The measured pair ({label}) as a surface set: add substrate, coating and",
-            "# coating_thickness as in your case.",
+            *_comment(
+                f"The measured pair ({label}) as a surface set: add substrate, coating and "
+                "coating_thickness as in your case."
+            ),
             "[[surface_sets]]",
-            f'name = "{_name(label)}"',
+            _toml_string("name", _name(label)),
             "roughness = { "
             + ", ".join(f"{k} = {v:.6g}" for k, v in r.items())
             + " }  # as used in the fit",
@@ -208,9 +310,11 @@ def calibrate_command(
             if not sep:
                 raise InputError(f"--fix must be NAME=VALUE with a number (got {item!r})")
         free = tuple(n.strip() for n in fit.split(",") if n.strip())
+        _check_label(label)
         if output is not None and (output.exists() or output.is_symlink()):
             raise InputError(f"--output {str(output)!r} exists; give a new file name")
-        measured = read_friction_csv(data, load)
+        notes: list[str] = []
+        measured = read_friction_csv(data, load, notes)
         if radius is None:
             if measured.radius is None:
                 raise InputError("give --radius [m] or a radius column in DATA")
@@ -237,7 +341,7 @@ def calibrate_command(
                 "summit_radius": roughness.summit_radius,
             }
         )
-        text = calibration_toml(cal, data.name, label, rough)
+        text = calibration_toml(cal, data.name, label, rough, notes)
         if output is not None:
             with writing("--output", output), open(output, "x", encoding="utf-8") as f:
                 f.write(text)
@@ -255,6 +359,7 @@ def calibrate_command(
                     "n_points": cal.n_points,
                     "converged": cal.converged,
                     "message": cal.message,
+                    "warnings": [*notes, *cal.warnings],
                 },
                 indent=2,
             )
@@ -263,6 +368,8 @@ def calibrate_command(
         typer.echo(text, nl=False)
     else:
         typer.echo(f"wrote {output}")
+    for note in (*notes, *cal.warnings):
+        err.print(f"[yellow]note:[/yellow] {escape(note)}", highlight=False)
     if not cal.converged:
         err.print(f"[yellow]warning:[/yellow] {escape(cal.message)}", highlight=False)
         raise typer.Exit(code=1)

@@ -1,6 +1,7 @@
 """Reading case and sweep files: UTF-8 TOML text, bounded in size and nesting.
 
-A leading UTF-8 byte-order mark (written by some Windows editors) is accepted. Files
+A leading UTF-8 byte-order mark (written by some Windows editors) is accepted. Only
+regular files are read (not pipes or devices: :mod:`tribodyn._user_files`). Files
 larger than :data:`MAX_BYTES` and values nested deeper than :data:`MAX_NESTING` levels
 (arrays or tables inside each other) are refused with :class:`~tribodyn.InputError`:
 no case or sweep key needs more than a few levels, and unbounded nesting would exhaust
@@ -14,6 +15,7 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any, ClassVar, NoReturn, Self
 
+from .._user_files import read_user_text
 from .._validation import InputError
 
 __all__ = [
@@ -50,27 +52,16 @@ def file_or_bundled(path, bundled: Mapping[str, Path]) -> Path:
 
 
 def read_toml_text(path, what: str) -> str:
-    """The text of the ``what`` file (``"case"``, ``"sweep"``) at ``path``: UTF-8, an
-    optional byte-order mark removed, at most :data:`MAX_BYTES`."""
-    p = Path(path)
-    try:
-        with open(p, "rb") as f:
-            raw = f.read(MAX_BYTES + 1)
-    except OSError as exc:
-        raise InputError(f"cannot read {what} file {str(p)!r}: {exc.strerror}") from None
-    if len(raw) > MAX_BYTES:
-        raise InputError(
-            f"{what} file {str(p)!r} is larger than {MAX_BYTES // 1_000_000} MB; "
-            f"a {what} file is a short TOML text (put large tables in separate files)"
-        )
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise InputError(
-            f"{what} file {str(p)!r} is not UTF-8 text (byte {exc.start}: "
-            f"{exc.reason}); save it as UTF-8 TOML"
-        ) from None
-    return text
+    """The text of the ``what`` file (``"case"``, ``"sweep"``) at ``path``: a regular file
+    of at most :data:`MAX_BYTES`, UTF-8, an optional byte-order mark removed
+    (:mod:`tribodyn._user_files`)."""
+    return read_user_text(
+        path,
+        f"{what} file",
+        limit=MAX_BYTES,
+        legacy=False,
+        hint=f"a {what} file is a short TOML text (put large tables in separate files)",
+    ).text
 
 
 def _depth(data) -> int:

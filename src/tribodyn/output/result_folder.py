@@ -19,6 +19,7 @@ from pathlib import Path
 
 from .._system import new_file
 from .._typing import PathLike
+from .._user_files import MAX_MARKER_BYTES, read_user_bytes
 from .._validation import InputError
 
 #: File that marks a folder as written by tribodyn (JSON: tool, version, case, time).
@@ -121,9 +122,13 @@ def _all_files(folder: Path) -> list[str]:
 
 
 def _marker_info(folder: Path) -> dict:
+    """The marker's JSON object; {} if there is none or it is not one (also a marker
+    that is not a regular file or is larger than :data:`MAX_MARKER_BYTES`: never read
+    from a pipe or device, never read without bound)."""
     try:
-        info = json.loads((folder / MARKER).read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+        raw = read_user_bytes(folder / MARKER, "result-folder marker", limit=MAX_MARKER_BYTES)
+        info = json.loads(raw.decode("utf-8"))
+    except (InputError, ValueError, RecursionError):
         return {}
     return info if isinstance(info, dict) else {}
 

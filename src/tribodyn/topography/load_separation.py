@@ -158,7 +158,7 @@ def _file_identity(path) -> tuple | None:
     try:
         p = Path(path).expanduser().resolve()
         st = p.stat()
-    except (OSError, RuntimeError):
+    except (OSError, RuntimeError, ValueError):  # ValueError: a NUL in the name
         return None
     if not stat.S_ISREG(st.st_mode):
         return None

@@ -15,6 +15,8 @@ from typing import Any
 import numpy as np
 
 from .._typing import PathLike
+from .._user_files import check_regular_file
+from .._validation import InputError
 from .errors import TopographyError, TopographyReadError
 
 __all__ = ["read_topography", "write_topography", "supported_formats", "WRITERS"]
@@ -76,8 +78,10 @@ def read_topography(
     )
 
     path = Path(path)
-    if not path.is_file():
-        raise TopographyReadError(f"cannot read topography file '{path}': no such file")
+    try:  # no pipes or devices (the format readers would wait or read without end)
+        check_regular_file(path, "topography file")
+    except InputError as exc:
+        raise TopographyReadError(str(exc)) from None
     try:
         reader = open_topography(str(path))
     except CannotDetectFileFormat:

@@ -1,5 +1,8 @@
 """Reading cam lift tables as they come, for :class:`~tribodyn.valvetrain.cams.TabulatedCam`.
 
+* The file: a regular file (not a pipe or device) of at most
+  :data:`~tribodyn._user_files.MAX_TABLE_BYTES` (64 MB), read by
+  :mod:`tribodyn._user_files`.
 * Text: UTF-8 (with or without BOM), UTF-16/32 with a BOM, or a legacy 8-bit code page
   (Windows-1252: "°" and "µ" in a header are common); a binary file is refused.
 * Separators: comma, semicolon, tab or spaces; with semicolons or tabs a decimal comma
@@ -23,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._user_files import MAX_TABLE_BYTES, read_user_text
 from .._validation import InputError
 from ..physics import limits as L
 
@@ -47,30 +51,7 @@ class LiftTable:
 
 
 def _decode(p: Path) -> str:
-    try:
-        raw = p.read_bytes()
-    except OSError as exc:
-        raise InputError(f"cannot read lift table {str(p)!r}: {exc.strerror}") from None
-    for bom, enc in (
-        (b"\xff\xfe\x00\x00", "utf-32"),
-        (b"\x00\x00\xfe\xff", "utf-32"),
-        (b"\xff\xfe", "utf-16"),
-        (b"\xfe\xff", "utf-16"),
-    ):
-        if raw.startswith(bom):
-            try:
-                return raw.decode(enc)
-            except UnicodeDecodeError:
-                break
-    if b"\x00" in raw[:4096]:
-        raise InputError(
-            f"lift table {str(p)!r} is a binary file, not a text table of cam "
-            "angle and lift (export it as CSV text)"
-        )
-    try:
-        return raw.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        return raw.decode("cp1252", errors="replace")  # numbers are ASCII either way
+    return read_user_text(p, "lift table", limit=MAX_TABLE_BYTES).text
 
 
 def _split(line: str, sep: str | None) -> list[str]:

@@ -49,6 +49,7 @@ from ..physics.analytic_contact import analytic_contact
 from ..physics.asperity import Roughness
 from ..physics.lubricant import Lubricant
 from ..physics.materials import STEEL, Body, Material
+from .calibration_checks import distinct_points, fit_problems, repeated_message, units_hint
 
 __all__ = [
     "PARAMETERS",
@@ -151,6 +152,11 @@ def _start(setup: CalibrationSetup, name: str) -> float:
 def model_friction(setup: CalibrationSetup, data: FrictionData, **params: float) -> np.ndarray:
     """Model friction coefficient μ at the measured conditions for parameter values
     ``params`` (names of :data:`PARAMETERS`; missing ones from ``setup`` / typical)."""
+    return np.asarray(_contact(setup, data, params).friction) / data.load
+
+
+def _contact(setup: CalibrationSetup, data: FrictionData, params: dict[str, float]):
+    """The analytic contact of :func:`model_friction` at the measured conditions."""
     unknown = set(params) - set(PARAMETERS)
     if unknown:
         raise InputError(f"unknown parameter(s) {sorted(unknown)}; allowed: {list(PARAMETERS)}")
@@ -167,7 +173,7 @@ def model_friction(setup: CalibrationSetup, data: FrictionData, **params: float)
         # ηβσ scaled through η, keeping σ and β (σ/β sets the asperity pressure scale)
         scale = params["roughness_parameter"] / rough.roughness_parameter
         rough = replace(rough, asperity_density=rough.asperity_density * scale)
-    c = analytic_contact(
+    return analytic_contact(
         data.load,
         setup.radius if data.radius is None else data.radius,
         data.entrainment_speed,
@@ -178,7 +184,6 @@ def model_friction(setup: CalibrationSetup, data: FrictionData, **params: float)
         boundary_shear_coefficient=p["boundary_shear_coefficient"],
         boundary_shear_strength=p["boundary_shear_strength"],
     )
-    return np.asarray(c.friction) / data.load
 
 
 @dataclass(frozen=True)
@@ -192,6 +197,8 @@ class Calibration:
     converged : the optimiser met its tolerance and every parameter is determined.
     message : what happened, and what to change if it did not work.
     bootstrap_std : 1σ from a residual bootstrap (``bootstrap`` > 0), else empty.
+    warnings : remarks on the data that do not stop the fit (repeated rows).
+    n_points : the number of distinct points fitted (exact repeats counted once).
     """
 
     free: tuple[str, ...]
@@ -204,6 +211,7 @@ class Calibration:
     converged: bool
     message: str
     bootstrap_std: dict[str, float] = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
 
     def within(self, truth: dict[str, float], k: float = 3.0) -> dict[str, bool]:
         """Whether each true value lies within k standard uncertainties of the fit."""
@@ -229,6 +237,8 @@ def calibrate_friction(
     """
     free = tuple(free)
     fixed = dict(fixed or {})
+    data, repeated = distinct_points(data)
+    warnings = (repeated_message(repeated),) if repeated else ()
     for name in (*free, *fixed):
         if name not in PARAMETERS:
             raise InputError(f"unknown parameter {name!r}; allowed: {list(PARAMETERS)}")
@@ -302,24 +312,40 @@ def calibrate_friction(
             x = x0.copy()
             x[i] = float(np.clip(level, lo[i] + 1e-9, hi[i] - 1e-9))
             starts.append(x)
-    trials = []
-    for x_start in starts:
-        trial = least_squares(
-            residuals,
-            x_start,
-            bounds=(lo, hi),
-            x_scale=x_scale,
-            method="trf",
-            xtol=1e-8,
-            ftol=1e-8,
-            gtol=1e-8,
-            max_nfev=1000,
-        )
-        trials.append(trial)
-    # the best fit; among fits as good (0.1 %), one whose optimiser met its tolerance
-    best = min(t.cost for t in trials)
-    good = [t for t in trials if t.cost <= best * 1.001 + 1e-30]
-    sol = min(good, key=lambda t: (not t.success, t.cost))
+
+    def fit(setup_: CalibrationSetup):
+        """The best of the fits from ``starts`` (and all of them) with ``setup_``."""
+
+        def res(x):
+            return model_friction(setup_, data, **params_of(x)) - data.friction_coefficient
+
+        trials = [
+            least_squares(
+                res,
+                x_start,
+                bounds=(lo, hi),
+                x_scale=x_scale,
+                method="trf",
+                xtol=1e-8,
+                ftol=1e-8,
+                gtol=1e-8,
+                max_nfev=1000,
+            )
+            for x_start in starts
+        ]
+        # the best fit; among fits as good (0.1 %), one whose optimiser met its tolerance
+        best = min(t.cost for t in trials)
+        good = [t for t in trials if t.cost <= best * 1.001 + 1e-30]
+        return min(good, key=lambda t: (not t.success, t.cost)), trials
+
+    def at_bounds(x) -> list[str]:
+        return [
+            nm
+            for nm, xi, a, b in zip(free, x, lo, hi, strict=True)
+            if min(xi - a, b - xi) <= 1e-6 * (b - a)
+        ]
+
+    sol, trials = fit(setup)
     n, k = len(data), len(free)
     r = sol.fun
     s2 = float(r @ r) / (n - k)
@@ -387,17 +413,28 @@ def calibrate_friction(
                     "it matters"
                 )
                 break
-    at_bound = [
-        nm
-        for nm, xi, a, b in zip(free, sol.x, lo, hi, strict=True)
-        if min(xi - a, b - xi) <= 1e-6 * (b - a)
-    ]
+    at_bound = at_bounds(sol.x)
     if at_bound:
         converged = False
         message += (
             f"; {', '.join(at_bound)} at the bound of its allowed range: the model cannot fit "
             "these data with a value inside it (check units and the fixed inputs)"
         )
+    # a fit that does not follow the data, or implausible values: inputs in wrong units?
+    symptoms = fit_problems(data.friction_coefficient, r, {nm: values[nm] for nm in free})
+    if symptoms or at_bound:
+
+        def refit(other: CalibrationSetup) -> tuple[float, dict[str, float], bool]:
+            alt, _ = fit(other)
+            v = params_of(alt.x)
+            return float(alt.cost), {nm: float(v[nm]) for nm in free}, bool(at_bounds(alt.x))
+
+        lam = None
+        if setup.roughness is not None:
+            film = _contact(setup, data, params_of(sol.x)).central_film
+            lam = np.asarray(film) / setup.roughness.rms
+        converged = False
+        message += "; " + "; ".join([*symptoms, units_hint(setup, float(sol.cost), refit, lam)])
     boot: dict[str, float] = {}
     if bootstrap:
         rng = np.random.default_rng(seed)
@@ -435,4 +472,5 @@ def calibrate_friction(
         n_points=n,
         converged=converged,
         message=message,
+        warnings=warnings,
     )

@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING
 import xarray as xr
 
 from .._typing import PathLike
+from .._user_files import read_user_bytes
 from .._validation import InputError
 from .sweep_point import failed_point, run_point
 from .sweep_store import PointStore, combine_points
@@ -104,11 +105,10 @@ def _scheduler_file_address(path: Path) -> str:
         f"--scheduler: {str(path)!r} is not a Dask scheduler file (a JSON file with the "
         'scheduler\'s "address", written by `dask scheduler --scheduler-file FILE`)'
     )
+    raw = read_user_bytes(path, "--scheduler", limit=1_000_000, hint=what)  # no pipes
     try:
-        with open(path, "rb") as f:
-            raw = f.read(1_000_001)
-        info = json.loads(raw.decode("utf-8")) if len(raw) <= 1_000_000 else None
-    except (OSError, UnicodeDecodeError, ValueError, RecursionError):
+        info = json.loads(raw.decode("utf-8"))
+    except (UnicodeDecodeError, ValueError, RecursionError):
         raise InputError(what) from None
     address = info.get("address") if isinstance(info, dict) else None
     if not isinstance(address, str) or "://" not in address:
@@ -157,7 +157,7 @@ def connect(address: str, *, workers: int | None = None, timeout: float = 30.0) 
     shown = address if len(address) <= 80 else address[:77] + "..."
     target = address
     if "://" not in address and Path(address).exists():
-        if not Path(address).is_file():
+        if Path(address).is_dir():
             raise InputError(
                 f"--scheduler: {shown!r} is a folder; give the scheduler's address, e.g. "
                 "tcp://host:8786, or a scheduler file"
