@@ -81,6 +81,7 @@ LAYERS = {
     "_typing": 0,
     "_system": 0,
     "_threads": 0,
+    "_json": 0,
     "physics": 1,
     "contact": 2,
     "valvetrain": 2,

@@ -36,7 +36,6 @@ one folder, atomically, without ever losing results or replacing someone else's 
 from __future__ import annotations
 
 import errno
-import json
 import os
 import shutil
 import tempfile
@@ -45,6 +44,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from .. import _json
 from .._system import new_dir
 from .._typing import PathLike
 from .dataset import study_to_dataset
@@ -241,7 +241,7 @@ def write_results(
         from .export import write_csv
 
         ds.to_netcdf(folder / "results.nc", engine="h5netcdf", encoding=enc)
-        (folder / "summary.json").write_text(json.dumps(summ, indent=2))
+        (folder / "summary.json").write_text(_json.dumps(summ, indent=2))
         _write_case(study.case, folder)
         write_csv(ds, folder)
 

@@ -27,7 +27,6 @@ Variables (study mode; dynamics mode has the point scalars and dynamics traces o
 
 from __future__ import annotations
 
-import json
 import math
 import socket
 import time
@@ -35,6 +34,7 @@ import traceback
 
 import xarray as xr
 
+from .. import _json
 from .variables import Group, build
 from .variables_study import StudySource
 from .variables_sweep import (
@@ -217,7 +217,7 @@ def run_point(case, mode: str = "study", traces: bool = False) -> xr.Dataset:
             "error": "",
             "runtime_s": runtime,
             "cpu_s": cpu,
-            "warnings": json.dumps(warnings),
+            "warnings": _json.dumps(warnings),
             **_where(),
         }
     )
