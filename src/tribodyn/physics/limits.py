@@ -51,6 +51,8 @@ __all__ = [
     "BORE_FRICTION_VELOCITY",
     "LENGTH_BELOW_1M",
     "ENGINE_SPEED",
+    "ENGINE_DISPLACEMENT",
+    "TAPPET_BORE_DIAMETER",
     "LINE_LOAD",
     "CONTACT_RADIUS",
     "SURFACE_SPEED",
@@ -220,6 +222,10 @@ BORE_FRICTION_VELOCITY = Limit(
 )
 LENGTH_BELOW_1M = Limit("m", gt=0.0, lt=1.0, why="valvetrain dimensions below 1 m")
 ENGINE_SPEED = Limit("rpm", gt=0.0, le=50000.0, why="engine speeds below 50 000 rpm")
+ENGINE_DISPLACEMENT = Limit(
+    "m³", ge=1e-5, le=0.1, why="swept volumes of engines from 10 cm³ (models) to 100 l"
+)
+TAPPET_BORE_DIAMETER = Limit("m", ge=2e-3, lt=0.2, why="tappet bores of 2 mm to 200 mm")
 CAM_SPEED = Limit(
     "rad/s",
     gt=0.0,
