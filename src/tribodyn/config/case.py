@@ -24,6 +24,7 @@ import difflib
 from pathlib import Path
 from typing import Annotated, Any, ClassVar
 
+import numpy as np
 import tomli_w
 from pydantic import (
     Field,
@@ -398,9 +399,20 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         """``[tappet_rotation]`` as a :class:`TappetRotation` (speed ratio 0: none)."""
         return build(self).tappet_rotation
 
-    def _new_tappet_rotation(self) -> TappetRotation:
+    def _new_tappet_rotation(self, cam=None) -> TappetRotation:
+        """The tappet rotation; with the ``cam``, checked to fit it and the tappet
+        (:meth:`~tribodyn.valvetrain.tappet_rotation.TappetRotation.check_fit`)."""
         c = self.tappet_rotation_config
-        return TappetRotation(c.speed_ratio, c.cam_offset)
+        rot = TappetRotation(c.speed_ratio, c.cam_offset)
+        if cam is not None and rot.cam_offset > 0.0:
+            th = np.linspace(0.0, 2.0 * np.pi, 7201)
+            e_max = float(np.max(np.abs(cam.derivatives(th)[1])))
+            try:
+                rot.check_fit(self.valvetrain.tappet_radius, self.width, e_max, cam.base_radius)
+            except InputError as exc:
+                key = str(exc).split(" ", 1)[0]
+                raise CaseKeyError(f"tappet_rotation.{key}", str(exc)) from None
+        return rot
 
     def lubricant(self) -> Lubricant:
         """The :class:`~tribodyn.Lubricant` of ``[lubricant]`` (a datasheet oil at its
