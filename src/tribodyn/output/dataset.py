@@ -64,6 +64,7 @@ def study_to_dataset(study: CycleStudy) -> xr.Dataset:
             "surface_roles": _json.dumps(an.roles),
             "coupling": _json.dumps(study.coupling.to_dict()),
             "warnings": _json.dumps(study.warnings),
+            "valve_jump": _json.dumps(study.dynamics.jump_summary()),
             "ehl_failures": _json.dumps(failures),
             "conventions": "SI; EHL NaN where unloaded (loaded = 0)",
             "roughness_sensitivity": _json.dumps(

@@ -76,7 +76,7 @@ def _film_row(study, summ):
             f" At the six representative points the coatings change h_c by at most "
             f"{big:.2g} %, {target / big:.0f}× less than +{target:g} %."
         )
-    fac = [f for f in an.modulus_factor if f is not None and math.isfinite(f)]
+    fac = [f.factor for f in an.modulus_factor if f.found]
     if fac:
         txt += (
             f" To give +{target:g} % there (Moes film formula, α kept), the bulk E' "

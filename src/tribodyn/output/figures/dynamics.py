@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from typing import Any
 
 import numpy as np
@@ -50,7 +51,19 @@ _IMPLICIT_STYLE: dict[str, Any] = dict(
 )
 
 
-def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False):
+def _shade_contact_loss(ax, ds) -> None:
+    """Shade the intervals in which the tappet left the cam (``valve_jump`` of the
+    results) and say the maximum separation in the legend."""
+    jump = json.loads(ds.attrs.get("valve_jump", "{}") or "{}")
+    intervals = jump.get("contact_loss_crank_deg") or []
+    sep = jump.get("max_separation_m") or 0.0
+    label: str | None = f"contact lost (valve jump; max separation {sep * 1e3:.3g} mm)"
+    for a, b in intervals:
+        ax.axvspan(a, b, color="tab:red", alpha=0.18, lw=0, zorder=0, label=label)
+        label = None  # one legend entry
+
+
+def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False, jumps=False):
     ca = arr(ds, "crank_angle")
     y = arr(ds, var) * scale
     imp = f"{var}_implicit"
@@ -122,6 +135,8 @@ def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False)
     ad.set_ylabel(f"implicit − explicit\n[{diff_unit}]")
     crank_axis(ad, full)
     ad.set_title("(b) difference", fontsize=TITLE_SIZE)
+    if jumps:
+        _shade_contact_loss(ax, ds)
     if points and "point_crank" in ds:
         pc = arr(ds, "point_crank")
         py = np.interp(pc, ca, y)
@@ -146,7 +161,7 @@ def fig08(ds, path):
 
 def fig09(ds, path):
     return _explicit_implicit(
-        ds, path, "contact_force", 1.0, "contact force W [N]", "N", points=True
+        ds, path, "contact_force", 1.0, "contact force W [N]", "N", points=True, jumps=True
     )
 
 

@@ -1,0 +1,131 @@
+"""A spring too weak for the speed lets the tappet leave the cam (valve jump): the study
+simulates it and reports it (intervals, maximum separation, what to change) instead of
+failing in its post-processing."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from conftest import REDUCED
+from tribodyn.config import load_case
+from tribodyn.valvetrain import AccelerationCam, ValvetrainParameters
+from tribodyn.valvetrain.dynamics import simulate_valvetrain
+from tribodyn.workflow.postprocess import modulus_factor_for_gain
+
+#: The paper's valvetrain with a spring far too weak for 5000 rpm: the quasi-static jump
+#: speed ω² = (F₀ + k s)/(m_e |s''|) is below it on the nose (test_jump_speed_search).
+WEAK = {"valvetrain.spring_preload": 100.0, "valvetrain.spring_rate": 1e4}
+
+
+def _weak_dynamics():
+    p = ValvetrainParameters(spring_preload=100.0, spring_rate=1e4)
+    return simulate_valvetrain(
+        AccelerationCam(), p, engine_speed=5000.0, tribology=None, output_step=0.5
+    )
+
+
+def test_weak_spring_separation_is_measured():
+    """The contact-loss intervals are where the sampled contact force is zero and the
+    tappet is above the cam; the maximum separation tappet lift − cam lift lies inside one
+    of them (spring surge makes this jump: the quasi-static margin F₀ + k s − m_e ω²|s''|
+    stays positive)."""
+    r = _weak_dynamics()
+    assert r.converged and r.jump
+    js = r.jump_summary()
+    assert js["contact_loss_crank_deg"] == [[a, b] for a, b in r.jumps]
+    ca = r.crank_angle
+    sep = r.tappet_displacement - r.cam_lift
+    for a, b in r.jumps:
+        inside = (ca > a + 0.6) & (ca < b - 0.6)
+        assert np.all(r.contact_force[inside] == 0.0)
+        assert np.all(sep[inside] > 0.0)
+    assert js["max_separation_m"] == pytest.approx(sep.max())
+    assert js["max_separation_m"] > 1e-4  # a real jump, not the contact's compliance
+    k = js["max_separation_crank_deg"]
+    assert any(a <= k <= b for a, b in r.jumps)
+    assert js["contact_lost_deg"] == pytest.approx(sum(b - a for a, b in r.jumps))
+    # the paper's spring at the same speed holds the train: no interval, and only the
+    # contact's compliance between tappet and cam (micrometres)
+    held = simulate_valvetrain(
+        AccelerationCam(),
+        ValvetrainParameters(),
+        engine_speed=5000.0,
+        tribology=None,
+        output_step=0.5,
+    )
+    assert not held.jump and held.jump_summary()["contact_loss_crank_deg"] == []
+    assert held.jump_summary()["max_separation_m"] < 1e-5
+    assert r.summary()["max_separation_m"] == pytest.approx(js["max_separation_m"])
+
+
+def test_a_train_thrown_off_the_cam_is_reported_not_a_bare_load_error():
+    """1 N preload and 1 N/m: the tappet leaves the cam and stays off for the whole
+    presented cycle; the study says so and names the spring, before any EHL."""
+    from tribodyn.workflow.cycle import StudyError, run_cycle_study
+
+    case = load_case().updated(
+        {**REDUCED, "valvetrain.spring_preload": 1.0, "valvetrain.spring_rate": 1.0}
+    )
+    with pytest.raises(StudyError) as err:
+        run_cycle_study(case, workers=1)
+    text = str(err.value)
+    assert "valve jump" in text and "maximum separation" in text
+    assert "valvetrain.spring_preload (1 N)" in text and "valvetrain.spring_rate (1 N/m)" in text
+
+
+def test_modulus_factor_is_undefined_at_an_unloaded_point_not_a_crash():
+    """At a point without load (a jump) the film formula has no value: the factor is
+    'not found' with the reason (brentq used to raise on the NaN bracket)."""
+    args = (0.01, 5.0, 0.01, 1e-8, 2.3e11)
+    bad = modulus_factor_for_gain(0.0, *args)
+    assert math.isnan(bad.factor) and not bad.found and "no film formula" in bad.reason
+    ok = modulus_factor_for_gain(5e4, *args)
+    assert ok.found and ok.factor > 1.0 and ok.reason == ""
+    # a gain no modulus reaches: not reached, said so
+    far = modulus_factor_for_gain(5e4, *args, gain=1e6)
+    assert not far.found and "not reached" in far.reason
+
+
+@pytest.fixture(scope="module")
+def weak_study():
+    from tribodyn.workflow.cycle import run_cycle_study
+
+    base = load_case()
+    case = base.updated(
+        {
+            **REDUCED,
+            **WEAK,
+            "engine.speed_rpm": 5000.0,
+            "surface_sets": base.to_dict()["surface_sets"][:1],
+            "numerics.implicit_coupling": False,
+        }
+    )
+    return run_cycle_study(case, workers=1, compare_paper=False)
+
+
+def test_weak_spring_study_reports_the_jump(weak_study, tmp_path):
+    """The study completes; summary.json's ``valve_jump`` block, the warning, the report's
+    section and the contact-force figure's data say where the contact was lost, by how
+    much, and what to change."""
+    from tribodyn.output.dataset import study_to_dataset
+    from tribodyn.output.report import report_text
+
+    s = weak_study.analyse().summary
+    j = s["valve_jump"]
+    dyn = weak_study.dynamics
+    assert j["jump"] is True
+    assert j["contact_loss_crank_deg"] == [[a, b] for a, b in dyn.jumps]
+    assert j["max_separation_m"] == pytest.approx(dyn.jump_summary()["max_separation_m"])
+    assert "valvetrain.spring_preload (100 N)" in j["warning"]
+    json.loads(json.dumps(s, allow_nan=False))  # strict JSON
+    ds = study_to_dataset(weak_study)
+    assert (
+        json.loads(ds.attrs["valve_jump"])["contact_loss_crank_deg"] == j["contact_loss_crank_deg"]
+    )
+    text = report_text(weak_study, ds, {})
+    assert "## Valve jump (contact loss)" in text
+    a, b = dyn.jumps[0]
+    assert f"| {a:.1f}° | {b:.1f}° |" in text
+    assert f"{j['max_separation_m'] * 1e3:.3g} mm" in text
