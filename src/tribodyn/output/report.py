@@ -434,9 +434,13 @@ def report_text(study, ds, figures: dict) -> str:
     its = np.array([s.iterations for s in study.sets])
     lines.append(
         f"- Transient EHL: {int(loaded.sum())} loaded steps over {len(study.sets)} "
-        f"surface sets, {int((loaded & ~conv).sum())} not converged; Newton "
-        f"iterations per step mean {its[loaded].mean():.1f}, max "
-        f"{int(its[loaded].max()) if loaded.any() else 0}."
+        f"surface sets, {int((loaded & ~conv).sum())} not converged"
+        + (
+            f"; Newton iterations per step mean {its[loaded].mean():.1f}, max "
+            f"{int(its[loaded].max())}."
+            if loaded.any()
+            else " (no sample carries numerics.min_load: no film to compute)."
+        )
     )
     for s in study.sets:
         if s.failures:
