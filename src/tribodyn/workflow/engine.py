@@ -154,7 +154,8 @@ class EngineStudy:
 
     def summary(self) -> dict:
         """``engine`` block of summary.json: per set and camshaft, energies [J], mean
-        torques [N m], mean powers [W], FMEP [Pa], and each coating's benefit in %."""
+        torques [N m], mean powers [W], FMEP [Pa], each coating's benefit in %, and each
+        lobe kind's contact loss (``valve_jump``: intervals, maximum separation)."""
         period = 2.0 * math.pi / self.cam_speed
         vd = float(self.case.engine.displacement or float("nan"))
         parts = {
@@ -215,6 +216,10 @@ class EngineStudy:
         for name, d in out["surface_sets"].items():
             d["friction_reduction_vs_uncoated_pct"] = 100.0 * (1.0 - totals[name] / totals[ref])
         out["reference_set"] = ref
+        # contact loss of each lobe kind's valve (its single-valve dynamics)
+        out["valve_jump"] = {
+            k: lt.study.dynamics.jump_summary() for k, lt in self.lobes.items() if lt.study
+        }
         return out
 
     def to_dataset(self):
