@@ -153,3 +153,17 @@ def test_weak_spring_study_reports_the_jump(weak_study, tmp_path):
     a, b = dyn.jumps[0]
     assert f"| {a:.1f}° | {b:.1f}° |" in text
     assert f"{j['max_separation_m'] * 1e3:.3g} mm" in text
+
+
+def test_sweep_point_gives_the_separation():
+    """A dynamics-mode sweep point of the weak spring carries max_separation_m (with its
+    unit), equal to the dynamics' own, and the paper's spring a compliance-sized one."""
+    from tribodyn.workflow.sweep_point import run_point
+
+    weak = load_case().updated({**REDUCED, **WEAK, "engine.speed_rpm": 5000.0})
+    ds = run_point(weak, mode="dynamics")
+    assert ds.attrs["status"] == "ok", ds.attrs.get("error")
+    assert ds["max_separation_m"].attrs["units"] == "m"
+    assert float(ds["max_separation_m"]) > 1e-4 and int(ds["jump"]) == 1
+    held = run_point(load_case().updated({**REDUCED, "engine.speed_rpm": 5000.0}), mode="dynamics")
+    assert float(held["max_separation_m"]) < 1e-5 and int(held["jump"]) == 0

@@ -101,6 +101,7 @@ def _dynamics_scalars(dyn) -> dict:
         "jump_onset_crank_deg": (
             dyn.jumps[0][0] - float(dyn.crank_angle[0]) if dyn.jumps else math.nan
         ),
+        "max_separation_m": s["max_separation_m"],
         "valve_bounce": s["valve_bounce"],
         "seating_velocity_m_s": s["seating_velocity_m_s"],
         "energy_residual_rel": s["energy_residual_rel"],
