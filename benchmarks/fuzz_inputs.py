@@ -1041,6 +1041,188 @@ def fuzz_user_files(tmp: Path) -> None:
     )
 
 
+def fuzz_engine_inputs(tmp: Path) -> None:
+    """The engine study's inputs and the weak spring: lobe changes naming a shared key in
+    another spelling or renaming a surface set, a lobe's own cam table (copied with the
+    results), a tappet-rotation offset beyond the face, absurd displacement and bore, a
+    spring that lets the valve jump (handled only if the run completes and reports the
+    separation); the stress API's ranges and size guards; float32 grids, 0-d arrays and
+    arrays as sweep-axis values. Coarse numerics; one engine computation in all."""
+    import shutil
+
+    from tribodyn.config import SweepSpec, load_case
+    from tribodyn.config.case import CASES_DIR, set_dotted, to_toml
+    from tribodyn.physics.stress import StressOperator, subsurface_stress
+
+    g = "engine inputs"
+    quick = {
+        "numerics.crank_step_deg": 5.0,
+        "numerics.n": 128,
+        "numerics.implicit_coupling": False,
+        "numerics.output_step_deg": 1.0,
+        "numerics.workers": 1,
+    }
+    engine = {
+        "engine.cylinders": 4,
+        "engine.displacement": 0.0016,
+        "engine.intake": {"centre_angle_deg": 470.0},
+        "engine.exhaust": {"centre_angle_deg": 250.0},
+    }
+    paper = load_case()
+    one_set = {**quick, "surface_sets": paper.to_dict()["surface_sets"][:1]}
+    base = paper.updated({**one_set, **engine}).to_dict(resolve_paths=True)
+
+    def write(name: str, changes: dict, data: dict | None = None) -> Path:
+        d = json.loads(json.dumps(data if data is not None else base))
+        for k, v in changes.items():
+            set_dotted(d, k, v)
+        p = tmp / f"engine_{name}.toml"
+        p.write_text(to_toml(d), encoding="utf-8")
+        return p
+
+    def names(key: str):
+        return lambda r: None if key in " ".join(r.output.split()) else f"does not name {key}"
+
+    def refused(name: str, changes: dict, key: str, command: str = "engine") -> None:
+        p = write(name, changes)
+        cli(g, [command, str(p), "-o", str(tmp / f"out_{name}"), "-j", "1"], check=names(key))
+
+    exhaust = {"centre_angle_deg": 250.0}
+    for i, key in enumerate(['"engine".speed_rpm', " engine.speed_rpm", '"numerics".n']):
+        value = 256 if key.endswith(".n") else 6000.0
+        changes = {"engine.exhaust": {**exhaust, "changes": {key: value}}}
+        refused(f"shared{i}", changes, "engine.exhaust.changes")
+    rename = {"engine.exhaust": {**exhaust, "changes": {"surface_sets[0].name": "other"}}}
+    refused("rename", rename, "engine.exhaust.changes")
+    refused("displacement", {"engine.displacement": 5e-324}, "engine.displacement")
+    refused("bore", {"engine.auxiliary": {"bore_diameter": 1e-6}}, "engine.auxiliary.bore_diameter")
+    single = paper.updated(one_set).to_dict(resolve_paths=True)
+    p = write("offset", {"tappet_rotation": {"speed_ratio": 0.05, "cam_offset": 0.049}}, single)
+    cli(
+        g, ["run", str(p), "-o", str(tmp / "out_offset")], check=names("tappet_rotation.cam_offset")
+    )
+
+    # a lobe's own cam table: copied into inputs/, the written case names the copy (one
+    # engine computation, also checked for strict JSON and the engine's speed)
+    src = tmp / "table_case"
+    (src / "tables").mkdir(parents=True, exist_ok=True)
+    for n in ("cam1.csv", "cam2.csv"):
+        shutil.copy(CASES_DIR / "example_cam_lift.csv", src / "tables" / n)
+    table = load_case("example_table_cam")
+    data = table.updated({**quick, "surface_sets": table.to_dict()["surface_sets"][:1], **engine})
+    d = data.to_dict()
+    d["cam"]["path"] = "tables/cam1.csv"
+    d["engine"]["exhaust"]["changes"] = {"cam.path": "tables/cam2.csv"}
+    (src / "engine.toml").write_text(to_toml(d), encoding="utf-8")
+    out = tmp / "out_table"
+
+    def table_copied(r):
+        from tribodyn.config import Case
+
+        def refuse(token):
+            raise ValueError(f"non-standard JSON token {token}")
+
+        summ = json.loads((out / "summary.json").read_text(), parse_constant=refuse)
+        if summ["engine"]["speed_rpm"] != 3000.0:
+            return "summary speed is not the case's"
+        moved = tmp / "out_table_moved"
+        shutil.move(out, moved)
+        shutil.rmtree(src)  # the original tables are gone
+        try:
+            lobe = Case.from_toml(moved / "case.toml").engine_lobe_case("exhaust")
+        except InputError as exc:
+            return f"the moved result folder does not run: {exc}"[:250]
+        if lobe.cam_table_path != moved / "inputs" / "cam2.csv":
+            return f"the exhaust lobe reads {lobe.cam_table_path}, not its copy in inputs/"
+        return None
+
+    cli(g, ["engine", str(src / "engine.toml"), "-o", str(out), "-j", "1"], (0,), table_copied)
+
+    # weak springs: thrown off the cam (1 N, 1 N/m) and a realistic one too weak for 5000 rpm
+    for name, changes in (
+        ("thrown", {"valvetrain.spring_preload": 1.0, "valvetrain.spring_rate": 1.0}),
+        (
+            "weak5000",
+            {
+                "valvetrain.spring_preload": 100.0,
+                "valvetrain.spring_rate": 1e4,
+                "engine.speed_rpm": 5000.0,
+            },
+        ),
+    ):
+        p = write(f"spring_{name}", changes, single)
+        o = tmp / f"out_spring_{name}"
+
+        def reports_jump(r, o=o):
+            j = json.loads((o / "summary.json").read_text()).get("valve_jump") or {}
+            text = (o / "report.md").read_text(encoding="utf-8")
+            ok = j.get("jump") and (j.get("max_separation_m") or 0) > 0
+            if not ok or "## Valve jump (contact loss)" not in text:
+                return "the jump is not reported (valve_jump in summary.json, report.md)"
+            return None
+
+        cli(
+            g,
+            ["run", str(p), "-o", str(o), "-j", "1", "-q", "--no-compare-paper"],
+            (0,),
+            reports_jump,
+        )
+
+    # the stress API: physical ranges and size guards (before allocating)
+    x = np.linspace(-1e-3, 1e-3, 201)
+    p0 = np.maximum(1e9 * (1.0 - (x / 5e-4) ** 2), 0.0)
+    coated = Body(STEEL, Coating(175e9, 0.3, 4e-6))
+    for case, call, name in (
+        ("p = 1e300", lambda: subsurface_stress(x, p0 * 1e291, 0 * x, PAIR[0], [1e-4]), "pressure"),
+        ("z = 1e300", lambda: subsurface_stress(x, p0, 0 * x, PAIR[0], [1e300]), "depths"),
+        (
+            "x spacing 1e-15, coated",
+            lambda: subsurface_stress(x * 1e-10, p0, 0 * x, coated, [1e-6]),
+            "spacing of x",
+        ),
+        ("1e6 nodes", lambda: StressOperator(10**6, 1e-6, PAIR[0], [1e-6]), "nodes of x"),
+        (
+            "1e5 depths",
+            lambda: StressOperator(201, 1e-5, PAIR[0], np.linspace(0, 1e-3, 10**5)),
+            "len(depths)",
+        ),
+    ):
+        expect_input_error(g, f"subsurface stress {case}", call, name)
+
+    def accepted(case: str, call) -> None:
+        try:
+            with time_limit():
+                ok = call()
+        except Hang:
+            record(g, "hang", case)
+        except InputError as exc:
+            record(g, "garbage", f"{case}: refused: {exc}"[:250])
+        except Exception as exc:
+            record(g, "traceback", f"{case} -> {type(exc).__name__}: {exc}"[:300])
+        else:
+            record(g, "handled" if ok else "garbage", case)
+
+    x32 = x.astype(np.float32)
+    accepted(
+        "float32 linspace x",
+        lambda: np.isfinite(
+            subsurface_stress(x32, p0, 0 * x, PAIR[0], [1e-4]).max_von_mises_substrate.value
+        ),
+    )
+    accepted("0-d array E, nu", lambda: Material(np.array(210e9), np.array(0.3)).E == 210e9)
+    for case, form in (
+        ("array values", "values = [[1000.0, 2000.0]]"),
+        ("array start", "start = [1000.0]\nstop = 2000.0\nnum = 3"),
+    ):
+        text = f'[[axes]]\npath = "engine.speed_rpm"\n{form}\n'
+        expect_input_error(
+            g,
+            f"sweep axis {case}",
+            lambda t=text: SweepSpec.from_toml_string(t),
+            "axis engine.speed_rpm",
+        )
+
+
 def main() -> None:
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory() as d:
@@ -1055,6 +1237,7 @@ def main() -> None:
             fuzz_run_cli(tmp)
             fuzz_extreme_kinds(tmp)
             fuzz_user_files(tmp)
+            fuzz_engine_inputs(tmp)
     total = sum(results.values())
     print(
         json.dumps(

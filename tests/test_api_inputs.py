@@ -422,3 +422,17 @@ def test_thermal_options_convert_safely(kw, name):
 
     with pytest.raises(InputError, match=rf"^{name} must"):
         ThermalOptions(**kw)
+
+
+@pytest.mark.parametrize("cls", sorted(VALID))
+def test_zero_d_arrays_count_as_their_scalars(cls):
+    """``np.array(2.5)`` (a 0-d array, what ``a.sum()`` of an array-like or ``np.asarray``
+    of a scalar gives) is a number: every constructor takes it as the scalar (it used to
+    be refused as 'not a finite real number'); a 0-d NaN is still refused."""
+    from tribodyn._validation import check_int, check_real
+
+    build, kw = VALID[cls]
+    build(**{k: np.asarray(v) if isinstance(v, (int, float)) else v for k, v in kw.items()})
+    assert check_real("x", np.array(2.5)) == 2.5 and check_int("n", np.array(4)) == 4
+    with pytest.raises(InputError, match="x must be a finite real number"):
+        check_real("x", np.array(np.nan))

@@ -82,6 +82,7 @@ LAYERS = {
     "_system": 0,
     "_threads": 0,
     "_user_files": 0,
+    "_json": 0,
     "physics": 1,
     "contact": 2,
     "valvetrain": 2,

@@ -196,3 +196,57 @@ def test_bad_input_names_the_argument(kwargs, word):
     args.update(kwargs)
     with pytest.raises(InputError, match=word):
         subsurface_stress(**args)
+
+
+@pytest.mark.parametrize(
+    "kwargs, expected",
+    [
+        ({"pressure": [0.0, 1e300, 1e300, 0.0]}, r"pressure must be >= -1e\+11 and <= 1e\+11"),
+        ({"traction": [0.0, -1e12, 0.0, 0.0]}, r"traction must be >= -1e\+11 and <= 1e\+11"),
+        ({"depths": [1e300]}, r"depths must be >= 0 and < 1 \[m\]"),
+    ],
+)
+def test_loads_and_depths_beyond_physics_are_refused(kwargs, expected):
+    """A pressure of 1e300 Pa used to give inf stresses, a depth of 1e300 m NaN."""
+    args = {
+        "x": [0.0, 1e-6, 2e-6, 3e-6],
+        "pressure": [0.0, 1.0, 1.0, 0.0],
+        "traction": [0.0, 0.0, 0.0, 0.0],
+        "body": Body(STEEL),
+        "depths": [0.0, 1e-6],
+    }
+    args.update(kwargs)
+    with pytest.raises(InputError, match=expected):
+        subsurface_stress(**args)
+
+
+def test_sizes_are_refused_before_allocating():
+    """A 1e-15 m spacing on a 4 µm coating needs a periodic length of 1.3e11 nodes (tens of
+    TiB); a million nodes or 1e5 depths are refused likewise, naming the argument and its
+    limit (the check runs before anything of that size is allocated)."""
+    from tribodyn.physics.stress import StressOperator
+
+    coated = Body(STEEL, Coating(E=175e9, nu=0.3, thickness=4e-6))
+    with pytest.raises(InputError, match=r"spacing of x \(dx\) must be >= .* m for this coating"):
+        StressOperator(201, 1e-15, coated, [1e-6])
+    with pytest.raises(InputError, match=r"n \(nodes of x\) must be .*<= 65536"):
+        StressOperator(1_000_000, 1e-6, Body(STEEL), [1e-6])
+    with pytest.raises(InputError, match=r"len\(depths\) must be .*<= 2000"):
+        StressOperator(201, 1e-5, Body(STEEL), np.linspace(0.0, 1e-3, 100_000))
+    with pytest.raises(InputError, match=r"len\(depths\) × n .* GiB"):
+        StressOperator(60_000, 1e-7, Body(STEEL), np.linspace(0.0, 1e-4, 1500))
+
+
+def test_float32_grid_is_uniform():
+    """A float32 linspace is uniform to its own precision (it used to be refused as 'not
+    uniformly spaced'); the field equals the float64 grid's to float32 rounding."""
+    x64 = np.linspace(-1e-3, 1e-3, 201)
+    x32 = x64.astype(np.float32)
+    p = np.maximum(1e9 * (1.0 - (x64 / 5e-4) ** 2), 0.0)
+    a = subsurface_stress(x32, p, 0.0 * p, Body(STEEL), [2e-4])
+    b = subsurface_stress(x64, p, 0.0 * p, Body(STEEL), [2e-4])
+    assert a.max_von_mises_substrate.value == pytest.approx(
+        b.max_von_mises_substrate.value, rel=1e-5
+    )
+    with pytest.raises(InputError, match="uniformly spaced"):  # still a real check
+        subsurface_stress(x64 * (1 + 1e-3 * (x64 > 0)), p, 0.0 * p, Body(STEEL), [2e-4])

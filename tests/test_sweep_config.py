@@ -547,3 +547,22 @@ def test_find_paths_gives_each_place_its_own_address():
     assert [e.get("m", {}).get("t") for e in d["s"]] == ["s[0].m.t", None, "s[2].m.t"]
     with pytest.raises(PathError, match="ends with a key"):
         find_paths(d, "s[*]")
+
+
+@pytest.mark.parametrize(
+    "form, where, what",
+    [
+        ("values = [[1000.0, 2000.0], [3000.0]]", "axes[0].values[0]", "an array"),
+        ("values = [1000.0, {a = 1}]", "axes[0].values[1]", "a table"),
+        ("start = [1000.0]\nstop = 2000.0\nnum = 3", "axes[0].start", "an array"),
+    ],
+)
+def test_array_axis_values_get_one_clear_line(form, where, what):
+    """An array where one value belongs used to list every type the value is not (bool,
+    int, float, str); one line names the place, the axis key and what is wrong."""
+    text = f'[[axes]]\npath = "engine.speed_rpm"\n{form}\n'
+    msg = problems(text)
+    assert (
+        f"{where}: axis engine.speed_rpm: each value is one number, string or boolean (got {what})"
+    ) in msg
+    assert ".bool:" not in msg and ".float:" not in msg

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -121,9 +123,9 @@ def test_bad_rotation_inputs_name_the_field():
 
 def test_case_rotation_reaches_the_cycle_ehl(monkeypatch):
     case = load_case().updated(
-        {"tappet_rotation.speed_ratio": 0.05, "tappet_rotation.cam_offset": 0.004}
+        {"tappet_rotation.speed_ratio": 0.05, "tappet_rotation.cam_offset": 0.003}
     )
-    assert case.tappet_rotation() == TappetRotation(0.05, 0.004)
+    assert case.tappet_rotation() == TappetRotation(0.05, 0.003)
     assert load_case().tappet_rotation().active is False  # the paper's tappet: none
     seen = {}
 
@@ -133,5 +135,34 @@ def test_case_rotation_reaches_the_cycle_ehl(monkeypatch):
     monkeypatch.setattr(cycle_ehl, "ehl_along_cycle", fake)
     inp = _inputs()
     cycle_ehl.ehl_for_set(case, case.surface_sets()[0], inp)
-    expected = inp.with_rotation(TappetRotation(0.05, 0.004))
+    expected = inp.with_rotation(TappetRotation(0.05, 0.003))
     np.testing.assert_array_equal(seen["inputs"].sliding_speed, expected.sliding_speed)
+
+
+def test_cam_offset_must_keep_the_contact_on_the_tappet_face():
+    """e_o = 49 mm on a 16.5 mm tappet used to be accepted (the torque-based friction
+    energy came out negative). The contact line at x = e ≤ max|s'|, y = e_o ± l/2 must stay
+    within the face: e_o ≤ √(R_t² − e_max²) − l/2, by hand from the cam's s'."""
+    case = load_case()
+    th = np.linspace(0.0, 2.0 * np.pi, 7201)
+    e_max = np.max(np.abs(case.cam().derivatives(th)[1]))
+    rt, half = case.valvetrain.tappet_radius, 0.5 * case.width
+    reach = math.sqrt(rt**2 - e_max**2) - half
+    assert 0.0 < reach < 0.005  # the paper's cam runs close to the face edge
+    with pytest.raises(InputError, match=rf"tappet_rotation\.cam_offset: .*<= {reach:.4g} m"):
+        case.updated({"tappet_rotation.speed_ratio": 0.05, "tappet_rotation.cam_offset": 0.049})
+    with pytest.raises(InputError, match=r"tappet_rotation\.cam_offset"):
+        case.updated({"tappet_rotation.cam_offset": reach * 1.01})
+    case.updated({"tappet_rotation.cam_offset": reach * 0.99})
+    # the API object: the same rule, with the field and its range named
+    with pytest.raises(InputError, match=r"^cam_offset must be >= 0 and <= "):
+        TappetRotation(0.05, 0.049).check_fit(rt, case.width, e_max, case.cam().base_radius)
+
+
+def test_tappet_cannot_overtake_the_cam_surface():
+    """ω_t e_o ≥ ω r_b would make the tappet (turned by the cam's friction) move faster
+    than the cam surface on the base circle, the friction then driving the camshaft."""
+    rot = TappetRotation(1.0, 0.004)
+    with pytest.raises(InputError, match=r"^speed_ratio must lie in \(-0\.5, 0\.5\)"):
+        rot.check_fit(0.05, 0.01, 0.01, 0.002)  # r_b = 2 mm: |ω_t/ω| < r_b/e_o = 0.5
+    TappetRotation(0.4, 0.004).check_fit(0.05, 0.01, 0.01, 0.002)

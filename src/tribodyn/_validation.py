@@ -58,9 +58,19 @@ def _to_float(value) -> float | None:
         return None
 
 
+def _scalar(value):
+    """A 0-d numpy array (``np.array(2.5)``, ``a.sum(keepdims…)``) as its numpy scalar;
+    anything else as is."""
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        return value[()]
+    return value
+
+
 def check_real(name: str, value, unit: str = "") -> float:
-    """Return ``value`` as a finite float or raise naming ``name``."""
+    """Return ``value`` as a finite float or raise naming ``name`` (a 0-d array counts
+    as its scalar)."""
     u = f" [{unit}]" if unit else ""
+    value = _scalar(value)
     if isinstance(value, (bool, np.bool_)) or not isinstance(
         value, (Real, np.integer, np.floating)
     ):
@@ -84,7 +94,8 @@ def short_repr(value) -> str:
 
 def check_int(name: str, value) -> int:
     """Return ``value`` as an int; integral floats (4.0) are accepted, bools and
-    non-integral or non-numeric values are not."""
+    non-integral or non-numeric values are not (a 0-d array counts as its scalar)."""
+    value = _scalar(value)
     if isinstance(value, (bool, np.bool_)) or not isinstance(
         value, (Real, np.integer, np.floating)
     ):

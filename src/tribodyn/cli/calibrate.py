@@ -8,7 +8,6 @@ Fits boundary friction and rheology (:mod:`tribodyn.workflow.calibration`) and p
 from __future__ import annotations
 
 import csv
-import json
 import math
 import re
 import textwrap
@@ -20,7 +19,7 @@ import typer
 from rich.console import Console
 from rich.markup import escape
 
-from .. import paper
+from .. import _json, paper
 from .failure import fail, writing
 
 __all__ = ["calibrate_command", "read_friction_csv", "calibration_toml"]
@@ -349,7 +348,7 @@ def calibrate_command(
         fail(err, exc)
     if as_json:
         typer.echo(
-            json.dumps(
+            _json.dumps(
                 {
                     "values": cal.values,
                     "std": {k: (v if math.isfinite(v) else None) for k, v in cal.std.items()},

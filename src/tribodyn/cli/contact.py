@@ -13,7 +13,6 @@ Exit codes: 0 solved and converged, 1 solved but not converged (results still pr
 from __future__ import annotations
 
 import dataclasses
-import json
 import math
 import re
 import sys
@@ -24,7 +23,7 @@ from typing import Any
 import typer
 from rich.console import Console
 
-from .. import paper
+from .. import _json, paper
 from .._validation import InputError
 from ..physics import typical
 from .contact_table import _table
@@ -496,7 +495,7 @@ def contact_command(
     except InputError as exc:
         fail(err, exc)
     if as_json:
-        sys.stdout.write(json.dumps(r, indent=2, ensure_ascii=False) + "\n")
+        sys.stdout.write(_json.dumps(r, indent=2, ensure_ascii=False) + "\n")
     else:
         console = Console()
         console.print(_table(r))

@@ -6,7 +6,6 @@ starts quickly.
 
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 from typing import Any
@@ -16,6 +15,7 @@ from rich.console import Console, JustifyMethod
 from rich.markup import escape
 from rich.table import Table
 
+from .. import _json
 from .failure import fail, writing
 
 __all__ = ["topography_command"]
@@ -319,7 +319,7 @@ def topography_command(
         out.update(
             method=method, roughness_toml=block, figure=None if fig_path is None else str(fig_path)
         )
-        sys.stdout.write(json.dumps(out, indent=2, ensure_ascii=False) + "\n")
+        sys.stdout.write(_json.dumps(out, indent=2, ensure_ascii=False) + "\n")
         return
     for r in analyses:
         _print_surface(console, r)

@@ -186,9 +186,11 @@ def collect(
             )
     thermal_options = attempt("numerics", case._new_thermal_options) if n.thermal else None
     cam = attempt("cam", case._build_cam)
+    rotation = attempt("tappet_rotation", functools.partial(case._new_tappet_rotation, cam))
     if problems or not materials_ok:
         return None, problems
     assert cam is not None and lubricant is not None and valvetrain is not None
+    assert rotation is not None
     assert options is not None
     return (
         BuiltCase(
@@ -199,7 +201,7 @@ def collect(
             valvetrain=valvetrain,
             options=options,
             thermal_options=thermal_options,
-            tappet_rotation=case._new_tappet_rotation(),
+            tappet_rotation=rotation,
             dynamics_options=case.dynamics_options(),
             sets=sets,
         ),

@@ -24,6 +24,7 @@ import difflib
 from pathlib import Path
 from typing import Annotated, Any, ClassVar
 
+import numpy as np
 import tomli_w
 from pydantic import (
     Field,
@@ -48,7 +49,7 @@ from .case_thermal import OIL_LAW_KEYS, ThermalBuilders
 from .case_valvetrain import CamValvetrainBuilders
 from .errors import CaseKeyError, Problems, format_validation_error
 from .measured_surface import measured_map, measured_roughness
-from .paths import set_path
+from .paths import Key, parse_path, set_path
 from .schema import (
     CAM_MODELS,
     LUMPED_ONLY,
@@ -85,6 +86,8 @@ __all__ = [
 CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
 #: The bundled default case (the paper's).
 DEFAULT_CASE = CASES_DIR / "andreou2023.toml"
+#: Sections an engine's ``[engine.<kind>] changes`` may not touch: the lobes share them.
+LOBE_SHARED_SECTIONS = ("engine", "case", "numerics")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -214,8 +217,16 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         return self
 
     def _engine_lobe_problems(self) -> list[tuple[str, str]]:
-        """Each lobe kind's case (``[engine.intake]`` changes applied) must validate."""
+        """The engine's auxiliary parts must be built, and each lobe kind's case
+        (``[engine.intake]`` changes applied) must validate."""
         out = []
+        if self.engine.cylinders is not None:  # the auxiliary parts, before any computing
+            try:
+                self.engine.auxiliary_geometries(
+                    self.valvetrain.tappet_radius, self.valvetrain.bore_friction_coefficient
+                )
+            except CaseKeyError as exc:
+                out.append((exc.key, str(exc)))
         for kind in ("intake", "exhaust"):
             if getattr(self.engine, kind) is None:
                 continue
@@ -235,14 +246,30 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         data = self.to_dict()
         data["engine"] = {"speed_rpm": self.engine.speed_rpm}
         for key, value in lobe.changes.items():
-            if key.split(".")[0].split("[")[0] in ("engine", "case", "numerics"):
+            tokens = parse_path(key)  # the parsed path: '"engine".x' is engine.x
+            first = tokens[0].name if isinstance(tokens[0], Key) else ""
+            if first in LOBE_SHARED_SECTIONS:
                 raise InputError(
                     f"{key!r}: the lobes share the engine's speed, name and numerics; "
                     "change only cam, valvetrain, lubricant, materials or surface_sets"
                 )
-            set_dotted(data, key, value)
+            if (
+                isinstance(tokens[-1], Key)
+                and tokens[-1].name == "name"
+                and first == "surface_sets"
+            ):
+                raise InputError(
+                    f"{key!r}: the lobes keep the case's surface sets and their names "
+                    f"({', '.join(self.surface_set_names)}); change their other keys only"
+                )
+            set_path(data, list(tokens), value)
         new = Case.from_dict(data, base_dir=self._base_dir)
         new._source = self._source
+        if new.surface_set_names != self.surface_set_names:
+            raise InputError(
+                f"the lobes must keep the case's surface sets "
+                f"({', '.join(self.surface_set_names)}; got {', '.join(new.surface_set_names)})"
+            )
         return new
 
     # -- construction -------------------------------------------------------------------
@@ -357,7 +384,11 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         """Resolved path of the cam lift table (``type = "table"`` only)."""
         if self.cam_config.type != "table":
             return None
-        p = Path(self.cam_config.path).expanduser()
+        return self.resolve_path(self.cam_config.path)
+
+    def resolve_path(self, path: PathLike) -> Path:
+        """A file named in the case: absolute, relative paths from the case's folder."""
+        p = Path(path).expanduser()
         return p if p.is_absolute() else (self._base_dir / p)
 
     def built(self) -> BuiltCase:
@@ -368,9 +399,20 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         """``[tappet_rotation]`` as a :class:`TappetRotation` (speed ratio 0: none)."""
         return build(self).tappet_rotation
 
-    def _new_tappet_rotation(self) -> TappetRotation:
+    def _new_tappet_rotation(self, cam=None) -> TappetRotation:
+        """The tappet rotation; with the ``cam``, checked to fit it and the tappet
+        (:meth:`~tribodyn.valvetrain.tappet_rotation.TappetRotation.check_fit`)."""
         c = self.tappet_rotation_config
-        return TappetRotation(c.speed_ratio, c.cam_offset)
+        rot = TappetRotation(c.speed_ratio, c.cam_offset)
+        if cam is not None and rot.cam_offset > 0.0:
+            th = np.linspace(0.0, 2.0 * np.pi, 7201)
+            e_max = float(np.max(np.abs(cam.derivatives(th)[1])))
+            try:
+                rot.check_fit(self.valvetrain.tappet_radius, self.width, e_max, cam.base_radius)
+            except InputError as exc:
+                key = str(exc).split(" ", 1)[0]
+                raise CaseKeyError(f"tappet_rotation.{key}", str(exc)) from None
+        return rot
 
     def lubricant(self) -> Lubricant:
         """The :class:`~tribodyn.Lubricant` of ``[lubricant]`` (a datasheet oil at its

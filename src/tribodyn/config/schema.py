@@ -20,10 +20,11 @@ from typing import Annotated, Literal
 from pydantic import Field, model_validator
 
 from .. import paper
+from .._validation import InputError
 from ..contact.ehl.options import EHLOptions
 from ..physics import limits as L
 from ..valvetrain.tribology import SUPPLY_FILM, SUPPLY_FILM_MAX
-from .errors import Problems
+from .errors import CaseKeyError, Problems
 from .schema_fields import _NAME_PATTERN, Section, _lim, _q
 from .schema_surfaces import (
     LubricantConfig,
@@ -123,8 +124,10 @@ class AuxiliaryFrictionConfig(Section):
     (:mod:`tribodyn.physics.valvetrain_friction`). Defaults are ASSUMED typical values of a
     passenger-car direct-acting valvetrain."""
 
-    bore_diameter: float | None = _q(
-        None, "m", "tappet bore diameter (absent: 2 × valvetrain.tappet_radius)", gt=0.0, lt=0.2
+    bore_diameter: float | None = _lim(
+        None,
+        L.TAPPET_BORE_DIAMETER,
+        "tappet bore diameter, at least 2 × valvetrain.tappet_radius (absent: that)",
     )
     bore_guided_length: float = _q(0.018, "m", "guided length of the bucket", gt=0.0, lt=0.2)
     bore_clearance: float = _q(2.5e-5, "m", "radial clearance in the bore", gt=0.0, lt=1e-3)
@@ -153,7 +156,7 @@ class Engine(Section):
     firing_order: list[int] | None = _q(
         None, "", "cylinder numbers 1…n in firing order (absent: 1, 2, …, n)"
     )
-    displacement: float | None = _q(None, "m³", "swept volume of the engine", gt=0.0, le=0.1)
+    displacement: float | None = _lim(None, L.ENGINE_DISPLACEMENT, "swept volume of the engine")
     camshafts: int = _q(2, "", "1: intake and exhaust lobes on one shaft; 2: DOHC", ge=1, le=2)
     intake: LobeConfig | None = None
     exhaust: LobeConfig | None = None
@@ -182,6 +185,59 @@ class Engine(Section):
     def auxiliary_friction(self) -> AuxiliaryFrictionConfig:
         """``[engine.auxiliary]`` (its defaults when absent)."""
         return self.auxiliary or AuxiliaryFrictionConfig()
+
+    def auxiliary_geometries(self, tappet_radius: float, bore_friction_coefficient: float):
+        """(bore, guide, journal) geometries of :mod:`tribodyn.physics.valvetrain_friction`
+        from ``[engine.auxiliary]`` with the valvetrain's tappet radius [m] and bore
+        friction coefficient (used where the auxiliary's are absent). Raises
+        :class:`~tribodyn.config.errors.CaseKeyError` naming the key."""
+        from ..physics import valvetrain_friction as vf
+
+        a = self.auxiliary_friction()
+        d = a.bore_diameter if a.bore_diameter is not None else 2.0 * tappet_radius
+        if d < 2.0 * tappet_radius:
+            raise CaseKeyError(
+                "engine.auxiliary.bore_diameter",
+                f"must be >= 2 × valvetrain.tappet_radius = {2e3 * tappet_radius:.4g} mm "
+                f"(got {d * 1e3:.4g} mm): the tappet face slides in its bore",
+            )
+        parts = (
+            (
+                "bore",
+                lambda: vf.BoreGeometry(
+                    diameter=d,
+                    guided_length=a.bore_guided_length,
+                    clearance=a.bore_clearance,
+                    edge_offset=a.bore_edge_offset,
+                    friction_coefficient=(
+                        a.bore_friction_coefficient
+                        if a.bore_friction_coefficient is not None
+                        else bore_friction_coefficient
+                    ),
+                ),
+            ),
+            (
+                "guide",
+                lambda: vf.GuideGeometry(
+                    stem_diameter=a.guide_stem_diameter,
+                    length=a.guide_length,
+                    clearance=a.guide_clearance,
+                    friction_coefficient=a.guide_friction_coefficient,
+                    side_load=a.guide_side_load,
+                ),
+            ),
+            (
+                "journal",
+                lambda: vf.JournalGeometry(a.journal_radius, a.journal_length, a.journal_clearance),
+            ),
+        )
+        out = []
+        for part, make in parts:
+            try:
+                out.append(make())
+            except InputError as exc:
+                raise CaseKeyError(f"engine.auxiliary.{part}_clearance", str(exc)) from None
+        return tuple(out)
 
     def firing_angles(self) -> dict[int, float]:
         """Crank angle [°] of each cylinder's firing TDC (evenly spaced over 720°, in

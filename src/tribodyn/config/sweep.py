@@ -142,6 +142,25 @@ class AxisConfig(Section):
         pattern=_DIM_PATTERN,
     )
 
+    @model_validator(mode="before")
+    @classmethod
+    def _single_values(cls, data):
+        """An array or table as an axis value: one line naming the axis key (not one per
+        type the value fails to be)."""
+        if not isinstance(data, dict):
+            return data
+        vals = data.get("values")
+        items = [(f"values[{j}]", v) for j, v in enumerate(vals)] if isinstance(vals, list) else []
+        items += [(k, data[k]) for k in ("start", "stop", "step", "num") if k in data]
+        for where, v in items:
+            if isinstance(v, (list, tuple, dict)):
+                what = "a table" if isinstance(v, dict) else "an array"
+                text = f"axis {data.get('path', '?')}: each value is one number, string or boolean"
+                raise Problems(
+                    [(where, f"{text} (got {what}); an axis sweeps one key over single values")]
+                )
+        return data
+
     @model_validator(mode="after")
     def _one_form(self):
         rng = [k for k in ("start", "stop", "num", "step") if getattr(self, k) is not None]

@@ -17,12 +17,11 @@ The variables, their units and descriptions are the table of
 
 from __future__ import annotations
 
-import json
 from typing import TYPE_CHECKING
 
 import xarray as xr
 
-from .. import paper
+from .. import _json, paper
 from ..workflow.variables import build
 from ..workflow.variables_study import STUDY, StudySource
 
@@ -43,12 +42,12 @@ def study_to_dataset(study: CycleStudy) -> xr.Dataset:
     case, sets = study.case, study.sets
     ds = build(xr.Dataset(), STUDY, source)
     if study.dry:
-        ds.attrs["dry_coating_conditions"] = json.dumps(
+        ds.attrs["dry_coating_conditions"] = _json.dumps(
             {k: v for k, v in paper.FIG5.items() if k != "ratios"}
         )
     if (e := study.ehl_coating) is not None and e.results:
-        ds.attrs["ehl_coating_conditions"] = json.dumps(e.conditions)
-    ds.attrs["lubricant_as_used"] = json.dumps(source.oil)
+        ds.attrs["ehl_coating_conditions"] = _json.dumps(e.conditions)
+    ds.attrs["lubricant_as_used"] = _json.dumps(source.oil)
     ds.attrs["compare_paper"] = int(bool(getattr(study, "compare_paper", False)))
     add_thermal(ds, study)
     failures = {s.name: [[c, m] for c, m in s.failures] for s in sets}
@@ -62,15 +61,16 @@ def study_to_dataset(study: CycleStudy) -> xr.Dataset:
             "cam_width_m": float(case.width),
             "runtime_s": float(study.runtime_s),
             "reference_set": an.roles["reference"],
-            "surface_roles": json.dumps(an.roles),
-            "coupling": json.dumps(study.coupling.to_dict()),
-            "warnings": json.dumps(study.warnings),
-            "ehl_failures": json.dumps(failures),
+            "surface_roles": _json.dumps(an.roles),
+            "coupling": _json.dumps(study.coupling.to_dict()),
+            "warnings": _json.dumps(study.warnings),
+            "valve_jump": _json.dumps(study.dynamics.jump_summary()),
+            "ehl_failures": _json.dumps(failures),
             "conventions": "SI; EHL NaN where unloaded (loaded = 0)",
-            "roughness_sensitivity": json.dumps(
+            "roughness_sensitivity": _json.dumps(
                 study.sensitivity.to_dict() if study.sensitivity is not None else {}
             ),
-            "surface_sets_at_nose": json.dumps(
+            "surface_sets_at_nose": _json.dumps(
                 ns.to_dict() if (ns := getattr(study, "nose_sets", None)) is not None else {}
             ),
         }

@@ -5,9 +5,9 @@ torque, the parts, per camshaft), case.toml and the engine figures, atomically."
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
+from .. import _json
 from .._typing import PathLike
 from .writer import _write_case, write_atomic
 
@@ -35,7 +35,7 @@ def write_engine_results(study, out_dir: PathLike, *, figures: bool = True) -> d
 
     def writer(tmp: Path) -> None:
         ds.to_netcdf(tmp / "results.nc")
-        (tmp / "summary.json").write_text(json.dumps(summ, indent=1) + "\n", encoding="utf-8")
+        (tmp / "summary.json").write_text(_json.dumps(summ, indent=1) + "\n", encoding="utf-8")
         _write_case(study.case, tmp)
         if figures:
             from .figures.engine import engine_figures

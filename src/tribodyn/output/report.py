@@ -132,6 +132,38 @@ def model_comparison_section(study) -> list[str]:
     return lines + [""]
 
 
+def valve_jump_section(summ) -> list[str]:
+    """The contact loss between cam and tappet (``summary["valve_jump"]``), if any: its
+    intervals, the maximum separation and what to change."""
+    j = summ.get("valve_jump") or {}
+    if not j.get("jump"):
+        return []
+    iv = j.get("contact_loss_crank_deg") or []
+    sep = j.get("max_separation_m")
+    at = j.get("max_separation_crank_deg")
+    lines = [
+        "## Valve jump (contact loss)",
+        "",
+        f"The tappet leaves the cam in {len(iv)} interval(s) of the presented cycle, "
+        f"{j.get('contact_lost_deg', 0.0):.1f}° crank in all (contact force zero; "
+        "shaded in the contact-force figure). Maximum separation, tappet lift − cam lift: "
+        f"{_fmt(sep and sep * 1e3, 'mm')}" + (f" at {at:.1f}° crank." if at is not None else "."),
+        "",
+        "| contact lost from | to | duration |",
+        "|---|---|---|",
+    ]
+    for a, b in iv[:10]:
+        lines.append(f"| {a:.1f}° | {b:.1f}° | {b - a:.1f}° |")
+    if len(iv) > 10:
+        lines.append(f"| … {len(iv) - 10} more | | |")
+    lines.append("")
+    if j.get("onset_speed_rpm") is not None:
+        lines += [f"Separation begins at about {j['onset_speed_rpm']:.0f} rpm.", ""]
+    if j.get("warning"):
+        lines += [f"What to change: {j['warning'].split('; to keep the contact ', 1)[-1]}.", ""]
+    return lines
+
+
 def _inputs_section(study, summ) -> list[str]:
     """The inputs as the study used them: cam, oil, surface sets, valvetrain."""
     case = study.case
@@ -354,6 +386,7 @@ def report_text(study, ds, figures: dict) -> str:
         f"velocity {_fmt(d.get('seating_velocity_m_s'), 'm/s')}.",
         "",
     ]
+    lines += valve_jump_section(summ)
     lines += _engineering_section(study, summ)
     from .report_stress import stress_section
 
@@ -401,9 +434,13 @@ def report_text(study, ds, figures: dict) -> str:
     its = np.array([s.iterations for s in study.sets])
     lines.append(
         f"- Transient EHL: {int(loaded.sum())} loaded steps over {len(study.sets)} "
-        f"surface sets, {int((loaded & ~conv).sum())} not converged; Newton "
-        f"iterations per step mean {its[loaded].mean():.1f}, max "
-        f"{int(its[loaded].max()) if loaded.any() else 0}."
+        f"surface sets, {int((loaded & ~conv).sum())} not converged"
+        + (
+            f"; Newton iterations per step mean {its[loaded].mean():.1f}, max "
+            f"{int(its[loaded].max())}."
+            if loaded.any()
+            else " (no sample carries numerics.min_load: no film to compute)."
+        )
     )
     for s in study.sets:
         if s.failures:

@@ -76,7 +76,7 @@ def _film_row(study, summ):
             f" At the six representative points the coatings change h_c by at most "
             f"{big:.2g} %, {target / big:.0f}× less than +{target:g} %."
         )
-    fac = [f for f in an.modulus_factor if f is not None and math.isfinite(f)]
+    fac = [f.factor for f in an.modulus_factor if f.found]
     if fac:
         txt += (
             f" To give +{target:g} % there (Moes film formula, α kept), the bulk E' "
@@ -144,8 +144,12 @@ def claims(study, summ) -> list[tuple[str, str, str, str]]:
             (
                 "WC-C cuts boundary friction vs steel by",
                 f"> {paper.CLAIMS['wcc_boundary_reduction_pct']:g} %",
-                f"{sets[wcc]['boundary_friction_reduction_vs_uncoated_pct']:.1f} % "
-                f"({study.labels[wcc]})",
+                (
+                    f"{red:.1f} %"
+                    if (red := sets[wcc]["boundary_friction_reduction_vs_uncoated_pct"]) is not None
+                    else "–"
+                )
+                + f" ({study.labels[wcc]})",
                 why,
             )
         )
@@ -153,10 +157,11 @@ def claims(study, summ) -> list[tuple[str, str, str, str]]:
         bw = _cycle_integral(study, "boundary_friction", wcc, ev)
         bd = _cycle_integral(study, "boundary_friction", dlc, ev)
         hw, hd = study.set(wcc).central_film, study.set(dlc).central_film
-        dh = float(np.nanmax(np.abs(hw / hd - 1.0)[ev])) * 100 if ev.any() else float("nan")
+        d = np.abs(hw / hd - 1.0)[ev]
+        dh = float(np.nanmax(d)) * 100 if np.isfinite(d).any() else None
         q = _boundary_factor(case, wcc, True) / _boundary_factor(case, dlc, True)
         why = (
-            f"The films of the two coatings differ by at most {dh:.2g} %; the difference "
+            f"The films of the two coatings differ by at most {_fmt(dh, '%', 2)}; the difference "
             f"is the roughness and ς: (ηβσ)²√(σ/β)·ς of WC-C / DLC = {q:.2f}."
         )
         rows.append(
@@ -205,7 +210,7 @@ def claims(study, summ) -> list[tuple[str, str, str, str]]:
                 f"{_fmt(imp.get('peak_contact_force_diff_pct'), '%')}, valve closing "
                 f"{_fmt(imp.get('valve_closing_shift_deg'), '°')} and opening "
                 f"{_fmt(imp.get('valve_opening_shift_deg'), '°')}; max velocity "
-                f"difference {imp['max_velocity_diff_pct']:.2f} %",
+                f"difference {_fmt(imp.get('max_velocity_diff_pct'), '%')}",
                 "Agrees in where the differences are: through the loaded event the curves "
                 "coincide; they differ where the contact engages and disengages, where the "
                 "lightly loaded (hydrodynamic, h ∝ 1/F) film is several µm and comparable to "

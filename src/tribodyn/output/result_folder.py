@@ -17,6 +17,7 @@ import time
 from collections.abc import Mapping
 from pathlib import Path
 
+from .. import _json
 from .._system import new_file
 from .._typing import PathLike
 from .._user_files import MAX_MARKER_BYTES, read_user_bytes
@@ -406,7 +407,7 @@ def mark_folder(folder: PathLike, files: Mapping[str, str], meta: dict | None = 
     fd, tmp = new_file(folder, f".{MARKER}.", ".tmp")
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(json.dumps(info, indent=1) + "\n")
+            f.write(_json.dumps(info, indent=1) + "\n")
         os.replace(tmp, folder / MARKER)
     except BaseException:
         tmp.unlink(missing_ok=True)

@@ -36,7 +36,6 @@ one folder, atomically, without ever losing results or replacing someone else's 
 from __future__ import annotations
 
 import errno
-import json
 import os
 import shutil
 import tempfile
@@ -45,6 +44,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from .. import _json
 from .._system import new_dir
 from .._typing import PathLike
 from .dataset import study_to_dataset
@@ -165,31 +165,46 @@ def _rescue_dirs(case_name: str):
 def case_inputs(case) -> tuple[dict, dict[str, Path]]:
     """The files a case reads, to copy into a result folder: ``(data, copies)`` with
     ``data`` the case's dict in which each file key (:data:`~tribodyn.config.paths.FILE_KEYS`,
-    every place it addresses: each surface set's map) names ``inputs/NAME``, relative to
-    the folder, and ``copies`` mapping that relative path to the source file. One file
-    read at several places is copied once; different files of the same name get
-    distinct names (``NAME-2.SUF``, …)."""
-    from ..config.paths import FILE_KEYS, find_paths, set_path
+    every place it addresses: each surface set's map, and the same keys in an engine's
+    ``[engine.<kind>] changes``) names ``inputs/NAME``, relative to the folder, and
+    ``copies`` mapping that relative path to the source file. One file read at several
+    places is copied once; different files of the same name get distinct names
+    (``NAME-2.SUF``, …)."""
+    from ..config.paths import FILE_KEYS, Key, find_paths, parse_path, set_path
 
     data = case.to_dict(resolve_paths=True)
     base = case.source.parent if getattr(case, "source", None) is not None else Path.cwd()
     copies: dict[str, Path] = {}
     named: dict[Path, str] = {}  # resolved source -> its name in inputs/
+
+    def copy_name(src: Path) -> str:
+        same = Path(os.path.realpath(src))
+        rel = named.get(same)
+        if rel is None:
+            rel = f"{INPUTS}/{src.name}"
+            n = 1
+            while rel in copies:  # two files of the same name
+                n += 1
+                rel = f"{INPUTS}/{src.stem}-{n}{src.suffix}"
+            copies[rel] = src
+            named[same] = rel
+        return rel
+
     for key in FILE_KEYS:
         for where, value in find_paths(data, key):
             src = Path(value).expanduser()
-            src = src if src.is_absolute() else base / src
-            same = Path(os.path.realpath(src))
-            rel = named.get(same)
-            if rel is None:
-                rel = f"{INPUTS}/{src.name}"
-                n = 1
-                while rel in copies:  # two files of the same name
-                    n += 1
-                    rel = f"{INPUTS}/{src.stem}-{n}{src.suffix}"
-                copies[rel] = src
-                named[same] = rel
-            set_path(data, where, rel)
+            set_path(data, where, copy_name(src if src.is_absolute() else base / src))
+
+    def keys_of(path: str) -> tuple[str, ...]:  # the path's keys, selectors left out
+        return tuple(t.name for t in parse_path(path) if isinstance(t, Key))
+
+    file_keys = {keys_of(k) for k in FILE_KEYS}
+    engine = data.get("engine") or {}
+    for kind in ("intake", "exhaust"):
+        changes = (engine.get(kind) or {}).get("changes") or {}
+        for key, value in changes.items():
+            if isinstance(value, str) and keys_of(key) in file_keys:
+                changes[key] = copy_name(case.resolve_path(value))
     return data, copies
 
 
@@ -241,7 +256,7 @@ def write_results(
         from .export import write_csv
 
         ds.to_netcdf(folder / "results.nc", engine="h5netcdf", encoding=enc)
-        (folder / "summary.json").write_text(json.dumps(summ, indent=2))
+        (folder / "summary.json").write_text(_json.dumps(summ, indent=2))
         _write_case(study.case, folder)
         write_csv(ds, folder)
 

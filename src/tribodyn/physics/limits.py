@@ -51,6 +51,8 @@ __all__ = [
     "BORE_FRICTION_VELOCITY",
     "LENGTH_BELOW_1M",
     "ENGINE_SPEED",
+    "ENGINE_DISPLACEMENT",
+    "TAPPET_BORE_DIAMETER",
     "LINE_LOAD",
     "CONTACT_RADIUS",
     "SURFACE_SPEED",
@@ -64,6 +66,11 @@ __all__ = [
     "LIFT_TABLE_ROWS",
     "EHL_NODES",
     "EHL_NODES_TRANSIENT",
+    "STRESS_NODES",
+    "STRESS_DEPTHS",
+    "STRESS_DEPTH",
+    "STRESS_FFT_LENGTH",
+    "SURFACE_LOAD",
     "DOMAIN_HALF_WIDTHS",
     "DOMAIN_RIGID_LENGTHS",
     "INLET_TRUNCATION",
@@ -215,6 +222,10 @@ BORE_FRICTION_VELOCITY = Limit(
 )
 LENGTH_BELOW_1M = Limit("m", gt=0.0, lt=1.0, why="valvetrain dimensions below 1 m")
 ENGINE_SPEED = Limit("rpm", gt=0.0, le=50000.0, why="engine speeds below 50 000 rpm")
+ENGINE_DISPLACEMENT = Limit(
+    "m³", ge=1e-5, le=0.1, why="swept volumes of engines from 10 cm³ (models) to 100 l"
+)
+TAPPET_BORE_DIAMETER = Limit("m", ge=2e-3, lt=0.2, why="tappet bores of 2 mm to 200 mm")
 CAM_SPEED = Limit(
     "rad/s",
     gt=0.0,
@@ -283,6 +294,23 @@ EHL_NODES = Limit(
 )
 EHL_NODES_TRANSIENT = Limit(
     "", ge=32, le=4096, integer=True, why="the transient steps factor dense matrices"
+)
+STRESS_NODES = Limit(
+    "", ge=3, le=65536, integer=True, why="surface loads on at most the finest EHL grid"
+)
+STRESS_DEPTHS = Limit(
+    "", ge=1, le=2000, integer=True, why="depths evaluated at once (memory: depths × FFT length)"
+)
+STRESS_DEPTH = Limit("m", ge=0.0, lt=1.0, why="depths below a contact, below 1 m")
+STRESS_FFT_LENGTH = Limit(
+    "",
+    ge=3,
+    le=2**18,
+    integer=True,
+    why="periodic length of the stress transforms (2n, and 32 coating thicknesses / dx)",
+)
+SURFACE_LOAD = Limit(
+    "Pa", ge=-1e11, le=1e11, why="surface pressures and tractions below 100 GPa (any strength)"
 )
 DOMAIN_HALF_WIDTHS = Limit("", ge=1.0, le=100.0, why="EHL domain in Hertz half-widths")
 DOMAIN_RIGID_LENGTHS = Limit("", ge=1.0, le=200.0, why="EHL domain in rigid inlet lengths")

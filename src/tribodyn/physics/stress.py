@@ -53,7 +53,8 @@ import numpy as np
 from scipy import fft as sp_fft
 
 from .._typing import ArrayLike
-from .._validation import InputError, check_array, check_int, check_positive
+from .._validation import InputError, check_array, check_positive
+from . import limits as L
 from .materials import Body
 from .stress_kernels import (
     _DECAY,
@@ -75,6 +76,10 @@ __all__ = [
     "subsurface_stress",
     "von_mises",
 ]
+
+#: Largest memory of a :class:`StressOperator`'s transfer functions [bytes], checked
+#: before they are allocated.
+MAX_TRANSFER_BYTES = 2**29
 
 #: The peaks of a :class:`SubsurfaceStress` (attribute names), as traced along a cycle.
 PEAKS = (
@@ -151,12 +156,18 @@ def _peak(values: np.ndarray, x: np.ndarray, z: np.ndarray) -> StressPeak:
 
 
 def _check_grid(x) -> tuple[np.ndarray, float]:
+    """x as floats and its spacing; uniform within the rounding of x's own precision (a
+    float32 ``linspace`` is uniform to a few of its eps times |x|)."""
+    raw = np.asarray(x)
     x = check_array("x", x)
     if x.size < 3:
         raise InputError(f"x must have at least 3 nodes (got {x.size})")
+    L.STRESS_NODES.check("n (nodes of x)", x.size)
     d = np.diff(x)
     dx = float(d.mean())
-    if not np.all(d > 0.0) or np.max(np.abs(d - dx)) > 1e-6 * dx:
+    eps = float(np.finfo(raw.dtype if raw.dtype.kind == "f" else float).eps)
+    tol = max(1e-6 * dx, 8.0 * eps * float(np.max(np.abs(x))))
+    if not np.all(d > 0.0) or np.max(np.abs(d - dx)) > tol:
         raise InputError("x must be uniformly spaced and strictly increasing [m]")
     return x, dx
 
@@ -173,16 +184,16 @@ class StressOperator:
     def __init__(self, n: int, dx: float, body: Body, depths: ArrayLike):
         if not isinstance(body, Body):
             raise InputError(f"body must be a Body (got {type(body).__name__})")
-        n = check_int("n", n)
-        if n < 3:
-            raise InputError(f"n must be an integer >= 3 (got {n})")
+        n = L.STRESS_NODES.check("n (nodes of x)", n)
         dx = check_positive("dx", dx, "m")
         depths = check_array("depths", depths)
-        if np.any(depths < 0.0):
-            raise InputError(f"depths must be >= 0 [m] (got min {depths.min():.6g})")
+        L.STRESS_DEPTHS.check("len(depths)", depths.size)
+        for v in (depths.min(), depths.max()):
+            L.STRESS_DEPTH.check("depths", float(v))
         self.n, self.dx, self.body = int(n), float(dx), body
         self.depths = depths
         self.h = body.coating.thickness if body.coating is not None else None
+        self._check_size()
         # evaluated depths: the user's, the surface and both sides of the interface
         extra = [0.0]
         if self.h is not None:
@@ -199,6 +210,35 @@ class StressOperator:
         self._nfft = int(sp_fft.next_fast_len(need, real=True))
         self._transfer = self._build()
         self._transfer32: np.ndarray | None = None
+
+    def _check_size(self) -> None:
+        """Refuse, before allocating, a periodic length beyond ``L.STRESS_FFT_LENGTH``
+        (2n, and n + 32 h/dx on a coated body: the layered correction's tail)."""
+        lim = L.STRESS_FFT_LENGTH.le
+        assert lim is not None
+        need = 2.0 * self.n
+        if self.h is not None:
+            need = max(need, self.n + math.ceil(_PERIOD_H * self.h / self.dx))
+        if need > lim:
+            if self.h is not None and 2.0 * self.n <= lim:
+                fine = _PERIOD_H * self.h / (lim - self.n)
+                raise InputError(
+                    f"the spacing of x (dx) must be >= {fine:.3g} m for this coating ({self.h:g} m thick) and "
+                    f"{self.n} nodes (got {self.dx:g}): the layered correction needs a "
+                    f"periodic length of {need:.3g} nodes (at most {lim:g})"
+                )
+            raise InputError(
+                f"n (nodes of x) must be <= {lim // 2} (got {self.n}): the transforms need "
+                f"{need:.3g} nodes (at most {lim:g})"
+            )
+        # the transfer functions: (depths + 3) × 6 × (nfft/2 + 1) complex numbers
+        size = (self.depths.size + 3) * 6 * (need / 2 + 1) * 16
+        if size > MAX_TRANSFER_BYTES:
+            raise InputError(
+                f"len(depths) × n (nodes of x) too large: {self.depths.size} depths on "
+                f"{self.n} nodes need {size / 2**30:.3g} GiB of transfer functions (at most "
+                f"{MAX_TRANSFER_BYTES / 2**30:g} GiB); evaluate fewer depths or nodes"
+            )
 
     def _build(self) -> np.ndarray:
         """Transfer (depth, 6, nfreq): DFT of the hat-load influence (homogeneous, linear
@@ -444,6 +484,7 @@ class StressOperator:
         for name, a in (("pressure", p), ("traction", q)):
             if a.size != self.n:
                 raise InputError(f"{name} must have {self.n} entries like x (got {a.size})")
+            L.SURFACE_LOAD.check(name, a[np.argmax(np.abs(a))])
         x = self.dx * np.arange(self.n) if x is None else np.asarray(x, dtype=float)
         sxx, szz, sxz, syy = self._fields(p, q)
         vm = von_mises(sxx, szz, sxz, syy)
@@ -492,5 +533,6 @@ def subsurface_stress(
     for name, a in (("pressure", p), ("traction", q)):
         if a.shape != xg.shape:
             raise InputError(f"{name} must have the shape of x {xg.shape} (got {a.shape})")
+        L.SURFACE_LOAD.check(name, a[np.argmax(np.abs(a))])
     op = StressOperator(xg.size, dx, body, depths)
     return op.apply(p, q, xg)

@@ -121,6 +121,24 @@ class ValvetrainResult:
         """Samples inside the lift event (cam lift > jump_lift_threshold)."""
         return self.cam_lift > self.jump_lift_threshold
 
+    @property
+    def separation(self) -> np.ndarray:
+        """Follower lift minus cam lift where positive (the tappet off the cam) [m]."""
+        return np.maximum(self.tappet_displacement - self.cam_lift, 0.0)
+
+    def jump_summary(self) -> dict:
+        """The valve jump in numbers: contact-loss intervals [crank deg], their total,
+        the maximum separation (tappet lift − cam lift) [m] and its crank angle."""
+        sep = self.separation
+        k = int(np.argmax(sep)) if sep.size else 0
+        return {
+            "jump": self.jump,
+            "contact_loss_crank_deg": [[float(a), float(b)] for a, b in self.jumps],
+            "contact_lost_deg": float(sum(b - a for a, b in self.jumps)),
+            "max_separation_m": float(sep[k]) if sep.size else 0.0,
+            "max_separation_crank_deg": float(self.crank_angle[k]) if sep.size else None,
+        }
+
     def summary(self) -> dict:
         """Key numbers of the presented cycle (plain floats; JSON-ready)."""
         if not self.converged:
@@ -147,6 +165,7 @@ class ValvetrainResult:
             "friction_energy_per_cycle_J": float(np.sum(self.friction_power * dt)),
             "jump": self.jump,
             "jumps_crank_deg": [list(map(float, j)) for j in self.jumps],
+            "max_separation_m": self.jump_summary()["max_separation_m"],
             "valve_bounce": self.valve_bounce,
             "seating_velocity_m_s": float(self.seating_velocity),
             "energy_residual_rel": float(self.energy.get("relative_residual", float("nan"))),

@@ -99,6 +99,38 @@ class TappetRotation:
     def active(self) -> bool:
         return self.speed_ratio != 0.0
 
+    def check_fit(
+        self, tappet_radius: float, cam_width: float, max_contact_offset: float, base_radius: float
+    ) -> None:
+        """Raise :class:`InputError` naming ``cam_offset`` or ``speed_ratio`` (with the
+        allowed range) unless the rotating contact is physical for this cam and tappet:
+
+        * the contact line, at x = e (|e| ≤ ``max_contact_offset`` = max |s'|) and
+          y = e_o ± l/2 (l = ``cam_width``), stays on the tappet face of radius R_t:
+          e_o ≤ √(R_t² − e_max²) − l/2;
+        * the tappet, turned by the cam's friction, does not overtake the cam surface:
+          ω_t e_o < u_s, with u_s ≥ ω r_b, so |ω_t/ω| e_o < r_b (``base_radius``).
+
+        All lengths in m."""
+        rt, half = float(tappet_radius), 0.5 * float(cam_width)
+        e = abs(float(max_contact_offset))
+        reach = math.sqrt(max(rt * rt - e * e, 0.0)) - half
+        if self.cam_offset > reach:
+            raise InputError(
+                f"cam_offset must be >= 0 and <= {max(reach, 0.0):.4g} m (got "
+                f"{self.cam_offset:g}): the contact line (half width {half * 1e3:.3g} mm, "
+                f"offset up to {e * 1e3:.3g} mm along the motion) must stay on the "
+                f"tappet face of radius {rt * 1e3:.3g} mm"
+            )
+        if abs(self.speed_ratio) * self.cam_offset >= base_radius:
+            top = base_radius / self.cam_offset
+            raise InputError(
+                f"speed_ratio must lie in (-{top:.4g}, {top:.4g}) with cam_offset "
+                f"{self.cam_offset:g} m (got {self.speed_ratio:g}): the tappet, turned by "
+                "the cam's friction, cannot move faster than the cam surface at the "
+                f"contact (|ω_t/ω| e_o < r_b = {base_radius * 1e3:.3g} mm)"
+            )
+
     def speeds(
         self,
         cam_speed: float,

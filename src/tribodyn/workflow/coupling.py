@@ -415,12 +415,17 @@ def implicit_vs_explicit_metrics(explicit: ValvetrainResult, implicit: Valvetrai
     - ``valve_opening_shift_deg``, ``valve_closing_shift_deg``: implicit minus explicit
       crank angle of the valve lift-off and of the first seating after the peak
       (:func:`valve_timing`);
-    - ``max_velocity_diff_pct`` = max|v_i − v_e| / max|v_e| of the tappet velocity."""
+    - ``max_velocity_diff_pct`` = max|v_i − v_e| / max|v_e| of the tappet velocity.
+
+    NaN where the reference is zero (a train thrown off the cam carries no force)."""
     crank = explicit.crank_angle
     fe = explicit.contact_force
     fi = np.interp(crank, implicit.crank_angle, implicit.contact_force)
     vi = np.interp(crank, implicit.crank_angle, implicit.tappet_velocity)
     peak = float(fe.max())
+    peak = peak if peak > 0.0 else math.nan  # no load at all: no percentages
+    vmax = float(np.abs(explicit.tappet_velocity).max())
+    vmax = vmax if vmax > 0.0 else math.nan
     dF = np.abs(fi - fe)
     dv = np.abs(vi - explicit.tappet_velocity)
     ev = explicit.event_mask()
@@ -433,6 +438,6 @@ def implicit_vs_explicit_metrics(explicit: ValvetrainResult, implicit: Valvetrai
         "peak_contact_force_diff_pct": float((implicit.contact_force.max() - peak) / peak * 100),
         "valve_opening_shift_deg": o_i - o_e,
         "valve_closing_shift_deg": c_i - c_e,
-        "max_velocity_diff_pct": float(dv.max() / np.abs(explicit.tappet_velocity).max() * 100),
+        "max_velocity_diff_pct": float(dv.max() / vmax * 100),
         "max_velocity_diff_crank_deg": float(crank[dv.argmax()]),
     }

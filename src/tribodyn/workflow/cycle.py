@@ -296,7 +296,8 @@ def run_cycle_study(
         raise StudyError(f"valvetrain dynamics failed: {dyn.message}")
     inputs = CycleInputs.from_dynamics(dyn, n.crank_step_deg, case.width)
     inputs = inputs.with_rotation(built.tappet_rotation)  # outputs show the EHL's speeds
-    if not np.any(inputs.contact_force >= n.min_load):
+    # a train thrown off the cam carries no load: the study goes on and reports the jump
+    if not np.any(inputs.contact_force >= n.min_load) and not dyn.jump:
         raise StudyError(
             f"no EHL sample carries numerics.min_load = {n.min_load:g} N: the peak contact "
             f"force is {inputs.contact_force.max():.1f} N (lower numerics.min_load)"
@@ -407,7 +408,7 @@ def run_cycle_study(
             "numerics.implicit_coupling = false if the comparison is not needed"
         )
     if dyn.jump:
-        study.warnings.append(_jump_warning(dyn))
+        study.warnings.append(_jump_warning(dyn, case))
     study.warnings += plausibility_warnings(study)
     if case.valvetrain_model == "flexible":
         t0 = time.perf_counter()
@@ -444,22 +445,38 @@ def _validity_advice(text: str) -> str:
     return "see the validity checks in the physics documentation"
 
 
-def _jump_warning(dyn) -> str:
-    """The contact-loss (valve jump) warning, with its share of the cam event."""
-    lost = sum(b - a for a, b in dyn.jumps)
+def _jump_warning(dyn, case) -> str:
+    """The contact-loss (valve jump) warning: its intervals and share of the cam event,
+    the maximum separation, and what to change."""
+    js = dyn.jump_summary()
+    lost = js["contact_lost_deg"]
     ev = dyn.event_mask()
     step = float(dyn.crank_angle[1] - dyn.crank_angle[0]) if dyn.crank_angle.size > 1 else 0.0
     event = float(ev.sum()) * step
     first = ", ".join(f"{a:.1f}–{b:.1f}°" for a, b in dyn.jumps[:3])
     more = f" and {len(dyn.jumps) - 3} more" if len(dyn.jumps) > 3 else ""
+    v = case.valvetrain
+    if case.valvetrain_model == "flexible":  # its spring geometry gives preload and rate
+        spring = (
+            "the spring's preload and rate ([valvetrain.spring] installed_length, wire_diameter)"
+        )
+    else:
+        spring = (
+            f"valvetrain.spring_preload ({v.spring_preload:g} N) or valvetrain.spring_rate "
+            f"({v.spring_rate:g} N/m)"
+        )
     text = (
         f"the tappet loses contact with the cam (valve jump) for {lost:.1f}° crank of the "
-        f"{event:.0f}° cam event ({first}{more})"
+        f"{event:.0f}° cam event ({first}{more}); maximum separation (tappet lift − cam "
+        f"lift) {js['max_separation_m'] * 1e3:.3g} mm at {js['max_separation_crank_deg']:.1f}°"
     )
     if event > 0 and lost > 0.1 * event:
         text += (
-            ": the valvetrain does not follow the cam at this speed (check the masses, "
-            "spring rate and preload); films and friction there describe the impacts, "
-            "not the design"
+            ": the valvetrain does not follow the cam at this speed; films and friction "
+            "there describe the impacts, not the design"
         )
+    text += (
+        f"; to keep the contact raise {spring}, or lower the moving masses or the "
+        f"engine speed ({case.engine.speed_rpm:g} rpm)"
+    )
     return text

@@ -79,27 +79,11 @@ def lobe_traces(kind: str, study: CycleStudy, engine_case: Case) -> LobeTraces:
     nose = float(dyn.crank_angle[int(np.argmax(dyn.cam_lift))])
     w = case.cam_speed
     eta = float(case.lubricant().viscosity)
-    aux = engine_case.engine.auxiliary_friction()
     # tappet radius and bore friction: joint parameters, the same in a flexible case's
     # lumped companion
     vt = case.lumped_companion()
-    bore = vf.BoreGeometry(
-        diameter=aux.bore_diameter or 2.0 * vt.tappet_radius,
-        guided_length=aux.bore_guided_length,
-        clearance=aux.bore_clearance,
-        edge_offset=aux.bore_edge_offset,
-        friction_coefficient=(
-            aux.bore_friction_coefficient
-            if aux.bore_friction_coefficient is not None
-            else vt.bore_friction_coefficient
-        ),
-    )
-    guide = vf.GuideGeometry(
-        stem_diameter=aux.guide_stem_diameter,
-        length=aux.guide_length,
-        clearance=aux.guide_clearance,
-        friction_coefficient=aux.guide_friction_coefficient,
-        side_load=aux.guide_side_load,
+    bore, guide, _ = engine_case.engine.auxiliary_geometries(
+        vt.tappet_radius, vt.bore_friction_coefficient
     )
     ff, tf, td = set_torques(study, s, s1, rb)
     tb = [vf.tappet_bore_friction(inp.contact_force, f, s1, w, eta, bore)[1] for f in ff]
@@ -170,7 +154,8 @@ class EngineStudy:
 
     def summary(self) -> dict:
         """``engine`` block of summary.json: per set and camshaft, energies [J], mean
-        torques [N m], mean powers [W], FMEP [Pa], and each coating's benefit in %."""
+        torques [N m], mean powers [W], FMEP [Pa], each coating's benefit in %, and each
+        lobe kind's contact loss (``valve_jump``: intervals, maximum separation)."""
         period = 2.0 * math.pi / self.cam_speed
         vd = float(self.case.engine.displacement or float("nan"))
         parts = {
@@ -231,6 +216,10 @@ class EngineStudy:
         for name, d in out["surface_sets"].items():
             d["friction_reduction_vs_uncoated_pct"] = 100.0 * (1.0 - totals[name] / totals[ref])
         out["reference_set"] = ref
+        # contact loss of each lobe kind's valve (its single-valve dynamics)
+        out["valve_jump"] = {
+            k: lt.study.dynamics.jump_summary() for k, lt in self.lobes.items() if lt.study
+        }
         return out
 
     def to_dataset(self):

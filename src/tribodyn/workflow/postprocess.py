@@ -47,6 +47,7 @@ __all__ = [
     "film_gain_mask",
     "film_gain_statistics",
     "modulus_factor_for_gain",
+    "GainFactor",
     "GAIN_SETTLE_STEPS",
     "FILM_GAIN_RULE",
 ]
@@ -73,7 +74,7 @@ class Analysis:
     gE: np.ndarray  #: elasticity group (NaN unloaded)
     regime: np.ndarray  #: regime code (index into REGIMES; −1 unloaded)
     film_gain: dict = field(default_factory=dict)  #: set → film-gain statistics
-    modulus_factor: list = field(default_factory=list)  #: E' factor for +41 % per point
+    modulus_factor: list = field(default_factory=list)  #: GainFactor for +41 % per point
     summary: dict = field(default_factory=dict)  #: summary.json
 
 
@@ -217,6 +218,23 @@ def film_gain_statistics(h_ref, h_set, mask, point_index) -> dict:
     }
 
 
+@dataclass(frozen=True)
+class GainFactor:
+    """Result of :func:`modulus_factor_for_gain`: ``factor`` (NaN when not reached or
+    undefined) and, then, ``reason``."""
+
+    factor: float
+    reason: str = ""
+
+    @property
+    def found(self) -> bool:
+        return math.isfinite(self.factor)
+
+
+#: Largest E' factor :func:`modulus_factor_for_gain` searches.
+MAX_MODULUS_FACTOR = 1e6
+
+
 def modulus_factor_for_gain(
     load,
     radius,
@@ -225,10 +243,13 @@ def modulus_factor_for_gain(
     pressure_viscosity,
     e_prime,
     gain=paper.CLAIMS["film_gain_pct"] / 100.0,
-) -> float:
+) -> GainFactor:
     """Factor f by which E' must fall (E' → E'/f) for the Moes central film to rise by
-    ``gain`` at one operating point (w [N/m], R [m], u_e [m/s]; α kept). NaN if no factor
-    up to 10⁶ does it."""
+    ``gain`` at one operating point (w [N/m], R [m], u_e [m/s]; α kept). Not found (NaN,
+    with the reason) at an unloaded point, where the film formula is undefined, or if no
+    factor up to :data:`MAX_MODULUS_FACTOR` does it."""
+    if not (load > 0.0 and radius > 0.0 and math.isfinite(load) and math.isfinite(radius)):
+        return GainFactor(math.nan, f"no film formula at w = {load:g} N/m, R = {radius:g} m")
     u = max(abs(entrainment_speed), 1e-3)
 
     def hc(f):
@@ -237,9 +258,14 @@ def modulus_factor_for_gain(
 
     h0 = hc(1.0)
     fn = lambda f: hc(f) / h0 - (1.0 + gain)  # noqa: E731
-    if fn(1e6) < 0:
-        return float("nan")
-    return float(brentq(fn, 1.0, 1e6, xtol=1e-6, rtol=1e-8))
+    lo, hi = fn(1.0), fn(MAX_MODULUS_FACTOR)
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        return GainFactor(math.nan, "the film formula is undefined at this point")
+    if lo * hi > 0.0:  # no sign change in the bracket
+        return GainFactor(
+            math.nan, f"not reached: E'/{MAX_MODULUS_FACTOR:g} gives {100 * (hi + gain):+.3g} %"
+        )
+    return GainFactor(float(brentq(fn, 1.0, MAX_MODULUS_FACTOR, xtol=1e-6, rtol=1e-8)))
 
 
 # ----------------------------------------------------------------------------- analysis
@@ -359,11 +385,28 @@ def summary(study: CycleStudy, an: Analysis) -> dict:
 
         out["thermal"] = thermal_summary(study, an)
     out["dynamics"] = {k: v for k, v in dyn.summary().items() if k != "converged"}
+    out["valve_jump"] = _valve_jump(study)
     out["warnings"] = list(study.warnings)
     out["runtime_s"] = float(study.runtime_s)
     if study.model_comparison is not None:
         out["lumped_vs_flexible"] = study.model_comparison.to_dict()
     return out
+
+
+def _valve_jump(study: CycleStudy) -> dict:
+    """Contact loss between cam and tappet: intervals, maximum separation, the speed at
+    which it begins (with the lumped-vs-flexible comparison's search, else None) and the
+    warning naming what to change (None without a jump)."""
+    jump = study.dynamics.jump_summary()
+    jump["max_separation_crank_deg"] = _finite(jump["max_separation_crank_deg"])
+    mc = study.model_comparison
+    onset = None
+    if mc is not None:
+        onset = _finite(mc.rows.get(study.case.valvetrain_model, {}).get("jump_speed_rpm"))
+    jump["onset_speed_rpm"] = onset
+    text = [w for w in study.warnings if "valve jump" in w]
+    jump["warning"] = text[0] if jump["jump"] and text else None
+    return jump
 
 
 def _engineering_summary(study: CycleStudy, out: dict) -> None:

@@ -27,7 +27,6 @@ Variables (study mode; dynamics mode has the point scalars and dynamics traces o
 
 from __future__ import annotations
 
-import json
 import math
 import socket
 import time
@@ -35,6 +34,7 @@ import traceback
 
 import xarray as xr
 
+from .. import _json
 from .variables import Group, build
 from .variables_study import StudySource
 from .variables_sweep import (
@@ -101,6 +101,7 @@ def _dynamics_scalars(dyn) -> dict:
         "jump_onset_crank_deg": (
             dyn.jumps[0][0] - float(dyn.crank_angle[0]) if dyn.jumps else math.nan
         ),
+        "max_separation_m": s["max_separation_m"],
         "valve_bounce": s["valve_bounce"],
         "seating_velocity_m_s": s["seating_velocity_m_s"],
         "energy_residual_rel": s["energy_residual_rel"],
@@ -217,7 +218,7 @@ def run_point(case, mode: str = "study", traces: bool = False) -> xr.Dataset:
             "error": "",
             "runtime_s": runtime,
             "cpu_s": cpu,
-            "warnings": json.dumps(warnings),
+            "warnings": _json.dumps(warnings),
             **_where(),
         }
     )

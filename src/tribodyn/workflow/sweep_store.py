@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from .. import _json
 from .._system import new_file
 from .variables_study import SET_DESCRIPTION
 from .variables_sweep import SWEEP_STATUS
@@ -76,8 +77,8 @@ class PointStore:
             {
                 "point_index": int(point.index),
                 "point_key": point.key,
-                "point_values": json.dumps(point.values),
-                "point_changes": json.dumps(point.changes),
+                "point_values": _json.dumps(point.values),
+                "point_changes": _json.dumps(point.changes),
                 "point_label": point.label,
             }
         )
@@ -201,7 +202,7 @@ def combine_points(spec, plan, results: dict) -> xr.Dataset:
             "traces": int(spec.traces),
             "n_points": int(n),
             "n_failed": int(n - status.sum()),
-            "axes": json.dumps(
+            "axes": _json.dumps(
                 [
                     {
                         "path": a.path,

@@ -109,6 +109,7 @@ POINT_SCALARS = _scalars(
         ),
         ("jump", "1", "cam contact lost while the cam lifts (1 yes, 0 no)"),
         ("jump_onset_crank_deg", "deg", "crank angle where the first jump starts (NaN: none)"),
+        ("max_separation_m", "m", "maximum separation tappet lift − cam lift (valve jump)"),
         ("valve_bounce", "1", "valve lifts off its seat after closing (1 yes, 0 no)"),
         ("seating_velocity_m_s", "m/s", "valve velocity at the first closing seat impact"),
         ("energy_residual_rel", "1", "relative residual of the cycle energy balance"),

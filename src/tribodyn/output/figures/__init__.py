@@ -108,7 +108,8 @@ def make_figures(
     Returns ``{file name: path}`` for the figures written (keys as in :data:`FIGURES`).
     Comparisons are made against the ``reference_set`` attribute (the first uncoated
     set), which is plotted first. A figure whose variables are not in the Dataset (e.g. a study without the
-    single-contact coating studies) is skipped; the explicit/implicit figures plot the
+    single-contact coating studies) is skipped, and so are the EHL figures when no sample
+    was loaded (a train thrown off the cam); the explicit/implicit figures plot the
     explicit run alone, and say so, when the ``*_implicit`` variables are absent.
     ``only``: optional iterable of file names to restrict the output. ``workers`` > 1
     draws the figures in that many processes, the costliest first (each figure is
@@ -137,6 +138,8 @@ def make_figures(
                 f"unknown figure name(s) {', '.join(unknown)}; known: {', '.join(_MAKERS)}"
             )
     wanted = [n for n in _MAKERS if (only is None or n in set(only)) and has(ds, *_MAKERS[n][1])]
+    if "loaded" in ds and not bool(ds["loaded"].any()):  # no EHL sample: nothing to draw
+        wanted = [n for n in wanted if "loaded" not in _MAKERS[n][1]]
     k = min(max(1, int(workers)), len(wanted) // 2)  # at least two figures per process
     if k <= 1:
         if meanwhile is not None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from typing import Any
 
 import numpy as np
@@ -50,7 +51,29 @@ _IMPLICIT_STYLE: dict[str, Any] = dict(
 )
 
 
-def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False):
+def _shade_contact_loss(ax, ds) -> None:
+    """Shade the intervals in which the tappet left the cam (``valve_jump`` of the
+    results), say the maximum separation in the legend, and draw the separation tappet
+    lift − cam lift [mm] on a right-hand axis."""
+    jump = json.loads(ds.attrs.get("valve_jump", "{}") or "{}")
+    intervals = jump.get("contact_loss_crank_deg") or []
+    if not intervals:
+        return
+    sep = jump.get("max_separation_m") or 0.0
+    label: str | None = f"contact lost (valve jump; max separation {sep * 1e3:.3g} mm)"
+    for a, b in intervals:
+        ax.axvspan(a, b, color="tab:red", alpha=0.18, lw=0, zorder=0, label=label)
+        label = None  # one legend entry
+    if "tappet_displacement" in ds and "cam_lift" in ds:
+        gap = np.maximum(arr(ds, "tappet_displacement") - arr(ds, "cam_lift"), 0.0) * MM
+        right = ax.twinx()
+        right.plot(arr(ds, "crank_angle"), gap, color="tab:red", lw=1.0, ls=":")
+        right.set_ylabel("separation, tappet − cam lift [mm]", color="tab:red")
+        right.tick_params(axis="y", colors="tab:red")
+        right.set_ylim(bottom=0.0, top=max(1.1 * float(np.max(gap)), 1e-3))
+
+
+def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False, jumps=False):
     ca = arr(ds, "crank_angle")
     y = arr(ds, var) * scale
     imp = f"{var}_implicit"
@@ -122,7 +145,10 @@ def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False)
     ad.set_ylabel(f"implicit − explicit\n[{diff_unit}]")
     crank_axis(ad, full)
     ad.set_title("(b) difference", fontsize=TITLE_SIZE)
-    if points and "point_crank" in ds:
+    if jumps:
+        _shade_contact_loss(ax, ds)
+    loaded = "loaded" not in ds or bool(ds["loaded"].any())
+    if points and loaded and "point_crank" in ds:  # no EHL sample: no points
         pc = arr(ds, "point_crank")
         py = np.interp(pc, ca, y)
         ev = in_window(ca, (pc.min() - 40, pc.max() + 40))
@@ -146,7 +172,7 @@ def fig08(ds, path):
 
 def fig09(ds, path):
     return _explicit_implicit(
-        ds, path, "contact_force", 1.0, "contact force W [N]", "N", points=True
+        ds, path, "contact_force", 1.0, "contact force W [N]", "N", points=True, jumps=True
     )
 
 
