@@ -159,13 +159,15 @@ def atomic_write_with(
     *,
     replace: bool = True,
     fsync: bool = True,
+    keep_suffix: bool = False,
 ) -> Path:
     """Call ``write(tmp)`` on the path of a fresh, exclusively created (empty) temporary
     file next to ``path`` (for writers that want a file name: netCDF, PNG), then rename it
-    onto ``path`` (module docstring). The temporary name ends with ``path``'s suffix.
-    ``write`` must not remove or replace ``tmp``."""
+    onto ``path`` (module docstring). With ``keep_suffix`` the temporary name ends with
+    ``path``'s suffix (for writers that choose the format by it). ``write`` must not
+    remove or replace ``tmp``."""
     path = Path(path)
-    fd, tmp = _temporary(path, keep_suffix=True)
+    fd, tmp = _temporary(path, keep_suffix)
     os.close(fd)
     try:
         write(tmp)

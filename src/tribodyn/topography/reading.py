@@ -240,4 +240,6 @@ def write_topography(topography: Any, path: PathLike) -> Path:
             f"cannot write '{path}': supported suffixes are {', '.join(sorted(WRITERS))}"
         )
     make_dirs(path.parent)
-    return atomic_write_with(path, lambda tmp: getattr(topography, method)(str(tmp)))
+    return atomic_write_with(
+        path, lambda tmp: getattr(topography, method)(str(tmp)), keep_suffix=True
+    )

@@ -27,7 +27,7 @@ __all__ = ["PointStore", "combine_points", "POINTS_FOLDER"]
 
 POINTS_FOLDER = "points"
 #: Temporary name of a point file being written (:mod:`tribodyn._safe_write`).
-_TMP_POINT = re.compile(rf"\.[0-9a-f]+(?:\.nc)?\.[0-9a-f]{{{TOKEN_CHARS}}}\.tmp(?:\.nc)?")
+_TMP_POINT = re.compile(rf"\.[0-9a-f]+(?:\.nc)?\.[0-9a-f]{{{TOKEN_CHARS}}}\.tmp")
 #: Coordinates along ``surface_set`` kept in the combined Dataset when all points agree.
 SET_COORDS = tuple(v.name for v in SET_DESCRIPTION)
 
@@ -93,7 +93,7 @@ class PointStore:
         """Remove temporary files left by an interrupted write (``.KEY.XXXXXXXX.tmp``
         of a point file's key; nothing else)."""
         if self.dir.is_dir() and not self.dir.is_symlink():
-            for p in self.dir.glob(".*.tmp*"):
+            for p in self.dir.glob(".*.tmp"):
                 if _TMP_POINT.fullmatch(p.name) and p.is_file() and not p.is_symlink():
                     p.unlink(missing_ok=True)
 
