@@ -1,0 +1,203 @@
+"""The temporary folder a result folder is written in, and what is left of killed runs.
+
+* :func:`make_work_folder` creates ``.NAME.tmp-PID-TOKEN`` next to the target, private
+  (0o700) while it is written, with a proof of origin (:data:`~.result_folder.ORIGIN`:
+  the tool, the PID and the token of its name); the folder it replaces is renamed to
+  ``.NAME.old-PID-TOKEN`` (:func:`old_name`) and gets the same proof.
+* :func:`_keep_foreign` brings the user's files of the target into it (hard links, else
+  copies); the target's folders keep their group and mode (:func:`adopt_attributes`).
+* :func:`clean_stale` removes such folders of runs that were killed, and only those that
+  carry their proof of origin: a folder of someone else's named alike is never touched.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import secrets
+import shutil
+import stat
+from pathlib import Path
+
+from .._safe_write import TOKEN_CHARS, atomic_write, make_dirs, new_dir, remove_tree
+from .._typing import PathLike
+from .._validation import InputError
+from .result_folder import (
+    ORIGIN,
+    _dirs,
+    _iter_dir,
+    _same_file_content,
+    foreign_files,
+    is_result_folder,
+)
+
+__all__ = [
+    "make_work_folder",
+    "old_name",
+    "prove_origin",
+    "clean_stale",
+    "folder_attributes",
+    "adopt_attributes",
+]
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # exists, owned by someone else
+        return True
+    return True
+
+
+def make_work_folder(target: Path) -> tuple[Path, os.stat_result]:
+    """Create the temporary folder ``.NAME.tmp-PID-TOKEN`` next to ``target`` with its
+    proof of origin (:data:`ORIGIN`); it is private (0o700, the set-group-ID bit kept)
+    while it is written. Returns it and its status as created (the mode the umask
+    gives a new folder there)."""
+    p = new_dir(target.parent, f".{target.name}.tmp-{os.getpid()}-")
+    st = os.stat(p)
+    os.chmod(p, 0o700 | (stat.S_IMODE(st.st_mode) & stat.S_ISGID))
+    prove_origin(p)
+    return p, st
+
+
+def old_name(target: Path) -> Path:
+    """A fresh name ``.NAME.old-PID-TOKEN`` for the folder ``target`` replaces."""
+    return target.with_name(
+        f".{target.name}.old-{os.getpid()}-{secrets.token_hex(TOKEN_CHARS // 2)}"
+    )
+
+
+def prove_origin(folder: Path) -> None:
+    """Write :data:`ORIGIN` into ``folder`` (named ``.NAME.KIND-PID-TOKEN``)."""
+    kind, pid, token = folder.name.rsplit(".", 1)[1].split("-")
+    info = {"tool": "tribodyn", "kind": kind, "pid": int(pid), "token": token}
+    atomic_write(folder / ORIGIN, json.dumps(info) + "\n", fsync=False)
+
+
+def _has_origin(folder: Path, kind: str, pid: str, token: str) -> bool:
+    """True if ``folder`` holds tribodyn's proof of origin with this PID and token."""
+    try:
+        fd = os.open(folder / ORIGIN, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0))
+    except OSError:
+        return False
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            return False
+        info = json.loads(os.read(fd, 4096).decode("utf-8"))
+    except (OSError, ValueError):
+        return False
+    finally:
+        os.close(fd)
+    return isinstance(info, dict) and info == {
+        "tool": "tribodyn",
+        "kind": kind,
+        "pid": int(pid),
+        "token": token,
+    }
+
+
+def clean_stale(target: PathLike) -> list[Path]:
+    """Remove the ``.NAME.tmp-PID-TOKEN`` and ``.NAME.old-PID-TOKEN`` folders next to
+    ``target`` left by runs that were killed (process gone), and only those that hold
+    tribodyn's proof of origin (:data:`ORIGIN`, with that PID and token): a folder of
+    someone else's with a name of that form is never touched. An ``.old`` folder (also
+    one of an earlier version, ``.NAME.old-PID``, if it is a result folder) is moved back
+    to ``target`` if the target is missing (the kill came between the two renames).
+    Returns what was removed or restored."""
+    target = Path(target).absolute()
+    parent = target.parent
+    if not parent.is_dir():
+        return []
+    done = []
+    head = f".{target.name}."
+    for p in _iter_dir(parent):
+        if not p.name.startswith(head) or p.is_symlink() or not p.is_dir():
+            continue
+        m = re.fullmatch(rf"(tmp|old)-(\d+)(?:-([0-9a-f]{{{TOKEN_CHARS}}}))?", p.name[len(head) :])
+        if not m:
+            continue
+        kind, pid, token = m.groups()
+        if int(pid) == os.getpid() or _pid_alive(int(pid)):
+            continue
+        proven = token is not None and _has_origin(p, kind, pid, token)
+        if kind == "old" and not os.path.lexists(target) and (proven or is_result_folder(p)):
+            p.rename(target)
+            (target / ORIGIN).unlink(missing_ok=True)
+        elif proven:
+            if kind == "old":
+                _salvage(p, target)
+            remove_tree(p, ignore_errors=True)
+        else:
+            continue
+        done.append(p)
+    return done
+
+
+def _salvage(old: Path, target: Path) -> None:
+    """Move the user's files found in the replaced folder ``old`` but not in ``target``
+    into ``target`` (files added while the new results were being written)."""
+    for rel in foreign_files(old):
+        dst = target / rel.rstrip("/")
+        if os.path.lexists(dst):
+            continue
+        make_dirs(dst.parent)
+        if rel.endswith("/"):
+            make_dirs(dst)
+        else:
+            os.rename(old / rel, dst)
+
+
+def folder_attributes(folder: Path) -> os.stat_result | None:
+    """The status of the folder ``folder`` (not through a link), or None."""
+    try:
+        st = os.lstat(folder)
+    except OSError:
+        return None
+    return st if stat.S_ISDIR(st.st_mode) else None
+
+
+def adopt_attributes(folder: Path, like: os.stat_result, mode: int | None = None) -> None:
+    """Give ``folder`` the group (the owner too, where allowed: as root) and then the
+    mode (set-group-ID bit included) of the folder whose status is ``like``, or ``mode``.
+    A group or owner that cannot be set leaves the folder's own; the mode is set in any
+    case, so it is never wider than the one asked for."""
+    uid = like.st_uid if os.geteuid() == 0 else -1
+    try:
+        os.chown(folder, uid, like.st_gid, follow_symlinks=False)
+    except OSError:
+        pass
+    os.chmod(folder, stat.S_IMODE(like.st_mode) if mode is None else mode)
+
+
+def _keep_foreign(target: Path, tmp: Path, files: dict[str, str]) -> None:
+    """Hard-link (else copy) the user's files of ``target`` into the new folder ``tmp``;
+    a file tribodyn wrote with the same content as the user's gives way to the user's
+    (and leaves ``files``, the list of tribodyn's own). Any other clash raises. Every
+    folder of ``target`` that ``tmp`` has then gets its group and mode."""
+    for rel in foreign_files(target):
+        src, dst = target / rel.rstrip("/"), tmp / rel.rstrip("/")
+        if rel.endswith("/"):
+            make_dirs(dst, 0o700)
+            continue
+        if os.path.lexists(dst):
+            if dst.is_dir() or not _same_file_content(src, dst):
+                raise InputError(
+                    f"{str(target)!r}: {rel} was not written by tribodyn (or changed "
+                    "since) and the new results have a file of that name; it was left "
+                    "as it is"
+                )
+            dst.unlink()
+            files.pop(rel, None)
+        make_dirs(dst.parent, 0o700)
+        try:
+            os.link(src, dst, follow_symlinks=False)
+        except OSError:  # no hard links here: a copy (the original stays until the swap)
+            shutil.copy2(src, dst, follow_symlinks=False)
+    for rel in reversed(_dirs(tmp)):
+        like = folder_attributes(target / rel)
+        if like is not None and (tmp / rel).is_dir() and not (tmp / rel).is_symlink():
+            adopt_attributes(tmp / rel, like)
