@@ -46,6 +46,7 @@ def _export(results: Path, out: Path) -> None:
 
     import xarray as xr
 
+    from .._safe_write import make_dirs
     from ..output.export import CSV_FILES, report_markdown, write_csv, write_html
     from ..output.writer import MARKER, _marker_info, _sha256, mark_folder, own_files
 
@@ -85,7 +86,7 @@ def _export(results: Path, out: Path) -> None:
                 "report.html is not written"
             )
     try:
-        out.mkdir(parents=True, exist_ok=True)
+        make_dirs(out)
         try:
             written = write_csv(ds, out)
         except (KeyError, IndexError, ValueError, TypeError) as exc:

@@ -48,7 +48,6 @@ from __future__ import annotations
 import errno
 import json
 import os
-import shutil
 import stat
 import tempfile
 import time
@@ -312,7 +311,7 @@ def write_results(
                 rescued = folder
                 break
             except OSError:
-                shutil.rmtree(folder, ignore_errors=True)
+                remove_tree(folder, ignore_errors=True)  # made above: ours
         why = getattr(exc, "strerror", None) or f"{type(exc).__name__}: {exc}"
         if getattr(exc, "errno", None) == errno.ENOSPC:
             why = "no space left on the device"
