@@ -103,8 +103,10 @@ def test_full_disk_is_detected_by_the_probe(tmp_path, monkeypatch):
 
 
 def test_too_little_free_space_is_refused(tmp_path, monkeypatch):
+    import shutil
+
     monkeypatch.setattr(
-        W.shutil, "disk_usage", lambda p: SimpleNamespace(total=1 << 30, used=1 << 30, free=5 << 20)
+        shutil, "disk_usage", lambda p: SimpleNamespace(total=1 << 30, used=1 << 30, free=5 << 20)
     )
     with pytest.raises(InputError, match="only 5 MB free"):
         check_output_dir(tmp_path / "res")
