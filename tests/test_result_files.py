@@ -17,6 +17,7 @@ import pytest
 import xarray as xr
 from typer.testing import CliRunner
 
+from tribodyn import InputError
 from tribodyn._safe_write import atomic_write, make_dirs, remove_tree
 from tribodyn.cli import app
 from tribodyn.output import writer as W
@@ -186,18 +187,56 @@ def test_a_rerun_keeps_the_modes_and_group_of_what_it_keeps(tmp_path, fake_run):
     os.chmod(private, 0o700)
     groups = [g for g in os.getgroups() if g != os.getegid()] or [os.getegid()]
     gid = groups[0] if os.geteuid() != 0 else 4242  # root may give any group
-    os.chown(out, -1, gid)
+    uid = os.geteuid() if os.geteuid() != 0 else 4321  # and any owner
+    os.chown(out, uid, gid)
     os.chmod(out, 0o2770)
     r = _run("-o", out)
     assert r.exit_code == 0, r.output
     st = os.stat(out)
-    assert stat.S_IMODE(st.st_mode) == 0o2770 and st.st_gid == gid
+    assert stat.S_IMODE(st.st_mode) == 0o2770 and (st.st_uid, st.st_gid) == (uid, gid)
     assert stat.S_IMODE(os.stat(out / "private").st_mode) == 0o700
     assert (out / "private" / "notes.txt").read_text() == "mine"
     assert os.stat(out / "summary.json").st_gid == gid  # new files: the folder's group
     os.chmod(out, 0o700)
     assert _run("-o", out).exit_code == 0
     assert stat.S_IMODE(os.stat(out).st_mode) == 0o700
+
+
+def test_a_folder_of_someone_else_is_updated_in_place(tmp_path, monkeypatch):
+    """A run that is not the folder owner's cannot replace the folder without changing
+    its owner: the folder stays (same inode, owner, mode), the user's files stay, the new
+    files move in, tribodyn's files it no longer writes go."""
+    out = W.write_atomic(tmp_path / "res", lambda d: (d / "results.nc").write_text("1"))
+    (out / "old.txt").write_text("x")
+    W.mark_folder(
+        out, {"results.nc": W._sha256(out / "results.nc"), "old.txt": W._sha256(out / "old.txt")}
+    )
+    (out / "notes.txt").write_text("mine")
+    os.chmod(out, 0o750)
+    before = os.stat(out)
+    monkeypatch.setattr(os, "geteuid", lambda: before.st_uid + 1)  # not the owner, not root
+
+    def writer(d):
+        (d / "results.nc").write_text("2")
+        (d / "inputs").mkdir()
+        (d / "inputs" / "cam.csv").write_text("0,0\n")
+
+    W.write_atomic(out, writer)
+    after = os.stat(out)
+    assert (after.st_ino, after.st_uid, after.st_mode) == (
+        before.st_ino,
+        before.st_uid,
+        before.st_mode,
+    )
+    assert (out / "results.nc").read_text() == "2" and not (out / "old.txt").exists()
+    assert (out / "notes.txt").read_text() == "mine"
+    info = json.loads((out / MARKER).read_text())
+    assert sorted(info["files"]) == ["inputs/cam.csv", "results.nc"] and "previous" not in info
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["res"]
+    (out / "results.nc").write_text("edited")  # the user's now: in the way of a new one
+    with pytest.raises(InputError, match="results.nc"):
+        W.write_atomic(out, writer)
+    assert (out / "results.nc").read_text() == "edited"
 
 
 def test_run_refuses_the_folder_of_a_sweep_before_computing(tmp_path, fake_run):

@@ -170,10 +170,15 @@ def _marker_info(folder: Path) -> dict:
 
 def own_files(folder: PathLike) -> set[str]:
     """Relative paths of the files in ``folder`` that tribodyn wrote and no one has
-    changed since: listed in the marker with the same SHA-256 (or, in a folder whose
-    marker has no list, named as tribodyn names its files); point files of a sweep."""
+    changed since: listed in the marker with the same SHA-256 (also those of the
+    ``previous`` list a folder updated in place has while its files are replaced; or, in a
+    folder whose marker has no list, named as tribodyn names its files); point files of a
+    sweep."""
     folder = Path(folder)
-    listed = _marker_info(folder).get("files")
+    info = _marker_info(folder)
+    listed, previous = info.get("files"), info.get("previous")
+    if not isinstance(previous, dict):
+        previous = {}
     own = set()
     for rel in _all_files(folder):
         p = folder / rel
@@ -182,7 +187,10 @@ def own_files(folder: PathLike) -> set[str]:
         elif p.is_symlink() or not p.is_file():
             continue
         elif isinstance(listed, dict):
-            if rel in listed and listed[rel] == _sha256(p):
+            if (rel in listed or rel in previous) and _sha256(p) in (
+                listed.get(rel),
+                previous.get(rel),
+            ):
                 own.add(rel)
         elif _OWN_NAMES.fullmatch(rel):
             own.add(rel)

@@ -6,6 +6,8 @@
   ``.NAME.old-PID-TOKEN`` (:func:`old_name`) and gets the same proof.
 * :func:`_keep_foreign` brings the user's files of the target into it (hard links, else
   copies); the target's folders keep their group and mode (:func:`adopt_attributes`).
+* A folder owned by someone else (this process not being root's) cannot be replaced
+  without changing its owner: :func:`update_in_place` moves the new files into it.
 * :func:`clean_stale` removes such folders of runs that were killed, and only those that
   carry their proof of origin: a folder of someone else's named alike is never touched.
 """
@@ -24,12 +26,16 @@ from .._safe_write import TOKEN_CHARS, atomic_write, make_dirs, new_dir, remove_
 from .._typing import PathLike
 from .._validation import InputError
 from .result_folder import (
+    MARKER,
     ORIGIN,
     _dirs,
     _iter_dir,
+    _marker_info,
     _same_file_content,
     foreign_files,
     is_result_folder,
+    mark_folder,
+    own_files,
 )
 
 __all__ = [
@@ -39,6 +45,8 @@ __all__ = [
     "clean_stale",
     "folder_attributes",
     "adopt_attributes",
+    "must_update_in_place",
+    "update_in_place",
 ]
 
 
@@ -173,6 +181,57 @@ def adopt_attributes(folder: Path, like: os.stat_result, mode: int | None = None
     os.chmod(folder, stat.S_IMODE(like.st_mode) if mode is None else mode)
 
 
+def _clash(target: Path, rel: str) -> InputError:
+    return InputError(
+        f"{str(target)!r}: {rel} was not written by tribodyn (or changed since) and the "
+        "new results have a file of that name; it was left as it is"
+    )
+
+
+def must_update_in_place(target: Path) -> bool:
+    """True if the folder ``target`` cannot be replaced by a new folder without changing
+    its owner: it belongs to someone else and this process is not root's."""
+    like = folder_attributes(target)
+    return like is not None and os.geteuid() not in (0, like.st_uid)
+
+
+def update_in_place(target: Path, tmp: Path, files: dict[str, str], meta: dict) -> None:
+    """Move tribodyn's new files ``files`` (relative path → SHA-256) from ``tmp`` into the
+    folder ``target`` itself, replacing its own earlier files and removing those it no
+    longer writes; the folder and the user's files and folders stay as they are (owner,
+    group, mode). Not one rename: while the files move, the marker lists the earlier
+    hashes too, so an interrupted update leaves every file recognisable. A user's file
+    with the name of a new one raises first (one with the same content is kept)."""
+    before = own_files(target) - {MARKER, ORIGIN}
+    for rel in foreign_files(target):
+        name = rel.rstrip("/")
+        if rel.endswith("/"):  # an empty folder of the user's: in the way of a file only
+            if name in files:
+                raise _clash(target, rel)
+        elif any(w.startswith(name + "/") for w in files):
+            raise _clash(target, rel)
+        elif name in files:
+            if not _same_file_content(target / name, tmp / name):
+                raise _clash(target, rel)
+            files.pop(name)
+    listed = _marker_info(target).get("files")
+    previous = listed if isinstance(listed, dict) else {}
+    mark_folder(target, files, {**meta, "previous": previous})
+    for rel in sorted(files):
+        make_dirs((target / rel).parent)
+        os.replace(tmp / rel, target / rel)
+    for rel in sorted(before - set(files), reverse=True):
+        (target / rel).unlink(missing_ok=True)
+        parent = (target / rel).parent
+        while parent != target:
+            try:
+                parent.rmdir()  # a folder of tribodyn's files only, now empty
+            except OSError:
+                break
+            parent = parent.parent
+    mark_folder(target, files, meta)
+
+
 def _keep_foreign(target: Path, tmp: Path, files: dict[str, str]) -> None:
     """Hard-link (else copy) the user's files of ``target`` into the new folder ``tmp``;
     a file tribodyn wrote with the same content as the user's gives way to the user's
@@ -185,11 +244,7 @@ def _keep_foreign(target: Path, tmp: Path, files: dict[str, str]) -> None:
             continue
         if os.path.lexists(dst):
             if dst.is_dir() or not _same_file_content(src, dst):
-                raise InputError(
-                    f"{str(target)!r}: {rel} was not written by tribodyn (or changed "
-                    "since) and the new results have a file of that name; it was left "
-                    "as it is"
-                )
+                raise _clash(target, rel)
             dst.unlink()
             files.pop(rel, None)
         make_dirs(dst.parent, 0o700)

@@ -33,8 +33,10 @@ one folder, atomically, without ever losing results or replacing someone else's 
 * **Permissions.** New files and folders follow the umask (0o666, 0o777, masked); a
   re-run gives the new folder the mode (set-group-ID bit included) and group of the
   folder it replaces, and the user's folders in it keep theirs, so nothing becomes more
-  widely readable (the owner becomes the one who runs, unless that is root). The
-  temporary folder is private (0o700) while it is written. Every file is written by
+  widely readable. A folder owned by someone else (and a run that is not root's) is not
+  replaced: the new files are moved into it one by one (its owner, group, mode and the
+  user's files stay; while they move, the marker lists the earlier files' hashes too).
+  The temporary folder is private (0o700) while it is written. Every file is written by
   :mod:`tribodyn._safe_write` (never through a link).
 * **Never lost.** If writing still fails after the computation (disk full, folder
   removed, permissions changed), the results (results.nc, summary.json, case.toml) are
@@ -86,8 +88,10 @@ from .work_folder import (
     clean_stale,
     folder_attributes,
     make_work_folder,
+    must_update_in_place,
     old_name,
     prove_origin,
+    update_in_place,
 )
 
 if TYPE_CHECKING:
@@ -130,9 +134,10 @@ def write_atomic(
     ``target`` must be absent, empty or a tribodyn result folder (:func:`check_output_dir`
     rules, without the probe; a link to a folder: that folder). The user's files in
     ``target`` (:func:`foreign_files`) are kept; tribodyn's own are replaced; the folder
-    and the user's folders in it keep their mode and group. If ``writer`` raises (or the
-    process is interrupted), ``target`` is left exactly as it was and the temporary
-    folder is removed.
+    and the user's folders in it keep their mode and group (and owner: a folder of
+    someone else's is updated in place, :func:`~.work_folder.update_in_place`). If
+    ``writer`` raises (or the process is interrupted), ``target`` is left exactly as it
+    was and the temporary folder is removed.
     """
     target = resolve_target(target)
     kind = (meta or {}).get("kind")
@@ -154,6 +159,10 @@ def write_atomic(
         files = {rel: _sha256(tmp / rel) for rel in _all_files(tmp) if (tmp / rel).is_file()}
         files.pop(MARKER, None)
         files.pop(ORIGIN, None)
+        if must_update_in_place(target):  # someone else's folder: it stays, files move
+            update_in_place(target, tmp, files, meta or {})
+            remove_tree(tmp, ignore_errors=True)
+            return target
         if target.is_dir():
             _keep_foreign(target, tmp, files)
         mark_folder(tmp, files, meta)
