@@ -348,3 +348,23 @@ def test_a_foreign_temporary_marker_file_is_not_removed(tmp_path):
     p.mkdir()
     (p / ORIGIN).write_text(json.dumps({"tool": "tribodyn", "pid": pid, "token": "ffffffff"}))
     assert clean_stale(tmp_path / "res") == [] and p.is_dir()
+
+
+def test_only_a_proven_replaced_folder_is_moved_back(tmp_path):
+    """A kill between the two renames leaves ``.NAME.old-PID-TOKEN`` with its proof (it
+    is written before the rename): moved back. A folder of that form without the proof,
+    even holding results, is left where it is."""
+    from tribodyn.output.work_folder import clean_stale, prove_origin
+
+    pid = dead_pid()
+    foreign = tmp_path / f".res.old-{pid}-0123abcd"
+    foreign.mkdir()
+    W.mark_folder(foreign, {})
+    assert clean_stale(tmp_path / "res") == [] and foreign.is_dir()
+    proven = tmp_path / f".res.old-{pid}-89abcdef"
+    proven.mkdir()
+    W.mark_folder(proven, {})
+    prove_origin(proven)
+    assert clean_stale(tmp_path / "res") == [proven]
+    assert (tmp_path / "res" / MARKER).is_file() and foreign.is_dir()
+    assert not (tmp_path / "res" / ".tribodyn-origin").exists()

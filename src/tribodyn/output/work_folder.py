@@ -79,9 +79,10 @@ def old_name(target: Path) -> Path:
     )
 
 
-def prove_origin(folder: Path) -> None:
-    """Write :data:`ORIGIN` into ``folder`` (named ``.NAME.KIND-PID-TOKEN``)."""
-    kind, pid, token = folder.name.rsplit(".", 1)[1].split("-")
+def prove_origin(folder: Path, name: str | None = None) -> None:
+    """Write :data:`ORIGIN` into ``folder``, named ``.NAME.KIND-PID-TOKEN`` (or to be
+    renamed to ``name`` of that form)."""
+    kind, pid, token = (name or folder.name).rsplit(".", 1)[1].split("-")
     info = {"tool": "tribodyn", "kind": kind, "pid": int(pid), "token": token}
     atomic_write(folder / ORIGIN, json.dumps(info) + "\n", fsync=False)
 
@@ -112,10 +113,10 @@ def clean_stale(target: PathLike) -> list[Path]:
     """Remove the ``.NAME.tmp-PID-TOKEN`` and ``.NAME.old-PID-TOKEN`` folders next to
     ``target`` left by runs that were killed (process gone), and only those that hold
     tribodyn's proof of origin (:data:`ORIGIN`, with that PID and token): a folder of
-    someone else's with a name of that form is never touched. An ``.old`` folder (also
-    one of an earlier version, ``.NAME.old-PID``, if it is a result folder) is moved back
-    to ``target`` if the target is missing (the kill came between the two renames).
-    Returns what was removed or restored."""
+    someone else's with a name of that form is never touched. An ``.old`` folder with
+    its proof (or one of an earlier version, ``.NAME.old-PID``, if it is a result folder)
+    is moved back to ``target`` if the target is missing (the kill came between the two
+    renames). Returns what was removed or restored."""
     target = Path(target).absolute()
     parent = target.parent
     if not parent.is_dir():
@@ -132,7 +133,8 @@ def clean_stale(target: PathLike) -> list[Path]:
         if int(pid) == os.getpid() or _pid_alive(int(pid)):
             continue
         proven = token is not None and _has_origin(p, kind, pid, token)
-        if kind == "old" and not os.path.lexists(target) and (proven or is_result_folder(p)):
+        legacy = token is None and is_result_folder(p)
+        if kind == "old" and not os.path.lexists(target) and (proven or legacy):
             p.rename(target)
             (target / ORIGIN).unlink(missing_ok=True)
         elif proven:

@@ -174,8 +174,15 @@ def write_atomic(
     try:
         if target.exists():
             old = old_name(target)
-            target.rename(old)
-            prove_origin(old)
+            try:  # before the rename, so that the .old folder is always proven
+                prove_origin(target, old.name)
+            except OSError:  # a folder without write permission: left unproven
+                pass
+            try:
+                target.rename(old)
+            except BaseException:
+                (target / ORIGIN).unlink(missing_ok=True)
+                raise
         tmp.rename(target)
     except BaseException:
         if old is not None and old.exists() and not target.exists():
