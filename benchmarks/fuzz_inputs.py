@@ -17,8 +17,12 @@ Every input is classified as
 Besides wrong types and out-of-range values the inputs include deeply nested TOML, ints
 beyond the float range, denormal and huge loads, radii and speeds, junk ``--scheduler``
 files and addresses, case and sweep files with a byte-order mark, a too long ``-o`` name,
-a sweep of 10⁶ points (dry run), topography maps beyond the size limit and datasheet oils
-at 223 K.
+a sweep of 10⁶ points (dry run), topography maps beyond the size limit, datasheet oils
+at 223 K, and result folders with files tribodyn did not write (planted links, a figure
+linking to a private file, modes 0700/2770 on a re-run, another command's folder, stale-
+looking folders of someone else's, ``-o`` a link, ``--resume`` with another sweep, a
+Latin-1 report.md, a foreign netCDF, 1100 levels of nesting, a folder named like the
+marker).
 
 Prints JSON: totals, counts per group and the first offending cases. The goal is
 0 tracebacks, 0 hangs, 0 garbage, 0 lost files. Run: ``python benchmarks/fuzz_inputs.py``
@@ -1223,6 +1227,204 @@ def fuzz_engine_inputs(tmp: Path) -> None:
         )
 
 
+def fuzz_result_files(tmp: Path) -> None:
+    """Files tribodyn did not write: links planted in a result folder, a figure that
+    links to a private file, modes and groups on a re-run, another command's folder, stale-
+    looking folders of someone else's, ``-o`` a link, ``--resume`` with another sweep, a
+    report.md in Latin-1, a folder that cannot be written, a foreign netCDF, deep nesting,
+    a folder named like the marker. Runs use a stand-in study (the real writer, no
+    computation, no figures)."""
+    import base64
+    import subprocess
+    from types import SimpleNamespace
+
+    import xarray as xr
+
+    import tribodyn.output.report as report
+    import tribodyn.output.writer as writer
+    import tribodyn.workflow.cycle as cycle
+    import tribodyn.workflow.sweep as sweep
+    from tribodyn._safe_write import make_dirs, remove_tree
+
+    g = "result files"
+    base = tmp / "result-files"
+    base.mkdir()
+    calls: list = []
+    summary = {"surface_sets": {}, "implicit_vs_explicit": {}, "warnings": [], "runtime_s": 0}
+    small = xr.Dataset({"central_film": ("crank", [1e-7, 2e-7])}, coords={"crank": [0.0, 1.0]})
+
+    def study(case, **kw):
+        calls.append(case)
+        return SimpleNamespace(case=case, analyse=lambda: SimpleNamespace(summary=summary))
+
+    def no_sweep(*a, **k):
+        calls.append("sweep")
+        raise SystemExit(0)
+
+    saved = (cycle.run_cycle_study, writer.study_to_dataset, report.write_report, sweep.run_sweep)
+    saved_tempdir = tempfile.tempdir
+    tempfile.tempdir = str(base)  # a rescue folder, if any, stays in here
+    cycle.run_cycle_study = study
+    writer.study_to_dataset = lambda s: small
+    report.write_report = lambda s, ds, figs, path: Path(path).write_text("report")
+    sweep.run_sweep = no_sweep
+
+    def run(out, expect=(0,), check=None):
+        cli(g, ["run", "-o", str(out), "-q"], expect=expect, check=check)
+
+    def not_started(n):
+        return lambda r: None if len(calls) == n else "computed before refusing"
+
+    def dead_pid() -> int:
+        p = subprocess.Popen([sys.executable, "-c", "pass"])
+        p.wait()
+        return p.pid
+
+    def results(folder: Path) -> Path:  # a cycle study's results.nc, report, figure
+        folder.mkdir()
+        xr.Dataset(
+            {"central_film": (("surface_set", "ehl_crank"), [[1e-7, 2e-7]])},
+            coords={"ehl_crank": [0.0, 1.0], "crank_angle": [0.0, 1.0], "surface_set": ["a"]},
+        ).to_netcdf(folder / "results.nc", engine="h5netcdf")
+        (folder / "report.md").write_text("# r\n\n![f](fig05_dry_pressure.png)\n")
+        (folder / "fig05_dry_pressure.png").write_bytes(b"\x89PNG")
+        own = {f.name: writer._sha256(f) for f in folder.iterdir()}
+        writer.mark_folder(folder, own, {"kind": "run"})
+        return folder
+
+    try:
+        # export through planted links; a user's file under the old fixed temporary name
+        res = results(base / "shared")
+        victim = base / "victim.txt"
+        victim.write_bytes(b"precious")
+        KEEP[victim] = b"precious"
+        (res / "traces.csv.tmp").symlink_to("../victim.txt")
+        (res / "report.html.tmp").write_bytes(b"mine")
+        KEEP[res / "report.html.tmp"] = b"mine"
+        cli(g, ["export", str(res)], expect=(0,))
+        # a figure replaced by a link to a private file
+        secret = base / "secret.png"
+        secret.write_bytes(b"private " * 16)
+        (res / "fig05_dry_pressure.png").unlink()
+        (res / "fig05_dry_pressure.png").symlink_to(secret)
+
+        def no_secret(r):
+            page = (res / "report.html").read_text()
+            leaked = base64.b64encode(secret.read_bytes()).decode()[:40] in page
+            return "a private file embedded in report.html" if leaked else None
+
+        cli(g, ["export", str(res)], expect=(0,), check=no_secret)
+        # a report.md in Latin-1, a folder that cannot be written, a foreign netCDF
+        (res / "report.md").write_bytes("# Bericht\n\nÖl\n".encode("latin-1"))
+        cli(g, ["export", str(res)], expect=(0, 2))
+        cli(g, ["export", str(res), "-o", "/proc/tribodyn-export"], expect=(1, 2))
+        foreign = base / "foreign"
+        foreign.mkdir()
+        xr.Dataset(coords={"ehl_crank": [0.0], "crank_angle": [0.0]}).to_netcdf(
+            foreign / "results.nc", engine="h5netcdf"
+        )
+        cli(g, ["export", str(foreign)])
+
+        # a re-run keeps the modes and group of the folder and of the user's folders
+        out = base / "res"
+        run(out)
+        (out / "private").mkdir()
+        (out / "private" / "notes.txt").write_bytes(b"mine")
+        KEEP[out / "private" / "notes.txt"] = b"mine"
+        os.chmod(out / "private", 0o700)
+        gid = os.getegid() if os.geteuid() != 0 else 4242
+        os.chown(out, -1, gid)
+        os.chmod(out, 0o2770)
+
+        def modes_kept(r):
+            m, p = os.stat(out), os.stat(out / "private")
+            if (m.st_mode & 0o7777, m.st_gid, p.st_mode & 0o7777) != (0o2770, gid, 0o700):
+                return (
+                    f"modes not kept: folder {m.st_mode & 0o7777:o} group {m.st_gid}, "
+                    f"private/ {p.st_mode & 0o7777:o}"
+                )
+            return None
+
+        run(out, check=modes_kept)
+        # another command's folder: run -o a sweep's; a sweep into a run's
+        sw = base / "sw"
+        (sw / "points").mkdir(parents=True)
+        (sw / "points" / "0a1b.nc").write_bytes(b"point")
+        (sw / "sweep.nc").write_bytes(b"sweep")
+        KEEP[sw / "points" / "0a1b.nc"] = b"point"
+        KEEP[sw / "sweep.nc"] = b"sweep"
+        writer.mark_folder(sw, {"sweep.nc": writer._sha256(sw / "sweep.nc")}, {"kind": "sweep"})
+        run(sw, expect=(2,), check=not_started(len(calls)))
+        cli(g, ["sweep", "andreou2023_dynamics", "-o", str(out), "-q"])
+        # --resume with another sweep file
+        for p in [p for p in KEEP if sw in p.parents]:
+            KEEP.pop(p)
+        remove_tree(sw, ignore_errors=True)
+        (sw / "points").mkdir(parents=True)
+        (sw / "sweep.nc").write_bytes(b"sweep")
+        KEEP[sw / "sweep.nc"] = b"sweep"
+        info = {"kind": "sweep", "sweep": "andreou2023_speed", "sweep_mode": "study"}
+        writer.mark_folder(sw, {"sweep.nc": writer._sha256(sw / "sweep.nc")}, info)
+        cli(g, ["sweep", "andreou2023_dynamics", "-o", str(sw), "--resume", "-q"])
+        # folders of someone else's named like stale temporaries
+        mine = base / f".res.tmp-{dead_pid()}-mine"
+        backup = base / ".res.tmp-backup"
+        for d in (mine, backup):
+            d.mkdir()
+            (d / "data.txt").write_bytes(b"mine")
+            KEEP[d / "data.txt"] = b"mine"
+        hour_ago = time.time() - 7200
+        os.utime(backup, (hour_ago, hour_ago))
+        run(out)
+        # -o a link to a result folder: the link stays, its folder gets the results
+        link = base / "link"
+        link.symlink_to(out)
+
+        def link_kept(r):
+            if not link.is_symlink():
+                return "the link was replaced by a folder"
+            left = [p.name for p in base.iterdir() if p.name.startswith(".link.")]
+            return f"left {left}" if left else None
+
+        run(link, check=link_kept)
+        # a folder named like the marker; a home folder with a stray marker
+        legacy = base / "legacy"
+        legacy.mkdir()
+        for f in ("results.nc", "summary.json", "case.toml"):
+            (legacy / f).write_text("x")
+        (legacy / ".tribodyn-results").mkdir()
+        (legacy / ".tribodyn-results" / "mine.txt").write_bytes(b"mine")
+        KEEP[legacy / ".tribodyn-results" / "mine.txt"] = b"mine"
+        run(legacy, expect=(2,), check=not_started(len(calls)))
+        home = base / "home"
+        run(home)
+        (home / ".bashrc").write_bytes(b"mine")
+        KEEP[home / ".bashrc"] = b"mine"
+        old_home = os.environ.get("HOME")
+        os.environ["HOME"] = str(home)
+        try:
+            run(home, expect=(2,))
+        finally:
+            if old_home is None:
+                os.environ.pop("HOME", None)
+            else:
+                os.environ["HOME"] = old_home
+        # a user's folder nested 1100 levels deep in a result folder
+        deep = out / Path(*["d"] * 1100)
+        make_dirs(deep)
+        (deep / "note.txt").write_bytes(b"deep")
+        KEEP[deep / "note.txt"] = b"deep"
+        run(out, expect=(0, 2))
+    finally:
+        cycle.run_cycle_study, writer.study_to_dataset, report.write_report = saved[:3]
+        sweep.run_sweep = saved[3]
+        tempfile.tempdir = saved_tempdir
+        for p in list(KEEP):
+            if base in p.parents:
+                KEEP.pop(p)
+        remove_tree(base, ignore_errors=True)  # any depth (shutil.rmtree recurses)
+
+
 def main() -> None:
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory() as d:
@@ -1238,6 +1440,7 @@ def main() -> None:
             fuzz_extreme_kinds(tmp)
             fuzz_user_files(tmp)
             fuzz_engine_inputs(tmp)
+            fuzz_result_files(tmp)
     total = sum(results.values())
     print(
         json.dumps(

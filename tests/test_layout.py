@@ -83,6 +83,7 @@ LAYERS = {
     "_threads": 0,
     "_user_files": 0,
     "_json": 0,
+    "_safe_write": 0,
     "physics": 1,
     "contact": 2,
     "valvetrain": 2,

@@ -103,8 +103,10 @@ def test_full_disk_is_detected_by_the_probe(tmp_path, monkeypatch):
 
 
 def test_too_little_free_space_is_refused(tmp_path, monkeypatch):
+    import shutil
+
     monkeypatch.setattr(
-        W.shutil, "disk_usage", lambda p: SimpleNamespace(total=1 << 30, used=1 << 30, free=5 << 20)
+        shutil, "disk_usage", lambda p: SimpleNamespace(total=1 << 30, used=1 << 30, free=5 << 20)
     )
     with pytest.raises(InputError, match="only 5 MB free"):
         check_output_dir(tmp_path / "res")
@@ -150,23 +152,27 @@ def test_interrupt_while_writing_leaves_no_trace(tmp_path):
 
 
 def test_stale_temporary_folders_are_cleaned(tmp_path):
+    """Only folders with tribodyn's proof of origin (the PID and token of their name) are
+    removed; folders of someone else's named alike are kept (test_result_files.py)."""
+    from tribodyn.output.work_folder import prove_origin
+
     dead = dead_pid()
-    stale = tmp_path / f".res.tmp-{dead}-abc123"  # killed run (process gone)
+    stale = tmp_path / f".res.tmp-{dead}-abc12345"  # killed run (process gone)
     stale.mkdir()
+    prove_origin(stale)
     (stale / "results.nc").write_text("x")
-    alive = tmp_path / f".res.tmp-{os.getppid()}-xyz789"  # a running process: kept
+    alive = tmp_path / f".res.tmp-{os.getppid()}-0123abcd"  # a running process: kept
     alive.mkdir()
-    legacy = tmp_path / ".res.tmp-k3j2h1g0"  # 0.1 name, an hour old
+    prove_origin(alive)
+    legacy = tmp_path / ".res.tmp-k3j2h1g0"  # 0.1 name, an hour old: no proof, kept
     legacy.mkdir()
     old = time.time() - 2 * 3600
     os.utime(legacy, (old, old))
-    young = tmp_path / ".res.tmp-q9w8e7r6"  # 0.1 name, just now: kept
-    young.mkdir()
     other = tmp_path / ".other.tmp-1-abc"  # another target: kept
     other.mkdir()
     write_atomic(tmp_path / "res", lambda d: (d / "new").write_text("1"))
     left = sorted(p.name for p in tmp_path.iterdir())
-    assert left == sorted(["res", alive.name, young.name, other.name])
+    assert left == sorted(["res", alive.name, legacy.name, other.name])
 
 
 def test_previous_results_are_restored_after_a_kill_between_renames(tmp_path):

@@ -342,8 +342,10 @@ def calibrate_command(
         )
         text = calibration_toml(cal, data.name, label, rough, notes)
         if output is not None:
-            with writing("--output", output), open(output, "x", encoding="utf-8") as f:
-                f.write(text)
+            from .._safe_write import atomic_write
+
+            with writing("--output", output):  # an existing file is never replaced
+                atomic_write(output, text, replace=False)
     except InputError as exc:
         fail(err, exc)
     if as_json:

@@ -50,7 +50,7 @@ def engine_command(
             )
         if workers is not None and not 0 <= workers <= 4096:
             raise InputError(f"-j/--workers must be an integer >= 0 and <= 4096 (got {workers})")
-        out = check_output_dir(out, option="-o/--out")
+        out = check_output_dir(out, option="-o/--out", kind="engine")
     except InputError as exc:
         fail(console, exc, label="error in the case")
     n_workers = workers if workers is not None else (c.numerics.workers or None)

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 
 from .._validation import InputError
 from .failure import fail
@@ -26,8 +27,9 @@ def export_command(
     with its figures embedded; no external resources) into OUT.
 
     A file of those names that tribodyn did not write (or that was changed since) is
-    never replaced: the export stops before writing and names it. Exit codes: 0 done,
-    2 bad input.
+    never replaced: the export stops before writing and names it. Only regular files of
+    RESULTS are embedded (a figure that is a link or lies elsewhere is left out, with a
+    warning). Exit codes: 0 done, 1 OUT cannot be written, 2 bad input.
     """
     try:
         _export(results, out if out is not None else results)
@@ -35,10 +37,17 @@ def export_command(
         fail(console, exc)
 
 
+#: Variables a cycle study's results.nc must hold for the export.
+_NEEDED = ("ehl_crank", "crank_angle", "surface_set")
+
+
 def _export(results: Path, out: Path) -> None:
+    import os
+
     import xarray as xr
 
-    from ..output.export import CSV_FILES, write_csv, write_html
+    from .._safe_write import make_dirs
+    from ..output.export import CSV_FILES, report_markdown, write_csv, write_html
     from ..output.writer import MARKER, _marker_info, _sha256, mark_folder, own_files
 
     nc = results / "results.nc"
@@ -46,11 +55,10 @@ def _export(results: Path, out: Path) -> None:
         raise InputError(f"RESULTS: {results} has no results.nc (a `tribodyn run` result folder)")
     if out.exists() and not out.is_dir():
         raise InputError(f"-o/--out: {out} is a file, not a folder")
-    out.mkdir(parents=True, exist_ok=True)
     md = results / "report.md"
-    names = [*CSV_FILES, *(["report.html"] if md.is_file() else [])]
+    names = [*CSV_FILES, *(["report.html"] if os.path.lexists(md) else [])]
     own = own_files(out) if (out / MARKER).is_file() else set()
-    taken = [n for n in names if (out / n).exists() and n not in own]
+    taken = [n for n in names if os.path.lexists(out / n) and n not in own]
     if taken:
         raise InputError(
             f"-o/--out: {out} holds {', '.join(taken)}, not written by tribodyn (or "
@@ -61,14 +69,45 @@ def _export(results: Path, out: Path) -> None:
             ds.load()
     except (OSError, ValueError) as exc:
         raise InputError(f"RESULTS: cannot read {nc}: {exc}") from exc
-    if "ehl_crank" not in ds.coords:
-        raise InputError(f"RESULTS: {nc} is not the results of a cam-cycle study")
-    written = write_csv(ds, out)
-    if md.is_file():  # figures are read from the result folder
-        html = write_html(md.read_text(encoding="utf-8"), results, out / "report.html")
-        written.append(html)
-    info = _marker_info(out)
-    if isinstance(info.get("files"), dict):  # a result folder: these are its own now
-        files = {**info.pop("files"), **{p.name: _sha256(p) for p in written}}
-        mark_folder(out, files, {k: v for k, v in info.items() if k not in ("tool", "written")})
-    console.print(f"wrote {', '.join(str(p) for p in written)}")
+    missing = [v for v in _NEEDED if v not in ds.variables]
+    if missing:
+        raise InputError(
+            f"RESULTS: {nc} is not a tribodyn results file of a cam-cycle study "
+            f"(it has no {', '.join(missing)})"
+        )
+    notes: list[str] = []
+    text = None
+    if os.path.lexists(md):
+        try:
+            text = report_markdown(results, notes)
+        except FileNotFoundError:
+            notes.append(
+                "report.md is a link or not a regular file of the result folder: "
+                "report.html is not written"
+            )
+    try:
+        make_dirs(out)
+        try:
+            written = write_csv(ds, out)
+        except (KeyError, IndexError, ValueError, TypeError) as exc:
+            raise InputError(
+                f"RESULTS: {nc} is not a tribodyn results file of a cam-cycle study "
+                f"({type(exc).__name__}: {exc})"
+            ) from None
+        if text is not None:  # figures are read from the result folder
+            skipped: list[str] = []
+            written.append(write_html(text, results, out / "report.html", skipped))
+            if skipped:
+                notes.append(
+                    f"not embedded in report.html (missing, a link, or not a "
+                    f"regular file of {results}): {', '.join(skipped)}"
+                )
+        info = _marker_info(out)
+        if isinstance(info.get("files"), dict):  # a result folder: these are its own now
+            files = {**info.pop("files"), **{p.name: _sha256(p) for p in written}}
+            mark_folder(out, files, {k: v for k, v in info.items() if k not in ("tool", "written")})
+    except OSError as exc:  # a folder without write permission, a full disk, …
+        fail(console, f"-o/--out: cannot write in {str(out)!r} ({exc.strerror or exc})", code=1)
+    for n in notes:
+        console.print(f"[yellow]warning:[/yellow] {escape(n)}", highlight=False, soft_wrap=True)
+    console.print(f"wrote {escape(', '.join(str(p) for p in written))}")

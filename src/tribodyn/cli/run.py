@@ -85,7 +85,7 @@ def run_command(
                 f"CPU core) (got {workers})"
             )
         # before hours of computing
-        out = check_output_dir(out, option="-o/--out", writes=case_inputs(c)[1])
+        out = check_output_dir(out, option="-o/--out", writes=case_inputs(c)[1], kind="run")
     except InputError as exc:
         fail(console, exc)
     with _terminate_as_interrupt():

@@ -114,9 +114,12 @@ def sweep_command(
         raise typer.Exit(0)
 
     from ..output import check_output_dir
+    from ..output.sweep import check_resume
 
     try:  # before computing: a file, a foreign folder, a name too long, no space
-        out = check_output_dir(out, option="-o/--out")
+        out = check_output_dir(out, option="-o/--out", kind="sweep")
+        if resume:
+            check_resume(out, spec)
     except InputError as exc:
         fail(console, exc)
     with (

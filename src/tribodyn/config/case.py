@@ -350,9 +350,9 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
     def write_toml(self, path, *, resolve_paths: bool = True) -> Path:
         """Write :meth:`to_toml` to ``path`` (cam table path made absolute by default, so
         the file works from any folder)."""
-        p = Path(path)
-        p.write_text(self.to_toml(resolve_paths=resolve_paths), encoding="utf-8")
-        return p
+        from .._safe_write import atomic_write
+
+        return atomic_write(Path(path), self.to_toml(resolve_paths=resolve_paths))
 
     # -- builders -----------------------------------------------------------------------
     @property

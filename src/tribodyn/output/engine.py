@@ -8,6 +8,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from .. import _json
+from .._safe_write import atomic_write, atomic_write_with
 from .._typing import PathLike
 from .writer import _write_case, write_atomic
 
@@ -34,13 +35,13 @@ def write_engine_results(study, out_dir: PathLike, *, figures: bool = True) -> d
     names: list[str] = []
 
     def writer(tmp: Path) -> None:
-        ds.to_netcdf(tmp / "results.nc")
-        (tmp / "summary.json").write_text(_json.dumps(summ, indent=1) + "\n", encoding="utf-8")
+        atomic_write_with(tmp / "results.nc", ds.to_netcdf)
+        atomic_write(tmp / "summary.json", _json.dumps(summ, indent=1) + "\n")
         _write_case(study.case, tmp)
         if figures:
             from .figures.engine import engine_figures
 
             names.extend(p.name for p in engine_figures(ds, tmp))
 
-    path = write_atomic(Path(out_dir), writer, meta={"case": study.case.name})
+    path = write_atomic(Path(out_dir), writer, meta={"kind": "engine", "case": study.case.name})
     return {"summary": summ, "figures": names, "path": path}

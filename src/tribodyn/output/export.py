@@ -7,7 +7,10 @@
   kinematics and forces.
 * ``report.html``: report.md rendered (CommonMark with tables, ``markdown-it-py``), every
   figure embedded as a ``data:image/png;base64`` URI, inline CSS, no external resource:
-  it opens offline and can be shared as one file.
+  it opens offline and can be shared as one file. Only regular files of the result
+  folder are embedded: a figure that is a link, or names a file elsewhere, is left out
+  and named (a folder received from someone else must not carry a private file into a
+  shared report).
 
 Both are written with the results and by ``tribodyn export RESULTS`` from results.nc
 and report.md.
@@ -18,12 +21,18 @@ from __future__ import annotations
 import base64
 import csv
 import html
+import os
 import re
+import stat
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["CSV_FILES", "write_csv", "report_html", "write_html"]
+from .._safe_write import atomic_open, atomic_write
+
+__all__ = ["CSV_FILES", "write_csv", "report_html", "report_markdown", "write_html"]
+
+_NOFOLLOW = getattr(os, "O_NOFOLLOW", 0)
 
 #: The CSV files :func:`write_csv` writes.
 CSV_FILES = ("traces.csv", "dynamics.csv")
@@ -83,13 +92,11 @@ def _add_columns(ds, names, header: list[str], cols: list[np.ndarray], prefix=""
 
 
 def _write(path: Path, header: list[str], cols: list[np.ndarray]) -> Path:
-    tmp = path.with_name(path.name + ".tmp")
-    with open(tmp, "w", newline="", encoding="utf-8") as f:
+    with atomic_open(path, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(header)
         for row in zip(*cols):
             w.writerow(["" if not np.isfinite(v) else f"{v:.9g}" for v in row])
-    tmp.replace(path)
     return path
 
 
@@ -125,9 +132,50 @@ code{background:#f6f6f6}
 """
 
 
-def report_html(markdown_text: str, folder) -> str:
+def _own_file_bytes(folder: Path, name: str) -> bytes | None:
+    """The content of the regular file ``folder/name`` (a plain name: no folder part),
+    or None if it is missing, a link, not a regular file (a folder, a FIFO, a device) or
+    not in ``folder``: a result folder received from someone else may hold a link to a
+    private file, which must not end up in a shared report."""
+    if not name or "/" in name or os.sep in name or name in (".", ".."):
+        return None
+    p = Path(folder) / name
+    try:
+        fd = os.open(p, os.O_RDONLY | _NOFOLLOW | getattr(os, "O_NONBLOCK", 0))
+    except OSError:  # missing, a link (ELOOP), unreadable
+        return None
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            return None
+        with os.fdopen(fd, "rb", closefd=False) as f:
+            return f.read()
+    finally:
+        os.close(fd)
+
+
+def report_markdown(folder, warnings: list[str] | None = None) -> str:
+    """The text of ``folder/report.md`` (a regular file in the folder, not a link);
+    bytes that are not UTF-8 are replaced by U+FFFD and a line is added to
+    ``warnings``. Raises :class:`FileNotFoundError` if there is no such file."""
+    data = _own_file_bytes(Path(folder), "report.md")
+    if data is None:
+        raise FileNotFoundError(f"{folder}/report.md is missing, a link or not a regular file")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        if warnings is not None:
+            warnings.append(
+                f"report.md is not valid UTF-8 (byte {exc.start}): the bytes that are "
+                "not were replaced by \ufffd in report.html"
+            )
+        return data.decode("utf-8", errors="replace")
+
+
+def report_html(markdown_text: str, folder, skipped: list[str] | None = None) -> str:
     """report.md as one HTML page with the figures it shows (files in ``folder``)
-    embedded as data URIs; a figure file that is missing is named in the text instead."""
+    embedded as data URIs. A figure file that is missing, or is not a regular file of
+    ``folder`` (a link, a folder, a path elsewhere), is not embedded: the page names it
+    instead and so does ``skipped``."""
     from markdown_it import MarkdownIt
 
     md = MarkdownIt("commonmark", {"html": False}).enable("table")
@@ -136,11 +184,12 @@ def report_html(markdown_text: str, folder) -> str:
 
     def embed(m: re.Match) -> str:
         name = html.unescape(m.group(1))
-        p = folder / name
-        if "/" in name or not name.endswith(".png") or not p.is_file():
+        data = _own_file_bytes(folder, name) if name.endswith(".png") else None
+        if data is None:
+            if skipped is not None:
+                skipped.append(name)
             return f'alt="missing figure {html.escape(name)}" src=""'
-        data = base64.b64encode(p.read_bytes()).decode("ascii")
-        return f'src="data:image/png;base64,{data}"'
+        return f'src="data:image/png;base64,{base64.b64encode(data).decode("ascii")}"'
 
     body = re.sub(r'src="([^"]*)"', embed, body)
     title = markdown_text.splitlines()[0].lstrip("# ").strip() if markdown_text else "report"
@@ -151,10 +200,8 @@ def report_html(markdown_text: str, folder) -> str:
     )
 
 
-def write_html(markdown_text: str, folder, path=None) -> Path:
-    """Write :func:`report_html` to ``path`` (default ``folder/report.html``) atomically."""
+def write_html(markdown_text: str, folder, path=None, skipped: list[str] | None = None) -> Path:
+    """Write :func:`report_html` to ``path`` (default ``folder/report.html``) atomically
+    (:func:`~tribodyn._safe_write.atomic_write`)."""
     path = Path(path) if path is not None else Path(folder) / "report.html"
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(report_html(markdown_text, folder), encoding="utf-8")
-    tmp.replace(path)
-    return path
+    return atomic_write(path, report_html(markdown_text, folder, skipped))

@@ -481,9 +481,7 @@ def report_text(study, ds, figures: dict) -> str:
 
 
 def write_report(study, ds, figures: dict, path) -> Path:
-    """Write report.md (atomically: temporary file, then rename); returns its path."""
-    path = Path(path)
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(report_text(study, ds, figures), encoding="utf-8")
-    tmp.replace(path)
-    return path
+    """Write report.md (:func:`~tribodyn._safe_write.atomic_write`); returns its path."""
+    from .._safe_write import atomic_write
+
+    return atomic_write(Path(path), report_text(study, ds, figures))

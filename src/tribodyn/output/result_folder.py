@@ -1,7 +1,8 @@
 """The result folder: what in it is tribodyn's (the marker, its list of files and their
 SHA-256, the names tribodyn writes) and what is the user's; the checks before computing
-(name, parent, probe, free space); the cleanup of folders left by killed runs; marking a
-written folder. The writing itself and the rules it follows: :mod:`.writer`.
+(name, parent, probe, free space, the kind of study it holds); marking a written folder.
+The temporary folder and the cleanup of folders left by killed runs: :mod:`.work_folder`;
+the writing itself and the rules it follows: :mod:`.writer`.
 """
 
 from __future__ import annotations
@@ -18,13 +19,23 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from .. import _json
-from .._system import new_file
+from .._safe_write import TOKEN_CHARS, atomic_write, new_file
 from .._typing import PathLike
 from .._user_files import MAX_MARKER_BYTES, read_user_bytes
 from .._validation import InputError
 
 #: File that marks a folder as written by tribodyn (JSON: tool, version, case, time).
 MARKER = ".tribodyn-results"
+
+#: File that proves a temporary (``.NAME.tmp-PID-TOKEN``) or replaced
+#: (``.NAME.old-PID-TOKEN``) folder is tribodyn's: JSON with the tool, the PID and the
+#: random token of the folder's name. Only such folders are ever removed.
+ORIGIN = ".tribodyn-origin"
+
+#: Most files, links and folders tribodyn keeps for the user in a result folder: a folder
+#: holding more is not treated as a result folder (e.g. a home folder into which a
+#: result folder's files, marker included, were copied).
+MAX_FOREIGN = 2000
 
 
 #: Files of a result folder written before the marker existed (tribodyn 0.1).
@@ -59,8 +70,12 @@ INPUTS = "inputs"
 
 
 #: Characters the temporary names add to the folder's name: ``.`` + ``.tmp-PID-`` (PIDs
-#: up to 7 digits) + 8 random ones.
-_NAME_OVERHEAD = 1 + 5 + 7 + 1 + 8
+#: up to 7 digits) + the random token.
+_NAME_OVERHEAD = 1 + 5 + 7 + 1 + TOKEN_CHARS
+
+
+#: Longest path the kernel accepts [bytes] (PATH_MAX on Linux).
+_PATH_MAX = 4096
 
 
 #: Size of the write probe [bytes]: a full or read-only disk fails on it.
@@ -71,11 +86,6 @@ PROBE_BYTES = 1 << 20
 #: (results.nc 14 MB, 15 figures, report); 0.25° crank steps write about four times the
 #: profiles, so 128 MB leaves room for them with a margin.
 MIN_FREE_BYTES = 128 << 20
-
-
-#: Temporary folders of processes that no longer exist are removed; so are those in the
-#: 0.1 naming (no PID) not touched for this long [s].
-_LEGACY_STALE_AGE = 3600.0
 
 
 def is_result_folder(path: PathLike) -> bool:
@@ -107,19 +117,49 @@ def _sha256(path: Path) -> str:
     return h.hexdigest()
 
 
-def _all_files(folder: Path) -> list[str]:
+def _all_files(folder: Path, limit: int | None = None) -> list[str]:
     """Relative (POSIX) paths of the files, links and empty folders below ``folder``;
-    links to folders are not followed."""
-    out = []
-    for root, dirs, files in os.walk(folder):
-        r = Path(root)
-        rel = r.relative_to(folder)
-        links = [d for d in dirs if (r / d).is_symlink()]
-        dirs[:] = [d for d in dirs if d not in links]
-        out += [(rel / f).as_posix() for f in (*files, *links)]
-        if not dirs and not files and not links and r != folder:
-            out.append(rel.as_posix() + "/")
+    links to folders are not followed. Walked without recursion (any depth). With
+    ``limit``, the walk stops after ``limit + 1`` entries."""
+    out: list[str] = []
+    stack = [""]
+    while stack:
+        rel = stack.pop()
+        try:
+            with os.scandir(folder / rel if rel else folder) as it:
+                entries = list(it)
+        except OSError:
+            entries = []
+        if not entries and rel:
+            out.append(rel + "/")
+        for e in entries:
+            r = f"{rel}/{e.name}" if rel else e.name
+            if e.is_dir(follow_symlinks=False):
+                stack.append(r)
+            else:
+                out.append(r)
+        if limit is not None and len(out) > limit:
+            break
     return sorted(out)
+
+
+def _dirs(folder: Path) -> list[str]:
+    """Relative (POSIX) paths of the folders below ``folder`` (not through links),
+    parents first; without recursion."""
+    out: list[str] = []
+    stack = [""]
+    while stack:
+        rel = stack.pop()
+        try:
+            with os.scandir(folder / rel if rel else folder) as it:
+                subs = [e.name for e in it if e.is_dir(follow_symlinks=False)]
+        except OSError:
+            subs = []
+        for name in subs:
+            r = f"{rel}/{name}" if rel else name
+            out.append(r)
+            stack.append(r)
+    return sorted(out, key=lambda r: r.count("/"))
 
 
 def _marker_info(folder: Path) -> dict:
@@ -136,19 +176,27 @@ def _marker_info(folder: Path) -> dict:
 
 def own_files(folder: PathLike) -> set[str]:
     """Relative paths of the files in ``folder`` that tribodyn wrote and no one has
-    changed since: listed in the marker with the same SHA-256 (or, in a folder whose
-    marker has no list, named as tribodyn names its files); point files of a sweep."""
+    changed since: listed in the marker with the same SHA-256 (also those of the
+    ``previous`` list a folder updated in place has while its files are replaced; or, in a
+    folder whose marker has no list, named as tribodyn names its files); point files of a
+    sweep."""
     folder = Path(folder)
-    listed = _marker_info(folder).get("files")
+    info = _marker_info(folder)
+    listed, previous = info.get("files"), info.get("previous")
+    if not isinstance(previous, dict):
+        previous = {}
     own = set()
     for rel in _all_files(folder):
         p = folder / rel
-        if rel == MARKER or (_POINT_FILE.fullmatch(rel) and p.is_file()):
+        if rel in (MARKER, ORIGIN) or (_POINT_FILE.fullmatch(rel) and p.is_file()):
             own.add(rel)
         elif p.is_symlink() or not p.is_file():
             continue
         elif isinstance(listed, dict):
-            if rel in listed and listed[rel] == _sha256(p):
+            if (rel in listed or rel in previous) and _sha256(p) in (
+                listed.get(rel),
+                previous.get(rel),
+            ):
                 own.add(rel)
         elif _OWN_NAMES.fullmatch(rel):
             own.add(rel)
@@ -200,25 +248,59 @@ def _existing_ancestor(p: Path) -> Path:
     return q
 
 
+def resolve_target(path: PathLike) -> Path:
+    """The absolute path of an output folder; a symbolic link to a folder is replaced by
+    the folder it points to (the results go there, the link stays)."""
+    target = Path(path).expanduser().absolute()
+    try:
+        if target.is_symlink() and target.is_dir():
+            target = Path(os.path.realpath(target))
+    except OSError:  # a name too long: the checks say so
+        pass
+    return target
+
+
+#: What each kind of study writes: ``kind`` of the marker → the command.
+KINDS = {"run": "tribodyn run", "engine": "tribodyn engine", "sweep": "tribodyn sweep"}
+
+
+def folder_kind(folder: PathLike) -> str | None:
+    """The kind of study whose results ``folder`` holds (a key of :data:`KINDS`), or None
+    if it is not known (no results, or a folder of a version that did not record it)."""
+    folder = Path(folder)
+    kind = _marker_info(folder).get("kind")
+    if kind in KINDS:
+        return kind
+    if (folder / "sweep.nc").is_file() or any(
+        _POINT_FILE.fullmatch(f"points/{q.name}") for q in _iter_dir(folder / "points")
+    ):
+        return "sweep"
+    return None
+
+
 def check_output_dir(
     path: PathLike,
     *,
     option: str = "output folder",
     writes: Mapping[str, Path | None] | None = None,
+    kind: str | None = None,
 ) -> Path:
     """Check that results can be written to ``path`` before anything is computed.
 
-    Returns the absolute path. Raises :class:`~tribodyn.InputError` naming ``option``
-    if ``path`` is an existing file, a folder with contents that tribodyn did not write,
-    a result folder holding a user's file with the name of one tribodyn writes (its
-    usual names, or the keys of ``writes``: relative path → the file copied there, or
-    None), a name too long for the file system, below a file, not writable, or on a disk
-    with less than ``MIN_FREE_BYTES`` free (the probe writes ``PROBE_BYTES``).
+    Returns the absolute path (that of the folder a link ``path`` points to). Raises
+    :class:`~tribodyn.InputError` naming ``option`` if ``path`` is an existing file, a
+    folder with contents that tribodyn did not write, a result folder holding a user's
+    file with the name of one tribodyn writes (its usual names, or the keys of
+    ``writes``: relative path → the file copied there, or None), a folder named like
+    the marker, the results of another ``kind`` of study (:data:`KINDS`), a home folder
+    or one with more than :data:`MAX_FOREIGN` files of the user's, a name too long for
+    the file system, below a file, not writable, or on a disk with less than
+    ``MIN_FREE_BYTES`` free (the probe writes ``PROBE_BYTES``).
     """
-    target = Path(path).expanduser().absolute()
+    target = resolve_target(path)
     try:
         _check_name(target, option)
-        _check_target(target, option, writes or {})
+        _check_target(target, option, writes or {}, kind)
         base = _existing_ancestor(target.parent)
     except OSError as exc:
         if exc.errno == errno.ENAMETOOLONG:
@@ -256,7 +338,9 @@ def _check_name(target: Path, option: str) -> None:
         )
 
 
-def _check_target(target: Path, option: str, writes: Mapping[str, Path | None]) -> None:
+def _check_target(
+    target: Path, option: str, writes: Mapping[str, Path | None], kind: str | None = None
+) -> None:
     if not (target.exists() or target.is_symlink()):
         return
     if not target.is_dir():
@@ -267,11 +351,52 @@ def _check_target(target: Path, option: str, writes: Mapping[str, Path | None]) 
         )
     if not any(target.iterdir()):
         return
+    marker = target / MARKER
+    if os.path.lexists(marker) and (marker.is_symlink() or not marker.is_file()):
+        raise InputError(
+            f"{option} {str(target)!r} holds {MARKER}, which is not a regular file (a "
+            f"folder or a link) but has the name of tribodyn's marker: rename or move it, "
+            "or give another folder"
+        )
     if not is_result_folder(target):
         raise InputError(
             f"{option} {str(target)!r} is a folder that tribodyn did not "
-            f"write (no {MARKER} marker; it holds {_listing(_all_files(target))}); it "
+            f"write (no {MARKER} marker; it holds {_listing(_all_files(target, 10))}); it "
             "writes only into its own result folders: give a new or empty folder"
+        )
+    home = Path.home().absolute()
+    if target == home or target in home.parents:
+        raise InputError(
+            f"{option} {str(target)!r} is your home folder (or holds it); tribodyn "
+            f"rebuilds a result folder when it writes into it, so it does not write into "
+            f"this one although it holds a {MARKER} marker: give a new folder"
+        )
+    have = folder_kind(target)
+    if kind is not None and have is not None and have != kind:
+        raise InputError(
+            f"{option} {str(target)!r} holds the results of `{KINDS[have]}`; "
+            f"`{KINDS[kind]}` would replace them: give another folder"
+        )
+    n_own = len(own_files(target))
+    entries = _all_files(target, MAX_FOREIGN + n_own)
+    if len(entries) > MAX_FOREIGN + n_own:
+        raise InputError(
+            f"{option} {str(target)!r} holds more than {MAX_FOREIGN} files that tribodyn "
+            f"did not write, beside a {MARKER} marker; it does not look like a result "
+            "folder (a copied marker?) and is left as it is: give a new folder"
+        )
+    points = target / "points"
+    if kind == "sweep" and os.path.lexists(points) and (points.is_symlink() or not points.is_dir()):
+        raise InputError(
+            f"{option} {str(target)!r}: points is a link or a file, not the sweep's folder "
+            "of point files: move it or give another folder"
+        )
+    longest = max((len(os.fsencode(str(target / rel))) for rel in entries), default=0)
+    if longest + _NAME_OVERHEAD >= _PATH_MAX:
+        raise InputError(
+            f"{option} {str(target)!r} holds a path of {longest} bytes; in the temporary "
+            f"folder it would exceed the file system's limit of {_PATH_MAX}: move the "
+            "deepest folders elsewhere or give another folder"
         )
     clash = _clashes(target, writes)
     if clash:
@@ -284,9 +409,10 @@ def _check_target(target: Path, option: str, writes: Mapping[str, Path | None]) 
 
 def _probe(folder: Path, target: Path, option: str) -> None:
     """Write and remove PROBE_BYTES in ``folder``; check the free space."""
-    probe = folder / f".{target.name}.probe-{os.getpid()}"
+    probe = None
     try:
-        with open(probe, "wb") as f:
+        fd, probe = new_file(folder, f".{target.name}.p-{os.getpid()}-")
+        with os.fdopen(fd, "wb") as f:
             f.write(b"\0" * PROBE_BYTES)
             f.flush()
             os.fsync(f.fileno())
@@ -295,10 +421,11 @@ def _probe(folder: Path, target: Path, option: str) -> None:
             f"{option} {str(target)!r}: cannot write in {str(folder)!r} ({exc.strerror or exc})"
         ) from None
     finally:
-        try:
-            probe.unlink()
-        except OSError:
-            pass
+        if probe is not None:
+            try:
+                probe.unlink()
+            except OSError:
+                pass
     free = shutil.disk_usage(folder).free
     if free < MIN_FREE_BYTES:
         raise InputError(
@@ -307,96 +434,9 @@ def _probe(folder: Path, target: Path, option: str) -> None:
         )
 
 
-def _pid_alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:  # exists, owned by someone else
-        return True
-    return True
-
-
-def clean_stale(target: PathLike) -> list[Path]:
-    """Remove ``.NAME.tmp-*`` and ``.NAME.old-*`` folders next to ``target`` left by runs
-    that were killed (process gone; 0.1-style names after an hour). An ``.old`` folder is
-    moved back to ``target`` if the target is missing (the kill came between the two
-    renames). Returns what was removed or restored."""
-    target = Path(target).absolute()
-    parent = target.parent
-    if not parent.is_dir():
-        return []
-    done = []
-    head = f".{target.name}."
-    for p in parent.iterdir():
-        if not p.name.startswith(head) or not p.is_dir() or p.is_symlink():
-            continue
-        rest = p.name[len(head) :]
-        m = (
-            re.fullmatch(r"(tmp)-(\d+)-.+", rest)
-            or re.fullmatch(r"(old)-(\d+)", rest)
-            or re.fullmatch(r"(tmp)-()[^-]+", rest)
-        )  # last: 0.1 name, no PID
-        if not m:
-            continue
-        kind, pid = m.group(1), m.group(2) or None
-        if pid is not None:
-            if int(pid) == os.getpid() or _pid_alive(int(pid)):
-                continue
-        elif time.time() - p.stat().st_mtime < _LEGACY_STALE_AGE:
-            continue
-        if kind == "old" and not target.exists():
-            p.rename(target)
-        else:
-            if kind == "old":
-                _salvage(p, target)
-            shutil.rmtree(p, ignore_errors=True)
-        done.append(p)
-    return done
-
-
-def _salvage(old: Path, target: Path) -> None:
-    """Move the user's files found in the replaced folder ``old`` but not in ``target``
-    into ``target`` (files added while the new results were being written)."""
-    for rel in foreign_files(old):
-        dst = target / rel.rstrip("/")
-        if os.path.lexists(dst):
-            continue
-        dst.parent.mkdir(parents=True, exist_ok=True)
-        if rel.endswith("/"):
-            dst.mkdir(exist_ok=True)
-        else:
-            os.rename(old / rel, dst)
-
-
-def _keep_foreign(target: Path, tmp: Path, files: dict[str, str]) -> None:
-    """Hard-link (else copy) the user's files of ``target`` into the new folder ``tmp``;
-    a file tribodyn wrote with the same content as the user's gives way to the user's
-    (and leaves ``files``, the list of tribodyn's own). Any other clash raises."""
-    for rel in foreign_files(target):
-        src, dst = target / rel.rstrip("/"), tmp / rel.rstrip("/")
-        if rel.endswith("/"):
-            dst.mkdir(parents=True, exist_ok=True)
-            continue
-        if os.path.lexists(dst):
-            if dst.is_dir() or not _same_file_content(src, dst):
-                raise InputError(
-                    f"{str(target)!r}: {rel} was not written by tribodyn (or changed "
-                    "since) and the new results have a file of that name; it was left "
-                    "as it is"
-                )
-            dst.unlink()
-            files.pop(rel, None)
-        dst.parent.mkdir(parents=True, exist_ok=True)
-        try:
-            os.link(src, dst, follow_symlinks=False)
-        except OSError:  # no hard links here: a copy (the original stays until the swap)
-            shutil.copy2(src, dst, follow_symlinks=False)
-
-
 def mark_folder(folder: PathLike, files: Mapping[str, str], meta: dict | None = None) -> Path:
     """Write the marker of ``folder``: tool, time, ``meta`` and ``files`` (relative path
-    → SHA-256 of each file tribodyn wrote), via a temporary file and a rename."""
+    → SHA-256 of each file tribodyn wrote) (:func:`~tribodyn._safe_write.atomic_write`)."""
     folder = Path(folder)
     info = {
         "tool": "tribodyn",
@@ -404,12 +444,4 @@ def mark_folder(folder: PathLike, files: Mapping[str, str], meta: dict | None = 
         **(meta or {}),
         "files": dict(sorted(files.items())),
     }
-    fd, tmp = new_file(folder, f".{MARKER}.", ".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(_json.dumps(info, indent=1) + "\n")
-        os.replace(tmp, folder / MARKER)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
-    return folder / MARKER
+    return atomic_write(folder / MARKER, _json.dumps(info, indent=1) + "\n")

@@ -15,33 +15,25 @@ bounce, figures, failed points with their errors, and warnings.
 from __future__ import annotations
 
 import math
-import os
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .._system import new_file
+from .._safe_write import atomic_write, atomic_write_with, make_dirs
 from .._typing import PathLike
 from .._validation import InputError
 
 if TYPE_CHECKING:
     from ..workflow.sweep import SweepResult
 
-__all__ = ["write_sweep", "sweep_report_text"]
+__all__ = ["write_sweep", "sweep_report_text", "check_resume", "sweep_identity"]
 
 _MAX_ROWS = 60
 
 
 def _atomic_text(path: Path, text: str):
-    fd, tmp = new_file(path.parent, f".{path.name}.", ".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
+    atomic_write(path, text)
 
 
 def write_sweep(result: SweepResult, out_dir: PathLike, *, figures: bool = True) -> dict:
@@ -49,7 +41,7 @@ def write_sweep(result: SweepResult, out_dir: PathLike, *, figures: bool = True)
     ``out_dir``; returns ``{"dataset": path, "report": path, "figures": {…}}``.
     Raises :class:`~tribodyn.InputError`, before writing, if the user's files in
     ``out_dir`` have the names of files it writes (module docstring)."""
-    from .writer import _clashes, _marker_info, _sha256, is_result_folder, mark_folder
+    from .writer import _clashes, _marker_info, _sha256, folder_kind, is_result_folder, mark_folder
 
     out = Path(out_dir)
     if out.is_dir() and any(out.iterdir()):
@@ -58,6 +50,11 @@ def write_sweep(result: SweepResult, out_dir: PathLike, *, figures: bool = True)
                 f"{str(out)!r} is a folder that tribodyn did not write; the sweep "
                 "writes only into its own result folders: give a new or empty folder"
             )
+        if folder_kind(out) not in (None, "sweep"):
+            raise InputError(
+                f"{str(out)!r} holds the results of `tribodyn {folder_kind(out)}`; the "
+                "sweep would replace them: give another folder"
+            )
         clash = _clashes(out, {})
         if clash:
             raise InputError(
@@ -65,16 +62,9 @@ def write_sweep(result: SweepResult, out_dir: PathLike, *, figures: bool = True)
                 "was not written by tribodyn, and the sweep would replace it: move it "
                 "elsewhere (the point files stay; write_sweep again)"
             )
-    out.mkdir(parents=True, exist_ok=True)
+    make_dirs(out)
     ds = result.dataset
-    fd, tmp = new_file(out, ".sweep.nc.", ".tmp")
-    os.close(fd)
-    try:
-        ds.to_netcdf(tmp, engine="h5netcdf")
-        os.replace(tmp, out / "sweep.nc")
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    atomic_write_with(out / "sweep.nc", lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf"))
     _atomic_text(out / "sweep.toml", result.spec.to_toml())
     _atomic_text(out / "base_case.toml", result.spec.base.to_toml(resolve_paths=True))
     figs = {}
@@ -88,8 +78,38 @@ def write_sweep(result: SweepResult, out_dir: PathLike, *, figures: bool = True)
     listed = _marker_info(out).get("files")
     files = dict(listed) if isinstance(listed, dict) else {}
     files.update({name: _sha256(out / name) for name in written})
-    mark_folder(out, files, {"kind": "sweep", "sweep": result.spec.name})
+    mark_folder(
+        out, files, {"kind": "sweep", "sweep": result.spec.name, **sweep_identity(result.spec)}
+    )
     return {"dataset": out / "sweep.nc", "report": out / "sweep_report.md", "figures": figs}
+
+
+def sweep_identity(spec) -> dict:
+    """What makes a sweep the same sweep when it is resumed (recorded in the marker): its
+    mode and dimensions. Values may change (a sweep extended by another speed)."""
+    return {"sweep_mode": spec.mode, "sweep_dims": [d for d, _ in spec.dims]}
+
+
+def check_resume(out_dir: PathLike, spec, option: str = "--resume") -> None:
+    """Raise :class:`~tribodyn.InputError` if ``out_dir`` holds the results of another
+    sweep than ``spec``: another name, mode or set of dimensions (the marker's record;
+    :func:`sweep_identity`). A sweep whose values changed (extended) may resume."""
+    from .writer import _marker_info
+
+    info = _marker_info(Path(out_dir))
+    if info.get("kind") != "sweep":
+        return
+    had = {"sweep": info.get("sweep"), "sweep_mode": info.get("sweep_mode")}
+    had["sweep_dims"] = info.get("sweep_dims")
+    now = {"sweep": spec.name, **sweep_identity(spec)}
+    differ = [k for k in now if had.get(k) is not None and had[k] != now[k]]
+    if differ:
+        what = {"sweep": "name", "sweep_mode": "mode", "sweep_dims": "dimensions"}
+        diff = "; ".join(f"{what[k]} {had[k]!r} there, {now[k]!r} here" for k in differ)
+        raise InputError(
+            f"{option}: {str(out_dir)!r} holds the results of another sweep ({diff}); "
+            "resuming would replace its sweep.nc and report: give another folder"
+        )
 
 
 #: What a point of each sweep mode computes (report text).

@@ -14,18 +14,30 @@ one folder, atomically, without ever losing results or replacing someone else's 
   the run writes, the run is refused before computing, naming the file. Folders marked
   without a list (tribodyn 0.2 and earlier) and 0.1 folders count the names tribodyn writes
   (results.nc, figNN_*.png, …) as its own.
-* **Atomic.** Everything goes to a temporary folder ``.NAME.tmp-PID-XXXX`` next to the
+* **Atomic.** Everything goes to a temporary folder ``.NAME.tmp-PID-TOKEN`` next to the
   target (the user's files are hard-linked into it, or copied where links are not
   possible), which then replaces the target in one rename (the previous results are kept
   until then). An exception, Ctrl-C or SIGTERM (see ``cli/run.py``) during writing removes
-  the temporary folder; temporary and ``.NAME.old-PID`` folders left by runs that were
-  killed (their process no longer exists) are cleaned up by the next write, after moving
-  any user file found only there back into the target.
+  the temporary folder; temporary and ``.NAME.old-PID-TOKEN`` folders left by runs that
+  were killed (their process no longer exists) are cleaned up by the next write, after
+  moving any user file found only there back into the target, and only if they hold
+  tribodyn's proof of origin (:data:`~.result_folder.ORIGIN`, with the PID and token of
+  their name): a folder of someone else's named alike is never touched.
+* **One kind per folder.** The marker records the command (``run``, ``engine``,
+  ``sweep``); a folder holding another command's results is refused before computing.
+  A link given as the target is followed: the results go to the folder it points to.
 * **Re-runnable.** ``case.toml`` refers to copies of the files the case reads (the cam
   table, measured maps: :data:`~tribodyn.config.paths.FILE_KEYS`) in ``inputs/``, by
   relative path, so a moved or shared result folder runs again with
   ``tribodyn run FOLDER/case.toml``.
-* **Permissions** follow the umask (folders 0o777, files 0o666, masked).
+* **Permissions.** New files and folders follow the umask (0o666, 0o777, masked); a
+  re-run gives the new folder the mode (set-group-ID bit included) and group of the
+  folder it replaces, and the user's folders in it keep theirs, so nothing becomes more
+  widely readable. A folder owned by someone else (and a run that is not root's) is not
+  replaced: the new files are moved into it one by one (its owner, group, mode and the
+  user's files stay; while they move, the marker lists the earlier files' hashes too).
+  The temporary folder is private (0o700) while it is written. Every file is written by
+  :mod:`tribodyn._safe_write` (never through a link).
 * **Never lost.** If writing still fails after the computation (disk full, folder
   removed, permissions changed), the results (results.nc, summary.json, case.toml) are
   written to a rescue folder ``tribodyn-rescue-CASE-TIME-PID`` in the system's temporary
@@ -37,7 +49,7 @@ from __future__ import annotations
 
 import errno
 import os
-import shutil
+import stat
 import tempfile
 import time
 from collections.abc import Callable
@@ -45,7 +57,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .. import _json
-from .._system import new_dir
+from .._safe_write import atomic_write, atomic_write_with, copy_file, make_dirs, remove_tree
 from .._typing import PathLike
 from .dataset import study_to_dataset
 
@@ -55,20 +67,32 @@ from .result_folder import (
     INPUTS,
     MARKER,
     MIN_FREE_BYTES,
+    ORIGIN,
     PROBE_BYTES,
     _all_files,
-    _keep_foreign,
-    _salvage,
     _sha256,
     check_output_dir,
-    clean_stale,
+    folder_kind,
     foreign_files,
     is_result_folder,
     mark_folder,
     own_files,
+    resolve_target,
 )
 from .result_folder import _clashes as _clashes
 from .result_folder import _marker_info as _marker_info
+from .work_folder import (
+    _keep_foreign,
+    _salvage,
+    adopt_attributes,
+    clean_stale,
+    folder_attributes,
+    make_work_folder,
+    must_update_in_place,
+    old_name,
+    prove_origin,
+    update_in_place,
+)
 
 if TYPE_CHECKING:
     from ..workflow.cycle import CycleStudy
@@ -108,50 +132,72 @@ def write_atomic(
     """Call ``writer(tmpdir)`` to fill a fresh folder, mark it, then replace ``target``.
 
     ``target`` must be absent, empty or a tribodyn result folder (:func:`check_output_dir`
-    rules, without the probe). The user's files in ``target`` (:func:`foreign_files`)
-    are kept; tribodyn's own are replaced. If ``writer`` raises (or the process is
-    interrupted), ``target`` is left exactly as it was and the temporary folder is
-    removed.
+    rules, without the probe; a link to a folder: that folder). The user's files in
+    ``target`` (:func:`foreign_files`) are kept; tribodyn's own are replaced; the folder
+    and the user's folders in it keep their mode and group (and owner: a folder of
+    someone else's is updated in place, :func:`~.work_folder.update_in_place`). If
+    ``writer`` raises (or the process is interrupted), ``target`` is left exactly as it
+    was and the temporary folder is removed.
     """
-    target = Path(target).expanduser().absolute()
+    target = resolve_target(target)
+    kind = (meta or {}).get("kind")
     if target.exists() and (
-        not target.is_dir() or (any(target.iterdir()) and not is_result_folder(target))
+        not target.is_dir()
+        or (any(target.iterdir()) and not is_result_folder(target))
+        or (kind is not None and folder_kind(target) not in (None, kind))
     ):
-        check_output_dir(target)  # raises with the reason
+        check_output_dir(target, kind=kind)  # raises with the reason
     clean_stale(target)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    tmp = new_dir(target.parent, f".{target.name}.tmp-{os.getpid()}-")
+    make_dirs(target.parent)
+    tmp, like = make_work_folder(target)  # 0o700 while written
     try:
+        kept = folder_attributes(target)
+        if kept is not None:  # the group first, so that new files inherit it (setgid)
+            like = kept
+            adopt_attributes(tmp, like, 0o700 | (stat.S_IMODE(like.st_mode) & stat.S_ISGID))
         writer(tmp)
         files = {rel: _sha256(tmp / rel) for rel in _all_files(tmp) if (tmp / rel).is_file()}
         files.pop(MARKER, None)
+        files.pop(ORIGIN, None)
+        if must_update_in_place(target):  # someone else's folder: it stays, files move
+            update_in_place(target, tmp, files, meta or {})
+            remove_tree(tmp, ignore_errors=True)
+            return target
         if target.is_dir():
             _keep_foreign(target, tmp, files)
         mark_folder(tmp, files, meta)
+        os.chmod(tmp, stat.S_IMODE(like.st_mode))
     except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
+        remove_tree(tmp, ignore_errors=True)
         raise
     old = None
     try:
         if target.exists():
-            old = target.with_name(f".{target.name}.old-{os.getpid()}")
-            if old.exists():
-                _salvage(old, target)
-                shutil.rmtree(old)
-            target.rename(old)
+            old = old_name(target)
+            try:  # before the rename, so that the .old folder is always proven
+                prove_origin(target, old.name)
+            except OSError:  # a folder without write permission: left unproven
+                pass
+            try:
+                target.rename(old)
+            except BaseException:
+                (target / ORIGIN).unlink(missing_ok=True)
+                raise
         tmp.rename(target)
     except BaseException:
         if old is not None and old.exists() and not target.exists():
             old.rename(target)
-        shutil.rmtree(tmp, ignore_errors=True)
+            (target / ORIGIN).unlink(missing_ok=True)
+        remove_tree(tmp, ignore_errors=True)
         raise
+    (target / ORIGIN).unlink(missing_ok=True)
     if old is not None:
         try:
             _salvage(old, target)  # a file the user added meanwhile
         except OSError:
             pass  # then the .old folder stays, for the next write to salvage
         else:
-            shutil.rmtree(old, ignore_errors=True)
+            remove_tree(old, ignore_errors=True)
     return target
 
 
@@ -214,13 +260,13 @@ def _write_case(case, folder: Path) -> None:
 
     data, copies = case_inputs(case)
     for rel, src in copies.items():
-        (folder / rel).parent.mkdir(parents=True, exist_ok=True)
-        shutil.copyfile(src, folder / rel)
+        make_dirs((folder / rel).parent)
+        copy_file(src, folder / rel)
     head = [
         f"tribodyn case {case.name!r} (all keys, SI units unless the key says otherwise)",
         *(["the files it reads are copies in inputs/"] if copies else []),
     ]
-    (folder / "case.toml").write_text(to_toml(data, header=head), encoding="utf-8")
+    atomic_write(folder / "case.toml", to_toml(data, header=head))
 
 
 def write_results(
@@ -255,8 +301,11 @@ def write_results(
     def essentials(folder: Path):
         from .export import write_csv
 
-        ds.to_netcdf(folder / "results.nc", engine="h5netcdf", encoding=enc)
-        (folder / "summary.json").write_text(_json.dumps(summ, indent=2))
+        atomic_write_with(
+            folder / "results.nc",
+            lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf", encoding=enc),
+        )
+        atomic_write(folder / "summary.json", _json.dumps(summ, indent=2))
         _write_case(study.case, folder)
         write_csv(ds, folder)
 
@@ -272,16 +321,18 @@ def write_results(
         else:
             essentials(tmp)
         if report:
-            from .export import write_html
+            from .export import report_markdown, write_html
             from .report import write_report
 
             write_report(study, ds, figs, tmp / "report.md")
-            write_html((tmp / "report.md").read_text(encoding="utf-8"), tmp)
+            write_html(report_markdown(tmp), tmp)
         written.update(figures=figs)
 
     target = Path(out_dir).expanduser().absolute()
     try:
-        write_atomic(target, writer, meta={"version": __version__, "case": study.case.name})
+        write_atomic(
+            target, writer, meta={"kind": "run", "version": __version__, "case": study.case.name}
+        )
     except Exception as exc:  # disk full, folder removed or taken, permissions, a figure
         rescued = None
         for folder in _rescue_dirs(study.case.name):
@@ -291,7 +342,7 @@ def write_results(
                 rescued = folder
                 break
             except OSError:
-                shutil.rmtree(folder, ignore_errors=True)
+                remove_tree(folder, ignore_errors=True)  # made above: ours
         why = getattr(exc, "strerror", None) or f"{type(exc).__name__}: {exc}"
         if getattr(exc, "errno", None) == errno.ENOSPC:
             why = "no space left on the device"

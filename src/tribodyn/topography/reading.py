@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from .._safe_write import atomic_write_with, make_dirs
 from .._typing import PathLike
 from .._user_files import check_regular_file
 from .._validation import InputError
@@ -242,6 +243,7 @@ def write_topography(topography: Any, path: PathLike) -> Path:
         raise TopographyReadError(
             f"cannot write '{path}': supported suffixes are {', '.join(sorted(WRITERS))}"
         )
-    path.parent.mkdir(parents=True, exist_ok=True)
-    getattr(topography, method)(str(path))
-    return path
+    make_dirs(path.parent)
+    return atomic_write_with(
+        path, lambda tmp: getattr(topography, method)(str(tmp)), keep_suffix=True
+    )

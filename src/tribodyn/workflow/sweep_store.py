@@ -13,20 +13,22 @@ sweep's dimensions (failed points are NaN, with ``status`` 0 and their ``error``
 from __future__ import annotations
 
 import json
-import os
+import re
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
 from .. import _json
-from .._system import new_file
+from .._safe_write import TOKEN_CHARS, atomic_write_with, make_dirs
 from .variables_study import SET_DESCRIPTION
 from .variables_sweep import SWEEP_STATUS
 
 __all__ = ["PointStore", "combine_points", "POINTS_FOLDER"]
 
 POINTS_FOLDER = "points"
+#: Temporary name of a point file being written (:mod:`tribodyn._safe_write`).
+_TMP_POINT = re.compile(rf"\.[0-9a-f]+(?:\.nc)?\.[0-9a-f]{{{TOKEN_CHARS}}}\.tmp")
 #: Coordinates along ``surface_set`` kept in the combined Dataset when all points agree.
 SET_COORDS = tuple(v.name for v in SET_DESCRIPTION)
 
@@ -71,7 +73,7 @@ class PointStore:
     def write(self, point, ds: xr.Dataset) -> Path:
         """Write a point's Dataset atomically, with the point's identity in its
         attributes."""
-        self.dir.mkdir(parents=True, exist_ok=True)
+        make_dirs(self.dir)
         ds = ds.copy()
         ds.attrs.update(
             {
@@ -84,21 +86,17 @@ class PointStore:
         )
         if point.case is not None:
             ds.attrs["case_toml"] = point.case.to_toml()
-        fd, tmp = new_file(self.dir, f".{point.key}.", ".tmp")  # mode as the umask gives
-        os.close(fd)
-        try:
-            ds.to_netcdf(tmp, engine="h5netcdf")
-            os.replace(tmp, self.path(point.key))
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
-        return self.path(point.key)
+        return atomic_write_with(
+            self.path(point.key), lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf")
+        )
 
     def clean(self) -> None:
-        """Remove temporary files left by an interrupted write."""
-        if self.dir.is_dir():
+        """Remove temporary files left by an interrupted write (``.KEY.XXXXXXXX.tmp``
+        of a point file's key; nothing else)."""
+        if self.dir.is_dir() and not self.dir.is_symlink():
             for p in self.dir.glob(".*.tmp"):
-                p.unlink(missing_ok=True)
+                if _TMP_POINT.fullmatch(p.name) and p.is_file() and not p.is_symlink():
+                    p.unlink(missing_ok=True)
 
 
 def _ordered_union(values_lists) -> np.ndarray:

@@ -21,6 +21,7 @@ import os
 from collections.abc import Callable
 from pathlib import Path
 
+from ..._safe_write import make_dirs
 from ..._system import exit_with_parent
 from ..._validation import InputError
 from .coating import fig05, fig06
@@ -122,7 +123,7 @@ def make_figures(
     if paper_numbers is None:
         paper_numbers = bool(ds.attrs.get("compare_paper", 1))
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    make_dirs(out)
     ref = ds.attrs.get("reference_set")
     if ref is not None and "surface_set" in ds.dims:
         names = [str(v) for v in ds["surface_set"].values]

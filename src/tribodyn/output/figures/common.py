@@ -20,6 +20,8 @@ import matplotlib.pyplot as plt
 from PIL import Image
 from PIL.PngImagePlugin import PngInfo
 
+from ..._safe_write import atomic_open, make_dirs
+
 __all__ = ["plt", "save_figure", "FIGURES", "EVENT_FRACTION"]
 
 #: File names and titles of the figures :func:`make_figures` writes, in order.
@@ -80,10 +82,9 @@ _DPI = 150
 
 
 def save_figure(fig, path) -> Path:
-    """Save atomically (temporary file, then rename) and close the figure."""
+    """Save atomically (:func:`~tribodyn._safe_write.atomic_open`) and close the figure."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(path.stem + ".tmp" + path.suffix)
+    make_dirs(path.parent)
     # one draw (layout included) at the saved resolution, written by PIL: savefig would
     # draw a laid-out figure twice (a layout pass with rendering off, then the real one)
     fig.set_dpi(_DPI)
@@ -94,9 +95,11 @@ def save_figure(fig, path) -> Path:
         "Software", f"Matplotlib version{matplotlib.__version__}, https://matplotlib.org/"
     )
     # fast zlib level: 40 % less encoding time for 14 % larger files
-    Image.fromarray(rgba).save(tmp, format="png", dpi=(_DPI, _DPI), pnginfo=info, compress_level=1)
+    with atomic_open(path, "wb") as f:
+        Image.fromarray(rgba).save(
+            f, format="png", dpi=(_DPI, _DPI), pnginfo=info, compress_level=1
+        )
     plt.close(fig)
-    tmp.replace(path)
     return path
 
 

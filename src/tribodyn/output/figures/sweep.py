@@ -24,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..._safe_write import make_dirs
 from .common import UM, has, plt, save_figure, set_styles
 
 __all__ = ["sweep_figures", "x_dim", "other_combinations", "onset_speeds", "SWEEP_FIGURES"]
@@ -433,7 +434,7 @@ def fig_heatmap(ds, path):
 def sweep_figures(ds, out_dir) -> dict[str, Path]:
     """Write the sweep figures that the Dataset supports; returns {file name: path}."""
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    make_dirs(out)
     if x_dim(ds) is None or int(ds["status"].sum()) == 0:
         return {}
     made = {}
