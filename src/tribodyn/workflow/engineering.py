@@ -349,7 +349,7 @@ def plausibility_warnings(study) -> list[str]:
                 out.append(
                     f"{where} the asperities carry {share * 100:.2g} % of the load with "
                     f"Greenwood–Tripp; the surface law of a typical ground surface with the "
-                    f"same σ carries {ref * 100:.2g} % there{smooth}: the boundary friction "
+                    f"same σ carries {ref * 100:.3g} % there{smooth}: the boundary friction "
                     "and asperity load of this set are likely far too low. Use the surface "
                     'law (remove asperity_model = "greenwood_tripp", or give '
                     "measured_surface from a measured map)"
