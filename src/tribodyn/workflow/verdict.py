@@ -38,7 +38,16 @@ import numpy as np
 
 from ..physics import typical
 
-__all__ = ["coating_verdicts", "set_energy_function", "verdict_sentence", "METHOD"]
+__all__ = [
+    "ENGINE_METHOD",
+    "METHOD",
+    "boundary_ranges",
+    "coating_verdicts",
+    "set_energy_function",
+    "verdict_sentence",
+    "verdicts_from_energies",
+    "viscous_factor_bounds",
+]
 
 #: How the verdict's range is computed (``coating_verdict.method``).
 METHOD = (
@@ -50,6 +59,17 @@ METHOD = (
     "of both sets together (range_independent_pct: each independently). Published "
     "ranges: tribodyn.physics.typical. Not in the range: the surface's spectrum "
     "(Hurst exponent, short cutoff) of the surface law, which needs new EHL runs."
+)
+
+
+#: How the engine's verdict is computed (``engine.surface_sets.*.coating_verdict``).
+ENGINE_METHOD = (
+    "Change of the engine's valvetrain friction energy per cycle (and so of its FMEP) "
+    "against the reference set. Each lobe kind's cam–tappet energy is scaled by the "
+    "ratio E(ς', k)/E(ς, 1) of its single-valve study (recomputed from the stored traces "
+    "as for a run: boundary friction exactly, viscous friction within the bounds of the "
+    "τ_E and Λ ranges); tappet-bore, valve-guide and journal friction are held at their "
+    "values. " + METHOD.split(". Range: ", 1)[1]
 )
 
 
@@ -127,25 +147,44 @@ def verdict_sentence(label: str, ref_label: str, pct: float, lo: float, hi: floa
 
 
 def coating_verdicts(study, reference: str, labels: dict[str, str]) -> dict[str, dict]:
-    """``coating_verdict`` of every set other than ``reference``: {
-    ``friction_energy_change_pct`` (negative: less friction), ``range_pct`` [lo, hi],
-    ``range_independent_pct`` [lo, hi], ``lowers_friction`` (the whole range below 0),
-    ``sentence``, ``method``} (module text). A set whose energies are not finite gets
-    None values and says so."""
+    """``coating_verdict`` of every set of a cycle study other than ``reference`` (see
+    :func:`verdicts_from_energies`)."""
     case = study.case
+    energies = {s.name: set_energy_function(study, s.name) for s in study.sets}
+    return verdicts_from_energies(
+        energies, boundary_ranges(case, list(energies)), reference, labels, case, METHOD
+    )
+
+
+def boundary_ranges(case, names) -> dict[str, tuple[float, float, float]]:
+    """(ς in use, low, high) of each surface set (:func:`~tribodyn.physics.typical.
+    boundary_friction_range`)."""
+    out = {}
+    for name in names:
+        sig = float(case.surface_set(name).boundary_shear_coefficient)
+        out[name] = (sig, *typical.boundary_friction_range(_material(case, name), sig))
+    return out
+
+
+def verdicts_from_energies(
+    energies: dict, sigmas: dict, reference: str, labels: dict[str, str], case, method: str
+) -> dict[str, dict]:
+    """``coating_verdict`` of every set other than ``reference`` from its energy function
+    E(ς', k) (:func:`set_energy_function`): {``friction_energy_change_pct`` (negative:
+    less friction), ``range_pct`` [lo, hi], ``range_independent_pct`` [lo, hi],
+    ``lowers_friction`` (the change in use is negative), ``sign_settled`` (the range
+    does not include 0), ``sentence``, ``method``, ``inputs``} (module text). A set
+    whose energies are not finite gets None values and says so."""
     k_lo, k_hi = viscous_factor_bounds(case)
-    e_ref = set_energy_function(study, reference)
-    sig_ref = float(case.surface_set(reference).boundary_shear_coefficient)
-    ref_lo, ref_hi = typical.boundary_friction_range(_material(case, reference), sig_ref)
+    e_ref = energies[reference]
+    sig_ref, ref_lo, ref_hi = sigmas[reference]
     out: dict[str, dict[str, Any]] = {}
-    for s in study.sets:
-        if s.name == reference:
+    for name, e_set in energies.items():
+        if name == reference:
             continue
-        e_set = set_energy_function(study, s.name)
-        sig = float(case.surface_set(s.name).boundary_shear_coefficient)
-        lo_s, hi_s = typical.boundary_friction_range(_material(case, s.name), sig)
-        base_ref = e_ref(sig_ref)
-        pct = 100.0 * (e_set(sig) / base_ref - 1.0) if base_ref > 0 else math.nan
+        sig, lo_s, hi_s = sigmas[name]
+        base_ref = e_ref(sig_ref, 1.0)
+        pct = 100.0 * (e_set(sig, 1.0) / base_ref - 1.0) if base_ref > 0 else math.nan
         together = [
             100.0 * (e_set(ss, k) / e_ref(sr, k) - 1.0)
             for (ss, sr), k in itertools.product(((lo_s, ref_lo), (hi_s, ref_hi)), (k_lo, k_hi))
@@ -156,25 +195,25 @@ def coating_verdicts(study, reference: str, labels: dict[str, str]) -> dict[str,
         ]
         ok = math.isfinite(pct) and all(math.isfinite(v) for v in together + indep)
         if not ok:
-            out[s.name] = {
+            out[name] = {
                 "friction_energy_change_pct": None,
                 "range_pct": None,
                 "range_independent_pct": None,
                 "lowers_friction": None,
                 "sign_settled": None,
-                "sentence": f"{labels[s.name]}: no verdict (the friction energy is not known).",
-                "method": METHOD,
+                "sentence": f"{labels[name]}: no verdict (the friction energy is not known).",
+                "method": method,
             }
             continue
         lo, hi = min(together + [pct]), max(together + [pct])
-        out[s.name] = {
+        out[name] = {
             "friction_energy_change_pct": pct,
             "range_pct": [lo, hi],
             "range_independent_pct": [min(indep + [pct]), max(indep + [pct])],
             "lowers_friction": bool(pct < 0.0),
             "sign_settled": bool(hi < 0.0 or lo > 0.0),
-            "sentence": verdict_sentence(labels[s.name], labels[reference], pct, lo, hi),
-            "method": METHOD,
+            "sentence": verdict_sentence(labels[name], labels[reference], pct, lo, hi),
+            "method": method,
             "inputs": {
                 "boundary_shear_coefficient": [sig, lo_s, hi_s],
                 "reference_boundary_shear_coefficient": [sig_ref, ref_lo, ref_hi],
