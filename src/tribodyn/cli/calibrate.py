@@ -104,22 +104,10 @@ def _surface_law(rough, materials):
     typical spectrum, as a case-file set without measured_surface) at the pair's E'."""
     import dataclasses
 
-    from ..config.measured_surface import default_spectrum
-    from ..physics.materials import Body, reduced_modulus
-    from ..topography.load_separation import synthetic_load_separation
+    from ..config.measured_surface import typical_surface_law
+    from ..physics.materials import Body
 
-    d = default_spectrum()
-    e_s = reduced_modulus((Body(materials[0]), Body(materials[1])), surface=True)
-    law = synthetic_load_separation(
-        rough.rms,
-        d["hurst"],
-        d["short_cutoff"],
-        d["long_cutoff"],
-        e_s,
-        d["hardness"],
-        d["grid"],
-        d["seed"],
-    )
+    law = typical_surface_law(rough.rms, (Body(materials[0]), Body(materials[1])))
     return dataclasses.replace(rough, law=law)
 
 

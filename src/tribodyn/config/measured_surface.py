@@ -14,7 +14,13 @@ from .._validation import InputError
 from ..physics.asperity import Roughness
 from ..physics.materials import reduced_modulus
 
-__all__ = ["asperity_law_note", "default_spectrum", "measured_map", "measured_roughness"]
+__all__ = [
+    "asperity_law_note",
+    "default_spectrum",
+    "measured_map",
+    "measured_roughness",
+    "typical_surface_law",
+]
 
 
 def _map_path(m, base_dir: Path) -> Path:
@@ -56,6 +62,25 @@ def default_spectrum() -> dict:
         short_cutoff=typical.SURFACE_SHORT_CUTOFF.value,
         long_cutoff=typical.SURFACE_LONG_CUTOFF.value,
     ).model_dump()
+
+
+def typical_surface_law(rms: float, bodies):
+    """The default surface law of a pair of ``bodies`` with composite RMS ``rms`` [m]: a
+    self-affine surface with the typical spectrum (:func:`default_spectrum`) at the
+    pair's surface E' (cached by these parameters)."""
+    from ..topography.load_separation import synthetic_load_separation
+
+    d = default_spectrum()
+    return synthetic_load_separation(
+        rms,
+        d["hurst"],
+        d["short_cutoff"],
+        d["long_cutoff"],
+        reduced_modulus(bodies, surface=True),
+        d["hardness"],
+        d["grid"],
+        d["seed"],
+    )
 
 
 def asperity_law_note(s) -> str:
