@@ -56,9 +56,11 @@ METHOD = (
     "exactly (F_b + (ς' − ς) W_a), viscous friction within the bounds k·F_v that the "
     "published ranges of τ_E and Λ allow (Eyring law, limiting shear stress Λp); ς of "
     "both pairs at the same end of their published ranges together, the viscous factor "
-    "of both sets together (range_independent_pct: each independently). Published "
-    "ranges: tribodyn.physics.typical. Not in the range: the surface's spectrum "
-    "(Hurst exponent, short cutoff) of the surface law, which needs new EHL runs."
+    "of both sets together (one oil; range_independent_pct: each pair's ς "
+    "independently). Published ranges: tribodyn.physics.typical. Not in the range: the "
+    "surface's spectrum (Hurst exponent, cutoffs) of the surface law, which needs new "
+    "EHL runs (benchmarks/default_surface_law.py sensitivity gives its effect on the "
+    "bundled rig)."
 )
 
 
