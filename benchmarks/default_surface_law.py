@@ -111,23 +111,29 @@ def _row(spec: dict) -> dict:
     }
 
 
-def timing(repeats: int = 2) -> dict:
-    """Wall time of the study (dynamics, EHL of both sets, post-processing; no figures),
-    default law against Greenwood–Tripp, alternating, in fresh processes."""
+def timing(repeats: int = 3) -> dict:
+    """Wall and CPU time of the study (imports, case, dynamics, EHL of both sets,
+    post-processing; no figures), default law against Greenwood–Tripp, alternating, in
+    fresh single-threaded processes; with the EHL's Newton iterations. CPU time is the
+    steadier measure on a shared machine."""
+    import os
     import subprocess
 
     code = (
         "import time, json, sys\n"
-        "t0 = time.perf_counter()\n"
+        "t0, c0 = time.perf_counter(), time.process_time()\n"
         "from tribodyn.config import load_case\n"
         "from tribodyn.workflow.cycle import run_cycle_study\n"
         "from tribodyn.workflow.postprocess import analyse\n"
         "c = load_case('flat_tappet_rig')\n"
         "c = c.updated(json.loads(sys.argv[1])) if sys.argv[1] != '{}' else c\n"
-        "analyse(run_cycle_study(c, workers=1, compare_paper=False))\n"
-        "print(time.perf_counter() - t0)\n"
+        "st = run_cycle_study(c, workers=1, compare_paper=False)\n"
+        "analyse(st)\n"
+        "it = sum(int(s.iterations[s.loaded].sum()) for s in st.sets)\n"
+        "print(json.dumps([time.perf_counter() - t0, time.process_time() - c0, it]))\n"
     )
-    times: dict[str, list[float]] = {"greenwood_tripp": [], "default": []}
+    env = {**os.environ, "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+    runs: dict[str, list[list[float]]] = {"greenwood_tripp": [], "default": []}
     for _ in range(repeats):
         for label, ch in (("greenwood_tripp", GT), ("default", {})):
             r = subprocess.run(
@@ -135,13 +141,18 @@ def timing(repeats: int = 2) -> dict:
                 capture_output=True,
                 text=True,
                 check=True,
+                env=env,
             )
-            times[label].append(float(r.stdout.strip().splitlines()[-1]))
-    med = {k: float(np.median(v)) for k, v in times.items()}
+            runs[label].append(json.loads(r.stdout.strip().splitlines()[-1]))
+    med = {k: np.median(np.array(v), axis=0).tolist() for k, v in runs.items()}
+    gt, de = med["greenwood_tripp"], med["default"]
     return {
-        "times_s": times,
-        "median_s": med,
-        "ratio_default_over_gt": med["default"] / med["greenwood_tripp"],
+        "runs_wall_cpu_iterations": runs,
+        "median_wall_s": {"greenwood_tripp": gt[0], "default": de[0]},
+        "median_cpu_s": {"greenwood_tripp": gt[1], "default": de[1]},
+        "newton_iterations": {"greenwood_tripp": gt[2], "default": de[2]},
+        "ratio_wall": de[0] / gt[0],
+        "ratio_cpu": de[1] / gt[1],
     }
 
 
