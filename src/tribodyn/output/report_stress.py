@@ -161,8 +161,7 @@ def _asperity_lines(sets: dict) -> list[str]:
                 rows.append(
                     f"| {body} | {e.get('label', name)} | {_f(b.get('gap_ratio'), '.2f')} "
                     f"| beyond Hertz | {_f(b.get('radius_m'), '.2f', 1e6)} "
-                    f"| {_f(b.get('radius_over_summit'), '.2f')} | beyond Hertz | – "
-                    "| < 1 (yields) | – |"
+                    f"| {_f(b.get('radius_over_summit'), '.2f')} | beyond Hertz | – | – | – |"
                 )
                 continue
             rows.append(
@@ -199,9 +198,9 @@ def _asperity_lines(sets: dict) -> list[str]:
             [
                 "",
                 f"In {outside} of these rows a/β > 0.3: the summits are too sharp for Hertz "
-                "theory, so their pressure and von Mises stress are not given (the estimate "
-                "would exceed the hardness many times over): they only say that the summits "
-                "are loaded beyond yield.",
+                "theory, so their pressure, von Mises stress and factors are not given: the "
+                "estimate is outside the theory it uses (summary.json keeps the numbers for "
+                "reference).",
             ]
             if outside
             else []
