@@ -49,6 +49,21 @@ def test_ehl_table():
     assert lubrication_regime(*greenwood_chart_groups(W, U, G)) in r.stdout
 
 
+def test_roughness_follows_the_default_surface_law_unless_greenwood_tripp_is_asked():
+    """--roughness gives the default surface law (the typical spectrum with its σ), as a
+    case file does; --asperity-model greenwood_tripp gives Greenwood–Tripp with its η, β.
+    At λ < 1 the surface law carries far more of the load (validation-friction page)."""
+    base = ["--load", "600", "--radius", "0.005", "--ue", "0.5", "--us", "1", "--json"]
+    base += ["--roughness", "1e9,0.2e-6,200e-6", "--n", "128"]
+    surf = json.loads(run(*base).stdout)
+    gt = json.loads(run(*base, "--asperity-model", "greenwood_tripp").stdout)
+    assert surf["asperity_model"] == "measured" and "H 0.85" in surf["asperity_law"]
+    assert gt["asperity_model"] == "greenwood_tripp"
+    assert surf["asperity_load_N"] > 5 * gt["asperity_load_N"]
+    r = run(*base, "--asperity-model", "persson")
+    assert r.exit_code == 2 and "--asperity-model" in r.output
+
+
 def test_json_film_matches_pan_hamrock():
     load, width, radius, ue = 2400.0, 0.012, 0.01, 1.0  # w = 2e5 N/m
     r = run("--load", str(load), "--radius", str(radius), "--ue", str(ue), "--us", "0.5", "--json")

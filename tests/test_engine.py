@@ -83,6 +83,24 @@ def test_summary_fmep_and_parts(engine):
     assert_registered(ds)  # every variable's units and description from the registry
 
 
+def test_engine_coating_verdict_matches_the_fmep(engine):
+    """The engine verdict's nominal change is the change of engine friction energy (and
+    FMEP) between the sets; at ς' = ς and k = 1 the FMEP range contains the FMEP; the
+    DLC 1 µm pair's ς range (paper ς 0.44 scaled by the a-C:H spread) moves it."""
+    s = engine.summary()
+    ref, dlc = s["surface_sets"]["uncoated"], s["surface_sets"]["dlc_1um"]
+    assert ref["coating_verdict"] is None
+    v = dlc["coating_verdict"]
+    e0, e1 = ref["engine_friction_energy_per_cycle_J"], dlc["engine_friction_energy_per_cycle_J"]
+    assert v["friction_energy_change_pct"] == pytest.approx(100 * (e1 / e0 - 1), rel=1e-9)
+    lo, hi = v["range_pct"]
+    assert lo <= v["friction_energy_change_pct"] <= hi and hi > lo
+    mep = dlc["valvetrain_friction_mep_range_Pa"]
+    assert mep[0] < dlc["valvetrain_friction_mep_Pa"] < mep[1]
+    assert "FMEP" in v["method"] and v["sentence"].startswith("DLC 1 µm")
+    assert "Greenwood–Tripp" in dlc["asperity_law"]  # the paper's sets
+
+
 def test_one_camshaft_carries_all_lobes(engine):
     one = run_engine_study(_case(**{"engine.camshafts": 1}), workers=1)
     assert one.camshafts == ["camshaft"]

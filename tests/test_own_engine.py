@@ -318,27 +318,70 @@ def test_asperity_share_inconsistent_with_lambda_is_named():
     assert plausibility_warnings(_fake_study(case, 0.02, 0.9)) == []
 
 
-def test_asperity_share_reference_is_a_typical_surface():
-    """The share Greenwood–Tripp gives for comparison uses a typical surface's ηβσ and σ/β,
-    not the set's: the paper's σ/β = 1.6 (β = 0.22 µm) would give ~100 % at λ = 0.22.
-    Reference by hand: K = (8√2/15)π(0.04)²√(1e-3)E', F_5/2(0.22) ≈ 0.40, p_mean = w/(2b)."""
+def test_asperity_share_reference_is_the_default_surface_law():
+    """For a Greenwood–Tripp set the share to compare with is the default surface law's (a
+    self-affine surface with the set's σ and the typical spectrum), not Greenwood–Tripp
+    with any parameters: by hand p_a = E'_s Φ(0.22) of that law, p_mean = w/(2b)."""
     import math
     import re
 
-    from tribodyn.physics.asperity import greenwood_tripp
+    from tribodyn.config.measured_surface import default_spectrum
     from tribodyn.physics.materials import reduced_modulus
+    from tribodyn.topography.load_separation import synthetic_load_separation
 
     paper = load_case("andreou2023")
     s = paper.surface_sets()[0]
     msgs = [m for m in plausibility_warnings(_fake_study(paper, 0.22, 2.4e-4)) if "λ =" in m]
     assert len(msgs) == 1
-    got = float(re.search(r"gives about ([0-9.e+-]+) %", msgs[0]).group(1))
+    got = float(re.search(r"same σ carries ([0-9.e+-]+) %", msgs[0]).group(1))
+    d = default_spectrum()
+    e_s = reduced_modulus(s.bodies, surface=True)
+    law = synthetic_load_separation(
+        s.roughness.rms, d["hurst"], d["short_cutoff"], d["long_cutoff"], e_s, d["hardness"]
+    )
     e = reduced_modulus(s.bodies)
-    k = 8 * math.sqrt(2) / 15 * math.pi * 0.04**2 * math.sqrt(1e-3) * e
     w = 500.0 / paper.width
     b = math.sqrt(8 * w * 0.005 / (math.pi * e))
-    expect = 100 * k * float(greenwood_tripp(2.5, 0.22)) * 2 * b / w
-    assert 0.5 < expect < 10 and got == pytest.approx(expect, rel=0.05)
+    expect = min(100.0, 100 * e_s * float(law.pressure_ratio(0.22)[0]) * 2 * b / w)
+    assert got == pytest.approx(expect, rel=0.05)
+    assert "remove asperity_model" in msgs[0]
+    # the paper's summits (σ/β = 0.6) are steep: no "smoother than ground steel" remark
+    assert "smoother" not in msgs[0]
+
+
+def test_smooth_greenwood_tripp_roughness_is_named_with_its_slope():
+    """Typical Greenwood–Tripp parameters (ηβσ 0.04, σ/β 1e-3) at λ = 0.3 carrying what
+    they carry: the warning names the RMS slope they imply (≈ 0.018, Nayak/McCool) and
+    what to change; the same set with the surface law and most of the load on the
+    asperities gives no warning."""
+    gt = load_case("example_table_cam").updated(
+        {
+            "surface_sets": [
+                {
+                    "name": "steel",
+                    "roughness": {
+                        "asperity_density": 1e9,
+                        "rms": 0.2e-6,
+                        "summit_radius": 200e-6,
+                    },
+                    "asperity_model": "greenwood_tripp",
+                }
+            ]
+        }
+    )
+    msgs = plausibility_warnings(_fake_study(gt, 0.3, 0.02))
+    assert len(msgs) == 1 and "RMS slope of 0.018" in msgs[0]
+    assert "remove asperity_model" in msgs[0]
+    law = gt.updated({"surface_sets[0].asperity_model": "surface"})
+    assert plausibility_warnings(_fake_study(law, 0.3, 0.9)) == []
+
+
+def test_surface_law_sets_are_not_judged_by_greenwood_tripp_parameters():
+    """ηβσ only matters to Greenwood–Tripp: the paper's Table 4 roughness under the
+    surface law is not flagged for it."""
+    paper = load_case("andreou2023").updated({"surface_sets[0].asperity_model": "surface"})
+    msgs = plausibility_warnings(_fake_study(paper, 2.0, 0.5))
+    assert msgs == []
 
 
 def test_warmup_numerics_are_a_valid_case():

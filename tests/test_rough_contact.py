@@ -219,7 +219,11 @@ def _case(extra):
     "extra, match",
     [
         ('asperity_model = "measured"', "measured_surface"),
-        ("measured_surface = { topography = 'x.sdf' }", "asperity_model"),
+        (
+            'asperity_model = "greenwood_tripp"\nmeasured_surface = { topography = "x.sdf" }',
+            "asperity_model",
+        ),
+        ("measured_surface = { topography = 'x.sdf' }", "measured_surface.topography"),
         ('asperity_model = "measured"\nmeasured_surface = { hurst = 0.8 }', "short_cutoff"),
         (
             'asperity_model = "measured"\nmeasured_surface = { topography = "x.sdf", hurst = 0.8 }',
@@ -236,6 +240,53 @@ def _case(extra):
 def test_case_asperity_model_errors_name_the_field(extra, match):
     with pytest.raises(InputError, match=match):
         _case(extra)
+
+
+def test_default_asperity_law_is_the_surface_law_of_the_typical_spectrum():
+    """A set without asperity keys (a 0.2 case file) gets the boundary-element law of a
+    self-affine surface with its σ and the typical spectrum of physics.typical; the
+    same surface at the same E' gives the same (cached) law object."""
+    from tribodyn.config import Case
+    from tribodyn.physics import typical
+    from tribodyn.physics.materials import reduced_modulus
+    from tribodyn.topography.load_separation import synthetic_load_separation
+
+    s = _case("").surface_set("m")
+    assert s.roughness.asperity_model == "measured"
+    assert "typical spectrum" in s.asperity_law and "H 0.85" in s.asperity_law
+    law = synthetic_load_separation(
+        0.2e-6,
+        typical.SURFACE_HURST.value,
+        typical.SURFACE_SHORT_CUTOFF.value,
+        typical.SURFACE_LONG_CUTOFF.value,
+        reduced_modulus(s.bodies, surface=True),
+        7e9,
+    )
+    assert s.roughness.law is law
+    # Greenwood–Tripp only where the case asks for it
+    gt = _case('asperity_model = "greenwood_tripp"').surface_set("m")
+    assert gt.roughness.law is None and "asks for it" in gt.asperity_law
+    # the library's default sets follow the default; the paper's sets keep Table 4 GT
+    assert all(x.roughness.law is not None for x in Case().surface_sets())
+    from tribodyn.config import load_case
+
+    assert all(x.roughness.law is None for x in load_case("andreou2023").surface_sets())
+
+
+def test_greenwood_tripp_defaults_imply_a_small_rms_slope():
+    """Nayak/McCool: η, β, σ of a surface's own spectral moments give back its √m₂
+    (an identity of the relations), and the typical ηβσ 0.04, σ/β 1e-3 give ≈ 0.018."""
+    from tribodyn.topography.spectral_moments import mccool_parameters
+    from tribodyn.topography.synthetic import synthetic_moments
+
+    m = synthetic_moments(0.2e-6, 0.85, 3.2e-6, 25.6e-6)
+    mc = mccool_parameters(m)
+    r = Roughness(mc.asperity_density, 0.2e-6, mc.summit_radius)
+    assert r.implied_rms_slope == pytest.approx(np.sqrt(m.m2), rel=1e-9)
+    # m₂ = 3 (σ/β) / (128 √3 ηβσ) = 3e-3/(128·√3·0.04) by hand
+    assert Roughness(1e9, 0.2e-6, 200e-6).implied_rms_slope == pytest.approx(
+        np.sqrt(3e-3 / (128 * np.sqrt(3) * 0.04)), rel=1e-12
+    )
 
 
 def test_case_measured_surface_builds_a_law(tmp_path):

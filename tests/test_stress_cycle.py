@@ -158,9 +158,16 @@ def test_stress_map_and_report_section(light_study, tmp_path):
     assert png.stat().st_size > 10_000
     lines = stress_section(summ)
     assert lines[0] == "## Coating integrity"
-    rows = [ln for ln in lines if ln.startswith(("| uncoated", "| DLC 4 µm"))]
-    assert len(rows) == 2 and f"| {w['safety_factor']:.2f} |" in rows[1]
+    est = lines.index("### Estimates outside their validity (not headline numbers)")
+    rows = [ln for ln in lines[:est] if ln.startswith(("| uncoated", "| DLC 4 µm"))]
+    assert len(rows) == 2 and rows[1].endswith(f"| {w['safety_factor']:.2f} |")
     assert any("Closest to failure" in ln for ln in lines)
+    # wear rests on an assumed coefficient: only below the estimates heading, as a
+    # range k/10 … 10 k around the value at k
+    assert not any("hours to wear" in ln for ln in lines[:est])
+    hrs = summ["surface_sets"]["dlc_4um"]["hours_to_wear_through"]
+    wear = [ln for ln in lines[est:] if ln.startswith("| DLC 4 µm")]
+    assert len(wear) == 1 and f"{hrs / 10:.3g} … {hrs * 10:.3g}" in wear[0]
     assert stress_section({"surface_sets": {"a": {"label": "a"}}}) == []
 
 
@@ -204,3 +211,8 @@ def test_asperity_scale_estimate_in_summary_and_report(light_study):
         > 0.3
     )
     assert any("a/β > 0.3" in ln for ln in lines)
+    # rows outside Hertz theory give no stress numbers
+    beyond = [ln for ln in lines if ln.startswith("| cam | uncoated")]
+    assert len(beyond) == 1 and "beyond Hertz" in beyond[0]
+    vm = summ["surface_sets"]["uncoated"]["asperity_scale_estimate"]["cam"]["max_von_mises_Pa"]
+    assert f"{vm * 1e-6:.0f}" not in beyond[0].split("|")[7]

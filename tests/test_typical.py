@@ -22,6 +22,9 @@ def _all_values():
     yield typical.RMS_TO_SUMMIT_RADIUS
     yield from typical.BOUNDARY_FRICTION.values()
     yield from typical.COMPOSITE_RMS.values()
+    yield typical.SURFACE_HURST
+    yield typical.SURFACE_SHORT_CUTOFF
+    yield typical.SURFACE_LONG_CUTOFF
 
 
 def test_every_typical_value_has_a_source_and_lies_in_its_range():
@@ -126,3 +129,28 @@ def test_greenwood_tripp_bound_with_typical_roughness():
     expected = 8 * math.sqrt(2) / 15 * math.pi * f52 * ebs**2 * math.sqrt(ratio) * e_prime
     assert rough.asperity_pressure(0.0, e_prime) == pytest.approx(expected, rel=1e-10)
     assert 15e6 < expected < 20e6  # vs Hertz pressures of 0.3-1 GPa at a cam nose
+
+
+def test_typical_spectrum_of_the_default_surface_law():
+    """Persson (2014): D_f = 2.15 ± 0.15, so H = 3 − D_f = 0.85 (0.7–1.0); the cutoffs
+    fit the default 128² map (λ_s ≥ 4 pixels of side 2λ_L at every end of the ranges
+    the sensitivity study uses)."""
+    h = typical.SURFACE_HURST
+    assert (h.value, h.low, h.high) == pytest.approx((0.85, 0.7, 1.0))
+    assert h.status == "verified"
+    ls, ll = typical.SURFACE_SHORT_CUTOFF, typical.SURFACE_LONG_CUTOFF
+    assert ls.status == ll.status == "assumed"
+    for short, long in ((ls.low, ll.value), (ls.value, ll.high), (ls.high, ll.low)):
+        assert short >= 4 * 2 * long / 128 and 2 * short <= long
+
+
+def test_boundary_friction_range_keeps_the_relative_spread():
+    """The range of a pair's ς is the published one, scaled to the ς in use."""
+    z = typical.boundary_friction("steel")
+    assert typical.boundary_friction_range("steel", z.value) == pytest.approx((z.low, z.high))
+    lo, hi = typical.boundary_friction_range("dlc", 0.18)
+    d = typical.boundary_friction("a-C:H")
+    assert (lo, hi) == pytest.approx((0.18 * d.low / d.value, 0.18 * d.high / d.value))
+    assert typical.boundary_friction_range("brass", 0.2) == pytest.approx(
+        (0.2 * z.low / z.value, 0.2 * z.high / z.value)
+    )

@@ -181,9 +181,41 @@ def _toml_string(key: str, value: str) -> str:
     return tomli_w.dumps({key: value}).rstrip("\n")
 
 
-def calibration_toml(cal, source: str, label: str, roughness: dict | None = None, notes=()) -> str:
+def bundled_data(data: Path) -> Path:
+    """``data`` if it exists; else the bundled example file of that bare name (e.g.
+    ``example_friction.csv``, src/tribodyn/cases); else ``data`` (reading says it is
+    missing)."""
+    from ..config.case import CASES_DIR
+
+    p = Path(data)
+    if not p.exists() and p.parent == Path(".") and (CASES_DIR / p.name).is_file():
+        return CASES_DIR / p.name
+    return p
+
+
+def _surface_law(rough, materials):
+    """``rough`` with the default surface law (a self-affine surface with its σ and the
+    typical spectrum, as a case-file set without measured_surface) at the pair's E'."""
+    import dataclasses
+
+    from ..config.measured_surface import typical_surface_law
+    from ..physics.materials import Body
+
+    law = typical_surface_law(rough.rms, (Body(materials[0]), Body(materials[1])))
+    return dataclasses.replace(rough, law=law)
+
+
+def calibration_toml(
+    cal,
+    source: str,
+    label: str,
+    roughness: dict | None = None,
+    notes=(),
+    asperity_model: str = "surface",
+) -> str:
     """Case-file sections of a calibration (TOML text with the uncertainties as comments;
-    ``notes``: remarks on the data file, as comments)."""
+    ``notes``: remarks on the data file, as comments); the surface set asks for the
+    asperity law the fit used."""
     lines = _comment(
         f"Calibrated by `tribodyn calibrate` from {source}: {cal.n_points} distinct points, "
         f"RMS residual of the friction coefficient {cal.rms_residual:.3g}. ± values are 1σ "
@@ -234,6 +266,11 @@ def calibration_toml(cal, source: str, label: str, roughness: dict | None = None
             "roughness = { "
             + ", ".join(f"{k} = {v:.6g}" for k, v in r.items())
             + " }  # as used in the fit",
+            *(
+                ['asperity_model = "greenwood_tripp"  # as used in the fit']
+                if asperity_model == "greenwood_tripp"
+                else []
+            ),
             *surf,
         ]
     if "roughness_parameter" in cal.values:
@@ -260,6 +297,13 @@ def calibrate_command(
     ),
     rms: float | None = typer.Option(
         None, "--rms", help="composite RMS roughness σ [m] (absent: smooth, rheology only)."
+    ),
+    asperity_model: str = typer.Option(
+        "surface",
+        "--asperity-model",
+        help="asperity load and area: surface (default: the boundary-element law of a "
+        "self-affine surface with --rms and the typical spectrum of physics.typical, as "
+        "in a case file) or greenwood_tripp (with --roughness-parameter, --rms-to-radius).",
     ),
     roughness_parameter: float = typer.Option(
         0.04, "--roughness-parameter", help="ηβσ (typical 0.04, physics.typical)."
@@ -312,8 +356,12 @@ def calibrate_command(
         _check_label(label)
         if output is not None and (output.exists() or output.is_symlink()):
             raise InputError(f"--output {str(output)!r} exists; give a new file name")
+        if asperity_model not in ("surface", "greenwood_tripp"):
+            raise InputError(
+                f"--asperity-model must be surface or greenwood_tripp (got {asperity_model!r})"
+            )
         notes: list[str] = []
-        measured = read_friction_csv(data, load, notes)
+        measured = read_friction_csv(bundled_data(data), load, notes)
         if radius is None:
             if measured.radius is None:
                 raise InputError("give --radius [m] or a radius column in DATA")
@@ -324,6 +372,8 @@ def calibrate_command(
                 raise InputError("--rms-to-radius must lie in (0, 1) and --roughness-parameter > 0")
             beta = rms / rms_to_radius
             roughness = Roughness(roughness_parameter / (beta * rms), rms, beta)
+            if asperity_model == "surface":
+                roughness = _surface_law(roughness, (Material(e1, nu1), Material(e2, nu2)))
         setup = CalibrationSetup(
             radius=radius,
             lubricant=Lubricant(viscosity, pressure_viscosity),
@@ -340,7 +390,7 @@ def calibrate_command(
                 "summit_radius": roughness.summit_radius,
             }
         )
-        text = calibration_toml(cal, data.name, label, rough, notes)
+        text = calibration_toml(cal, data.name, label, rough, notes, asperity_model)
         if output is not None:
             from .._safe_write import atomic_write
 

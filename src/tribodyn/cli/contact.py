@@ -107,6 +107,7 @@ class ContactRequest:
     coating_material: str | None = None
     coating_thickness: float | None = None
     roughness: str | None = None
+    asperity_model: str | None = None
     surface_set: str | None = None
     case_file: Path | str | None = None
     shear_coefficient: float | None = None
@@ -214,6 +215,20 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
         )
     except InputError as exc:
         raise _as_option(exc) from None
+    model = q.asperity_model or "surface"
+    if model not in ("surface", "greenwood_tripp"):
+        raise InputError(
+            f"--asperity-model must be surface or greenwood_tripp (got {q.asperity_model!r})"
+        )
+    if q.asperity_model is not None and rough is None:
+        raise InputError("--asperity-model needs --roughness (a case's set carries its own law)")
+    if rough is not None and model == "surface":  # the default law, as in a case file
+        from dataclasses import replace
+
+        from ..config.measured_surface import typical_surface_law
+
+        law = typical_surface_law(rough.rms, surfaces.bodies)
+        surfaces = replace(surfaces, roughness=replace(rough, law=law))
 
     width = q.width
     if width is None:
@@ -390,7 +405,14 @@ def contact_command(
         metavar="ETA,SIGMA,BETA",
         help="Composite roughness: summit density "
         "[1/m²], RMS \\[m], summit radius \\[m] "
-        "(default: smooth).",
+        "(default: smooth). The asperities follow --asperity-model.",
+    ),
+    asperity_model: str | None = _option(
+        "--asperity-model",
+        panel=_SURF,
+        help="With --roughness: surface (default: the boundary-element law of a "
+        "self-affine surface with its RMS and the typical spectrum, as in a case file) or "
+        "greenwood_tripp (with its summit density and radius).",
     ),
     surface_set: str | None = _option(
         "--surface-set",

@@ -73,6 +73,12 @@ def engine_command(
             f"{d['mean_friction_power_W']:.1f} W, "
             f"{d['friction_reduction_vs_uncoated_pct']:+.2f} % vs {res['summary']['engine']['reference_set']}"
         )
+    sets = res["summary"]["engine"]["surface_sets"]
+    for law in sorted({d.get("asperity_law") for d in sets.values()} - {None, ""}):
+        console.print(f"asperity law: {escape(law)}")
+    for d in sets.values():
+        if d.get("coating_verdict"):
+            console.print(f"verdict (FMEP): {escape(d['coating_verdict']['sentence'])}")
     for w in study.warnings:
         console.print(f"[yellow]warning:[/yellow] {escape(w)}")
     console.print(f"wrote {out}/results.nc, summary.json, case.toml in {study.runtime_s:.1f} s")

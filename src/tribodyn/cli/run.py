@@ -265,6 +265,12 @@ def _run(
             f"{ie['max_contact_force_diff_crank_deg']:.1f}°{stable}), tappet velocity by "
             f"{ie['max_velocity_diff_pct']:.2f} %"
         )
+    laws = {v.get("asperity_law") for v in summ["surface_sets"].values()}
+    for law in sorted(x for x in laws if x):
+        console.print(f"asperity law: {law}")
+    for v in summ["surface_sets"].values():
+        if v.get("coating_verdict"):
+            console.print(f"verdict: {v['coating_verdict']['sentence']}")
     for w in summ["warnings"]:
         console.print(f"[yellow]warning:[/yellow] {w}")
     console.print(

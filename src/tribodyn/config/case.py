@@ -48,7 +48,7 @@ from .case_strength import StrengthBuilders
 from .case_thermal import OIL_LAW_KEYS, ThermalBuilders
 from .case_valvetrain import CamValvetrainBuilders
 from .errors import CaseKeyError, Problems, format_validation_error
-from .measured_surface import measured_map, measured_roughness
+from .measured_surface import asperity_law_note, measured_map, measured_roughness
 from .paths import Key, parse_path, set_path
 from .schema import (
     CAM_MODELS,
@@ -101,6 +101,7 @@ class SurfaceSet:
     coating_label : display label, e.g. ``"DLC 4 µm"`` or ``"uncoated"``.
     boundary_shear_strength : τ₀ of Eq. 17 [Pa].
     coating_material : key of the coating in the case's ``[materials]`` (None: uncoated).
+    asperity_law : which asperity law the set uses, and why.
     """
 
     name: str
@@ -110,6 +111,8 @@ class SurfaceSet:
     coating_label: str
     boundary_shear_strength: float = typical.BOUNDARY_SHEAR_STRENGTH.value
     coating_material: str | None = None
+    #: which asperity law the set uses and why (for the run's output)
+    asperity_law: str = ""
 
     @property
     def cam(self) -> Body:
@@ -505,7 +508,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             summit_radius=r.summit_radius,
             method=self.numerics.greenwood_tripp,
         )
-        if s.asperity_model == "measured":
+        if s.asperity_model != "greenwood_tripp":  # "surface" (default) or "measured"
             rough = measured_roughness(s, rough, (cam, tappet), self._base_dir)
         return SurfaceSet(
             name=s.name,
@@ -515,6 +518,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             coating_label=label,
             boundary_shear_strength=s.boundary_shear_strength,
             coating_material=s.coating,
+            asperity_law=asperity_law_note(s),
         )
 
 

@@ -1,5 +1,6 @@
-"""Builders of a surface set's ``asperity_model = "measured"``: the load–separation law of
-its ``measured_surface`` (a measured map or a self-affine spectrum), see
+"""Builders of a surface set's surface law (``asperity_model = "surface"``, the default,
+or ``"measured"``): the load–separation law of its ``measured_surface`` (a measured map
+or a self-affine spectrum; absent: the typical spectrum of :mod:`tribodyn.physics.typical`), see
 :mod:`tribodyn.topography.load_separation`."""
 
 from __future__ import annotations
@@ -13,7 +14,13 @@ from .._validation import InputError
 from ..physics.asperity import Roughness
 from ..physics.materials import reduced_modulus
 
-__all__ = ["measured_map", "measured_roughness"]
+__all__ = [
+    "asperity_law_note",
+    "default_spectrum",
+    "measured_map",
+    "measured_roughness",
+    "typical_surface_law",
+]
 
 
 def _map_path(m, base_dir: Path) -> Path:
@@ -43,18 +50,77 @@ def measured_map(s, base_dir: Path) -> tuple[np.ndarray, float]:
     return z, dx
 
 
+def default_spectrum() -> dict:
+    """The spectrum of the default surface law (a set without ``measured_surface``):
+    typical Hurst exponent and cutoffs (:mod:`tribodyn.physics.typical`), with the
+    schema's grid, seed and hardness."""
+    from ..physics import typical
+    from .schema_surfaces import MeasuredSurfaceConfig
+
+    return MeasuredSurfaceConfig(
+        hurst=typical.SURFACE_HURST.value,
+        short_cutoff=typical.SURFACE_SHORT_CUTOFF.value,
+        long_cutoff=typical.SURFACE_LONG_CUTOFF.value,
+    ).model_dump()
+
+
+def typical_surface_law(rms: float, bodies):
+    """The default surface law of a pair of ``bodies`` with composite RMS ``rms`` [m]: a
+    self-affine surface with the typical spectrum (:func:`default_spectrum`) at the
+    pair's surface E' (cached by these parameters)."""
+    from ..topography.load_separation import synthetic_load_separation
+
+    d = default_spectrum()
+    return synthetic_load_separation(
+        rms,
+        d["hurst"],
+        d["short_cutoff"],
+        d["long_cutoff"],
+        reduced_modulus(bodies, surface=True),
+        d["hardness"],
+        d["grid"],
+        d["seed"],
+    )
+
+
+def asperity_law_note(s) -> str:
+    """Which asperity law a surface set uses, and why (for the run's output)."""
+    if s.asperity_model == "greenwood_tripp":
+        return 'Greenwood–Tripp: the case asks for it (asperity_model = "greenwood_tripp")'
+    m = s.measured_surface
+    if m is not None and m.topography is not None:
+        return f"surface law of the measured map {m.topography} (measured_surface)"
+    if m is not None:
+        return (
+            f"surface law of a self-affine surface σ {s.roughness.rms * 1e6:.3g} µm, "
+            f"H {m.hurst:g}, wavelengths {m.short_cutoff * 1e6:.3g}–{m.long_cutoff * 1e6:.3g} "
+            "µm (the case's measured_surface)"
+        )
+    d = default_spectrum()
+    return (
+        f"surface law of a self-affine surface with the set's σ {s.roughness.rms * 1e6:.3g} "
+        f"µm and the typical spectrum H {d['hurst']:g}, wavelengths "
+        f"{d['short_cutoff'] * 1e6:.3g}–{d['long_cutoff'] * 1e6:.3g} µm "
+        "(tribodyn.physics.typical; the default: no measured_surface given)"
+    )
+
+
 def measured_roughness(s, rough: Roughness, bodies, base_dir: Path) -> Roughness:
-    """``rough`` with the load–separation law of the set's ``measured_surface``, computed
-    at the pair's surface E' and the given hardness. Laws are cached per process (a map
-    by its file's path, modification time and size), so validating the case again does
-    not compute them again. Errors name the set's field."""
+    """``rough`` with the load–separation law of the set's ``measured_surface`` (absent:
+    the typical spectrum, :func:`default_spectrum`), computed at the pair's surface E'
+    and the given hardness. Laws are cached per process by the surface's parameters (a
+    map by its file's path, modification time and size), so sets, sweep points and
+    engine lobes with the same surface and E' share one table. Errors name the set's
+    field."""
     from ..topography.load_separation import (
         measured_load_separation,
         synthetic_load_separation,
     )
+    from .schema_surfaces import MeasuredSurfaceConfig
 
     m = s.measured_surface
-    assert m is not None  # schema validator
+    if m is None:
+        m = MeasuredSurfaceConfig(**default_spectrum())
     e_s = reduced_modulus(bodies, surface=True)
     where = f"surface_sets.{s.name}.measured_surface"
     try:

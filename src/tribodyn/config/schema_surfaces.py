@@ -212,7 +212,9 @@ class StressConfig(Section):
 
 
 class RoughnessConfig(Section):
-    """``roughness = {…}``: composite Greenwood–Tripp roughness of the pair (paper Table 4)."""
+    """``roughness = {…}``: composite roughness of the pair (paper Table 4). σ (``rms``)
+    scales every asperity law; η and β are Greenwood–Tripp's (``asperity_model =
+    "greenwood_tripp"``) and otherwise only describe the summits."""
 
     asperity_density: float = _lim(..., L.ASPERITY_DENSITY, "summit density η (the paper's ζ)")
     rms: float = _lim(..., L.ROUGHNESS_RMS, "composite RMS roughness σ")
@@ -334,14 +336,21 @@ class SurfaceSetConfig(Section):
         "steel", "", "tappet substrate material (a key of [materials])", min_length=1
     )
     roughness: RoughnessConfig = _q(..., "", "composite roughness of the cam/tappet pair")
-    asperity_model: Literal["greenwood_tripp", "measured"] = _q(
-        "greenwood_tripp",
+    asperity_model: Literal["surface", "measured", "greenwood_tripp"] = _q(
+        "surface",
         "",
-        "asperity load and area: Greenwood–Tripp from the roughness, or the law of a "
-        "measured/synthetic surface's boundary-element contact (needs measured_surface)",
+        'asperity load and area. "surface" (default): the law of a boundary-element '
+        "contact of the set's surface: its measured_surface if given, otherwise a "
+        "self-affine surface with the roughness rms and the typical spectrum of "
+        'tribodyn.physics.typical (SURFACE_HURST, SURFACE_*_CUTOFF). "measured": the '
+        'same law, measured_surface required. "greenwood_tripp": Greenwood–Tripp from '
+        "asperity_density, rms and summit_radius",
     )
     measured_surface: MeasuredSurfaceConfig | None = _q(
-        None, "", 'the surface of asperity_model = "measured"'
+        None,
+        "",
+        'the surface of the surface law (asperity_model "surface" or "measured"); '
+        "absent: a self-affine surface with the typical spectrum",
     )
     boundary_shear_coefficient: float | None = _lim(
         None,
@@ -380,7 +389,12 @@ class SurfaceSetConfig(Section):
             )
         if self.asperity_model == "greenwood_tripp" and self.measured_surface is not None:
             raise Problems(
-                [("asperity_model", 'must be "measured" when measured_surface is given')]
+                [
+                    (
+                        "asperity_model",
+                        'must be "surface" or "measured" when measured_surface is given',
+                    )
+                ]
             )
         return self
 
@@ -414,10 +428,10 @@ def paper_materials() -> dict:
     return {k: MaterialConfig(**v) for k, v in paper.MATERIALS.items()}
 
 
-def _paper_sets_with(roughness) -> list:
+def _paper_sets_with(roughness, **common) -> list:
     """The paper's five surface sets (uncoated; DLC and WC-C at 1 and 4 µm), each with
-    ``roughness(coating)`` (coating None for the uncoated set)."""
-    sets = [SurfaceSetConfig(name="uncoated", roughness=roughness(None))]
+    ``roughness(coating)`` (coating None for the uncoated set) and the keys ``common``."""
+    sets = [SurfaceSetConfig(name="uncoated", roughness=roughness(None), **common)]
     for coat in ("dlc", "wcc"):
         for t_um in (1, 4):
             sets.append(
@@ -426,6 +440,7 @@ def _paper_sets_with(roughness) -> list:
                     coating=coat,
                     coating_thickness=t_um * 1e-6,
                     roughness=roughness(coat),
+                    **common,
                 )
             )
     return sets
@@ -433,8 +448,12 @@ def _paper_sets_with(roughness) -> list:
 
 def paper_surface_sets() -> list:
     """The bundled case's surface sets: uncoated, DLC and WC-C at 1 and 4 µm, with the
-    Table 4 roughness of the coating type (the same for both thicknesses)."""
-    return _paper_sets_with(lambda coat: RoughnessConfig(**paper.ROUGHNESS[coat or "uncoated"]))
+    Table 4 roughness of the coating type (the same for both thicknesses), with the
+    paper's Greenwood–Tripp asperities."""
+    return _paper_sets_with(
+        lambda coat: RoughnessConfig(**paper.ROUGHNESS[coat or "uncoated"]),
+        asperity_model="greenwood_tripp",
+    )
 
 
 def typical_materials() -> dict:

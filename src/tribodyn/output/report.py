@@ -232,6 +232,40 @@ def _inputs_section(study, summ) -> list[str]:
             f"| {s.coating_label} | {coat} | {r.rms * 1e6:.3g} µm | {model} | {gt} | "
             f"{s.boundary_shear_coefficient:g} |"
         )
+    lines.append("")
+    lines += [
+        f"- Asperity law of {s.coating_label}: {s.asperity_law}." for s in case.surface_sets()
+    ]
+    return lines + [""]
+
+
+def _signed(x: float) -> str:
+    return (f"{x:+.1f}" if abs(x) < 10.0 else f"{x:+.0f}").replace("-", "−")
+
+
+def verdict_section(summ) -> list[str]:
+    """ "Coating verdict": each set's change of friction energy per cycle against the
+    reference, with its range over the published friction inputs
+    (:mod:`tribodyn.workflow.verdict`)."""
+    rows = [
+        (v["label"], v["coating_verdict"])
+        for v in summ["surface_sets"].values()
+        if v.get("coating_verdict")
+    ]
+    if not rows:
+        return []
+    lines = ["## Coating verdict", ""]
+    lines += [f"- {vd['sentence']}" for _, vd in rows]
+    method = rows[0][1]["method"]
+    wide = "; ".join(
+        f"{label} {_signed(vd['range_independent_pct'][0])} … "
+        f"{_signed(vd['range_independent_pct'][1])} %"
+        for label, vd in rows
+        if vd.get("range_independent_pct")
+    )
+    lines += ["", f"How: {method}"]
+    if wide:
+        lines += ["", f"With each pair's ς independent: {wide}."]
     return lines + [""]
 
 
@@ -372,6 +406,7 @@ def report_text(study, ds, figures: dict) -> str:
             f"{v['failed_steps']} |"
         )
     lines += ["", f"Film-gain rule: {summ['film_gain_rule']}.", ""]
+    lines += verdict_section(summ)
     d = summ.get("dynamics", {})
     ue = d.get("entrainment_speed_range_m_s") or [None, None]
     rmin = d.get("min_radius_of_curvature_m")

@@ -42,13 +42,13 @@ def stress_section(summary: dict, heading: str = "## Coating integrity") -> list
         "give measured ones in `[strength.<material>]`.",
         "",
         "| surface | closest failure | body | x [µm] | z [µm] | crank in cycle [°] | stress [MPa] "
-        "| safety factor | wear / cycle [nm] | hours to wear through |",
-        "|---|---|---|---|---|---|---|---|---|---|",
+        "| safety factor |",
+        "|---|---|---|---|---|---|---|---|",
     ]
     for name, e in sets.items():
         w = e.get("stress_closest_failure") or {}
         out.append(
-            "| {label} | {mode} | {body} | {x} | {z} | {c} | {s} | {sf} | {wear} | {hrs} |".format(
+            "| {label} | {mode} | {body} | {x} | {z} | {c} | {s} | {sf} |".format(
                 label=e.get("label", name),
                 mode=_MODES.get(str(w.get("mode")), "–"),
                 body=w.get("body", "–"),
@@ -57,8 +57,6 @@ def stress_section(summary: dict, heading: str = "## Coating integrity") -> list
                 c=_f(w.get("crank_in_cycle_deg", w.get("crank_deg")), ".0f"),
                 s=_f(w.get("stress_Pa"), ".0f", 1e-6),
                 sf=_f(w.get("safety_factor"), ".2f"),
-                wear=_f(e.get("wear_depth_per_cycle_m"), ".2e", 1e9),
-                hrs=_f(e.get("hours_to_wear_through"), ".3g"),
             )
         )
     worst = min(sets.items(), key=lambda kv: kv[1]["min_safety_factor"] or math.inf)
@@ -72,10 +70,16 @@ def stress_section(summary: dict, heading: str = "## Coating integrity") -> list
             f"x = {w['x_m'] * 1e6:.1f} µm, z = {w['z_m'] * 1e6:.2f} µm, "
             f"safety factor {w['safety_factor']:.2f}.",
         ]
-    out += _asperity_lines(sets)
-    srcs = {e.get("wear_coefficient_source") for e in sets.values()} - {None}
-    if srcs:
-        out += ["", "Wear coefficients: " + "; ".join(sorted(srcs)) + "."]
+    estimates = _wear_lines(sets) + _asperity_lines(sets)
+    if estimates:
+        out += [
+            "",
+            "### Estimates outside their validity (not headline numbers)",
+            "",
+            "These numbers rest on assumed inputs or leave the theory they use; each is "
+            "given with its range or its limit, and with the measurement that would pin it.",
+            *estimates,
+        ]
     hours = {e.get("running_hours") for e in sets.values()} - {None}
     if hours:
         h = hours.pop()
@@ -92,6 +96,54 @@ def stress_section(summary: dict, heading: str = "## Coating integrity") -> list
     return out
 
 
+def _hours_range(hours, assumed: bool) -> str:
+    from ..physics.strength import WEAR_COEFFICIENT_SPREAD as f
+
+    if hours is None or not math.isfinite(hours):
+        return "–"
+    if not assumed:
+        return format(hours, ".3g")
+    return f"{hours / f:.3g} … {hours * f:.3g} (at k: {hours:.3g})"
+
+
+def _wear_lines(sets: dict) -> list[str]:
+    """Archard wear per cycle and hours to wear through, over the range of an assumed
+    wear coefficient (k/10 … 10 k, physics.strength.WEAR_COEFFICIENT_SPREAD)."""
+    from ..physics.strength import WEAR_COEFFICIENT_SPREAD as f
+
+    rows = []
+    assumed_any = False
+    for name, e in sets.items():
+        if e.get("wear_depth_per_cycle_m") is None:
+            continue
+        src = str(e.get("wear_coefficient_source") or "")
+        assumed = "assumed" in src.lower()
+        assumed_any |= assumed
+        d = e["wear_depth_per_cycle_m"] * 1e9
+        depth = f"{d / f:.2e} … {d * f:.2e}" if assumed else f"{d:.2e}"
+        rows.append(
+            f"| {e.get('label', name)} | {_f(e.get('wear_coefficient_m3_per_Nm'), '.2g')} "
+            f"| {'assumed' if assumed else 'case'} | {depth} | "
+            f"{_hours_range(e.get('hours_to_wear_through'), assumed)} |"
+        )
+    if not rows:
+        return []
+    srcs = {e.get("wear_coefficient_source") for e in sets.values()} - {None}
+    return [
+        "",
+        "Archard wear of the tappet surface (wear coefficient k "
+        + ("assumed: an order of magnitude either way" if assumed_any else "from the case")
+        + "; "
+        + "; ".join(sorted(srcs))
+        + "). A wear depth measured on a tappet after a known running time, or k from a "
+        "tribometer test at the contact's pressure, sliding speed and oil, would pin it.",
+        "",
+        "| surface | k [m³/(N m)] | k from | wear / cycle [nm] | hours to wear through |",
+        "|---|---|---|---|---|",
+        *rows,
+    ]
+
+
 def _asperity_lines(sets: dict) -> list[str]:
     """The asperity-scale ESTIMATE (physics.asperity_stress) of each set, beside the
     EHL-scale margins above."""
@@ -103,7 +155,15 @@ def _asperity_lines(sets: dict) -> list[str]:
             continue
         for body in ("cam", "tappet"):
             b = a[body]
-            outside += (b.get("radius_over_summit") or 0.0) > 0.3
+            beyond = (b.get("radius_over_summit") or 0.0) > 0.3
+            outside += beyond
+            if beyond:  # Hertz does not hold: no stress numbers, only the limit
+                rows.append(
+                    f"| {body} | {e.get('label', name)} | {_f(b.get('gap_ratio'), '.2f')} "
+                    f"| beyond Hertz | {_f(b.get('radius_m'), '.2f', 1e6)} "
+                    f"| {_f(b.get('radius_over_summit'), '.2f')} | beyond Hertz | – | – | – |"
+                )
+                continue
             rows.append(
                 "| {body} | {label} | {lam} | {pm} | {rad} | {ab} | {vm} | {z} | {sfy} | {sft} |".format(
                     label=e.get("label", name),
@@ -120,24 +180,35 @@ def _asperity_lines(sets: dict) -> list[str]:
             )
     if not rows:
         return []
-    return [
-        "",
-        "Asperity scale, an ESTIMATE (tribodyn.physics.asperity_stress): one Hertzian "
-        "summit of radius β at the mean micro-contact pressure p_a/(A_a/A) at the "
-        "smallest film of the cycle; elastic, frictionless, homogeneous. Hertz needs "
-        "a/β ≪ 1; a factor below 1 means the summits yield (running-in), not that the "
-        "coating fails.",
-        "",
-        "| body | surface | h/σ | p_m [MPa] | a [µm] | a/β | von Mises [MPa] | z [µm] "
-        "| yield factor | tension factor |",
-        "|---|---|---|---|---|---|---|---|---|---|",
-        *rows,
-    ] + (
+    return (
         [
             "",
-            f"In {outside} of these rows a/β > 0.3: the summits are too sharp for Hertz "
-            "theory, and the rows only say that they are loaded far beyond yield.",
+            "Asperity scale, an ESTIMATE (tribodyn.physics.asperity_stress): one Hertzian "
+            "summit of radius β at the mean micro-contact pressure p_a/(A_a/A) at the "
+            "smallest film of the cycle; elastic, frictionless, homogeneous. Hertz needs "
+            "a/β ≪ 1; a factor below 1 means the summits yield (running-in), not that the "
+            "coating fails.",
+            "",
+            "| body | surface | h/σ | p_m [MPa] | a [µm] | a/β | von Mises [MPa] | z [µm] "
+            "| yield factor | tension factor |",
+            "|---|---|---|---|---|---|---|---|---|---|",
+            *rows,
         ]
-        if outside
-        else []
+        + (
+            [
+                "",
+                f"In {outside} of these rows a/β > 0.3: the summits are too sharp for Hertz "
+                "theory, so their pressure, von Mises stress and factors are not given: the "
+                "estimate is outside the theory it uses (summary.json keeps the numbers for "
+                "reference).",
+            ]
+            if outside
+            else []
+        )
+        + [
+            "",
+            "The summit radius β and the micro-contact pressure decide these rows. A "
+            "topography measured at sub-µm lateral resolution (summit curvatures) and the "
+            "real contact area or hardness after running-in would pin them.",
+        ]
     )

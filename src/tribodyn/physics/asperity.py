@@ -293,6 +293,17 @@ class Roughness:
         )
 
     @property
+    def implied_rms_slope(self) -> float:
+        """RMS profile slope √m₂ that η, β and σ imply for an isotropic Gaussian surface
+        by Nayak's and McCool's relations (McCool, Wear 107 (1986) 37: η = m₄/(6π√3 m₂),
+        β = (3/8)√(π/m₄), σ = √m₀), eliminating m₄: m₂ = 3 (σ/β)/(128 √3 ηβσ)."""
+        return math.sqrt(
+            3.0
+            * (self.rms / self.summit_radius)
+            / (128.0 * math.sqrt(3.0) * self.roughness_parameter)
+        )
+
+    @property
     def roughness_parameter(self) -> float:
         """ηβσ, the dimensionless roughness parameter."""
         return self.asperity_density * self.summit_radius * self.rms

@@ -55,6 +55,7 @@ __all__ = [
     "Strength",
     "TYPICAL_STRENGTH",
     "TYPICAL_WEAR_COEFFICIENT",
+    "WEAR_COEFFICIENT_SPREAD",
     "safety_factors",
     "archard_wear_depth_per_cycle",
     "hours_to_wear_through",
@@ -123,6 +124,10 @@ TYPICAL_STRENGTH = {
 #: ASSUMED dimensional Archard coefficients k [m³/(N m) = 1/Pa], lubricated boundary
 #: sliding (module docstring: no source found); the wear functions take k from the user.
 TYPICAL_WEAR_COEFFICIENT = {"steel": 1e-16, "dlc": 1e-17, "wcc": 3e-17}
+#: Factor either way around an assumed :data:`TYPICAL_WEAR_COEFFICIENT` that its range
+#: spans: the values are orders of magnitude only (module docstring), so the wear
+#: depth and the hours to wear through are given over k/10 … 10 k.
+WEAR_COEFFICIENT_SPREAD = 10.0
 
 
 def _factor(strength: float | None, stress: float) -> float:

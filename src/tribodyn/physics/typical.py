@@ -42,7 +42,11 @@ __all__ = [
     "ROUGHNESS_PARAMETER",
     "RMS_TO_SUMMIT_RADIUS",
     "COMPOSITE_RMS",
+    "SURFACE_HURST",
+    "SURFACE_SHORT_CUTOFF",
+    "SURFACE_LONG_CUTOFF",
     "boundary_friction",
+    "boundary_friction_range",
 ]
 
 
@@ -240,6 +244,22 @@ def boundary_friction(surface: str, additive: str = "zddp") -> TypicalValue:
         ) from None
 
 
+#: Key of :data:`BOUNDARY_FRICTION` (surface, ZDDP oil) of each material key of the
+#: default ``[materials]`` (config.schema.typical_materials).
+MATERIAL_SURFACE = {"steel": "steel", "dlc": "a-C:H", "wcc": "WC-C"}
+
+
+def boundary_friction_range(material: str | None, value: float) -> tuple[float, float]:
+    """(low, high) of a pair's ς around the value ``value`` in use: the published range of
+    the typical value of the material (:data:`MATERIAL_SURFACE`, ZDDP oil) scaled by
+    ``value``/typical value, so that a ς the case changed keeps the same relative
+    spread. A material without a typical entry gets the relative range of steel/ZDDP
+    (−22 … +22 %), an ASSUMED spread."""
+    key = MATERIAL_SURFACE.get(material or "steel", "steel")
+    t = BOUNDARY_FRICTION[(key, "zddp")]
+    return value * t.low / t.value, value * t.high / t.value
+
+
 # ----------------------------------------------------------------------------- roughness
 _ARNELL = (
     "R. D. Arnell, P. B. Davies, J. Halling, T. L. Whomes, Tribology: Principles and "
@@ -294,3 +314,53 @@ COMPOSITE_RMS: dict[str, TypicalValue] = {
         status="assumed",
     ),
 }
+
+
+# ----------------------------------------------------------------------------- spectrum
+# The default asperity law (``asperity_model = "surface"``) is the boundary-element
+# load–separation law of a Gaussian self-affine surface with the set's σ and these
+# spectrum parameters (:func:`tribodyn.topography.load_separation.synthetic_load_separation`).
+_PERSSON = (
+    "B. N. J. Persson, On the fractal dimension of rough surfaces, Tribol. Lett. 54 (2014) 99-106"
+)
+#: Hurst exponent H of engineering surfaces (fractal dimension D_f = 3 − H).
+SURFACE_HURST = TypicalValue(
+    0.85,
+    0.7,
+    1.0,
+    "-",
+    _PERSSON,
+    "The abstract gives D_f = 2.15 ± 0.15 for most natural and engineering surfaces "
+    "(polished, sandblasted), i.e. H = 3 − D_f = 0.85 ± 0.15.",
+    status="verified",
+)
+#: Shortest wavelength λ_s of the self-affine spectrum: it sets the RMS slope (with
+#: σ = 0.2 µm, H 0.85 and λ_L = 25.6 µm: profile slope √m₂ ≈ 0.06, areal gradient ≈ 0.08).
+SURFACE_SHORT_CUTOFF = TypicalValue(
+    3.2e-6,
+    1.6e-6,
+    6.4e-6,
+    "m",
+    "convention: the shortest wavelength an optical profiler of about 1 µm lateral "
+    "resolution resolves (three pixels)",
+    "ASSUMED: no published RMS slope of ground cam or tappet steel was found. With "
+    "σ = 0.2 µm, H = 0.85 and λ_L = 25.6 µm the value gives an RMS profile slope √m₂ of "
+    "0.06 (areal gradient 0.08); Greenwood–Tripp's typical ηβσ = 0.04 and σ/β = 1e-3 "
+    "imply √m₂ ≈ 0.02 (Nayak's and McCool's relations). The range halves and doubles "
+    "the value. Replace it by a measured map "
+    "(measured_surface.topography) when friction matters.",
+    status="assumed",
+)
+#: Longest wavelength λ_L of the self-affine range (the spectrum is flat above it).
+SURFACE_LONG_CUTOFF = TypicalValue(
+    25.6e-6,
+    12.8e-6,
+    51.2e-6,
+    "m",
+    "convention: the roll-off of ground finishes is of the order of the grinding "
+    "marks' spacing, tens of µm",
+    "ASSUMED: no published roll-off wavelength of ground cam or tappet steel was found; "
+    "the range halves and doubles it. The law is computed on a periodic map of side "
+    "2 λ_L, so λ_L also sets the map's size.",
+    status="assumed",
+)

@@ -89,7 +89,6 @@ def load_separation_law(
     )
 
 
-@lru_cache(maxsize=16)
 def synthetic_load_separation(
     rms: float,
     hurst: float,
@@ -103,7 +102,25 @@ def synthetic_load_separation(
     """Law of a synthetic Gaussian self-affine surface (:func:`.synthetic_surface`) of
     RMS σ, Hurst exponent H and wavelengths ``short_cutoff``–``long_cutoff`` [m] on a
     ``grid`` × ``grid`` periodic map of side 2 × ``long_cutoff`` (pixel = side/grid;
-    needs short_cutoff ≥ 2 pixels). Cached per process."""
+    needs short_cutoff ≥ 2 pixels).
+
+    Cached per process by the surface's parameters (however they are passed: as
+    positional or keyword arguments, ints or floats), so surface sets, sweep points and
+    engine lobes with the same surface and E' share one table."""
+    return _synthetic_law(
+        float(rms),
+        float(hurst),
+        float(short_cutoff),
+        float(long_cutoff),
+        float(reduced_modulus),
+        float(hardness),
+        check_int("grid", grid),
+        check_int("seed", seed),
+    )
+
+
+@lru_cache(maxsize=32)
+def _synthetic_law(rms, hurst, short_cutoff, long_cutoff, reduced_modulus, hardness, grid, seed):
     from .synthetic import synthetic_surface
 
     n = check_int("grid", grid)

@@ -220,7 +220,53 @@ class EngineStudy:
         out["valve_jump"] = {
             k: lt.study.dynamics.jump_summary() for k, lt in self.lobes.items() if lt.study
         }
+        self._verdicts(out, totals, vd)
         return out
+
+    def _verdicts(self, out: dict, totals: dict, vd: float) -> None:
+        """Each set's ``coating_verdict`` (change of engine friction energy per cycle,
+        i.e. of FMEP, with its range; :data:`~tribodyn.workflow.verdict.ENGINE_METHOD`),
+        ``asperity_law`` and ``valvetrain_friction_mep_range_Pa`` over the published
+        ranges of its ς and the viscous factor."""
+        from .verdict import (
+            ENGINE_METHOD,
+            boundary_ranges,
+            set_energy_function,
+            verdicts_from_energies,
+            viscous_factor_bounds,
+        )
+
+        studies = {k: lt.study for k, lt in self.lobes.items() if lt.study is not None}
+        if not studies:
+            return
+        energies = {}
+        for i, name in enumerate(self.set_names):
+            parts = []  # (nominal cam–tappet energy of the lobe kind, E(ς', k) of its study)
+            for kind, st in studies.items():
+                rows = [m for m, v in enumerate(self.valves) if v["kind"] == kind]
+                e_ct = float(sum(self.energy(self.lobe_friction_torque[i, m]) for m in rows))
+                parts.append((e_ct, set_energy_function(st, name)))
+            aux = totals[name] - sum(e for e, _ in parts)
+            sig = float(self.case.surface_set(name).boundary_shear_coefficient)
+
+            def total(s_new, k=1.0, parts=parts, aux=aux, sig=sig):
+                return aux + sum(
+                    e * f(s_new, k) / f(sig, 1.0) if f(sig, 1.0) > 0 else e for e, f in parts
+                )
+
+            energies[name] = total
+        sigmas = boundary_ranges(self.case, self.set_names)
+        labels = {n: self.case.surface_set(n).coating_label for n in self.set_names}
+        verdicts = verdicts_from_energies(
+            energies, sigmas, self.set_names[0], labels, self.case, ENGINE_METHOD
+        )
+        k_lo, k_hi = viscous_factor_bounds(self.case)
+        for name, d in out["surface_sets"].items():
+            d["asperity_law"] = self.case.surface_set(name).asperity_law
+            d["coating_verdict"] = verdicts.get(name)
+            sig, lo, hi = sigmas[name]
+            ends = [energies[name](s_, k) / vd for s_ in (lo, hi) for k in (k_lo, k_hi)]
+            d["valvetrain_friction_mep_range_Pa"] = [min(ends), max(ends)]
 
     def to_dataset(self):
         """xarray Dataset of the traces with units and descriptions (the table of

@@ -34,8 +34,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..physics import typical
-from ..physics.asperity import greenwood_tripp
 from ..physics.materials import reduced_modulus
 from ..valvetrain.flexible import FlexibleValvetrain
 from ..valvetrain.parameters import ValvetrainParameters
@@ -264,19 +262,49 @@ def oil_as_used(case) -> dict:
     }
 
 
-def plausibility_warnings(study) -> list[str]:
-    """Inputs and results that are physically suspicious, each with what it affects and
-    what to change:
+#: RMS profile slope √m₂ below which a Greenwood–Tripp roughness is "smoother in slope
+#: than ground steel": half the slope of the default surface law's typical spectrum
+#: (σ 0.2 µm, physics.typical: √m₂ ≈ 0.06), the low end of its short-cutoff range.
+SMOOTH_SLOPE = 0.03
 
-    * ηβσ of a surface outside :data:`MEASURED_ETA_BETA_SIGMA` (measured engineering
-      surfaces; Greenwood & Williamson 1966, McCool 1986).
-    * λ = h_min/σ < 1 while the asperities carry less than a tenth of what Greenwood–Tripp
-      gives there for a typical measured surface (ηβσ and σ/β of
-      :mod:`tribodyn.physics.typical`): the share p_a/p_mean, p_a = K F_5/2(λ),
-      K = (8√2/15)π(ηβσ)²√(σ/β)E', p_mean = w/(2b) of the Hertz contact.
-    * λ < 0.1 while the asperities carry less than half of the load: a film thinner than a
-      tenth of the roughness cannot carry most of the load on real surfaces, whatever the
-      asperity model's parameters give (a rule of thumb, flagged as such).
+
+def _typical_surface_share(s, lam: float, w: float, b: float) -> float:
+    """Load share p_a/p_mean at λ of the default surface law (a self-affine surface with
+    the set's σ and the typical spectrum, :func:`~tribodyn.config.measured_surface.
+    default_spectrum`) at the pair's surface E'; p_mean = w/(2b)."""
+    from ..config.measured_surface import default_spectrum
+    from ..topography.load_separation import synthetic_load_separation
+
+    d = default_spectrum()
+    e_s = reduced_modulus(s.bodies, surface=True)
+    law = synthetic_load_separation(
+        s.roughness.rms,
+        d["hurst"],
+        d["short_cutoff"],
+        d["long_cutoff"],
+        e_s,
+        d["hardness"],
+        d["grid"],
+        d["seed"],
+    )
+    p = e_s * float(law.pressure_ratio(np.array([lam]))[0][0])
+    return min(1.0, p * 2.0 * b / w)
+
+
+def plausibility_warnings(study) -> list[str]:
+    """Inputs and results that are physically suspicious for the asperity law in use,
+    each with what it affects and what to change:
+
+    * Greenwood–Tripp sets only: ηβσ outside :data:`MEASURED_ETA_BETA_SIGMA` (measured
+      engineering surfaces; Greenwood & Williamson 1966, McCool 1986).
+    * Greenwood–Tripp sets only: λ = h_min/σ < 1 while the asperities carry less than a
+      tenth of what the default surface law (a self-affine surface with the set's σ and
+      the typical spectrum of :mod:`tribodyn.physics.typical`) carries there: the share
+      p_a/p_mean, p_mean = w/(2b) of the Hertz contact. The warning gives the RMS slope
+      that the set's η, β, σ imply (:attr:`~tribodyn.Roughness.implied_rms_slope`).
+    * Any law: λ < 0.1 while the asperities carry less than half of the load: a film
+      thinner than a tenth of the roughness cannot carry most of the load on real
+      surfaces (a rule of thumb, flagged as such).
     """
     case, inp = study.case, study.inputs
     lo, hi = MEASURED_ETA_BETA_SIGMA
@@ -284,15 +312,17 @@ def plausibility_warnings(study) -> list[str]:
     for res in study.sets:
         s = case.surface_set(res.name)
         r = s.roughness
+        gt = r.law is None
         ebs = r.roughness_parameter
-        if not lo <= ebs <= hi:
+        if gt and not lo <= ebs <= hi:
             out.append(
                 f"{res.name}: roughness ηβσ = {ebs:.2g} is outside {lo:g}–{hi:g}, the range "
                 "of measured engineering surfaces (Greenwood & Williamson 1966, McCool "
                 "1986): the asperity load, boundary friction and friction energy of this "
                 f"set are {'too low' if ebs < lo else 'too high'} if the surface is real; "
                 "check asperity_density, summit_radius and rms of its roughness (from a "
-                "profile: tribodyn topography)"
+                "profile: tribodyn topography), or use the surface law (remove "
+                'asperity_model = "greenwood_tripp")'
             )
         ok = res.loaded & res.converged & np.isfinite(res.lambda_ratio)
         if not ok.any():
@@ -303,27 +333,39 @@ def plausibility_warnings(study) -> list[str]:
             continue
         share = float(res.asperity_load[i] / max(inp.contact_force[i], 1e-12))
         e = reduced_modulus(s.bodies)
-        ebs_t, sb_t = typical.ROUGHNESS_PARAMETER.value, typical.RMS_TO_SUMMIT_RADIUS.value
-        k_ref = 8.0 * math.sqrt(2.0) / 15.0 * math.pi * ebs_t**2 * math.sqrt(sb_t) * e
         w = inp.contact_force[i] / inp.width
         b = math.sqrt(8.0 * w * inp.radius[i] / (math.pi * e))
-        ref = min(1.0, k_ref * float(greenwood_tripp(2.5, lam)) * 2.0 * b / w)
-        if share < 0.1 * ref:
+        where = f"{res.name}: at λ = {lam:.2g} ({inp.crank_angle[i]:.0f}° crank)"
+        if gt:
+            ref = _typical_surface_share(s, lam, w, b)
+            if share < 0.1 * ref:
+                slope = r.implied_rms_slope
+                smooth = (
+                    f"; its ηβσ = {ebs:.2g} and σ/β = {r.rms / r.summit_radius:.2g} imply an "
+                    f"RMS slope of {slope:.2g} (Nayak/McCool), smoother than ground steel"
+                    if slope < SMOOTH_SLOPE
+                    else ""
+                )
+                out.append(
+                    f"{where} the asperities carry {share * 100:.2g} % of the load with "
+                    f"Greenwood–Tripp; the surface law of a typical ground surface with the "
+                    f"same σ carries {ref * 100:.3g} % there{smooth}: the boundary friction "
+                    "and asperity load of this set are likely far too low. Use the surface "
+                    'law (remove asperity_model = "greenwood_tripp", or give '
+                    "measured_surface from a measured map)"
+                )
+                continue
+        if lam < 0.1 and share < 0.5:
             out.append(
-                f"{res.name}: at λ = {lam:.2g} ({inp.crank_angle[i]:.0f}° crank) the "
-                f"asperities carry {share * 100:.2g} % of the load; Greenwood–Tripp with a "
-                f"typical measured surface (ηβσ = {ebs_t:g}, σ/β = {sb_t:g}) gives about "
-                f"{ref * 100:.2g} % there: the boundary friction and asperity load of this "
-                "set are likely far too low; check the roughness (ηβσ, σ/β) of the set"
-            )
-        elif lam < 0.1 and share < 0.5:
-            out.append(
-                f"{res.name}: at λ = {lam:.2g} ({inp.crank_angle[i]:.0f}° crank) the film is "
-                f"thinner than a tenth of the roughness, yet the asperities carry only "
-                f"{share * 100:.2g} % of the load (Greenwood–Tripp with a typical measured "
-                f"surface gives about {ref * 100:.2g} % at this λ): real surfaces "
-                "carry most of the load there, so the boundary friction and asperity load "
-                "near this angle are likely too low and the film too optimistic; check the "
-                "roughness (ηβσ, σ/β, from a measured topography) of the set"
+                f"{where} the film is thinner than a tenth of the roughness, yet the "
+                f"asperities carry only {share * 100:.2g} % of the load: real surfaces "
+                "carry most of the load there (a rule of thumb), so the boundary friction "
+                "and asperity load near this angle are likely too low and the film too "
+                "optimistic; check the roughness rms of the set and its surface (a "
+                + (
+                    'measured_surface, or the surface law in place of asperity_model = "greenwood_tripp")'
+                    if gt
+                    else "measured_surface from a measured map)"
+                )
             )
     return out

@@ -297,6 +297,10 @@ def solve_point(
             "roughness_rms_m": rough.rms if rough else None,
             "summit_radius_m": rough.summit_radius if rough else None,
             "greenwood_tripp": rough.method if rough else None,
+            "asperity_model": rough.asperity_model if rough else None,
+            "asperity_law": (rough.law.source if rough.law is not None else "Greenwood–Tripp")
+            if rough
+            else None,
             "boundary_shear_coefficient": opts.boundary_shear_coefficient,
             "boundary_shear_strength_Pa": opts.boundary_shear_strength,
             "viscosity_Pa_s": lub.viscosity,

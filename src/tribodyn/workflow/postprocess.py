@@ -378,6 +378,12 @@ def summary(study: CycleStudy, an: Analysis) -> dict:
             from .stress_study import set_stress_summary
 
             out["surface_sets"][s.name].update(set_stress_summary(study, s.name))
+    from .verdict import coating_verdicts
+
+    verdicts = coating_verdicts(study, ref.name, dict(study.labels))
+    for name, d in out["surface_sets"].items():
+        d["asperity_law"] = study.case.surface_set(name).asperity_law
+        d["coating_verdict"] = verdicts.get(name)  # None: the reference set
     _engineering_summary(study, out)
     out["implicit_vs_explicit"] = _implicit_vs_explicit(study)
     if study.isothermal_sets is not None:  # numerics.thermal
