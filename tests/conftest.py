@@ -116,3 +116,67 @@ def isothermal_cycle(case, surface_set, inputs):
     return ehl_along_cycle(
         inputs, "u", "u", s.bodies, case.lubricant(), s.roughness, case.ehl_options(s)
     )
+
+
+@pytest.fixture(scope="session")
+def engine_results(tmp_path_factory):
+    """A result folder of ``tribodyn engine`` on the reduced paper case as a four-cylinder
+    engine with two surface sets (run once per session; tests that change files must
+    copy it)."""
+    from typer.testing import CliRunner
+
+    from tribodyn.cli import app
+    from tribodyn.config import load_case
+
+    base = load_case()
+    sets = base.to_dict()["surface_sets"]
+    sets = [s for s in sets if s["name"] in ("uncoated", "dlc_4um")]
+    path = tmp_path_factory.mktemp("engine_case") / "engine.toml"
+    base.updated({**REDUCED, "surface_sets": sets, **ENGINE}).write_toml(path)
+    out = tmp_path_factory.mktemp("engine") / "engine"
+    r = CliRunner().invoke(app, ["engine", str(path), "-o", str(out), "-j", "1"])
+    assert r.exit_code == 0, r.output
+    return out
+
+
+def fake_sweep_folder(folder):
+    """A sweep result folder of made-up numbers (3 speeds × 2 oil temperatures × 2
+    surface sets; engine mode) for tests of the output that reads sweep.nc: its
+    friction MEP falls with temperature and rises with speed, DLC 2 % below steel."""
+    import json
+
+    import xarray as xr
+
+    speed = np.array([1000.0, 3000.0, 6000.0])
+    temp = np.array([40.0, 110.0])
+    base = 10e3 + 1.0 * speed[:, None] - 40.0 * temp[None, :]
+    mep = np.stack([base, 0.98 * base], axis=-1)
+    dims = ("speed_rpm", "inlet_temperature_c", "surface_set")
+    ds = xr.Dataset(
+        {
+            "valvetrain_friction_mep_Pa": (dims, mep, {"units": "Pa"}),
+            "engine_friction_reduction_vs_uncoated_pct": (
+                dims,
+                100.0 * (1.0 - mep / mep[..., :1]),
+                {"units": "%"},
+            ),
+        },
+        coords={
+            "speed_rpm": speed,
+            "inlet_temperature_c": temp,
+            "surface_set": ["uncoated", "dlc_4um"],
+        },
+        attrs={
+            "mode": "engine",
+            "reference_set": "uncoated",
+            "axes": json.dumps(
+                [
+                    {"dim": "speed_rpm", "unit": "rpm"},
+                    {"dim": "inlet_temperature_c", "unit": "°C"},
+                ]
+            ),
+        },
+    )
+    folder.mkdir(parents=True, exist_ok=True)
+    ds.to_netcdf(folder / "sweep.nc", engine="h5netcdf")
+    return folder
