@@ -31,7 +31,14 @@ from .._validation import InputError
 from .explorer_data import Result, load_result, unique_labels
 from .explorer_plots import Styles, engine_figures, run_figures, sweep_figures
 
-__all__ = ["build_page", "write_page", "verdicts", "summary_rows", "interactive_block"]
+__all__ = [
+    "add_interactive",
+    "build_page",
+    "interactive_block",
+    "summary_rows",
+    "verdicts",
+    "write_page",
+]
 
 #: Summary numbers of a run's set: (key, label, unit, scale).
 RUN_ROWS = (
@@ -281,6 +288,24 @@ def interactive_block(results: list[Result], prefix: str = "tdv") -> tuple[str, 
     emb = _Embedder(prefix)
     divs = emb.divs(figs)
     return f"{divs}\n<p class='d' id='{prefix}time'></p>\n{emb.script()}", len(figs)
+
+
+def add_interactive(page: str, folder, label: str) -> str:
+    """A report page (:func:`~tribodyn.output.export.report_html`) with the interactive
+    traces of the result in ``folder`` (as ``tribodyn view`` draws them) before its
+    figures: the Bokeh library inline in the head. The page is returned unchanged if
+    the folder has no traces to draw."""
+    block, n = interactive_block([load_result(folder, label)], prefix="rep")
+    if not n:
+        return page
+    section = (
+        "<h2>Interactive traces</h2>\n<p class='d'>Drag to pan, box or wheel zoom, hover "
+        "for values, click a legend entry to hide its trace.</p>\n" + block + "\n"
+    )
+    at = page.find("<h2>Figures</h2>")
+    at = at if at >= 0 else page.rfind("</body>")
+    page = page[:at] + section + page[at:]
+    return page.replace("</head>", bokeh_js() + "\n</head>", 1)
 
 
 def build_page(paths, labels=None) -> tuple[str, int]:
