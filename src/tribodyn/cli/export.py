@@ -38,7 +38,8 @@ def export_command(
 def _export(results: Path, out: Path) -> None:
     import xarray as xr
 
-    from ..output.export import CSV_FILES, write_csv, write_html
+    from ..output.explorer import write_report_html
+    from ..output.export import CSV_FILES, write_csv
     from ..output.writer import MARKER, _marker_info, _sha256, mark_folder, own_files
 
     nc = results / "results.nc"
@@ -65,7 +66,7 @@ def _export(results: Path, out: Path) -> None:
         raise InputError(f"RESULTS: {nc} is not the results of a cam-cycle study")
     written = write_csv(ds, out)
     if md.is_file():  # figures are read from the result folder
-        html = write_html(md.read_text(encoding="utf-8"), results, out / "report.html")
+        html = write_report_html(md.read_text(encoding="utf-8"), results, path=out / "report.html")
         written.append(html)
     info = _marker_info(out)
     if isinstance(info.get("files"), dict):  # a result folder: these are its own now

@@ -52,16 +52,11 @@ def write_engine_results(
 
             names.extend(p.name for p in engine_figures(ds, tmp, labels=labels))
         if report:
-            from .explorer import add_interactive
-            from .export import report_html
+            from .explorer import write_report_html
             from .report_engine import write_engine_report
 
             md = write_engine_report(study, ds, summ, names, tmp, labels)
-            page = report_html(md.read_text(encoding="utf-8"), tmp)
-            page = add_interactive(page, tmp, study.case.name)
-            html_tmp = tmp / "report.html.tmp"
-            html_tmp.write_text(page, encoding="utf-8")
-            html_tmp.replace(tmp / "report.html")
+            write_report_html(md.read_text(encoding="utf-8"), tmp)
 
     path = write_atomic(Path(out_dir), writer, meta={"case": study.case.name})
     return {"summary": summ, "figures": names, "path": path}

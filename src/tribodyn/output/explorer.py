@@ -22,6 +22,7 @@ import html
 import json
 import math
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -38,6 +39,7 @@ __all__ = [
     "summary_rows",
     "verdicts",
     "write_page",
+    "write_report_html",
 ]
 
 #: Summary numbers of a run's set: (key, label, unit, scale).
@@ -254,12 +256,23 @@ class _Embedder:
         data = serialize_json(
             {"docs": {self.prefix: doc.to_json(deferred=False)}, "items": [item.to_json()]}
         )
-        data = data.replace("</", "<\\/")
+        data = _stable_ids(data).replace("</", "<\\/")
         return (
             f"<script type='application/json' id='{self.prefix}data'>{data}</script>\n"
             + _DRAW
             % {"data": f"{self.prefix}data", "time": f"{self.prefix}time", "n": len(self.figs)}
         )
+
+
+def _stable_ids(text: str) -> str:
+    """Bokeh's model ids (``"p1234"``, a per-process counter) numbered in order of
+    appearance: the same figures give the same page in any process."""
+    ids: dict[str, str] = {}
+
+    def sub(m: re.Match) -> str:
+        return '"' + ids.setdefault(m.group(1), f"p{len(ids) + 1}") + '"'
+
+    return re.sub(r'"(p\d+)"', sub, text)
 
 
 _DRAW = """<script>
@@ -290,12 +303,15 @@ def interactive_block(results: list[Result], prefix: str = "tdv") -> tuple[str, 
     return f"{divs}\n<p class='d' id='{prefix}time'></p>\n{emb.script()}", len(figs)
 
 
-def add_interactive(page: str, folder, label: str) -> str:
+def add_interactive(page: str, folder, label: str | None = None) -> str:
     """A report page (:func:`~tribodyn.output.export.report_html`) with the interactive
     traces of the result in ``folder`` (as ``tribodyn view`` draws them) before its
     figures: the Bokeh library inline in the head. The page is returned unchanged if
     the folder has no traces to draw."""
-    block, n = interactive_block([load_result(folder, label)], prefix="rep")
+    r = load_result(folder, label)
+    if label is None:
+        r.label = str(r.summary.get("case") or r.label)
+    block, n = interactive_block([r], prefix="rep")
     if not n:
         return page
     section = (
@@ -306,6 +322,22 @@ def add_interactive(page: str, folder, label: str) -> str:
     at = at if at >= 0 else page.rfind("</body>")
     page = page[:at] + section + page[at:]
     return page.replace("</head>", bokeh_js() + "\n</head>", 1)
+
+
+def write_report_html(markdown_text: str, folder, path=None) -> Path:
+    """Write ``path`` (default ``folder/report.html``): report.md rendered with its
+    figures embedded (:func:`~tribodyn.output.export.report_html`) and the interactive
+    traces of the result in ``folder`` (:func:`add_interactive`, named by the case);
+    temporary file, then rename. The same files give the same bytes."""
+    from .export import report_html
+
+    folder = Path(folder)
+    page = add_interactive(report_html(markdown_text, folder), folder)
+    path = Path(path) if path is not None else folder / "report.html"
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(page, encoding="utf-8")
+    tmp.replace(path)
+    return path
 
 
 def build_page(paths, labels=None) -> tuple[str, int]:

@@ -294,27 +294,14 @@ def report_text(study, ds, figures: dict) -> str:
         f"rpm); cam width {case.width * 1e3:g} mm; tribodyn "
         f"{ds.attrs.get('tribodyn_version', '')}; run time {summ['runtime_s']:.1f} s.",
         "",
-        "Method: valvetrain multi-body dynamics over two engine cycles from static "
-        "equilibrium (the second is presented), explicit analytic tribology; transient "
-        "mixed-EHL (Reynolds with Roelands and Dowson–Higginson, "
-        f"Reynolds cavitation, coated DC-FFT elasticity, {_asperity_models(case)}, "
-        f"{case.numerics.viscous_model} shear capped at the limiting shear stress, boundary "
-        "friction τ₀ + ς p_a) along the presented cycle for each tappet surface"
-        + (
-            "; implicit dynamics with the numerical EHL for the comparison"
-            + (" of the paper's Figs. 8–10" if paper_cmp else "")
-            if case.numerics.implicit_coupling
-            else ""
-        )
-        + ".",
-        "",
     ]
-    if study.warnings:
-        lines += ["## Warnings", ""] + [f"- {w}" for w in study.warnings] + [""]
-    lines += _inputs_section(study, summ)
+    from .report_first import verdict_section
 
+    # what the engineer asks first: the verdict, torque and pressure, films and λ
+    lines += verdict_section(summ)
+    lines += _engineering_section(study, summ)
     lines += [
-        "## Results per tappet surface",
+        "## Films, λ and friction per tappet surface",
         "",
         "Films and forces over the cam event; friction energy over all loaded "
         "samples of the presented cycle (totals over the cam width). Film gain: "
@@ -354,7 +341,10 @@ def report_text(study, ds, figures: dict) -> str:
         f"velocity {_fmt(d.get('seating_velocity_m_s'), 'm/s')}.",
         "",
     ]
-    lines += _engineering_section(study, summ)
+    if study.warnings:
+        lines += ["## Warnings", ""] + [f"- {w}" for w in study.warnings] + [""]
+    lines += _inputs_section(study, summ)
+
     from .report_stress import stress_section
 
     lines += stress_section(summ)
@@ -383,11 +373,20 @@ def report_text(study, ds, figures: dict) -> str:
         else paper.FIG5["entrainment_speed"]
     )
     from .figures import FIGURES, content_name
+    from .report_first import METHOD_FIGURES, figure_rank
 
     numbered = {content_name(n): n for n in FIGURES}
-    for key, path in sorted(figures.items(), key=lambda kv: numbered.get(kv[0], kv[0])):
+    ordered = sorted(figures.items(), key=lambda kv: figure_rank(numbered.get(kv[0], kv[0])))
+    method_head = False
+    for key, path in ordered:
         name = Path(path).name
         k = numbered.get(name, name)[:5]  # figNN of a numbered or content name
+        if k in METHOD_FIGURES and not method_head:
+            method_head = True
+            lines += [
+                "### Method comparisons" + (" (the paper's Figs. 5, 6, 8–11)" if paper_cmp else ""),
+                "",
+            ]
         cap = _CONTENT_CAPTIONS.get(name) if not paper_cmp else None
         if cap is None:
             cap = _CAPTIONS[k].format(u=u) if k in _CAPTIONS else key
@@ -395,6 +394,24 @@ def report_text(study, ds, figures: dict) -> str:
                 cap = re.sub(r" ?\(paper Fig\. \d+[^)]*\)", "", cap)
         lines += [f"![{cap}]({name})", "", f"*{cap}*", ""]
 
+    lines += [
+        "## Method",
+        "",
+        "Valvetrain multi-body dynamics over two engine cycles from static "
+        "equilibrium (the second is presented), explicit analytic tribology; transient "
+        "mixed-EHL (Reynolds with Roelands and Dowson–Higginson, "
+        f"Reynolds cavitation, coated DC-FFT elasticity, {_asperity_models(case)}, "
+        f"{case.numerics.viscous_model} shear capped at the limiting shear stress, boundary "
+        "friction τ₀ + ς p_a) along the presented cycle for each tappet surface"
+        + (
+            "; implicit dynamics with the numerical EHL for the comparison"
+            + (" of the paper's Figs. 8–10" if paper_cmp else "")
+            if case.numerics.implicit_coupling
+            else ""
+        )
+        + ".",
+        "",
+    ]
     lines += ["## Numerics", ""]
     loaded = np.array([s.loaded for s in study.sets])
     conv = np.array([s.converged for s in study.sets])

@@ -257,11 +257,11 @@ def write_results(
         else:
             essentials(tmp)
         if report:
-            from .export import write_html
+            from .explorer import write_report_html
             from .report import write_report
 
             write_report(study, ds, figs, tmp / "report.md")
-            write_html((tmp / "report.md").read_text(encoding="utf-8"), tmp)
+            write_report_html((tmp / "report.md").read_text(encoding="utf-8"), tmp)
         written.update(figures=figs)
 
     target = Path(out_dir).expanduser().absolute()
