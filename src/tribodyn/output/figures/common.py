@@ -347,8 +347,38 @@ def cycle_seconds_per_deg(ds) -> float:
     return 120.0 / rpm / 720.0
 
 
+def fitted_suptitle(fig, text: str, fontsize=12):
+    """``fig.suptitle(text)`` with each line too wide for the figure wrapped at word
+    boundaries, so that no title runs off the canvas."""
+    import textwrap
+
+    width = fig.get_figwidth() * 72.0 * 0.96  # points, a margin either side
+    out = []
+    for line in text.split("\n"):
+        # a conservative estimate of the text's width: 0.6 em per character
+        chars = max(20, int(width / (0.6 * fontsize)))
+        out.append(textwrap.fill(line, chars) if len(line) > chars else line)
+    return fig.suptitle("\n".join(out), fontsize=fontsize)
+
+
+def fitted_legend(fig, handles, labels, fontsize=8, **kw):
+    """A figure legend below the axes (``outside lower center``) in as many columns (at
+    most 5) as fit the figure's width."""
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    leg = None
+    for ncol in range(min(len(labels), 5), 0, -1):
+        leg = fig.legend(
+            handles, labels, loc="outside lower center", ncol=ncol, fontsize=fontsize, **kw
+        )
+        if ncol == 1 or leg.get_window_extent(r).width <= 0.98 * fig.bbox.width:
+            break
+        leg.remove()
+    return leg
+
+
 def finish(fig, path, title, subtitle=None) -> Path:
-    fig.suptitle(title if subtitle is None else f"{title}\n{subtitle}", fontsize=12)
+    fitted_suptitle(fig, title if subtitle is None else f"{title}\n{subtitle}", fontsize=12)
     return save_figure(fig, path)
 
 
