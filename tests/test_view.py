@@ -89,3 +89,27 @@ def test_page_never_overwrites_without_force(folders, tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["page.html"]  # no temporary left
     with pytest.raises(Exception, match="exists"):
         write_page("x", mine)
+
+
+def test_default_name_is_new_and_serve_is_local(tmp_path, monkeypatch):
+    import urllib.error
+    import urllib.request
+    from threading import Thread
+
+    from tribodyn.cli.view_serve import page_server
+    from tribodyn.output.explorer import default_page_path
+
+    (tmp_path / "tribodyn_view.html").write_text("mine", encoding="utf-8")
+    assert default_page_path(tmp_path).name == "tribodyn_view-2.html"
+    server = page_server(b"<html>page</html>", 0)
+    host, port = server.server_address[:2]
+    assert host == "127.0.0.1"
+    Thread(target=server.serve_forever, daemon=True).start()
+    try:
+        with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=10) as r:
+            assert r.read() == b"<html>page</html>"
+        with pytest.raises(urllib.error.HTTPError):
+            urllib.request.urlopen(f"http://127.0.0.1:{port}/etc/passwd", timeout=10)
+    finally:
+        server.shutdown()
+        server.server_close()

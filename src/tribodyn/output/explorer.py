@@ -23,11 +23,13 @@ import json
 import math
 import os
 import re
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
 from .._system import new_file
+from .._typing import PathLike
 from .._validation import InputError
 from .explorer_data import Result, load_result, unique_labels
 from .explorer_plots import Styles, engine_figures, run_figures, sweep_figures
@@ -303,7 +305,7 @@ def interactive_block(results: list[Result], prefix: str = "tdv") -> tuple[str, 
     return f"{divs}\n<p class='d' id='{prefix}time'></p>\n{emb.script()}", len(figs)
 
 
-def add_interactive(page: str, folder, label: str | None = None) -> str:
+def add_interactive(page: str, folder: PathLike, label: str | None = None) -> str:
     """A report page (:func:`~tribodyn.output.export.report_html`) with the interactive
     traces of the result in ``folder`` (as ``tribodyn view`` draws them) before its
     figures: the Bokeh library inline in the head. The page is returned unchanged if
@@ -324,7 +326,7 @@ def add_interactive(page: str, folder, label: str | None = None) -> str:
     return page.replace("</head>", bokeh_js() + "\n</head>", 1)
 
 
-def write_report_html(markdown_text: str, folder, path=None) -> Path:
+def write_report_html(markdown_text: str, folder: PathLike, path: PathLike | None = None) -> Path:
     """Write ``path`` (default ``folder/report.html``): report.md rendered with its
     figures embedded (:func:`~tribodyn.output.export.report_html`) and the interactive
     traces of the result in ``folder`` (:func:`add_interactive`, named by the case);
@@ -340,7 +342,7 @@ def write_report_html(markdown_text: str, folder, path=None) -> Path:
     return path
 
 
-def build_page(paths, labels=None) -> tuple[str, int]:
+def build_page(paths: Sequence[PathLike], labels: Sequence[str] | None = None) -> tuple[str, int]:
     """The page (module docstring) of the result folders ``paths``: (html, number of
     figures). ``labels``: names of the results (default: their folder names)."""
     paths = [Path(p) for p in paths]
@@ -444,7 +446,7 @@ def default_page_path(folder: Path = Path(".")) -> Path:
     return p
 
 
-def write_page(text: str, path, *, force: bool = False) -> Path:
+def write_page(text: str, path: PathLike, *, force: bool = False) -> Path:
     """Write ``text`` to ``path`` atomically: into a new temporary file in the same
     folder, then renamed into place. An existing ``path`` is refused
     (:class:`InputError`) unless ``force``; without it the final step links the file

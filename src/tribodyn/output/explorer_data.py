@@ -11,12 +11,15 @@ from __future__ import annotations
 import json
 import re
 import tomllib
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
+from .._typing import PathLike
 from .._validation import InputError
 
 __all__ = ["Result", "load_result", "set_display_names", "display_name"]
@@ -35,7 +38,7 @@ def display_name(name: str) -> str:
     return f"{mat} {m.group(2).replace('p', '.')} {unit}"
 
 
-def set_display_names(case_text: str | None, names) -> dict[str, str]:
+def set_display_names(case_text: str | None, names: Iterable[str]) -> dict[str, str]:
     """Display names of the surface sets ``names`` from a case file's text: the coating
     material's ``label`` (or key) and thickness in µm, ``uncoated`` without a coating, as
     the cycle study labels them; :func:`display_name` where the case does not say."""
@@ -103,7 +106,7 @@ def _read_text(path: Path) -> str:
         return ""
 
 
-def load_result(path, label: str | None = None) -> Result:
+def load_result(path: PathLike, label: str | None = None) -> Result:
     """The result folder ``path`` (module docstring). Raises :class:`InputError` naming
     the folder if it holds no tribodyn result."""
     import xarray as xr
@@ -143,7 +146,7 @@ def load_result(path, label: str | None = None) -> Result:
     return Result(p, "run", label, ds, summary, text, labels)
 
 
-def unique_labels(paths) -> list[str]:
+def unique_labels(paths: Iterable[PathLike]) -> list[str]:
     """Labels of the result folders ``paths``: their names, with as many parent folders
     as make them unique."""
     parts = [Path(p).resolve().parts for p in paths]
@@ -154,14 +157,13 @@ def unique_labels(paths) -> list[str]:
     return [str(Path(p)) for p in paths]
 
 
-def decimate(x, y, max_points: int = 1500):
+def decimate(x: ArrayLike, y: ArrayLike, max_points: int = 1500) -> tuple[np.ndarray, np.ndarray]:
     """``x``, ``y`` as float32 with at most about ``max_points`` samples (every k-th; the
     last sample kept): a page of a few MB for several runs at full resolution."""
-    x = np.asarray(x, float)
-    y = np.asarray(y, float)
-    if x.size > max_points:
-        k = int(np.ceil(x.size / max_points))
-        idx = np.r_[np.arange(0, x.size, k), x.size - 1]
-        idx = np.unique(idx)
-        x, y = x[idx], y[idx]
-    return x.astype(np.float32), y.astype(np.float32)
+    xa = np.asarray(x, float)
+    ya = np.asarray(y, float)
+    if xa.size > max_points:
+        k = int(np.ceil(xa.size / max_points))
+        idx = np.unique(np.r_[np.arange(0, xa.size, k), xa.size - 1])
+        xa, ya = xa[idx], ya[idx]
+    return xa.astype(np.float32), ya.astype(np.float32)
