@@ -118,8 +118,9 @@ def verdicts(r: Result) -> list[str]:
         pct = 100.0 * (e / e0 - 1.0)
         word = "lowers" if pct < 0 else "does not lower"
         out.append(
-            f"{r.labels.get(s, s)} {word} the {what}: {pct:+.2f} % against "
-            f"{r.labels.get(ref, ref)} ({_fmt(e)} J vs {_fmt(e0)} J per cycle)"
+            f"{r.labels.get(s, s)} {word} the {what}: "
+            + f"{pct:+.2f} %".replace("-", "−")
+            + f" against {r.labels.get(ref, ref)} ({_fmt(e)} J vs {_fmt(e0)} J per cycle)"
         )
     return out
 
@@ -392,7 +393,8 @@ def build_page(paths: Sequence[PathLike], labels: Sequence[str] | None = None) -
         if not figs:
             continue
         body += [f"<h2>{title}</h2>", hint, emb.divs(figs)]
-    body.append("<h2>Inputs: how the cases differ</h2>")
+    if len(results) > 1:
+        body.append("<h2>Inputs: how the cases differ</h2>")
     for b in results[1:]:
         a = next(r for r in results if r.kind == b.kind)
         if a is b:

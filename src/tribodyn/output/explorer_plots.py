@@ -94,6 +94,12 @@ def _legend_outside(p):
     return p
 
 
+def _width(i: int) -> float:
+    """Line width of the i-th set: the first widest, so that the sets' curves lying on
+    one another stay visible."""
+    return max(1.2, 2.8 - 0.6 * i)
+
+
 def _line(p, x, y, name, colour, dash, width=1.6):
     from bokeh.models import ColumnDataSource
 
@@ -182,7 +188,7 @@ def run_figures(results: list[Result], styles: Styles) -> list:
                 y = sum(np.asarray(ds[n].values[i], float) for n in names) * scale
                 y = np.where(loaded[i], y, np.nan)
                 disp = r.labels.get(s, s)
-                _line(p, x, y, f"{r.label} · {disp}", styles.colour(disp), DASHES[k % 5])
+                _line(p, x, y, f"{r.label} · {disp}", styles.colour(disp), DASHES[k % 5], _width(i))
                 drawn = True
         if drawn:
             figs.append(_legend_outside(p))
@@ -247,7 +253,9 @@ def engine_figures(results: list[Result], styles: Styles) -> list:
                 disp = r.labels.get(s, s)
                 prefix = f"{r.label} · " if len(engines) > 1 else ""
                 dash = DASHES[(k * len(shafts) + j) % 5]
-                _line(p, x, y, f"{prefix}{disp} · {c} camshaft", styles.colour(disp), dash)
+                _line(
+                    p, x, y, f"{prefix}{disp} · {c} camshaft", styles.colour(disp), dash, _width(i)
+                )
                 drawn = True
         if drawn:
             figs.append(_legend_outside(p))
