@@ -132,9 +132,17 @@ def arr(ds, name) -> np.ndarray:
 
 
 def set_labels(ds) -> list[str]:
+    """Display names of the surface sets: ``surface_label``, else from the case the
+    Dataset carries (a sweep's ``base_case_toml``), else the names made readable
+    (``dlc_4um`` → ``DLC 4 µm``)."""
     if "surface_label" in ds:
         return [str(v) for v in ds["surface_label"].values]
-    return [str(v) for v in ds["surface_set"].values]
+    from ..explorer_data import set_display_names
+
+    names = [str(v) for v in ds["surface_set"].values]
+    text = ds.attrs.get("base_case_toml") or ds.attrs.get("case_toml")
+    labels = set_display_names(str(text) if text else None, names)
+    return [labels[n] for n in names]
 
 
 def set_styles(ds) -> list[dict]:

@@ -132,6 +132,7 @@ def _set_lines(ds, combos):
     for j, (sel, lab) in enumerate(combos):
         for i, st in enumerate(styles):
             st = dict(st)
+            st["lw"] = max(1.0, 2.6 - 0.6 * i)  # sets lying on one another stay visible
             if len(combos) > 1:
                 st["color"] = plt.get_cmap("tab10")(i % 10)
                 st["ls"] = _LINESTYLES[j % 4]
