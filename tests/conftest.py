@@ -116,3 +116,81 @@ def isothermal_cycle(case, surface_set, inputs):
     return ehl_along_cycle(
         inputs, "u", "u", s.bodies, case.lubricant(), s.roughness, case.ehl_options(s)
     )
+
+
+@pytest.fixture(scope="session")
+def engine_results(tmp_path_factory):
+    """A result folder of ``tribodyn engine`` on the reduced paper case as a four-cylinder
+    engine with two surface sets (run once per session; tests that change files must
+    copy it)."""
+    from typer.testing import CliRunner
+
+    from tribodyn.cli import app
+    from tribodyn.config import load_case
+
+    base = load_case()
+    sets = base.to_dict()["surface_sets"]
+    sets = [s for s in sets if s["name"] in ("uncoated", "dlc_4um")]
+    path = tmp_path_factory.mktemp("engine_case") / "engine.toml"
+    base.updated({**REDUCED, "surface_sets": sets, **ENGINE}).write_toml(path)
+    out = tmp_path_factory.mktemp("engine") / "engine"
+    r = CliRunner().invoke(app, ["engine", str(path), "-o", str(out), "-j", "1"])
+    assert r.exit_code == 0, r.output
+    return out
+
+
+def fake_sweep_folder(folder):
+    """A sweep result folder of made-up numbers (engine mode: 3 speeds × 3 oil
+    temperatures × 3 surface sets, the bundled map's legend) for tests of the output that
+    reads sweep.nc: the friction MEP rises with speed and falls with temperature, DLC 2 %
+    and WC-C 3 % below steel."""
+    import json
+
+    import xarray as xr
+
+    speed = np.array([1000.0, 3000.0, 6000.0])
+    temp = np.array([40.0, 90.0, 120.0])
+    base = 10e3 + 1.0 * speed[:, None] - 40.0 * temp[None, :]
+    mep = np.stack([base, 0.98 * base, 0.97 * base], axis=-1)
+    energy = mep * 0.0016
+    point = ("speed_rpm", "inlet_temperature_c")
+    dims = (*point, "surface_set")
+    force = 400.0 + 1e-5 * speed[:, None] ** 2 + 0.0 * temp[None, :]
+    data = {
+        "valvetrain_friction_mep_Pa": (dims, mep, {"units": "Pa"}),
+        "engine_friction_energy_per_cycle_J": (dims, energy, {"units": "J"}),
+        "engine_friction_power_W": (dims, energy * speed[:, None, None] / 120.0, {"units": "W"}),
+        "engine_friction_torque_Nm": (dims, energy / (2 * np.pi), {"units": "N m"}),
+        "engine_friction_reduction_vs_uncoated_pct": (
+            dims,
+            100.0 * (1.0 - mep / mep[..., :1]),
+            {"units": "%"},
+        ),
+        "peak_contact_force_N": (point, force, {"units": "N"}),
+        "min_contact_force_in_event_N": (point, 0.5 * force, {"units": "N"}),
+        "seating_velocity_m_s": (point, 0.2 + 0.0 * force, {"units": "m/s"}),
+        "jump": (point, np.zeros(force.shape, int)),
+        "valve_bounce": (point, np.zeros(force.shape, int)),
+        "status": (point, np.ones(force.shape, int)),
+    }
+    axes = [
+        {"path": "engine.speed_rpm", "name": "speed_rpm", "dim": "speed_rpm", "unit": "rpm"},
+        {
+            "path": "lubricant.inlet_temperature_c",
+            "name": "inlet_temperature_c",
+            "dim": "inlet_temperature_c",
+            "unit": "°C",
+        },
+    ]
+    ds = xr.Dataset(
+        data,
+        coords={
+            "speed_rpm": speed,
+            "inlet_temperature_c": temp,
+            "surface_set": ["uncoated", "dlc_4um", "wcc_4um"],
+        },
+        attrs={"mode": "engine", "reference_set": "uncoated", "axes": json.dumps(axes)},
+    )
+    folder.mkdir(parents=True, exist_ok=True)
+    ds.to_netcdf(folder / "sweep.nc", engine="h5netcdf")
+    return folder

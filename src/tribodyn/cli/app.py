@@ -1,5 +1,5 @@
 """The ``tribodyn`` command-line application: ``run``, ``export``, ``sweep``, ``contact``,
-``topography``, ``calibrate``, ``warmup``, ``engine``."""
+``topography``, ``calibrate``, ``warmup``, ``engine``, ``view``."""
 
 from __future__ import annotations
 
@@ -13,6 +13,7 @@ from .export import export_command
 from .run import run_command
 from .sweep import sweep_command
 from .topography import topography_command
+from .view import view_command
 from .warmup import warmup_command
 
 __all__ = ["app", "main"]
@@ -51,6 +52,7 @@ app.command("topography")(topography_command)
 app.command("calibrate")(calibrate_command)
 app.command("warmup")(warmup_command)
 app.command("engine")(engine_command)
+app.command("view")(view_command)
 
 
 def main():  # pragma: no cover

@@ -30,8 +30,9 @@ def engine_command(
 ):
     """Run the engine's valvetrain: each lobe kind once, phase-shifted to every valve.
 
-    Writes OUT/results.nc, summary.json, case.toml and the figures
-    (engine_camshaft_torque.png, engine_lobe_contributions.png). Exit codes: 0 done,
+    Writes OUT/results.nc, summary.json, case.toml, the figures
+    (engine_camshaft_torque.png, engine_lobe_contributions.png) and the report
+    (report.md, report.html with interactive traces). Exit codes: 0 done,
     1 study or writing failed, 2 bad input.
     """
     from ..config import load_case
@@ -81,4 +82,7 @@ def engine_command(
             console.print(f"verdict (FMEP): {escape(d['coating_verdict']['sentence'])}")
     for w in study.warnings:
         console.print(f"[yellow]warning:[/yellow] {escape(w)}")
-    console.print(f"wrote {out}/results.nc, summary.json, case.toml in {study.runtime_s:.1f} s")
+    console.print(
+        f"wrote {out}/results.nc, summary.json, case.toml, report.md, report.html in "
+        f"{study.runtime_s:.1f} s"
+    )

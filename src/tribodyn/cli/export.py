@@ -47,7 +47,8 @@ def _export(results: Path, out: Path) -> None:
     import xarray as xr
 
     from .._safe_write import make_dirs
-    from ..output.export import CSV_FILES, report_markdown, write_csv, write_html
+    from ..output.explorer import write_report_html
+    from ..output.export import CSV_FILES, report_markdown, write_csv
     from ..output.writer import MARKER, _marker_info, _sha256, mark_folder, own_files
 
     nc = results / "results.nc"
@@ -96,7 +97,7 @@ def _export(results: Path, out: Path) -> None:
             ) from None
         if text is not None:  # figures are read from the result folder
             skipped: list[str] = []
-            written.append(write_html(text, results, out / "report.html", skipped))
+            written.append(write_report_html(text, results, out / "report.html", skipped))
             if skipped:
                 notes.append(
                     f"not embedded in report.html (missing, a link, or not a "

@@ -1,7 +1,9 @@
 """Writing an engine valvetrain study (:mod:`tribodyn.workflow.engine`): results.nc
 (camshaft torque traces with units and descriptions), summary.json (``engine``: per
 surface set the engine friction energy per cycle, the valvetrain FMEP, mean power and
-torque, the parts, per camshaft), case.toml and the engine figures, atomically."""
+torque, the parts, per camshaft), case.toml, the engine figures and the report
+(report.md, and report.html with interactive traces; :mod:`.report_engine`),
+atomically."""
 
 from __future__ import annotations
 
@@ -26,13 +28,21 @@ def engine_summary(study) -> dict:
     }
 
 
-def write_engine_results(study, out_dir: PathLike, *, figures: bool = True) -> dict:
-    """Write results.nc, summary.json, case.toml and the figures into ``out_dir`` (the
-    rules of :func:`~tribodyn.output.writer.write_atomic`). Returns ``{"summary": …,
-    "figures": [names], "path": out_dir}``."""
+def set_labels(study) -> dict[str, str]:
+    """Display names of the study's surface sets (``DLC 4 µm``, ``uncoated``)."""
+    return {s.name: s.coating_label for s in study.case.surface_sets()}
+
+
+def write_engine_results(
+    study, out_dir: PathLike, *, figures: bool = True, report: bool = True
+) -> dict:
+    """Write results.nc, summary.json, case.toml, the figures and the report into
+    ``out_dir`` (the rules of :func:`~tribodyn.output.writer.write_atomic`). Returns
+    ``{"summary": …, "figures": [names], "path": out_dir}``."""
     ds = study.to_dataset()
     summ = engine_summary(study)
     names: list[str] = []
+    labels = set_labels(study)
 
     def writer(tmp: Path) -> None:
         atomic_write_with(tmp / "results.nc", ds.to_netcdf)
@@ -41,7 +51,13 @@ def write_engine_results(study, out_dir: PathLike, *, figures: bool = True) -> d
         if figures:
             from .figures.engine import engine_figures
 
-            names.extend(p.name for p in engine_figures(ds, tmp))
+            names.extend(p.name for p in engine_figures(ds, tmp, labels=labels))
+        if report:
+            from .explorer import write_report_html
+            from .report_engine import write_engine_report
+
+            md = write_engine_report(study, ds, summ, names, tmp, labels)
+            write_report_html(md.read_text(encoding="utf-8"), tmp)
 
     path = write_atomic(Path(out_dir), writer, meta={"kind": "engine", "case": study.case.name})
     return {"summary": summ, "figures": names, "path": path}

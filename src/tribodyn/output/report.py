@@ -239,36 +239,6 @@ def _inputs_section(study, summ) -> list[str]:
     return lines + [""]
 
 
-def _signed(x: float) -> str:
-    return (f"{x:+.1f}" if abs(x) < 10.0 else f"{x:+.0f}").replace("-", "−")
-
-
-def verdict_section(summ) -> list[str]:
-    """ "Coating verdict": each set's change of friction energy per cycle against the
-    reference, with its range over the published friction inputs
-    (:mod:`tribodyn.workflow.verdict`)."""
-    rows = [
-        (v["label"], v["coating_verdict"])
-        for v in summ["surface_sets"].values()
-        if v.get("coating_verdict")
-    ]
-    if not rows:
-        return []
-    lines = ["## Coating verdict", ""]
-    lines += [f"- {vd['sentence']}" for _, vd in rows]
-    method = rows[0][1]["method"]
-    wide = "; ".join(
-        f"{label} {_signed(vd['range_independent_pct'][0])} … "
-        f"{_signed(vd['range_independent_pct'][1])} %"
-        for label, vd in rows
-        if vd.get("range_independent_pct")
-    )
-    lines += ["", f"How: {method}"]
-    if wide:
-        lines += ["", f"With each pair's ς independent: {wide}."]
-    return lines + [""]
-
-
 def _engineering_section(study, summ) -> list[str]:
     """Camshaft torque, friction power and contact pressure per set; spring surge."""
     sets = summ["surface_sets"]
@@ -360,27 +330,14 @@ def report_text(study, ds, figures: dict) -> str:
         f"rpm); cam width {case.width * 1e3:g} mm; tribodyn "
         f"{ds.attrs.get('tribodyn_version', '')}; run time {summ['runtime_s']:.1f} s.",
         "",
-        "Method: valvetrain multi-body dynamics over two engine cycles from static "
-        "equilibrium (the second is presented), explicit analytic tribology; transient "
-        "mixed-EHL (Reynolds with Roelands and Dowson–Higginson, "
-        f"Reynolds cavitation, coated DC-FFT elasticity, {_asperity_models(case)}, "
-        f"{case.numerics.viscous_model} shear capped at the limiting shear stress, boundary "
-        "friction τ₀ + ς p_a) along the presented cycle for each tappet surface"
-        + (
-            "; implicit dynamics with the numerical EHL for the comparison"
-            + (" of the paper's Figs. 8–10" if paper_cmp else "")
-            if case.numerics.implicit_coupling
-            else ""
-        )
-        + ".",
-        "",
     ]
-    if study.warnings:
-        lines += ["## Warnings", ""] + [f"- {w}" for w in study.warnings] + [""]
-    lines += _inputs_section(study, summ)
+    from .report_first import verdict_section
 
+    # what the engineer asks first: the verdict, torque and pressure, films and λ
+    lines += verdict_section(summ)
+    lines += _engineering_section(study, summ)
     lines += [
-        "## Results per tappet surface",
+        "## Films, λ and friction per tappet surface",
         "",
         "Films and forces over the cam event; friction energy over all loaded "
         "samples of the presented cycle (totals over the cam width). Film gain: "
@@ -406,7 +363,6 @@ def report_text(study, ds, figures: dict) -> str:
             f"{v['failed_steps']} |"
         )
     lines += ["", f"Film-gain rule: {summ['film_gain_rule']}.", ""]
-    lines += verdict_section(summ)
     d = summ.get("dynamics", {})
     ue = d.get("entrainment_speed_range_m_s") or [None, None]
     rmin = d.get("min_radius_of_curvature_m")
@@ -422,7 +378,10 @@ def report_text(study, ds, figures: dict) -> str:
         "",
     ]
     lines += valve_jump_section(summ)
-    lines += _engineering_section(study, summ)
+    if study.warnings:
+        lines += ["## Warnings", ""] + [f"- {w}" for w in study.warnings] + [""]
+    lines += _inputs_section(study, summ)
+
     from .report_stress import stress_section
 
     lines += stress_section(summ)
@@ -451,11 +410,20 @@ def report_text(study, ds, figures: dict) -> str:
         else paper.FIG5["entrainment_speed"]
     )
     from .figures import FIGURES, content_name
+    from .report_first import METHOD_FIGURES, figure_rank
 
     numbered = {content_name(n): n for n in FIGURES}
-    for key, path in sorted(figures.items(), key=lambda kv: numbered.get(kv[0], kv[0])):
+    ordered = sorted(figures.items(), key=lambda kv: figure_rank(numbered.get(kv[0], kv[0])))
+    method_head = False
+    for key, path in ordered:
         name = Path(path).name
         k = numbered.get(name, name)[:5]  # figNN of a numbered or content name
+        if k in METHOD_FIGURES and not method_head:
+            method_head = True
+            lines += [
+                "### Method comparisons" + (" (the paper's Figs. 5, 6, 8–11)" if paper_cmp else ""),
+                "",
+            ]
         cap = _CONTENT_CAPTIONS.get(name) if not paper_cmp else None
         if cap is None:
             cap = _CAPTIONS[k].format(u=u) if k in _CAPTIONS else key
@@ -463,6 +431,24 @@ def report_text(study, ds, figures: dict) -> str:
                 cap = re.sub(r" ?\(paper Fig\. \d+[^)]*\)", "", cap)
         lines += [f"![{cap}]({name})", "", f"*{cap}*", ""]
 
+    lines += [
+        "## Method",
+        "",
+        "Valvetrain multi-body dynamics over two engine cycles from static "
+        "equilibrium (the second is presented), explicit analytic tribology; transient "
+        "mixed-EHL (Reynolds with Roelands and Dowson–Higginson, "
+        f"Reynolds cavitation, coated DC-FFT elasticity, {_asperity_models(case)}, "
+        f"{case.numerics.viscous_model} shear capped at the limiting shear stress, boundary "
+        "friction τ₀ + ς p_a) along the presented cycle for each tappet surface"
+        + (
+            "; implicit dynamics with the numerical EHL for the comparison"
+            + (" of the paper's Figs. 8–10" if paper_cmp else "")
+            if case.numerics.implicit_coupling
+            else ""
+        )
+        + ".",
+        "",
+    ]
     lines += ["## Numerics", ""]
     loaded = np.array([s.loaded for s in study.sets])
     conv = np.array([s.converged for s in study.sets])

@@ -321,11 +321,12 @@ def write_results(
         else:
             essentials(tmp)
         if report:
-            from .export import report_markdown, write_html
+            from .explorer import write_report_html
+            from .export import report_markdown
             from .report import write_report
 
             write_report(study, ds, figs, tmp / "report.md")
-            write_html(report_markdown(tmp), tmp)
+            write_report_html(report_markdown(tmp), tmp)
         written.update(figures=figs)
 
     target = Path(out_dir).expanduser().absolute()

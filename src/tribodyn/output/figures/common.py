@@ -135,9 +135,17 @@ def arr(ds, name) -> np.ndarray:
 
 
 def set_labels(ds) -> list[str]:
+    """Display names of the surface sets: ``surface_label``, else from the case the
+    Dataset carries (a sweep's ``base_case_toml``), else the names made readable
+    (``dlc_4um`` → ``DLC 4 µm``)."""
     if "surface_label" in ds:
         return [str(v) for v in ds["surface_label"].values]
-    return [str(v) for v in ds["surface_set"].values]
+    from ..explorer_data import set_display_names
+
+    names = [str(v) for v in ds["surface_set"].values]
+    text = ds.attrs.get("base_case_toml") or ds.attrs.get("case_toml")
+    labels = set_display_names(str(text) if text else None, names)
+    return [labels[n] for n in names]
 
 
 def set_styles(ds) -> list[dict]:
@@ -350,8 +358,38 @@ def cycle_seconds_per_deg(ds) -> float:
     return 120.0 / rpm / 720.0
 
 
+def fitted_suptitle(fig, text: str, fontsize=12):
+    """``fig.suptitle(text)`` with each line too wide for the figure wrapped at word
+    boundaries, so that no title runs off the canvas."""
+    import textwrap
+
+    width = fig.get_figwidth() * 72.0 * 0.96  # points, a margin either side
+    out = []
+    for line in text.split("\n"):
+        # a conservative estimate of the text's width: 0.6 em per character
+        chars = max(20, int(width / (0.6 * fontsize)))
+        out.append(textwrap.fill(line, chars) if len(line) > chars else line)
+    return fig.suptitle("\n".join(out), fontsize=fontsize)
+
+
+def fitted_legend(fig, handles, labels, fontsize=8, **kw):
+    """A figure legend below the axes (``outside lower center``) in as many columns (at
+    most 5) as fit the figure's width."""
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    leg = None
+    for ncol in range(min(len(labels), 5), 0, -1):
+        leg = fig.legend(
+            handles, labels, loc="outside lower center", ncol=ncol, fontsize=fontsize, **kw
+        )
+        if ncol == 1 or leg.get_window_extent(r).width <= 0.98 * fig.bbox.width:
+            break
+        leg.remove()
+    return leg
+
+
 def finish(fig, path, title, subtitle=None) -> Path:
-    fig.suptitle(title if subtitle is None else f"{title}\n{subtitle}", fontsize=12)
+    fitted_suptitle(fig, title if subtitle is None else f"{title}\n{subtitle}", fontsize=12)
     return save_figure(fig, path)
 
 

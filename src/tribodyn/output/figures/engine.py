@@ -1,86 +1,136 @@
 """Engine figures (:mod:`tribodyn.workflow.engine`): camshaft torque traces per camshaft
 and surface set, and the lobe contributions to a camshaft's friction torque; both read
-the engine variables of a results Dataset (:meth:`EngineStudy.to_dataset`)."""
+the engine variables of a results Dataset (:meth:`EngineStudy.to_dataset`).
+
+Surface sets are named by their display names (``labels``, e.g. ``DLC 4 µm``) and drawn
+with a colour and a line style each, so that curves lying on one another stay visible;
+each valve has its own legend entry (cylinder, valve of its kind)."""
 
 from __future__ import annotations
+
+from collections import Counter
 
 import numpy as np
 
 from .common import finish as _finish
 from .common import plt
 
-__all__ = ["engine_torque_figure", "engine_lobe_figure", "engine_figures"]
+__all__ = ["engine_torque_figure", "engine_lobe_figure", "engine_figures", "valve_labels"]
+
+_STYLES = ("-", "--", ":", "-.")
+_COLOURS = ("tab:blue", "tab:red", "tab:green", "tab:purple", "tab:brown", "tab:olive")
+_X_LABEL = "crank angle from cylinder 1 firing TDC [°]"
 
 
-def engine_torque_figure(ds, path):
+def _set_style(i: int) -> dict:
+    return {
+        "color": _COLOURS[i % len(_COLOURS)],
+        "ls": _STYLES[i % len(_STYLES)],
+        "lw": 1.8 if i == 0 else 1.3,
+    }
+
+
+def valve_labels(valves) -> list[str]:
+    """Unique legend labels of the valves ``intake1``, ``intake1``, ``exhaust1``, … :
+    ``cyl. 1 intake a``, ``cyl. 1 intake b``, … (a single valve of its kind keeps
+    ``cyl. 1 intake``)."""
+    names = [str(v) for v in valves]
+    total = Counter(names)
+    seen: Counter = Counter()
+    out = []
+    for n in names:
+        kind = n.rstrip("0123456789")
+        cyl = n[len(kind) :]
+        tail = f" {'abcdefgh'[seen[n]]}" if total[n] > 1 and seen[n] < 8 else ""
+        seen[n] += 1
+        out.append(f"cyl. {cyl} {kind}{tail}" if cyl else f"{kind}{tail}")
+    return out
+
+
+def engine_torque_figure(ds, path, labels=None):
     """Camshaft drive torque and friction torque (cam–tappet, auxiliary) over crank angle,
     per camshaft and surface set."""
+    labels = labels or {}
     x = np.asarray(ds["engine_crank"])
     shafts = list(ds["camshaft"].values)
-    sets = list(ds["engine_set"].values)
+    sets = [str(s) for s in ds["engine_set"].values]
     fig, axes = plt.subplots(
-        2, len(shafts), figsize=(6 * len(shafts), 7), layout="constrained", squeeze=False
+        2, len(shafts), figsize=(6 * len(shafts), 7.5), layout="constrained", squeeze=False
     )
-    w = None
     for j, shaft in enumerate(shafts):
         a, b = axes[0, j], axes[1, j]
         for i, name in enumerate(sets):
-            a.plot(x, ds["camshaft_drive_torque"].values[i, j], lw=1.2, label=str(name))
-            b.plot(
-                x, ds["camshaft_friction_torque"].values[i, j], lw=1.2, label=f"{name}: cam–tappet"
-            )
+            st = _set_style(i)
+            lab = labels.get(name, name)
+            a.plot(x, ds["camshaft_drive_torque"].values[i, j], label=lab, **st)
+            b.plot(x, ds["camshaft_friction_torque"].values[i, j], label=f"{lab}: cam–tappet", **st)
         aux = (
             ds["tappet_bore_torque"].values[0, j]
             + ds["valve_guide_torque"].values[0, j]
             + ds["camshaft_journal_torque"].values[0, j]
         )
-        b.plot(x, aux, "k--", lw=1.0, label=f"{sets[0]}: bore + guides + journals")
+        ref = labels.get(sets[0], sets[0])
+        b.plot(
+            x,
+            aux,
+            color="k",
+            ls=(0, (5, 1, 1, 1)),
+            lw=1.0,
+            label=f"{ref}: bores + guides + journals",
+        )
         a.axhline(0.0, color="k", lw=0.6)
         a.set_title(f"{shaft} camshaft")
         a.set_ylabel("drive torque [N m]")
         b.set_ylabel("friction torque [N m]")
-        b.set_xlabel("crank angle from cylinder 1 firing TDC [°]")
+        b.set_xlabel(_X_LABEL)
         for ax in (a, b):
             ax.set_xlim(0, 720)
             ax.set_xticks(np.arange(0, 721, 90))
             ax.grid(alpha=0.3)
-        b.legend(fontsize=8)
-        w = a
-    if w is not None:
-        w.legend(fontsize=8)
-    return _finish(fig, path, "Camshaft torque of the engine")
+    h, lab = axes[1, -1].get_legend_handles_labels()
+    fig.legend(h, lab, loc="outside lower center", ncol=min(len(lab), 4), fontsize=9)
+    return _finish(
+        fig,
+        path,
+        "Camshaft torque of the engine, per camshaft",
+        "top: drive torque of the cam–tappet contacts; bottom: friction torque",
+    )
 
 
-def engine_lobe_figure(ds, path):
+def engine_lobe_figure(ds, path, labels=None):
     """Each valve's cam–tappet friction torque (first surface set), stacked per camshaft,
     with the camshaft's sum."""
+    labels = labels or {}
     x = np.asarray(ds["engine_crank"])
     valves = [str(v) for v in ds["valve"].values]
+    names = valve_labels(valves)
     t = ds["lobe_friction_torque"].values[0]
     shafts = list(ds["camshaft"].values)
+    first = str(ds["engine_set"].values[0])
     fig, axes = plt.subplots(
-        1, len(shafts), figsize=(6 * len(shafts), 4.5), layout="constrained", squeeze=False
+        1, len(shafts), figsize=(6 * len(shafts), 5.5), layout="constrained", squeeze=False
     )
     for j, shaft in enumerate(shafts):
         ax = axes[0, j]
         keep = [k for k, v in enumerate(valves) if shaft == "camshaft" or v.startswith(shaft)]
-        ax.stackplot(x, t[keep], labels=[valves[k] for k in keep], alpha=0.8)
+        ax.stackplot(x, t[keep], labels=[names[k] for k in keep], alpha=0.8)
         ax.plot(x, ds["camshaft_friction_torque"].values[0, j], "k", lw=1.0, label="sum")
-        ax.set_title(f"{shaft} camshaft, {ds['engine_set'].values[0]}")
-        ax.set_xlabel("crank angle from cylinder 1 firing TDC [°]")
+        ax.set_title(f"{shaft} camshaft, {labels.get(first, first)}")
+        ax.set_xlabel(_X_LABEL)
         ax.set_ylabel("cam–tappet friction torque [N m]")
         ax.set_xlim(0, 720)
         ax.set_xticks(np.arange(0, 721, 90))
-        ax.legend(fontsize=7, ncol=2)
+        ax.legend(fontsize=8, ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.14))
     return _finish(fig, path, "Lobe contributions to the camshaft friction torque")
 
 
-def engine_figures(ds, folder) -> list:
-    """Write both engine figures into ``folder``; returns their paths."""
+def engine_figures(ds, folder, labels=None) -> list:
+    """Write both engine figures into ``folder``; returns their paths. ``labels``:
+    display names of the surface sets."""
     from pathlib import Path
 
     folder = Path(folder)
     return [
-        engine_torque_figure(ds, folder / "engine_camshaft_torque.png"),
-        engine_lobe_figure(ds, folder / "engine_lobe_contributions.png"),
+        engine_torque_figure(ds, folder / "engine_camshaft_torque.png", labels),
+        engine_lobe_figure(ds, folder / "engine_lobe_contributions.png", labels),
     ]

@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from ..._safe_write import make_dirs
-from .common import UM, has, plt, save_figure, set_styles
+from .common import UM, fitted_legend, fitted_suptitle, has, plt, save_figure, set_styles
 
 __all__ = ["sweep_figures", "x_dim", "other_combinations", "onset_speeds", "SWEEP_FIGURES"]
 
@@ -133,6 +133,7 @@ def _set_lines(ds, combos):
     for j, (sel, lab) in enumerate(combos):
         for i, st in enumerate(styles):
             st = dict(st)
+            st["lw"] = max(1.0, 2.6 - 0.6 * i)  # sets lying on one another stay visible
             if len(combos) > 1:
                 st["color"] = plt.get_cmap("tab10")(i % 10)
                 st["ls"] = _LINESTYLES[j % 4]
@@ -172,10 +173,8 @@ def _line_panel(ax, ds, name, xd, combos, scale=1.0, ylabel="", log=False):
 def _finish(fig, axes, path, title, note):
     h, lab = axes[0].get_legend_handles_labels()
     if h:
-        fig.legend(
-            h, lab, loc="outside lower center", ncol=min(len(lab), 5), fontsize=8, frameon=False
-        )
-    fig.suptitle(title if note is None else f"{title}\n{note}", fontsize=11)
+        fitted_legend(fig, h, lab, fontsize=8, frameon=False)
+    fitted_suptitle(fig, title if note is None else f"{title}\n{note}", fontsize=11)
     return save_figure(fig, path)
 
 
@@ -303,7 +302,7 @@ def fig_dynamics(ds, path):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7, loc="best")
     sub = "; ".join(t for t in (note, clipped) if t)
-    fig.suptitle("Valvetrain dynamics" + (f"\n{sub}" if sub else ""), fontsize=11)
+    fitted_suptitle(fig, "Valvetrain dynamics" + (f"\n{sub}" if sub else ""), fontsize=11)
     return save_figure(fig, path)
 
 
@@ -427,7 +426,7 @@ def fig_heatmap(ds, path):
     title = (
         "Sweep maps" + (f" (at {sub})" if sub else "") + ("; × failed point" if (~ok).any() else "")
     )
-    fig.suptitle(title, fontsize=11)
+    fitted_suptitle(fig, title, fontsize=11)
     return save_figure(fig, path)
 
 
