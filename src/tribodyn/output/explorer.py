@@ -21,7 +21,6 @@ import difflib
 import html
 import json
 import math
-import os
 import re
 from collections.abc import Sequence
 from pathlib import Path
