@@ -33,12 +33,23 @@ def test_verdict_says_lower_or_not_with_the_change():
             "a": {"label": "steel", "friction_energy_per_cycle_J": 2.0, "min_film_m": 1e-7},
             "b": {"label": "DLC 1 µm", "friction_energy_per_cycle_J": 1.5, "min_film_m": 1.1e-7},
             "c": {"label": "WC-C 1 µm", "friction_energy_per_cycle_J": 2.5},
-            "d": {"label": "X", "coating_verdict": "given as it is"},
+            "d": {
+                "label": "X",
+                "friction_energy_per_cycle_J": 1.0,
+                "coating_verdict": {
+                    "sentence": "X lowers friction energy per cycle by 50 % (given)",
+                    "range_independent_pct": [-60.0, -40.0],
+                    "method": "as the summary says",
+                },
+            },
         },
     }
     text = "\n".join(verdict_section(summ))
     assert "**DLC 1 µm** lowers the friction: friction energy per cycle −25.0 %" in text
     assert "minimum film h_min +10.0 %" in text
     assert "**WC-C 1 µm** does not lower the friction: friction energy per cycle +25.0 %" in text
-    assert "**X**: given as it is" in text
+    # a coating_verdict of the summary is quoted, with its method and independent range
+    assert "**X lowers friction energy per cycle by 50 % (given)** (friction energy" in text
+    assert "How the range was computed: as the summary says" in text
+    assert "With each pair's ς varied on its own: X −60 … −40 %." in text
     assert figure_rank("fig23") < figure_rank("fig99") < figure_rank("fig08")

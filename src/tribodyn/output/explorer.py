@@ -309,8 +309,11 @@ def add_interactive(page: str, folder: PathLike, label: str | None = None) -> st
     """A report page (:func:`~tribodyn.output.export.report_html`) with the interactive
     traces of the result in ``folder`` (as ``tribodyn view`` draws them) before its
     figures: the Bokeh library inline in the head. The page is returned unchanged if
-    the folder has no traces to draw."""
-    r = load_result(folder, label)
+    the folder has no traces to draw (or no results the explorer can read)."""
+    try:
+        r = load_result(folder, label)
+    except InputError:
+        return page
     if label is None:
         r.label = str(r.summary.get("case") or r.label)
     block, n = interactive_block([r], prefix="rep")

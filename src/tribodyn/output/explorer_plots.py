@@ -183,7 +183,10 @@ def run_figures(results: list[Result], styles: Styles) -> list:
             if not all(n in ds for n in names):
                 continue
             x = ds["ehl_crank"].values
-            loaded = np.asarray(ds["loaded"].values, bool)
+            shape = np.shape(ds[names[0]].values)
+            loaded = (
+                np.asarray(ds["loaded"].values, bool) if "loaded" in ds else np.ones(shape, bool)
+            )
             for i, s in enumerate(r.sets):
                 y = sum(np.asarray(ds[n].values[i], float) for n in names) * scale
                 y = np.where(loaded[i], y, np.nan)

@@ -56,16 +56,19 @@ def verdict_lines(eng: dict, labels: dict) -> list[str]:
         given = d.get("coating_verdict")
         ct0 = sets[ref]["friction_energy_per_cycle_J"]["cam_tappet"]
         ct = d["friction_energy_per_cycle_J"]["cam_tappet"]
-        if isinstance(given, dict) and given.get("sentence"):
-            out.append(f"- **{given['sentence']}** The cam–tappet contacts alone: {_pct(ct, ct0)}.")
-            continue
         e = d["engine_friction_energy_per_cycle_J"]
         pct = 100.0 * (e / e0 - 1.0)
         word = "lowers" if pct < 0 else "does not lower"
+        rng = given.get("range_pct") if isinstance(given, dict) else None
+        extra = ""
+        if rng:
+            lo, hi = (f"{x:+.1f}".replace("-", "−") for x in rng)
+            settled = "" if given.get("sign_settled") else " (the sign is not settled)"
+            extra = f" Over the published ranges of ς, τ_E and Λ: {lo} … {hi} %{settled}."
         out.append(
             f"- **{lab}** {word} the valvetrain friction: energy per cycle and FMEP "
             f"{_pct(e, e0)} against {labels.get(ref, ref)} ({_fmt(e, 'J', 4)} vs "
-            f"{_fmt(e0, 'J', 4)}); the cam–tappet contacts alone {_pct(ct, ct0)}."
+            f"{_fmt(e0, 'J', 4)}); the cam–tappet contacts alone {_pct(ct, ct0)}.{extra}"
         )
     return out
 
