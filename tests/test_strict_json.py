@@ -67,12 +67,12 @@ def test_engine_summary_with_an_unknown_value_is_strict(tmp_path, monkeypatch):
     study = SimpleNamespace(
         summary=lambda: {"fmep_Pa": math.inf, "e": [math.nan, 1.0]},
         to_dataset=lambda: SimpleNamespace(to_netcdf=lambda path: Path(path).write_bytes(b"")),
-        case=SimpleNamespace(name="engine"),
+        case=SimpleNamespace(name="engine", surface_sets=lambda: []),
         warnings=[],
         runtime_s=1.0,
         timings={},
     )
     monkeypatch.setattr(engine_output, "_write_case", lambda case, folder: None)
-    engine_output.write_engine_results(study, tmp_path / "out", figures=False)
+    engine_output.write_engine_results(study, tmp_path / "out", figures=False, report=False)
     text = (tmp_path / "out" / "summary.json").read_text(encoding="utf-8")
     assert _strict_loads(text)["engine"] == {"fmep_Pa": None, "e": [None, 1.0]}

@@ -335,7 +335,10 @@ def test_failing_point_is_reported_and_the_rest_complete(tmp_path):
     assert ds["status"].values.tolist() == [[1, 0], [0, 0]]
     ok = ds.isel(min_load=0, g=0, surface_set=0)
     assert 1e-9 < float(ok["min_film_m"]) < float(ok["max_central_film_m"]) < 1e-5
-    assert 0 < float(ok["friction_energy_per_cycle_J"]) < 1
+    # magnitude: flat-tappet friction loss of 2–4 J per cam revolution was measured
+    # (Winer et al., J. Tribol. 1986); this rough set (σ 0.41 µm) under the default
+    # surface law lies in it
+    assert 0.5 < float(ok["friction_energy_per_cycle_J"]) < 5
     assert int(ok["failed_steps"]) == 0
     # the implicit-vs-explicit comparison is stored in full, NaN without the coupling
     for k in (

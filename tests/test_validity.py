@@ -215,6 +215,6 @@ def test_valve_jump_is_reported_clearly():
         **case.dynamics_options(),
     )
     assert dyn.converged and dyn.jump
-    text = _jump_warning(dyn)
+    text = _jump_warning(dyn, case)
     assert "loses contact with the cam (valve jump)" in text
     assert "does not follow the cam" in text
