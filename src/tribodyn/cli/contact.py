@@ -468,7 +468,8 @@ def contact_command(
     surface_set: str | None = _option(
         "--surface-set",
         panel=_SURF,
-        help="Take bodies, roughness, ς and τ₀ from this surface set of --case (else of {case}).",
+        help="Take bodies, roughness, ς and τ₀ from this surface set of the case (default "
+        "case: --case, else {case}).",
     ),
     case_file: Path | None = _option(
         "--case",
