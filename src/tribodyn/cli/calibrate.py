@@ -25,7 +25,8 @@ from .failure import fail, writing
 
 __all__ = ["calibrate_command", "read_friction_csv", "calibration_toml"]
 
-_STEEL_E = paper.STEEL["E"]
+#: the default surfaces: steel, E and ν of the one steel row (paper Table 6)
+_STEEL_E, _STEEL_NU = paper.STEEL["E"], paper.STEEL["nu"]
 
 _COLUMNS = ("entrainment_speed", "friction_coefficient")
 
@@ -317,9 +318,9 @@ def calibrate_command(
         help="σ/β (default: the typical value, physics.typical.RMS_TO_SUMMIT_RADIUS).",
     ),
     e1: float = typer.Option(_STEEL_E, "--E1", help="Young's modulus of surface 1 [Pa] (steel)."),
-    nu1: float = typer.Option(0.3, "--nu1", help="Poisson's ratio of surface 1."),
+    nu1: float = typer.Option(_STEEL_NU, "--nu1", help="Poisson's ratio of surface 1 (steel)."),
     e2: float = typer.Option(_STEEL_E, "--E2", help="Young's modulus of surface 2 [Pa] (steel)."),
-    nu2: float = typer.Option(0.3, "--nu2", help="Poisson's ratio of surface 2."),
+    nu2: float = typer.Option(_STEEL_NU, "--nu2", help="Poisson's ratio of surface 2 (steel)."),
     fit: str = typer.Option(
         "boundary_shear_coefficient,eyring_stress,limiting_shear_coefficient",
         "--fit",
