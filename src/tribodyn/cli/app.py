@@ -7,12 +7,12 @@ import typer
 
 from .._version import __version__
 from .calibrate import calibrate_command
-from .contact import contact_command
+from .contact import ContactCommand, contact_command
 from .engine import engine_command
 from .export import export_command
-from .run import run_command
+from .run import RunCommand, run_command
 from .sweep import sweep_command
-from .topography import topography_command
+from .topography import TopographyCommand, topography_command
 from .view import view_command
 from .warmup import warmup_command
 
@@ -44,11 +44,11 @@ def _main(
     """tribodyn: cam–tappet tribo-dynamics with coated surfaces."""
 
 
-app.command("run")(run_command)
+app.command("run", cls=RunCommand)(run_command)
 app.command("export")(export_command)
 app.command("sweep")(sweep_command)
-app.command("contact")(contact_command)
-app.command("topography")(topography_command)
+app.command("contact", cls=ContactCommand)(contact_command)
+app.command("topography", cls=TopographyCommand)(topography_command)
 app.command("calibrate")(calibrate_command)
 app.command("warmup")(warmup_command)
 app.command("engine")(engine_command)

@@ -20,11 +20,13 @@ from rich.console import Console
 from rich.markup import escape
 
 from .. import _json, paper
+from ..physics import typical
 from .failure import fail, writing
 
 __all__ = ["calibrate_command", "read_friction_csv", "calibration_toml"]
 
-_STEEL_E = paper.STEEL["E"]
+#: the default surfaces: steel, E and ν of the one steel row (paper Table 6)
+_STEEL_E, _STEEL_NU = paper.STEEL["E"], paper.STEEL["nu"]
 
 _COLUMNS = ("entrainment_speed", "friction_coefficient")
 
@@ -286,7 +288,7 @@ def calibration_toml(
 def calibrate_command(
     data: Path = typer.Argument(..., help="CSV of measured friction (see the guide)."),
     radius: float | None = typer.Option(
-        None, "--radius", help="reduced radius R [m] (unless DATA has a radius column)."
+        None, "--radius", help="reduced radius R \\[m] (unless DATA has a radius column)."
     ),
     load: float | None = typer.Option(
         None, "--load", help="load per unit length w [N/m] (unless DATA has a load column)."
@@ -296,7 +298,7 @@ def calibrate_command(
         ..., "--pressure-viscosity", help="α at the test temperature [1/Pa]."
     ),
     rms: float | None = typer.Option(
-        None, "--rms", help="composite RMS roughness σ [m] (absent: smooth, rheology only)."
+        None, "--rms", help="composite RMS roughness σ \\[m] (absent: smooth, rheology only)."
     ),
     asperity_model: str = typer.Option(
         "surface",
@@ -306,15 +308,19 @@ def calibrate_command(
         "in a case file) or greenwood_tripp (with --roughness-parameter, --rms-to-radius).",
     ),
     roughness_parameter: float = typer.Option(
-        0.04, "--roughness-parameter", help="ηβσ (typical 0.04, physics.typical)."
+        typical.ROUGHNESS_PARAMETER.value,
+        "--roughness-parameter",
+        help="ηβσ (default: the typical value, physics.typical.ROUGHNESS_PARAMETER).",
     ),
     rms_to_radius: float = typer.Option(
-        1e-3, "--rms-to-radius", help="σ/β (typical 1e-3, physics.typical)."
+        typical.RMS_TO_SUMMIT_RADIUS.value,
+        "--rms-to-radius",
+        help="σ/β (default: the typical value, physics.typical.RMS_TO_SUMMIT_RADIUS).",
     ),
     e1: float = typer.Option(_STEEL_E, "--E1", help="Young's modulus of surface 1 [Pa] (steel)."),
-    nu1: float = typer.Option(0.3, "--nu1", help="Poisson's ratio of surface 1."),
+    nu1: float = typer.Option(_STEEL_NU, "--nu1", help="Poisson's ratio of surface 1 (steel)."),
     e2: float = typer.Option(_STEEL_E, "--E2", help="Young's modulus of surface 2 [Pa] (steel)."),
-    nu2: float = typer.Option(0.3, "--nu2", help="Poisson's ratio of surface 2."),
+    nu2: float = typer.Option(_STEEL_NU, "--nu2", help="Poisson's ratio of surface 2 (steel)."),
     fit: str = typer.Option(
         "boundary_shear_coefficient,eyring_stress,limiting_shear_coefficient",
         "--fit",

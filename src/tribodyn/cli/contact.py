@@ -1,10 +1,13 @@
 """``tribodyn contact``: a quick single-point line-contact calculator (EHL or dry).
 
 The cam is steel and the tappet carries the coating. Everything not given on the command
-line comes from the paper's case (Tables 4–7), or from ``--case FILE`` /
-``--surface-set NAME``. The table shows engineering units (µm, MPa); ``--json`` prints
-SI values with the unit in each key name (``central_film_m``, ``friction_N``, …). The
-computation is :func:`tribodyn.workflow.point.solve_point`; this module parses options.
+line comes from ``--case FILE`` (``--surface-set NAME`` of it), else from the bundled
+default case (:data:`tribodyn.config.DEFAULT_CASE`, the one ``tribodyn run`` runs): its
+lubricant, materials, ς, τ₀ and numerics, from one source. ``--help`` quotes the values of
+that case (:func:`stated_defaults`). The table shows engineering units (µm, MPa);
+``--json`` prints SI values with the unit in each key name (``central_film_m``,
+``friction_N``, …). The computation is :func:`tribodyn.workflow.point.solve_point`; this
+module parses options.
 
 Exit codes: 0 solved and converged, 1 solved but not converged (results still printed),
 2 bad input (message on stderr, no traceback).
@@ -23,17 +26,17 @@ from typing import Any
 import typer
 from rich.console import Console
 
-from .. import _json, paper
+from .. import _json
 from .._validation import InputError
-from ..physics import typical
 from .contact_table import _table
 from .failure import fail
+from .help_defaults import stating
 
-__all__ = ["ContactRequest", "contact_command", "compute_contact"]
+__all__ = ["ContactRequest", "contact_command", "compute_contact", "stated_defaults"]
 
-_LUB = "Lubricant (default: the paper's Table 5, or the case's)"
+_LUB = "Lubricant (default: the \\[lubricant] of --case, else of the bundled case {case})"
 _SURF = "Surfaces (cam: steel; tappet: coated or not)"
-_NUM = "Numerics"
+_NUM = "Numerics (default: the \\[numerics] of --case, else of {case})"
 
 
 def _triple(text: str, option: str, names: str) -> tuple[float, float, float]:
@@ -172,7 +175,7 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
 
     Raises :class:`~tribodyn.InputError` naming the offending option on bad input.
     """
-    from ..config import Case, load_case
+    from ..config import load_case
     from ..physics.asperity import Roughness
     from ..physics.materials import Coating
     from ..workflow.point import point_surfaces, solve_point
@@ -182,12 +185,7 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
     elif options:
         raise TypeError("give a ContactRequest or its fields as keywords, not both")
     q = request
-    if q.case_file is not None:
-        case = load_case(q.case_file)
-    elif q.surface_set is not None:
-        case = load_case()  # the bundled paper case
-    else:
-        case = Case()  # the paper's defaults
+    case = load_case(q.case_file)  # None: the bundled default case, as tribodyn run
     coat = rough = None
     if q.coating is not None:
         E, nu, t = _triple(q.coating, "--coating", "E [Pa], nu [-], thickness [m]")
@@ -230,9 +228,7 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
         law = typical_surface_law(rough.rms, surfaces.bodies)
         surfaces = replace(surfaces, roughness=replace(rough, law=law))
 
-    width = q.width
-    if width is None:
-        width = case.cam_config.width if q.case_file is not None else paper.CAM_WIDTH
+    width = q.width if q.width is not None else case.cam_config.width
     _check_positive("--width", width, "m")
     if (q.load is None) == (q.load_per_length is None):
         raise InputError(
@@ -363,9 +359,65 @@ def _check_positive(option: str, value: float | None, unit: str) -> None:
 
 
 def _option(flag: str, *, help: str, panel: str | None = None, **more: Any) -> Any:
-    """The command's option ``flag``: None when not given (the case's or the paper's value
-    applies), listed under ``panel`` in ``--help``."""
+    """The command's option ``flag``: None when not given (the case's value applies),
+    listed under ``panel`` in ``--help``."""
     return typer.Option(None, flag, rich_help_panel=panel, help=help, **more)
+
+
+def stated_defaults() -> dict[str, Any]:
+    """The defaults ``tribodyn contact --help`` states, from the objects
+    :func:`compute_contact` uses: the bundled default case (its lubricant, materials,
+    first set's τ₀, EHL options), the ``--oil`` lubricant's field defaults and the dry
+    solver's grid."""
+    import inspect
+
+    from ..config import load_case
+    from ..contact.dry import solve_dry_contact
+    from ..contact.ehl.grid import N_AUTO, N_MAX_AUTO
+    from ..physics.oils import OILS
+    from ..physics.thermal_oil import ThermalLubricant
+    from ..workflow.point import point_surfaces
+
+    case = load_case()
+    lub = case.lubricant()
+    surfaces = point_surfaces(case)
+    opts = case.ehl_options(surfaces)
+    oil = {f.name: f.default for f in dataclasses.fields(ThermalLubricant)}
+    shear = ", ".join(
+        f"{k} {m.boundary_shear_coefficient:g}"
+        for k, m in case.materials.items()
+        if m.boundary_shear_coefficient is not None
+    )
+    n_ehl = (
+        f"{case.name}: {opts.n}"
+        if opts.n is not None
+        else f"automatic ({case.name}: numerics.n = {case.numerics.n}): {N_AUTO} nodes over "
+        f"the contact, steady solves refined up to {N_MAX_AUTO}"
+    )
+    return {
+        "case": case.name,
+        "width": case.cam_config.width,
+        "materials": ", ".join(case.materials),
+        "shear": shear,
+        "tau0": surfaces.boundary_shear_strength,
+        "viscosity": lub.viscosity,
+        "pressure_viscosity": lub.pressure_viscosity,
+        "density": lub.density,
+        "eyring_stress": lub.eyring_stress,
+        "limiting_shear_coefficient": lub.limiting_shear_coefficient,
+        "viscosity_model": lub.viscosity_model,
+        "oil_eyring_stress": oil["eyring_stress"],
+        "oil_limiting_shear_coefficient": oil["limiting_shear_coefficient"],
+        "viscous_model": opts.viscous_model,
+        "limiting_shear": "on" if opts.limiting_shear else "off",
+        "n_ehl": n_ehl,
+        "n_dry": inspect.signature(solve_dry_contact).parameters["n"].default,
+        "oils": ", ".join(OILS),
+    }
+
+
+#: the command's class: its --help quotes :func:`stated_defaults`
+ContactCommand = stating(stated_defaults)
 
 
 # ----------------------------------------------------------------------------- command
@@ -376,8 +428,7 @@ def contact_command(
     ),
     width: float | None = _option(
         "--width",
-        help="Contact width \\[m] (default "
-        f"{paper.CAM_WIDTH:g}, the paper's cam width, or the case's).",
+        help="Contact width \\[m] (default: the case's cam.width; {case}: {width:g}).",
     ),
     radius: float | None = _option("--radius", help="Reduced radius of curvature R \\[m]."),
     ue: float | None = _option("--ue", help="Entrainment speed u_e \\[m/s] (EHL; either sign)."),
@@ -394,7 +445,7 @@ def contact_command(
     coating_material: str | None = _option(
         "--coating-material",
         panel=_SURF,
-        help="Tappet coating material: dlc, wcc or steel (paper Table 6), or a material of --case.",
+        help="Tappet coating material: a key of the case's \\[materials] ({case}: {materials}).",
     ),
     coating_thickness: float | None = _option(
         "--coating-thickness", panel=_SURF, help="Coating thickness \\[m]."
@@ -417,54 +468,66 @@ def contact_command(
     surface_set: str | None = _option(
         "--surface-set",
         panel=_SURF,
-        help="Take bodies, roughness and ς from this "
-        "surface set of --case (default case: "
-        "the paper's).",
+        help="Take bodies, roughness, ς and τ₀ from this surface set of the case (default "
+        "case: --case, else {case}).",
     ),
     case_file: Path | None = _option(
         "--case",
         panel=_SURF,
-        help="Case file for materials, lubricant, numerics and --surface-set.",
+        help="Case file (or bundled case name) for materials, lubricant, numerics and "
+        "--surface-set (default: the bundled case {case}, as tribodyn run).",
     ),
     shear_coefficient: float | None = _option(
         "--shear-coefficient",
         panel=_SURF,
-        help="Boundary shear coefficient ς (default: of the coating, else steel's, "
-        f"{paper.STEEL['boundary_shear_coefficient']:g}).",
+        help="Boundary shear coefficient ς of τ_b = τ₀ + ς p_a (default: the coating "
+        "material's, else the tappet substrate's; {case}: {shear}, with τ₀ = {tau0:g} Pa "
+        "of the case's first surface set).",
     ),
     viscosity: float | None = _option(
-        "--viscosity", panel=_LUB, help=f"μ₀ [Pa·s] ({paper.LUBRICANT['viscosity']:g})."
+        "--viscosity", panel=_LUB, help="μ₀ [Pa·s] (default: {case}: {viscosity:g})."
     ),
     pressure_viscosity: float | None = _option(
         "--pressure-viscosity",
         panel=_LUB,
-        help=f"α [1/Pa] ({paper.LUBRICANT['pressure_viscosity']:g}).",
+        help="α [1/Pa] (default: {case}: {pressure_viscosity:g}).",
     ),
     density: float | None = _option(
-        "--density", panel=_LUB, help=f"ρ₀ \\[kg/m³] ({paper.ASSUMED_DENSITY:g}, assumed)."
+        "--density", panel=_LUB, help="ρ₀ \\[kg/m³] (default: {case}: {density:g})."
     ),
     eyring_stress: float | None = _option(
         "--eyring-stress",
         panel=_LUB,
-        help=f"τ_E [Pa] (the case's; paper {paper.LUBRICANT['eyring_stress']:g}; "
-        f"with --oil the typical {typical.EYRING_STRESS.value:g}).",
+        help="τ_E [Pa] (default: {case}: {eyring_stress:g}; with --oil: "
+        "{oil_eyring_stress:g}, the typical value).",
     ),
     limiting_shear_coefficient: float | None = _option(
         "--limiting-shear-coefficient",
         panel=_LUB,
-        help=f"Λ ({paper.LUBRICANT['limiting_shear_coefficient']:g}).",
+        help="Λ (default: {case}: {limiting_shear_coefficient:g}; with --oil: "
+        "{oil_limiting_shear_coefficient:g}, the typical value).",
     ),
     viscosity_model: str | None = _option(
-        "--viscosity-model", panel=_LUB, help="roelands or barus."
+        "--viscosity-model",
+        panel=_LUB,
+        help="roelands or barus (default: {case}: {viscosity_model}).",
     ),
-    viscous_model: str | None = _option("--viscous-model", panel=_NUM, help="eyring or newtonian."),
+    viscous_model: str | None = _option(
+        "--viscous-model",
+        panel=_NUM,
+        help="eyring or newtonian (default: {case}: {viscous_model}).",
+    ),
     limiting_shear: bool | None = _option(
         "--limiting-shear/--no-limiting-shear",
         panel=_NUM,
         show_default=False,
-        help="Cap viscous shear at Λp.",
+        help="Cap viscous shear at Λp (default: {case}: {limiting_shear}).",
     ),
-    n: int | None = _option("--n", panel=_NUM, help="Grid nodes (default: 512 EHL, 1024 dry)."),
+    n: int | None = _option(
+        "--n",
+        panel=_NUM,
+        help="Grid nodes (default: EHL {n_ehl}; dry {n_dry}).",
+    ),
     thermal: bool = typer.Option(
         False,
         "--thermal",
@@ -477,7 +540,7 @@ def contact_command(
     oil: str | None = _option(
         "--oil",
         panel=_LUB,
-        help="Bundled datasheet oil: 0W-20, 5W-20, 5W-30, 10W-40 (without "
+        help="Bundled datasheet oil: {oils} (without "
         "--thermal: the isothermal EHL with this oil at --inlet-temperature).",
     ),
     inlet_temperature: float | None = _option(
@@ -493,7 +556,9 @@ def contact_command(
 ):
     """Single-point line contact: Hertz, EHL film, loads, friction and regime.
 
-    The cam is steel, the tappet carries the coating. Examples:
+    The cam is steel, the tappet carries the coating. What no option gives comes from
+    --case, else from the bundled case {case} (as tribodyn run): its lubricant,
+    materials, ς, τ₀ and numerics. Examples:
 
       tribodyn contact --load 633 --radius 0.01 --ue 5 --us 2
 

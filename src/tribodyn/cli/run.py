@@ -17,15 +17,27 @@ from rich.table import Table
 
 from .._validation import InputError
 from .failure import dask_client, fail
+from .help_defaults import stating
 
-__all__ = ["run_command"]
+__all__ = ["run_command", "RunCommand"]
 
 console = Console()
 
 
+def stated_defaults() -> dict[str, str]:
+    """The values ``tribodyn run --help`` quotes: the bundled case it runs without CASE."""
+    from ..config import DEFAULT_CASE
+
+    return {"case": DEFAULT_CASE.stem}
+
+
+#: the command's class: its --help quotes :func:`stated_defaults`
+RunCommand = stating(stated_defaults)
+
+
 def run_command(
     case: Path | None = typer.Argument(
-        None, help="case file (TOML); default: the bundled paper case (andreou2023)"
+        None, help="case file (TOML) or bundled case name; default: the bundled case {case}"
     ),
     out: Path = typer.Option(Path("results"), "-o", "--out", help="output folder"),
     workers: int | None = typer.Option(

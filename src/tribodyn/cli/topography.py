@@ -17,8 +17,9 @@ from rich.table import Table
 
 from .. import _json
 from .failure import fail, writing
+from .help_defaults import stating
 
-__all__ = ["topography_command"]
+__all__ = ["topography_command", "TopographyCommand"]
 
 _SYN = "Synthetic surfaces (--synthetic)"
 _LIMITATION = (
@@ -167,6 +168,23 @@ def _print_pair(console: Console, p) -> None:
     console.print()
 
 
+def stated_defaults() -> dict[str, Any]:
+    """The values ``tribodyn topography --help`` quotes: the default band of the filter
+    [µm] and the fewest summits an analysis accepts."""
+    from ..topography.analysis import MIN_SUMMITS
+    from ..topography.filtering import PAPER_BAND
+
+    return {
+        "band_short": PAPER_BAND[0] * 1e6,
+        "band_long": PAPER_BAND[1] * 1e6,
+        "min_summits": MIN_SUMMITS,
+    }
+
+
+#: the command's class: its --help quotes :func:`stated_defaults`
+TopographyCommand = stating(stated_defaults)
+
+
 def topography_command(
     files: list[Path] | None = typer.Argument(
         None,
@@ -182,8 +200,8 @@ def topography_command(
         metavar="SHORT LONG",
         show_default=False,
         help="Band-pass wavelength limits in m; must lie within the measurement's range "
-        "(see --clip-band). Default: the paper's 0.25–250 µm clipped to what the "
-        "measurement resolves (a warning says which band was used).",
+        "(see --clip-band). Default: the paper's {band_short:g}–{band_long:g} µm clipped to "
+        "what the measurement resolves (a warning says which band was used).",
     ),
     no_filter: bool = typer.Option(False, "--no-filter", help="Level only, no band-pass."),
     filter_kind: str = typer.Option(
@@ -203,7 +221,7 @@ def topography_command(
         help="Smallest accepted share of measured points "
         "(default 0: dropouts are filled and excluded "
         "from the statistics; refused only if fewer "
-        "than 25 summits remain).",
+        "than {min_summits} summits remain).",
     ),
     method: str = typer.Option(
         "summits",

@@ -21,6 +21,7 @@ from pydantic import Field, model_validator
 
 from .. import paper
 from .._validation import InputError
+from ..contact.ehl.grid import N_AUTO, N_MAX_AUTO
 from ..contact.ehl.options import EHLOptions
 from ..physics import limits as L
 from ..valvetrain.tribology import SUPPLY_FILM, SUPPLY_FILM_MAX
@@ -253,10 +254,10 @@ class Numerics(Section):
     n: int = _q(
         0,
         "",
-        "EHL grid nodes (uniform); 0 = automatic (384 nodes over the "
-        "domain sized from the contact; steady solves double them while "
-        "h_c, h_min change > 1 % from half the nodes); at most 4096 (the "
-        "transient steps factor dense matrices)",
+        f"EHL grid nodes (uniform); 0 = automatic ({N_AUTO} nodes over the "
+        "domain sized from the contact; steady solves double them, up to "
+        f"{N_MAX_AUTO}, while h_c, h_min change > 1 % from half the nodes); at most "
+        f"{L.EHL_NODES_TRANSIENT.le} (the transient steps factor dense matrices)",
         ge=0,
         le=L.EHL_NODES_TRANSIENT.le,
     )

@@ -47,6 +47,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import paper
 from .._validation import InputError, check_positive, check_range
 from .errors import BandLimitError, InsufficientDataError, TopographyError
 
@@ -69,7 +70,7 @@ __all__ = [
 ]
 
 #: Band of the paper (Section 2.2): wavelengths 0.25 µm to 250 µm [m].
-PAPER_BAND = (0.25e-6, 250e-6)
+PAPER_BAND = paper.TOPOGRAPHY_BAND
 #: ``band`` value that selects the paper's band clipped to the measurement
 AUTO_BAND = "auto"
 #: A band as the API takes it: "auto", (λ_s, λ_L) [m], or None (level only).

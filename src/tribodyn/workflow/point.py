@@ -14,7 +14,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .. import paper
 from .._validation import InputError, check_positive, check_real
 from ..config import SurfaceSet
 from ..contact.dry import solve_dry_contact
@@ -55,7 +54,8 @@ def point_surfaces(
     under the case's cam, coated with ``coating`` (E, ν, thickness) or with the material
     ``coating_material`` of the case ``coating_thickness`` thick, rough with ``roughness``
     (None: smooth). ς is ``shear_coefficient``, else the coating material's, else the
-    steel's; τ₀ is the case's first surface set's.
+    substrate's (an error if the case gives none, as for a surface set); τ₀ is the
+    case's first surface set's.
     """
     if surface_set is not None:
         clash = [
@@ -87,13 +87,9 @@ def point_surfaces(
     if coating_thickness is not None and coating_material is None:
         raise InputError("coating_thickness needs coating_material")
     cam = Body(case.material(case.cam_config.material))
-    substrate = (
-        case.material("steel")
-        if "steel" in case.materials
-        else case.material(case.cam_config.material)
-    )
-    steel = case.materials.get("steel")
-    sigma = steel.boundary_shear_coefficient if steel is not None else None
+    substrate_key = "steel" if "steel" in case.materials else case.cam_config.material
+    substrate = case.material(substrate_key)
+    sigma = case.materials[substrate_key].boundary_shear_coefficient
     label, key = "uncoated", None
     if coating is not None:
         if not isinstance(coating, Coating):
@@ -122,7 +118,10 @@ def point_surfaces(
     if shear_coefficient is not None:
         sigma = _shear(shear_coefficient)
     if sigma is None:
-        sigma = paper.STEEL["boundary_shear_coefficient"]
+        raise InputError(
+            f"shear_coefficient: required, material {substrate_key!r} of the case has no "
+            "boundary_shear_coefficient"
+        )
     return SurfaceSet(
         name="",
         bodies=(cam, Body(substrate, coating)),
@@ -158,8 +157,8 @@ def solve_point(
     stress: bool = False,
 ) -> dict:
     """Solve one contact (see the module docstring). ``lubricant`` and ``options``
-    default to the case's; ``n`` is the dry grid (default 1024). ``sliding_speed``
-    defaults to 0 for EHL; a dry contact takes no speeds. ``lubricant`` may be a datasheet
+    default to the case's; ``n`` is the dry grid (default: :func:`solve_dry_contact`'s).
+    ``sliding_speed`` defaults to 0 for EHL; a dry contact takes no speeds. ``lubricant`` may be a datasheet
     oil (:class:`~tribodyn.physics.thermal_oil.ThermalLubricant`): the isothermal solve
     then uses it at its inlet temperature (μ₀, α, ρ₀ as the thermal solver derives them,
     ``ThermalLubricant.isothermal``) and the output names it (``oil``,
@@ -218,7 +217,11 @@ def solve_point(
                 "a dry contact takes no entrainment or sliding speed "
                 "(drop --ue/--us, or drop --dry for an EHL solution)"
             )
-        d = solve_dry_contact(w, radius, bodies, n=1024 if n is None else n)
+        d = (
+            solve_dry_contact(w, radius, bodies)  # its default grid
+            if n is None
+            else solve_dry_contact(w, radius, bodies, n=n)
+        )
         out.update(
             {
                 "half_width_m": d.half_width,
