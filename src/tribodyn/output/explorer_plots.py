@@ -230,7 +230,7 @@ ENGINE_TRACES = (
         ("camshaft_friction_power",),
     ),
 )
-ENGINE_CRANK = "crank angle from cylinder 1 firing TDC [°]"
+ENGINE_CRANK = "crank angle of cylinder 1 from its firing TDC, 0–720° [°]"
 
 
 def engine_figures(results: list[Result], styles: Styles) -> list:
