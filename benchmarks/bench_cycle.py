@@ -45,6 +45,15 @@ from tribodyn.workflow.cycle_ehl import CycleInputs, ehl_for_set
 from tribodyn.workflow.postprocess import surface_roles
 
 
+def _boundary_change(d):
+    """Change of ∫F_b dt against the reference set [%] (negative = less); a summary
+    written before the key was renamed stores the reduction (positive = less)."""
+    if d.get("boundary_friction_cycle_integral_change_pct") is not None:
+        return d["boundary_friction_cycle_integral_change_pct"]
+    old = d.get("boundary_friction_reduction_vs_uncoated_pct")
+    return None if old is None else -old
+
+
 def timed(fn):
     w, c = time.perf_counter(), time.process_time()
     out = fn()
@@ -131,10 +140,9 @@ def accuracy(study, ref_dir: Path) -> dict:
             "friction_energy_pct": 100
             * (a["friction_energy_per_cycle_J"] / b["friction_energy_per_cycle_J"] - 1)
         }
-        red_a = a.get("boundary_friction_reduction_vs_uncoated_pct")
-        red_b = b.get("boundary_friction_reduction_vs_uncoated_pct")
-        if red_a is not None and red_b is not None:
-            row["boundary_friction_reduction_pp"] = red_a - red_b
+        ch_a, ch_b = _boundary_change(a), _boundary_change(b)
+        if ch_a is not None and ch_b is not None:
+            row["boundary_friction_change_pp"] = ch_a - ch_b
         hc_pts, hm_pts = [], []
         for c in pts:
             j = int(np.argmin(np.abs(crank - c)))

@@ -161,9 +161,9 @@ def fake_sweep_folder(folder):
         "engine_friction_energy_per_cycle_J": (dims, energy, {"units": "J"}),
         "engine_friction_power_W": (dims, energy * speed[:, None, None] / 120.0, {"units": "W"}),
         "engine_friction_torque_Nm": (dims, energy / (2 * np.pi), {"units": "N m"}),
-        "engine_friction_reduction_vs_uncoated_pct": (
+        "engine_friction_energy_change_pct": (
             dims,
-            100.0 * (1.0 - mep / mep[..., :1]),
+            100.0 * (mep / mep[..., :1] - 1.0),
             {"units": "%"},
         ),
         "peak_contact_force_N": (point, force, {"units": "N"}),

@@ -39,11 +39,17 @@ def _summary():
             "max_film_gain_vs_uncoated_pct": -12.345 if i else 0.0,
             "max_boundary_friction_N": 1234.5,
             "max_viscous_friction_N": 12.3456,
-            "boundary_friction_reduction_vs_uncoated_pct": 97.25 if i else 0.0,
+            "boundary_friction_cycle_integral_change_pct": -97.25 if i else 0.0,
             "friction_energy_per_cycle_J": 0.12345,
             "failed_steps": 120,
         }
-    return {"surface_sets": sets, "implicit_vs_explicit": {}, "warnings": [], "runtime_s": 1.0}
+    return {
+        "surface_sets": sets,
+        "reference_set": "s0",
+        "implicit_vs_explicit": {},
+        "warnings": [],
+        "runtime_s": 1.0,
+    }
 
 
 @pytest.fixture

@@ -67,13 +67,19 @@ def engine_command(
         res = write_engine_results(study, out, figures=not no_figures)
     except (OSError, InputError) as exc:
         fail(console, exc, code=1)
+    ref = res["summary"]["engine"]["reference_set"]
     for name, d in res["summary"]["engine"]["surface_sets"].items():
+        change = d.get("friction_energy_change_pct")
         console.print(
             f"{name:>12}: {d['engine_friction_energy_per_cycle_J']:.3f} J/cycle, "
             f"FMEP {d['valvetrain_friction_mep_Pa'] / 1e3:.2f} kPa, "
-            f"{d['mean_friction_power_W']:.1f} W, "
-            f"{d['friction_reduction_vs_uncoated_pct']:+.2f} % vs {res['summary']['engine']['reference_set']}"
+            f"{d['mean_friction_power_W']:.1f} W"
+            + ("" if name == ref else f", {change:+.2f} % vs {ref}" if change is not None else "")
         )
+    console.print(
+        f"% vs {ref}: change of the friction energy per cycle (and FMEP), "
+        "100·(x/x_ref − 1), negative = less"
+    )
     sets = res["summary"]["engine"]["surface_sets"]
     for law in sorted({d.get("asperity_law") for d in sets.values()} - {None, ""}):
         console.print(f"asperity law: {escape(law)}")

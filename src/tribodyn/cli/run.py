@@ -299,7 +299,7 @@ _COLUMNS = (
     ("film\ngain\n%", "max_film_gain_vs_uncoated_pct", 1.0, "+.2f"),
     ("max\nF_b\nN", "max_boundary_friction_N", 1.0, ".4g"),
     ("max\nF_v\nN", "max_viscous_friction_N", 1.0, ".4g"),
-    ("\nΔF_b\n%", "boundary_friction_reduction_vs_uncoated_pct", -1.0, "+.1f"),
+    ("∫F_b dt\nchange\n%", "boundary_friction_cycle_integral_change_pct", 1.0, "+.1f"),
     ("\nenergy\nJ/cycle", "friction_energy_per_cycle_J", 1.0, ".3f"),
     ("\nfailed\nsteps", "failed_steps", 1.0, "d"),
 )
@@ -307,10 +307,13 @@ _COLUMNS = (
 
 def summary_table(summ: dict, name: str) -> Table:
     """The per-surface summary of ``tribodyn run``: fits 80 columns (two-line headers,
-    no vertical rules); the gain and ΔF_b columns are explained in the caption."""
+    no vertical rules); the gain and change columns are explained in the caption."""
+    ref = summ.get("reference_set")
+    ref_label = summ.get("surface_sets", {}).get(ref, {}).get("label", ref)
     table = Table(
         title=f"{name}: per tappet surface (cam event)",
-        caption="film gain (max in the event) and ΔF_b (of max F_b): vs uncoated",
+        caption=f"film gain (max over the event) and ∫F_b dt change (cycle integral over "
+        f"the event) vs {ref_label}: 100·(x/x_ref − 1), negative = less",
         box=box.SIMPLE_HEAD,
         padding=(0, 0, 0, 1),  # with the box's space: two between the columns
         pad_edge=False,

@@ -230,7 +230,7 @@ ENGINE_TRACES = (
         ("camshaft_friction_power",),
     ),
 )
-ENGINE_CRANK = "crank angle from cylinder 1 firing TDC [°]"
+ENGINE_CRANK = "crank angle of cylinder 1 from its firing TDC, 0–720° [°]"
 
 
 def engine_figures(results: list[Result], styles: Styles) -> list:
@@ -294,8 +294,11 @@ def axes_of(ds) -> list[str]:
 
 def coating_delta(ds, loss: str, ref: str | None):
     """Change of ``loss`` against the reference set in % (negative: less friction):
-    the sweep's stored ``engine_friction_reduction_vs_uncoated_pct`` negated, else the
-    ratio of the stored values."""
+    the sweep's stored ``engine_friction_energy_change_pct`` (a sweep.nc written before
+    that name stores ``engine_friction_reduction_vs_uncoated_pct``, positive = less:
+    negated), else the ratio of the stored values."""
+    if "engine_friction_energy_change_pct" in ds:
+        return ds["engine_friction_energy_change_pct"]
     if "engine_friction_reduction_vs_uncoated_pct" in ds:
         return -ds["engine_friction_reduction_vs_uncoated_pct"]
     v = ds[loss]

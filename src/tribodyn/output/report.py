@@ -74,12 +74,13 @@ def _asperity_models(case) -> str:
     return f"{law} ({', '.join(measured)}; Greenwood–Tripp for the other sets)"
 
 
-def _pct_change(reduction, is_reference):
+def _pct_change(change, is_reference):
+    """A change against the reference set (negative = less) or "reference"."""
     if is_reference:
         return "reference"
-    if reduction is None:
+    if change is None:
         return "–"
-    return f"{-reduction:+.1f} %".replace("-", "−")
+    return f"{change:+.1f} %".replace("-", "−")
 
 
 # ----------------------------------------------------------------------------- report
@@ -336,19 +337,23 @@ def report_text(study, ds, figures: dict) -> str:
     # what the engineer asks first: the verdict, torque and pressure, films and λ
     lines += verdict_section(summ)
     lines += _engineering_section(study, summ)
+    first = summ["reference_set"]
+    ref_label = summ["surface_sets"][first]["label"]
     lines += [
         "## Films, λ and friction per tappet surface",
         "",
         "Films and forces over the cam event; friction energy over all loaded "
         "samples of the presented cycle (totals over the cam width). Film gain: "
-        "robust maximum and median |gain| under the rule at the end of this section.",
+        "robust maximum and median |gain| under the rule at the end of this section. "
+        f"Changes against {ref_label}: 100·(x/x_ref − 1), negative = less; of the maximum "
+        "F_b, or of its cycle integral ∫F_b dt over the cam event.",
         "",
         "| surface | min film | max h_c | max film gain | median abs. film gain | "
-        "max boundary friction | max viscous friction | boundary friction vs uncoated "
-        "| friction energy per cycle | mean friction power | min λ | failed steps |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+        f"max boundary friction | max F_b vs {ref_label} | max viscous friction | "
+        f"∫F_b dt vs {ref_label} | friction energy per cycle | mean friction power | "
+        "min λ | failed steps |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
-    first = summ["reference_set"]
     for name, v in summ["surface_sets"].items():
         lines.append(
             f"| {v['label']} | {_fmt(v['min_film_m'] and v['min_film_m'] * 1e6, 'µm')} | "
@@ -356,8 +361,9 @@ def report_text(study, ds, figures: dict) -> str:
             f"{_fmt(v['max_film_gain_vs_uncoated_pct'], '%')} | "
             f"{_fmt(v['median_abs_film_gain_vs_uncoated_pct'], '%')} | "
             f"{_fmt(v['max_boundary_friction_N'], 'N')} | "
+            f"{_pct_change(v.get('max_boundary_friction_change_pct'), name == first)} | "
             f"{_fmt(v['max_viscous_friction_N'], 'N')} | "
-            f"{_pct_change(v['boundary_friction_reduction_vs_uncoated_pct'], name == first)} | "
+            f"{_pct_change(v['boundary_friction_cycle_integral_change_pct'], name == first)} | "
             f"{_fmt(v['friction_energy_per_cycle_J'], 'J')} | "
             f"{_fmt(v['mean_friction_power_W'], 'W')} | {_fmt(v['min_lambda'])} | "
             f"{v['failed_steps']} |"

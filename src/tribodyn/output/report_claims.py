@@ -142,11 +142,11 @@ def claims(study, summ) -> list[tuple[str, str, str, str]]:
         )
         rows.append(
             (
-                "WC-C cuts boundary friction vs steel by",
-                f"> {paper.CLAIMS['wcc_boundary_reduction_pct']:g} %",
+                "WC-C changes boundary friction (∫F_b dt over the cam event) vs steel by",
+                f"< −{paper.CLAIMS['wcc_boundary_reduction_pct']:g} %",
                 (
-                    f"{red:.1f} %"
-                    if (red := sets[wcc]["boundary_friction_reduction_vs_uncoated_pct"]) is not None
+                    f"{chg:+.1f} %".replace("-", "−")
+                    if (chg := sets[wcc]["boundary_friction_cycle_integral_change_pct"]) is not None
                     else "–"
                 )
                 + f" ({study.labels[wcc]})",
@@ -166,9 +166,9 @@ def claims(study, summ) -> list[tuple[str, str, str, str]]:
         )
         rows.append(
             (
-                "WC-C boundary friction below DLC by",
-                f"~{paper.CLAIMS['wcc_vs_dlc_boundary_pct']:g} %",
-                f"{(1 - bw / bd) * 100:.0f} %" if bd > 0 else "–",
+                "WC-C changes boundary friction (∫F_b dt over the cam event) vs DLC by",
+                f"~−{paper.CLAIMS['wcc_vs_dlc_boundary_pct']:g} %",
+                f"{(bw / bd - 1) * 100:+.0f} %".replace("-", "−") if bd > 0 else "–",
                 why,
             )
         )

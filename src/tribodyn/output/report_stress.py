@@ -26,11 +26,20 @@ def _f(v, fmt, scale=1.0, none="–"):
     return format(v * scale, fmt)
 
 
+def _cycle_range(summary: dict) -> str:
+    """The presented cycle's crank-angle range, as the summary states it."""
+    a, b = summary.get("presented_cycle_crank_deg") or (720.0, 1440.0)
+    return f"{a:g}–{b:g}°"
+
+
 def stress_section(summary: dict, heading: str = "## Coating integrity") -> list[str]:
-    """Markdown lines of the section (empty list when no set has stress results)."""
+    """Markdown lines of the section (empty list when no set has stress results). Crank
+    angles are the run's (``crank_deg`` in summary.json: the presented cycle, 720–1440°
+    with the default two cycles), as in every other table, figure and warning."""
     sets = {n: e for n, e in summary.get("surface_sets", {}).items() if "min_safety_factor" in e}
     if not sets:
         return []
+    cycle = _cycle_range(summary)
     out = [
         heading,
         "",
@@ -41,7 +50,7 @@ def stress_section(summary: dict, heading: str = "## Coating integrity") -> list
         "strengths and wear coefficients are *assumed* values (tribodyn.physics.strength): "
         "give measured ones in `[strength.<material>]`.",
         "",
-        "| surface | closest failure | body | x [µm] | z [µm] | crank in cycle [°] | stress [MPa] "
+        f"| surface | closest failure | body | x [µm] | z [µm] | crank [°, {cycle}] | stress [MPa] "
         "| safety factor |",
         "|---|---|---|---|---|---|---|---|",
     ]
@@ -54,7 +63,7 @@ def stress_section(summary: dict, heading: str = "## Coating integrity") -> list
                 body=w.get("body", "–"),
                 x=_f(w.get("x_m"), ".1f", 1e6),
                 z=_f(w.get("z_m"), ".2f", 1e6),
-                c=_f(w.get("crank_in_cycle_deg", w.get("crank_deg")), ".0f"),
+                c=_f(w.get("crank_deg"), ".0f"),
                 s=_f(w.get("stress_Pa"), ".0f", 1e-6),
                 sf=_f(w.get("safety_factor"), ".2f"),
             )
@@ -66,7 +75,7 @@ def stress_section(summary: dict, heading: str = "## Coating integrity") -> list
             "",
             f"Closest to failure: **{worst[1].get('label', worst[0])}**, "
             f"{_MODES[w['mode']]} of the {w['body']} at "
-            f"{w.get('crank_in_cycle_deg', w['crank_deg']):.0f}° crank (presented cycle), "
+            f"{w['crank_deg']:.0f}° crank (presented cycle {cycle}), "
             f"x = {w['x_m'] * 1e6:.1f} µm, z = {w['z_m'] * 1e6:.2f} µm, "
             f"safety factor {w['safety_factor']:.2f}.",
         ]

@@ -39,7 +39,8 @@ def thermal_claim_row(study, summ) -> tuple[str, str, str, str]:
     for name, v in eff.items():
         parts.append(
             f"{study.labels[name]}: viscous friction energy "
-            f"{_f(v['viscous_energy_vs_reference_thermal_pct'], '{:+.1f}', '%')} vs uncoated "
+            f"{_f(v['viscous_energy_vs_reference_thermal_pct'], '{:+.1f}', '%')} vs "
+            f"{study.labels.get(ref, ref)} "
             f"(isothermal {_f(v['viscous_energy_vs_reference_isothermal_pct'], '{:+.1f}', '%')}"
             f"), mean film {_f(v['mean_film_vs_reference_thermal_pct'], '{:+.1f}', '%')} "
             f"(isothermal {_f(v['mean_film_vs_reference_isothermal_pct'], '{:+.2f}', '%')}); "

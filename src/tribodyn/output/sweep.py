@@ -252,8 +252,9 @@ def _results_tables(result) -> list[str]:
         ),
         ("engine_friction_power_W", "Valvetrain friction power of the engine [W]", 1, ".4g"),
         (
-            "engine_friction_reduction_vs_uncoated_pct",
-            "Engine valvetrain friction below the reference set [%]",
+            "engine_friction_energy_change_pct",
+            "Engine valvetrain friction energy per cycle (and FMEP), change against the "
+            "reference set [%, negative = less]",
             1,
             ".3g",
         ),
@@ -261,8 +262,15 @@ def _results_tables(result) -> list[str]:
         ("min_film_m", "Minimum film thickness in the cam event [µm]", 1e6, ".4g"),
         ("min_lambda", "Minimum λ = h_min/σ in the cam event", 1, ".3g"),
         (
-            "boundary_friction_reduction_vs_uncoated_pct",
-            "Boundary friction below the reference set [%]",
+            "friction_energy_change_pct",
+            "Friction energy per cycle, change against the reference set [%, negative = less]",
+            1,
+            ".3g",
+        ),
+        (
+            "boundary_friction_cycle_integral_change_pct",
+            "Boundary friction ∫F_b dt over the cam event, change against the reference set "
+            "[%, negative = less]",
             1,
             ".3g",
         ),

@@ -42,6 +42,7 @@ import numpy as np
 
 from ..config import Case
 from ..physics import valvetrain_friction as vf
+from .conventions import CHANGE, ENGINE_CRANK_ANGLE, change_pct
 from .cycle import CycleStudy, run_cycle_study
 from .engineering import cycle_integral, set_torques
 
@@ -214,14 +215,43 @@ class EngineStudy:
             out["surface_sets"][name] = d
         ref = self.set_names[0]
         for name, d in out["surface_sets"].items():
-            d["friction_reduction_vs_uncoated_pct"] = 100.0 * (1.0 - totals[name] / totals[ref])
+            # engine friction energy per cycle (= FMEP) against the reference set
+            d["friction_energy_change_pct"] = change_pct(totals[name], totals[ref])
         out["reference_set"] = ref
-        # contact loss of each lobe kind's valve (its single-valve dynamics)
+        out["conventions"] = {"crank_angle": ENGINE_CRANK_ANGLE, "change_pct": CHANGE}
+        # contact loss of each lobe kind's valve (its single-valve dynamics), at the
+        # engine's crank angles of that kind's valve on cylinder 1
         out["valve_jump"] = {
-            k: lt.study.dynamics.jump_summary() for k, lt in self.lobes.items() if lt.study
+            k: self._jump_on_cylinder_1(k, lt) for k, lt in self.lobes.items() if lt.study
         }
         self._verdicts(out, totals, vd)
         return out
+
+    def _jump_on_cylinder_1(self, kind: str, lt: LobeTraces) -> dict:
+        """The single-valve study's ``jump_summary`` of lobe kind ``kind`` with its crank
+        angles moved to the engine's (:data:`~tribodyn.workflow.conventions.
+        ENGINE_CRANK_ANGLE`) for the valve of that kind on cylinder 1: each start in
+        0–720°, an interval keeps its length."""
+        assert lt.study is not None
+        j = lt.study.dynamics.jump_summary()
+        nose = next(
+            (v["nose_deg"] for v in self.valves if v["kind"] == kind and v["cylinder"] == 1),
+            None,
+        )
+        dyn = lt.study.dynamics
+        if nose is None:
+            return j
+        shift = nose - float(dyn.crank_angle[int(np.argmax(dyn.cam_lift))])
+
+        def at(c):
+            return None if c is None else float((c + shift) % 720.0)
+
+        j["contact_loss_crank_deg"] = [
+            [at(a), at(a) + (b - a)] for a, b in j["contact_loss_crank_deg"]
+        ]
+        j["max_separation_crank_deg"] = at(j["max_separation_crank_deg"])
+        j["crank_angle"] = f"{ENGINE_CRANK_ANGLE}, the {kind} valve of cylinder 1"
+        return j
 
     def _verdicts(self, out: dict, totals: dict, vd: float) -> None:
         """Each set's ``coating_verdict`` (change of engine friction energy per cycle,
@@ -383,7 +413,16 @@ def run_engine_study(
     warnings = []
     for k in kinds:
         if studies[k] is not studies.get("intake") or k == "intake":
-            warnings += [f"{k} lobes: {x}" for x in studies[k].warnings]
+            # the single-valve study's crank angles, with where its maximum lift sits on
+            # the engine's clock (cylinder 1's valve of this kind)
+            dyn = studies[k].dynamics
+            own = float(dyn.crank_angle[int(np.argmax(dyn.cam_lift))])
+            on_1 = next(v["nose_deg"] for v in valves if v["kind"] == k)
+            clock = (
+                f"crank angles of its single-valve study, whose maximum lift at {own:.0f}° "
+                f"is {on_1:.0f}° of cylinder 1"
+            )
+            warnings += [f"{k} lobes ({clock}): {x}" for x in studies[k].warnings]
     return EngineStudy(
         case=case,
         set_names=set_names,

@@ -33,6 +33,7 @@ from ..physics.regimes import (
     lubrication_regime,
     moes_central,
 )
+from .conventions import CHANGE, CRANK_ANGLE, change_pct
 from .coupling import implicit_vs_explicit_metrics
 
 if TYPE_CHECKING:
@@ -325,6 +326,8 @@ def summary(study: CycleStudy, an: Analysis) -> dict:
     ref = study.set(an.roles["reference"])
     ev = an.in_event
     ref_bf = np.nansum(np.where(ref.loaded & ev, ref.boundary_friction, 0.0) * dt)
+    ref_c = ref.loaded & ev & ref.converged
+    ref_max_bf = np.nanmax(ref.boundary_friction[ref_c]) if ref_c.any() else math.nan
     out: dict[str, Any] = {
         "case": study.case.name,
         "engine_speed_rpm": float(study.case.engine_speed),
@@ -332,6 +335,8 @@ def summary(study: CycleStudy, an: Analysis) -> dict:
         "and friction maxima; all loaded samples for friction energy "
         "and power",
         "reference_set": ref.name,
+        "conventions": {"crank_angle": CRANK_ANGLE, "change_pct": CHANGE},
+        "presented_cycle_crank_deg": [float(dyn.crank_angle[0]), float(dyn.crank_angle[-1])],
         "roles": dict(an.roles),
         "film_gain_rule": FILM_GAIN_RULE,
         "representative_points_crank_deg": [float(c) for c in an.point_crank],
@@ -364,9 +369,11 @@ def summary(study: CycleStudy, an: Analysis) -> dict:
             if any_c
             else None,
             "max_viscous_friction_N": _finite(np.nanmax(s.viscous_friction[C])) if any_c else None,
-            "boundary_friction_reduction_vs_uncoated_pct": _finite((1.0 - bf / ref_bf) * 100.0)
-            if ref_bf > 0
-            else None,
+            # changes against the reference set: 100 (x/x_ref − 1), negative = less
+            "boundary_friction_cycle_integral_change_pct": change_pct(bf, ref_bf),
+            "max_boundary_friction_change_pct": change_pct(
+                np.nanmax(s.boundary_friction[C]) if any_c else math.nan, ref_max_bf
+            ),
             "friction_energy_per_cycle_J": _finite(energy),
             "friction_energy_per_cycle_newtonian_J": by_law["newtonian"],
             "friction_energy_per_cycle_eyring_J": by_law["eyring"],
@@ -374,6 +381,8 @@ def summary(study: CycleStudy, an: Analysis) -> dict:
             "min_lambda": _finite(np.nanmin(s.lambda_ratio[C])) if any_c else None,
             "failed_steps": len(s.failures),
         }
+        ref_energy = float(np.nansum(np.where(ref.loaded, ref.friction_power, 0.0) * dt))
+        out["surface_sets"][s.name]["friction_energy_change_pct"] = change_pct(energy, ref_energy)
         if study.stresses:  # subsurface stresses, margins and wear
             from .stress_study import set_stress_summary
 

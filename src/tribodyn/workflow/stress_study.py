@@ -414,16 +414,13 @@ def set_stress_summary(study, name: str) -> dict:
         return {}
     case = study.case
     s = case.surface_set(name)
-    worst = closest_failure(cs)
-    if worst is not None:  # also within the presented cycle (0–720°), as the figures
-        worst["crank_in_cycle_deg"] = worst["crank_deg"] - float(study.dynamics.crank_angle[0])
+    worst = closest_failure(cs)  # crank_deg: the run's crank angle (conventions.CRANK_ANGLE)
     out: dict = {
         "stress_closest_failure": worst,
         "min_safety_factor": worst["safety_factor"] if worst else None,
     }
     est = asperity_estimate(study.set(name), s.bodies, s.roughness, case.strengths(s))
     if est is not None:
-        est["crank_in_cycle_deg"] = est["crank_deg"] - float(study.dynamics.crank_angle[0])
         out["asperity_scale_estimate"] = est
     for mode in MODE_PEAK:
         v = cs.safety_factors["tappet"].get(mode)

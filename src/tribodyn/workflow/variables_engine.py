@@ -6,16 +6,43 @@ engine_crank)``, each valve's over ``(engine_set, valve, engine_crank)``.
 
 from __future__ import annotations
 
+from .conventions import ENGINE_CRANK_ANGLE
 from .variables import Group, var
 from .variables_study import SURFACE_SET
 
-__all__ = ["ENGINE", "ALL"]
+__all__ = ["ENGINE", "ALL", "valve_names"]
 
 DIMS = ("engine_set", "camshaft", "engine_crank")
 
 
 def _attr(k):
     return lambda e: getattr(e, k)
+
+
+def valve_names(valves) -> list[str]:
+    """Unique names of the engine's valves (the ``valve`` coordinate of results.nc):
+    kind, cylinder and, where the cylinder has several valves of that kind, a letter:
+    ``intake1a``, ``intake1b``, ``exhaust1a``, …; a single valve of its kind on its
+    cylinder is ``intake1``."""
+    base = [f"{v['kind']}{v['cylinder']}" for v in valves]
+    total = {b: base.count(b) for b in base}
+    seen: dict[str, int] = {}
+    out = []
+    for b in base:
+        k = seen.get(b, 0)
+        seen[b] = k + 1
+        out.append(b if total[b] == 1 else f"{b}{_letters(k)}")
+    return out
+
+
+def _letters(k: int) -> str:
+    """a, b, …, z, aa, ab, … for k = 0, 1, …"""
+    s = ""
+    k += 1
+    while k:
+        k, r = divmod(k - 1, 26)
+        s = chr(97 + r) + s
+    return s
 
 
 ENGINE = Group(
@@ -38,11 +65,20 @@ ENGINE = Group(
         var("engine_set", "engine_set", None, SURFACE_SET.description,
             lambda e: list(e.set_names), coord=True),
         var("camshaft", "camshaft", None, "camshaft", lambda e: list(e.camshafts), coord=True),
-        var("engine_crank", "engine_crank", "deg", "crank angle from cylinder 1's firing TDC",
+        var("engine_crank", "engine_crank", "deg", ENGINE_CRANK_ANGLE,
             _attr("crank_angle"), coord=True),
-        var("valve", "valve", None, "valve: kind and cylinder number",
-            lambda e: [f"{v['kind']}{v['cylinder']}" for v in e.valves], coord=True),
-        var("valve_nose_deg", "valve", "deg", "crank angle of the valve's cam nose",
+        var("valve", "valve", None,
+            "valve: kind, cylinder and a letter where the cylinder has several valves of "
+            "the kind (intake1a, intake1b, …; unique)",
+            lambda e: valve_names(e.valves), coord=True),
+        var("valve_kind", "valve", None, "lobe kind of the valve (intake, exhaust)",
+            lambda e: [v["kind"] for v in e.valves], coord=True),
+        var("valve_cylinder", "valve", "1", "cylinder of the valve",
+            lambda e: [int(v["cylinder"]) for v in e.valves], coord=True),
+        var("valve_camshaft", "valve", None, "camshaft that drives the valve",
+            lambda e: [v["camshaft"] for v in e.valves], coord=True),
+        var("valve_nose_deg", "valve", "deg",
+            f"crank angle of the valve's maximum lift ({ENGINE_CRANK_ANGLE})",
             lambda e: [v["nose_deg"] for v in e.valves], coord=True),
     )
 )  # fmt: skip

@@ -16,6 +16,7 @@ from functools import cached_property
 import numpy as np
 
 from ..physics.regimes import REGIMES
+from .conventions import CRANK_ANGLE
 from .stress_study import MODE_PEAK, PEAKS
 from .variables import Group, Variable, var
 
@@ -128,7 +129,7 @@ DYNAMICS: dict[str, Variable] = {
     )
     for k, u, d in _DYN
 }
-CRANK = var("crank_angle", "crank_angle", "deg", "crank angle", _dyn("crank_angle"), coord=True)
+CRANK = var("crank_angle", "crank_angle", "deg", CRANK_ANGLE, _dyn("crank_angle"), coord=True)
 
 
 def _implicit(k):
@@ -181,7 +182,7 @@ EHL_CRANK = var(
     "ehl_crank",
     "ehl_crank",
     "deg",
-    "crank angle of the transient-EHL samples",
+    f"crank angle of the transient-EHL samples: {CRANK_ANGLE}",
     lambda s: s.inputs.crank_angle,
     coord=True,
 )

@@ -93,7 +93,7 @@ POINT_SCALARS = _scalars(
         (
             "peak_contact_force_crank_deg",
             "deg",
-            "crank angle of the peak contact force (presented cycle)",
+            "crank angle of the peak contact force within the presented cycle, 0–720°",
         ),
         ("min_contact_force_in_event_N", "N", "minimum contact force in the cam event"),
         ("min_radius_of_curvature_m", "m", "minimum radius of curvature of the cam"),
@@ -108,7 +108,12 @@ POINT_SCALARS = _scalars(
             "friction energy per cycle of the dynamics' explicit (analytic) tribology",
         ),
         ("jump", "1", "cam contact lost while the cam lifts (1 yes, 0 no)"),
-        ("jump_onset_crank_deg", "deg", "crank angle where the first jump starts (NaN: none)"),
+        (
+            "jump_onset_crank_deg",
+            "deg",
+            "crank angle where the first jump starts, within the presented cycle, 0–720° "
+            "(NaN: none)",
+        ),
         ("max_separation_m", "m", "maximum separation tappet lift − cam lift (valve jump)"),
         ("valve_bounce", "1", "valve lifts off its seat after closing (1 yes, 0 no)"),
         ("seating_velocity_m_s", "m/s", "valve velocity at the first closing seat impact"),
@@ -144,9 +149,19 @@ SET_SCALARS: dict[str, Variable] = {
         ("max_boundary_friction_N", "N", "peak boundary friction force in the cam event"),
         ("max_viscous_friction_N", "N", "peak viscous friction force in the cam event"),
         (
-            "boundary_friction_reduction_vs_uncoated_pct",
+            "boundary_friction_cycle_integral_change_pct",
             "%",
-            "boundary friction impulse below the reference set's",
+            "change of ∫F_b dt over the cam event against the reference set (negative = less)",
+        ),
+        (
+            "max_boundary_friction_change_pct",
+            "%",
+            "change of the maximum boundary friction against the reference set (negative = less)",
+        ),
+        (
+            "friction_energy_change_pct",
+            "%",
+            "change of the friction energy per cycle against the reference set (negative = less)",
         ),
         ("friction_energy_per_cycle_J", "J", "friction energy per engine cycle"),
         (
@@ -198,8 +213,9 @@ ENGINE_SCALARS: dict[str, Variable] = {
          "W", "mean valvetrain friction power"),
         ("engine_friction_torque_Nm", "mean_friction_torque_Nm", None,
          "N·m", "mean camshaft friction torque, all camshafts"),
-        ("engine_friction_reduction_vs_uncoated_pct", "friction_reduction_vs_uncoated_pct", None,
-         "%", "engine friction below the reference"),
+        ("engine_friction_energy_change_pct", "friction_energy_change_pct", None,
+         "%", "change of the engine friction energy per cycle (and FMEP) against the "
+         "reference set (negative = less)"),
         ("cam_tappet_energy_J", "friction_energy_per_cycle_J", "cam_tappet",
          "J", "cam–tappet contacts' friction energy per cycle"),
         ("tappet_bore_energy_J", "friction_energy_per_cycle_J", "tappet_bore",
@@ -232,7 +248,8 @@ def _presented(s: StudySource, crank) -> np.ndarray:
 #: dynamics traces (``[sweep] traces = true``): the study's variables, crank angle from 0
 DYNAMICS_TRACES = Group(
     (
-        var("crank_angle", "crank_angle", "deg", "crank angle in the presented engine cycle",
+        var("crank_angle", "crank_angle", "deg",
+            "crank angle within the presented engine cycle, 0–720°",
             lambda s: _presented(s, s.dynamics.crank_angle), coord=True),
         *(
             DYNAMICS[k]
@@ -252,7 +269,7 @@ DYNAMICS_TRACES = Group(
 EHL_TRACES = Group(
     (
         var("ehl_crank", "ehl_crank", "deg",
-            "crank angle of the transient-EHL samples in the presented cycle",
+            "crank angle of the transient-EHL samples within the presented cycle, 0–720°",
             lambda s: _presented(s, s.inputs.crank_angle), coord=True),
         var("ehl_contact_force", "ehl_crank", "N", "contact force at the EHL samples",
             lambda s: s.inputs.contact_force),

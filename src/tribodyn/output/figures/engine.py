@@ -8,6 +8,7 @@ each valve has its own legend entry (cylinder, valve of its kind)."""
 
 from __future__ import annotations
 
+import re
 from collections import Counter
 
 import numpy as np
@@ -19,7 +20,7 @@ __all__ = ["engine_torque_figure", "engine_lobe_figure", "engine_figures", "valv
 
 _STYLES = ("-", "--", ":", "-.")
 _COLOURS = ("tab:blue", "tab:red", "tab:green", "tab:purple", "tab:brown", "tab:olive")
-_X_LABEL = "crank angle from cylinder 1 firing TDC [°]"
+_X_LABEL = "crank angle of cylinder 1 from its firing TDC, 0–720° [°]"
 
 
 def _set_style(i: int) -> dict:
@@ -31,18 +32,24 @@ def _set_style(i: int) -> dict:
 
 
 def valve_labels(valves) -> list[str]:
-    """Unique legend labels of the valves ``intake1``, ``intake1``, ``exhaust1``, … :
-    ``cyl. 1 intake a``, ``cyl. 1 intake b``, … (a single valve of its kind keeps
-    ``cyl. 1 intake``)."""
+    """Unique legend labels of the valves (the ``valve`` coordinate): ``intake1a``,
+    ``intake1b``, ``exhaust1`` → ``cyl. 1 intake a``, ``cyl. 1 intake b``,
+    ``cyl. 1 exhaust``. Repeated names of an older results file (``intake1``,
+    ``intake1``) get their letters here."""
     names = [str(v) for v in valves]
     total = Counter(names)
     seen: Counter = Counter()
     out = []
     for n in names:
-        kind = n.rstrip("0123456789")
-        cyl = n[len(kind) :]
-        tail = f" {'abcdefgh'[seen[n]]}" if total[n] > 1 and seen[n] < 8 else ""
+        m = re.fullmatch(r"(\D+?)(\d+)([a-z]*)", n)
+        if m is None:
+            kind, cyl, tail = n, "", ""
+        else:
+            kind, cyl, tail = m.group(1), m.group(2), m.group(3)
+        if not tail and total[n] > 1:
+            tail = "abcdefghijklmnopqrstuvwxyz"[seen[n] % 26]
         seen[n] += 1
+        tail = f" {tail}" if tail else ""
         out.append(f"cyl. {cyl} {kind}{tail}" if cyl else f"{kind}{tail}")
     return out
 
@@ -112,7 +119,11 @@ def engine_lobe_figure(ds, path, labels=None):
     )
     for j, shaft in enumerate(shafts):
         ax = axes[0, j]
-        keep = [k for k, v in enumerate(valves) if shaft == "camshaft" or v.startswith(shaft)]
+        if "valve_camshaft" in ds.coords:
+            on = [str(c) for c in ds["valve_camshaft"].values]
+            keep = [k for k, c in enumerate(on) if c == shaft]
+        else:  # an older results file
+            keep = [k for k, v in enumerate(valves) if shaft == "camshaft" or v.startswith(shaft)]
         ax.stackplot(x, t[keep], labels=[names[k] for k in keep], alpha=0.8)
         ax.plot(x, ds["camshaft_friction_torque"].values[0, j], "k", lw=1.0, label="sum")
         ax.set_title(f"{shaft} camshaft, {labels.get(first, first)}")

@@ -21,8 +21,9 @@ __all__ = ["stress_maps", "greatest_risk", "stress_field_at", "fig27"]
 
 def greatest_risk(ds, name: str) -> dict | None:
     """Smallest safety factor of surface set ``name`` over both bodies and all modes in
-    ``results.nc``: {body, mode, safety_factor, index (EHL sample), crank_deg,
-    crank_in_cycle_deg, x_m, z_m}; None without stress results."""
+    ``results.nc``: {body, mode, safety_factor, index (EHL sample), crank_deg (the run's
+    crank angle, as everywhere: the presented cycle 720–1440° by default), x_m, z_m};
+    None without stress results."""
     best: dict[str, Any] | None = None
     for body in ("cam", "tappet"):
         for mode, peak in MODE_PEAK.items():
@@ -41,8 +42,6 @@ def greatest_risk(ds, name: str) -> dict | None:
                 "safety_factor": sf,
                 "index": i,
                 "crank_deg": float(ds["ehl_crank"][i]),
-                # within the presented cycle (the dynamics' output starts it)
-                "crank_in_cycle_deg": float(ds["ehl_crank"][i] - ds["crank_angle"][0]),
                 "x_m": float(ds[base + "_x"].sel(surface_set=name)[i]),
                 "z_m": float(ds[base + "_z"].sel(surface_set=name)[i]),
             }
@@ -124,7 +123,7 @@ def stress_maps(ds, path, sets=None):
         label = str(ds["surface_label"].sel(surface_set=name).values)
         ax.set_title(
             f"{label}: {r['body']}, {r['mode'].replace('_', ' ')}, "
-            f"SF {r['safety_factor']:.2f} at {r['crank_in_cycle_deg']:.0f}°",
+            f"SF {r['safety_factor']:.2f} at {r['crank_deg']:.0f}° crank",
             fontsize=TITLE_SIZE - 1,
         )
     return finish(

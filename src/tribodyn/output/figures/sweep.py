@@ -204,7 +204,8 @@ def fig_friction(ds, path):
 
 def fig_engine_map(ds, path):
     """Engine sweep (``mode = "engine"``): valvetrain FMEP, mean camshaft friction torque
-    and power, and each surface's reduction below the reference, over the x axis, one
+    and power, and each surface's change against the reference (negative = less), over
+    the x axis, one
     line per surface set and combination of the other axes (e.g. oil temperature)."""
     fig, axes, note = _line_figure(
         ds,
@@ -213,9 +214,9 @@ def fig_engine_map(ds, path):
             ("engine_friction_torque_Nm", 1.0, "mean camshaft friction torque [N m]"),
             ("engine_friction_power_W", 1.0, "friction power [W]"),
             (
-                "engine_friction_reduction_vs_uncoated_pct",
+                "engine_friction_energy_change_pct",
                 1.0,
-                "friction below the reference surface [%]",
+                "friction energy vs reference [%, − = less]",
             ),
         ),
         rows=2,
