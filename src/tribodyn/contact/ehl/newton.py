@@ -267,15 +267,19 @@ class NewtonOutcome:
     lu: object = None
 
 
-def newton(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None) -> NewtonOutcome:
+def newton(
+    sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None, release_blocks=True
+) -> NewtonOutcome:
     """Solve ``sysm`` from ``st`` (see :func:`_newton_impl`)."""
     # trial points of the line search may overflow (e.g. exp(αp)); they are rejected by
     # their non-finite merit, and the accepted solution is checked for finiteness
     with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
-        return NewtonOutcome(*_newton_impl(sysm, st, tol, max_iter, lu, coarse))
+        return NewtonOutcome(*_newton_impl(sysm, st, tol, max_iter, lu, coarse, release_blocks))
 
 
-def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None):
+def _newton_impl(
+    sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None, release_blocks=True
+):
     """Semismooth Newton on min(P_i, −c_i R_i) = 0 and the load balance, unknowns (Q, H₀),
     with a non-monotone Armijo line search on |Φ|² + load residual² (c frozen within a
     search) and a small budget of full steps that may raise it (watchdog). Iterates may
@@ -283,6 +287,12 @@ def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse
     The Newton systems are solved by LU, by GMRES preconditioned with an earlier LU, or —
     given a ``coarse`` level — by GMRES with the two-grid preconditioner (no dense matrix
     on this grid; a dense LU only as fallback).
+
+    ``release_blocks``: free growing blocks of cavitated nodes ahead of a cavitation
+    boundary that moves outward (:func:`_release`), for cold starts whose boundaries
+    lie far from the start; False frees one node per iteration, which is faster from a
+    warm start whose boundaries move by a few nodes (a transient step: the blocks
+    overshoot and re-cavitate there, 7 % more iterations over a cam cycle).
 
     Converged when the relative update is below ``tol`` (residual < 10³·tol), when the
     residual is at round-off, or when a full step on an unchanged active set converges
@@ -370,7 +380,7 @@ def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse
                 # a released block overshot: later blocks at most half as large (no cycling)
                 release_cap = max(1, release // 2)
             release = 1
-        elif moved:
+        elif moved and release_blocks:
             release = min(2 * release, release_cap)
         else:
             release = 1
