@@ -58,8 +58,15 @@ class Factorization(NamedTuple):
 
 
 def _factor(J) -> Factorization:
+    """LU of the dense Newton matrix ``J`` with its preconditioner copy (the double
+    factors themselves where a factor exceeds single precision's range)."""
     fac, piv = linalg.lu_factor(J, check_finite=False)
-    prec = np.asfortranarray(fac, dtype=np.float32) if _SINGLE_PRECONDITIONER else fac
+    prec = fac
+    if _SINGLE_PRECONDITIONER:
+        with np.errstate(over="ignore"):
+            single = np.asfortranarray(fac, dtype=np.float32)
+        if np.isfinite(single).all():
+            prec = single
     return Factorization(fac, piv, prec)
 
 
