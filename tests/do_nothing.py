@@ -26,7 +26,7 @@ def _dry_nothing(op, geom, w, dx, p, tol, max_iter):
     return p, None, True, 0, "converged (do-nothing)"
 
 
-def _newton_nothing(sysm, st, tol, max_iter, lu=None, coarse=None):
+def _newton_nothing(sysm, st, tol, max_iter, lu=None, coarse=None, release_blocks=True):
     """The EHL Newton iteration doing nothing: the starting state, 'converged'."""
     from tribodyn.contact.ehl.newton import NewtonOutcome, State
 

@@ -198,3 +198,39 @@ def test_compiled_gmres_solves_a_random_newton_system(elastic):
     bad[2, 40] = np.nan
     _, _, ok = k.gmres_lu(k.GETRS, k.GEMV, (bad, *system[1:]), fac, piv + 1, b, 1e-12, 30)
     assert not ok
+
+
+def test_compiled_gmres_with_a_single_precision_preconditioner():
+    """Flexible GMRES with float32 LU factors (kernels.SGETRS) solves the double-precision
+    Newton system to its tolerance (checked against LAPACK's dense solve); newton's
+    factorisation keeps the double factors as preconditioner where a factor exceeds
+    single precision's range."""
+    from scipy import linalg
+
+    from tribodyn.contact.ehl import kernels as k
+    from tribodyn.contact.ehl import newton
+
+    rng = np.random.default_rng(11)
+    n = 150
+    AP = rng.normal(size=(5, n))
+    AP[2] += 6.0
+    AH = 0.1 * rng.normal(size=(5, n))
+    D = 0.05 * rng.random(n)
+    B, col = k.coupling_bands(AP, AH, D)
+    c = 1.0 + rng.random(n)
+    cav = np.zeros(n, dtype=bool)
+    cav[100:110] = True
+    free = ~cav
+    free[0] = free[-1] = False
+    K = linalg.toeplitz(1.0 / (1.0 + np.arange(n)))
+    ks, dX = 0.3, 0.01
+    J = k.dense_matrix(AP, B, col, c, free, cav, D, K, ks, dX, True)
+    lu = newton._factor(J * (1.0 + 0.05 * rng.random(J.shape)))  # an earlier matrix
+    assert lu.prec.dtype == np.float32 and lu.fac.dtype == np.float64
+    b = rng.normal(size=n + 1)
+    system = (AP, B, col, c, free, cav, D, K, ks, True, dX)
+    x, its, ok = k.gmres_lu(k.SGETRS, k.GEMV, system, lu.prec, lu.piv + 1, b, 1e-12, 30)
+    assert ok and 0 < its <= 30
+    exact = np.linalg.solve(J, b)
+    assert np.linalg.norm(x - exact) <= 1e-9 * np.linalg.norm(exact)
+    assert newton._factor(np.diag(np.full(4, 1e39))).prec.dtype == np.float64

@@ -26,6 +26,7 @@ __all__ = [
     "jacobi_diagonal",
     "givens_step",
     "GETRS",
+    "SGETRS",
     "GEMV",
     "gmres_lu",
 ]
@@ -208,14 +209,20 @@ def _scipy_routine(module: str, name: str, nargs: int):
 
 #: dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
 GETRS = _scipy_routine("lapack", "dgetrs", 9)
+#: sgetrs: the same in single precision (a preconditioner's factors stored as float32)
+SGETRS = _scipy_routine("lapack", "sgetrs", 9)
 #: dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
 GEMV = _scipy_routine("blas", "dgemv", 11)
 
 
 @njit(**_OPTS)
-def _lu_solve(getrs, fac, piv1, x, ints, trans):
+def _lu_solve(getrs, fac, piv1, x, buf, ints, trans):
     """x ← A⁻¹ x in place for A = P L U factorised by LAPACK getrf (``fac`` column-major,
-    ``piv1`` the 1-based pivots); ``ints`` = [n, 1, n, n, info], ``trans`` = [ord("N")]."""
+    ``piv1`` the 1-based pivots), through ``buf`` (a vector of ``fac``'s precision:
+    float64 with ``getrs`` = :data:`GETRS`, float32 with :data:`SGETRS`);
+    ``ints`` = [n, 1, n, n, info], ``trans`` = [ord("N")]."""
+    for i in range(x.size):
+        buf[i] = x[i]
     getrs(
         trans.ctypes,
         ints[0:].ctypes,
@@ -223,10 +230,12 @@ def _lu_solve(getrs, fac, piv1, x, ints, trans):
         fac.ctypes,
         ints[2:].ctypes,
         piv1.ctypes,
-        x.ctypes,
+        buf.ctypes,
         ints[3:].ctypes,
         ints[4:].ctypes,
     )
+    for i in range(x.size):
+        x[i] = buf[i]
 
 
 @njit(**_OPTS)
@@ -293,15 +302,19 @@ def givens_step(Hm, cs, sn, gv, j):
 
 @njit(**_OPTS)
 def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
-    """Right-preconditioned GMRES for J x = b (J: the Newton matrix of
+    """Right-preconditioned flexible GMRES for J x = b (J: the Newton matrix of
     :class:`~.reynolds.Linearization`, ``system`` = (AP, B, col, c, free, cav, D, K,
     kscale, elastic, dX) with the dense influence matrix K, M = LU of an
     earlier Newton matrix, applied by ``getrs`` = :data:`GETRS` with the factors ``fac``
     and 1-based pivots ``piv1`` of ``scipy.linalg.lu_factor``; ``gemv`` = :data:`GEMV`
     for the products with K), started from x₀ = M⁻¹b; Arnoldi with classical Gram–Schmidt
-    applied twice (CGS2) and Givens rotations (Saad, *Iterative Methods for Sparse
-    Linear Systems*, 2nd ed., SIAM 2003, Alg. 6.9 and §9.3.2). Stops when the residual
-    estimate |g_{j+1}| ≤ rtol·|b|.
+    applied twice (CGS2) and Givens rotations, in the flexible form that keeps the
+    preconditioned directions z_j = M⁻¹v_j and returns x₀ + Z y (Saad, *Iterative
+    Methods for Sparse Linear Systems*, 2nd ed., SIAM 2003, Alg. 6.9, §9.3.2 and
+    Alg. 9.6), so that J Z = V H holds to double round-off even where M⁻¹ is applied
+    inexactly. Stops when the residual estimate |g_{j+1}| ≤ rtol·|b|. The factors may
+    be float32 (with ``getrs`` = :data:`SGETRS`): the preconditioner then reads half the
+    memory, and GMRES still solves the double-precision system to ``rtol``.
 
     Returns (x, iterations, ok); ok is False for a non-finite residual, a breakdown or
     no convergence within ``max_it`` iterations."""
@@ -318,8 +331,9 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
         np.array([1.0, 0.0]),
         np.array([84], dtype=np.uint8),  # "T"
     )
+    buf = np.empty_like(fac[:, 0])
     x0 = b.copy()
-    _lu_solve(getrs, fac, piv1, x0, ints, trans)
+    _lu_solve(getrs, fac, piv1, x0, buf, ints, trans)
     w = np.empty(m)
     _apply(gemv, system, x0, w, work)
     r0 = b - w
@@ -329,6 +343,7 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
     if beta <= rtol * bn:
         return x0, 0, True
     V = np.zeros((max_it + 1, m))
+    Z = np.zeros((max_it, m))  # the preconditioned directions M⁻¹v_j (flexible GMRES)
     Hm = np.zeros((max_it + 1, max_it))
     cs = np.zeros(max_it)
     sn = np.zeros(max_it)
@@ -340,7 +355,8 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
     t = np.empty(m)
     for j in range(max_it):
         t[:] = V[j]
-        _lu_solve(getrs, fac, piv1, t, ints, trans)
+        _lu_solve(getrs, fac, piv1, t, buf, ints, trans)
+        Z[j] = t
         _apply(gemv, system, t, w, work)
         for i in range(j + 1):
             Hm[i, j] = 0.0
@@ -377,7 +393,6 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
             for i in range(k):
                 yi = y[i]
                 for q in range(m):
-                    t[q] += yi * V[i, q]
-            _lu_solve(getrs, fac, piv1, t, ints, trans)
+                    t[q] += yi * Z[i, q]
             return x0 + t, k, True
     return x0, max_it, False

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from scipy import linalg
@@ -39,12 +40,48 @@ _MAX_KRYLOV_TWO_GRID = 200
 #: GMRES with an LU preconditioner in compiled code (False: the NumPy loop below, which
 #: is kept for the two-grid preconditioner and as a cross-check in the tests)
 _COMPILED_GMRES = True
+#: GMRES preconditions with a single-precision copy of the LU factors: the triangular
+#: solves read half the memory (with the dense influence matrix of the products, the
+#: working set then fits a core's cache), and GMRES still solves the double-precision
+#: system to its tolerance. A fresh factorisation's own Newton step stays a
+#: double-precision solve.
+_SINGLE_PRECONDITIONER = True
 
 
-def _lu_solver(lu):
-    """v ↦ LU⁻¹ v for a factorisation from ``lu_factor`` (LAPACK getrs, no wrapper)."""
+class Factorization(NamedTuple):
+    """LU factors of a Newton matrix (``lu_factor``'s ``fac``, ``piv``) and ``prec``,
+    the factors GMRES preconditions with (a float32 copy of ``fac``, or ``fac``)."""
+
+    fac: np.ndarray
+    piv: np.ndarray
+    prec: np.ndarray
+
+
+def _factor(J) -> Factorization:
+    """LU of the dense Newton matrix ``J`` with its preconditioner copy (the double
+    factors themselves where a factor exceeds single precision's range)."""
+    fac, piv = linalg.lu_factor(J, check_finite=False)
+    prec = fac
+    if _SINGLE_PRECONDITIONER:
+        with np.errstate(over="ignore"):
+            single = np.asfortranarray(fac, dtype=np.float32)
+        if np.isfinite(single).all():
+            prec = single
+    return Factorization(fac, piv, prec)
+
+
+def _lu_solver(lu: Factorization, precondition=False):
+    """v ↦ LU⁻¹ v (LAPACK getrs, no wrapper), with the double-precision factors or, as a
+    preconditioner, with ``lu.prec``."""
+    fac, piv = (lu.prec, lu.piv) if precondition else (lu.fac, lu.piv)
+    if fac.dtype == np.float32:
+        sgetrs = _SGETRS
+
+        def solve32(v):
+            return sgetrs(fac, piv, v.astype(np.float32))[0].astype(float)
+
+        return solve32
     getrs = _GETRS
-    fac, piv = lu
 
     def solve(v):
         return getrs(fac, piv, v)[0]
@@ -53,16 +90,16 @@ def _lu_solver(lu):
 
 
 _GETRS = lapack.get_lapack_funcs("getrs", (np.zeros(1),))
+_SGETRS = lapack.get_lapack_funcs("getrs", (np.zeros(1, dtype=np.float32),))
 
 
 def gmres(lin: Linearization, lu, rtol, max_it=None):
-    """Right-preconditioned GMRES for lin·x = rhs with an earlier LU (or any object with
-    a ``solve`` method) as preconditioner,
-    started from the preconditioned solution. Returns (x, iterations) or (None, its)."""
+    """Right-preconditioned flexible GMRES for lin·x = rhs with an earlier LU (a
+    :class:`Factorization`, or any object with a ``solve`` method) as preconditioner,
+    started from the preconditioned solution (see :func:`.kernels.gmres_lu`). Returns (x, iterations) or (None, its)."""
     max_it = max_it or _MAX_KRYLOV
-    if isinstance(lu, tuple) and _COMPILED_GMRES:  # compiled, on dense-product grids
-        fac, piv = lu
-        out = lin.gmres_lu(fac, piv, rtol, max_it)
+    if isinstance(lu, Factorization) and _COMPILED_GMRES:  # compiled, dense-product grids
+        out = lin.gmres_lu(lu.prec, lu.piv, rtol, max_it)
         if out is not None:
             return out
     b = lin.rhs
@@ -71,8 +108,8 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
         return np.zeros_like(b), 0
     if hasattr(lu, "solve"):  # a preconditioner object
         prec = lu.solve
-    else:  # an LU factorisation from lu_factor
-        prec = _lu_solver(lu)
+    else:  # a Factorization
+        prec = _lu_solver(lu, precondition=True)
     x0 = prec(b)
     r0 = b - lin.matvec(x0)
     beta = float(np.linalg.norm(r0))
@@ -81,13 +118,15 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
     if beta <= rtol * bn:
         return x0, 0
     V = np.zeros((max_it + 1, b.size))
+    Z = np.zeros((max_it, b.size))  # M⁻¹v_j (flexible GMRES: M⁻¹ may be inexact)
     Hm = np.zeros((max_it + 1, max_it))
     cs, sn = np.zeros(max_it), np.zeros(max_it)
     gv = np.zeros(max_it + 1)
     gv[0] = beta
     V[0] = r0 / beta
     for j in range(max_it):
-        w = lin.matvec(prec(V[j]))
+        Z[j] = prec(V[j])
+        w = lin.matvec(Z[j])
         Vj = V[: j + 1]
         h = Vj @ w  # classical Gram–Schmidt, twice (CGS2)
         w -= h @ Vj
@@ -104,7 +143,7 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
             if not done:
                 return None, j + 1
             y = linalg.solve_triangular(Hm[: j + 1, : j + 1], gv[: j + 1], check_finite=False)
-            return x0 + prec(V[: j + 1].T @ y), j + 1
+            return x0 + Z[: j + 1].T @ y, j + 1
     return None, max_it
 
 
@@ -235,15 +274,19 @@ class NewtonOutcome:
     lu: object = None
 
 
-def newton(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None) -> NewtonOutcome:
+def newton(
+    sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None, release_blocks=True
+) -> NewtonOutcome:
     """Solve ``sysm`` from ``st`` (see :func:`_newton_impl`)."""
     # trial points of the line search may overflow (e.g. exp(αp)); they are rejected by
     # their non-finite merit, and the accepted solution is checked for finiteness
     with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
-        return NewtonOutcome(*_newton_impl(sysm, st, tol, max_iter, lu, coarse))
+        return NewtonOutcome(*_newton_impl(sysm, st, tol, max_iter, lu, coarse, release_blocks))
 
 
-def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None):
+def _newton_impl(
+    sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None, release_blocks=True
+):
     """Semismooth Newton on min(P_i, −c_i R_i) = 0 and the load balance, unknowns (Q, H₀),
     with a non-monotone Armijo line search on |Φ|² + load residual² (c frozen within a
     search) and a small budget of full steps that may raise it (watchdog). Iterates may
@@ -251,6 +294,12 @@ def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse
     The Newton systems are solved by LU, by GMRES preconditioned with an earlier LU, or —
     given a ``coarse`` level — by GMRES with the two-grid preconditioner (no dense matrix
     on this grid; a dense LU only as fallback).
+
+    ``release_blocks``: free growing blocks of cavitated nodes ahead of a cavitation
+    boundary that moves outward (:func:`_release`), for cold starts whose boundaries
+    lie far from the start; False frees one node per iteration, which is faster from a
+    warm start whose boundaries move by a few nodes (a transient step: the blocks
+    overshoot and re-cavitate there, 7 % more iterations over a cam cycle).
 
     Converged when the relative update is below ``tol`` (residual < 10³·tol), when the
     residual is at round-off, or when a full step on an unchanged active set converges
@@ -297,7 +346,7 @@ def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse
                     lu = None
             if delta is None:
                 try:
-                    lu = linalg.lu_factor(lin.dense(), check_finite=False)
+                    lu = _factor(lin.dense())
                 except (linalg.LinAlgError, ValueError):
                     lu = None
                     continue
@@ -338,7 +387,7 @@ def _newton_impl(sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse
                 # a released block overshot: later blocks at most half as large (no cycling)
                 release_cap = max(1, release // 2)
             release = 1
-        elif moved:
+        elif moved and release_blocks:
             release = min(2 * release, release_cap)
         else:
             release = 1

@@ -27,6 +27,7 @@ from .grid import Grid
 from .kernels import (
     GEMV,
     GETRS,
+    SGETRS,
     assemble,
     band_product,
     coupling_bands,
@@ -261,11 +262,11 @@ class Linearization:
         """Compiled GMRES (:func:`.kernels.gmres_lu`) for this system with the LU
         (``fac``, ``piv``) of an earlier Newton matrix as preconditioner; None where the
         products need the DC-FFT operator (no dense K on this grid) or the factors are not
-        LAPACK's column-major double-precision ones of this system's size with 32-bit
-        pivots (the kernel reads them by pointer)."""
+        LAPACK's column-major double- or single-precision ones of this system's size with
+        32-bit pivots (the kernel reads them by pointer)."""
         m = self.n + 1
         if not (
-            fac.dtype == np.float64
+            fac.dtype in (np.float64, np.float32)
             and fac.shape == (m, m)
             and fac.flags.f_contiguous
             and piv.dtype == np.int32
@@ -276,8 +277,9 @@ class Linearization:
             return None
         K, ks = self._influence()
         system = (*self._rows(), np.ascontiguousarray(K), ks, not self.rigid, self.dX)
+        getrs = GETRS if fac.dtype == np.float64 else SGETRS
         x, its, ok = gmres_lu(
-            GETRS, GEMV, system, fac, piv + 1, self.rhs, float(rtol), int(max_it)
+            getrs, GEMV, system, fac, piv + 1, self.rhs, float(rtol), int(max_it)
         )  # piv + 1: LAPACK's 1-based pivots
         return (x if ok else None), its
 

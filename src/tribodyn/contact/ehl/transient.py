@@ -208,7 +208,7 @@ class TransientEHL:
     def _solve(self, sysm: ReynoldsSystem, ctx, st: State, dt: float, lu) -> StepSolution:
         """Solve one time level from the predicted state ``st`` (Newton; ``lu``: the
         previous factorisation when the grid is kept)."""
-        out = newton(sysm, st, self.opts.tol, self.opts.max_iter, lu=lu)
+        out = newton(sysm, st, self.opts.tol, self.opts.max_iter, lu=lu, release_blocks=False)
         return StepSolution(out, out.state, out.lu if out.converged else None)
 
     def _result(self, sysm, ctx, sol: StepSolution, squeeze_velocity: float) -> EHLResult:
