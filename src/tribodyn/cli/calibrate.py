@@ -19,12 +19,13 @@ import typer
 from rich.console import Console
 from rich.markup import escape
 
-from .. import _json, paper
+from .. import _json
+from ..physics import typical_engine
 from .failure import fail, writing
 
 __all__ = ["calibrate_command", "read_friction_csv", "calibration_toml"]
 
-_STEEL_E = paper.STEEL["E"]
+_STEEL_E = typical_engine.STEEL_MODULUS.value
 
 _COLUMNS = ("entrainment_speed", "friction_coefficient")
 

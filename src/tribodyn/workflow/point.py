@@ -14,11 +14,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .. import paper
 from .._validation import InputError, check_positive, check_real
 from ..config import SurfaceSet
 from ..contact.dry import solve_dry_contact
 from ..contact.ehl import EHLOptions, EHLResult, solve_ehl
+from ..physics import typical
 from ..physics.asperity import Roughness
 from ..physics.hertz import hertz_line_contact
 from ..physics.lubricant import Lubricant
@@ -121,8 +121,8 @@ def point_surfaces(
         raise InputError(f"roughness must be a Roughness (got {type(roughness).__name__})")
     if shear_coefficient is not None:
         sigma = _shear(shear_coefficient)
-    if sigma is None:
-        sigma = paper.STEEL["boundary_shear_coefficient"]
+    if sigma is None:  # the case's materials have no steel ς: typical steel/steel
+        sigma = typical.boundary_friction("steel").value
     return SurfaceSet(
         name="",
         bodies=(cam, Body(substrate, coating)),
