@@ -187,7 +187,7 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
     elif q.surface_set is not None:
         case = load_case()  # the bundled paper case
     else:
-        case = Case()  # the paper's defaults
+        case = Case()  # the typical defaults (tribodyn.physics.typical*)
     coat = rough = None
     if q.coating is not None:
         E, nu, t = _triple(q.coating, "--coating", "E [Pa], nu [-], thickness [m]")

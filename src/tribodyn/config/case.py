@@ -5,9 +5,10 @@ inherited from :mod:`.case_valvetrain`, :mod:`.case_thermal` and :mod:`.case_str
 A case file describes one study: engine speed, cam, valvetrain, lubricant, materials, the
 surface sets to compare (uncoated, DLC, WC-C, …) and the numerical settings. Every key is
 in SI units unless its name says otherwise (``speed_rpm``, ``*_deg``); see
-``docs/case-files.md``. An empty file is the paper's engine with typical sourced
-friction, rheology and roughness (:mod:`tribodyn.physics.typical`); the paper's own case,
-with every paper value stated, is ``cases/andreou2023.toml``.
+``docs/case-files.md``. An empty file is a typical engine (:mod:`tribodyn.physics.typical`,
+:mod:`~tribodyn.physics.typical_engine`), run with a warning naming the valvetrain and oil
+values that decide the forces and film (:mod:`tribodyn.config.origins`); the paper's own
+case, with every paper value stated, is ``cases/andreou2023.toml``.
 
 Validation errors (unknown keys, values out of range, wrong types, cross-field rules such
 as a surface set naming an undefined material) raise :class:`~tribodyn.InputError` with
