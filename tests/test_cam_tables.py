@@ -11,6 +11,9 @@ from tribodyn.valvetrain import AccelerationCam, CircularArcCam, TabulatedCam
 from tribodyn.valvetrain.cam_table import load_lift_table
 
 W = 157.08  # cam speed at 3000 rpm [rad/s]
+#: The reference cam: the default acceleration design with the paper's base radius and
+#: lift (Table 7), stated here (the default cam's sizes are typical values).
+REF_SIZES = (0.015, 9.3e-3)
 TH = np.radians(np.arange(0.0, 360.0, 0.1))  # a 0.1° table
 
 
@@ -122,7 +125,7 @@ def test_concave_cam_is_rejected_with_the_arc_named():
 
 # -- file formats ---------------------------------------------------------------------------
 def _table(ref=None, step=0.5):
-    ref = ref or AccelerationCam()
+    ref = ref or AccelerationCam(*REF_SIZES)
     a = np.arange(0.0, 360.0, step)
     return a, ref.lift(np.radians(a))
 
@@ -142,7 +145,7 @@ def test_header_units_radians_metres(tmp_path):
 
 
 def test_event_only_table_in_mm_with_base_radius(tmp_path):
-    ref = AccelerationCam()
+    ref = AccelerationCam(*REF_SIZES)
     a, s = _table(ref, 0.1)
     on = (a >= 94.0) & (a <= 266.0)  # the event, base circle to base circle
     f = tmp_path / "event.csv"

@@ -171,15 +171,27 @@ def test_bundled_file_itself_holds_the_numbers_and_comments():
             assert "ASSUMED" in line, line
 
 
-def test_empty_file_is_the_paper_engine_with_typical_friction(paper):
-    """Defaults: the paper's engine, cam and valvetrain; typical sourced friction,
-    rheology and roughness. The paper's friction values live in its case file."""
-    from tribodyn.physics import typical
+def test_empty_file_is_a_typical_engine_not_the_papers(paper):
+    """Defaults: a typical engine, cam, valvetrain, oil, friction, rheology and roughness
+    (tribodyn.physics.typical*), none of them the paper's; the paper's values live in its
+    case file."""
+    from tribodyn.physics import typical, typical_engine
 
     d_default = Case.from_toml_string("").to_dict()
     d_paper = paper.to_dict()
-    for key in ("engine", "cam", "valvetrain", "numerics"):
+    for key in ("engine", "numerics"):
         assert d_default[key] == d_paper[key], key
+    cam, vt = d_default["cam"], d_default["valvetrain"]
+    assert cam["width"] == typical_engine.CAM_WIDTH.value != d_paper["cam"]["width"]
+    assert cam["max_lift"] == typical_engine.CAM_MAX_LIFT.value != d_paper["cam"]["max_lift"]
+    for k, t in typical_engine.VALVETRAIN.items():
+        assert vt[k] == t.value, k
+    for k in ("valve_mass", "spring_mass", "spring_rate"):  # Table 7
+        assert vt[k] != d_paper["valvetrain"][k], k
+    assert d_default["lubricant"]["viscosity"] == typical.VISCOSITY.value
+    assert d_default["lubricant"]["viscosity"] != d_paper["lubricant"]["viscosity"]
+    for k in ("dlc", "wcc"):  # Table 6 moduli are the paper's, not the defaults
+        assert d_default["materials"][k]["E"] != d_paper["materials"][k]["E"], k
     lub = d_default["lubricant"]
     assert (
         lub["eyring_stress"] == typical.EYRING_STRESS.value != d_paper["lubricant"]["eyring_stress"]
@@ -252,7 +264,8 @@ def test_example_table_cam():
     assert cam.max_lift == pytest.approx(9.3e-3, rel=1e-6)
     # same kinematics as the default cam it was sampled from
     th = np.linspace(0.0, 2.0 * np.pi, 721)
-    assert np.max(np.abs(cam.lift(th) - AccelerationCam().lift(th))) < 1e-8
+    ref = AccelerationCam(0.015, 9.3e-3)  # the paper's sizes (Table 7)
+    assert np.max(np.abs(cam.lift(th) - ref.lift(th))) < 1e-8
     assert [s.coating_label for s in case.surface_sets()] == ["uncoated", "WC-C 4 µm"]
     header = case.cam_table_path.read_text(encoding="utf-8").splitlines()[0]
     assert header.startswith("#") and "AccelerationCam" in case.cam_table_path.read_text(

@@ -1,6 +1,6 @@
-"""Design checks of the package layout: the paper's numbers live in one module, and the
-layers import only downwards (physics → contact/valvetrain/topography → config → workflow
-→ output → cli)."""
+"""Design checks of the package layout: the paper's numbers live in one module and only
+its comparison add-on uses it, and the layers import only downwards (physics →
+contact/valvetrain/topography → config → workflow → output → cli)."""
 
 import ast
 from pathlib import Path
@@ -27,6 +27,8 @@ PAPER_NUMBERS = {
     paper.FIG5["entrainment_speed"],
     paper.SPRING_RATE,
     paper.SPRING_MASS,
+    paper.VALVE_MASS,
+    paper.LUBRICANT["eyring_stress"],
     paper.CAM_MAX_LIFT,
     *(v for r in paper.ROUGHNESS.values() for v in r.values()),
 }
@@ -36,6 +38,9 @@ PAPER_NUMBERS = {
 COINCIDENCES = {
     ("physics/regimes.py", 0.54): "exponent of G in Dowson & Higginson's film formula",
     ("output/figures/cycle.py", 0.012): "share of the axis width within which labels merge",
+    ("physics/typical_engine.py", 210e9): "the typical modulus of steel, with its source",
+    ("physics/typical.py", 2e6): "low end of the typical range of the Eyring stress",
+    ("physics/typical.py", 0.07): "typical boundary friction coefficients",
 }
 
 
@@ -73,6 +78,54 @@ def test_the_check_sees_a_literal(tmp_path):
     assert [n.value for n in _numeric_literals(tree)] == [0.185]
 
 
+#: The modules that may import tribodyn.paper: the paper's comparison add-on, with why.
+#: Everything else (physics, valvetrain, EHL and case-file defaults) takes typical values
+#: of tribodyn.physics.typical or requires the input; the paper's own values are stated
+#: in its bundled case files (cases/andreou2023*.toml).
+PAPER_USERS = {
+    "paper.py": "the paper's numbers themselves",
+    "output/report_claims.py": "the claims table: the paper's headline claims",
+    "workflow/coating_study.py": "the coating study at the conditions of Figs. 5 and 6",
+    "output/figures/coating.py": "Figs. 5 and 6 (conditions of a run without the study)",
+    "cli/contact.py": "single contacts at the paper's case and Figs. 5/6 conditions",
+    "workflow/postprocess.py": "the claims: the 41 % film gain and the coatings compared",
+    # still a default of a layer: the topography's filter band (its help says so); a
+    # sourced typical band would change every topography result (open)
+    "topography/filtering.py": "the default filter band 0.25–250 µm is the paper's (Fig. 7)",
+}
+
+
+def _paper_imports(path: Path, text: str | None = None) -> list[int]:
+    """Lines of ``path`` (or of ``text`` placed there) that import tribodyn.paper."""
+    return [
+        ln
+        for mod, ln in _imports(path, text)
+        if mod == "tribodyn.paper" or mod.startswith("tribodyn.paper.")
+    ]
+
+
+def test_only_the_comparison_add_on_imports_the_paper():
+    """No physics, valvetrain, EHL, case-file or output default comes from the paper."""
+    found = []
+    for path in _modules():
+        rel = path.relative_to(SRC).as_posix()
+        if rel not in PAPER_USERS and (lines := _paper_imports(path)):
+            found.append(f"{rel}: line {', '.join(map(str, lines))}")
+    assert not found, "modules outside the comparison add-on import the paper:\n" + "\n".join(found)
+
+
+def test_the_paper_import_check_sees_each_form():
+    """The scan above is able to fail: it finds relative, absolute and member imports."""
+    probe = SRC / "config" / "probe.py"  # not written: the text is parsed as if there
+    for text in (
+        "from .. import paper\n",
+        "from ..paper import STEEL\n",
+        "import tribodyn.paper\n",
+    ):
+        assert _paper_imports(probe, text) == [1], text
+    assert _paper_imports(probe, "from ..physics import typical\n") == []
+
+
 #: Layer of each top-level part; a module may import only from its own layer or below.
 LAYERS = {
     "paper": 0,
@@ -101,10 +154,11 @@ def _part(module: str) -> str:
     return module.split(".")[1] if module.count(".") >= 1 else "__init__"
 
 
-def _imports(path: Path):
+def _imports(path: Path, text: str | None = None):
+    """(module, line) of each tribodyn import of ``path`` (or of ``text`` placed there)."""
     rel = path.relative_to(SRC.parent).with_suffix("")
     pkg = list(rel.parts[:-1]) if path.name != "__init__.py" else list(rel.parts[:-1])
-    tree = ast.parse(path.read_text(encoding="utf-8"))
+    tree = ast.parse(path.read_text(encoding="utf-8") if text is None else text)
     for node in ast.walk(tree):
         if isinstance(node, ast.ImportFrom):
             if node.level:

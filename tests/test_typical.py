@@ -9,8 +9,9 @@ from tribodyn.config.schema import LubricantConfig, SurfaceSetConfig
 from tribodyn.contact.ehl.options import EHLOptions
 from tribodyn.physics import typical
 from tribodyn.physics.friction import BOUNDARY_SHEAR_STRENGTH
-from tribodyn.physics.lubricant import SAE_5W20, Lubricant
+from tribodyn.physics.lubricant import Lubricant
 from tribodyn.physics.thermal_oil import ThermalLubricant
+from tribodyn.workflow.coating_study import SAE_5W20
 
 
 def _all_values():

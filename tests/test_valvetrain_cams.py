@@ -17,7 +17,7 @@ def _central_diff(f, th, h=1e-5):
 
 # -- AccelerationCam ---------------------------------------------------------------------
 def test_acceleration_cam_meets_its_design_constraints():
-    cam = AccelerationCam()
+    cam = AccelerationCam(0.015, 9.3e-3)
     nose = math.pi
     s, s1, s2 = cam.derivatives(np.array([nose]))
     assert s[0] == pytest.approx(9.3e-3, abs=1e-15)  # max lift at the nose

@@ -5,10 +5,13 @@ Diamond-like Carbon and Tungsten-Carbide Carbon Coatings on Tribological Perform
 Cam–Tappet Conjunction. *Applied Sciences* 13 (2023) 7815. doi:10.3390/app13137815.
 
 Everything the paper states (its Tables 4–7, Eq. 17, the conditions of its Figs. 5 and 6,
-its headline claims) is defined here and imported wherever it is used: defaults of the
-physics objects, of the case-file schema and of the command line, the coating studies and
-the report. Values the paper does not give but its case needs are *assumptions*; those
-that other modules share are here too, named ``ASSUMED_*``. The errata of the paper that
+its headline claims) is defined here. Only the paper's comparison add-on imports it: the
+claims table, the coating study with its Figs. 5 and 6, and the single-contact command
+(``tests/test_layout.py`` lists them); the paper's case files state the same values. No
+default of the physics objects, the case-file schema or the valvetrain is the paper's:
+those are typical values (:mod:`tribodyn.physics.typical`,
+:mod:`~tribodyn.physics.typical_engine`). Values the paper does not give but its case
+needs are *assumptions*; those that other modules share are here too, named ``ASSUMED_*``. The errata of the paper that
 these values correct are listed in ``docs/conventions.md``. Pure data: no imports from the
 package, so every layer may use it. SI units throughout.
 """

@@ -19,14 +19,14 @@ import typer
 from rich.console import Console
 from rich.markup import escape
 
-from .. import _json, paper
-from ..physics import typical
+from .. import _json
+from ..physics import typical, typical_engine
 from .failure import fail, writing
 
 __all__ = ["calibrate_command", "read_friction_csv", "calibration_toml"]
 
-#: the default surfaces: steel, E and ν of the one steel row (paper Table 6)
-_STEEL_E, _STEEL_NU = paper.STEEL["E"], paper.STEEL["nu"]
+#: the default surfaces: steel, E and ν of the typical steel row (physics.typical_engine)
+_STEEL_E, _STEEL_NU = typical_engine.STEEL_MODULUS.value, typical_engine.STEEL_POISSON.value
 
 _COLUMNS = ("entrainment_speed", "friction_coefficient")
 

@@ -5,9 +5,10 @@ inherited from :mod:`.case_valvetrain`, :mod:`.case_thermal` and :mod:`.case_str
 A case file describes one study: engine speed, cam, valvetrain, lubricant, materials, the
 surface sets to compare (uncoated, DLC, WC-C, …) and the numerical settings. Every key is
 in SI units unless its name says otherwise (``speed_rpm``, ``*_deg``); see
-``docs/case-files.md``. An empty file is the paper's engine with typical sourced
-friction, rheology and roughness (:mod:`tribodyn.physics.typical`); the paper's own case,
-with every paper value stated, is ``cases/andreou2023.toml``.
+``docs/case-files.md``. An empty file is a typical engine (:mod:`tribodyn.physics.typical`,
+:mod:`~tribodyn.physics.typical_engine`), run with a warning naming the valvetrain and oil
+values that decide the forces and film (:mod:`tribodyn.config.origins`); the paper's own
+case, with every paper value stated, is ``cases/andreou2023.toml``.
 
 Validation errors (unknown keys, values out of range, wrong types, cross-field rules such
 as a surface set naming an undefined material) raise :class:`~tribodyn.InputError` with
@@ -49,6 +50,7 @@ from .case_thermal import OIL_LAW_KEYS, ThermalBuilders
 from .case_valvetrain import CamValvetrainBuilders
 from .errors import CaseKeyError, Problems, format_validation_error
 from .measured_surface import asperity_law_note, measured_map, measured_roughness
+from .origins import carried_given
 from .paths import Key, parse_path, set_path
 from .schema import (
     CAM_MODELS,
@@ -157,6 +159,8 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
     _source: Path | None = PrivateAttr(default=None)
     #: the objects built at validation (:func:`tribodyn.config.build.build`)
     _built: Any = PrivateAttr(default=None)
+    #: dotted keys of the input values the case gave (:mod:`tribodyn.config.origins`)
+    _given: frozenset[str] = PrivateAttr(default=frozenset())
 
     # -- validation ---------------------------------------------------------------------
     @model_validator(mode="after")
@@ -164,6 +168,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         ctx = info.context or {}
         self._base_dir = Path(ctx.get("base_dir") or Path.cwd())
         self._source = ctx.get("source")
+        self._given = _given_keys(self)
         problems: list[tuple[str, str]] = []
         known = ", ".join(self.materials)
 
@@ -268,6 +273,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             set_path(data, list(tokens), value)
         new = Case.from_dict(data, base_dir=self._base_dir)
         new._source = self._source
+        new._given = carried_given(self, new)
         if new.surface_set_names != self.surface_set_names:
             raise InputError(
                 f"the lobes must keep the case's surface sets "
@@ -305,6 +311,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             set_dotted(data, key, value)
         new = Case.from_dict(data, base_dir=self._base_dir)
         new._source = self._source
+        new._given = carried_given(self, new)
         return new
 
     def __eq__(self, other) -> bool:
@@ -393,6 +400,13 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         """A file named in the case: absolute, relative paths from the case's folder."""
         p = Path(path).expanduser()
         return p if p.is_absolute() else (self._base_dir / p)
+
+    @property
+    def input_given(self) -> frozenset[str]:
+        """Dotted keys (``valvetrain.spring_rate``, ``surface_sets[dlc].roughness.rms``)
+        of the valvetrain, lubricant, material and surface values the case gave; the
+        others are defaults (:func:`tribodyn.config.origins.input_origins`)."""
+        return self._given
 
     def built(self) -> BuiltCase:
         """Every object of the case, built once (:func:`tribodyn.config.build.build`)."""
@@ -520,6 +534,29 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             coating_material=s.coating,
             asperity_law=asperity_law_note(s),
         )
+
+
+def _given_keys(case: Case) -> frozenset[str]:
+    """The dotted keys of the values the case file (or dict) gave (Case.input_given)."""
+    top = case.model_fields_set
+    out: set[str] = set()
+    if "engine" in top:
+        out |= {f"engine.{k}" for k in case.engine.model_fields_set}
+    if "cam_config" in top:
+        out |= {f"cam.{k}" for k in case.cam_config.model_fields_set}
+    if "valvetrain" in top:
+        out |= {f"valvetrain.{k}" for k in case.valvetrain.model_fields_set}
+    if "lubricant_config" in top:
+        out |= {f"lubricant.{k}" for k in case.lubricant_config.model_fields_set}
+    if "materials" in top:
+        for name, m in case.materials.items():
+            out |= {f"materials.{name}.{k}" for k in m.model_fields_set}
+    if "surface_set_configs" in top:
+        for s in case.surface_set_configs:
+            p = f"surface_sets[{s.name}]"
+            out |= {f"{p}.roughness.{k}" for k in s.roughness.model_fields_set}
+            out |= {f"{p}.{k}" for k in s.model_fields_set if k != "roughness"}
+    return frozenset(out)
 
 
 # ----------------------------------------------------------------------------- loading

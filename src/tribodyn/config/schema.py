@@ -3,8 +3,8 @@
 Every field records its unit (``json_schema_extra={"unit": …}``), its allowed range and a
 one-line description; ``docs/case-files.md`` documents them and the error messages quote
 them. Friction, rheology and roughness default to typical sourced values
-(:mod:`tribodyn.physics.typical`); the engine, cam and valvetrain default to the paper's
-engine (:mod:`tribodyn.paper`, no typical values exist for them); the paper's friction
+(:mod:`tribodyn.physics.typical`); so do the engine speed, the cam's sizes and the
+valvetrain's masses, spring and preload (a warning names those a case leaves out); the paper's friction
 values are stated in its case files. Numerical settings are tribodyn's defaults. Sections are strict (no type coercion), frozen, and reject unknown keys.
 
 Here: ``[case]``, ``[engine]``, ``[numerics]``, ``[tappet_rotation]``; the cam and
@@ -19,11 +19,11 @@ from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
-from .. import paper
 from .._validation import InputError
 from ..contact.ehl.grid import N_AUTO, N_MAX_AUTO
 from ..contact.ehl.options import EHLOptions
 from ..physics import limits as L
+from ..physics import typical_engine
 from ..valvetrain.tribology import SUPPLY_FILM, SUPPLY_FILM_MAX
 from .errors import CaseKeyError, Problems
 from .schema_fields import _NAME_PATTERN, Section, _lim, _q
@@ -35,8 +35,6 @@ from .schema_surfaces import (
     StrengthConfig,
     StressConfig,
     SurfaceSetConfig,
-    paper_materials,
-    paper_surface_sets,
     typical_materials,
     typical_surface_sets,
 )
@@ -79,8 +77,6 @@ __all__ = [
     "StrengthConfig",
     "StressConfig",
     "Numerics",
-    "paper_materials",
-    "paper_surface_sets",
     "typical_materials",
     "typical_surface_sets",
     "TappetRotationConfig",
@@ -151,7 +147,9 @@ class Engine(Section):
     With ``cylinders``: a whole engine's direct-acting valvetrain (``tribodyn engine``)."""
 
     speed_rpm: float = _lim(
-        paper.ENGINE_SPEED_RPM, L.ENGINE_SPEED, "engine (crank) speed; cam speed = speed_rpm/2"
+        typical_engine.ENGINE_SPEED.value,
+        L.ENGINE_SPEED,
+        "engine (crank) speed; cam speed = speed_rpm/2",
     )
     cylinders: int | None = _q(None, "", "cylinders (absent: one valve)", ge=1, le=16)
     firing_order: list[int] | None = _q(

@@ -1,18 +1,17 @@
 """Case-file sections of the lubricant and the surfaces: ``[lubricant]``, ``[materials]``
-(with strength and stress settings), roughness and ``[[surface_sets]]``, and the paper's
-(Table 6) and typical (:mod:`tribodyn.physics.typical`) materials and surface sets.
+(with strength and stress settings), roughness and ``[[surface_sets]]``, and the typical
+(:mod:`tribodyn.physics.typical`) materials and surface sets of a case that leaves them out.
 """
 
 from __future__ import annotations
 
 import math
-from typing import Any, Literal
+from typing import Literal
 
 from pydantic import model_validator
 
-from .. import paper
 from ..physics import limits as L
-from ..physics import typical
+from ..physics import typical, typical_engine
 from ..physics.oils import OILS
 from .errors import Problems
 from .schema_fields import _NAME_PATTERN, Section, _lim, _q
@@ -22,16 +21,16 @@ class LubricantConfig(Section):
     """``[lubricant]``: :class:`~tribodyn.Lubricant` (Roelands + Dowson–Higginson)."""
 
     viscosity: float = _lim(
-        paper.LUBRICANT["viscosity"],
+        typical.VISCOSITY.value,
         L.VISCOSITY,
         "dynamic viscosity μ₀ at ambient pressure (Roelands needs μ₀ > exp(−9.67))",
     )
     pressure_viscosity: float = _lim(
-        paper.LUBRICANT["pressure_viscosity"],
+        typical.PRESSURE_VISCOSITY.value,
         L.PRESSURE_VISCOSITY,
         "pressure–viscosity coefficient α",
     )
-    density: float = _lim(paper.ASSUMED_DENSITY, L.DENSITY, "density ρ₀ at ambient pressure")
+    density: float = _lim(typical.DENSITY.value, L.DENSITY, "density ρ₀ at ambient pressure")
     eyring_stress: float = _lim(
         typical.EYRING_STRESS.value, L.EYRING_STRESS, "Eyring stress τ_E (typical)"
     )
@@ -41,7 +40,9 @@ class LubricantConfig(Section):
         "pressure slope Λ of the limiting shear stress τ_L = τ_L0 + Λ p",
     )
     limiting_shear_stress: float = _lim(
-        0.0, L.LIMITING_SHEAR_STRESS, "intercept τ_L0 of the limiting shear stress (paper: 0)"
+        typical.LIMITING_SHEAR_STRESS.value,
+        L.LIMITING_SHEAR_STRESS,
+        "intercept τ_L0 of the limiting shear stress (typical: 0)",
     )
     compressible: bool = _q(True, "", "Dowson–Higginson density (false: constant density)")
     viscosity_model: Literal["roelands", "barus"] = _q("roelands", "", "piezo-viscosity law")
@@ -423,11 +424,6 @@ class SurfaceSetConfig(Section):
         return self
 
 
-def paper_materials() -> dict:
-    """Table 6 as ``[materials]`` (moduli in GPa: the paper prints "MPa")."""
-    return {k: MaterialConfig(**v) for k, v in paper.MATERIALS.items()}
-
-
 def _paper_sets_with(roughness, **common) -> list:
     """The paper's five surface sets (uncoated; DLC and WC-C at 1 and 4 µm), each with
     ``roughness(coating)`` (coating None for the uncoated set) and the keys ``common``."""
@@ -446,28 +442,41 @@ def _paper_sets_with(roughness, **common) -> list:
     return sets
 
 
-def paper_surface_sets() -> list:
-    """The bundled case's surface sets: uncoated, DLC and WC-C at 1 and 4 µm, with the
-    Table 4 roughness of the coating type (the same for both thicknesses), with the
-    paper's Greenwood–Tripp asperities."""
-    return _paper_sets_with(
-        lambda coat: RoughnessConfig(**paper.ROUGHNESS[coat or "uncoated"]),
-        asperity_model="greenwood_tripp",
-    )
-
-
 def typical_materials() -> dict:
-    """Default ``[materials]``: the moduli of Table 6 (elastic constants of steel, a-C:H
-    DLC and WC-C) with ς = the typical boundary friction coefficient of each surface
-    against steel in a ZDDP oil (:data:`tribodyn.physics.typical.BOUNDARY_FRICTION`, used
-    with τ₀ = 0)."""
-    mu = {"steel": "steel", "dlc": "a-C:H", "wcc": "WC-C"}
+    """Default ``[materials]``: typical elastic constants of steel, a-C:H DLC and WC-C
+    (:data:`~tribodyn.physics.typical_engine.STEEL_MODULUS`, ``DLC_MODULUS``, ``WCC_MODULUS``)
+    with ς = the typical boundary friction coefficient of each surface against steel in a
+    ZDDP oil (:data:`tribodyn.physics.typical.BOUNDARY_FRICTION`, used with τ₀ = 0)."""
     out = {}
-    for k, v in paper.MATERIALS.items():
-        d: dict[str, Any] = dict(v)
-        d["boundary_shear_coefficient"] = typical.boundary_friction(mu[k]).value
-        out[k] = MaterialConfig(**d)
+    for k, t in TYPICAL_MATERIALS.items():
+        out[k] = MaterialConfig(
+            E=t["E"].value,
+            nu=t["nu"].value,
+            boundary_shear_coefficient=t["boundary_shear_coefficient"].value,
+            label=_TYPICAL_LABELS[k],
+        )
     return out
+
+
+#: The typical value of each key of the default ``[materials]`` (typical_materials).
+TYPICAL_MATERIALS = {
+    "steel": {
+        "E": typical_engine.STEEL_MODULUS,
+        "nu": typical_engine.STEEL_POISSON,
+        "boundary_shear_coefficient": typical.boundary_friction("steel"),
+    },
+    "dlc": {
+        "E": typical_engine.DLC_MODULUS,
+        "nu": typical_engine.COATING_POISSON,
+        "boundary_shear_coefficient": typical.boundary_friction("a-C:H"),
+    },
+    "wcc": {
+        "E": typical_engine.WCC_MODULUS,
+        "nu": typical_engine.COATING_POISSON,
+        "boundary_shear_coefficient": typical.boundary_friction("WC-C"),
+    },
+}
+_TYPICAL_LABELS = {"steel": "steel", "dlc": "DLC", "wcc": "WC-C"}
 
 
 def typical_surface_sets() -> list:

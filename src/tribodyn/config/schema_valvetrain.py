@@ -1,7 +1,9 @@
 """Case-file sections of the cam and the valvetrain: ``[cam]`` (acceleration, circular-arc
 or tabulated lift, :data:`CAM_MODELS`) and ``[valvetrain]`` with its flexible bodies
-(valve, tappet, spring, camshaft). Defaults: the paper's engine
-(:mod:`tribodyn.paper`) and :class:`~tribodyn.valvetrain.ValvetrainParameters`.
+(valve, tappet, spring, camshaft). Defaults: the typical cam sizes and valvetrain of
+:mod:`tribodyn.physics.typical` (masses, spring, preload: a case that leaves them out runs
+with a warning naming them, :mod:`tribodyn.config.origins`) and the assumed joints of
+:class:`~tribodyn.valvetrain.ValvetrainParameters`.
 """
 
 from __future__ import annotations
@@ -11,8 +13,8 @@ from typing import Annotated, Any, Literal
 
 from pydantic import Discriminator, Tag, model_validator
 
-from .. import paper
 from ..physics import limits as L
+from ..physics import typical_engine
 from ..valvetrain.parameters import ValvetrainParameters
 from .errors import Problems
 from .schema_fields import Section, _lim, _q
@@ -24,15 +26,21 @@ class _CamBase(Section):
     material: str = _q(
         "steel", "", "cam material (a key of [materials]); the cam is uncoated", min_length=1
     )
-    base_radius: float = _q(paper.CAM_BASE_RADIUS, "m", "base-circle radius r_b", gt=0.0, lt=1.0)
-    width: float = _lim(paper.CAM_WIDTH, L.LENGTH_BELOW_1M, "cam width (axial contact length)")
+    base_radius: float = _q(
+        typical_engine.CAM_BASE_RADIUS.value, "m", "base-circle radius r_b", gt=0.0, lt=1.0
+    )
+    width: float = _lim(
+        typical_engine.CAM_WIDTH.value, L.LENGTH_BELOW_1M, "cam width (axial contact length)"
+    )
 
 
 class AccelerationCamConfig(_CamBase):
     """``[cam] type = "acceleration"``: :class:`~tribodyn.valvetrain.AccelerationCam`."""
 
     type: Literal["acceleration"] = "acceleration"
-    max_lift: float = _q(paper.CAM_MAX_LIFT, "m", "maximum lift L incl. the ramp", gt=0.0, lt=1.0)
+    max_lift: float = _q(
+        typical_engine.CAM_MAX_LIFT.value, "m", "maximum lift L incl. the ramp", gt=0.0, lt=1.0
+    )
     event_angle_deg: float = _q(
         171.0, "deg (cam)", "total event incl. both ramps", gt=0.0, lt=360.0
     )
@@ -56,7 +64,7 @@ class CircularArcCamConfig(_CamBase):
     """``[cam] type = "circular_arc"``: :class:`~tribodyn.valvetrain.CircularArcCam`."""
 
     type: Literal["circular_arc"]
-    max_lift: float = _q(paper.CAM_MAX_LIFT, "m", "maximum lift L", gt=0.0, lt=1.0)
+    max_lift: float = _q(typical_engine.CAM_MAX_LIFT.value, "m", "maximum lift L", gt=0.0, lt=1.0)
     flank_radius: float = _q(0.030, "m", "flank arc radius (> base_radius)", gt=0.0, lt=1.0)
     nose_radius: float = _q(3e-3, "m", "nose arc radius (< base_radius)", gt=0.0, lt=1.0)
     nose_angle_deg: float = _q(180.0, "deg (cam)", "cam angle of maximum lift", ge=0.0, lt=360.0)
@@ -148,7 +156,9 @@ class ValveConfig(_BodyModes):
     head_mass: float = _q(0.030, "kg", "valve head", gt=0.0, lt=10.0)
     head_stiffness: float = _q(5e8, "N/m", "head and fillet between stem end and seat face", gt=0.0)
     seat_stiffness: float = _q(5e8, "N/m", "seat insert + seat contact", gt=0.0)
-    E: float = _q(paper.STEEL["E"], "Pa", "Young's modulus of the valve", ge=1e9, le=2e12)
+    E: float = _q(
+        typical_engine.STEEL_MODULUS.value, "Pa", "Young's modulus of the valve", ge=1e9, le=2e12
+    )
     density: float = _q(7850.0, "kg/m³", "density of the valve", gt=0.0, le=3e4)
     elements: int = _q(12, "", "bar elements of the stem below the groove", ge=2, le=400)
 
@@ -162,7 +172,9 @@ class TappetConfig(_BodyModes):
     crown_thickness: float = _q(3.5e-3, "m", "crown (disc) thickness", gt=0.0, lt=0.1)
     skirt_length: float = _q(0.02, "m", "skirt (tube) length below the crown", gt=0.0, lt=0.5)
     skirt_thickness: float = _q(1e-3, "m", "skirt wall thickness", gt=0.0, lt=0.1)
-    E: float = _q(paper.STEEL["E"], "Pa", "Young's modulus of the tappet", ge=1e9, le=2e12)
+    E: float = _q(
+        typical_engine.STEEL_MODULUS.value, "Pa", "Young's modulus of the tappet", ge=1e9, le=2e12
+    )
     density: float = _q(7850.0, "kg/m³", "density of the tappet", gt=0.0, le=3e4)
     elements: int = _q(6, "", "bar elements of the skirt", ge=1, le=400)
 
@@ -224,7 +236,9 @@ class CamshaftConfig(Section):
         ..., "N·m/rad", "torsional stiffness of the drive (chain/belt, sprocket)", gt=0.0
     )
     drive_length: float = _q(..., "m", "shaft length from the drive to the lobe", gt=0.0, lt=10.0)
-    E: float = _q(paper.STEEL["E"], "Pa", "Young's modulus of the shaft", ge=1e9, le=2e12)
+    E: float = _q(
+        typical_engine.STEEL_MODULUS.value, "Pa", "Young's modulus of the shaft", ge=1e9, le=2e12
+    )
     nu: float = _q(0.3, "", "Poisson's ratio of the shaft", gt=-1.0, lt=0.5)
     density: float = _q(7850.0, "kg/m³", "density of the shaft", gt=0.0, le=3e4)
     bearing_stiffness: float | None = _q(

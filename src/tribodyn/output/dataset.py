@@ -21,7 +21,8 @@ from typing import TYPE_CHECKING
 
 import xarray as xr
 
-from .. import _json, paper
+from .. import _json
+from ..workflow.coating_study import DRY_CONDITIONS
 from ..workflow.variables import build
 from ..workflow.variables_study import STUDY, StudySource
 
@@ -42,9 +43,7 @@ def study_to_dataset(study: CycleStudy) -> xr.Dataset:
     case, sets = study.case, study.sets
     ds = build(xr.Dataset(), STUDY, source)
     if study.dry:
-        ds.attrs["dry_coating_conditions"] = _json.dumps(
-            {k: v for k, v in paper.FIG5.items() if k != "ratios"}
-        )
+        ds.attrs["dry_coating_conditions"] = _json.dumps(DRY_CONDITIONS)
     if (e := study.ehl_coating) is not None and e.results:
         ds.attrs["ehl_coating_conditions"] = _json.dumps(e.conditions)
     ds.attrs["lubricant_as_used"] = _json.dumps(source.oil)

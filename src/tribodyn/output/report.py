@@ -15,7 +15,6 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import paper
 from .report_claims import _fmt, claims
 
 __all__ = ["write_report", "report_text", "claims"]
@@ -237,6 +236,32 @@ def _inputs_section(study, summ) -> list[str]:
     lines += [
         f"- Asperity law of {s.coating_label}: {s.asperity_law}." for s in case.surface_sets()
     ]
+    return lines + [""] + _origins_lines(case)
+
+
+def _origins_lines(case) -> list[str]:
+    """Every engine, cam, valvetrain, lubricant, material and surface value with its
+    origin, as the case recorded it (:func:`tribodyn.config.origins.input_origins`)."""
+    from ..config.origins import input_origins
+
+    lines = [
+        "Every value, and where it comes from: *case* (given in the case file), *typical* "
+        "(tribodyn.physics.typical, with how far its source was checked and the source), "
+        "*datasheet* (from the oil's datasheet) or *assumed* (tribodyn's default).",
+        "",
+        "| key | value | origin |",
+        "|---|---|---|",
+    ]
+    for key, value, unit, origin in input_origins(case):
+        if value is None:
+            shown = "absent"
+        elif isinstance(value, bool):
+            shown = str(value).lower()
+        elif isinstance(value, str):
+            shown = value
+        else:
+            shown = f"{value:g} {unit}".strip()
+        lines.append(f"| {key} | {shown} | {origin} |")
     return lines + [""]
 
 
@@ -410,10 +435,10 @@ def report_text(study, ds, figures: dict) -> str:
         lines.append("")
 
     lines += ["## Figures", ""]
-    u = (
+    u = (  # only the coating study's figures quote it
         study.ehl_coating.conditions.get("entrainment_speed")
         if study.ehl_coating is not None
-        else paper.FIG5["entrainment_speed"]
+        else "–"
     )
     from .figures import FIGURES, content_name
     from .report_first import METHOD_FIGURES, figure_rank

@@ -23,7 +23,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import paper
 from .._validation import check_bool, check_choice
 from . import typical
 from .limits import (
@@ -36,7 +35,7 @@ from .limits import (
     VISCOSITY,
 )
 
-__all__ = ["Lubricant", "ROELANDS_P0", "ROELANDS_MU_INF", "SAE_5W20"]
+__all__ = ["Lubricant", "ROELANDS_P0", "ROELANDS_MU_INF", "TYPICAL_OIL"]
 
 #: Roelands pressure constant 1/5.1e-9 Pa = 0.196 GPa.
 ROELANDS_P0 = 1.0 / 5.1e-9
@@ -64,7 +63,7 @@ class Lubricant:
 
     viscosity: float
     pressure_viscosity: float
-    density: float = paper.ASSUMED_DENSITY
+    density: float = typical.DENSITY.value
     eyring_stress: float = typical.EYRING_STRESS.value
     limiting_shear_coefficient: float = typical.LIMITING_SHEAR_COEFFICIENT.value
     compressible: bool = True
@@ -132,10 +131,9 @@ class Lubricant:
         return np.where(p >= 0.0, d, 0.0)
 
 
-#: The paper's Table 5 lubricant (SAE 5W-20), with the assumed ρ₀ = 850 kg/m³.
-SAE_5W20 = Lubricant(
-    viscosity=paper.LUBRICANT["viscosity"],
-    pressure_viscosity=paper.LUBRICANT["pressure_viscosity"],
-    eyring_stress=paper.LUBRICANT["eyring_stress"],
-    limiting_shear_coefficient=paper.LUBRICANT["limiting_shear_coefficient"],
+#: A typical engine oil in a warm engine: the typical μ₀, α, ρ₀ and rheology of
+#: :mod:`tribodyn.physics.typical` (the paper's SAE 5W-20 is stated in its case file).
+TYPICAL_OIL = Lubricant(
+    viscosity=typical.VISCOSITY.value,
+    pressure_viscosity=typical.PRESSURE_VISCOSITY.value,
 )

@@ -13,8 +13,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TypeAlias
 
-from .. import paper
 from .._validation import InputError
+from . import typical_engine
 from .limits import COATING_THICKNESS, POISSON_RATIO, YOUNGS_MODULUS
 
 __all__ = ["Material", "Coating", "Body", "as_bodies", "reduced_modulus", "STEEL", "DLC", "WCC"]
@@ -121,7 +121,8 @@ def reduced_modulus(bodies: BodyPair, *, surface: bool = False) -> float:
     return 2.0 / (m1.compliance + m2.compliance)
 
 
-# The paper's Table 6 (moduli printed as "MPa": they are GPa; docs/conventions.md).
-STEEL = Material(E=paper.STEEL["E"], nu=paper.STEEL["nu"])
-DLC = Material(E=paper.DLC["E"], nu=paper.DLC["nu"])
-WCC = Material(E=paper.WCC["E"], nu=paper.WCC["nu"])
+# Typical materials (tribodyn.physics.typical, with their sources); the paper's Table 6
+# is stated in its case file, cases/andreou2023.toml.
+STEEL = Material(E=typical_engine.STEEL_MODULUS.value, nu=typical_engine.STEEL_POISSON.value)
+DLC = Material(E=typical_engine.DLC_MODULUS.value, nu=typical_engine.COATING_POISSON.value)
+WCC = Material(E=typical_engine.WCC_MODULUS.value, nu=typical_engine.COATING_POISSON.value)

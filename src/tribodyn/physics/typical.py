@@ -3,7 +3,9 @@
 Every value here is a **typical** value: the middle of a range that published
 measurements give for a class of oils or surfaces, not the property of one product. Use
 them when nothing better is known; replace them by your own measurements (``tribodyn
-calibrate``, docs/guides/calibration.md) when friction matters. The paper's values
+calibrate``, docs/guides/calibration.md) when friction matters. The typical engine (cam
+sizes, valvetrain masses and spring, elastic constants) is in
+:mod:`tribodyn.physics.typical_engine`. The paper's values
 (Andreou et al. 2023) stay in :mod:`tribodyn.paper` and in the paper's case files.
 
 Each entry is a :class:`TypicalValue`: value, published range, unit, source, a note on
@@ -34,6 +36,10 @@ from dataclasses import dataclass
 __all__ = [
     "TypicalValue",
     "STATUSES",
+    "VISCOSITY",
+    "PRESSURE_VISCOSITY",
+    "DENSITY",
+    "LUBRICANT",
     "EYRING_STRESS",
     "LIMITING_SHEAR_COEFFICIENT",
     "LIMITING_SHEAR_STRESS",
@@ -76,6 +82,47 @@ class TypicalValue:
             )
 
 
+# ----------------------------------------------------------------------------- oil
+#: Dynamic viscosity μ₀ at ambient pressure of an engine oil in a warm engine (≈ 100 °C).
+VISCOSITY = TypicalValue(
+    0.009,
+    0.005,
+    0.015,
+    "Pa·s",
+    "SAE J300, engine oil viscosity classification: kinematic viscosity at 100 °C of the "
+    "grades SAE 20 to SAE 40, 6.9–16.3 mm²/s",
+    "ASSUMED: the grade limits were not seen in the standard's text here. With ρ ≈ "
+    "830 kg/m³ at 100 °C they give μ ≈ 0.006–0.014 Pa·s; 0.009 Pa·s (an SAE 30 grade, "
+    "≈ 11 mm²/s) is ASSUMED. A datasheet oil at its inlet temperature (lubricant.oil) "
+    "is better.",
+    status="assumed",
+)
+#: Pressure–viscosity coefficient α of engine oils at about 100 °C.
+PRESSURE_VISCOSITY = TypicalValue(
+    1.5e-8,
+    1.0e-8,
+    2.5e-8,
+    "1/Pa",
+    "B. J. Hamrock, S. R. Schmid, B. O. Jacobson, Fundamentals of Fluid Film "
+    "Lubrication, 2nd ed., Marcel Dekker, 2004 (pressure–viscosity coefficients of "
+    "mineral and synthetic oils)",
+    "ASSUMED: α falls with temperature, about 2e-8 1/Pa at 40 °C to 1–1.5e-8 1/Pa at "
+    "100 °C; the book's table was not seen here.",
+    status="assumed",
+)
+#: Density ρ₀ of engine oils at ambient pressure.
+DENSITY = TypicalValue(
+    850.0,
+    820.0,
+    880.0,
+    "kg/m³",
+    "engine-oil datasheets: density at 15 °C 0.84–0.87 g/cm³",
+    "ASSUMED: the middle of the datasheet range; the density changes the film by far less "
+    "than the viscosity.",
+    status="assumed",
+)
+
+
 # ----------------------------------------------------------------------------- rheology
 #: Eyring stress τ_E of mineral and PAO engine-oil base stocks in EHL traction.
 EYRING_STRESS = TypicalValue(
@@ -116,6 +163,16 @@ LIMITING_SHEAR_STRESS = TypicalValue(
     "ASSUMED: 0 keeps τ_L = Λ p, the usual form; measured intercepts are a few MPa.",
     status="assumed",
 )
+
+#: The typical value of each ``[lubricant]`` key that has one.
+LUBRICANT = {
+    "viscosity": VISCOSITY,
+    "pressure_viscosity": PRESSURE_VISCOSITY,
+    "density": DENSITY,
+    "eyring_stress": EYRING_STRESS,
+    "limiting_shear_coefficient": LIMITING_SHEAR_COEFFICIENT,
+    "limiting_shear_stress": LIMITING_SHEAR_STRESS,
+}
 
 # ----------------------------------------------------------------------------- boundary
 #: τ₀ of Eq. 17 used with a measured boundary friction coefficient as ς (module text).

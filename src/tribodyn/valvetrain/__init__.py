@@ -19,7 +19,7 @@ from .model import ContactLawError, ValvetrainModel
 from .parameters import ValvetrainParameters
 from .sweep import SpeedSweepResult, jump_speed, speed_sweep
 from .tribology import (
-    PAPER_ROUGHNESS_UNCOATED,
+    TYPICAL_ROUGHNESS,
     AnalyticTribology,
     FilmStateTribology,
     FilmTableTribology,
@@ -50,5 +50,5 @@ __all__ = [
     "AnalyticTribology",
     "FilmStateTribology",
     "FilmTableTribology",
-    "PAPER_ROUGHNESS_UNCOATED",
+    "TYPICAL_ROUGHNESS",
 ]

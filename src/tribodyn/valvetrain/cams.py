@@ -29,13 +29,13 @@ from abc import ABC, abstractmethod
 
 import numpy as np
 
-from .. import paper
 from .._validation import (
     InputError,
     check_nonnegative,
     check_positive,
     check_range,
 )
+from ..physics import typical_engine
 
 __all__ = ["CamProfile", "AccelerationCam", "CircularArcCam", "TabulatedCam"]
 
@@ -219,7 +219,7 @@ class AccelerationCam(CamProfile):
 
     Parameters (SI, angles in rad)
     ----------
-    base_radius : r_b [m] (paper Table 7: 0.015).
+    base_radius : r_b [m] (typical 0.015, :mod:`tribodyn.physics.typical`).
     max_lift : L [m] (Table 7: 9.3e-3), including the ramp.
     event_angle : total cam angle of the event incl. both ramps [rad] (default 171°).
     nose_radius : ρ_n, radius of curvature at the nose [m] (default 3 mm).
@@ -233,8 +233,8 @@ class AccelerationCam(CamProfile):
 
     def __init__(
         self,
-        base_radius: float = paper.CAM_BASE_RADIUS,
-        max_lift: float = paper.CAM_MAX_LIFT,
+        base_radius: float = typical_engine.CAM_BASE_RADIUS.value,
+        max_lift: float = typical_engine.CAM_MAX_LIFT.value,
         *,
         event_angle: float = math.radians(171.0),
         nose_radius: float = 3e-3,
@@ -413,8 +413,8 @@ class CircularArcCam(CamProfile):
 
     def __init__(
         self,
-        base_radius: float = paper.CAM_BASE_RADIUS,
-        max_lift: float = paper.CAM_MAX_LIFT,
+        base_radius: float = typical_engine.CAM_BASE_RADIUS.value,
+        max_lift: float = typical_engine.CAM_MAX_LIFT.value,
         *,
         flank_radius: float = 0.030,
         nose_radius: float = 3e-3,

@@ -23,8 +23,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import paper
 from .._validation import InputError, check_nonnegative, check_positive, check_range
+from ..physics import typical_engine
 from .cams import CamProfile
 
 __all__ = ["Camshaft", "lobe_polar_inertia"]
@@ -65,7 +65,7 @@ class Camshaft:
     lobe_position: float
     drive_stiffness: float
     drive_length: float
-    E: float = paper.STEEL["E"]
+    E: float = typical_engine.STEEL_MODULUS.value
     nu: float = 0.3
     density: float = 7850.0
     bearing_stiffness: float | None = None

@@ -27,8 +27,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-from .. import paper
 from .._validation import InputError, check_positive
+from ..physics import typical_engine
 from .camshaft import Camshaft
 from .fe import AxialFEModel, ModalBody, ReducedBody, check_count
 from .parameters import ValvetrainParameters
@@ -37,7 +37,7 @@ from .spring import HelicalSpring
 __all__ = ["ValveGeometry", "TappetGeometry", "FlexibleValvetrain"]
 
 STEEL_DENSITY = 7850.0  # kg/m³ (ASSUMED where a case gives none)
-STEEL_E = paper.STEEL["E"]  # Pa (paper Table 6)
+STEEL_E = typical_engine.STEEL_MODULUS.value  # Pa (typical steel, with its source)
 
 
 @dataclass(frozen=True)

@@ -17,8 +17,11 @@ spring support         head, spring             linear, unilateral, in series wi
 valve seat             head, valve              linear + damping, unilateral
 =====================  =======================  ===========================================
 
-Paper values (Table 7): valve mass 0.07 kg, spring mass 0.036 kg, spring rate 33 750 N/m,
-cam width 12 mm. Everything else is assumed (docs/conventions.md) and documented per field below.
+Defaults: the masses, spring rate and preload, which decide the contact force, are the
+typical values of :data:`tribodyn.physics.typical_engine.VALVETRAIN` (with their sources); a case
+file that leaves them out runs on them with a warning naming each one. The paper's values
+(Table 7) are stated in its case, ``cases/andreou2023.toml``. Everything else is assumed
+(docs/conventions.md) and documented per field below.
 Unilateral joints phase their damping in over the first ``damping_force_ramp`` newtons of
 elastic force (a cubic step, as the IMPACT force of MSC Adams), so contact forces are
 continuous at closure and never tensile.
@@ -29,14 +32,17 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, fields
 
-from .. import paper
 from .._validation import InputError
 from ..physics import limits as L
+from ..physics import typical_engine
 
 __all__ = ["ValvetrainParameters", "STEEL_REDUCED_MODULUS", "PALMGREN_COEFFICIENT"]
 
-#: E' of the steel/steel pair, 1/E' = ½Σ(1−ν²)/E with E = 210 GPa, ν = 0.3 (docs/conventions.md).
-STEEL_REDUCED_MODULUS = paper.STEEL["E"] / (1.0 - paper.STEEL["nu"] ** 2)
+#: E' of the steel/steel pair, 1/E' = ½Σ(1−ν²)/E with the typical E = 210 GPa, ν = 0.3
+#: (:data:`tribodyn.physics.typical_engine.STEEL_MODULUS`, docs/conventions.md).
+STEEL_REDUCED_MODULUS = typical_engine.STEEL_MODULUS.value / (
+    1.0 - typical_engine.STEEL_POISSON.value**2
+)
 
 #: Palmgren's line-contact approach for steel, δ = 3.84e-5 Q^0.9 / l^0.8 with δ, l in mm and
 #: Q in N (Palmgren, Ball and Roller Bearing Engineering, 3rd ed., 1959; Harris & Kotzalas,
@@ -48,13 +54,13 @@ PALMGREN_COEFFICIENT = 3.84e-8 * 1000.0**-0.8
 class ValvetrainParameters:
     """Validated parameters of the single valvetrain (SI units).
 
-    Masses and spring (paper Table 7 unless marked *assumed*)
-    ------------------------------------------------------------
-    valve_mass : valve + retainer + collets [kg] (0.07).
-    tappet_mass : flat (bucket) tappet [kg] (*assumed* 0.040).
-    spring_mass : active valve-spring mass m_s [kg] (0.036).
-    spring_rate : k [N/m] (33 750).
-    spring_preload : installed load F₀ with the valve closed [N] (*assumed* 250).
+    Masses and spring (typical values, :data:`tribodyn.physics.typical_engine.VALVETRAIN`)
+    ------------------------------------------------------------------------------
+    valve_mass : valve + retainer + collets [kg] (0.060).
+    tappet_mass : flat (bucket) tappet [kg] (0.040).
+    spring_mass : active valve-spring mass m_s [kg] (0.030).
+    spring_rate : k [N/m] (35 000).
+    spring_preload : installed load F₀ with the valve closed [N] (250).
     spring_masses : N, number of lumped coil masses (≥ 0). N ≥ 1: N masses of m_s/(N+1)
         joined by N+1 coil segments of stiffness (N+1)k, the end half-masses m_s/(2(N+1))
         assigned to the valve and the head, so the fixed–fixed surge frequency is
@@ -92,14 +98,14 @@ class ValvetrainParameters:
     bore_friction_velocity : regularisation velocity [m/s] (0.01).
     tappet_radius : radius of the tappet face [m] (*assumed* 16.5 mm, a 33 mm bucket);
         the cam's maximum contact offset must stay below it.
-    cam_width : axial contact length [m] (Table 7: 0.012).
+    cam_width : axial contact length [m] (typical 0.014).
     """
 
-    valve_mass: float = paper.VALVE_MASS
-    tappet_mass: float = 0.040
-    spring_mass: float = paper.SPRING_MASS
-    spring_rate: float = paper.SPRING_RATE
-    spring_preload: float = 250.0
+    valve_mass: float = typical_engine.VALVE_MASS.value
+    tappet_mass: float = typical_engine.TAPPET_MASS.value
+    spring_mass: float = typical_engine.SPRING_MASS.value
+    spring_rate: float = typical_engine.SPRING_RATE.value
+    spring_preload: float = typical_engine.SPRING_PRELOAD.value
     spring_masses: int = 8
     spring_damping_ratio: float = 0.02
     contact_stiffness: float | None = None
@@ -117,7 +123,7 @@ class ValvetrainParameters:
     bore_friction_coefficient: float = 0.1
     bore_friction_velocity: float = 0.01
     tappet_radius: float = 0.0165
-    cam_width: float = paper.CAM_WIDTH
+    cam_width: float = typical_engine.CAM_WIDTH.value
 
     def __post_init__(self):
         # ranges shared with the case file's [valvetrain] (physics.limits)

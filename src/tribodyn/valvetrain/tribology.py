@@ -35,15 +35,15 @@ from types import MappingProxyType
 
 import numpy as np
 
-from .. import paper
 from .._typing import ArrayLike
 from .._validation import InputError, check_array, check_positive
+from ..physics import typical, typical_engine
 from ..physics.analytic_contact import analytic_contact
 from ..physics.asperity import Roughness
 from ..physics.film_state_laws import FILM_FLOOR as _FILM_FLOOR
 from ..physics.film_state_laws import SUPPLY_FILM, SUPPLY_FILM_MAX, entraining_film_load
 from ..physics.film_state_laws import entraining_scalar as _entraining_scalar
-from ..physics.lubricant import SAE_5W20, Lubricant
+from ..physics.lubricant import TYPICAL_OIL, Lubricant
 from ..physics.materials import STEEL, Body, BodyPair
 
 __all__ = [
@@ -51,7 +51,7 @@ __all__ = [
     "Frictionless",
     "AnalyticTribology",
     "FilmTableTribology",
-    "PAPER_ROUGHNESS_UNCOATED",
+    "TYPICAL_ROUGHNESS",
     "squeeze_film_load",
     "entraining_film_load",
     "FilmStateTribology",
@@ -59,11 +59,14 @@ __all__ = [
     "SUPPLY_FILM_MAX",
 ]
 
-#: Paper Table 4, uncoated tappet: η = 8.3e9 m⁻², σ = 0.408 µm, β = 0.669 µm.
-PAPER_ROUGHNESS_UNCOATED = Roughness(
-    asperity_density=paper.ROUGHNESS["uncoated"]["asperity_density"],
-    rms=paper.ROUGHNESS["uncoated"]["rms"],
-    summit_radius=paper.ROUGHNESS["uncoated"]["summit_radius"],
+#: Typical Greenwood–Tripp roughness of a ground cam on a ground tappet
+#: (:mod:`tribodyn.physics.typical`: σ = COMPOSITE_RMS["ground"], β = σ/(σ/β),
+#: η = ηβσ/(βσ)); the paper's Table 4 is stated in its case file.
+TYPICAL_ROUGHNESS = Roughness(
+    asperity_density=typical.ROUGHNESS_PARAMETER.value
+    / (typical.COMPOSITE_RMS["ground"].value ** 2 / typical.RMS_TO_SUMMIT_RADIUS.value),
+    rms=typical.COMPOSITE_RMS["ground"].value,
+    summit_radius=typical.COMPOSITE_RMS["ground"].value / typical.RMS_TO_SUMMIT_RADIUS.value,
 )
 
 
@@ -136,13 +139,14 @@ class AnalyticTribology(TribologyModel):
 
     Parameters
     ----------
-    width : cam width [m] (paper Table 7: 0.012); must equal the valvetrain's cam_width.
+    width : cam width [m] (typical 0.014); must equal the valvetrain's cam_width.
     bodies : (cam, tappet) bodies (default steel/steel).
-    lubricant : default SAE 5W-20 (paper Table 5).
-    roughness : Greenwood–Tripp roughness or None (default paper Table 4, uncoated).
-    boundary_shear_coefficient : ς (steel 0.185, DLC 0.44, WC-C 0.54; paper Table 6).
+    lubricant : default :data:`~tribodyn.physics.lubricant.TYPICAL_OIL`.
+    roughness : Greenwood–Tripp roughness or None (default :data:`TYPICAL_ROUGHNESS`).
+    boundary_shear_coefficient : ς (default the typical steel/steel boundary friction
+        coefficient, :func:`tribodyn.physics.typical.boundary_friction`).
     boundary_shear_strength : τ₀ [Pa] of the boundary shear τ₀ + ςp (paper Eq. 17;
-        default the paper's 2 MPa).
+        default the typical 0 that goes with a measured ς).
     viscous_model, film_formula, limiting_shear : passed to ``analytic_contact``.
     """
 
@@ -150,13 +154,13 @@ class AnalyticTribology(TribologyModel):
 
     def __init__(
         self,
-        width: float = paper.CAM_WIDTH,
+        width: float = typical_engine.CAM_WIDTH.value,
         *,
         bodies: BodyPair | None = None,
-        lubricant: Lubricant = SAE_5W20,
-        roughness: Roughness | None = PAPER_ROUGHNESS_UNCOATED,
-        boundary_shear_coefficient: float = paper.STEEL["boundary_shear_coefficient"],
-        boundary_shear_strength: float = paper.BOUNDARY_SHEAR_STRENGTH,
+        lubricant: Lubricant = TYPICAL_OIL,
+        roughness: Roughness | None = TYPICAL_ROUGHNESS,
+        boundary_shear_coefficient: float = typical.boundary_friction("steel").value,
+        boundary_shear_strength: float = typical.BOUNDARY_SHEAR_STRENGTH.value,
         viscous_model: str = "eyring",
         film_formula: str = "moes",
         limiting_shear: bool = True,

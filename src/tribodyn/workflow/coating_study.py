@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from .. import paper
 from ..contact.dry import DryContactResult, solve_dry_contact
 from ..contact.ehl import EHLResult, solve_ehl
-from ..physics.lubricant import SAE_5W20, Lubricant
+from ..physics.lubricant import Lubricant
 from ..physics.materials import STEEL, Body, Coating, Material
 
 __all__ = [
@@ -22,9 +22,22 @@ __all__ = [
     "EHLCoatingStudy",
     "dry_coating_study",
     "ehl_coating_study",
+    "SAE_5W20",
+    "DRY_CONDITIONS",
 ]
 
+#: The paper's Table 5 lubricant (SAE 5W-20), with the paper case's assumed ρ₀.
+SAE_5W20 = Lubricant(
+    viscosity=paper.LUBRICANT["viscosity"],
+    pressure_viscosity=paper.LUBRICANT["pressure_viscosity"],
+    density=paper.ASSUMED_DENSITY,
+    eyring_stress=paper.LUBRICANT["eyring_stress"],
+    limiting_shear_coefficient=paper.LUBRICANT["limiting_shear_coefficient"],
+)
+
 _FIG5 = paper.FIG5
+#: Conditions of the dry study of Fig. 5 (the defaults of :func:`dry_coating_study`).
+DRY_CONDITIONS = {k: v for k, v in _FIG5.items() if k != "ratios"}
 
 
 @dataclass

@@ -33,6 +33,7 @@ import numpy as np
 from .._system import exit_with_parent
 from .._threads import blas_single_threaded, single_blas_thread, single_blas_thread_env
 from ..config.build import BuiltCase, build
+from ..config.origins import default_warnings
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from .coating_study import (
     DryCoatingCase,
@@ -369,6 +370,8 @@ def run_cycle_study(
         isothermal_sets=isothermal,
         compare_paper=paper_cmp,
     )
+    # the force- and film-deciding values the case left to typical ones, named first
+    study.warnings += default_warnings(case)
     for s in sets:
         st = stresses.get(s.name)
         if isinstance(st, str):
