@@ -49,7 +49,7 @@ def test_verdict_says_lower_or_not_with_the_change():
     assert "minimum film h_min +10.0 %" in text
     assert "**WC-C 1 µm** does not lower the friction: friction energy per cycle +25.0 %" in text
     # a coating_verdict of the summary is quoted, with its method and independent range
-    assert "**X lowers friction energy per cycle by 50 % (given)** (friction energy" in text
+    assert "**X lowers friction energy per cycle by 50 % (given)** (1 J vs 2 J)" in text
     assert "How the range was computed: as the summary says" in text
     assert "With each pair's ς varied on its own: X −60 … −40 %." in text
     assert figure_rank("fig23") < figure_rank("fig99") < figure_rank("fig08")

@@ -82,6 +82,8 @@ def verdict_section(summ: dict) -> list[str]:
                 parts.append(f"{what} {d}")
         if isinstance(given, dict) and given.get("sentence"):
             ranged.append((lab, given))
+            if de is not None:  # the sentence gives the change: here only the energies
+                parts[0] = f"{e:.4g} J vs {e0:.4g} J"
             lines.append(f"- **{given['sentence']}**" + (f" ({', '.join(parts)})" if parts else ""))
         elif de is None:
             lines.append(f"- **{lab}**: no friction energy to compare.")
