@@ -406,6 +406,9 @@ def test_warmup_numerics_are_a_valid_case():
         ("the load-carrying zone reaches 0.2 R (Hertz b = 0.1 R): the parabolic", "minimum radius"),
         ("modified Reynolds number ρu_e h_c²/(μ₀ℓ) = 0.3: fluid inertia", "uncertain by Re*"),
         ("peak contact pressure 5 GPa exceeds 4 GPa: beyond the elastic limit", "beyond 4 GPa"),
+        # before, the word "pressure" sent this to the 4 GPa advice
+        ("pressure not negligible at the outlet (increase outlet)", "numerics.outlet"),
+        ("truncated inlet carries an estimated 3% of the load", "numerics.inlet"),
     ],
 )
 def test_every_validity_warning_says_what_to_change(text, advice):

@@ -436,7 +436,10 @@ _VALIDITY_ADVICE = {
     "cam's minimum radius (nose) and the load",
     "Reynolds number": "fluid inertia matters at high speed and thick film: the pressure there "
     "is uncertain by Re*",
-    "pressure": "peak pressures beyond 4 GPa: check the load and the radius of "
+    "at the outlet": "the EHL domain ends before the pressure has fallen: raise "
+    "numerics.outlet (in Hertz half-widths) or numerics.outlet_rigid",
+    "truncated inlet": "the inlet is cut short: raise numerics.inlet",
+    "peak contact pressure": "peak pressures beyond 4 GPa: check the load and the radius of "
     "curvature, or the materials",
 }
 
