@@ -298,13 +298,13 @@ class TransientEHL:
         st.Q = (
             q * (sysm.cond.load / w) / sysm.p_ref if w > 0.0 else st.Q * (sysm.cond.load / r.load)
         )
-        if all(v.p is not None and np.array_equal(v.x, xg) for v in lv[:2]):
+        p1, p0 = lv[0].p, lv[1].p
+        if p1 is not None and p0 is not None and all(np.array_equal(v.x, xg) for v in lv[:2]):
             # … and Newton starts from the cavitated nodes of the fluid pressure
             # extrapolated alike on the same grid (zero up to round-off of the total
             # pressure): Q − Pa(H) of the predicted Q is the small difference of two large
             # ones where the asperities carry the load, its cavitation boundary far from
             # the solution's (see docs/convergence.md)
-            p1, p0 = lv[0].p, lv[1].p
             st.cav = p1 + ratio * (p1 - p0) <= 1e-12 * float(np.max(np.abs(lv[0].q)))
         hc1, hc0 = lv[0].central_film, lv[1].central_film
         hc = hc1 + ratio * (hc1 - hc0)
