@@ -32,6 +32,14 @@ __all__ = [
 ]
 
 _NONMONOTONE = 6
+#: A given start set (``State.cav``, a transient predictor's) replaces the cavitated set
+#: of the start's P and R at nodes whose asperity pressure exceeds this share of the
+#: largest total pressure: there P = Q − Pa(H) of a predicted Q is the difference of two
+#: nearly equal numbers (an error δH of the predicted film moves Pa by D·δH, more than the
+#: fluid pressure), and its cavitation boundary lies tens of nodes from the solution's,
+#: which the active set then crosses one node per Newton iteration. Elsewhere P of the
+#: predicted Q is the better guess (it carries the boundary's motion on fluid films).
+_ASPERITY_SHARE = 0.03
 _TRACE = False
 _WATCHDOG = 100.0
 _MAX_KRYLOV = 30
@@ -175,6 +183,8 @@ class State:
     H0: float
     P: np.ndarray = None  # type: ignore[assignment]  # set by ReynoldsSystem.evaluate
     H: np.ndarray = None  # type: ignore[assignment]
+    #: cavitated nodes to start from (a transient predictor's), else those of P and R
+    cav: np.ndarray | None = None
 
 
 def jacobi_scale(sysm, ev):
@@ -301,6 +311,9 @@ def _newton_impl(
     warm start whose boundaries move by a few nodes (a transient step: the blocks
     overshoot and re-cavitate there, 7 % more iterations over a cam cycle).
 
+    ``st.cav``: cavitated nodes to start from where asperities carry the pressure
+    (:data:`_ASPERITY_SHARE`); the standard set is tried if its step fails.
+
     Converged when the relative update is below ``tol`` (residual < 10³·tol), when the
     residual is at round-off, or when a full step on an unchanged active set converges
     quadratically with a predicted next update C·u_k² < tol, C = u_k/u_{k−1}²
@@ -329,9 +342,18 @@ def _newton_impl(
     it = 0
     for it in range(1, max_iter + 1):
         cav_std = cavitated(ev, c)
+        first: tuple = ()  # active sets tried before the standard one
+        if release > 1:
+            first = (_release(cav_std, prev_cav, release),)
+        elif it == 1 and st.cav is not None and st.cav.shape == cav_std.shape:
+            # the given set where the asperities carry the pressure (_ASPERITY_SHARE)
+            given = np.where(ev.pa > _ASPERITY_SHARE * np.max(Q), st.cav, cav_std)
+            given[0] = given[-1] = False
+            if np.any(given != cav_std):
+                first = (given,)
         accepted = False
         fresh_lu = False
-        for cav in (_release(cav_std, prev_cav, release), cav_std) if release > 1 else (cav_std,):
+        for cav in (*first, cav_std):
             lin = Linearization(sysm, c, cav, ev)
             delta = None
             fresh_lu = lu is None

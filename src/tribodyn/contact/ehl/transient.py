@@ -45,6 +45,7 @@ class Level:
     central_film: float  #: h(0) [m]
     dt: float | None  #: the step that reached this level [s]; None: a start
     radius: float  #: radius of curvature [m]
+    p: np.ndarray | None = None  #: fluid pressure [Pa] (the predictor's cavitated nodes)
 
 
 @dataclass
@@ -249,6 +250,7 @@ class TransientEHL:
             central_film=float(np.interp(0.0, sysm.g.x, self._h)),
             dt=dt,
             radius=sysm.cond.radius,
+            p=self._p,
         )
         self._levels = (level, *self._levels[:1])
         self._grid = sysm.g
@@ -296,6 +298,14 @@ class TransientEHL:
         st.Q = (
             q * (sysm.cond.load / w) / sysm.p_ref if w > 0.0 else st.Q * (sysm.cond.load / r.load)
         )
+        p1, p0 = lv[0].p, lv[1].p
+        if p1 is not None and p0 is not None and all(np.array_equal(v.x, xg) for v in lv[:2]):
+            # … and Newton starts from the cavitated nodes of the fluid pressure
+            # extrapolated alike on the same grid (zero up to round-off of the total
+            # pressure): Q − Pa(H) of the predicted Q is the small difference of two large
+            # ones where the asperities carry the load, its cavitation boundary far from
+            # the solution's (see docs/convergence.md)
+            st.cav = p1 + ratio * (p1 - p0) <= 1e-12 * float(np.max(np.abs(lv[0].q)))
         hc1, hc0 = lv[0].central_film, lv[1].central_film
         hc = hc1 + ratio * (hc1 - hc0)
         if not hc > 0.0:
