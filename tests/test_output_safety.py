@@ -247,6 +247,7 @@ def test_sigterm_stops_a_run_cleanly(tmp_path, phase):
         stderr=subprocess.PIPE,
         text=True,
         env={**os.environ, "TMPDIR": str(rescue_area)},
+        cwd=rescue_area,  # the rescue's fallbacks (temporary folder, then the working one)
     )
     deadline = time.time() + 60
     line = ""
