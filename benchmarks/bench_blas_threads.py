@@ -34,9 +34,9 @@ def child(mode: str, repeat: int) -> None:
     from threadpoolctl import threadpool_info, threadpool_limits
 
     from tribodyn import solve_ehl
-    from tribodyn.config import Case
+    from tribodyn.config import load_case
 
-    case = Case()
+    case = load_case("andreou2023")  # the paper case, as named (not the typical defaults)
     s = case.surface_sets()[0]
     lub, opts = case.lubricant(), case.ehl_options(s)
 
