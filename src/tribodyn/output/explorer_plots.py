@@ -100,10 +100,10 @@ def _width(i: int) -> float:
     return max(1.2, 2.8 - 0.6 * i)
 
 
-def _line(p, x, y, name, colour, dash, width=1.6):
+def _draw(p, xs, ys, name, colour, dash, width):
+    """One named line of ``xs``, ``ys`` in ``p`` (its legend entry ``name``); the source."""
     from bokeh.models import ColumnDataSource
 
-    xs, ys = decimate(x, y)
     src = ColumnDataSource({"x": xs, "y": ys})
     p.line(
         "x",
@@ -115,6 +115,11 @@ def _line(p, x, y, name, colour, dash, width=1.6):
         line_dash=dash,
         line_width=width,
     )
+    return src
+
+
+def _line(p, x, y, name, colour, dash, width=1.6):
+    _draw(p, *decimate(x, y), name, colour, dash, width)
 
 
 # ----------------------------------------------------------------------------- runs
@@ -377,19 +382,8 @@ def sweep_figures(results: list[Result], styles: Styles) -> list:
 
 
 def _line_markers(p, x, y, name, colour, dash):
-    from bokeh.models import ColumnDataSource
-
-    src = ColumnDataSource({"x": np.asarray(x, np.float32), "y": np.asarray(y, np.float32)})
-    p.line(
-        "x",
-        "y",
-        source=src,
-        name=name,
-        legend_label=name,
-        color=colour,
-        line_dash=dash,
-        line_width=1.8,
-    )
+    xs, ys = np.asarray(x, np.float32), np.asarray(y, np.float32)
+    src = _draw(p, xs, ys, name, colour, dash, 1.8)
     p.scatter("x", "y", source=src, name=name, legend_label=name, color=colour, size=6)
 
 
