@@ -166,9 +166,9 @@ def _grid_n():
 
 
 def _band():
-    from tribodyn.topography.filtering import PAPER_BAND
+    from tribodyn.physics import typical
 
-    return {"": set(PAPER_BAND)}
+    return {"": {typical.FILTER_SHORT_WAVELENGTH.value, typical.FILTER_LONG_WAVELENGTH.value}}
 
 
 def _min_defined():

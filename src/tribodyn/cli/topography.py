@@ -190,13 +190,13 @@ def stated_defaults() -> dict[str, Any]:
     import inspect
 
     from ..topography.analysis import MIN_SUMMITS, analyse_surface
-    from ..topography.filtering import PAPER_BAND
+    from ..topography.filtering import TYPICAL_BAND
     from ..topography.synthetic import DEFAULT_SYNTHETIC as S
 
     analysis = inspect.signature(analyse_surface).parameters
     return {
-        "band_short": PAPER_BAND[0] * 1e6,
-        "band_long": PAPER_BAND[1] * 1e6,
+        "band_short": TYPICAL_BAND[0] * 1e6,
+        "band_long": TYPICAL_BAND[1] * 1e6,
         "min_summits": MIN_SUMMITS,
         "min_defined": analysis["min_defined_fraction"].default,
         "grid": S["nb_grid_pts"][0],
@@ -227,8 +227,9 @@ def topography_command(
         metavar="SHORT LONG",
         show_default=False,
         help="Band-pass wavelength limits in m; must lie within the measurement's range "
-        "(see --clip-band). Default: the paper's {band_short:g}–{band_long:g} µm clipped to "
-        "what the measurement resolves (a warning says which band was used).",
+        "(see --clip-band). Default: the typical roughness band of a ground surface, "
+        "{band_short:g}–{band_long:g} µm (physics.typical), clipped to what the measurement "
+        "resolves (a warning says which band was used).",
     ),
     no_filter: bool = typer.Option(False, "--no-filter", help="Level only, no band-pass."),
     filter_kind: str = typer.Option(
