@@ -66,7 +66,8 @@ def _degrees(*names: str) -> dict[str, Rename]:
     return {n + "_deg": (n, math.radians) for n in names}
 
 
-#: (schema section, constructor or function it sets, {field: parameter} where names differ)
+#: (schema section, constructor or function it sets, {field: parameter} where names differ;
+#: "-": the same name for another quantity, not compared)
 SECTIONS: list[tuple[type[BaseModel], Callable, dict[str, Rename | list[Rename]]]] = [
     (schema.Numerics, EHLOptions, {}),
     (
