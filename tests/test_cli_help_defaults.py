@@ -166,15 +166,34 @@ def _grid_n():
 
 
 def _band():
-    from tribodyn.topography.filtering import PAPER_BAND
+    from tribodyn.physics import typical
 
-    return {"": set(PAPER_BAND)}
+    return {"": {typical.FILTER_SHORT_WAVELENGTH.value, typical.FILTER_LONG_WAVELENGTH.value}}
 
 
 def _min_defined():
     from tribodyn.topography.analysis import MIN_SUMMITS
 
     return {"": 0.0, "summits": MIN_SUMMITS}
+
+
+def _synthetic(*names: str):
+    """The defaults of ``synthetic_surface`` that an option of ``--synthetic`` leaves."""
+
+    def used():
+        import inspect
+
+        from tribodyn.topography.synthetic import synthetic_surface
+
+        p = inspect.signature(synthetic_surface).parameters
+        values = [v for n in names for v in _flat(p[n].default)]
+        return {"": set(values)}
+
+    return used
+
+
+def _flat(value) -> list:
+    return list(value) if isinstance(value, tuple) else [value]
 
 
 def _typical(name: str):
@@ -213,6 +232,11 @@ USED = {
     ("run", "workers"): lambda: {"": _default_case().numerics.workers},
     ("topography", "band"): _band,
     ("topography", "min_defined"): _min_defined,
+    ("topography", "grid"): _synthetic("nb_grid_pts"),
+    ("topography", "pixel"): _synthetic("pixel_size"),
+    ("topography", "rms"): _synthetic("rms"),
+    ("topography", "hurst"): _synthetic("hurst"),
+    ("topography", "cutoffs"): _synthetic("short_cutoff", "long_cutoff"),
     ("calibrate", "roughness_parameter"): _typical("ROUGHNESS_PARAMETER"),
     ("calibrate", "rms_to_radius"): _typical("RMS_TO_SUMMIT_RADIUS"),
 }

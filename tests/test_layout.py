@@ -89,9 +89,6 @@ PAPER_USERS = {
     "output/figures/coating.py": "Figs. 5 and 6 (conditions of a run without the study)",
     "cli/contact.py": "single contacts at the paper's case and Figs. 5/6 conditions",
     "workflow/postprocess.py": "the claims: the 41 % film gain and the coatings compared",
-    # still a default of a layer: the topography's filter band (its help says so); a
-    # sourced typical band would change every topography result (open)
-    "topography/filtering.py": "the default filter band 0.25–250 µm is the paper's (Fig. 7)",
 }
 
 

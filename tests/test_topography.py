@@ -19,8 +19,9 @@ from typer.testing import CliRunner
 from tribodyn import InputError, Roughness
 from tribodyn.cli import app
 from tribodyn.output.figures.topography import plot_height_distribution
+from tribodyn.paper import TOPOGRAPHY_BAND as PAPER_BAND
 from tribodyn.topography import (
-    PAPER_BAND,
+    TYPICAL_BAND,
     BandLimitError,
     InsufficientDataError,
     PairAnalysis,
@@ -241,25 +242,31 @@ def test_explicit_band_beyond_scan_raises():
         analyse_surface(small_map(), band=PAPER_BAND)
 
 
-def test_default_band_is_the_papers_clipped_to_the_measurement():
-    # pixel 0.1 µm: Nyquist 0.2 µm < 0.25 µm stays; field 6.4 µm less one λ_s per edge
-    r = analyse_surface(small_map())
-    assert r.band.short_wavelength == pytest.approx(0.25e-6)
-    assert r.band.long_wavelength == pytest.approx(6.4e-6 - 2 * 0.25e-6)
-    assert r.band.requested == PAPER_BAND and r.band.clipped
-    assert len(r.warnings) == 1 and "λ_L lowered to the field of view 6.4 µm" in r.warnings[0]
-    # coarse pixels (0.5 µm): λ_s raised to the Nyquist wavelength 1 µm
+def test_default_band_is_the_typical_one_clipped_to_the_measurement():
+    # the ISO roughness band of a ground surface: λ_s 2.5 µm, λ_c 0.8 mm
+    assert TYPICAL_BAND == (2.5e-6, 0.8e-3)
+    # pixel 0.5 µm: Nyquist 1 µm < 2.5 µm stays; field 64 µm less one λ_s per edge
     coarse = Topography(small_map(128).heights(), (64e-6, 64e-6), unit="m")
     r = analyse_surface(coarse)
-    assert r.band.short_wavelength == pytest.approx(1e-6)
-    assert r.band.long_wavelength == pytest.approx(62e-6)
-    assert "Nyquist wavelength 2Δ = 1 µm" in r.warnings[0]
-    # a map too small for summit statistics is refused, not analysed on nothing
+    assert r.band.short_wavelength == pytest.approx(2.5e-6)
+    assert r.band.long_wavelength == pytest.approx(64e-6 - 2 * 2.5e-6)
+    assert r.band.requested == TYPICAL_BAND and r.band.clipped
+    assert len(r.warnings) == 1 and "λ_L lowered to the field of view 64 µm" in r.warnings[0]
+    # pixels of 2 µm: λ_s raised to the Nyquist wavelength 4 µm
+    wide = Topography(small_map(128).heights(), (256e-6, 256e-6), unit="m")
+    r = analyse_surface(wide)
+    assert r.band.short_wavelength == pytest.approx(4e-6)
+    assert r.band.long_wavelength == pytest.approx(256e-6 - 2 * 4e-6)
+    assert "Nyquist wavelength 2Δ = 4 µm" in r.warnings[0]
+    # a field too small for the band is refused (6.4 µm leaves 1.4 µm < 4 λ_s) …
+    with pytest.raises(InsufficientDataError, match=r"too small for any band"):
+        analyse_surface(small_map())
+    # … and so is a map too small for summit statistics, not analysed on nothing
     tiny = Topography(
         np.random.default_rng(0).standard_normal((16, 16)) * 1e-7, (1.6e-6, 1.6e-6), unit="m"
     )
     with pytest.raises(InsufficientDataError, match=r"only 8 summits .* at least 25"):
-        analyse_surface(tiny)
+        analyse_surface(tiny, band=(0.25e-6, 1.1e-6))
 
 
 def test_band_limits_in_wrong_order_raise():
@@ -420,9 +427,14 @@ def test_cli_table_and_errors(pair_files, tmp_path):
         app, ["topography", str(pair_files[0]), "--band", "0.25e-6", "250e-6"]
     )  # the paper's band, given: must fit
     assert res.exit_code == 2 and "exceeds the measured length" in res.stderr
-    res = runner.invoke(app, ["topography", str(pair_files[0])])  # default: clipped
+    # default: the typical band, clipped to the 25.6 µm field: too few summits remain
+    res = runner.invoke(app, ["topography", str(pair_files[0])])
+    assert res.exit_code == 2 and "shorter band" in res.stderr
+    res = runner.invoke(  # the paper's band, clipped to the measurement
+        app, ["topography", str(pair_files[0]), "--band", "0.25e-6", "250e-6", "--clip-band"]
+    )
     assert res.exit_code == 0, res.output
-    assert "warning: band 0.25–25.1 µm used instead of the requested 0.25–250 µm" in " ".join(
+    assert "warning: band 0.25–25.6 µm used instead of the requested 0.25–250 µm" in " ".join(
         res.stdout.split()
     )
     res = runner.invoke(app, ["topography", str(tmp_path / "missing.opd")])

@@ -26,6 +26,8 @@ def _all_values():
     yield typical.SURFACE_HURST
     yield typical.SURFACE_SHORT_CUTOFF
     yield typical.SURFACE_LONG_CUTOFF
+    yield typical.FILTER_SHORT_WAVELENGTH
+    yield typical.FILTER_LONG_WAVELENGTH
 
 
 def test_every_typical_value_has_a_source_and_lies_in_its_range():

@@ -168,16 +168,43 @@ def _print_pair(console: Console, p) -> None:
     console.print()
 
 
+def _synthetic_options(grid, pixel, rms, hurst, cutoffs) -> dict[str, Any]:
+    """Keyword arguments of ``synthetic_surface``: the options given, else its defaults."""
+    from ..topography.synthetic import DEFAULT_SYNTHETIC
+
+    given = {
+        "nb_grid_pts": None if grid is None else (grid, grid),
+        "pixel_size": pixel,
+        "rms": rms,
+        "hurst": hurst,
+        "short_cutoff": None if cutoffs is None else cutoffs[0],
+        "long_cutoff": None if cutoffs is None else cutoffs[1],
+    }
+    return {k: v if (v := given[k]) is not None else d for k, d in DEFAULT_SYNTHETIC.items()}
+
+
 def stated_defaults() -> dict[str, Any]:
     """The values ``tribodyn topography --help`` quotes: the default band of the filter
-    [µm] and the fewest summits an analysis accepts."""
-    from ..topography.analysis import MIN_SUMMITS
-    from ..topography.filtering import PAPER_BAND
+    [µm], the fewest summits an analysis accepts, its default share of measured points
+    and the synthetic surface's defaults."""
+    import inspect
 
+    from ..topography.analysis import MIN_SUMMITS, analyse_surface
+    from ..topography.filtering import TYPICAL_BAND
+    from ..topography.synthetic import DEFAULT_SYNTHETIC as S
+
+    analysis = inspect.signature(analyse_surface).parameters
     return {
-        "band_short": PAPER_BAND[0] * 1e6,
-        "band_long": PAPER_BAND[1] * 1e6,
+        "band_short": TYPICAL_BAND[0] * 1e6,
+        "band_long": TYPICAL_BAND[1] * 1e6,
         "min_summits": MIN_SUMMITS,
+        "min_defined": analysis["min_defined_fraction"].default,
+        "grid": S["nb_grid_pts"][0],
+        "pixel": S["pixel_size"],
+        "rms": S["rms"],
+        "hurst": S["hurst"],
+        "short_cutoff": S["short_cutoff"],
+        "long_cutoff": S["long_cutoff"],
     }
 
 
@@ -200,8 +227,9 @@ def topography_command(
         metavar="SHORT LONG",
         show_default=False,
         help="Band-pass wavelength limits in m; must lie within the measurement's range "
-        "(see --clip-band). Default: the paper's {band_short:g}–{band_long:g} µm clipped to "
-        "what the measurement resolves (a warning says which band was used).",
+        "(see --clip-band). Default: the typical roughness band of a ground surface, "
+        "{band_short:g}–{band_long:g} µm (physics.typical), clipped to what the measurement "
+        "resolves (a warning says which band was used).",
     ),
     no_filter: bool = typer.Option(False, "--no-filter", help="Level only, no band-pass."),
     filter_kind: str = typer.Option(
@@ -215,11 +243,12 @@ def topography_command(
         "--clip-band",
         help="Narrow a --band outside the measurement's range instead of failing.",
     ),
-    min_defined: float = typer.Option(
-        0.0,
+    min_defined: float | None = typer.Option(
+        None,
         "--min-defined",
+        show_default=False,
         help="Smallest accepted share of measured points "
-        "(default 0: dropouts are filled and excluded "
+        "(default {min_defined:g}: dropouts are filled and excluded "
         "from the statistics; refused only if fewer "
         "than {min_summits} summits remain).",
     ),
@@ -248,16 +277,25 @@ def topography_command(
         "to FILE [FILE2] (.x3p, .nc, .gwy, .txt), then "
         "analyse them.",
     ),
-    grid: int = typer.Option(512, "--grid", rich_help_panel=_SYN, help="Points per side."),
-    pixel: float = typer.Option(0.1e-6, "--pixel", rich_help_panel=_SYN, help="Pixel size in m."),
-    rms: float = typer.Option(0.25e-6, "--rms", rich_help_panel=_SYN, help="RMS height σ in m."),
-    hurst: float = typer.Option(0.8, "--hurst", rich_help_panel=_SYN, help="Hurst exponent."),
-    cutoffs: tuple[float, float] = typer.Option(
-        (2e-6, 25e-6),
+    grid: int | None = typer.Option(
+        None, "--grid", rich_help_panel=_SYN, help="Points per side (default {grid})."
+    ),
+    pixel: float | None = typer.Option(
+        None, "--pixel", rich_help_panel=_SYN, help="Pixel size in m (default {pixel:g})."
+    ),
+    rms: float | None = typer.Option(
+        None, "--rms", rich_help_panel=_SYN, help="RMS height σ in m (default {rms:g})."
+    ),
+    hurst: float | None = typer.Option(
+        None, "--hurst", rich_help_panel=_SYN, help="Hurst exponent (default {hurst:g})."
+    ),
+    cutoffs: tuple[float, float] | None = typer.Option(
+        None,
         "--cutoffs",
         metavar="SHORT LONG",
+        show_default=False,
         rich_help_panel=_SYN,
-        help="Spectrum cutoff wavelengths in m.",
+        help="Spectrum cutoff wavelengths in m (default {short_cutoff:g} and {long_cutoff:g}).",
     ),
     seed: int = typer.Option(1, "--seed", rich_help_panel=_SYN, help="Random seed."),
 ):
@@ -282,33 +320,29 @@ def topography_command(
         if not 1 <= len(files) <= 2:
             raise InputError(f"give one or two topography files (got {len(files)})")
         if synthetic:
+            s = _synthetic_options(grid, pixel, rms, hurst, cutoffs)
             for i, path in enumerate(files):
-                topo = synthetic_surface(
-                    (grid, grid),
-                    pixel,
-                    rms=rms,
-                    hurst=hurst,
-                    short_cutoff=cutoffs[0],
-                    long_cutoff=cutoffs[1],
-                    seed=seed + i,
-                )
+                topo = synthetic_surface(**s, seed=seed + i)
                 write_topography(topo, path)
                 if not as_json:
+                    nx, ny = s["nb_grid_pts"]
                     console.print(
-                        f"wrote synthetic surface {path} ({grid} × {grid} points, "
-                        f"pixel {_um(pixel)} µm, σ = {_um(rms)} µm, H = {hurst:g}, "
-                        f"wavelengths {_um(cutoffs[0])}–{_um(cutoffs[1])} µm)",
+                        f"wrote synthetic surface {path} ({nx} × {ny} points, "
+                        f"pixel {_um(s['pixel_size'])} µm, σ = {_um(s['rms'])} µm, "
+                        f"H = {s['hurst']:g}, wavelengths {_um(s['short_cutoff'])}–"
+                        f"{_um(s['long_cutoff'])} µm)",
                         markup=False,
                     )
         kwargs: dict[str, Any] = dict(
             kind=filter_kind,
             detrend=detrend,
             clip_band=clip_band,
-            min_defined_fraction=min_defined,
             channel=channel,
             unit=unit,
             physical_sizes=size,
         )
+        if min_defined is not None:
+            kwargs["min_defined_fraction"] = min_defined
         use_band = None if no_filter else ("auto" if band is None else band)
         analyses = [analyse_surface(f, use_band, **kwargs) for f in files]
         result = composite_roughness(*analyses) if len(analyses) == 2 else analyses[0]

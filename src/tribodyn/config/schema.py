@@ -14,7 +14,6 @@ valvetrain sections are in :mod:`.schema_valvetrain`, the lubricant and surfaces
 
 from __future__ import annotations
 
-import dataclasses
 from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
@@ -22,11 +21,15 @@ from pydantic import Field, model_validator
 from .._validation import InputError
 from ..contact.ehl.grid import N_AUTO, N_MAX_AUTO
 from ..contact.ehl.options import EHLOptions
+from ..contact.ehl.thermal_field import ThermalOptions
 from ..physics import limits as L
 from ..physics import typical_engine
+from ..physics.valvetrain_friction import BoreGeometry, GuideGeometry
+from ..valvetrain.dynamics import simulate_valvetrain
+from ..valvetrain.tappet_rotation import TappetRotation
 from ..valvetrain.tribology import SUPPLY_FILM, SUPPLY_FILM_MAX
 from .errors import CaseKeyError, Problems
-from .schema_fields import _NAME_PATTERN, Section, _lim, _q
+from .schema_fields import _NAME_PATTERN, Section, _lim, _q, defaults_of
 from .schema_surfaces import (
     LubricantConfig,
     MaterialConfig,
@@ -83,8 +86,13 @@ __all__ = [
 ]
 
 
-#: the EHL solver's defaults (contact layer): the one source of [numerics]' shared defaults
-_EHL_DEFAULTS = {f.name: f.default for f in dataclasses.fields(EHLOptions)}
+#: the defaults of the constructors the sections set: the one source of theirs
+_EHL_DEFAULTS = defaults_of(EHLOptions)
+_THERMAL_DEFAULTS = defaults_of(ThermalOptions)
+_DYNAMICS_DEFAULTS = defaults_of(simulate_valvetrain)
+_BORE_DEFAULTS = defaults_of(BoreGeometry)
+_GUIDE_DEFAULTS = defaults_of(GuideGeometry)
+_ROTATION_DEFAULTS = defaults_of(TappetRotation)
 
 
 # ----------------------------------------------------------------------------- sections
@@ -128,7 +136,9 @@ class AuxiliaryFrictionConfig(Section):
     )
     bore_guided_length: float = _q(0.018, "m", "guided length of the bucket", gt=0.0, lt=0.2)
     bore_clearance: float = _q(2.5e-5, "m", "radial clearance in the bore", gt=0.0, lt=1e-3)
-    bore_edge_offset: float = _q(0.0, "m", "lower bore edge above the face", ge=0.0, lt=0.2)
+    bore_edge_offset: float = _q(
+        _BORE_DEFAULTS["edge_offset"], "m", "lower bore edge above the face", ge=0.0, lt=0.2
+    )
     bore_friction_coefficient: float | None = _q(
         None, "", "boundary μ at the bore edges (absent: valvetrain's)", ge=0.0, le=1.0
     )
@@ -138,8 +148,12 @@ class AuxiliaryFrictionConfig(Section):
     guide_stem_diameter: float = _q(0.006, "m", "valve stem diameter", gt=0.0, lt=0.1)
     guide_length: float = _q(0.035, "m", "valve guide length", gt=0.0, lt=0.3)
     guide_clearance: float = _q(2e-5, "m", "stem radial clearance", gt=0.0, lt=1e-3)
-    guide_friction_coefficient: float = _q(0.1, "", "boundary μ in the guide", ge=0.0, le=1.0)
-    guide_side_load: float = _q(0.0, "N", "side load on the stem", ge=0.0, le=1e4)
+    guide_friction_coefficient: float = _q(
+        _GUIDE_DEFAULTS["friction_coefficient"], "", "boundary μ in the guide", ge=0.0, le=1.0
+    )
+    guide_side_load: float = _q(
+        _GUIDE_DEFAULTS["side_load"], "N", "side load on the stem", ge=0.0, le=1e4
+    )
 
 
 class Engine(Section):
@@ -323,13 +337,25 @@ class Numerics(Section):
     film_formula: Literal["moes", "pan_hamrock", "dowson_toyoda"] = _q(
         "moes", "", "film formula of the explicit (analytic) tribology in the dynamics"
     )
-    cycles: int = _lim(2, L.DYNAMICS_CYCLES, "engine cycles simulated (the last is presented)")
-    output_step_deg: float = _lim(0.25, L.OUTPUT_STEP, "output step of the valvetrain dynamics")
-    max_step_deg: float = _lim(1.0, L.MAX_STEP, "largest integrator step of the dynamics")
-    dynamics_method: Literal["LSODA", "Radau", "BDF"] = _q(
-        "LSODA", "", "stiff integrator (LSODA: compiled lumped model; Radau, BDF: solve_ivp)"
+    cycles: int = _lim(
+        _DYNAMICS_DEFAULTS["cycles"],
+        L.DYNAMICS_CYCLES,
+        "engine cycles simulated (the last is presented)",
     )
-    dynamics_rtol: float = _lim(1e-6, L.DYNAMICS_RTOL, "relative tolerance of the dynamics")
+    output_step_deg: float = _lim(
+        _DYNAMICS_DEFAULTS["output_step"], L.OUTPUT_STEP, "output step of the valvetrain dynamics"
+    )
+    max_step_deg: float = _lim(
+        _DYNAMICS_DEFAULTS["max_step"], L.MAX_STEP, "largest integrator step of the dynamics"
+    )
+    dynamics_method: Literal["LSODA", "Radau", "BDF"] = _q(
+        _DYNAMICS_DEFAULTS["method"],
+        "",
+        "stiff integrator (LSODA: compiled lumped model; Radau, BDF: solve_ivp)",
+    )
+    dynamics_rtol: float = _lim(
+        _DYNAMICS_DEFAULTS["rtol"], L.DYNAMICS_RTOL, "relative tolerance of the dynamics"
+    )
     implicit_coupling: bool = _q(
         True,
         "",
@@ -376,14 +402,24 @@ class Numerics(Section):
         "solids and coatings) along the cycle, beside the "
         "isothermal one",
     )
-    thermal_x_nodes: int = _q(96, "", "thermal grid nodes along the contact", ge=16, le=1024)
-    thermal_film_nodes: int = _q(7, "", "thermal nodes across the film (odd)", ge=3, le=41)
-    thermal_solid_nodes: int = _q(12, "", "thermal depth nodes per solid", ge=6, le=200)
+    thermal_x_nodes: int = _q(
+        _THERMAL_DEFAULTS["x_nodes"], "", "thermal grid nodes along the contact", ge=16, le=1024
+    )
+    thermal_film_nodes: int = _q(
+        _THERMAL_DEFAULTS["film_nodes"], "", "thermal nodes across the film (odd)", ge=3, le=41
+    )
+    thermal_solid_nodes: int = _q(
+        _THERMAL_DEFAULTS["solid_nodes"], "", "thermal depth nodes per solid", ge=6, le=200
+    )
     thermal_iterations: int = _q(
-        2, "", "pressure ↔ temperature iterations per transient step (1: staggered)", ge=1, le=50
+        _THERMAL_DEFAULTS["step_iter"],
+        "",
+        "pressure ↔ temperature iterations per transient step (1: staggered)",
+        ge=1,
+        le=50,
     )
     thermal_tol: float = _q(
-        0.05,
+        _THERMAL_DEFAULTS["tol"],
         "K",
         "temperature change at which the thermal fixed-point iteration stops",
         gt=0.0,
@@ -396,7 +432,7 @@ class TappetRotationConfig(Section):
     (:class:`~tribodyn.valvetrain.tappet_rotation.TappetRotation`; docs/case-files.md)."""
 
     speed_ratio: float = _q(
-        0.0,
+        _ROTATION_DEFAULTS["speed_ratio"],
         "",
         "tappet speed over cam speed ω_t/ω (0: the tappet does not turn; no typical "
         "value was found in the sources)",
@@ -404,5 +440,9 @@ class TappetRotationConfig(Section):
         le=1.0,
     )
     cam_offset: float = _q(
-        0.0, "m", "offset e_o of the cam from the tappet axis, along the cam axis", ge=0.0, lt=0.05
+        _ROTATION_DEFAULTS["cam_offset"],
+        "m",
+        "offset e_o of the cam from the tappet axis, along the cam axis",
+        ge=0.0,
+        lt=0.05,
     )

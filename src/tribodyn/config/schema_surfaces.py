@@ -13,8 +13,15 @@ from pydantic import model_validator
 from ..physics import limits as L
 from ..physics import typical, typical_engine
 from ..physics.oils import OILS
+from ..physics.strength import TYPICAL_STRENGTH
+from ..physics.thermal_oil import ThermalLubricant
+from ..topography.load_separation import synthetic_load_separation
 from .errors import Problems
-from .schema_fields import _NAME_PATTERN, Section, _lim, _q
+from .schema_fields import _NAME_PATTERN, Section, _lim, _q, defaults_of
+
+#: the defaults of the constructors the sections set: the one source of theirs
+_OIL_DEFAULTS = defaults_of(ThermalLubricant)
+_SURFACE_LAW_DEFAULTS = defaults_of(synthetic_load_separation)
 
 
 class LubricantConfig(Section):
@@ -60,7 +67,11 @@ class LubricantConfig(Section):
         None, "kg/m³", "density at 15 °C (datasheet)", gt=500.0, le=2000.0
     )
     thermal_expansion: float = _q(
-        6.5e-4, "1/K", "thermal expansion of the density ε", ge=0.0, le=3e-3
+        _OIL_DEFAULTS["thermal_expansion"],
+        "1/K",
+        "thermal expansion of the density ε",
+        ge=0.0,
+        le=3e-3,
     )
     inlet_temperature_c: float | None = _q(
         None,
@@ -92,7 +103,7 @@ class LubricantConfig(Section):
         le=1e4,
     )
     limiting_shear_temperature_coefficient: float = _q(
-        0.0,
+        _OIL_DEFAULTS["limiting_shear_temperature_coefficient"],
         "1/K",
         "c_L: τ_L falls by the factor 1 − c_L (T − T_inlet) (0: temperature independent)",
         ge=0.0,
@@ -257,10 +268,12 @@ class MeasuredSurfaceConfig(Section):
     long_cutoff: float | None = _q(
         None, "m", "longest wavelength of the self-affine range", gt=1e-8, lt=1e-2
     )
-    grid: int = _q(128, "", "points per side of the synthetic map", ge=32, le=512)
-    seed: int = _q(1, "", "seed of the synthetic map", ge=0)
+    grid: int = _q(
+        _SURFACE_LAW_DEFAULTS["grid"], "", "points per side of the synthetic map", ge=32, le=512
+    )
+    seed: int = _q(_SURFACE_LAW_DEFAULTS["seed"], "", "seed of the synthetic map", ge=0)
     hardness: float = _q(
-        7e9,
+        TYPICAL_STRENGTH["steel"].hardness,
         "Pa",
         "hardness of the softer surface, where asperity pressure is capped (default: "
         "hardened steel 60 HRC, 697 HV, ASTM E140; tribodyn.physics.strength)",

@@ -8,18 +8,31 @@ with a warning naming them, :mod:`tribodyn.config.origins`) and the assumed join
 
 from __future__ import annotations
 
-import dataclasses
+import math
 from typing import Annotated, Any, Literal
 
 from pydantic import Discriminator, Tag, model_validator
 
 from ..physics import limits as L
 from ..physics import typical_engine
+from ..valvetrain.cams import AccelerationCam, CircularArcCam
+from ..valvetrain.camshaft import Camshaft
+from ..valvetrain.fe import ModalBody
+from ..valvetrain.flexible import TappetGeometry, ValveGeometry
 from ..valvetrain.parameters import ValvetrainParameters
+from ..valvetrain.spring import HelicalSpring
 from .errors import Problems
-from .schema_fields import Section, _lim, _q
+from .schema_fields import Section, _lim, _q, defaults_of
 
-_VT_DEFAULTS = {f.name: f.default for f in dataclasses.fields(ValvetrainParameters)}
+#: the defaults of the constructors the sections set: the one source of theirs
+_VT_DEFAULTS = defaults_of(ValvetrainParameters)
+_ACC = defaults_of(AccelerationCam)
+_ARC = defaults_of(CircularArcCam)
+_MODES = defaults_of(ModalBody)
+_VALVE = defaults_of(ValveGeometry)
+_TAPPET = defaults_of(TappetGeometry)
+_SPRING = defaults_of(HelicalSpring)
+_SHAFT = defaults_of(Camshaft)
 
 
 class _CamBase(Section):
@@ -42,22 +55,38 @@ class AccelerationCamConfig(_CamBase):
         typical_engine.CAM_MAX_LIFT.value, "m", "maximum lift L incl. the ramp", gt=0.0, lt=1.0
     )
     event_angle_deg: float = _q(
-        171.0, "deg (cam)", "total event incl. both ramps", gt=0.0, lt=360.0
+        math.degrees(_ACC["event_angle"]),
+        "deg (cam)",
+        "total event incl. both ramps",
+        gt=0.0,
+        lt=360.0,
     )
-    nose_radius: float = _q(3e-3, "m", "radius of curvature at the nose", gt=0.0, lt=1.0)
-    ramp_height: float = _q(0.2e-3, "m", "opening/closing ramp height (0: no ramp)", ge=0.0, lt=1.0)
-    ramp_angle_deg: float = _q(20.0, "deg (cam)", "ramp length (0: no ramp)", ge=0.0, lt=180.0)
+    nose_radius: float = _q(
+        _ACC["nose_radius"], "m", "radius of curvature at the nose", gt=0.0, lt=1.0
+    )
+    ramp_height: float = _q(
+        _ACC["ramp_height"], "m", "opening/closing ramp height (0: no ramp)", ge=0.0, lt=1.0
+    )
+    ramp_angle_deg: float = _q(
+        math.degrees(_ACC["ramp_angle"]), "deg (cam)", "ramp length (0: no ramp)", ge=0.0, lt=180.0
+    )
     pulse_share: float = _q(
-        0.25,
+        _ACC["pulse_share"],
         "",
         "share of the half main event taken by the positive acceleration pulse",
         gt=0.0,
         lt=1.0,
     )
     ramp_pulse_share: float = _q(
-        0.5, "", "share of the ramp taken by its acceleration pulse", gt=0.0, le=1.0
+        _ACC["ramp_pulse_share"],
+        "",
+        "share of the ramp taken by its acceleration pulse",
+        gt=0.0,
+        le=1.0,
     )
-    nose_angle_deg: float = _q(180.0, "deg (cam)", "cam angle of maximum lift", ge=0.0, lt=360.0)
+    nose_angle_deg: float = _q(
+        math.degrees(_ACC["nose_angle"]), "deg (cam)", "cam angle of maximum lift", ge=0.0, lt=360.0
+    )
 
 
 class CircularArcCamConfig(_CamBase):
@@ -65,9 +94,15 @@ class CircularArcCamConfig(_CamBase):
 
     type: Literal["circular_arc"]
     max_lift: float = _q(typical_engine.CAM_MAX_LIFT.value, "m", "maximum lift L", gt=0.0, lt=1.0)
-    flank_radius: float = _q(0.030, "m", "flank arc radius (> base_radius)", gt=0.0, lt=1.0)
-    nose_radius: float = _q(3e-3, "m", "nose arc radius (< base_radius)", gt=0.0, lt=1.0)
-    nose_angle_deg: float = _q(180.0, "deg (cam)", "cam angle of maximum lift", ge=0.0, lt=360.0)
+    flank_radius: float = _q(
+        _ARC["flank_radius"], "m", "flank arc radius (> base_radius)", gt=0.0, lt=1.0
+    )
+    nose_radius: float = _q(
+        _ARC["nose_radius"], "m", "nose arc radius (< base_radius)", gt=0.0, lt=1.0
+    )
+    nose_angle_deg: float = _q(
+        math.degrees(_ARC["nose_angle"]), "deg (cam)", "cam angle of maximum lift", ge=0.0, lt=360.0
+    )
 
 
 class TableCamConfig(_CamBase):
@@ -134,13 +169,15 @@ class _BodyModes(Section):
         le=400,
     )
     cutoff: float = _q(
-        5000.0,
+        _MODES["cutoff"],
         "Hz",
         "keep the fixed-interface modes up to this frequency (used when `modes` is absent)",
         gt=0.0,
         le=1e7,
     )
-    damping_ratio: float = _q(0.02, "", "modal damping ratio ζ of the body's modes", ge=0.0, lt=1.0)
+    damping_ratio: float = _q(
+        _MODES["damping_ratio"], "", "modal damping ratio ζ of the body's modes", ge=0.0, lt=1.0
+    )
 
 
 class ValveConfig(_BodyModes):
@@ -159,8 +196,10 @@ class ValveConfig(_BodyModes):
     E: float = _q(
         typical_engine.STEEL_MODULUS.value, "Pa", "Young's modulus of the valve", ge=1e9, le=2e12
     )
-    density: float = _q(7850.0, "kg/m³", "density of the valve", gt=0.0, le=3e4)
-    elements: int = _q(12, "", "bar elements of the stem below the groove", ge=2, le=400)
+    density: float = _q(_VALVE["density"], "kg/m³", "density of the valve", gt=0.0, le=3e4)
+    elements: int = _q(
+        _VALVE["elements"], "", "bar elements of the stem below the groove", ge=2, le=400
+    )
 
 
 class TappetConfig(_BodyModes):
@@ -169,14 +208,20 @@ class TappetConfig(_BodyModes):
 
     model: Literal["fe", "lumped"] = _q("fe", "", "crown + skirt bars, or one rigid mass")
     mass: float | None = _q(None, "kg", 'tappet mass (model = "lumped" only)', gt=0.0, lt=10.0)
-    crown_thickness: float = _q(3.5e-3, "m", "crown (disc) thickness", gt=0.0, lt=0.1)
-    skirt_length: float = _q(0.02, "m", "skirt (tube) length below the crown", gt=0.0, lt=0.5)
-    skirt_thickness: float = _q(1e-3, "m", "skirt wall thickness", gt=0.0, lt=0.1)
+    crown_thickness: float = _q(
+        _TAPPET["crown_thickness"], "m", "crown (disc) thickness", gt=0.0, lt=0.1
+    )
+    skirt_length: float = _q(
+        _TAPPET["skirt_length"], "m", "skirt (tube) length below the crown", gt=0.0, lt=0.5
+    )
+    skirt_thickness: float = _q(
+        _TAPPET["skirt_thickness"], "m", "skirt wall thickness", gt=0.0, lt=0.1
+    )
     E: float = _q(
         typical_engine.STEEL_MODULUS.value, "Pa", "Young's modulus of the tappet", ge=1e9, le=2e12
     )
-    density: float = _q(7850.0, "kg/m³", "density of the tappet", gt=0.0, le=3e4)
-    elements: int = _q(6, "", "bar elements of the skirt", ge=1, le=400)
+    density: float = _q(_TAPPET["density"], "kg/m³", "density of the tappet", gt=0.0, le=3e4)
+    elements: int = _q(_TAPPET["elements"], "", "bar elements of the skirt", ge=1, le=400)
 
     @model_validator(mode="after")
     def _mass_rule(self):
@@ -202,23 +247,31 @@ class SpringConfig(_BodyModes):
     wire_diameter: float = _q(3.7874e-3, "m", "wire diameter d", gt=0.0, lt=0.1)
     mean_diameter: float = _q(21.596e-3, "m", "mean coil diameter D", gt=0.0, lt=0.5)
     active_coils: float = _q(6.0, "", "number of active coils n_a", gt=0.0, le=100.0)
-    dead_coils: float = _q(1.0, "", "closed end coils at each end", ge=0.0, le=10.0)
+    dead_coils: float = _q(
+        _SPRING["dead_coils"], "", "closed end coils at each end", ge=0.0, le=10.0
+    )
     free_length: float = _q(53.007e-3, "m", "free length", gt=0.0, lt=1.0)
     installed_length: float = _q(45.600e-3, "m", "installed length (valve closed)", gt=0.0, lt=1.0)
     pitches: list[float] | None = _q(
         None, "m", "free pitch of each active coil (progressive spring); absent: uniform"
     )
-    shear_modulus: float = _q(79.3e9, "Pa", "shear modulus G of the wire", ge=1e9, le=1e12)
-    density: float = _q(7850.0, "kg/m³", "density of the wire", gt=0.0, le=3e4)
-    elements_per_coil: int = _q(2, "", "bar elements per active coil", ge=1, le=20)
+    shear_modulus: float = _q(
+        _SPRING["shear_modulus"], "Pa", "shear modulus G of the wire", ge=1e9, le=1e12
+    )
+    density: float = _q(_SPRING["density"], "kg/m³", "density of the wire", gt=0.0, le=3e4)
+    elements_per_coil: int = _q(
+        _SPRING["elements_per_coil"], "", "bar elements per active coil", ge=1, le=20
+    )
     clash_margin: float = _q(
-        1.25,
+        _SPRING["clash_margin"],
         "",
         "coils closing below this × the largest static force are resolved exactly",
         ge=1.0,
         le=100.0,
     )
-    clash_damping: float = _q(50.0, "N·s/m", "damping of a closed coil contact", ge=0.0, le=1e6)
+    clash_damping: float = _q(
+        _SPRING["clash_damping"], "N·s/m", "damping of a closed coil contact", ge=0.0, le=1e6
+    )
 
 
 class CamshaftConfig(Section):
@@ -239,13 +292,13 @@ class CamshaftConfig(Section):
     E: float = _q(
         typical_engine.STEEL_MODULUS.value, "Pa", "Young's modulus of the shaft", ge=1e9, le=2e12
     )
-    nu: float = _q(0.3, "", "Poisson's ratio of the shaft", gt=-1.0, lt=0.5)
-    density: float = _q(7850.0, "kg/m³", "density of the shaft", gt=0.0, le=3e4)
+    nu: float = _q(_SHAFT["nu"], "", "Poisson's ratio of the shaft", gt=-1.0, lt=0.5)
+    density: float = _q(_SHAFT["density"], "kg/m³", "density of the shaft", gt=0.0, le=3e4)
     bearing_stiffness: float | None = _q(
         None, "N/m", "radial stiffness of each bearing (absent: rigid)", gt=0.0
     )
     torsional_damping_ratio: float = _q(
-        0.02, "", "damping ratio of the torsion mode", ge=0.0, lt=1.0
+        _SHAFT["torsional_damping_ratio"], "", "damping ratio of the torsion mode", ge=0.0, lt=1.0
     )
     lobe_inertia: float | None = _q(
         None, "kg·m²", "polar inertia of the lobe (absent: from the cam contour)", gt=0.0

@@ -68,7 +68,7 @@ class Lubricant:
     limiting_shear_coefficient: float = typical.LIMITING_SHEAR_COEFFICIENT.value
     compressible: bool = True
     viscosity_model: str = "roelands"
-    limiting_shear_stress: float = 0.0
+    limiting_shear_stress: float = typical.LIMITING_SHEAR_STRESS.value
 
     def __post_init__(self):
         # ranges shared with the case file (physics.limits)

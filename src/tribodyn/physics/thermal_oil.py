@@ -167,7 +167,7 @@ class ThermalLubricant:
     kinematic_viscosity_100: float | None = None
     viscosity: float | None = None
     viscosity_temperature_coefficient: float | None = None
-    density: float = 850.0
+    density: float = typical.DENSITY.value
     density_temperature: float = T15
     thermal_expansion: float = 6.5e-4
     pressure_viscosity: float | None = None
@@ -175,7 +175,7 @@ class ThermalLubricant:
     specific_heat: float | None = None
     eyring_stress: float = typical.EYRING_STRESS.value
     limiting_shear_coefficient: float = typical.LIMITING_SHEAR_COEFFICIENT.value
-    limiting_shear_stress: float = 0.0
+    limiting_shear_stress: float = typical.LIMITING_SHEAR_STRESS.value
     limiting_shear_temperature_coefficient: float = 0.0
     compressible: bool = True
     viscosity_model: str = "roelands"

@@ -51,6 +51,8 @@ __all__ = [
     "SURFACE_HURST",
     "SURFACE_SHORT_CUTOFF",
     "SURFACE_LONG_CUTOFF",
+    "FILTER_SHORT_WAVELENGTH",
+    "FILTER_LONG_WAVELENGTH",
     "boundary_friction",
     "boundary_friction_range",
 ]
@@ -420,4 +422,43 @@ SURFACE_LONG_CUTOFF = TypicalValue(
     "the range halves and doubles it. The law is computed on a periodic map of side "
     "2 λ_L, so λ_L also sets the map's size.",
     status="assumed",
+)
+
+
+# ----------------------------------------------------------------------------- filter band
+# The default band-pass of a measured topography (``tribodyn.topography``, band="auto"):
+# the standard roughness cut-offs of a ground or superfinished steel surface.
+_ISO_CUTOFFS = (
+    "ISO 3274:1996 (λs and stylus tip for each λc) and ISO 4288:1996 (cut-off λc of "
+    "non-periodic profiles by R_a), as reproduced in Mitutoyo, Surface Texture and Contour "
+    "Measuring Instruments: Explanation of Surface Characteristics and Standards "
+    "(leaflet), and in D. J. Whitehouse, Surfaces and their Measurement, Hermes Penton "
+    "2002, ch. 3 (table 'Recommended cut-off ISO 4288')"
+)
+#: Short-wavelength limit λs of the roughness band (the S-filter).
+FILTER_SHORT_WAVELENGTH = TypicalValue(
+    2.5e-6,
+    2.5e-6,
+    2.5e-6,
+    "m",
+    _ISO_CUTOFFS,
+    "ISO 3274 gives λs = 2.5 µm for λc = 0.08, 0.25 and 0.8 mm (λc/λs = 30, 100, 300) "
+    "and 8 µm only from λc = 2.5 mm (R_a > 2 µm). Read from the leaflet's reproduction "
+    "of the tables; the standards' own text and ISO 25178-3's areal nesting indices "
+    "were not seen here.",
+    status="verified",
+)
+#: Long-wavelength limit λc of the roughness band (the L-filter), for a ground finish.
+FILTER_LONG_WAVELENGTH = TypicalValue(
+    0.8e-3,
+    0.25e-3,
+    0.8e-3,
+    "m",
+    _ISO_CUTOFFS,
+    "ISO 4288 gives λc = 0.25 mm for 0.02 µm < R_a ≤ 0.1 µm (superfinished) and 0.8 mm "
+    "for 0.1 µm < R_a ≤ 2 µm (ground cams and tappets, R_a ≈ 0.1–0.4 µm). Read from "
+    "reproductions of the table (the 0.8 mm row in a reproduction other than the two "
+    "cited); the standard's own text was not seen here. Optical maps of tens of µm are "
+    "far smaller: the band is then cut at the field of view.",
+    status="verified",
 )

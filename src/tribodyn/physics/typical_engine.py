@@ -16,6 +16,7 @@ from .typical import TypicalValue
 __all__ = [
     "STEEL_MODULUS",
     "STEEL_POISSON",
+    "STEEL_DENSITY",
     "DLC_MODULUS",
     "WCC_MODULUS",
     "COATING_POISSON",
@@ -57,6 +58,17 @@ STEEL_POISSON = TypicalValue(
     "-",
     _STEEL_HANDBOOK,
     "ASSUMED: the commonly quoted 0.27–0.30; the handbook's table was not seen here.",
+    status="assumed",
+)
+#: Density of the same steels (the flexible valve, tappet, spring and camshaft).
+STEEL_DENSITY = TypicalValue(
+    7850.0,
+    7750.0,
+    7900.0,
+    "kg/m³",
+    _STEEL_HANDBOOK,
+    "ASSUMED: the commonly quoted 7.75–7.90 g/cm³ of carbon and low-alloy steels; the "
+    "handbook's table was not seen here.",
     status="assumed",
 )
 

@@ -1,8 +1,8 @@
 """Measured surface topography → Greenwood–Tripp roughness parameters (η, σ, β).
 
 Reads instrument files through SurfaceTopography, fills dropouts, levels and band-pass
-filters them (by default in the paper's band clipped to what the measurement resolves),
-and estimates summit density η and mean summit radius β in two ways side by side:
+filters them (by default in the typical roughness band, clipped to what the measurement
+resolves), and estimates summit density η and mean summit radius β in two ways side by side:
 8-neighbour summits with local curvature, and McCool's spectral moments. Profiles (line
 scans) give σ, Rsk, Rku, their spectral moments and isotropic-surface estimates of η, β. Two surfaces
 (cam and tappet) combine into the pair's composite parameters. Results carry the band and
@@ -21,7 +21,7 @@ from .errors import (
     TopographyError,
     TopographyReadError,
 )
-from .filtering import AUTO_BAND, PAPER_BAND, Band, Sampling, prepare_topography
+from .filtering import AUTO_BAND, TYPICAL_BAND, Band, Sampling, prepare_topography
 from .height_statistics import HeightStatistics, height_statistics
 from .profile import ProfileAnalysis, analyse_profile
 from .reading import read_topography, write_topography
@@ -32,7 +32,7 @@ from .synthetic import synthetic_moments, synthetic_surface
 
 __all__ = [
     "AUTO_BAND",
-    "PAPER_BAND",
+    "TYPICAL_BAND",
     "AsperityParameters",
     "ProfileAnalysis",
     "analyse_profile",

@@ -341,8 +341,8 @@ def analyse_surface(
     ----------
     source : file name (any format SurfaceTopography reads) or a SurfaceTopography
         ``Topography`` (e.g. from :func:`synthetic_surface`) or ``UniformLineScan``.
-    band : ``"auto"`` (default): the paper's 0.25–250 µm clipped to what the measurement
-        resolves, with a warning saying which band was used and why; (λ_s, λ_L) [m]: must
+    band : ``"auto"`` (default): the typical 2.5 µm–0.8 mm (ISO 3274, ISO 4288) clipped to
+        what the measurement resolves, with a warning saying which band was used and why; (λ_s, λ_L) [m]: must
         lie within the measurement's range (see ``clip_band``); ``None``: level only.
     kind : ``"gaussian"`` (default, 50 % transmission at the cutoffs) or ``"step"``.
     detrend : ``"height"`` (plane), ``"curvature"`` (2nd-order polynomial, curved parts)

@@ -29,13 +29,16 @@ wavelength of the coarser pixel direction, or the instrument's reliability cutof
 file states one) and λ_L ≤ min(L_x, L_y). Otherwise :class:`BandLimitError` is raised,
 unless ``clip_band=True``, which narrows the band to the resolvable range and records it.
 
-The default band (``band="auto"``) is the paper's, 0.25–250 µm, clipped to the
-measurement: λ_s = max(0.25 µm, 2Δ, reliability cutoff) and λ_L = min(250 µm,
-min(L_x, L_y) − 2λ_s), i.e. at most the length that remains after the analysis drops one
-λ_s along each edge (filter end effects, see ``analysis.analysis_margin``). The paper's own
-scan (50× objective, Δ = 0.099 µm, ≈ 55 µm square) resolves 0.25 µm but not 250 µm; most
-instruments resolve neither (pixels of 0.2–3.5 µm, fields of 10–70 µm), so the band
-actually used is reported with a warning.
+The default band (``band="auto"``, :data:`TYPICAL_BAND`) is the standard roughness band
+of a ground surface, λ_s = 2.5 µm and λ_c = 0.8 mm (ISO 3274, ISO 4288:
+:data:`~tribodyn.physics.typical.FILTER_SHORT_WAVELENGTH`, ``FILTER_LONG_WAVELENGTH``),
+clipped to the measurement: λ_s = max(2.5 µm, 2Δ, reliability cutoff) and
+λ_L = min(0.8 mm, min(L_x, L_y) − 2λ_s), i.e. at most the length that remains after the
+analysis drops one λ_s along each edge (filter end effects, see
+``analysis.analysis_margin``). Optical maps (fields of 10–70 µm) hold far less than
+0.8 mm, so the band actually used is reported with a warning. Andreou et al. (2023)
+filtered 0.25–250 µm: pass ``band=tribodyn.paper.TOPOGRAPHY_BAND`` (with ``clip_band``)
+to reproduce their analysis.
 """
 
 from __future__ import annotations
@@ -47,14 +50,14 @@ from typing import Any
 
 import numpy as np
 
-from .. import paper
 from .._validation import InputError, check_positive, check_range
+from ..physics import typical
 from .errors import BandLimitError, InsufficientDataError, TopographyError
 
 __all__ = [
     "MAX_MAP_POINTS",
     "check_map_size",
-    "PAPER_BAND",
+    "TYPICAL_BAND",
     "AUTO_BAND",
     "FILTER_KINDS",
     "DETREND_MODES",
@@ -69,9 +72,9 @@ __all__ = [
     "prepare_topography",
 ]
 
-#: Band of the paper (Section 2.2): wavelengths 0.25 µm to 250 µm [m].
-PAPER_BAND = paper.TOPOGRAPHY_BAND
-#: ``band`` value that selects the paper's band clipped to the measurement
+#: Typical roughness band (λ_s, λ_c) [m] of a ground surface (module docstring).
+TYPICAL_BAND = (typical.FILTER_SHORT_WAVELENGTH.value, typical.FILTER_LONG_WAVELENGTH.value)
+#: ``band`` value that selects the typical band clipped to the measurement
 AUTO_BAND = "auto"
 #: A band as the API takes it: "auto", (λ_s, λ_L) [m], or None (level only).
 BandSpec = tuple[float, float] | str | None
@@ -335,13 +338,13 @@ def check_band(
 def default_band(
     sampling: SamplingLike, *, kind: str = "gaussian", reliability_cutoff: float | None = None
 ) -> Band:
-    """The paper's band clipped to what the measurement resolves (module docstring).
+    """The typical band clipped to what the measurement resolves (module docstring).
 
     Raises :class:`InsufficientDataError` if fewer than a factor MIN_BAND_RATIO of
     wavelengths remain."""
     if kind not in FILTER_KINDS:
         raise InputError(f"filter kind must be one of {FILTER_KINDS} (got {kind!r})")
-    lo0, hi0 = PAPER_BAND
+    lo0, hi0 = TYPICAL_BAND
     lo, why_lo = lo0, ""
     lo_min, why = _shortest_wavelength(sampling, reliability_cutoff)
     if lo_min > lo:
@@ -361,7 +364,7 @@ def default_band(
             f"µm (at least {MIN_BAND_RATIO:g} × λ_s is needed)"
         )
     reason = "; ".join(t for t in (why_lo, why_hi) if t)
-    return Band(lo, hi, kind, requested=PAPER_BAND if reason else None, reason=reason)
+    return Band(lo, hi, kind, requested=TYPICAL_BAND if reason else None, reason=reason)
 
 
 def band_pass(topography, band: Band):
@@ -429,8 +432,8 @@ def prepare_topography(
     Parameters
     ----------
     topography : SurfaceTopography ``Topography`` in metres (see ``read_topography``).
-    band : ``"auto"`` (default: the paper's 0.25–250 µm clipped to the measurement, see
-        the module docstring), (λ_s, λ_L) [m] (must fit, see ``clip_band``) or ``None``
+    band : ``"auto"`` (default: the typical 2.5 µm–0.8 mm clipped to the measurement,
+        see the module docstring), (λ_s, λ_L) [m] (must fit, see ``clip_band``) or ``None``
         (level only).
     kind : ``"gaussian"`` (default) or ``"step"``, see the module docstring.
     detrend : ``"height"`` (plane, default), ``"curvature"`` (2nd-order polynomial) or

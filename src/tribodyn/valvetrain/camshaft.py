@@ -66,8 +66,8 @@ class Camshaft:
     drive_stiffness: float
     drive_length: float
     E: float = typical_engine.STEEL_MODULUS.value
-    nu: float = 0.3
-    density: float = 7850.0
+    nu: float = typical_engine.STEEL_POISSON.value
+    density: float = typical_engine.STEEL_DENSITY.value
     bearing_stiffness: float | None = None
     torsional_damping_ratio: float = 0.02
     lobe_inertia: float | None = None

@@ -23,6 +23,7 @@ from scipy.integrate import solve_ivp
 
 from .._validation import InputError, check_real
 from ..physics import limits as L
+from ..physics import typical_engine
 from .cams import CamProfile
 from .compiled import CompiledLumped, compiled_model, integrate_compiled, lumped_energies
 from .flexible import FlexibleValvetrain
@@ -218,7 +219,7 @@ def simulate_valvetrain(
     cam: CamProfile,
     params: ValvetrainParameters | FlexibleValvetrain | None = None,
     *,
-    engine_speed: float = 3000.0,
+    engine_speed: float = typical_engine.ENGINE_SPEED.value,
     tribology: TribologyModel | str | None = "explicit",
     cycles: int = 2,
     output_step: float = 0.25,
@@ -237,7 +238,8 @@ def simulate_valvetrain(
     params : :class:`ValvetrainParameters` (default: paper Table 7 + assumed values), or a
         :class:`~tribodyn.valvetrain.flexible.FlexibleValvetrain` (Craig–Bampton bodies,
         camshaft compliance; same outputs, valve = its seat face).
-    engine_speed : [rpm], in (0, 50 000] (L.ENGINE_SPEED); the cam turns at half of it.
+    engine_speed : [rpm], in (0, 50 000] (L.ENGINE_SPEED); the cam turns at half of it
+        (default: the typical :data:`~tribodyn.physics.typical_engine.ENGINE_SPEED`).
     tribology : ``"explicit"`` (default, :class:`AnalyticTribology` over the cam width),
         None (frictionless), or any :class:`TribologyModel` (a model with a film law gives
         the implicit coupling).

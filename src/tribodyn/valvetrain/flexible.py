@@ -36,7 +36,7 @@ from .spring import HelicalSpring
 
 __all__ = ["ValveGeometry", "TappetGeometry", "FlexibleValvetrain"]
 
-STEEL_DENSITY = 7850.0  # kg/m³ (ASSUMED where a case gives none)
+STEEL_DENSITY = typical_engine.STEEL_DENSITY.value  # kg/m³ (typical steel, assumed)
 STEEL_E = typical_engine.STEEL_MODULUS.value  # Pa (typical steel, with its source)
 
 

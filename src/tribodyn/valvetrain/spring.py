@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._validation import InputError, check_positive, check_range
+from ..physics import typical_engine
 from .fe import AxialFEModel, ModalBody, check_count
 from .parameters import PALMGREN_COEFFICIENT
 
@@ -74,7 +75,7 @@ class HelicalSpring(ModalBody):
     pitches: tuple | None = None
     dead_coils: float = 1.0
     shear_modulus: float = 79.3e9
-    density: float = 7850.0
+    density: float = typical_engine.STEEL_DENSITY.value
     elements_per_coil: int = 2
     clash_margin: float = 1.25
     clash_damping: float = 50.0
