@@ -281,8 +281,8 @@ def run_coupling(
     progress=None,
 ) -> CouplingResult:
     """Implicit coupling for one surface set of a case (Case or BuiltCase), starting
-    from its EHL (``first``) on the explicit dynamics and their cycle ``inputs``. ``progress(label, i, n)`` receives the
-    EHL re-passes.
+    from its EHL (``first``) on the explicit dynamics and their cycle ``inputs``.
+    ``progress(label, i, n)`` receives the EHL re-passes.
 
     Stops when the contact force changes by less than COUPLING_RMS_TOL (RMS over the
     event) and COUPLING_MAX_TOL (max) of its peak, after ``numerics.coupling_iterations``,

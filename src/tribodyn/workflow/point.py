@@ -51,12 +51,12 @@ def point_surfaces(
     """The surfaces of one contact.
 
     ``case``: a Case or its BuiltCase. ``surface_set``: a set of ``case`` by name
-    (exclusive with the other arguments). Otherwise a steel tappet (``[materials.steel]`` of the case, or the cam's material)
-    under the case's cam, coated with ``coating`` (E, ν, thickness) or with the material
-    ``coating_material`` of the case ``coating_thickness`` thick, rough with ``roughness``
-    (None: smooth). ς is ``shear_coefficient``, else the coating material's, else the
-    substrate's (an error if the case gives none, as for a surface set); τ₀ is the
-    case's first surface set's.
+    (exclusive with the other arguments). Otherwise a steel tappet (``[materials.steel]``
+    of the case, or the cam's material) under the case's cam, coated with ``coating``
+    (E, ν, thickness) or with the material ``coating_material`` of the case
+    ``coating_thickness`` thick, rough with ``roughness`` (None: smooth). ς is
+    ``shear_coefficient``, else the coating material's, else the substrate's (an error if
+    the case gives none, as for a surface set); τ₀ is the case's first surface set's.
     """
     built = as_built(case)
     case = built.case
@@ -160,10 +160,11 @@ def solve_point(
     stress: bool = False,
 ) -> dict:
     """Solve one contact (see the module docstring) of ``case`` (a Case or BuiltCase).
-    ``lubricant`` and ``options`` default to the case's; ``n`` is the dry grid (default: :func:`solve_dry_contact`'s).
-    ``sliding_speed`` defaults to 0 for EHL; a dry contact takes no speeds. ``lubricant`` may be a datasheet
-    oil (:class:`~tribodyn.physics.thermal_oil.ThermalLubricant`): the isothermal solve
-    then uses it at its inlet temperature (μ₀, α, ρ₀ as the thermal solver derives them,
+    ``lubricant`` and ``options`` default to the case's; ``n`` is the dry grid (default:
+    :func:`solve_dry_contact`'s). ``sliding_speed`` defaults to 0 for EHL; a dry contact
+    takes no speeds. ``lubricant`` may be a datasheet oil
+    (:class:`~tribodyn.physics.thermal_oil.ThermalLubricant`): the isothermal solve then
+    uses it at its inlet temperature (μ₀, α, ρ₀ as the thermal solver derives them,
     ``ThermalLubricant.isothermal``) and the output names it (``oil``,
     ``inlet_temperature_K``).
 
