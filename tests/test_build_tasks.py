@@ -83,6 +83,34 @@ def test_the_study_builds_each_object_once(monkeypatch):
     )
 
 
+def test_the_built_case_holds_materials_strengths_and_wear():
+    """The BuiltCase holds what the studies read: each material's E and ν, its strength
+    (``[strength.<m>]`` over the typical values), each set's Archard coefficient and its
+    source; the thermal oil of a case that is not thermal is built on demand, or its
+    error names the missing key."""
+    from tribodyn import InputError
+    from tribodyn.config.build import build
+    from tribodyn.physics.strength import TYPICAL_WEAR_COEFFICIENT
+
+    data = _tiny_data()
+    data["strength"] = {"dlc": {"wear_coefficient": 2.5e-17, "hardness": 2.0e10}}
+    built = build(Case.from_dict(data))
+    for key, m in data["materials"].items():
+        assert (built.materials[key].E, built.materials[key].nu) == (m["E"], m["nu"])
+    assert built.material_strengths["dlc"].hardness == 2.0e10
+    dlc, steel = built.set("dlc_1um"), built.set("uncoated")
+    assert (dlc.wear_coefficient, dlc.wear_source) == (2.5e-17, "case [strength.dlc]")
+    assert steel.wear_coefficient == TYPICAL_WEAR_COEFFICIENT["steel"]
+    assert steel.wear_source.startswith("assumed")
+    assert built.thermal_lubricant is None and built.thermal_options is None
+    with pytest.raises(InputError, match="lubricant.inlet_temperature_c"):
+        built.thermal_oil()
+    data["lubricant"] |= {"inlet_temperature_c": 90.0, "viscosity_temperature_coefficient": 0.03}
+    warm = build(Case.from_dict(data))
+    assert warm.thermal_oil().inlet_temperature == pytest.approx(363.15)
+    assert warm.thermal_solver_options().x_nodes == data["numerics"]["thermal_x_nodes"]
+
+
 def test_serial_and_pool_give_the_same_study():
     """The one task graph run by InlineExecutor (workers=1) and by the local process pool
     (workers=2) gives bit-identical per-set results and the same summary."""

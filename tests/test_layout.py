@@ -3,6 +3,7 @@ its comparison add-on uses it, and the layers import only downwards (physics →
 contact/valvetrain/topography → config → workflow → output → cli)."""
 
 import ast
+import inspect
 from pathlib import Path
 
 import pytest
@@ -213,3 +214,75 @@ def test_the_length_check_sees_a_long_module(tmp_path):
     p = tmp_path / "long.py"
     p.write_text("x = 1\n" * (MAX_MODULE_LINES + 1), encoding="utf-8")
     assert _too_long([p]) == [f"long.py: {MAX_MODULE_LINES + 1} lines"]
+
+
+def _case_builder_mixins():
+    """The classes :class:`~tribodyn.config.Case` inherits its builders from."""
+    from tribodyn.config import Case
+
+    return [c for c in Case.__mro__[1:] if c.__name__.endswith("Builders")]
+
+
+def _builder_calls(tree) -> list[str]:
+    """``line: call`` of each call of a Case builder (:data:`~tribodyn.config.build.
+    CASE_BUILDERS`, or a private ``_new_*``/``_build_*``) in ``tree``. A builder that the
+    BuiltCase also offers counts unless it is called on a built case (``built.…``,
+    ``build(case).…``): the receiver's type is not known to the parser."""
+    from tribodyn.config.build import CASE_BUILDERS, BuiltCase
+
+    also_built = {n for n in CASE_BUILDERS if inspect.isfunction(vars(BuiltCase).get(n))}
+    out = []
+    for node in ast.walk(tree):
+        if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)):
+            continue
+        name, receiver = node.func.attr, ast.unparse(node.func.value)
+        on_built = "built" in receiver or receiver.startswith("build(")
+        if (name in CASE_BUILDERS and not (name in also_built and on_built)) or name.startswith(
+            ("_new_", "_build_", "_analytic_tribology")
+        ):
+            out.append(f"{node.lineno}: {ast.unparse(node.func)}")
+    return out
+
+
+def test_case_builders_are_declared():
+    """CASE_BUILDERS names every public method of the Case's builder mixins, and only
+    methods of the Case."""
+    from tribodyn.config import Case
+    from tribodyn.config.build import CASE_BUILDERS
+
+    mixins = _case_builder_mixins()
+    assert len(mixins) >= 3
+    public = {
+        n for c in mixins for n, v in vars(c).items() if inspect.isfunction(v) and n[0] != "_"
+    }
+    assert public <= set(CASE_BUILDERS)
+    assert all(inspect.isfunction(getattr(Case, n, None)) for n in CASE_BUILDERS)
+
+
+def test_studies_read_the_built_case():
+    """Outside config (and output, which reads results), no code calls a Case builder: the
+    studies and commands build a case once (``build(case)``) and read its BuiltCase."""
+    found = []
+    for path in _modules():
+        rel = path.relative_to(SRC)
+        if rel.parts[0] in ("config", "output"):
+            continue
+        found += [f"{rel}:{c}" for c in _builder_calls(ast.parse(path.read_text("utf-8")))]
+    assert not found, f"{len(found)} Case builder calls:\n" + "\n".join(found)
+
+
+def test_the_builder_check_sees_a_call():
+    """The scan above is able to fail: it finds builders called on a case, not the
+    built case's own methods."""
+    text = (
+        "lub = case.lubricant()\n"
+        "s = built.set('x').surface\n"
+        "t = built.analytic_tribology('x')\n"
+        "t = self.case.analytic_tribology('x')\n"
+        "b = c._new_thermal_bodies(s)\n"
+    )
+    assert _builder_calls(ast.parse(text)) == [
+        "1: case.lubricant",
+        "4: self.case.analytic_tribology",
+        "5: c._new_thermal_bodies",
+    ]

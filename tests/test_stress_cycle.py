@@ -172,13 +172,14 @@ def test_stress_map_and_report_section(light_study, tmp_path):
 
 
 def test_disabled_stresses_are_not_computed(light_study):
+    from tribodyn.config.build import build
     from tribodyn.workflow.cycle import _stress_step
 
     study = light_study
     off = study.case.updated({"stress.enabled": False})
     s = off.surface_set("dlc_4um")
-    assert _stress_step(off, s, study.set("dlc_4um"), study.inputs) is None
-    on = _stress_step(study.case, s, study.set("dlc_4um"), study.inputs)
+    assert _stress_step(build(off), s, study.set("dlc_4um"), study.inputs) is None
+    on = _stress_step(build(study.case), s, study.set("dlc_4um"), study.inputs)
     assert on.safety_factors == study.stresses["dlc_4um"].safety_factors
 
 

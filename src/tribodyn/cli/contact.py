@@ -176,6 +176,7 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
     Raises :class:`~tribodyn.InputError` naming the offending option on bad input.
     """
     from ..config import load_case
+    from ..config.build import build, options_for
     from ..physics.asperity import Roughness
     from ..physics.materials import Coating
     from ..workflow.point import point_surfaces, solve_point
@@ -185,7 +186,8 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
     elif options:
         raise TypeError("give a ContactRequest or its fields as keywords, not both")
     q = request
-    case = load_case(q.case_file)  # None: the bundled default case, as tribodyn run
+    built = build(load_case(q.case_file))  # None: the bundled default case, as tribodyn run
+    case = built.case
     coat = rough = None
     if q.coating is not None:
         E, nu, t = _triple(q.coating, "--coating", "E [Pa], nu [-], thickness [m]")
@@ -203,7 +205,7 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
         )
     try:
         surfaces = point_surfaces(
-            case,
+            built,
             surface_set=q.surface_set,
             coating=coat,
             coating_material=q.coating_material,
@@ -252,7 +254,7 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
     thermal_oil = None
     if not q.dry and (q.thermal or q.oil is not None or q.inlet_temperature is not None):
         thermal_oil = _thermal_oil(
-            case,
+            built,
             q.oil,
             q.inlet_temperature,
             {
@@ -262,16 +264,16 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
                 "--viscosity-model": q.viscosity_model,
             },
         )
-    if not q.dry:  # the lubricant and numerics options: case updates
-        case = _updated(case, q.case_changes())
-        lub = case.lubricant()
-        opts = case.ehl_options(surfaces)
+    if not q.dry:  # the lubricant and numerics options: case updates, built once
+        built = build(_updated(case, q.case_changes()))
+        lub = built.lubricant
+        opts = options_for(built, surfaces)
     if thermal_oil is not None:  # its shear law: the options given (validated just above)
         shear = {k: getattr(q, k) for k in _OIL_SHEAR if getattr(q, k) is not None}
         thermal_oil = dataclasses.replace(thermal_oil, **shear)
     try:
         r = solve_point(
-            case,
+            built,
             surfaces,
             load_per_length=w,
             radius=q.radius,
@@ -318,8 +320,9 @@ def _check_dry(q: ContactRequest) -> None:
         )
 
 
-def _thermal_oil(case, oil, inlet_temperature, lub_options):
-    """The oil of --oil/--inlet-temperature [°C], else the case's datasheet oil."""
+def _thermal_oil(built, oil, inlet_temperature, lub_options):
+    """The oil of --oil/--inlet-temperature [°C], else the datasheet oil of the case
+    (its BuiltCase ``built``)."""
     from ..physics.oils import OILS
     from ..physics.thermal_oil import ThermalLubricant
 
@@ -341,7 +344,7 @@ def _thermal_oil(case, oil, inlet_temperature, lub_options):
         sheet: dict[str, Any] = {k: v for k, v in OILS[oil].items() if k != "description"}
         return ThermalLubricant(inlet_temperature + 273.15, **sheet, name=oil)
     try:
-        base = case.thermal_lubricant()
+        base = built.thermal_oil()
     except InputError:
         raise InputError(
             "--thermal needs an oil with a temperature: --oil 5W-30 "
@@ -372,16 +375,18 @@ def stated_defaults() -> dict[str, Any]:
     import inspect
 
     from ..config import load_case
+    from ..config.build import build, options_for
     from ..contact.dry import solve_dry_contact
     from ..contact.ehl.grid import N_AUTO, N_MAX_AUTO
     from ..physics.oils import OILS
     from ..physics.thermal_oil import ThermalLubricant
     from ..workflow.point import point_surfaces
 
-    case = load_case()
-    lub = case.lubricant()
-    surfaces = point_surfaces(case)
-    opts = case.ehl_options(surfaces)
+    built = build(load_case())
+    case = built.case
+    lub = built.lubricant
+    surfaces = point_surfaces(built)
+    opts = options_for(built, surfaces)
     oil = {f.name: f.default for f in dataclasses.fields(ThermalLubricant)}
     shear = ", ".join(
         f"{k} {m.boundary_shear_coefficient:g}"

@@ -32,6 +32,8 @@ if TYPE_CHECKING:
     from ..contact.ehl.thermal import ThermalOptions
     from ..physics.heat_conduction import ThermalBody
     from ..physics.lubricant import Lubricant
+    from ..physics.materials import Material
+    from ..physics.strength import Strength
     from ..physics.thermal_oil import ThermalLubricant
     from ..valvetrain.cams import CamProfile
     from ..valvetrain.flexible import FlexibleValvetrain
@@ -40,9 +42,34 @@ if TYPE_CHECKING:
     from ..valvetrain.tribology import AnalyticTribology
     from .case import Case, SurfaceSet
 
-__all__ = ["BuiltCase", "BuiltSet", "build", "collect"]
+__all__ = ["BuiltCase", "BuiltSet", "CASE_BUILDERS", "as_built", "build", "collect"]
 
 T = TypeVar("T")
+
+#: The methods of :class:`~tribodyn.config.Case` that build objects (or return the ones
+#: built at validation): its builder mixins' public methods and its own. Outside
+#: ``config`` the code reads these objects from the :class:`BuiltCase` of :func:`build`.
+CASE_BUILDERS = (
+    "built",
+    "cam",
+    "valvetrain_parameters",
+    "lumped_companion",
+    "dynamics_options",
+    "analytic_tribology",
+    "lubricant",
+    "thermal_lubricant",
+    "thermal_properties",
+    "thermal_bodies",
+    "thermal_options",
+    "material",
+    "material_strength",
+    "strengths",
+    "wear_coefficient",
+    "ehl_options",
+    "surface_sets",
+    "surface_set",
+    "tappet_rotation",
+)
 
 
 @dataclass(frozen=True)
@@ -55,12 +82,17 @@ class BuiltSet:
         ``numerics.thermal``).
     strengths : ``{"cam": (substrate, None), "tappet": (substrate, coating)}``
         :class:`~tribodyn.physics.strength.Strength` (None where unknown).
+    wear_coefficient : Archard k [m³/(N m)] of the tappet's surface material (None:
+        unknown), and ``wear_source``, where it comes from
+        (:meth:`~tribodyn.config.Case.wear_coefficient`).
     """
 
     surface: SurfaceSet
     options: EHLOptions
     thermal_bodies: tuple[ThermalBody, ThermalBody] | None
     strengths: dict
+    wear_coefficient: float | None = None
+    wear_source: str = ""
 
     @property
     def name(self) -> str:
@@ -74,7 +106,10 @@ class BuiltCase:
     ``thermal_lubricant`` is None unless the case is thermal or its oil a datasheet,
     ``thermal_options`` unless it is thermal;
     ``dynamics_options`` are the keyword arguments of
-    :func:`~tribodyn.valvetrain.simulate_valvetrain` (engine speed and ``[numerics]``).
+    :func:`~tribodyn.valvetrain.simulate_valvetrain` (engine speed and ``[numerics]``);
+    ``materials`` the :class:`~tribodyn.Material` (E, ν) and ``material_strengths`` the
+    :class:`~tribodyn.physics.strength.Strength` (None where unknown) of each
+    ``[materials]`` key.
     """
 
     case: Case
@@ -87,6 +122,8 @@ class BuiltCase:
     tappet_rotation: TappetRotation
     dynamics_options: dict[str, Any]
     sets: dict[str, BuiltSet] = field(default_factory=dict)
+    materials: dict[str, Material] = field(default_factory=dict)
+    material_strengths: dict[str, Strength | None] = field(default_factory=dict)
 
     def set(self, name: str) -> BuiltSet:
         """The built surface set ``name`` (an InputError naming the defined sets if none)."""
@@ -118,6 +155,33 @@ class BuiltCase:
     def simulate_options(self) -> dict[str, Any]:
         """A copy of :attr:`dynamics_options` (callers may add keys)."""
         return dict(self.dynamics_options)
+
+    def thermal_oil(self) -> ThermalLubricant:
+        """The thermal oil: :attr:`thermal_lubricant`, or (a case neither thermal nor a
+        datasheet) built now from ``[lubricant]``, an InputError naming the missing key."""
+        oil = self.thermal_lubricant
+        return oil if oil is not None else self.case._new_thermal_lubricant()
+
+    def thermal_solver_options(self) -> ThermalOptions:
+        """:attr:`thermal_options`, or (a case that is not thermal) built now from
+        ``[numerics]``."""
+        opts = self.thermal_options
+        return opts if opts is not None else self.case._new_thermal_options()
+
+    def thermal_bodies_of(self, surface: SurfaceSet) -> tuple[ThermalBody, ThermalBody]:
+        """(cam, tappet) :class:`~tribodyn.ThermalBody` of ``surface``: the built ones of
+        one of the case's sets, else built now from the materials' thermal properties (an
+        InputError naming a missing one)."""
+        own = self.sets.get(surface.name)
+        if own is not None and own.thermal_bodies is not None and own.surface == surface:
+            return own.thermal_bodies
+        return self.case._new_thermal_bodies(surface)
+
+
+def as_built(case: Case | BuiltCase) -> BuiltCase:
+    """The :class:`BuiltCase` of a Case (:func:`build`), or ``case`` if it is one: the
+    argument of a public study function that takes either."""
+    return case if isinstance(case, BuiltCase) else build(case)
 
 
 def build(case: Case) -> BuiltCase:
@@ -178,12 +242,19 @@ def collect(
             if n.thermal and lubricant_ok:
                 bodies = attempt("materials", functools.partial(case._new_thermal_bodies, surface))
             strengths = attempt("strength", functools.partial(case._new_strengths, surface))
+            wear = attempt("strength", functools.partial(case.wear_coefficient, surface))
             sets[cfg.name] = BuiltSet(
                 surface=surface,
                 options=_with_friction(options, surface),
                 thermal_bodies=bodies,
                 strengths=strengths or {},
+                wear_coefficient=wear[0] if wear else None,
+                wear_source=wear[1] if wear else "",
             )
+    materials = attempt("materials", lambda: {k: case.material(k) for k in case.materials})
+    material_strengths = attempt(
+        "strength", lambda: {k: case.material_strength(k) for k in case.materials}
+    )
     thermal_options = attempt("numerics", case._new_thermal_options) if n.thermal else None
     cam = attempt("cam", case._build_cam)
     rotation = attempt("tappet_rotation", functools.partial(case._new_tappet_rotation, cam))
@@ -192,6 +263,7 @@ def collect(
     assert cam is not None and lubricant is not None and valvetrain is not None
     assert rotation is not None
     assert options is not None
+    assert materials is not None and material_strengths is not None
     return (
         BuiltCase(
             case=case,
@@ -204,6 +276,8 @@ def collect(
             tappet_rotation=rotation,
             dynamics_options=case.dynamics_options(),
             sets=sets,
+            materials=materials,
+            material_strengths=material_strengths,
         ),
         problems,
     )

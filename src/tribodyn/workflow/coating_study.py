@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from .. import paper
+from ..config.build import as_built
 from ..contact.dry import DryContactResult, solve_dry_contact
 from ..contact.ehl import EHLResult, solve_ehl
 from ..physics.lubricant import Lubricant
@@ -137,9 +138,12 @@ def ehl_coating_study(
         coat = Coating(E=STEEL.E * ratio, nu=STEEL.nu, thickness=thickness)
         r = solve_ehl(w, radius, entrainment_speed, 0.0, (steel, Body(STEEL, coat)), lubricant)
         out.ratios.append(ModulusCase(f"E_c/E_s = {ratio:g}", ratio, r))
-    if case is not None:
+    if case is not None:  # a Case or BuiltCase
+        built = as_built(case)
         coatings = [
-            (m.label or k, k, case.material(k)) for k, m in case.materials.items() if k != "steel"
+            (m.label or k, k, built.materials[k])
+            for k, m in built.case.materials.items()
+            if k != "steel"
         ]
     else:
         coatings = [

@@ -65,6 +65,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..config.build import as_built
 from ..physics.materials import reduced_modulus
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from ..valvetrain.tribology import FilmStateTribology
@@ -279,9 +280,9 @@ def run_coupling(
     first: SetCycleResult,
     progress=None,
 ) -> CouplingResult:
-    """Implicit coupling for one surface set, starting from its EHL (``first``) on the
-    explicit dynamics and their cycle ``inputs``. ``progress(label, i, n)`` receives the
-    EHL re-passes.
+    """Implicit coupling for one surface set of a case (Case or BuiltCase), starting
+    from its EHL (``first``) on the explicit dynamics and their cycle ``inputs``.
+    ``progress(label, i, n)`` receives the EHL re-passes.
 
     Stops when the contact force changes by less than COUPLING_RMS_TOL (RMS over the
     event) and COUPLING_MAX_TOL (max) of its peak, after ``numerics.coupling_iterations``,
@@ -289,12 +290,14 @@ def run_coupling(
     far; without convergence the iterate with the smallest change is reported, and the
     message says which."""
     t0 = time.perf_counter()
+    built = as_built(case)
+    case = built.case
     n = case.numerics
     out = CouplingResult()
     if not n.implicit_coupling:
         return out
     s = surface_set
-    lub = case.lubricant()
+    lub = built.lubricant
     e_prime = reduced_modulus(s.bodies)
     period = 2.0 * math.pi / case.cam_speed
     ev = dynamics.event_mask()
@@ -325,7 +328,7 @@ def run_coupling(
                 scale * mixer(x_old / scale, state_vector(g) / scale), g, period
             )
         new = simulate_valvetrain(
-            case.cam(), case.valvetrain_parameters(), tribology=table, **case.dynamics_options()
+            built.cam, built.valvetrain, tribology=table, **built.simulate_options()
         )
         if not new.converged:
             msg = f"implicit dynamics failed at iteration {k}: {new.message}"
@@ -362,7 +365,7 @@ def run_coupling(
                 def cb(i, m, label=label):
                     progress(label, i, m)
 
-            ehl = ehl_for_set(case, s, inp, progress=cb, film_law_only=True)
+            ehl = ehl_for_set(built, s, inp, progress=cb, film_law_only=True)
     if not out.converged and out.history:
         last = out.history[-1]
         msg += (

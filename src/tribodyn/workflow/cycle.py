@@ -32,7 +32,7 @@ import numpy as np
 
 from .._system import exit_with_parent
 from .._threads import blas_single_threaded, single_blas_thread, single_blas_thread_env
-from ..config.build import BuiltCase, build
+from ..config.build import BuiltCase, as_built
 from ..config.origins import default_warnings
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from .coating_study import (
@@ -154,15 +154,15 @@ def _local_pool(workers: int | None) -> ProcessPoolExecutor:
     )
 
 
-def _stress_step(case: Case, s: SurfaceSet, res, inputs):
+def _stress_step(built: BuiltCase, s: SurfaceSet, res, inputs):
     """The set's subsurface stresses along its EHL pass (the last step of its task):
     a CycleStress, None when ``[stress] enabled = false``, or the error text."""
-    if not case.stress.enabled:
+    if not built.case.stress.enabled:
         return None
     from .stress_study import stress_for_set
 
     try:  # the strengths built with the case
-        return stress_for_set(case, s, res, inputs, strengths=case.strengths(s))
+        return stress_for_set(built, s, res, inputs, strengths=built.set(s.name).strengths)
     except Exception as exc:  # the EHL results stay usable; the study warns
         return f"{type(exc).__name__}: {exc}"
 
@@ -172,8 +172,8 @@ def _set_task(built: BuiltCase, name: str, inputs):
     top-level task). Returns (SetCycleResult, stresses)."""
     with single_blas_thread():
         s = built.set(name).surface
-        res = ehl_for_set(built.case, s, inputs)
-        return res, _stress_step(built.case, s, res, inputs)
+        res = ehl_for_set(built, s, inputs)
+        return res, _stress_step(built, s, res, inputs)
 
 
 def _coupling_task(built: BuiltCase, name: str, dynamics, inputs):
@@ -181,25 +181,24 @@ def _coupling_task(built: BuiltCase, name: str, dynamics, inputs):
     coupling iterations. Returns (first, CouplingResult, stresses)."""
     with single_blas_thread():
         s = built.set(name).surface
-        first = ehl_for_set(built.case, s, inputs)
-        stress = _stress_step(built.case, s, first, inputs)
-        return first, run_coupling(built.case, s, dynamics, inputs, first), stress
+        first = ehl_for_set(built, s, inputs)
+        stress = _stress_step(built, s, first, inputs)
+        return first, run_coupling(built, s, dynamics, inputs, first), stress
 
 
 def _coating_studies_task(built: BuiltCase, reference: str, nose, paper_studies: bool = True):
     """The sensitivity study at the case's nose; with ``paper_studies`` also the
     paper's Figs. 5/6 single-contact studies (at the paper's conditions), without them
     every surface set of the case at its own nose."""
-    case = built.case
     with single_blas_thread():
         dry = dry_coating_study() if paper_studies else []
-        ehl = ehl_coating_study(built.lubricant, case) if paper_studies else None
+        ehl = ehl_coating_study(built.lubricant, built) if paper_studies else None
         sens = (
-            roughness_sensitivity(case, built.set(reference).surface, nose)
+            roughness_sensitivity(built, built.set(reference).surface, nose)
             if nose is not None
             else None
         )
-        own = surface_sets_at_nose(case, nose) if nose is not None and not paper_studies else None
+        own = surface_sets_at_nose(built, nose) if nose is not None and not paper_studies else None
         return dry, ehl, sens, own
 
 
@@ -223,7 +222,7 @@ def study_tasks(
         from .thermal_study import thermal_task
 
         tasks += [
-            Task(f"thermal:{name}", thermal_task, (built.case, name, inputs)) for name in built.sets
+            Task(f"thermal:{name}", thermal_task, (built, name, inputs)) for name in built.sets
         ]
     return tasks
 
@@ -249,14 +248,15 @@ def _study_executor(executor: Executor | None, workers: int):
 
 # ----------------------------------------------------------------------------- driver
 def run_cycle_study(
-    case: Case,
+    case: Case | BuiltCase,
     *,
     workers: int | None = None,
     progress: Callable[..., None] | None = None,
     executor: Executor | None = None,
     compare_paper: bool | None = None,
 ) -> CycleStudy:
-    """Run the whole study for a validated :class:`~tribodyn.config.Case`.
+    """Run the whole study for a validated :class:`~tribodyn.config.Case` (or its
+    :class:`~tribodyn.config.build.BuiltCase`).
 
     The objects of the case are built once (:func:`~tribodyn.config.build.build`). The
     surface sets, the coupling chain (reference set, then the implicit iterations) and
@@ -274,14 +274,15 @@ def run_cycle_study(
     ``compare_paper``: add the paper's comparison (its Figs. 5/6 single-contact studies
     at its conditions, its claims in the report); None: only for the paper's case.
     """
-    paper_cmp = compares_paper(case, compare_paper)
     t_start = time.perf_counter()
-    built = build(case)
+    built = as_built(case)
+    case = built.case
+    paper_cmp = compares_paper(case, compare_paper)
     n = case.numerics
     report = progress or (lambda *a, **k: None)
     timings = {}
     sets = built.surface_sets
-    ref_name = surface_roles(case)["reference"]
+    ref_name = surface_roles(built)["reference"]
 
     t0 = time.perf_counter()
     report("dynamics")
@@ -417,7 +418,7 @@ def run_cycle_study(
         t0 = time.perf_counter()
         report("dynamics")
         study.model_comparison = compare_lumped_flexible(
-            case, built.analytic_tribology(ref_name), dyn
+            built, built.analytic_tribology(ref_name), dyn
         )
         study.warnings += study.model_comparison.messages
         timings["lumped_vs_flexible_s"] = time.perf_counter() - t0

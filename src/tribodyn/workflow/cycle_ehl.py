@@ -31,6 +31,7 @@ from typing import Any, ClassVar, Protocol
 import numpy as np
 
 from .._validation import InputError
+from ..config.build import as_built, options_for
 from ..contact.ehl import EHLOptions, EHLResult, TransientEHL
 from ..contact.ehl.postprocess import shear_stress
 from ..physics.asperity import Roughness
@@ -283,10 +284,10 @@ class IsothermalCycle(CycleMethod):
 
     @classmethod
     def for_set(cls, case, surface_set, options: EHLOptions | None = None) -> IsothermalCycle:
-        """The method of one surface set of a case (its bodies, roughness and friction
-        law; the case's lubricant and numerics, or ``options``)."""
-        s = surface_set
-        return cls(s.bodies, case.lubricant(), s.roughness, options or case.ehl_options(s))
+        """The method of one surface set of a case (Case or BuiltCase; its bodies,
+        roughness and friction law; the case's lubricant and numerics, or ``options``)."""
+        s, built = surface_set, as_built(case)
+        return cls(s.bodies, built.lubricant, s.roughness, options or options_for(built, s))
 
 
 def _thermal_for_set(case, surface_set) -> CycleMethod:
@@ -452,27 +453,21 @@ def ehl_along_cycle(
     )
 
 
-def _rotation(case):
-    """The case's tappet rotation (None for objects without ``[tappet_rotation]``)."""
-    rot = getattr(case, "tappet_rotation", None)
-    return rot() if callable(rot) else rot
-
-
 def cycle_for_set(
     case, surface_set, inputs: CycleInputs, method: str = "isothermal", progress=None
 ) -> SetCycleResult:
-    """:func:`march_cycle` for one surface set of a case with the variant ``method``
-    (a key of :data:`METHODS`) at the case's numerics."""
+    """:func:`march_cycle` for one surface set of a case (Case or BuiltCase) with the
+    variant ``method`` (a key of :data:`METHODS`) at the case's numerics."""
     if method not in METHODS:
         raise InputError(f"method must be one of {sorted(METHODS)} (got {method!r})")
-    s = surface_set
-    inputs = inputs.with_rotation(_rotation(case))
+    s, built = surface_set, as_built(case)
+    inputs = inputs.with_rotation(built.tappet_rotation)
     return march_cycle(
         inputs,
         s.name,
         s.coating_label,
-        METHODS[method](case, s),
-        min_load=case.numerics.min_load,
+        METHODS[method](built, s),
+        min_load=built.case.numerics.min_load,
         progress=progress,
     )
 
@@ -480,31 +475,32 @@ def cycle_for_set(
 def ehl_for_set(
     case, surface_set, inputs: CycleInputs, progress=None, *, film_law_only: bool = False
 ) -> SetCycleResult:
-    """:func:`ehl_along_cycle` for one surface set of a case (its bodies, roughness and
-    friction law; the case's lubricant and numerics).
+    """:func:`ehl_along_cycle` for one surface set of a case (Case or BuiltCase; its
+    bodies, roughness and friction law; the case's lubricant and numerics).
 
     ``film_law_only``: the pass only feeds the implicit coupling's film law (the
     coupling's re-passes), which needs the film to the coupling tolerance: the grid has
     ``numerics.coupling_n`` nodes (at most ``numerics.n`` when that is set) and the
     time-error tolerance is :data:`COUPLING_TIME_TOL`."""
-    s = surface_set
-    inputs = inputs.with_rotation(_rotation(case))
-    opts = case.ehl_options(s)
+    s, built = surface_set, as_built(case)
+    n = built.case.numerics
+    inputs = inputs.with_rotation(built.tappet_rotation)
+    opts = options_for(built, s)
     time_tol = TIME_TOL
     if film_law_only:
         time_tol = COUPLING_TIME_TOL
-        nodes = case.numerics.coupling_n
+        nodes = n.coupling_n
         if nodes:  # never finer than the study's own fixed grid
-            opts = replace(opts, n=min(nodes, case.numerics.n) if case.numerics.n else nodes)
+            opts = replace(opts, n=min(nodes, n.n) if n.n else nodes)
     return ehl_along_cycle(
         inputs,
         s.name,
         s.coating_label,
         s.bodies,
-        case.lubricant(),
+        built.lubricant,
         s.roughness,
         opts,
-        min_load=case.numerics.min_load,
+        min_load=n.min_load,
         progress=progress,
         time_tol=time_tol,
     )

@@ -41,6 +41,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..config import Case
+from ..config.build import build
 from ..physics import valvetrain_friction as vf
 from .conventions import CHANGE, ENGINE_CRANK_ANGLE, change_pct
 from .cycle import CycleStudy, run_cycle_study
@@ -74,15 +75,16 @@ def lobe_traces(kind: str, study: CycleStudy, engine_case: Case) -> LobeTraces:
     """The :class:`LobeTraces` of a single-valve study, with the auxiliary friction of the
     engine's ``[engine.auxiliary]``."""
     case, dyn, inp = study.case, study.dynamics, study.inputs
-    rb = float(case.cam().base_radius)
+    built = build(case)
+    rb = float(built.cam.base_radius)
     s = np.interp(inp.crank_angle, dyn.crank_angle, dyn.cam_lift)
     s1 = np.interp(inp.crank_angle, dyn.crank_angle, dyn.lift_velocity)
     nose = float(dyn.crank_angle[int(np.argmax(dyn.cam_lift))])
     w = case.cam_speed
-    eta = float(case.lubricant().viscosity)
+    eta = float(built.lubricant.viscosity)
     # tappet radius and bore friction: joint parameters, the same in a flexible case's
     # lumped companion
-    vt = case.lumped_companion()
+    vt = built.lumped
     bore, guide, _ = engine_case.engine.auxiliary_geometries(
         vt.tappet_radius, vt.bore_friction_coefficient
     )
@@ -269,6 +271,7 @@ class EngineStudy:
         studies = {k: lt.study for k, lt in self.lobes.items() if lt.study is not None}
         if not studies:
             return
+        built = build(self.case)
         energies = {}
         for i, name in enumerate(self.set_names):
             parts = []  # (nominal cam–tappet energy of the lobe kind, E(ς', k) of its study)
@@ -277,7 +280,7 @@ class EngineStudy:
                 e_ct = float(sum(self.energy(self.lobe_friction_torque[i, m]) for m in rows))
                 parts.append((e_ct, set_energy_function(st, name)))
             aux = totals[name] - sum(e for e, _ in parts)
-            sig = float(self.case.surface_set(name).boundary_shear_coefficient)
+            sig = float(built.set(name).surface.boundary_shear_coefficient)
 
             def total(s_new, k=1.0, parts=parts, aux=aux, sig=sig):
                 return aux + sum(
@@ -285,14 +288,14 @@ class EngineStudy:
                 )
 
             energies[name] = total
-        sigmas = boundary_ranges(self.case, self.set_names)
-        labels = {n: self.case.surface_set(n).coating_label for n in self.set_names}
+        sigmas = boundary_ranges(built, self.set_names)
+        labels = {n: built.set(n).surface.coating_label for n in self.set_names}
         verdicts = verdicts_from_energies(
-            energies, sigmas, self.set_names[0], labels, self.case, ENGINE_METHOD
+            energies, sigmas, self.set_names[0], labels, built, ENGINE_METHOD
         )
-        k_lo, k_hi = viscous_factor_bounds(self.case)
+        k_lo, k_hi = viscous_factor_bounds(built)
         for name, d in out["surface_sets"].items():
-            d["asperity_law"] = self.case.surface_set(name).asperity_law
+            d["asperity_law"] = built.set(name).surface.asperity_law
             d["coating_verdict"] = verdicts.get(name)
             sig, lo, hi = sigmas[name]
             ends = [energies[name](s_, k) / vd for s_ in (lo, hi) for k in (k_lo, k_hi)]
@@ -352,6 +355,7 @@ def run_engine_study(
         raise InputError("engine.cylinders: the case describes one valve, not an engine")
     t0 = time.perf_counter()
     kinds = ("intake", "exhaust")
+    built = build(case)
     lobe_cases = {k: case.engine_lobe_case(k) for k in kinds}
     studies: dict[str, CycleStudy] = {}
     timings = {}
@@ -362,7 +366,7 @@ def run_engine_study(
             continue
         t1 = time.perf_counter()
         studies[k] = run_cycle_study(
-            lobe_cases[k],
+            build(lobe_cases[k]),  # the lobe's own case, built once
             workers=workers,
             executor=executor,
             progress=progress,
@@ -406,7 +410,7 @@ def run_engine_study(
         tb[:, j] += place_known(rel, lt.bore_torque, nose, crank)
         tg[:, j] += place_trace(lt.relative_crank, lt.guide_torque, v["nose_deg"], crank)
     w = case.cam_speed
-    eta = float(case.lubricant().viscosity)
+    eta = float(built.lubricant.viscosity)
     tj = np.array(
         [_journal_torque(lobes, valves, i, camshafts, case, crank, w, eta) for i in range(ns)]
     )

@@ -34,7 +34,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..config.build import as_built, build
 from ..physics.materials import reduced_modulus
+from ..valvetrain.cams import TabulatedCam
 from ..valvetrain.flexible import FlexibleValvetrain
 from ..valvetrain.parameters import ValvetrainParameters
 
@@ -177,7 +179,8 @@ class Engineering:
 def engineering_outputs(study) -> Engineering:
     """The :class:`Engineering` outputs of a :class:`~tribodyn.workflow.cycle.CycleStudy`."""
     case, dyn, inp = study.case, study.dynamics, study.inputs
-    cam = case.cam()
+    built = build(case)
+    cam = built.cam
     rb = float(cam.base_radius)
     s = np.interp(inp.crank_angle, dyn.crank_angle, dyn.cam_lift)
     s1 = np.interp(inp.crank_angle, dyn.crank_angle, dyn.lift_velocity)
@@ -187,7 +190,7 @@ def engineering_outputs(study) -> Engineering:
     ph = []
     scalars = {}
     for res, t_f, t_d in zip(study.sets, tf, td):
-        e = reduced_modulus(case.surface_set(res.name).bodies)
+        e = reduced_modulus(built.set(res.name).surface.bodies)
         load = np.where(res.loaded, inp.contact_force, np.nan) / inp.width
         ph.append(np.sqrt(load * e / (2.0 * math.pi * inp.radius)))
         energy = cycle_integral(t_f, inp.crank_angle)
@@ -212,7 +215,7 @@ def engineering_outputs(study) -> Engineering:
         "radius": rb + ls + l2,
     }
     table = None
-    if hasattr(cam, "lift_table"):
+    if isinstance(cam, TabulatedCam):
         fitted = cam.derivatives(np.asarray(cam.angle))[0]
         table = {
             "angle_deg": np.degrees(np.asarray(cam.angle)),
@@ -228,7 +231,7 @@ def engineering_outputs(study) -> Engineering:
         cam_angle_deg=np.degrees(theta),
         kinematics=kin,
         table=table,
-        surge=surge_spectrum(cam, case.valvetrain_parameters(), w),
+        surge=surge_spectrum(cam, built.valvetrain, w),
         scalars=scalars,
     )
 
@@ -244,10 +247,12 @@ def _nan_peak(values, *, signed: bool = True) -> float | None:
 
 
 def oil_as_used(case) -> dict:
-    """The oil the study used (at the inlet): μ₀ [Pa s], α [1/Pa], ρ₀ [kg/m³], inlet
-    temperature [°C] (None: not given, the viscosity was given directly), its laws."""
-    lub = case.lubricant()
-    c = case.lubricant_config
+    """The oil the study of ``case`` (a Case or BuiltCase) used (at the inlet): μ₀
+    [Pa s], α [1/Pa], ρ₀ [kg/m³], inlet temperature [°C] (None: not given, the viscosity
+    was given directly), its laws."""
+    built = as_built(case)
+    lub = built.lubricant
+    c = built.case.lubricant_config
     return {
         "oil": c.oil,
         "inlet_temperature_C": c.inlet_temperature_c,
@@ -306,12 +311,13 @@ def plausibility_warnings(study) -> list[str]:
       thinner than a tenth of the roughness cannot carry most of the load on real
       surfaces (a rule of thumb, flagged as such).
     """
-    case, inp = study.case, study.inputs
+    built, inp = build(study.case), study.inputs
     lo, hi = MEASURED_ETA_BETA_SIGMA
     out = []
     for res in study.sets:
-        s = case.surface_set(res.name)
+        s = built.set(res.name).surface
         r = s.roughness
+        assert r is not None  # a case's surface sets are rough
         gt = r.law is None
         ebs = r.roughness_parameter
         if gt and not lo <= ebs <= hi:

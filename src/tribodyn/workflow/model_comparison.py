@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from ..config.build import as_built
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from ..valvetrain.sweep import locate_jump_speed
 
@@ -56,13 +57,15 @@ def compare_lumped_flexible(
     jump_speeds: bool = True,
     high_factor: float = 3.0,
 ) -> ModelComparison:
-    """Run the lumped companion of a flexible ``case`` (same tribology and numerics) and
-    collect both models' numbers; ``flexible`` is the case's own (flexible) run. The jump
-    speed is searched up to ``high_factor`` × the case's engine speed (NaN with a message
-    if there is no jump up to there)."""
+    """Run the lumped companion of a flexible ``case`` (a Case or BuiltCase; same
+    tribology and numerics) and collect both models' numbers; ``flexible`` is the case's
+    own (flexible) run. The jump speed is searched up to ``high_factor`` × the case's
+    engine speed (NaN with a message if there is no jump up to there)."""
+    built = as_built(case)
     out = ModelComparison()
-    opts = case.dynamics_options()
-    lumped = simulate_valvetrain(case.cam(), case.lumped_companion(), tribology=tribology, **opts)
+    opts = built.simulate_options()
+    companion = built.lumped
+    lumped = simulate_valvetrain(built.cam, companion, tribology=tribology, **opts)
     for name, r in (("lumped", lumped), ("flexible", flexible)):
         if not r.converged:
             out.messages.append(f"{name} dynamics failed: {r.message}")
@@ -73,8 +76,8 @@ def compare_lumped_flexible(
     kw = {k: v for k, v in opts.items() if k != "engine_speed"}
     results = {"lumped": lumped, "flexible": flexible}
     for name, params in (
-        ("lumped", case.lumped_companion()),
-        ("flexible", case.valvetrain_parameters()),
+        ("lumped", companion),
+        ("flexible", built.valvetrain),
     ):
         if name not in out.rows:
             continue
@@ -83,12 +86,13 @@ def compare_lumped_flexible(
             row["jump_speed_rpm"] = math.nan
             out.messages.append(f"{name} jump speed: the follower already jumps at the case speed")
             continue
+        speed = built.case.engine_speed
         found = locate_jump_speed(
-            case.cam(),
+            built.cam,
             params,
-            start=case.engine_speed,
+            start=speed,
             start_result=results[name],
-            high=high_factor * case.engine_speed,
+            high=high_factor * speed,
             tolerance=JUMP_SPEED_TOLERANCE,
             tribology=tribology,
             **kw,

@@ -16,6 +16,7 @@ import numpy as np
 
 from .._validation import InputError, check_positive, check_real
 from ..config import SurfaceSet
+from ..config.build import BuiltCase, as_built, options_for
 from ..contact.dry import solve_dry_contact
 from ..contact.ehl import EHLOptions, EHLResult, solve_ehl
 from ..physics.asperity import Roughness
@@ -49,14 +50,16 @@ def point_surfaces(
 ) -> SurfaceSet:
     """The surfaces of one contact.
 
-    ``surface_set``: a set of ``case`` by name (exclusive with the other arguments).
-    Otherwise a steel tappet (``[materials.steel]`` of the case, or the cam's material)
-    under the case's cam, coated with ``coating`` (E, ν, thickness) or with the material
-    ``coating_material`` of the case ``coating_thickness`` thick, rough with ``roughness``
-    (None: smooth). ς is ``shear_coefficient``, else the coating material's, else the
-    substrate's (an error if the case gives none, as for a surface set); τ₀ is the
-    case's first surface set's.
+    ``case``: a Case or its BuiltCase. ``surface_set``: a set of ``case`` by name
+    (exclusive with the other arguments). Otherwise a steel tappet (``[materials.steel]``
+    of the case, or the cam's material) under the case's cam, coated with ``coating``
+    (E, ν, thickness) or with the material ``coating_material`` of the case
+    ``coating_thickness`` thick, rough with ``roughness`` (None: smooth). ς is
+    ``shear_coefficient``, else the coating material's, else the substrate's (an error if
+    the case gives none, as for a surface set); τ₀ is the case's first surface set's.
     """
+    built = as_built(case)
+    case = built.case
     if surface_set is not None:
         clash = [
             k
@@ -74,7 +77,7 @@ def point_surfaces(
                 f"drop {', '.join(clash)}"
             )
         try:
-            s = case.surface_set(surface_set)
+            s = built.set(surface_set).surface
         except InputError as exc:
             raise InputError(f"surface_set: {exc}") from None
         if shear_coefficient is not None:
@@ -86,9 +89,9 @@ def point_surfaces(
         raise InputError("give either coating (E, nu, thickness) or coating_material (not both)")
     if coating_thickness is not None and coating_material is None:
         raise InputError("coating_thickness needs coating_material")
-    cam = Body(case.material(case.cam_config.material))
+    cam = Body(built.materials[case.cam_config.material])
     substrate_key = "steel" if "steel" in case.materials else case.cam_config.material
-    substrate = case.material(substrate_key)
+    substrate = built.materials[substrate_key]
     sigma = case.materials[substrate_key].boundary_shear_coefficient
     label, key = "uncoated", None
     if coating is not None:
@@ -156,11 +159,12 @@ def solve_point(
     thermal_oil: ThermalLubricant | None = None,
     stress: bool = False,
 ) -> dict:
-    """Solve one contact (see the module docstring). ``lubricant`` and ``options``
-    default to the case's; ``n`` is the dry grid (default: :func:`solve_dry_contact`'s).
-    ``sliding_speed`` defaults to 0 for EHL; a dry contact takes no speeds. ``lubricant`` may be a datasheet
-    oil (:class:`~tribodyn.physics.thermal_oil.ThermalLubricant`): the isothermal solve
-    then uses it at its inlet temperature (μ₀, α, ρ₀ as the thermal solver derives them,
+    """Solve one contact (see the module docstring) of ``case`` (a Case or BuiltCase).
+    ``lubricant`` and ``options`` default to the case's; ``n`` is the dry grid (default:
+    :func:`solve_dry_contact`'s). ``sliding_speed`` defaults to 0 for EHL; a dry contact
+    takes no speeds. ``lubricant`` may be a datasheet oil
+    (:class:`~tribodyn.physics.thermal_oil.ThermalLubricant`): the isothermal solve then
+    uses it at its inlet temperature (μ₀, α, ρ₀ as the thermal solver derives them,
     ``ThermalLubricant.isothermal``) and the output names it (``oil``,
     ``inlet_temperature_K``).
 
@@ -178,6 +182,8 @@ def solve_point(
     (``stress_<body>_<peak>_Pa`` with ``_x_m``, ``_z_m``), the safety factors against
     the case's strengths (``safety_factor_<body>_<mode>``: strength / peak; inf where
     the mode is not loaded, None without a strength) and ``stress_closest_failure``."""
+    built = as_built(case)
+    case = built.case
     w = check_positive("load_per_length", load_per_length, "N/m")
     radius = check_positive("radius", radius, "m")
     width = check_positive("width", width, "m")
@@ -255,7 +261,7 @@ def solve_point(
     else:
         oil = None
         if lubricant is None:
-            lub = case.lubricant()
+            lub = built.lubricant
         elif isinstance(lubricant, Lubricant):
             lub = lubricant
         else:
@@ -263,7 +269,7 @@ def solve_point(
                 "lubricant must be a Lubricant or a ThermalLubricant "
                 f"(got {type(lubricant).__name__})"
             )
-    opts = options or case.ehl_options(surfaces)
+    opts = options or options_for(built, surfaces)
     rough = surfaces.roughness
     iso = solve_ehl(w, radius, ue, us, bodies, lub, rough, options=opts)
     res: EHLResult = iso  # the thermal solution replaces it when thermal_oil is given
@@ -283,10 +289,10 @@ def solve_point(
             us,
             bodies,
             thermal_oil,
-            case.thermal_bodies(surfaces),
+            built.thermal_bodies_of(surfaces),
             rough,
             options=opts,
-            thermal_options=case.thermal_options(),
+            thermal_options=built.thermal_solver_options(),
         )
     W, U, G = hamrock_groups(w, radius, ue, lub.viscosity, lub.pressure_viscosity, e_bulk)
     gV, gE = greenwood_chart_groups(W, U, G)
@@ -369,11 +375,11 @@ def solve_point(
     if not solved:
         out.update({k: None for k in _SOLUTION_KEYS})  # no lubricated solution
     if stress:
-        out["stress"] = _point_stresses(case, surfaces, iso, lub, opts) if solved else None
+        out["stress"] = _point_stresses(built, surfaces, iso, lub, opts) if solved else None
     return out
 
 
-def _point_stresses(case, surfaces: SurfaceSet, result, lubricant, options) -> dict:
+def _point_stresses(built: BuiltCase, surfaces: SurfaceSet, result, lubricant, options) -> dict:
     """The stress keys of :func:`solve_point` (see there)."""
     import math
 
@@ -384,13 +390,14 @@ def _point_stresses(case, surfaces: SurfaceSet, result, lubricant, options) -> d
     cam, tappet, _ = ehl_stresses(
         result, surfaces.bodies, lubricant, surfaces.roughness, options=options
     )
-    if surfaces.name in case.surface_set_names:
-        strengths = case.strengths(surfaces.name)
+    by_material = built.material_strengths
+    if surfaces.name in built.sets:
+        strengths = built.set(surfaces.name).strengths
     else:  # an ad-hoc pair: the cam's material, a steel tappet, the named coating
-        cam_s = case.material_strength(case.cam_config.material)
-        sub = case.material_strength("steel") if "steel" in case.materials else cam_s
+        cam_s = by_material[built.case.cam_config.material]
+        sub = by_material["steel"] if "steel" in by_material else cam_s
         coat = (
-            case.material_strength(surfaces.coating_material)
+            by_material[surfaces.coating_material]
             if surfaces.coating_material is not None
             else None
         )

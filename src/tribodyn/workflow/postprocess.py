@@ -25,6 +25,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .. import paper
+from ..config.build import as_built, build
 from ..physics.materials import reduced_modulus
 from ..physics.regimes import (
     REGIMES,
@@ -84,16 +85,17 @@ def surface_roles(case) -> dict:
     """Surface sets by role: ``reference`` is the first uncoated set (the first set if all
     are coated); for each coating material of the paper (keys ``dlc``, ``wcc`` in
     ``[materials]``) the set with that coating whose thickness is nearest the paper's
-    4 µm. Chosen by material key, never by label text."""
-    sets = case.surface_sets()
+    4 µm. Chosen by material key, never by label text. ``case``: a Case or BuiltCase."""
+    sets = as_built(case).surface_sets
     roles = {"reference": next((s.name for s in sets if s.coating is None), sets[0].name)}
     for key in paper.MATERIALS:
-        cands = [s for s in sets if s.coating_material == key]
+        cands = [
+            (abs(math.log(s.coating.thickness / paper.COATING_THICKNESS)), i, s.name)
+            for i, s in enumerate(sets)
+            if s.coating is not None and s.coating_material == key
+        ]
         if cands:
-            best = min(
-                cands, key=lambda s: abs(math.log(s.coating.thickness / paper.COATING_THICKNESS))
-            )
-            roles[key] = best.name
+            roles[key] = min(cands)[2]
     return roles
 
 
@@ -143,10 +145,11 @@ def representative_points(inputs, dynamics, loaded) -> np.ndarray:
 
 
 def chart(case, inputs, loaded_any):
-    """(g_V, g_E, regime code) per EHL sample with the bulk E' of the first surface set;
-    NaN / −1 where no set is loaded."""
-    lub = case.lubricant()
-    e_prime = reduced_modulus(case.surface_sets()[0].bodies)
+    """(g_V, g_E, regime code) per EHL sample with the bulk E' of the first surface set
+    of ``case`` (a Case or BuiltCase); NaN / −1 where no set is loaded."""
+    built = as_built(case)
+    lub = built.lubricant
+    e_prime = reduced_modulus(built.surface_sets[0].bodies)
     w = np.maximum(inputs.contact_force, 1e-9) / inputs.width
     W, U, G = hamrock_groups(
         w,
@@ -279,19 +282,19 @@ def _finite(v):
 
 def analyse(study) -> Analysis:
     """The :class:`Analysis` of a :class:`~tribodyn.workflow.cycle.CycleStudy`."""
-    case, dyn, inp = study.case, study.dynamics, study.inputs
-    roles = surface_roles(case)
+    built, dyn, inp = build(study.case), study.dynamics, study.inputs
+    roles = surface_roles(built)
     ref = study.set(roles["reference"])
     ev = event_mask(dyn, inp)
     loaded_any = np.any([s.loaded for s in study.sets], axis=0)
     pidx = representative_points(inp, dyn, ref.loaded)
-    gV, gE, regime = chart(case, inp, loaded_any)
+    gV, gE, regime = chart(built, inp, loaded_any)
     gains = {}
     for s in study.sets:
         m = film_gain_mask(ev, ref.loaded, s.loaded, ref.converged, s.converged)
         gains[s.name] = film_gain_statistics(ref.central_film, s.central_film, m, pidx)
-    lub = case.lubricant()
-    e_prime = reduced_modulus(case.surface_set(roles["reference"]).bodies)
+    lub = built.lubricant
+    e_prime = reduced_modulus(built.set(roles["reference"]).surface.bodies)
     factors = [
         modulus_factor_for_gain(
             inp.contact_force[i] / inp.width,
@@ -390,8 +393,9 @@ def summary(study: CycleStudy, an: Analysis) -> dict:
     from .verdict import coating_verdicts
 
     verdicts = coating_verdicts(study, ref.name, dict(study.labels))
+    built = build(study.case)
     for name, d in out["surface_sets"].items():
-        d["asperity_law"] = study.case.surface_set(name).asperity_law
+        d["asperity_law"] = built.set(name).surface.asperity_law
         d["coating_verdict"] = verdicts.get(name)  # None: the reference set
     _engineering_summary(study, out)
     out["implicit_vs_explicit"] = _implicit_vs_explicit(study)

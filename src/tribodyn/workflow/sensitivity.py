@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..config.build import BuiltCase, as_built, options_for
 from ..contact.ehl import solve_ehl
 from ..physics.asperity import Roughness
 from .cycle_ehl import CycleInputs
@@ -98,9 +99,9 @@ def nose_condition(inputs: CycleInputs) -> NoseCondition | None:
 
 
 def roughness_sensitivity(case, surface_set, nose: NoseCondition) -> RoughnessSensitivity:
-    """Steady EHL of ``surface_set`` at the ``nose`` condition with the variants of the
-    module docstring."""
-    s = surface_set
+    """Steady EHL of ``surface_set`` of a case (Case or BuiltCase) at the ``nose``
+    condition with the variants of the module docstring."""
+    s, built = surface_set, as_built(case)
     r0 = s.roughness
     alt = Roughness(
         asperity_density=GAUSSIAN_ETA_BETA_SIGMA / (r0.rms * r0.summit_radius),
@@ -108,7 +109,7 @@ def roughness_sensitivity(case, surface_set, nose: NoseCondition) -> RoughnessSe
         summit_radius=r0.summit_radius,
         method=r0.method,
     )
-    opts = case.ehl_options(s)
+    opts = options_for(built, s)
     other = "newtonian" if opts.viscous_model == "eyring" else "eyring"
     variants: tuple[tuple[str, Roughness, dict[str, object]], ...] = (
         ("case roughness", r0, {}),
@@ -118,31 +119,34 @@ def roughness_sensitivity(case, surface_set, nose: NoseCondition) -> RoughnessSe
     )
     out = RoughnessSensitivity(nose, s.name)
     for label, rough, over in variants:
-        out.cases[label] = _steady(case, s, nose, rough, label, opts, over)
+        out.cases[label] = _steady(built, s, nose, rough, label, opts, over)
     return out
 
 
 def surface_sets_at_nose(case, nose: NoseCondition) -> RoughnessSensitivity:
-    """Steady EHL of every surface set of ``case`` at its own ``nose`` condition (its
-    roughness, coating and options), keyed by the sets' labels; ``surface_set`` is
-    ``"*"``."""
+    """Steady EHL of every surface set of ``case`` (Case or BuiltCase) at its own
+    ``nose`` condition (its roughness, coating and options), keyed by the sets' labels;
+    ``surface_set`` is ``"*"``."""
+    built = as_built(case)
     out = RoughnessSensitivity(nose, "*")
-    for s in case.surface_sets():
+    for own in built.sets.values():
+        s = own.surface
         out.cases[s.coating_label] = _steady(
-            case, s, nose, s.roughness, s.coating_label, case.ehl_options(s), {}
+            built, s, nose, s.roughness, s.coating_label, own.options, {}
         )
     return out
 
 
-def _steady(case, s, nose, rough, label, opts, over) -> SensitivityCase:
-    w = nose.force / case.width
+def _steady(built: BuiltCase, s, nose, rough, label, opts, over) -> SensitivityCase:
+    width = built.case.width
+    w = nose.force / width
     r = solve_ehl(
         w,
         nose.radius,
         nose.entrainment_speed,
         nose.sliding_speed,
         s.bodies,
-        case.lubricant(),
+        built.lubricant,
         rough,
         options=opts,
         **over,
@@ -155,8 +159,8 @@ def _steady(case, s, nose, rough, label, opts, over) -> SensitivityCase:
         central_film_m=r.central_film,
         min_film_m=r.min_film,
         asperity_load_share=r.asperity_load / w,
-        boundary_friction_N=r.boundary_friction * case.width,
-        viscous_friction_N=r.viscous_friction * case.width,
+        boundary_friction_N=r.boundary_friction * width,
+        viscous_friction_N=r.viscous_friction * width,
         friction_coefficient=r.friction_coefficient,
         converged=r.converged,
     )

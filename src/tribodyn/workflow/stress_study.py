@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..config.build import as_built, build, options_for
 from ..contact.stress import batch_surface_loads, loaded_half_width
 from ..physics.asperity_stress import micro_contact_estimate
 from ..physics.materials import as_bodies, reduced_modulus
@@ -277,16 +278,18 @@ def _evaluate(loads: dict, pair, depths) -> dict:
 
 
 def stress_for_set(case, surface_set, result, inputs, **kwargs) -> CycleStress:
-    """:func:`stress_along_cycle` for a case's surface set (its bodies, roughness and
-    friction laws, the case's lubricant; typical strengths unless ``strengths`` given)."""
+    """:func:`stress_along_cycle` for a surface set of a case (Case or BuiltCase; its
+    bodies, roughness and friction laws, the case's lubricant; typical strengths unless
+    ``strengths`` given)."""
+    built = as_built(case)
     kwargs.setdefault("strengths", default_strengths(surface_set))
     return stress_along_cycle(
         result,
         inputs,
         surface_set.bodies,
-        case.lubricant(),
+        built.lubricant,
         surface_set.roughness,
-        case.ehl_options(surface_set),
+        options_for(built, surface_set),
         **kwargs,
     )
 
@@ -413,13 +416,14 @@ def set_stress_summary(study, name: str) -> dict:
     if cs is None:
         return {}
     case = study.case
-    s = case.surface_set(name)
+    own = build(case).set(name)
+    s = own.surface
     worst = closest_failure(cs)  # crank_deg: the run's crank angle (conventions.CRANK_ANGLE)
     out: dict = {
         "stress_closest_failure": worst,
         "min_safety_factor": worst["safety_factor"] if worst else None,
     }
-    est = asperity_estimate(study.set(name), s.bodies, s.roughness, case.strengths(s))
+    est = asperity_estimate(study.set(name), s.bodies, s.roughness, own.strengths)
     if est is not None:
         out["asperity_scale_estimate"] = est
     for mode in MODE_PEAK:
@@ -432,7 +436,7 @@ def set_stress_summary(study, name: str) -> dict:
         b: {k: {kk: _finite(vv) for kk, vv in v.items()} for k, v in mx.items()}
         for b, mx in cs.maxima.items()
     }
-    k, src = case.wear_coefficient(s)
+    k, src = own.wear_coefficient, own.wear_source
     out.update(
         wear_coefficient_m3_per_Nm=k,
         wear_coefficient_source=src or None,

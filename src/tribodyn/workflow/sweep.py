@@ -357,6 +357,7 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
     term is an upper bound (iterations stop once converged)."""
     from threadpoolctl import threadpool_limits
 
+    from ..config.build import build
     from ..contact.ehl import TransientEHL
     from .coating_study import dry_coating_study, ehl_coating_study
     from .cycle import StudyError
@@ -366,9 +367,10 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
     from .sweep_point import point_dynamics
 
     clock = time.process_time  # CPU time: one core, whatever the machine's load
+    built = build(case)
     with threadpool_limits(1):
         t0 = clock()
-        dyn = point_dynamics(case)
+        dyn = point_dynamics(built)
         t_dyn = clock() - t0
         if mode == "dynamics" or not dyn.converged:
             return t_dyn
@@ -378,11 +380,11 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
         n_loaded = int(loaded.sum())
         if n_loaded == 0:
             raise StudyError("no EHL sample is loaded")
-        ref = case.surface_set(surface_roles(case)["reference"])
+        ref = built.set(surface_roles(built)["reference"])
         i0 = int(inp.contact_force.argmax())
         i0 = max(1, min(i0, inp.crank_angle.size - steps))
         tr = TransientEHL(
-            ref.bodies, case.lubricant(), ref.roughness, options=case.ehl_options(ref)
+            ref.surface.bodies, built.lubricant, ref.surface.roughness, options=ref.options
         )
         t0 = clock()
         k = 0
@@ -397,10 +399,10 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
         t_step = (clock() - t0) / max(k, 1)
         t0 = clock()
         dry_coating_study()
-        ehl_coating_study(case.lubricant(), case)
+        ehl_coating_study(built.lubricant, built)
         nose = nose_condition(inp)
         if nose is not None:
-            roughness_sensitivity(case, ref, nose)
+            roughness_sensitivity(built, ref.surface, nose)
         t_single = clock() - t0
     t_ehl = n_loaded * t_step
     t = t_dyn + len(case.surface_set_names) * t_ehl + t_single

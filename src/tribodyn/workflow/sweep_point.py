@@ -35,6 +35,7 @@ import traceback
 import xarray as xr
 
 from .. import _json
+from ..config.build import BuiltCase, as_built
 from .variables import Group, build
 from .variables_study import StudySource
 from .variables_sweep import (
@@ -109,20 +110,22 @@ def _dynamics_scalars(dyn) -> dict:
 
 
 def point_dynamics(case):
+    """The valvetrain dynamics of a case (Case or BuiltCase) with the explicit tribology
+    of its reference surface set, as the study runs them."""
     from ..valvetrain.dynamics import simulate_valvetrain
     from .postprocess import surface_roles
 
-    ref = case.surface_set(surface_roles(case)["reference"])
+    built = as_built(case)
     return simulate_valvetrain(
-        case.cam(),
-        case.valvetrain_parameters(),
-        tribology=case.analytic_tribology(ref),
-        **case.dynamics_options(),
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology(surface_roles(built)["reference"]),
+        **built.simulate_options(),
     )
 
 
-def _dynamics_point(case, traces: bool) -> tuple[xr.Dataset, list]:
-    dyn = point_dynamics(case)
+def _dynamics_point(built: BuiltCase, traces: bool) -> tuple[xr.Dataset, list]:
+    dyn = point_dynamics(built)
     if not dyn.converged:
         raise _PointFailure(f"valvetrain dynamics failed: {dyn.message}")
     ds = _scalars(xr.Dataset(), {**_dynamics_scalars(dyn), "n_warnings": int(dyn.jump)})
@@ -132,10 +135,10 @@ def _dynamics_point(case, traces: bool) -> tuple[xr.Dataset, list]:
     return ds, warnings
 
 
-def _study_point(case, traces: bool) -> tuple[xr.Dataset, list]:
+def _study_point(built: BuiltCase, traces: bool) -> tuple[xr.Dataset, list]:
     from .cycle import run_cycle_study
 
-    study = run_cycle_study(case, workers=1)
+    study = run_cycle_study(built, workers=1)
     source = StudySource(study)
     summ = source.analysis.summary
     ie = summ["implicit_vs_explicit"]
@@ -154,12 +157,12 @@ def _study_point(case, traces: bool) -> tuple[xr.Dataset, list]:
     return ds, list(study.warnings)
 
 
-def _engine_point(case) -> tuple[xr.Dataset, list]:
+def _engine_point(built: BuiltCase) -> tuple[xr.Dataset, list]:
     """A whole engine (:func:`~tribodyn.workflow.engine.run_engine_study`; the coatings
     share each lobe's dynamics) reduced to per-set scalars."""
     from .engine import run_engine_study
 
-    study = run_engine_study(case, workers=1)
+    study = run_engine_study(built.case, workers=1)
     summ = study.summary()
     intake = study.lobes["intake"].study
     if intake is None:
@@ -185,7 +188,8 @@ class _PointFailure(RuntimeError):
 
 def run_point(case, mode: str = "study", traces: bool = False) -> xr.Dataset:
     """Run one sweep point: the full cam-cycle study of ``case`` (``mode="study"``) or the
-    valvetrain dynamics alone (``mode="dynamics"``); return its Dataset.
+    valvetrain dynamics alone (``mode="dynamics"``); return its Dataset. ``case`` (the
+    point's case, or its BuiltCase) is built once for the point.
 
     The study runs serially in this process (one BLAS thread): a sweep's parallelism is
     over points. Failures are returned as :func:`failed_point`, never raised."""
@@ -196,12 +200,13 @@ def run_point(case, mode: str = "study", traces: bool = False) -> xr.Dataset:
     t0, c0 = time.perf_counter(), time.process_time()
     try:
         with threadpool_limits(1):
+            built = as_built(case)
             if mode == "dynamics":
-                ds, warnings = _dynamics_point(case, traces)
+                ds, warnings = _dynamics_point(built, traces)
             elif mode == "study":
-                ds, warnings = _study_point(case, traces)
+                ds, warnings = _study_point(built, traces)
             elif mode == "engine":
-                ds, warnings = _engine_point(case)
+                ds, warnings = _engine_point(built)
             else:
                 raise ValueError(f"mode must be 'study', 'dynamics' or 'engine' (got {mode!r})")
     except (_PointFailure, StudyError) as exc:

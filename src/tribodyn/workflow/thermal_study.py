@@ -19,6 +19,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from ..config.build import BuiltCase, as_built, options_for
 from ..contact.ehl.options import EHLOptions
 from ..contact.ehl.thermal import ThermalOptions, couette_stress
 from ..contact.ehl.thermal_transient import ThermalTransientEHL
@@ -143,15 +144,15 @@ class ThermalCycle(CycleMethod):
 
     @classmethod
     def for_set(cls, case, surface_set) -> ThermalCycle:
-        """The thermal method of one surface set of a case."""
-        s = surface_set
+        """The thermal method of one surface set of a case (Case or BuiltCase)."""
+        s, built = surface_set, as_built(case)
         return cls(
             s.bodies,
-            case.thermal_lubricant(),
-            case.thermal_bodies(s),
+            built.thermal_oil(),
+            built.thermal_bodies_of(s),
             s.roughness,
-            case.ehl_options(s),
-            case.thermal_options(),
+            options_for(built, s),
+            built.thermal_solver_options(),
         )
 
 
@@ -193,19 +194,19 @@ def _cond(r):
 
 
 def thermal_for_set(case, surface_set, inputs: CycleInputs, progress=None) -> ThermalSetCycleResult:
-    """The thermal march of one surface set of a case (:func:`~.cycle_ehl.cycle_for_set`
-    with the ``"thermal"`` method)."""
+    """The thermal march of one surface set of a case (Case or BuiltCase;
+    :func:`~.cycle_ehl.cycle_for_set` with the ``"thermal"`` method)."""
     res = cycle_for_set(case, surface_set, inputs, "thermal", progress)
     assert isinstance(res, ThermalSetCycleResult)
     return res
 
 
-def thermal_task(case, name, inputs):
+def thermal_task(built: BuiltCase, name, inputs):
     """The thermal cycle of one surface set, as a task of the study's executor."""
     from threadpoolctl import threadpool_limits
 
     with threadpool_limits(1):
-        return thermal_for_set(case, case.surface_set(name), inputs)
+        return thermal_for_set(built, built.set(name).surface, inputs)
 
 
 def coating_thermal_effect(

@@ -15,6 +15,7 @@ from functools import cached_property
 
 import numpy as np
 
+from ..config.build import build
 from ..physics.regimes import REGIMES
 from .conventions import CRANK_ANGLE
 from .stress_study import MODE_PEAK, PEAKS
@@ -44,6 +45,11 @@ class StudySource:
     def case(self):
         return self.study.case
 
+    @cached_property
+    def built(self):
+        """The study's :class:`~tribodyn.config.build.BuiltCase`."""
+        return build(self.case)
+
     @property
     def inputs(self):
         return self.study.inputs
@@ -58,7 +64,7 @@ class StudySource:
 
     @cached_property
     def set_config(self) -> dict:
-        return {s.name: s for s in self.case.surface_sets()}
+        return {s.name: s for s in self.built.surface_sets}
 
     @cached_property
     def engineering(self):
@@ -69,7 +75,7 @@ class StudySource:
     def oil(self) -> dict:
         from .engineering import oil_as_used
 
-        return oil_as_used(self.case)
+        return oil_as_used(self.built)
 
     @property
     def stresses(self) -> dict:

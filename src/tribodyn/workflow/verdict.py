@@ -36,6 +36,7 @@ from typing import Any
 
 import numpy as np
 
+from ..config.build import as_built, build
 from ..physics import typical
 
 __all__ = [
@@ -84,9 +85,11 @@ def _ratio_bounds(value: float, tv: typical.TypicalValue) -> tuple[float, float]
 
 def viscous_factor_bounds(case) -> tuple[float, float]:
     """(k_lo, k_hi) of the viscous friction over the published ranges of τ_E and Λ
-    (module text); 1 for an input the case's viscous law does not use."""
-    lub = case.lubricant()
-    n = case.numerics
+    (module text); 1 for an input the viscous law of ``case`` (a Case or BuiltCase) does
+    not use."""
+    built = as_built(case)
+    lub = built.lubricant
+    n = built.case.numerics
     r_lo = r_hi = 1.0
     k_lo = k_hi = 1.0
     if n.viscous_model == "eyring":
@@ -110,7 +113,7 @@ def set_energy_function(study, name: str):
     e_v = float(np.nansum(np.where(s.loaded, s.viscous_friction, 0.0) * w))
     e_b = float(np.nansum(np.where(s.loaded, s.boundary_friction, 0.0) * w))
     e_wa = float(np.nansum(np.where(s.loaded, s.asperity_load, 0.0) * w))
-    sigma = float(study.case.surface_set(name).boundary_shear_coefficient)
+    sigma = float(build(study.case).set(name).surface.boundary_shear_coefficient)
 
     def energy(sigma_new: float, k: float = 1.0) -> float:
         return k * e_v + e_b + (sigma_new - sigma) * e_wa
@@ -151,20 +154,21 @@ def verdict_sentence(label: str, ref_label: str, pct: float, lo: float, hi: floa
 def coating_verdicts(study, reference: str, labels: dict[str, str]) -> dict[str, dict]:
     """``coating_verdict`` of every set of a cycle study other than ``reference`` (see
     :func:`verdicts_from_energies`)."""
-    case = study.case
+    built = build(study.case)
     energies = {s.name: set_energy_function(study, s.name) for s in study.sets}
     return verdicts_from_energies(
-        energies, boundary_ranges(case, list(energies)), reference, labels, case, METHOD
+        energies, boundary_ranges(built, list(energies)), reference, labels, built, METHOD
     )
 
 
 def boundary_ranges(case, names) -> dict[str, tuple[float, float, float]]:
-    """(ς in use, low, high) of each surface set (:func:`~tribodyn.physics.typical.
-    boundary_friction_range`)."""
+    """(ς in use, low, high) of each surface set of ``case`` (a Case or BuiltCase;
+    :func:`~tribodyn.physics.typical.boundary_friction_range`)."""
+    built = as_built(case)
     out = {}
     for name in names:
-        sig = float(case.surface_set(name).boundary_shear_coefficient)
-        out[name] = (sig, *typical.boundary_friction_range(_material(case, name), sig))
+        sig = float(built.set(name).surface.boundary_shear_coefficient)
+        out[name] = (sig, *typical.boundary_friction_range(_material(built.case, name), sig))
     return out
 
 
@@ -176,7 +180,8 @@ def verdicts_from_energies(
     less friction), ``range_pct`` [lo, hi], ``range_independent_pct`` [lo, hi],
     ``lowers_friction`` (the change in use is negative), ``sign_settled`` (the range
     does not include 0), ``sentence``, ``method``, ``inputs``} (module text). A set
-    whose energies are not finite gets None values and says so."""
+    whose energies are not finite gets None values and says so. ``case``: a Case or
+    BuiltCase."""
     k_lo, k_hi = viscous_factor_bounds(case)
     e_ref = energies[reference]
     sig_ref, ref_lo, ref_hi = sigmas[reference]
