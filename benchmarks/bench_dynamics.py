@@ -19,6 +19,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.valvetrain import compare_results, simulate_valvetrain
 from tribodyn.workflow.cycle import _coupling_task
 from tribodyn.workflow.cycle_ehl import CycleInputs
@@ -26,10 +27,11 @@ from tribodyn.workflow.cycle_ehl import CycleInputs
 
 def main() -> dict:
     threadpool_limits(1)
-    case = load_case()
-    ref = case.surface_sets()[0]
-    args = (case.cam(), case.valvetrain_parameters())
-    kw = dict(tribology=case.analytic_tribology(ref), **case.dynamics_options())
+    case = load_case("andreou2023")
+    built = build(case)
+    ref = built.surface_sets[0]
+    args = (built.cam, built.valvetrain)
+    kw = dict(tribology=built.analytic_tribology(ref.name), **built.simulate_options())
     simulate_valvetrain(*args, **kw)  # warm-up
     t0 = time.perf_counter()
     ex = simulate_valvetrain(*args, **kw)
@@ -42,12 +44,12 @@ def main() -> dict:
     }
     inputs = CycleInputs.from_dynamics(ex, case.numerics.crank_step_deg, case.width)
     t0 = time.perf_counter()
-    res = _coupling_task(case, ref.name, ex, inputs)
+    _first, coupling, _stress = _coupling_task(built, ref.name, ex, inputs)
     out["implicit_s"] = time.perf_counter() - t0
-    out["implicit_converged"] = res["converged"]
-    out["implicit_message"] = res["message"]
-    out["implicit_history"] = res["history"]
-    im = res["implicit"]
+    out["implicit_converged"] = coupling.converged
+    out["implicit_message"] = coupling.message
+    out["implicit_history"] = [vars(h) for h in coupling.history]
+    im = coupling.implicit
     if im is not None:
         out["implicit_vs_explicit"] = compare_results(ex, im)
         d = np.abs(np.interp(ex.crank_angle, im.crank_angle, im.contact_force) - ex.contact_force)
