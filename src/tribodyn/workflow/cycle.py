@@ -49,6 +49,7 @@ from .engineering import (
     engineering_outputs,
     plausibility_warnings,
 )
+from .inputs_as_used import InputsAsUsed, inputs_as_used
 from .model_comparison import ModelComparison, compare_lumped_flexible
 from .postprocess import Analysis, analyse, surface_roles
 from .sensitivity import (
@@ -98,6 +99,8 @@ class CycleStudy:
     #: the report carries the paper's comparison (claims, Figs. 5/6 at its conditions)
     compare_paper: bool = False
     engineering: Engineering | None = None  #: torque, pressure, kinematics, surge
+    #: the inputs as used (surface sets, cam, thermal oil), for the report
+    as_used: InputsAsUsed | None = None
 
     def engineering_outputs(self) -> Engineering:
         """Compute (once) and return the :class:`Engineering` outputs of the study."""
@@ -369,6 +372,7 @@ def run_cycle_study(
         timings=timings,
         isothermal_sets=isothermal,
         compare_paper=paper_cmp,
+        as_used=inputs_as_used(built),
     )
     # the force- and film-deciding values the case left to typical ones, named first
     study.warnings += default_warnings(case)

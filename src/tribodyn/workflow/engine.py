@@ -137,6 +137,7 @@ class EngineStudy:
     valves: list[dict]  #: cylinder, kind, camshaft, nose_deg per valve
     lobe_friction_torque: np.ndarray  #: (set, valve, crank) cam–tappet T_f per valve
     lobes: dict[str, LobeTraces]
+    labels: dict[str, str] = field(default_factory=dict)  #: set name → label
     runtime_s: float = 0.0
     timings: dict = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
@@ -437,6 +438,7 @@ def run_engine_study(
         valves=valves,
         lobe_friction_torque=per_valve,
         lobes=lobes,
+        labels=dict(studies["intake"].labels),
         runtime_s=time.perf_counter() - t0,
         timings=timings,
         warnings=warnings,
