@@ -38,7 +38,9 @@ from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from .coating_study import (
     DryCoatingCase,
     EHLCoatingStudy,
+    HertzReference,
     dry_coating_study,
+    dry_hertz_reference,
     ehl_coating_study,
 )
 from .coupling import CouplingResult, run_coupling
@@ -81,6 +83,7 @@ class CycleStudy:
     labels: dict[str, str]  #: set name → label
     coupling: CouplingResult = field(default_factory=CouplingResult)
     dry: list[DryCoatingCase] = field(default_factory=list)  #: Fig. 5 cases
+    dry_hertz: HertzReference | None = None  #: Fig. 5's Hertz reference (uncoated steel)
     ehl_coating: EHLCoatingStudy | None = None  #: Fig. 6 results
     sensitivity: RoughnessSensitivity | None = None  #: at the cam nose
     #: every surface set at the case's own nose (a case other than the paper's)
@@ -366,6 +369,7 @@ def run_cycle_study(
         labels={s.name: s.coating_label for s in sets},
         coupling=coupling,
         dry=coating[0],
+        dry_hertz=dry_hertz_reference(coating[0]),
         ehl_coating=coating[1],
         sensitivity=coating[2],
         nose_sets=coating[3] if len(coating) > 3 else None,

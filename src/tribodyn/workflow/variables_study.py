@@ -82,8 +82,9 @@ class StudySource:
 
     @cached_property
     def dry_x(self) -> np.ndarray:
-        half = max(1.3 * c.result.half_width for c in self.study.dry)
-        return np.linspace(-half, half, 401)
+        from .coating_study import dry_grid
+
+        return dry_grid(self.study.dry)
 
     @cached_property
     def ehl_x(self) -> np.ndarray:
@@ -284,6 +285,17 @@ DRY = (
         lambda s: [c.result.half_width for c in s.study.dry]),
     var("dry_max_pressure", "dry_ratio", "Pa", "dry contact maximum pressure (Fig. 5)",
         lambda s: [c.result.max_pressure for c in s.study.dry]),
+)  # fmt: skip
+#: the Hertz contact of uncoated steel at the dry study's conditions (Fig. 5's reference)
+DRY_HERTZ = (
+    var("dry_hertz_x", "dry_hertz_x", "m", "position along the Hertz reference contact "
+        "(Fig. 5)", lambda s: s.study.dry_hertz.x, coord=True),
+    var("dry_hertz_pressure", "dry_hertz_x", "Pa", "Hertz pressure of uncoated steel at "
+        "the dry study's conditions (Fig. 5)", lambda s: s.study.dry_hertz.pressure),
+    var("dry_hertz_half_width", (), "m", "Hertz half-width of uncoated steel (Fig. 5)",
+        lambda s: s.study.dry_hertz.half_width),
+    var("dry_hertz_max_pressure", (), "Pa", "Hertz maximum pressure of uncoated steel "
+        "(Fig. 5)", lambda s: s.study.dry_hertz.max_pressure),
 )  # fmt: skip
 
 
@@ -553,6 +565,7 @@ STUDY = (
          ITERATIONS, *EHL.values(), *PROFILES)
     ),
     Group(DRY, when=lambda s: bool(s.study.dry)),
+    Group(DRY_HERTZ, when=lambda s: getattr(s.study, "dry_hertz", None) is not None),
     Group(EHL_COATING,
           when=lambda s: (e := s.study.ehl_coating) is not None and bool(e.results)),
     Group(STRESSES, when=lambda s: bool(s.stresses)),
