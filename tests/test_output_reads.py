@@ -44,6 +44,7 @@ SOLVER_MODULES = (
     "tribodyn.contact",
     "tribodyn.valvetrain.dynamics",
     "tribodyn.physics.stress",
+    "tribodyn.physics.hertz",
     "tribodyn.topography.load_separation",
     "tribodyn.config.build",
     "tribodyn.workflow.cycle_ehl",
@@ -60,6 +61,10 @@ SOLVER_FUNCTIONS = frozenset(
         "engineering_outputs",
         "synthetic_load_separation",
         "subsurface_stress",
+        "dry_coating_study",
+        "ehl_coating_study",
+        "dry_hertz_reference",
+        "hertz_line_contact",
     }
 )
 SOLVER_PREFIXES = ("solve_", "simulate_")
