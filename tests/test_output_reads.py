@@ -8,6 +8,8 @@ from __future__ import annotations
 import ast
 from pathlib import Path
 
+import pytest
+
 import tribodyn
 
 OUTPUT = Path(tribodyn.__file__).parent / "output"
@@ -172,3 +174,30 @@ def test_the_check_finds_each_kind_of_violation(tmp_path):
     )
     found = violations(src, "tribodyn.output")
     assert len(found) == 10, found
+
+
+def test_the_inputs_as_used_are_the_case_files_numbers():
+    """What the report reads instead of building the case: the case file's numbers."""
+    import math
+    import tomllib
+
+    from tribodyn.config import load_case
+    from tribodyn.config.build import build
+    from tribodyn.config.case import bundled_cases
+    from tribodyn.workflow.inputs_as_used import inputs_as_used
+
+    raw = tomllib.loads(bundled_cases()["andreou2023"].read_text(encoding="utf-8"))
+    used = inputs_as_used(build(load_case()))
+    assert used.cam_base_radius == raw["cam"]["base_radius"]
+    assert used.thermal_oil is None  # an isothermal case
+    assert list(used.surfaces) == [s["name"] for s in raw["surface_sets"]]
+    for s in raw["surface_sets"]:
+        u, r = used.surfaces[s["name"]], s["roughness"]
+        ebs = r["asperity_density"] * r["summit_radius"] * r["rms"]
+        assert u["rms_m"] == r["rms"] and u["greenwood_tripp"]
+        assert u["roughness_parameter"] == pytest.approx(ebs, rel=1e-12)
+        assert u["roughness_factor"] == pytest.approx(
+            ebs**2 * math.sqrt(r["rms"] / r["summit_radius"]), rel=1e-12
+        )
+        assert u["coating_thickness_m"] == s.get("coating_thickness")
+        assert u["coating_material"] == s.get("coating")
