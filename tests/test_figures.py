@@ -218,7 +218,7 @@ def _check_pngs(paths, out):
 def test_make_figures_writes_every_png(tmp_path):
     ds = synthetic_dataset()
     paths = make_figures(ds, tmp_path)
-    # the stress map needs the stress traces (drawn in test_stress_cycle.py)
+    # the stress map needs the maps a study stores (drawn in test_stress_cycle.py)
     assert set(paths) == set(FIGURES) - {"fig27_stress_map.png"}
     assert all(name.startswith("fig") and name.endswith(".png") for name in FIGURES)
     _check_pngs(paths, tmp_path)

@@ -287,9 +287,9 @@ def test_result_folder_copies_every_sets_measured_map(tmp_path):
 
 
 def test_stress_figure_of_a_relative_map_drawn_from_another_folder(tmp_path, monkeypatch):
-    """The stress figure rebuilds the sets from results.nc's case; a map given relative
-    to the case file must still be found when tribodyn runs in another folder (before:
-    the writing failed and the results went to a rescue folder)."""
+    """A measured map given relative to the case file is found when tribodyn runs in
+    another folder, and the stress figure is drawn (from the fields the study stored in
+    results.nc; before, the figure rebuilt the sets and the writing failed)."""
     import tomli_w
 
     from tribodyn.topography import write_topography

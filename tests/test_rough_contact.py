@@ -348,14 +348,27 @@ def test_report_method_names_the_asperity_model_of_the_sets():
     from types import SimpleNamespace
 
     from tribodyn.output.report import _asperity_models
+    from tribodyn.workflow.inputs_as_used import surface_as_used
 
     e_prime = 2.31e11
     gt = Roughness(1e9, 0.2e-6, 200e-6)
     law = Roughness(1e9, 0.2e-6, 200e-6, law=_gt_law(e_prime, gt))
 
     def case(*roughs):
-        sets = [SimpleNamespace(name=f"s{i}", roughness=r) for i, r in enumerate(roughs)]
-        return SimpleNamespace(surface_sets=lambda: sets)
+        """The surface sets as used (what the report reads) of sets with ``roughs``."""
+        sets = [
+            SimpleNamespace(
+                name=f"s{i}",
+                roughness=r,
+                coating_label=f"s{i}",
+                coating_material=None,
+                coating=None,
+                asperity_law="",
+                boundary_shear_coefficient=0.1,
+            )
+            for i, r in enumerate(roughs)
+        ]
+        return {s.name: surface_as_used(s) for s in sets}
 
     assert _asperity_models(case(gt, gt)) == "Greenwood–Tripp asperities"
     assert "Greenwood" not in _asperity_models(case(law, law))

@@ -138,7 +138,7 @@ def test_wear_per_cycle_and_hours_against_an_independent_sum(light_study):
 
 def test_stress_map_and_report_section(light_study, tmp_path):
     from tribodyn.output.dataset import study_to_dataset
-    from tribodyn.output.figures.stress import greatest_risk, stress_field_at, stress_maps
+    from tribodyn.output.figures.stress import NO_MAP, greatest_risk, stored_map, stress_maps
     from tribodyn.output.report_stress import stress_section
 
     study = light_study
@@ -147,15 +147,26 @@ def test_stress_map_and_report_section(light_study, tmp_path):
     r = greatest_risk(ds, "dlc_4um")
     w = summ["surface_sets"]["dlc_4um"]["stress_closest_failure"]
     assert (r["body"], r["mode"], r["crank_deg"]) == (w["body"], w["mode"], w["crank_deg"])
-    # the map's field, rebuilt from results.nc alone, has the recorded peak
-    st, hc, _ = stress_field_at(ds, "dlc_4um", r["index"], "tappet")
-    assert hc == 4e-6
-    assert st.max_von_mises_substrate.value == pytest.approx(
+    assert (r["safety_factor"], r["x_m"], r["z_m"]) == (w["safety_factor"], w["x_m"], w["z_m"])
+    # the map's field, stored by the study in results.nc, has the recorded peak in the
+    # substrate (below the 4 µm coating) and reaches 2.5 loaded half-widths around it
+    x, z, vm, hc = stored_map(ds, "dlc_4um")
+    assert r["body"] == "tappet" and hc == 4e-6
+    assert vm.shape == (z.size, x.size) and np.all(np.isfinite(vm))
+    assert x[0] < r["x_m"] < x[-1]
+    assert np.nanmax(vm[z > hc]) == pytest.approx(
         float(ds["stress_tappet_max_von_mises_substrate"].sel(surface_set="dlc_4um")[r["index"]]),
         rel=0.03,
     )
     png = stress_maps(ds, tmp_path / "stress.png")
     assert png.stat().st_size > 10_000
+    # a results.nc without the stored maps (written before they were stored): no figure,
+    # and a clear reason when one is asked for
+    old = ds.drop_vars([v for v in ds.data_vars if str(v).startswith("stress_map_")])
+    assert greatest_risk(old, "dlc_4um") is None
+    with pytest.raises(ValueError, match="no stored stress maps"):
+        stress_maps(old, tmp_path / "old.png")
+    assert NO_MAP.startswith("results.nc has no stored stress maps")
     lines = stress_section(summ)
     assert lines[0] == "## Coating integrity"
     est = lines.index("### Estimates outside their validity (not headline numbers)")

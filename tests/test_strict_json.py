@@ -67,7 +67,8 @@ def test_engine_summary_with_an_unknown_value_is_strict(tmp_path, monkeypatch):
     study = SimpleNamespace(
         summary=lambda: {"fmep_Pa": math.inf, "e": [math.nan, 1.0]},
         to_dataset=lambda: SimpleNamespace(to_netcdf=lambda path: Path(path).write_bytes(b"")),
-        case=SimpleNamespace(name="engine", surface_sets=lambda: []),
+        case=SimpleNamespace(name="engine"),
+        labels={},
         warnings=[],
         runtime_s=1.0,
         timings={},

@@ -54,7 +54,7 @@ def study_to_dataset(study: CycleStudy) -> xr.Dataset:
         {
             "title": f"tribodyn cam-cycle study: {case.name}",
             "tribodyn_version": __version__,
-            # files by absolute path: the stress figures rebuild the sets (measured maps)
+            # files by absolute path: the case can be read again from results.nc alone
             "case_toml": case.to_toml(resolve_paths=True),
             "engine_speed_rpm": float(case.engine_speed),
             "cam_width_m": float(case.width),

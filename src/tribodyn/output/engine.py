@@ -28,11 +28,6 @@ def engine_summary(study) -> dict:
     }
 
 
-def set_labels(study) -> dict[str, str]:
-    """Display names of the study's surface sets (``DLC 4 µm``, ``uncoated``)."""
-    return {s.name: s.coating_label for s in study.case.surface_sets()}
-
-
 def write_engine_results(
     study, out_dir: PathLike, *, figures: bool = True, report: bool = True
 ) -> dict:
@@ -42,7 +37,7 @@ def write_engine_results(
     ds = study.to_dataset()
     summ = engine_summary(study)
     names: list[str] = []
-    labels = set_labels(study)
+    labels = dict(study.labels)  # display names of the sets (``DLC 4 µm``, ``uncoated``)
 
     def writer(tmp: Path) -> None:
         atomic_write_with(tmp / "results.nc", ds.to_netcdf)

@@ -127,7 +127,8 @@ def load_result(path: PathLike, label: str | None = None) -> Result:
             "tribodyn run, engine or sweep)"
         )
     with xr.open_dataset(p / "results.nc", engine="h5netcdf") as ds:
-        skip = ("pressure", "film", "profile_x")  # the profiles are not shown
+        # the profiles and the stress maps are not shown
+        skip = ("pressure", "film", "profile_x", "stress_map_von_mises")
         ds = ds[[v for v in ds.data_vars if v not in skip]].load()
     try:
         summary = json.loads(_read_text(p / "summary.json") or "{}")

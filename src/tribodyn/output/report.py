@@ -3,8 +3,9 @@ results per surface set (films, friction, camshaft torque, contact pressure), th
 spring, figures and numerics. For the paper's case (or with ``--compare-paper``) also the
 paper's headline claims beside tribodyn's numbers with an explanation of each difference.
 
-Built from the study (its case, analysis and single-contact studies) and the results
-Dataset; no solver calls, no re-reading of the case.
+Built from the study (its analysis, single-contact studies and the inputs as used it
+recorded, :mod:`tribodyn.workflow.inputs_as_used`) and the results Dataset; no solver
+calls, no building of the case's objects.
 """
 
 from __future__ import annotations
@@ -62,13 +63,14 @@ _CONTENT_CAPTIONS = {
 }
 
 
-def _asperity_models(case) -> str:
-    """The asperity model(s) of the case's surface sets, for the method sentence."""
-    measured = [s.name for s in case.surface_sets() if s.roughness.law is not None]
+def _asperity_models(surfaces: dict) -> str:
+    """The asperity model(s) of the surface sets as used (``study.as_used.surfaces``),
+    for the method sentence."""
+    measured = [name for name, s in surfaces.items() if not s["greenwood_tripp"]]
     if not measured:
         return "Greenwood–Tripp asperities"
     law = "asperity load–separation law of a surface by boundary-element contact"
-    if len(measured) == len(case.surface_sets()):
+    if len(measured) == len(surfaces):
         return law
     return f"{law} ({', '.join(measured)}; Greenwood–Tripp for the other sets)"
 
@@ -166,8 +168,7 @@ def valve_jump_section(summ) -> list[str]:
 
 def _inputs_section(study, summ) -> list[str]:
     """The inputs as the study used them: cam, oil, surface sets, valvetrain."""
-    case = study.case
-    cam = case.cam()
+    case, used = study.case, study.as_used
     c = summ.get("cam", {})
     lines = ["## Inputs as used", ""]
     if case.case.description:
@@ -181,7 +182,7 @@ def _inputs_section(study, summ) -> list[str]:
             f"RMS {_fmt(c['table_fit_rms_residual_m'] * 1e6, 'µm')}"
         )
     lines += [
-        f"- Cam ({kind}{table}): base radius {cam.base_radius * 1e3:g} mm, width "
+        f"- Cam ({kind}{table}): base radius {used.cam_base_radius * 1e3:g} mm, width "
         f"{case.width * 1e3:g} mm, max lift {_fmt(c.get('max_lift_m', 0) * 1e3, 'mm', 4)}, "
         f"max tappet velocity {_fmt(c.get('max_velocity_m_s'), 'm/s')}, acceleration "
         f"{_fmt(c.get('min_acceleration_m_s2'), 'm/s²')} to "
@@ -212,29 +213,28 @@ def _inputs_section(study, summ) -> list[str]:
         "| surface set | coating | σ | asperity model | β | η | ηβσ | ς |",
         "|---|---|---|---|---|---|---|---|",
     ]
-    for s in case.surface_sets():
-        r = s.roughness
+    for s in used.surfaces.values():
         coat = (
-            f"{s.coating_material} {s.coating.thickness * 1e6:g} µm"
-            if s.coating is not None
+            f"{s['coating_material']} {s['coating_thickness_m'] * 1e6:g} µm"
+            if s["coating_thickness_m"] is not None
             else "none"
         )
-        if r.law is None:
+        if s["greenwood_tripp"]:
             model = "Greenwood–Tripp"
             gt = (
-                f"{r.summit_radius * 1e6:.3g} µm | {r.asperity_density:.3g} /m² | "
-                f"{r.roughness_parameter:.2g}"
+                f"{s['summit_radius_m'] * 1e6:.3g} µm | {s['asperity_density_per_m2']:.3g} "
+                f"/m² | {s['roughness_parameter']:.2g}"
             )
         else:  # β, η, ηβσ are not used by a surface's load–separation law
             model = "surface law (boundary elements)"
             gt = "– | – | –"
         lines.append(
-            f"| {s.coating_label} | {coat} | {r.rms * 1e6:.3g} µm | {model} | {gt} | "
-            f"{s.boundary_shear_coefficient:g} |"
+            f"| {s['label']} | {coat} | {s['rms_m'] * 1e6:.3g} µm | {model} | {gt} | "
+            f"{s['boundary_shear_coefficient']:g} |"
         )
     lines.append("")
     lines += [
-        f"- Asperity law of {s.coating_label}: {s.asperity_law}." for s in case.surface_sets()
+        f"- Asperity law of {s['label']}: {s['asperity_law']}." for s in used.surfaces.values()
     ]
     return lines + [""] + _origins_lines(case)
 
@@ -468,7 +468,7 @@ def report_text(study, ds, figures: dict) -> str:
         "Valvetrain multi-body dynamics over two engine cycles from static "
         "equilibrium (the second is presented), explicit analytic tribology; transient "
         "mixed-EHL (Reynolds with Roelands and Dowson–Higginson, "
-        f"Reynolds cavitation, coated DC-FFT elasticity, {_asperity_models(case)}, "
+        f"Reynolds cavitation, coated DC-FFT elasticity, {_asperity_models(study.as_used.surfaces)}, "
         f"{case.numerics.viscous_model} shear capped at the limiting shear stress, boundary "
         "friction τ₀ + ς p_a) along the presented cycle for each tappet surface"
         + (

@@ -18,12 +18,12 @@ def _fmt(v, unit="", digits=3):
     return f"{v:.{digits}g}{(' ' + unit) if unit else ''}"
 
 
-def _boundary_factor(case, name, with_coefficient=False):
-    """(ηβσ)²√(σ/β) [·ς] of a surface set: the roughness factor of Greenwood–Tripp load."""
-    s = case.surface_set(name)
-    r = s.roughness
-    f = r.roughness_parameter**2 * math.sqrt(r.rms / r.summit_radius)
-    return f * s.boundary_shear_coefficient if with_coefficient else f
+def _boundary_factor(surfaces, name, with_coefficient=False):
+    """(ηβσ)²√(σ/β) [·ς] of a surface set as used (``study.as_used.surfaces``): the
+    roughness factor of Greenwood–Tripp load."""
+    s = surfaces[name]
+    f = s["roughness_factor"]
+    return f * s["boundary_shear_coefficient"] if with_coefficient else f
 
 
 def _cycle_integral(study, var, name, mask):
@@ -125,20 +125,20 @@ def _max_asperity_share(study, name):
 
 def claims(study, summ) -> list[tuple[str, str, str, str]]:
     """Rows (claim, paper, tribodyn, explanation) of the comparison table."""
-    case, an = study.case, study.analysis
+    surfaces, an = study.as_used.surfaces, study.analysis
     ev = an.in_event
     sets = summ["surface_sets"]
     unc = an.roles["reference"]
     wcc, dlc = an.roles.get("wcc"), an.roles.get("dlc")
     rows = [_film_row(study, summ)]
     if wcc:
-        fr = _boundary_factor(case, unc) / _boundary_factor(case, wcc)
+        fr = _boundary_factor(surfaces, unc) / _boundary_factor(surfaces, wcc)
         why = (
             "It follows from the roughness and ς inputs, not from the film: boundary "
             "friction ∝ τ₀π²(ηβσ)²F₂ + ς(8√2/15)π(ηβσ)²√(σ/β)E'F₅/₂. WC-C's "
             f"(ηβσ)²√(σ/β) is {fr:.0f}× smaller than the uncoated surface's, which "
-            f"outweighs its ς ({case.surface_set(wcc).boundary_shear_coefficient:g} vs "
-            f"{case.surface_set(unc).boundary_shear_coefficient:g})."
+            f"outweighs its ς ({surfaces[wcc]['boundary_shear_coefficient']:g} vs "
+            f"{surfaces[unc]['boundary_shear_coefficient']:g})."
         )
         rows.append(
             (
@@ -159,7 +159,7 @@ def claims(study, summ) -> list[tuple[str, str, str, str]]:
         hw, hd = study.set(wcc).central_film, study.set(dlc).central_film
         d = np.abs(hw / hd - 1.0)[ev]
         dh = float(np.nanmax(d)) * 100 if np.isfinite(d).any() else None
-        q = _boundary_factor(case, wcc, True) / _boundary_factor(case, dlc, True)
+        q = _boundary_factor(surfaces, wcc, True) / _boundary_factor(surfaces, dlc, True)
         why = (
             f"The films of the two coatings differ by at most {_fmt(dh, '%', 2)}; the difference "
             f"is the roughness and ς: (ηβσ)²√(σ/β)·ς of WC-C / DLC = {q:.2f}."

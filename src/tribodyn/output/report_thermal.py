@@ -69,15 +69,14 @@ def thermal_section(study, summ) -> list[str]:
     if th is None:
         return []
     t_in = th.get("inlet_temperature_K")
-    case = study.case
-    oil = case.thermal_lubricant()
+    oil = study.as_used.thermal_oil
     lines = [
         "## Thermal EHL",
         "",
-        f"Oil {oil.name or 'from the case'} supplied at {_f(t_in - _C, '{:.0f}', '°C')}"
-        f" (μ = {oil.inlet_viscosity * 1e3:.3g} mPa·s, α = "
-        f"{oil.inlet_pressure_viscosity * 1e9:.3g} 1/GPa, β = "
-        f"{oil.temperature_viscosity_coefficient():.3g} 1/K there); the cam and the "
+        f"Oil {oil['name'] or 'from the case'} supplied at {_f(t_in - _C, '{:.0f}', '°C')}"
+        f" (μ = {oil['viscosity_Pa_s'] * 1e3:.3g} mPa·s, α = "
+        f"{oil['pressure_viscosity_1_Pa'] * 1e9:.3g} 1/GPa, β = "
+        f"{oil['temperature_viscosity_1_K']:.3g} 1/K there); the cam and the "
         "tappet far from the contact at the same temperature. Generalized Reynolds "
         "equation with the viscosity varying across the film, energy equation in the "
         "film (conduction across, convection along and across, shear and compression "

@@ -294,7 +294,7 @@ def write_results(
     written: dict[str, Any] = {}
     enc = {
         v: {"compression": "gzip", "compression_opts": 4}
-        for v in ("profile_x", "pressure", "film")
+        for v in ("profile_x", "pressure", "film", "stress_map_von_mises")
         if v in ds
     }
 

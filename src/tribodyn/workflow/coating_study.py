@@ -9,10 +9,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from .. import paper
 from ..config.build import as_built
 from ..contact.dry import DryContactResult, solve_dry_contact
 from ..contact.ehl import EHLResult, solve_ehl
+from ..physics.hertz import hertz_line_contact
 from ..physics.lubricant import Lubricant
 from ..physics.materials import STEEL, Body, Coating, Material
 
@@ -22,6 +25,9 @@ __all__ = [
     "PairCase",
     "EHLCoatingStudy",
     "dry_coating_study",
+    "dry_grid",
+    "HertzReference",
+    "dry_hertz_reference",
     "ehl_coating_study",
     "SAE_5W20",
     "DRY_CONDITIONS",
@@ -101,6 +107,45 @@ def dry_coating_study(
         res = solve_dry_contact(w, radius, (Body(substrate), Body(substrate, coat)), n=n)
         cases.append(DryCoatingCase(f"E_c/E_s = {ratio:g}", ratio, res))
     return cases
+
+
+#: the dry study's profiles reach ± this many times the largest half-width
+DRY_SPAN = 1.3
+
+
+def dry_grid(cases: list[DryCoatingCase], n: int = 401) -> np.ndarray:
+    """``n`` positions x [m] spanning the dry study ``cases``: ±DRY_SPAN times their
+    largest half-width."""
+    half = max(DRY_SPAN * c.result.half_width for c in cases)
+    return np.linspace(-half, half, n)
+
+
+@dataclass(frozen=True)
+class HertzReference:
+    """The Hertz line contact of uncoated steel beside the dry study: pressure [Pa] at
+    x [m], half-width b and maximum pressure p_h."""
+
+    x: np.ndarray
+    pressure: np.ndarray
+    half_width: float
+    max_pressure: float
+
+
+def dry_hertz_reference(
+    cases: list[DryCoatingCase],
+    conditions: dict = DRY_CONDITIONS,
+    substrate: Material = STEEL,
+    n: int = 801,
+) -> HertzReference | None:
+    """Hertz (:func:`~tribodyn.physics.hertz.hertz_line_contact`) of a steel pair,
+    E' = E/(1 − ν²), at the dry study's load per width and radius (``conditions``), on
+    :func:`dry_grid` of ``n`` points; None without dry cases."""
+    if not cases:
+        return None
+    w = conditions["load_total"] / conditions["width"]
+    h = hertz_line_contact(w, conditions["radius"], substrate.E / (1.0 - substrate.nu**2))
+    x = dry_grid(cases, n)
+    return HertzReference(x, np.asarray(h.pressure(x), float), h.half_width, h.max_pressure)
 
 
 def ehl_coating_study(

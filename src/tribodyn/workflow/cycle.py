@@ -38,7 +38,9 @@ from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from .coating_study import (
     DryCoatingCase,
     EHLCoatingStudy,
+    HertzReference,
     dry_coating_study,
+    dry_hertz_reference,
     ehl_coating_study,
 )
 from .coupling import CouplingResult, run_coupling
@@ -49,6 +51,7 @@ from .engineering import (
     engineering_outputs,
     plausibility_warnings,
 )
+from .inputs_as_used import InputsAsUsed, inputs_as_used
 from .model_comparison import ModelComparison, compare_lumped_flexible
 from .postprocess import Analysis, analyse, surface_roles
 from .sensitivity import (
@@ -80,6 +83,7 @@ class CycleStudy:
     labels: dict[str, str]  #: set name → label
     coupling: CouplingResult = field(default_factory=CouplingResult)
     dry: list[DryCoatingCase] = field(default_factory=list)  #: Fig. 5 cases
+    dry_hertz: HertzReference | None = None  #: Fig. 5's Hertz reference (uncoated steel)
     ehl_coating: EHLCoatingStudy | None = None  #: Fig. 6 results
     sensitivity: RoughnessSensitivity | None = None  #: at the cam nose
     #: every surface set at the case's own nose (a case other than the paper's)
@@ -98,6 +102,8 @@ class CycleStudy:
     #: the report carries the paper's comparison (claims, Figs. 5/6 at its conditions)
     compare_paper: bool = False
     engineering: Engineering | None = None  #: torque, pressure, kinematics, surge
+    #: the inputs as used (surface sets, cam, thermal oil), for the report
+    as_used: InputsAsUsed | None = None
 
     def engineering_outputs(self) -> Engineering:
         """Compute (once) and return the :class:`Engineering` outputs of the study."""
@@ -364,12 +370,14 @@ def run_cycle_study(
         labels={s.name: s.coating_label for s in sets},
         coupling=coupling,
         dry=coating[0],
+        dry_hertz=dry_hertz_reference(coating[0]),
         ehl_coating=coating[1],
         sensitivity=coating[2],
         nose_sets=coating[3] if len(coating) > 3 else None,
         timings=timings,
         isothermal_sets=isothermal,
         compare_paper=paper_cmp,
+        as_used=inputs_as_used(built),
     )
     # the force- and film-deciding values the case left to typical ones, named first
     study.warnings += default_warnings(case)

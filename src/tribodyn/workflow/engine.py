@@ -139,9 +139,11 @@ class EngineStudy:
     valves: list[dict]  #: cylinder, kind, camshaft, nose_deg per valve
     lobe_friction_torque: np.ndarray  #: (set, valve, crank) cam–tappet T_f per valve
     lobes: dict[str, LobeTraces]
+    labels: dict[str, str] = field(default_factory=dict)  #: set name → label
     runtime_s: float = 0.0
     timings: dict = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
+    summary_block: dict | None = None  #: :meth:`summary`, once computed
 
     @property
     def auxiliary_torque(self) -> np.ndarray:
@@ -156,6 +158,13 @@ class EngineStudy:
         return np.array(e).reshape(t.shape[:-1])
 
     def summary(self) -> dict:
+        """The ``engine`` block of summary.json (:meth:`_summary`), computed once: at the
+        end of :func:`run_engine_study`, so that writing the results only reads it."""
+        if self.summary_block is None:
+            self.summary_block = self._summary()
+        return self.summary_block
+
+    def _summary(self) -> dict:
         """``engine`` block of summary.json: per set and camshaft, energies [J], mean
         torques [N m], mean powers [W], FMEP [Pa], each coating's benefit in %, and each
         lobe kind's contact loss (``valve_jump``: intervals, maximum separation)."""
@@ -427,7 +436,7 @@ def run_engine_study(
                 f"is {on_1:.0f}° of cylinder 1"
             )
             warnings += [f"{k} lobes ({clock}): {x}" for x in studies[k].warnings]
-    return EngineStudy(
+    study = EngineStudy(
         case=case,
         set_names=set_names,
         camshafts=camshafts,
@@ -441,7 +450,10 @@ def run_engine_study(
         valves=valves,
         lobe_friction_torque=per_valve,
         lobes=lobes,
+        labels=dict(studies["intake"].labels),
         runtime_s=time.perf_counter() - t0,
         timings=timings,
         warnings=warnings,
     )
+    study.summary()  # the coating verdicts and their ranges, computed with the study
+    return study

@@ -9,7 +9,9 @@ boundary shear with their signs) and its stresses evaluated
 in the coating, interface shear and tension) with their positions, each peak's maximum
 over the cycle with its crank angle, and the safety factors against the strengths
 (:mod:`tribodyn.physics.strength`; min over the cycle = strength / cycle maximum).
-Archard wear per cycle and hours to wear through the coating: :func:`wear_for_set`.
+Archard wear per cycle and hours to wear through the coating: :func:`wear_for_set`. The
+von Mises field at the instant of greatest risk (the report's stress map) is computed with
+the peaks: :mod:`~tribodyn.workflow.stress_map`.
 """
 
 from __future__ import annotations
@@ -31,6 +33,7 @@ from ..physics.strength import (
     safety_factors,
 )
 from ..physics.stress import PEAKS, StressOperator  # PEAKS: the peaks traced per body
+from .stress_map import StressMap, stress_map
 
 __all__ = [
     "PEAKS",
@@ -86,6 +89,8 @@ class CycleStress:
     safety_factors: dict = field(default_factory=dict)
     evaluated: int = 0  #: samples evaluated
     runtime_s: float = 0.0
+    #: the von Mises field at the instant of greatest risk (workflow.stress_map)
+    map: StressMap | None = None
 
 
 def default_strengths(surface_set) -> dict:
@@ -194,6 +199,7 @@ def stress_along_cycle(
                 interface_tension=math.nan,
             )
         out.safety_factors[name] = sf
+    out.map = stress_map(out, result, inputs, pair, lubricant, roughness, opts)
     out.runtime_s = _time.perf_counter() - t0
     return out
 

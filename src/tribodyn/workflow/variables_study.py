@@ -4,9 +4,10 @@
 Groups, in the order written: dynamics over ``crank_angle`` (and the implicit coupling's
 curves), the transient-EHL samples over ``ehl_crank`` and ``(surface_set, ehl_crank)``,
 the pressure and film profiles, the representative points, the single-contact coating
-studies (Figs. 5, 6), the subsurface stresses and safety factors, the engineering outputs
-(camshaft torque, cam kinematics, lift table, spring surge), the oil as used and the
-thermal variables. EHL quantities are NaN where the contact carries no load.
+studies (Figs. 5, 6), the subsurface stresses and safety factors with the stress map of
+each set, the engineering outputs (camshaft torque, cam kinematics, lift table, spring
+surge), the oil as used and the thermal variables. EHL quantities are NaN where the
+contact carries no load.
 """
 
 from __future__ import annotations
@@ -87,8 +88,9 @@ class StudySource:
 
     @cached_property
     def dry_x(self) -> np.ndarray:
-        half = max(1.3 * c.result.half_width for c in self.study.dry)
-        return np.linspace(-half, half, 401)
+        from .coating_study import dry_grid
+
+        return dry_grid(self.study.dry)
 
     @cached_property
     def ehl_x(self) -> np.ndarray:
@@ -290,6 +292,17 @@ DRY = (
     var("dry_max_pressure", "dry_ratio", "Pa", "dry contact maximum pressure (Fig. 5)",
         lambda s: [c.result.max_pressure for c in s.study.dry]),
 )  # fmt: skip
+#: the Hertz contact of uncoated steel at the dry study's conditions (Fig. 5's reference)
+DRY_HERTZ = (
+    var("dry_hertz_x", "dry_hertz_x", "m", "position along the Hertz reference contact "
+        "(Fig. 5)", lambda s: s.study.dry_hertz.x, coord=True),
+    var("dry_hertz_pressure", "dry_hertz_x", "Pa", "Hertz pressure of uncoated steel at "
+        "the dry study's conditions (Fig. 5)", lambda s: s.study.dry_hertz.pressure),
+    var("dry_hertz_half_width", (), "m", "Hertz half-width of uncoated steel (Fig. 5)",
+        lambda s: s.study.dry_hertz.half_width),
+    var("dry_hertz_max_pressure", (), "Pa", "Hertz maximum pressure of uncoated steel "
+        "(Fig. 5)", lambda s: s.study.dry_hertz.max_pressure),
+)  # fmt: skip
 
 
 def _coating_results(dim):
@@ -392,6 +405,56 @@ def _stress_variables() -> tuple[Variable, ...]:
 
 
 STRESSES = _stress_variables()
+
+
+def _maps(s: S) -> list:
+    """The stress map of each set (workflow.stress_map), None where there is none."""
+    return [getattr(s.stresses.get(n), "map", None) for n in _names(s)]
+
+
+def _padded(field: str, axis: str | None = None):
+    """(surface_set, …) array of a map field, NaN-padded to the longest set; ``axis``
+    "z"/"x" pads a field over depths or x, None the 2-D von Mises field."""
+
+    def extract(s: S):
+        maps = _maps(s)
+        nz = max((m.depths.size for m in maps if m is not None), default=0)
+        nx = max((m.x.size for m in maps if m is not None), default=0)
+        shape = {"z": (nz,), "x": (nx,), None: (nz, nx)}[axis]
+        out = np.full((len(maps), *shape), np.nan)
+        for i, m in enumerate(maps):
+            if m is not None:
+                v = getattr(m, field)
+                out[i][tuple(slice(0, n) for n in v.shape)] = v
+        return out
+
+    return extract
+
+
+def _map_scalar(field: str, empty):
+    return lambda s: [empty if m is None else getattr(m, field) for m in _maps(s)]
+
+
+MAP = ("surface_set", "map_z", "map_x")
+#: the von Mises field at the instant of greatest risk per set (the report's stress map)
+STRESS_MAP = (
+    var("stress_map_x", MAP[::2], "m", "position along the contact of the stress map "
+        "(NaN: padding)", _padded("x", "x")),
+    var("stress_map_depth", MAP[:2], "m", "depth below the surface of the stress map "
+        "(NaN: padding)", _padded("depths", "z")),
+    var("stress_map_von_mises", MAP, "Pa", "von Mises stress of the body closest to "
+        "failure at its instant of greatest risk (NaN: padding)", _padded("von_mises")),
+    var("stress_map_body", "surface_set", None, "body of the stress map: cam or tappet "
+        "('' = no map)", _map_scalar("body", "")),
+    var("stress_map_mode", "surface_set", None, "failure mode of the smallest safety "
+        "factor, governing the stress map ('' = no map)", _map_scalar("mode", "")),
+    var("stress_map_sample", "surface_set", "1", "EHL sample (index along ehl_crank) of "
+        "the stress map (-1 = no map)", _map_scalar("index", -1), dtype=np.int32),
+    var("stress_map_coating_thickness", "surface_set", "m", "coating thickness of the "
+        "body of the stress map (0 = uncoated or no map)",
+        lambda s: [0.0 if m is None or m.coating_thickness is None else m.coating_thickness
+                   for m in _maps(s)]),
+)  # fmt: skip
 
 
 def _eng(k):
@@ -508,9 +571,11 @@ STUDY = (
          ITERATIONS, *EHL.values(), *PROFILES)
     ),
     Group(DRY, when=lambda s: bool(s.study.dry)),
+    Group(DRY_HERTZ, when=lambda s: getattr(s.study, "dry_hertz", None) is not None),
     Group(EHL_COATING,
           when=lambda s: (e := s.study.ehl_coating) is not None and bool(e.results)),
     Group(STRESSES, when=lambda s: bool(s.stresses)),
+    Group(STRESS_MAP, when=lambda s: any(m is not None for m in _maps(s))),
     Group(ENGINEERING, when=_has_engineering),
     Group(TABLE, when=lambda s: _has_engineering(s) and s.engineering.table is not None),
     Group(SURGE, when=_has_engineering),
