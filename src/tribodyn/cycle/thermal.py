@@ -3,9 +3,9 @@
 For every surface set the thermal solver (:class:`~tribodyn.contact.ehl.thermal_transient.
 ThermalTransientEHL`: generalized Reynolds, film energy equation, conduction in the cam
 and in the coated tappet) is marched over the same samples by the same driver as the
-isothermal one (:func:`.cycle_ehl.march_cycle`, with its time-error control), from the
+isothermal one (:func:`.driver.march_cycle`, with its time-error control), from the
 oil's inlet (sump) temperature. Results are :class:`ThermalSetCycleResult` — the fields
-of :class:`~.cycle_ehl.SetCycleResult` plus the temperatures along the cycle. The study keeps the isothermal results beside them for the
+of :class:`~.data.SetCycleResult` plus the temperatures along the cycle. The study keeps the isothermal results beside them for the
 comparison (film and friction thermal vs isothermal, the coatings' thermal effect).
 
 Body 1 is the cam, body 2 the tappet (the coating's side).
@@ -25,7 +25,7 @@ from ..contact.ehl.thermal import ThermalOptions, couette_stress
 from ..contact.ehl.thermal_transient import ThermalTransientEHL
 from ..physics.asperity import Roughness
 from ..physics.thermal_oil import ThermalLubricant
-from .cycle_ehl import (
+from .driver import (
     TIME_TOL,
     CycleInputs,
     CycleMethod,
@@ -100,7 +100,7 @@ class TemperatureRecorder:
 @dataclass
 class ThermalCycle(CycleMethod):
     """The thermal transient EHL (:class:`~tribodyn.contact.ehl.thermal_transient.
-    ThermalTransientEHL`) for :func:`~.cycle_ehl.march_cycle`, from the oil's inlet
+    ThermalTransientEHL`) for :func:`~.driver.march_cycle`, from the oil's inlet
     temperature; temperatures recorded by :class:`TemperatureRecorder`."""
 
     result_type: ClassVar[type[SetCycleResult]] = ThermalSetCycleResult
@@ -172,7 +172,7 @@ def thermal_along_cycle(
     time_tol: float = TIME_TOL,
 ) -> ThermalSetCycleResult:
     """March the thermal transient EHL over the cycle for one surface set
-    (:func:`~.cycle_ehl.march_cycle` with :class:`ThermalCycle`: the same samples,
+    (:func:`~.driver.march_cycle` with :class:`ThermalCycle`: the same samples,
     time-error control, outputs and unloaded-sample convention as the isothermal march)."""
     res = march_cycle(
         inp,
@@ -195,7 +195,7 @@ def _cond(r):
 
 def thermal_for_set(case, surface_set, inputs: CycleInputs, progress=None) -> ThermalSetCycleResult:
     """The thermal march of one surface set of a case (Case or BuiltCase;
-    :func:`~.cycle_ehl.cycle_for_set` with the ``"thermal"`` method)."""
+    :func:`~.driver.cycle_for_set` with the ``"thermal"`` method)."""
     res = cycle_for_set(case, surface_set, inputs, "thermal", progress)
     assert isinstance(res, ThermalSetCycleResult)
     return res

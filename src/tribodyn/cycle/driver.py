@@ -36,7 +36,7 @@ from ..contact.ehl import EHLOptions, EHLResult, TransientEHL
 from ..contact.ehl.postprocess import shear_stress
 from ..physics.asperity import Roughness
 from ..physics.lubricant import Lubricant
-from .cycle_data import SAMPLE_OUTPUTS, CycleInputs, SampleConditions, SetCycleResult
+from .data import SAMPLE_OUTPUTS, CycleInputs, SampleConditions, SetCycleResult
 
 __all__ = [
     "CycleInputs",
@@ -291,7 +291,7 @@ class IsothermalCycle(CycleMethod):
 
 
 def _thermal_for_set(case, surface_set) -> CycleMethod:
-    from .thermal_study import ThermalCycle  # builds on this module
+    from .thermal import ThermalCycle  # builds on this module
 
     return ThermalCycle.for_set(case, surface_set)
 
