@@ -229,6 +229,45 @@ def test_the_cycle_check_sees_a_study_import():
     ]
 
 
+def _import_circle(graph: dict[str, set[str]]) -> list[str]:
+    """A circle of ``graph`` (module → modules it imports) as [a, b, …, a], or []."""
+    state: dict[str, int] = {}  # 1: on the current path, 2: done
+
+    def visit(m: str, path: list[str]) -> list[str]:
+        state[m] = 1
+        for n in sorted(graph.get(m, ())):
+            if state.get(n) == 1:
+                return [*path[path.index(n) :], n]
+            if n not in state and (found := visit(n, [*path, n])):
+                return found
+        state[m] = 2
+        return []
+
+    for m in sorted(graph):
+        if m not in state and (found := visit(m, [m])):
+            return found
+    return []
+
+
+def test_the_cycle_modules_import_each_other_without_a_circle():
+    """The method table (cycle.methods) imports the variants; no module of tribodyn.cycle
+    imports another that imports it back, not even inside a function."""
+    graph = {
+        f"tribodyn.cycle.{p.stem}": {
+            ".".join(m.split(".")[:3]) for m, _ in _imports(p) if m.startswith("tribodyn.cycle.")
+        }
+        for p in (SRC / "cycle").glob("*.py")
+    }
+    assert "tribodyn.cycle.thermal" in graph["tribodyn.cycle.methods"]
+    assert not (circle := _import_circle(graph)), " → ".join(circle)
+
+
+def test_the_circle_check_sees_a_circle():
+    """The check above is able to fail: it finds a → b → a behind a third module."""
+    assert _import_circle({"c": {"a"}, "a": {"b"}, "b": {"a"}}) == ["a", "b", "a"]
+    assert _import_circle({"a": {"b"}, "b": set()}) == []
+
+
 #: Largest module [lines]: a longer module is split by job (docs/architecture.md).
 MAX_MODULE_LINES = 600
 

@@ -37,6 +37,7 @@ from ..config.origins import default_warnings
 from ..cycle.coupling import CouplingResult, run_coupling
 from ..cycle.driver import CycleInputs, SetCycleResult, ehl_for_set
 from ..cycle.tasks import InlineExecutor, Task, run_tasks
+from ..cycle.thermal import thermal_task
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from .coating_study import (
     DryCoatingCase,
@@ -219,8 +220,6 @@ def study_tasks(
     ]
     tasks.append(Task("coating", _coating_studies_task, (built, reference, nose, paper_studies)))
     if built.case.numerics.thermal:
-        from ..cycle.thermal import thermal_task
-
         tasks += [
             Task(f"thermal:{name}", thermal_task, (built, name, inputs)) for name in built.sets
         ]
