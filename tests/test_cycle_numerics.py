@@ -156,7 +156,9 @@ def test_coupling_re_passes_use_their_own_grid_and_time_tolerance(monkeypatch):
     import tribodyn.cycle.driver as ce
 
     seen = []
-    monkeypatch.setattr(ce, "ehl_along_cycle", lambda *a, **k: seen.append((a[6].n, k["time_tol"])))
+    monkeypatch.setattr(
+        ce, "march_cycle", lambda *a, **k: seen.append((a[3].options.n, k["time_tol"]))
+    )
     inp = _ramp_inputs(1.0)
     for changes, expect in (
         ({}, [(None, ce.TIME_TOL), (192, ce.COUPLING_TIME_TOL)]),

@@ -132,7 +132,7 @@ def test_case_rotation_reaches_the_cycle_driver(monkeypatch):
     def fake(inputs, *a, **k):
         seen["inputs"] = inputs
 
-    monkeypatch.setattr(driver, "ehl_along_cycle", fake)
+    monkeypatch.setattr(driver, "march_cycle", fake)
     inp = _inputs()
     driver.ehl_for_set(case, case.surface_sets()[0], inp)
     expected = inp.with_rotation(TappetRotation(0.05, 0.003))

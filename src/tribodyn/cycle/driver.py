@@ -439,7 +439,13 @@ def ehl_along_cycle(
 
 
 def march_for_set(
-    case, surface_set, inputs: CycleInputs, method: CycleMethod, progress=None
+    case,
+    surface_set,
+    inputs: CycleInputs,
+    method: CycleMethod,
+    progress=None,
+    *,
+    time_tol: float = TIME_TOL,
 ) -> SetCycleResult:
     """:func:`march_cycle` of ``method`` for one surface set of a case (Case or
     BuiltCase): the set's name and label, the case's tappet rotation and
@@ -452,14 +458,16 @@ def march_for_set(
         method,
         min_load=built.case.numerics.min_load,
         progress=progress,
+        time_tol=time_tol,
     )
 
 
 def ehl_for_set(
     case, surface_set, inputs: CycleInputs, progress=None, *, film_law_only: bool = False
 ) -> SetCycleResult:
-    """:func:`ehl_along_cycle` for one surface set of a case (Case or BuiltCase; its
-    bodies, roughness and friction law; the case's lubricant and numerics).
+    """The isothermal march (:class:`IsothermalCycle`, :func:`march_for_set`) of one
+    surface set of a case (Case or BuiltCase; its bodies, roughness and friction law; the
+    case's lubricant and numerics).
 
     ``film_law_only``: the pass only feeds the implicit coupling's film law (the
     coupling's re-passes), which needs the film to the coupling tolerance: the grid has
@@ -467,7 +475,6 @@ def ehl_for_set(
     time-error tolerance is :data:`COUPLING_TIME_TOL`."""
     s, built = surface_set, as_built(case)
     n = built.case.numerics
-    inputs = inputs.with_rotation(built.tappet_rotation)
     opts = options_for(built, s)
     time_tol = TIME_TOL
     if film_law_only:
@@ -475,15 +482,5 @@ def ehl_for_set(
         nodes = n.coupling_n
         if nodes:  # never finer than the study's own fixed grid
             opts = replace(opts, n=min(nodes, n.n) if n.n else nodes)
-    return ehl_along_cycle(
-        inputs,
-        s.name,
-        s.coating_label,
-        s.bodies,
-        built.lubricant,
-        s.roughness,
-        opts,
-        min_load=n.min_load,
-        progress=progress,
-        time_tol=time_tol,
-    )
+    method = IsothermalCycle.for_set(built, s, opts)
+    return march_for_set(built, s, inputs, method, progress, time_tol=time_tol)
