@@ -2,9 +2,9 @@
 
 Each entry builds the :class:`~.driver.CycleMethod` of one surface set of a case; the
 method carries everything in which the variants differ (its stepper, its Couette stress,
-its extra recorders, its result class), so the driver (:func:`~.driver.march_cycle`) and
-the studies never branch on the variant. A new variant is one
-:class:`~.driver.CycleMethod` subclass and one entry here.
+its extra recorders, its result class), so the driver (:func:`~.driver.march_cycle`)
+never branches on the variant. A new variant is one :class:`~.driver.CycleMethod`
+subclass and one entry here.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from .data import CycleInputs, SetCycleResult
 from .driver import CycleMethod, IsothermalCycle, march_for_set
 from .thermal import ThermalCycle
 
-__all__ = ["METHODS", "method_for_set", "cycle_for_set"]
+__all__ = ["METHODS", "cycle_for_set"]
 
 #: The EHL variants by name: ``METHODS[name](case, surface_set)`` is the
 #: :class:`~.driver.CycleMethod` of a surface set of a case (Case or BuiltCase).
@@ -25,14 +25,6 @@ METHODS: dict[str, Callable[[Any, Any], CycleMethod]] = {
     "isothermal": IsothermalCycle.for_set,
     "thermal": ThermalCycle.for_set,
 }
-
-
-def method_for_set(name: str, case: Any, surface_set: Any) -> CycleMethod:
-    """The method ``name`` (a key of :data:`METHODS`) of one surface set of a case;
-    an unknown name is an input error."""
-    if name not in METHODS:
-        raise InputError(f"method must be one of {sorted(METHODS)} (got {name!r})")
-    return METHODS[name](case, surface_set)
 
 
 def cycle_for_set(
@@ -44,6 +36,8 @@ def cycle_for_set(
 ) -> SetCycleResult:
     """The march of one surface set of a case (Case or BuiltCase) along the cycle with
     the variant ``method`` (a key of :data:`METHODS`) at the case's numerics
-    (:func:`~.driver.march_for_set`)."""
-    built_method = method_for_set(method, case, surface_set)
-    return march_for_set(case, surface_set, inputs, built_method, progress)
+    (:func:`~.driver.march_for_set`); an unknown name is an input error."""
+    if method not in METHODS:
+        raise InputError(f"method must be one of {sorted(METHODS)} (got {method!r})")
+    chosen = METHODS[method](case, surface_set)
+    return march_for_set(case, surface_set, inputs, chosen, progress)
