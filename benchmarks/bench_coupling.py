@@ -34,10 +34,10 @@ import numpy as np
 
 import tribodyn  # noqa: F401  (one BLAS thread, before numpy loads)
 from tribodyn.config import load_case
+from tribodyn.cycle.coupling import implicit_vs_explicit_metrics, run_coupling
+from tribodyn.cycle.driver import CycleInputs, ehl_for_set
 from tribodyn.valvetrain.cams import AccelerationCam
 from tribodyn.valvetrain.dynamics import simulate_valvetrain
-from tribodyn.workflow.coupling import implicit_vs_explicit_metrics, run_coupling
-from tribodyn.workflow.cycle_ehl import CycleInputs, ehl_for_set
 
 R_B = 15e-3
 ANGLES = np.arange(0.0, 360.0, 0.5)  # cam degrees

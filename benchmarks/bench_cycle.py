@@ -36,12 +36,12 @@ import numpy as np
 
 import tribodyn  # noqa: F401  (one BLAS thread, before numpy loads)
 from tribodyn.config import load_case
+from tribodyn.cycle.coupling import ehl_tribology, run_coupling
+from tribodyn.cycle.driver import CycleInputs, ehl_for_set
 from tribodyn.physics.materials import reduced_modulus
 from tribodyn.valvetrain import dynamics as dynamics_module
 from tribodyn.valvetrain.dynamics import simulate_valvetrain
-from tribodyn.workflow.coupling import ehl_tribology, run_coupling
 from tribodyn.workflow.cycle import run_cycle_study
-from tribodyn.workflow.cycle_ehl import CycleInputs, ehl_for_set
 from tribodyn.workflow.postprocess import surface_roles
 
 

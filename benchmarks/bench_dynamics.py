@@ -7,7 +7,7 @@ Explicit: the analytic tribology of the case (film formula + Greenwood–Tripp +
 friction), no film compliance. Implicit: the numerical transient EHL of the first surface
 set along the cycle, its film in series with the contact stiffness and its friction,
 coupled to the dynamics by under-relaxed waveform iteration
-(:mod:`tribodyn.workflow.coupling`); the timing includes the EHL runs.
+(:mod:`tribodyn.cycle.coupling`); the timing includes the EHL runs.
 """
 
 from __future__ import annotations
@@ -20,9 +20,9 @@ from threadpoolctl import threadpool_limits
 
 from tribodyn.config import load_case
 from tribodyn.config.build import build
+from tribodyn.cycle.driver import CycleInputs
 from tribodyn.valvetrain import compare_results, simulate_valvetrain
 from tribodyn.workflow.cycle import _coupling_task
-from tribodyn.workflow.cycle_ehl import CycleInputs
 
 
 def main() -> dict:

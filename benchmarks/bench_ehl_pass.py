@@ -23,8 +23,8 @@ import tribodyn  # noqa: F401  (one BLAS thread, before numpy loads)
 from tribodyn._threads import single_blas_thread
 from tribodyn.config import load_case
 from tribodyn.contact.ehl import reynolds, steady, transient
+from tribodyn.cycle.driver import CycleInputs, ehl_for_set
 from tribodyn.valvetrain.dynamics import simulate_valvetrain
-from tribodyn.workflow.cycle_ehl import CycleInputs, ehl_for_set
 from tribodyn.workflow.postprocess import surface_roles
 
 COUNTS = {"newton_iterations": 0, "lu": 0, "gmres": 0, "krylov": 0, "evaluations": 0}

@@ -16,8 +16,8 @@ import time
 
 import tribodyn  # noqa: F401  (one BLAS thread, before numpy loads)
 from tribodyn.config import load_case
+from tribodyn.cycle.driver import CycleInputs, ehl_for_set
 from tribodyn.valvetrain.dynamics import simulate_valvetrain
-from tribodyn.workflow.cycle_ehl import CycleInputs, ehl_for_set
 from tribodyn.workflow.postprocess import surface_roles
 from tribodyn.workflow.stress_study import stress_for_set
 

@@ -22,9 +22,9 @@ from timing import best_of, steel_5w30
 from tribodyn import solve_ehl
 from tribodyn.config import load_case
 from tribodyn.contact.ehl.thermal import solve_thermal_ehl
+from tribodyn.cycle.driver import CycleInputs, ehl_for_set
+from tribodyn.cycle.thermal import thermal_for_set
 from tribodyn.valvetrain import simulate_valvetrain
-from tribodyn.workflow.cycle_ehl import CycleInputs, ehl_for_set
-from tribodyn.workflow.thermal_study import thermal_for_set
 
 
 def steady():

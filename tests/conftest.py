@@ -71,8 +71,8 @@ def reduced_results(tmp_path_factory):
 def explicit_run(case, set_name="uncoated"):
     """(surface set, explicit dynamics, cycle inputs) of ``case``: the valvetrain driven
     with the set's analytic tribology, sampled on the case's crank step."""
+    from tribodyn.cycle.driver import CycleInputs
     from tribodyn.valvetrain import simulate_valvetrain
-    from tribodyn.workflow.cycle_ehl import CycleInputs
 
     s = case.surface_set(set_name)
     dyn = simulate_valvetrain(
@@ -88,7 +88,7 @@ def cycle_inputs(crank, force, ue, us, radius, width):
     """Cycle inputs at the crank angles ``crank`` [deg] of a crankshaft at 3000 rpm
     (t = crank/(360° · 50 Hz)): contact force ``force`` [N] (array or constant), constant
     u_e = ``ue``, u_s = ``us`` [m/s] and cam radius ``radius`` [m]; cam width [m]."""
-    from tribodyn.workflow.cycle_ehl import CycleInputs
+    from tribodyn.cycle.driver import CycleInputs
 
     t = np.radians(crank) / (2 * np.pi * 50.0)
 
@@ -110,7 +110,7 @@ def ramp_inputs(step_deg, end_deg, width):
 def isothermal_cycle(case, surface_set, inputs):
     """The isothermal EHL march (``ehl_along_cycle``) of ``inputs`` on ``surface_set`` of
     ``case``: its bodies, roughness and EHL options, the case's lubricant."""
-    from tribodyn.workflow.cycle_ehl import ehl_along_cycle
+    from tribodyn.cycle.driver import ehl_along_cycle
 
     s = surface_set
     return ehl_along_cycle(

@@ -77,7 +77,7 @@ def _energy_nothing(self, x, p, h, pa, cond, rough, opts, *, refresh=True, **kw)
 def _coupling_nothing(case, surface_set, dynamics, inputs, first, progress=None):
     """The implicit coupling doing nothing: the explicit dynamics returned as the implicit
     run, 'converged' after one iteration with zero change."""
-    from tribodyn.workflow.coupling import CouplingIteration, CouplingResult
+    from tribodyn.cycle.coupling import CouplingIteration, CouplingResult
 
     _calls["n"] += 1
     out = CouplingResult()
@@ -103,7 +103,7 @@ PATCHES: dict[str, list[tuple[str, str, Callable]]] = {
     ],
     "thermal": [("tribodyn.contact.ehl.thermal_field", "ThermalField.update", _energy_nothing)],
     "coupling": [
-        ("tribodyn.workflow.coupling", "run_coupling", _coupling_nothing),
+        ("tribodyn.cycle.coupling", "run_coupling", _coupling_nothing),
         ("tribodyn.workflow.cycle", "run_coupling", _coupling_nothing),
     ],
 }

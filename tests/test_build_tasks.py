@@ -13,8 +13,8 @@ import pytest
 import tribodyn.config.case as case_module
 import tribodyn.config.case_valvetrain as vt_module
 from tribodyn.config import Case, load_case
+from tribodyn.cycle.tasks import InlineExecutor, Task, run_tasks
 from tribodyn.workflow.cycle import run_cycle_study
-from tribodyn.workflow.tasks import InlineExecutor, Task, run_tasks
 
 
 def _tiny_data() -> dict:

@@ -6,9 +6,9 @@ import pytest
 
 from conftest import explicit_run
 from tribodyn.config import load_case
+from tribodyn.cycle.coupling import COUPLING_MAX_TOL, COUPLING_RMS_TOL, run_coupling
+from tribodyn.cycle.driver import CycleInputs, ehl_for_set
 from tribodyn.valvetrain import simulate_valvetrain
-from tribodyn.workflow.coupling import COUPLING_MAX_TOL, COUPLING_RMS_TOL, run_coupling
-from tribodyn.workflow.cycle_ehl import CycleInputs, ehl_for_set
 
 # the paper case with one surface set at reduced EHL resolution (4° crank, 256 nodes)
 REDUCED = {
@@ -79,7 +79,7 @@ def test_a_diverging_coupling_stops_and_reports_its_most_consistent_iterate(coup
     """Scripted implicit runs whose force changes shrink and then grow 100-fold: the
     coupling stops as diverging at that iteration, says so, and reports the iterate with
     the smallest change instead of the diverged one."""
-    import tribodyn.workflow.coupling as cp
+    import tribodyn.cycle.coupling as cp
 
     dyn, _ = coupled
     case = load_case().updated({**REDUCED, "numerics.coupling_iterations": 6})

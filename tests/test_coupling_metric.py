@@ -10,14 +10,14 @@ import pytest
 
 from conftest import explicit_run
 from tribodyn.config import load_case
-from tribodyn.workflow.coupling import (
+from tribodyn.cycle.coupling import (
     CouplingIteration,
     diagnose_coupling,
     implicit_vs_explicit_metrics,
     run_coupling,
     valve_timing,
 )
-from tribodyn.workflow.cycle_ehl import ehl_for_set
+from tribodyn.cycle.driver import ehl_for_set
 
 # fast: 5° EHL samples, 192 nodes (re-passes on 128)
 FAST = {

@@ -11,9 +11,7 @@ import pytest
 from conftest import explicit_run
 from tribodyn import InputError
 from tribodyn.config import load_case
-from tribodyn.physics.materials import reduced_modulus
-from tribodyn.valvetrain.dynamics import simulate_valvetrain
-from tribodyn.workflow.coupling import (
+from tribodyn.cycle.coupling import (
     COUPLING_MAX_TOL,
     COUPLING_RMS_TOL,
     ehl_tribology,
@@ -21,7 +19,9 @@ from tribodyn.workflow.coupling import (
     run_coupling,
     valve_timing,
 )
-from tribodyn.workflow.cycle_ehl import ehl_for_set
+from tribodyn.cycle.driver import ehl_for_set
+from tribodyn.physics.materials import reduced_modulus
+from tribodyn.valvetrain.dynamics import simulate_valvetrain
 
 COARSE = {
     "engine.speed_rpm": 4000.0,

@@ -18,14 +18,14 @@ import pytest
 
 from conftest import explicit_run
 from tribodyn.config import load_case
-from tribodyn.physics.materials import reduced_modulus
-from tribodyn.valvetrain.dynamics import simulate_valvetrain
-from tribodyn.workflow.coupling import (
+from tribodyn.cycle.coupling import (
     film_state_tribology,
     implicit_vs_explicit_metrics,
     run_coupling,
 )
-from tribodyn.workflow.cycle_ehl import ehl_for_set
+from tribodyn.cycle.driver import ehl_for_set
+from tribodyn.physics.materials import reduced_modulus
+from tribodyn.valvetrain.dynamics import simulate_valvetrain
 
 ANGLES = np.arange(0.0, 360.0, 0.5)  # cam degrees; the event starts on a node (110°)
 START_CRANK = 940.0  # the event's start in the presented cycle [crank °]

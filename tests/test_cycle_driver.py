@@ -10,15 +10,11 @@ from conftest import cycle_inputs, isothermal_cycle, ramp_inputs
 from tribodyn import Body, InputError, Material, TransientEHL
 from tribodyn.config import load_case
 from tribodyn.contact.ehl.thermal_transient import ThermalTransientEHL
+from tribodyn.cycle.driver import IsothermalCycle, march_cycle
+from tribodyn.cycle.methods import METHODS, cycle_for_set
+from tribodyn.cycle.thermal import ThermalCycle, thermal_along_cycle
 from tribodyn.physics.heat_conduction import ThermalBody, ThermalProperties
 from tribodyn.physics.thermal_oil import ThermalLubricant, kelvin
-from tribodyn.workflow.cycle_ehl import (
-    METHODS,
-    IsothermalCycle,
-    cycle_for_set,
-    march_cycle,
-)
-from tribodyn.workflow.thermal_study import ThermalCycle, thermal_along_cycle
 
 # the thermal paper case on a coarse thermal grid (the march is under test)
 CASE = load_case("andreou2023_thermal").updated(

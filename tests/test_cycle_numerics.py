@@ -11,9 +11,9 @@ import pytest
 from conftest import cycle_inputs, isothermal_cycle, ramp_inputs
 from tribodyn import solve_ehl
 from tribodyn.config import load_case
-from tribodyn.workflow.coupling import AndersonMixer
+from tribodyn.cycle.coupling import AndersonMixer
+from tribodyn.cycle.driver import ehl_along_cycle, ehl_for_set
 from tribodyn.workflow.cycle import run_cycle_study
-from tribodyn.workflow.cycle_ehl import ehl_along_cycle, ehl_for_set
 
 CASE = load_case()
 UNCOATED = CASE.surface_set("uncoated")
@@ -153,10 +153,12 @@ def test_validity_warnings_of_the_steps_reach_the_study():
 def test_coupling_re_passes_use_their_own_grid_and_time_tolerance(monkeypatch):
     """film_law_only passes run on numerics.coupling_n nodes (never finer than a fixed
     numerics.n) at COUPLING_TIME_TOL; the reported passes keep numerics.n and TIME_TOL."""
-    import tribodyn.workflow.cycle_ehl as ce
+    import tribodyn.cycle.driver as ce
 
     seen = []
-    monkeypatch.setattr(ce, "ehl_along_cycle", lambda *a, **k: seen.append((a[6].n, k["time_tol"])))
+    monkeypatch.setattr(
+        ce, "march_cycle", lambda *a, **k: seen.append((a[3].options.n, k["time_tol"]))
+    )
     inp = _ramp_inputs(1.0)
     for changes, expect in (
         ({}, [(None, ce.TIME_TOL), (192, ce.COUPLING_TIME_TOL)]),

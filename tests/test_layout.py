@@ -1,6 +1,6 @@
 """Design checks of the package layout: the paper's numbers live in one module and only
 its comparison add-on uses it, and the layers import only downwards (physics →
-contact/valvetrain/topography → config → workflow → output → cli)."""
+contact/valvetrain/topography → config → cycle → workflow → output → cli)."""
 
 import ast
 import inspect
@@ -140,11 +140,12 @@ LAYERS = {
     "valvetrain": 2,
     "topography": 2,
     "config": 3,
-    "workflow": 4,
-    "output": 5,
-    "cli": 6,
-    "__init__": 6,
-    "__main__": 7,
+    "cycle": 4,
+    "workflow": 5,
+    "output": 6,
+    "cli": 7,
+    "__init__": 7,
+    "__main__": 8,
 }
 
 
@@ -176,7 +177,7 @@ def _imports(path: Path, text: str | None = None):
 @pytest.mark.parametrize("path", _modules(), ids=lambda p: str(p.relative_to(SRC)))
 def test_imports_only_downwards(path):
     rel = ".".join(path.relative_to(SRC.parent).with_suffix("").parts)
-    own = LAYERS[_part(rel)] if path.parent != SRC else LAYERS.get(path.stem, 6)
+    own = LAYERS[_part(rel)] if path.parent != SRC else LAYERS.get(path.stem, LAYERS["cli"])
     bad = [
         f"line {ln}: {mod}"
         for mod, ln in _imports(path)
@@ -189,6 +190,82 @@ def test_the_layer_check_sees_an_import():
     """config/case.py imports the EHL options (downwards); the check finds that import."""
     mods = {m for m, _ in _imports(SRC / "config" / "case.py")}
     assert any(m.startswith("tribodyn.contact.ehl") for m in mods)
+
+
+#: The layers above the cycle machinery (tribodyn.cycle): the studies and what shows them.
+ABOVE_CYCLE = ("workflow", "output", "cli")
+
+
+def _study_imports(path: Path, text: str | None = None) -> list[str]:
+    """``line: module`` of each import of ``path`` (or of ``text`` placed there) from a
+    layer above the cycle machinery, at module level or inside a function."""
+    hits = sorted((ln, mod) for mod, ln in _imports(path, text) if _part(mod) in ABOVE_CYCLE)
+    return [f"{ln}: {mod}" for ln, mod in hits]
+
+
+def test_the_cycle_machinery_imports_no_study():
+    """tribodyn.cycle (the EHL pass along the cycle, its methods, the coupling, the task
+    runner) sits below the studies: none of its modules imports workflow, output or cli,
+    not even inside a function."""
+    paths = sorted((SRC / "cycle").glob("*.py"))
+    assert len(paths) >= 7
+    found = [f"{p.name}:{hit}" for p in paths for hit in _study_imports(p)]
+    assert not found, "tribodyn.cycle imports a study layer:\n" + "\n".join(found)
+
+
+def test_the_cycle_check_sees_a_study_import():
+    """The scan above is able to fail: it finds a function-level relative import of a
+    study and an absolute one of the output, not one of config."""
+    probe = SRC / "cycle" / "probe.py"  # not written: the text is parsed as if there
+    text = (
+        "from ..config.build import as_built\n"
+        "def f():\n"
+        "    from ..workflow.postprocess import analyse\n"
+        "import tribodyn.output.dataset\n"
+    )
+    assert _study_imports(probe, text) == [
+        "3: tribodyn.workflow.postprocess",
+        "4: tribodyn.output.dataset",
+    ]
+
+
+def _import_circle(graph: dict[str, set[str]]) -> list[str]:
+    """A circle of ``graph`` (module → modules it imports) as [a, b, …, a], or []."""
+    state: dict[str, int] = {}  # 1: on the current path, 2: done
+
+    def visit(m: str, path: list[str]) -> list[str]:
+        state[m] = 1
+        for n in sorted(graph.get(m, ())):
+            if state.get(n) == 1:
+                return [*path[path.index(n) :], n]
+            if n not in state and (found := visit(n, [*path, n])):
+                return found
+        state[m] = 2
+        return []
+
+    for m in sorted(graph):
+        if m not in state and (found := visit(m, [m])):
+            return found
+    return []
+
+
+def test_the_cycle_modules_import_each_other_without_a_circle():
+    """The method table (cycle.methods) imports the variants; no module of tribodyn.cycle
+    imports another that imports it back, not even inside a function."""
+    graph = {
+        f"tribodyn.cycle.{p.stem}": {
+            ".".join(m.split(".")[:3]) for m, _ in _imports(p) if m.startswith("tribodyn.cycle.")
+        }
+        for p in (SRC / "cycle").glob("*.py")
+    }
+    assert "tribodyn.cycle.thermal" in graph["tribodyn.cycle.methods"]
+    assert not (circle := _import_circle(graph)), " → ".join(circle)
+
+
+def test_the_circle_check_sees_a_circle():
+    """The check above is able to fail: it finds a → b → a behind a third module."""
+    assert _import_circle({"c": {"a"}, "a": {"b"}, "b": {"a"}}) == ["a", "b", "a"]
+    assert _import_circle({"a": {"b"}, "b": set()}) == []
 
 
 #: Largest module [lines]: a longer module is split by job (docs/architecture.md).

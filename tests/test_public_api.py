@@ -57,8 +57,8 @@ def test_subpackages_are_attributes_of_the_package():
 
     code = (
         "import sys, tribodyn\n"
-        "names = ['config', 'contact', 'output', 'physics', 'topography', 'valvetrain',"
-        " 'workflow']\n"
+        "names = ['config', 'contact', 'cycle', 'output', 'physics', 'topography',"
+        " 'valvetrain', 'workflow']\n"
         "print([getattr(tribodyn, n).__name__ == 'tribodyn.' + n for n in names])\n"
         "print(hasattr(tribodyn, 'cli'), 'tribodyn.cli' in sys.modules)\n"
     )
@@ -68,4 +68,4 @@ def test_subpackages_are_attributes_of_the_package():
         [sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120
     )
     assert r.returncode == 0, r.stderr
-    assert r.stdout.split("\n")[:2] == [str([True] * 7), "False False"]
+    assert r.stdout.split("\n")[:2] == [str([True] * 8), "False False"]

@@ -9,9 +9,9 @@ import pytest
 
 from tribodyn import InputError
 from tribodyn.config import Case, load_case
+from tribodyn.cycle import driver
+from tribodyn.cycle.driver import CycleInputs
 from tribodyn.valvetrain.tappet_rotation import TappetRotation
-from tribodyn.workflow import cycle_ehl
-from tribodyn.workflow.cycle_ehl import CycleInputs
 
 
 def test_sliding_vector_is_the_rigid_body_velocity_difference():
@@ -121,7 +121,7 @@ def test_bad_rotation_inputs_name_the_field():
         Case.from_toml_string("[tappet_rotation]\ncam_offset = 0.2\n")
 
 
-def test_case_rotation_reaches_the_cycle_ehl(monkeypatch):
+def test_case_rotation_reaches_the_cycle_driver(monkeypatch):
     case = load_case().updated(
         {"tappet_rotation.speed_ratio": 0.05, "tappet_rotation.cam_offset": 0.003}
     )
@@ -132,9 +132,9 @@ def test_case_rotation_reaches_the_cycle_ehl(monkeypatch):
     def fake(inputs, *a, **k):
         seen["inputs"] = inputs
 
-    monkeypatch.setattr(cycle_ehl, "ehl_along_cycle", fake)
+    monkeypatch.setattr(driver, "march_cycle", fake)
     inp = _inputs()
-    cycle_ehl.ehl_for_set(case, case.surface_sets()[0], inp)
+    driver.ehl_for_set(case, case.surface_sets()[0], inp)
     expected = inp.with_rotation(TappetRotation(0.05, 0.003))
     np.testing.assert_array_equal(seen["inputs"].sliding_speed, expected.sliding_speed)
 

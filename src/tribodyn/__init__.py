@@ -75,7 +75,7 @@ __all__ = [
 #: subpackages imported on first attribute use (``tribodyn.physics``); not ``cli``, whose
 #: import sets the BLAS thread environment
 _SUBPACKAGES = frozenset(
-    {"config", "contact", "output", "physics", "topography", "valvetrain", "workflow"}
+    {"config", "contact", "cycle", "output", "physics", "topography", "valvetrain", "workflow"}
 )
 
 

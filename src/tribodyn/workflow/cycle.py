@@ -7,7 +7,7 @@
    roughness, boundary shear coefficient) at a fixed crank step — in parallel processes.
 3. Implicit dynamics for the comparison (paper Figs. 8–10): the numerical EHL film in
    series with the contact stiffness and the EHL friction, coupled by under-relaxed
-   waveform iteration (:mod:`tribodyn.workflow.coupling`) for the reference set.
+   waveform iteration (:mod:`tribodyn.cycle.coupling`) for the reference set.
 4. The sensitivity study at the case's own cam nose with its reference set
    (:mod:`tribodyn.workflow.sensitivity`); the single-contact coating studies of the
    paper's Figs. 5 and 6 (the paper's conditions) only for the paper's case or with
@@ -34,6 +34,10 @@ from .._system import exit_with_parent
 from .._threads import blas_single_threaded, single_blas_thread, single_blas_thread_env
 from ..config.build import BuiltCase, as_built
 from ..config.origins import default_warnings
+from ..cycle.coupling import CouplingResult, run_coupling
+from ..cycle.driver import CycleInputs, SetCycleResult, ehl_for_set
+from ..cycle.tasks import InlineExecutor, Task, run_tasks
+from ..cycle.thermal import thermal_task
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from .coating_study import (
     DryCoatingCase,
@@ -43,8 +47,6 @@ from .coating_study import (
     dry_hertz_reference,
     ehl_coating_study,
 )
-from .coupling import CouplingResult, run_coupling
-from .cycle_ehl import CycleInputs, SetCycleResult, ehl_for_set
 from .engineering import (
     Engineering,
     compares_paper,
@@ -60,7 +62,6 @@ from .sensitivity import (
     roughness_sensitivity,
     surface_sets_at_nose,
 )
-from .tasks import InlineExecutor, Task, run_tasks
 
 if TYPE_CHECKING:
     from ..config.case import Case, SurfaceSet
@@ -225,8 +226,6 @@ def study_tasks(
     ]
     tasks.append(Task("coating", _coating_studies_task, (built, reference, nose, paper_studies)))
     if built.case.numerics.thermal:
-        from .thermal_study import thermal_task
-
         tasks += [
             Task(f"thermal:{name}", thermal_task, (built, name, inputs)) for name in built.sets
         ]
@@ -235,7 +234,7 @@ def study_tasks(
 
 @contextmanager
 def _study_executor(executor: Executor | None, workers: int):
-    """The given executor; else :class:`~tribodyn.workflow.tasks.InlineExecutor` for one
+    """The given executor; else :class:`~tribodyn.cycle.tasks.InlineExecutor` for one
     worker, or a local process pool of ``workers`` processes (shut down on exit)."""
     if executor is not None:
         yield executor
@@ -270,7 +269,7 @@ def run_cycle_study(
     ``executor`` (any :class:`concurrent.futures.Executor`, e.g. a Dask client's
     ``get_executor()``; every task is a picklable top-level function with picklable
     arguments) or, by default, to a local process pool of ``workers`` processes
-    (``workers=1``: in this process, :class:`~tribodyn.workflow.tasks.InlineExecutor`).
+    (``workers=1``: in this process, :class:`~tribodyn.cycle.tasks.InlineExecutor`).
 
     ``progress(event, **info)`` receives ``("dynamics", …)``, ``("set", name=, done=,
     total=)`` (done = 0 when a set is submitted, = total when its result is in) and

@@ -26,6 +26,7 @@ from scipy.optimize import brentq
 
 from .. import paper
 from ..config.build import as_built, build
+from ..cycle.coupling import implicit_vs_explicit_metrics
 from ..physics.materials import reduced_modulus
 from ..physics.regimes import (
     REGIMES,
@@ -35,7 +36,7 @@ from ..physics.regimes import (
     moes_central,
 )
 from .conventions import CHANGE, CRANK_ANGLE, change_pct
-from .coupling import implicit_vs_explicit_metrics
+from .thermal_study import thermal_summary
 
 if TYPE_CHECKING:
     from .cycle import CycleStudy
@@ -400,8 +401,6 @@ def summary(study: CycleStudy, an: Analysis) -> dict:
     _engineering_summary(study, out)
     out["implicit_vs_explicit"] = _implicit_vs_explicit(study)
     if study.isothermal_sets is not None:  # numerics.thermal
-        from .thermal_study import thermal_summary
-
         out["thermal"] = thermal_summary(study, an)
     out["dynamics"] = {k: v for k, v in dyn.summary().items() if k != "converged"}
     out["valve_jump"] = _valve_jump(study)

@@ -17,8 +17,8 @@ import numpy as np
 
 from ..config.build import BuiltCase, as_built, options_for
 from ..contact.ehl import solve_ehl
+from ..cycle.driver import CycleInputs
 from ..physics.asperity import Roughness
-from .cycle_ehl import CycleInputs
 
 __all__ = [
     "NoseCondition",

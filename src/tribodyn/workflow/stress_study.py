@@ -1,6 +1,6 @@
 """Subsurface stresses, safety factors and wear of the cam and the tappet along a cycle.
 
-From a set's cycle EHL pass (:class:`~tribodyn.workflow.cycle_ehl.SetCycleResult`: the
+From a set's cycle EHL pass (:class:`~tribodyn.cycle.data.SetCycleResult`: the
 pressure and film profile of every loaded sample) the surface loads of each body are
 rebuilt (:func:`tribodyn.contact.stress.profile_surface_loads`: p + p_a, viscous and
 boundary shear with their signs) and its stresses evaluated

@@ -359,9 +359,9 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
 
     from ..config.build import build
     from ..contact.ehl import TransientEHL
+    from ..cycle.driver import CycleInputs
     from .coating_study import dry_coating_study, ehl_coating_study
     from .cycle import StudyError
-    from .cycle_ehl import CycleInputs
     from .postprocess import surface_roles
     from .sensitivity import nose_condition, roughness_sensitivity
     from .sweep_point import point_dynamics

@@ -13,7 +13,8 @@ control (:class:`_Marcher`), the sub-steps, the validity warnings and the per-sa
 outputs are written once. A variant is a :class:`CycleMethod` — a transient solver that
 satisfies :class:`EHLStepper` (:class:`~tribodyn.TransientEHL` or a subclass using its
 hooks), the viscous friction of both shear laws on its film, and optional extra
-:class:`Recorder` s (the thermal variant's temperatures) — listed in :data:`METHODS`.
+:class:`Recorder` s (the thermal variant's temperatures) — listed by name in
+:data:`tribodyn.cycle.methods.METHODS`.
 
 Outputs are totals over the cam width: loads and friction forces [N], friction power
 P = (F_v + F_b) u_s [W]; films [m]; pressures [Pa].
@@ -30,13 +31,12 @@ from typing import Any, ClassVar, Protocol
 
 import numpy as np
 
-from .._validation import InputError
 from ..config.build import as_built, options_for
 from ..contact.ehl import EHLOptions, EHLResult, TransientEHL
 from ..contact.ehl.postprocess import shear_stress
 from ..physics.asperity import Roughness
 from ..physics.lubricant import Lubricant
-from .cycle_data import SAMPLE_OUTPUTS, CycleInputs, SampleConditions, SetCycleResult
+from .data import SAMPLE_OUTPUTS, CycleInputs, SampleConditions, SetCycleResult
 
 __all__ = [
     "CycleInputs",
@@ -46,9 +46,8 @@ __all__ = [
     "Recorder",
     "CycleMethod",
     "IsothermalCycle",
-    "METHODS",
     "march_cycle",
-    "cycle_for_set",
+    "march_for_set",
     "ehl_along_cycle",
     "ehl_for_set",
     "PROFILE_POINTS",
@@ -290,20 +289,6 @@ class IsothermalCycle(CycleMethod):
         return cls(s.bodies, built.lubricant, s.roughness, options or options_for(built, s))
 
 
-def _thermal_for_set(case, surface_set) -> CycleMethod:
-    from .thermal_study import ThermalCycle  # builds on this module
-
-    return ThermalCycle.for_set(case, surface_set)
-
-
-#: The EHL variants by name: ``METHODS[name](case, surface_set)`` is the
-#: :class:`CycleMethod` of a surface set (:func:`cycle_for_set`).
-METHODS: dict[str, Callable[[Any, Any], CycleMethod]] = {
-    "isothermal": IsothermalCycle.for_set,
-    "thermal": _thermal_for_set,
-}
-
-
 class _SampleRecorder:
     """The outputs every variant records: :data:`SAMPLE_OUTPUTS` (totals over the
     width) and the p(x), h(x) profiles."""
@@ -453,30 +438,36 @@ def ehl_along_cycle(
     )
 
 
-def cycle_for_set(
-    case, surface_set, inputs: CycleInputs, method: str = "isothermal", progress=None
+def march_for_set(
+    case,
+    surface_set,
+    inputs: CycleInputs,
+    method: CycleMethod,
+    progress=None,
+    *,
+    time_tol: float = TIME_TOL,
 ) -> SetCycleResult:
-    """:func:`march_cycle` for one surface set of a case (Case or BuiltCase) with the
-    variant ``method`` (a key of :data:`METHODS`) at the case's numerics."""
-    if method not in METHODS:
-        raise InputError(f"method must be one of {sorted(METHODS)} (got {method!r})")
+    """:func:`march_cycle` of ``method`` for one surface set of a case (Case or
+    BuiltCase): the set's name and label, the case's tappet rotation and
+    ``numerics.min_load``."""
     s, built = surface_set, as_built(case)
-    inputs = inputs.with_rotation(built.tappet_rotation)
     return march_cycle(
-        inputs,
+        inputs.with_rotation(built.tappet_rotation),
         s.name,
         s.coating_label,
-        METHODS[method](built, s),
+        method,
         min_load=built.case.numerics.min_load,
         progress=progress,
+        time_tol=time_tol,
     )
 
 
 def ehl_for_set(
     case, surface_set, inputs: CycleInputs, progress=None, *, film_law_only: bool = False
 ) -> SetCycleResult:
-    """:func:`ehl_along_cycle` for one surface set of a case (Case or BuiltCase; its
-    bodies, roughness and friction law; the case's lubricant and numerics).
+    """The isothermal march (:class:`IsothermalCycle`, :func:`march_for_set`) of one
+    surface set of a case (Case or BuiltCase; its bodies, roughness and friction law; the
+    case's lubricant and numerics).
 
     ``film_law_only``: the pass only feeds the implicit coupling's film law (the
     coupling's re-passes), which needs the film to the coupling tolerance: the grid has
@@ -484,7 +475,6 @@ def ehl_for_set(
     time-error tolerance is :data:`COUPLING_TIME_TOL`."""
     s, built = surface_set, as_built(case)
     n = built.case.numerics
-    inputs = inputs.with_rotation(built.tappet_rotation)
     opts = options_for(built, s)
     time_tol = TIME_TOL
     if film_law_only:
@@ -492,15 +482,5 @@ def ehl_for_set(
         nodes = n.coupling_n
         if nodes:  # never finer than the study's own fixed grid
             opts = replace(opts, n=min(nodes, n.n) if n.n else nodes)
-    return ehl_along_cycle(
-        inputs,
-        s.name,
-        s.coating_label,
-        s.bodies,
-        built.lubricant,
-        s.roughness,
-        opts,
-        min_load=n.min_load,
-        progress=progress,
-        time_tol=time_tol,
-    )
+    method = IsothermalCycle.for_set(built, s, opts)
+    return march_for_set(built, s, inputs, method, progress, time_tol=time_tol)

@@ -1,4 +1,4 @@
-"""The data of an EHL pass along the cam cycle (:mod:`.cycle_ehl`): the sampled cycle
+"""The data of an EHL pass along the cam cycle (:mod:`.driver`): the sampled cycle
 (:class:`CycleInputs`, per sample :class:`SampleConditions`), the per-set result
 (:class:`SetCycleResult`) and the outputs every sample records (:data:`SAMPLE_OUTPUTS`).
 

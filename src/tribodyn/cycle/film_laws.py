@@ -1,5 +1,5 @@
 """The film and friction laws that the implicit coupling hands to the dynamics, built
-from a transient-EHL cycle (used by :mod:`tribodyn.workflow.coupling`):
+from a transient-EHL cycle (used by :mod:`tribodyn.cycle.coupling`):
 
 - :func:`film_state_tribology`: the film as a state of the dynamics (valvetrain
   ``FilmStateTribology``) with the correction of its flooded film towards the EHL

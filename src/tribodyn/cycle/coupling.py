@@ -69,7 +69,7 @@ from ..config.build import as_built
 from ..physics.materials import reduced_modulus
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from ..valvetrain.tribology import FilmStateTribology
-from .cycle_ehl import CycleInputs, SetCycleResult, ehl_for_set
+from .driver import CycleInputs, SetCycleResult, ehl_for_set
 from .film_laws import (
     CORRECTION_LIMIT,
     CORRECTION_MAX_SUPPLY_SHARE,
