@@ -49,7 +49,7 @@ SOLVER_MODULES = (
     "tribodyn.physics.hertz",
     "tribodyn.topography.load_separation",
     "tribodyn.config.build",
-    "tribodyn.workflow.cycle_ehl",
+    "tribodyn.cycle",
     "tribodyn.workflow.stress_map",
 )
 #: functions that compute a study's results, wherever they are imported from
