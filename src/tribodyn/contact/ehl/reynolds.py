@@ -32,6 +32,7 @@ from .kernels import (
     band_product,
     coupling_bands,
     dense_matrix,
+    dense_matrix_t,
     gmres_lu,
     newton_matvec,
 )
@@ -287,6 +288,18 @@ class Linearization:
         K, ks = self._influence()
         return dense_matrix(*self._rows(), K, ks, self.dX, not self.rigid)
 
+    def dense_column_major(self, dtype=np.float64):
+        """The dense Newton matrix in ``dtype`` and column-major order, as LAPACK
+        factorises it in place (:func:`.kernels.dense_matrix_t` writes its transpose).
+        In single precision, entries below √(smallest normal float32) ≈ 1e-19 are zero
+        (the rows are scaled to O(1)): neither they nor their products in the
+        elimination are subnormal, which would make the factorisation several times
+        slower, and their share of a row is below single precision's resolution."""
+        K, ks = self._influence()
+        out = np.empty((self.n + 1, self.n + 1), dtype=dtype)
+        flush = _FLUSH if out.dtype == np.float32 else 0.0
+        return dense_matrix_t(*self._rows(), K, ks, self.dX, not self.rigid, flush, out).T
+
     def _rows(self):
         """(A_P, B, B·1, c, free, cavitated, D): the row data of the Newton matrix."""
         return self.AP, self.B, self.col, self.c, self.free, self.cav, self.D
@@ -299,3 +312,4 @@ class Linearization:
 
 
 _EMPTY2 = np.zeros((0, 0))
+_FLUSH = float(np.sqrt(np.finfo(np.float32).tiny))
