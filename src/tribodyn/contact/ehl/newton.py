@@ -21,6 +21,7 @@ from .kernels import FACTOR_FLUSH, flush_factors, givens_step, jacobi_diagonal
 from .reynolds import Linearization, ReynoldsSystem
 
 __all__ = [
+    "ROUND_OFF_PRESSURE",
     "State",
     "NewtonOutcome",
     "newton",
@@ -32,6 +33,11 @@ __all__ = [
 ]
 
 _NONMONOTONE = 6
+#: A converged fluid pressure below this share of the largest (total) pressure is zero
+#: up to round-off (a cavitated node): the complementarity rows of a Newton step are
+#: solved to the linear solver's accuracy, and a single-precision preconditioner leaves
+#: residues of either sign there (≈ 1e-27 of the peak on a rigid contact).
+ROUND_OFF_PRESSURE = 1e-12
 #: A given start set (``State.cav``, a transient predictor's) replaces the cavitated set
 #: of the start's P and R at nodes whose asperity pressure exceeds this share of the
 #: largest total pressure: there P = Q − Pa(H) of a predicted Q is the difference of two
@@ -43,7 +49,7 @@ _ASPERITY_SHARE = 0.03
 _TRACE = False
 _WATCHDOG = 100.0
 _MAX_KRYLOV = 30
-_MAX_KRYLOV_BEFORE_REFACTOR = 20
+_MAX_KRYLOV_BEFORE_REFACTOR = 12
 _MAX_KRYLOV_TWO_GRID = 200
 #: GMRES with an LU preconditioner in compiled code (False: the NumPy loop below, which
 #: is kept for the two-grid preconditioner and as a cross-check in the tests)
