@@ -261,6 +261,40 @@ def test_compiled_gmres_with_a_single_precision_preconditioner():
     assert not k.flush_factors(np.full(16, 1e39), k.FACTOR_FLUSH)
 
 
+def test_compiled_gmres_with_single_precision_products():
+    """GMRES with the influence matrix rounded to single precision (kernels.SGEMV, as
+    the Newton solves use it, reynolds.SINGLE_PRODUCTS) solves the double-precision
+    system to single precision's accuracy (LAPACK's dense solve)."""
+    from scipy import linalg
+
+    from tribodyn.contact.ehl import kernels as k
+
+    rng = np.random.default_rng(5)
+    n = 160
+    AP = rng.normal(size=(5, n))
+    AP[2] += 6.0
+    AH = 0.1 * rng.normal(size=(5, n))
+    D = 0.05 * rng.random(n)
+    B, col = k.coupling_bands(AP, AH, D)
+    c = 1.0 + rng.random(n)
+    cav = np.zeros(n, dtype=bool)
+    cav[120:130] = True
+    free = ~cav
+    free[0] = free[-1] = False
+    K = linalg.toeplitz(1.0 / (1.0 + np.arange(n)))
+    ks, dX = 0.3, 0.01
+    J = k.dense_matrix(AP, B, col, c, free, cav, D, K, ks, dX, True)
+    fac, piv = linalg.lu_factor(J * (1.0 + 0.05 * rng.random(J.shape)))
+    b = rng.normal(size=n + 1)
+    system = (AP, B, col, c, free, cav, D, K.astype(np.float32), ks, True, dX)
+    x, its, ok = k.gmres_lu(k.GETRS, k.SGEMV, system, fac, piv + 1, b, 1e-10, 30)
+    assert ok and 0 < its <= 30
+    exact = np.linalg.solve(J, b)
+    err = np.linalg.norm(x - exact) / np.linalg.norm(exact)
+    assert 0.0 < err < 1e-5  # K's rounding: an inexact Newton direction
+    assert np.linalg.norm(J @ x - b) < 1e-5 * np.linalg.norm(b)
+
+
 def _asperity_march(monkeypatch, predicted_cavitation: bool):
     """(Newton iterations, [h_c, h_min, asperity share] per step) of a march whose
     asperities carry > 99 % of the load, with or without the predictor's cavitated set."""

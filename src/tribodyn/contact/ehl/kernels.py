@@ -29,6 +29,7 @@ __all__ = [
     "GETRS",
     "SGETRS",
     "GEMV",
+    "SGEMV",
     "gmres_lu",
     "flush_factors",
     "VECTOR_FLUSH",
@@ -286,6 +287,8 @@ GETRS = _scipy_routine("lapack", "dgetrs", 9)
 SGETRS = _scipy_routine("lapack", "sgetrs", 9)
 #: dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
 GEMV = _scipy_routine("blas", "dgemv", 11)
+#: sgemv: the same in single precision (products with a float32 influence matrix)
+SGEMV = _scipy_routine("blas", "sgemv", 11)
 
 
 #: Single-precision triangular solves: entries of the right-hand side below this share of
@@ -359,27 +362,46 @@ def _apply(gemv, system, z, out, work):
     """Newton-matrix product out = J z for ``system`` = (AP, B, col, c, free, cav, D, K,
     kscale, elastic, dX), with δH = kscale·K v + vh (dense row-major K, by BLAS gemv on
     its column-major view with trans = "T"); ``work`` = (dh, [n, n, 1], [1, 0],
-    [ord("T")])."""
+    [ord("T")], zs, hs): zs, hs vectors of K's precision for a float32 K."""
     AP, B, col, c, free, cav, D, K, kscale, elastic, dX = system
-    dh, ints, reals, tr = work
+    dh, ints, reals, tr, zs, hs = work
     n = D.size
     vh = z[n]
     if elastic:
-        gemv(
-            tr.ctypes,
-            ints[0:].ctypes,
-            ints[1:].ctypes,
-            reals[0:].ctypes,
-            K.ctypes,
-            ints[0:].ctypes,
-            z.ctypes,
-            ints[2:].ctypes,
-            reals[1:].ctypes,
-            dh.ctypes,
-            ints[2:].ctypes,
-        )
-        for i in range(n):
-            dh[i] = kscale * dh[i] + vh
+        if K.itemsize == 4:
+            for i in range(n):
+                zs[i] = z[i]
+            gemv(
+                tr.ctypes,
+                ints[0:].ctypes,
+                ints[1:].ctypes,
+                reals[0:].ctypes,
+                K.ctypes,
+                ints[0:].ctypes,
+                zs.ctypes,
+                ints[2:].ctypes,
+                reals[1:].ctypes,
+                hs.ctypes,
+                ints[2:].ctypes,
+            )
+            for i in range(n):
+                dh[i] = kscale * hs[i] + vh
+        else:
+            gemv(
+                tr.ctypes,
+                ints[0:].ctypes,
+                ints[1:].ctypes,
+                reals[0:].ctypes,
+                K.ctypes,
+                ints[0:].ctypes,
+                z.ctypes,
+                ints[2:].ctypes,
+                reals[1:].ctypes,
+                dh.ctypes,
+                ints[2:].ctypes,
+            )
+            for i in range(n):
+                dh[i] = kscale * dh[i] + vh
     else:
         dh[:] = vh
     newton_matvec(AP, B, col, c, free, cav, D, z[:n], vh, dh, dX, out)
@@ -430,7 +452,9 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
     Alg. 9.6), so that J Z = V H holds to double round-off even where M⁻¹ is applied
     inexactly. Stops when the residual estimate |g_{j+1}| ≤ rtol·|b|. The factors may
     be float32 (with ``getrs`` = :data:`SGETRS`): the preconditioner then reads half the
-    memory, and GMRES still solves the double-precision system to ``rtol``.
+    memory, and GMRES still solves the double-precision system to ``rtol``. K may be
+    float32 too (with ``gemv`` = :data:`SGEMV`): GMRES then solves the system with K
+    rounded to single precision.
 
     Returns (x, iterations, ok); ok is False for a non-finite residual, a breakdown or
     no convergence within ``max_it`` iterations."""
@@ -441,11 +465,14 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
     ints = np.array([m, 1, m, m, 0], dtype=np.int32)
     trans = np.array([78], dtype=np.uint8)  # "N"
     n = m - 1
+    K = system[7]
     work = (
         np.empty(n),
         np.array([n, n, 1], dtype=np.int32),
-        np.array([1.0, 0.0]),
+        np.array([1.0, 0.0], dtype=K.dtype),
         np.array([84], dtype=np.uint8),  # "T"
+        np.empty(n, dtype=K.dtype),
+        np.empty(n, dtype=K.dtype),
     )
     buf = np.empty_like(fac[:, 0])
     x0 = b.copy()
