@@ -295,6 +295,27 @@ def test_compiled_gmres_with_single_precision_products():
     assert np.linalg.norm(J @ x - b) < 1e-5 * np.linalg.norm(b)
 
 
+def test_warmup_compiles_the_fallback_variants(monkeypatch):
+    """kernels.compile_fallbacks (run by ``tribodyn warmup``) compiles the argument types
+    of the double-precision fallback of a transient's factorisation: after such a march
+    it adds no new compiled variant."""
+    from tribodyn import Roughness
+    from tribodyn.contact.ehl import kernels as k
+    from tribodyn.contact.ehl import newton
+
+    monkeypatch.setattr(newton, "_SINGLE_PRECONDITIONER", False)
+    rough = Roughness(asperity_density=8.3e9, rms=0.2e-6, summit_radius=0.669e-6)
+    tr = TransientEHL(PAIR, Lubricant(0.055, 1.05e-8), roughness=rough)
+    tr.start_steady(4e4, 0.005, 1.0, 3.0)
+    for j in range(3):
+        assert tr.step(2.5e-5, 4e4 * (1 + 0.02 * j), 0.005, 1.0, 3.0).converged
+    kernels = (k.dense_matrix_t, k.gmres_lu, k._lu_solve, k._apply)
+    before = [set(map(str, f.signatures)) for f in kernels]
+    assert all(before)
+    k.compile_fallbacks()
+    assert [set(map(str, f.signatures)) for f in kernels] == before
+
+
 def _asperity_march(monkeypatch, predicted_cavitation: bool):
     """(Newton iterations, [h_c, h_min, asperity share] per step) of a march whose
     asperities carry > 99 % of the load, with or without the predictor's cavitated set."""

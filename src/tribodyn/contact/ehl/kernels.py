@@ -32,6 +32,7 @@ __all__ = [
     "SGEMV",
     "gmres_lu",
     "flush_factors",
+    "compile_fallbacks",
     "VECTOR_FLUSH",
     "FACTOR_FLUSH",
 ]
@@ -539,3 +540,28 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
                     t[q] += yi * Z[i, q]
             return x0 + t, k, True
     return x0, max_it, False
+
+
+def compile_fallbacks() -> None:
+    """Compile (into numba's cache) the kernel variants that a cycle study reaches only
+    on fallbacks, on a small system with the argument types of the solvers' calls: the
+    double-precision factorisation (:func:`dense_matrix_t` into float64, GMRES with
+    float64 factors) and the dense matrix of the two-grid coarse level
+    (:func:`dense_matrix`)."""
+    from scipy import linalg
+
+    n = 8
+    AP = np.zeros((5, n))
+    AP[2] = 1.0
+    B, col = coupling_bands(AP, np.ones((5, n)), np.zeros(n))
+    c, D = np.ones(n), np.zeros(n)
+    cav = np.zeros(n, dtype=np.bool_)
+    free = ~cav
+    free[0] = free[-1] = False
+    K = np.eye(n)
+    rows = (AP, B, col, c, free, cav, D)
+    dense_matrix(*rows, K, 1.0, 0.1, True)
+    J = dense_matrix_t(*rows, K, 1.0, 0.1, True, 0.0, np.empty((n + 1, n + 1))).T
+    fac, piv = linalg.lu_factor(J, overwrite_a=True, check_finite=False)
+    system = (*rows, K.astype(np.float32), 1.0, True, 0.1)
+    gmres_lu(GETRS, SGEMV, system, fac, piv + 1, np.ones(n + 1), 1e-6, 30)
