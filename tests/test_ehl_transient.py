@@ -309,7 +309,7 @@ def test_warmup_compiles_the_fallback_variants(monkeypatch):
     tr.start_steady(4e4, 0.005, 1.0, 3.0)
     for j in range(3):
         assert tr.step(2.5e-5, 4e4 * (1 + 0.02 * j), 0.005, 1.0, 3.0).converged
-    kernels = (k.dense_matrix_t, k.gmres_lu, k._lu_solve, k._apply)
+    kernels = (k.dense_matrix_t, k.gmres_lu)  # called from Python (the rest inside)
     before = [set(map(str, f.signatures)) for f in kernels]
     assert all(before)
     k.compile_fallbacks()
