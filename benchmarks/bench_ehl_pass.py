@@ -7,7 +7,8 @@ EHL pass (``ehl_for_set``, default settings) is run once to warm the compiled ke
 and ``--repeat`` times timed, under one BLAS thread. Reported per pass: CPU and wall
 seconds, loaded samples, the Newton iterations of every solve (steady starts, rejected
 and sub-steps included; the results' ``iterations`` count only the last solve of each
-sample), dense LU factorisations, GMRES calls and their Krylov iterations, and residual
+sample), dense LU factorisations, GMRES calls (a fresh factorisation's own Newton step
+included where the solver solves it by GMRES) and their Krylov iterations, and residual
 evaluations. The counters wrap public functions only, so the script times other
 versions of tribodyn alike. On a shared machine compare CPU seconds, alternating the
 versions (see docs/convergence.md).

@@ -201,14 +201,15 @@ def test_compiled_gmres_solves_a_random_newton_system(elastic):
 
 
 def test_compiled_gmres_with_a_single_precision_preconditioner():
-    """Flexible GMRES with float32 LU factors (kernels.SGETRS) solves the double-precision
-    Newton system to its tolerance (checked against LAPACK's dense solve); newton's
-    factorisation keeps the double factors as preconditioner where a factor exceeds
-    single precision's range."""
+    """Flexible GMRES with float32 LU factors (kernels.SGETRS) of the matrix assembled in
+    single precision (kernels.dense_matrix_t, tiny entries flushed) solves the
+    double-precision Newton system to its tolerance (checked against LAPACK's dense solve
+    of the double-precision matrix of kernels.dense_matrix); factors beyond single
+    precision's range are refused (newton then factorises in double precision)."""
     from scipy import linalg
 
     from tribodyn.contact.ehl import kernels as k
-    from tribodyn.contact.ehl import newton
+    from tribodyn.contact.ehl import reynolds
 
     rng = np.random.default_rng(11)
     n = 150
@@ -216,24 +217,103 @@ def test_compiled_gmres_with_a_single_precision_preconditioner():
     AP[2] += 6.0
     AH = 0.1 * rng.normal(size=(5, n))
     D = 0.05 * rng.random(n)
+    D[60:70] = 1e-200  # far from the contact: subnormal in single precision
     B, col = k.coupling_bands(AP, AH, D)
     c = 1.0 + rng.random(n)
     cav = np.zeros(n, dtype=bool)
     cav[100:110] = True
+    cav[60:70] = True
+    free = ~cav
+    free[0] = free[-1] = False
+    K = linalg.toeplitz(1.0 / (1.0 + np.arange(n)))
+    ks, dX = 0.3, 0.01
+    rows = (AP, B, col, c, free, cav, D)
+    J = k.dense_matrix(*rows, K, ks, dX, True)
+    J64 = k.dense_matrix_t(*rows, K, ks, dX, True, 0.0, np.empty((n + 1, n + 1)))
+    np.testing.assert_allclose(J64.T, J, rtol=1e-13, atol=1e-15 * np.abs(J).max())
+    earlier = [a * (1.0 + 0.05 * rng.random(a.shape)) for a in (AP, B)]  # an earlier matrix
+    J32 = k.dense_matrix_t(
+        earlier[0],
+        earlier[1],
+        col,
+        c,
+        free,
+        cav,
+        D,
+        K,
+        ks,
+        dX,
+        True,
+        reynolds._FLUSH,
+        np.empty((n + 1, n + 1), dtype=np.float32),
+    ).T
+    tiny = np.finfo(np.float32).tiny
+    assert not np.any((J32 != 0.0) & (np.abs(J32) < tiny))  # no subnormal entries
+    fac, piv = linalg.lu_factor(J32, overwrite_a=True, check_finite=False)
+    assert fac.dtype == np.float32 and k.flush_factors(fac.T.reshape(-1), k.FACTOR_FLUSH)
+    b = rng.normal(size=n + 1)
+    b[5] = 1e-300  # a subnormal entry in single precision
+    system = (*rows, K, ks, True, dX)
+    x, its, ok = k.gmres_lu(k.SGETRS, k.GEMV, system, fac, piv + 1, b, 1e-12, 30)
+    assert ok and 0 < its <= 30
+    exact = np.linalg.solve(J, b)
+    assert np.linalg.norm(x - exact) <= 1e-9 * np.linalg.norm(exact)
+    assert not k.flush_factors(np.full(16, 1e39), k.FACTOR_FLUSH)
+
+
+def test_compiled_gmres_with_single_precision_products():
+    """GMRES with the influence matrix rounded to single precision (kernels.SGEMV, as
+    the Newton solves use it, reynolds.SINGLE_PRODUCTS) solves the double-precision
+    system to single precision's accuracy (LAPACK's dense solve)."""
+    from scipy import linalg
+
+    from tribodyn.contact.ehl import kernels as k
+
+    rng = np.random.default_rng(5)
+    n = 160
+    AP = rng.normal(size=(5, n))
+    AP[2] += 6.0
+    AH = 0.1 * rng.normal(size=(5, n))
+    D = 0.05 * rng.random(n)
+    B, col = k.coupling_bands(AP, AH, D)
+    c = 1.0 + rng.random(n)
+    cav = np.zeros(n, dtype=bool)
+    cav[120:130] = True
     free = ~cav
     free[0] = free[-1] = False
     K = linalg.toeplitz(1.0 / (1.0 + np.arange(n)))
     ks, dX = 0.3, 0.01
     J = k.dense_matrix(AP, B, col, c, free, cav, D, K, ks, dX, True)
-    lu = newton._factor(J * (1.0 + 0.05 * rng.random(J.shape)))  # an earlier matrix
-    assert lu.prec.dtype == np.float32 and lu.fac.dtype == np.float64
+    fac, piv = linalg.lu_factor(J * (1.0 + 0.05 * rng.random(J.shape)))
     b = rng.normal(size=n + 1)
-    system = (AP, B, col, c, free, cav, D, K, ks, True, dX)
-    x, its, ok = k.gmres_lu(k.SGETRS, k.GEMV, system, lu.prec, lu.piv + 1, b, 1e-12, 30)
+    system = (AP, B, col, c, free, cav, D, K.astype(np.float32), ks, True, dX)
+    x, its, ok = k.gmres_lu(k.GETRS, k.SGEMV, system, fac, piv + 1, b, 1e-10, 30)
     assert ok and 0 < its <= 30
     exact = np.linalg.solve(J, b)
-    assert np.linalg.norm(x - exact) <= 1e-9 * np.linalg.norm(exact)
-    assert newton._factor(np.diag(np.full(4, 1e39))).prec.dtype == np.float64
+    err = np.linalg.norm(x - exact) / np.linalg.norm(exact)
+    assert 0.0 < err < 1e-5  # K's rounding: an inexact Newton direction
+    assert np.linalg.norm(J @ x - b) < 1e-5 * np.linalg.norm(b)
+
+
+def test_warmup_compiles_the_fallback_variants(monkeypatch):
+    """kernels.compile_fallbacks (run by ``tribodyn warmup``) compiles the argument types
+    of the double-precision fallback of a transient's factorisation: after such a march
+    it adds no new compiled variant."""
+    from tribodyn import Roughness
+    from tribodyn.contact.ehl import kernels as k
+    from tribodyn.contact.ehl import newton
+
+    monkeypatch.setattr(newton, "_SINGLE_PRECONDITIONER", False)
+    rough = Roughness(asperity_density=8.3e9, rms=0.2e-6, summit_radius=0.669e-6)
+    tr = TransientEHL(PAIR, Lubricant(0.055, 1.05e-8), roughness=rough)
+    tr.start_steady(4e4, 0.005, 1.0, 3.0)
+    for j in range(3):
+        assert tr.step(2.5e-5, 4e4 * (1 + 0.02 * j), 0.005, 1.0, 3.0).converged
+    kernels = (k.dense_matrix_t, k.gmres_lu)  # called from Python (the rest inside)
+    before = [set(map(str, f.signatures)) for f in kernels]
+    assert all(before)
+    k.compile_fallbacks()
+    assert [set(map(str, f.signatures)) for f in kernels] == before
 
 
 def _asperity_march(monkeypatch, predicted_cavitation: bool):

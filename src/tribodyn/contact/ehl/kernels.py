@@ -23,12 +23,18 @@ __all__ = [
     "band_product",
     "newton_matvec",
     "dense_matrix",
+    "dense_matrix_t",
     "jacobi_diagonal",
     "givens_step",
     "GETRS",
     "SGETRS",
     "GEMV",
+    "SGEMV",
     "gmres_lu",
+    "flush_factors",
+    "compile_fallbacks",
+    "VECTOR_FLUSH",
+    "FACTOR_FLUSH",
 ]
 
 _OPTS = dict(cache=True, nogil=True, fastmath=False)
@@ -182,6 +188,75 @@ def dense_matrix(AP, B, col, c, free, cav, D, K, kscale, dX, elastic):
 
 
 @njit(**_OPTS)
+def dense_matrix_t(AP, B, col, c, free, cav, D, K, kscale, dX, elastic, flush, out):
+    """The dense Newton matrix of :func:`dense_matrix` transposed, written into ``out``
+    ((n+1)², C order, float32 or float64): ``out.T`` is J in column-major order, as
+    LAPACK's getrf takes it, without a copy. Column k of J's elastic part is
+    Σ_d w_d,i K_k,i+d over the rows i (K symmetric: K_i+d,k = K_k,i+d) with the row
+    weights w = c_i kscale B (free rows) or −D_i kscale (d = 0, cavitated rows), a
+    contiguous stencil along row k of K. Row weights and banded entries of magnitude
+    below ``flush`` are set to zero (for single precision: no subnormal numbers, whose
+    arithmetic is many times slower, enter the factorisation)."""
+    n = D.size
+    out[:, :] = 0.0
+    W = np.zeros((5, n))
+    A = np.zeros((5, n))  # c_i A_P of the free rows
+    for i in range(n):
+        if free[i]:
+            for d in range(5):
+                W[d, i] = c[i] * kscale * B[d, i]
+                A[d, i] = c[i] * AP[d, i]
+        elif cav[i]:
+            W[2, i] = -D[i] * kscale
+    for i in range(n):
+        for d in range(5):
+            if abs(W[d, i]) < flush:
+                W[d, i] = 0.0
+            if abs(A[d, i]) < flush:
+                A[d, i] = 0.0
+    if elastic:
+        for k in range(n):
+            Kk = K[k]
+            row = out[k]
+            for i in range(min(2, n)):
+                acc = 0.0
+                for d in range(5):
+                    j = i + d - 2
+                    if 0 <= j < n:
+                        acc += W[d, i] * Kk[j]
+                row[i] = acc
+            for i in range(2, n - 2):
+                row[i] = (
+                    W[0, i] * Kk[i - 2]
+                    + W[1, i] * Kk[i - 1]
+                    + W[2, i] * Kk[i]
+                    + W[3, i] * Kk[i + 1]
+                    + W[4, i] * Kk[i + 2]
+                )
+            for i in range(max(2, n - 2), n):
+                acc = 0.0
+                for d in range(5):
+                    j = i + d - 2
+                    if 0 <= j < n:
+                        acc += W[d, i] * Kk[j]
+                row[i] = acc
+    for i in range(n):
+        if free[i]:
+            for d in range(5):
+                j = i + d - 2
+                if 0 <= j < n:
+                    out[j, i] += A[d, i]
+            v = c[i] * col[i]
+            out[n, i] = v if abs(v) >= flush else 0.0
+        else:
+            out[i, i] += 1.0
+            if cav[i]:
+                out[n, i] = -D[i] if abs(D[i]) >= flush else 0.0
+        out[i, n] = dX
+    return out
+
+
+@njit(**_OPTS)
 def jacobi_diagonal(AP, AH, D, kcoef, elastic):
     """|diag(A_P + (A_H − A_P D) K)| with K_ij = kcoef[|i − j|]."""
     n = D.size
@@ -213,6 +288,37 @@ GETRS = _scipy_routine("lapack", "dgetrs", 9)
 SGETRS = _scipy_routine("lapack", "sgetrs", 9)
 #: dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
 GEMV = _scipy_routine("blas", "dgemv", 11)
+#: sgemv: the same in single precision (products with a float32 influence matrix)
+SGEMV = _scipy_routine("blas", "sgemv", 11)
+
+
+#: Single-precision triangular solves: entries of the right-hand side below this share of
+#: its largest are zero (:func:`_lu_solve`), …
+VECTOR_FLUSH = 1e-12
+#: … and so are factor entries below this share of the largest (:func:`flush_factors`):
+#: their products in the solves stay normal numbers (subnormal arithmetic takes many
+#: times longer on x86), and at float32's resolution of 6e-8 they do not change the
+#: preconditioned vector (measured: by < 3e-14 relative).
+FACTOR_FLUSH = 1e-20
+_SINGLE_MAX = float(np.finfo(np.float32).max)
+
+
+@njit(**_OPTS)
+def flush_factors(fac, rel):
+    """Zero the entries of the contiguous vector ``fac`` (a factor matrix's storage,
+    e.g. ``fac.T.ravel()`` of a column-major one) below ``rel`` times its largest
+    magnitude, in place; False if an entry is not finite or beyond single precision."""
+    big = 0.0
+    for v in fac:
+        a = abs(v)
+        if not a <= _SINGLE_MAX:  # inf, NaN, or beyond single precision
+            return False
+        big = max(big, a)
+    thr = rel * big
+    for i in range(fac.size):
+        if abs(fac[i]) < thr:
+            fac[i] = 0.0
+    return True
 
 
 @njit(**_OPTS)
@@ -220,9 +326,23 @@ def _lu_solve(getrs, fac, piv1, x, buf, ints, trans):
     """x ← A⁻¹ x in place for A = P L U factorised by LAPACK getrf (``fac`` column-major,
     ``piv1`` the 1-based pivots), through ``buf`` (a vector of ``fac``'s precision:
     float64 with ``getrs`` = :data:`GETRS`, float32 with :data:`SGETRS`);
-    ``ints`` = [n, 1, n, n, info], ``trans`` = [ord("N")]."""
-    for i in range(x.size):
-        buf[i] = x[i]
+    ``ints`` = [n, 1, n, n, info], ``trans`` = [ord("N")]. In single precision the
+    vector is scaled by a power of two to a largest entry near 1 and entries below
+    :data:`VECTOR_FLUSH` are zero (no subnormal numbers in the solve)."""
+    single = buf.itemsize == 4
+    scale = 1.0
+    if single:
+        big = 0.0
+        for v in x:
+            big = max(big, abs(v))
+        if big > 0.0 and big <= 1e300:
+            scale = math.ldexp(1.0, math.frexp(big)[1])
+        for i in range(x.size):
+            v = x[i] / scale
+            buf[i] = v if abs(v) >= VECTOR_FLUSH else 0.0
+    else:
+        for i in range(x.size):
+            buf[i] = x[i]
     getrs(
         trans.ctypes,
         ints[0:].ctypes,
@@ -235,7 +355,7 @@ def _lu_solve(getrs, fac, piv1, x, buf, ints, trans):
         ints[4:].ctypes,
     )
     for i in range(x.size):
-        x[i] = buf[i]
+        x[i] = buf[i] * scale
 
 
 @njit(**_OPTS)
@@ -243,27 +363,46 @@ def _apply(gemv, system, z, out, work):
     """Newton-matrix product out = J z for ``system`` = (AP, B, col, c, free, cav, D, K,
     kscale, elastic, dX), with δH = kscale·K v + vh (dense row-major K, by BLAS gemv on
     its column-major view with trans = "T"); ``work`` = (dh, [n, n, 1], [1, 0],
-    [ord("T")])."""
+    [ord("T")], zs, hs): zs, hs vectors of K's precision for a float32 K."""
     AP, B, col, c, free, cav, D, K, kscale, elastic, dX = system
-    dh, ints, reals, tr = work
+    dh, ints, reals, tr, zs, hs = work
     n = D.size
     vh = z[n]
     if elastic:
-        gemv(
-            tr.ctypes,
-            ints[0:].ctypes,
-            ints[1:].ctypes,
-            reals[0:].ctypes,
-            K.ctypes,
-            ints[0:].ctypes,
-            z.ctypes,
-            ints[2:].ctypes,
-            reals[1:].ctypes,
-            dh.ctypes,
-            ints[2:].ctypes,
-        )
-        for i in range(n):
-            dh[i] = kscale * dh[i] + vh
+        if K.itemsize == 4:
+            for i in range(n):
+                zs[i] = z[i]
+            gemv(
+                tr.ctypes,
+                ints[0:].ctypes,
+                ints[1:].ctypes,
+                reals[0:].ctypes,
+                K.ctypes,
+                ints[0:].ctypes,
+                zs.ctypes,
+                ints[2:].ctypes,
+                reals[1:].ctypes,
+                hs.ctypes,
+                ints[2:].ctypes,
+            )
+            for i in range(n):
+                dh[i] = kscale * hs[i] + vh
+        else:
+            gemv(
+                tr.ctypes,
+                ints[0:].ctypes,
+                ints[1:].ctypes,
+                reals[0:].ctypes,
+                K.ctypes,
+                ints[0:].ctypes,
+                z.ctypes,
+                ints[2:].ctypes,
+                reals[1:].ctypes,
+                dh.ctypes,
+                ints[2:].ctypes,
+            )
+            for i in range(n):
+                dh[i] = kscale * dh[i] + vh
     else:
         dh[:] = vh
     newton_matvec(AP, B, col, c, free, cav, D, z[:n], vh, dh, dX, out)
@@ -314,7 +453,9 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
     Alg. 9.6), so that J Z = V H holds to double round-off even where M⁻¹ is applied
     inexactly. Stops when the residual estimate |g_{j+1}| ≤ rtol·|b|. The factors may
     be float32 (with ``getrs`` = :data:`SGETRS`): the preconditioner then reads half the
-    memory, and GMRES still solves the double-precision system to ``rtol``.
+    memory, and GMRES still solves the double-precision system to ``rtol``. K may be
+    float32 too (with ``gemv`` = :data:`SGEMV`): GMRES then solves the system with K
+    rounded to single precision.
 
     Returns (x, iterations, ok); ok is False for a non-finite residual, a breakdown or
     no convergence within ``max_it`` iterations."""
@@ -325,11 +466,14 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
     ints = np.array([m, 1, m, m, 0], dtype=np.int32)
     trans = np.array([78], dtype=np.uint8)  # "N"
     n = m - 1
+    K = system[7]
     work = (
         np.empty(n),
         np.array([n, n, 1], dtype=np.int32),
-        np.array([1.0, 0.0]),
+        np.array([1.0, 0.0], dtype=K.dtype),
         np.array([84], dtype=np.uint8),  # "T"
+        np.empty(n, dtype=K.dtype),
+        np.empty(n, dtype=K.dtype),
     )
     buf = np.empty_like(fac[:, 0])
     x0 = b.copy()
@@ -396,3 +540,28 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
                     t[q] += yi * Z[i, q]
             return x0 + t, k, True
     return x0, max_it, False
+
+
+def compile_fallbacks() -> None:
+    """Compile (into numba's cache) the kernel variants that a cycle study reaches only
+    on fallbacks, on a small system with the argument types of the solvers' calls: the
+    double-precision factorisation (:func:`dense_matrix_t` into float64, GMRES with
+    float64 factors) and the dense matrix of the two-grid coarse level
+    (:func:`dense_matrix`)."""
+    from scipy import linalg
+
+    n = 8
+    AP = np.zeros((5, n))
+    AP[2] = 1.0
+    B, col = coupling_bands(AP, np.ones((5, n)), np.zeros(n))
+    c, D = np.ones(n), np.zeros(n)
+    cav = np.zeros(n, dtype=np.bool_)
+    free = ~cav
+    free[0] = free[-1] = False
+    K = np.eye(n)
+    rows = (AP, B, col, c, free, cav, D)
+    dense_matrix(*rows, K, 1.0, 0.1, True)
+    J = dense_matrix_t(*rows, K, 1.0, 0.1, True, 0.0, np.empty((n + 1, n + 1))).T
+    fac, piv = linalg.lu_factor(J, overwrite_a=True, check_finite=False)
+    system = (*rows, K.astype(np.float32), 1.0, True, 0.1)
+    gmres_lu(GETRS, SGEMV, system, fac, piv + 1, np.ones(n + 1), 1e-6, 30)

@@ -17,10 +17,11 @@ import numpy as np
 from scipy import linalg
 from scipy.linalg import lapack
 
-from .kernels import givens_step, jacobi_diagonal
+from .kernels import FACTOR_FLUSH, flush_factors, givens_step, jacobi_diagonal
 from .reynolds import Linearization, ReynoldsSystem
 
 __all__ = [
+    "ROUND_OFF_PRESSURE",
     "State",
     "NewtonOutcome",
     "newton",
@@ -32,6 +33,11 @@ __all__ = [
 ]
 
 _NONMONOTONE = 6
+#: A converged fluid pressure below this share of the largest (total) pressure is zero
+#: up to round-off (a cavitated node): the complementarity rows of a Newton step are
+#: solved to the linear solver's accuracy, and a single-precision preconditioner leaves
+#: residues of either sign there (≈ 1e-27 of the peak on a rigid contact).
+ROUND_OFF_PRESSURE = 1e-12
 #: A given start set (``State.cav``, a transient predictor's) replaces the cavitated set
 #: of the start's P and R at nodes whose asperity pressure exceeds this share of the
 #: largest total pressure: there P = Q − Pa(H) of a predicted Q is the difference of two
@@ -43,43 +49,64 @@ _ASPERITY_SHARE = 0.03
 _TRACE = False
 _WATCHDOG = 100.0
 _MAX_KRYLOV = 30
-_MAX_KRYLOV_BEFORE_REFACTOR = 20
+_MAX_KRYLOV_BEFORE_REFACTOR = 12
 _MAX_KRYLOV_TWO_GRID = 200
 #: GMRES with an LU preconditioner in compiled code (False: the NumPy loop below, which
 #: is kept for the two-grid preconditioner and as a cross-check in the tests)
 _COMPILED_GMRES = True
-#: GMRES preconditions with a single-precision copy of the LU factors: the triangular
-#: solves read half the memory (with the dense influence matrix of the products, the
-#: working set then fits a core's cache), and GMRES still solves the double-precision
-#: system to its tolerance. A fresh factorisation's own Newton step stays a
-#: double-precision solve.
+#: The Newton matrix is factorised in single precision: the factorisation costs about half,
+#: GMRES's triangular solves read half the memory (with the dense influence matrix of the
+#: products, the working set then fits a core's cache), and GMRES still solves the
+#: double-precision system to its tolerance, also the fresh factorisation's own Newton
+#: step (False: double-precision factors, solved directly).
 _SINGLE_PRECONDITIONER = True
 
 
 class Factorization(NamedTuple):
     """LU factors of a Newton matrix (``lu_factor``'s ``fac``, ``piv``) and ``prec``,
-    the factors GMRES preconditions with (a float32 copy of ``fac``, or ``fac``)."""
+    the factors GMRES preconditions with (``fac`` itself)."""
 
     fac: np.ndarray
     piv: np.ndarray
     prec: np.ndarray
 
 
-def _factor(J) -> Factorization:
-    """LU of the dense Newton matrix ``J`` with its preconditioner copy (the double
-    factors themselves where a factor exceeds single precision's range)."""
-    fac, piv = linalg.lu_factor(J, check_finite=False)
-    prec = fac
+def _factor(lin: Linearization, dtype) -> Factorization | None:
+    """LU of the Newton matrix of ``lin`` in ``dtype`` (float32 or float64), assembled
+    in LAPACK's column-major order and factorised in place; None where the factorisation
+    fails or a factor is not finite (single precision's range exceeded)."""
+    try:
+        J = lin.dense_column_major(dtype)
+        fac, piv = linalg.lu_factor(J, overwrite_a=True, check_finite=False)
+    except (linalg.LinAlgError, ValueError):
+        return None
+    if fac.dtype == np.float32:
+        if not flush_factors(fac.T.reshape(-1), FACTOR_FLUSH):  # a view: fac is column-major
+            return None
+    elif not np.isfinite(fac).all():
+        return None
+    return Factorization(fac, piv, fac)
+
+
+def _fresh_solve(lin: Linearization, rtol) -> tuple[Factorization | None, np.ndarray | None]:
+    """(factorisation, Newton direction) with a new LU of this Newton matrix: single
+    precision factors (half the factorisation's cost; GMRES preconditioned with them
+    solves the double-precision system to ``rtol`` in one or two iterations), else, or
+    where that GMRES fails, double-precision factors and their direct solve."""
     if _SINGLE_PRECONDITIONER:
-        with np.errstate(over="ignore"):
-            single = np.asfortranarray(fac, dtype=np.float32)
-        if np.isfinite(single).all():
-            prec = single
-    return Factorization(fac, piv, prec)
+        lu = _factor(lin, np.float32)
+        if lu is not None:
+            delta, _ = gmres(lin, lu, rtol)
+            if delta is not None:
+                return lu, delta
+    lu = _factor(lin, np.float64)
+    if lu is None:
+        return None, None
+    return lu, _lu_solver(lu)(lin.rhs)
 
 
 def _lu_solver(lu: Factorization, precondition=False):
-    """v ↦ LU⁻¹ v (LAPACK getrs, no wrapper), with the double-precision factors or, as a
+    """v ↦ LU⁻¹ v (LAPACK getrs, no wrapper), with the factors ``fac`` or, as a
     preconditioner, with ``lu.prec``."""
     fac, piv = (lu.prec, lu.piv) if precondition else (lu.fac, lu.piv)
     if fac.dtype == np.float32:
@@ -367,12 +394,9 @@ def _newton_impl(
                 if delta is None or nkry > _MAX_KRYLOV_BEFORE_REFACTOR:
                     lu = None
             if delta is None:
-                try:
-                    lu = _factor(lin.dense())
-                except (linalg.LinAlgError, ValueError):
-                    lu = None
+                lu, delta = _fresh_solve(lin, gmres_tol)
+                if lu is None or delta is None:
                     continue
-                delta = _lu_solver(lu)(lin.rhs)
                 fresh_lu = True
             if not np.all(np.isfinite(delta)):
                 lu = None

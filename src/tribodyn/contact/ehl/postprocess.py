@@ -34,7 +34,7 @@ from ...physics.friction import (
     couette_shear_stress,
     limit_shear_stress,
 )
-from .newton import NewtonOutcome
+from .newton import ROUND_OFF_PRESSURE, NewtonOutcome
 from .options import EHLOptions, EHLResult
 from .reynolds import ReynoldsSystem
 from .validity import check_solution
@@ -111,14 +111,15 @@ def _postprocess(
     else:
         f_b = 0.0
     i_min = int(np.argmin(h))
-    # outlet meniscus: first zero-pressure node downstream of the peak; p ∝ (x_c − x)²
-    # near a Reynolds boundary, so √p is extrapolated linearly to zero
+    # outlet meniscus: first zero-pressure node (up to round-off) downstream of the peak;
+    # p ∝ (x_c − x)² near a Reynolds boundary, so √p is extrapolated linearly to zero
     direction = 1 if g.direction >= 0 else -1
     ipk = int(np.argmax(p))
+    zero = ROUND_OFF_PRESSURE * float(p[ipk])
     x_cav = float("nan")
     idx = np.arange(ipk, g.n) if direction > 0 else np.arange(ipk, -1, -1)
     for k in range(1, idx.size):
-        if p[idx[k]] <= 0.0:
+        if p[idx[k]] <= zero:
             j1, j2 = idx[k - 1], idx[k - 2] if k >= 2 else idx[k - 1]
             s1, s2 = math.sqrt(p[j1]), math.sqrt(max(p[j2], 0.0))
             if s2 > s1 > 0 and j1 != j2:

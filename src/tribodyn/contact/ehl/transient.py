@@ -15,7 +15,7 @@ from ...physics.limits import EHL_NODES_TRANSIENT, MAX_SUBSTEPS
 from ...physics.lubricant import Lubricant
 from ...physics.materials import BodyPair
 from .grid import Grid, layout
-from .newton import NewtonOutcome, State, newton
+from .newton import ROUND_OFF_PRESSURE, NewtonOutcome, State, newton
 from .options import Conditions, ContactModel, EHLOptions, EHLResult, with_overrides
 from .postprocess import postprocess
 from .reynolds import ReynoldsSystem
@@ -305,7 +305,8 @@ class TransientEHL:
             # pressure): Q − Pa(H) of the predicted Q is the small difference of two large
             # ones where the asperities carry the load, its cavitation boundary far from
             # the solution's (see docs/convergence.md)
-            st.cav = p1 + ratio * (p1 - p0) <= 1e-12 * float(np.max(np.abs(lv[0].q)))
+            peak = float(np.max(np.abs(lv[0].q)))
+            st.cav = p1 + ratio * (p1 - p0) <= ROUND_OFF_PRESSURE * peak
         hc1, hc0 = lv[0].central_film, lv[1].central_film
         hc = hc1 + ratio * (hc1 - hc0)
         if not hc > 0.0:
