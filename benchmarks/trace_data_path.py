@@ -14,6 +14,12 @@ through them counts as a call from their caller. Reported:
 - ``hops`` / ``chain``: the longest chain of package changes on one call stack (the
   stack's packages with repeats of the same package merged), i.e. how many packages
   the case's data passes through on its deepest way down;
+- ``hops_without_callbacks`` / ``path``: the same with callbacks folded: where a
+  package comes back on the stack (an executor or solver calling a function that a
+  higher layer handed it: a task, a progress report, a film law), the stack is cut back
+  to that package's first place, so only the way down counts;
+- ``upward``: caller → callee pairs against the layer order (physics → contact,
+  valvetrain, topography → config → cycle → workflow → output → cli), i.e. callbacks;
 - ``config_after_build``: calls of ``tribodyn.config`` functions from outside
   ``config`` after the case was first built (validated), by callee: the studies going
   back to the case for objects or data after the build.
@@ -32,6 +38,18 @@ from collections import Counter
 from pathlib import Path
 
 ROOT = "tribodyn"
+#: The layer of each package, lowest first (docs/architecture.md).
+LAYERS = {
+    "physics": 0,
+    "contact": 1,
+    "valvetrain": 1,
+    "topography": 1,
+    "config": 2,
+    "cycle": 3,
+    "workflow": 4,
+    "output": 5,
+    "cli": 6,
+}
 
 
 def package(module: str | None) -> str | None:
@@ -55,6 +73,7 @@ class Tracer:
     def __init__(self) -> None:
         self.edges: Counter[str] = Counter()
         self.chain: list[str] = []
+        self.path: list[str] = []
         self.after_build: Counter[str] = Counter()
         self.built = False
         self.stack: list[str] = []  # merged package stack of the current thread
@@ -88,6 +107,16 @@ class Tracer:
         stack.reverse()
         if len(stack) > len(self.chain):
             self.chain = stack
+        folded: list[str] = []
+        for p in stack:
+            folded = folded[: folded.index(p) + 1] if p in folded else [*folded, p]
+        if len(folded) > len(self.path):
+            self.path = folded
+
+
+def _upward(edge: str) -> bool:
+    caller, callee = edge.split(" -> ")
+    return LAYERS.get(caller, -1) < LAYERS.get(callee, -1)
 
 
 def main() -> None:
@@ -118,6 +147,9 @@ def main() -> None:
                 "chain": tracer.chain,
                 "edges": dict(tracer.edges.most_common()),
                 "distinct_edges": len(tracer.edges),
+                "hops_without_callbacks": len(tracer.path) - 1,
+                "path": tracer.path,
+                "upward": sorted(e for e in tracer.edges if _upward(e)),
                 "config_after_build": dict(tracer.after_build.most_common()),
             },
             indent=1,
