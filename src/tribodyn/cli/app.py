@@ -10,7 +10,7 @@ from .calibrate import calibrate_command
 from .contact import ContactCommand, contact_command
 from .engine import engine_command
 from .export import export_command
-from .figures import figures_command
+from .figures import FiguresCommand, figures_command
 from .run import RunCommand, run_command
 from .sweep import sweep_command
 from .topography import TopographyCommand, topography_command
@@ -46,7 +46,7 @@ def _main(
 
 
 app.command("run", cls=RunCommand)(run_command)
-app.command("figures")(figures_command)
+app.command("figures", cls=FiguresCommand)(figures_command)
 app.command("export")(export_command)
 app.command("sweep")(sweep_command)
 app.command("contact", cls=ContactCommand)(contact_command)

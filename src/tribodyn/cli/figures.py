@@ -11,16 +11,32 @@ from rich.markup import escape
 
 from .._validation import InputError
 from .failure import fail
+from .help_defaults import stating
 
-__all__ = ["figures_command"]
+__all__ = ["figures_command", "FiguresCommand"]
 
 console = Console()
+
+
+def stated_defaults() -> dict[str, int]:
+    """The values ``tribodyn figures --help`` quotes: the drawing processes on this machine."""
+    from ..output.figures_folder import figure_workers
+
+    return {"workers": figure_workers()}
+
+
+#: the command's class: its --help quotes :func:`stated_defaults`
+FiguresCommand = stating(stated_defaults)
 
 
 def figures_command(
     results: Path = typer.Argument(..., help="result folder of `tribodyn run` (with results.nc)"),
     workers: int | None = typer.Option(
-        None, "--workers", "-j", min=1, help="drawing processes (default: one per core, at most 4)"
+        None,
+        "--workers",
+        "-j",
+        min=1,
+        help="drawing processes (default: {workers}, one per CPU core)",
     ),
 ):
     """Draw the static figures (PNG) of a `tribodyn run` result folder into it, from its
