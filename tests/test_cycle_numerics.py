@@ -127,7 +127,7 @@ def test_study_runs_through_any_executor():
         case, executor=ex, progress=lambda e, **i: events.append((e, i.get("name"), i.get("done")))
     )
     assert sorted(ex.calls) == sorted(
-        ["_coupling_task", "_typical_laws_task", "_coating_studies_task"] + ["_set_task"] * 4
+        ["_coupling_task", "_coating_studies_task"] + ["_set_task"] * 4
     )
     assert [s.name for s in study.sets] == case.surface_set_names
     done = {name for e, name, d in events if e == "set" and d}
@@ -150,7 +150,7 @@ def test_friction_only_runs_the_passes_alone():
     )
     ex = PicklingExecutor()
     study = run_cycle_study(case, executor=ex, friction_only=True)
-    assert sorted(ex.calls) == ["_set_task"] * len(case.surface_set_names) + ["_typical_laws_task"]
+    assert ex.calls == ["_set_task"] * len(case.surface_set_names)
     assert [s.name for s in study.sets] == case.surface_set_names
     assert study.implicit is None and not study.stresses
     assert study.sensitivity is None and study.ehl_coating is None and not study.dry

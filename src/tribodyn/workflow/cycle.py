@@ -48,7 +48,6 @@ from .engineering import (
     compares_paper,
     engineering_outputs,
     plausibility_warnings,
-    typical_surface_laws,
 )
 from .model_comparison import ModelComparison, compare_lumped_flexible
 from .postprocess import Analysis, analyse, surface_roles
@@ -204,13 +203,6 @@ def _coating_studies_task(built: BuiltCase, reference: str, nose, paper_studies:
         return dry, ehl, sens, own
 
 
-def _typical_laws_task(case: Case) -> dict:
-    """The default surface laws the plausibility warnings compare the Greenwood–Tripp
-    sets with (:func:`~tribodyn.workflow.engineering.typical_surface_laws`)."""
-    with single_blas_thread():
-        return typical_surface_laws(case)
-
-
 def study_tasks(
     built: BuiltCase,
     reference: str,
@@ -219,7 +211,6 @@ def study_tasks(
     nose,
     paper_studies: bool,
     friction_only: bool = False,
-    laws_ahead: bool = False,
 ) -> list[Task]:
     """The study's task graph, declared once: the coupling chain of the reference set
     (its EHL pass, stresses and implicit iterations; the longest task, so first), the EHL
@@ -227,9 +218,7 @@ def study_tasks(
     ``numerics.thermal``, the thermal pass of every set. The tasks are independent given
     the dynamics and the cycle's samples. Keys: ``"coupling"``, ``"set:<name>"``,
     ``"coating"``, ``"thermal:<name>"``. ``friction_only``: the EHL passes (and thermal
-    passes) of every set alone, ``"set:<name>"`` for the reference set too.
-    ``laws_ahead``: the default surface laws of the plausibility warnings as a task
-    (``"typical"``, second: beside the longest), instead of after the passes."""
+    passes) of every set alone, ``"set:<name>"`` for the reference set too."""
     if friction_only:
         tasks = [
             Task(f"set:{name}", _set_task, (built, name, inputs, False)) for name in built.sets
@@ -244,8 +233,6 @@ def study_tasks(
         tasks.append(
             Task("coating", _coating_studies_task, (built, reference, nose, paper_studies))
         )
-    if laws_ahead:
-        tasks.insert(1, Task("typical", _typical_laws_task, (built.case,)))
     if built.case.numerics.thermal:
         from .thermal_study import thermal_task
 
@@ -346,7 +333,6 @@ def run_cycle_study(
     results: dict = {}
     stresses: dict = {}
     thermal = {}  # thermal EHL per set (numerics.thermal)
-    laws: dict = {}  # the plausibility warnings' surface laws, when computed ahead
     coupling = CouplingResult()
     coating: tuple = ([], None, None, None)
 
@@ -370,16 +356,12 @@ def run_cycle_study(
             results[name], stresses[name] = result
         elif kind == "thermal":
             thermal[name] = result
-        elif kind == "typical":
-            laws.update(result)
         else:
             coating = result
         if (text := label(key)) is not None:
             report("set", name=text, done=total, total=total)
 
-    # the laws beside the passes where processes run beside this one (else only if needed)
-    ahead = executor is not None or workers > 1
-    tasks = study_tasks(built, ref_name, dyn, inputs, nose, paper_cmp, friction_only, ahead)
+    tasks = study_tasks(built, ref_name, dyn, inputs, nose, paper_cmp, friction_only)
     with _study_executor(executor, workers) as pool:
         run_tasks(pool, tasks, done, started)
     timings["ehl_and_coupling_s"] = time.perf_counter() - t0
@@ -450,7 +432,7 @@ def run_cycle_study(
         )
     if dyn.jump:
         study.warnings.append(_jump_warning(dyn, case))
-    study.warnings += plausibility_warnings(study, laws)
+    study.warnings += plausibility_warnings(study)
     if case.valvetrain_model == "flexible":
         t0 = time.perf_counter()
         report("dynamics")

@@ -48,7 +48,6 @@ __all__ = [
     "engineering_outputs",
     "oil_as_used",
     "plausibility_warnings",
-    "typical_surface_laws",
     "surge_frequencies",
     "surge_spectrum",
 ]
@@ -269,46 +268,32 @@ def oil_as_used(case) -> dict:
 SMOOTH_SLOPE = 0.03
 
 
-def typical_surface_law(s):
-    """The default surface law of the set ``s``: the load–separation law of a self-affine
-    surface with the set's σ and the typical spectrum (:func:`~tribodyn.config.
-    measured_surface.default_spectrum`) at the pair's surface E' (cached per process)."""
+def _typical_surface_share(s, lam: float, w: float, b: float) -> float:
+    """Load share p_a/p_mean at λ of the default surface law (a self-affine surface with
+    the set's σ and the typical spectrum, :func:`~tribodyn.config.measured_surface.
+    default_spectrum`) at the pair's surface E'; p_mean = w/(2b)."""
     from ..config.measured_surface import default_spectrum
     from ..topography.load_separation import synthetic_load_separation
 
     d = default_spectrum()
-    return synthetic_load_separation(
+    e_s = reduced_modulus(s.bodies, surface=True)
+    law = synthetic_load_separation(
         s.roughness.rms,
         d["hurst"],
         d["short_cutoff"],
         d["long_cutoff"],
-        reduced_modulus(s.bodies, surface=True),
+        e_s,
         d["hardness"],
         d["grid"],
         d["seed"],
     )
-
-
-def typical_surface_laws(case) -> dict:
-    """:func:`typical_surface_law` of each Greenwood–Tripp set of ``case`` by name: the
-    laws :func:`plausibility_warnings` compares those sets with (computed ahead, e.g.
-    while the EHL passes run)."""
-    return {s.name: typical_surface_law(s) for s in case.surface_sets() if s.roughness.law is None}
-
-
-def _typical_surface_share(s, lam: float, w: float, b: float, law=None) -> float:
-    """Load share p_a/p_mean at λ of the default surface law (``law``, else
-    :func:`typical_surface_law`) at the pair's surface E'; p_mean = w/(2b)."""
-    law = law if law is not None else typical_surface_law(s)
-    e_s = reduced_modulus(s.bodies, surface=True)
     p = e_s * float(law.pressure_ratio(np.array([lam]))[0][0])
     return min(1.0, p * 2.0 * b / w)
 
 
-def plausibility_warnings(study, typical_laws: dict | None = None) -> list[str]:
+def plausibility_warnings(study) -> list[str]:
     """Inputs and results that are physically suspicious for the asperity law in use,
-    each with what it affects and what to change (``typical_laws``: the sets'
-    :func:`typical_surface_laws` if computed ahead):
+    each with what it affects and what to change:
 
     * Greenwood–Tripp sets only: ηβσ outside :data:`MEASURED_ETA_BETA_SIGMA` (measured
       engineering surfaces; Greenwood & Williamson 1966, McCool 1986).
@@ -352,7 +337,7 @@ def plausibility_warnings(study, typical_laws: dict | None = None) -> list[str]:
         b = math.sqrt(8.0 * w * inp.radius[i] / (math.pi * e))
         where = f"{res.name}: at λ = {lam:.2g} ({inp.crank_angle[i]:.0f}° crank)"
         if gt:
-            ref = _typical_surface_share(s, lam, w, b, (typical_laws or {}).get(res.name))
+            ref = _typical_surface_share(s, lam, w, b)
             if share < 0.1 * ref:
                 slope = r.implied_rms_slope
                 smooth = (
