@@ -63,7 +63,7 @@ def reduced_results(tmp_path_factory):
     path = tmp_path_factory.mktemp("case") / "reduced.toml"
     load_case().updated(REDUCED).write_toml(path)
     out = tmp_path_factory.mktemp("run") / "results"
-    r = CliRunner().invoke(app, ["run", str(path), "-o", str(out), "--quiet"])
+    r = CliRunner().invoke(app, ["run", str(path), "-o", str(out), "--quiet", "--figures"])
     assert r.exit_code == 0, r.output
     return out
 

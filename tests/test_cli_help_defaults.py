@@ -230,6 +230,7 @@ USED = {
     },
     ("contact", "n"): _grid_n,
     ("run", "workers"): lambda: {"": _default_case().numerics.workers},
+    ("figures", "workers"): lambda: {"": _figure_workers()},
     ("topography", "band"): _band,
     ("topography", "min_defined"): _min_defined,
     ("topography", "grid"): _synthetic("nb_grid_pts"),
@@ -240,6 +241,13 @@ USED = {
     ("calibrate", "roughness_parameter"): _typical("ROUGHNESS_PARAMETER"),
     ("calibrate", "rms_to_radius"): _typical("RMS_TO_SUMMIT_RADIUS"),
 }
+
+
+def _figure_workers() -> int:
+    from tribodyn.output.figures_folder import figure_workers
+
+    return figure_workers()
+
 
 #: command → the bundled case it uses where none is given (a help text that names a
 #: bundled case must name this one)

@@ -137,6 +137,30 @@ def test_study_runs_through_any_executor():
         assert np.array_equal(a.central_film, b.central_film, equal_nan=True)
 
 
+def test_friction_only_runs_the_passes_alone():
+    # what an engine study runs: every set's EHL pass (the reference set's too), no
+    # implicit comparison, stresses or single-contact studies; the passes unchanged
+    case = load_case().updated(
+        {
+            "numerics.crank_step_deg": 4.0,
+            "numerics.n": 128,
+            "numerics.cycles": 1,
+            "numerics.output_step_deg": 1.0,
+        }
+    )
+    ex = PicklingExecutor()
+    study = run_cycle_study(case, executor=ex, friction_only=True)
+    assert ex.calls == ["_set_task"] * len(case.surface_set_names)
+    assert [s.name for s in study.sets] == case.surface_set_names
+    assert study.implicit is None and not study.stresses
+    assert study.sensitivity is None and study.ehl_coating is None and not study.dry
+    assert not any("implicit coupling" in w for w in study.warnings)
+    a = study.reference
+    b = ehl_for_set(case, case.surface_set(a.name), study.inputs)
+    assert np.array_equal(a.central_film, b.central_film, equal_nan=True)
+    assert np.array_equal(a.boundary_friction, b.boundary_friction, equal_nan=True)
+
+
 def test_validity_warnings_of_the_steps_reach_the_study():
     """Steps outside the model's validity (here: a 0.5 mm radius under 5 kN, contact
     pressure beyond the elastic limit) are collected per kind with their first crank angle

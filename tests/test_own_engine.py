@@ -93,7 +93,7 @@ def own_run(tmp_path_factory):
     folder = tmp_path_factory.mktemp("engine")
     case = _write_case(folder)
     out = folder / "results"
-    r = CliRunner().invoke(app, ["run", str(case), "-o", str(out), "-q"])
+    r = CliRunner().invoke(app, ["run", str(case), "-o", str(out), "-q", "--figures"])
     assert r.exit_code == 0, r.output
     return out
 

@@ -88,7 +88,7 @@ def test_a_train_thrown_off_the_cam_is_simulated_and_reported(tmp_path):
     )
     study = run_cycle_study(case, workers=1, compare_paper=False)
     assert not study.sets[0].loaded.any()
-    out = write_results(study, tmp_path / "out", workers=1)
+    out = write_results(study, tmp_path / "out", figures=True, workers=1)
     j = json.loads((tmp_path / "out" / "summary.json").read_text(), parse_constant=_refuse)
     jump = j["valve_jump"]
     crank = study.dynamics.crank_angle

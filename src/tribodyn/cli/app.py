@@ -1,5 +1,5 @@
-"""The ``tribodyn`` command-line application: ``run``, ``export``, ``sweep``, ``contact``,
-``topography``, ``calibrate``, ``warmup``, ``engine``, ``view``."""
+"""The ``tribodyn`` command-line application: ``run``, ``figures``, ``export``, ``sweep``,
+``contact``, ``topography``, ``calibrate``, ``warmup``, ``engine``, ``view``."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ from .calibrate import calibrate_command
 from .contact import ContactCommand, contact_command
 from .engine import engine_command
 from .export import export_command
+from .figures import FiguresCommand, figures_command
 from .run import RunCommand, run_command
 from .sweep import sweep_command
 from .topography import TopographyCommand, topography_command
@@ -45,6 +46,7 @@ def _main(
 
 
 app.command("run", cls=RunCommand)(run_command)
+app.command("figures", cls=FiguresCommand)(figures_command)
 app.command("export")(export_command)
 app.command("sweep")(sweep_command)
 app.command("contact", cls=ContactCommand)(contact_command)

@@ -65,13 +65,19 @@ def run_command(
         help="add the paper's comparison (claims table, paper figure numbers, Figs. 5/6 "
         "at the paper's conditions); default: only for the paper's case",
     ),
+    figures: bool = typer.Option(
+        False,
+        "--figures/--no-figures",
+        help="draw the static figures (PNG) too; later: tribodyn figures OUT",
+    ),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress bar"),
 ):
-    """Run the cam-cycle study: dynamics, transient EHL per surface set, figures, report.
+    """Run the cam-cycle study: dynamics, transient EHL per surface set, report.
 
-    Writes OUT/results.nc, summary.json, report.md, report.html (self-contained),
-    traces.csv, dynamics.csv, case.toml (with copies of the files it reads in OUT/inputs)
-    and the figures; the folder is replaced only when everything has
+    Writes OUT/results.nc, summary.json, report.md, report.html (self-contained, with
+    interactive traces), traces.csv, dynamics.csv and case.toml (with copies of the files
+    it reads in OUT/inputs); the static figures (PNG) with --figures, or later by
+    `tribodyn figures OUT`; the folder is replaced only when everything has
     been written, and only if it is a previous result folder (or new, or empty); files
     that tribodyn did not write there are kept. If writing fails, the results are saved
     elsewhere and the message says where. Exit codes: 0 done, 1 study or writing failed, 2 bad input,
@@ -102,7 +108,7 @@ def run_command(
         fail(console, exc)
     with _terminate_as_interrupt():
         try:
-            _run(c, out, workers, quiet, scheduler, compare_paper)
+            _run(c, out, workers, quiet, scheduler, compare_paper, figures)
         except typer.Exit:
             raise
         except BaseException as exc:
@@ -199,8 +205,10 @@ def _run(
     quiet: bool,
     scheduler: str | None = None,
     compare_paper: bool | None = None,
+    figures: bool = False,
 ) -> None:
-    """Compute the study, write it, print the summary table."""
+    """Compute the study, write it (the static figures with ``figures``), print the
+    summary table."""
     from ..output import OutputWriteError, write_results
     from ..workflow.cycle import StudyError, run_cycle_study
 
@@ -253,9 +261,9 @@ def _run(
             fail(console, exc, code=1, label="study failed")
         if "dyn" in tasks:
             bar.update(tasks["dyn"], completed=1)
-        t_write = bar.add_task("figures and report", total=1)
+        t_write = bar.add_task("figures and report" if figures else "report", total=1)
         try:
-            res = write_results(study, out, workers=n_workers)
+            res = write_results(study, out, figures=figures, workers=n_workers)
         except OutputWriteError as exc:
             if _terminated:  # the drawing processes were stopped by the signal
                 raise KeyboardInterrupt from exc
@@ -285,10 +293,14 @@ def _run(
             console.print(f"verdict: {v['coating_verdict']['sentence']}")
     for w in summ["warnings"]:
         console.print(f"[yellow]warning:[/yellow] {w}")
+    drawn = (
+        f" and {len(res['figures'])} figures"
+        if figures
+        else f"; the static figures: tribodyn figures {out}"
+    )
     console.print(
-        f"wrote {out}/results.nc, summary.json, report.md, report.html, traces.csv and "
-        f"{len(res['figures'])} figures in {summ['runtime_s']:.1f} s "
-        f"(+ writing)"
+        f"wrote {out}/results.nc, summary.json, report.md, report.html, traces.csv"
+        f"{drawn}; the study took {summ['runtime_s']:.1f} s (+ writing)"
     )
 
 

@@ -14,8 +14,8 @@ from itertools import product
 
 import numpy as np
 
+from ..workflow.conventions import EVENT_FRACTION
 from .explorer_data import Result, decimate
-from .figures.common import EVENT_FRACTION
 
 __all__ = ["run_figures", "engine_figures", "sweep_figures", "Styles"]
 

@@ -10,6 +10,7 @@ calls, no building of the case's objects.
 
 from __future__ import annotations
 
+import json
 import math
 import re
 from pathlib import Path
@@ -18,7 +19,7 @@ import numpy as np
 
 from .report_claims import _fmt, claims
 
-__all__ = ["write_report", "report_text", "claims"]
+__all__ = ["write_report", "report_text", "claims", "figures_section", "with_figures"]
 
 _CAPTIONS = {
     "fig05": "Dry pressure for coating/steel modulus ratios (paper Fig. 5; R = 10 mm assumed).",
@@ -434,33 +435,7 @@ def report_text(study, ds, figures: dict) -> str:
             lines.append(f"| {claim} | {pap} | {ours} | {why} |")
         lines.append("")
 
-    lines += ["## Figures", ""]
-    u = (  # only the coating study's figures quote it
-        study.ehl_coating.conditions.get("entrainment_speed")
-        if study.ehl_coating is not None
-        else "–"
-    )
-    from .figures import FIGURES, content_name
-    from .report_first import METHOD_FIGURES, figure_rank
-
-    numbered = {content_name(n): n for n in FIGURES}
-    ordered = sorted(figures.items(), key=lambda kv: figure_rank(numbered.get(kv[0], kv[0])))
-    method_head = False
-    for key, path in ordered:
-        name = Path(path).name
-        k = numbered.get(name, name)[:5]  # figNN of a numbered or content name
-        if k in METHOD_FIGURES and not method_head:
-            method_head = True
-            lines += [
-                "### Method comparisons" + (" (the paper's Figs. 5, 6, 8–11)" if paper_cmp else ""),
-                "",
-            ]
-        cap = _CONTENT_CAPTIONS.get(name) if not paper_cmp else None
-        if cap is None:
-            cap = _CAPTIONS[k].format(u=u) if k in _CAPTIONS else key
-            if not paper_cmp:
-                cap = re.sub(r" ?\(paper Fig\. \d+[^)]*\)", "", cap)
-        lines += [f"![{cap}]({name})", "", f"*{cap}*", ""]
+    lines += figures_section(ds, figures)
 
     lines += [
         "## Method",
@@ -530,6 +505,64 @@ def report_text(study, ds, figures: dict) -> str:
         "",
     ]
     return "\n".join(lines)
+
+
+#: The heading of the report's figure section (:func:`figures_section`).
+FIGURES_HEADING = "## Figures"
+
+
+def figures_section(ds, figures: dict) -> list[str]:
+    """``## Figures`` of report.md: each figure of ``figures`` ({file name: path}) with
+    its caption, in the report's order (:func:`~.report_first.figure_rank`); without
+    figures, how to draw them (they are drawn on request: ``tribodyn figures``). Reads
+    the Dataset's attributes only (``compare_paper``; the Fig. 6 conditions)."""
+    lines = [FIGURES_HEADING, ""]
+    if not figures:
+        return lines + [
+            "The static figures (PNG) are drawn on request: `tribodyn figures FOLDER` "
+            "draws them into this result folder and lists them here, `tribodyn run "
+            "--figures` draws them with the run. report.html shows the interactive traces.",
+            "",
+        ]
+    from .figures import FIGURES, content_name
+    from .report_first import METHOD_FIGURES, figure_rank
+
+    paper_cmp = bool(ds.attrs.get("compare_paper", 1))
+    coating = ds.attrs.get("ehl_coating_conditions")
+    # only the coating study's figures quote it
+    u = json.loads(coating).get("entrainment_speed") if coating else "–"
+    numbered = {content_name(n): n for n in FIGURES}
+    ordered = sorted(figures.items(), key=lambda kv: figure_rank(numbered.get(kv[0], kv[0])))
+    method_head = False
+    for key, path in ordered:
+        name = Path(path).name
+        k = numbered.get(name, name)[:5]  # figNN of a numbered or content name
+        if k in METHOD_FIGURES and not method_head:
+            method_head = True
+            lines += [
+                "### Method comparisons" + (" (the paper's Figs. 5, 6, 8–11)" if paper_cmp else ""),
+                "",
+            ]
+        cap = _CONTENT_CAPTIONS.get(name) if not paper_cmp else None
+        if cap is None:
+            cap = _CAPTIONS[k].format(u=u) if k in _CAPTIONS else key
+            if not paper_cmp:
+                cap = re.sub(r" ?\(paper Fig\. \d+[^)]*\)", "", cap)
+        lines += [f"![{cap}]({name})", "", f"*{cap}*", ""]
+    return lines
+
+
+def with_figures(text: str, ds, figures: dict) -> str:
+    """report.md ``text`` with its figure section (from :data:`FIGURES_HEADING` to the
+    next section of the same level) replaced by :func:`figures_section` of ``figures``.
+    Raises :class:`ValueError` if the text has no figure section."""
+    lines = text.split("\n")
+    try:
+        start = lines.index(FIGURES_HEADING)
+    except ValueError:
+        raise ValueError("report.md has no figure section") from None
+    end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith("## ")), len(lines))
+    return "\n".join(lines[:start] + figures_section(ds, figures) + lines[end:])
 
 
 def write_report(study, ds, figures: dict, path) -> Path:

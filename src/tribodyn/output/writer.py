@@ -60,6 +60,7 @@ from .. import _json
 from .._safe_write import atomic_write, atomic_write_with, copy_file, make_dirs, remove_tree
 from .._typing import PathLike
 from .dataset import study_to_dataset
+from .figures_folder import figure_workers
 
 # the `x as x` imports are re-exports (output.sweep, cli.export and tests import them here)
 from .result_folder import _NAME_OVERHEAD as _NAME_OVERHEAD
@@ -273,15 +274,17 @@ def write_results(
     study: CycleStudy,
     out_dir: PathLike,
     *,
-    figures: bool | list[str] = True,
+    figures: bool | list[str] = False,
     report: bool = True,
     workers: int | None = None,
 ) -> dict:
     """Write results.nc, summary.json, case.toml (with copies of the files the case reads
-    in ``inputs/``), traces.csv and dynamics.csv (:mod:`.export`), figures, report.md and
-    the self-contained report.html atomically into ``out_dir``. Returns ``{"summary": …, "figures": {name: path}, "path": out_dir}``.
-    ``figures``: all (True), none (False) or a list of file names; they are drawn in
-    ``workers`` processes (default: the CPU count, at most 4).
+    in ``inputs/``), traces.csv and dynamics.csv (:mod:`.export`), report.md, the
+    self-contained report.html and, on request, the static figures atomically into
+    ``out_dir``. Returns ``{"summary": …, "figures": {name: path}, "path": out_dir}``.
+    ``figures``: none (False, the default: :func:`draw_figures` adds them to the folder
+    later), all (True) or a list of file names; they are drawn in ``workers`` processes
+    (default: :func:`figure_workers`).
 
     Raises :class:`OutputWriteError` if ``out_dir`` may not be replaced (an existing file
     or a foreign folder, see :func:`check_output_dir`, which the command line calls before
@@ -314,7 +317,7 @@ def write_results(
         if figures:
             from .figures import make_figures
 
-            n = workers if workers is not None else min(os.cpu_count() or 1, 4)
+            n = workers if workers is not None else figure_workers()
             only = figures if isinstance(figures, list) else None
             # the data files are written while other processes draw
             figs = make_figures(ds, tmp, only=only, workers=n, meanwhile=lambda: essentials(tmp))

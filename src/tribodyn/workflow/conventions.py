@@ -1,13 +1,13 @@
 """The output conventions, stated once (docs/conventions.md, *Output conventions*): the
-crank-angle ranges of a run and of an engine, and the sign of a change against the
-reference set. The summary, the netCDF attributes, the report and the console quote
+crank-angle ranges of a run and of an engine, the sign of a change against the
+reference set, and the samples the figures show as the cam event. The summary, the netCDF attributes, the report and the console quote
 these texts."""
 
 from __future__ import annotations
 
 import math
 
-__all__ = ["CRANK_ANGLE", "ENGINE_CRANK_ANGLE", "CHANGE", "change_pct"]
+__all__ = ["CRANK_ANGLE", "ENGINE_CRANK_ANGLE", "CHANGE", "EVENT_FRACTION", "change_pct"]
 
 #: Crank angle of a run (``tribodyn run``, sweeps in study mode).
 CRANK_ANGLE = (
@@ -24,6 +24,11 @@ CHANGE = (
     "change against the reference set (reference_set): 100·(x/x_ref − 1) %, "
     "negative = less than the reference"
 )
+
+
+#: A sample belongs to the cam event (in the figures, static and interactive) where the
+#: contact force exceeds this share of its maximum.
+EVENT_FRACTION = 0.05
 
 
 def change_pct(value, reference) -> float | None:

@@ -174,13 +174,13 @@ def _stress_step(built: BuiltCase, s: SurfaceSet, res, inputs):
         return f"{type(exc).__name__}: {exc}"
 
 
-def _set_task(built: BuiltCase, name: str, inputs):
-    """EHL along the cycle for one surface set, then its stresses (a picklable
-    top-level task). Returns (SetCycleResult, stresses)."""
+def _set_task(built: BuiltCase, name: str, inputs, stresses: bool = True):
+    """EHL along the cycle for one surface set, then (with ``stresses``) its stresses (a
+    picklable top-level task). Returns (SetCycleResult, stresses or None)."""
     with single_blas_thread():
         s = built.set(name).surface
         res = ehl_for_set(built, s, inputs)
-        return res, _stress_step(built, s, res, inputs)
+        return res, _stress_step(built, s, res, inputs) if stresses else None
 
 
 def _coupling_task(built: BuiltCase, name: str, dynamics, inputs):
@@ -210,21 +210,35 @@ def _coating_studies_task(built: BuiltCase, reference: str, nose, paper_studies:
 
 
 def study_tasks(
-    built: BuiltCase, reference: str, dynamics, inputs, nose, paper_studies: bool
+    built: BuiltCase,
+    reference: str,
+    dynamics,
+    inputs,
+    nose,
+    paper_studies: bool,
+    friction_only: bool = False,
 ) -> list[Task]:
     """The study's task graph, declared once: the coupling chain of the reference set
     (its EHL pass, stresses and implicit iterations; the longest task, so first), the EHL
     pass and stresses of every other set, the single-contact studies and, with
     ``numerics.thermal``, the thermal pass of every set. The tasks are independent given
     the dynamics and the cycle's samples. Keys: ``"coupling"``, ``"set:<name>"``,
-    ``"coating"``, ``"thermal:<name>"``."""
-    tasks = [Task("coupling", _coupling_task, (built, reference, dynamics, inputs))]
-    tasks += [
-        Task(f"set:{name}", _set_task, (built, name, inputs))
-        for name in built.sets
-        if name != reference
-    ]
-    tasks.append(Task("coating", _coating_studies_task, (built, reference, nose, paper_studies)))
+    ``"coating"``, ``"thermal:<name>"``. ``friction_only``: the EHL passes (and thermal
+    passes) of every set alone, ``"set:<name>"`` for the reference set too."""
+    if friction_only:
+        tasks = [
+            Task(f"set:{name}", _set_task, (built, name, inputs, False)) for name in built.sets
+        ]
+    else:
+        tasks = [Task("coupling", _coupling_task, (built, reference, dynamics, inputs))]
+        tasks += [
+            Task(f"set:{name}", _set_task, (built, name, inputs))
+            for name in built.sets
+            if name != reference
+        ]
+        tasks.append(
+            Task("coating", _coating_studies_task, (built, reference, nose, paper_studies))
+        )
     if built.case.numerics.thermal:
         tasks += [
             Task(f"thermal:{name}", thermal_task, (built, name, inputs)) for name in built.sets
@@ -259,6 +273,7 @@ def run_cycle_study(
     progress: Callable[..., None] | None = None,
     executor: Executor | None = None,
     compare_paper: bool | None = None,
+    friction_only: bool = False,
 ) -> CycleStudy:
     """Run the whole study for a validated :class:`~tribodyn.config.Case` (or its
     :class:`~tribodyn.config.build.BuiltCase`).
@@ -278,11 +293,16 @@ def run_cycle_study(
 
     ``compare_paper``: add the paper's comparison (its Figs. 5/6 single-contact studies
     at its conditions, its claims in the report); None: only for the paper's case.
+
+    ``friction_only``: what an engine study uses (:mod:`tribodyn.workflow.engine`): the
+    dynamics and every set's EHL pass, without the implicit-dynamics comparison, the
+    subsurface stresses and the single-contact studies (the results of the passes are
+    the same).
     """
     t_start = time.perf_counter()
     built = as_built(case)
     case = built.case
-    paper_cmp = compares_paper(case, compare_paper)
+    paper_cmp = compares_paper(case, compare_paper) and not friction_only
     n = case.numerics
     report = progress or (lambda *a, **k: None)
     timings = {}
@@ -347,7 +367,7 @@ def run_cycle_study(
         if (text := label(key)) is not None:
             report("set", name=text, done=total, total=total)
 
-    tasks = study_tasks(built, ref_name, dyn, inputs, nose, paper_cmp)
+    tasks = study_tasks(built, ref_name, dyn, inputs, nose, paper_cmp, friction_only)
     with _study_executor(executor, workers) as pool:
         run_tasks(pool, tasks, done, started)
     timings["ehl_and_coupling_s"] = time.perf_counter() - t0
@@ -410,7 +430,7 @@ def run_cycle_study(
             "are computed but beyond the assumptions of the line-contact model, so treat "
             "them as estimates; " + _validity_advice(text)
         )
-    if n.implicit_coupling and not coupling.converged:
+    if n.implicit_coupling and not friction_only and not coupling.converged:
         study.warnings.append(
             f"implicit coupling: {coupling.message}: only the implicit curves "
             "(*_implicit in results.nc, the implicit-vs-explicit comparison) are affected; "

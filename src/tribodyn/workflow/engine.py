@@ -356,7 +356,8 @@ def run_engine_study(
 ) -> EngineStudy:
     """Run the engine's valvetrain (module docstring) for a case with ``engine.cylinders``.
     Each distinct lobe kind is one :func:`run_cycle_study` (``workers``/``executor`` as
-    there)."""
+    there) of its EHL passes alone (``friction_only``: the engine's outputs use neither
+    the implicit-dynamics comparison nor the stresses nor the single-contact studies)."""
     from .. import InputError
 
     e = case.engine
@@ -380,6 +381,7 @@ def run_engine_study(
             executor=executor,
             progress=progress,
             compare_paper=False,
+            friction_only=True,  # no comparison, stresses or nose studies: unused here
         )
         timings[f"{k}_study_s"] = time.perf_counter() - t1
     lobes = {k: lobe_traces(k, studies[k], case) for k in kinds}

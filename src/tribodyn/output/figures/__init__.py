@@ -34,7 +34,7 @@ from .regimes import fig12
 from .stress import fig27
 from .thermal import fig21, fig22
 
-__all__ = ["FIGURES", "EVENT_FRACTION", "content_name", "make_figures"]
+__all__ = ["FIGURES", "EVENT_FRACTION", "content_name", "figure_files", "make_figures"]
 
 _MAKERS = {
     "fig05_dry_pressure.png": (fig05, ("dry_ratio", "dry_x", "dry_pressure")),
@@ -95,6 +95,37 @@ _COST = {
 }
 
 
+def _paper_numbers(ds) -> bool:
+    """Numbered file names (module docstring): the Dataset's ``compare_paper``
+    attribute, numbered when it is absent."""
+    return bool(ds.attrs.get("compare_paper", 1))
+
+
+def _wanted(ds, only=None) -> list[str]:
+    """The numbered names of the figures the Dataset has the variables for (of ``only``,
+    numbered or content names, if given), in :data:`_MAKERS` order."""
+    if only is not None:
+        by_content = {content_name(n): n for n in _MAKERS}
+        only = [by_content.get(n, n) for n in only]
+        unknown = sorted(set(only) - set(_MAKERS))
+        if unknown:
+            raise InputError(
+                f"unknown figure name(s) {', '.join(unknown)}; known: {', '.join(_MAKERS)}"
+            )
+    wanted = [n for n in _MAKERS if (only is None or n in set(only)) and has(ds, *_MAKERS[n][1])]
+    if "loaded" in ds and not bool(ds["loaded"].any()):  # no EHL sample: nothing to draw
+        wanted = [n for n in wanted if "loaded" not in _MAKERS[n][1]]
+    return wanted
+
+
+def figure_files(ds, only=None, paper_numbers: bool | None = None) -> list[str]:
+    """The file names :func:`make_figures` may write for ``ds`` (a figure with nothing to
+    draw is left out when drawn, so it writes these or fewer)."""
+    if paper_numbers is None:
+        paper_numbers = _paper_numbers(ds)
+    return [n if paper_numbers else content_name(n) for n in _wanted(ds, only)]
+
+
 def make_figures(
     ds,
     out_dir,
@@ -121,7 +152,7 @@ def make_figures(
     ``compare_paper`` attribute (absent: numbered). ``only`` takes either name.
     """
     if paper_numbers is None:
-        paper_numbers = bool(ds.attrs.get("compare_paper", 1))
+        paper_numbers = _paper_numbers(ds)
     out = Path(out_dir)
     make_dirs(out)
     ref = ds.attrs.get("reference_set")
@@ -130,17 +161,7 @@ def make_figures(
         if ref in names and names[0] != ref:  # the figures compare against index 0
             k = names.index(ref)
             ds = ds.isel(surface_set=[k] + [i for i in range(len(names)) if i != k])
-    if only is not None:
-        by_content = {content_name(n): n for n in _MAKERS}
-        only = [by_content.get(n, n) for n in only]
-        unknown = sorted(set(only) - set(_MAKERS))
-        if unknown:
-            raise InputError(
-                f"unknown figure name(s) {', '.join(unknown)}; known: {', '.join(_MAKERS)}"
-            )
-    wanted = [n for n in _MAKERS if (only is None or n in set(only)) and has(ds, *_MAKERS[n][1])]
-    if "loaded" in ds and not bool(ds["loaded"].any()):  # no EHL sample: nothing to draw
-        wanted = [n for n in wanted if "loaded" not in _MAKERS[n][1]]
+    wanted = _wanted(ds, only)
     k = min(max(1, int(workers)), len(wanted) // 2)  # at least two figures per process
     if k <= 1:
         if meanwhile is not None:

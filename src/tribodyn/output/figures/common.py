@@ -21,6 +21,7 @@ from PIL import Image
 from PIL.PngImagePlugin import PngInfo
 
 from ..._safe_write import atomic_open, make_dirs
+from ...workflow.conventions import EVENT_FRACTION
 
 __all__ = ["plt", "save_figure", "FIGURES", "EVENT_FRACTION"]
 
@@ -70,8 +71,6 @@ class _Titles(dict):
 
 FIGURES = _Titles(FIGURES)
 
-#: A sample belongs to the cam event where the contact force exceeds this share of its max.
-EVENT_FRACTION = 0.05
 EVENT_MARGIN_DEG = 5.0
 UM, MPA, MM = 1e6, 1e-6, 1e3
 FAMILY_COLOURS = ("tab:blue", "tab:red", "tab:green", "tab:purple", "tab:brown", "tab:olive")
