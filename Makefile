@@ -2,6 +2,7 @@
 #   make test   create .venv if missing, install tribodyn with its test extras, lint, run pytest
 #   make run    install what running needs (no test tools), compile the numerical kernels
 #               into numba's cache (tribodyn warmup), then run the main job on the paper case
+#               with its figures (the paper's Figs. 5–18 among them)
 #   make docs   build the documentation site into docs/_build/html (warnings are errors)
 PYTHON ?= python3
 VENV   ?= .venv
@@ -35,7 +36,7 @@ $(RUN_STAMP): pyproject.toml
 	touch $(RUN_STAMP)
 
 run: $(RUN_STAMP)
-	$(VENV)/bin/tribodyn run -o $(OUT)
+	$(VENV)/bin/tribodyn run --figures -o $(OUT)
 
 DOCS_STAMP = $(VENV)/.docs-installed
 
