@@ -37,16 +37,11 @@ def export_command(
         fail(console, exc)
 
 
-#: Variables a cycle study's results.nc must hold for the export.
-_NEEDED = ("ehl_crank", "crank_angle", "surface_set")
-
-
 def _export(results: Path, out: Path) -> None:
     import os
 
-    import xarray as xr
-
     from .._safe_write import make_dirs
+    from ..output.dataset import load_run_results
     from ..output.explorer import write_report_html
     from ..output.export import CSV_FILES, report_markdown, write_csv
     from ..output.writer import MARKER, _marker_info, _sha256, mark_folder, own_files
@@ -65,17 +60,7 @@ def _export(results: Path, out: Path) -> None:
             f"-o/--out: {out} holds {', '.join(taken)}, not written by tribodyn (or "
             "changed since): move them or export elsewhere with -o"
         )
-    try:
-        with xr.open_dataset(nc, engine="h5netcdf") as ds:
-            ds.load()
-    except (OSError, ValueError) as exc:
-        raise InputError(f"RESULTS: cannot read {nc}: {exc}") from exc
-    missing = [v for v in _NEEDED if v not in ds.variables]
-    if missing:
-        raise InputError(
-            f"RESULTS: {nc} is not a tribodyn results file of a cam-cycle study "
-            f"(it has no {', '.join(missing)})"
-        )
+    ds = load_run_results(nc)
     notes: list[str] = []
     text = None
     if os.path.lexists(md):

@@ -22,6 +22,8 @@ from typing import TYPE_CHECKING
 import xarray as xr
 
 from .. import _json
+from .._typing import PathLike
+from .._validation import InputError
 from ..workflow.coating_study import DRY_CONDITIONS
 from ..workflow.variables import build
 from ..workflow.variables_study import STUDY, StudySource
@@ -31,7 +33,27 @@ if TYPE_CHECKING:
 
 from .thermal import add_thermal
 
-__all__ = ["study_to_dataset"]
+__all__ = ["RUN_VARIABLES", "load_run_results", "study_to_dataset"]
+
+#: Variables every cycle study's results.nc holds (what tells it from other netCDF files).
+RUN_VARIABLES = ("ehl_crank", "crank_angle", "surface_set")
+
+
+def load_run_results(nc: PathLike) -> xr.Dataset:
+    """The results.nc ``nc`` of a cycle study, loaded into memory; an InputError (under
+    RESULTS) if it cannot be read or is not a cycle study's (:data:`RUN_VARIABLES`)."""
+    try:
+        with xr.open_dataset(nc, engine="h5netcdf") as ds:
+            ds.load()
+    except (OSError, ValueError) as exc:
+        raise InputError(f"RESULTS: cannot read {nc}: {exc}") from exc
+    missing = [v for v in RUN_VARIABLES if v not in ds.variables]
+    if missing:
+        raise InputError(
+            f"RESULTS: {nc} is not a tribodyn results file of a cam-cycle study "
+            f"(it has no {', '.join(missing)})"
+        )
+    return ds
 
 
 def study_to_dataset(study: CycleStudy) -> xr.Dataset:

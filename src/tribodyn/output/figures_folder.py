@@ -20,9 +20,6 @@ from .._validation import InputError
 
 __all__ = ["draw_figures", "figure_workers"]
 
-#: Variables a cycle study's results.nc holds (what tells it from other netCDF files).
-_NEEDED = ("ehl_crank", "crank_angle", "surface_set")
-
 
 def figure_workers() -> int:
     """Processes drawing the figures by default: one per CPU core, at most 4."""
@@ -32,8 +29,7 @@ def figure_workers() -> int:
 def _results(folder: Path):
     """The loaded results Dataset of the run result folder ``folder``; InputError if it
     is not one."""
-    import xarray as xr
-
+    from .dataset import load_run_results
     from .result_folder import folder_kind
 
     nc = folder / "results.nc"
@@ -44,18 +40,7 @@ def _results(folder: Path):
             f"RESULTS: {folder} is {what}; `tribodyn figures` draws the figures of a "
             "`tribodyn run` result folder (one with results.nc)"
         )
-    try:
-        with xr.open_dataset(nc, engine="h5netcdf") as ds:
-            ds.load()
-    except (OSError, ValueError) as exc:
-        raise InputError(f"RESULTS: cannot read {nc}: {exc}") from exc
-    missing = [v for v in _NEEDED if v not in ds.variables]
-    if missing:
-        raise InputError(
-            f"RESULTS: {nc} is not a tribodyn results file of a cam-cycle study "
-            f"(it has no {', '.join(missing)})"
-        )
-    return ds
+    return load_run_results(nc)
 
 
 def draw_figures(
