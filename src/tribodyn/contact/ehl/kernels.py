@@ -359,6 +359,25 @@ def _lu_solve(getrs, fac, piv1, x, buf, ints, trans):
 
 
 @njit(**_OPTS)
+def _product(gemv, tr, ints, reals, K, x, y):
+    """y = alpha·op(K) x + beta·y by BLAS ``gemv`` (``tr``: trans flag, ``ints`` = [n, n,
+    1], ``reals`` = [alpha, beta]); x and y of K's precision, their first n entries used."""
+    gemv(
+        tr.ctypes,
+        ints[0:].ctypes,
+        ints[1:].ctypes,
+        reals[0:].ctypes,
+        K.ctypes,
+        ints[0:].ctypes,
+        x.ctypes,
+        ints[2:].ctypes,
+        reals[1:].ctypes,
+        y.ctypes,
+        ints[2:].ctypes,
+    )
+
+
+@njit(**_OPTS)
 def _apply(gemv, system, z, out, work):
     """Newton-matrix product out = J z for ``system`` = (AP, B, col, c, free, cav, D, K,
     kscale, elastic, dX), with δH = kscale·K v + vh (dense row-major K, by BLAS gemv on
@@ -372,35 +391,11 @@ def _apply(gemv, system, z, out, work):
         if K.itemsize == 4:
             for i in range(n):
                 zs[i] = z[i]
-            gemv(
-                tr.ctypes,
-                ints[0:].ctypes,
-                ints[1:].ctypes,
-                reals[0:].ctypes,
-                K.ctypes,
-                ints[0:].ctypes,
-                zs.ctypes,
-                ints[2:].ctypes,
-                reals[1:].ctypes,
-                hs.ctypes,
-                ints[2:].ctypes,
-            )
+            _product(gemv, tr, ints, reals, K, zs, hs)
             for i in range(n):
                 dh[i] = kscale * hs[i] + vh
         else:
-            gemv(
-                tr.ctypes,
-                ints[0:].ctypes,
-                ints[1:].ctypes,
-                reals[0:].ctypes,
-                K.ctypes,
-                ints[0:].ctypes,
-                z.ctypes,
-                ints[2:].ctypes,
-                reals[1:].ctypes,
-                dh.ctypes,
-                ints[2:].ctypes,
-            )
+            _product(gemv, tr, ints, reals, K, z, dh)
             for i in range(n):
                 dh[i] = kscale * dh[i] + vh
     else:
