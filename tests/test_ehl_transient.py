@@ -263,7 +263,7 @@ def test_compiled_gmres_with_a_single_precision_preconditioner():
 
 def test_compiled_gmres_with_single_precision_products():
     """GMRES with the influence matrix rounded to single precision (kernels.SGEMV, as
-    the Newton solves use it, reynolds.SINGLE_PRODUCTS) solves the double-precision
+    the Newton solves do with reynolds.SINGLE_PRODUCTS on) solves the double-precision
     system to single precision's accuracy (LAPACK's dense solve)."""
     from scipy import linalg
 
