@@ -12,7 +12,7 @@ from tribodyn.config import load_case
 from tribodyn.config.sweep import load_sweep
 from tribodyn.workflow.sweep_point import run_point
 from tribodyn.workflow.sweep_store import combine_points
-from tribodyn.workflow.variables import registry
+from tribodyn.workflow.variables_registry import registry
 
 
 def assert_registered(ds: xr.Dataset, exempt=()) -> int:

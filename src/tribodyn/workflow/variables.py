@@ -16,7 +16,8 @@ the thermal, stress and engineering variables),
 :mod:`~tribodyn.workflow.variables_engine` (an engine study's Dataset). The
 registry lives in ``workflow`` so that the sweep points (workflow) and the results
 Dataset (output) share it without an upward import. A name used in several tables has
-the same units everywhere (``tests/test_variables.py``).
+the same units everywhere (``tests/test_variables.py``); their union is
+:func:`tribodyn.workflow.variables_registry.registry`.
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-__all__ = ["Variable", "Group", "build", "registry", "lookup", "number"]
+__all__ = ["Variable", "Group", "build", "number"]
 
 
 @dataclass(frozen=True)
@@ -111,17 +112,3 @@ def number(v) -> float:
         return float(v)
     v = float(v)
     return v if math.isfinite(v) else math.nan
-
-
-def registry() -> tuple[Variable, ...]:
-    """Every registered variable (a name may occur in several tables, with one unit)."""
-    from . import variables_engine, variables_study, variables_sweep
-
-    # the sweep reuses study rows
-    rows = (*variables_study.ALL, *variables_sweep.ALL, *variables_engine.ALL)
-    return tuple({id(v): v for v in rows}.values())
-
-
-def lookup(name: str) -> list[Variable]:
-    """The registered variables called ``name``."""
-    return [v for v in registry() if v.name == name]
