@@ -8,7 +8,8 @@ import math
 from typing import TYPE_CHECKING
 
 from .._validation import InputError
-from ..valvetrain.cams import AccelerationCam, CamProfile, CircularArcCam, TabulatedCam
+from ..valvetrain.cam_tabulated import TabulatedCam
+from ..valvetrain.cams import AccelerationCam, CamProfile, CircularArcCam
 from ..valvetrain.camshaft import Camshaft
 from ..valvetrain.flexible import FlexibleValvetrain, TappetGeometry, ValveGeometry
 from ..valvetrain.parameters import ValvetrainParameters

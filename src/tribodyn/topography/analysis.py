@@ -38,7 +38,14 @@ import numpy as np
 from .._typing import PathLike
 from .composite import composite_moments, sum_on_common_grid
 from .errors import InsufficientDataError
-from .filtering import AUTO_BAND, Band, BandSpec, Sampling, SamplingLike, prepare_topography
+from .filtering import (
+    AUTO_BAND,
+    Band,
+    BandSpec,
+    Sampling,
+    input_warnings,
+    prepare_topography,
+)
 from .height_statistics import height_statistics
 from .profile import ProfileAnalysis
 from .reading import read_topography
@@ -269,29 +276,6 @@ def _sampling_note(band: Band, sampling: Sampling) -> str:
     else:
         text += f" (≥ {MIN_PIXELS_PER_WAVELENGTH:g}): summit statistics resolved"
     return text
-
-
-def input_warnings(band: Band, sampling: SamplingLike) -> tuple[str, ...]:
-    """Warnings about what was done to the input: band clipped, dropouts filled."""
-    out = []
-    if band.requested is not None:
-        lo, hi = band.wavelengths
-        out.append(
-            f"band {_um(lo)}–{_um(hi)} µm used "
-            f"instead of the requested {_um(band.requested[0])}–"
-            f"{_um(band.requested[1])} µm: {band.reason or 'clipped to the measurement'}"
-        )
-    if sampling.undefined_fraction > 0:
-        out.append(
-            f"{sampling.undefined_fraction:.1%} of the points were not measured "
-            "(dropouts): filled by harmonic interpolation for the filter, excluded from "
-            "the statistics"
-        )
-    return tuple(out)
-
-
-def _um(x: float) -> str:
-    return f"{x * 1e6:.4g}"
 
 
 def _with_notes(r: SurfaceAnalysis) -> SurfaceAnalysis:

@@ -265,6 +265,25 @@ def _um(x: float) -> str:
     return f"{x * 1e6:.4g}"
 
 
+def input_warnings(band: Band, sampling: SamplingLike) -> tuple[str, ...]:
+    """Warnings about what was done to the input: band clipped, dropouts filled."""
+    out = []
+    if band.requested is not None:
+        lo, hi = band.wavelengths
+        out.append(
+            f"band {_um(lo)}–{_um(hi)} µm used "
+            f"instead of the requested {_um(band.requested[0])}–"
+            f"{_um(band.requested[1])} µm: {band.reason or 'clipped to the measurement'}"
+        )
+    if sampling.undefined_fraction > 0:
+        out.append(
+            f"{sampling.undefined_fraction:.1%} of the points were not measured "
+            "(dropouts): filled by harmonic interpolation for the filter, excluded from "
+            "the statistics"
+        )
+    return tuple(out)
+
+
 def _shortest_wavelength(
     sampling: SamplingLike, reliability_cutoff: float | None
 ) -> tuple[float, str]:

@@ -44,6 +44,7 @@ from .filtering import (
     applied_band,
     check_filtering,
     check_map_size,
+    input_warnings,
 )
 from .height_statistics import HeightStatistics, height_statistics
 from .results import AsperityParameters, _TomlMixin
@@ -300,8 +301,6 @@ def analyse_profile(
 
 def _with_profile_notes(r: ProfileAnalysis) -> ProfileAnalysis:
     from dataclasses import replace
-
-    from .analysis import input_warnings
 
     notes = [f"η and β are an {ISOTROPIC_LABEL}"]
     if r.band.kind != "none":

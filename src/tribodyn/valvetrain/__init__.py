@@ -6,7 +6,8 @@ Public API::
         flat_follower_kinematics, ValvetrainParameters, simulate_valvetrain, speed_sweep)
 """
 
-from .cams import AccelerationCam, CamProfile, CircularArcCam, TabulatedCam
+from .cam_tabulated import TabulatedCam
+from .cams import AccelerationCam, CamProfile, CircularArcCam
 from .compare import compare_results
 from .dynamics import ValvetrainResult, simulate_valvetrain
 from .kinematics import (

@@ -1,4 +1,4 @@
-"""Reading cam lift tables as they come, for :class:`~tribodyn.valvetrain.cams.TabulatedCam`.
+"""Reading cam lift tables as they come, for :class:`~tribodyn.valvetrain.cam_tabulated.TabulatedCam`.
 
 * The file: a regular file (not a pipe or device) of at most
   :data:`~tribodyn._user_files.MAX_TABLE_BYTES` (64 MB), read by

@@ -13,8 +13,8 @@ Three profiles:
   (ramps, positive half-sine pulse, negative region down to the nose radius);
 * :class:`CircularArcCam` — the classic base/flank/nose circular-arc cam, exact from
   the support function of its arcs;
-* :class:`TabulatedCam` — a lift table (measured or from a supplier) fitted by a
-  periodic quintic spline that keeps the curvature jumps and smooths the noise
+* :class:`~tribodyn.valvetrain.cam_tabulated.TabulatedCam` — a lift table (measured or
+  from a supplier) fitted by a periodic quintic spline that keeps the curvature jumps and smooths the noise
   (:mod:`tribodyn.valvetrain.cam_tabulated`).
 
 Each profile reports its minimum radius of curvature and maximum contact offset and
@@ -37,7 +37,7 @@ from .._validation import (
 )
 from ..physics import typical_engine
 
-__all__ = ["CamProfile", "AccelerationCam", "CircularArcCam", "TabulatedCam"]
+__all__ = ["CamProfile", "AccelerationCam", "CircularArcCam"]
 
 TWO_PI = 2.0 * math.pi
 _CHECK_POINTS = 36000  # 0.01° grid for the curvature / offset checks
@@ -498,7 +498,3 @@ class CircularArcCam(CamProfile):
             h, h1, R = cx * sa + cy * ca + self.flank_radius, cx * ca - cy * sa, self.flank_radius
         s1 = h1 if phi >= 0.0 else -h1
         return h - self.base_radius, s1, R - h
-
-
-# the tabulated cam lives in its own module (lift-table fitting); re-exported here
-from .cam_tabulated import TabulatedCam  # noqa: E402

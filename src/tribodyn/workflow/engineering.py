@@ -36,7 +36,7 @@ import numpy as np
 
 from ..config.build import as_built, build
 from ..physics.materials import reduced_modulus
-from ..valvetrain.cams import TabulatedCam
+from ..valvetrain.cam_tabulated import TabulatedCam
 from ..valvetrain.flexible import FlexibleValvetrain
 from ..valvetrain.parameters import ValvetrainParameters
 

@@ -54,19 +54,14 @@ class StressMap:
 
 
 def stress_map(
-    cs, result, inputs, bodies, lubricant, roughness=None, options=None
-) -> StressMap | None:
-    """The :class:`StressMap` of a set's :class:`~tribodyn.workflow.stress_study.CycleStress`
-    ``cs`` (from the cycle EHL pass ``result`` with its CycleInputs ``inputs``; the set's
-    ``bodies``, ``lubricant``, ``roughness`` and EHL ``options``, default the defaults);
-    None when no safety factor is finite."""
-    from .stress_study import MODE_PEAK, closest_failure
-
-    worst = closest_failure(cs)
-    if worst is None:
-        return None
+    worst, trace, result, inputs, bodies, lubricant, roughness=None, options=None
+) -> StressMap:
+    """The :class:`StressMap` of a set's closest failure ``worst`` (a dict of
+    :func:`~tribodyn.workflow.stress_study.closest_failure`; its mode's stress ``trace``
+    along the cycle picks the sample), from the cycle EHL pass ``result`` with its
+    CycleInputs ``inputs``; the set's ``bodies``, ``lubricant``, ``roughness`` and EHL
+    ``options``, default the defaults."""
     body = worst["body"]
-    trace = getattr(cs, body).value[MODE_PEAK[worst["mode"]]]
     i = int(np.nanargmax(trace))
     opts = options if options is not None else EHLOptions()
     x = np.asarray(result.x, float)[i]

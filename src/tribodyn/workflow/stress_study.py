@@ -199,7 +199,10 @@ def stress_along_cycle(
                 interface_tension=math.nan,
             )
         out.safety_factors[name] = sf
-    out.map = stress_map(out, result, inputs, pair, lubricant, roughness, opts)
+    worst = closest_failure(out)
+    if worst is not None:  # the map at the closest failure's sample
+        trace = getattr(out, worst["body"]).value[MODE_PEAK[worst["mode"]]]
+        out.map = stress_map(worst, trace, result, inputs, pair, lubricant, roughness, opts)
     out.runtime_s = _time.perf_counter() - t0
     return out
 
