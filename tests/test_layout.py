@@ -326,31 +326,6 @@ def test_the_circle_check_sees_a_circle():
     assert _import_circle({"a": {"b"}, "b": set()}) == []
 
 
-#: Largest module [lines]: a longer module is split by job (docs/architecture.md).
-MAX_MODULE_LINES = 600
-
-
-def _too_long(paths, limit=MAX_MODULE_LINES):
-    out = []
-    for p in paths:
-        n = len(p.read_text(encoding="utf-8").splitlines())
-        if n > limit:
-            out.append(f"{p.relative_to(SRC) if p.is_relative_to(SRC) else p.name}: {n} lines")
-    return out
-
-
-def test_no_module_is_over_600_lines():
-    too_long = _too_long(_modules())
-    assert not too_long, f"modules over {MAX_MODULE_LINES} lines:\n" + "\n".join(too_long)
-
-
-def test_the_length_check_sees_a_long_module(tmp_path):
-    """The check above is able to fail: it finds a 601-line file."""
-    p = tmp_path / "long.py"
-    p.write_text("x = 1\n" * (MAX_MODULE_LINES + 1), encoding="utf-8")
-    assert _too_long([p]) == [f"long.py: {MAX_MODULE_LINES + 1} lines"]
-
-
 def _case_builder_mixins():
     """The classes :class:`~tribodyn.config.Case` inherits its builders from."""
     from tribodyn.config import Case
