@@ -149,10 +149,6 @@ class BuiltCase:
         object over the built bodies, roughness and lubricant)."""
         return self.case._new_analytic_tribology(self.set(name).surface, self.lubricant)
 
-    def simulate_options(self) -> dict[str, Any]:
-        """A copy of :attr:`dynamics_options` (callers may add keys)."""
-        return dict(self.dynamics_options)
-
     def thermal_oil(self) -> ThermalLubricant:
         """The thermal oil: :attr:`thermal_lubricant`, or (a case neither thermal nor a
         datasheet) built now from ``[lubricant]``, an InputError naming the missing key."""

@@ -29,7 +29,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-__all__ = ["Variable", "Group", "build", "registry", "lookup", "number"]
+__all__ = ["Variable", "Group", "build", "registry", "number"]
 
 
 @dataclass(frozen=True)
@@ -120,8 +120,3 @@ def registry() -> tuple[Variable, ...]:
     # the sweep reuses study rows
     rows = (*variables_study.ALL, *variables_sweep.ALL, *variables_engine.ALL)
     return tuple({id(v): v for v in rows}.values())
-
-
-def lookup(name: str) -> list[Variable]:
-    """The registered variables called ``name``."""
-    return [v for v in registry() if v.name == name]
