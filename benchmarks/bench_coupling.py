@@ -112,12 +112,13 @@ def cases(folder):
 
 
 def run(case):
-    s = build(case).set(build(case).surface_sets[0].name).surface
+    built = build(case)
+    s = built.set(built.surface_sets[0].name).surface
     dyn = simulate_valvetrain(
-        build(case).cam,
-        build(case).valvetrain,
-        tribology=build(case).analytic_tribology(s.name),
-        **build(case).dynamics_options,
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology(s.name),
+        **built.dynamics_options,
     )
     inputs = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
     first = ehl_for_set(case, s, inputs)

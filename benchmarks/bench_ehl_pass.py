@@ -78,14 +78,15 @@ def main():
     ap.add_argument("--repeat", type=int, default=1)
     args = ap.parse_args()
     case = load_case(args.case)
-    ref = build(case).set(surface_roles(case)["reference"]).surface
-    s = build(case).set(args.set).surface if args.set else ref
+    built = build(case)
+    ref = built.set(surface_roles(case)["reference"]).surface
+    s = built.set(args.set).surface if args.set else ref
     with single_blas_thread():
         dyn = simulate_valvetrain(
-            build(case).cam,
-            build(case).valvetrain,
-            tribology=build(case).analytic_tribology(ref.name),
-            **build(case).dynamics_options,
+            built.cam,
+            built.valvetrain,
+            tribology=built.analytic_tribology(ref.name),
+            **built.dynamics_options,
         )
         inputs = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
         count_work()

@@ -27,10 +27,11 @@ from tribodyn.valvetrain.flexible_model import FlexibleValvetrainModel
 def main(ks=(0, 1, 2, 3, 4, 6, None)) -> dict:
     threadpool_limits(1)
     case = load_case("andreou2023_flexible")
-    cam = build(case).cam
-    trib = build(case).analytic_tribology(build(case).surface_sets[0].name)
-    opts = build(case).dynamics_options
-    base = build(case).valvetrain
+    built = build(case)
+    cam = built.cam
+    trib = built.analytic_tribology(built.surface_sets[0].name)
+    opts = built.dynamics_options
+    base = built.valvetrain
     runs = {"case (5 kHz cut-off)": base} | {
         ("all" if k is None else str(k)): base.with_modes(k) for k in ks
     }

@@ -36,17 +36,18 @@ def main():
     ap.add_argument("--crank-step", type=float, default=None)
     args = ap.parse_args()
     case = load_case(args.case)
-    sets = build(case).surface_sets
+    built = build(case)
+    sets = built.surface_sets
     if args.set:
-        s = build(case).set(args.set).surface
+        s = built.set(args.set).surface
     else:
         s = next((x for x in sets if x.coating is not None), sets[0])
-    ref = build(case).set(surface_roles(case)["reference"]).surface
+    ref = built.set(surface_roles(case)["reference"]).surface
     dyn = simulate_valvetrain(
-        build(case).cam,
-        build(case).valvetrain,
-        tribology=build(case).analytic_tribology(ref.name),
-        **build(case).dynamics_options,
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology(ref.name),
+        **built.dynamics_options,
     )
     step = args.crank_step or case.numerics.crank_step_deg
     inputs = CycleInputs.from_dynamics(dyn, step, case.width)

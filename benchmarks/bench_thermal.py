@@ -47,12 +47,13 @@ def steady():
 
 def cycle(set_name, repeat, model=None):
     case = load_case("andreou2023_thermal")
-    s = build(case).set(set_name).surface
+    built = build(case)
+    s = built.set(set_name).surface
     dyn = simulate_valvetrain(
-        build(case).cam,
-        build(case).valvetrain,
-        tribology=build(case).analytic_tribology(build(case).surface_sets[0].name),
-        **build(case).dynamics_options,
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology(built.surface_sets[0].name),
+        **built.dynamics_options,
     )
     inp = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
     if model == "isothermal":

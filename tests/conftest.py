@@ -75,12 +75,13 @@ def explicit_run(case, set_name="uncoated"):
     from tribodyn.cycle.driver import CycleInputs
     from tribodyn.valvetrain import simulate_valvetrain
 
-    s = build(case).set(set_name).surface
+    built = build(case)
+    s = built.set(set_name).surface
     dyn = simulate_valvetrain(
-        build(case).cam,
-        build(case).valvetrain,
-        tribology=build(case).analytic_tribology(s.name),
-        **build(case).dynamics_options,
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology(set_name),
+        **built.dynamics_options,
     )
     return s, dyn, CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
 

@@ -528,19 +528,20 @@ def test_surface_sets_boundary_shear_strength_reaches_the_dynamics_tribology():
     sets = base.to_dict()["surface_sets"][:1]
     sets[0]["boundary_shear_strength"] = 5e6
     case = base.updated({"surface_sets": sets})
-    trib = build(case).analytic_tribology("uncoated")
+    built = build(case)
+    trib = built.analytic_tribology("uncoated")
     assert trib.boundary_shear_strength == 5e6 and trib.kwargs["boundary_shear_strength"] == 5e6
     with pytest.raises(TypeError):
         trib.kwargs["boundary_shear_strength"] = 0.0  # a read-only view
     force, ue, us, R = 400.0, 0.3, 0.3, 0.01  # thin film: mixed lubrication
-    s = build(case).set("uncoated").surface
+    s = built.set("uncoated").surface
     c = analytic_contact(
         force / trib.width,
         R,
         ue,
         us,
         s.bodies,
-        build(case).lubricant,
+        built.lubricant,
         s.roughness,
         boundary_shear_coefficient=s.boundary_shear_coefficient,
         boundary_shear_strength=5e6,

@@ -94,19 +94,20 @@ def test_force_between_samples_does_not_depend_on_their_spacing(paper_4000):
     case, s, dyn, inputs, first = paper_4000
     period = 2.0 * np.pi / case.cam_speed
     e_prime = reduced_modulus(s.bodies)
-    lub = build(case).lubricant
+    built = build(case)
+    lub = built.lubricant
     ev = dyn.event_mask()
     peak = dyn.contact_force.max()
 
-    def spread(build):
+    def spread(tribology):
         F = []
         for k in (1, 2):
             inp, ehl = _every(inputs, k), _every(first, k)
             r = simulate_valvetrain(
-                build(case).cam,
-                build(case).valvetrain,
-                tribology=build(inp, ehl),
-                **build(case).dynamics_options,
+                built.cam,
+                built.valvetrain,
+                tribology=tribology(inp, ehl),
+                **built.dynamics_options,
             )
             assert r.converged, r.message
             F.append(r.contact_force)

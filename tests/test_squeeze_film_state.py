@@ -150,19 +150,20 @@ def test_film_growth_is_limited_by_the_oil_supply_in_closed_form():
 )
 def test_film_state_jacobian_matches_finite_differences(name, film, regime):
     case = load_case(name)
-    s = build(case).surface_sets[0]
+    built = build(case)
+    s = built.surface_sets[0]
     ft = FilmStateTribology(
         Frictionless(),
         width=case.width,
-        lubricant=build(case).lubricant,
+        lubricant=built.lubricant,
         e_prime=reduced_modulus(s.bodies),
     )
     w = rpm_to_cam_speed(case.engine.speed_rpm)
-    m = make_system(build(case).cam, build(case).valvetrain, w, ft)
+    m = make_system(built.cam, built.valvetrain, w, ft)
     assert m.film_state and compiled_model(m) is None  # the compiled backend hands over
     n, t = m.n, math.radians(100.0) / w  # on the opening flank
     y = m.static_state()
-    y[0] = build(case).cam.scalar_derivatives(m.lobe_angle(t, y))[0] - 20e-6
+    y[0] = built.cam.scalar_derivatives(m.lobe_angle(t, y))[0] - 20e-6
     y[n], y[-1] = 0.3, film
     J = m.jacobian(t, y)
     k = 2 * n + 2
@@ -188,14 +189,13 @@ def test_film_state_jacobian_matches_finite_differences(name, film, regime):
 @pytest.fixture(scope="module")
 def paper_film_run():
     case = load_case().updated({"engine.speed_rpm": 4000.0, "numerics.output_step_deg": 0.5})
-    s = build(case).surface_sets[0]
-    trib = build(case).analytic_tribology(s.name)
+    built = build(case)
+    s = built.surface_sets[0]
+    trib = built.analytic_tribology(s.name)
     ft = FilmStateTribology(
-        trib, width=case.width, lubricant=build(case).lubricant, e_prime=reduced_modulus(s.bodies)
+        trib, width=case.width, lubricant=built.lubricant, e_prime=reduced_modulus(s.bodies)
     )
-    r = simulate_valvetrain(
-        build(case).cam, build(case).valvetrain, tribology=ft, **build(case).dynamics_options
-    )
+    r = simulate_valvetrain(built.cam, built.valvetrain, tribology=ft, **built.dynamics_options)
     assert r.converged, r.message
     return case, ft, r
 

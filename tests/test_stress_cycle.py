@@ -42,12 +42,13 @@ def test_strength_keys_override_the_typical_values_and_read_back():
     case = Case.from_dict(
         _with({"strength": {"dlc": {"tensile_strength": 1.2e9, "wear_coefficient": 2e-17}}})
     )
-    sub, coat = build(case).set("dlc_1um").strengths["tappet"]
+    built = build(case)
+    sub, coat = built.set("dlc_1um").strengths["tappet"]
     assert coat.tensile_strength == 1.2e9
     assert coat.hardness == TYPICAL_STRENGTH["dlc"].hardness  # not given: typical
     assert "case [strength.dlc]" in coat.source
     assert sub == TYPICAL_STRENGTH["steel"]
-    dlc, wcc = build(case).set("dlc_4um"), build(case).set("wcc_4um")
+    dlc, wcc = built.set("dlc_4um"), built.set("wcc_4um")
     assert (dlc.wear_coefficient, dlc.wear_source) == (2e-17, "case [strength.dlc]")
     # not given: the labelled assumption
     assert wcc.wear_coefficient == TYPICAL_WEAR_COEFFICIENT["wcc"]

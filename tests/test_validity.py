@@ -209,11 +209,12 @@ def test_valve_jump_is_reported_clearly():
     from tribodyn.workflow.cycle import _jump_warning
 
     case = load_case().updated({"valvetrain.valve_mass": 1.0})
+    built = build(case)
     dyn = simulate_valvetrain(
-        build(case).cam,
-        build(case).valvetrain,
-        tribology=build(case).analytic_tribology("uncoated"),
-        **build(case).dynamics_options,
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology("uncoated"),
+        **built.dynamics_options,
     )
     assert dyn.converged and dyn.jump
     text = _jump_warning(dyn, case)
