@@ -7,6 +7,7 @@ strengths. Not a timed test.
 
 import tribodyn  # noqa: F401  (one BLAS thread, before numpy loads)
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.physics.asperity_stress import micro_contact_estimate
 from tribodyn.physics.materials import STEEL, Body, reduced_modulus
 from tribodyn.physics.strength import TYPICAL_STRENGTH
@@ -22,7 +23,7 @@ def main():
     print("|---|---|---|---|---|---|---|---|---|---|")
     for name in ("andreou2023", "engine_dohc16", "flat_tappet_rig"):
         case = load_case(name)
-        r = case.surface_sets()[0].roughness
+        r = build(case).surface_sets[0].roughness
         for lam in (1.0, 2.0, 3.0):
             m = micro_contact_estimate(r, lam * r.rms, e_red, STEEL.nu)
             print(

@@ -35,10 +35,11 @@ def child(mode: str, repeat: int) -> None:
 
     from tribodyn import solve_ehl
     from tribodyn.config import load_case
+    from tribodyn.config.build import build
 
-    case = load_case("andreou2023")  # the paper case, as named (not the typical defaults)
-    s = case.surface_sets()[0]
-    lub, opts = case.lubricant(), case.ehl_options(s)
+    built = build(load_case("andreou2023"))  # the paper case, as named (not the defaults)
+    s = built.surface_sets[0]
+    lub, opts = built.lubricant, built.set(s.name).options
 
     def solve():
         return solve_ehl(4e4, 0.01, 2.0, 0.5, s.bodies, lub, s.roughness, options=opts)

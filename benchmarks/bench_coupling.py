@@ -34,6 +34,7 @@ import numpy as np
 
 import tribodyn  # noqa: F401  (one BLAS thread, before numpy loads)
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.cycle.coupling import implicit_vs_explicit_metrics, run_coupling
 from tribodyn.cycle.driver import CycleInputs, ehl_for_set
 from tribodyn.valvetrain.cams import AccelerationCam
@@ -111,12 +112,13 @@ def cases(folder):
 
 
 def run(case):
-    s = case.surface_set(case.surface_sets()[0].name)
+    built = build(case)
+    s = built.set(built.surface_sets[0].name).surface
     dyn = simulate_valvetrain(
-        case.cam(),
-        case.valvetrain_parameters(),
-        tribology=case.analytic_tribology(s),
-        **case.dynamics_options(),
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology(s.name),
+        **built.dynamics_options,
     )
     inputs = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
     first = ehl_for_set(case, s, inputs)

@@ -36,6 +36,7 @@ import numpy as np
 
 import tribodyn  # noqa: F401  (one BLAS thread, before numpy loads)
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.cycle.coupling import ehl_tribology, run_coupling
 from tribodyn.cycle.driver import CycleInputs, ehl_for_set
 from tribodyn.physics.materials import reduced_modulus
@@ -174,13 +175,14 @@ def implicit_dynamics(case, ref, inputs, first) -> dict:
     compiled lumped model and with the Python right-hand side under solve_ivp (the path
     of tribodyn 0.1 and of non-tabulated tribology models): CPU times and the largest
     difference of the contact force."""
-    lub = case.lubricant()
+    built = build(case)
+    lub = built.lubricant
     period = 2.0 * math.pi / case.cam_speed
     table = ehl_tribology(inputs, first, lub, reduced_modulus(ref.bodies), period)
 
     def run():
         return simulate_valvetrain(
-            case.cam(), case.valvetrain_parameters(), tribology=table, **case.dynamics_options()
+            built.cam, built.valvetrain, tribology=table, **built.dynamics_options
         )
 
     fast, wf, cf = timed(run)
@@ -217,21 +219,22 @@ def main():
         "blas_threads_env": os.environ.get("OPENBLAS_NUM_THREADS"),
     }
     ref_name = surface_roles(case)["reference"]
-    ref = case.surface_set(ref_name)
+    built = build(case)
+    ref = built.set(ref_name).surface
 
     dyn, w, c = timed(
         lambda: simulate_valvetrain(
-            case.cam(),
-            case.valvetrain_parameters(),
-            tribology=case.analytic_tribology(ref),
-            **case.dynamics_options(),
+            built.cam,
+            built.valvetrain,
+            tribology=built.analytic_tribology(ref.name),
+            **built.dynamics_options,
         )
     )
     out["dynamics_explicit"] = {"wall_s": w, "cpu_s": c, **dyn.stats}
     inputs = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
 
     passes, first = {}, None
-    for s in case.surface_sets():
+    for s in built.surface_sets:
         r, w, c = timed(lambda: ehl_for_set(case, s, inputs))
         passes[s.name] = pass_stats(r, w, c)
         passes[s.name]["friction_energy_proxy_J"] = energy(inputs.time, r.loaded, r.friction_power)

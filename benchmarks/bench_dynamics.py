@@ -31,7 +31,7 @@ def main() -> dict:
     built = build(case)
     ref = built.surface_sets[0]
     args = (built.cam, built.valvetrain)
-    kw = dict(tribology=built.analytic_tribology(ref.name), **built.simulate_options())
+    kw = dict(tribology=built.analytic_tribology(ref.name), **built.dynamics_options)
     simulate_valvetrain(*args, **kw)  # warm-up
     t0 = time.perf_counter()
     ex = simulate_valvetrain(*args, **kw)

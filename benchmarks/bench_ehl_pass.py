@@ -23,6 +23,7 @@ import numpy as np
 import tribodyn  # noqa: F401  (one BLAS thread, before numpy loads)
 from tribodyn._threads import single_blas_thread
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.contact.ehl import reynolds, steady, transient
 from tribodyn.cycle.driver import CycleInputs, ehl_for_set
 from tribodyn.valvetrain.dynamics import simulate_valvetrain
@@ -77,14 +78,15 @@ def main():
     ap.add_argument("--repeat", type=int, default=1)
     args = ap.parse_args()
     case = load_case(args.case)
-    ref = case.surface_set(surface_roles(case)["reference"])
-    s = case.surface_set(args.set) if args.set else ref
+    built = build(case)
+    ref = built.set(surface_roles(case)["reference"]).surface
+    s = built.set(args.set).surface if args.set else ref
     with single_blas_thread():
         dyn = simulate_valvetrain(
-            case.cam(),
-            case.valvetrain_parameters(),
-            tribology=case.analytic_tribology(ref),
-            **case.dynamics_options(),
+            built.cam,
+            built.valvetrain,
+            tribology=built.analytic_tribology(ref.name),
+            **built.dynamics_options,
         )
         inputs = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
         count_work()

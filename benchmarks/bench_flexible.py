@@ -17,21 +17,23 @@ import time
 from threadpoolctl import threadpool_limits
 
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.valvetrain import simulate_valvetrain
 
 
 def main(repeats: int = 3) -> dict:
     threadpool_limits(1)
     case = load_case("andreou2023_flexible")
-    trib = case.analytic_tribology(case.surface_sets()[0])
-    models = {"lumped": case.lumped_companion(), "flexible": case.valvetrain_parameters()}
-    kw = dict(tribology=trib, **case.dynamics_options())
+    built = build(case)
+    trib = built.analytic_tribology(built.surface_sets[0].name)
+    models = {"lumped": built.lumped, "flexible": built.valvetrain}
+    kw = dict(tribology=trib, **built.dynamics_options)
     times = {k: [] for k in models}
     res = {}
     for _ in range(repeats):
         for name, p in models.items():
             t0 = time.perf_counter()
-            res[name] = simulate_valvetrain(case.cam(), p, **kw)
+            res[name] = simulate_valvetrain(built.cam, p, **kw)
             times[name].append(time.perf_counter() - t0)
     med = {k: statistics.median(v) for k, v in times.items()}
     keys = (

@@ -19,6 +19,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.valvetrain import simulate_valvetrain
 from tribodyn.valvetrain.flexible_model import FlexibleValvetrainModel
 
@@ -26,10 +27,11 @@ from tribodyn.valvetrain.flexible_model import FlexibleValvetrainModel
 def main(ks=(0, 1, 2, 3, 4, 6, None)) -> dict:
     threadpool_limits(1)
     case = load_case("andreou2023_flexible")
-    cam = case.cam()
-    trib = case.analytic_tribology(case.surface_sets()[0])
-    opts = case.dynamics_options()
-    base = case.valvetrain_parameters()
+    built = build(case)
+    cam = built.cam
+    trib = built.analytic_tribology(built.surface_sets[0].name)
+    opts = built.dynamics_options
+    base = built.valvetrain
     runs = {"case (5 kHz cut-off)": base} | {
         ("all" if k is None else str(k)): base.with_modes(k) for k in ks
     }

@@ -16,6 +16,7 @@ import time
 
 import tribodyn  # noqa: F401  (one BLAS thread, before numpy loads)
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.cycle.driver import CycleInputs, ehl_for_set
 from tribodyn.valvetrain.dynamics import simulate_valvetrain
 from tribodyn.workflow.postprocess import surface_roles
@@ -35,17 +36,18 @@ def main():
     ap.add_argument("--crank-step", type=float, default=None)
     args = ap.parse_args()
     case = load_case(args.case)
-    sets = case.surface_sets()
+    built = build(case)
+    sets = built.surface_sets
     if args.set:
-        s = case.surface_set(args.set)
+        s = built.set(args.set).surface
     else:
         s = next((x for x in sets if x.coating is not None), sets[0])
-    ref = case.surface_set(surface_roles(case)["reference"])
+    ref = built.set(surface_roles(case)["reference"]).surface
     dyn = simulate_valvetrain(
-        case.cam(),
-        case.valvetrain_parameters(),
-        tribology=case.analytic_tribology(ref),
-        **case.dynamics_options(),
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology(ref.name),
+        **built.dynamics_options,
     )
     step = args.crank_step or case.numerics.crank_step_deg
     inputs = CycleInputs.from_dynamics(dyn, step, case.width)

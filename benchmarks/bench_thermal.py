@@ -21,6 +21,7 @@ from threadpoolctl import threadpool_limits
 from timing import best_of, steel_5w30
 from tribodyn import solve_ehl
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.contact.ehl.thermal import solve_thermal_ehl
 from tribodyn.cycle.driver import CycleInputs, ehl_for_set
 from tribodyn.cycle.thermal import thermal_for_set
@@ -46,12 +47,13 @@ def steady():
 
 def cycle(set_name, repeat, model=None):
     case = load_case("andreou2023_thermal")
-    s = case.surface_set(set_name)
+    built = build(case)
+    s = built.set(set_name).surface
     dyn = simulate_valvetrain(
-        case.cam(),
-        case.valvetrain_parameters(),
-        tribology=case.analytic_tribology(case.surface_sets()[0]),
-        **case.dynamics_options(),
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology(built.surface_sets[0].name),
+        **built.dynamics_options,
     )
     inp = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
     if model == "isothermal":

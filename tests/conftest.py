@@ -9,6 +9,7 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 from tribodyn import Body, Coating, Material  # noqa: E402
+from tribodyn.config.build import build  # noqa: E402
 
 
 @pytest.fixture
@@ -74,12 +75,13 @@ def explicit_run(case, set_name="uncoated"):
     from tribodyn.cycle.driver import CycleInputs
     from tribodyn.valvetrain import simulate_valvetrain
 
-    s = case.surface_set(set_name)
+    built = build(case)
+    s = built.set(set_name).surface
     dyn = simulate_valvetrain(
-        case.cam(),
-        case.valvetrain_parameters(),
-        tribology=case.analytic_tribology(s),
-        **case.dynamics_options(),
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology(set_name),
+        **built.dynamics_options,
     )
     return s, dyn, CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
 
@@ -114,7 +116,13 @@ def isothermal_cycle(case, surface_set, inputs):
 
     s = surface_set
     return ehl_along_cycle(
-        inputs, "u", "u", s.bodies, case.lubricant(), s.roughness, case.ehl_options(s)
+        inputs,
+        "u",
+        "u",
+        s.bodies,
+        build(case).lubricant,
+        s.roughness,
+        build(case).set(s.name).options,
     )
 
 

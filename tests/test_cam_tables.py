@@ -7,6 +7,7 @@ import pytest
 
 from tribodyn import InputError
 from tribodyn.config import Case
+from tribodyn.config.build import build
 from tribodyn.valvetrain import AccelerationCam, CircularArcCam, TabulatedCam
 from tribodyn.valvetrain.cam_table import load_lift_table
 
@@ -154,7 +155,7 @@ def test_event_only_table_in_mm_with_base_radius(tmp_path):
         + "".join(f"{x:.1f};{y * 1e3:.6f}\n".replace(".", ",") for x, y in zip(a[on], s[on]))
     )
     case = Case.from_toml_string("[cam]\ntype = 'table'\npath = 'event.csv'\n", base_dir=tmp_path)
-    cam = case.cam()
+    cam = build(case).cam
     assert cam.event_only
     x = np.radians(np.arange(0.0, 360.0, 0.25))
     np.testing.assert_allclose(cam.lift(x), ref.lift(x), atol=2e-6)  # 1 µm rounding
@@ -179,7 +180,7 @@ def test_crank_angles_and_three_columns(tmp_path):
         "[cam]\ntype = 'table'\npath = 'three.csv'\nangle_column = 1\nlift_column = 2\n",
         base_dir=tmp_path,
     )
-    assert case.cam().max_lift == pytest.approx(9.3e-3, rel=1e-4)
+    assert build(case).cam.max_lift == pytest.approx(9.3e-3, rel=1e-4)
 
 
 def _reject_case(tmp_path, name):

@@ -7,6 +7,7 @@ import pytest
 from typer.testing import CliRunner
 
 from tribodyn.cli import app
+from tribodyn.config.build import build
 from tribodyn.physics.regimes import hamrock_groups, pan_hamrock
 
 runner = CliRunner()
@@ -292,7 +293,7 @@ def test_shear_options_set_the_oil_of_oil_and_thermal():
     out = json.loads(r.stdout)
     assert out["eyring_stress_Pa"] == 5e7 and out["thermal"] is True
     case = load_case("andreou2023_thermal").updated({"numerics.n": 128})
-    thermal_oil = dataclasses.replace(case.thermal_lubricant(), eyring_stress=5e7)
+    thermal_oil = dataclasses.replace(build(case).thermal_oil(), eyring_stress=5e7)
     ref = solve_point(
         case,
         point_surfaces(case),

@@ -18,6 +18,7 @@ from tribodyn.config import (
     load_case,
     to_toml,
 )
+from tribodyn.config.build import build
 from tribodyn.valvetrain import (
     AccelerationCam,
     CircularArcCam,
@@ -47,21 +48,21 @@ def reject(text, *fragments, base_dir=None):
 def test_bundled_case_loads_and_builds_everything(paper):
     assert paper.name == "andreou2023"
     assert paper.source == DEFAULT_CASE
-    cam = paper.cam()
+    cam = build(paper).cam
     assert isinstance(cam, AccelerationCam)
     assert cam.min_radius_of_curvature > 0.0
-    assert isinstance(paper.lubricant(), Lubricant)
-    vp = paper.valvetrain_parameters()
+    assert isinstance(build(paper).lubricant, Lubricant)
+    vp = build(paper).valvetrain
     assert isinstance(vp, ValvetrainParameters)
     assert vp.cam_width == 0.012
-    assert isinstance(paper.ehl_options(), EHLOptions)
+    assert isinstance(build(paper).options, EHLOptions)
     assert paper.cam_speed == pytest.approx(1500.0 * 2.0 * math.pi / 60.0)  # cam = engine/2
-    sets = paper.surface_sets()
+    sets = build(paper).surface_sets
     assert [s.name for s in sets] == ["uncoated", "dlc_1um", "dlc_4um", "wcc_1um", "wcc_4um"]
     assert all(isinstance(s, SurfaceSet) and isinstance(s.roughness, Roughness) for s in sets)
-    dyn = paper.dynamics_options()
+    dyn = build(paper).dynamics_options
     assert dyn["engine_speed"] == 3000.0 and dyn["cycles"] == 2
-    trib = paper.analytic_tribology("wcc_4um")
+    trib = build(paper).analytic_tribology("wcc_4um")
     assert trib.width == 0.012 and trib.kwargs["boundary_shear_coefficient"] == 0.54
 
 
@@ -72,14 +73,14 @@ def test_a_copy_with_changes_builds_its_own_objects(paper):
     import copy
     import pickle
 
-    assert paper.lubricant().viscosity == 0.055
+    assert build(paper).lubricant.viscosity == 0.055
     lub = paper.lubricant_config.model_copy(update={"viscosity": 0.02})
     changed = paper.model_copy(update={"lubricant_config": lub})
-    assert changed.lubricant().viscosity == 0.02
-    assert changed.built().case is changed
-    assert paper.lubricant().viscosity == 0.055 and paper.built().case is paper
+    assert build(changed).lubricant.viscosity == 0.02
+    assert build(changed).case is changed
+    assert build(paper).lubricant.viscosity == 0.055 and build(paper).case is paper
     for twin in (copy.deepcopy(paper), pickle.loads(pickle.dumps(paper))):
-        assert twin.built().case is twin and twin.lubricant().viscosity == 0.055
+        assert build(twin).case is twin and build(twin).lubricant.viscosity == 0.055
 
 
 def test_paper_numbers(paper):
@@ -98,7 +99,7 @@ def test_paper_numbers(paper):
         3e-3,
     )
     # Table 5 (+ assumed density)
-    lub = paper.lubricant()
+    lub = build(paper).lubricant
     assert (
         lub.viscosity,
         lub.pressure_viscosity,
@@ -109,7 +110,9 @@ def test_paper_numbers(paper):
     assert lub.viscosity_model == "roelands" and lub.compressible
     assert lub.limiting_shear_stress == 0.0  # paper: τ_L = Λp only
     assert (
-        paper.updated({"lubricant.limiting_shear_stress": 3e6}).lubricant().limiting_shear_stress
+        build(
+            paper.updated({"lubricant.limiting_shear_stress": 3e6})
+        ).lubricant.limiting_shear_stress
         == 3e6
     )
     # Table 6 (moduli in GPa)
@@ -134,7 +137,7 @@ def test_paper_numbers(paper):
         "wcc_1um": (175e9, 1e-6, 0.54, "wcc"),
         "wcc_4um": (175e9, 4e-6, 0.54, "wcc"),
     }
-    for s in paper.surface_sets():
+    for s in build(paper).surface_sets:
         E, t, sig, rough_key = expect[s.name]
         cam, tappet = s.bodies
         assert cam.coating is None and cam.material.E == 210e9 and cam.material.nu == 0.3
@@ -148,8 +151,8 @@ def test_paper_numbers(paper):
         r = s.roughness
         assert (r.asperity_density, r.rms, r.summit_radius) == table4[rough_key]
         assert r.method == "exact"
-    assert paper.surface_set("dlc_4um").coating_label == "DLC 4 µm"
-    assert paper.ehl_options("wcc_1um").boundary_shear_coefficient == 0.54
+    assert build(paper).set("dlc_4um").surface.coating_label == "DLC 4 µm"
+    assert build(paper).set("wcc_1um").options.boundary_shear_coefficient == 0.54
     assert 0.0 < paper.numerics.crank_step_deg <= 1.0
     assert paper.numerics.implicit_coupling is True  # the comparison of Figs. 8–10
     assert paper.numerics.n == 0  # automatic EHL grid
@@ -238,7 +241,7 @@ def test_numerics_defaults_are_the_ehl_solvers():
     differ = {k: (Numerics.model_fields[k].default, ehl[k]) for k in sorted(shared)}
     differ = {k: v for k, v in differ.items() if v[0] != v[1] or type(v[0]) is not type(v[1])}
     assert not differ, f"[numerics] default != EHLOptions default: {differ}"
-    built = Case.from_toml_string("").ehl_options()
+    built = build(Case.from_toml_string("")).options
     for k in shared:
         assert getattr(built, k) == getattr(EHLOptions(), k), k
 
@@ -258,7 +261,7 @@ def test_bundled_names(paper):
 
 def test_example_table_cam():
     case = load_case(CASES_DIR / "example_table_cam.toml")
-    cam = case.cam()
+    cam = build(case).cam
     assert isinstance(cam, TabulatedCam)
     assert case.cam_table_path == CASES_DIR / "example_cam_lift.csv"
     assert cam.max_lift == pytest.approx(9.3e-3, rel=1e-6)
@@ -266,7 +269,7 @@ def test_example_table_cam():
     th = np.linspace(0.0, 2.0 * np.pi, 721)
     ref = AccelerationCam(0.015, 9.3e-3)  # the paper's sizes (Table 7)
     assert np.max(np.abs(cam.lift(th) - ref.lift(th))) < 1e-8
-    assert [s.coating_label for s in case.surface_sets()] == ["uncoated", "WC-C 4 µm"]
+    assert [s.coating_label for s in build(case).surface_sets] == ["uncoated", "WC-C 4 µm"]
     header = case.cam_table_path.read_text(encoding="utf-8").splitlines()[0]
     assert header.startswith("#") and "AccelerationCam" in case.cam_table_path.read_text(
         encoding="utf-8"
@@ -275,8 +278,8 @@ def test_example_table_cam():
 
 def test_other_cam_types():
     case = Case.from_toml_string('[cam]\ntype = "circular_arc"\nflank_radius = 0.04\n')
-    assert isinstance(case.cam(), CircularArcCam)
-    assert case.cam().flank_radius == 0.04
+    assert isinstance(build(case).cam, CircularArcCam)
+    assert build(case).cam.flank_radius == 0.04
 
 
 # ----------------------------------------------------------------------------- rejection
@@ -368,7 +371,7 @@ def test_coating_rules():
     )
     # "none" means uncoated
     case = Case.from_toml_string("[[surface_sets]]\nname = 'a'\ncoating = 'none'\n" + ROUGH)
-    assert case.surface_sets()[0].tappet.coating is None
+    assert build(case).surface_sets[0].tappet.coating is None
 
 
 def test_lift_table_problems(tmp_path):
@@ -525,19 +528,20 @@ def test_surface_sets_boundary_shear_strength_reaches_the_dynamics_tribology():
     sets = base.to_dict()["surface_sets"][:1]
     sets[0]["boundary_shear_strength"] = 5e6
     case = base.updated({"surface_sets": sets})
-    trib = case.analytic_tribology("uncoated")
+    built = build(case)
+    trib = built.analytic_tribology("uncoated")
     assert trib.boundary_shear_strength == 5e6 and trib.kwargs["boundary_shear_strength"] == 5e6
     with pytest.raises(TypeError):
         trib.kwargs["boundary_shear_strength"] = 0.0  # a read-only view
     force, ue, us, R = 400.0, 0.3, 0.3, 0.01  # thin film: mixed lubrication
-    s = case.surface_set("uncoated")
+    s = built.set("uncoated").surface
     c = analytic_contact(
         force / trib.width,
         R,
         ue,
         us,
         s.bodies,
-        case.lubricant(),
+        built.lubricant,
         s.roughness,
         boundary_shear_coefficient=s.boundary_shear_coefficient,
         boundary_shear_strength=5e6,
@@ -546,4 +550,6 @@ def test_surface_sets_boundary_shear_strength_reaches_the_dynamics_tribology():
     f = trib.friction(0.0, force, ue, us, R)
     assert float(f) == pytest.approx(float(c.friction) * trib.width, rel=1e-12)
     f0 = base.updated({"surface_sets": base.to_dict()["surface_sets"][:1]})
-    assert float(f0.analytic_tribology("uncoated").friction(0.0, force, ue, us, R)) < float(f)
+    assert float(build(f0).analytic_tribology("uncoated").friction(0.0, force, ue, us, R)) < float(
+        f
+    )

@@ -6,6 +6,7 @@ import pytest
 
 from conftest import explicit_run
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.cycle.coupling import COUPLING_MAX_TOL, COUPLING_RMS_TOL, run_coupling
 from tribodyn.cycle.driver import CycleInputs, ehl_for_set
 from tribodyn.valvetrain import simulate_valvetrain
@@ -64,7 +65,7 @@ def test_a_coupling_started_at_its_fixed_point_stays_there(coupled):
     iteration of the paper case from its explicit run: RMS 12 N, max 197 N)."""
     dyn, c = coupled
     case = load_case().updated(REDUCED)
-    s = case.surface_set("uncoated")
+    s = build(case).set("uncoated").surface
     imp = c.implicit
     inputs = CycleInputs.from_dynamics(imp, case.numerics.crank_step_deg, case.width)
     again = run_coupling(case, s, imp, inputs, ehl_for_set(case, s, inputs, film_law_only=True))
@@ -83,7 +84,7 @@ def test_a_diverging_coupling_stops_and_reports_its_most_consistent_iterate(coup
 
     dyn, _ = coupled
     case = load_case().updated({**REDUCED, "numerics.coupling_iterations": 6})
-    s = case.surface_set("uncoated")
+    s = build(case).set("uncoated").surface
     inputs = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
     first = ehl_for_set(case, s, inputs)
     bump = 0.5 * (1.0 + np.sin(np.linspace(0.0, 40.0, dyn.contact_force.size)))

@@ -11,6 +11,7 @@ import pytest
 from conftest import explicit_run
 from tribodyn import InputError
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.cycle.coupling import (
     COUPLING_MAX_TOL,
     COUPLING_RMS_TOL,
@@ -93,19 +94,20 @@ def test_force_between_samples_does_not_depend_on_their_spacing(paper_4000):
     case, s, dyn, inputs, first = paper_4000
     period = 2.0 * np.pi / case.cam_speed
     e_prime = reduced_modulus(s.bodies)
-    lub = case.lubricant()
+    built = build(case)
+    lub = built.lubricant
     ev = dyn.event_mask()
     peak = dyn.contact_force.max()
 
-    def spread(build):
+    def spread(tribology):
         F = []
         for k in (1, 2):
             inp, ehl = _every(inputs, k), _every(first, k)
             r = simulate_valvetrain(
-                case.cam(),
-                case.valvetrain_parameters(),
-                tribology=build(inp, ehl),
-                **case.dynamics_options(),
+                built.cam,
+                built.valvetrain,
+                tribology=tribology(inp, ehl),
+                **built.dynamics_options,
             )
             assert r.converged, r.message
             F.append(r.contact_force)

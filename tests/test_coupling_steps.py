@@ -18,6 +18,7 @@ import pytest
 
 from conftest import explicit_run
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.cycle.coupling import (
     film_state_tribology,
     implicit_vs_explicit_metrics,
@@ -97,18 +98,17 @@ def test_the_step_of_entrainment_is_on_an_output_sample(poly_6000):
 
 def test_the_film_grows_no_faster_than_its_oil_supply_at_the_step(poly_6000):
     case, s, dyn, inputs, first = poly_6000
+    built = build(case)
     trib = film_state_tribology(
         inputs,
         first,
-        case.lubricant(),
+        built.lubricant,
         reduced_modulus(s.bodies),
         2.0 * math.pi / case.cam_speed,
         case.width,
         supply_film=case.numerics.coupling_supply_film,
     )
-    run = simulate_valvetrain(
-        case.cam(), case.valvetrain_parameters(), tribology=trib, **case.dynamics_options()
-    )
+    run = simulate_valvetrain(built.cam, built.valvetrain, tribology=trib, **built.dynamics_options)
     assert run.converged, run.message
     i = int(np.argmin(np.abs(run.crank_angle - START_CRANK)))
     F = run.contact_force
@@ -124,10 +124,10 @@ def test_the_film_grows_no_faster_than_its_oil_supply_at_the_step(poly_6000):
     assert h[i + 1] > 2.0 * h[i]
     # and the unlimited film is what spiked
     free = simulate_valvetrain(
-        case.cam(),
-        case.valvetrain_parameters(),
+        built.cam,
+        built.valvetrain,
         tribology=with_changes(trib, growth_limited=False),
-        **case.dynamics_options(),
+        **built.dynamics_options,
     )
     assert free.contact_force[i] > 1e4
 

@@ -9,6 +9,7 @@ import pytest
 from conftest import cycle_inputs, isothermal_cycle, ramp_inputs
 from tribodyn import Body, InputError, Material, TransientEHL
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.contact.ehl.thermal_transient import ThermalTransientEHL
 from tribodyn.cycle.driver import IsothermalCycle, march_cycle
 from tribodyn.cycle.methods import METHODS, cycle_for_set
@@ -24,7 +25,7 @@ CASE = load_case("andreou2023_thermal").updated(
         "numerics.thermal_film_nodes": 5,
     }
 )
-UNCOATED = CASE.surface_set("uncoated")
+UNCOATED = build(CASE).set("uncoated").surface
 WIDTH = CASE.width
 
 
@@ -35,11 +36,11 @@ def _thermal(inp):
         "u",
         "u",
         s.bodies,
-        CASE.thermal_lubricant(),
-        CASE.thermal_bodies(s),
+        build(CASE).thermal_oil(),
+        build(CASE).set(s.name).thermal_bodies,
         s.roughness,
-        CASE.ehl_options(s),
-        CASE.thermal_options(),
+        build(CASE).set(s.name).options,
+        build(CASE).thermal_solver_options(),
     )
 
 

@@ -11,13 +11,14 @@ import pytest
 from conftest import cycle_inputs, isothermal_cycle, ramp_inputs
 from tribodyn import solve_ehl
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.cycle.coupling import AndersonMixer
 from tribodyn.cycle.driver import ehl_along_cycle, ehl_for_set
 from tribodyn.workflow.cycle import run_cycle_study
 
 CASE = load_case()
-UNCOATED = CASE.surface_set("uncoated")
-WCC = CASE.surface_set("wcc_4um")
+UNCOATED = build(CASE).set("uncoated").surface
+WCC = build(CASE).set("wcc_4um").surface
 WIDTH = CASE.width
 
 
@@ -36,8 +37,8 @@ def test_default_grid_is_accurate_at_cycle_conditions(F, R, ue, us, surface):
     """The automatic grid's discretisation error, measured against four times the nodes
     on the same domain (second-order convergence: the 4× solution is ~16× closer), is
     within 0.5 % for the films and 0.3 % for the friction."""
-    opts = CASE.ehl_options(surface)
-    args = (F / WIDTH, R, ue, us, surface.bodies, CASE.lubricant(), surface.roughness)
+    opts = build(CASE).set(surface.name).options
+    args = (F / WIDTH, R, ue, us, surface.bodies, build(CASE).lubricant, surface.roughness)
     a = solve_ehl(*args, options=opts)
     b = solve_ehl(*args, options=opts, n=4 * a.x.size)
     assert a.converged and b.converged
@@ -56,8 +57,8 @@ def test_time_error_control_resolves_the_engagement():
     control, 1° samples reproduce the films of 0.25° samples through the engagement
     transient (squeeze of the thick start film) within 1 %, and the control subdivides
     the steps there."""
-    lub = CASE.lubricant()
-    opts = CASE.ehl_options(UNCOATED)
+    lub = build(CASE).lubricant
+    opts = build(CASE).set(UNCOATED.name).options
     res = {}
     for step in (1.0, 0.25):
         inp = _ramp_inputs(step)
@@ -133,7 +134,7 @@ def test_study_runs_through_any_executor():
     done = {name for e, name, d in events if e == "set" and d}
     assert done == set(case.surface_set_names)
     for a in study.sets[:2]:  # the same as a pass in this process
-        b = ehl_for_set(case, case.surface_set(a.name), study.inputs)
+        b = ehl_for_set(case, build(case).set(a.name).surface, study.inputs)
         assert np.array_equal(a.central_film, b.central_film, equal_nan=True)
 
 
@@ -156,7 +157,7 @@ def test_friction_only_runs_the_passes_alone():
     assert study.sensitivity is None and study.ehl_coating is None and not study.dry
     assert not any("implicit coupling" in w for w in study.warnings)
     a = study.reference
-    b = ehl_for_set(case, case.surface_set(a.name), study.inputs)
+    b = ehl_for_set(case, build(case).set(a.name).surface, study.inputs)
     assert np.array_equal(a.central_film, b.central_film, equal_nan=True)
     assert np.array_equal(a.boundary_friction, b.boundary_friction, equal_nan=True)
 
@@ -192,7 +193,7 @@ def test_coupling_re_passes_use_their_own_grid_and_time_tolerance(monkeypatch):
     ):
         case = CASE.updated(changes)
         seen.clear()
-        ehl_for_set(case, case.surface_set("uncoated"), inp)
-        ehl_for_set(case, case.surface_set("uncoated"), inp, film_law_only=True)
+        ehl_for_set(case, build(case).set("uncoated").surface, inp)
+        ehl_for_set(case, build(case).set("uncoated").surface, inp, film_law_only=True)
         assert seen == expect, changes
     assert ce.COUPLING_TIME_TOL > ce.TIME_TOL

@@ -10,6 +10,7 @@ from conftest import ENGINE, REDUCED
 from test_variables import assert_registered
 from tribodyn import InputError
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.workflow.engine import place_trace, run_engine_study
 from tribodyn.workflow.engineering import cycle_integral
 
@@ -233,7 +234,7 @@ def test_failed_sample_has_unknown_torques_not_zero():
 
     case = _case()
     study = _study_with_a_failed_sample(case)
-    rb = case.cam().base_radius
+    rb = build(case).cam.base_radius
     t_f = np.array([0.0, 1.5 * (rb + 1e-3), math.nan, 2.0 * (rb + 1e-3)])
     eng = engineering_outputs(study)
     lobe = lobe_traces("intake", study, case)

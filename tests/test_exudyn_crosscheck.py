@@ -36,6 +36,7 @@ import pytest
 import scipy.linalg as sla
 
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.valvetrain import simulate_valvetrain
 
 exu = pytest.importorskip("exudyn", reason="Exudyn not installed: pip install tribodyn[crosscheck]")
@@ -65,8 +66,8 @@ def _first_fixed_interface_frequency(M, K, boundary):
 @pytest.fixture(scope="module")
 def system():
     case = load_case("andreou2023_flexible")
-    flex = replace(case.valvetrain_parameters(), camshaft=None)
-    return case.cam(), flex
+    flex = replace(build(case).valvetrain, camshaft=None)
+    return build(case).cam, flex
 
 
 def _exudyn_contact_force(cam, flex, t_out):

@@ -8,6 +8,7 @@ import pytest
 
 from tribodyn import InputError
 from tribodyn.config import Case, load_case
+from tribodyn.config.build import build
 from tribodyn.valvetrain import AccelerationCam, CircularArcCam, simulate_valvetrain
 from tribodyn.valvetrain.camshaft import Camshaft, lobe_polar_inertia
 from tribodyn.valvetrain.fe import AxialFEModel, craig_bampton
@@ -22,7 +23,7 @@ C = math.sqrt(E / RHO)
 
 @pytest.fixture(scope="module")
 def flex():
-    return load_case("andreou2023_flexible").valvetrain_parameters()
+    return build(load_case("andreou2023_flexible")).valvetrain
 
 
 # -- bar elements --------------------------------------------------------------------------
@@ -261,4 +262,4 @@ def test_flexible_case_keys_are_checked():
         )
     case = load_case("andreou2023_flexible")
     assert Case.from_toml_string(case.to_toml()) == case
-    assert case.lumped_companion().spring_rate == pytest.approx(33750.0, rel=1e-3)
+    assert build(case).lumped.spring_rate == pytest.approx(33750.0, rel=1e-3)

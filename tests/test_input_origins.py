@@ -8,6 +8,7 @@ import pytest
 
 from tribodyn import paper
 from tribodyn.config import Case, load_case
+from tribodyn.config.build import build
 from tribodyn.config.origins import default_warnings, input_origins
 from tribodyn.output.report import _origins_lines
 
@@ -95,7 +96,7 @@ def test_a_datasheet_oil_is_its_origin():
     case = load_case("flat_tappet_rig")
     o = _origins(case)
     assert o["lubricant.viscosity"][1].startswith("datasheet (kinematic viscosities at ")
-    assert o["lubricant.viscosity"][0] == pytest.approx(case.lubricant().viscosity)
+    assert o["lubricant.viscosity"][0] == pytest.approx(build(case).lubricant.viscosity)
 
 
 def test_a_changed_key_becomes_given_and_the_others_keep_their_origin():

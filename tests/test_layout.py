@@ -334,39 +334,36 @@ def _case_builder_mixins():
 
 
 def _builder_calls(tree) -> list[str]:
-    """``line: call`` of each call of a Case builder (:data:`~tribodyn.config.build.
-    CASE_BUILDERS`, or a private ``_new_*``/``_build_*``) in ``tree``. A builder that the
-    BuiltCase also offers counts unless it is called on a built case (``built.…``,
-    ``build(case).…``): the receiver's type is not known to the parser."""
-    from tribodyn.config.build import CASE_BUILDERS, BuiltCase
+    """``line: call`` of each call of a Case's private constructor
+    (:data:`~tribodyn.config.build.CASE_BUILDERS`) in ``tree``."""
+    from tribodyn.config.build import CASE_BUILDERS
 
-    also_built = {n for n in CASE_BUILDERS if inspect.isfunction(vars(BuiltCase).get(n))}
-    out = []
-    for node in ast.walk(tree):
-        if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)):
-            continue
-        name, receiver = node.func.attr, ast.unparse(node.func.value)
-        on_built = "built" in receiver or receiver.startswith("build(")
-        if (name in CASE_BUILDERS and not (name in also_built and on_built)) or name.startswith(
-            ("_new_", "_build_", "_analytic_tribology")
-        ):
-            out.append(f"{node.lineno}: {ast.unparse(node.func)}")
-    return out
+    return [
+        f"{node.lineno}: {ast.unparse(node.func)}"
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Call)
+        and isinstance(node.func, ast.Attribute)
+        and node.func.attr in CASE_BUILDERS
+    ]
 
 
 def test_case_builders_are_declared():
-    """CASE_BUILDERS names every public method of the Case's builder mixins, and only
-    methods of the Case."""
+    """The Case has no public builders (``build(case)`` returns the objects), and
+    CASE_BUILDERS names exactly its private constructors (``_new_*``, ``_build_*``)."""
     from tribodyn.config import Case
     from tribodyn.config.build import CASE_BUILDERS
 
-    mixins = _case_builder_mixins()
-    assert len(mixins) >= 3
-    public = {
-        n for c in mixins for n, v in vars(c).items() if inspect.isfunction(v) and n[0] != "_"
+    classes = [Case, *_case_builder_mixins()]
+    assert len(classes) >= 4
+    public = {n for c in classes[1:] for n, v in vars(c).items() if inspect.isfunction(v)}
+    assert not {n for n in public if n[0] != "_"}
+    private = {
+        n
+        for c in classes
+        for n, v in vars(c).items()
+        if inspect.isfunction(v) and n.startswith(("_new_", "_build_"))
     }
-    assert public <= set(CASE_BUILDERS)
-    assert all(inspect.isfunction(getattr(Case, n, None)) for n in CASE_BUILDERS)
+    assert private == set(CASE_BUILDERS)
 
 
 def test_studies_read_the_built_case():
@@ -385,14 +382,14 @@ def test_the_builder_check_sees_a_call():
     """The scan above is able to fail: it finds builders called on a case, not the
     built case's own methods."""
     text = (
-        "lub = case.lubricant()\n"
+        "lub = case._new_lubricant()\n"
         "s = built.set('x').surface\n"
         "t = built.analytic_tribology('x')\n"
-        "t = self.case.analytic_tribology('x')\n"
+        "t = self.case._new_analytic_tribology(s, lub)\n"
         "b = c._new_thermal_bodies(s)\n"
     )
     assert _builder_calls(ast.parse(text)) == [
-        "1: case.lubricant",
-        "4: self.case.analytic_tribology",
+        "1: case._new_lubricant",
+        "4: self.case._new_analytic_tribology",
         "5: c._new_thermal_bodies",
     ]

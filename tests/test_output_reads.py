@@ -11,33 +11,10 @@ from pathlib import Path
 import pytest
 
 import tribodyn
+from tribodyn.config.build import CASE_BUILDERS  # the case's constructors
 
 OUTPUT = Path(tribodyn.__file__).parent / "output"
 
-#: the case's builders (config.case, config.case_strength, …): each builds physics objects
-CASE_BUILDERS = frozenset(
-    {
-        "lubricant",
-        "cam",
-        "surface_sets",
-        "surface_set",
-        "ehl_options",
-        "valvetrain_parameters",
-        "thermal_lubricant",
-        "thermal_bodies",
-        "thermal_options",
-        "thermal_properties",
-        "strengths",
-        "material_strength",
-        "wear_coefficient",
-        "tappet_rotation",
-        "analytic_tribology",
-        "lumped_companion",
-        "dynamics_options",
-        "material",
-        "built",
-    }
-)
 #: calls that build or load a case
 CASE_LOADERS = frozenset({"load_case", "Case"})
 CASE_CONSTRUCTORS = frozenset({"from_dict", "from_toml_string", "from_toml"})
@@ -162,8 +139,8 @@ def test_the_check_finds_each_kind_of_violation(tmp_path):
         "from ..workflow.engineering import plausibility_warnings\n"
         "import tribodyn.valvetrain.dynamics\n"
         "def f(study, ds):\n"
-        "    study.case.lubricant()\n"
-        "    case.surface_set('a')\n"
+        "    study.case._new_lubricant()\n"
+        "    case._build_set(cfg)\n"
         "    Case.from_dict({})\n"
         "    load_case()\n"
         "    build(study.case)\n"

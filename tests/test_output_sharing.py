@@ -18,6 +18,7 @@ from typer.testing import CliRunner
 from tribodyn import InputError
 from tribodyn.cli import app
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.config.case import CASES_DIR
 from tribodyn.config.sweep import SWEEPS_DIR
 from tribodyn.output import check_output_dir, foreign_files, write_atomic, write_results
@@ -223,7 +224,7 @@ def test_a_moved_result_folder_runs_again(tmp_path):
     again = load_case(moved / "case.toml")
     assert again.cam_table_path == moved / "inputs" / "my_lift.csv"
     theta = np.linspace(0.0, 2 * np.pi, 721)
-    assert np.array_equal(again.cam().lift(theta), case.cam().lift(theta))
+    assert np.array_equal(build(again).cam.lift(theta), build(case).cam.lift(theta))
     first = study.analyse().summary["surface_sets"]
     second = run_cycle_study(again, workers=1).analyse().summary["surface_sets"]
     for name in first:
@@ -273,11 +274,14 @@ def test_result_folder_copies_every_sets_measured_map(tmp_path):
     shutil.rmtree(tmp_path / "b")
     again = load_case(moved / "case.toml")
     for name in ("m1", "m2", "m3"):
-        law, law0 = again.surface_set(name).roughness.law, case.surface_set(name).roughness.law
+        law, law0 = (
+            build(again).set(name).surface.roughness.law,
+            build(case).set(name).surface.roughness.law,
+        )
         np.testing.assert_array_equal(law.pressure, law0.pressure)
     assert not np.array_equal(
-        again.surface_set("m1").roughness.law.pressure,
-        again.surface_set("m2").roughness.law.pressure,
+        build(again).set("m1").surface.roughness.law.pressure,
+        build(again).set("m2").surface.roughness.law.pressure,
     )
     assert check_output_dir(moved, writes=W.case_inputs(again)[1]) == moved  # its own copies
     # a user's own file of that name in the folder is never replaced

@@ -23,6 +23,7 @@ from typer.testing import CliRunner
 
 from tribodyn.cli import app
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.workflow.engineering import (
     camshaft_torque,
     compares_paper,
@@ -233,7 +234,7 @@ def test_a_moved_result_folder_refers_to_its_own_cam_table(own_run, tmp_path):
     shutil.copytree(own_run, moved)
     case = load_case(moved / "case.toml")
     assert case.cam_table_path == moved / "inputs" / "bucket_lift.csv"
-    assert case.cam().max_lift == pytest.approx(7e-3, rel=1e-6)
+    assert build(case).cam.max_lift == pytest.approx(7e-3, rel=1e-6)
 
 
 # ----------------------------------------------------------------------------- torque
@@ -241,7 +242,7 @@ def test_conservative_train_does_no_net_work_per_cycle():
     """Frictionless, quasi-static with inertia: W = k(s + s₀) + m s''ω² is a function of
     the cam angle only through s and its derivatives, so ∮W s' dθ = ∮W ds = 0; the drive
     torque's cycle integral vanishes while its absolute integral does not."""
-    cam = load_case().cam()
+    cam = build(load_case()).cam
     theta = np.linspace(0.0, 2 * np.pi, 7201)
     s, s1, s2 = cam.derivatives(theta)
     omega = 2 * np.pi * 1500 / 60
@@ -278,7 +279,7 @@ def _fake_study(case, lam, share):
     n = 3
     force = np.full(n, 500.0)
     res = SimpleNamespace(
-        name=case.surface_sets()[0].name,
+        name=build(case).surface_sets[0].name,
         loaded=np.ones(n, bool),
         converged=np.ones(n, bool),
         lambda_ratio=np.full(n, lam),
@@ -333,7 +334,7 @@ def test_asperity_share_reference_is_the_default_surface_law():
     from tribodyn.topography.load_separation import synthetic_load_separation
 
     paper = load_case("andreou2023")
-    s = paper.surface_sets()[0]
+    s = build(paper).surface_sets[0]
     msgs = [m for m in plausibility_warnings(_fake_study(paper, 0.22, 2.4e-4)) if "λ =" in m]
     assert len(msgs) == 1
     got = float(re.search(r"same σ carries ([0-9.e+-]+) %", msgs[0]).group(1))

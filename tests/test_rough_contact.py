@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from tribodyn import InputError, Roughness, greenwood_tripp
+from tribodyn.config.build import build
 from tribodyn.physics.asperity_law import LoadSeparationLaw
 from tribodyn.physics.rough_contact import solve_rough_contact
 from tribodyn.topography.load_separation import load_separation_law
@@ -251,7 +252,7 @@ def test_default_asperity_law_is_the_surface_law_of_the_typical_spectrum():
     from tribodyn.physics.materials import reduced_modulus
     from tribodyn.topography.load_separation import synthetic_load_separation
 
-    s = _case("").surface_set("m")
+    s = build(_case("")).set("m").surface
     assert s.roughness.asperity_model == "measured"
     assert "typical spectrum" in s.asperity_law and "H 0.85" in s.asperity_law
     law = synthetic_load_separation(
@@ -264,13 +265,13 @@ def test_default_asperity_law_is_the_surface_law_of_the_typical_spectrum():
     )
     assert s.roughness.law is law
     # Greenwood–Tripp only where the case asks for it
-    gt = _case('asperity_model = "greenwood_tripp"').surface_set("m")
+    gt = build(_case('asperity_model = "greenwood_tripp"')).set("m").surface
     assert gt.roughness.law is None and "asks for it" in gt.asperity_law
     # the library's default sets follow the default; the paper's sets keep Table 4 GT
-    assert all(x.roughness.law is not None for x in Case().surface_sets())
+    assert all(x.roughness.law is not None for x in build(Case()).surface_sets)
     from tribodyn.config import load_case
 
-    assert all(x.roughness.law is None for x in load_case("andreou2023").surface_sets())
+    assert all(x.roughness.law is None for x in build(load_case("andreou2023")).surface_sets)
 
 
 def test_greenwood_tripp_defaults_imply_a_small_rms_slope():
@@ -294,7 +295,7 @@ def test_case_measured_surface_builds_a_law(tmp_path):
         'asperity_model = "measured"\nmeasured_surface = { hurst = 0.8, short_cutoff = 3.2e-6,'
         " long_cutoff = 6.4e-6, grid = 32, hardness = 7e9 }"
     )
-    rough = case.surface_set("m").roughness
+    rough = build(case).set("m").surface.roughness
     assert rough.asperity_model == "measured" and rough.law.hardness == 7e9
     assert rough.rms == 0.2e-6
     assert rough.asperity_pressure(0.3 * 0.2e-6, 2.3e11) > 100 * Roughness(
@@ -333,7 +334,7 @@ def test_case_measured_map_file(tmp_path):
         extra='asperity_model = "measured"\nmeasured_surface = { topography = "pair.nc" }'
     )
     case = Case.from_toml_string(text, base_dir=tmp_path)
-    rough = case.surface_set("m").roughness
+    rough = build(case).set("m").surface.roughness
     assert rough.law is not None and rough.rms == pytest.approx(0.2e-6, rel=0.1)
     assert rough.asperity_pressure(0.0, 2.3e11) > 1e8
     d = case.to_dict(resolve_paths=True)
@@ -423,12 +424,12 @@ def test_case_measured_map_without_calibration_takes_unit_and_physical_sizes(tmp
         text = _SET.format(extra=f'asperity_model = "measured"\nmeasured_surface = {{ {ms} }}')
         return Case.from_toml_string(text, base_dir=tmp_path)
 
-    ref = case('topography = "pair.nc"').surface_set("m").roughness.law
+    ref = build(case('topography = "pair.nc"')).set("m").surface.roughness.law
     for ms in (
         'topography = "pair.npy", unit = "µm", physical_sizes = [19.2, 19.2]',
         'topography = "pair.txt", unit = "nm", physical_sizes = [19200.0]',
     ):
-        law = case(ms).surface_set("m").roughness.law
+        law = build(case(ms)).set("m").surface.roughness.law
         assert law is not ref
         np.testing.assert_allclose(law.lam, ref.lam)
         # heights differ by rounding only: equal to the contact solver's tolerance
@@ -436,7 +437,7 @@ def test_case_measured_map_without_calibration_takes_unit_and_physical_sizes(tmp
         np.testing.assert_allclose(law.area, ref.area, rtol=1e-6, atol=1e-9)
     # the size matters: twice the pixel halves the slopes (not the same law)
     wide = case('topography = "pair.npy", unit = "µm", physical_sizes = [38.4]')
-    wide_p = wide.surface_set("m").roughness.law.pressure
+    wide_p = build(wide).set("m").surface.roughness.law.pressure
     assert np.max(np.abs(wide_p - ref.pressure) / ref.pressure.max()) > 0.05
 
 
@@ -511,24 +512,24 @@ def test_measured_map_law_is_computed_once_per_file_and_pair(tmp_path, monkeypat
     )
     (tmp_path / "case.toml").write_text(text, encoding="utf-8")
     case = load_case(tmp_path / "case.toml")
-    law = case.surface_set("m").roughness.law
+    law = build(case).set("m").surface.roughness.law
     assert calls == {"law": 1, "read": 1}
     for change in ({"engine.speed_rpm": 2000.0}, {"numerics.tol": 1e-8}):
-        assert case.updated(change).surface_set("m").roughness.law is law
+        assert build(case.updated(change)).set("m").surface.roughness.law is law
     sweep = SweepSpec.from_toml_string(
         '[sweep]\ncase = "case.toml"\n[[axes]]\npath = "engine.speed_rpm"\n'
         "values = [1000.0, 1500.0, 2500.0]",
         base_dir=tmp_path,
     )
-    assert all(p.case.surface_set("m").roughness.law is law for p in sweep.points())
+    assert all(build(p.case).set("m").surface.roughness.law is law for p in sweep.points())
     assert calls == {"law": 1, "read": 1}
     harder = case.updated({"surface_sets[0].measured_surface.hardness": 9e9})
-    assert harder.surface_set("m").roughness.law is not law and calls["law"] == 2
+    assert build(harder).set("m").surface.roughness.law is not law and calls["law"] == 2
     stiffer = case.updated({"materials.steel.E": 2.5e11})
-    assert stiffer.surface_set("m").roughness.law is not law and calls["law"] == 3
+    assert build(stiffer).set("m").surface.roughness.law is not law and calls["law"] == 3
     st = os.stat(tmp_path / "pair.nc")
     _write_map(tmp_path / "pair.nc", seed=5)  # the map measured again
     os.utime(tmp_path / "pair.nc", ns=(st.st_atime_ns, st.st_mtime_ns + 10**9))
-    again = case.updated({"engine.speed_rpm": 2000.0}).surface_set("m").roughness.law
+    again = build(case.updated({"engine.speed_rpm": 2000.0})).set("m").surface.roughness.law
     assert again is not law and calls == {"law": 4, "read": 2}
     assert not np.allclose(again.pressure, law.pressure)

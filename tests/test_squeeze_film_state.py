@@ -8,6 +8,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.physics.film_state_laws import limited_growth
 from tribodyn.physics.lubricant import Lubricant
 from tribodyn.physics.materials import reduced_modulus
@@ -149,19 +150,20 @@ def test_film_growth_is_limited_by_the_oil_supply_in_closed_form():
 )
 def test_film_state_jacobian_matches_finite_differences(name, film, regime):
     case = load_case(name)
-    s = case.surface_sets()[0]
+    built = build(case)
+    s = built.surface_sets[0]
     ft = FilmStateTribology(
         Frictionless(),
         width=case.width,
-        lubricant=case.lubricant(),
+        lubricant=built.lubricant,
         e_prime=reduced_modulus(s.bodies),
     )
     w = rpm_to_cam_speed(case.engine.speed_rpm)
-    m = make_system(case.cam(), case.valvetrain_parameters(), w, ft)
+    m = make_system(built.cam, built.valvetrain, w, ft)
     assert m.film_state and compiled_model(m) is None  # the compiled backend hands over
     n, t = m.n, math.radians(100.0) / w  # on the opening flank
     y = m.static_state()
-    y[0] = case.cam().scalar_derivatives(m.lobe_angle(t, y))[0] - 20e-6
+    y[0] = built.cam.scalar_derivatives(m.lobe_angle(t, y))[0] - 20e-6
     y[n], y[-1] = 0.3, film
     J = m.jacobian(t, y)
     k = 2 * n + 2
@@ -187,14 +189,13 @@ def test_film_state_jacobian_matches_finite_differences(name, film, regime):
 @pytest.fixture(scope="module")
 def paper_film_run():
     case = load_case().updated({"engine.speed_rpm": 4000.0, "numerics.output_step_deg": 0.5})
-    s = case.surface_sets()[0]
-    trib = case.analytic_tribology(s)
+    built = build(case)
+    s = built.surface_sets[0]
+    trib = built.analytic_tribology(s.name)
     ft = FilmStateTribology(
-        trib, width=case.width, lubricant=case.lubricant(), e_prime=reduced_modulus(s.bodies)
+        trib, width=case.width, lubricant=built.lubricant, e_prime=reduced_modulus(s.bodies)
     )
-    r = simulate_valvetrain(
-        case.cam(), case.valvetrain_parameters(), tribology=ft, **case.dynamics_options()
-    )
+    r = simulate_valvetrain(built.cam, built.valvetrain, tribology=ft, **built.dynamics_options)
     assert r.converged, r.message
     return case, ft, r
 
@@ -216,7 +217,7 @@ def test_off_lobe_the_tappet_rides_on_the_film_within_the_squeeze_bound(paper_fi
     off = np.flatnonzero(~r.event_mask() & (r.crank_angle > 1300.0))
     F, t, hh = r.contact_force[off], r.time[off], h[off]
     assert F.min() > 0.0
-    c = 3.0 * math.sqrt(2.0) * math.pi * ft.lubricant.viscosity * case.cam().base_radius ** 1.5
+    c = 3.0 * math.sqrt(2.0) * math.pi * ft.lubricant.viscosity * build(case).cam.base_radius ** 1.5
     impulse = np.concatenate([[0.0], np.cumsum(0.5 * (F[1:] + F[:-1]) * np.diff(t))])
     for k in range(0, off.size, 10):  # every earlier instant t₀ as the start
         bound = (hh[k] ** -0.5 + (impulse[k:] - impulse[k]) / (2.0 * c * ft.width)) ** -2

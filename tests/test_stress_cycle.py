@@ -8,6 +8,7 @@ import pytest
 
 from tribodyn import InputError
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.config.case import Case
 from tribodyn.physics.strength import TYPICAL_STRENGTH, TYPICAL_WEAR_COEFFICIENT
 from tribodyn.workflow.stress_study import MODE_PEAK
@@ -41,14 +42,17 @@ def test_strength_keys_override_the_typical_values_and_read_back():
     case = Case.from_dict(
         _with({"strength": {"dlc": {"tensile_strength": 1.2e9, "wear_coefficient": 2e-17}}})
     )
-    sub, coat = case.strengths("dlc_1um")["tappet"]
+    built = build(case)
+    sub, coat = built.set("dlc_1um").strengths["tappet"]
     assert coat.tensile_strength == 1.2e9
     assert coat.hardness == TYPICAL_STRENGTH["dlc"].hardness  # not given: typical
     assert "case [strength.dlc]" in coat.source
     assert sub == TYPICAL_STRENGTH["steel"]
-    assert case.wear_coefficient("dlc_4um") == (2e-17, "case [strength.dlc]")
-    k, src = case.wear_coefficient("wcc_4um")  # not given: the labelled assumption
-    assert k == TYPICAL_WEAR_COEFFICIENT["wcc"] and "assumed" in src
+    dlc, wcc = built.set("dlc_4um"), built.set("wcc_4um")
+    assert (dlc.wear_coefficient, dlc.wear_source) == (2e-17, "case [strength.dlc]")
+    # not given: the labelled assumption
+    assert wcc.wear_coefficient == TYPICAL_WEAR_COEFFICIENT["wcc"]
+    assert "assumed" in wcc.wear_source
     again = Case.from_toml_string(case.to_toml())
     assert again.strength_configs == case.strength_configs
 
@@ -188,7 +192,7 @@ def test_disabled_stresses_are_not_computed(light_study):
 
     study = light_study
     off = study.case.updated({"stress.enabled": False})
-    s = off.surface_set("dlc_4um")
+    s = build(off).set("dlc_4um").surface
     assert _stress_step(build(off), s, study.set("dlc_4um"), study.inputs) is None
     on = _stress_step(build(study.case), s, study.set("dlc_4um"), study.inputs)
     assert on.safety_factors == study.stresses["dlc_4um"].safety_factors
@@ -207,7 +211,7 @@ def test_asperity_scale_estimate_in_summary_and_report(light_study):
         ok = res.loaded & res.converged
         i = int(np.nanargmin(np.where(ok, res.min_film, np.nan)))
         assert a["crank_deg"] == float(res.crank_angle[i])
-        s = study.case.surface_set(name)
+        s = build(study.case).set(name).surface
         e_s = reduced_modulus(s.bodies, surface=True)
         ref = micro_contact_estimate(s.roughness, float(res.min_film[i]), e_s, 0.3)
         assert a["cam"]["max_von_mises_Pa"] == pytest.approx(ref.max_von_mises)

@@ -9,6 +9,7 @@ import pytest
 
 from tribodyn import InputError
 from tribodyn.config import Case, load_case
+from tribodyn.config.build import build
 from tribodyn.config.paths import (
     All,
     Index,
@@ -116,9 +117,9 @@ def test_case_updated_with_selectors(paper):
             "surface_sets[*].roughness.rms": 0.3e-6,
         }
     )
-    assert c.surface_set("wcc_4um").coating.thickness == 2e-6
-    assert c.surface_set("wcc_1um").coating.thickness == 1e-6
-    assert all(s.roughness.rms == 0.3e-6 for s in c.surface_sets())
+    assert build(c).set("wcc_4um").surface.coating.thickness == 2e-6
+    assert build(c).set("wcc_1um").surface.coating.thickness == 1e-6
+    assert all(s.roughness.rms == 0.3e-6 for s in build(c).surface_sets)
 
 
 def test_schema_field_units_and_unknown_keys(paper):

@@ -9,6 +9,7 @@ import pytest
 
 from tribodyn import InputError
 from tribodyn.config import Case, load_case
+from tribodyn.config.build import build
 from tribodyn.cycle import driver
 from tribodyn.cycle.driver import CycleInputs
 from tribodyn.valvetrain.tappet_rotation import TappetRotation
@@ -125,8 +126,8 @@ def test_case_rotation_reaches_the_cycle_driver(monkeypatch):
     case = load_case().updated(
         {"tappet_rotation.speed_ratio": 0.05, "tappet_rotation.cam_offset": 0.003}
     )
-    assert case.tappet_rotation() == TappetRotation(0.05, 0.003)
-    assert load_case().tappet_rotation().active is False  # the paper's tappet: none
+    assert build(case).tappet_rotation == TappetRotation(0.05, 0.003)
+    assert build(load_case()).tappet_rotation.active is False  # the paper's tappet: none
     seen = {}
 
     def fake(inputs, *a, **k):
@@ -134,7 +135,7 @@ def test_case_rotation_reaches_the_cycle_driver(monkeypatch):
 
     monkeypatch.setattr(driver, "march_cycle", fake)
     inp = _inputs()
-    driver.ehl_for_set(case, case.surface_sets()[0], inp)
+    driver.ehl_for_set(case, build(case).surface_sets[0], inp)
     expected = inp.with_rotation(TappetRotation(0.05, 0.003))
     np.testing.assert_array_equal(seen["inputs"].sliding_speed, expected.sliding_speed)
 
@@ -145,7 +146,7 @@ def test_cam_offset_must_keep_the_contact_on_the_tappet_face():
     within the face: e_o ≤ √(R_t² − e_max²) − l/2, by hand from the cam's s'."""
     case = load_case()
     th = np.linspace(0.0, 2.0 * np.pi, 7201)
-    e_max = np.max(np.abs(case.cam().derivatives(th)[1]))
+    e_max = np.max(np.abs(build(case).cam.derivatives(th)[1]))
     rt, half = case.valvetrain.tappet_radius, 0.5 * case.width
     reach = math.sqrt(rt**2 - e_max**2) - half
     assert 0.0 < reach < 0.005  # the paper's cam runs close to the face edge
@@ -156,7 +157,7 @@ def test_cam_offset_must_keep_the_contact_on_the_tappet_face():
     case.updated({"tappet_rotation.cam_offset": reach * 0.99})
     # the API object: the same rule, with the field and its range named
     with pytest.raises(InputError, match=r"^cam_offset must be >= 0 and <= "):
-        TappetRotation(0.05, 0.049).check_fit(rt, case.width, e_max, case.cam().base_radius)
+        TappetRotation(0.05, 0.049).check_fit(rt, case.width, e_max, build(case).cam.base_radius)
 
 
 def test_tappet_cannot_overtake_the_cam_surface():

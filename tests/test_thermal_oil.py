@@ -8,6 +8,7 @@ import pytest
 
 from tribodyn import InputError
 from tribodyn.config import Case, load_case
+from tribodyn.config.build import build
 from tribodyn.physics.oils import OILS
 from tribodyn.physics.thermal_oil import (
     T40,
@@ -183,11 +184,11 @@ def test_bad_oil_input_names_the_field():
 
 def test_case_keys_datasheet_and_thermal():
     c = Case.from_toml_string('[lubricant]\noil = "5W-30"\ninlet_temperature_c = 90.0\n')
-    oil = c.thermal_lubricant()
+    oil = build(c).thermal_oil()
     assert oil.inlet_temperature == pytest.approx(363.15)
-    assert c.lubricant().viscosity == pytest.approx(oil.inlet_viscosity)
+    assert build(c).lubricant.viscosity == pytest.approx(oil.inlet_viscosity)
     again = Case.from_toml_string(c.to_toml())
-    assert again == c and again.thermal_lubricant().inlet_pressure_viscosity == pytest.approx(
+    assert again == c and build(again).thermal_oil().inlet_pressure_viscosity == pytest.approx(
         oil.inlet_pressure_viscosity
     )
     own = Case.from_toml_string(
@@ -195,8 +196,8 @@ def test_case_keys_datasheet_and_thermal():
         "kinematic_viscosity_100_cst = 14.8\ninlet_temperature_c = 100\n"
         "pressure_viscosity = 2e-8\n"
     )
-    assert own.lubricant().pressure_viscosity < 2e-8  # α given at 100 °C → Z
-    assert own.thermal_lubricant().inlet_pressure_viscosity == 2e-8
+    assert build(own).lubricant.pressure_viscosity < 2e-8  # α given at 100 °C → Z
+    assert build(own).thermal_oil().inlet_pressure_viscosity == 2e-8
     msgs = []
     for text in (
         '[lubricant]\noil = "5W-30"\nviscosity = 0.05\ninlet_temperature_c = 90.0\n',
@@ -225,10 +226,10 @@ def test_case_keys_datasheet_and_thermal():
 def test_bundled_thermal_case():
     case = load_case("andreou2023_thermal")
     assert case.numerics.thermal and case.lubricant_config.oil == "5W-20"
-    assert case.thermal_lubricant().inlet_temperature == pytest.approx(363.15)
-    cam, tappet = case.thermal_bodies("dlc_4um")
+    assert build(case).thermal_oil().inlet_temperature == pytest.approx(363.15)
+    cam, tappet = build(case).set("dlc_4um").thermal_bodies
     assert tappet.coating.conductivity == 1.0 and tappet.thickness == 4e-6
     assert cam.coating is None and cam.substrate.conductivity == 46.0
     paper = load_case()
     assert not paper.numerics.thermal  # the paper's case stays isothermal
-    assert np.isclose(paper.lubricant().viscosity, 0.055)
+    assert np.isclose(build(paper).lubricant.viscosity, 0.055)

@@ -18,6 +18,7 @@ from typer.testing import CliRunner
 
 from tribodyn import InputError, Roughness
 from tribodyn.cli import app
+from tribodyn.config.build import build
 from tribodyn.output.figures.topography import plot_height_distribution
 from tribodyn.paper import TOPOGRAPHY_BAND as PAPER_BAND
 from tribodyn.topography import (
@@ -478,5 +479,5 @@ def test_roughness_block_pastes_into_a_case_file(narrow_band):
         "coating_thickness = 4e-6\n\n" + r.toml_block()
     )
     case = Case.from_toml_string(text)
-    rough = case.surface_set("measured").roughness
+    rough = build(case).set("measured").surface.roughness
     assert rough.rms == pytest.approx(r.rms, rel=1e-5)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import pytest
 
 from tribodyn import InputError, paper
+from tribodyn.config.build import build
 from tribodyn.config.schema import LubricantConfig, SurfaceSetConfig
 from tribodyn.contact.ehl.options import EHLOptions
 from tribodyn.physics import typical
@@ -88,8 +89,8 @@ def test_paper_values_stay_with_the_paper():
     from tribodyn.config import load_case
 
     case = load_case("andreou2023")
-    assert case.lubricant().eyring_stress == paper.LUBRICANT["eyring_stress"]
-    assert {s.boundary_shear_strength for s in case.surface_sets()} == {
+    assert build(case).lubricant.eyring_stress == paper.LUBRICANT["eyring_stress"]
+    assert {s.boundary_shear_strength for s in build(case).surface_sets} == {
         paper.BOUNDARY_SHEAR_STRENGTH
     }
 
@@ -98,10 +99,10 @@ def test_rig_case_uses_the_typical_friction_values():
     from tribodyn.config import load_case
 
     case = load_case("flat_tappet_rig")
-    oil = case.lubricant()
+    oil = build(case).lubricant
     assert oil.eyring_stress == typical.EYRING_STRESS.value
     assert oil.limiting_shear_coefficient == typical.LIMITING_SHEAR_COEFFICIENT.value
-    sets = {s.name: s for s in case.surface_sets()}
+    sets = {s.name: s for s in build(case).surface_sets}
     assert sets["steel"].boundary_shear_coefficient == typical.boundary_friction("steel").value
     assert sets["dlc_2um"].boundary_shear_coefficient == typical.boundary_friction("a-C:H").value
     for s in sets.values():

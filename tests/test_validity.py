@@ -20,6 +20,7 @@ from tribodyn import (
 )
 from tribodyn.cli import app
 from tribodyn.config import load_case
+from tribodyn.config.build import build
 from tribodyn.contact.ehl.validity import MAX_ASPECT_RATIO
 
 runner = CliRunner()
@@ -178,7 +179,7 @@ def test_dynamics_failure_is_reported_not_raised(monkeypatch):
     )
     monkeypatch.setattr(dynamics, "solve_ivp", lambda *a, **k: fail)
     monkeypatch.setattr(dynamics, "compiled_model", lambda model: None)  # the solve_ivp path
-    r = simulate_valvetrain(case.cam(), case.valvetrain_parameters(), engine_speed=3000)
+    r = simulate_valvetrain(build(case).cam, build(case).valvetrain, engine_speed=3000)
     assert r.converged is False
     assert "solver failed at t = 0 s: Repeated convergence failures" in r.message
 
@@ -195,7 +196,7 @@ def test_compiled_dynamics_failure_is_reported_not_raised(monkeypatch):
         return np.zeros((len(t), len(y0))), info
 
     monkeypatch.setattr(compiled, "odeint", failing)
-    r = simulate_valvetrain(case.cam(), case.valvetrain_parameters(), engine_speed=3000)
+    r = simulate_valvetrain(build(case).cam, build(case).valvetrain, engine_speed=3000)
     assert r.converged is False
     assert "LSODA failed: Repeated error test" in r.message
     assert r.contact_force.size == 0
@@ -208,11 +209,12 @@ def test_valve_jump_is_reported_clearly():
     from tribodyn.workflow.cycle import _jump_warning
 
     case = load_case().updated({"valvetrain.valve_mass": 1.0})
+    built = build(case)
     dyn = simulate_valvetrain(
-        case.cam(),
-        case.valvetrain_parameters(),
-        tribology=case.analytic_tribology("uncoated"),
-        **case.dynamics_options(),
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology("uncoated"),
+        **built.dynamics_options,
     )
     assert dyn.converged and dyn.jump
     text = _jump_warning(dyn, case)

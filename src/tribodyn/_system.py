@@ -16,19 +16,20 @@ import sys
 import threading
 import time
 
-__all__ = ["exit_with_parent", "WATCH_INTERVAL"]
+__all__ = ["exit_with_parent", "pid_alive", "WATCH_INTERVAL"]
 
 #: Period of the parent check of a pool worker [s].
 WATCH_INTERVAL = 0.5
 _PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
 
 
-def _alive(pid: int) -> bool:
+def pid_alive(pid: int) -> bool:
+    """Whether a process ``pid`` exists (signal 0; one owned by another user counts)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
         return False
-    except PermissionError:
+    except PermissionError:  # exists, owned by someone else
         return True
     return True
 
@@ -47,7 +48,7 @@ def exit_with_parent(starter: int) -> None:
             pass
 
     def gone() -> bool:
-        return os.getppid() != parent or not _alive(starter)
+        return os.getppid() != parent or not pid_alive(starter)
 
     if gone():  # the parent died before the signal was armed
         os._exit(1)

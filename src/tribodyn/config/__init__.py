@@ -6,12 +6,13 @@ Modules: :mod:`.schema` (one model per TOML section, with units and ranges) ·
 selectors) · :mod:`.sweep` (sweep files). Usage::
 
     from tribodyn.config import load_case
+    from tribodyn.config.build import build
     case = load_case()                      # the bundled paper case
-    case = load_case("my_case.toml")
-    cam, params = case.cam(), case.valvetrain_parameters()
-    for s in case.surface_sets():           # SurfaceSet(name, bodies, roughness, ς, …)
-        r = solve_ehl(w, R, ue, us, s.bodies, case.lubricant(), s.roughness,
-                      options=case.ehl_options(s))
+    built = build(load_case("my_case.toml"))
+    cam, params = built.cam, built.valvetrain
+    for s in built.surface_sets:            # SurfaceSet(name, bodies, roughness, ς, …)
+        r = solve_ehl(w, R, ue, us, s.bodies, built.lubricant, s.roughness,
+                      options=built.set(s.name).options)
 """
 
 from . import case as _case

@@ -46,29 +46,26 @@ __all__ = ["BuiltCase", "BuiltSet", "CASE_BUILDERS", "as_built", "build", "colle
 
 T = TypeVar("T")
 
-#: The methods of :class:`~tribodyn.config.Case` that build objects (or return the ones
-#: built at validation): its builder mixins' public methods and its own. Outside
-#: ``config`` the code reads these objects from the :class:`BuiltCase` of :func:`build`.
+#: The private constructors of :class:`~tribodyn.config.Case` (its own and its builder
+#: mixins'), called by :func:`collect` and the :class:`BuiltCase`. Everywhere else the
+#: code reads the objects from the :class:`BuiltCase` of :func:`build`.
 CASE_BUILDERS = (
-    "built",
-    "cam",
-    "valvetrain_parameters",
-    "lumped_companion",
-    "dynamics_options",
-    "analytic_tribology",
-    "lubricant",
-    "thermal_lubricant",
-    "thermal_properties",
-    "thermal_bodies",
-    "thermal_options",
-    "material",
-    "material_strength",
-    "strengths",
-    "wear_coefficient",
-    "ehl_options",
-    "surface_sets",
-    "surface_set",
-    "tappet_rotation",
+    "_build_cam",
+    "_build_set",
+    "_new_analytic_tribology",
+    "_new_dynamics_options",
+    "_new_ehl_options",
+    "_new_lubricant",
+    "_new_material",
+    "_new_material_strength",
+    "_new_strengths",
+    "_new_tappet_rotation",
+    "_new_thermal_bodies",
+    "_new_thermal_lubricant",
+    "_new_thermal_options",
+    "_new_thermal_properties",
+    "_new_valvetrain_parameters",
+    "_new_wear_coefficient",
 )
 
 
@@ -84,7 +81,7 @@ class BuiltSet:
         :class:`~tribodyn.physics.strength.Strength` (None where unknown).
     wear_coefficient : Archard k [m³/(N m)] of the tappet's surface material (None:
         unknown), and ``wear_source``, where it comes from
-        (:meth:`~tribodyn.config.Case.wear_coefficient`).
+        (the case's ``[strength.<m>]``, or the labelled typical value).
     """
 
     surface: SurfaceSet
@@ -150,11 +147,7 @@ class BuiltCase:
     def analytic_tribology(self, name: str) -> AnalyticTribology:
         """The explicit tribology of the dynamics for surface set ``name`` (a new model
         object over the built bodies, roughness and lubricant)."""
-        return self.case._analytic_tribology(self.set(name).surface, self.lubricant)
-
-    def simulate_options(self) -> dict[str, Any]:
-        """A copy of :attr:`dynamics_options` (callers may add keys)."""
-        return dict(self.dynamics_options)
+        return self.case._new_analytic_tribology(self.set(name).surface, self.lubricant)
 
     def thermal_oil(self) -> ThermalLubricant:
         """The thermal oil: :attr:`thermal_lubricant`, or (a case neither thermal nor a
@@ -242,7 +235,7 @@ def collect(
             if n.thermal and lubricant_ok:
                 bodies = attempt("materials", functools.partial(case._new_thermal_bodies, surface))
             strengths = attempt("strength", functools.partial(case._new_strengths, surface))
-            wear = attempt("strength", functools.partial(case.wear_coefficient, surface))
+            wear = attempt("strength", functools.partial(case._new_wear_coefficient, surface))
             sets[cfg.name] = BuiltSet(
                 surface=surface,
                 options=_with_friction(options, surface),
@@ -251,9 +244,9 @@ def collect(
                 wear_coefficient=wear[0] if wear else None,
                 wear_source=wear[1] if wear else "",
             )
-    materials = attempt("materials", lambda: {k: case.material(k) for k in case.materials})
+    materials = attempt("materials", lambda: {k: case._new_material(k) for k in case.materials})
     material_strengths = attempt(
-        "strength", lambda: {k: case.material_strength(k) for k in case.materials}
+        "strength", lambda: {k: case._new_material_strength(k) for k in case.materials}
     )
     thermal_options = attempt("numerics", case._new_thermal_options) if n.thermal else None
     cam = attempt("cam", case._build_cam)
@@ -274,7 +267,7 @@ def collect(
             options=options,
             thermal_options=thermal_options,
             tappet_rotation=rotation,
-            dynamics_options=case.dynamics_options(),
+            dynamics_options=case._new_dynamics_options(),
             sets=sets,
             materials=materials,
             material_strengths=material_strengths,

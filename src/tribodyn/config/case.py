@@ -12,9 +12,9 @@ case, with every paper value stated, is ``cases/andreou2023.toml``.
 
 Validation errors (unknown keys, values out of range, wrong types, cross-field rules such
 as a surface set naming an undefined material) raise :class:`~tribodyn.InputError` with
-one line per problem. Every object the case describes is built once, during validation
-(:func:`tribodyn.config.build.build`), so a case that loads can be run; the builder
-methods below return those objects. Models are frozen; change a validated case with
+one line per problem. Every object the case describes is built once, during validation,
+so a case that loads can be run; :func:`tribodyn.config.build.build` returns those
+objects (the builders below are private: ``build(case).cam``, ``.lubricant``, …). Models are frozen; change a validated case with
 :meth:`Case.updated` (validates again).
 """
 
@@ -44,7 +44,7 @@ from ..physics.lubricant import Lubricant
 from ..physics.materials import Body, Coating, Material
 from ..valvetrain.kinematics import rpm_to_cam_speed
 from ..valvetrain.tappet_rotation import TappetRotation
-from .build import BuiltCase, build, collect, options_for
+from .build import collect
 from .case_strength import StrengthBuilders
 from .case_thermal import OIL_LAW_KEYS, ThermalBuilders
 from .case_valvetrain import CamValvetrainBuilders
@@ -364,7 +364,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
 
         return atomic_write(Path(path), self.to_toml(resolve_paths=resolve_paths))
 
-    # -- builders -----------------------------------------------------------------------
+    # -- properties and builders -------------------------------------------------------
     @property
     def source(self) -> Path | None:
         """The file the case was read from (None if built in memory)."""
@@ -408,16 +408,9 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         others are defaults (:func:`tribodyn.config.origins.input_origins`)."""
         return self._given
 
-    def built(self) -> BuiltCase:
-        """Every object of the case, built once (:func:`tribodyn.config.build.build`)."""
-        return build(self)
-
-    def tappet_rotation(self) -> TappetRotation:
-        """``[tappet_rotation]`` as a :class:`TappetRotation` (speed ratio 0: none)."""
-        return build(self).tappet_rotation
-
     def _new_tappet_rotation(self, cam=None) -> TappetRotation:
-        """The tappet rotation; with the ``cam``, checked to fit it and the tappet
+        """``[tappet_rotation]`` as a :class:`TappetRotation` (speed ratio 0: none); with
+        the ``cam``, checked to fit it and the tappet
         (:meth:`~tribodyn.valvetrain.tappet_rotation.TappetRotation.check_fit`)."""
         c = self.tappet_rotation_config
         rot = TappetRotation(c.speed_ratio, c.cam_offset)
@@ -431,12 +424,9 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
                 raise CaseKeyError(f"tappet_rotation.{key}", str(exc)) from None
         return rot
 
-    def lubricant(self) -> Lubricant:
+    def _new_lubricant(self) -> Lubricant:
         """The :class:`~tribodyn.Lubricant` of ``[lubricant]`` (a datasheet oil at its
         inlet temperature)."""
-        return build(self).lubricant
-
-    def _new_lubricant(self) -> Lubricant:
         c = self.lubricant_config
         if c.datasheet:
             return self._new_thermal_lubricant().isothermal()
@@ -447,19 +437,16 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             **c.model_dump(include=OIL_LAW_KEYS),
         )
 
-    def material(self, name: str) -> Material:
+    def _new_material(self, name: str) -> Material:
         """The :class:`~tribodyn.Material` of ``[materials.<name>]``."""
         if name not in self.materials:
             raise InputError(f"unknown material {name!r} (defined: {', '.join(self.materials)})")
         m = self.materials[name]
         return Material(E=m.E, nu=m.nu)
 
-    def ehl_options(self, surface_set: SurfaceSet | str | None = None) -> EHLOptions:
-        """:class:`~tribodyn.EHLOptions` from ``[numerics]``; with a surface set (object or
-        name), its ς and τ₀ of the boundary friction law."""
-        return options_for(build(self), surface_set)
-
     def _new_ehl_options(self) -> EHLOptions:
+        """:class:`~tribodyn.EHLOptions` from ``[numerics]`` (the surface sets' ς and τ₀:
+        :class:`~tribodyn.config.build.BuiltSet`)."""
         n = self.numerics
         if 0 < n.n < 32:
             raise CaseKeyError("numerics.n", f"must be 0 (automatic) or >= 32 (got {n.n})")
@@ -483,21 +470,14 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         )
         return EHLOptions(**kw)
 
-    def surface_sets(self) -> list[SurfaceSet]:
-        """All surface sets as :class:`SurfaceSet` objects, in file order."""
-        return build(self).surface_sets
-
-    def surface_set(self, name: str) -> SurfaceSet:
-        """One surface set by name."""
-        return build(self).set(name).surface
-
     @property
     def surface_set_names(self) -> list[str]:
         return [s.name for s in self.surface_set_configs]
 
     def _build_set(self, s: SurfaceSetConfig) -> SurfaceSet:
-        cam = Body(self.material(self.cam_config.material))
-        substrate = self.material(s.substrate)
+        """The :class:`SurfaceSet` of one ``[[surface_sets]]`` entry."""
+        cam = Body(self._new_material(self.cam_config.material))
+        substrate = self._new_material(s.substrate)
         if s.coating is None:
             tappet = Body(substrate)
             label = "uncoated"

@@ -6,9 +6,7 @@ typical values of :mod:`tribodyn.physics.strength`.
 from __future__ import annotations
 
 import dataclasses
-from typing import TYPE_CHECKING, Any
-
-from .build import build
+from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from .case import SurfaceSet
@@ -23,11 +21,8 @@ class StrengthBuilders:
         strength_configs: dict[str, StrengthConfig]
         surface_set_configs: list[SurfaceSetConfig]
         cam_config: CamConfig
-        _built: Any
 
-        def surface_set(self, name: str) -> SurfaceSet: ...
-
-    def material_strength(self, name: str):
+    def _new_material_strength(self, name: str):
         """:class:`~tribodyn.physics.strength.Strength` of material ``name``: the keys of
         ``[strength.<name>]`` over the typical values of steel, dlc or wcc when the
         material has that name; None when neither gives a tensile strength and a
@@ -48,31 +43,22 @@ class StrengthBuilders:
             return None
         return Strength(**vals)
 
-    def strengths(self, surface_set) -> dict:
-        """{"cam": (substrate, None), "tappet": (substrate, coating)} strengths of a
-        surface set for :func:`~tribodyn.workflow.stress_study.stress_along_cycle` (built
-        once per surface set)."""
-        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
-        own = build(self).sets.get(s.name)  # type: ignore[arg-type]  # self is a Case
-        if own is not None and own.surface == s:
-            return own.strengths
-        return self._new_strengths(s)
-
     def _new_strengths(self, s: SurfaceSet) -> dict:
+        """{"cam": (substrate, None), "tappet": (substrate, coating)} strengths of a
+        surface set for :func:`~tribodyn.workflow.stress_study.stress_along_cycle`."""
         cfg = next(c for c in self.surface_set_configs if c.name == s.name)
-        cam = self.material_strength(self.cam_config.material)
-        sub = self.material_strength(cfg.substrate)
-        coat = self.material_strength(cfg.coating) if cfg.coating is not None else None
+        cam = self._new_material_strength(self.cam_config.material)
+        sub = self._new_material_strength(cfg.substrate)
+        coat = self._new_material_strength(cfg.coating) if cfg.coating is not None else None
         return {"cam": (cam, None), "tappet": (sub, coat)}
 
-    def wear_coefficient(self, surface_set) -> tuple[float | None, str]:
+    def _new_wear_coefficient(self, s: SurfaceSet) -> tuple[float | None, str]:
         """Archard coefficient k [m³/(N m)] of the tappet's surface material (coating, or
         substrate if uncoated) and where it comes from: the case's ``[strength.<m>]``,
         else the ASSUMED typical value of physics.strength for steel, dlc, wcc (labelled
         so), else None."""
         from ..physics.strength import TYPICAL_WEAR_COEFFICIENT
 
-        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
         cfg = next(c for c in self.surface_set_configs if c.name == s.name)
         mat = cfg.coating if cfg.coating is not None else cfg.substrate
         sc = self.strength_configs.get(mat)

@@ -12,7 +12,6 @@ from ..contact.ehl.thermal import ThermalOptions
 from ..physics.heat_conduction import ThermalBody, ThermalProperties
 from ..physics.oils import OILS, THERMAL_MATERIALS
 from ..physics.thermal_oil import ThermalLubricant
-from .build import build
 
 if TYPE_CHECKING:
     from .case import SurfaceSet
@@ -39,20 +38,12 @@ class ThermalBuilders:
         surface_set_configs: list[SurfaceSetConfig]
         cam_config: CamConfig
         numerics: Numerics
-        _built: Any
 
-        def surface_set(self, name: str) -> SurfaceSet: ...
-
-    def thermal_lubricant(self) -> ThermalLubricant:
+    def _new_thermal_lubricant(self) -> ThermalLubricant:
         """The temperature- and pressure-dependent oil of ``[lubricant]``
         (:class:`~tribodyn.physics.thermal_oil.ThermalLubricant`): a datasheet, or the
         viscosity at ``inlet_temperature_c`` with its ``viscosity_temperature_coefficient``
-        (built once for a thermal or datasheet case; else built here, or an InputError
-        naming the missing key)."""
-        oil = build(self).thermal_lubricant  # type: ignore[arg-type]  # self is a Case
-        return oil if oil is not None else self._new_thermal_lubricant()
-
-    def _new_thermal_lubricant(self) -> ThermalLubricant:
+        (an InputError naming a missing key)."""
         c = self.lubricant_config
         if c.inlet_temperature_c is None:
             raise InputError(
@@ -96,7 +87,7 @@ class ThermalBuilders:
             name="lubricant",
         )
 
-    def thermal_properties(self, name: str) -> ThermalProperties:
+    def _new_thermal_properties(self, name: str) -> ThermalProperties:
         """k, ρ, c of ``[materials.<name>]`` (steel, dlc and wcc default to the literature
         values of :mod:`tribodyn.physics.oils`)."""
         m = self.materials[name]
@@ -119,18 +110,10 @@ class ThermalBuilders:
             )
         return ThermalProperties(**d)
 
-    def thermal_bodies(self, surface_set: SurfaceSet | str) -> tuple:
-        """(cam, tappet) as :class:`~tribodyn.physics.heat_conduction.ThermalBody` (built
-        once per surface set of a thermal case)."""
-        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
-        own = build(self).sets.get(s.name)  # type: ignore[arg-type]  # self is a Case
-        if own is not None and own.thermal_bodies is not None and own.surface == s:
-            return own.thermal_bodies
-        return self._new_thermal_bodies(s)
-
     def _new_thermal_bodies(self, s: SurfaceSet) -> tuple[ThermalBody, ThermalBody]:
+        """(cam, tappet) as :class:`~tribodyn.physics.heat_conduction.ThermalBody`."""
         cfg = next(c for c in self.surface_set_configs if c.name == s.name) if s.name else None
-        cam = ThermalBody(self.thermal_properties(self.cam_config.material))
+        cam = ThermalBody(self._new_thermal_properties(self.cam_config.material))
         sub = (
             cfg.substrate
             if cfg is not None
@@ -138,21 +121,19 @@ class ThermalBuilders:
         )
         coat = s.coating_material if cfg is None else cfg.coating
         if coat is None:
-            tappet = ThermalBody(self.thermal_properties(sub))
+            tappet = ThermalBody(self._new_thermal_properties(sub))
         else:
             coating = s.bodies[1].coating
             assert coating is not None  # a coated set's tappet carries its coating
             tappet = ThermalBody(
-                self.thermal_properties(sub), self.thermal_properties(coat), coating.thickness
+                self._new_thermal_properties(sub),
+                self._new_thermal_properties(coat),
+                coating.thickness,
             )
         return cam, tappet
 
-    def thermal_options(self) -> ThermalOptions:
-        """:class:`~tribodyn.contact.ehl.thermal.ThermalOptions` from ``[numerics]``."""
-        opts = build(self).thermal_options  # type: ignore[arg-type]  # self is a Case
-        return opts if opts is not None else self._new_thermal_options()
-
     def _new_thermal_options(self) -> ThermalOptions:
+        """:class:`~tribodyn.contact.ehl.thermal.ThermalOptions` from ``[numerics]``."""
         n = self.numerics
         return ThermalOptions(
             x_nodes=n.thermal_x_nodes,

@@ -14,13 +14,11 @@ from ..valvetrain.camshaft import Camshaft
 from ..valvetrain.flexible import FlexibleValvetrain, TappetGeometry, ValveGeometry
 from ..valvetrain.parameters import ValvetrainParameters
 from ..valvetrain.spring import HelicalSpring
-from .build import build
 from .errors import CamTableError
 from .schema import SpringConfig, TappetConfig, ValveConfig
 
 if TYPE_CHECKING:
     from pathlib import Path
-    from typing import Any
 
     from ..physics.lubricant import Lubricant
     from ..valvetrain.tribology import AnalyticTribology
@@ -37,14 +35,9 @@ class CamValvetrainBuilders:
         valvetrain: Valvetrain
         numerics: Numerics
         engine: Engine
-        _built: Any
 
         @property
         def cam_table_path(self) -> Path | None: ...
-
-        def surface_set(self, name: str) -> SurfaceSet: ...
-
-        def lubricant(self) -> Lubricant: ...
 
     def _build_cam(self) -> CamProfile:
         c = self.cam_config
@@ -96,26 +89,14 @@ class CamValvetrainBuilders:
             )
         return cam
 
-    def cam(self) -> CamProfile:
-        """The cam profile (built and checked during validation)."""
-        return build(self).cam  # type: ignore[arg-type]  # self is a Case
-
-    def valvetrain_parameters(self) -> ValvetrainParameters | FlexibleValvetrain:
+    def _new_valvetrain_parameters(self) -> ValvetrainParameters | FlexibleValvetrain:
         """The valvetrain of the case: :class:`~tribodyn.valvetrain.ValvetrainParameters`
         (``model = "lumped"``) or :class:`~tribodyn.valvetrain.flexible.FlexibleValvetrain`
         (``"flexible"``); either runs in :func:`~tribodyn.valvetrain.simulate_valvetrain`."""
-        return build(self).valvetrain  # type: ignore[arg-type]  # self is a Case
-
-    def _new_valvetrain_parameters(self) -> ValvetrainParameters | FlexibleValvetrain:
         joints = self._joint_parameters()
         if self.valvetrain.model == "lumped":
             return joints
         return self._flexible(joints)
-
-    def lumped_companion(self) -> ValvetrainParameters:
-        """The lumped model with the same masses, rate, preload and static compliances
-        (of a flexible case; a lumped case returns its own parameters)."""
-        return build(self).lumped  # type: ignore[arg-type]  # self is a Case
 
     @property
     def valvetrain_model(self) -> str:
@@ -139,7 +120,7 @@ class CamValvetrainBuilders:
         cs = None if v.camshaft is None else Camshaft(**v.camshaft.model_dump())
         return FlexibleValvetrain(valve, tappet, spring, joints, cs)
 
-    def dynamics_options(self) -> dict:
+    def _new_dynamics_options(self) -> dict:
         """Keyword arguments of :func:`~tribodyn.valvetrain.simulate_valvetrain` from the
         case (engine speed and ``[numerics]``)."""
         n = self.numerics
@@ -152,13 +133,9 @@ class CamValvetrainBuilders:
             max_step=n.max_step_deg,
         )
 
-    def analytic_tribology(self, surface_set: SurfaceSet | str) -> AnalyticTribology:
+    def _new_analytic_tribology(self, s: SurfaceSet, lubricant: Lubricant) -> AnalyticTribology:
         """Explicit tribology of the dynamics for one surface set
         (:class:`~tribodyn.valvetrain.AnalyticTribology` over the cam width)."""
-        s = self.surface_set(surface_set) if isinstance(surface_set, str) else surface_set
-        return self._analytic_tribology(s, self.lubricant())
-
-    def _analytic_tribology(self, s: SurfaceSet, lubricant: Lubricant) -> AnalyticTribology:
         from ..valvetrain.tribology import AnalyticTribology
 
         n = self.numerics

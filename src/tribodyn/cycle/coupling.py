@@ -328,7 +328,7 @@ def run_coupling(
                 scale * mixer(x_old / scale, state_vector(g) / scale), g, period
             )
         new = simulate_valvetrain(
-            built.cam, built.valvetrain, tribology=table, **built.simulate_options()
+            built.cam, built.valvetrain, tribology=table, **built.dynamics_options
         )
         if not new.converged:
             msg = f"implicit dynamics failed at iteration {k}: {new.message}"

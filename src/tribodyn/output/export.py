@@ -28,9 +28,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .._safe_write import atomic_open, atomic_write
+from .._safe_write import atomic_open
 
-__all__ = ["CSV_FILES", "write_csv", "report_html", "report_markdown", "write_html"]
+__all__ = ["CSV_FILES", "write_csv", "report_html", "report_markdown"]
 
 _NOFOLLOW = getattr(os, "O_NOFOLLOW", 0)
 
@@ -198,10 +198,3 @@ def report_html(markdown_text: str, folder, skipped: list[str] | None = None) ->
         f"<title>{html.escape(title)}</title><style>{_CSS}</style></head>\n"
         f"<body>\n{body}</body></html>\n"
     )
-
-
-def write_html(markdown_text: str, folder, path=None, skipped: list[str] | None = None) -> Path:
-    """Write :func:`report_html` to ``path`` (default ``folder/report.html``) atomically
-    (:func:`~tribodyn._safe_write.atomic_write`)."""
-    path = Path(path) if path is not None else Path(folder) / "report.html"
-    return atomic_write(path, report_html(markdown_text, folder, skipped))

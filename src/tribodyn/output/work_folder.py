@@ -24,6 +24,7 @@ from pathlib import Path
 
 from .. import _json
 from .._safe_write import TOKEN_CHARS, atomic_write, make_dirs, new_dir, remove_tree
+from .._system import pid_alive
 from .._typing import PathLike
 from .._validation import InputError
 from .result_folder import (
@@ -49,16 +50,6 @@ __all__ = [
     "must_update_in_place",
     "update_in_place",
 ]
-
-
-def _pid_alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:  # exists, owned by someone else
-        return True
-    return True
 
 
 def make_work_folder(target: Path) -> tuple[Path, os.stat_result]:
@@ -131,7 +122,7 @@ def clean_stale(target: PathLike) -> list[Path]:
         if not m:
             continue
         kind, pid, token = m.groups()
-        if int(pid) == os.getpid() or _pid_alive(int(pid)):
+        if int(pid) == os.getpid() or pid_alive(int(pid)):
             continue
         proven = token is not None and _has_origin(p, kind, pid, token)
         legacy = token is None and is_result_folder(p)

@@ -6,14 +6,11 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 __all__ = [
     "SUPPLY_FILM",
     "SUPPLY_FILM_MAX",
     "GROWTH_SHARPNESS",
     "FILM_FLOOR",
-    "entraining_scalar",
     "entraining_film_load",
     "limited_growth",
 ]
@@ -57,32 +54,12 @@ def limited_growth(x: float, xt: float) -> tuple[float, float, float]:
     return x * f, f / (1.0 + q), f * q * x / (xt * (1.0 + q))
 
 
-def entraining_scalar(h, ue, R, eta, alpha, e_prime, supply, r):
-    """Scalar core of :func:`entraining_film_load`: (w' [N/m], dw'/dh [N/m²]) at film h,
-    u_e, R, η₀, α, E', supply h_s and correction r."""
-    if h >= supply or ue == 0.0:
-        return 0.0, 0.0
-    h = max(h, FILM_FLOOR)
-    d = supply - h
-    he = h * supply / d / r  # flooded-equivalent film, corrected
-    dhe = supply * supply / (d * d) / r
-    au = abs(ue)
-    w_ri = _MARTIN * eta * au * R / he
-    u2 = 2.0 * eta * au / (e_prime * R)
-    x = 1.311 * (alpha * e_prime * u2) ** 0.75 * R / he
-    x2 = x * x
-    x4 = x2 * x2
-    w_ep = e_prime * R * x4 * x4
-    return w_ri + w_ep, -(w_ri + 8.0 * w_ep) / he * dhe
-
-
-def entraining_film_load(
-    film, entrainment_speed, radius, lubricant, e_prime, supply, correction=1.0
-):
-    """Load per unit length w' [N/m] that a steady entraining film of thickness h [m]
-    carries between a cylinder of radius R [m] and a plane at entrainment speed u_e [m/s]
-    (vectorised; with dw'/dh [N/m²]): the inverse of a steady film formula, limited by the
-    oil supply. With U = η₀|u_e|/(E'R), G = αE' (η₀, α of ``lubricant``, E' [Pa]):
+def entraining_film_load(h, ue, R, eta, alpha, e_prime, supply, r):
+    """(w' [N/m], dw'/dh [N/m²]): the load per unit length that a steady entraining film
+    of thickness h [m] carries between a cylinder of radius R [m] and a plane at
+    entrainment speed u_e [m/s] (floats), the inverse of a steady film formula, limited by
+    the oil supply h_s = ``supply`` [m]. With U = η₀|u_e|/(E'R), G = αE' (viscosity η₀
+    [Pa·s], pressure–viscosity coefficient α [1/Pa], E' [Pa]):
 
     - *starvation*: the film is the series (harmonic) combination of the flooded film h_f
       and the supply layer h_s, 1/h = 1/h_f + 1/h_s, i.e. h_f = h h_s/(h_s − h), and no
@@ -102,18 +79,21 @@ def entraining_film_load(
       Its inverse agrees with the Moes central film (:func:`~tribodyn.physics.regimes.
       moes_central`) within 7 % in the elastic-piezoviscous regime and gives Martin's
       film (Moes' rigid asymptote is 22 % higher) at light loads; in the isoviscous-
-      elastic regime (low speed, high load) it is up to 27 % thinner. ``correction`` r
-      scales the flooded film (the implicit coupling sets it from the transient EHL).
+      elastic regime (low speed, high load) it is up to 27 % thinner. ``r`` scales the
+      flooded film (the implicit coupling sets it from the transient EHL).
 
     w' → 0 as u_e → 0 (only squeeze then); w' = 0 for h ≥ h_s."""
-    h, u, R, r = np.broadcast_arrays(
-        *(np.asarray(v, dtype=float) for v in (film, entrainment_speed, radius, correction))
-    )
-    w = np.zeros(h.shape)
-    dw = np.zeros(h.shape)
-    eta, alpha = lubricant.viscosity, lubricant.pressure_viscosity
-    for i in np.ndindex(h.shape):
-        w[i], dw[i] = entraining_scalar(
-            float(h[i]), float(u[i]), float(R[i]), eta, alpha, e_prime, supply, float(r[i])
-        )
-    return (w[()], dw[()]) if w.ndim == 0 else (w, dw)
+    if h >= supply or ue == 0.0:
+        return 0.0, 0.0
+    h = max(h, FILM_FLOOR)
+    d = supply - h
+    he = h * supply / d / r  # flooded-equivalent film, corrected
+    dhe = supply * supply / (d * d) / r
+    au = abs(ue)
+    w_ri = _MARTIN * eta * au * R / he
+    u2 = 2.0 * eta * au / (e_prime * R)
+    x = 1.311 * (alpha * e_prime * u2) ** 0.75 * R / he
+    x2 = x * x
+    x4 = x2 * x2
+    w_ep = e_prime * R * x4 * x4
+    return w_ri + w_ep, -(w_ri + 8.0 * w_ep) / he * dhe

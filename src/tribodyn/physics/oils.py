@@ -36,7 +36,7 @@ steel.
 
 from __future__ import annotations
 
-__all__ = ["OILS", "THERMAL_MATERIALS", "oil_names"]
+__all__ = ["OILS", "THERMAL_MATERIALS"]
 
 #: name → datasheet keys of :class:`~tribodyn.physics.thermal_oil.ThermalLubricant`
 #: (SI: m²/s, kg/m³) and a description.
@@ -75,7 +75,3 @@ THERMAL_MATERIALS = {
     "dlc": {"conductivity": 1.0, "density": 1900.0, "specific_heat": 700.0},
     "wcc": {"conductivity": 2.0, "density": 8000.0, "specific_heat": 300.0},
 }
-
-
-def oil_names() -> list[str]:
-    return list(OILS)

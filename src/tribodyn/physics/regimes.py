@@ -31,10 +31,8 @@ __all__ = [
     "lubrication_regime",
     "film_parameter",
     "pan_hamrock",
-    "dowson_higginson_min",
     "dowson_toyoda_central",
     "moes_central",
-    "martin_rigid_isoviscous",
     "REGIMES",
 ]
 
@@ -103,11 +101,6 @@ def pan_hamrock(W, U, G, radius):
     return hc * radius, hm * radius
 
 
-def dowson_higginson_min(W, U, G, radius):
-    """Dowson & Higginson (1977) minimum film, line contact: H_min = 2.65 U^0.70 G^0.54 W'^−0.13."""
-    return 2.65 * np.asarray(U) ** 0.70 * G**0.54 * np.asarray(W) ** -0.13 * radius
-
-
 def dowson_toyoda_central(W, U, G, radius):
     """Dowson & Toyoda (1979) central film, line contact: H_c = 3.06 U^0.69 G^0.56 W'^−0.10."""
     return 3.06 * np.asarray(U) ** 0.69 * G**0.56 * np.asarray(W) ** -0.10 * radius
@@ -144,8 +137,3 @@ def moes_central(W, U, G, radius):
         piezo = (h_rp**-3.5 + h_ep**-3.5) ** (-2.0 * s / 7.0)
     H = (iso + piezo) ** (1.0 / s)
     return H * np.sqrt(2.0 * U) * radius
-
-
-def martin_rigid_isoviscous(load, radius, entrainment_speed, viscosity):
-    """Martin (1916) rigid isoviscous cylinder, Reynolds exit: h₀ = 4.894 μ₀ u_e R / w [m]."""
-    return 4.894 * viscosity * np.abs(entrainment_speed) * radius / np.asarray(load, dtype=float)

@@ -138,11 +138,6 @@ class SubsurfaceStress:
         """In-plane principal shear stress √(((σ_xx − σ_zz)/2)² + σ_xz²) [Pa]."""
         return np.hypot(0.5 * (self.sxx - self.szz), self.sxz)
 
-    @property
-    def max_principal(self) -> np.ndarray:
-        """Largest principal stress (of σ_1, σ_2 in plane and σ_yy) [Pa]."""
-        return _max_principal(self.sxx, self.szz, self.sxz, self.syy)
-
     def peaks(self) -> dict[str, StressPeak]:
         """The six peaks by name (:data:`PEAKS`)."""
         return {k: getattr(self, k) for k in PEAKS}

@@ -16,21 +16,11 @@ Proc. Instn Mech. Engrs 185 (1970) 625–633.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
-from .._validation import check_nonnegative
 from .spectral_moments import SpectralMoments
 
-__all__ = ["composite_rms", "composite_moments", "sum_on_common_grid"]
-
-
-def composite_rms(sigma_1: float, sigma_2: float) -> float:
-    """σ = √(σ₁² + σ₂²) [m]."""
-    return math.hypot(
-        check_nonnegative("sigma_1", sigma_1, "m"), check_nonnegative("sigma_2", sigma_2, "m")
-    )
+__all__ = ["composite_moments", "sum_on_common_grid"]
 
 
 def composite_moments(first: SpectralMoments, second: SpectralMoments) -> SpectralMoments:

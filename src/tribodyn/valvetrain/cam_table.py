@@ -30,7 +30,7 @@ from .._user_files import MAX_TABLE_BYTES, read_user_text
 from .._validation import InputError
 from ..physics import limits as L
 
-__all__ = ["read_lift_table", "load_lift_table", "LiftTable", "ANGLE_UNITS", "LIFT_UNITS"]
+__all__ = ["load_lift_table", "LiftTable", "ANGLE_UNITS", "LIFT_UNITS"]
 
 ANGLE_UNITS = {"deg": math.pi / 180.0, "rad": 1.0, "crank_deg": math.pi / 360.0}
 LIFT_UNITS = {"mm": 1e-3, "m": 1.0, "um": 1e-6, "in": 0.0254}
@@ -199,11 +199,3 @@ def load_lift_table(
     return LiftTable(
         data[:, 0] * ANGLE_UNITS[au], data[:, 1] * LIFT_UNITS[lu], au, lu, names, quantum
     )
-
-
-def read_lift_table(
-    path, *, angle_unit: str = "auto", lift_unit: str = "auto"
-) -> tuple[np.ndarray, np.ndarray]:
-    """Return (θ [rad], s [m]) from a two-column lift table file."""
-    t = load_lift_table(path, angle_unit=angle_unit, lift_unit=lift_unit)
-    return t.angle, t.lift

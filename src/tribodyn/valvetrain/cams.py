@@ -343,11 +343,6 @@ class AccelerationCam(CamProfile):
         self._nose_lift_residual = s0 - L
         self.check(tappet_radius)
 
-    @property
-    def opening_angle(self) -> float:
-        """Cam angle where the event (ramp) starts [rad]."""
-        return (self.nose_angle - self._half) % TWO_PI
-
     def _breakpoints(self) -> np.ndarray:
         b = self._half - np.array(self._starts + [self._half])  # distance from the nose
         return np.concatenate([self.nose_angle - b, self.nose_angle + b]) % TWO_PI
@@ -453,11 +448,6 @@ class CircularArcCam(CamProfile):
         if not (0.0 < self._phi_nose < self._phi_base < math.pi):
             raise InputError("CircularArcCam: inconsistent arc junctions for these radii")
         self.check(tappet_radius)
-
-    @property
-    def half_event_angle(self) -> float:
-        """Cam angle from the nose to the flank/base junction [rad]."""
-        return self._phi_base
 
     def _breakpoints(self):
         p = np.array([self._phi_nose, self._phi_base])

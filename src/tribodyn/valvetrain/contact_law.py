@@ -486,6 +486,14 @@ class CamContactModel:
             dy[2 * n + 2] = f["hdot"]
         return dy
 
+    def static_state(self) -> np.ndarray:
+        """Static equilibrium on the base circle: all displacements (or deviations) and
+        velocities zero (the film state, if any, at its rest film h₀ (``film_at_rest``))."""
+        y = np.zeros(2 * self.n + 2 + self.film_state)
+        if self.film_state:
+            y[-1] = self.film_at_rest()
+        return y
+
     def film_jacobian(self, J: np.ndarray, f: dict, grad: dict, Minv_g: np.ndarray) -> None:
         """Add the film state's rows and columns to the Jacobian J (size 2n + 3) from an
         ``evaluate(jac=True)`` output ``f``: ``grad`` = ∂δ_kin/∂q (index → value) and

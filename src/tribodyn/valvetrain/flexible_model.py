@@ -353,19 +353,7 @@ class FlexibleValvetrainModel(CamContactModel):
             U += clash_pot(d0 + q[a] - q[b] - g) - clash_pot(d0 - g)
         return T, U
 
-    def static_state(self) -> np.ndarray:
-        """Static equilibrium (zero deviations; the film state, if any, at its rest film h₀)."""
-        y = np.zeros(2 * self.n + 2 + self.film_state)
-        if self.film_state:
-            y[-1] = self.film_at_rest()
-        return y
-
     # -- diagnostics -----------------------------------------------------------------------
-    def physical_spring(self, y) -> np.ndarray:
-        """Displacements of all spring FE nodes [m] (recovered through T)."""
-        sb = self.bodies["spring"]
-        return sb.T @ np.asarray(y)[self.gmap["spring"]]
-
     def unresolved_clash(self, Y) -> float:
         """Largest wire overlap [m] of an element reduced into the modes (its clash is
         not modelled) over the columns of Y; ≤ 0 when none closed."""

@@ -310,14 +310,6 @@ class ValvetrainModel(CamContactModel):
                 Useg[j] = -0.5 * F0 * F0 / self.kseg[j]
         return T, U + float(np.sum(Useg))
 
-    def static_state(self) -> np.ndarray:
-        """Static equilibrium on the base circle: all displacements and velocities zero
-        (the film state, if any, at its rest film h₀ (``film_at_rest``))."""
-        y = np.zeros(2 * self.n + 2 + self.film_state)
-        if self.film_state:
-            y[-1] = self.film_at_rest()
-        return y
-
     def surge_matrices(self) -> tuple[np.ndarray, np.ndarray]:
         """(M, K) of the coil masses with the valve held fixed (fixed–fixed spring)."""
         N = self.N

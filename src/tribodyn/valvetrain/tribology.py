@@ -42,7 +42,6 @@ from ..physics.analytic_contact import analytic_contact
 from ..physics.asperity import Roughness
 from ..physics.film_state_laws import FILM_FLOOR as _FILM_FLOOR
 from ..physics.film_state_laws import SUPPLY_FILM, SUPPLY_FILM_MAX, entraining_film_load
-from ..physics.film_state_laws import entraining_scalar as _entraining_scalar
 from ..physics.lubricant import TYPICAL_OIL, Lubricant
 from ..physics.materials import STEEL, Body, BodyPair
 
@@ -475,7 +474,7 @@ class FilmStateTribology(TribologyModel):
         """(ḣ [m/s], ∂ḣ/∂h [1/s], ∂ḣ/∂F_c [m/(N s)]) of the film h [m] carrying F_c [N]."""
         r = self.correction_at(t)
         R = max(R, 1e-9)  # a flat face's radius is positive; guard the powers below
-        w, dw = _entraining_scalar(
+        w, dw = entraining_film_load(
             h, ue, R, self._eta, self._alpha, self.e_prime, self.supply_film, r
         )
         hh = max(h, _FILM_FLOOR)
@@ -535,7 +534,7 @@ class FilmStateTribology(TribologyModel):
             lo, hi = math.log(1e-12), math.log(self.supply_film)
             for _ in range(80):
                 mid = 0.5 * (lo + hi)
-                w, _ = _entraining_scalar(
+                w, _ = entraining_film_load(
                     math.exp(mid),
                     float(u[i]),
                     float(R[i]),

@@ -316,7 +316,7 @@ def run_cycle_study(
             built.cam,
             built.valvetrain,  # lumped or flexible: simulate_valvetrain takes either
             tribology=built.analytic_tribology(ref_name),
-            **built.simulate_options(),
+            **built.dynamics_options,
         )
     timings["dynamics_explicit_s"] = time.perf_counter() - t0
     if not dyn.converged:

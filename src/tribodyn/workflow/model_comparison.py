@@ -63,7 +63,7 @@ def compare_lumped_flexible(
     engine speed (NaN with a message if there is no jump up to there)."""
     built = as_built(case)
     out = ModelComparison()
-    opts = built.simulate_options()
+    opts = built.dynamics_options
     companion = built.lumped
     lumped = simulate_valvetrain(built.cam, companion, tribology=tribology, **opts)
     for name, r in (("lumped", lumped), ("flexible", flexible)):

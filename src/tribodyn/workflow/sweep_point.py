@@ -120,7 +120,7 @@ def point_dynamics(case):
         built.cam,
         built.valvetrain,
         tribology=built.analytic_tribology(surface_roles(built)["reference"]),
-        **built.simulate_options(),
+        **built.dynamics_options,
     )
 
 

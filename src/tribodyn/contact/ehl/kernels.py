@@ -20,7 +20,6 @@ from numba import njit
 __all__ = [
     "assemble",
     "coupling_bands",
-    "band_product",
     "newton_matvec",
     "dense_matrix",
     "dense_matrix_t",
@@ -120,18 +119,6 @@ def coupling_bands(AP, AH, D):
                 B[k, i] -= AP[k, i] * D[j]
             col[i] += B[k, i]
     return B, col
-
-
-@njit(**_OPTS)
-def band_product(A, v):
-    """y_i = Σ_d A[d + 2, i] v[i + d]."""
-    n = v.size
-    y = np.zeros(n)
-    for k in range(5):
-        d = k - 2
-        for i in range(max(0, -d), min(n, n - d)):
-            y[i] += A[k, i] * v[i + d]
-    return y
 
 
 @njit(**_OPTS)

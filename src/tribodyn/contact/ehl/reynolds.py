@@ -30,7 +30,6 @@ from .kernels import (
     SGEMV,
     SGETRS,
     assemble,
-    band_product,
     coupling_bands,
     dense_matrix,
     dense_matrix_t,
@@ -39,7 +38,7 @@ from .kernels import (
 )
 from .options import Conditions, ContactModel
 
-__all__ = ["ReynoldsSystem", "Evaluation", "Linearization", "band_apply", "SINGLE_PRODUCTS"]
+__all__ = ["ReynoldsSystem", "Evaluation", "Linearization", "SINGLE_PRODUCTS"]
 
 
 class ReynoldsSystem:
@@ -187,7 +186,7 @@ _EMPTY = np.zeros(0)
 @dataclass
 class Evaluation:
     """Residuals at one iterate; AP, AH hold the bands as (5, n) arrays (row d + 2 is
-    offset d); :meth:`diagonals` gives them as {offset: array}."""
+    offset d)."""
 
     R: np.ndarray
     load: float
@@ -197,25 +196,6 @@ class Evaluation:
     dpa: np.ndarray
     AP: np.ndarray
     AH: np.ndarray
-
-    @staticmethod
-    def diagonals(A) -> dict:
-        return {d: A[d + 2] for d in range(-2, 3)}
-
-
-def band_apply(diags, v):
-    """y_i = Σ_d A_d[i] v[i+d] for a banded matrix stored by diagonals ({offset: array}
-    or a (5, n) array)."""
-    if isinstance(diags, np.ndarray):
-        return band_product(diags, np.asarray(v, dtype=float))
-    n = v.size
-    y = diags[0] * v
-    for d, a in diags.items():
-        if d > 0:
-            y[: n - d] += a[: n - d] * v[d:]
-        elif d < 0:
-            y[-d:] += a[-d:] * v[: n + d]
-    return y
 
 
 class Linearization:

@@ -25,7 +25,7 @@ from ..._safe_write import make_dirs
 from ..._system import exit_with_parent
 from ..._validation import InputError
 from .coating import fig05, fig06
-from .common import EVENT_FRACTION, FIGURES, TITLE_SIZE, content_name, has, plt
+from .common import EVENT_FRACTION, FIGURES, TITLE_SIZE, compares_paper, content_name, has, plt
 from .cycle import fig15, fig16, fig17, fig18, fig19, fig20
 from .dynamics import fig08, fig09, fig10, fig11
 from .engineering import fig23, fig24, fig25, fig26
@@ -95,12 +95,6 @@ _COST = {
 }
 
 
-def _paper_numbers(ds) -> bool:
-    """Numbered file names (module docstring): the Dataset's ``compare_paper``
-    attribute, numbered when it is absent."""
-    return bool(ds.attrs.get("compare_paper", 1))
-
-
 def _wanted(ds, only=None) -> list[str]:
     """The numbered names of the figures the Dataset has the variables for (of ``only``,
     numbered or content names, if given), in :data:`_MAKERS` order."""
@@ -122,7 +116,7 @@ def figure_files(ds, only=None, paper_numbers: bool | None = None) -> list[str]:
     """The file names :func:`make_figures` may write for ``ds`` (a figure with nothing to
     draw is left out when drawn, so it writes these or fewer)."""
     if paper_numbers is None:
-        paper_numbers = _paper_numbers(ds)
+        paper_numbers = compares_paper(ds)  # numbered file names (module text)
     return [n if paper_numbers else content_name(n) for n in _wanted(ds, only)]
 
 
@@ -152,7 +146,7 @@ def make_figures(
     ``compare_paper`` attribute (absent: numbered). ``only`` takes either name.
     """
     if paper_numbers is None:
-        paper_numbers = _paper_numbers(ds)
+        paper_numbers = compares_paper(ds)  # numbered file names (module text)
     out = Path(out_dir)
     make_dirs(out)
     ref = ds.attrs.get("reference_set")
