@@ -44,11 +44,11 @@ from ..physics.lubricant import Lubricant
 from ..physics.materials import Body, Coating, Material
 from ..valvetrain.kinematics import rpm_to_cam_speed
 from ..valvetrain.tappet_rotation import TappetRotation
-from .build import BuiltCase, build, collect, options_for
+from .build import BuiltCase, build, collect, options_for, range_problems_beside
 from .case_strength import StrengthBuilders
 from .case_thermal import OIL_LAW_KEYS, ThermalBuilders
 from .case_valvetrain import CamValvetrainBuilders
-from .errors import CaseKeyError, Problems, format_validation_error
+from .errors import CaseKeyError, Problems, format_validation_error, validation_problems
 from .measured_surface import asperity_law_note, measured_map, measured_roughness
 from .origins import carried_given
 from .paths import Key, parse_path, set_path
@@ -293,12 +293,18 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             "base_dir": Path(base_dir) if base_dir is not None else None,
             "source": Path(source) if source is not None else None,
         }
+        variants = {"cam": CAM_MODELS}
         try:
             return cls.model_validate(data, context=ctx)
         except ValidationError as exc:
-            raise InputError(
-                format_validation_error(exc, cls, source, variants={"cam": CAM_MODELS})
-            ) from None
+            more = range_problems_beside(
+                data,
+                exc,
+                lambda rest: cls.model_validate(rest, context=ctx),
+                lambda e: validation_problems(e, cls, variants),
+            )
+            msg = format_validation_error(exc, cls, source, variants=variants, more=more)
+            raise InputError(msg) from None
 
     def updated(self, changes: dict) -> Case:
         """A new case with some keys changed and everything validated again.
@@ -495,25 +501,20 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
     def surface_set_names(self) -> list[str]:
         return [s.name for s in self.surface_set_configs]
 
-    def _build_set(self, s: SurfaceSetConfig) -> SurfaceSet:
-        cam = Body(self.material(self.cam_config.material))
-        substrate = self.material(s.substrate)
+    def _build_set(self, s: SurfaceSetConfig, materials: dict[str, Material]) -> SurfaceSet:
+        """The surface set ``s`` over the case's built ``materials`` (by key)."""
+        cam = Body(materials[self.cam_config.material])
+        substrate = materials[s.substrate]
         if s.coating is None:
             tappet = Body(substrate)
             label = "uncoated"
-            mat = s.substrate
         else:
             cm = self.materials[s.coating]
             thickness = s.coating_thickness
             assert thickness is not None  # required with a coating (schema validator)
-            tappet = Body(substrate, Coating(E=cm.E, nu=cm.nu, thickness=thickness))
+            tappet = Body(substrate, Coating.of(materials[s.coating], thickness))
             label = f"{cm.label or s.coating} {thickness * 1e6:.3g} µm"
-            mat = s.coating
-        sigma = (
-            s.boundary_shear_coefficient
-            if s.boundary_shear_coefficient is not None
-            else self.materials[mat].boundary_shear_coefficient
-        )
+        sigma, _ = s.boundary_friction(self.materials)
         assert sigma is not None  # required by the case cross-check
         r = s.roughness
         rough = Roughness(

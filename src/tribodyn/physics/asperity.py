@@ -37,6 +37,7 @@ from .limits import (
     GREENWOOD_TRIPP_ORDER,
     ROUGHNESS_RMS,
     SUMMIT_RADIUS,
+    check_fields,
 )
 
 __all__ = ["greenwood_tripp", "greenwood_tripp_derivative", "greenwood_tripp_table", "Roughness"]
@@ -261,13 +262,14 @@ class Roughness:
     law: Any = None
 
     def __post_init__(self):
-        # ranges shared with the case file (physics.limits)
-        for name, limit in (
-            ("asperity_density", ASPERITY_DENSITY),
-            ("rms", ROUGHNESS_RMS),
-            ("summit_radius", SUMMIT_RADIUS),
-        ):
-            object.__setattr__(self, name, limit.check(name, getattr(self, name)))
+        check_fields(  # the case file's roughness is checked here (physics.limits)
+            self,
+            {
+                "asperity_density": ASPERITY_DENSITY,
+                "rms": ROUGHNESS_RMS,
+                "summit_radius": SUMMIT_RADIUS,
+            },
+        )
         check_choice("method", self.method, ("exact", "paper"))
         if self.law is not None and not hasattr(self.law, "pressure_ratio"):
             raise InputError(

@@ -15,9 +15,12 @@ from typing import TypeAlias
 
 from .._validation import InputError
 from . import typical_engine
-from .limits import COATING_THICKNESS, POISSON_RATIO, YOUNGS_MODULUS
+from .limits import COATING_THICKNESS, POISSON_RATIO, YOUNGS_MODULUS, check_fields
 
 __all__ = ["Material", "Coating", "Body", "as_bodies", "reduced_modulus", "STEEL", "DLC", "WCC"]
+
+
+_ELASTIC_LIMITS = {"E": YOUNGS_MODULUS, "nu": POISSON_RATIO}
 
 
 @dataclass(frozen=True)
@@ -34,8 +37,7 @@ class Material:
     nu: float
 
     def __post_init__(self):
-        object.__setattr__(self, "E", YOUNGS_MODULUS.check("E", self.E))
-        object.__setattr__(self, "nu", POISSON_RATIO.check("nu", self.nu))
+        check_fields(self, _ELASTIC_LIMITS)
 
     @property
     def compliance(self) -> float:
@@ -61,8 +63,17 @@ class Coating(Material):
     thickness: float
 
     def __post_init__(self):
-        super().__post_init__()
-        object.__setattr__(self, "thickness", COATING_THICKNESS.check("thickness", self.thickness))
+        check_fields(self, {**_ELASTIC_LIMITS, "thickness": COATING_THICKNESS})
+
+    @classmethod
+    def of(cls, material: Material, thickness: float) -> Coating:
+        """A layer of ``material`` (E, ν checked when it was built), ``thickness`` [m]
+        thick: only the thickness is checked."""
+        layer = object.__new__(cls)
+        for name, value in (("E", material.E), ("nu", material.nu), ("thickness", thickness)):
+            object.__setattr__(layer, name, value)
+        check_fields(layer, {"thickness": COATING_THICKNESS})
+        return layer
 
     @property
     def material(self) -> Material:
