@@ -142,6 +142,34 @@ def test_all_out_of_range_keys_of_a_file_are_reported_in_file_order():
     ]
 
 
+def test_the_schema_problems_and_the_constructors_are_reported_together():
+    data = _paper_data()
+    for key, value in (
+        ("engine.speed_rpm", -5.0),  # the schema's range
+        ("valvetrain.tappet_radius", "wide"),  # the schema's type (the cam needs it)
+        ("lubricant.viscosty", 0.05),  # unknown key
+        ("lubricant.viscosity", 300.0),  # the constructors' ranges
+        ("surface_sets[0].roughness.rms", 1.0),
+        ("surface_sets[0].boundary_shear_strength", -1.0),
+    ):
+        set_dotted(data, key, value)
+    with pytest.raises(InputError) as e:
+        Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    lines = str(e.value).splitlines()
+    assert lines[0] == "invalid case: 6 problems"
+    assert [line.split(":")[0].strip() for line in lines[1:]] == [
+        "engine.speed_rpm",
+        "valvetrain.tappet_radius",
+        "lubricant.viscosty",
+        "lubricant.viscosity",
+        "surface_sets[0].roughness.rms",
+        "surface_sets[0].boundary_shear_strength",
+    ]
+    assert (
+        lines[4] == "  lubricant.viscosity: must be > 6.31499e-05 Pa·s and <= 100 Pa·s (got 300.0)"
+    )
+
+
 def test_loading_checks_each_value_once(monkeypatch):
     """Each material's E, the tolerance, the spring rate, each set's σ and coating
     thickness: one range check each while the paper case loads."""

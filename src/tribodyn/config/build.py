@@ -346,14 +346,14 @@ def range_problems_beside(
     and the range problems (:func:`~tribodyn.config.errors.out_of_range`) of the keys it
     kept are returned; a value's range does not depend on the other keys. ``problems_of``
     turns a ValidationError into (key, problem) lines."""
-    first = problems_of(exc)
     rest = copy.deepcopy(data)
-    for err in exc.errors(include_url=False):
-        _drop(rest, err["loc"])
+    dropped = [_drop(rest, err["loc"]) for err in exc.errors(include_url=False)]
+    if not any(dropped):  # the same data again: nothing new
+        return []
     try:
         validate(rest)
     except ValidationError as again:
-        rejected = {key for key, _ in first}
+        rejected = {key for key, _ in problems_of(exc)}
         return [
             (key, msg)
             for key, msg in problems_of(again)
@@ -366,9 +366,10 @@ def range_problems_beside(
 _RANGE_PROBLEM = re.compile(r"must be [^()]* \(got [^()]*\)")
 
 
-def _drop(data: dict, loc: tuple) -> None:
+def _drop(data: dict, loc: tuple) -> bool:
     """Remove the value at the location ``loc`` of a validation error from ``data`` (a
-    location item that is no key there, the tag of a tagged union, is passed over)."""
+    location item that is no key there, the tag of a tagged union, is passed over);
+    whether there was one."""
     cur: Any = data
     for item in loc[:-1]:
         if isinstance(cur, dict) and item in cur:
@@ -376,9 +377,11 @@ def _drop(data: dict, loc: tuple) -> None:
         elif isinstance(cur, list) and isinstance(item, int) and 0 <= item < len(cur):
             cur = cur[item]
         elif not isinstance(cur, dict):
-            return
-    if loc and isinstance(cur, dict):
-        cur.pop(loc[-1], None)
+            return False
+    return bool(loc) and isinstance(cur, dict) and cur.pop(loc[-1], _NONE) is not _NONE
+
+
+_NONE = object()
 
 
 def _with_friction(options: EHLOptions, surface: SurfaceSet) -> EHLOptions:
