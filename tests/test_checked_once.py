@@ -160,13 +160,13 @@ def test_the_schema_problems_and_the_constructors_are_reported_together():
     assert [line.split(":")[0].strip() for line in lines[1:]] == [
         "engine.speed_rpm",
         "valvetrain.tappet_radius",
-        "lubricant.viscosty",
         "lubricant.viscosity",
+        "lubricant.viscosty",
         "surface_sets[0].roughness.rms",
         "surface_sets[0].boundary_shear_strength",
     ]
     assert (
-        lines[4] == "  lubricant.viscosity: must be > 6.31499e-05 Pa·s and <= 100 Pa·s (got 300.0)"
+        lines[3] == "  lubricant.viscosity: must be > 6.31499e-05 Pa·s and <= 100 Pa·s (got 300.0)"
     )
 
 

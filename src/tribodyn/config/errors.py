@@ -262,10 +262,10 @@ def format_validation_error(
     root : the model class validated; what : how the message names it ("case", "sweep");
     variants : {key: {tag: model}} of tagged unions (the ``[cam]`` types), so that keys
     inside a variant are checked against that variant's fields; more : further
-    (key, problem) lines, placed by their section."""
+    (key, problem) lines, placed by their section (first in it)."""
     lines = validation_problems(exc, root, variants)
     if more:
-        lines = in_file_order(root, lines + more)
+        lines = in_file_order(root, more + lines)
     n = len(lines)
     where = f" {source}" if source is not None else ""
     head = f"invalid {what}{where}: {n} problem{'s' if n != 1 else ''}"
