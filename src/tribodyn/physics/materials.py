@@ -23,6 +23,15 @@ __all__ = ["Material", "Coating", "Body", "as_bodies", "reduced_modulus", "STEEL
 _ELASTIC_LIMITS = {"E": YOUNGS_MODULUS, "nu": POISSON_RATIO}
 
 
+def _of_checked(cls, **values):
+    """An instance of the frozen dataclass ``cls`` with ``values`` that were checked
+    already (by the object they come from): not checked again."""
+    obj = object.__new__(cls)
+    for name, value in values.items():
+        object.__setattr__(obj, name, value)
+    return obj
+
+
 @dataclass(frozen=True)
 class Material:
     """Isotropic linear-elastic material.
@@ -69,15 +78,13 @@ class Coating(Material):
     def of(cls, material: Material, thickness: float) -> Coating:
         """A layer of ``material`` (E, ν checked when it was built), ``thickness`` [m]
         thick: only the thickness is checked."""
-        layer = object.__new__(cls)
-        for name, value in (("E", material.E), ("nu", material.nu), ("thickness", thickness)):
-            object.__setattr__(layer, name, value)
+        layer = _of_checked(cls, E=material.E, nu=material.nu, thickness=thickness)
         check_fields(layer, {"thickness": COATING_THICKNESS})
         return layer
 
     @property
     def material(self) -> Material:
-        return Material(self.E, self.nu)
+        return _of_checked(Material, E=self.E, nu=self.nu)
 
 
 @dataclass(frozen=True)
