@@ -170,6 +170,22 @@ def test_the_schema_problems_and_the_constructors_are_reported_together():
     )
 
 
+def test_the_second_look_builds_no_surface_law(monkeypatch):
+    """With schema problems, the constructors' ranges are checked without computing the
+    sets' surface laws (the typical sets use them): the error comes at once."""
+    from tribodyn.config import case as case_module
+
+    calls = []
+    monkeypatch.setattr(case_module, "measured_roughness", lambda *a: calls.append(a))
+    with pytest.raises(InputError) as e:
+        Case.from_dict({"lubricant": {"viscosity": 1e-5, "viscosty": 0.05}})
+    assert [line.split(":")[0].strip() for line in str(e.value).splitlines()[1:]] == [
+        "lubricant.viscosity",
+        "lubricant.viscosty",
+    ]
+    assert calls == []
+
+
 def test_loading_checks_each_value_once(monkeypatch):
     """Each material's E, the tolerance, the spring rate, each set's σ and coating
     thickness: one range check each while the paper case loads."""

@@ -223,13 +223,15 @@ def build(case: Case) -> BuiltCase:
 
 
 def collect(
-    case: Case, *, materials_ok: bool = True
+    case: Case, *, materials_ok: bool = True, ranges_only: bool = False
 ) -> tuple[BuiltCase | None, list[tuple[str, str]]]:
     """Build every object of ``case``; each constructor's InputError becomes a
     ``(case key, message)`` problem. Returns the BuiltCase (None if any object failed)
     and the problems in the order of the case file's sections. ``materials_ok=False``
     (a surface set names an undefined material): the surface sets are not built; nor is
-    a set whose materials failed, nor the cam if the valvetrain (its tappet) failed."""
+    a set whose materials failed, nor the cam if the valvetrain (its tappet) failed.
+    ``ranges_only``: only the objects whose constructors check the keys' ranges (no surface
+    laws, cam, thermal bodies, strengths), and no BuiltCase."""
     problems: list[tuple[str, str]] = []
     seen: set[tuple[str, str]] = set()
 
@@ -281,13 +283,14 @@ def collect(
         surface = None
         if all(m is None or m in materials for m in (case.cam_config.material, *cfg.materials)):
             keys = {name: f"{where}.{key}" for name, key in SET_KEYS.items()}
-            surface = attempt(where, functools.partial(case._build_set, cfg, materials), keys)
+            make = functools.partial(case._build_set, cfg, materials, not ranges_only)
+            surface = attempt(where, make, keys)
         # the set's friction law with [numerics] (its defaults if [numerics] failed)
         base = options if options is not None else EHLOptions()
         sigma, tau0 = cfg.boundary_friction(case.materials)
         assert sigma is not None  # required by the case cross-check (materials_ok)
         set_options = attempt(where, functools.partial(base.with_boundary_friction, sigma, tau0))
-        if surface is None or options is None:
+        if surface is None or options is None or ranges_only:
             continue
         bodies = None
         if n.thermal and lubricant_ok:
@@ -303,6 +306,8 @@ def collect(
                 wear_coefficient=wear[0] if wear else None,
                 wear_source=wear[1] if wear else "",
             )
+    if ranges_only:
+        return None, in_file_order(type(case), problems)
     material_strengths = attempt(
         "strength", lambda: {k: case.material_strength(k) for k in case.materials}
     )

@@ -209,17 +209,19 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
                             f"required: material {mat!r} has no boundary_shear_coefficient",
                         )
                     )
-            if s.measured_surface is not None and s.measured_surface.topography is not None:
+            m = s.measured_surface
+            if m is not None and m.topography is not None and not ctx.get("ranges_only"):
                 try:  # cheap checks before any computing: the map reads, its σ matches
                     measured_map(s, self._base_dir)
                 except InputError as exc:
                     problems.append((f"{p}.measured_surface.topography", str(exc)))
         # every object built once, its constructor's errors filed under the case keys;
         # the case keeps them (config.build)
-        built, build_problems = collect(self, materials_ok=not problems)
+        ranges_only = bool(ctx.get("ranges_only"))  # (config.build.range_problems_beside)
+        built, build_problems = collect(self, materials_ok=not problems, ranges_only=ranges_only)
         problems += build_problems
         self._built = built
-        problems += self._engine_lobe_problems()
+        problems += [] if ranges_only else self._engine_lobe_problems()
         if problems:
             raise Problems(problems)
         return self
@@ -300,7 +302,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             more = range_problems_beside(
                 data,
                 exc,
-                lambda rest: cls.model_validate(rest, context=ctx),
+                lambda rest: cls.model_validate(rest, context={**ctx, "ranges_only": True}),
                 lambda e: validation_problems(e, cls, variants),
             )
             msg = format_validation_error(exc, cls, source, variants=variants, more=more)
@@ -501,8 +503,11 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
     def surface_set_names(self) -> list[str]:
         return [s.name for s in self.surface_set_configs]
 
-    def _build_set(self, s: SurfaceSetConfig, materials: dict[str, Material]) -> SurfaceSet:
-        """The surface set ``s`` over the case's built ``materials`` (by key)."""
+    def _build_set(
+        self, s: SurfaceSetConfig, materials: dict[str, Material], law: bool = True
+    ) -> SurfaceSet:
+        """The surface set ``s`` over the case's built ``materials`` (by key); ``law=False``:
+        without the surface law of its asperity model (Greenwood–Tripp)."""
         cam = Body(materials[self.cam_config.material])
         substrate = materials[s.substrate]
         if s.coating is None:
@@ -523,7 +528,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             summit_radius=r.summit_radius,
             method=self.numerics.greenwood_tripp,
         )
-        if s.asperity_model != "greenwood_tripp":  # "surface" (default) or "measured"
+        if law and s.asperity_model != "greenwood_tripp":  # "surface" (default), "measured"
             rough = measured_roughness(s, rough, (cam, tappet), self._base_dir)
         return SurfaceSet(
             name=s.name,
