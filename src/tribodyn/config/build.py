@@ -47,6 +47,7 @@ if TYPE_CHECKING:
     from ..valvetrain.tappet_rotation import TappetRotation
     from ..valvetrain.tribology import AnalyticTribology
     from .case import Case, SurfaceSet
+    from .schema import SurfaceSetConfig
 
 __all__ = [
     "BuiltCase",
@@ -229,9 +230,9 @@ def collect(
     ``(case key, message)`` problem. Returns the BuiltCase (None if any object failed)
     and the problems in the order of the case file's sections. ``materials_ok=False``
     (a surface set names an undefined material): the surface sets are not built; nor is
-    a set whose materials failed, nor the cam if the valvetrain (its tappet) failed.
-    ``ranges_only``: only the objects whose constructors check the keys' ranges (no surface
-    laws, cam, thermal bodies, strengths), and no BuiltCase."""
+    a set whose materials failed. First the objects whose constructors check the keys'
+    ranges are built, then (none failed, not ``ranges_only``) the rest: surface laws,
+    thermal bodies, strengths, cam."""
     problems: list[tuple[str, str]] = []
     seen: set[tuple[str, str]] = set()
 
@@ -259,6 +260,7 @@ def collect(
                 seen.add(problem)
         return None
 
+    # 1. the objects whose constructors check the ranges of the case's keys
     n = case.numerics
     thermal_lubricant = lubricant = None
     if case.lubricant_config.datasheet:  # the isothermal oil is the datasheet's at its inlet
@@ -270,51 +272,57 @@ def collect(
     options = attempt("numerics", case._new_ehl_options)
     if n.thermal and not case.lubricant_config.datasheet:
         thermal_lubricant = attempt("lubricant", case._new_thermal_lubricant)
-    lubricant_ok = lubricant is not None and not any(
-        p.split(".")[0] == "lubricant" for p, _ in problems
-    )
     built_materials = {
         k: attempt(f"materials.{k}", functools.partial(case.material, k)) for k in case.materials
     }
     materials = {k: m for k, m in built_materials.items() if m is not None}
-    sets: dict[str, BuiltSet] = {}
+    checked: list[tuple[SurfaceSetConfig, SurfaceSet | None, EHLOptions | None]] = []
     for i, cfg in enumerate(case.surface_set_configs if materials_ok else ()):
         where = f"surface_sets[{i}]"
         surface = None
         if all(m is None or m in materials for m in (case.cam_config.material, *cfg.materials)):
             keys = {name: f"{where}.{key}" for name, key in SET_KEYS.items()}
-            make = functools.partial(case._build_set, cfg, materials, not ranges_only)
-            surface = attempt(where, make, keys)
+            surface = attempt(where, functools.partial(case._build_set, cfg, materials), keys)
         # the set's friction law with [numerics] (its defaults if [numerics] failed)
         base = options if options is not None else EHLOptions()
         sigma, tau0 = cfg.boundary_friction(case.materials)
         assert sigma is not None  # required by the case cross-check (materials_ok)
         set_options = attempt(where, functools.partial(base.with_boundary_friction, sigma, tau0))
-        if surface is None or options is None or ranges_only:
+        checked.append((cfg, surface, set_options))
+    if problems or not materials_ok or ranges_only:
+        return None, in_file_order(type(case), problems)
+    # 2. the rest, built from those: surface laws, thermal bodies, strengths, cam
+    lubricant_ok = lubricant is not None and not any(
+        p.split(".")[0] == "lubricant" for p, _ in problems
+    )
+    sets: dict[str, BuiltSet] = {}
+    for cfg, surface, set_options in checked:
+        assert surface is not None and set_options is not None
+        surface = attempt(
+            f"surface_sets[{cfg.name}]", functools.partial(case._with_surface_law, cfg, surface)
+        )
+        if surface is None:
             continue
         bodies = None
         if n.thermal and lubricant_ok:
             bodies = attempt("materials", functools.partial(case._new_thermal_bodies, surface))
         strengths = attempt("strength", functools.partial(case._new_strengths, surface))
         wear = attempt("strength", functools.partial(case.wear_coefficient, surface))
-        if set_options is not None:
-            sets[cfg.name] = BuiltSet(
-                surface=surface,
-                options=set_options,
-                thermal_bodies=bodies,
-                strengths=strengths or {},
-                wear_coefficient=wear[0] if wear else None,
-                wear_source=wear[1] if wear else "",
-            )
-    if ranges_only:
-        return None, in_file_order(type(case), problems)
+        sets[cfg.name] = BuiltSet(
+            surface=surface,
+            options=set_options,
+            thermal_bodies=bodies,
+            strengths=strengths or {},
+            wear_coefficient=wear[0] if wear else None,
+            wear_source=wear[1] if wear else "",
+        )
     material_strengths = attempt(
         "strength", lambda: {k: case.material_strength(k) for k in case.materials}
     )
     thermal_options = attempt("numerics", case._new_thermal_options) if n.thermal else None
-    cam = attempt("cam", case._build_cam) if valvetrain is not None else None
+    cam = attempt("cam", case._build_cam)
     rotation = attempt("tappet_rotation", functools.partial(case._new_tappet_rotation, cam))
-    if problems or not materials_ok:
+    if problems:
         return None, in_file_order(type(case), problems)
     assert cam is not None and lubricant is not None and valvetrain is not None
     assert rotation is not None

@@ -503,11 +503,9 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
     def surface_set_names(self) -> list[str]:
         return [s.name for s in self.surface_set_configs]
 
-    def _build_set(
-        self, s: SurfaceSetConfig, materials: dict[str, Material], law: bool = True
-    ) -> SurfaceSet:
-        """The surface set ``s`` over the case's built ``materials`` (by key); ``law=False``:
-        without the surface law of its asperity model (Greenwood–Tripp)."""
+    def _build_set(self, s: SurfaceSetConfig, materials: dict[str, Material]) -> SurfaceSet:
+        """The surface set ``s`` over the case's built ``materials`` (by key), with the
+        Greenwood–Tripp roughness (:meth:`_with_surface_law` adds its surface law)."""
         cam = Body(materials[self.cam_config.material])
         substrate = materials[s.substrate]
         if s.coating is None:
@@ -528,8 +526,6 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             summit_radius=r.summit_radius,
             method=self.numerics.greenwood_tripp,
         )
-        if law and s.asperity_model != "greenwood_tripp":  # "surface" (default), "measured"
-            rough = measured_roughness(s, rough, (cam, tappet), self._base_dir)
         return SurfaceSet(
             name=s.name,
             bodies=(cam, tappet),
@@ -540,6 +536,15 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             coating_material=s.coating,
             asperity_law=asperity_law_note(s),
         )
+
+    def _with_surface_law(self, s: SurfaceSetConfig, surface: SurfaceSet) -> SurfaceSet:
+        """``surface`` of ``s`` with the surface law of its asperity model ("surface", the
+        default, or "measured"; Greenwood–Tripp: as it is)."""
+        if s.asperity_model == "greenwood_tripp":
+            return surface
+        assert surface.roughness is not None  # Greenwood–Tripp from _build_set
+        rough = measured_roughness(s, surface.roughness, surface.bodies, self._base_dir)
+        return dataclasses.replace(surface, roughness=rough)
 
 
 def _given_keys(case: Case) -> frozenset[str]:

@@ -22,6 +22,7 @@ off at λ = 2.5; both are clipped at zero here.
 
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -271,10 +272,24 @@ class Roughness:
             },
         )
         check_choice("method", self.method, ("exact", "paper"))
+        self._check_law()
+
+    def _check_law(self) -> None:
         if self.law is not None and not hasattr(self.law, "pressure_ratio"):
             raise InputError(
                 f"law must be a LoadSeparationLaw or None (got {type(self.law).__name__})"
             )
+
+    def with_law(self, law, rms: float | None = None) -> Roughness:
+        """This roughness with the load–separation ``law`` (and the σ ``rms`` [m] of the
+        map it was computed from); only these are checked again."""
+        new = copy.copy(self)
+        object.__setattr__(new, "law", law)
+        if rms is not None:
+            object.__setattr__(new, "rms", rms)
+        check_fields(new, {"rms": ROUGHNESS_RMS} if rms is not None else {})
+        new._check_law()
+        return new
 
     @property
     def asperity_model(self) -> str:
