@@ -139,7 +139,7 @@ def test_oil_outside_its_temperature_range_names_the_inlet_temperature():
     sheet = {k: v for k, v in OILS["5W-20"].items() if k != "description"}
     with pytest.raises(InputError, match=r"^inlet_temperature must be < 58\d\.\d+ K"):
         ThermalLubricant(inlet_temperature=600.0, **sheet)
-    with pytest.raises(InputError, match=r"^viscosity must be <= 100"):
+    with pytest.raises(InputError, match=r"^viscosity must be > 6\.31499e-05 and <= 100 \[Pa·s\]"):
         ThermalLubricant(
             inlet_temperature=300.0,
             viscosity=200.0,

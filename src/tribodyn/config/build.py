@@ -9,26 +9,32 @@ set, its bodies, roughness and boundary-friction law (:class:`~tribodyn.config.S
 its EHL options (ς, τ₀), its thermal bodies and its materials' strengths. The workflow
 reads these objects instead of building them again.
 
-Validating a case builds it (that is how the physics constructors' range checks reach the
-case file's keys): :func:`collect` builds every object, files each constructor's
-:class:`~tribodyn.InputError` under the case key it comes from, and the case keeps the
-result, so ``build(case)`` of a loaded case returns the objects built at validation.
+Validating a case builds it: the physics constructors check the ranges of the keys they
+are given (the schema does not check them again), and :func:`collect` files each
+constructor's :class:`~tribodyn.InputError` under the case key it comes from (a
+:class:`~tribodyn.physics.limits.RangeError` under the key of each argument out of
+range, in the schema's message form). The case keeps the result, so ``build(case)`` of a
+loaded case returns the objects built at validation.
 """
 
 from __future__ import annotations
 
-import dataclasses
+import copy
 import difflib
 import functools
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, TypeVar
 
+from pydantic import ValidationError
+
 from .._validation import InputError
-from .errors import CaseKeyError, Problems
+from ..contact.ehl.options import EHLOptions
+from ..physics.limits import RangeError
+from .errors import CaseKeyError, Problems, in_file_order, out_of_range
 
 if TYPE_CHECKING:
-    from ..contact.ehl import EHLOptions
     from ..contact.ehl.thermal import ThermalOptions
     from ..physics.heat_conduction import ThermalBody
     from ..physics.lubricant import Lubricant
@@ -41,10 +47,29 @@ if TYPE_CHECKING:
     from ..valvetrain.tappet_rotation import TappetRotation
     from ..valvetrain.tribology import AnalyticTribology
     from .case import Case, SurfaceSet
+    from .schema import SurfaceSetConfig
 
-__all__ = ["BuiltCase", "BuiltSet", "CASE_BUILDERS", "as_built", "build", "collect"]
+__all__ = [
+    "BuiltCase",
+    "BuiltSet",
+    "CASE_BUILDERS",
+    "as_built",
+    "build",
+    "collect",
+    "range_problems_beside",
+]
 
 T = TypeVar("T")
+
+#: Constructor arguments whose case key is not ``<section>.<argument>``: of the
+#: valvetrain (absolute keys) and of a surface set's objects (keys within the set).
+VALVETRAIN_KEYS = {"cam_width": "cam.width"}
+SET_KEYS = {
+    "thickness": "coating_thickness",
+    "asperity_density": "roughness.asperity_density",
+    "rms": "roughness.rms",
+    "summit_radius": "roughness.summit_radius",
+}
 
 #: The private constructors of :class:`~tribodyn.config.Case` (its own and its builder
 #: mixins'), called by :func:`collect` and the :class:`BuiltCase`. Everywhere else the
@@ -192,27 +217,43 @@ def build(case: Case) -> BuiltCase:
 
 
 def collect(
-    case: Case, *, materials_ok: bool = True
+    case: Case, *, materials_ok: bool = True, ranges_only: bool = False
 ) -> tuple[BuiltCase | None, list[tuple[str, str]]]:
     """Build every object of ``case``; each constructor's InputError becomes a
     ``(case key, message)`` problem. Returns the BuiltCase (None if any object failed)
     and the problems in the order of the case file's sections. ``materials_ok=False``
-    (a surface set names an undefined material): the surface sets are not built."""
+    (a surface set names an undefined material): the surface sets are not built; nor is
+    a set whose materials failed. First the objects whose constructors check the keys'
+    ranges are built, then (none failed, not ``ranges_only``) the rest: surface laws,
+    thermal bodies, strengths, cam."""
     problems: list[tuple[str, str]] = []
     seen: set[tuple[str, str]] = set()
 
-    def attempt(path: str, make: Callable[[], T]) -> T | None:
+    def attempt(path: str, make: Callable[[], T], keys: dict[str, str] | None = None) -> T | None:
+        """``make()``, or None with its problems filed: a RangeError's arguments under
+        ``keys[argument]`` or ``path.argument``, other errors under ``path``."""
+        found: list[tuple[str, str]]
         try:
             return make()
         except CaseKeyError as exc:  # the key itself (numerics.n, cam.path)
-            problem = (exc.key, str(exc))
+            found = [(exc.key, str(exc))]
+        except RangeError as exc:
+            found = [
+                (
+                    (keys or {}).get(name, f"{path}.{name}"),
+                    out_of_range(lim.constraints(), lim.unit, v),
+                )
+                for name, lim, v in exc.items
+            ]
         except InputError as exc:
-            problem = (path, str(exc))
-        if problem not in seen:
-            problems.append(problem)
-            seen.add(problem)
+            found = [(path, str(exc))]
+        for problem in found:
+            if problem not in seen:
+                problems.append(problem)
+                seen.add(problem)
         return None
 
+    # 1. the objects whose constructors check the ranges of the case's keys
     n = case.numerics
     thermal_lubricant = lubricant = None
     if case.lubricant_config.datasheet:  # the isothermal oil is the datasheet's at its inlet
@@ -220,43 +261,67 @@ def collect(
         lubricant = thermal_lubricant.isothermal() if thermal_lubricant is not None else None
     else:
         lubricant = attempt("lubricant", case._new_lubricant)
-    valvetrain = attempt("valvetrain", case._new_valvetrain_parameters)
+    valvetrain = attempt("valvetrain", case._new_valvetrain_parameters, VALVETRAIN_KEYS)
     options = attempt("numerics", case._new_ehl_options)
     if n.thermal and not case.lubricant_config.datasheet:
         thermal_lubricant = attempt("lubricant", case._new_thermal_lubricant)
-    lubricant_ok = lubricant is not None and not any(p == "lubricant" for p, _ in problems)
+    built_materials = {
+        k: attempt(f"materials.{k}", functools.partial(case._new_material, k))
+        for k in case.materials
+    }
+    materials = {k: m for k, m in built_materials.items() if m is not None}
+    checked: list[tuple[SurfaceSetConfig, SurfaceSet | None, EHLOptions | None]] = []
+    for i, cfg in enumerate(case.surface_set_configs if materials_ok else ()):
+        where = f"surface_sets[{i}]"
+        surface = None
+        if all(m is None or m in materials for m in (case.cam_config.material, *cfg.materials)):
+            keys = {name: f"{where}.{key}" for name, key in SET_KEYS.items()}
+            surface = attempt(where, functools.partial(case._build_set, cfg, materials), keys)
+        # the set's friction law with [numerics] (its defaults if [numerics] failed)
+        base = options if options is not None else EHLOptions()
+        sigma, tau0 = cfg.boundary_friction(case.materials)
+        assert sigma is not None  # required by the case cross-check (materials_ok)
+        set_options = attempt(where, functools.partial(base.with_boundary_friction, sigma, tau0))
+        checked.append((cfg, surface, set_options))
+    if problems or not materials_ok or ranges_only:
+        return None, in_file_order(type(case), problems)
+    # 2. the rest, built from those: surface laws, thermal bodies, strengths, cam
+    lubricant_ok = lubricant is not None and not any(
+        p.split(".")[0] == "lubricant" for p, _ in problems
+    )
     sets: dict[str, BuiltSet] = {}
-    if materials_ok:
-        for cfg in case.surface_set_configs:
-            surface = attempt(f"surface_sets[{cfg.name}]", functools.partial(case._build_set, cfg))
-            if surface is None or options is None:
-                continue
-            bodies = None
-            if n.thermal and lubricant_ok:
-                bodies = attempt("materials", functools.partial(case._new_thermal_bodies, surface))
-            strengths = attempt("strength", functools.partial(case._new_strengths, surface))
-            wear = attempt("strength", functools.partial(case._new_wear_coefficient, surface))
-            sets[cfg.name] = BuiltSet(
-                surface=surface,
-                options=_with_friction(options, surface),
-                thermal_bodies=bodies,
-                strengths=strengths or {},
-                wear_coefficient=wear[0] if wear else None,
-                wear_source=wear[1] if wear else "",
-            )
-    materials = attempt("materials", lambda: {k: case._new_material(k) for k in case.materials})
+    for cfg, surface, set_options in checked:
+        assert surface is not None and set_options is not None
+        surface = attempt(
+            f"surface_sets[{cfg.name}]", functools.partial(case._with_surface_law, cfg, surface)
+        )
+        if surface is None:
+            continue
+        bodies = None
+        if n.thermal and lubricant_ok:
+            bodies = attempt("materials", functools.partial(case._new_thermal_bodies, surface))
+        strengths = attempt("strength", functools.partial(case._new_strengths, surface))
+        wear = attempt("strength", functools.partial(case._new_wear_coefficient, surface))
+        sets[cfg.name] = BuiltSet(
+            surface=surface,
+            options=set_options,
+            thermal_bodies=bodies,
+            strengths=strengths or {},
+            wear_coefficient=wear[0] if wear else None,
+            wear_source=wear[1] if wear else "",
+        )
     material_strengths = attempt(
         "strength", lambda: {k: case._new_material_strength(k) for k in case.materials}
     )
     thermal_options = attempt("numerics", case._new_thermal_options) if n.thermal else None
     cam = attempt("cam", case._build_cam)
     rotation = attempt("tappet_rotation", functools.partial(case._new_tappet_rotation, cam))
-    if problems or not materials_ok:
-        return None, problems
+    if problems:
+        return None, in_file_order(type(case), problems)
     assert cam is not None and lubricant is not None and valvetrain is not None
     assert rotation is not None
     assert options is not None
-    assert materials is not None and material_strengths is not None
+    assert material_strengths is not None
     return (
         BuiltCase(
             case=case,
@@ -276,12 +341,60 @@ def collect(
     )
 
 
+def range_problems_beside(
+    data: dict,
+    exc: ValidationError,
+    validate: Callable[[dict], object],
+    problems_of: Callable[[ValidationError], list[tuple[str, str]]],
+) -> list[tuple[str, str]]:
+    """The out-of-range values the build finds in ``data`` beside the schema's errors
+    ``exc`` (so that a file's problems are reported together): ``data`` without the
+    values the schema rejected (their defaults apply) is validated again (``validate``),
+    and the range problems (:func:`~tribodyn.config.errors.out_of_range`) of the keys it
+    kept are returned; a value's range does not depend on the other keys. ``problems_of``
+    turns a ValidationError into (key, problem) lines."""
+    rest = copy.deepcopy(data)
+    dropped = [_drop(rest, err["loc"]) for err in exc.errors(include_url=False)]
+    if not any(dropped):  # the same data again: nothing new
+        return []
+    try:
+        validate(rest)
+    except ValidationError as again:
+        rejected = {key for key, _ in problems_of(exc)}
+        return [
+            (key, msg)
+            for key, msg in problems_of(again)
+            if key not in rejected and _RANGE_PROBLEM.fullmatch(msg)
+        ]
+    return []
+
+
+#: the message of an out-of-range value (errors.out_of_range)
+_RANGE_PROBLEM = re.compile(r"must be [^()]* \(got [^()]*\)")
+
+
+def _drop(data: dict, loc: tuple) -> bool:
+    """Remove the value at the location ``loc`` of a validation error from ``data`` (a
+    location item that is no key there, the tag of a tagged union, is passed over);
+    whether there was one."""
+    cur: Any = data
+    for item in loc[:-1]:
+        if isinstance(cur, dict) and item in cur:
+            cur = cur[item]
+        elif isinstance(cur, list) and isinstance(item, int) and 0 <= item < len(cur):
+            cur = cur[item]
+        elif not isinstance(cur, dict):
+            return False
+    return bool(loc) and isinstance(cur, dict) and cur.pop(loc[-1], _NONE) is not _NONE
+
+
+_NONE = object()
+
+
 def _with_friction(options: EHLOptions, surface: SurfaceSet) -> EHLOptions:
     """``options`` with the boundary-friction law (ς, τ₀) of ``surface``."""
-    return dataclasses.replace(
-        options,
-        boundary_shear_coefficient=surface.boundary_shear_coefficient,
-        boundary_shear_strength=surface.boundary_shear_strength,
+    return options.with_boundary_friction(
+        surface.boundary_shear_coefficient, surface.boundary_shear_strength
     )
 
 

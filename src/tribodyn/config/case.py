@@ -44,11 +44,11 @@ from ..physics.lubricant import Lubricant
 from ..physics.materials import Body, Coating, Material
 from ..valvetrain.kinematics import rpm_to_cam_speed
 from ..valvetrain.tappet_rotation import TappetRotation
-from .build import collect
+from .build import collect, range_problems_beside
 from .case_strength import StrengthBuilders
 from .case_thermal import OIL_LAW_KEYS, ThermalBuilders
 from .case_valvetrain import CamValvetrainBuilders
-from .errors import CaseKeyError, Problems, format_validation_error
+from .errors import CaseKeyError, Problems, format_validation_error, validation_problems
 from .measured_surface import asperity_law_note, measured_map, measured_roughness
 from .origins import carried_given
 from .paths import Key, parse_path, set_path
@@ -209,17 +209,19 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
                             f"required: material {mat!r} has no boundary_shear_coefficient",
                         )
                     )
-            if s.measured_surface is not None and s.measured_surface.topography is not None:
+            m = s.measured_surface
+            if m is not None and m.topography is not None and not ctx.get("ranges_only"):
                 try:  # cheap checks before any computing: the map reads, its σ matches
                     measured_map(s, self._base_dir)
                 except InputError as exc:
                     problems.append((f"{p}.measured_surface.topography", str(exc)))
         # every object built once, its constructor's errors filed under the case keys;
         # the case keeps them (config.build)
-        built, build_problems = collect(self, materials_ok=not problems)
+        ranges_only = bool(ctx.get("ranges_only"))  # (config.build.range_problems_beside)
+        built, build_problems = collect(self, materials_ok=not problems, ranges_only=ranges_only)
         problems += build_problems
         self._built = built
-        problems += self._engine_lobe_problems()
+        problems += [] if ranges_only else self._engine_lobe_problems()
         if problems:
             raise Problems(problems)
         return self
@@ -293,12 +295,18 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             "base_dir": Path(base_dir) if base_dir is not None else None,
             "source": Path(source) if source is not None else None,
         }
+        variants = {"cam": CAM_MODELS}
         try:
             return cls.model_validate(data, context=ctx)
         except ValidationError as exc:
-            raise InputError(
-                format_validation_error(exc, cls, source, variants={"cam": CAM_MODELS})
-            ) from None
+            more = range_problems_beside(
+                data,
+                exc,
+                lambda rest: cls.model_validate(rest, context={**ctx, "ranges_only": True}),
+                lambda e: validation_problems(e, cls, variants),
+            )
+            msg = format_validation_error(exc, cls, source, variants=variants, more=more)
+            raise InputError(msg) from None
 
     def updated(self, changes: dict) -> Case:
         """A new case with some keys changed and everything validated again.
@@ -474,26 +482,21 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
     def surface_set_names(self) -> list[str]:
         return [s.name for s in self.surface_set_configs]
 
-    def _build_set(self, s: SurfaceSetConfig) -> SurfaceSet:
-        """The :class:`SurfaceSet` of one ``[[surface_sets]]`` entry."""
-        cam = Body(self._new_material(self.cam_config.material))
-        substrate = self._new_material(s.substrate)
+    def _build_set(self, s: SurfaceSetConfig, materials: dict[str, Material]) -> SurfaceSet:
+        """The surface set ``s`` over the case's built ``materials`` (by key), with the
+        Greenwood–Tripp roughness (:meth:`_with_surface_law` adds its surface law)."""
+        cam = Body(materials[self.cam_config.material])
+        substrate = materials[s.substrate]
         if s.coating is None:
             tappet = Body(substrate)
             label = "uncoated"
-            mat = s.substrate
         else:
             cm = self.materials[s.coating]
             thickness = s.coating_thickness
             assert thickness is not None  # required with a coating (schema validator)
-            tappet = Body(substrate, Coating(E=cm.E, nu=cm.nu, thickness=thickness))
+            tappet = Body(substrate, Coating.of(materials[s.coating], thickness))
             label = f"{cm.label or s.coating} {thickness * 1e6:.3g} µm"
-            mat = s.coating
-        sigma = (
-            s.boundary_shear_coefficient
-            if s.boundary_shear_coefficient is not None
-            else self.materials[mat].boundary_shear_coefficient
-        )
+        sigma, _ = s.boundary_friction(self.materials)
         assert sigma is not None  # required by the case cross-check
         r = s.roughness
         rough = Roughness(
@@ -502,8 +505,6 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             summit_radius=r.summit_radius,
             method=self.numerics.greenwood_tripp,
         )
-        if s.asperity_model != "greenwood_tripp":  # "surface" (default) or "measured"
-            rough = measured_roughness(s, rough, (cam, tappet), self._base_dir)
         return SurfaceSet(
             name=s.name,
             bodies=(cam, tappet),
@@ -514,6 +515,15 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             coating_material=s.coating,
             asperity_law=asperity_law_note(s),
         )
+
+    def _with_surface_law(self, s: SurfaceSetConfig, surface: SurfaceSet) -> SurfaceSet:
+        """``surface`` of ``s`` with the surface law of its asperity model ("surface", the
+        default, or "measured"; Greenwood–Tripp: as it is)."""
+        if s.asperity_model == "greenwood_tripp":
+            return surface
+        assert surface.roughness is not None  # Greenwood–Tripp from _build_set
+        rough = measured_roughness(s, surface.roughness, surface.bodies, self._base_dir)
+        return dataclasses.replace(surface, roughness=rough)
 
 
 def _given_keys(case: Case) -> frozenset[str]:

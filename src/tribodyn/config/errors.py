@@ -17,8 +17,17 @@ from pydantic import BaseModel, ValidationError
 
 from .._validation import InputError
 from .paths import keyed_fields, strip_optional
+from .schema_fields import field_bounds
 
-__all__ = ["Problems", "CamTableError", "CaseKeyError", "format_validation_error"]
+__all__ = [
+    "Problems",
+    "CamTableError",
+    "CaseKeyError",
+    "format_validation_error",
+    "in_file_order",
+    "out_of_range",
+    "validation_problems",
+]
 
 
 class Problems(ValueError):
@@ -49,19 +58,16 @@ def _unit_of(fi) -> str:
     return extra.get("unit", "") if isinstance(extra, dict) else ""
 
 
-def _bounds_text(fi) -> str | None:
-    """'> 0 m', '>= 1e+06 Pa and <= 2e+12 Pa', from the field's constraints."""
-    if fi is None:
-        return None
-    unit = _unit_of(fi)
+def range_text(bounds: Mapping[str, float], unit: str) -> str:
+    """'> 0 m and <= 0.01 m' of ``{"gt": 0, "le": 0.01}`` (crank or cam degrees: °)."""
     u = f" {unit}" if unit and not unit.startswith("deg") else ("°" if unit else "")
-    parts = []
-    for m in fi.metadata:
-        for attr, sym in (("gt", ">"), ("ge", ">="), ("lt", "<"), ("le", "<=")):
-            v = getattr(m, attr, None)
-            if v is not None:
-                parts.append(f"{sym} {_num(v)}{u}")
-    return " and ".join(parts) if parts else None
+    symbols = (("gt", ">"), ("ge", ">="), ("lt", "<"), ("le", "<="))
+    return " and ".join(f"{sym} {_num(bounds[k])}{u}" for k, sym in symbols if k in bounds)
+
+
+def out_of_range(bounds: Mapping[str, float], unit: str, value) -> str:
+    """The message of a case key whose value is outside its range."""
+    return f"must be {range_text(bounds, unit)} (got {_given(value)})"
 
 
 def _num(v) -> str:
@@ -147,8 +153,9 @@ def _error_lines(err: Mapping[str, Any], root, variants) -> list[tuple[str, str]
     path, fi, owner = _resolve_loc(root, loc, variants)
     got = f" (got {_given(inp)})"
     if typ in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
-        b = _bounds_text(fi) or err["msg"]
-        return [(path, f"must be {b}{got}")]
+        if fi is not None and field_bounds(fi):
+            return [(path, out_of_range(field_bounds(fi), _unit_of(fi), inp))]
+        return [(path, f"must be {err['msg']}{got}")]
     if typ == "extra_forbidden":
         allowed = _allowed_keys(owner)
         hint = difflib.get_close_matches(str(loc[-1]), allowed, n=1)
@@ -218,6 +225,29 @@ def _unit_hint(fi) -> str:
     return f" [{u}]" if u else ""
 
 
+def validation_problems(
+    exc: ValidationError, root: type[BaseModel], variants: dict | None = None
+) -> list[tuple[str, str]]:
+    """(dotted key, problem) of each error of ``exc`` (arguments: :func:`format_validation_error`)."""
+    return [
+        line
+        for err in exc.errors(include_url=False)
+        for line in _error_lines(err, root, variants or {})
+    ]
+
+
+def in_file_order(root: type[BaseModel], problems: list[tuple[str, str]]) -> list[tuple[str, str]]:
+    """``problems`` sorted by the section of their key in the order of ``root``'s
+    sections (stable: within a section, as given)."""
+    order = [fi.alias or k for k, fi in root.model_fields.items()]
+
+    def rank(problem: tuple[str, str]) -> int:
+        section = re.split(r"[.\[]", problem[0], maxsplit=1)[0]
+        return order.index(section) if section in order else len(order)
+
+    return sorted(problems, key=rank)
+
+
 def format_validation_error(
     exc: ValidationError,
     root: type[BaseModel],
@@ -225,16 +255,17 @@ def format_validation_error(
     *,
     what: str = "case",
     variants: dict | None = None,
+    more: list[tuple[str, str]] | None = None,
 ) -> str:
     """Readable multi-line message: one ``dotted.key: problem (got value)`` per line.
 
     root : the model class validated; what : how the message names it ("case", "sweep");
     variants : {key: {tag: model}} of tagged unions (the ``[cam]`` types), so that keys
-    inside a variant are checked against that variant's fields."""
-    variants = variants or {}
-    lines: list[tuple[str, str]] = []
-    for err in exc.errors(include_url=False):
-        lines.extend(_error_lines(err, root, variants))
+    inside a variant are checked against that variant's fields; more : further
+    (key, problem) lines, placed by their section (first in it)."""
+    lines = validation_problems(exc, root, variants)
+    if more:
+        lines = in_file_order(root, more + lines)
     n = len(lines)
     where = f" {source}" if source is not None else ""
     head = f"invalid {what}{where}: {n} problem{'s' if n != 1 else ''}"

@@ -5,7 +5,6 @@ or a self-affine spectrum; absent: the typical spectrum of :mod:`tribodyn.physic
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -133,12 +132,12 @@ def measured_roughness(s, rough: Roughness, bodies, base_dir: Path) -> Roughness
                 unit=m.unit,
                 physical_sizes=m.physical_sizes,
             )
-            return dataclasses.replace(rough, rms=float(z.std()), law=law)
+            return rough.with_law(law, rms=float(z.std()))
         assert m.hurst is not None and m.short_cutoff is not None
         assert m.long_cutoff is not None
         law = synthetic_load_separation(
             rough.rms, m.hurst, m.short_cutoff, m.long_cutoff, e_s, m.hardness, m.grid, m.seed
         )
-        return dataclasses.replace(rough, law=law)
+        return rough.with_law(law)
     except InputError as e:
         raise InputError(f"{where}: {e}") from None

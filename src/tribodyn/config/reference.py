@@ -1,8 +1,8 @@
 """The case-file and sweep-file key reference, read from the pydantic schema.
 
 :func:`key_reference` walks a schema model and lists every key a file may contain, with its
-section, type, default, unit, allowed range and description, exactly as the validator
-checks them. The documentation site renders these rows, so the reference cannot drift
+section, type, default, unit, allowed range and description, exactly as the case is
+checked (by the schema, or by the physics constructor a key is given to). The documentation site renders these rows, so the reference cannot drift
 from the code.
 """
 
@@ -17,6 +17,8 @@ from typing import Any, Literal
 import annotated_types as at
 from pydantic import BaseModel
 from pydantic_core import PydanticUndefined
+
+from .schema_fields import field_bounds
 
 __all__ = ["KeyRow", "key_reference", "case_reference", "sweep_reference"]
 
@@ -100,11 +102,10 @@ def _fmt(v: Any) -> str:
 
 
 def _allowed(info: Any) -> str:
-    parts = []
+    bounds = field_bounds(info)  # checked by the schema or by the constructor it sets
+    ops = (("ge", "≥"), ("gt", ">"), ("le", "≤"), ("lt", "<"))
+    parts = [f"{op} {_fmt(bounds[attr])}" for attr, op in ops if attr in bounds]
     for m in info.metadata:
-        for attr, op in (("ge", "≥"), ("gt", ">"), ("le", "≤"), ("lt", "<")):
-            if isinstance(m, getattr(at, attr.capitalize())):
-                parts.append(f"{op} {_fmt(getattr(m, attr))}")
         if isinstance(m, at.MinLen) and m.min_length:
             parts.append(f"length ≥ {m.min_length}")
         if isinstance(m, at.MaxLen):

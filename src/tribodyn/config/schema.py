@@ -29,7 +29,7 @@ from ..valvetrain.dynamics import simulate_valvetrain
 from ..valvetrain.tappet_rotation import TappetRotation
 from ..valvetrain.tribology import SUPPLY_FILM, SUPPLY_FILM_MAX
 from .errors import CaseKeyError, Problems
-from .schema_fields import _NAME_PATTERN, Section, _lim, _q, defaults_of
+from .schema_fields import _NAME_PATTERN, Section, _arg, _lim, _q, defaults_of
 from .schema_surfaces import (
     LubricantConfig,
     MaterialConfig,
@@ -281,36 +281,36 @@ class Numerics(Section):
         gt=0.0,
         le=1e4,
     )
-    inlet: float = _lim(
+    inlet: float = _arg(
         _EHL_DEFAULTS["inlet"],
         L.DOMAIN_HALF_WIDTHS,
         "EHL domain upstream of the centre, in Hertz half-widths",
     )
-    outlet: float = _lim(
+    outlet: float = _arg(
         _EHL_DEFAULTS["outlet"],
         L.DOMAIN_HALF_WIDTHS,
         "EHL domain downstream of the centre, in Hertz half-widths",
     )
-    inlet_truncation: float = _lim(
+    inlet_truncation: float = _arg(
         _EHL_DEFAULTS["inlet_truncation"],
         L.INLET_TRUNCATION,
         "EHL domain upstream at least as far as the cut-off inlet "
         "loses this share of the load (far-field estimate)",
     )
-    inlet_rigid: float = _lim(
+    inlet_rigid: float = _arg(
         _EHL_DEFAULTS["inlet_rigid"],
         L.DOMAIN_RIGID_LENGTHS,
         "EHL domain upstream at least this many rigid inlet lengths √(2R h) (squeeze films)",
     )
-    outlet_rigid: float = _lim(
+    outlet_rigid: float = _arg(
         _EHL_DEFAULTS["outlet_rigid"],
         L.DOMAIN_RIGID_LENGTHS,
         "EHL domain downstream, in rigid inlet lengths",
     )
-    tol: float = _lim(
+    tol: float = _arg(
         _EHL_DEFAULTS["tol"], L.NEWTON_TOL, "EHL Newton tolerance (scaled update and residual)"
     )
-    max_iter: int = _lim(
+    max_iter: int = _arg(
         _EHL_DEFAULTS["max_iter"], L.NEWTON_MAX_ITER, "EHL Newton iterations per solve"
     )
     time_order: Literal[1, 2] = _q(

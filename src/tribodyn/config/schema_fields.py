@@ -2,6 +2,12 @@
 rejected) and its field helpers: each field records its unit, allowed range and a
 one-line description (shared limits: :mod:`tribodyn.physics.limits`); a field that sets a
 constructor's parameter takes its default from there (:func:`defaults_of`).
+
+A value is range-checked once, where it enters: a field given to a physics constructor
+that checks its :class:`~tribodyn.physics.limits.Limit` (:func:`_arg`) records the range
+for the docs and messages only, and building the case (:func:`tribodyn.config.build.collect`)
+files the constructor's error under the key; any other field is checked here (:func:`_lim`,
+:func:`_q` with bounds).
 """
 
 from __future__ import annotations
@@ -15,11 +21,22 @@ from pydantic import BaseModel, ConfigDict, Field
 from ..physics import limits as L
 
 _NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9_.+\-]*$"
+_BOUNDS = ("gt", "ge", "lt", "le")
 
 
 def _q(default: Any, unit: str, doc: str, **constraints) -> Any:
     """A field with its unit recorded (used in error messages and the docs)."""
     return Field(default, description=doc, json_schema_extra={"unit": unit}, **constraints)
+
+
+def field_bounds(fi: Any) -> dict[str, float]:
+    """The allowed range of a field as ``{"gt": …, "le": …}``: the bounds the schema
+    checks, else those of the constructor that checks it (:func:`_arg`); {} if none."""
+    extra = fi.json_schema_extra if isinstance(fi.json_schema_extra, dict) else {}
+    checked = {
+        k: getattr(m, k) for m in fi.metadata for k in _BOUNDS if getattr(m, k, None) is not None
+    }
+    return checked or dict(extra.get("range") or {})
 
 
 def defaults_of(obj: Callable) -> dict[str, Any]:
@@ -30,9 +47,16 @@ def defaults_of(obj: Callable) -> dict[str, Any]:
 
 
 def _lim(default: Any, limit: L.Limit, doc: str) -> Any:
-    """A field whose unit and range are a shared limit of :mod:`tribodyn.physics.limits`
-    (the physics constructors check the same range)."""
-    return _q(default, limit.unit, doc, **limit.constraints())
+    """A field whose unit and range are a shared limit of :mod:`tribodyn.physics.limits`,
+    checked here: no constructor of the build checks it."""
+    return _arg(default, limit, doc, **limit.constraints())
+
+
+def _arg(default: Any, limit: L.Limit, doc: str, **constraints) -> Any:
+    """A field whose unit and range are a shared limit, given to a physics constructor
+    that checks it (the range is recorded, not checked here)."""
+    extra: dict[str, Any] = {"unit": limit.unit, "range": limit.constraints()}
+    return Field(default, description=doc, json_schema_extra=extra, **constraints)
 
 
 class Section(BaseModel):

@@ -17,7 +17,7 @@ from ..physics.strength import TYPICAL_STRENGTH
 from ..physics.thermal_oil import ThermalLubricant
 from ..topography.load_separation import synthetic_load_separation
 from .errors import Problems
-from .schema_fields import _NAME_PATTERN, Section, _lim, _q, defaults_of
+from .schema_fields import _NAME_PATTERN, Section, _arg, _lim, _q, defaults_of
 
 #: the defaults of the constructors the sections set: the one source of theirs
 _OIL_DEFAULTS = defaults_of(ThermalLubricant)
@@ -27,26 +27,26 @@ _SURFACE_LAW_DEFAULTS = defaults_of(synthetic_load_separation)
 class LubricantConfig(Section):
     """``[lubricant]``: :class:`~tribodyn.Lubricant` (Roelands + Dowson–Higginson)."""
 
-    viscosity: float = _lim(
+    viscosity: float = _arg(
         typical.VISCOSITY.value,
         L.VISCOSITY,
         "dynamic viscosity μ₀ at ambient pressure (Roelands needs μ₀ > exp(−9.67))",
     )
-    pressure_viscosity: float = _lim(
+    pressure_viscosity: float = _arg(
         typical.PRESSURE_VISCOSITY.value,
         L.PRESSURE_VISCOSITY,
         "pressure–viscosity coefficient α",
     )
-    density: float = _lim(typical.DENSITY.value, L.DENSITY, "density ρ₀ at ambient pressure")
-    eyring_stress: float = _lim(
+    density: float = _arg(typical.DENSITY.value, L.DENSITY, "density ρ₀ at ambient pressure")
+    eyring_stress: float = _arg(
         typical.EYRING_STRESS.value, L.EYRING_STRESS, "Eyring stress τ_E (typical)"
     )
-    limiting_shear_coefficient: float = _lim(
+    limiting_shear_coefficient: float = _arg(
         typical.LIMITING_SHEAR_COEFFICIENT.value,
         L.LIMITING_SHEAR_COEFFICIENT,
         "pressure slope Λ of the limiting shear stress τ_L = τ_L0 + Λ p",
     )
-    limiting_shear_stress: float = _lim(
+    limiting_shear_stress: float = _arg(
         typical.LIMITING_SHEAR_STRESS.value,
         L.LIMITING_SHEAR_STRESS,
         "intercept τ_L0 of the limiting shear stress (typical: 0)",
@@ -154,8 +154,8 @@ class LubricantConfig(Section):
 class MaterialConfig(Section):
     """``[materials.<name>]``: an isotropic elastic material (substrate or coating)."""
 
-    E: float = _lim(..., L.YOUNGS_MODULUS, "Young's modulus")
-    nu: float = _lim(..., L.POISSON_RATIO, "Poisson's ratio")
+    E: float = _arg(..., L.YOUNGS_MODULUS, "Young's modulus")
+    nu: float = _arg(..., L.POISSON_RATIO, "Poisson's ratio")
     boundary_shear_coefficient: float | None = _lim(
         None,
         L.BOUNDARY_SHEAR_COEFFICIENT,
@@ -228,9 +228,9 @@ class RoughnessConfig(Section):
     scales every asperity law; η and β are Greenwood–Tripp's (``asperity_model =
     "greenwood_tripp"``) and otherwise only describe the summits."""
 
-    asperity_density: float = _lim(..., L.ASPERITY_DENSITY, "summit density η (the paper's ζ)")
-    rms: float = _lim(..., L.ROUGHNESS_RMS, "composite RMS roughness σ")
-    summit_radius: float = _lim(..., L.SUMMIT_RADIUS, "mean summit radius β")
+    asperity_density: float = _arg(..., L.ASPERITY_DENSITY, "summit density η (the paper's ζ)")
+    rms: float = _arg(..., L.ROUGHNESS_RMS, "composite RMS roughness σ")
+    summit_radius: float = _arg(..., L.SUMMIT_RADIUS, "mean summit radius β")
 
 
 #: Length units of ``measured_surface.unit`` (all are SurfaceTopography length units).
@@ -343,7 +343,7 @@ class SurfaceSetConfig(Section):
         "coating material on the tappet (a key of [materials]); absent: uncoated",
         min_length=1,
     )
-    coating_thickness: float | None = _lim(
+    coating_thickness: float | None = _arg(
         None, L.COATING_THICKNESS, "coating thickness (required with a coating)"
     )
     substrate: str = _q(
@@ -366,16 +366,30 @@ class SurfaceSetConfig(Section):
         'the surface of the surface law (asperity_model "surface" or "measured"); '
         "absent: a self-affine surface with the typical spectrum",
     )
-    boundary_shear_coefficient: float | None = _lim(
+    boundary_shear_coefficient: float | None = _arg(
         None,
         L.BOUNDARY_SHEAR_COEFFICIENT,
         "ς of the pair; absent: the coating's (or the substrate's if uncoated)",
     )
-    boundary_shear_strength: float = _lim(
+    boundary_shear_strength: float = _arg(
         typical.BOUNDARY_SHEAR_STRENGTH.value,  # ς is then a measured boundary μ_b
         L.BOUNDARY_SHEAR_STRENGTH,
         "τ₀ of the boundary shear law τ = τ₀ + ς p_a (Eq. 17)",
     )
+
+    @property
+    def materials(self) -> tuple[str, ...]:
+        """The keys of ``[materials]`` the tappet is made of (substrate, coating)."""
+        return (self.substrate,) if self.coating is None else (self.substrate, self.coating)
+
+    def boundary_friction(self, materials: dict[str, MaterialConfig]) -> tuple[float | None, float]:
+        """(ς, τ₀) of the boundary shear law (Eq. 17) of the pair: its own ς, else that of
+        its surface material in ``materials`` (the coating, or the substrate if uncoated;
+        None if neither gives one)."""
+        sigma = self.boundary_shear_coefficient
+        if sigma is None:
+            sigma = materials[self.coating or self.substrate].boundary_shear_coefficient
+        return sigma, self.boundary_shear_strength
 
     @model_validator(mode="before")
     @classmethod

@@ -22,7 +22,7 @@ from ..valvetrain.flexible import TappetGeometry, ValveGeometry
 from ..valvetrain.parameters import ValvetrainParameters
 from ..valvetrain.spring import HelicalSpring
 from .errors import Problems
-from .schema_fields import Section, _lim, _q, defaults_of
+from .schema_fields import Section, _arg, _q, defaults_of
 
 #: the defaults of the constructors the sections set: the one source of theirs
 _VT_DEFAULTS = defaults_of(ValvetrainParameters)
@@ -42,7 +42,7 @@ class _CamBase(Section):
     base_radius: float = _q(
         typical_engine.CAM_BASE_RADIUS.value, "m", "base-circle radius r_b", gt=0.0, lt=1.0
     )
-    width: float = _lim(
+    width: float = _arg(
         typical_engine.CAM_WIDTH.value, L.LENGTH_BELOW_1M, "cam width (axial contact length)"
     )
 
@@ -335,70 +335,70 @@ class Valvetrain(Section):
         None, "", "camshaft compliance ([valvetrain.camshaft]; absent: rigid)"
     )
 
-    valve_mass: float = _lim(_VT_DEFAULTS["valve_mass"], L.MASS, "valve + retainer + collets")
-    tappet_mass: float = _lim(_VT_DEFAULTS["tappet_mass"], L.MASS, "flat (bucket) tappet")
-    spring_mass: float = _lim(_VT_DEFAULTS["spring_mass"], L.MASS, "active valve-spring mass")
-    spring_rate: float = _lim(_VT_DEFAULTS["spring_rate"], L.SPRING_RATE, "valve-spring rate")
-    spring_preload: float = _lim(
+    valve_mass: float = _arg(_VT_DEFAULTS["valve_mass"], L.MASS, "valve + retainer + collets")
+    tappet_mass: float = _arg(_VT_DEFAULTS["tappet_mass"], L.MASS, "flat (bucket) tappet")
+    spring_mass: float = _arg(_VT_DEFAULTS["spring_mass"], L.MASS, "active valve-spring mass")
+    spring_rate: float = _arg(_VT_DEFAULTS["spring_rate"], L.SPRING_RATE, "valve-spring rate")
+    spring_preload: float = _arg(
         _VT_DEFAULTS["spring_preload"], L.SPRING_PRELOAD, "installed spring load (valve closed)"
     )
-    spring_masses: int = _lim(
+    spring_masses: int = _arg(
         _VT_DEFAULTS["spring_masses"],
         L.SPRING_MASSES,
         "lumped coil masses of the spring model (0: massless spring)",
     )
-    spring_damping_ratio: float = _lim(
+    spring_damping_ratio: float = _arg(
         _VT_DEFAULTS["spring_damping_ratio"],
         L.SPRING_DAMPING_RATIO,
         "damping ratio of the first surge mode",
     )
-    contact_stiffness: float | None = _lim(
+    contact_stiffness: float | None = _arg(
         None, L.STIFFNESS, "linear cam–tappet contact stiffness (absent: Palmgren line-contact law)"
     )
-    contact_modulus: float = _lim(
+    contact_modulus: float = _arg(
         _VT_DEFAULTS["contact_modulus"],
         L.CONTACT_MODULUS,
         "E' of the cam/tappet pair for the Palmgren law",
     )
-    contact_damping: float = _lim(
+    contact_damping: float = _arg(
         _VT_DEFAULTS["contact_damping"], L.DAMPING, "cam–tappet contact damping"
     )
-    camshaft_stiffness: float | None = _lim(
+    camshaft_stiffness: float | None = _arg(
         None, L.STIFFNESS, "camshaft/bearing support stiffness in series (absent: rigid)"
     )
-    tappet_valve_stiffness: float = _lim(
+    tappet_valve_stiffness: float = _arg(
         _VT_DEFAULTS["tappet_valve_stiffness"], L.STIFFNESS, "bucket crown + shim + valve tip"
     )
-    tappet_valve_damping: float = _lim(
+    tappet_valve_damping: float = _arg(
         _VT_DEFAULTS["tappet_valve_damping"], L.DAMPING, "tappet–valve damping"
     )
-    lash: float = _lim(_VT_DEFAULTS["lash"], L.LASH, "tappet–valve clearance on the base circle")
-    seat_stiffness: float = _lim(
+    lash: float = _arg(_VT_DEFAULTS["lash"], L.LASH, "tappet–valve clearance on the base circle")
+    seat_stiffness: float = _arg(
         _VT_DEFAULTS["seat_stiffness"], L.STIFFNESS, "valve stem + seat insert"
     )
-    seat_damping: float = _lim(_VT_DEFAULTS["seat_damping"], L.DAMPING, "valve-seat damping")
-    spring_seat_stiffness: float = _lim(
+    seat_damping: float = _arg(_VT_DEFAULTS["seat_damping"], L.DAMPING, "valve-seat damping")
+    spring_seat_stiffness: float = _arg(
         _VT_DEFAULTS["spring_seat_stiffness"], L.STIFFNESS, "retainer–spring seating"
     )
-    spring_support_stiffness: float = _lim(
+    spring_support_stiffness: float = _arg(
         _VT_DEFAULTS["spring_support_stiffness"], L.STIFFNESS, "head–spring seating"
     )
-    damping_force_ramp: float = _lim(
+    damping_force_ramp: float = _arg(
         _VT_DEFAULTS["damping_force_ramp"],
         L.DAMPING_FORCE_RAMP,
         "elastic force over which unilateral damping phases in",
     )
-    bore_friction_coefficient: float = _lim(
+    bore_friction_coefficient: float = _arg(
         _VT_DEFAULTS["bore_friction_coefficient"],
         L.BORE_FRICTION_COEFFICIENT,
         "friction coefficient of the tappet in its bore",
     )
-    bore_friction_velocity: float = _lim(
+    bore_friction_velocity: float = _arg(
         _VT_DEFAULTS["bore_friction_velocity"],
         L.BORE_FRICTION_VELOCITY,
         "regularisation velocity of the bore friction",
     )
-    tappet_radius: float = _lim(
+    tappet_radius: float = _arg(
         _VT_DEFAULTS["tappet_radius"],
         L.LENGTH_BELOW_1M,
         "radius of the tappet face (max contact offset must stay below)",

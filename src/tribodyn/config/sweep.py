@@ -38,6 +38,7 @@ from .case import Case, bundled_cases, load_case, to_toml
 from .errors import Problems, format_validation_error
 from .paths import Key, PathError, parse_path, schema_field, set_path
 from .schema import CAM_MODELS, Section, _q
+from .schema_fields import field_bounds
 from .tomlfile import TomlFile, check_nesting, file_or_bundled, is_bundled_name
 
 __all__ = [
@@ -523,12 +524,7 @@ def _values_to_check(fi, values) -> list[int]:
     if n <= MAX_VALIDATED_VALUES:
         return list(range(n))
     spread = {round(k * (n - 1) / (MAX_VALIDATED_VALUES - 1)) for k in range(MAX_VALIDATED_VALUES)}
-    bounds = [
-        (attr, getattr(m, attr))
-        for m in getattr(fi, "metadata", [])
-        for attr in ("gt", "ge", "lt", "le")
-        if getattr(m, attr, None) is not None
-    ]
+    bounds = list(field_bounds(fi).items())
     outside: list[int] = []
     for j, v in enumerate(values):
         if len(outside) > MAX_REPORTED_VALUES:

@@ -22,6 +22,7 @@ off at λ = 2.5; both are clipped at zero here.
 
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -37,6 +38,7 @@ from .limits import (
     GREENWOOD_TRIPP_ORDER,
     ROUGHNESS_RMS,
     SUMMIT_RADIUS,
+    check_fields,
 )
 
 __all__ = ["greenwood_tripp", "greenwood_tripp_derivative", "greenwood_tripp_table", "Roughness"]
@@ -261,18 +263,33 @@ class Roughness:
     law: Any = None
 
     def __post_init__(self):
-        # ranges shared with the case file (physics.limits)
-        for name, limit in (
-            ("asperity_density", ASPERITY_DENSITY),
-            ("rms", ROUGHNESS_RMS),
-            ("summit_radius", SUMMIT_RADIUS),
-        ):
-            object.__setattr__(self, name, limit.check(name, getattr(self, name)))
+        check_fields(  # the case file's roughness is checked here (physics.limits)
+            self,
+            {
+                "asperity_density": ASPERITY_DENSITY,
+                "rms": ROUGHNESS_RMS,
+                "summit_radius": SUMMIT_RADIUS,
+            },
+        )
         check_choice("method", self.method, ("exact", "paper"))
+        self._check_law()
+
+    def _check_law(self) -> None:
         if self.law is not None and not hasattr(self.law, "pressure_ratio"):
             raise InputError(
                 f"law must be a LoadSeparationLaw or None (got {type(self.law).__name__})"
             )
+
+    def with_law(self, law, rms: float | None = None) -> Roughness:
+        """This roughness with the load–separation ``law`` (and the σ ``rms`` [m] of the
+        map it was computed from); only these are checked again."""
+        new = copy.copy(self)
+        object.__setattr__(new, "law", law)
+        if rms is not None:
+            object.__setattr__(new, "rms", rms)
+        check_fields(new, {"rms": ROUGHNESS_RMS} if rms is not None else {})
+        new._check_law()
+        return new
 
     @property
     def asperity_model(self) -> str:

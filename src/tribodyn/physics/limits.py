@@ -2,10 +2,11 @@
 
 The constructors of the physics objects (:class:`~tribodyn.Material`,
 :class:`~tribodyn.Lubricant`, :class:`~tribodyn.Roughness`, …), the solver options and the
-valvetrain parameters check their arguments against these limits, and the case-file
-schema (``config/schema.py``) builds its field constraints from the same objects. A value
-a case file rejects is therefore rejected by the Python API too, with the same range and
-unit in the message.
+valvetrain parameters check their arguments against these limits. Each value is checked
+once, where it enters: a case-file key passed to such a constructor is checked there (its
+:class:`RangeError` names the argument; the case names the key), a key no constructor
+checks is checked by the case-file schema (``config/schema_fields.py``); both describe the
+range from the same :class:`Limit`.
 
 The ranges are wide: they exclude what is physically meaningless or outside what the
 models describe, not unusual designs. Each limit says why (``why``); docs/case-files.md
@@ -22,6 +23,8 @@ from .._validation import InputError, _fmt, check_int, check_real
 
 __all__ = [
     "Limit",
+    "RangeError",
+    "check_fields",
     "ROELANDS_MU_INF",
     "YOUNGS_MODULUS",
     "POISSON_RATIO",
@@ -127,21 +130,50 @@ class Limit:
     def check(self, name: str, value):
         """``value`` as float (int if ``integer``) if it is a finite number inside the
         range, else :class:`~tribodyn.InputError` naming ``name``, the range and the value,
-        e.g. ``rms must be > 0 and < 0.0001 [m] (got 1)``."""
-        u = f" [{self.unit}]" if self.unit else ""
-        what = "an integer " if self.integer else ""
+        e.g. ``rms must be > 0 and < 0.0001 [m] (got 1)`` (a :class:`RangeError` if it is a
+        number)."""
         try:
             v = check_int(name, value) if self.integer else check_real(name, value, self.unit)
         except InputError:
             if isinstance(value, bool) or not isinstance(value, Real):
                 raise
-            # a number outside the float range, NaN or inf: say the range too
-            raise InputError(
-                f"{name} must be {what}{self.describe(unit=False)}{u} (got {_fmt(value)})"
-            ) from None
-        if not self.contains(v):
-            raise InputError(f"{name} must be {what}{self.describe(unit=False)}{u} (got {_num(v)})")
+            v = None  # a number outside the float range, NaN or inf: say the range too
+        if v is None or not self.contains(v):
+            raise RangeError([(name, self, value)])
         return v
+
+
+class RangeError(InputError):
+    """Values outside their :class:`Limit`: ``items`` are (argument name, limit, value
+    given), the message one ``name must be … (got …)`` per item, joined by ``; ``."""
+
+    def __init__(self, items: list[tuple[str, Limit, object]]):
+        super().__init__("; ".join(_out_of_range(*item) for item in items))
+        self.items = items
+
+
+def _out_of_range(name: str, limit: Limit, value) -> str:
+    """'rms must be > 0 and < 0.0001 [m] (got 1)'."""
+    u = f" [{limit.unit}]" if limit.unit else ""
+    what = "an integer " if limit.integer else ""
+    return f"{name} must be {what}{limit.describe(unit=False)}{u} (got {_fmt(value)})"
+
+
+def check_fields(obj, limits: dict[str, Limit], optional: tuple[str, ...] = ()) -> None:
+    """Check the fields ``limits`` names of the frozen dataclass ``obj`` (those in
+    ``optional`` may be None: absent) and store them converted (:meth:`Limit.check`); one
+    :class:`RangeError` lists every field out of range."""
+    bad: list[tuple[str, Limit, object]] = []
+    for name, limit in limits.items():
+        value = getattr(obj, name)
+        if value is None and name in optional:
+            continue
+        try:
+            object.__setattr__(obj, name, limit.check(name, value))
+        except RangeError as exc:
+            bad += exc.items
+    if bad:
+        raise RangeError(bad)
 
 
 # -- materials -------------------------------------------------------------------------

@@ -33,6 +33,7 @@ from .limits import (
     PRESSURE_VISCOSITY,
     ROELANDS_MU_INF,
     VISCOSITY,
+    check_fields,
 )
 
 __all__ = ["Lubricant", "ROELANDS_P0", "ROELANDS_MU_INF", "TYPICAL_OIL"]
@@ -71,16 +72,17 @@ class Lubricant:
     limiting_shear_stress: float = typical.LIMITING_SHEAR_STRESS.value
 
     def __post_init__(self):
-        # ranges shared with the case file (physics.limits)
-        for name, limit in (
-            ("viscosity", VISCOSITY),
-            ("pressure_viscosity", PRESSURE_VISCOSITY),
-            ("density", DENSITY),
-            ("eyring_stress", EYRING_STRESS),
-            ("limiting_shear_coefficient", LIMITING_SHEAR_COEFFICIENT),
-            ("limiting_shear_stress", LIMITING_SHEAR_STRESS),
-        ):
-            object.__setattr__(self, name, limit.check(name, getattr(self, name)))
+        check_fields(  # the case file's [lubricant] is checked here (physics.limits)
+            self,
+            {
+                "viscosity": VISCOSITY,
+                "pressure_viscosity": PRESSURE_VISCOSITY,
+                "density": DENSITY,
+                "eyring_stress": EYRING_STRESS,
+                "limiting_shear_coefficient": LIMITING_SHEAR_COEFFICIENT,
+                "limiting_shear_stress": LIMITING_SHEAR_STRESS,
+            },
+        )
         object.__setattr__(self, "compressible", check_bool("compressible", self.compressible))
         check_choice("viscosity_model", self.viscosity_model, ("roelands", "barus"))
 

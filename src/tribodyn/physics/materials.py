@@ -15,9 +15,21 @@ from typing import TypeAlias
 
 from .._validation import InputError
 from . import typical_engine
-from .limits import COATING_THICKNESS, POISSON_RATIO, YOUNGS_MODULUS
+from .limits import COATING_THICKNESS, POISSON_RATIO, YOUNGS_MODULUS, check_fields
 
 __all__ = ["Material", "Coating", "Body", "as_bodies", "reduced_modulus", "STEEL", "DLC", "WCC"]
+
+
+_ELASTIC_LIMITS = {"E": YOUNGS_MODULUS, "nu": POISSON_RATIO}
+
+
+def _of_checked(cls, **values):
+    """An instance of the frozen dataclass ``cls`` with ``values`` that were checked
+    already (by the object they come from): not checked again."""
+    obj = object.__new__(cls)
+    for name, value in values.items():
+        object.__setattr__(obj, name, value)
+    return obj
 
 
 @dataclass(frozen=True)
@@ -34,8 +46,7 @@ class Material:
     nu: float
 
     def __post_init__(self):
-        object.__setattr__(self, "E", YOUNGS_MODULUS.check("E", self.E))
-        object.__setattr__(self, "nu", POISSON_RATIO.check("nu", self.nu))
+        check_fields(self, _ELASTIC_LIMITS)
 
     @property
     def compliance(self) -> float:
@@ -61,12 +72,19 @@ class Coating(Material):
     thickness: float
 
     def __post_init__(self):
-        super().__post_init__()
-        object.__setattr__(self, "thickness", COATING_THICKNESS.check("thickness", self.thickness))
+        check_fields(self, {**_ELASTIC_LIMITS, "thickness": COATING_THICKNESS})
+
+    @classmethod
+    def of(cls, material: Material, thickness: float) -> Coating:
+        """A layer of ``material`` (E, ν checked when it was built), ``thickness`` [m]
+        thick: only the thickness is checked."""
+        layer = _of_checked(cls, E=material.E, nu=material.nu, thickness=thickness)
+        check_fields(layer, {"thickness": COATING_THICKNESS})
+        return layer
 
     @property
     def material(self) -> Material:
-        return Material(self.E, self.nu)
+        return _of_checked(Material, E=self.E, nu=self.nu)
 
 
 @dataclass(frozen=True)

@@ -66,9 +66,16 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .._validation import InputError, check_nonnegative, check_positive, check_range
+from .._validation import InputError, check_positive, check_range
 from . import typical
-from .limits import VISCOSITY
+from .limits import (
+    EYRING_STRESS,
+    LIMITING_SHEAR_COEFFICIENT,
+    LIMITING_SHEAR_STRESS,
+    PRESSURE_VISCOSITY,
+    VISCOSITY,
+    check_fields,
+)
 from .lubricant import ROELANDS_MU_INF, ROELANDS_P0, Lubricant
 
 __all__ = [
@@ -183,6 +190,17 @@ class ThermalLubricant:
     _c: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self):
+        check_fields(  # the ranges of the isothermal Lubricant's (physics.limits)
+            self,
+            {
+                "viscosity": VISCOSITY,
+                "pressure_viscosity": PRESSURE_VISCOSITY,
+                "eyring_stress": EYRING_STRESS,
+                "limiting_shear_coefficient": LIMITING_SHEAR_COEFFICIENT,
+                "limiting_shear_stress": LIMITING_SHEAR_STRESS,
+            },
+            optional=("viscosity", "pressure_viscosity"),
+        )
         Ti = check_range("inlet_temperature", self.inlet_temperature, 200.0, 600.0, unit="K")
         sheet = (self.kinematic_viscosity_40, self.kinematic_viscosity_100)
         inlet = (self.viscosity, self.viscosity_temperature_coefficient)
@@ -203,9 +221,8 @@ class ThermalLubricant:
             c["form"] = "datasheet"
             c["A"], c["B"] = walther_constants(n40, n100)
         elif all(v is not None for v in inlet) and all(v is None for v in sheet):
-            mu = check_positive("viscosity", inlet[0], "Pa·s")
-            if mu <= ROELANDS_MU_INF:
-                raise InputError(f"viscosity must be > {ROELANDS_MU_INF:.3g} Pa·s (got {mu:.6g})")
+            mu = self.viscosity  # in range (checked above)
+            assert mu is not None
             beta = check_range(
                 "viscosity_temperature_coefficient", inlet[1], 0.0, 0.5, lo_open=True, unit="1/K"
             )
@@ -221,10 +238,6 @@ class ThermalLubricant:
         check_range("density", self.density, 300.0, 3000.0, unit="kg/m³")
         check_range("density_temperature", self.density_temperature, 200.0, 600.0, unit="K")
         check_range("thermal_expansion", self.thermal_expansion, 0.0, 3e-3, unit="1/K")
-        for name in ("eyring_stress",):
-            check_positive(name, getattr(self, name), "Pa")
-        check_nonnegative("limiting_shear_coefficient", self.limiting_shear_coefficient)
-        check_nonnegative("limiting_shear_stress", self.limiting_shear_stress, "Pa")
         check_range(
             "limiting_shear_temperature_coefficient",
             self.limiting_shear_temperature_coefficient,
@@ -264,9 +277,7 @@ class ThermalLubricant:
                 )
             alpha = self._so_klaus_inlet_alpha(Ti, mu_i)
         else:
-            alpha = check_range(
-                "pressure_viscosity", self.pressure_viscosity, 0.0, 1e-6, unit="1/Pa"
-            )
+            alpha = self.pressure_viscosity
         c["alpha_i"] = alpha
         c["Z"] = alpha / (5.1e-9 * (math.log(mu_i) + 9.67))
         s = (

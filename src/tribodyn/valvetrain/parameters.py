@@ -126,12 +126,8 @@ class ValvetrainParameters:
     cam_width: float = typical_engine.CAM_WIDTH.value
 
     def __post_init__(self):
-        # ranges shared with the case file's [valvetrain] (physics.limits)
-        for name, limit in _LIMITS.items():
-            v = getattr(self, name)
-            if v is None and name in ("contact_stiffness", "camshaft_stiffness"):
-                continue
-            object.__setattr__(self, name, limit.check(name, v))
+        # the case file's [valvetrain] and cam width are checked here (physics.limits)
+        L.check_fields(self, _LIMITS, optional=("contact_stiffness", "camshaft_stiffness"))
 
     # -- derived ------------------------------------------------------------------------
     @property

@@ -7,6 +7,7 @@ needs (operating point; bodies, lubricant and roughness with their reduced modul
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass, field
 from typing import Protocol
 
@@ -74,38 +75,12 @@ class EHLOptions:
     time_order: int = 2
 
     def __post_init__(self):
-        # ranges shared with the case file's [numerics] (physics.limits)
+        # the case file's [numerics] and surface sets' τ₀, ς are checked here
+        L.check_fields(self, _LIMITS, optional=("n",))
         set_ = object.__setattr__
-        if self.n is not None:
-            set_(self, "n", L.EHL_NODES.check("n", self.n))
-        for name in ("inlet", "outlet"):
-            set_(self, name, L.DOMAIN_HALF_WIDTHS.check(name, getattr(self, name)))
-        for name in ("inlet_rigid", "outlet_rigid"):
-            set_(self, name, L.DOMAIN_RIGID_LENGTHS.check(name, getattr(self, name)))
-        set_(
-            self,
-            "inlet_truncation",
-            L.INLET_TRUNCATION.check("inlet_truncation", self.inlet_truncation),
-        )
-        set_(self, "tol", L.NEWTON_TOL.check("tol", self.tol))
-        set_(self, "max_iter", L.NEWTON_MAX_ITER.check("max_iter", self.max_iter))
         set_(self, "elastic", check_bool("elastic", self.elastic))
         check_choice("viscous_model", self.viscous_model, VISCOUS_MODELS)
         set_(self, "limiting_shear", check_bool("limiting_shear", self.limiting_shear))
-        set_(
-            self,
-            "boundary_shear_strength",
-            L.BOUNDARY_SHEAR_STRENGTH.check(
-                "boundary_shear_strength", self.boundary_shear_strength
-            ),
-        )
-        set_(
-            self,
-            "boundary_shear_coefficient",
-            L.BOUNDARY_SHEAR_COEFFICIENT.check(
-                "boundary_shear_coefficient", self.boundary_shear_coefficient
-            ),
-        )
         try:
             order = check_int("time_order", self.time_order)
         except InputError:
@@ -113,6 +88,32 @@ class EHLOptions:
         if order not in (1, 2):
             raise InputError(f"time_order must be 1 or 2 (got {self.time_order!r})")
         set_(self, "time_order", order)
+
+    def with_boundary_friction(self, coefficient: float, strength: float) -> EHLOptions:
+        """A copy with the boundary shear law τ = τ₀ + ς p_a of Eq. 17 (ς ``coefficient``
+        [-], τ₀ ``strength`` [Pa]); only these two are checked again."""
+        new = copy.copy(self)
+        object.__setattr__(new, "boundary_shear_coefficient", coefficient)
+        object.__setattr__(new, "boundary_shear_strength", strength)
+        L.check_fields(new, {k: _LIMITS[k] for k in _FRICTION})
+        return new
+
+
+#: the fields of the boundary shear law (Eq. 17)
+_FRICTION = ("boundary_shear_coefficient", "boundary_shear_strength")
+#: Range of every numeric field of EHLOptions (physics.limits).
+_LIMITS = {
+    "n": L.EHL_NODES,
+    "inlet": L.DOMAIN_HALF_WIDTHS,
+    "outlet": L.DOMAIN_HALF_WIDTHS,
+    "inlet_truncation": L.INLET_TRUNCATION,
+    "inlet_rigid": L.DOMAIN_RIGID_LENGTHS,
+    "outlet_rigid": L.DOMAIN_RIGID_LENGTHS,
+    "tol": L.NEWTON_TOL,
+    "max_iter": L.NEWTON_MAX_ITER,
+    "boundary_shear_strength": L.BOUNDARY_SHEAR_STRENGTH,
+    "boundary_shear_coefficient": L.BOUNDARY_SHEAR_COEFFICIENT,
+}
 
 
 # ----------------------------------------------------------------------------- result

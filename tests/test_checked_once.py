@@ -1,0 +1,221 @@
+"""Each case value with a range is checked once, where it enters: by the physics
+constructor it is given to, or (no constructor checks it) by the schema. Every key with a
+range is checked, and the message names the key and the range with its unit."""
+
+from __future__ import annotations
+
+import copy
+import tomllib
+from collections import Counter
+
+import pytest
+
+from tribodyn import InputError
+from tribodyn.config import schema, schema_surfaces, schema_valvetrain
+from tribodyn.config.case import DEFAULT_CASE, Case, set_dotted
+from tribodyn.config.schema_fields import Section
+from tribodyn.physics import limits as L
+
+#: where each section with ranged keys sits in the bundled paper case
+PLACES = {
+    schema.Engine: "engine",
+    schema.AuxiliaryFrictionConfig: "engine.auxiliary",
+    schema.AccelerationCamConfig: "cam",
+    schema.Valvetrain: "valvetrain",
+    schema.LubricantConfig: "lubricant",
+    schema.MaterialConfig: "materials.steel",
+    schema.SurfaceSetConfig: "surface_sets[1]",
+    schema.RoughnessConfig: "surface_sets[1].roughness",
+    schema.Numerics: "numerics",
+}
+#: sections whose ranged keys are those of a placed section (the other cam types)
+SAME_AS = {
+    schema.CircularArcCamConfig: schema.AccelerationCamConfig,
+    schema.TableCamConfig: schema.AccelerationCamConfig,
+    schema_valvetrain._CamBase: schema.AccelerationCamConfig,
+}
+
+
+def _ranged(model) -> dict[str, dict]:
+    """The keys of ``model`` that record a shared limit's range, with that range."""
+    out = {}
+    for name, fi in model.model_fields.items():
+        extra = fi.json_schema_extra if isinstance(fi.json_schema_extra, dict) else {}
+        if "range" in extra:
+            out[fi.alias or name] = extra
+    return out
+
+
+def _sections() -> set[type]:
+    mods = (schema, schema_surfaces, schema_valvetrain)
+    return {
+        v
+        for m in mods
+        for v in vars(m).values()
+        if isinstance(v, type) and issubclass(v, Section) and v is not Section
+    }
+
+
+KEYS = [
+    (f"{place}.{key}", extra, model.model_fields[key].annotation)
+    for model, place in PLACES.items()
+    for key, extra in _ranged(model).items()
+]
+
+
+def _paper_data() -> dict:
+    return tomllib.loads(DEFAULT_CASE.read_text(encoding="utf-8"))
+
+
+def _outside(bounds: dict, integer: bool):
+    """A value above the upper bound of ``bounds``."""
+    top = bounds.get("le", bounds.get("lt"))
+    assert top is not None
+    v = top + max(1.0, abs(top))
+    return int(v) if integer else float(v)
+
+
+def _range_text(bounds: dict, unit: str) -> str:
+    """'> 0 m and <= 0.01 m' (degrees as °), the form of the case-file messages."""
+    u = f" {unit}" if unit and not unit.startswith("deg") else ("°" if unit else "")
+    sym = {"gt": ">", "ge": ">=", "lt": "<", "le": "<="}
+    num = [(k, str(v) if isinstance(v, int) else f"{v:.6g}") for k, v in bounds.items()]
+    return " and ".join(
+        f"{sym[k]} {v}{u}" for k, v in sorted(num, key=lambda kv: list(sym).index(kv[0]))
+    )
+
+
+def test_every_section_with_ranged_keys_is_placed():
+    for model in _sections():
+        ranged = _ranged(model)
+        if not ranged or model in PLACES:
+            continue
+        assert model in SAME_AS, f"{model.__name__}: ranged keys {list(ranged)} not placed"
+        assert set(ranged) <= set(_ranged(SAME_AS[model]))
+
+
+def test_the_ranged_keys_are_the_shared_limits():
+    assert len(KEYS) >= 50
+    limits = {
+        (lim.unit, tuple(lim.constraints().items()))
+        for lim in vars(L).values()
+        if isinstance(lim, L.Limit)
+    }
+    for key, extra, _ in KEYS:
+        assert (extra["unit"], tuple(extra["range"].items())) in limits, key
+
+
+@pytest.mark.parametrize("key, extra, annotation", KEYS, ids=[k for k, _, _ in KEYS])
+def test_every_ranged_key_is_checked_and_named(key, extra, annotation):
+    value = _outside(extra["range"], "int" in str(annotation))
+    data = copy.deepcopy(_paper_data())
+    set_dotted(data, key, value)
+    with pytest.raises(InputError) as e:
+        Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    msg = str(e.value)
+    assert msg.startswith("invalid case: 1 problem\n"), msg
+    expected = f"{key}: must be {_range_text(extra['range'], extra['unit'])} (got "
+    assert expected in msg, msg
+
+
+def test_all_out_of_range_keys_of_a_file_are_reported_in_file_order():
+    data = _paper_data()
+    for key, value in (
+        ("numerics.tol", 2.0),
+        ("surface_sets[0].roughness.rms", 1.0),
+        ("materials.wcc.E", 1.0),
+        ("lubricant.viscosity", 300.0),
+        ("valvetrain.spring_rate", -1.0),
+        ("cam.width", 2.0),
+    ):
+        set_dotted(data, key, value)
+    with pytest.raises(InputError) as e:
+        Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    assert str(e.value).splitlines() == [
+        "invalid case: 6 problems",
+        "  cam.width: must be > 0 m and < 1 m (got 2.0)",
+        "  valvetrain.spring_rate: must be > 0 N/m and <= 1e+07 N/m (got -1.0)",
+        "  lubricant.viscosity: must be > 6.31499e-05 Pa·s and <= 100 Pa·s (got 300.0)",
+        "  materials.wcc.E: must be >= 1e+06 Pa and <= 2e+12 Pa (got 1.0)",
+        "  surface_sets[0].roughness.rms: must be > 0 m and < 0.0001 m (got 1.0)",
+        "  numerics.tol: must be > 0 and < 1 (got 2.0)",
+    ]
+
+
+def test_the_schema_problems_and_the_constructors_are_reported_together():
+    data = _paper_data()
+    for key, value in (
+        ("engine.speed_rpm", -5.0),  # the schema's range
+        ("valvetrain.tappet_radius", "wide"),  # the schema's type (the cam needs it)
+        ("lubricant.viscosty", 0.05),  # unknown key
+        ("lubricant.viscosity", 300.0),  # the constructors' ranges
+        ("surface_sets[0].roughness.rms", 1.0),
+        ("surface_sets[0].boundary_shear_strength", -1.0),
+    ):
+        set_dotted(data, key, value)
+    with pytest.raises(InputError) as e:
+        Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    lines = str(e.value).splitlines()
+    assert lines[0] == "invalid case: 6 problems"
+    assert [line.split(":")[0].strip() for line in lines[1:]] == [
+        "engine.speed_rpm",
+        "valvetrain.tappet_radius",
+        "lubricant.viscosity",
+        "lubricant.viscosty",
+        "surface_sets[0].roughness.rms",
+        "surface_sets[0].boundary_shear_strength",
+    ]
+    assert (
+        lines[3] == "  lubricant.viscosity: must be > 6.31499e-05 Pa·s and <= 100 Pa·s (got 300.0)"
+    )
+
+
+def test_the_second_look_builds_no_surface_law(monkeypatch):
+    """With schema problems, the constructors' ranges are checked without computing the
+    sets' surface laws (the typical sets use them): the error comes at once."""
+    from tribodyn.config import case as case_module
+
+    calls = []
+    monkeypatch.setattr(case_module, "measured_roughness", lambda *a: calls.append(a))
+    with pytest.raises(InputError) as e:
+        Case.from_dict({"lubricant": {"viscosity": 1e-5, "viscosty": 0.05}})
+    assert [line.split(":")[0].strip() for line in str(e.value).splitlines()[1:]] == [
+        "lubricant.viscosity",
+        "lubricant.viscosty",
+    ]
+    assert calls == []
+
+
+def test_loading_checks_each_value_once(monkeypatch):
+    """Each material's E, the tolerance, the spring rate, each set's σ and coating
+    thickness: one range check each while the paper case loads."""
+    data = _paper_data()
+    calls: Counter = Counter()
+    check = L.Limit.check
+
+    def counting(self, name, value):
+        calls[self] += 1
+        return check(self, name, value)
+
+    monkeypatch.setattr(L.Limit, "check", counting)
+    Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    sets = data["surface_sets"]
+    assert calls[L.YOUNGS_MODULUS] == len(data["materials"])
+    assert calls[L.NEWTON_TOL] == 1
+    assert calls[L.SPRING_RATE] == 1
+    assert calls[L.ROUGHNESS_RMS] == len(sets)
+    assert calls[L.COATING_THICKNESS] == sum("coating" in s for s in sets)
+    assert calls[L.BOUNDARY_SHEAR_STRENGTH] == len(sets) + 1  # each set's, the default's
+
+
+def test_a_check_left_out_is_seen(monkeypatch):
+    """The key test fails when a constructor no longer checks its argument."""
+    from tribodyn.valvetrain import parameters
+
+    monkeypatch.setattr(
+        parameters, "_LIMITS", {k: v for k, v in parameters._LIMITS.items() if k != "lash"}
+    )
+    key = "valvetrain.lash"
+    extra = _ranged(schema.Valvetrain)["lash"]
+    with pytest.raises(pytest.fail.Exception):
+        test_every_ranged_key_is_checked_and_named(key, extra, float)
