@@ -275,10 +275,17 @@ def test_sigterm_stops_a_run_cleanly(tmp_path, phase):
     drawing processes) stopped, nothing written, no temporary folder, exit code 143, a
     message instead of a traceback. The signal is sent when the run reports the phase
     (the dynamics begun, the EHL or the drawing processes running), so the test does not
-    depend on the machine's speed; two sets of the reduced paper case keep it short."""
+    depend on the machine's speed; two sets of the paper case at coarse resolution keep it
+    short."""
     case = tmp_path / "c.toml"
     base = load_case()
-    small = {"surface_sets": base.to_dict()["surface_sets"][:2], "numerics.workers": 2}
+    small = {
+        "surface_sets": base.to_dict()["surface_sets"][:2],
+        "numerics.crank_step_deg": 5.0,
+        "numerics.n": 128,
+        "numerics.implicit_coupling": False,
+        "numerics.workers": 2,
+    }
     base.updated({**REDUCED, **small}).write_toml(case)
     out = tmp_path / "out"
     rescue_area = tmp_path / "tmp"  # a rescue folder, if any, stays inside the test's folder
