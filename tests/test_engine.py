@@ -157,18 +157,14 @@ def test_engine_sweep_point_and_bundled_map():
     assert spec.base.engine.cylinders == 4 and len(spec.base.surface_set_names) == 3
 
 
-def test_engine_cli_writes_results(tmp_path):
+def test_engine_cli_writes_results(engine_results, tmp_path):
     import json
 
     from typer.testing import CliRunner
 
     from tribodyn.cli import app
 
-    path = tmp_path / "engine.toml"
-    _case().write_toml(path)
-    out = tmp_path / "out"
-    r = CliRunner().invoke(app, ["engine", str(path), "-o", str(out), "-j", "1"])
-    assert r.exit_code == 0, r.output
+    out = engine_results  # ``tribodyn engine`` of this engine (conftest), run once
     s = json.loads((out / "summary.json").read_text())["engine"]
     d = s["surface_sets"]["uncoated"]
     assert d["valvetrain_friction_mep_Pa"] == pytest.approx(

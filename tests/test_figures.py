@@ -215,13 +215,20 @@ def _check_pngs(paths, out):
     assert not [p for p in out.iterdir() if ".tmp" in p.name]  # atomic writes
 
 
-def test_make_figures_writes_every_png(tmp_path):
-    ds = synthetic_dataset()
-    paths = make_figures(ds, tmp_path)
+@pytest.fixture(scope="module")
+def every_png(tmp_path_factory):
+    """Every figure of :func:`synthetic_dataset` drawn in turn in this process: (folder,
+    ``make_figures``' answer). The tests read it and change nothing."""
+    out = tmp_path_factory.mktemp("serial")
+    return out, make_figures(synthetic_dataset(), out)
+
+
+def test_make_figures_writes_every_png(every_png):
+    out, paths = every_png
     # the stress map needs the maps a study stores (drawn in test_stress_cycle.py)
     assert set(paths) == set(FIGURES) - {"fig27_stress_map.png"}
     assert all(name.startswith("fig") and name.endswith(".png") for name in FIGURES)
-    _check_pngs(paths, tmp_path)
+    _check_pngs(paths, out)
 
 
 def test_a_case_other_than_the_papers_gets_figures_named_by_content(tmp_path):
@@ -239,11 +246,12 @@ def test_a_case_other_than_the_papers_gets_figures_named_by_content(tmp_path):
         assert "paper Fig" not in FIGURES[content_name(name)]
 
 
-def test_figures_drawn_in_processes_match_serial(tmp_path):
+def test_figures_drawn_in_processes_match_serial(every_png, tmp_path):
     """Two processes write the same files, in the same order, as drawing in turn."""
     ds = synthetic_dataset()
     only = [*EXPLICIT_IMPLICIT, "fig12_greenwood_chart.png", "fig15_central_film.png"]
-    serial = make_figures(ds, tmp_path / "serial", only=only)
+    serial = {name: path for name, path in every_png[1].items() if name in only}
+    assert len(serial) == len(only)
     parallel = make_figures(ds, tmp_path / "parallel", only=only, workers=2)
     assert list(parallel) == list(serial)
     assert all(p.parent == tmp_path / "parallel" for p in parallel.values())

@@ -93,11 +93,24 @@ def test_figures_command_never_overwrites_a_users_file(plain_run, tmp_path):
     assert (res / "report.md").read_bytes() == report
 
 
-def test_figures_command_leaves_a_users_report_alone(plain_run, tmp_path):
-    res = _copy(plain_run, tmp_path)
+@pytest.fixture(scope="module")
+def drawn_by_a_user(plain_run, tmp_path_factory):
+    """``tribodyn figures`` into a copy of ``plain_run`` whose report.md the user wrote,
+    under the umask 027: (folder, its report.html before, the command's result). The
+    tests read it and change nothing."""
+    res = _copy(plain_run, tmp_path_factory.mktemp("drawn"))
     (res / "report.md").write_text("# my notes\n\n## Figures\n\nmine\n", encoding="utf-8")
     html = (res / "report.html").read_bytes()
-    r = runner.invoke(app, ["figures", str(res)])
+    old = os.umask(0o027)
+    try:
+        r = runner.invoke(app, ["figures", str(res), "-j", "1"])
+    finally:
+        os.umask(old)
+    return res, html, r
+
+
+def test_figures_command_leaves_a_users_report_alone(drawn_by_a_user):
+    res, html, r = drawn_by_a_user
     assert r.exit_code == 0, r.output
     assert list(res.glob("*.png"))
     assert (res / "report.md").read_text(encoding="utf-8").endswith("mine\n")
@@ -128,14 +141,10 @@ def test_figures_command_refuses_a_folder_that_is_not_a_runs(tmp_path, content):
     )
 
 
-def test_figures_follow_the_umask(plain_run, tmp_path):
-    res = _copy(plain_run, tmp_path)
-    old = os.umask(0o027)
-    try:
-        r = runner.invoke(app, ["figures", str(res), "-j", "1"])
-    finally:
-        os.umask(old)
+def test_figures_follow_the_umask(drawn_by_a_user):
+    res, _, r = drawn_by_a_user
     assert r.exit_code == 0, r.output
+    assert list(res.glob("*.png"))
     for p in res.glob("*.png"):
         assert stat.S_IMODE(p.stat().st_mode) == 0o640, p.name
 

@@ -16,6 +16,7 @@ import pytest
 import xarray as xr
 from typer.testing import CliRunner
 
+from conftest import REDUCED
 from tribodyn import InputError
 from tribodyn.cli import app
 from tribodyn.config import load_case
@@ -230,40 +231,83 @@ def test_a_target_taken_meanwhile_is_rescued_too(tmp_path, monkeypatch, fake_stu
 
 
 # ----------------------------------------------------------------------------- SIGTERM
+# ``tribodyn run`` that prints the phase it reaches to stderr: the dynamics begun (the
+# study's progress event), the EHL or drawing processes running (the first submission to
+# the study's or the drawing pool returned: their processes are started, so the signal
+# does not meet a fork).
+MARKED_RUN = """\
+import sys
+from concurrent.futures import ProcessPoolExecutor
+import tribodyn.output.figures as figures
+import tribodyn.workflow.cycle as cycle
+from tribodyn.cli import app
+
+study, draw, submit = cycle.run_cycle_study, figures.make_figures, ProcessPoolExecutor.submit
+phase = ["ehl"]
+
+def marked_study(case, progress=None, **kw):
+    def mark(event, **info):
+        progress(event, **info)
+        if event == "dynamics":
+            print("phase dynamics", file=sys.stderr, flush=True)
+    return study(case, progress=mark, **kw)
+
+def marked_draw(*args, **kw):
+    phase[0] = "writing"
+    return draw(*args, **kw)
+
+def marked_submit(pool, *args, **kw):
+    future = submit(pool, *args, **kw)
+    if not getattr(pool, "marked", False):
+        pool.marked = True
+        print("phase", phase[0], file=sys.stderr, flush=True)
+    return future
+
+cycle.run_cycle_study, figures.make_figures = marked_study, marked_draw
+ProcessPoolExecutor.submit = marked_submit
+app(prog_name="tribodyn", args=sys.argv[1:])
+"""
+
+
 @pytest.mark.parametrize("phase", ["dynamics", "ehl", "writing"])
 def test_sigterm_stops_a_run_cleanly(tmp_path, phase):
     """SIGTERM during the computation or while the results are written: workers (EHL or
     drawing processes) stopped, nothing written, no temporary folder, exit code 143, a
-    message instead of a traceback. The writing phase is found by its temporary folder
-    (``.out.tmp-…``), so the test does not depend on the machine's speed."""
+    message instead of a traceback. The signal is sent when the run reports the phase
+    (the dynamics begun, the EHL or the drawing processes running), so the test does not
+    depend on the machine's speed; two sets of the paper case at coarse resolution keep it
+    short."""
     case = tmp_path / "c.toml"
-    load_case().updated({"numerics.workers": 2, "numerics.crank_step_deg": 2.0}).write_toml(case)
+    base = load_case()
+    small = {
+        "surface_sets": base.to_dict()["surface_sets"][:2],
+        "numerics.crank_step_deg": 5.0,
+        "numerics.n": 128,
+        "numerics.implicit_coupling": False,
+        "numerics.workers": 2,
+    }
+    base.updated({**REDUCED, **small}).write_toml(case)
     out = tmp_path / "out"
     rescue_area = tmp_path / "tmp"  # a rescue folder, if any, stays inside the test's folder
     rescue_area.mkdir()
+    (rescue_area / "marked_run.py").write_text(MARKED_RUN)
     proc = subprocess.Popen(
-        [sys.executable, "-m", "tribodyn", "run", str(case), "-o", str(out), "-q"],
+        [sys.executable, "-m", "marked_run", "run", str(case), "-o", str(out), "-q", "--figures"],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
         env={**os.environ, "TMPDIR": str(rescue_area)},
         cwd=rescue_area,  # the rescue's fallbacks (temporary folder, then the working one)
     )
-    deadline = time.time() + 60
-    line = ""
-    while time.time() < deadline and "case" not in line:
-        line = proc.stdout.readline()
-    if phase == "writing":
-        while time.time() < deadline and not any(
-            p.name.startswith(".out") for p in tmp_path.iterdir()
-        ):
-            time.sleep(0.02)
-        assert proc.poll() is None, "the run ended before its results were written"
-        time.sleep(0.5)  # among the drawing processes
-    else:
-        time.sleep(1.0 if phase == "dynamics" else 4.0)
+    seen = []
+    for line in proc.stderr:  # the phases, in order, until the one to stop in
+        seen.append(line.strip())
+        if line.strip() == f"phase {phase}":
+            break
+    assert f"phase {phase}" in seen, seen
+    assert proc.poll() is None, "the run ended before the signal"
     proc.send_signal(signal.SIGTERM)
-    stdout, stderr = proc.communicate(timeout=60)
+    stdout, stderr = proc.communicate(timeout=120)
     assert proc.returncode == 143, stdout + stderr
     assert "interrupted" in stdout and "Traceback" not in stdout + stderr
     assert not out.exists()
