@@ -59,15 +59,18 @@ def load_run_results(nc: PathLike) -> xr.Dataset:
 def write_netcdf(ds: xr.Dataset, path: PathLike, encoding: dict | None = None) -> None:
     """Write ``ds`` to the netCDF-4 file ``path`` with h5netcdf: the file of
     ``ds.to_netcdf(path, engine="h5netcdf", encoding=encoding)``. A dataset held in
-    memory (no dask chunks) goes straight to xarray's h5netcdf store: ``to_netcdf`` first
-    asks dask for its scheduler, which imports ``dask.distributed`` (about a second) for
-    a choice that only matters for chunked data."""
+    memory (no dask chunks) goes straight to xarray's h5netcdf store, under the HDF5
+    library's lock: ``to_netcdf`` first asks dask for its scheduler (for its choice of
+    file closing and write lock), which imports ``dask.distributed`` (about a second), a
+    choice that only matters for chunked data."""
     if any(v.chunks is not None for v in ds.variables.values()):
         ds.to_netcdf(path, engine="h5netcdf", encoding=encoding)
         return
     from xarray.backends import H5NetCDFStore
+    from xarray.backends.locks import HDF5_LOCK
 
-    store = H5NetCDFStore.open(path, mode="w")
+    # the lock given: else the store asks dask's scheduler for a write lock too
+    store = H5NetCDFStore.open(path, mode="w", lock=HDF5_LOCK)
     try:
         ds.dump_to_store(store, encoding=encoding or {})
     finally:
