@@ -117,3 +117,12 @@ def test_the_folder(monkeypatch, tmp_path):
         assert _cache.cache_dir() == tmp_path / "tribodyn"
         monkeypatch.setenv("XDG_CACHE_HOME", "relative")  # not absolute: ignored (XDG)
         assert _cache.cache_dir() == _cache.Path.home() / ".cache" / "tribodyn"
+
+
+def test_warmup_laws_are_those_of_the_paper_case(cache):
+    from tribodyn.config import load_case
+    from tribodyn.workflow.engineering import typical_surface_laws
+
+    laws = typical_surface_laws(load_case())
+    assert len(laws) == 5  # every set of the paper case is Greenwood–Tripp
+    assert len(_files(cache)) == len({(law.source, law.reduced_modulus) for law in laws})
