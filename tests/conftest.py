@@ -1,9 +1,18 @@
+import atexit
 import os
+import shutil
+import tempfile
 
 # One BLAS thread, as the command line runs the solvers (their matrices are small; set
 # before numpy loads, since a runtime limit does not remove the threads' overhead).
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
+
+# The surface laws' cache (tribodyn._cache) in a folder of this test session: the tests
+# neither read the user's cache nor write into it, and their outcome does not depend on it.
+_CACHE = tempfile.mkdtemp(prefix="tribodyn-test-cache-")
+os.environ["TRIBODYN_CACHE_DIR"] = _CACHE
+atexit.register(shutil.rmtree, _CACHE, ignore_errors=True)
 
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402

@@ -154,6 +154,43 @@ def test_run_tasks_reports_each_result_once_and_raises_task_errors():
         run_tasks(InlineExecutor(), [Task("a", _square, (1,))] * 2, lambda k, r: None)
 
 
+def _add(x, y):
+    return x + y
+
+
+@pytest.mark.parametrize("pool", [False, True], ids=["inline", "one thread"])
+def test_a_task_after_another_gets_its_result_and_its_priority(pool):
+    from concurrent.futures import ThreadPoolExecutor
+
+    seen, started = {}, []
+    tasks = [
+        Task("a", _square, (3,)),
+        Task("c", _square, (5,)),
+        Task("b", _add, (1,), after="a"),
+        Task("d", _add, (2,), after="b"),
+    ]
+    ex = ThreadPoolExecutor(1) if pool else InlineExecutor()
+    with ex:
+        run_tasks(ex, tasks, seen.__setitem__, started.append, limit=1)
+    assert seen == {"a": 9, "c": 25, "b": 10, "d": 12}
+    # one at a time, in list order among the ready ones
+    assert started == ["a", "c", "b", "d"]
+    with pytest.raises(ValueError, match="not before it"):
+        run_tasks(InlineExecutor(), [Task("b", _add, (1,), after="a")], lambda k, r: None)
+
+
+def test_the_limit_orders_a_pool_by_the_list():
+    # a task made ready by a result starts before the later ones of the list
+    from concurrent.futures import ThreadPoolExecutor
+
+    started = []
+    tasks = [Task("a", _square, (1,)), Task("b", _add, (1,), after="a")]
+    tasks += [Task(f"x{i}", _square, (i,)) for i in range(3)]
+    with ThreadPoolExecutor(1) as ex:
+        run_tasks(ex, tasks, lambda k, r: None, started.append, limit=1)
+    assert started == ["a", "b", "x0", "x1", "x2"]
+
+
 def _python(code: str, extra_path: str = "") -> str:
     """Run ``code`` in a fresh interpreter without the BLAS thread variables."""
     env = {k: v for k, v in os.environ.items() if not k.endswith("_NUM_THREADS")}

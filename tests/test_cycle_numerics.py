@@ -128,7 +128,8 @@ def test_study_runs_through_any_executor():
         case, executor=ex, progress=lambda e, **i: events.append((e, i.get("name"), i.get("done")))
     )
     assert sorted(ex.calls) == sorted(
-        ["_coupling_task", "_coating_studies_task"] + ["_set_task"] * 4
+        ["_pass_task", "_coupling_task", "_stress_task", "_coating_studies_task"]
+        + ["_set_task"] * 4
     )
     assert [s.name for s in study.sets] == case.surface_set_names
     done = {name for e, name, d in events if e == "set" and d}

@@ -198,14 +198,14 @@ def fake_study(monkeypatch):
 
 def test_results_are_rescued_when_writing_fails(tmp_path, monkeypatch, fake_study):
     target = tmp_path / "res"
-    original = xr.Dataset.to_netcdf
+    original = W.write_netcdf  # what writes results.nc
 
-    def disk_full(self, path, *a, **k):
+    def disk_full(ds, path, *a, **k):
         if ".res.tmp-" in str(path):
             raise OSError(errno.ENOSPC, "No space left on device")
-        return original(self, path, *a, **k)
+        return original(ds, path, *a, **k)
 
-    monkeypatch.setattr(xr.Dataset, "to_netcdf", disk_full)
+    monkeypatch.setattr(W, "write_netcdf", disk_full)
     monkeypatch.setattr(W.tempfile, "gettempdir", lambda: str(tmp_path / "rescue-area"))
     with pytest.raises(OutputWriteError) as info:
         write_results(fake_study, target, figures=False, report=False)

@@ -4,7 +4,9 @@ The EHL and valvetrain kernels are compiled on first use (``cache=True``): the f
 ``tribodyn run`` after an installation spends most of its time compiling. ``warmup``
 runs the bundled paper case at a coarse resolution (the same code paths and argument
 types as a full run, fewer samples) without writing anything, so that the compiled
-kernels are cached and later runs load them. ``make run`` calls it after installing.
+kernels are cached and later runs load them. It also computes the default surface laws
+that the paper case's plausibility checks compare its Greenwood–Tripp sets with, into
+the user's cache folder (:mod:`tribodyn._cache`). ``make run`` calls it after installing.
 """
 
 from __future__ import annotations
@@ -31,8 +33,10 @@ def warm_up() -> float:
     from ..config import load_case
     from ..contact.ehl.kernels import compile_fallbacks
     from ..workflow.cycle import run_cycle_study
+    from ..workflow.engineering import typical_surface_laws
 
     t0 = time.perf_counter()
+    typical_surface_laws(load_case())
     case = load_case().updated(WARMUP_NUMERICS)
     run_cycle_study(case, workers=1, compare_paper=False)
     compile_fallbacks()  # the EHL solver's variants the study reaches only on fallbacks
@@ -41,5 +45,6 @@ def warm_up() -> float:
 
 def warmup_command():
     """Compile and cache the numerical kernels (a coarse run of the paper case, nothing
-    written), so that the first real run does not spend its time compiling."""
+    written) and the paper case's reference surface laws, so that the first real run
+    does not spend its time compiling."""
     typer.echo(f"tribodyn: compiled kernels cached in {warm_up():.1f} s")

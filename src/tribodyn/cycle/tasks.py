@@ -1,18 +1,21 @@
 """A study's task graph, declared once and run by any :class:`concurrent.futures.Executor`.
 
 A :class:`Task` is a picklable top-level function with picklable arguments and a key;
-:func:`run_tasks` submits a list of them in order to an executor (a process pool, a Dask
-client's ``get_executor()``, or :class:`InlineExecutor`, which runs each task in this
-process when it is submitted) and hands every result to ``done(key, result)`` in the
-calling process as soon as it is in. The tasks of a study are independent once their
-inputs are known, so the graph is a list; serial and parallel runs execute the same
-functions on the same arguments and give the same results.
+it may wait for one earlier task (``after``), whose result is then its last argument.
+:func:`run_tasks` submits them to an executor (a process pool, a Dask client's
+``get_executor()``, or :class:`InlineExecutor`, which runs each task in this process
+when it is submitted) in list order as their inputs are ready, and hands every result to
+``done(key, result)`` in the calling process as soon as it is in. With ``limit`` (a
+process pool's number of workers) no more tasks are submitted than can run at once, so
+that a task made ready by a result starts before the later tasks of the list: the list
+order is the priority. Serial and parallel runs execute the same functions on the same
+arguments and give the same results.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from concurrent.futures import Executor, Future, as_completed
+from concurrent.futures import FIRST_COMPLETED, Executor, Future, wait
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -21,11 +24,13 @@ __all__ = ["InlineExecutor", "Task", "run_tasks"]
 
 @dataclass(frozen=True)
 class Task:
-    """One task: ``fn(*args)`` under ``key`` (unique in its graph)."""
+    """One task: ``fn(*args)`` under ``key`` (unique in its graph), or
+    ``fn(*args, result)`` with the result of the earlier task ``after``."""
 
     key: str
     fn: Callable[..., Any]
     args: tuple = field(default=())
+    after: str | None = None
 
 
 class InlineExecutor(Executor):
@@ -41,30 +46,58 @@ class InlineExecutor(Executor):
         return f
 
 
+def _check(tasks: Sequence[Task]) -> None:
+    keys = [t.key for t in tasks]
+    if len(set(keys)) != len(keys):
+        raise ValueError(f"task keys are not unique: {keys}")
+    for i, t in enumerate(tasks):
+        if t.after is not None and t.after not in keys[:i]:
+            raise ValueError(f"task {t.key!r} waits for {t.after!r}, which is not before it")
+
+
 def run_tasks(
     executor: Executor,
     tasks: Sequence[Task],
     done: Callable[[str, Any], None],
     started: Callable[[str], None] | None = None,
+    limit: int | None = None,
 ) -> None:
-    """Submit ``tasks`` in order to ``executor``; ``started(key)`` before each submission
-    and ``done(key, result)`` for each result, in this process, as soon as it is in (at
-    once for :class:`InlineExecutor`, in order of completion for a pool). A task's
-    exception is raised here; the remaining futures are cancelled."""
-    keys = [t.key for t in tasks]
-    if len(set(keys)) != len(keys):
-        raise ValueError(f"task keys are not unique: {keys}")
+    """Run ``tasks`` on ``executor`` (module docstring): each is submitted, in list order
+    among those whose ``after`` result is in, while fewer than ``limit`` (None: any
+    number) are running; ``started(key)`` before each submission and ``done(key,
+    result)`` for each result, in this process, as soon as it is in (at once for
+    :class:`InlineExecutor`, in order of completion for a pool). A task's exception is
+    raised here; the remaining futures are cancelled."""
+    _check(tasks)
+    needed = {t.after for t in tasks if t.after is not None}
+    results: dict[str, Any] = {}  # the results later tasks wait for
+    waiting = list(tasks)
     pending: dict[Future, str] = {}
+
+    def finish(f: Future) -> None:
+        key = pending.pop(f)
+        r = f.result()
+        if key in needed:
+            results[key] = r
+        done(key, r)
+
     try:
-        for t in tasks:
-            if started is not None:
-                started(t.key)
-            fut = executor.submit(t.fn, *t.args)
-            pending[fut] = t.key
-            for f in [f for f in pending if f.done()]:  # an inline executor: done at once
-                done(pending.pop(f), f.result())
-        for f in as_completed(list(pending)):
-            done(pending.pop(f), f.result())
+        while waiting or pending:
+            ready = next((t for t in waiting if t.after is None or t.after in results), None)
+            if ready is not None and (limit is None or len(pending) < limit):
+                waiting.remove(ready)
+                if started is not None:
+                    started(ready.key)
+                args = ready.args if ready.after is None else (*ready.args, results[ready.after])
+                pending[executor.submit(ready.fn, *args)] = ready.key
+                for f in [f for f in pending if f.done()]:  # an inline executor: done at once
+                    finish(f)
+                continue
+            if not pending:  # cannot happen after _check: every ``after`` comes first
+                raise RuntimeError(f"tasks wait for results never computed: {waiting}")
+            finished, _ = wait(list(pending), return_when=FIRST_COMPLETED)
+            for f in finished:
+                finish(f)
     finally:
         for f in pending:
             f.cancel()

@@ -33,7 +33,7 @@ if TYPE_CHECKING:
 
 from .thermal import add_thermal
 
-__all__ = ["RUN_VARIABLES", "load_run_results", "study_to_dataset"]
+__all__ = ["RUN_VARIABLES", "load_run_results", "study_to_dataset", "write_netcdf"]
 
 #: Variables every cycle study's results.nc holds (what tells it from other netCDF files).
 RUN_VARIABLES = ("ehl_crank", "crank_angle", "surface_set")
@@ -54,6 +54,27 @@ def load_run_results(nc: PathLike) -> xr.Dataset:
             f"(it has no {', '.join(missing)})"
         )
     return ds
+
+
+def write_netcdf(ds: xr.Dataset, path: PathLike, encoding: dict | None = None) -> None:
+    """Write ``ds`` to the netCDF-4 file ``path`` with h5netcdf: the file of
+    ``ds.to_netcdf(path, engine="h5netcdf", encoding=encoding)``. A dataset held in
+    memory (no dask chunks) goes straight to xarray's h5netcdf store, under the HDF5
+    library's lock: ``to_netcdf`` first asks dask for its scheduler (for its choice of
+    file closing and write lock), which imports ``dask.distributed`` (about a second), a
+    choice that only matters for chunked data."""
+    if any(v.chunks is not None for v in ds.variables.values()):
+        ds.to_netcdf(path, engine="h5netcdf", encoding=encoding)
+        return
+    from xarray.backends import H5NetCDFStore
+    from xarray.backends.locks import HDF5_LOCK
+
+    # the lock given: else the store asks dask's scheduler for a write lock too
+    store = H5NetCDFStore.open(path, mode="w", lock=HDF5_LOCK)
+    try:
+        ds.dump_to_store(store, encoding=encoding or {})
+    finally:
+        store.close()
 
 
 def study_to_dataset(study: CycleStudy) -> xr.Dataset:

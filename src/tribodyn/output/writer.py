@@ -59,7 +59,7 @@ from typing import TYPE_CHECKING, Any
 from .. import _json
 from .._safe_write import atomic_write, atomic_write_with, copy_file, make_dirs, remove_tree
 from .._typing import PathLike
-from .dataset import study_to_dataset
+from .dataset import study_to_dataset, write_netcdf
 from .figures_folder import figure_workers
 
 # the `x as x` imports are re-exports (output.sweep, cli.export and tests import them here)
@@ -306,7 +306,7 @@ def write_results(
 
         atomic_write_with(
             folder / "results.nc",
-            lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf", encoding=enc),
+            lambda tmp: write_netcdf(ds, tmp, enc),
         )
         atomic_write(folder / "summary.json", _json.dumps(summ, indent=2))
         _write_case(study.case, folder)

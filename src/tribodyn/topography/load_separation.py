@@ -119,29 +119,62 @@ def synthetic_load_separation(
     )
 
 
+#: What a synthetic law depends on besides its arguments (the on-disk cache's key,
+#: :mod:`tribodyn._cache`): these modules' source and these distributions' versions.
+_SYNTHETIC_LAW_CODE = (
+    "tribodyn.topography.load_separation",
+    "tribodyn.topography.synthetic",
+    "tribodyn.physics.rough_contact",
+)
+_SYNTHETIC_LAW_DISTRIBUTIONS = ("SurfaceTopography", "numpy")
+
+
 @lru_cache(maxsize=32)
 def _synthetic_law(rms, hurst, short_cutoff, long_cutoff, reduced_modulus, hardness, grid, seed):
-    from .synthetic import synthetic_surface
+    """The law of :func:`synthetic_load_separation`, kept in memory and in the user's
+    cache folder (:func:`tribodyn._cache.cached_arrays`: the same bits as computed)."""
+    from .._cache import cached_arrays
 
     n = check_int("grid", grid)
     if not 32 <= n <= 512:
         raise InputError(f"grid must be within 32–512 points per side (got {n})")
     size = 2.0 * check_positive("long_cutoff", long_cutoff, "m")
     dx = size / n
-    t = synthetic_surface(
-        (n, n),
-        dx,
-        rms=rms,
-        hurst=hurst,
-        short_cutoff=short_cutoff,
-        long_cutoff=long_cutoff,
-        seed=seed,
-    )
     src = (
         f"synthetic surface σ {rms:.3g} m, H {hurst:g}, wavelengths {short_cutoff:.3g}–"
         f"{long_cutoff:.3g} m, {n}² points, seed {seed}"
     )
-    return load_separation_law(t.heights(), dx, reduced_modulus, hardness, source=src)
+    args = (rms, hurst, short_cutoff, long_cutoff, reduced_modulus, hardness, n, seed)
+
+    def compute() -> dict:
+        from .synthetic import synthetic_surface
+
+        t = synthetic_surface(
+            (n, n),
+            dx,
+            rms=rms,
+            hurst=hurst,
+            short_cutoff=short_cutoff,
+            long_cutoff=long_cutoff,
+            seed=seed,
+        )
+        law = load_separation_law(t.heights(), dx, reduced_modulus, hardness, source=src)
+        return {"lam": law.lam, "pressure": law.pressure, "area": law.area}
+
+    def valid(a: dict) -> bool:  # a stored law the constructor accepts
+        LoadSeparationLaw(a["lam"], a["pressure"], a["area"], reduced_modulus, hardness)
+        return all(v.dtype == np.float64 for v in a.values())
+
+    a = cached_arrays(
+        "synthetic_load_separation",
+        args,
+        ("lam", "pressure", "area"),
+        compute,
+        modules=_SYNTHETIC_LAW_CODE,
+        distributions=_SYNTHETIC_LAW_DISTRIBUTIONS,
+        check=valid,
+    )
+    return LoadSeparationLaw(a["lam"], a["pressure"], a["area"], reduced_modulus, hardness, src)
 
 
 def periodic_heights(topography, max_points: int = 128) -> tuple[np.ndarray, float]:

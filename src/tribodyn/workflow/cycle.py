@@ -183,14 +183,24 @@ def _set_task(built: BuiltCase, name: str, inputs, stresses: bool = True):
         return res, _stress_step(built, s, res, inputs) if stresses else None
 
 
-def _coupling_task(built: BuiltCase, name: str, dynamics, inputs):
-    """Reference set: its EHL on the explicit dynamics, its stresses, then the implicit
-    coupling iterations. Returns (first, CouplingResult, stresses)."""
+def _pass_task(built: BuiltCase, name: str, inputs):
+    """EHL along the cycle for one surface set alone (the reference set's pass, which the
+    coupling and its stresses wait for)."""
     with single_blas_thread():
-        s = built.set(name).surface
-        first = ehl_for_set(built, s, inputs)
-        stress = _stress_step(built, s, first, inputs)
-        return first, run_coupling(built, s, dynamics, inputs, first), stress
+        return ehl_for_set(built, built.set(name).surface, inputs)
+
+
+def _coupling_task(built: BuiltCase, name: str, dynamics, inputs, first):
+    """The implicit coupling iterations of the set ``name`` from its pass ``first`` on
+    the explicit dynamics (a CouplingResult)."""
+    with single_blas_thread():
+        return run_coupling(built, built.set(name).surface, dynamics, inputs, first)
+
+
+def _stress_task(built: BuiltCase, name: str, inputs, first):
+    """The stresses along the pass ``first`` of the set ``name`` (:func:`_stress_step`)."""
+    with single_blas_thread():
+        return _stress_step(built, built.set(name).surface, first, inputs)
 
 
 def _coating_studies_task(built: BuiltCase, reference: str, nose, paper_studies: bool = True):
@@ -218,24 +228,32 @@ def study_tasks(
     paper_studies: bool,
     friction_only: bool = False,
 ) -> list[Task]:
-    """The study's task graph, declared once: the coupling chain of the reference set
-    (its EHL pass, stresses and implicit iterations; the longest task, so first), the EHL
-    pass and stresses of every other set, the single-contact studies and, with
-    ``numerics.thermal``, the thermal pass of every set. The tasks are independent given
-    the dynamics and the cycle's samples. Keys: ``"coupling"``, ``"set:<name>"``,
-    ``"coating"``, ``"thermal:<name>"``. ``friction_only``: the EHL passes (and thermal
-    passes) of every set alone, ``"set:<name>"`` for the reference set too."""
+    """The study's task graph, declared once, in order of priority: the coupling chain of
+    the reference set (its EHL pass, then the implicit iterations on it: the longest
+    chain, so first), the EHL pass and stresses of every other set, the reference set's
+    stresses (on its pass, beside the iterations), the single-contact studies and, with
+    ``numerics.thermal``, the thermal pass of every set. Given the dynamics and the
+    cycle's samples only the coupling and the reference's stresses wait for a result
+    (the reference pass, ``Task.after``). Keys: ``"pass:<reference>"``, ``"coupling"``,
+    ``"set:<name>"``, ``"stress:<reference>"``, ``"coating"``, ``"thermal:<name>"``.
+    ``friction_only``: the EHL passes (and thermal passes) of every set alone,
+    ``"set:<name>"`` for the reference set too."""
     if friction_only:
         tasks = [
             Task(f"set:{name}", _set_task, (built, name, inputs, False)) for name in built.sets
         ]
     else:
-        tasks = [Task("coupling", _coupling_task, (built, reference, dynamics, inputs))]
+        first = f"pass:{reference}"
+        tasks = [
+            Task(first, _pass_task, (built, reference, inputs)),
+            Task("coupling", _coupling_task, (built, reference, dynamics, inputs), after=first),
+        ]
         tasks += [
             Task(f"set:{name}", _set_task, (built, name, inputs))
             for name in built.sets
             if name != reference
         ]
+        tasks.append(Task(f"stress:{reference}", _stress_task, (built, reference, inputs), first))
         tasks.append(
             Task("coating", _coating_studies_task, (built, reference, nose, paper_studies))
         )
@@ -342,34 +360,40 @@ def run_cycle_study(
     coupling = CouplingResult()
     coating: tuple = ([], None, None, None)
 
-    def label(key: str) -> str | None:
-        """The progress label of a task (None: no progress line)."""
+    def label(key: str, end: bool) -> str | None:
+        """The progress line of a task at its start or ``end`` (None: none). The
+        reference set's line runs from the start of its pass to the end of the
+        coupling."""
         kind, _, name = key.partition(":")
-        if kind == "coupling":
-            return ref_name
-        return {"set": name, "thermal": f"{name} (thermal)"}.get(kind)
+        own = {"set": name, "thermal": f"{name} (thermal)"}
+        return own.get(kind) or {"coupling" if end else "pass": ref_name}.get(kind)
 
     def started(key: str) -> None:
-        if (name := label(key)) is not None:
+        if (name := label(key, end=False)) is not None:
             report("set", name=name, done=0, total=total)
 
     def done(key: str, result) -> None:
         nonlocal coupling, coating
         kind, _, name = key.partition(":")
         if kind == "coupling":
-            results[ref_name], coupling, stresses[ref_name] = result
+            coupling = result
+        elif kind == "pass":
+            results[name] = result
+        elif kind == "stress":
+            stresses[name] = result
         elif kind == "set":
             results[name], stresses[name] = result
         elif kind == "thermal":
             thermal[name] = result
         else:
             coating = result
-        if (text := label(key)) is not None:
+        if (text := label(key, end=True)) is not None:
             report("set", name=text, done=total, total=total)
 
     tasks = study_tasks(built, ref_name, dyn, inputs, nose, paper_cmp, friction_only)
     with _study_executor(executor, workers) as pool:
-        run_tasks(pool, tasks, done, started)
+        # a local pool runs as many tasks as it has workers: the list order decides
+        run_tasks(pool, tasks, done, started, limit=None if executor is not None else workers)
     timings["ehl_and_coupling_s"] = time.perf_counter() - t0
     for name, r in results.items():  # inside the tasks (their own clocks)
         timings[f"ehl_pass_{name}_s"] = r.runtime_s
