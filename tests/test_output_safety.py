@@ -358,6 +358,39 @@ def test_a_signal_lost_in_a_callback_still_ends_as_interrupted(tmp_path, monkeyp
     assert not out.exists()
 
 
+@pytest.mark.filterwarnings("error::pytest.PytestUnraisableExceptionWarning")
+@pytest.mark.parametrize("event_after_signal", [True, False])
+def test_a_signal_lost_while_forking_stops_the_run_before_writing(
+    tmp_path, monkeypatch, event_after_signal
+):
+    """SIGTERM during a fork: the handler cannot stop the worker being forked, and its
+    interrupt is lost in the after-fork hook, so the study goes on and would complete.
+    The run stops at its next progress event, or when the study returns: nothing is
+    written, and it ends as interrupted (143)."""
+    import tribodyn.cli.run as R
+
+    monkeypatch.setattr(R, "_terminated", False)  # restored afterwards
+    wrote, went_on = [], []
+    monkeypatch.setattr("tribodyn.output.write_results", lambda *a, **k: wrote.append(1))
+
+    def signal_lost_then_complete(c, progress=None, **kwargs):
+        progress("dynamics")
+        R._terminated = True  # what the handler sets before its interrupt is lost
+        lost = _RaisesWhenCollected()
+        del lost
+        if event_after_signal:
+            progress("set", name="x", done=0, total=1)
+            went_on.append(1)  # the run went on after the signal's next event
+        return SimpleNamespace(case=c)
+
+    monkeypatch.setattr("tribodyn.workflow.cycle.run_cycle_study", signal_lost_then_complete)
+    out = tmp_path / "out"
+    r = CliRunner().invoke(app, ["run", "-o", str(out), "-q"])
+    assert r.exit_code == 143, r.output
+    assert "interrupted" in r.output and not wrote and not went_on
+    assert not out.exists()
+
+
 @pytest.mark.parametrize("terminated", [False, True])
 def test_an_interrupt_through_exec_keeps_the_exit_code(tmp_path, terminated):
     """``python -m``: an interrupt that passed through ``exec`` of source text (as in a

@@ -156,6 +156,23 @@ def _clear_interrupt_flag() -> None:
     exec("pass")
 
 
+def _stop_workers() -> None:
+    """Kill the worker processes of this process (they hold no output)."""
+    for child in multiprocessing.active_children():
+        if not child.name.startswith("SyncManager"):  # the manager shuts down
+            child.kill()
+
+
+def stop_if_terminated() -> None:
+    """Raise the interrupt of a SIGTERM whose KeyboardInterrupt was lost in a callback. A
+    signal during a fork is such a case: the handler cannot stop the worker being forked,
+    and its interrupt is raised inside the after-fork hook, so the run would go on; it is
+    stopped here, at the next event in this process, its workers with it."""
+    if _terminated:
+        _stop_workers()
+        raise KeyboardInterrupt
+
+
 class _terminate_as_interrupt:
     """SIGTERM is handled like Ctrl-C (KeyboardInterrupt), so that temporary output is
     removed; worker processes are stopped first."""
@@ -172,14 +189,13 @@ class _terminate_as_interrupt:
                 os.kill(os.getpid(), signal.SIGTERM)
                 return
             _terminated = True
-            for child in multiprocessing.active_children():
-                if not child.name.startswith("SyncManager"):  # the manager shuts down
-                    child.kill()  # workers hold no output: stop them at once
+            _stop_workers()
             raise KeyboardInterrupt
 
         def unraisable(info):
-            # the interrupt raised inside a callback (a weakref's, a finaliser) is lost
-            # there; the stopped workers then fail the run, which is reported as interrupted
+            # the interrupt raised inside a callback (a weakref's, a finaliser, an
+            # after-fork hook) is lost there; the stopped workers then fail the run, or
+            # the next progress event stops it (stop_if_terminated): it ends as interrupted
             if not (_terminated and isinstance(info.exc_value, KeyboardInterrupt)):
                 self._old_hook(info)
 
@@ -237,6 +253,7 @@ def _run(
         tasks = {}
 
         def progress(event, **info):
+            stop_if_terminated()
             if event == "dynamics":
                 tasks["dyn"] = bar.add_task("valvetrain dynamics", total=1)
             elif event == "set":
@@ -259,6 +276,7 @@ def _run(
             if _terminated:  # the workers were stopped by the signal
                 raise KeyboardInterrupt from exc
             fail(console, exc, code=1, label="study failed")
+        stop_if_terminated()  # a signal lost in a callback: nothing is written
         if "dyn" in tasks:
             bar.update(tasks["dyn"], completed=1)
         t_write = bar.add_task("figures and report" if figures else "report", total=1)
