@@ -17,7 +17,8 @@ Negative (sub-ambient) pressures do not occur in the cavitation model; both laws
 evaluated at max(p, 0) so they stay finite and monotone for any input.
 
 The laws are written once, as compiled elementwise functions of one pressure
-(:func:`density_ratio`, :func:`ddensity_ratio_dp`, :func:`log_viscosity_ratio`,
+(:func:`density_terms`, :func:`viscosity_terms`; one quantity each:
+:func:`density_ratio`, :func:`ddensity_ratio_dp`, :func:`log_viscosity_ratio`,
 :func:`dlog_viscosity_dp`) with the lubricant's constants as a tuple
 (:attr:`Lubricant.rheology_law`): the methods of :class:`Lubricant` apply them to arrays,
 and compiled solvers call them node by node.
@@ -49,6 +50,8 @@ __all__ = [
     "ROELANDS_P0",
     "ROELANDS_MU_INF",
     "TYPICAL_OIL",
+    "density_terms",
+    "viscosity_terms",
     "density_ratio",
     "ddensity_ratio_dp",
     "log_viscosity_ratio",
@@ -66,40 +69,51 @@ _JIT = dict(cache=True, nogil=True)
 
 
 @njit(**_JIT)
-def density_ratio(p, law):
-    """ρ/ρ₀ = 1 + 0.6 p_GPa/(1 + 1.7 p_GPa) (Dowson–Higginson, Eq. 2); 1 if incompressible."""
+def density_terms(p, law):
+    """(ρ/ρ₀, (1/ρ₀) dρ/dp [1/Pa]) = (1 + 0.6 p_GPa/(1 + 1.7 p_GPa), 0.6e-9/(1 + 1.7 p_GPa)²)
+    (Dowson–Higginson, Eq. 2); (1, 0) if incompressible."""
     if not law[0]:
-        return 1.0
+        return 1.0, 0.0
     pg = (0.0 if p < 0.0 else p) * 1e-9
-    return 1.0 + 0.6 * pg / (1.0 + 1.7 * pg)
+    d = 1.0 + 1.7 * pg
+    return 1.0 + 0.6 * pg / d, (0.6e-9 / (d * d) if p >= 0.0 else 0.0)
+
+
+@njit(**_JIT)
+def viscosity_terms(p, law):
+    """(ln μ/μ₀, d ln μ/dp [1/Pa]): Roelands (Eq. 3) a[(1 + p/p₀)^Z − 1] and
+    (a Z/p₀)(1 + p/p₀)^(Z−1), or Barus α p and α."""
+    pp = 0.0 if p < 0.0 else p
+    slope = p >= 0.0
+    if law[1]:
+        return law[2] * pp, (law[2] if slope else 0.0)
+    lg = math.log1p(pp / ROELANDS_P0)
+    d = law[3] * law[4] / ROELANDS_P0 * math.exp((law[4] - 1.0) * lg) if slope else 0.0
+    return law[3] * math.expm1(law[4] * lg), d
+
+
+@njit(**_JIT)
+def density_ratio(p, law):
+    """ρ/ρ₀ (:func:`density_terms`)."""
+    return density_terms(p, law)[0]
 
 
 @njit(**_JIT)
 def ddensity_ratio_dp(p, law):
-    """(1/ρ₀) dρ/dp = 0.6e-9/(1 + 1.7 p_GPa)² [1/Pa]; 0 if incompressible."""
-    if not law[0] or not p >= 0.0:
-        return 0.0
-    d = 1.0 + 1.7 * (p * 1e-9)
-    return 0.6e-9 / (d * d)
+    """(1/ρ₀) dρ/dp [1/Pa] (:func:`density_terms`)."""
+    return density_terms(p, law)[1]
 
 
 @njit(**_JIT)
 def log_viscosity_ratio(p, law):
-    """ln(μ/μ₀) = a[(1 + p/p₀)^Z − 1] (Roelands, Eq. 3) or α p (Barus)."""
-    pp = 0.0 if p < 0.0 else p
-    if law[1]:
-        return law[2] * pp
-    return law[3] * math.expm1(law[4] * math.log1p(pp / ROELANDS_P0))
+    """ln(μ/μ₀) (:func:`viscosity_terms`)."""
+    return viscosity_terms(p, law)[0]
 
 
 @njit(**_JIT)
 def dlog_viscosity_dp(p, law):
-    """d ln μ/dp = (a Z/p₀)(1 + p/p₀)^(Z−1) [1/Pa] (Roelands) or α (Barus)."""
-    if not p >= 0.0:
-        return 0.0
-    if law[1]:
-        return law[2]
-    return law[3] * law[4] / ROELANDS_P0 * math.exp((law[4] - 1.0) * math.log1p(p / ROELANDS_P0))
+    """d ln μ/dp [1/Pa] (:func:`viscosity_terms`)."""
+    return viscosity_terms(p, law)[1]
 
 
 @njit(**_JIT)
@@ -180,7 +194,7 @@ class Lubricant:
         """The constants of the compiled rheology functions of this module:
         (compressible, Barus, α [1/Pa], ln μ₀ + 9.67, Z)."""
         return (
-            self.compressible,
+            bool(self.compressible),
             self.viscosity_model == "barus",
             float(self.pressure_viscosity),
             float(np.log(self.viscosity) + 9.67),

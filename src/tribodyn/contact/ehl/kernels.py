@@ -2,9 +2,13 @@
 derivatives, the Newton matrix's banded part, its matrix-free product, its dense form,
 and GMRES on it preconditioned with an earlier LU factorisation.
 
-Pure array arithmetic on node arrays; the rheology (ρ, ln μ/μ₀ and their pressure
-derivatives) is evaluated by the caller through the lubricant, so a lubricant with
-per-node properties (e.g. temperature fields) can stand in. Bands are stored as (5, n)
+Pure array arithmetic on node arrays. :func:`evaluate` computes a residual evaluation in
+one call, reading the lubricant's rheology and the Greenwood–Tripp table through the
+compiled elementwise functions of :mod:`tribodyn.physics.lubricant` and
+:mod:`tribodyn.physics.asperity`; :func:`assemble` alone takes the rheology evaluated by
+the caller, so a lubricant with per-node properties (e.g. temperature fields) can stand
+in. (numba's cache of a kernel is not renewed when only a function it calls from another
+module changes; clear the package's ``__pycache__`` after editing those.) Bands are stored as (5, n)
 arrays, row d + 2 holding offset d (A[d + 2, i] multiplies v[i + d]). The equations are
 those of :mod:`.reynolds` (finite volumes, arithmetic-mean face coefficients,
 second-order upwind Couette term, backward-difference time term).
@@ -17,8 +21,16 @@ import math
 import numpy as np
 from numba import njit
 
+from ...physics.asperity import greenwood_tripp_tabulated
+from ...physics.lubricant import density_terms, viscosity_terms
+
 __all__ = [
     "assemble",
+    "evaluate",
+    "NO_ASPERITIES",
+    "TABLE_ASPERITIES",
+    "GIVEN_ASPERITIES",
+    "NO_TABLE",
     "coupling_bands",
     "band_product",
     "newton_matvec",
@@ -104,6 +116,102 @@ def assemble(
             R[i] -= time_coef * (rho[i] * H[i] - f_old[i])
             AP[2, i] -= time_coef * drho[i] * H[i]
             AH[2, i] -= time_coef * rho[i]
+
+
+#: How :func:`evaluate` obtains the asperity pressure: none (smooth surfaces), from a
+#: Greenwood–Tripp table, or given by the caller (a load–separation law).
+NO_ASPERITIES, TABLE_ASPERITIES, GIVEN_ASPERITIES = 0, 1, 2
+#: The table argument of :func:`evaluate` where no table is read.
+NO_TABLE = (np.zeros(0), np.zeros(0), 0.0, 1.0, 2.5)
+
+
+@njit(**_OPTS)
+def evaluate(
+    Q,
+    H0,
+    geom,
+    defo,
+    asperities,
+    table,
+    ka,
+    sig,
+    law,
+    p_ref,
+    lam,
+    h_floor,
+    abs_ubar,
+    s,
+    dX,
+    time_coef,
+    f_old,
+    ff,
+    cf,
+    H,
+    pa,
+    dpa,
+    P,
+    R,
+    AP,
+    AH,
+):
+    """One residual evaluation of :class:`~.reynolds.ReynoldsSystem` at (Q, H₀), in
+    place; returns the load residual ΔX ΣQ − 1.
+
+    Film H = H₀ + X²/2 + ``defo`` (``defo`` = K Q, empty for rigid surfaces); asperity
+    pressure Pa = k_a F(H/σ̄), dPa/dH = (k_a/σ̄) dF/dλ from the Greenwood–Tripp
+    ``table`` (``asperities`` = :data:`TABLE_ASPERITIES`), zero
+    (:data:`NO_ASPERITIES`) or as given in ``pa``, ``dpa`` (:data:`GIVEN_ASPERITIES`);
+    fluid pressure P = Q − Pa; the rheology of the lubricant's ``law`` at p = P p_ref
+    (ρ/ρ₀, dρ̄/dP = p_ref (1/ρ₀) dρ/dp, ln μ/μ₀, d ln μ/dP = p_ref d ln μ/dp); then
+    the residual R and bands AP, AH of :func:`assemble`."""
+    n = Q.size
+    rho = np.empty(n)
+    drho = np.empty(n)
+    lnmu = np.empty(n)
+    dlnmu = np.empty(n)
+    elastic = defo.size > 0
+    for i in range(n):
+        h = H0 + geom[i]
+        if elastic:
+            h = h + defo[i]
+        H[i] = h
+        if asperities == TABLE_ASPERITIES:
+            f, df = greenwood_tripp_tabulated(h / sig, table)
+            pa[i] = ka * f
+            dpa[i] = ka / sig * df
+        elif asperities == NO_ASPERITIES:
+            pa[i] = 0.0
+            dpa[i] = 0.0
+        p = Q[i] - pa[i]
+        P[i] = p
+        pd = p * p_ref
+        r, dr = density_terms(pd, law)
+        lm, dlm = viscosity_terms(pd, law)
+        rho[i] = r
+        drho[i] = dr * p_ref
+        lnmu[i] = lm
+        dlnmu[i] = dlm * p_ref
+    assemble(
+        P,
+        H,
+        rho,
+        drho,
+        lnmu,
+        dlnmu,
+        lam,
+        h_floor,
+        abs_ubar,
+        s,
+        dX,
+        time_coef,
+        f_old,
+        ff,
+        cf,
+        R,
+        AP,
+        AH,
+    )
+    return dX * np.sum(Q) - 1.0
 
 
 @njit(**_OPTS)
@@ -541,9 +649,12 @@ def compile_fallbacks() -> None:
     """Compile (into numba's cache) the kernel variants that a cycle study reaches only
     on fallbacks, on a small system with the argument types of the solvers' calls: the
     double-precision factorisation (:func:`dense_matrix_t` into float64, GMRES with
-    float64 factors) and the dense matrix of the two-grid coarse level
+    float64 factors and the influence matrix in the precision of the GMRES products,
+    :data:`.reynolds.SINGLE_PRODUCTS`) and the dense matrix of the two-grid coarse level
     (:func:`dense_matrix`)."""
     from scipy import linalg
+
+    from .reynolds import SINGLE_PRODUCTS
 
     n = 8
     AP = np.zeros((5, n))
@@ -558,5 +669,6 @@ def compile_fallbacks() -> None:
     dense_matrix(*rows, K, 1.0, 0.1, True)
     J = dense_matrix_t(*rows, K, 1.0, 0.1, True, 0.0, np.empty((n + 1, n + 1))).T
     fac, piv = linalg.lu_factor(J, overwrite_a=True, check_finite=False)
-    system = (*rows, K.astype(np.float32), 1.0, True, 0.1)
-    gmres_lu(GETRS, SGEMV, system, fac, piv + 1, np.ones(n + 1), 1e-6, 30)
+    Kp, gemv = (K.astype(np.float32), SGEMV) if SINGLE_PRODUCTS else (K, GEMV)
+    system = (*rows, Kp, 1.0, True, 0.1)
+    gmres_lu(GETRS, gemv, system, fac, piv + 1, np.ones(n + 1), 1e-6, 30)

@@ -13,7 +13,10 @@ Finite volumes with arithmetic-mean face coefficients, second-order upwind Couet
 (first order next to the boundary), backward-difference time term (coefficient and old
 level supplied by the transient driver). :meth:`ReynoldsSystem.evaluate` returns the
 residuals with the banded derivatives A_P = ∂R/∂P, A_H = ∂R/∂H; :class:`Linearization`
-assembles the Newton system for (δQ, δH₀) densely or applies it matrix-free.
+assembles the Newton system for (δQ, δH₀) densely or applies it matrix-free. With a
+:class:`~tribodyn.Lubricant` an evaluation is one compiled call after the deformation
+product (:func:`.kernels.evaluate`); a lubricant with per-node properties (the thermal
+solvers') is read through its methods.
 """
 
 from __future__ import annotations
@@ -23,6 +26,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...physics.elasticity import DeformationOperator
+from ...physics.lubricant import Lubricant
+from . import kernels
 from .grid import Grid
 from .kernels import (
     GEMV,
@@ -88,6 +93,17 @@ class ReynoldsSystem:
             self.sig = roughness.rms / h_ref
         # upwind direction of the Couette term: d/dX (ρ̄H) from nodes i, i − s, i − 2s
         self.s = 1 if self.ubar >= 0 else -1
+        # compiled evaluation: the lubricant's rheology law (None: per-node lubricant,
+        # read through its methods) and where the asperity pressure comes from
+        self._law = lub.rheology_law if isinstance(lub, Lubricant) else None
+        self._table = kernels.NO_TABLE
+        self._asperities = kernels.NO_ASPERITIES
+        if roughness is not None:
+            table = roughness.load_table()
+            self._asperities = kernels.GIVEN_ASPERITIES
+            if table is not None:
+                self._table, self._asperities = table, kernels.TABLE_ASPERITIES
+        self._ones = np.ones(grid.n)
 
     @property
     def K(self):
@@ -142,6 +158,57 @@ class ReynoldsSystem:
         residual ΔX ΣQ − 1, the fluid pressure P = Q − Pa(H), the film H, D = dPa/dH and
         the diagonals of A_P = ∂R/∂P, A_H = ∂R/∂H (offsets −2…2; compiled stencil in
         :func:`.kernels.assemble`)."""
+        if self._law is None:
+            return self._evaluate_per_node(Q, H0)
+        n = self.g.n
+        Q = np.ascontiguousarray(Q, dtype=float)
+        H0 = float(H0)
+        defo = self.deform(Q) if self.elastic else _EMPTY
+        pa, dpa = np.empty(n), np.empty(n)
+        if self._asperities == kernels.GIVEN_ASPERITIES:  # a load–separation law
+            pa, dpa = self.asperity(H0 + self.geom + defo if self.elastic else H0 + self.geom)
+        H, P, R = np.empty(n), np.empty(n), np.empty(n)
+        AP, AH = np.empty((5, n)), np.empty((5, n))
+        ff, cf = self._factors()
+        load = kernels.evaluate(
+            Q,
+            H0,
+            self.geom,
+            defo,
+            self._asperities,
+            self._table,
+            self.ka if self.rough is not None else 0.0,
+            self.sig if self.rough is not None else 1.0,
+            self._law,
+            self.p_ref,
+            self.lam,
+            self.h_floor,
+            abs(self.ubar),
+            self.s,
+            self.g.dX,
+            float(self.time_coef),
+            self.f_old if self.time_coef else _EMPTY,
+            ff,
+            cf,
+            H,
+            pa,
+            dpa,
+            P,
+            R,
+            AP,
+            AH,
+        )
+        return Evaluation(R, load, P, H, pa, dpa, AP, AH)
+
+    def _factors(self):
+        """The per-node factors φ_f, φ_c of the generalized Reynolds equation (1: none)."""
+        ff = self._ones if self.flow_factor is None else np.asarray(self.flow_factor, float)
+        cf = self._ones if self.couette_factor is None else np.asarray(self.couette_factor, float)
+        return ff, cf
+
+    def _evaluate_per_node(self, Q, H0):
+        """:meth:`evaluate` for a lubricant read through its methods (per-node
+        properties): film, asperities and rheology by NumPy, then the compiled stencil."""
         g = self.g
         n, dX = g.n, g.dX
         H = self.film(Q, H0)
@@ -152,11 +219,7 @@ class ReynoldsSystem:
         AP = np.empty((5, n))
         AH = np.empty((5, n))
         f_old = self.f_old if self.time_coef else _EMPTY
-        ones = None
-        if self.flow_factor is None or self.couette_factor is None:
-            ones = np.ones(n)
-        ff = ones if self.flow_factor is None else np.asarray(self.flow_factor, float)
-        cf = ones if self.couette_factor is None else np.asarray(self.couette_factor, float)
+        ff, cf = self._factors()
         assemble(
             P,
             H,
