@@ -27,6 +27,10 @@ from ...physics.lubricant import density_terms, viscosity_terms
 __all__ = [
     "assemble",
     "evaluate",
+    "row_scale",
+    "merit",
+    "cavitated_nodes",
+    "newton_rows",
     "NO_ASPERITIES",
     "TABLE_ASPERITIES",
     "GIVEN_ASPERITIES",
@@ -376,6 +380,74 @@ def jacobi_diagonal(AP, AH, D, kcoef, elastic):
             for i in range(max(0, -d), min(n, n - d)):
                 diag[i] += (AH[k, i] - AP[k, i] * D[i + d]) * kd
     return np.abs(diag)
+
+
+@njit(**_OPTS)
+def row_scale(AP, AH, D, kcoef, elastic):
+    """Row scaling of the Newton system, c_i = 1/max(d_i, 1e-300 + 1e-14 max d) with
+    d = :func:`jacobi_diagonal` (the end rows take their neighbours' d); NaN throughout
+    if a d is NaN."""
+    n = D.size
+    d = jacobi_diagonal(AP, AH, D, kcoef, elastic)
+    d[0], d[n - 1] = d[1], d[n - 2]
+    big = -np.inf
+    for v in d:
+        if not v <= big:  # larger, or NaN (which stays)
+            big = v
+            if v != v:
+                break
+    floor = 1e-300 + 1e-14 * big
+    c = np.empty(n)
+    for i in range(n):
+        v = d[i]
+        c[i] = 1.0 / (v if v > floor or v != v else floor)
+    return c
+
+
+@njit(**_OPTS)
+def merit(P, R, load, c):
+    """Merit |Φ|² + load² of the complementarity system, Φ_i = min(P_i, −c_i R_i)
+    (NaN if either is), Φ = P at the end nodes."""
+    n = P.size
+    phi = np.empty(n)
+    for i in range(n):
+        a, b = P[i], -c[i] * R[i]
+        phi[i] = a if a <= b or a != a else b
+    phi[0], phi[n - 1] = P[0], P[n - 1]
+    return np.dot(phi, phi) + load * load
+
+
+@njit(**_OPTS)
+def cavitated_nodes(P, R, c):
+    """The active set of the complementarity system: P_i < −c_i R_i (the end nodes are
+    not cavitated)."""
+    n = P.size
+    cav = np.empty(n, dtype=np.bool_)
+    for i in range(n):
+        cav[i] = P[i] < -c[i] * R[i]
+    cav[0] = cav[n - 1] = False
+    return cav
+
+
+@njit(**_OPTS)
+def newton_rows(AP, AH, D, R, P, load, c, cav):
+    """Row data of the Newton system for (δQ, δH₀) (:class:`~.reynolds.Linearization`)
+    with the cavitated nodes ``cav`` (the end nodes are boundary rows): B = A_H − A_P D
+    and B·1 (:func:`coupling_bands`), the cavitated, boundary and free rows, and the
+    right-hand side −c_i R_i (free), −P_i (cavitated and boundary), −(ΔX ΣQ − 1)."""
+    n = D.size
+    B, col = coupling_bands(AP, AH, D)
+    cv = cav.copy()
+    cv[0] = cv[n - 1] = False
+    bnd = np.zeros(n, dtype=np.bool_)
+    bnd[0] = bnd[n - 1] = True
+    free = np.empty(n, dtype=np.bool_)
+    rhs = np.empty(n + 1)
+    for i in range(n):
+        free[i] = not (cv[i] or bnd[i])
+        rhs[i] = -R[i] * c[i] if free[i] else -P[i]
+    rhs[n] = -load
+    return B, col, cv, bnd, free, rhs
 
 
 def _scipy_routine(module: str, name: str, nargs: int):

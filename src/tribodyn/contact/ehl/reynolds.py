@@ -36,11 +36,11 @@ from .kernels import (
     SGETRS,
     assemble,
     band_product,
-    coupling_bands,
     dense_matrix,
     dense_matrix_t,
     gmres_lu,
     newton_matvec,
+    newton_rows,
 )
 from .options import Conditions, ContactModel
 
@@ -297,21 +297,11 @@ class Linearization:
         self.n, self.dX, self.sysm = n, g.dX, sysm
         self.rigid = not sysm.elastic
         self.AP = ev.AP
-        D = ev.dpa
-        self.D = D
-        self.B, self.col = coupling_bands(ev.AP, ev.AH, D)
-        self.cav = cav.copy()
-        self.bnd = np.zeros(n, dtype=bool)
-        self.bnd[0] = self.bnd[-1] = True
-        self.cav[0] = self.cav[-1] = False
-        self.free = ~(self.cav | self.bnd)
+        self.D = ev.dpa
         self.c = c
-        rhs = -ev.R.copy()
-        rhs[self.free] *= c[self.free]
-        rhs[self.cav] = -ev.P[self.cav]
-        rhs[self.bnd] = -ev.P[self.bnd]
-        self.rhs = np.concatenate([rhs, [-ev.load]])
-        self._out = np.empty(n + 1)
+        self.B, self.col, self.cav, self.bnd, self.free, self.rhs = newton_rows(
+            ev.AP, ev.AH, ev.dpa, ev.R, ev.P, ev.load, c, cav
+        )
 
     def matvec(self, z):
         n = self.n
