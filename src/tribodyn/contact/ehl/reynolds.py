@@ -22,6 +22,7 @@ solvers') is read through its methods.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -65,15 +66,12 @@ class ReynoldsSystem:
         self.h_ref = h_ref = a * a / R  # H = h R / a²
         self.elastic = grid.elastic
         self._K = None
-        self.Kop: DeformationOperator | None
         self.kcoef: np.ndarray | None
         if grid.elastic:
             assert grid.coef is not None  # an elastic grid carries its influence coefficients
             kscale = self.kscale = p_ref / h_ref
-            self.Kop = DeformationOperator.from_coefficients(grid.coef * kscale)
             self.kcoef = grid.coef * kscale
         else:
-            self.Kop = None
             self.kcoef = None
         self.u_scale = max(abs(ue), 1e-3)
         self.ubar = ue / self.u_scale
@@ -104,6 +102,14 @@ class ReynoldsSystem:
             if table is not None:
                 self._table, self._asperities = table, kernels.TABLE_ASPERITIES
         self._ones = np.ones(grid.n)
+
+    @cached_property
+    def Kop(self) -> DeformationOperator | None:
+        """DC-FFT operator of the scaled influence coefficients (None: rigid), built on
+        first use (grids with the dense matrix multiply by it instead)."""
+        if self.kcoef is None:
+            return None
+        return DeformationOperator.from_coefficients(self.kcoef)
 
     @property
     def K(self):
