@@ -190,13 +190,13 @@ def test_compiled_gmres_solves_a_random_newton_system(elastic):
     fac, piv = linalg.lu_factor(J * (1.0 + 0.05 * rng.random(J.shape)))  # an earlier matrix
     b = rng.normal(size=n + 1)
     system = (AP, B, col, c, free, cav, D, K, ks, elastic, dX)
-    x, its, ok = k.gmres_lu(k.GETRS, k.GEMV, system, fac, piv + 1, b, 1e-12, 30)
+    x, its, ok = k.gmres_lu(k.GETRS, k.SYMV, system, fac, piv + 1, b, 1e-12, 30)
     assert ok and 0 < its <= 30
     exact = np.linalg.solve(J, b)
     assert np.linalg.norm(x - exact) <= 1e-9 * np.linalg.norm(exact)
     bad = AP.copy()
     bad[2, 40] = np.nan
-    _, _, ok = k.gmres_lu(k.GETRS, k.GEMV, (bad, *system[1:]), fac, piv + 1, b, 1e-12, 30)
+    _, _, ok = k.gmres_lu(k.GETRS, k.SYMV, (bad, *system[1:]), fac, piv + 1, b, 1e-12, 30)
     assert not ok
 
 
@@ -254,7 +254,7 @@ def test_compiled_gmres_with_a_single_precision_preconditioner():
     b = rng.normal(size=n + 1)
     b[5] = 1e-300  # a subnormal entry in single precision
     system = (*rows, K, ks, True, dX)
-    x, its, ok = k.gmres_lu(k.SGETRS, k.GEMV, system, fac, piv + 1, b, 1e-12, 30)
+    x, its, ok = k.gmres_lu(k.SGETRS, k.SYMV, system, fac, piv + 1, b, 1e-12, 30)
     assert ok and 0 < its <= 30
     exact = np.linalg.solve(J, b)
     assert np.linalg.norm(x - exact) <= 1e-9 * np.linalg.norm(exact)
@@ -262,7 +262,7 @@ def test_compiled_gmres_with_a_single_precision_preconditioner():
 
 
 def test_compiled_gmres_with_single_precision_products():
-    """GMRES with the influence matrix rounded to single precision (kernels.SGEMV, as
+    """GMRES with the influence matrix rounded to single precision (kernels.SSYMV, as
     the Newton solves do with reynolds.SINGLE_PRODUCTS on) solves the double-precision
     system to single precision's accuracy (LAPACK's dense solve)."""
     from scipy import linalg
@@ -287,7 +287,7 @@ def test_compiled_gmres_with_single_precision_products():
     fac, piv = linalg.lu_factor(J * (1.0 + 0.05 * rng.random(J.shape)))
     b = rng.normal(size=n + 1)
     system = (AP, B, col, c, free, cav, D, K.astype(np.float32), ks, True, dX)
-    x, its, ok = k.gmres_lu(k.GETRS, k.SGEMV, system, fac, piv + 1, b, 1e-10, 30)
+    x, its, ok = k.gmres_lu(k.GETRS, k.SSYMV, system, fac, piv + 1, b, 1e-10, 30)
     assert ok and 0 < its <= 30
     exact = np.linalg.solve(J, b)
     err = np.linalg.norm(x - exact) / np.linalg.norm(exact)

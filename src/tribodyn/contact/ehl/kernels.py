@@ -44,8 +44,8 @@ __all__ = [
     "givens_step",
     "GETRS",
     "SGETRS",
-    "GEMV",
-    "SGEMV",
+    "SYMV",
+    "SSYMV",
     "gmres_lu",
     "flush_factors",
     "compile_fallbacks",
@@ -466,10 +466,12 @@ def _scipy_routine(module: str, name: str, nargs: int):
 GETRS = _scipy_routine("lapack", "dgetrs", 9)
 #: sgetrs: the same in single precision (a preconditioner's factors stored as float32)
 SGETRS = _scipy_routine("lapack", "sgetrs", 9)
-#: dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
-GEMV = _scipy_routine("blas", "dgemv", 11)
-#: sgemv: the same in single precision (products with a float32 influence matrix)
-SGEMV = _scipy_routine("blas", "sgemv", 11)
+#: dsymv(uplo, n, alpha, a, lda, x, incx, beta, y, incy): y = αAx + βy for a symmetric A,
+#: read from one triangle (half the memory of a general product; the influence matrix
+#: of a uniform grid is symmetric Toeplitz)
+SYMV = _scipy_routine("blas", "dsymv", 10)
+#: ssymv: the same in single precision (products with a float32 influence matrix)
+SSYMV = _scipy_routine("blas", "ssymv", 10)
 
 
 #: Single-precision triangular solves: entries of the right-hand side below this share of
@@ -539,16 +541,16 @@ def _lu_solve(getrs, fac, piv1, x, buf, ints, trans):
 
 
 @njit(**_OPTS)
-def _product(gemv, tr, ints, reals, K, x, y):
-    """y = alpha·op(K) x + beta·y by BLAS ``gemv`` (``tr``: trans flag, ``ints`` = [n, n,
-    1], ``reals`` = [alpha, beta]); x and y of K's precision, their first n entries used."""
-    gemv(
-        tr.ctypes,
+def _product(symv, uplo, ints, reals, K, x, y):
+    """y = alpha·K x + beta·y by BLAS ``symv`` for the symmetric K (``uplo``: the triangle
+    read, ``ints`` = [n, n, 1], ``reals`` = [alpha, beta]); x and y of K's precision,
+    their first n entries used."""
+    symv(
+        uplo.ctypes,
         ints[0:].ctypes,
-        ints[1:].ctypes,
         reals[0:].ctypes,
         K.ctypes,
-        ints[0:].ctypes,
+        ints[1:].ctypes,
         x.ctypes,
         ints[2:].ctypes,
         reals[1:].ctypes,
@@ -558,24 +560,24 @@ def _product(gemv, tr, ints, reals, K, x, y):
 
 
 @njit(**_OPTS)
-def _apply(gemv, system, z, out, work):
+def _apply(symv, system, z, out, work):
     """Newton-matrix product out = J z for ``system`` = (AP, B, col, c, free, cav, D, K,
-    kscale, elastic, dX), with δH = kscale·K v + vh (dense row-major K, by BLAS gemv on
-    its column-major view with trans = "T"); ``work`` = (dh, [n, n, 1], [1, 0],
-    [ord("T")], zs, hs): zs, hs vectors of K's precision for a float32 K."""
+    kscale, elastic, dX), with δH = kscale·K v + vh (the dense symmetric K, by BLAS
+    symv); ``work`` = (dh, [n, n, 1], [1, 0], [ord("U")], zs, hs): zs, hs vectors of K's
+    precision for a float32 K."""
     AP, B, col, c, free, cav, D, K, kscale, elastic, dX = system
-    dh, ints, reals, tr, zs, hs = work
+    dh, ints, reals, uplo, zs, hs = work
     n = D.size
     vh = z[n]
     if elastic:
         if K.itemsize == 4:
             for i in range(n):
                 zs[i] = z[i]
-            _product(gemv, tr, ints, reals, K, zs, hs)
+            _product(symv, uplo, ints, reals, K, zs, hs)
             for i in range(n):
                 dh[i] = kscale * hs[i] + vh
         else:
-            _product(gemv, tr, ints, reals, K, z, dh)
+            _product(symv, uplo, ints, reals, K, z, dh)
             for i in range(n):
                 dh[i] = kscale * dh[i] + vh
     else:
@@ -615,12 +617,12 @@ def givens_step(Hm, cs, sn, gv, j):
 
 
 @njit(**_OPTS)
-def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
+def gmres_lu(getrs, symv, system, fac, piv1, b, rtol, max_it):
     """Right-preconditioned flexible GMRES for J x = b (J: the Newton matrix of
     :class:`~.reynolds.Linearization`, ``system`` = (AP, B, col, c, free, cav, D, K,
     kscale, elastic, dX) with the dense influence matrix K, M = LU of an
     earlier Newton matrix, applied by ``getrs`` = :data:`GETRS` with the factors ``fac``
-    and 1-based pivots ``piv1`` of ``scipy.linalg.lu_factor``; ``gemv`` = :data:`GEMV`
+    and 1-based pivots ``piv1`` of ``scipy.linalg.lu_factor``; ``symv`` = :data:`SYMV`
     for the products with K), started from x₀ = M⁻¹b; Arnoldi with classical Gram–Schmidt
     applied twice (CGS2) and Givens rotations, in the flexible form that keeps the
     preconditioned directions z_j = M⁻¹v_j and returns x₀ + Z y (Saad, *Iterative
@@ -629,7 +631,7 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
     inexactly. Stops when the residual estimate |g_{j+1}| ≤ rtol·|b|. The factors may
     be float32 (with ``getrs`` = :data:`SGETRS`): the preconditioner then reads half the
     memory, and GMRES still solves the double-precision system to ``rtol``. K may be
-    float32 too (with ``gemv`` = :data:`SGEMV`): GMRES then solves the system with K
+    float32 too (with ``symv`` = :data:`SSYMV`): GMRES then solves the system with K
     rounded to single precision.
 
     Returns (x, iterations, ok); ok is False for a non-finite residual, a breakdown or
@@ -646,7 +648,7 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
         np.empty(n),
         np.array([n, n, 1], dtype=np.int32),
         np.array([1.0, 0.0], dtype=K.dtype),
-        np.array([84], dtype=np.uint8),  # "T"
+        np.array([85], dtype=np.uint8),  # "U"
         np.empty(n, dtype=K.dtype),
         np.empty(n, dtype=K.dtype),
     )
@@ -654,7 +656,7 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
     x0 = b.copy()
     _lu_solve(getrs, fac, piv1, x0, buf, ints, trans)
     w = np.empty(m)
-    _apply(gemv, system, x0, w, work)
+    _apply(symv, system, x0, w, work)
     r0 = b - w
     beta = _norm(r0)
     if not math.isfinite(beta):
@@ -676,7 +678,7 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
         t[:] = V[j]
         _lu_solve(getrs, fac, piv1, t, buf, ints, trans)
         Z[j] = t
-        _apply(gemv, system, t, w, work)
+        _apply(symv, system, t, w, work)
         for i in range(j + 1):
             Hm[i, j] = 0.0
         for _ in range(2):  # CGS2
@@ -741,6 +743,6 @@ def compile_fallbacks() -> None:
     dense_matrix(*rows, K, 1.0, 0.1, True)
     J = dense_matrix_t(*rows, K, 1.0, 0.1, True, 0.0, np.empty((n + 1, n + 1))).T
     fac, piv = linalg.lu_factor(J, overwrite_a=True, check_finite=False)
-    Kp, gemv = (K.astype(np.float32), SGEMV) if SINGLE_PRODUCTS else (K, GEMV)
+    Kp, symv = (K.astype(np.float32), SSYMV) if SINGLE_PRODUCTS else (K, SYMV)
     system = (*rows, Kp, 1.0, True, 0.1)
-    gmres_lu(GETRS, gemv, system, fac, piv + 1, np.ones(n + 1), 1e-6, 30)
+    gmres_lu(GETRS, symv, system, fac, piv + 1, np.ones(n + 1), 1e-6, 30)

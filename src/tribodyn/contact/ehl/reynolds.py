@@ -25,16 +25,17 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
+from scipy.linalg.blas import dsymv
 
 from ...physics.elasticity import DeformationOperator
 from ...physics.lubricant import Lubricant
 from . import kernels
 from .grid import Grid
 from .kernels import (
-    GEMV,
     GETRS,
-    SGEMV,
     SGETRS,
+    SSYMV,
+    SYMV,
     assemble,
     band_product,
     dense_matrix,
@@ -120,9 +121,10 @@ class ReynoldsSystem:
 
     def deform(self, v):
         """Scaled deformation K v: a dense product on grids that keep the dense matrix
-        (LU paths), DC-FFT otherwise."""
+        (LU paths; BLAS symv, K symmetric: Kᵀ is its column-major view), DC-FFT
+        otherwise."""
         if self.g.has_dense:
-            return self.kscale * (self.g.K @ v)
+            return dsymv(self.kscale, self.g.K.T, v)
         assert self.Kop is not None  # only an elastic system deforms
         return self.Kop(v)
 
@@ -345,7 +347,7 @@ class Linearization:
         getrs = GETRS if fac.dtype == np.float64 else SGETRS
         x, its, ok = gmres_lu(
             getrs,
-            SGEMV if K.dtype == np.float32 else GEMV,
+            SSYMV if K.dtype == np.float32 else SYMV,
             system,
             fac,
             piv + 1,
