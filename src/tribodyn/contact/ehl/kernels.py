@@ -586,11 +586,25 @@ def _apply(symv, system, z, out, work):
 
 
 @njit(**_OPTS)
+def _dot(a, b):
+    """Σ a_k b_k with four partial sums (independent additions: the products pipeline
+    instead of waiting on one running sum)."""
+    n = a.size
+    s0 = s1 = s2 = s3 = 0.0
+    top = n - n % 4
+    for k in range(0, top, 4):
+        s0 += a[k] * b[k]
+        s1 += a[k + 1] * b[k + 1]
+        s2 += a[k + 2] * b[k + 2]
+        s3 += a[k + 3] * b[k + 3]
+    for k in range(top, n):
+        s0 += a[k] * b[k]
+    return (s0 + s1) + (s2 + s3)
+
+
+@njit(**_OPTS)
 def _norm(v):
-    s = 0.0
-    for x in v:
-        s += x * x
-    return math.sqrt(s)
+    return math.sqrt(_dot(v, v))
 
 
 @njit(**_OPTS)
@@ -663,8 +677,10 @@ def gmres_lu(getrs, symv, system, fac, piv1, b, rtol, max_it):
         return x0, 0, False
     if beta <= rtol * bn:
         return x0, 0, True
-    V = np.zeros((max_it + 1, m))
-    Z = np.zeros((max_it, m))  # the preconditioned directions M⁻¹v_j (flexible GMRES)
+    # rows are written before they are read (np.empty: no zeroing of the rows a call
+    # never reaches, which would also evict the factors from the cache)
+    V = np.empty((max_it + 1, m))
+    Z = np.empty((max_it, m))  # the preconditioned directions M⁻¹v_j (flexible GMRES)
     Hm = np.zeros((max_it + 1, max_it))
     cs = np.zeros(max_it)
     sn = np.zeros(max_it)
@@ -683,10 +699,7 @@ def gmres_lu(getrs, symv, system, fac, piv1, b, rtol, max_it):
             Hm[i, j] = 0.0
         for _ in range(2):  # CGS2
             for i in range(j + 1):
-                acc = 0.0
-                for k in range(m):
-                    acc += V[i, k] * w[k]
-                h[i] = acc
+                h[i] = _dot(V[i], w)
             for i in range(j + 1):
                 hi = h[i]
                 for k in range(m):
