@@ -22,6 +22,7 @@ import numpy as np
 from numba import njit
 
 from ...physics.asperity import greenwood_tripp_tabulated
+from ...physics.asperity_law import log_curve_at
 from ...physics.lubricant import density_terms, viscosity_terms
 
 __all__ = [
@@ -33,8 +34,10 @@ __all__ = [
     "newton_rows",
     "NO_ASPERITIES",
     "TABLE_ASPERITIES",
+    "LAW_ASPERITIES",
     "GIVEN_ASPERITIES",
     "NO_TABLE",
+    "NO_CURVE",
     "coupling_bands",
     "band_product",
     "newton_matvec",
@@ -123,10 +126,13 @@ def assemble(
 
 
 #: How :func:`evaluate` obtains the asperity pressure: none (smooth surfaces), from a
-#: Greenwood–Tripp table, or given by the caller (a load–separation law).
-NO_ASPERITIES, TABLE_ASPERITIES, GIVEN_ASPERITIES = 0, 1, 2
-#: The table argument of :func:`evaluate` where no table is read.
+#: Greenwood–Tripp table, from a load–separation law's curve, or given by the caller
+#: (the paper's polynomial fits).
+NO_ASPERITIES, TABLE_ASPERITIES, LAW_ASPERITIES, GIVEN_ASPERITIES = 0, 1, 2, 3
+#: The table argument of :func:`evaluate` where no table is read …
 NO_TABLE = (np.zeros(0), np.zeros(0), 0.0, 1.0, 2.5)
+#: … and its curve argument where no law is read.
+NO_CURVE = (np.zeros(2), np.zeros((4, 1)), np.zeros((3, 1)), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 
 @njit(**_OPTS)
@@ -137,6 +143,7 @@ def evaluate(
     defo,
     asperities,
     table,
+    curve,
     ka,
     sig,
     law,
@@ -163,8 +170,9 @@ def evaluate(
 
     Film H = H₀ + X²/2 + ``defo`` (``defo`` = K Q, empty for rigid surfaces); asperity
     pressure Pa = k_a F(H/σ̄), dPa/dH = (k_a/σ̄) dF/dλ from the Greenwood–Tripp
-    ``table`` (``asperities`` = :data:`TABLE_ASPERITIES`), zero
-    (:data:`NO_ASPERITIES`) or as given in ``pa``, ``dpa`` (:data:`GIVEN_ASPERITIES`);
+    ``table`` (``asperities`` = :data:`TABLE_ASPERITIES`), a load–separation law's
+    ``curve`` (:data:`LAW_ASPERITIES`), zero (:data:`NO_ASPERITIES`) or as given in
+    ``pa``, ``dpa`` (:data:`GIVEN_ASPERITIES`);
     fluid pressure P = Q − Pa; the rheology of the lubricant's ``law`` at p = P p_ref
     (ρ/ρ₀, dρ̄/dP = p_ref (1/ρ₀) dρ/dp, ln μ/μ₀, d ln μ/dP = p_ref d ln μ/dp); then
     the residual R and bands AP, AH of :func:`assemble`."""
@@ -179,8 +187,11 @@ def evaluate(
         if elastic:
             h = h + defo[i]
         H[i] = h
-        if asperities == TABLE_ASPERITIES:
-            f, df = greenwood_tripp_tabulated(h / sig, table)
+        if asperities == TABLE_ASPERITIES or asperities == LAW_ASPERITIES:
+            if asperities == TABLE_ASPERITIES:
+                f, df = greenwood_tripp_tabulated(h / sig, table)
+            else:
+                f, df = log_curve_at(h / sig, curve)
             pa[i] = ka * f
             dpa[i] = ka / sig * df
         elif asperities == NO_ASPERITIES:

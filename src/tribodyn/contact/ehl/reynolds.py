@@ -95,12 +95,15 @@ class ReynoldsSystem:
         # compiled evaluation: the lubricant's rheology law (None: per-node lubricant,
         # read through its methods) and where the asperity pressure comes from
         self._law = lub.rheology_law if isinstance(lub, Lubricant) else None
-        self._table = kernels.NO_TABLE
+        self._table, self._curve = kernels.NO_TABLE, kernels.NO_CURVE
         self._asperities = kernels.NO_ASPERITIES
         if roughness is not None:
             table = roughness.load_table()
-            self._asperities = kernels.GIVEN_ASPERITIES
-            if table is not None:
+            self._asperities = kernels.GIVEN_ASPERITIES  # the paper's fits
+            if roughness.law is not None:
+                self._curve = roughness.law.pressure_curve
+                self._asperities = kernels.LAW_ASPERITIES
+            elif table is not None:
                 self._table, self._asperities = table, kernels.TABLE_ASPERITIES
         self._ones = np.ones(grid.n)
 
@@ -173,7 +176,7 @@ class ReynoldsSystem:
         H0 = float(H0)
         defo = self.deform(Q) if self.elastic else _EMPTY
         pa, dpa = np.empty(n), np.empty(n)
-        if self._asperities == kernels.GIVEN_ASPERITIES:  # a load–separation law
+        if self._asperities == kernels.GIVEN_ASPERITIES:  # the paper's fits
             pa, dpa = self.asperity(H0 + self.geom + defo if self.elastic else H0 + self.geom)
         H, P, R = np.empty(n), np.empty(n), np.empty(n)
         AP, AH = np.empty((5, n)), np.empty((5, n))
@@ -185,6 +188,7 @@ class ReynoldsSystem:
             defo,
             self._asperities,
             self._table,
+            self._curve,
             self.ka if self.rough is not None else 0.0,
             self.sig if self.rough is not None else 1.0,
             self._law,
