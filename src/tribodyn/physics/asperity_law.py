@@ -7,7 +7,9 @@ F_5/2 and F_2: the solvers read p_a = E' Φ(h/σ) and A_a/A = α(h/σ) through
 :meth:`Roughness.load_function` and :meth:`Roughness.contact_area_fraction`, one code path
 for both models. E' is the paper's reduced modulus (E' = 2E*).
 
-Interpolation: monotone cubic (PCHIP) in ln Φ and ln α between the computed points.
+Interpolation: monotone cubic (PCHIP) in ln Φ and ln α between the computed points,
+evaluated by the compiled :func:`log_curve_at` (the EHL solver reads Φ's curve,
+:attr:`LoadSeparationLaw.pressure_curve`, node by node).
 Beyond the largest computed separation ln Φ continues linearly (p_a ∝ exp(−h/h₀), the
 exponential tail Persson's theory gives for randomly rough surfaces: Persson, PRL 99
 (2007) 125502); below the smallest, ln Φ continues linearly up to the cap Φ ≤ H/E' (every
