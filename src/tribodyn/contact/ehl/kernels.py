@@ -3,12 +3,14 @@ derivatives, the Newton matrix's banded part, its matrix-free product, its dense
 and GMRES on it preconditioned with an earlier LU factorisation.
 
 Pure array arithmetic on node arrays. :func:`evaluate` computes a residual evaluation in
-one call, reading the lubricant's rheology and the Greenwood–Tripp table through the
-compiled elementwise functions of :mod:`tribodyn.physics.lubricant` and
-:mod:`tribodyn.physics.asperity`; :func:`assemble` alone takes the rheology evaluated by
-the caller, so a lubricant with per-node properties (e.g. temperature fields) can stand
-in. (numba's cache of a kernel is not renewed when only a function it calls from another
-module changes; clear the package's ``__pycache__`` after editing those.) Bands are stored as (5, n)
+one call, reading the lubricant's rheology, the Greenwood–Tripp table and a
+load–separation law's curve through the compiled elementwise functions of
+:mod:`tribodyn.physics.lubricant`, :mod:`~tribodyn.physics.asperity` and
+:mod:`~tribodyn.physics.asperity_law`; :func:`assemble` alone takes the rheology
+evaluated by the caller, so a lubricant with per-node properties (e.g. temperature
+fields) can stand in. (numba's cache of a kernel is not renewed when only a function it
+calls from another module changes; clear the package's ``__pycache__`` after editing
+those.) Bands are stored as (5, n)
 arrays, row d + 2 holding offset d (A[d + 2, i] multiplies v[i + d]). The equations are
 those of :mod:`.reynolds` (finite volumes, arithmetic-mean face coefficients,
 second-order upwind Couette term, backward-difference time term).
