@@ -190,13 +190,13 @@ def test_compiled_gmres_solves_a_random_newton_system(elastic):
     fac, piv = linalg.lu_factor(J * (1.0 + 0.05 * rng.random(J.shape)))  # an earlier matrix
     b = rng.normal(size=n + 1)
     system = (AP, B, col, c, free, cav, D, K, ks, elastic, dX)
-    x, its, ok = k.gmres_lu(k.GETRS, k.GEMV, system, fac, piv + 1, b, 1e-12, 30)
+    x, its, ok = k.gmres_lu(k.GETRS, k.SYMV, system, fac, piv + 1, b, 1e-12, 30)
     assert ok and 0 < its <= 30
     exact = np.linalg.solve(J, b)
     assert np.linalg.norm(x - exact) <= 1e-9 * np.linalg.norm(exact)
     bad = AP.copy()
     bad[2, 40] = np.nan
-    _, _, ok = k.gmres_lu(k.GETRS, k.GEMV, (bad, *system[1:]), fac, piv + 1, b, 1e-12, 30)
+    _, _, ok = k.gmres_lu(k.GETRS, k.SYMV, (bad, *system[1:]), fac, piv + 1, b, 1e-12, 30)
     assert not ok
 
 
@@ -254,7 +254,7 @@ def test_compiled_gmres_with_a_single_precision_preconditioner():
     b = rng.normal(size=n + 1)
     b[5] = 1e-300  # a subnormal entry in single precision
     system = (*rows, K, ks, True, dX)
-    x, its, ok = k.gmres_lu(k.SGETRS, k.GEMV, system, fac, piv + 1, b, 1e-12, 30)
+    x, its, ok = k.gmres_lu(k.SGETRS, k.SYMV, system, fac, piv + 1, b, 1e-12, 30)
     assert ok and 0 < its <= 30
     exact = np.linalg.solve(J, b)
     assert np.linalg.norm(x - exact) <= 1e-9 * np.linalg.norm(exact)
@@ -262,7 +262,7 @@ def test_compiled_gmres_with_a_single_precision_preconditioner():
 
 
 def test_compiled_gmres_with_single_precision_products():
-    """GMRES with the influence matrix rounded to single precision (kernels.SGEMV, as
+    """GMRES with the influence matrix rounded to single precision (kernels.SSYMV, as
     the Newton solves do with reynolds.SINGLE_PRODUCTS on) solves the double-precision
     system to single precision's accuracy (LAPACK's dense solve)."""
     from scipy import linalg
@@ -287,7 +287,7 @@ def test_compiled_gmres_with_single_precision_products():
     fac, piv = linalg.lu_factor(J * (1.0 + 0.05 * rng.random(J.shape)))
     b = rng.normal(size=n + 1)
     system = (AP, B, col, c, free, cav, D, K.astype(np.float32), ks, True, dX)
-    x, its, ok = k.gmres_lu(k.GETRS, k.SGEMV, system, fac, piv + 1, b, 1e-10, 30)
+    x, its, ok = k.gmres_lu(k.GETRS, k.SSYMV, system, fac, piv + 1, b, 1e-10, 30)
     assert ok and 0 < its <= 30
     exact = np.linalg.solve(J, b)
     err = np.linalg.norm(x - exact) / np.linalg.norm(exact)
@@ -358,3 +358,53 @@ def test_asperity_dominated_march_starts_newton_from_the_predicted_cavitation(mo
     assert rows[:, 2].min() > 0.99
     np.testing.assert_allclose(rows, rows_std, rtol=1e-9)
     assert its < 0.5 * its_std
+
+
+@pytest.mark.parametrize(
+    "oil",
+    [
+        Lubricant(0.005, 1.5e-8),
+        Lubricant(0.005, 1.5e-8, viscosity_model="barus"),
+        Lubricant(0.005, 1.5e-8, compressible=False),
+    ],
+    ids=["roelands", "barus", "incompressible"],
+)
+@pytest.mark.parametrize("asperities", ["greenwood_tripp", "law", "smooth"])
+def test_compiled_evaluation_equals_the_lubricants_methods(monkeypatch, oil, asperities):
+    """A residual evaluation in one compiled call (film, asperity pressure, rheology and
+    stencil) equals the evaluation through the Lubricant's and Roughness's NumPy methods,
+    at the iterates of a transient step (time term active)."""
+    from tribodyn import Roughness
+    from tribodyn.contact.ehl import reynolds
+    from tribodyn.physics.asperity import greenwood_tripp
+    from tribodyn.physics.asperity_law import LoadSeparationLaw
+
+    rough = None
+    if asperities != "smooth":
+        rough = Roughness(1e9, 1.5e-6, 200e-6)
+    if asperities == "law":
+        lam = np.linspace(-1.0, 4.0, 11)
+        f = rough.pressure_scale(1.0) * greenwood_tripp(2.5, lam)
+        law = LoadSeparationLaw(lam, f * 2.3e11, np.minimum(0.1 * f / f[0], 1.0), 2.3e11)
+        rough = Roughness(1e9, 1.5e-6, 200e-6, law=law)
+    seen = []
+    evaluate = reynolds.ReynoldsSystem.evaluate
+
+    def kept(self, Q, H0):
+        seen.append((self, np.array(Q), H0))
+        return evaluate(self, Q, H0)
+
+    tr = TransientEHL(PAIR, oil, roughness=rough)
+    tr.start_steady(1e5, 0.01, 0.5, 0.5)
+    monkeypatch.setattr(reynolds.ReynoldsSystem, "evaluate", kept)
+    assert tr.step(4e-4, 1.1e5, 0.01, 0.5, 0.5).converged
+    sysm, Q, H0 = seen[-1]
+    assert sysm.time_coef != 0.0 and sysm.elastic
+    a, b = evaluate(sysm, Q, H0), sysm._evaluate_per_node(Q, H0)
+    assert a.load == pytest.approx(b.load, abs=1e-14)
+    for k in ("H", "pa", "dpa", "P", "R", "AP", "AH"):
+        x, y = getattr(a, k), getattr(b, k)
+        atol = 1e-13 * np.max(np.abs(y)) if k == "R" else 0.0  # R ≈ 0 at the solution
+        assert np.allclose(x, y, rtol=1e-12, atol=atol), k
+    if asperities != "smooth":
+        assert np.max(b.pa) > 0.01 * np.max(Q)  # the asperities carry load

@@ -41,7 +41,13 @@ from .limits import (
     check_fields,
 )
 
-__all__ = ["greenwood_tripp", "greenwood_tripp_derivative", "greenwood_tripp_table", "Roughness"]
+__all__ = [
+    "greenwood_tripp",
+    "greenwood_tripp_derivative",
+    "greenwood_tripp_table",
+    "greenwood_tripp_tabulated",
+    "Roughness",
+]
 
 _SQRT_2PI = math.sqrt(2.0 * math.pi)
 
@@ -54,17 +60,27 @@ _LAM_NEG = -12.0  # below: asymptotic series (exp(−λ²/4)·D_{−n−1}(λ) i
 _LAM_POS = 37.0  # above: F_n < φ(λ)/λ ≈ 1e-300, i.e. 0 in double precision
 
 
-def _negative_series(n: float, lam: np.ndarray) -> np.ndarray:
+@njit(cache=True, nogil=True)
+def _series_at(n, lam):
     """F_n(λ) for λ ≪ 0: E[(s + |λ|)^n] = |λ|^n Σ_k C(n, 2k) (2k−1)!! |λ|^(−2k)
     (Gaussian moments; the part of the integral below s = λ is < φ(λ) ~ e^(−72))."""
-    a = np.abs(lam)
-    total = np.ones_like(a)
+    a = abs(lam)
+    total = 1.0
     coef, dfact = 1.0, 1.0
     for k in range(1, 12):
         coef *= (n - 2 * k + 2) * (n - 2 * k + 1) / ((2 * k - 1) * (2 * k))
         dfact *= 2 * k - 1
         total = total + coef * dfact * a ** (-2.0 * k)
     return a**n * total
+
+
+@njit(cache=True, nogil=True)
+def _negative_series(n, lam):
+    """:func:`_series_at` at every entry of the 1-D array ``lam``."""
+    out = np.empty(lam.size)
+    for i in range(lam.size):
+        out[i] = _series_at(n, lam[i])
+    return out
 
 
 def _exact(n: float, lam: np.ndarray) -> np.ndarray:
@@ -78,7 +94,7 @@ def _exact(n: float, lam: np.ndarray) -> np.ndarray:
     d, _ = special.pbdv(-n - 1.0, lm)
     out[mid] = math.gamma(n + 1.0) * np.exp(-0.25 * lm * lm) * d / _SQRT_2PI
     if np.any(neg):  # the series only where it applies (it is singular at λ = 0)
-        out[neg] = _negative_series(n, lam[neg])
+        out[neg] = _negative_series(float(n), lam[neg])
     return out
 
 
@@ -160,7 +176,9 @@ class _LogTable:
     """Fast F_n(λ) and dF_n/dλ for the solvers: cubic Hermite interpolation of ln F_n on
     −12 ≤ λ ≤ 37 (step 0.002) with the exact slope d ln F_n/dλ = −n F_{n−1}/F_n; the
     exact asymptotic series below, 0 above. Relative error < 1e-8 in F_n and < 1e-6 in
-    dF_n/dλ, limited by scipy's parabolic-cylinder function (checked in tests)."""
+    dF_n/dλ, limited by scipy's parabolic-cylinder function (checked in tests).
+    ``params`` = (ln F_n at the nodes, their slopes · step, first λ, step, n): the table
+    as :func:`greenwood_tripp_tabulated` reads it."""
 
     def __init__(self, n: float):
         from scipy.interpolate import CubicHermiteSpline
@@ -172,72 +190,77 @@ class _LogTable:
             raise ValueError(f"the tabulated F_n needs n >= 1 (got n = {n:g})")
         slope = -n * _exact(n - 1.0, lam) / f
         self.spline = CubicHermiteSpline(lam, np.log(f), slope)
-        self._lam0, self._step = float(lam[0]), float(lam[1] - lam[0])
-        self._y, self._dy = np.log(f), slope * self._step
-
-    def _hermite(self, lm):
-        """ln F_n and its λ-derivative: the same cubic Hermite spline, evaluated directly
-        on the uniform grid (faster than the generic piecewise polynomial)."""
-        lm = np.asarray(lm, dtype=float)
-        val, der = _hermite_uniform(
-            np.ascontiguousarray(lm).ravel(), self._y, self._dy, self._lam0, self._step
+        self.params = (
+            np.log(f),
+            slope * float(lam[1] - lam[0]),
+            float(lam[0]),
+            float(lam[1] - lam[0]),
+            float(n),
         )
-        return val.reshape(lm.shape), der.reshape(lm.shape)
 
     def __call__(self, lam):
         lam = np.asarray(lam, dtype=float)
-        out = np.zeros_like(lam)
-        dout = np.zeros_like(lam)
-        neg = lam < _LAM_NEG
-        mid = ~neg & (lam <= _LAM_POS)
-        if mid.all():
-            val, der = self._hermite(lam)
-            out = np.exp(val)
-            return out, out * der
-        lm = lam[mid]
-        val, der = self._hermite(lm)
-        f = np.exp(val)
-        out[mid] = f
-        dout[mid] = f * der
-        if np.any(neg):
-            ln = lam[neg]
-            out[neg] = _negative_series(self.n, ln)
-            dout[neg] = -self.n * _negative_series(self.n - 1.0, ln)
-        return out, dout
+        f, df = _tabulated(np.ascontiguousarray(lam).reshape(-1), self.params)
+        if not lam.ndim:  # a number gives numbers
+            return f[0], df[0]
+        return f.reshape(lam.shape), df.reshape(lam.shape)
 
 
 @njit(cache=True, nogil=True)
-def _hermite_uniform(lm, y, dy, lam0, step):
+def _hermite_at(lm, y, dy, lam0, step):
     """Cubic Hermite interpolant on a uniform grid (values y, slopes·step dy) and its
-    derivative: ln F = y₀ + d₀t + bt² + at³, a = 2(y₀ − y₁) + d₀ + d₁,
-    b = 3(y₁ − y₀) − 2d₀ − d₁, t ∈ [0, 1] within the interval."""
-    val = np.empty(lm.size)
-    der = np.empty(lm.size)
+    derivative at λ = ``lm``: ln F = y₀ + d₀t + bt² + at³, a = 2(y₀ − y₁) + d₀ + d₁,
+    b = 3(y₁ − y₀) − 2d₀ − d₁, t ∈ [0, 1] within the interval; NaN outside the table."""
     top = y.size - 2
-    for i in range(lm.size):
-        u = (lm[i] - lam0) / step
-        if not 0.0 <= u <= top + 1.0:  # outside the table (callers keep λ inside)
-            val[i] = der[i] = np.nan
-            continue
-        k = min(int(u), top)
-        t = u - k
-        y0, y1, d0, d1 = y[k], y[k + 1], dy[k], dy[k + 1]
-        a = 2.0 * (y0 - y1) + d0 + d1
-        b = 3.0 * (y1 - y0) - 2.0 * d0 - d1
-        val[i] = y0 + t * (d0 + t * (b + t * a))
-        der[i] = (d0 + t * (2.0 * b + 3.0 * a * t)) / step
-    return val, der
+    u = (lm - lam0) / step
+    if not 0.0 <= u <= top + 1.0:  # outside the table (callers keep λ inside)
+        return np.nan, np.nan
+    k = min(int(u), top)
+    t = u - k
+    y0, y1, d0, d1 = y[k], y[k + 1], dy[k], dy[k + 1]
+    a = 2.0 * (y0 - y1) + d0 + d1
+    b = 3.0 * (y1 - y0) - 2.0 * d0 - d1
+    return y0 + t * (d0 + t * (b + t * a)), (d0 + t * (2.0 * b + 3.0 * a * t)) / step
+
+
+@njit(cache=True, nogil=True)
+def greenwood_tripp_tabulated(lam, table):
+    """(F_n(λ), dF_n/dλ) at one λ from a table's ``params`` (:class:`_LogTable`): the
+    Hermite interpolant of ln F_n on −12 ≤ λ ≤ 37, the asymptotic series below
+    (dF_n/dλ = −n F_{n−1}), 0 above (and for NaN)."""
+    y, dy, lam0, step, n = table
+    if lam < _LAM_NEG:
+        return _series_at(n, lam), -n * _series_at(n - 1.0, lam)
+    if lam <= _LAM_POS:
+        val, der = _hermite_at(lam, y, dy, lam0, step)
+        f = math.exp(val)
+        return f, f * der
+    return 0.0, 0.0
+
+
+@njit(cache=True, nogil=True)
+def _tabulated(lam, table):
+    """:func:`greenwood_tripp_tabulated` at every entry of the 1-D array ``lam``."""
+    f = np.empty(lam.size)
+    df = np.empty(lam.size)
+    for i in range(lam.size):
+        f[i], df[i] = greenwood_tripp_tabulated(lam[i], table)
+    return f, df
 
 
 _TABLES: dict = {}
 
 
-def greenwood_tripp_table(n: float, lam):
-    """(F_n(λ), dF_n/dλ) from a cached interpolation table (n ≥ 1); for solvers."""
+def _table(n: float) -> _LogTable:
     t = _TABLES.get(n)
     if t is None:
         t = _TABLES[n] = _LogTable(float(n))
-    return t(lam)
+    return t
+
+
+def greenwood_tripp_table(n: float, lam):
+    """(F_n(λ), dF_n/dλ) from a cached interpolation table (n ≥ 1); for solvers."""
+    return _table(n)(lam)
 
 
 @dataclass(frozen=True)
@@ -308,6 +331,14 @@ class Roughness:
             np.asarray(greenwood_tripp(2.5, lam, self.method), float),
             np.asarray(greenwood_tripp_derivative(2.5, lam, self.method), float),
         )
+
+    def load_table(self) -> tuple | None:
+        """The table of :meth:`load_function` for compiled solvers: the ``params`` of the
+        F_5/2 table (:func:`greenwood_tripp_tabulated`) for the exact Greenwood–Tripp
+        model, None for a load–separation law or the paper's fits."""
+        if self.law is not None or self.method != "exact":
+            return None
+        return _table(2.5).params
 
     @property
     def implied_rms_slope(self) -> float:

@@ -7,7 +7,9 @@ F_5/2 and F_2: the solvers read p_a = E' Φ(h/σ) and A_a/A = α(h/σ) through
 :meth:`Roughness.load_function` and :meth:`Roughness.contact_area_fraction`, one code path
 for both models. E' is the paper's reduced modulus (E' = 2E*).
 
-Interpolation: monotone cubic (PCHIP) in ln Φ and ln α between the computed points.
+Interpolation: monotone cubic (PCHIP) in ln Φ and ln α between the computed points,
+evaluated by the compiled :func:`log_curve_at` (the EHL solver reads Φ's curve,
+:attr:`LoadSeparationLaw.pressure_curve`, node by node).
 Beyond the largest computed separation ln Φ continues linearly (p_a ∝ exp(−h/h₀), the
 exponential tail Persson's theory gives for randomly rough surfaces: Persson, PRL 99
 (2007) 125502); below the smallest, ln Φ continues linearly up to the cap Φ ≤ H/E' (every
@@ -23,15 +25,62 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import njit
 from scipy.interpolate import PchipInterpolator
 
 from .._validation import InputError
 
-__all__ = ["LoadSeparationLaw"]
+__all__ = ["LoadSeparationLaw", "log_curve_at"]
+
+
+@njit(cache=True, nogil=True)
+def _piecewise_at(x, c, t):
+    """A piecewise polynomial (breakpoints x, coefficients c[k, i] of (t − x_i)^(K−1−k)
+    on interval i, as scipy's PPoly) at t; NaN outside [x₀, x_last]."""
+    m = x.size
+    if not x[0] <= t <= x[m - 1]:
+        return np.nan
+    i = min(np.searchsorted(x, t, side="right") - 1, m - 2)
+    s = t - x[i]
+    k = c.shape[0]
+    res, z = 0.0, 1.0
+    for kp in range(k):
+        res += c[k - 1 - kp, i] * z
+        z *= s
+    return res
+
+
+@njit(cache=True, nogil=True)
+def log_curve_at(lam, curve):
+    """(y, dy/dλ) of a :class:`_LogCurve` at one λ from its ``params``: ln y by the
+    PCHIP interpolant inside the computed points, linear outside, capped at ln y_max
+    (slope 0 there); y = exp(max(ln y, −745)). NaN for NaN."""
+    x, c, dc, lo, hi, y_lo, y_hi, s_lo, s_hi, ln_max = curve
+    if lam < lo:
+        val, der = y_lo + s_lo * (lam - lo), s_lo
+    elif lam > hi:
+        val, der = y_hi + s_hi * (lam - hi), s_hi
+    else:
+        val, der = _piecewise_at(x, c, lam), _piecewise_at(x, dc, lam)
+    if val >= ln_max:
+        val, der = ln_max, 0.0
+    y = math.exp(val if val >= -745.0 or val != val else -745.0)
+    return y, y * der
+
+
+@njit(cache=True, nogil=True)
+def _log_curve(lam, curve):
+    """:func:`log_curve_at` at every entry of the 1-D array ``lam``."""
+    y = np.empty(lam.size)
+    dy = np.empty(lam.size)
+    for i in range(lam.size):
+        y[i], dy[i] = log_curve_at(lam[i], curve)
+    return y, dy
 
 
 class _LogCurve:
-    """ln y(λ) by PCHIP through positive points, linear outside, capped at ln y_max."""
+    """ln y(λ) by PCHIP through positive points, linear outside, capped at ln y_max.
+    ``params``: the curve as :func:`log_curve_at` reads it."""
 
     def __init__(self, lam: np.ndarray, y: np.ndarray, y_max: float):
         keep = y > 0.0
@@ -49,24 +98,25 @@ class _LogCurve:
         self.s_lo = float((ly[1] - ly[0]) / (lam[1] - lam[0]))
         self.s_hi = min(float((ly[-1] - ly[-2]) / (lam[-1] - lam[-2])), -1e-3)
         self.ln_max = math.log(y_max)
+        self.params = (
+            np.ascontiguousarray(self.spline.x, dtype=float),
+            np.ascontiguousarray(self.spline.c, dtype=float),
+            np.ascontiguousarray(self.dspline.c, dtype=float),
+            self.lo,
+            self.hi,
+            self.y_lo,
+            self.y_hi,
+            self.s_lo,
+            self.s_hi,
+            self.ln_max,
+        )
 
     def __call__(self, lam):
         lam = np.asarray(lam, dtype=float)
-        val = np.empty_like(lam)
-        der = np.empty_like(lam)
-        lo, hi = lam < self.lo, lam > self.hi
-        mid = ~lo & ~hi
-        val[mid] = self.spline(lam[mid])
-        der[mid] = self.dspline(lam[mid])
-        val[lo] = self.y_lo + self.s_lo * (lam[lo] - self.lo)
-        der[lo] = self.s_lo
-        val[hi] = self.y_hi + self.s_hi * (lam[hi] - self.hi)
-        der[hi] = self.s_hi
-        cap = val >= self.ln_max
-        val = np.where(cap, self.ln_max, val)
-        der = np.where(cap, 0.0, der)
-        y = np.exp(np.maximum(val, -745.0))
-        return y, y * der
+        y, dy = _log_curve(np.ascontiguousarray(lam).reshape(-1), self.params)
+        if not lam.ndim:  # a number gives numbers
+            return y[0], dy[0]
+        return y.reshape(lam.shape), dy.reshape(lam.shape)
 
 
 class LoadSeparationLaw:
@@ -119,6 +169,11 @@ class LoadSeparationLaw:
     def pressure_ratio(self, lam):
         """(Φ, dΦ/dλ) with p_a = E' Φ(λ)."""
         return self._phi(lam)
+
+    @property
+    def pressure_curve(self) -> tuple:
+        """Φ(λ) as the compiled :func:`log_curve_at` reads it."""
+        return self._phi.params
 
     def area_fraction(self, lam):
         """A_a/A at λ."""

@@ -15,13 +15,23 @@ lubricant (``compressible=False``).
 
 Negative (sub-ambient) pressures do not occur in the cavitation model; both laws are
 evaluated at max(p, 0) so they stay finite and monotone for any input.
+
+The laws are written once, as compiled elementwise functions of one pressure
+(:func:`density_terms`, :func:`viscosity_terms`; one quantity each:
+:func:`density_ratio`, :func:`ddensity_ratio_dp`, :func:`log_viscosity_ratio`,
+:func:`dlog_viscosity_dp`) with the lubricant's constants as a tuple
+(:attr:`Lubricant.rheology_law`): the methods of :class:`Lubricant` apply them to arrays,
+and compiled solvers call them node by node.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
+from numba import njit
 
 from .._validation import check_bool, check_choice
 from . import typical
@@ -36,10 +46,99 @@ from .limits import (
     check_fields,
 )
 
-__all__ = ["Lubricant", "ROELANDS_P0", "ROELANDS_MU_INF", "TYPICAL_OIL"]
+__all__ = [
+    "Lubricant",
+    "ROELANDS_P0",
+    "ROELANDS_MU_INF",
+    "TYPICAL_OIL",
+    "density_terms",
+    "viscosity_terms",
+    "density_ratio",
+    "ddensity_ratio_dp",
+    "log_viscosity_ratio",
+    "dlog_viscosity_dp",
+]
 
 #: Roelands pressure constant 1/5.1e-9 Pa = 0.196 GPa.
 ROELANDS_P0 = 1.0 / 5.1e-9
+
+_JIT = dict(cache=True, nogil=True)
+
+# The rheology law of a lubricant, ``law`` = (compressible, barus, α [1/Pa],
+# a = ln μ₀ + 9.67, Z) (:attr:`Lubricant.rheology_law`); p in Pa. Each function holds
+# the law at max(p, 0) (NaN stays NaN); the derivatives are 0 for p < 0.
+
+
+@njit(**_JIT)
+def density_terms(p, law):
+    """(ρ/ρ₀, (1/ρ₀) dρ/dp [1/Pa]) = (1 + 0.6 p_GPa/(1 + 1.7 p_GPa), 0.6e-9/(1 + 1.7 p_GPa)²)
+    (Dowson–Higginson, Eq. 2); (1, 0) if incompressible."""
+    if not law[0]:
+        return 1.0, 0.0
+    pg = (0.0 if p < 0.0 else p) * 1e-9
+    d = 1.0 + 1.7 * pg
+    return 1.0 + 0.6 * pg / d, (0.6e-9 / (d * d) if p >= 0.0 else 0.0)
+
+
+@njit(**_JIT)
+def viscosity_terms(p, law):
+    """(ln μ/μ₀, d ln μ/dp [1/Pa]): Roelands (Eq. 3) a[(1 + p/p₀)^Z − 1] and
+    (a Z/p₀)(1 + p/p₀)^(Z−1), or Barus α p and α."""
+    pp = 0.0 if p < 0.0 else p
+    slope = p >= 0.0
+    if law[1]:
+        return law[2] * pp, (law[2] if slope else 0.0)
+    lg = math.log1p(pp / ROELANDS_P0)
+    d = law[3] * law[4] / ROELANDS_P0 * math.exp((law[4] - 1.0) * lg) if slope else 0.0
+    return law[3] * math.expm1(law[4] * lg), d
+
+
+@njit(**_JIT)
+def density_ratio(p, law):
+    """ρ/ρ₀ (:func:`density_terms`)."""
+    return density_terms(p, law)[0]
+
+
+@njit(**_JIT)
+def ddensity_ratio_dp(p, law):
+    """(1/ρ₀) dρ/dp [1/Pa] (:func:`density_terms`)."""
+    return density_terms(p, law)[1]
+
+
+@njit(**_JIT)
+def log_viscosity_ratio(p, law):
+    """ln(μ/μ₀) (:func:`viscosity_terms`)."""
+    return viscosity_terms(p, law)[0]
+
+
+@njit(**_JIT)
+def dlog_viscosity_dp(p, law):
+    """d ln μ/dp [1/Pa] (:func:`viscosity_terms`)."""
+    return viscosity_terms(p, law)[1]
+
+
+@njit(**_JIT)
+def _each(p, law, which):
+    """One of the four functions above (``which`` = 0…3, in that order) at every entry
+    of the 1-D array ``p``."""
+    out = np.empty(p.size)
+    for i in range(p.size):
+        if which == 0:
+            out[i] = density_ratio(p[i], law)
+        elif which == 1:
+            out[i] = ddensity_ratio_dp(p[i], law)
+        elif which == 2:
+            out[i] = log_viscosity_ratio(p[i], law)
+        else:
+            out[i] = dlog_viscosity_dp(p[i], law)
+    return out
+
+
+def _elementwise(law, which, p):
+    """:func:`_each` on an array or a number of any shape (a number gives a number)."""
+    a = np.asarray(p, dtype=float)
+    out = _each(np.ascontiguousarray(a).reshape(-1), law, which).reshape(a.shape)
+    return out if out.ndim else out[()]
 
 
 @dataclass(frozen=True)
@@ -92,45 +191,38 @@ class Lubricant:
         """Roelands index Z = α/(5.1e-9 (ln μ₀ + 9.67)) (paper Eq. 3)."""
         return self.pressure_viscosity / (5.1e-9 * (np.log(self.viscosity) + 9.67))
 
+    @cached_property
+    def rheology_law(self) -> tuple[bool, bool, float, float, float]:
+        """The constants of the compiled rheology functions of this module:
+        (compressible, Barus, α [1/Pa], ln μ₀ + 9.67, Z)."""
+        return (
+            bool(self.compressible),
+            self.viscosity_model == "barus",
+            float(self.pressure_viscosity),
+            float(np.log(self.viscosity) + 9.67),
+            float(self.roelands_z),
+        )
+
     def viscosity_at(self, p) -> np.ndarray:
         """Viscosity μ(p) [Pa·s] for pressure p [Pa] (Roelands or Barus)."""
         return self.viscosity * np.exp(self.log_viscosity_ratio(p))
 
     def log_viscosity_ratio(self, p) -> np.ndarray:
-        """ln(μ/μ₀) = (ln μ₀ + 9.67)[(1 + p/p₀)^Z − 1]."""
-        pp = np.maximum(np.asarray(p, dtype=float), 0.0)
-        if self.viscosity_model == "barus":
-            return self.pressure_viscosity * pp
-        a = np.log(self.viscosity) + 9.67
-        return a * np.expm1(self.roelands_z * np.log1p(pp / ROELANDS_P0))
+        """ln(μ/μ₀) = (ln μ₀ + 9.67)[(1 + p/p₀)^Z − 1] (:func:`log_viscosity_ratio`)."""
+        return _elementwise(self.rheology_law, 2, p)
 
     def dlog_viscosity_dp(self, p) -> np.ndarray:
         """d ln μ / dp [1/Pa] (= α at p = 0; 0 for p < 0 where μ is held at μ₀)."""
-        p = np.asarray(p, dtype=float)
-        if self.viscosity_model == "barus":
-            return np.where(p >= 0.0, self.pressure_viscosity, 0.0)
-        pp = np.maximum(p, 0.0)
-        a = np.log(self.viscosity) + 9.67
-        z = self.roelands_z
-        d = a * z / ROELANDS_P0 * np.exp((z - 1.0) * np.log1p(pp / ROELANDS_P0))
-        return np.where(p >= 0.0, d, 0.0)
+        return _elementwise(self.rheology_law, 3, p)
 
     # -- Dowson–Higginson --------------------------------------------------------------
     def density_at(self, p) -> np.ndarray:
-        """Dowson–Higginson density ρ(p) [kg/m³] (Eq. 2, p converted to GPa)."""
-        pg = np.maximum(np.asarray(p, dtype=float), 0.0) * 1e-9
-        if not self.compressible:
-            return np.full_like(pg, self.density)
-        return self.density * (1.0 + 0.6 * pg / (1.0 + 1.7 * pg))
+        """Dowson–Higginson density ρ(p) [kg/m³] (Eq. 2, :func:`density_ratio`)."""
+        return self.density * _elementwise(self.rheology_law, 0, p)
 
     def ddensity_dp(self, p) -> np.ndarray:
-        """dρ/dp [kg/(m³ Pa)]: ρ₀ 0.6e-9 / (1 + 1.7 p_GPa)²."""
-        p = np.asarray(p, dtype=float)
-        if not self.compressible:
-            return np.zeros_like(p)
-        pg = np.maximum(p, 0.0) * 1e-9
-        d = self.density * 0.6e-9 / (1.0 + 1.7 * pg) ** 2
-        return np.where(p >= 0.0, d, 0.0)
+        """dρ/dp [kg/(m³ Pa)]: ρ₀ 0.6e-9 / (1 + 1.7 p_GPa)² (:func:`ddensity_ratio_dp`)."""
+        return self.density * _elementwise(self.rheology_law, 1, p)
 
 
 #: A typical engine oil in a warm engine: the typical μ₀, α, ρ₀ and rheology of

@@ -2,9 +2,15 @@
 derivatives, the Newton matrix's banded part, its matrix-free product, its dense form,
 and GMRES on it preconditioned with an earlier LU factorisation.
 
-Pure array arithmetic on node arrays; the rheology (ρ, ln μ/μ₀ and their pressure
-derivatives) is evaluated by the caller through the lubricant, so a lubricant with
-per-node properties (e.g. temperature fields) can stand in. Bands are stored as (5, n)
+Pure array arithmetic on node arrays. :func:`evaluate` computes a residual evaluation in
+one call, reading the lubricant's rheology, the Greenwood–Tripp table and a
+load–separation law's curve through the compiled elementwise functions of
+:mod:`tribodyn.physics.lubricant`, :mod:`~tribodyn.physics.asperity` and
+:mod:`~tribodyn.physics.asperity_law`; :func:`assemble` alone takes the rheology
+evaluated by the caller, so a lubricant with per-node properties (e.g. temperature
+fields) can stand in. (numba's cache of a kernel is not renewed when only a function it
+calls from another module changes; clear the package's ``__pycache__`` after editing
+those.) Bands are stored as (5, n)
 arrays, row d + 2 holding offset d (A[d + 2, i] multiplies v[i + d]). The equations are
 those of :mod:`.reynolds` (finite volumes, arithmetic-mean face coefficients,
 second-order upwind Couette term, backward-difference time term).
@@ -17,8 +23,23 @@ import math
 import numpy as np
 from numba import njit
 
+from ...physics.asperity import greenwood_tripp_tabulated
+from ...physics.asperity_law import log_curve_at
+from ...physics.lubricant import density_terms, viscosity_terms
+
 __all__ = [
     "assemble",
+    "evaluate",
+    "row_scale",
+    "merit",
+    "cavitated_nodes",
+    "newton_rows",
+    "NO_ASPERITIES",
+    "TABLE_ASPERITIES",
+    "LAW_ASPERITIES",
+    "GIVEN_ASPERITIES",
+    "NO_TABLE",
+    "NO_CURVE",
     "coupling_bands",
     "newton_matvec",
     "dense_matrix",
@@ -27,8 +48,8 @@ __all__ = [
     "givens_step",
     "GETRS",
     "SGETRS",
-    "GEMV",
-    "SGEMV",
+    "SYMV",
+    "SSYMV",
     "gmres_lu",
     "flush_factors",
     "compile_fallbacks",
@@ -103,6 +124,110 @@ def assemble(
             R[i] -= time_coef * (rho[i] * H[i] - f_old[i])
             AP[2, i] -= time_coef * drho[i] * H[i]
             AH[2, i] -= time_coef * rho[i]
+
+
+#: How :func:`evaluate` obtains the asperity pressure: none (smooth surfaces), from a
+#: Greenwood–Tripp table, from a load–separation law's curve, or given by the caller
+#: (the paper's polynomial fits).
+NO_ASPERITIES, TABLE_ASPERITIES, LAW_ASPERITIES, GIVEN_ASPERITIES = 0, 1, 2, 3
+#: The table argument of :func:`evaluate` where no table is read …
+NO_TABLE = (np.zeros(0), np.zeros(0), 0.0, 1.0, 2.5)
+#: … and its curve argument where no law is read.
+NO_CURVE = (np.zeros(2), np.zeros((4, 1)), np.zeros((3, 1)), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+
+@njit(**_OPTS)
+def evaluate(
+    Q,
+    H0,
+    geom,
+    defo,
+    asperities,
+    table,
+    curve,
+    ka,
+    sig,
+    law,
+    p_ref,
+    lam,
+    h_floor,
+    abs_ubar,
+    s,
+    dX,
+    time_coef,
+    f_old,
+    ff,
+    cf,
+    H,
+    pa,
+    dpa,
+    P,
+    R,
+    AP,
+    AH,
+):
+    """One residual evaluation of :class:`~.reynolds.ReynoldsSystem` at (Q, H₀), in
+    place; returns the load residual ΔX ΣQ − 1.
+
+    Film H = H₀ + X²/2 + ``defo`` (``defo`` = K Q, empty for rigid surfaces); asperity
+    pressure Pa = k_a F(H/σ̄), dPa/dH = (k_a/σ̄) dF/dλ from the Greenwood–Tripp
+    ``table`` (``asperities`` = :data:`TABLE_ASPERITIES`), a load–separation law's
+    ``curve`` (:data:`LAW_ASPERITIES`), zero (:data:`NO_ASPERITIES`) or as given in
+    ``pa``, ``dpa`` (:data:`GIVEN_ASPERITIES`);
+    fluid pressure P = Q − Pa; the rheology of the lubricant's ``law`` at p = P p_ref
+    (ρ/ρ₀, dρ̄/dP = p_ref (1/ρ₀) dρ/dp, ln μ/μ₀, d ln μ/dP = p_ref d ln μ/dp); then
+    the residual R and bands AP, AH of :func:`assemble`."""
+    n = Q.size
+    rho = np.empty(n)
+    drho = np.empty(n)
+    lnmu = np.empty(n)
+    dlnmu = np.empty(n)
+    elastic = defo.size > 0
+    for i in range(n):
+        h = H0 + geom[i]
+        if elastic:
+            h = h + defo[i]
+        H[i] = h
+        if asperities == TABLE_ASPERITIES or asperities == LAW_ASPERITIES:
+            if asperities == TABLE_ASPERITIES:
+                f, df = greenwood_tripp_tabulated(h / sig, table)
+            else:
+                f, df = log_curve_at(h / sig, curve)
+            pa[i] = ka * f
+            dpa[i] = ka / sig * df
+        elif asperities == NO_ASPERITIES:
+            pa[i] = 0.0
+            dpa[i] = 0.0
+        p = Q[i] - pa[i]
+        P[i] = p
+        pd = p * p_ref
+        r, dr = density_terms(pd, law)
+        lm, dlm = viscosity_terms(pd, law)
+        rho[i] = r
+        drho[i] = dr * p_ref
+        lnmu[i] = lm
+        dlnmu[i] = dlm * p_ref
+    assemble(
+        P,
+        H,
+        rho,
+        drho,
+        lnmu,
+        dlnmu,
+        lam,
+        h_floor,
+        abs_ubar,
+        s,
+        dX,
+        time_coef,
+        f_old,
+        ff,
+        cf,
+        R,
+        AP,
+        AH,
+    )
+    return dX * np.sum(Q) - 1.0
 
 
 @njit(**_OPTS)
@@ -257,6 +382,74 @@ def jacobi_diagonal(AP, AH, D, kcoef, elastic):
     return np.abs(diag)
 
 
+@njit(**_OPTS)
+def row_scale(AP, AH, D, kcoef, elastic):
+    """Row scaling of the Newton system, c_i = 1/max(d_i, 1e-300 + 1e-14 max d) with
+    d = :func:`jacobi_diagonal` (the end rows take their neighbours' d); NaN throughout
+    if a d is NaN."""
+    n = D.size
+    d = jacobi_diagonal(AP, AH, D, kcoef, elastic)
+    d[0], d[n - 1] = d[1], d[n - 2]
+    big = -np.inf
+    for v in d:
+        if not v <= big:  # larger, or NaN (which stays)
+            big = v
+            if v != v:
+                break
+    floor = 1e-300 + 1e-14 * big
+    c = np.empty(n)
+    for i in range(n):
+        v = d[i]
+        c[i] = 1.0 / (v if v > floor or v != v else floor)
+    return c
+
+
+@njit(**_OPTS)
+def merit(P, R, load, c):
+    """Merit |Φ|² + load² of the complementarity system, Φ_i = min(P_i, −c_i R_i)
+    (NaN if either is), Φ = P at the end nodes."""
+    n = P.size
+    phi = np.empty(n)
+    for i in range(n):
+        a, b = P[i], -c[i] * R[i]
+        phi[i] = a if a <= b or a != a else b
+    phi[0], phi[n - 1] = P[0], P[n - 1]
+    return np.dot(phi, phi) + load * load
+
+
+@njit(**_OPTS)
+def cavitated_nodes(P, R, c):
+    """The active set of the complementarity system: P_i < −c_i R_i (the end nodes are
+    not cavitated)."""
+    n = P.size
+    cav = np.empty(n, dtype=np.bool_)
+    for i in range(n):
+        cav[i] = P[i] < -c[i] * R[i]
+    cav[0] = cav[n - 1] = False
+    return cav
+
+
+@njit(**_OPTS)
+def newton_rows(AP, AH, D, R, P, load, c, cav):
+    """Row data of the Newton system for (δQ, δH₀) (:class:`~.reynolds.Linearization`)
+    with the cavitated nodes ``cav`` (the end nodes are boundary rows): B = A_H − A_P D
+    and B·1 (:func:`coupling_bands`), the cavitated, boundary and free rows, and the
+    right-hand side −c_i R_i (free), −P_i (cavitated and boundary), −(ΔX ΣQ − 1)."""
+    n = D.size
+    B, col = coupling_bands(AP, AH, D)
+    cv = cav.copy()
+    cv[0] = cv[n - 1] = False
+    bnd = np.zeros(n, dtype=np.bool_)
+    bnd[0] = bnd[n - 1] = True
+    free = np.empty(n, dtype=np.bool_)
+    rhs = np.empty(n + 1)
+    for i in range(n):
+        free[i] = not (cv[i] or bnd[i])
+        rhs[i] = -R[i] * c[i] if free[i] else -P[i]
+    rhs[n] = -load
+    return B, col, cv, bnd, free, rhs
+
+
 def _scipy_routine(module: str, name: str, nargs: int):
     """A LAPACK/BLAS routine of SciPy's Cython exports as a ctypes function (all
     arguments by pointer) that compiled code can call; it is passed to the kernels as an
@@ -273,10 +466,12 @@ def _scipy_routine(module: str, name: str, nargs: int):
 GETRS = _scipy_routine("lapack", "dgetrs", 9)
 #: sgetrs: the same in single precision (a preconditioner's factors stored as float32)
 SGETRS = _scipy_routine("lapack", "sgetrs", 9)
-#: dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
-GEMV = _scipy_routine("blas", "dgemv", 11)
-#: sgemv: the same in single precision (products with a float32 influence matrix)
-SGEMV = _scipy_routine("blas", "sgemv", 11)
+#: dsymv(uplo, n, alpha, a, lda, x, incx, beta, y, incy): y = αAx + βy for a symmetric A,
+#: read from one triangle (half the memory of a general product; the influence matrix
+#: of a uniform grid is symmetric Toeplitz)
+SYMV = _scipy_routine("blas", "dsymv", 10)
+#: ssymv: the same in single precision (products with a float32 influence matrix)
+SSYMV = _scipy_routine("blas", "ssymv", 10)
 
 
 #: Single-precision triangular solves: entries of the right-hand side below this share of
@@ -346,16 +541,16 @@ def _lu_solve(getrs, fac, piv1, x, buf, ints, trans):
 
 
 @njit(**_OPTS)
-def _product(gemv, tr, ints, reals, K, x, y):
-    """y = alpha·op(K) x + beta·y by BLAS ``gemv`` (``tr``: trans flag, ``ints`` = [n, n,
-    1], ``reals`` = [alpha, beta]); x and y of K's precision, their first n entries used."""
-    gemv(
-        tr.ctypes,
+def _product(symv, uplo, ints, reals, K, x, y):
+    """y = alpha·K x + beta·y by BLAS ``symv`` for the symmetric K (``uplo``: the triangle
+    read, ``ints`` = [n, n, 1], ``reals`` = [alpha, beta]); x and y of K's precision,
+    their first n entries used."""
+    symv(
+        uplo.ctypes,
         ints[0:].ctypes,
-        ints[1:].ctypes,
         reals[0:].ctypes,
         K.ctypes,
-        ints[0:].ctypes,
+        ints[1:].ctypes,
         x.ctypes,
         ints[2:].ctypes,
         reals[1:].ctypes,
@@ -365,24 +560,24 @@ def _product(gemv, tr, ints, reals, K, x, y):
 
 
 @njit(**_OPTS)
-def _apply(gemv, system, z, out, work):
+def _apply(symv, system, z, out, work):
     """Newton-matrix product out = J z for ``system`` = (AP, B, col, c, free, cav, D, K,
-    kscale, elastic, dX), with δH = kscale·K v + vh (dense row-major K, by BLAS gemv on
-    its column-major view with trans = "T"); ``work`` = (dh, [n, n, 1], [1, 0],
-    [ord("T")], zs, hs): zs, hs vectors of K's precision for a float32 K."""
+    kscale, elastic, dX), with δH = kscale·K v + vh (the dense symmetric K, by BLAS
+    symv); ``work`` = (dh, [n, n, 1], [1, 0], [ord("U")], zs, hs): zs, hs vectors of K's
+    precision for a float32 K."""
     AP, B, col, c, free, cav, D, K, kscale, elastic, dX = system
-    dh, ints, reals, tr, zs, hs = work
+    dh, ints, reals, uplo, zs, hs = work
     n = D.size
     vh = z[n]
     if elastic:
         if K.itemsize == 4:
             for i in range(n):
                 zs[i] = z[i]
-            _product(gemv, tr, ints, reals, K, zs, hs)
+            _product(symv, uplo, ints, reals, K, zs, hs)
             for i in range(n):
                 dh[i] = kscale * hs[i] + vh
         else:
-            _product(gemv, tr, ints, reals, K, z, dh)
+            _product(symv, uplo, ints, reals, K, z, dh)
             for i in range(n):
                 dh[i] = kscale * dh[i] + vh
     else:
@@ -391,11 +586,25 @@ def _apply(gemv, system, z, out, work):
 
 
 @njit(**_OPTS)
+def _dot(a, b):
+    """Σ a_k b_k with four partial sums (independent additions: the products pipeline
+    instead of waiting on one running sum)."""
+    n = a.size
+    s0 = s1 = s2 = s3 = 0.0
+    top = n - n % 4
+    for k in range(0, top, 4):
+        s0 += a[k] * b[k]
+        s1 += a[k + 1] * b[k + 1]
+        s2 += a[k + 2] * b[k + 2]
+        s3 += a[k + 3] * b[k + 3]
+    for k in range(top, n):
+        s0 += a[k] * b[k]
+    return (s0 + s1) + (s2 + s3)
+
+
+@njit(**_OPTS)
 def _norm(v):
-    s = 0.0
-    for x in v:
-        s += x * x
-    return math.sqrt(s)
+    return math.sqrt(_dot(v, v))
 
 
 @njit(**_OPTS)
@@ -422,12 +631,12 @@ def givens_step(Hm, cs, sn, gv, j):
 
 
 @njit(**_OPTS)
-def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
+def gmres_lu(getrs, symv, system, fac, piv1, b, rtol, max_it):
     """Right-preconditioned flexible GMRES for J x = b (J: the Newton matrix of
     :class:`~.reynolds.Linearization`, ``system`` = (AP, B, col, c, free, cav, D, K,
     kscale, elastic, dX) with the dense influence matrix K, M = LU of an
     earlier Newton matrix, applied by ``getrs`` = :data:`GETRS` with the factors ``fac``
-    and 1-based pivots ``piv1`` of ``scipy.linalg.lu_factor``; ``gemv`` = :data:`GEMV`
+    and 1-based pivots ``piv1`` of ``scipy.linalg.lu_factor``; ``symv`` = :data:`SYMV`
     for the products with K), started from x₀ = M⁻¹b; Arnoldi with classical Gram–Schmidt
     applied twice (CGS2) and Givens rotations, in the flexible form that keeps the
     preconditioned directions z_j = M⁻¹v_j and returns x₀ + Z y (Saad, *Iterative
@@ -436,7 +645,7 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
     inexactly. Stops when the residual estimate |g_{j+1}| ≤ rtol·|b|. The factors may
     be float32 (with ``getrs`` = :data:`SGETRS`): the preconditioner then reads half the
     memory, and GMRES still solves the double-precision system to ``rtol``. K may be
-    float32 too (with ``gemv`` = :data:`SGEMV`): GMRES then solves the system with K
+    float32 too (with ``symv`` = :data:`SSYMV`): GMRES then solves the system with K
     rounded to single precision.
 
     Returns (x, iterations, ok); ok is False for a non-finite residual, a breakdown or
@@ -453,7 +662,7 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
         np.empty(n),
         np.array([n, n, 1], dtype=np.int32),
         np.array([1.0, 0.0], dtype=K.dtype),
-        np.array([84], dtype=np.uint8),  # "T"
+        np.array([85], dtype=np.uint8),  # "U"
         np.empty(n, dtype=K.dtype),
         np.empty(n, dtype=K.dtype),
     )
@@ -461,15 +670,17 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
     x0 = b.copy()
     _lu_solve(getrs, fac, piv1, x0, buf, ints, trans)
     w = np.empty(m)
-    _apply(gemv, system, x0, w, work)
+    _apply(symv, system, x0, w, work)
     r0 = b - w
     beta = _norm(r0)
     if not math.isfinite(beta):
         return x0, 0, False
     if beta <= rtol * bn:
         return x0, 0, True
-    V = np.zeros((max_it + 1, m))
-    Z = np.zeros((max_it, m))  # the preconditioned directions M⁻¹v_j (flexible GMRES)
+    # rows are written before they are read (np.empty: no zeroing of the rows a call
+    # never reaches, which would also evict the factors from the cache)
+    V = np.empty((max_it + 1, m))
+    Z = np.empty((max_it, m))  # the preconditioned directions M⁻¹v_j (flexible GMRES)
     Hm = np.zeros((max_it + 1, max_it))
     cs = np.zeros(max_it)
     sn = np.zeros(max_it)
@@ -483,15 +694,12 @@ def gmres_lu(getrs, gemv, system, fac, piv1, b, rtol, max_it):
         t[:] = V[j]
         _lu_solve(getrs, fac, piv1, t, buf, ints, trans)
         Z[j] = t
-        _apply(gemv, system, t, w, work)
+        _apply(symv, system, t, w, work)
         for i in range(j + 1):
             Hm[i, j] = 0.0
         for _ in range(2):  # CGS2
             for i in range(j + 1):
-                acc = 0.0
-                for k in range(m):
-                    acc += V[i, k] * w[k]
-                h[i] = acc
+                h[i] = _dot(V[i], w)
             for i in range(j + 1):
                 hi = h[i]
                 for k in range(m):
@@ -528,9 +736,12 @@ def compile_fallbacks() -> None:
     """Compile (into numba's cache) the kernel variants that a cycle study reaches only
     on fallbacks, on a small system with the argument types of the solvers' calls: the
     double-precision factorisation (:func:`dense_matrix_t` into float64, GMRES with
-    float64 factors) and the dense matrix of the two-grid coarse level
+    float64 factors and the influence matrix in the precision of the GMRES products,
+    :data:`.reynolds.SINGLE_PRODUCTS`) and the dense matrix of the two-grid coarse level
     (:func:`dense_matrix`)."""
     from scipy import linalg
+
+    from .reynolds import SINGLE_PRODUCTS
 
     n = 8
     AP = np.zeros((5, n))
@@ -545,5 +756,6 @@ def compile_fallbacks() -> None:
     dense_matrix(*rows, K, 1.0, 0.1, True)
     J = dense_matrix_t(*rows, K, 1.0, 0.1, True, 0.0, np.empty((n + 1, n + 1))).T
     fac, piv = linalg.lu_factor(J, overwrite_a=True, check_finite=False)
-    system = (*rows, K.astype(np.float32), 1.0, True, 0.1)
-    gmres_lu(GETRS, SGEMV, system, fac, piv + 1, np.ones(n + 1), 1e-6, 30)
+    Kp, symv = (K.astype(np.float32), SSYMV) if SINGLE_PRODUCTS else (K, SYMV)
+    system = (*rows, Kp, 1.0, True, 0.1)
+    gmres_lu(GETRS, symv, system, fac, piv + 1, np.ones(n + 1), 1e-6, 30)

@@ -17,7 +17,14 @@ import numpy as np
 from scipy import linalg
 from scipy.linalg import lapack
 
-from .kernels import FACTOR_FLUSH, flush_factors, givens_step, jacobi_diagonal
+from .kernels import (
+    FACTOR_FLUSH,
+    cavitated_nodes,
+    flush_factors,
+    givens_step,
+    merit,
+    row_scale,
+)
 from .reynolds import Linearization, ReynoldsSystem
 
 __all__ = [
@@ -215,20 +222,18 @@ class State:
 
 
 def jacobi_scale(sysm, ev):
-    """c_i ≈ 1/|J_ii|, J = A_P + B K (only a scaling of the rows)."""
+    """c_i ≈ 1/|J_ii|, J = A_P + B K (only a scaling of the rows; :func:`.kernels.row_scale`)."""
     kc = sysm.kcoef if sysm.kcoef is not None else _NO_COEF
-    diag = jacobi_diagonal(ev.AP, ev.AH, ev.dpa, kc, sysm.kcoef is not None)
-    diag[0], diag[-1] = diag[1], diag[-2]
-    return 1.0 / np.maximum(diag, 1e-300 + 1e-14 * diag.max())
+    return row_scale(ev.AP, ev.AH, ev.dpa, kc, sysm.kcoef is not None)
 
 
 _NO_COEF = np.zeros(3)
 
 
 def cavitated(ev, c):
-    cav = ev.P < -c * ev.R
-    cav[0] = cav[-1] = False
-    return cav
+    """Cavitated nodes of the evaluation ``ev`` for the row scaling ``c``
+    (:func:`.kernels.cavitated_nodes`)."""
+    return cavitated_nodes(ev.P, ev.R, c)
 
 
 class CoarseLevel:
@@ -352,9 +357,7 @@ def _newton_impl(
     def merit_of(ev, c=None):
         """|Φ|² + load²; the scale c is frozen within a line search (c=given)."""
         c = jacobi_scale(sysm, ev) if c is None else c
-        phi = np.minimum(ev.P, -c * ev.R)
-        phi[0], phi[-1] = ev.P[0], ev.P[-1]
-        return float(np.dot(phi, phi) + ev.load * ev.load), c
+        return merit(ev.P, ev.R, ev.load, c), c
 
     Q, H0 = st.Q.copy(), st.H0
     ev = sysm.evaluate(Q, H0)

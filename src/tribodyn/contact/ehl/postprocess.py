@@ -118,15 +118,15 @@ def _postprocess(
     zero = ROUND_OFF_PRESSURE * float(p[ipk])
     x_cav = float("nan")
     idx = np.arange(ipk, g.n) if direction > 0 else np.arange(ipk, -1, -1)
-    for k in range(1, idx.size):
-        if p[idx[k]] <= zero:
-            j1, j2 = idx[k - 1], idx[k - 2] if k >= 2 else idx[k - 1]
-            s1, s2 = math.sqrt(p[j1]), math.sqrt(max(p[j2], 0.0))
-            if s2 > s1 > 0 and j1 != j2:
-                x_cav = float(x[j1] + (x[j1] - x[j2]) * s1 / (s2 - s1))
-            else:
-                x_cav = float(x[idx[k]])
-            break
+    zeros = np.flatnonzero(p[idx[1:]] <= zero)
+    if zeros.size:
+        k = int(zeros[0]) + 1
+        j1, j2 = idx[k - 1], idx[k - 2] if k >= 2 else idx[k - 1]
+        s1, s2 = math.sqrt(p[j1]), math.sqrt(max(p[j2], 0.0))
+        if s2 > s1 > 0 and j1 != j2:
+            x_cav = float(x[j1] + (x[j1] - x[j2]) * s1 / (s2 - s1))
+        else:
+            x_cav = float(x[idx[k]])
     if not (np.all(np.isfinite(p)) and np.all(np.isfinite(h)) and np.isfinite(f_visc)):
         ok = False
         msg = "non-finite solution: " + msg

@@ -13,28 +13,35 @@ Finite volumes with arithmetic-mean face coefficients, second-order upwind Couet
 (first order next to the boundary), backward-difference time term (coefficient and old
 level supplied by the transient driver). :meth:`ReynoldsSystem.evaluate` returns the
 residuals with the banded derivatives A_P = ∂R/∂P, A_H = ∂R/∂H; :class:`Linearization`
-assembles the Newton system for (δQ, δH₀) densely or applies it matrix-free.
+assembles the Newton system for (δQ, δH₀) densely or applies it matrix-free. With a
+:class:`~tribodyn.Lubricant` an evaluation is one compiled call after the deformation
+product (:func:`.kernels.evaluate`); a lubricant with per-node properties (the thermal
+solvers') is read through its methods.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
+from scipy.linalg.blas import dsymv
 
 from ...physics.elasticity import DeformationOperator
+from ...physics.lubricant import Lubricant
+from . import kernels
 from .grid import Grid
 from .kernels import (
-    GEMV,
     GETRS,
-    SGEMV,
     SGETRS,
+    SSYMV,
+    SYMV,
     assemble,
-    coupling_bands,
     dense_matrix,
     dense_matrix_t,
     gmres_lu,
     newton_matvec,
+    newton_rows,
 )
 from .options import Conditions, ContactModel
 
@@ -59,15 +66,12 @@ class ReynoldsSystem:
         self.h_ref = h_ref = a * a / R  # H = h R / a²
         self.elastic = grid.elastic
         self._K = None
-        self.Kop: DeformationOperator | None
         self.kcoef: np.ndarray | None
         if grid.elastic:
             assert grid.coef is not None  # an elastic grid carries its influence coefficients
             kscale = self.kscale = p_ref / h_ref
-            self.Kop = DeformationOperator.from_coefficients(grid.coef * kscale)
             self.kcoef = grid.coef * kscale
         else:
-            self.Kop = None
             self.kcoef = None
         self.u_scale = max(abs(ue), 1e-3)
         self.ubar = ue / self.u_scale
@@ -87,6 +91,28 @@ class ReynoldsSystem:
             self.sig = roughness.rms / h_ref
         # upwind direction of the Couette term: d/dX (ρ̄H) from nodes i, i − s, i − 2s
         self.s = 1 if self.ubar >= 0 else -1
+        # compiled evaluation: the lubricant's rheology law (None: per-node lubricant,
+        # read through its methods) and where the asperity pressure comes from
+        self._law = lub.rheology_law if isinstance(lub, Lubricant) else None
+        self._table, self._curve = kernels.NO_TABLE, kernels.NO_CURVE
+        self._asperities = kernels.NO_ASPERITIES
+        if roughness is not None:
+            table = roughness.load_table()
+            self._asperities = kernels.GIVEN_ASPERITIES  # the paper's fits
+            if roughness.law is not None:
+                self._curve = roughness.law.pressure_curve
+                self._asperities = kernels.LAW_ASPERITIES
+            elif table is not None:
+                self._table, self._asperities = table, kernels.TABLE_ASPERITIES
+        self._ones = np.ones(grid.n)
+
+    @cached_property
+    def Kop(self) -> DeformationOperator | None:
+        """DC-FFT operator of the scaled influence coefficients (None: rigid), built on
+        first use (grids with the dense matrix multiply by it instead)."""
+        if self.kcoef is None:
+            return None
+        return DeformationOperator.from_coefficients(self.kcoef)
 
     @property
     def K(self):
@@ -97,9 +123,10 @@ class ReynoldsSystem:
 
     def deform(self, v):
         """Scaled deformation K v: a dense product on grids that keep the dense matrix
-        (LU paths), DC-FFT otherwise."""
+        (LU paths; BLAS symv, K symmetric: Kᵀ is its column-major view), DC-FFT
+        otherwise."""
         if self.g.has_dense:
-            return self.kscale * (self.g.K @ v)
+            return dsymv(self.kscale, self.g.K.T, v)
         assert self.Kop is not None  # only an elastic system deforms
         return self.Kop(v)
 
@@ -141,6 +168,58 @@ class ReynoldsSystem:
         residual ΔX ΣQ − 1, the fluid pressure P = Q − Pa(H), the film H, D = dPa/dH and
         the diagonals of A_P = ∂R/∂P, A_H = ∂R/∂H (offsets −2…2; compiled stencil in
         :func:`.kernels.assemble`)."""
+        if self._law is None:
+            return self._evaluate_per_node(Q, H0)
+        n = self.g.n
+        Q = np.ascontiguousarray(Q, dtype=float)
+        H0 = float(H0)
+        defo = self.deform(Q) if self.elastic else _EMPTY
+        pa, dpa = np.empty(n), np.empty(n)
+        if self._asperities == kernels.GIVEN_ASPERITIES:  # the paper's fits
+            pa, dpa = self.asperity(H0 + self.geom + defo if self.elastic else H0 + self.geom)
+        H, P, R = np.empty(n), np.empty(n), np.empty(n)
+        AP, AH = np.empty((5, n)), np.empty((5, n))
+        ff, cf = self._factors()
+        load = kernels.evaluate(
+            Q,
+            H0,
+            self.geom,
+            defo,
+            self._asperities,
+            self._table,
+            self._curve,
+            self.ka if self.rough is not None else 0.0,
+            self.sig if self.rough is not None else 1.0,
+            self._law,
+            self.p_ref,
+            self.lam,
+            self.h_floor,
+            abs(self.ubar),
+            self.s,
+            self.g.dX,
+            float(self.time_coef),
+            self.f_old if self.time_coef else _EMPTY,
+            ff,
+            cf,
+            H,
+            pa,
+            dpa,
+            P,
+            R,
+            AP,
+            AH,
+        )
+        return Evaluation(R, load, P, H, pa, dpa, AP, AH)
+
+    def _factors(self):
+        """The per-node factors φ_f, φ_c of the generalized Reynolds equation (1: none)."""
+        ff = self._ones if self.flow_factor is None else np.asarray(self.flow_factor, float)
+        cf = self._ones if self.couette_factor is None else np.asarray(self.couette_factor, float)
+        return ff, cf
+
+    def _evaluate_per_node(self, Q, H0):
+        """:meth:`evaluate` for a lubricant read through its methods (per-node
+        properties): film, asperities and rheology by NumPy, then the compiled stencil."""
         g = self.g
         n, dX = g.n, g.dX
         H = self.film(Q, H0)
@@ -151,11 +230,7 @@ class ReynoldsSystem:
         AP = np.empty((5, n))
         AH = np.empty((5, n))
         f_old = self.f_old if self.time_coef else _EMPTY
-        ones = None
-        if self.flow_factor is None or self.couette_factor is None:
-            ones = np.ones(n)
-        ff = ones if self.flow_factor is None else np.asarray(self.flow_factor, float)
-        cf = ones if self.couette_factor is None else np.asarray(self.couette_factor, float)
+        ff, cf = self._factors()
         assemble(
             P,
             H,
@@ -214,21 +289,11 @@ class Linearization:
         self.n, self.dX, self.sysm = n, g.dX, sysm
         self.rigid = not sysm.elastic
         self.AP = ev.AP
-        D = ev.dpa
-        self.D = D
-        self.B, self.col = coupling_bands(ev.AP, ev.AH, D)
-        self.cav = cav.copy()
-        self.bnd = np.zeros(n, dtype=bool)
-        self.bnd[0] = self.bnd[-1] = True
-        self.cav[0] = self.cav[-1] = False
-        self.free = ~(self.cav | self.bnd)
+        self.D = ev.dpa
         self.c = c
-        rhs = -ev.R.copy()
-        rhs[self.free] *= c[self.free]
-        rhs[self.cav] = -ev.P[self.cav]
-        rhs[self.bnd] = -ev.P[self.bnd]
-        self.rhs = np.concatenate([rhs, [-ev.load]])
-        self._out = np.empty(n + 1)
+        self.B, self.col, self.cav, self.bnd, self.free, self.rhs = newton_rows(
+            ev.AP, ev.AH, ev.dpa, ev.R, ev.P, ev.load, c, cav
+        )
 
     def matvec(self, z):
         n = self.n
@@ -266,7 +331,7 @@ class Linearization:
         getrs = GETRS if fac.dtype == np.float64 else SGETRS
         x, its, ok = gmres_lu(
             getrs,
-            SGEMV if K.dtype == np.float32 else GEMV,
+            SSYMV if K.dtype == np.float32 else SYMV,
             system,
             fac,
             piv + 1,
