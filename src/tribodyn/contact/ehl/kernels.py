@@ -732,16 +732,26 @@ def gmres_lu(getrs, symv, system, fac, piv1, b, rtol, max_it):
     return x0, max_it, False
 
 
+#: GMRES multiplies by the influence matrix in single precision (``Grid.K_single``): a
+#: Krylov iteration reads half the memory (the product and the float32 triangular
+#: solves then share a core's cache; ≈ 9 % of a cycle pass). GMRES then solves the
+#: Newton system with K rounded to single precision: an inexact Newton direction, while
+#: the residuals and the convergence test stay in double precision (same Newton
+#: iterations over a cycle pass, outputs within 5e-11). Off by default: with it the
+#: coupled results depend on the BLAS build's float32 kernel (e.g. OPENBLAS_CORETYPE)
+#: by more than round-off (the implicit coupling's peak-force difference by 0.02 %
+#: points, a squeeze step's energy residual past 1e-5), which the results must not.
+SINGLE_PRODUCTS = False
+
+
 def compile_fallbacks() -> None:
     """Compile (into numba's cache) the kernel variants that a cycle study reaches only
     on fallbacks, on a small system with the argument types of the solvers' calls: the
     double-precision factorisation (:func:`dense_matrix_t` into float64, GMRES with
     float64 factors and the influence matrix in the precision of the GMRES products,
-    :data:`.reynolds.SINGLE_PRODUCTS`) and the dense matrix of the two-grid coarse level
+    :data:`SINGLE_PRODUCTS`) and the dense matrix of the two-grid coarse level
     (:func:`dense_matrix`)."""
     from scipy import linalg
-
-    from .reynolds import SINGLE_PRODUCTS
 
     n = 8
     AP = np.zeros((5, n))

@@ -34,6 +34,7 @@ from .grid import Grid
 from .kernels import (
     GETRS,
     SGETRS,
+    SINGLE_PRODUCTS,
     SSYMV,
     SYMV,
     assemble,
@@ -368,15 +369,7 @@ class Linearization:
         return self.sysm.g.K, self.sysm.kscale
 
 
-_EMPTY2 = np.zeros((0, 0))
-#: GMRES multiplies by the influence matrix in single precision (``Grid.K_single``): a
-#: Krylov iteration reads half the memory (the product and the float32 triangular
-#: solves then share a core's cache; ≈ 9 % of a cycle pass). GMRES then solves the
-#: Newton system with K rounded to single precision: an inexact Newton direction, while
-#: the residuals and the convergence test stay in double precision (same Newton
-#: iterations over a cycle pass, outputs within 5e-11). Off by default: with it the
-#: coupled results depend on the BLAS build's float32 kernel (e.g. OPENBLAS_CORETYPE)
-#: by more than round-off (the implicit coupling's peak-force difference by 0.02 %
-#: points, a squeeze step's energy residual past 1e-5), which the results must not.
-SINGLE_PRODUCTS = False
 _FLUSH = float(np.sqrt(np.finfo(np.float32).tiny))
+
+
+_EMPTY2 = np.zeros((0, 0))
