@@ -142,6 +142,22 @@ def test_all_out_of_range_keys_of_a_file_are_reported_in_file_order():
     ]
 
 
+def test_every_value_of_a_set_out_of_range_is_reported():
+    """A coated set whose coating thickness and roughness are both out of range: two
+    objects of one set, both problems named (the coating's error does not hide the
+    roughness's)."""
+    data = _paper_data()
+    set_dotted(data, "surface_sets[1].coating_thickness", 0.5)
+    set_dotted(data, "surface_sets[1].roughness.rms", 0.5)
+    with pytest.raises(InputError) as e:
+        Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    assert str(e.value).splitlines() == [
+        "invalid case: 2 problems",
+        "  surface_sets[1].coating_thickness: must be > 0 m and <= 0.01 m (got 0.5)",
+        "  surface_sets[1].roughness.rms: must be > 0 m and < 0.0001 m (got 0.5)",
+    ]
+
+
 def test_the_schema_problems_and_the_constructors_are_reported_together():
     data = _paper_data()
     for key, value in (

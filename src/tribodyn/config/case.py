@@ -22,8 +22,9 @@ from __future__ import annotations
 
 import dataclasses
 import difflib
+from collections.abc import Callable
 from pathlib import Path
-from typing import Annotated, Any, ClassVar
+from typing import Annotated, Any, ClassVar, TypeVar
 
 import numpy as np
 import tomli_w
@@ -40,6 +41,7 @@ from .._validation import InputError
 from ..contact.ehl import EHLOptions
 from ..physics import typical
 from ..physics.asperity import Roughness
+from ..physics.limits import RangeError
 from ..physics.lubricant import Lubricant
 from ..physics.materials import Body, Coating, Material
 from ..valvetrain.kinematics import rpm_to_cam_speed
@@ -72,6 +74,8 @@ from .schema import (
     typical_surface_sets,
 )
 from .tomlfile import TomlFile, check_nesting, file_or_bundled
+
+T = TypeVar("T")
 
 __all__ = [
     "Case",
@@ -487,6 +491,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         Greenwood–Tripp roughness (:meth:`_with_surface_law` adds its surface law)."""
         cam = Body(materials[self.cam_config.material])
         substrate = materials[s.substrate]
+        bad: list = []  # the set's values out of range, reported together
         if s.coating is None:
             tappet = Body(substrate)
             label = "uncoated"
@@ -494,17 +499,24 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             cm = self.materials[s.coating]
             thickness = s.coating_thickness
             assert thickness is not None  # required with a coating (schema validator)
-            tappet = Body(substrate, Coating.of(materials[s.coating], thickness))
+            layer = materials[s.coating]
+            coating = _collecting(bad, lambda: Coating.of(layer, thickness))
+            tappet = Body(substrate, coating)
             label = f"{cm.label or s.coating} {thickness * 1e6:.3g} µm"
         sigma, _ = s.boundary_friction(self.materials)
         assert sigma is not None  # required by the case cross-check
         r = s.roughness
-        rough = Roughness(
-            asperity_density=r.asperity_density,
-            rms=r.rms,
-            summit_radius=r.summit_radius,
-            method=self.numerics.greenwood_tripp,
+        rough = _collecting(
+            bad,
+            lambda: Roughness(
+                asperity_density=r.asperity_density,
+                rms=r.rms,
+                summit_radius=r.summit_radius,
+                method=self.numerics.greenwood_tripp,
+            ),
         )
+        if bad:
+            raise RangeError(bad)
         return SurfaceSet(
             name=s.name,
             bodies=(cam, tappet),
@@ -524,6 +536,16 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         assert surface.roughness is not None  # Greenwood–Tripp from _build_set
         rough = measured_roughness(s, surface.roughness, surface.bodies, self._base_dir)
         return dataclasses.replace(surface, roughness=rough)
+
+
+def _collecting(bad: list, make: Callable[[], T]) -> T | None:
+    """``make()``, or None with its :class:`~tribodyn.physics.limits.RangeError`'s items
+    added to ``bad`` (so that every value of a set out of range is reported at once)."""
+    try:
+        return make()
+    except RangeError as exc:
+        bad += exc.items
+        return None
 
 
 def _given_keys(case: Case) -> frozenset[str]:
