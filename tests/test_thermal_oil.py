@@ -74,6 +74,35 @@ def test_roelands_with_temperature_reduces_to_the_paper_law_at_the_inlet():
     )
 
 
+@pytest.mark.parametrize("model, compressible", [("roelands", True), ("barus", False)])
+def test_pressure_laws_are_the_isothermal_ones_with_the_ambient_viscosity_at_t(model, compressible):
+    # Roelands (Eq. 3) and Dowson–Higginson (Eq. 2) by hand, on a grid of p and T
+    oil = ThermalLubricant(kelvin(90.0), **SHEET, viscosity_model=model, compressible=compressible)
+    p = np.concatenate([[-1e8, 0.0], np.geomspace(1e3, 3e9, 40)])[:, None]
+    T = np.linspace(280.0, 450.0, 18)[None, :]
+    l0 = np.log(oil.ambient_viscosity(T))
+    pp, z, alpha = np.maximum(p, 0.0), oil.roelands_z, oil.inlet_pressure_viscosity
+    if model == "barus":
+        lnmu, dlnmu = l0 + alpha * pp, np.where(p >= 0.0, alpha, 0.0) + 0.0 * T
+    else:
+        lnmu = -9.67 + (l0 + 9.67) * (1.0 + 5.1e-9 * pp) ** z
+        dlnmu = np.where(p >= 0.0, (l0 + 9.67) * z * 5.1e-9 * (1.0 + 5.1e-9 * pp) ** (z - 1), 0.0)
+    pg, thermal = pp * 1e-9, 1.0 - 6.5e-4 * (T - 288.15)
+    rho = 852.0 * thermal * ((1.0 + 0.6 * pg / (1.0 + 1.7 * pg)) if compressible else 1.0 + 0 * p)
+    drho = (
+        852.0 * thermal * np.where((p >= 0.0) & compressible, 0.6e-9 / (1.0 + 1.7 * pg) ** 2, 0.0)
+    )
+    np.testing.assert_allclose(oil.log_viscosity(p, T), lnmu, rtol=0.0, atol=1e-13)
+    np.testing.assert_allclose(oil.viscosity_at(p, T), np.exp(lnmu), rtol=1e-13)
+    np.testing.assert_allclose(oil.dlog_viscosity_dp(p, T), dlnmu, rtol=1e-13, atol=0.0)
+    np.testing.assert_allclose(oil.density_at(p, T), rho, rtol=1e-13)
+    np.testing.assert_allclose(oil.ddensity_dp(p, T), drho, rtol=1e-13, atol=0.0)
+    # at the inlet temperature, the isothermal oil's laws
+    iso, Ti = oil.isothermal(), kelvin(90.0)
+    np.testing.assert_allclose(oil.viscosity_at(p, Ti), iso.viscosity_at(p), rtol=1e-13)
+    np.testing.assert_allclose(oil.density_at(p, Ti), iso.density_at(p), rtol=1e-13)
+
+
 def test_so_klaus_correlation():
     # So & Klaus (1980): α·1e8 = 1.216 + 4.143 L^3.0627 + 2.848e-4 b^5.1903 L^1.5976
     #                            − 3.999 L^3.0975 ρ^0.1162, L = log10 ν[cSt], ρ [g/cm³]

@@ -25,6 +25,7 @@ __all__ = [
     "Limit",
     "RangeError",
     "check_fields",
+    "ROELANDS_LN_MU_INF",
     "ROELANDS_MU_INF",
     "YOUNGS_MODULUS",
     "POISSON_RATIO",
@@ -83,8 +84,9 @@ __all__ = [
     "GREENWOOD_TRIPP_ORDER",
 ]
 
-#: Roelands reference viscosity exp(−9.67) = 6.31e-5 Pa·s; μ₀ must exceed it (paper Eq. 3).
-ROELANDS_MU_INF = math.exp(-9.67)
+#: ln μ∞ of Roelands' law, μ∞ = exp(−9.67) = 6.31e-5 Pa·s; μ₀ must exceed μ∞ (paper Eq. 3).
+ROELANDS_LN_MU_INF = -9.67
+ROELANDS_MU_INF = math.exp(ROELANDS_LN_MU_INF)
 
 
 def _num(v: float) -> str:

@@ -21,7 +21,9 @@ The laws are written once, as compiled elementwise functions of one pressure
 :func:`density_ratio`, :func:`ddensity_ratio_dp`, :func:`log_viscosity_ratio`,
 :func:`dlog_viscosity_dp`) with the lubricant's constants as a tuple
 (:attr:`Lubricant.rheology_law`): the methods of :class:`Lubricant` apply them to arrays,
-and compiled solvers call them node by node.
+and compiled solvers call them node by node. The thermal oil
+(:mod:`tribodyn.physics.thermal_oil`) applies the same functions with its ambient
+viscosity μ₀(T) at each node (:func:`rheology_at`).
 """
 
 from __future__ import annotations
@@ -41,6 +43,7 @@ from .limits import (
     LIMITING_SHEAR_COEFFICIENT,
     LIMITING_SHEAR_STRESS,
     PRESSURE_VISCOSITY,
+    ROELANDS_LN_MU_INF,
     ROELANDS_MU_INF,
     VISCOSITY,
     check_fields,
@@ -51,6 +54,10 @@ __all__ = [
     "ROELANDS_P0",
     "ROELANDS_MU_INF",
     "TYPICAL_OIL",
+    "roelands_log_factor",
+    "roelands_index",
+    "roelands_alpha",
+    "rheology_at",
     "density_terms",
     "viscosity_terms",
     "density_ratio",
@@ -59,13 +66,31 @@ __all__ = [
     "dlog_viscosity_dp",
 ]
 
-#: Roelands pressure constant 1/5.1e-9 Pa = 0.196 GPa.
-ROELANDS_P0 = 1.0 / 5.1e-9
+#: Roelands pressure coefficient 5.1e-9 1/Pa (Eq. 3) and its pressure p₀ = 0.196 GPa.
+_ROELANDS_C = 5.1e-9
+ROELANDS_P0 = 1.0 / _ROELANDS_C
+
+
+def roelands_log_factor(mu0):
+    """a = ln μ₀ − ln μ∞ = ln μ₀ + 9.67 (μ₀ [Pa·s], a number or an array)."""
+    return np.log(mu0) - ROELANDS_LN_MU_INF
+
+
+def roelands_index(alpha: float, mu0: float) -> float:
+    """Roelands' index Z = α/(5.1e-9 (ln μ₀ + 9.67)) of d ln μ/dp = α at p = 0 (Eq. 3)."""
+    return float(alpha / (_ROELANDS_C * roelands_log_factor(mu0)))
+
+
+def roelands_alpha(z: float, mu0: float) -> float:
+    """α = 5.1e-9 Z (ln μ₀ + 9.67) [1/Pa], the inverse of :func:`roelands_index`."""
+    return float(_ROELANDS_C * z * roelands_log_factor(mu0))
+
 
 _JIT = dict(cache=True, nogil=True)
 
 # The rheology law of a lubricant, ``law`` = (compressible, barus, α [1/Pa],
-# a = ln μ₀ + 9.67, Z) (:attr:`Lubricant.rheology_law`); p in Pa. Each function holds
+# a = ln μ₀ + 9.67 (:func:`roelands_log_factor`), Z) (:attr:`Lubricant.rheology_law`);
+# p in Pa. Each function holds
 # the law at max(p, 0) (NaN stays NaN); the derivatives are 0 for p < 0.
 
 
@@ -118,26 +143,32 @@ def dlog_viscosity_dp(p, law):
 
 
 @njit(**_JIT)
-def _each(p, law, which):
+def _each(p, a, law, which):
     """One of the four functions above (``which`` = 0…3, in that order) at every entry
-    of the 1-D array ``p``."""
+    of the 1-D array ``p``, with the law's ln μ₀ + 9.67 replaced by ``a[i]`` (``a[0]``
+    at every entry if ``a`` has one)."""
     out = np.empty(p.size)
     for i in range(p.size):
+        at = (law[0], law[1], law[2], a[i if a.size > 1 else 0], law[4])
         if which == 0:
-            out[i] = density_ratio(p[i], law)
+            out[i] = density_ratio(p[i], at)
         elif which == 1:
-            out[i] = ddensity_ratio_dp(p[i], law)
+            out[i] = ddensity_ratio_dp(p[i], at)
         elif which == 2:
-            out[i] = log_viscosity_ratio(p[i], law)
+            out[i] = log_viscosity_ratio(p[i], at)
         else:
-            out[i] = dlog_viscosity_dp(p[i], law)
+            out[i] = dlog_viscosity_dp(p[i], at)
     return out
 
 
-def _elementwise(law, which, p):
-    """:func:`_each` on an array or a number of any shape (a number gives a number)."""
-    a = np.asarray(p, dtype=float)
-    out = _each(np.ascontiguousarray(a).reshape(-1), law, which).reshape(a.shape)
+def rheology_at(law, which: int, p, a=None):
+    """:func:`_each` on an array or a number of any shape (a number gives a number);
+    ``a``: ln μ₀ + 9.67 at each p (broadcast with it; None: the law's own)."""
+    a = np.asarray(law[3] if a is None else a, dtype=float)
+    pa, aa = np.broadcast_arrays(np.asarray(p, dtype=float), a)
+    flat = (aa if a.ndim else a).reshape(-1)
+    out = _each(np.ascontiguousarray(pa).reshape(-1), np.ascontiguousarray(flat), law, which)
+    out = out.reshape(pa.shape)
     return out if out.ndim else out[()]
 
 
@@ -188,8 +219,8 @@ class Lubricant:
     # -- Roelands -----------------------------------------------------------------
     @property
     def roelands_z(self) -> float:
-        """Roelands index Z = α/(5.1e-9 (ln μ₀ + 9.67)) (paper Eq. 3)."""
-        return self.pressure_viscosity / (5.1e-9 * (np.log(self.viscosity) + 9.67))
+        """Roelands index Z (:func:`roelands_index`, paper Eq. 3)."""
+        return roelands_index(self.pressure_viscosity, self.viscosity)
 
     @cached_property
     def rheology_law(self) -> tuple[bool, bool, float, float, float]:
@@ -199,7 +230,7 @@ class Lubricant:
             bool(self.compressible),
             self.viscosity_model == "barus",
             float(self.pressure_viscosity),
-            float(np.log(self.viscosity) + 9.67),
+            float(roelands_log_factor(self.viscosity)),
             float(self.roelands_z),
         )
 
@@ -209,20 +240,20 @@ class Lubricant:
 
     def log_viscosity_ratio(self, p) -> np.ndarray:
         """ln(μ/μ₀) = (ln μ₀ + 9.67)[(1 + p/p₀)^Z − 1] (:func:`log_viscosity_ratio`)."""
-        return _elementwise(self.rheology_law, 2, p)
+        return rheology_at(self.rheology_law, 2, p)
 
     def dlog_viscosity_dp(self, p) -> np.ndarray:
         """d ln μ / dp [1/Pa] (= α at p = 0; 0 for p < 0 where μ is held at μ₀)."""
-        return _elementwise(self.rheology_law, 3, p)
+        return rheology_at(self.rheology_law, 3, p)
 
     # -- Dowson–Higginson --------------------------------------------------------------
     def density_at(self, p) -> np.ndarray:
         """Dowson–Higginson density ρ(p) [kg/m³] (Eq. 2, :func:`density_ratio`)."""
-        return self.density * _elementwise(self.rheology_law, 0, p)
+        return self.density * rheology_at(self.rheology_law, 0, p)
 
     def ddensity_dp(self, p) -> np.ndarray:
         """dρ/dp [kg/(m³ Pa)]: ρ₀ 0.6e-9 / (1 + 1.7 p_GPa)² (:func:`ddensity_ratio_dp`)."""
-        return self.density * _elementwise(self.rheology_law, 1, p)
+        return self.density * rheology_at(self.rheology_law, 1, p)
 
 
 #: A typical engine oil in a warm engine: the typical μ₀, α, ρ₀ and rheology of

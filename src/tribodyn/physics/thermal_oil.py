@@ -24,7 +24,8 @@ Equations (T in K, p in Pa, SI unless stated):
 
   Z is constant (Roelands found it nearly temperature independent), from α at the inlet:
   Z = α/(5.1e-9 (ln μᵢ + 9.67)); so α(T) = 5.1e-9 Z (ln μ₀(T) + 9.67) falls with T.
-  ``viscosity_model="barus"``: ln μ = ln μ₀(T) + α p.
+  ``viscosity_model="barus"``: ln μ = ln μ₀(T) + α p. The pressure laws are the
+  isothermal oil's (:mod:`tribodyn.physics.lubricant`) with μ₀(T) at each node.
 * Pressure–viscosity coefficient when not given: So & Klaus (1980, ASLE Trans. 23:409)
   correlation from ν, ρ and the ASTM slope b = B at the inlet temperature, α in 1e-8 m²/N::
 
@@ -38,8 +39,8 @@ Equations (T in K, p in Pa, SI unless stated):
   Roelands' constant Z (above): Z from So–Klaus at T*, α(Tᵢ) = 5.1e-9 Z (ln μ₀(Tᵢ) + 9.67)
   (continuous at T*, rising as the oil cools). Above ν = 1 cSt only (hot end: give α).
 
-* Density: Dowson–Higginson in pressure times a linear thermal expansion (Yang & Wen 1990,
-  J. Tribol. 112:631)::
+* Density: Dowson–Higginson in pressure (:mod:`tribodyn.physics.lubricant`) times a
+  linear thermal expansion (Yang & Wen 1990, J. Tribol. 112:631)::
 
       ρ(p, T) = ρ_r [1 + 0.6p/(1 + 1.7p)] [1 − ε (T − T_r)]    (p in GPa)
 
@@ -76,7 +77,15 @@ from .limits import (
     VISCOSITY,
     check_fields,
 )
-from .lubricant import ROELANDS_MU_INF, ROELANDS_P0, Lubricant
+from .lubricant import (
+    ROELANDS_LN_MU_INF,
+    ROELANDS_MU_INF,
+    Lubricant,
+    rheology_at,
+    roelands_alpha,
+    roelands_index,
+    roelands_log_factor,
+)
 
 __all__ = [
     "ThermalLubricant",
@@ -91,6 +100,8 @@ __all__ = [
 ]
 
 T15, T40, T100 = 288.15, 313.15, 373.15
+#: Roelands' temperature of infinite viscosity in his temperature term [K].
+ROELANDS_T_INF = 138.0
 #: Larsson & Andersson (2000) pressure law of the conductivity, k ∝ 1 + a p/(1 + b p) [1/Pa].
 CONDUCTIVITY_PRESSURE = (1.72e-9, 0.54e-9)
 _ZERO_C = 273.15
@@ -227,7 +238,7 @@ class ThermalLubricant:
                 "viscosity_temperature_coefficient", inlet[1], 0.0, 0.5, lo_open=True, unit="1/K"
             )
             c["form"] = "inlet"
-            c["S0"] = beta * (Ti - 138.0) / (math.log(mu) + 9.67)
+            c["S0"] = beta * (Ti - ROELANDS_T_INF) / roelands_log_factor(mu)
             c["mu_i"] = mu
         else:
             raise InputError(
@@ -279,7 +290,10 @@ class ThermalLubricant:
         else:
             alpha = self.pressure_viscosity
         c["alpha_i"] = alpha
-        c["Z"] = alpha / (5.1e-9 * (math.log(mu_i) + 9.67))
+        c["Z"] = roelands_index(alpha, mu_i)
+        barus = self.viscosity_model == "barus"
+        a_i = float(roelands_log_factor(mu_i))
+        c["law"] = (bool(self.compressible), barus, float(alpha), a_i, c["Z"])
         s = (
             self.density
             / 1000.0
@@ -334,7 +348,7 @@ class ThermalLubricant:
         self._c["so_klaus_temperature"] = Ts
         alpha_s = estimate(Ts)
         mu_s = float(self.ambient_viscosity(Ts))
-        return alpha_s * (math.log(mu_i) + 9.67) / (math.log(mu_s) + 9.67)
+        return roelands_alpha(roelands_index(alpha_s, mu_s), mu_i)
 
     # -- viscosity ---------------------------------------------------------------------
     @property
@@ -371,8 +385,8 @@ class ThermalLubricant:
         c = self._c
         if c["form"] == "datasheet":
             return walther_viscosity(T, c["A"], c["B"]) * self.density_at(0.0, T)
-        g = (math.log(c["mu_i"]) + 9.67) * ((T - 138.0) / (c["Ti"] - 138.0)) ** (-c["S0"])
-        return np.exp(g - 9.67)
+        t = (T - ROELANDS_T_INF) / (c["Ti"] - ROELANDS_T_INF)
+        return np.exp(roelands_log_factor(c["mu_i"]) * t ** (-c["S0"]) + ROELANDS_LN_MU_INF)
 
     def temperature_viscosity_coefficient(self, T=None) -> float:
         """β = −d ln μ₀/dT at T (default the inlet) [1/K]."""
@@ -383,27 +397,27 @@ class ThermalLubricant:
             / (2 * d)
         )
 
+    @property
+    def rheology_law(self) -> tuple[bool, bool, float, float, float]:
+        """The constants of the isothermal pressure laws (:attr:`Lubricant.rheology_law`)
+        at the inlet; :func:`~tribodyn.physics.lubricant.rheology_at` replaces its
+        ln μ₀ + 9.67 by that of μ₀(T). While α and Z are being found, only the density's
+        constant (compressible)."""
+        return self._c.get("law", (bool(self.compressible), False, 0.0, 0.0, 0.0))
+
     def log_viscosity(self, p, T):
-        """ln μ(p, T) [ln Pa·s] (p < 0 taken as 0)."""
-        pp = np.maximum(np.asarray(p, dtype=float), 0.0)
+        """ln μ(p, T) = ln μ₀(T) + ln(μ/μ₀) of the pressure law [ln Pa·s] (p < 0 taken
+        as 0)."""
         l0 = np.log(self.ambient_viscosity(T))
-        if self.viscosity_model == "barus":
-            return l0 + self._c["alpha_i"] * pp
-        return -9.67 + (l0 + 9.67) * np.exp(self._c["Z"] * np.log1p(pp / ROELANDS_P0))
+        return l0 + rheology_at(self.rheology_law, 2, p, l0 - ROELANDS_LN_MU_INF)
 
     def viscosity_at(self, p, T):
         return np.exp(self.log_viscosity(p, T))
 
     def dlog_viscosity_dp(self, p, T):
-        p = np.asarray(p, dtype=float)
-        pp = np.maximum(p, 0.0)
-        if self.viscosity_model == "barus":
-            d = np.full(np.broadcast(pp, np.asarray(T)).shape, self._c["alpha_i"])
-        else:
-            z = self._c["Z"]
-            l0 = np.log(self.ambient_viscosity(T))
-            d = (l0 + 9.67) * z / ROELANDS_P0 * np.exp((z - 1.0) * np.log1p(pp / ROELANDS_P0))
-        return np.where(p >= 0.0, d, 0.0)
+        """∂ ln μ/∂p [1/Pa] of the pressure law with μ₀(T) (0 for p < 0)."""
+        a = roelands_log_factor(self.ambient_viscosity(T))
+        return rheology_at(self.rheology_law, 3, p, a)
 
     # -- density, heat ------------------------------------------------------------------
     def _thermal_factor(self, T):
@@ -412,18 +426,12 @@ class ThermalLubricant:
         )
 
     def density_at(self, p, T):
-        """ρ(p, T) [kg/m³]."""
-        pg = np.maximum(np.asarray(p, dtype=float), 0.0) * 1e-9
-        dh = 1.0 + 0.6 * pg / (1.0 + 1.7 * pg) if self.compressible else 1.0 + 0.0 * pg
-        return self.density * dh * self._thermal_factor(T)
+        """ρ(p, T) = ρ_r (ρ/ρ₀)(p) [1 − ε (T − T_r)] [kg/m³] (Dowson–Higginson ratio)."""
+        return self.density * rheology_at(self.rheology_law, 0, p) * self._thermal_factor(T)
 
     def ddensity_dp(self, p, T):
-        p = np.asarray(p, dtype=float)
-        if not self.compressible:
-            return np.zeros(np.broadcast(p, np.asarray(T)).shape)
-        pg = np.maximum(p, 0.0) * 1e-9
-        d = self.density * 0.6e-9 / (1.0 + 1.7 * pg) ** 2 * self._thermal_factor(T)
-        return np.where(p >= 0.0, d, 0.0)
+        """∂ρ/∂p [kg/(m³ Pa)]."""
+        return self.density * rheology_at(self.rheology_law, 1, p) * self._thermal_factor(T)
 
     def expansivity(self, T):
         """ε_T = −(1/ρ) ∂ρ/∂T [1/K] (compression heating)."""
@@ -476,7 +484,7 @@ class ThermalLubricant:
         if self.viscosity_model == "barus":
             alpha = self._c["alpha_i"]
         else:
-            alpha = 5.1e-9 * self._c["Z"] * (math.log(mu) + 9.67)
+            alpha = roelands_alpha(self._c["Z"], mu)
         f = max(0.1, 1.0 - self.limiting_shear_temperature_coefficient * (T - self._c["Ti"]))
         return Lubricant(
             viscosity=mu,

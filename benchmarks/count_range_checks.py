@@ -1,0 +1,99 @@
+"""How often the range checks run while a case file is read and validated.
+
+Counts the calls of :meth:`tribodyn.physics.limits.Limit.check` and of
+``tribodyn._validation.check_range`` (wherever a module imported it), and the bounds the
+case-file schema checks (a field with ``gt``/``ge``/``lt``/``le`` given in the file; the
+schema does not validate defaults). Each value is checked once when the number of checks
+equals the number of distinct (name, value) pairs checked (equal values of one name in
+different sections, e.g. two surface sets' ``rms``, count as one value: ``checked_twice``
+lists them too).
+
+Run: ``python benchmarks/count_range_checks.py [case.toml ...]`` (default: the bundled
+paper case and its thermal variant). Prints one JSON line per case.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from collections import Counter
+from pathlib import Path
+
+from pydantic import BaseModel
+
+import tribodyn._validation as V
+from tribodyn.config.case import CASES_DIR, load_case
+from tribodyn.config.schema_fields import Section
+from tribodyn.physics import limits as L
+
+_BOUNDS = ("gt", "ge", "lt", "le")
+
+
+def _schema_checks(model: BaseModel, out: Counter) -> None:
+    """Add the bounded fields given in the file of ``model`` and its nested sections, as
+    (key, value): a value the schema and a constructor both check counts as one value
+    checked twice."""
+    for name in model.model_fields_set:
+        value = getattr(model, name)
+        fi = type(model).model_fields[name]
+        if value is not None and any(
+            getattr(m, k, None) is not None for m in fi.metadata for k in _BOUNDS
+        ):
+            out[(name, repr(value))] += 1
+    for name in type(model).model_fields:
+        value = getattr(model, name)
+        items = value.values() if isinstance(value, dict) else value
+        for v in items if isinstance(items, list | tuple | type({}.values())) else [value]:
+            if isinstance(v, Section):
+                _schema_checks(v, out)
+
+
+def count(path: Path) -> dict:
+    """Range checks run (constructors, schema) and distinct values checked, for ``path``."""
+    calls: Counter = Counter()
+    original_check, original_range = L.Limit.check, V.check_range
+
+    def check(self, name, value):
+        calls[(name, repr(value))] += 1
+        return original_check(self, name, value)
+
+    def check_range(name, value, *args, **kw):
+        calls[(name, repr(value))] += 1
+        return original_range(name, value, *args, **kw)
+
+    patched = [
+        m for m in list(sys.modules.values()) if getattr(m, "check_range", None) is original_range
+    ]
+    L.Limit.check = check  # type: ignore[method-assign]
+    for m in patched:
+        m.check_range = check_range
+    try:
+        case = load_case(path)
+    finally:
+        L.Limit.check = original_check  # type: ignore[method-assign]
+        for m in patched:
+            m.check_range = original_range
+    schema: Counter = Counter()
+    _schema_checks(case, schema)
+    every = calls + schema
+    return {
+        "case": path.name,
+        "checks": sum(every.values()),
+        "values": len(every),
+        "constructor_checks": sum(calls.values()),
+        "schema_checks": sum(schema.values()),
+        "checked_twice": sorted(f"{n}={v} x{c}" for (n, v), c in every.items() if c > 1),
+    }
+
+
+def main(argv: list[str]) -> None:
+    paths = [Path(a) for a in argv] or [
+        CASES_DIR / "andreou2023.toml",
+        CASES_DIR / "andreou2023_thermal.toml",
+    ]
+    for p in paths:
+        print(json.dumps(count(p), ensure_ascii=False))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
