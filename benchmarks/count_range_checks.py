@@ -9,20 +9,24 @@ different sections, e.g. two surface sets' ``rms``, count as one value: ``checke
 lists them too).
 
 Run: ``python benchmarks/count_range_checks.py [case.toml ...]`` (default: the bundled
-paper case and its thermal variant). Prints one JSON line per case.
+paper case, its thermal variant with a datasheet oil, and the paper case made thermal with
+its oil in the inlet form). Prints one JSON line per case.
 """
 
 from __future__ import annotations
 
+import functools
 import json
 import sys
+import tomllib
 from collections import Counter
+from collections.abc import Callable
 from pathlib import Path
 
 from pydantic import BaseModel
 
 import tribodyn._validation as V
-from tribodyn.config.case import CASES_DIR, load_case
+from tribodyn.config.case import CASES_DIR, DEFAULT_CASE, Case, load_case
 from tribodyn.config.schema_fields import Section
 from tribodyn.physics import limits as L
 
@@ -48,8 +52,18 @@ def _schema_checks(model: BaseModel, out: Counter) -> None:
                 _schema_checks(v, out)
 
 
-def count(path: Path) -> dict:
-    """Range checks run (constructors, schema) and distinct values checked, for ``path``."""
+def _inlet_form_thermal() -> Case:
+    """The paper case with the thermal model and its oil in the inlet form (μ, α at 90 °C
+    and the temperature–viscosity coefficient β)."""
+    data = tomllib.loads(DEFAULT_CASE.read_text(encoding="utf-8"))
+    data["lubricant"].update(inlet_temperature_c=90.0, viscosity_temperature_coefficient=0.03)
+    data["numerics"]["thermal"] = True
+    return Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+
+
+def count(label: str, make: Callable[[], Case]) -> dict:
+    """Range checks run (constructors, schema) and distinct values checked while ``make``
+    reads and validates a case."""
     calls: Counter = Counter()
     original_check, original_range = L.Limit.check, V.check_range
 
@@ -68,7 +82,7 @@ def count(path: Path) -> dict:
     for m in patched:
         m.check_range = check_range
     try:
-        case = load_case(path)
+        case = make()
     finally:
         L.Limit.check = original_check  # type: ignore[method-assign]
         for m in patched:
@@ -77,7 +91,7 @@ def count(path: Path) -> dict:
     _schema_checks(case, schema)
     every = calls + schema
     return {
-        "case": path.name,
+        "case": label,
         "checks": sum(every.values()),
         "values": len(every),
         "constructor_checks": sum(calls.values()),
@@ -87,12 +101,11 @@ def count(path: Path) -> dict:
 
 
 def main(argv: list[str]) -> None:
-    paths = [Path(a) for a in argv] or [
-        CASES_DIR / "andreou2023.toml",
-        CASES_DIR / "andreou2023_thermal.toml",
-    ]
+    paths = [Path(a) for a in argv] or [DEFAULT_CASE, CASES_DIR / "andreou2023_thermal.toml"]
     for p in paths:
-        print(json.dumps(count(p), ensure_ascii=False))
+        print(json.dumps(count(p.name, functools.partial(load_case, p)), ensure_ascii=False))
+    if not argv:
+        print(json.dumps(count("paper, thermal, inlet-form oil", _inlet_form_thermal)))
 
 
 if __name__ == "__main__":

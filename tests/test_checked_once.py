@@ -235,3 +235,33 @@ def test_a_check_left_out_is_seen(monkeypatch):
     extra = _ranged(schema.Valvetrain)["lash"]
     with pytest.raises(pytest.fail.Exception):
         test_every_ranged_key_is_checked_and_named(key, extra, float)
+
+
+@pytest.mark.parametrize("form", ["inlet", "datasheet"])
+def test_a_thermal_oil_checks_the_lubricant_values_once(monkeypatch, form):
+    """The thermal oil takes the values the isothermal oil checked (inlet form), and its
+    isothermal oil at the inlet takes those the thermal oil checked (datasheet): each
+    lubricant limit runs once."""
+    data = _paper_data()
+    data["numerics"]["thermal"] = True
+    data["lubricant"]["inlet_temperature_c"] = 90.0
+    if form == "inlet":
+        data["lubricant"]["viscosity_temperature_coefficient"] = 0.03
+    else:
+        for k in ("viscosity", "pressure_viscosity", "density"):
+            data["lubricant"].pop(k, None)
+        data["lubricant"]["oil"] = "5W-20"
+    calls: Counter = Counter()
+    check = L.Limit.check
+
+    def counting(self, name, value):
+        calls[self] += 1
+        return check(self, name, value)
+
+    monkeypatch.setattr(L.Limit, "check", counting)
+    Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    for lim in (L.EYRING_STRESS, L.LIMITING_SHEAR_COEFFICIENT, L.LIMITING_SHEAR_STRESS):
+        assert calls[lim] == 1
+    assert calls[L.PRESSURE_VISCOSITY] == 1  # given (inlet), estimated (datasheet)
+    assert calls[L.VISCOSITY] == (1 if form == "inlet" else 0)  # datasheet: μ(Tᵢ) bounds
+    assert calls[L.DENSITY] == 1

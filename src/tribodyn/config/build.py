@@ -263,8 +263,10 @@ def collect(
         lubricant = attempt("lubricant", case._new_lubricant)
     valvetrain = attempt("valvetrain", case._new_valvetrain_parameters, VALVETRAIN_KEYS)
     options = attempt("numerics", case._new_ehl_options)
-    if n.thermal and not case.lubricant_config.datasheet:
-        thermal_lubricant = attempt("lubricant", case._new_thermal_lubricant)
+    if n.thermal and not case.lubricant_config.datasheet:  # takes the checked μ, α, τ_E, …
+        thermal_lubricant = attempt(
+            "lubricant", functools.partial(case._new_thermal_lubricant, lubricant)
+        )
     built_materials = {
         k: attempt(f"materials.{k}", functools.partial(case._new_material, k))
         for k in case.materials

@@ -14,6 +14,7 @@ from ..physics.oils import OILS, THERMAL_MATERIALS
 from ..physics.thermal_oil import ThermalLubricant
 
 if TYPE_CHECKING:
+    from ..physics.lubricant import Lubricant
     from .case import SurfaceSet
     from .schema import CamConfig, LubricantConfig, MaterialConfig, Numerics, SurfaceSetConfig
 
@@ -39,11 +40,12 @@ class ThermalBuilders:
         cam_config: CamConfig
         numerics: Numerics
 
-    def _new_thermal_lubricant(self) -> ThermalLubricant:
+    def _new_thermal_lubricant(self, checked: Lubricant | None = None) -> ThermalLubricant:
         """The temperature- and pressure-dependent oil of ``[lubricant]``
         (:class:`~tribodyn.physics.thermal_oil.ThermalLubricant`): a datasheet, or the
         viscosity at ``inlet_temperature_c`` with its ``viscosity_temperature_coefficient``
-        (an InputError naming a missing key)."""
+        (an InputError naming a missing key); ``checked``: the isothermal oil of
+        ``[lubricant]`` built already, whose values are not checked again."""
         c = self.lubricant_config
         if c.inlet_temperature_c is None:
             raise InputError(
@@ -85,6 +87,7 @@ class ThermalBuilders:
             density_temperature=c.inlet_temperature_c + 273.15,
             pressure_viscosity=c.pressure_viscosity,
             name="lubricant",
+            _checked=checked,
         )
 
     def _new_thermal_properties(self, name: str) -> ThermalProperties:

@@ -25,6 +25,7 @@ __all__ = [
     "Limit",
     "RangeError",
     "check_fields",
+    "unchecked",
     "ROELANDS_LN_MU_INF",
     "ROELANDS_MU_INF",
     "YOUNGS_MODULUS",
@@ -176,6 +177,14 @@ def check_fields(obj, limits: dict[str, Limit], optional: tuple[str, ...] = ()) 
             bad += exc.items
     if bad:
         raise RangeError(bad)
+
+
+def unchecked(cls, **values):
+    """An instance of the frozen dataclass ``cls`` with ``values`` (every field) that were
+    checked where they entered: its ``__post_init__`` does not check them again."""
+    obj = object.__new__(cls)
+    obj.__dict__.update(values)
+    return obj
 
 
 # -- materials -------------------------------------------------------------------------

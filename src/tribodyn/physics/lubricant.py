@@ -17,9 +17,7 @@ Negative (sub-ambient) pressures do not occur in the cavitation model; both laws
 evaluated at max(p, 0) so they stay finite and monotone for any input.
 
 The laws are written once, as compiled elementwise functions of one pressure
-(:func:`density_terms`, :func:`viscosity_terms`; one quantity each:
-:func:`density_ratio`, :func:`ddensity_ratio_dp`, :func:`log_viscosity_ratio`,
-:func:`dlog_viscosity_dp`) with the lubricant's constants as a tuple
+(:func:`density_terms`, :func:`viscosity_terms`) with the lubricant's constants as a tuple
 (:attr:`Lubricant.rheology_law`): the methods of :class:`Lubricant` apply them to arrays,
 and compiled solvers call them node by node. The thermal oil
 (:mod:`tribodyn.physics.thermal_oil`) applies the same functions with its ambient
@@ -60,11 +58,17 @@ __all__ = [
     "rheology_at",
     "density_terms",
     "viscosity_terms",
-    "density_ratio",
-    "ddensity_ratio_dp",
-    "log_viscosity_ratio",
-    "dlog_viscosity_dp",
 ]
+
+#: The range of each number of a :class:`Lubricant` (physics.limits).
+LIMITS = {
+    "viscosity": VISCOSITY,
+    "pressure_viscosity": PRESSURE_VISCOSITY,
+    "density": DENSITY,
+    "eyring_stress": EYRING_STRESS,
+    "limiting_shear_coefficient": LIMITING_SHEAR_COEFFICIENT,
+    "limiting_shear_stress": LIMITING_SHEAR_STRESS,
+}
 
 #: Roelands pressure coefficient 5.1e-9 1/Pa (Eq. 3) and its pressure p₀ = 0.196 GPa.
 _ROELANDS_C = 5.1e-9
@@ -119,45 +123,15 @@ def viscosity_terms(p, law):
 
 
 @njit(**_JIT)
-def density_ratio(p, law):
-    """ρ/ρ₀ (:func:`density_terms`)."""
-    return density_terms(p, law)[0]
-
-
-@njit(**_JIT)
-def ddensity_ratio_dp(p, law):
-    """(1/ρ₀) dρ/dp [1/Pa] (:func:`density_terms`)."""
-    return density_terms(p, law)[1]
-
-
-@njit(**_JIT)
-def log_viscosity_ratio(p, law):
-    """ln(μ/μ₀) (:func:`viscosity_terms`)."""
-    return viscosity_terms(p, law)[0]
-
-
-@njit(**_JIT)
-def dlog_viscosity_dp(p, law):
-    """d ln μ/dp [1/Pa] (:func:`viscosity_terms`)."""
-    return viscosity_terms(p, law)[1]
-
-
-@njit(**_JIT)
 def _each(p, a, law, which):
-    """One of the four functions above (``which`` = 0…3, in that order) at every entry
-    of the 1-D array ``p``, with the law's ln μ₀ + 9.67 replaced by ``a[i]`` (``a[0]``
-    at every entry if ``a`` has one)."""
+    """ρ/ρ₀, (1/ρ₀) dρ/dp, ln(μ/μ₀) or d ln μ/dp (``which`` = 0…3) at every entry of the
+    1-D array ``p``, with the law's ln μ₀ + 9.67 replaced by ``a[i]`` (``a[0]`` at every
+    entry if ``a`` has one)."""
     out = np.empty(p.size)
     for i in range(p.size):
         at = (law[0], law[1], law[2], a[i if a.size > 1 else 0], law[4])
-        if which == 0:
-            out[i] = density_ratio(p[i], at)
-        elif which == 1:
-            out[i] = ddensity_ratio_dp(p[i], at)
-        elif which == 2:
-            out[i] = log_viscosity_ratio(p[i], at)
-        else:
-            out[i] = dlog_viscosity_dp(p[i], at)
+        terms = density_terms(p[i], at) if which < 2 else viscosity_terms(p[i], at)
+        out[i] = terms[which % 2]
     return out
 
 
@@ -202,17 +176,7 @@ class Lubricant:
     limiting_shear_stress: float = typical.LIMITING_SHEAR_STRESS.value
 
     def __post_init__(self):
-        check_fields(  # the case file's [lubricant] is checked here (physics.limits)
-            self,
-            {
-                "viscosity": VISCOSITY,
-                "pressure_viscosity": PRESSURE_VISCOSITY,
-                "density": DENSITY,
-                "eyring_stress": EYRING_STRESS,
-                "limiting_shear_coefficient": LIMITING_SHEAR_COEFFICIENT,
-                "limiting_shear_stress": LIMITING_SHEAR_STRESS,
-            },
-        )
+        check_fields(self, LIMITS)  # the case file's [lubricant] is checked here
         object.__setattr__(self, "compressible", check_bool("compressible", self.compressible))
         check_choice("viscosity_model", self.viscosity_model, ("roelands", "barus"))
 
@@ -239,7 +203,7 @@ class Lubricant:
         return self.viscosity * np.exp(self.log_viscosity_ratio(p))
 
     def log_viscosity_ratio(self, p) -> np.ndarray:
-        """ln(μ/μ₀) = (ln μ₀ + 9.67)[(1 + p/p₀)^Z − 1] (:func:`log_viscosity_ratio`)."""
+        """ln(μ/μ₀) = (ln μ₀ + 9.67)[(1 + p/p₀)^Z − 1] (:func:`viscosity_terms`)."""
         return rheology_at(self.rheology_law, 2, p)
 
     def dlog_viscosity_dp(self, p) -> np.ndarray:
@@ -248,11 +212,11 @@ class Lubricant:
 
     # -- Dowson–Higginson --------------------------------------------------------------
     def density_at(self, p) -> np.ndarray:
-        """Dowson–Higginson density ρ(p) [kg/m³] (Eq. 2, :func:`density_ratio`)."""
+        """Dowson–Higginson density ρ(p) [kg/m³] (Eq. 2, :func:`density_terms`)."""
         return self.density * rheology_at(self.rheology_law, 0, p)
 
     def ddensity_dp(self, p) -> np.ndarray:
-        """dρ/dp [kg/(m³ Pa)]: ρ₀ 0.6e-9 / (1 + 1.7 p_GPa)² (:func:`ddensity_ratio_dp`)."""
+        """dρ/dp [kg/(m³ Pa)] (:func:`density_terms`)."""
         return self.density * rheology_at(self.rheology_law, 1, p)
 
 

@@ -63,20 +63,14 @@ Equations (T in K, p in Pa, SI unless stated):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import InitVar, dataclass, field, replace
 
 import numpy as np
 
-from .._validation import InputError, check_positive, check_range
+from .._validation import InputError, check_bool, check_choice, check_positive, check_range
 from . import typical
-from .limits import (
-    EYRING_STRESS,
-    LIMITING_SHEAR_COEFFICIENT,
-    LIMITING_SHEAR_STRESS,
-    PRESSURE_VISCOSITY,
-    VISCOSITY,
-    check_fields,
-)
+from .limits import DENSITY, PRESSURE_VISCOSITY, VISCOSITY, check_fields, unchecked
+from .lubricant import LIMITS as LUBRICANT_LIMITS
 from .lubricant import (
     ROELANDS_LN_MU_INF,
     ROELANDS_MU_INF,
@@ -178,6 +172,8 @@ class ThermalLubricant:
         τ_L0 [Pa], limiting_shear_temperature_coefficient c_L [1/K].
     compressible, viscosity_model : as :class:`~tribodyn.Lubricant`.
     name : label (e.g. the oil's grade).
+    _checked : the :class:`~tribodyn.Lubricant` whose checked values (μᵢ, α, τ_E, Λ, τ_L0)
+        this oil takes: those equal to its are not checked again.
     """
 
     inlet_temperature: float
@@ -199,19 +195,19 @@ class ThermalLubricant:
     viscosity_model: str = "roelands"
     name: str = ""
     _c: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    _checked: InitVar[Lubricant | None] = None
 
-    def __post_init__(self):
-        check_fields(  # the ranges of the isothermal Lubricant's (physics.limits)
+    def __post_init__(self, _checked: Lubricant | None):
+        check_fields(  # the isothermal Lubricant's ranges (its own density range below)
             self,
             {
-                "viscosity": VISCOSITY,
-                "pressure_viscosity": PRESSURE_VISCOSITY,
-                "eyring_stress": EYRING_STRESS,
-                "limiting_shear_coefficient": LIMITING_SHEAR_COEFFICIENT,
-                "limiting_shear_stress": LIMITING_SHEAR_STRESS,
+                k: lim
+                for k, lim in LUBRICANT_LIMITS.items()
+                if k != "density" and (_checked is None or getattr(self, k) != getattr(_checked, k))
             },
             optional=("viscosity", "pressure_viscosity"),
         )
+        object.__setattr__(self, "compressible", check_bool("compressible", self.compressible))
         Ti = check_range("inlet_temperature", self.inlet_temperature, 200.0, 600.0, unit="K")
         sheet = (self.kinematic_viscosity_40, self.kinematic_viscosity_100)
         inlet = (self.viscosity, self.viscosity_temperature_coefficient)
@@ -256,10 +252,7 @@ class ThermalLubricant:
             0.05,
             unit="1/K",
         )
-        if self.viscosity_model not in ("roelands", "barus"):
-            raise InputError(
-                f"viscosity_model must be 'roelands' or 'barus' (got {self.viscosity_model!r})"
-            )
+        check_choice("viscosity_model", self.viscosity_model, ("roelands", "barus"))
         object.__setattr__(self, "_c", c)
         mu_i = float(self.ambient_viscosity(Ti))
         if not mu_i > ROELANDS_MU_INF:
@@ -269,9 +262,7 @@ class ThermalLubricant:
             )
         mu_max = VISCOSITY.le
         assert mu_max is not None  # the lubricant model's upper viscosity bound
-        if not mu_i <= mu_max and c["form"] == "inlet":
-            raise InputError(f"viscosity must be <= {mu_max:g} Pa·s (got {mu_i:.6g})")
-        if not mu_i <= mu_max:
+        if not mu_i <= mu_max and c["form"] == "datasheet":  # the inlet form's: μ, checked
             coldest = self._temperature_where(lambda T: self.ambient_viscosity(T) - mu_max)
             raise InputError(
                 f"inlet_temperature must be >= {coldest:.5g} K ({coldest - _ZERO_C:.4g} °C) "
@@ -298,20 +289,28 @@ class ThermalLubricant:
             self.density
             / 1000.0
             * (1.0 + self.thermal_expansion * (self.density_temperature - T15))
-        )  # s at 15 °C
-        ti = Ti - _ZERO_C
-        k_i = (
-            self.thermal_conductivity
-            if self.thermal_conductivity is not None
-            else 0.1172 * (1.0 - 5.4e-4 * ti) / s
         )
-        c_i = (
-            self.specific_heat
-            if self.specific_heat is not None
-            else (1685.0 + 3.39 * ti) / math.sqrt(s)
-        )
+        ti, k_i, c_i = Ti - _ZERO_C, self.thermal_conductivity, self.specific_heat
+        if k_i is None:  # Cragoe's estimates from the specific gravity s at 15 °C
+            k_i = 0.1172 * (1.0 - 5.4e-4 * ti) / s
+        if c_i is None:
+            c_i = (1685.0 + 3.39 * ti) / math.sqrt(s)
         c["k_i"] = check_range("thermal_conductivity", k_i, 0.01, 1e8, unit="W/(m K)")
         c["cp_i"] = check_range("specific_heat", c_i, 100.0, 1e4, unit="J/(kg K)")
+        self._check_isothermal(c, Ti, _checked)
+
+    def _check_isothermal(self, c: dict, Ti: float, checked: Lubricant | None) -> None:
+        """Check the values of the isothermal oil at Tᵢ that no key gave (μᵢ is checked
+        above), unless ``checked`` has them: an estimated α and the density ρ(0, Tᵢ); keep
+        that oil (:meth:`isothermal`)."""
+        iso = self._isothermal_values(Ti)
+        derived = {"density": DENSITY}
+        if self.pressure_viscosity is None:
+            derived["pressure_viscosity"] = PRESSURE_VISCOSITY
+        for k, lim in derived.items():
+            if checked is None or iso[k] != getattr(checked, k):
+                lim.check(k, iso[k])
+        c["isothermal"] = unchecked(Lubricant, **iso)
 
     def _temperature_where(self, f) -> float:
         """The temperature in [200, 600] K where ``f`` (falling with T) crosses 0."""
@@ -399,10 +398,8 @@ class ThermalLubricant:
 
     @property
     def rheology_law(self) -> tuple[bool, bool, float, float, float]:
-        """The constants of the isothermal pressure laws (:attr:`Lubricant.rheology_law`)
-        at the inlet; :func:`~tribodyn.physics.lubricant.rheology_at` replaces its
-        ln μ₀ + 9.67 by that of μ₀(T). While α and Z are being found, only the density's
-        constant (compressible)."""
+        """:attr:`Lubricant.rheology_law` at the inlet (while α and Z are being found,
+        only the density's constant, compressible)."""
         return self._c.get("law", (bool(self.compressible), False, 0.0, 0.0, 0.0))
 
     def log_viscosity(self, p, T):
@@ -479,6 +476,10 @@ class ThermalLubricant:
     # -- isothermal views ----------------------------------------------------------------
     def at(self, T) -> Lubricant:
         """The isothermal :class:`~tribodyn.Lubricant` of this oil at temperature T [K]."""
+        return Lubricant(**self._isothermal_values(T))
+
+    def _isothermal_values(self, T) -> dict:
+        """The arguments of :meth:`at`."""
         T = float(T)
         mu = float(self.ambient_viscosity(T))
         if self.viscosity_model == "barus":
@@ -486,7 +487,7 @@ class ThermalLubricant:
         else:
             alpha = roelands_alpha(self._c["Z"], mu)
         f = max(0.1, 1.0 - self.limiting_shear_temperature_coefficient * (T - self._c["Ti"]))
-        return Lubricant(
+        return dict(
             viscosity=mu,
             pressure_viscosity=alpha,
             density=float(self.density_at(0.0, T)),
@@ -498,8 +499,9 @@ class ThermalLubricant:
         )
 
     def isothermal(self) -> Lubricant:
-        """The oil at its inlet temperature (what the isothermal solvers use)."""
-        return self.at(self._c["Ti"])
+        """The oil at its inlet temperature (what the isothermal solvers use; :meth:`at`
+        Tᵢ, its values checked by this oil's constructor)."""
+        return self._c["isothermal"]
 
     def with_inlet_temperature(self, T) -> ThermalLubricant:
         """The same oil supplied at another temperature (α re-estimated if not given)."""
