@@ -14,6 +14,7 @@ from tribodyn import InputError
 from tribodyn.config import schema, schema_surfaces, schema_valvetrain
 from tribodyn.config.case import DEFAULT_CASE, Case, set_dotted
 from tribodyn.config.schema_fields import Section
+from tribodyn.physics import heat_conduction
 from tribodyn.physics import limits as L
 
 #: where each section with ranged keys sits in the bundled paper case
@@ -222,6 +223,9 @@ def test_loading_checks_each_value_once(monkeypatch):
     assert calls[L.ROUGHNESS_RMS] == len(sets)
     assert calls[L.COATING_THICKNESS] == sum("coating" in s for s in sets)
     assert calls[L.BOUNDARY_SHEAR_STRENGTH] == len(sets) + 1  # each set's, the default's
+    # ς: a material's by the schema, not again by each set that takes it; the default's
+    own = sum("boundary_shear_coefficient" in s for s in sets)
+    assert calls[L.BOUNDARY_SHEAR_COEFFICIENT] == own + 1
 
 
 def test_a_check_left_out_is_seen(monkeypatch):
@@ -241,7 +245,7 @@ def test_a_check_left_out_is_seen(monkeypatch):
 def test_a_thermal_oil_checks_the_lubricant_values_once(monkeypatch, form):
     """The thermal oil takes the values the isothermal oil checked (inlet form), and its
     isothermal oil at the inlet takes those the thermal oil checked (datasheet): each
-    lubricant limit runs once."""
+    lubricant limit runs once; each material's thermal properties are checked once."""
     data = _paper_data()
     data["numerics"]["thermal"] = True
     data["lubricant"]["inlet_temperature_c"] = 90.0
@@ -259,7 +263,16 @@ def test_a_thermal_oil_checks_the_lubricant_values_once(monkeypatch, form):
         return check(self, name, value)
 
     monkeypatch.setattr(L.Limit, "check", counting)
+    ranges: Counter = Counter()  # the thermal properties of the materials
+    check_range = heat_conduction.check_range
+
+    def counting_range(name, value, *args, **kw):
+        ranges[name] += 1
+        return check_range(name, value, *args, **kw)
+
+    monkeypatch.setattr(heat_conduction, "check_range", counting_range)
     Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    assert 0 < ranges["conductivity"] <= len(data["materials"])  # once each, not per set
     for lim in (L.EYRING_STRESS, L.LIMITING_SHEAR_COEFFICIENT, L.LIMITING_SHEAR_STRESS):
         assert calls[lim] == 1
     assert calls[L.PRESSURE_VISCOSITY] == 1  # given (inlet), estimated (datasheet)

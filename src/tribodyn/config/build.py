@@ -283,7 +283,12 @@ def collect(
         base = options if options is not None else EHLOptions()
         sigma, tau0 = cfg.boundary_friction(case.materials)
         assert sigma is not None  # required by the case cross-check (materials_ok)
-        set_options = attempt(where, functools.partial(base.with_boundary_friction, sigma, tau0))
+        # a material's ς was checked by the schema ([materials]), the set's own is checked here
+        by_schema = (
+            ("boundary_shear_coefficient",) if cfg.boundary_shear_coefficient is None else ()
+        )
+        friction = functools.partial(base.with_boundary_friction, sigma, tau0, by_schema)
+        set_options = attempt(where, friction)
         checked.append((cfg, surface, set_options))
     if problems or not materials_ok or ranges_only:
         return None, in_file_order(type(case), problems)
@@ -292,6 +297,7 @@ def collect(
         p.split(".")[0] == "lubricant" for p, _ in problems
     )
     sets: dict[str, BuiltSet] = {}
+    thermal_properties: dict = {}  # of each material, built once
     for cfg, surface, set_options in checked:
         assert surface is not None and set_options is not None
         surface = attempt(
@@ -301,7 +307,10 @@ def collect(
             continue
         bodies = None
         if n.thermal and lubricant_ok:
-            bodies = attempt("materials", functools.partial(case._new_thermal_bodies, surface))
+            bodies = attempt(
+                "materials",
+                functools.partial(case._new_thermal_bodies, surface, thermal_properties),
+            )
         strengths = attempt("strength", functools.partial(case._new_strengths, surface))
         wear = attempt("strength", functools.partial(case._new_wear_coefficient, surface))
         sets[cfg.name] = BuiltSet(

@@ -113,10 +113,20 @@ class ThermalBuilders:
             )
         return ThermalProperties(**d)
 
-    def _new_thermal_bodies(self, s: SurfaceSet) -> tuple[ThermalBody, ThermalBody]:
-        """(cam, tappet) as :class:`~tribodyn.physics.heat_conduction.ThermalBody`."""
+    def _new_thermal_bodies(
+        self, s: SurfaceSet, built: dict[str, ThermalProperties] | None = None
+    ) -> tuple[ThermalBody, ThermalBody]:
+        """(cam, tappet) as :class:`~tribodyn.physics.heat_conduction.ThermalBody`; the
+        materials' properties are taken from ``built`` (by name) or built and kept there."""
+        built = {} if built is None else built
+
+        def properties(name: str) -> ThermalProperties:
+            if name not in built:
+                built[name] = self._new_thermal_properties(name)
+            return built[name]
+
         cfg = next(c for c in self.surface_set_configs if c.name == s.name) if s.name else None
-        cam = ThermalBody(self._new_thermal_properties(self.cam_config.material))
+        cam = ThermalBody(properties(self.cam_config.material))
         sub = (
             cfg.substrate
             if cfg is not None
@@ -124,15 +134,11 @@ class ThermalBuilders:
         )
         coat = s.coating_material if cfg is None else cfg.coating
         if coat is None:
-            tappet = ThermalBody(self._new_thermal_properties(sub))
+            tappet = ThermalBody(properties(sub))
         else:
             coating = s.bodies[1].coating
             assert coating is not None  # a coated set's tappet carries its coating
-            tappet = ThermalBody(
-                self._new_thermal_properties(sub),
-                self._new_thermal_properties(coat),
-                coating.thickness,
-            )
+            tappet = ThermalBody(properties(sub), properties(coat), coating.thickness)
         return cam, tappet
 
     def _new_thermal_options(self) -> ThermalOptions:

@@ -89,13 +89,16 @@ class EHLOptions:
             raise InputError(f"time_order must be 1 or 2 (got {self.time_order!r})")
         set_(self, "time_order", order)
 
-    def with_boundary_friction(self, coefficient: float, strength: float) -> EHLOptions:
+    def with_boundary_friction(
+        self, coefficient: float, strength: float, checked: tuple[str, ...] = ()
+    ) -> EHLOptions:
         """A copy with the boundary shear law τ = τ₀ + ς p_a of Eq. 17 (ς ``coefficient``
-        [-], τ₀ ``strength`` [Pa]); only these two are checked again."""
+        [-], τ₀ ``strength`` [Pa]); only these two are checked again, but for the fields
+        ``checked`` names (checked where they entered)."""
         new = copy.copy(self)
         object.__setattr__(new, "boundary_shear_coefficient", coefficient)
         object.__setattr__(new, "boundary_shear_strength", strength)
-        L.check_fields(new, {k: _LIMITS[k] for k in _FRICTION})
+        L.check_fields(new, {k: _LIMITS[k] for k in _FRICTION if k not in checked})
         return new
 
 
