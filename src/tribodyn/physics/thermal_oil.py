@@ -67,7 +67,7 @@ from dataclasses import InitVar, dataclass, field, replace
 
 import numpy as np
 
-from .._validation import InputError, check_bool, check_choice, check_positive, check_range
+from .._validation import InputError, check_bool, check_positive, check_range
 from . import typical
 from .limits import DENSITY, PRESSURE_VISCOSITY, VISCOSITY, check_fields, unchecked
 from .lubricant import LIMITS as LUBRICANT_LIMITS
@@ -252,7 +252,10 @@ class ThermalLubricant:
             0.05,
             unit="1/K",
         )
-        check_choice("viscosity_model", self.viscosity_model, ("roelands", "barus"))
+        if self.viscosity_model not in ("roelands", "barus"):
+            raise InputError(
+                f"viscosity_model must be 'roelands' or 'barus' (got {self.viscosity_model!r})"
+            )
         object.__setattr__(self, "_c", c)
         mu_i = float(self.ambient_viscosity(Ti))
         if not mu_i > ROELANDS_MU_INF:
