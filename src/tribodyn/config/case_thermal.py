@@ -11,7 +11,7 @@ from .._validation import InputError
 from ..contact.ehl.thermal import ThermalOptions
 from ..physics.heat_conduction import ThermalBody, ThermalProperties
 from ..physics.oils import OILS, THERMAL_MATERIALS
-from ..physics.thermal_oil import ThermalLubricant
+from ..physics.thermal_oil import ThermalLubricant, kelvin
 
 if TYPE_CHECKING:
     from ..physics.lubricant import Lubricant
@@ -52,9 +52,10 @@ class ThermalBuilders:
                 "lubricant.inlet_temperature_c: required for the thermal model "
                 "(the oil supply temperature, °C)"
             )
+        Ti = float(kelvin(c.inlet_temperature_c))
         common: dict[str, Any] = dict(
             c.model_dump(include=OIL_LAW_KEYS),
-            inlet_temperature=c.inlet_temperature_c + 273.15,
+            inlet_temperature=Ti,
             thermal_expansion=c.thermal_expansion,
             thermal_conductivity=c.thermal_conductivity,
             specific_heat=c.specific_heat,
@@ -84,7 +85,7 @@ class ThermalBuilders:
             viscosity=c.viscosity,
             viscosity_temperature_coefficient=(c.viscosity_temperature_coefficient),
             density=c.density,
-            density_temperature=c.inlet_temperature_c + 273.15,
+            density_temperature=Ti,
             pressure_viscosity=c.pressure_viscosity,
             name="lubricant",
             _checked=checked,
