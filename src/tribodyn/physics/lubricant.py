@@ -138,11 +138,11 @@ def _each(p, a, law, which):
 def rheology_at(law, which: int, p, a=None):
     """:func:`_each` on an array or a number of any shape (a number gives a number);
     ``a``: ln μ₀ + 9.67 at each p (broadcast with it; None: the law's own)."""
-    a = np.asarray(law[3] if a is None else a, dtype=float)
-    pa, aa = np.broadcast_arrays(np.asarray(p, dtype=float), a)
-    flat = (aa if a.ndim else a).reshape(-1)
-    out = _each(np.ascontiguousarray(pa).reshape(-1), np.ascontiguousarray(flat), law, which)
-    out = out.reshape(pa.shape)
+    p = np.asarray(p, dtype=float)
+    if a is not None:
+        p, a = np.broadcast_arrays(p, np.asarray(a, dtype=float))
+    a = np.ascontiguousarray(law[3] if a is None else a, dtype=float).reshape(-1)
+    out = _each(np.ascontiguousarray(p).reshape(-1), a, law, which).reshape(p.shape)
     return out if out.ndim else out[()]
 
 
