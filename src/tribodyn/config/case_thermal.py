@@ -119,27 +119,24 @@ class ThermalBuilders:
     ) -> tuple[ThermalBody, ThermalBody]:
         """(cam, tappet) as :class:`~tribodyn.physics.heat_conduction.ThermalBody`; the
         materials' properties are taken from ``built`` (by name) or built and kept there."""
-        built = {} if built is None else built
-
-        def properties(name: str) -> ThermalProperties:
-            if name not in built:
-                built[name] = self._new_thermal_properties(name)
-            return built[name]
-
         cfg = next(c for c in self.surface_set_configs if c.name == s.name) if s.name else None
-        cam = ThermalBody(properties(self.cam_config.material))
         sub = (
             cfg.substrate
             if cfg is not None
             else ("steel" if "steel" in self.materials else self.cam_config.material)
         )
         coat = s.coating_material if cfg is None else cfg.coating
+        built = {} if built is None else built
+        for name in (self.cam_config.material, sub, coat):
+            if name is not None and name not in built:
+                built[name] = self._new_thermal_properties(name)
+        cam = ThermalBody(built[self.cam_config.material])
         if coat is None:
-            tappet = ThermalBody(properties(sub))
+            tappet = ThermalBody(built[sub])
         else:
             coating = s.bodies[1].coating
             assert coating is not None  # a coated set's tappet carries its coating
-            tappet = ThermalBody(properties(sub), properties(coat), coating.thickness)
+            tappet = ThermalBody(built[sub], built[coat], coating.thickness)
         return cam, tappet
 
     def _new_thermal_options(self) -> ThermalOptions:
