@@ -164,10 +164,7 @@ class BuiltCase:
     @property
     def lumped(self) -> ValvetrainParameters:
         """The lumped valvetrain (a flexible case's lumped equivalent)."""
-        from ..valvetrain.parameters import ValvetrainParameters
-
-        vp = self.valvetrain
-        return vp if isinstance(vp, ValvetrainParameters) else vp.lumped_equivalent()
+        return self.valvetrain.lumped_equivalent()
 
     def analytic_tribology(self, name: str) -> AnalyticTribology:
         """The explicit tribology of the dynamics for surface set ``name`` (a new model

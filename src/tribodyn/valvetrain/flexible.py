@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import ClassVar
 
 from .._validation import InputError, check_positive
 from ..physics import typical_engine
@@ -298,6 +299,13 @@ class FlexibleValvetrain:
         return out
 
     # -- the lumped companion --------------------------------------------------------------
+    #: the lumped companion (:meth:`lumped_equivalent`) differs from it: compare the two
+    has_lumped_companion: ClassVar[bool] = True
+
+    def spring_advice(self) -> str:
+        """The case keys that set the spring's preload and rate (its geometry)."""
+        return "the spring's preload and rate ([valvetrain.spring] installed_length, wire_diameter)"
+
     def lumped_equivalent(self) -> ValvetrainParameters:
         """:class:`ValvetrainParameters` with the same masses, spring rate, preload and
         static compliances: valve mass incl. retainer, tappet mass, active spring mass

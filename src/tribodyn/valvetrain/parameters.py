@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, fields
+from typing import ClassVar
 
 from .._validation import InputError
 from ..physics import limits as L
@@ -148,6 +149,21 @@ class ValvetrainParameters:
             * self.cam_width**-0.8
             * STEEL_REDUCED_MODULUS
             / self.contact_modulus
+        )
+
+    # -- what the variants differ in (FlexibleValvetrain has the same members) ----------
+    #: a different lumped companion exists to compare with (no: it is its own)
+    has_lumped_companion: ClassVar[bool] = False
+
+    def lumped_equivalent(self) -> ValvetrainParameters:
+        """The lumped model: itself."""
+        return self
+
+    def spring_advice(self) -> str:
+        """The case keys that set the spring's preload and rate, with their values."""
+        return (
+            f"valvetrain.spring_preload ({self.spring_preload:g} N) or valvetrain.spring_rate "
+            f"({self.spring_rate:g} N/m)"
         )
 
     def replace(self, **changes) -> ValvetrainParameters:
