@@ -28,6 +28,8 @@ import math
 from dataclasses import dataclass, replace
 from typing import ClassVar
 
+import numpy as np
+
 from .._validation import InputError, check_positive
 from ..physics import typical_engine
 from .camshaft import Camshaft
@@ -301,6 +303,11 @@ class FlexibleValvetrain:
     # -- the lumped companion --------------------------------------------------------------
     #: the lumped companion (:meth:`lumped_equivalent`) differs from it: compare the two
     has_lumped_companion: ClassVar[bool] = True
+
+    def surge_frequencies(self, modes: int = 3) -> np.ndarray:
+        """The first ``modes`` surge frequencies [Hz]: the spring's continuum, both ends
+        fixed at the installed length (:meth:`HelicalSpring.surge_frequencies`)."""
+        return self.spring.surge_frequencies(self.spring.installed_compression, modes)
 
     def spring_advice(self) -> str:
         """The case keys that set the spring's preload and rate (its geometry)."""

@@ -33,6 +33,8 @@ import math
 from dataclasses import asdict, dataclass, fields
 from typing import ClassVar
 
+import numpy as np
+
 from .._validation import InputError
 from ..physics import limits as L
 from ..physics import typical_engine
@@ -158,6 +160,11 @@ class ValvetrainParameters:
     def lumped_equivalent(self) -> ValvetrainParameters:
         """The lumped model: itself."""
         return self
+
+    def surge_frequencies(self, modes: int = 3) -> np.ndarray:
+        """The first ``modes`` surge frequencies f_k = k·f₁ [Hz] of the continuous spring
+        (:attr:`surge_frequency`; Wahl, *Mechanical Springs*, 1963, ch. 25)."""
+        return self.surge_frequency * np.arange(1, modes + 1)
 
     def spring_advice(self) -> str:
         """The case keys that set the spring's preload and rate, with their values."""
