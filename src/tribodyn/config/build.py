@@ -46,8 +46,9 @@ if TYPE_CHECKING:
     from ..valvetrain.parameters import ValvetrainParameters
     from ..valvetrain.tappet_rotation import TappetRotation
     from ..valvetrain.tribology import AnalyticTribology
-    from .case import Case, SurfaceSet
+    from .case import Case
     from .schema import SurfaceSetConfig
+    from .surface_set import SurfaceSet
 
 __all__ = [
     "BuiltCase",

@@ -39,7 +39,6 @@ from pydantic import (
 from .._typing import PathLike
 from .._validation import InputError
 from ..contact.ehl import EHLOptions
-from ..physics import typical
 from ..physics.asperity import Roughness
 from ..physics.limits import RangeError
 from ..physics.lubricant import Lubricant
@@ -73,6 +72,7 @@ from .schema import (
     typical_materials,
     typical_surface_sets,
 )
+from .surface_set import SurfaceSet
 from .tomlfile import TomlFile, check_nesting, file_or_bundled
 
 T = TypeVar("T")
@@ -94,43 +94,6 @@ CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
 DEFAULT_CASE = CASES_DIR / "andreou2023.toml"
 #: Sections an engine's ``[engine.<kind>] changes`` may not touch: the lobes share them.
 LOBE_SHARED_SECTIONS = ("engine", "case", "numerics")
-
-
-@dataclasses.dataclass(frozen=True)
-class SurfaceSet:
-    """One surface set, ready for the solvers.
-
-    name : identifier from the case.
-    bodies : (cam, tappet) — the cam is uncoated, the tappet carries the coating.
-    roughness : composite Greenwood–Tripp roughness of the pair (None: smooth).
-    boundary_shear_coefficient : ς of Eq. 17 [-].
-    coating_label : display label, e.g. ``"DLC 4 µm"`` or ``"uncoated"``.
-    boundary_shear_strength : τ₀ of Eq. 17 [Pa].
-    coating_material : key of the coating in the case's ``[materials]`` (None: uncoated).
-    asperity_law : which asperity law the set uses, and why.
-    """
-
-    name: str
-    bodies: tuple[Body, Body]
-    roughness: Roughness | None
-    boundary_shear_coefficient: float
-    coating_label: str
-    boundary_shear_strength: float = typical.BOUNDARY_SHEAR_STRENGTH.value
-    coating_material: str | None = None
-    #: which asperity law the set uses and why (for the run's output)
-    asperity_law: str = ""
-
-    @property
-    def cam(self) -> Body:
-        return self.bodies[0]
-
-    @property
-    def tappet(self) -> Body:
-        return self.bodies[1]
-
-    @property
-    def coating(self) -> Coating | None:
-        return self.bodies[1].coating
 
 
 class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, TomlFile):

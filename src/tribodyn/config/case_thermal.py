@@ -14,8 +14,8 @@ from ..physics.oils import OILS, THERMAL_MATERIALS
 from ..physics.thermal_oil import ThermalLubricant
 
 if TYPE_CHECKING:
-    from .case import SurfaceSet
     from .schema import CamConfig, LubricantConfig, MaterialConfig, Numerics, SurfaceSetConfig
+    from .surface_set import SurfaceSet
 
 
 #: ``[lubricant]`` keys that the isothermal and the thermal oil take unchanged

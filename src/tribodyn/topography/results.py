@@ -8,20 +8,17 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Protocol
+from typing import Protocol
 
 import numpy as np
 
 from .._validation import InputError
 from ..physics.asperity import Roughness
-from .filtering import Band, Sampling
+from .filtering import Band, Sampling, SamplingLike
 from .height_statistics import HeightStatistics
 from .records import record_dict
 from .spectral_moments import McCoolParameters, SpectralMoments
 from .summits import SummitStatistics
-
-if TYPE_CHECKING:
-    from .profile import ProfileAnalysis
 
 __all__ = ["METHODS", "AsperityParameters", "SurfaceAnalysis", "PairAnalysis"]
 
@@ -216,6 +213,31 @@ class SurfaceAnalysis(_TomlMixin):
         }
 
 
+class AnalysedSurface(Protocol):
+    """What a pair reads of each of its surfaces (a :class:`SurfaceAnalysis`, or a
+    profile's :class:`~tribodyn.topography.profile.ProfileAnalysis`)."""
+
+    @property
+    def name(self) -> str: ...
+
+    @property
+    def rms(self) -> float: ...
+
+    @property
+    def band(self) -> Band: ...
+
+    @property
+    def sampling(self) -> SamplingLike: ...
+
+    @property
+    def topography(self) -> HeightMap | None: ...
+
+    @property
+    def filled(self) -> object: ...
+
+    def to_dict(self) -> dict: ...
+
+
 @dataclass(frozen=True)
 class PairAnalysis(_TomlMixin):
     """Composite roughness of a pair (cam and tappet), Greenwood–Tripp's equivalent surface.
@@ -225,8 +247,8 @@ class PairAnalysis(_TomlMixin):
     h₁ + h₂ on the common grid (``None`` if the two maps are sampled differently).
     """
 
-    first: SurfaceAnalysis | ProfileAnalysis
-    second: SurfaceAnalysis | ProfileAnalysis
+    first: AnalysedSurface
+    second: AnalysedSurface
     moments: SpectralMoments
     mccool: McCoolParameters
     summit_stats: SummitStatistics | None
