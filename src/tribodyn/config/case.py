@@ -55,7 +55,6 @@ from .origins import carried_given
 from .paths import Key, parse_path, set_path
 from .schema import (
     CAM_MODELS,
-    LUMPED_ONLY,
     AccelerationCamConfig,
     CamConfig,
     CaseInfo,
@@ -306,9 +305,8 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         ``resolve_paths=True`` makes the cam table path and measured maps absolute."""
         d = self.model_dump(mode="python", exclude_none=True, by_alias=True)
         d["cam"] = {"type": d["cam"].pop("type"), **d["cam"]}
-        if self.valvetrain.model == "flexible":  # the bodies give these
-            for k in LUMPED_ONLY:
-                d["valvetrain"].pop(k, None)
+        for k in self.valvetrain.unused_keys:  # a flexible model's bodies give these
+            d["valvetrain"].pop(k, None)
         lub = self.lubricant_config
         if lub.datasheet:  # follow from the datasheet (α: So–Klaus unless given)
             for k in ("viscosity", "density", "pressure_viscosity"):

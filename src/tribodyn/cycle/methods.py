@@ -46,13 +46,12 @@ def cycle_for_set(
 
 
 class IsothermalStudy:
-    """The isothermal cycle study: the isothermal pass of every set (the study's own
-    tasks) is what it presents; no pass of its own (``kinds``)."""
+    """The isothermal cycle study: it adds no pass (``kinds``: the kinds of the tasks it
+    adds, keys ``"<kind>:<set>"``) and presents the isothermal pass of every set."""
 
-    kinds: tuple[str, ...] = ()  #: task kinds it adds, keys ``"<kind>:<set>"``
+    kinds: tuple[str, ...] = ()
 
     def tasks(self, built: BuiltCase, inputs: CycleInputs) -> list[Task]:
-        """The passes it adds to the study's task graph (none)."""
         return []
 
     def collect(self, order: list[str], isothermal: dict, own: dict) -> tuple[list, list | None]:

@@ -139,11 +139,6 @@ class ValvetrainParameters:
         return self.valve_mass + self.tappet_mass + self.spring_mass / 3.0
 
     @property
-    def surge_frequency(self) -> float:
-        """First surge frequency of the continuous fixed–fixed spring ½√(k/m_s) [Hz]."""
-        return 0.5 * math.sqrt(self.spring_rate / self.spring_mass)
-
-    @property
     def contact_compliance_coefficient(self) -> float:
         """C of the Palmgren law δ = C F^0.9 [m/N^0.9] for this width and modulus."""
         return (
@@ -154,7 +149,7 @@ class ValvetrainParameters:
         )
 
     # -- what the variants differ in (FlexibleValvetrain has the same members) ----------
-    #: a different lumped companion exists to compare with (no: it is its own)
+    #: a lumped companion other than itself to compare with
     has_lumped_companion: ClassVar[bool] = False
 
     def lumped_equivalent(self) -> ValvetrainParameters:
@@ -162,9 +157,9 @@ class ValvetrainParameters:
         return self
 
     def surge_frequencies(self, modes: int = 3) -> np.ndarray:
-        """The first ``modes`` surge frequencies f_k = k·f₁ [Hz] of the continuous spring
-        (:attr:`surge_frequency`; Wahl, *Mechanical Springs*, 1963, ch. 25)."""
-        return self.surge_frequency * np.arange(1, modes + 1)
+        """The first ``modes`` surge frequencies f_k = (k/2)√(k_s/m_s) [Hz] of the continuous
+        fixed–fixed spring (Wahl, *Mechanical Springs*, 1963, ch. 25)."""
+        return 0.5 * math.sqrt(self.spring_rate / self.spring_mass) * np.arange(1, modes + 1)
 
     def spring_advice(self) -> str:
         """The case keys that set the spring's preload and rate, with their values."""
