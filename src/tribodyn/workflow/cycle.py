@@ -231,12 +231,12 @@ def study_tasks(
     """The study's task graph, declared once, in order of priority: the coupling chain of
     the reference set (its EHL pass, then the implicit iterations on it: the longest
     chain, so first), the EHL pass and stresses of every other set, the reference set's
-    stresses (on its pass, beside the iterations), the single-contact studies and, with
-    ``numerics.thermal``, the thermal pass of every set. Given the dynamics and the
+    stresses (on its pass, beside the iterations), the single-contact studies and the
+    passes of the EHL variant (:func:`~tribodyn.cycle.methods.study_variant`). Given the dynamics and the
     cycle's samples only the coupling and the reference's stresses wait for a result
     (the reference pass, ``Task.after``). Keys: ``"pass:<reference>"``, ``"coupling"``,
     ``"set:<name>"``, ``"stress:<reference>"``, ``"coating"``, ``"thermal:<name>"``.
-    ``friction_only``: the EHL passes (and thermal passes) of every set alone,
+    ``friction_only``: the EHL passes (and the variant's) of every set alone,
     ``"set:<name>"`` for the reference set too."""
     if friction_only:
         tasks = [
