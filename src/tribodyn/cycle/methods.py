@@ -14,6 +14,7 @@ from typing import Any
 
 from .._validation import InputError
 from ..config.build import BuiltCase
+from ..physics.thermal_oil import ThermalLubricant
 from .data import CycleInputs, SetCycleResult
 from .driver import CycleMethod, IsothermalCycle, march_for_set
 from .tasks import Task
@@ -54,6 +55,10 @@ class IsothermalStudy:
     def tasks(self, built: BuiltCase, inputs: CycleInputs) -> list[Task]:
         return []
 
+    def oil(self, built: BuiltCase) -> ThermalLubricant | None:
+        """The thermal oil its passes run with (None: no thermal pass)."""
+        return None
+
     def collect(self, order: list[str], isothermal: dict, own: dict) -> tuple[list, list | None]:
         """(the results the study presents, the isothermal ones kept beside or None) in
         the set ``order``, from the isothermal passes by set name and its ``own`` passes
@@ -70,6 +75,9 @@ class ThermalStudy(IsothermalStudy):
 
     def tasks(self, built: BuiltCase, inputs: CycleInputs) -> list[Task]:
         return [Task(f"thermal:{name}", thermal_task, (built, name, inputs)) for name in built.sets]
+
+    def oil(self, built: BuiltCase) -> ThermalLubricant | None:
+        return built.thermal_lubricant
 
     def collect(self, order: list[str], isothermal: dict, own: dict) -> tuple[list, list | None]:
         return [own[f"thermal:{n}"] for n in order], [isothermal[n] for n in order]
