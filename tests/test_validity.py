@@ -217,6 +217,6 @@ def test_valve_jump_is_reported_clearly():
         **built.dynamics_options,
     )
     assert dyn.converged and dyn.jump
-    text = _jump_warning(dyn, case)
+    text = _jump_warning(dyn, built)
     assert "loses contact with the cam (valve jump)" in text
     assert "does not follow the cam" in text

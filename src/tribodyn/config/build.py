@@ -46,8 +46,9 @@ if TYPE_CHECKING:
     from ..valvetrain.parameters import ValvetrainParameters
     from ..valvetrain.tappet_rotation import TappetRotation
     from ..valvetrain.tribology import AnalyticTribology
-    from .case import Case, SurfaceSet
+    from .case import Case
     from .schema import SurfaceSetConfig
+    from .surface_set import SurfaceSet
 
 __all__ = [
     "BuiltCase",
@@ -164,10 +165,7 @@ class BuiltCase:
     @property
     def lumped(self) -> ValvetrainParameters:
         """The lumped valvetrain (a flexible case's lumped equivalent)."""
-        from ..valvetrain.parameters import ValvetrainParameters
-
-        vp = self.valvetrain
-        return vp if isinstance(vp, ValvetrainParameters) else vp.lumped_equivalent()
+        return self.valvetrain.lumped_equivalent()
 
     def analytic_tribology(self, name: str) -> AnalyticTribology:
         """The explicit tribology of the dynamics for surface set ``name`` (a new model

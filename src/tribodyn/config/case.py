@@ -39,7 +39,6 @@ from pydantic import (
 from .._typing import PathLike
 from .._validation import InputError
 from ..contact.ehl import EHLOptions
-from ..physics import typical
 from ..physics.asperity import Roughness
 from ..physics.limits import RangeError
 from ..physics.lubricant import Lubricant
@@ -56,7 +55,6 @@ from .origins import carried_given
 from .paths import Key, parse_path, set_path
 from .schema import (
     CAM_MODELS,
-    LUMPED_ONLY,
     AccelerationCamConfig,
     CamConfig,
     CaseInfo,
@@ -73,6 +71,7 @@ from .schema import (
     typical_materials,
     typical_surface_sets,
 )
+from .surface_set import SurfaceSet
 from .tomlfile import TomlFile, check_nesting, file_or_bundled
 
 T = TypeVar("T")
@@ -94,43 +93,6 @@ CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
 DEFAULT_CASE = CASES_DIR / "andreou2023.toml"
 #: Sections an engine's ``[engine.<kind>] changes`` may not touch: the lobes share them.
 LOBE_SHARED_SECTIONS = ("engine", "case", "numerics")
-
-
-@dataclasses.dataclass(frozen=True)
-class SurfaceSet:
-    """One surface set, ready for the solvers.
-
-    name : identifier from the case.
-    bodies : (cam, tappet) — the cam is uncoated, the tappet carries the coating.
-    roughness : composite Greenwood–Tripp roughness of the pair (None: smooth).
-    boundary_shear_coefficient : ς of Eq. 17 [-].
-    coating_label : display label, e.g. ``"DLC 4 µm"`` or ``"uncoated"``.
-    boundary_shear_strength : τ₀ of Eq. 17 [Pa].
-    coating_material : key of the coating in the case's ``[materials]`` (None: uncoated).
-    asperity_law : which asperity law the set uses, and why.
-    """
-
-    name: str
-    bodies: tuple[Body, Body]
-    roughness: Roughness | None
-    boundary_shear_coefficient: float
-    coating_label: str
-    boundary_shear_strength: float = typical.BOUNDARY_SHEAR_STRENGTH.value
-    coating_material: str | None = None
-    #: which asperity law the set uses and why (for the run's output)
-    asperity_law: str = ""
-
-    @property
-    def cam(self) -> Body:
-        return self.bodies[0]
-
-    @property
-    def tappet(self) -> Body:
-        return self.bodies[1]
-
-    @property
-    def coating(self) -> Coating | None:
-        return self.bodies[1].coating
 
 
 class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, TomlFile):
@@ -343,9 +305,8 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         ``resolve_paths=True`` makes the cam table path and measured maps absolute."""
         d = self.model_dump(mode="python", exclude_none=True, by_alias=True)
         d["cam"] = {"type": d["cam"].pop("type"), **d["cam"]}
-        if self.valvetrain.model == "flexible":  # the bodies give these
-            for k in LUMPED_ONLY:
-                d["valvetrain"].pop(k, None)
+        for k in self.valvetrain.unused_keys:  # a flexible model's bodies give these
+            d["valvetrain"].pop(k, None)
         lub = self.lubricant_config
         if lub.datasheet:  # follow from the datasheet (α: So–Klaus unless given)
             for k in ("viscosity", "density", "pressure_viscosity"):

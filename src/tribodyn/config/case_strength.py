@@ -9,8 +9,8 @@ import dataclasses
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from .case import SurfaceSet
     from .schema import CamConfig, StrengthConfig, SurfaceSetConfig
+    from .surface_set import SurfaceSet
 
 
 class StrengthBuilders:

@@ -15,8 +15,8 @@ from ..physics.thermal_oil import ThermalLubricant, kelvin
 
 if TYPE_CHECKING:
     from ..physics.lubricant import Lubricant
-    from .case import SurfaceSet
     from .schema import CamConfig, LubricantConfig, MaterialConfig, Numerics, SurfaceSetConfig
+    from .surface_set import SurfaceSet
 
 
 #: ``[lubricant]`` keys that the isothermal and the thermal oil take unchanged

@@ -22,8 +22,8 @@ if TYPE_CHECKING:
 
     from ..physics.lubricant import Lubricant
     from ..valvetrain.tribology import AnalyticTribology
-    from .case import SurfaceSet
     from .schema import CamConfig, Engine, Numerics, Valvetrain
+    from .surface_set import SurfaceSet
 
 
 class CamValvetrainBuilders:
@@ -97,11 +97,6 @@ class CamValvetrainBuilders:
         if self.valvetrain.model == "lumped":
             return joints
         return self._flexible(joints)
-
-    @property
-    def valvetrain_model(self) -> str:
-        """``"lumped"`` or ``"flexible"``."""
-        return self.valvetrain.model
 
     def _joint_parameters(self) -> ValvetrainParameters:
         d = self.valvetrain.model_dump(exclude={"model", "valve", "tappet", "spring", "camshaft"})

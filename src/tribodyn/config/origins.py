@@ -24,7 +24,6 @@ from typing import TYPE_CHECKING, Any
 from ..physics import typical, typical_engine
 from ..physics.typical import TypicalValue
 from .schema_surfaces import TYPICAL_MATERIALS
-from .schema_valvetrain import LUMPED_ONLY
 
 if TYPE_CHECKING:
     from .case import Case
@@ -123,7 +122,7 @@ def input_origins(case: Case) -> list[Origin]:
             out.append((f"cam.{k}", value, "m", origin(f"cam.{k}", typical_origin(t))))
     vt = case.valvetrain
     for k, default in _VALVETRAIN.items():
-        if vt.model == "flexible" and k in LUMPED_ONLY:
+        if k in vt.unused_keys:
             continue
         out.append(
             (f"valvetrain.{k}", getattr(vt, k), _unit(vt, k), origin(f"valvetrain.{k}", default))
@@ -199,8 +198,9 @@ def default_warnings(case: Case) -> list[str]:
             "viscosity and α; docs/case-files.md)."
         )
     vt = case.valvetrain
-    missing = [k for k in typical_engine.VALVETRAIN if f"valvetrain.{k}" not in case.input_given]
-    if vt.model == "flexible" or not missing:  # flexible: the bodies give masses and spring
+    used = [k for k in typical_engine.VALVETRAIN if k not in vt.unused_keys]  # flexible: none
+    missing = [k for k in used if f"valvetrain.{k}" not in case.input_given]
+    if not missing:
         return out
     vals = ", ".join(
         f"{k} = {getattr(vt, k):g} {typical_engine.VALVETRAIN[k].unit}" for k in missing

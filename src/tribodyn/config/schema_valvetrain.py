@@ -404,11 +404,17 @@ class Valvetrain(Section):
         "radius of the tappet face (max contact offset must stay below)",
     )
 
+    @property
+    def unused_keys(self) -> tuple[str, ...]:
+        """The keys its model does not use (flexible: :data:`LUMPED_ONLY`, the bodies give
+        them)."""
+        return LUMPED_ONLY if self.model == "flexible" else ()
+
     @model_validator(mode="after")
     def _model_rule(self):
         problems = []
         if self.model == "flexible":
-            for k in LUMPED_ONLY:
+            for k in self.unused_keys:
                 if k in self.model_fields_set:
                     problems.append(
                         (

@@ -29,26 +29,23 @@ J. Lubr. Technol. 93 (1971) 398–407; J. I. McCool, Wear 107 (1986) 37–60.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from .._validation import InputError
 from .errors import InsufficientDataError
 from .filtering import (
     AUTO_BAND,
     Band,
     BandSpec,
-    SamplingLike,
     applied_band,
     check_filtering,
     check_map_size,
     input_warnings,
 )
-from .height_statistics import HeightStatistics, height_statistics
-from .results import AsperityParameters, _TomlMixin
-from .spectral_moments import McCoolParameters, SpectralMoments, mccool_parameters
+from .height_statistics import height_statistics
+from .results import ISOTROPIC_LABEL, ProfileAnalysis, ProfileSampling
+from .spectral_moments import SpectralMoments, mccool_parameters
 
 __all__ = ["ProfileSampling", "ProfileAnalysis", "analyse_profile", "MIN_PEAKS", "ISOTROPIC_LABEL"]
 
@@ -56,139 +53,6 @@ __all__ = ["ProfileSampling", "ProfileAnalysis", "analyse_profile", "MIN_PEAKS",
 MIN_PEAKS = 25
 #: Smallest profile [points].
 MIN_POINTS = 32
-ISOTROPIC_LABEL = (
-    "isotropic-surface estimate from one profile (McCool): valid only if the surface has no lay"
-)
-
-
-def _um(x: float) -> str:
-    return f"{x * 1e6:.4g}"
-
-
-@dataclass(frozen=True)
-class ProfileSampling(SamplingLike):
-    """Sampling of a profile: points, spacing Δ [m], length L [m], filled share."""
-
-    nb_grid_pts: tuple[int]
-    pixel_size: tuple[float]
-    physical_sizes: tuple[float]
-    periodic: bool = False
-    undefined_fraction: float = 0.0
-
-    @property
-    def nyquist_wavelength(self) -> float:
-        return 2.0 * self.pixel_size[0]
-
-    @property
-    def longest_wavelength(self) -> float:
-        return self.physical_sizes[0]
-
-    def _layout(self) -> str:
-        return (
-            f"profile of {self.nb_grid_pts[0]} points, spacing {_um(self.pixel_size[0])} "
-            f"µm, length {_um(self.physical_sizes[0])} µm"
-        )
-
-
-@dataclass(frozen=True)
-class ProfileAnalysis(_TomlMixin):
-    """Roughness of one profile (SI units). ``isotropic`` holds the isotropic-surface
-    estimates of η and β (McCool from the profile moments); ``summits`` is None (a
-    profile has no summits)."""
-
-    name: str
-    sampling: ProfileSampling
-    band: Band
-    heights: HeightStatistics
-    moments: SpectralMoments
-    peak_count: int
-    peak_density: float  #: counted peaks per length [1/m]
-    peak_density_gaussian: float  #: (1/2π)√(m4/m2) [1/m]
-    isotropic: McCoolParameters
-    notes: tuple[str, ...] = ()
-    warnings: tuple[str, ...] = ()
-    source: dict | None = None
-    profile: np.ndarray | None = field(default=None, repr=False, compare=False)
-    filled: np.ndarray | None = field(default=None, repr=False, compare=False)
-    topography: None = field(default=None, repr=False, compare=False)  # not a map
-    summit_stats: None = None
-    mccool: McCoolParameters = field(init=False)  # = isotropic
-
-    kind = "profile"
-
-    def __post_init__(self):
-        object.__setattr__(self, "mccool", self.isotropic)
-
-    @property
-    def rms(self) -> float:
-        return self.heights.rms
-
-    @property
-    def summits(self):
-        return None
-
-    @property
-    def spectral(self) -> AsperityParameters:
-        m = self.isotropic
-        return AsperityParameters(
-            "spectral",
-            m.asperity_density,
-            self.heights.rms,
-            m.summit_radius,
-            m.summit_height_mean,
-            m.summit_height_std,
-        )
-
-    @property
-    def slope_anisotropy(self) -> float:
-        return float("nan")
-
-    def parameters(self, method: str = "spectral") -> AsperityParameters:
-        if method == "summits":
-            raise InputError(
-                "a profile has no summits: use method='spectral' (the "
-                "isotropic-surface estimate from the profile moments)"
-            )
-        if method != "spectral":
-            raise InputError(f"method must be one of ('summits', 'spectral') (got {method!r})")
-        return self.spectral
-
-    def to_roughness(self, method: str = "spectral"):
-        return self.parameters(method).to_roughness()
-
-    def toml_block(self, method: str = "spectral") -> str:
-        block = super().toml_block("spectral" if method == "summits" else method)
-        head, rest = block.split("\n", 1)
-        return f"{head}\n# {ISOTROPIC_LABEL.upper()}\n{rest}"
-
-    def describe_source(self) -> str:
-        return f"profile '{self.name}'"
-
-    def describe_conditions(self) -> list[str]:
-        return [f"band {self.band.describe()}", f"sampling {self.sampling.describe()}"]
-
-    def to_dict(self) -> dict:
-        iso = self.spectral.to_dict()
-        iso["label"] = ISOTROPIC_LABEL
-        return {
-            "name": self.name,
-            "kind": "profile",
-            "source": self.source,
-            "band": self.band.to_dict(),
-            "sampling": self.sampling.to_dict(),
-            "heights": self.heights.to_dict(),
-            "moments": self.moments.to_dict(),
-            "peak_count": self.peak_count,
-            "peak_density": self.peak_density,
-            "peak_density_gaussian": self.peak_density_gaussian,
-            "summits": None,
-            "isotropic_estimate": iso,
-            "spectral": iso,
-            "filled_fraction": self.sampling.undefined_fraction,
-            "warnings": list(self.warnings),
-            "notes": list(self.notes),
-            "units": {"peak_density": "1/m", "peak_density_gaussian": "1/m"},
-        }
 
 
 def _filter_profile(h: np.ndarray, dx: float, band: Band, periodic: bool) -> tuple:

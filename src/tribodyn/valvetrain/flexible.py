@@ -26,6 +26,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import ClassVar
+
+import numpy as np
 
 from .._validation import InputError, check_positive
 from ..physics import typical_engine
@@ -298,6 +301,18 @@ class FlexibleValvetrain:
         return out
 
     # -- the lumped companion --------------------------------------------------------------
+    #: the lumped companion (:meth:`lumped_equivalent`) differs from it: compare the two
+    has_lumped_companion: ClassVar[bool] = True
+
+    def surge_frequencies(self, modes: int = 3) -> np.ndarray:
+        """The first ``modes`` surge frequencies [Hz]: the spring's continuum, both ends
+        fixed at the installed length (:meth:`HelicalSpring.surge_frequencies`)."""
+        return self.spring.surge_frequencies(self.spring.installed_compression, modes)
+
+    def spring_advice(self) -> str:
+        """The case keys that set the spring's preload and rate (its geometry)."""
+        return "the spring's preload and rate ([valvetrain.spring] installed_length, wire_diameter)"
+
     def lumped_equivalent(self) -> ValvetrainParameters:
         """:class:`ValvetrainParameters` with the same masses, spring rate, preload and
         static compliances: valve mass incl. retainer, tappet mass, active spring mass

@@ -31,6 +31,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, fields
+from typing import ClassVar
+
+import numpy as np
 
 from .._validation import InputError
 from ..physics import limits as L
@@ -136,11 +139,6 @@ class ValvetrainParameters:
         return self.valve_mass + self.tappet_mass + self.spring_mass / 3.0
 
     @property
-    def surge_frequency(self) -> float:
-        """First surge frequency of the continuous fixed–fixed spring ½√(k/m_s) [Hz]."""
-        return 0.5 * math.sqrt(self.spring_rate / self.spring_mass)
-
-    @property
     def contact_compliance_coefficient(self) -> float:
         """C of the Palmgren law δ = C F^0.9 [m/N^0.9] for this width and modulus."""
         return (
@@ -148,6 +146,26 @@ class ValvetrainParameters:
             * self.cam_width**-0.8
             * STEEL_REDUCED_MODULUS
             / self.contact_modulus
+        )
+
+    # -- what the variants differ in (FlexibleValvetrain has the same members) ----------
+    #: a lumped companion other than itself to compare with
+    has_lumped_companion: ClassVar[bool] = False
+
+    def lumped_equivalent(self) -> ValvetrainParameters:
+        """The lumped model: itself."""
+        return self
+
+    def surge_frequencies(self, modes: int = 3) -> np.ndarray:
+        """The first ``modes`` surge frequencies f_k = (k/2)√(k_s/m_s) [Hz] of the continuous
+        fixed–fixed spring (Wahl, *Mechanical Springs*, 1963, ch. 25)."""
+        return 0.5 * math.sqrt(self.spring_rate / self.spring_mass) * np.arange(1, modes + 1)
+
+    def spring_advice(self) -> str:
+        """The case keys that set the spring's preload and rate, with their values."""
+        return (
+            f"valvetrain.spring_preload ({self.spring_preload:g} N) or valvetrain.spring_rate "
+            f"({self.spring_rate:g} N/m)"
         )
 
     def replace(self, **changes) -> ValvetrainParameters:

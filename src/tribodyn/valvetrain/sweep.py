@@ -242,7 +242,7 @@ def locate_jump_speed(
     tol = check_positive("tolerance", tolerance, "rpm")
     if hi_cap <= lo:
         raise InputError(f"high must exceed start (got {lo:g}, {hi_cap:g} rpm)")
-    lumped = params.lumped_equivalent() if hasattr(params, "lumped_equivalent") else params
+    lumped = params.lumped_equivalent()
     runs: list = []
 
     def run(rpm):

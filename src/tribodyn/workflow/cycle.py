@@ -36,8 +36,8 @@ from ..config.build import BuiltCase, as_built
 from ..config.origins import default_warnings
 from ..cycle.coupling import CouplingResult, run_coupling
 from ..cycle.driver import CycleInputs, SetCycleResult, ehl_for_set
+from ..cycle.methods import study_variant
 from ..cycle.tasks import InlineExecutor, Task, run_tasks
-from ..cycle.thermal import thermal_task
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from .coating_study import (
     DryCoatingCase,
@@ -231,12 +231,12 @@ def study_tasks(
     """The study's task graph, declared once, in order of priority: the coupling chain of
     the reference set (its EHL pass, then the implicit iterations on it: the longest
     chain, so first), the EHL pass and stresses of every other set, the reference set's
-    stresses (on its pass, beside the iterations), the single-contact studies and, with
-    ``numerics.thermal``, the thermal pass of every set. Given the dynamics and the
+    stresses (on its pass, beside the iterations), the single-contact studies and the
+    passes of the EHL variant (:func:`~tribodyn.cycle.methods.study_variant`). Given the dynamics and the
     cycle's samples only the coupling and the reference's stresses wait for a result
     (the reference pass, ``Task.after``). Keys: ``"pass:<reference>"``, ``"coupling"``,
     ``"set:<name>"``, ``"stress:<reference>"``, ``"coating"``, ``"thermal:<name>"``.
-    ``friction_only``: the EHL passes (and thermal passes) of every set alone,
+    ``friction_only``: the EHL passes (and the variant's) of every set alone,
     ``"set:<name>"`` for the reference set too."""
     if friction_only:
         tasks = [
@@ -257,11 +257,7 @@ def study_tasks(
         tasks.append(
             Task("coating", _coating_studies_task, (built, reference, nose, paper_studies))
         )
-    if built.case.numerics.thermal:
-        tasks += [
-            Task(f"thermal:{name}", thermal_task, (built, name, inputs)) for name in built.sets
-        ]
-    return tasks
+    return tasks + study_variant(built).tasks(built, inputs)
 
 
 @contextmanager
@@ -325,6 +321,7 @@ def run_cycle_study(
     report = progress or (lambda *a, **k: None)
     timings = {}
     sets = built.surface_sets
+    variant = study_variant(built)  # isothermal or thermal
     ref_name = surface_roles(built)["reference"]
 
     t0 = time.perf_counter()
@@ -356,7 +353,7 @@ def run_cycle_study(
     t0 = time.perf_counter()
     results: dict = {}
     stresses: dict = {}
-    thermal = {}  # thermal EHL per set (numerics.thermal)
+    own: dict = {}  # the variant's own passes by task key (thermal EHL)
     coupling = CouplingResult()
     coating: tuple = ([], None, None, None)
 
@@ -365,8 +362,8 @@ def run_cycle_study(
         reference set's line runs from the start of its pass to the end of the
         coupling."""
         kind, _, name = key.partition(":")
-        own = {"set": name, "thermal": f"{name} (thermal)"}
-        return own.get(kind) or {"coupling" if end else "pass": ref_name}.get(kind)
+        mine = {"set": name, **{k: f"{name} ({k})" for k in variant.kinds}}
+        return mine.get(kind) or {"coupling" if end else "pass": ref_name}.get(kind)
 
     def started(key: str) -> None:
         if (name := label(key, end=False)) is not None:
@@ -383,8 +380,8 @@ def run_cycle_study(
             stresses[name] = result
         elif kind == "set":
             results[name], stresses[name] = result
-        elif kind == "thermal":
-            thermal[name] = result
+        elif kind in variant.kinds:
+            own[key] = result
         else:
             coating = result
         if (text := label(key, end=True)) is not None:
@@ -398,18 +395,16 @@ def run_cycle_study(
     for name, r in results.items():  # inside the tasks (their own clocks)
         timings[f"ehl_pass_{name}_s"] = r.runtime_s
     timings["coupling_s"] = coupling.runtime_s
-    isothermal = None
-    if n.thermal:  # thermal EHL per set; isothermal kept beside it
-        isothermal = [results[s.name] for s in sets]
-        results = thermal
-        for name, r in thermal.items():
-            timings[f"thermal_ehl_pass_{name}_s"] = r.runtime_s
+    for key, r in own.items():
+        kind, _, name = key.partition(":")
+        timings[f"{kind}_ehl_pass_{name}_s"] = r.runtime_s
+    presented, isothermal = variant.collect([s.name for s in sets], results, own)
 
     study = CycleStudy(
         case=case,
         dynamics=dyn,
         inputs=inputs,
-        sets=[results[s.name] for s in sets],
+        sets=presented,
         labels={s.name: s.coating_label for s in sets},
         coupling=coupling,
         dry=coating[0],
@@ -463,9 +458,9 @@ def run_cycle_study(
             "numerics.implicit_coupling = false if the comparison is not needed"
         )
     if dyn.jump:
-        study.warnings.append(_jump_warning(dyn, case))
+        study.warnings.append(_jump_warning(dyn, built))
     study.warnings += plausibility_warnings(study)
-    if case.valvetrain_model == "flexible":
+    if built.valvetrain.has_lumped_companion:
         t0 = time.perf_counter()
         report("dynamics")
         study.model_comparison = compare_lumped_flexible(
@@ -503,9 +498,9 @@ def _validity_advice(text: str) -> str:
     return "see the validity checks in the physics documentation"
 
 
-def _jump_warning(dyn, case) -> str:
+def _jump_warning(dyn, built: BuiltCase) -> str:
     """The contact-loss (valve jump) warning: its intervals and share of the cam event,
-    the maximum separation, and what to change."""
+    the maximum separation, and what to change (the built valvetrain's spring keys)."""
     js = dyn.jump_summary()
     lost = js["contact_lost_deg"]
     ev = dyn.event_mask()
@@ -513,16 +508,6 @@ def _jump_warning(dyn, case) -> str:
     event = float(ev.sum()) * step
     first = ", ".join(f"{a:.1f}–{b:.1f}°" for a, b in dyn.jumps[:3])
     more = f" and {len(dyn.jumps) - 3} more" if len(dyn.jumps) > 3 else ""
-    v = case.valvetrain
-    if case.valvetrain_model == "flexible":  # its spring geometry gives preload and rate
-        spring = (
-            "the spring's preload and rate ([valvetrain.spring] installed_length, wire_diameter)"
-        )
-    else:
-        spring = (
-            f"valvetrain.spring_preload ({v.spring_preload:g} N) or valvetrain.spring_rate "
-            f"({v.spring_rate:g} N/m)"
-        )
     text = (
         f"the tappet loses contact with the cam (valve jump) for {lost:.1f}° crank of the "
         f"{event:.0f}° cam event ({first}{more}); maximum separation (tappet lift − cam "
@@ -534,7 +519,7 @@ def _jump_warning(dyn, case) -> str:
             "there describe the impacts, not the design"
         )
     text += (
-        f"; to keep the contact raise {spring}, or lower the moving masses or the "
-        f"engine speed ({case.engine.speed_rpm:g} rpm)"
+        f"; to keep the contact raise {built.valvetrain.spring_advice()}, or lower the moving "
+        f"masses or the engine speed ({built.case.engine.speed_rpm:g} rpm)"
     )
     return text

@@ -50,7 +50,6 @@ __all__ = [
     "engineering_outputs",
     "oil_as_used",
     "plausibility_warnings",
-    "surge_frequencies",
     "surge_spectrum",
 ]
 
@@ -111,21 +110,6 @@ def cycle_integral(values, crank_deg) -> float:
     return float(np.sum(0.5 * (v[1:] + v[:-1]) * np.diff(theta)))
 
 
-def surge_frequencies(
-    params: ValvetrainParameters | FlexibleValvetrain, modes: int = 3
-) -> np.ndarray:
-    """The valve spring's first ``modes`` surge frequencies [Hz] (module docstring): of a
-    lumped valvetrain f_k = (k/2)√(k_s/m_s) from its spring rate k_s and active mass m_s;
-    of a flexible one the natural frequencies of its spring's continuum with both ends
-    fixed at the installed length
-    (:meth:`~tribodyn.valvetrain.spring.HelicalSpring.surge_frequencies`)."""
-    if isinstance(params, FlexibleValvetrain):
-        spring = params.spring
-        return spring.surge_frequencies(spring.installed_compression, modes)
-    f1 = 0.5 * math.sqrt(params.spring_rate / params.spring_mass)
-    return f1 * np.arange(1, modes + 1)
-
-
 def surge_spectrum(
     cam,
     params: ValvetrainParameters | FlexibleValvetrain,
@@ -135,11 +119,11 @@ def surge_spectrum(
 ) -> dict:
     """The lift's harmonic amplitudes at n·f_cam [Hz] (at least ``harmonics``, and up to
     the highest surge mode) and the spring's first ``modes`` surge frequencies
-    (:func:`surge_frequencies`) of a lumped or flexible valvetrain. Returns
+    (``params.surge_frequencies``) of a lumped or flexible valvetrain. Returns
     ``{"harmonic_frequency_Hz", "harmonic_amplitude_m", "surge_frequency_Hz", "closest":
     [(mode, harmonic n, f_n, f_surge)]}``."""
     f_cam = cam_speed / (2.0 * math.pi)
-    f_s = surge_frequencies(params, modes)
+    f_s = params.surge_frequencies(modes)
     harmonics = max(harmonics, int(math.ceil(f_s[-1] / f_cam)) + 2)  # up to the last mode
     n = max(2048, 4 * harmonics)
     theta = np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)

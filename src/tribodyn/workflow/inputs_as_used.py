@@ -14,6 +14,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from ..cycle.methods import study_variant
+
 __all__ = ["InputsAsUsed", "inputs_as_used", "surface_as_used"]
 
 
@@ -52,7 +54,7 @@ def surface_as_used(s) -> dict:
 
 def inputs_as_used(built) -> InputsAsUsed:
     """The :class:`InputsAsUsed` of a :class:`~tribodyn.config.build.BuiltCase`."""
-    oil = built.thermal_lubricant if built.case.numerics.thermal else None
+    oil = study_variant(built).oil(built)  # the thermal passes' oil (None: isothermal)
     return InputsAsUsed(
         surfaces={s.name: surface_as_used(s) for s in built.surface_sets},
         cam_base_radius=float(built.cam.base_radius),

@@ -64,9 +64,12 @@ def compare_lumped_flexible(
     built = as_built(case)
     out = ModelComparison()
     opts = built.dynamics_options
-    companion = built.lumped
-    lumped = simulate_valvetrain(built.cam, companion, tribology=tribology, **opts)
-    for name, r in (("lumped", lumped), ("flexible", flexible)):
+    lumped = built.lumped
+    runs = {  # model → (its parameters, its run at the case speed)
+        "lumped": (lumped, simulate_valvetrain(built.cam, lumped, tribology=tribology, **opts)),
+        "flexible": (built.valvetrain, flexible),
+    }
+    for name, (_, r) in runs.items():
         if not r.converged:
             out.messages.append(f"{name} dynamics failed: {r.message}")
             continue
@@ -74,15 +77,11 @@ def compare_lumped_flexible(
     if not jump_speeds:
         return out
     kw = {k: v for k, v in opts.items() if k != "engine_speed"}
-    results = {"lumped": lumped, "flexible": flexible}
-    for name, params in (
-        ("lumped", companion),
-        ("flexible", built.valvetrain),
-    ):
+    for name, (params, r) in runs.items():
         if name not in out.rows:
             continue
         row = out.rows[name]
-        if results[name].jump:
+        if r.jump:
             row["jump_speed_rpm"] = math.nan
             out.messages.append(f"{name} jump speed: the follower already jumps at the case speed")
             continue
@@ -91,7 +90,7 @@ def compare_lumped_flexible(
             built.cam,
             params,
             start=speed,
-            start_result=results[name],
+            start_result=r,
             high=high_factor * speed,
             tolerance=JUMP_SPEED_TOLERANCE,
             tribology=tribology,

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 from scipy.optimize import brentq
@@ -39,7 +39,11 @@ from .conventions import CHANGE, CRANK_ANGLE, change_pct
 from .thermal_study import thermal_summary
 
 if TYPE_CHECKING:
-    from .cycle import CycleStudy
+    from ..config.case import Case
+    from ..cycle.data import CycleInputs, SetCycleResult
+    from ..valvetrain.dynamics import ValvetrainResult
+    from .engineering import Engineering
+    from .model_comparison import ModelComparison
 
 __all__ = [
     "Analysis",
@@ -63,6 +67,27 @@ FILM_GAIN_RULE = (
     f"{GAIN_SETTLE_STEPS} steps after each engagement; max = robust maximum over those "
     "samples, median and p95 of |gain|, and the gain at the six representative points"
 )
+
+
+class StudyResults(Protocol):
+    """What the analysis reads of a finished cycle study (a
+    :class:`~tribodyn.workflow.cycle.CycleStudy`)."""
+
+    case: Case
+    dynamics: ValvetrainResult
+    inputs: CycleInputs
+    sets: list[SetCycleResult]
+    labels: dict[str, str]
+    stresses: dict
+    isothermal_sets: list[SetCycleResult] | None
+    model_comparison: ModelComparison | None
+    compare_paper: bool
+    warnings: list[str]
+    runtime_s: float
+
+    def set(self, name: str) -> SetCycleResult: ...
+
+    def engineering_outputs(self) -> Engineering: ...
 
 
 @dataclass
@@ -281,7 +306,7 @@ def _finite(v):
     return v if math.isfinite(v) else None
 
 
-def analyse(study) -> Analysis:
+def analyse(study: StudyResults) -> Analysis:
     """The :class:`Analysis` of a :class:`~tribodyn.workflow.cycle.CycleStudy`."""
     built, dyn, inp = build(study.case), study.dynamics, study.inputs
     roles = surface_roles(built)
@@ -322,7 +347,7 @@ def analyse(study) -> Analysis:
     return an
 
 
-def summary(study: CycleStudy, an: Analysis) -> dict:
+def summary(study: StudyResults, an: Analysis) -> dict:
     """The numbers users and scripts read (``summary.json``); totals over the cam width."""
     dyn, inp = study.dynamics, study.inputs
     period = 2.0 * math.pi / study.case.cam_speed  # one engine cycle = one cam rev
@@ -411,7 +436,7 @@ def summary(study: CycleStudy, an: Analysis) -> dict:
     return out
 
 
-def _valve_jump(study: CycleStudy) -> dict:
+def _valve_jump(study: StudyResults) -> dict:
     """Contact loss between cam and tappet: intervals, maximum separation, the speed at
     which it begins (with the lumped-vs-flexible comparison's search, else None) and the
     warning naming what to change (None without a jump)."""
@@ -420,14 +445,14 @@ def _valve_jump(study: CycleStudy) -> dict:
     mc = study.model_comparison
     onset = None
     if mc is not None:
-        onset = _finite(mc.rows.get(study.case.valvetrain_model, {}).get("jump_speed_rpm"))
+        onset = _finite(mc.rows.get(study.case.valvetrain.model, {}).get("jump_speed_rpm"))
     jump["onset_speed_rpm"] = onset
     text = [w for w in study.warnings if "valve jump" in w]
     jump["warning"] = text[0] if jump["jump"] and text else None
     return jump
 
 
-def _engineering_summary(study: CycleStudy, out: dict) -> None:
+def _engineering_summary(study: StudyResults, out: dict) -> None:
     """The oil as used, torque and pressure scalars per set, the cam kinematics' key
     numbers and the spring's surge modes (:mod:`tribodyn.workflow.engineering`)."""
     from .engineering import oil_as_used
