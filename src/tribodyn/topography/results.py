@@ -223,6 +223,8 @@ class PairAnalysis(_TomlMixin):
     σ = √(σ₁² + σ₂²). Spectral: moments of the sum surface are the sums of the moments
     (independent surfaces), then McCool. Summits: 8-neighbour analysis of the sum surface
     h₁ + h₂ on the common grid (``None`` if the two maps are sampled differently).
+    ``sum_surface`` holds the measured heights of h₁ + h₂ [m] (flattened; ``None`` as for
+    the summits), ``sum_heights`` their σ, Ssk, Sku.
     """
 
     first: SurfaceAnalysis | ProfileAnalysis
@@ -232,6 +234,7 @@ class PairAnalysis(_TomlMixin):
     summit_stats: SummitStatistics | None
     sum_heights: HeightStatistics | None
     notes: tuple[str, ...] = ()
+    sum_surface: np.ndarray | None = field(default=None, repr=False, compare=False)
 
     @property
     def rms(self) -> float:
