@@ -41,13 +41,14 @@ from .filtering import (
     Band,
     BandSpec,
     SamplingLike,
+    _um,
     applied_band,
     check_filtering,
     check_map_size,
     input_warnings,
 )
 from .height_statistics import HeightStatistics, height_statistics
-from .results import AsperityParameters, _TomlMixin
+from .results import AsperityParameters, _check_method, _spectral_parameters, _TomlMixin
 from .spectral_moments import McCoolParameters, SpectralMoments, mccool_parameters
 
 __all__ = ["ProfileSampling", "ProfileAnalysis", "analyse_profile", "MIN_PEAKS", "ISOTROPIC_LABEL"]
@@ -59,10 +60,6 @@ MIN_POINTS = 32
 ISOTROPIC_LABEL = (
     "isotropic-surface estimate from one profile (McCool): valid only if the surface has no lay"
 )
-
-
-def _um(x: float) -> str:
-    return f"{x * 1e6:.4g}"
 
 
 @dataclass(frozen=True)
@@ -129,15 +126,7 @@ class ProfileAnalysis(_TomlMixin):
 
     @property
     def spectral(self) -> AsperityParameters:
-        m = self.isotropic
-        return AsperityParameters(
-            "spectral",
-            m.asperity_density,
-            self.heights.rms,
-            m.summit_radius,
-            m.summit_height_mean,
-            m.summit_height_std,
-        )
+        return _spectral_parameters(self.isotropic, self.heights.rms)
 
     @property
     def slope_anisotropy(self) -> float:
@@ -149,8 +138,7 @@ class ProfileAnalysis(_TomlMixin):
                 "a profile has no summits: use method='spectral' (the "
                 "isotropic-surface estimate from the profile moments)"
             )
-        if method != "spectral":
-            raise InputError(f"method must be one of ('summits', 'spectral') (got {method!r})")
+        _check_method(method)
         return self.spectral
 
     def to_roughness(self, method: str = "spectral"):
