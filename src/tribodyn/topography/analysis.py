@@ -38,14 +38,7 @@ import numpy as np
 from .._typing import PathLike
 from .composite import composite_moments, sum_on_common_grid
 from .errors import InsufficientDataError
-from .filtering import (
-    AUTO_BAND,
-    Band,
-    BandSpec,
-    Sampling,
-    input_warnings,
-    prepare_topography,
-)
+from .filtering import AUTO_BAND, Band, BandSpec, Sampling, input_warnings, prepare_topography
 from .height_statistics import height_statistics
 from .profile import ProfileAnalysis
 from .reading import read_topography

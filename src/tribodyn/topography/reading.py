@@ -81,10 +81,7 @@ def read_topography(
         information that was not supplied.
     """
     from SurfaceTopography import open_topography
-    from SurfaceTopography.Exceptions import (
-        CannotDetectFileFormat,
-        MetadataAlreadyFixedByFile,
-    )
+    from SurfaceTopography.Exceptions import CannotDetectFileFormat, MetadataAlreadyFixedByFile
 
     path = Path(path)
     try:  # no pipes or devices (the format readers would wait or read without end)

@@ -75,10 +75,7 @@ def compare_lumped_flexible(
         return out
     kw = {k: v for k, v in opts.items() if k != "engine_speed"}
     results = {"lumped": lumped, "flexible": flexible}
-    for name, params in (
-        ("lumped", companion),
-        ("flexible", built.valvetrain),
-    ):
+    for name, params in (("lumped", companion), ("flexible", built.valvetrain)):
         if name not in out.rows:
             continue
         row = out.rows[name]

@@ -7,18 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from .common import (
-    MM,
-    MPA,
-    TITLE_SIZE,
-    UM,
-    arr,
-    finish_numbered,
-    has,
-    legend_below,
-    plt,
-    support,
-)
+from .common import MM, MPA, TITLE_SIZE, UM, arr, finish_numbered, has, legend_below, plt, support
 
 # ----------------------------------------------------------------------------- Fig. 5
 
