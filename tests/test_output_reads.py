@@ -25,6 +25,8 @@ SOLVER_MODULES = (
     "tribodyn.physics.stress",
     "tribodyn.physics.hertz",
     "tribodyn.topography.load_separation",
+    "tribodyn.topography.analysis",
+    "tribodyn.topography.composite",
     "tribodyn.config.build",
     "tribodyn.cycle",
     "tribodyn.workflow.stress_map",

@@ -470,6 +470,14 @@ def test_height_distribution_figure(narrow_band, tmp_path):
     assert path.read_bytes()[:4] == b"\x89PNG" and path.stat().st_size > 20_000
 
 
+def test_pair_carries_its_sum_surface(narrow_band):
+    """The figure reads the sum surface h₁ + h₂ from the analysis (same grid: a plain sum)."""
+    pair = analyse_pair(narrow_band[0], narrow_band[1], band=None)
+    h = pair.first.topography.heights() + pair.second.topography.heights()
+    assert np.array_equal(pair.sum_surface, np.ravel(h))
+    assert pair.sum_heights.rms == pytest.approx(np.std(h), rel=1e-12)
+
+
 def test_roughness_block_pastes_into_a_case_file(narrow_band):
     from tribodyn.config import Case
 

@@ -242,19 +242,15 @@ def calibration_toml(
             return f"{name} = {_fmt(cal.fixed[name])}  # fixed"
         return None
 
-    lub = [e for e in map(entry, ("eyring_stress", "limiting_shear_coefficient")) if e]
-    lub += [e for e in map(entry, ("limiting_shear_stress",)) if e]
+    def entries(*names):
+        return [e for e in map(entry, names) if e is not None]
+
+    lub = entries("eyring_stress", "limiting_shear_coefficient", "limiting_shear_stress")
     if lub:
         lines += ["", "[lubricant]", *lub]
-    surf = [
-        e
-        for e in map(entry, ("boundary_shear_coefficient", "boundary_shear_strength"))
-        if e is not None
-    ]
+    surf = entries("boundary_shear_coefficient", "boundary_shear_strength")
     if surf:
-        if "boundary_shear_strength" not in cal.values and "boundary_shear_strength" not in (
-            cal.fixed
-        ):
+        if not {"boundary_shear_strength"} & {*cal.values, *cal.fixed}:
             surf.append("boundary_shear_strength = 0.0  # τ₀ of the calibration model")
         r = roughness or {}
         lines += [

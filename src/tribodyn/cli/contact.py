@@ -432,8 +432,7 @@ def contact_command(
         "--load-per-length", help="Normal load per unit length [N/m] (instead of --load)."
     ),
     width: float | None = _option(
-        "--width",
-        help="Contact width \\[m] (default: the case's cam.width; {case}: {width:g}).",
+        "--width", help="Contact width \\[m] (default: the case's cam.width; {case}: {width:g})."
     ),
     radius: float | None = _option("--radius", help="Reduced radius of curvature R \\[m]."),
     ue: float | None = _option("--ue", help="Entrainment speed u_e \\[m/s] (EHL; either sign)."),
@@ -529,9 +528,7 @@ def contact_command(
         help="Cap viscous shear at Λp (default: {case}: {limiting_shear}).",
     ),
     n: int | None = _option(
-        "--n",
-        panel=_NUM,
-        help="Grid nodes (default: EHL {n_ehl}; dry {n_dry}).",
+        "--n", panel=_NUM, help="Grid nodes (default: EHL {n_ehl}; dry {n_dry})."
     ),
     thermal: bool = typer.Option(
         False,

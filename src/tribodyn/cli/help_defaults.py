@@ -48,7 +48,5 @@ class StatedDefaultsCommand(TyperCommand):
 def stating(defaults: Callable[[], Mapping[str, Any]]) -> type[StatedDefaultsCommand]:
     """The command class whose help quotes ``defaults()`` (``cls=`` of ``app.command``)."""
     return type(
-        "StatedDefaultsCommand",
-        (StatedDefaultsCommand,),
-        {"defaults": staticmethod(defaults)},
+        "StatedDefaultsCommand", (StatedDefaultsCommand,), {"defaults": staticmethod(defaults)}
     )

@@ -70,12 +70,7 @@ def sweep_command(
     2 on bad input, 1 if any point failed (everything is still written).
     """
     from ..config.sweep import load_sweep
-    from ..workflow.sweep import (
-        PLAN_CHECK_LIMIT,
-        estimate_sweep,
-        machine_workers,
-        run_sweep,
-    )
+    from ..workflow.sweep import PLAN_CHECK_LIMIT, estimate_sweep, machine_workers, run_sweep
 
     try:
         spec = load_sweep(sweep)

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 import typer
-from rich.console import Console, JustifyMethod
+from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
@@ -38,23 +38,23 @@ def _dev(a: float, b: float) -> str:
     return f"{a / b - 1:+.1%}"
 
 
+def _new_table(title: str, caption: str, right: tuple[str, ...]) -> Table:
+    """A table headed by ``title`` and ``caption``, columns quantity, unit, ``*right``."""
+    t = Table(title=title, title_justify="left", caption=caption, caption_justify="left")
+    t.add_column("quantity")
+    t.add_column("unit")
+    for name in right:
+        t.add_column(name, justify="right")
+    return t
+
+
 def _parameter_table(title: str, summits, spectral, count=None, alpha=None) -> Table:
-    t = Table(
-        title=title,
-        title_justify="left",
-        caption="summits: 8-neighbour summits, 3-point curvature; spectral: McCool "
-        "(1986) from spectral moments; Δ = summits/spectral − 1",
-        caption_justify="left",
+    t = _new_table(
+        title,
+        "summits: 8-neighbour summits, 3-point curvature; spectral: McCool (1986) from "
+        "spectral moments; Δ = summits/spectral − 1",
+        ("summits", "spectral", "Δ"),
     )
-    columns: tuple[tuple[str, JustifyMethod], ...] = (
-        ("quantity", "left"),
-        ("unit", "left"),
-        ("summits", "right"),
-        ("spectral", "right"),
-        ("Δ", "right"),
-    )
-    for name, justify in columns:
-        t.add_column(name, justify=justify)
     rows = [
         ("σ  RMS height", "µm", "rms", _um),
         ("η  summit density", "1/m²", "asperity_density", lambda v: f"{v:.4g}"),
@@ -118,19 +118,7 @@ def _print_surface(console: Console, r) -> None:
 def _print_profile(console: Console, r) -> None:
     from ..topography.profile import ISOTROPIC_LABEL
 
-    t = Table(
-        title=f"Profile {escape(r.name)}",
-        title_justify="left",
-        caption=f"η, β: {ISOTROPIC_LABEL}",
-        caption_justify="left",
-    )
-    columns: tuple[tuple[str, JustifyMethod], ...] = (
-        ("quantity", "left"),
-        ("unit", "left"),
-        ("value", "right"),
-    )
-    for name, justify in columns:
-        t.add_column(name, justify=justify)
+    t = _new_table(f"Profile {escape(r.name)}", f"η, β: {ISOTROPIC_LABEL}", ("value",))
     m, h, p = r.moments, r.heights, r.spectral
     for label, unit, value in (
         ("σ = Rq  RMS height", "µm", _um(h.rms)),

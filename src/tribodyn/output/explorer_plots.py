@@ -367,12 +367,7 @@ def sweep_figures(results: list[Result], styles: Styles) -> list:
                         tail = ", ".join(f"{d} = {v:g} {_unit(ds, d)}".rstrip() for d, v in combo)
                         label = disp + (f" · {tail}" if tail else "")
                         _line_markers(
-                            p,
-                            ds[xd].values,
-                            y,
-                            label,
-                            styles.colour(disp),
-                            DASHES[ci % 5],
+                            p, ds[xd].values, y, label, styles.colour(disp), DASHES[ci % 5]
                         )
                 figs.append(_legend_outside(p))
         if len(axes) >= 2:

@@ -189,7 +189,7 @@ def _inputs_section(study, summ) -> list[str]:
         f"{_fmt(c.get('min_acceleration_m_s2'), 'm/s²')} to "
         f"{_fmt(c.get('max_acceleration_m_s2'), 'm/s²')}, minimum radius of curvature "
         f"{_fmt((c.get('min_radius_of_curvature_m') or math.nan) * 1e3, 'mm')}; engine "
-        f"{case.engine_speed:g} rpm (cam {case.engine_speed / 2:g} rpm).",
+        f"{case.engine_speed:g} rpm (cam {case.engine_speed / 2:g} rpm)."
     ]
     oil = summ.get("lubricant", {})
     t_in = oil.get("inlet_temperature_C")

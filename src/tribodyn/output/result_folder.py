@@ -117,48 +117,39 @@ def _sha256(path: Path) -> str:
     return h.hexdigest()
 
 
-def _all_files(folder: Path, limit: int | None = None) -> list[str]:
-    """Relative (POSIX) paths of the files, links and empty folders below ``folder``;
-    links to folders are not followed. Walked without recursion (any depth). With
-    ``limit``, the walk stops after ``limit + 1`` entries."""
-    out: list[str] = []
+def _walk(folder: Path):
+    """(relative POSIX path, its entries) of ``folder`` and of every folder below it, links
+    to folders not followed; without recursion (any depth). An unreadable folder has no
+    entries."""
     stack = [""]
     while stack:
         rel = stack.pop()
         try:
             with os.scandir(folder / rel if rel else folder) as it:
-                entries = list(it)
+                entries = [(f"{rel}/{e.name}" if rel else e.name, e) for e in it]
         except OSError:
             entries = []
+        yield rel, entries
+        stack += [r for r, e in entries if e.is_dir(follow_symlinks=False)]
+
+
+def _all_files(folder: Path, limit: int | None = None) -> list[str]:
+    """Relative (POSIX) paths of the files, links and empty folders below ``folder``
+    (:func:`_walk`). With ``limit``, the walk stops after ``limit + 1`` entries."""
+    out: list[str] = []
+    for rel, entries in _walk(folder):
         if not entries and rel:
             out.append(rel + "/")
-        for e in entries:
-            r = f"{rel}/{e.name}" if rel else e.name
-            if e.is_dir(follow_symlinks=False):
-                stack.append(r)
-            else:
-                out.append(r)
+        out += [r for r, e in entries if not e.is_dir(follow_symlinks=False)]
         if limit is not None and len(out) > limit:
             break
     return sorted(out)
 
 
 def _dirs(folder: Path) -> list[str]:
-    """Relative (POSIX) paths of the folders below ``folder`` (not through links),
-    parents first; without recursion."""
-    out: list[str] = []
-    stack = [""]
-    while stack:
-        rel = stack.pop()
-        try:
-            with os.scandir(folder / rel if rel else folder) as it:
-                subs = [e.name for e in it if e.is_dir(follow_symlinks=False)]
-        except OSError:
-            subs = []
-        for name in subs:
-            r = f"{rel}/{name}" if rel else name
-            out.append(r)
-            stack.append(r)
+    """Relative (POSIX) paths of the folders below ``folder`` (:func:`_walk`), parents
+    first."""
+    out = [r for _, entries in _walk(folder) for r, e in entries if e.is_dir(follow_symlinks=False)]
     return sorted(out, key=lambda r: r.count("/"))
 
 

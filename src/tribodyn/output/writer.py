@@ -304,10 +304,7 @@ def write_results(
     def essentials(folder: Path):
         from .export import write_csv
 
-        atomic_write_with(
-            folder / "results.nc",
-            lambda tmp: write_netcdf(ds, tmp, enc),
-        )
+        atomic_write_with(folder / "results.nc", lambda tmp: write_netcdf(ds, tmp, enc))
         atomic_write(folder / "summary.json", _json.dumps(summ, indent=2))
         _write_case(study.case, folder)
         write_csv(ds, folder)

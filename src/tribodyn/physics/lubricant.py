@@ -223,6 +223,5 @@ class Lubricant:
 #: A typical engine oil in a warm engine: the typical μ₀, α, ρ₀ and rheology of
 #: :mod:`tribodyn.physics.typical` (the paper's SAE 5W-20 is stated in its case file).
 TYPICAL_OIL = Lubricant(
-    viscosity=typical.VISCOSITY.value,
-    pressure_viscosity=typical.PRESSURE_VISCOSITY.value,
+    viscosity=typical.VISCOSITY.value, pressure_viscosity=typical.PRESSURE_VISCOSITY.value
 )

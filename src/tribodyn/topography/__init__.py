@@ -15,12 +15,7 @@ sampling, on which η and β strongly depend.
 """
 
 from .analysis import analyse_pair, analyse_surface, composite_roughness
-from .errors import (
-    BandLimitError,
-    InsufficientDataError,
-    TopographyError,
-    TopographyReadError,
-)
+from .errors import BandLimitError, InsufficientDataError, TopographyError, TopographyReadError
 from .filtering import AUTO_BAND, TYPICAL_BAND, Band, Sampling, prepare_topography
 from .height_statistics import HeightStatistics, height_statistics
 from .profile import ProfileAnalysis, analyse_profile

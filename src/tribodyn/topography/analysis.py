@@ -38,14 +38,7 @@ import numpy as np
 from .._typing import PathLike
 from .composite import composite_moments, sum_on_common_grid
 from .errors import InsufficientDataError
-from .filtering import (
-    AUTO_BAND,
-    Band,
-    BandSpec,
-    Sampling,
-    input_warnings,
-    prepare_topography,
-)
+from .filtering import AUTO_BAND, Band, BandSpec, Sampling, input_warnings, prepare_topography
 from .height_statistics import height_statistics
 from .profile import ProfileAnalysis
 from .reading import read_topography
@@ -388,7 +381,7 @@ def composite_roughness(
     notes = []
     if not _same_band(first.band, second.band):
         notes.append("the two surfaces were filtered with different bands")
-    summit_stats = sum_stats = None
+    summit_stats = sum_stats = sum_surface = None
     ta, tb = first.topography, second.topography
     combined = None
     if ta is not None and tb is not None:
@@ -413,7 +406,8 @@ def composite_roughness(
         for r in (first, second):
             if r.filled is not None:
                 filled |= np.asarray(r.filled)[:nx, :ny]
-        sum_stats = height_statistics(h[~filled])
+        sum_surface = h[~filled]
+        sum_stats = height_statistics(sum_surface)
         band = max((first.band, second.band), key=lambda b: b.short_wavelength or 0.0)
         region = analysis_region(h.shape, analysis_margin(band, (dx, dy), periodic))
         if filled.any():
@@ -429,6 +423,7 @@ def composite_roughness(
         summit_stats=summit_stats,
         sum_heights=sum_stats,
         notes=(),
+        sum_surface=sum_surface,
     )
     if pair.summits is not None:
         d_eta = _deviation(pair.summits.asperity_density, pair.spectral.asperity_density)

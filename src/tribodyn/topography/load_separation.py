@@ -80,12 +80,7 @@ def load_separation_law(
         init = r.pressure
     order = np.argsort(lams)
     return LoadSeparationLaw(
-        lams[order],
-        np.asarray(p)[order],
-        np.asarray(a)[order],
-        reduced_modulus,
-        hardness,
-        source,
+        lams[order], np.asarray(p)[order], np.asarray(a)[order], reduced_modulus, hardness, source
     )
 
 

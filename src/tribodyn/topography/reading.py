@@ -41,6 +41,14 @@ def supported_formats() -> list[tuple[str, str]]:
     return [(r.format(), r.name()) for r in readers]
 
 
+def _unknown_format(path: Path) -> TopographyReadError:
+    names = ", ".join(f for f, _ in supported_formats())
+    return TopographyReadError(
+        f"cannot read topography file '{path}': not a surface-topography format that "
+        f"SurfaceTopography recognises (readable formats: {names})"
+    )
+
+
 def read_topography(
     path: PathLike,
     *,
@@ -73,10 +81,7 @@ def read_topography(
         information that was not supplied.
     """
     from SurfaceTopography import open_topography
-    from SurfaceTopography.Exceptions import (
-        CannotDetectFileFormat,
-        MetadataAlreadyFixedByFile,
-    )
+    from SurfaceTopography.Exceptions import CannotDetectFileFormat, MetadataAlreadyFixedByFile
 
     path = Path(path)
     try:  # no pipes or devices (the format readers would wait or read without end)
@@ -86,11 +91,7 @@ def read_topography(
     try:
         reader = open_topography(str(path))
     except CannotDetectFileFormat:
-        names = ", ".join(f for f, _ in supported_formats())
-        raise TopographyReadError(
-            f"cannot read topography file '{path}': not a surface-topography format that "
-            f"SurfaceTopography recognises (readable formats: {names})"
-        ) from None
+        raise _unknown_format(path) from None
     except Exception as exc:  # damaged files make readers fail in many ways
         raise TopographyReadError(
             f"cannot read topography file '{path}': {type(exc).__name__}: {exc}"
@@ -101,11 +102,7 @@ def read_topography(
         _check_sdf_complete(path)
     # Readers without file magic (e.g. NASA SRTM .hgt) accept almost any file.
     if reader.format() in _NO_MAGIC and path.suffix.lower().lstrip(".") != reader.format():
-        names = ", ".join(f for f, _ in supported_formats())
-        raise TopographyReadError(
-            f"cannot read topography file '{path}': not a surface-topography format that "
-            f"SurfaceTopography recognises (readable formats: {names})"
-        )
+        raise _unknown_format(path)
     channels = reader.channels
     if channel is None:
         ch = reader.default_channel

@@ -14,7 +14,7 @@ import numpy as np
 
 from .._validation import InputError
 from ..physics.asperity import Roughness
-from .filtering import Band, Sampling, SamplingLike
+from .filtering import Band, Sampling, SamplingLike, _um
 from .height_statistics import HeightStatistics
 from .records import record_dict
 from .spectral_moments import McCoolParameters, SpectralMoments
@@ -226,10 +226,6 @@ ISOTROPIC_LABEL = (
 )
 
 
-def _um(x: float) -> str:
-    return f"{x * 1e6:.4g}"
-
-
 @dataclass(frozen=True)
 class ProfileSampling(SamplingLike):
     """Sampling of a profile: points, spacing Δ [m], length L [m], filled share."""
@@ -294,15 +290,7 @@ class ProfileAnalysis(_TomlMixin):
 
     @property
     def spectral(self) -> AsperityParameters:
-        m = self.isotropic
-        return AsperityParameters(
-            "spectral",
-            m.asperity_density,
-            self.heights.rms,
-            m.summit_radius,
-            m.summit_height_mean,
-            m.summit_height_std,
-        )
+        return _spectral_parameters(self.isotropic, self.heights.rms)
 
     @property
     def slope_anisotropy(self) -> float:
@@ -314,8 +302,7 @@ class ProfileAnalysis(_TomlMixin):
                 "a profile has no summits: use method='spectral' (the "
                 "isotropic-surface estimate from the profile moments)"
             )
-        if method != "spectral":
-            raise InputError(f"method must be one of ('summits', 'spectral') (got {method!r})")
+        _check_method(method)
         return self.spectral
 
     def to_roughness(self, method: str = "spectral"):
@@ -363,6 +350,8 @@ class PairAnalysis(_TomlMixin):
     σ = √(σ₁² + σ₂²). Spectral: moments of the sum surface are the sums of the moments
     (independent surfaces), then McCool. Summits: 8-neighbour analysis of the sum surface
     h₁ + h₂ on the common grid (``None`` if the two maps are sampled differently).
+    ``sum_surface`` holds the measured heights of h₁ + h₂ [m] (flattened; ``None`` as for
+    the summits), ``sum_heights`` their σ, Ssk, Sku.
     """
 
     first: SurfaceAnalysis | ProfileAnalysis
@@ -372,6 +361,7 @@ class PairAnalysis(_TomlMixin):
     summit_stats: SummitStatistics | None
     sum_heights: HeightStatistics | None
     notes: tuple[str, ...] = ()
+    sum_surface: np.ndarray | None = field(default=None, repr=False, compare=False)
 
     @property
     def rms(self) -> float:

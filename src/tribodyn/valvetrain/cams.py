@@ -29,12 +29,7 @@ from abc import ABC, abstractmethod
 
 import numpy as np
 
-from .._validation import (
-    InputError,
-    check_nonnegative,
-    check_positive,
-    check_range,
-)
+from .._validation import InputError, check_nonnegative, check_positive, check_range
 from ..physics import typical_engine
 
 __all__ = ["CamProfile", "AccelerationCam", "CircularArcCam"]

@@ -26,6 +26,8 @@ import numpy as np
 from numba import njit
 from scipy.integrate import odeint, solve_ivp
 
+from .contact_law import smooth_step
+
 __all__ = [
     "CompiledLumped",
     "compiled_model",
@@ -73,14 +75,7 @@ _OUT = (
 _NO = len(_OUT)
 
 
-@njit(**_OPTS)
-def _step(force, ramp):
-    if force <= 0.0:
-        return 0.0, 0.0
-    r = force / ramp
-    if r >= 1.0:
-        return 1.0, 0.0
-    return r * r * (3.0 - 2.0 * r), 6.0 * r * (1.0 - r) / ramp
+_step = njit(**_OPTS)(smooth_step)
 
 
 @njit(**_OPTS)
@@ -144,6 +139,14 @@ def _friction(theta, force, th, tab, fl):
 
 
 @njit(**_OPTS)
+def _power_slope(z, g):
+    """dP/dz of P = z^γ (1 at z = 0 for the linear law)."""
+    if z > 0.0:
+        return g * z ** (g - 1.0)
+    return 1.0 if g == 1.0 else 0.0
+
+
+@njit(**_OPTS)
 def _contact(t, dk, par, ft, fh, fc, ff):
     """(P, dP/dδ_kin, h, ok) of the elastic contact with the film in series (the Newton
     iteration of ``ValvetrainModel.elastic_contact``)."""
@@ -172,10 +175,7 @@ def _contact(t, dk, par, ft, fh, fc, ff):
             hi = z
         else:
             lo = z
-        if z > 0.0:
-            dPdz = g * z ** (g - 1.0)
-        else:
-            dPdz = 1.0 if g == 1.0 else 0.0
+        dPdz = _power_slope(z, g)
         dphi = C + dPdz * (ikc - hF)
         if abs(phi) <= tol:
             return P, dPdz / dphi, h, True
@@ -186,10 +186,7 @@ def _contact(t, dk, par, ft, fh, fc, ff):
             h, hF = 0.0, 0.0
             if par.has_film != 0.0:
                 h, hF = _film(t, P, ft, fh, fc, ff, per)
-            if z > 0.0:
-                dPdz = g * z ** (g - 1.0)
-            else:
-                dPdz = 1.0 if g == 1.0 else 0.0
+            dPdz = _power_slope(z, g)
             return P, dPdz / (C + dPdz * (ikc - hF)), h, True
     return 0.0, 0.0, h0, False
 

@@ -291,8 +291,8 @@ def calibrate_friction(
     def params_of(x):
         return {**fixed, **{n: from_x(n, xi) for n, xi in zip(free, x, strict=True)}}
 
-    def residuals(x):
-        return model_friction(setup, data, **params_of(x)) - data.friction_coefficient
+    def residuals(x, setup_=setup, target=data.friction_coefficient):
+        return model_friction(setup_, data, **params_of(x)) - target
 
     r0 = residuals(x0)
     if not np.all(np.isfinite(r0)):
@@ -315,14 +315,11 @@ def calibrate_friction(
 
     def fit(setup_: CalibrationSetup):
         """The best of the fits from ``starts`` (and all of them) with ``setup_``."""
-
-        def res(x):
-            return model_friction(setup_, data, **params_of(x)) - data.friction_coefficient
-
         trials = [
             least_squares(
-                res,
+                residuals,
                 x_start,
+                kwargs={"setup_": setup_},
                 bounds=(lo, hi),
                 x_scale=x_scale,
                 method="trf",
@@ -442,11 +439,9 @@ def calibrate_friction(
         samples = []
         for _ in range(bootstrap):
             target = fitted + rng.choice(r, size=n, replace=True)
-
-            def res_b(x, target=target):
-                return model_friction(setup, data, **params_of(x)) - target
-
-            b = least_squares(res_b, sol.x, bounds=(lo, hi), x_scale=x_scale, method="trf")
+            b = least_squares(  # trust-region reflective, as the fit
+                residuals, sol.x, bounds=(lo, hi), x_scale=x_scale, kwargs={"target": target}
+            )
             samples.append([from_x(nm, xi) for nm, xi in zip(free, b.x, strict=True)])
         spread = np.std(np.array(samples), axis=0, ddof=1)
         boot = {nm: float(v) for nm, v in zip(free, spread, strict=True)}

@@ -246,8 +246,7 @@ class EngineStudy:
         assert lt.study is not None
         j = lt.study.dynamics.jump_summary()
         nose = next(
-            (v["nose_deg"] for v in self.valves if v["kind"] == kind and v["cylinder"] == 1),
-            None,
+            (v["nose_deg"] for v in self.valves if v["kind"] == kind and v["cylinder"] == 1), None
         )
         dyn = lt.study.dynamics
         if nose is None:

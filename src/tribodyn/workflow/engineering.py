@@ -192,12 +192,7 @@ def engineering_outputs(study) -> Engineering:
         }
     theta = np.radians(np.arange(0.0, 360.0, 0.5))
     ls, l1, l2 = cam.derivatives(theta)
-    kin = {
-        "lift": ls,
-        "velocity": l1 * w,
-        "acceleration": l2 * w * w,
-        "radius": rb + ls + l2,
-    }
+    kin = {"lift": ls, "velocity": l1 * w, "acceleration": l2 * w * w, "radius": rb + ls + l2}
     table = None
     if isinstance(cam, TabulatedCam):
         fitted = cam.derivatives(np.asarray(cam.angle))[0]

@@ -14,7 +14,9 @@ from __future__ import annotations
 
 import json
 import re
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -49,26 +51,23 @@ class PointStore:
             return []
         return sorted(p.stem for p in self.dir.glob("*.nc") if not p.name.startswith("."))
 
-    def status(self, key: str) -> str | None:
-        """``"ok"``, ``"failed"`` or None (no readable file)."""
+    def _read(self, key: str, read: Callable[[xr.Dataset], Any]) -> Any:
+        """``read`` of the point's open Dataset; None without a readable file."""
         p = self.path(key)
         if not p.is_file():
             return None
         try:
             with xr.open_dataset(p, engine="h5netcdf") as ds:
-                return str(ds.attrs.get("status", "failed"))
+                return read(ds)
         except (OSError, ValueError):
             return None
 
+    def status(self, key: str) -> str | None:
+        """``"ok"``, ``"failed"`` or None (no readable file)."""
+        return self._read(key, lambda ds: str(ds.attrs.get("status", "failed")))
+
     def load(self, key: str) -> xr.Dataset | None:
-        p = self.path(key)
-        if not p.is_file():
-            return None
-        try:
-            with xr.open_dataset(p, engine="h5netcdf") as ds:
-                return ds.load()
-        except (OSError, ValueError):
-            return None
+        return self._read(key, lambda ds: ds.load())
 
     def write(self, point, ds: xr.Dataset) -> Path:
         """Write a point's Dataset atomically, with the point's identity in its

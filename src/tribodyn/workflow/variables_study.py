@@ -22,15 +22,7 @@ from .conventions import CRANK_ANGLE
 from .stress_study import MODE_PEAK, PEAKS
 from .variables import Group, Variable, var
 
-__all__ = [
-    "StudySource",
-    "STUDY",
-    "THERMAL_GROUP",
-    "ALL",
-    "DYNAMICS",
-    "EHL",
-    "SET_DESCRIPTION",
-]
+__all__ = ["StudySource", "STUDY", "THERMAL_GROUP", "ALL", "DYNAMICS", "EHL", "SET_DESCRIPTION"]
 
 
 class StudySource:

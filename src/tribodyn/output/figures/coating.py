@@ -7,19 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from .common import (
-    FIGURES,
-    MM,
-    MPA,
-    TITLE_SIZE,
-    UM,
-    arr,
-    finish,
-    has,
-    legend_below,
-    plt,
-    support,
-)
+from .common import MM, MPA, TITLE_SIZE, UM, arr, finish_numbered, has, legend_below, plt, support
 
 # ----------------------------------------------------------------------------- Fig. 5
 
@@ -70,10 +58,9 @@ def fig05(ds, path):
     az.set_title("(b) zoom on the pressure peak", fontsize=TITLE_SIZE)
     handles, labels = ax.get_legend_handles_labels()
     legend_below(fig, handles, labels, ncol=2)
-    return finish(
+    return finish_numbered(
         fig,
         path,
-        FIGURES[path.name],
         f"steel cam on coated steel tappet: coating {cond['thickness'] * UM:g} µm, "
         f"{cond['load_total']:g} N over {cond['width'] * MM:g} mm, "
         f"R = {cond['radius'] * MM:g} mm assumed (not given in the paper)",
@@ -176,4 +163,4 @@ def fig06(ds, path):
         )
         if cond.get("pair_thickness"):
             sub += f"; pairs: coating {cond['pair_thickness'] * UM:g} µm"
-    return finish(fig, path, FIGURES[path.name], sub or None)
+    return finish_numbered(fig, path, sub or None)

@@ -392,6 +392,11 @@ def finish(fig, path, title, subtitle=None) -> Path:
     return save_figure(fig, path)
 
 
+def finish_numbered(fig, path, subtitle=None) -> Path:
+    """:func:`finish` under the figure's title in :data:`FIGURES` (by file name)."""
+    return finish(fig, path, FIGURES[path.name], subtitle)
+
+
 def legend_below(fig, handles, labels, ncol=None, fontsize=9):
     ncol = ncol or min(len(labels), 5)
     fig.legend(

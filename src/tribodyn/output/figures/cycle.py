@@ -5,7 +5,6 @@ from __future__ import annotations
 import numpy as np
 
 from .common import (
-    FIGURES,
     TITLE_SIZE,
     UM,
     arr,
@@ -14,7 +13,7 @@ from .common import (
     cycle_seconds_per_deg,
     event_window,
     failure_note,
-    finish,
+    finish_numbered,
     in_window,
     loaded_mask,
     log_ticks,
@@ -131,7 +130,7 @@ def fig15(ds, path):
         "(b) film change relative to uncoated"
         + (" (paper claims up to +41 %)" if compares_paper(ds) else ""),
     )
-    return finish(fig, path, FIGURES[path.name], f"cam event only; {failure_note(ds)}")
+    return finish_numbered(fig, path, f"cam event only; {failure_note(ds)}")
 
 
 def _log_floor(values, decades=4):
@@ -182,7 +181,7 @@ def _linear_and_log(ds, path, name, ylabel, sub, *, decades=4):
     b.set_title(
         f"(b) logarithmic scale (values below {floor:.1e} N not drawn)", fontsize=TITLE_SIZE
     )
-    return finish(fig, path, FIGURES[path.name], sub)
+    return finish_numbered(fig, path, sub)
 
 
 def _energy(ds, values) -> np.ndarray:
@@ -243,7 +242,7 @@ def fig18(ds, path):
         "(b) difference to uncoated"
         + (" (paper: WC-C up to +0.43 N)" if compares_paper(ds) else ""),
     )
-    return finish(fig, path, FIGURES[path.name], f"cam event only; {failure_note(ds)}")
+    return finish_numbered(fig, path, f"cam event only; {failure_note(ds)}")
 
 
 def fig19(ds, path):
@@ -285,10 +284,9 @@ def fig19(ds, path):
     b.grid(alpha=0.3, axis="x")
     rpm = ds.attrs.get("engine_speed_rpm", float("nan"))
     period = 120.0 / float(rpm)
-    return finish(
+    return finish_numbered(
         fig,
         path,
-        FIGURES[path.name],
         f"one engine cycle = 720° crank = {period * 1e3:.0f} ms at {rpm:g} rpm; "
         f"mean power uncoated {energy[0] / period:.2f} W",
     )
@@ -327,4 +325,4 @@ def fig20(ds, path):
     b.grid(alpha=0.3, which="both")
     b.legend(fontsize=8, ncol=2, loc="best")
     b.set_title("(b) film parameter (σ: composite RMS roughness of each set)", fontsize=TITLE_SIZE)
-    return finish(fig, path, FIGURES[path.name], f"cam event only; {failure_note(ds)}")
+    return finish_numbered(fig, path, f"cam event only; {failure_note(ds)}")

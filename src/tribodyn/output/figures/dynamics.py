@@ -8,13 +8,12 @@ from typing import Any
 import numpy as np
 
 from .common import (
-    FIGURES,
     MM,
     TITLE_SIZE,
     arr,
     crank_axis,
     dynamics_event,
-    finish,
+    finish_numbered,
     in_window,
     log_ticks,
     place_labels,
@@ -163,7 +162,7 @@ def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False,
         point_legend_entry(ax, ds)
     ax.legend(fontsize=9, loc="upper left")
     sub = None if has_imp else "implicit run not in the results: explicit only"
-    return finish(fig, path, FIGURES[path.name], sub)
+    return finish_numbered(fig, path, sub)
 
 
 def fig08(ds, path):
@@ -270,10 +269,9 @@ def fig11(ds, path):
     )
     crank_axis(axes[2], win)
     axes[2].grid(alpha=0.3, which="both")
-    return finish(
+    return finish_numbered(
         fig,
         path,
-        FIGURES[path.name],
         f"cam event {t_on:.0f}–{t_off:.0f}° crank (±40° of base circle shown); "
         f"{ds.attrs.get('engine_speed_rpm', float('nan')):g} rpm",
     )

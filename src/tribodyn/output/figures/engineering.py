@@ -6,17 +6,16 @@ from __future__ import annotations
 import numpy as np
 
 from .common import (
-    FIGURES,
     MM,
     TITLE_SIZE,
     arr,
     crank_axis,
     event_window,
+    finish_numbered,
     in_window,
     plt,
     set_styles,
 )
-from .common import finish as _finish
 
 __all__ = ["fig23", "fig24", "fig25", "fig26"]
 
@@ -49,7 +48,7 @@ def fig23(ds, path):
         tf = np.nan_to_num(arr(ds, "camshaft_friction_torque")[k])
         mean = float(np.sum(0.5 * (tf[1:] + tf[:-1]) * np.diff(theta)) / (2 * np.pi))
         means.append(f"{st['label']} {mean:.3g} N m")
-    return _finish(fig, path, FIGURES[path.name], "mean friction torque: " + "; ".join(means))
+    return finish_numbered(fig, path, "mean friction torque: " + "; ".join(means))
 
 
 def fig24(ds, path):
@@ -65,7 +64,7 @@ def fig24(ds, path):
     crank_axis(ax, win)
     ax.set_ylabel("pressure [GPa]")
     ax.legend(fontsize=9)
-    return _finish(fig, path, FIGURES[path.name], "solid: EHL peak; dashed: Hertz p_h")
+    return finish_numbered(fig, path, "solid: EHL peak; dashed: Hertz p_h")
 
 
 def fig25(ds, path):
@@ -100,7 +99,7 @@ def fig25(ds, path):
     for ax in axes:
         ax.grid(alpha=0.3)
     axes[-1].set_xlabel("cam angle [deg]")
-    return _finish(fig, path, FIGURES[path.name], sub)
+    return finish_numbered(fig, path, sub)
 
 
 def fig26(ds, path):
@@ -117,6 +116,4 @@ def fig26(ds, path):
     ax.set_ylabel("lift harmonic amplitude [mm]")
     ax.grid(alpha=0.3)
     f_cam = f[0] if f.size else float("nan")
-    return _finish(
-        fig, path, FIGURES[path.name], f"cam frequency {f_cam:.3g} Hz; surge: (k/2)√(k_s/m_s)"
-    )
+    return finish_numbered(fig, path, f"cam frequency {f_cam:.3g} Hz; surge: (k/2)√(k_s/m_s)")

@@ -8,14 +8,13 @@ from typing import Any
 import numpy as np
 
 from .common import (
-    FIGURES,
     MM,
     MPA,
     TITLE_SIZE,
     UM,
     arr,
     compares_paper,
-    finish,
+    finish_numbered,
     legend_below,
     loaded_mask,
     plt,
@@ -167,7 +166,7 @@ def fig13(ds, path):
         f"h_c given as {labels[sets[0]]} / {labels[sets[1]]}; "
         "x positive in the direction of positive u_e"
     )
-    return finish(fig, path, FIGURES[path.name], sub)
+    return finish_numbered(fig, path, sub)
 
 
 def fig14(ds, path):
@@ -251,4 +250,4 @@ def fig14(ds, path):
         f"W = {force[i]:.0f} N, u_e = {arr(ds, 'ehl_entrainment_speed')[i]:.2f} m/s, "
         f"R = {arr(ds, 'ehl_radius')[i] * MM:.2f} mm"
     )
-    return finish(fig, path, FIGURES[path.name], sub)
+    return finish_numbered(fig, path, sub)

@@ -6,9 +6,8 @@ import numpy as np
 
 from .common import (
     EVENT_FRACTION,
-    FIGURES,
     arr,
-    finish,
+    finish_numbered,
     loaded_mask,
     place_labels,
     plt,
@@ -151,10 +150,9 @@ def fig12(ds, path):
     ax.set_ylabel("viscosity parameter g_V = G W'^(3/2) U^(−1/2)")
     ax.legend(loc="lower right", fontsize=9, framealpha=0.9)
     ax.grid(alpha=0.25, which="major")
-    return finish(
+    return finish_numbered(
         fig,
         path,
-        FIGURES[path.name],
         "boundaries where the Johnson (1970) asymptotes IR, PR, IE, PE meet; "
         "g_V, g_E with the bulk E' of the first surface set",
     )

@@ -228,10 +228,7 @@ def fig_engine_map(ds, path):
 def fig_film(ds, path):
     fig, axes, note = _line_figure(
         ds,
-        (
-            ("min_film_m", UM, "minimum film h_min [µm]"),
-            ("min_lambda", 1.0, "minimum λ = h_min/σ"),
-        ),
+        (("min_film_m", UM, "minimum film h_min [µm]"), ("min_lambda", 1.0, "minimum λ = h_min/σ")),
     )
     axes[1].axhline(1.0, color="0.5", lw=0.8, ls="--")
     axes[1].axhline(3.0, color="0.5", lw=0.8, ls=":")

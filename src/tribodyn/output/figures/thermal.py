@@ -6,14 +6,13 @@ from __future__ import annotations
 import numpy as np
 
 from .common import (
-    FIGURES,
     TITLE_SIZE,
     UM,
     arr,
     crank_axis,
     event_window,
     failure_note,
-    finish,
+    finish_numbered,
     in_window,
     masked,
     plt,
@@ -57,10 +56,9 @@ def fig21(ds, path):
     axes[0].legend(fontsize=9, ncol=3, loc="best")
     for ax in axes[:-1]:
         ax.set_xlabel("")
-    return finish(
+    return finish_numbered(
         fig,
         path,
-        FIGURES[path.name],
         f"inlet (sump) temperature {t_in:.0f} °C (dotted); cam event only; {failure_note(ds)}",
     )
 
@@ -99,4 +97,4 @@ def fig22(ds, path):
     for ax in (a, b):
         ax.set_xlabel("")
     a.legend(fontsize=9, ncol=3, loc="best")
-    return finish(fig, path, FIGURES[path.name], f"cam event only; {failure_note(ds)}")
+    return finish_numbered(fig, path, f"cam event only; {failure_note(ds)}")

@@ -8,8 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...topography.composite import sum_on_common_grid
-from ...topography.height_statistics import gaussian_pdf, height_statistics
+from ...topography.height_statistics import gaussian_pdf
 from ...topography.profile import ProfileAnalysis
 from ...topography.results import PairAnalysis, SurfaceAnalysis
 from .common import plt, save_figure
@@ -18,39 +17,26 @@ __all__ = ["plot_height_distribution"]
 
 
 def _panels(results):
-    """(title, heights [m]) per surface; a pair adds its sum surface h₁ + h₂."""
+    """(title, heights [m], their statistics) per surface; a pair adds its sum surface."""
     if isinstance(results, (SurfaceAnalysis, PairAnalysis, ProfileAnalysis)):
         results = [results]
     panels = []
     for r in results:
         if isinstance(r, PairAnalysis):
             panels += _panels([r.first, r.second])
-            ta, tb = r.first.topography, r.second.topography
-            if ta is None or tb is None:  # a profile in the pair: no sum surface
-                continue
-            combined = sum_on_common_grid(
-                ta.heights(),
-                ta.pixel_size,
-                ta.is_periodic,
-                tb.heights(),
-                tb.pixel_size,
-                tb.is_periodic,
-            )
-            if combined is not None:
-                h = combined[0]
-                filled = np.zeros(h.shape, dtype=bool)
-                for part in (r.first, r.second):
-                    if part.filled is not None:
-                        filled |= np.asarray(part.filled)[: h.shape[0], : h.shape[1]]
-                panels.append((f"sum surface {r.first.name} + {r.second.name}", h[~filled]))
+            if r.sum_surface is not None:  # None: a profile, or different pixel sizes
+                title = f"sum surface {r.first.name} + {r.second.name}"
+                panels.append((title, r.sum_surface, r.sum_heights))
         elif isinstance(r, SurfaceAnalysis):
             if r.topography is None:
                 raise TypeError(f"analysis '{r.name}' carries no height map to plot")
             h = np.asarray(r.topography.heights(), dtype=float)
-            panels.append((r.name, h if r.filled is None else h[~np.asarray(r.filled)]))
+            h = h if r.filled is None else h[~np.asarray(r.filled)]
+            panels.append((r.name, h, r.heights))
         elif isinstance(r, ProfileAnalysis):
             h = np.asarray(r.profile, dtype=float)
-            panels.append((f"profile {r.name}", h if r.filled is None else h[~r.filled]))
+            h = h if r.filled is None else h[~r.filled]
+            panels.append((f"profile {r.name}", h, r.heights))
         else:
             raise TypeError(f"expected SurfaceAnalysis or PairAnalysis (got {type(r).__name__})")
     return panels
@@ -87,8 +73,7 @@ def plot_height_distribution(results, path, *, bins: int = 80) -> Path:
         squeeze=False,
         gridspec_kw={"height_ratios": [1.3, 1.0]},
     )
-    for j, (title, h) in enumerate(panels):
-        s = height_statistics(h)
+    for j, (title, h, s) in enumerate(panels):
         z = (h.ravel() - s.mean) * 1e6  # µm
         sig = s.rms * 1e6
         lim = max(4.5 * sig, float(np.max(np.abs(z))))
