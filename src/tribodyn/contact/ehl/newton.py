@@ -55,6 +55,14 @@ ROUND_OFF_PRESSURE = 1e-12
 _ASPERITY_SHARE = 0.03
 _TRACE = False
 _WATCHDOG = 100.0
+#: GMRES solves a Newton system to the relative residual η_k = min(_GMRES_TOL_MAX,
+#: max(_GMRES_TOL, |F_k|)), |F_k| = √merit the scaled residual at the iterate: a forcing
+#: term of the residual's order keeps Newton's quadratic convergence (Dembo, Eisenstat &
+#: Steihaug, SIAM J. Numer. Anal. 19 (1982) 400–408; Eisenstat & Walker, SIAM J. Sci.
+#: Comput. 17 (1996) 16–32), so the early iterations of a solve, far from the solution,
+#: take fewer Krylov iterations and the last ones are solved as tightly as before.
+_GMRES_TOL = 1e-6
+_GMRES_TOL_MAX = 1e-4
 _MAX_KRYLOV = 30
 _MAX_KRYLOV_BEFORE_REFACTOR = 12
 _MAX_KRYLOV_TWO_GRID = 200
@@ -335,7 +343,8 @@ def _newton_impl(
     dip below zero pressure; the min-function clamps them on the next iteration.
     The Newton systems are solved by LU, by GMRES preconditioned with an earlier LU, or —
     given a ``coarse`` level — by GMRES with the two-grid preconditioner (no dense matrix
-    on this grid; a dense LU only as fallback).
+    on this grid; a dense LU only as fallback), GMRES to a relative residual of the
+    residual's order (:data:`_GMRES_TOL`, :data:`_GMRES_TOL_MAX`).
 
     ``release_blocks``: free growing blocks of cavitated nodes ahead of a cavitation
     boundary that moves outward (:func:`_release`), for cold starts whose boundaries
@@ -367,7 +376,6 @@ def _newton_impl(
     prev_cav, release, release_cap = None, 1, 1 << 30
     history = [m0]  # non-monotone (Grippo–Lampariello–Lucidi) acceptance
     watchdog = 2  # full Newton steps allowed to raise the merit (warm starts)
-    gmres_tol = 1e-6
     upd_prev = None
     it = 0
     for it in range(1, max_iter + 1):
@@ -381,6 +389,7 @@ def _newton_impl(
             given[0] = given[-1] = False
             if np.any(given != cav_std):
                 first = (given,)
+        gmres_tol = min(_GMRES_TOL_MAX, max(_GMRES_TOL, math.sqrt(max(m0, 0.0))))
         accepted = False
         fresh_lu = False
         for cav in (*first, cav_std):
