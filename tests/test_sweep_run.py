@@ -364,3 +364,26 @@ def test_failing_point_is_reported_and_the_rest_complete(tmp_path):
     )
     assert r.exit_code == 1, r.output
     assert "1 of 4 points finished (1 run now, 1 resumed), 3 failed" in text(r)
+
+
+def test_points_are_submitted_fastest_engine_first(dyn_file):
+    """The points carry Dask priorities by engine speed (fastest, i.e. costliest, first;
+    equal speeds in plan order), so the longest points do not finish last."""
+    from tribodyn.workflow.sweep import _submit
+
+    spec = load_sweep(dyn_file)
+    plan = spec.points()
+    seen = []
+
+    class Recorder:
+        def submit(self, fn, *args, **kwargs):
+            seen.append((args[0].engine_speed, kwargs["priority"]))
+            return kwargs["key"]
+
+    keys = _submit(Recorder(), spec, plan)
+    assert len(set(keys)) == len(plan)
+    by_priority = [speed for speed, _ in sorted(seen, key=lambda s: -s[1])]
+    assert by_priority == sorted((p.case.engine_speed for p in plan), reverse=True)
+    first = [p.index for p in plan if p.case.engine_speed == by_priority[0]]
+    ranks = dict(zip([p.index for p in plan], [r for _, r in seen]))
+    assert ranks[first[0]] > ranks[first[1]]  # equal speeds: plan order

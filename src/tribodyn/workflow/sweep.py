@@ -327,11 +327,23 @@ def run_sweep(
     )
 
 
+def _cost_rank(todo) -> dict[int, int]:
+    """Scheduling priority of each point (index → rank, higher first): by engine speed,
+    fastest first, ties in plan order. Faster points cost more (measured on
+    ``engine_dohc16_map``: ≈ 6–8 s of CPU per point at 1000 rpm, ≈ 8–10 s at 4000 rpm and
+    more above), and starting the longest first keeps the last point to finish short
+    (longest-processing-time order), so the workers end together."""
+    order = sorted(todo, key=lambda p: (p.case.engine_speed, -p.index))
+    return {p.index: rank for rank, p in enumerate(order)}
+
+
 def _submit(client, spec, todo):
-    """One task per point (unique keys: a rerun never picks up an old task's result)."""
+    """One task per point (unique keys: a rerun never picks up an old task's result),
+    costliest first (:func:`_cost_rank`)."""
     import uuid
 
     tag = uuid.uuid4().hex[:8]
+    rank = _cost_rank(todo)
     return [
         client.submit(
             run_point,
@@ -340,6 +352,7 @@ def _submit(client, spec, todo):
             spec.traces,
             pure=False,
             key=f"tribodyn-point-{p.index}-{p.key}-{tag}",
+            priority=rank[p.index],
         )
         for p in todo
     ]
