@@ -367,23 +367,22 @@ def test_failing_point_is_reported_and_the_rest_complete(tmp_path):
 
 
 def test_points_are_submitted_fastest_engine_first(dyn_file):
-    """The points carry Dask priorities by engine speed (fastest, i.e. costliest, first;
-    equal speeds in plan order), so the longest points do not finish last."""
+    """The points are submitted, with Dask priorities, by engine speed (fastest, i.e.
+    costliest, first; equal speeds in plan order), so the longest points do not finish
+    last; the futures come back in plan order."""
     from tribodyn.workflow.sweep import _submit
 
     spec = load_sweep(dyn_file)
     plan = spec.points()
-    seen = []
+    seen = []  # (plan index, engine speed, priority) in the order of submission
 
     class Recorder:
-        def submit(self, fn, *args, **kwargs):
-            seen.append((args[0].engine_speed, kwargs["priority"]))
-            return kwargs["key"]
+        def submit(self, fn, case, *args, key, priority, **kwargs):
+            seen.append((int(key.split("-")[2]), case.engine_speed, priority))
+            return key
 
     keys = _submit(Recorder(), spec, plan)
-    assert len(set(keys)) == len(plan)
-    by_priority = [speed for speed, _ in sorted(seen, key=lambda s: -s[1])]
-    assert by_priority == sorted((p.case.engine_speed for p in plan), reverse=True)
-    first = [p.index for p in plan if p.case.engine_speed == by_priority[0]]
-    ranks = dict(zip([p.index for p in plan], [r for _, r in seen]))
-    assert ranks[first[0]] > ranks[first[1]]  # equal speeds: plan order
+    assert [int(k.split("-")[2]) for k in keys] == [p.index for p in plan]
+    expected = sorted(plan, key=lambda p: (-p.case.engine_speed, p.index))
+    assert [i for i, _, _ in seen] == [p.index for p in expected]
+    assert [r for _, _, r in seen] == sorted((r for _, _, r in seen), reverse=True)

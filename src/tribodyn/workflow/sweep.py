@@ -339,13 +339,14 @@ def _cost_rank(todo) -> dict[int, int]:
 
 def _submit(client, spec, todo):
     """One task per point (unique keys: a rerun never picks up an old task's result),
-    costliest first (:func:`_cost_rank`)."""
+    submitted and prioritised costliest first (:func:`_cost_rank`: idle workers take the
+    first tasks as they arrive); the futures in the order of ``todo``."""
     import uuid
 
     tag = uuid.uuid4().hex[:8]
     rank = _cost_rank(todo)
-    return [
-        client.submit(
+    futures = {
+        p.index: client.submit(
             run_point,
             p.case,
             spec.mode,
@@ -354,8 +355,9 @@ def _submit(client, spec, todo):
             key=f"tribodyn-point-{p.index}-{p.key}-{tag}",
             priority=rank[p.index],
         )
-        for p in todo
-    ]
+        for p in sorted(todo, key=lambda p: -rank[p.index])
+    }
+    return [futures[p.index] for p in todo]
 
 
 # ----------------------------------------------------------------------------- estimate
