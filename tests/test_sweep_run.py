@@ -364,3 +364,25 @@ def test_failing_point_is_reported_and_the_rest_complete(tmp_path):
     )
     assert r.exit_code == 1, r.output
     assert "1 of 4 points finished (1 run now, 1 resumed), 3 failed" in text(r)
+
+
+def test_points_are_submitted_fastest_engine_first(dyn_file):
+    """The points are submitted, with Dask priorities, by engine speed (fastest, i.e.
+    costliest, first; equal speeds in plan order), so the longest points do not finish
+    last; the futures come back in plan order."""
+    from tribodyn.workflow.sweep import _submit
+
+    spec = load_sweep(dyn_file)
+    plan = spec.points()
+    seen = []  # (plan index, engine speed, priority) in the order of submission
+
+    class Recorder:
+        def submit(self, fn, case, *args, key, priority, **kwargs):
+            seen.append((int(key.split("-")[2]), case.engine_speed, priority))
+            return key
+
+    keys = _submit(Recorder(), spec, plan)
+    assert [int(k.split("-")[2]) for k in keys] == [p.index for p in plan]
+    expected = sorted(plan, key=lambda p: (-p.case.engine_speed, p.index))
+    assert [i for i, _, _ in seen] == [p.index for p in expected]
+    assert [r for _, _, r in seen] == sorted((r for _, _, r in seen), reverse=True)

@@ -327,22 +327,37 @@ def run_sweep(
     )
 
 
+def _cost_rank(todo) -> dict[int, int]:
+    """Scheduling priority of each point (index → rank, higher first): by engine speed,
+    fastest first, ties in plan order. Faster points cost more (measured on
+    ``engine_dohc16_map``: ≈ 6–8 s of CPU per point at 1000 rpm, ≈ 8–10 s at 4000 rpm and
+    more above), and starting the longest first keeps the last point to finish short
+    (longest-processing-time order), so the workers end together."""
+    order = sorted(todo, key=lambda p: (p.case.engine_speed, -p.index))
+    return {p.index: rank for rank, p in enumerate(order)}
+
+
 def _submit(client, spec, todo):
-    """One task per point (unique keys: a rerun never picks up an old task's result)."""
+    """One task per point (unique keys: a rerun never picks up an old task's result),
+    submitted and prioritised costliest first (:func:`_cost_rank`: idle workers take the
+    first tasks as they arrive); the futures in the order of ``todo``."""
     import uuid
 
     tag = uuid.uuid4().hex[:8]
-    return [
-        client.submit(
+    rank = _cost_rank(todo)
+    futures = {
+        p.index: client.submit(
             run_point,
             p.case,
             spec.mode,
             spec.traces,
             pure=False,
             key=f"tribodyn-point-{p.index}-{p.key}-{tag}",
+            priority=rank[p.index],
         )
-        for p in todo
-    ]
+        for p in sorted(todo, key=lambda p: -rank[p.index])
+    }
+    return [futures[p.index] for p in todo]
 
 
 # ----------------------------------------------------------------------------- estimate
