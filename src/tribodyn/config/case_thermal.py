@@ -5,11 +5,14 @@ properties, the thermal bodies of a surface set and the thermal solver's options
 
 from __future__ import annotations
 
+from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any
 
 from .._validation import InputError
 from ..contact.ehl.thermal import ThermalOptions
+from ..physics import heat_conduction, thermal_oil
 from ..physics.heat_conduction import ThermalBody, ThermalProperties
+from ..physics.limits import Limit, check_fields
 from ..physics.oils import OILS, THERMAL_MATERIALS
 from ..physics.thermal_oil import ThermalLubricant, kelvin
 
@@ -27,6 +30,17 @@ OIL_LAW_KEYS = {
     "compressible",
     "viscosity_model",
 }
+#: ``[materials.<name>]`` key of each argument of :class:`ThermalProperties`
+MATERIAL_KEYS = {
+    "conductivity": "thermal_conductivity",
+    "density": "density",
+    "specific_heat": "specific_heat",
+}
+
+
+def _check_given(given: dict[str, Any], limits: dict[str, Limit]) -> None:
+    """Check the ranges of the values ``given`` (by argument name; None: absent)."""
+    check_fields(SimpleNamespace(**given), {k: limits[k] for k in given}, tuple(given))
 
 
 class ThermalBuilders:
@@ -91,24 +105,40 @@ class ThermalBuilders:
             _checked=checked,
         )
 
+    def _check_thermal_oil_keys(self) -> None:
+        """Check the ranges of the thermal oil's keys given in ``[lubricant]``: of a case
+        whose thermal oil is not built (where it is, its constructor checks them)."""
+        c = self.lubricant_config
+        given = {k: getattr(c, k) for k in thermal_oil.LIMITS if k in c.model_fields_set}
+        _check_given(given, thermal_oil.LIMITS)
+
+    def _thermal_properties_given(self, name: str) -> dict[str, float]:
+        """The thermal properties ``[materials.<name>]`` gives, by argument name."""
+        m = self.materials[name]
+        found = {k: getattr(m, key) for k, key in MATERIAL_KEYS.items()}
+        return {k: v for k, v in found.items() if v is not None}
+
+    def _check_thermal_properties(self, name: str, built: dict | None) -> None:
+        """Check the ranges of the thermal properties of ``[materials.<name>]`` once:
+        ``built`` (a thermal case) and all three known, by building them into ``built``;
+        else the given ones."""
+        given = self._thermal_properties_given(name)
+        if built is not None and {**THERMAL_MATERIALS.get(name, {}), **given}.keys() == set(
+            MATERIAL_KEYS
+        ):
+            built[name] = self._new_thermal_properties(name)
+        else:
+            _check_given(given, heat_conduction.LIMITS)
+
     def _new_thermal_properties(self, name: str) -> ThermalProperties:
         """k, ρ, c of ``[materials.<name>]`` (steel, dlc and wcc default to the literature
         values of :mod:`tribodyn.physics.oils`)."""
-        m = self.materials[name]
-        d = dict(THERMAL_MATERIALS.get(name, {}))
-        for key, val in (
-            ("conductivity", m.thermal_conductivity),
-            ("density", m.density),
-            ("specific_heat", m.specific_heat),
-        ):
-            if val is not None:
-                d[key] = val
-        missing = [k for k in ("conductivity", "density", "specific_heat") if k not in d]
+        d = {**THERMAL_MATERIALS.get(name, {}), **self._thermal_properties_given(name)}
+        missing = [k for k in MATERIAL_KEYS if k not in d]
         if missing:
-            names = {"conductivity": "thermal_conductivity"}
             raise InputError(
                 "; ".join(
-                    f"materials.{name}.{names.get(k, k)}: required for the thermal model"
+                    f"materials.{name}.{MATERIAL_KEYS[k]}: required for the thermal model"
                     for k in missing
                 )
             )
