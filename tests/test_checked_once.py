@@ -352,3 +352,20 @@ def test_each_thermal_key_out_of_range_is_one_problem(key):
     msg = str(e.value)
     assert msg.startswith("invalid case: 1 problem\n"), msg
     assert f"{key}: must be {_range_text(bounds['range'], bounds['unit'])} (got " in msg, msg
+
+
+def test_a_thermal_key_out_of_range_is_reported_beside_a_schema_problem():
+    """The constructors' range problems of keys whose unit has parentheses (W/(m K)) are
+    listed with the schema's problems."""
+    data = _paper_data()
+    set_dotted(data, "engine.speed_rpm", -5.0)
+    set_dotted(data, "materials.dlc.thermal_conductivity", 1e9)
+    set_dotted(data, "lubricant.specific_heat", 1.0)
+    with pytest.raises(InputError) as e:
+        Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    assert [line.split(":")[0].strip() for line in str(e.value).splitlines()] == [
+        "invalid case",
+        "engine.speed_rpm",
+        "lubricant.specific_heat",
+        "materials.dlc.thermal_conductivity",
+    ]

@@ -275,12 +275,9 @@ def collect(
     materials = {k: m for k, m in built_materials.items() if m is not None}
     thermal_properties: dict = {}  # of each material, built once (a thermal case)
     for k in case.materials:
-        check = functools.partial(
-            case._check_thermal_properties, k, thermal_properties if n.thermal else None
-        )
-        attempt(
-            f"materials.{k}", check, {a: f"materials.{k}.{m}" for a, m in MATERIAL_KEYS.items()}
-        )
+        keys = {a: f"materials.{k}.{key}" for a, key in MATERIAL_KEYS.items()}
+        built = thermal_properties if n.thermal else None
+        attempt(f"materials.{k}", functools.partial(case._check_thermal_properties, k, built), keys)
     checked: list[tuple[SurfaceSetConfig, SurfaceSet | None, EHLOptions | None]] = []
     for i, cfg in enumerate(case.surface_set_configs if materials_ok else ()):
         where = f"surface_sets[{i}]"
@@ -388,8 +385,8 @@ def range_problems_beside(
     return []
 
 
-#: the message of an out-of-range value (errors.out_of_range)
-_RANGE_PROBLEM = re.compile(r"must be [^()]* \(got [^()]*\)")
+#: the message of an out-of-range value (errors.out_of_range; units such as W/(m K))
+_RANGE_PROBLEM = re.compile(r"must be (?:[^()]|\([^()]*\))* \(got [^()]*\)")
 
 
 def _drop(data: dict, loc: tuple) -> bool:

@@ -25,15 +25,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validation import InputError, check_positive
-from .limits import SOLID_CONDUCTIVITY, SOLID_DENSITY, SOLID_SPECIFIC_HEAT, check_fields
+from . import limits as L
 
 __all__ = ["ThermalProperties", "ThermalBody", "DepthGrid", "depth_grid", "LIMITS"]
 
 #: the ranges :class:`ThermalProperties` checks, by argument
 LIMITS = {
-    "conductivity": SOLID_CONDUCTIVITY,
-    "density": SOLID_DENSITY,
-    "specific_heat": SOLID_SPECIFIC_HEAT,
+    "conductivity": L.SOLID_CONDUCTIVITY,
+    "density": L.SOLID_DENSITY,
+    "specific_heat": L.SOLID_SPECIFIC_HEAT,
 }
 
 
@@ -46,7 +46,7 @@ class ThermalProperties:
     specific_heat: float
 
     def __post_init__(self):
-        check_fields(self, LIMITS)
+        L.check_fields(self, LIMITS)
 
     @property
     def volumetric_heat_capacity(self) -> float:
