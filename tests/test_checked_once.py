@@ -10,11 +10,11 @@ from collections import Counter
 
 import pytest
 
-from tribodyn import InputError
+from tribodyn import InputError, _validation
 from tribodyn.config import schema, schema_surfaces, schema_valvetrain
 from tribodyn.config.case import DEFAULT_CASE, Case, set_dotted
 from tribodyn.config.schema_fields import Section
-from tribodyn.physics import heat_conduction
+from tribodyn.physics import heat_conduction, thermal_oil
 from tribodyn.physics import limits as L
 
 #: where each section with ranged keys sits in the bundled paper case
@@ -245,7 +245,9 @@ def test_a_check_left_out_is_seen(monkeypatch):
 def test_a_thermal_oil_checks_the_lubricant_values_once(monkeypatch, form):
     """The thermal oil takes the values the isothermal oil checked (inlet form), and its
     isothermal oil at the inlet takes those the thermal oil checked (datasheet): each
-    lubricant limit runs once; each material's thermal properties are checked once."""
+    lubricant limit runs once; each material's thermal properties are checked once, by
+    its ThermalProperties (not by the schema too), and each thermal oil key by the thermal
+    oil."""
     data = _paper_data()
     data["numerics"]["thermal"] = True
     data["lubricant"]["inlet_temperature_c"] = 90.0
@@ -263,18 +265,107 @@ def test_a_thermal_oil_checks_the_lubricant_values_once(monkeypatch, form):
         return check(self, name, value)
 
     monkeypatch.setattr(L.Limit, "check", counting)
-    ranges: Counter = Counter()  # the thermal properties of the materials
-    check_range = heat_conduction.check_range
-
-    def counting_range(name, value, *args, **kw):
-        ranges[name] += 1
-        return check_range(name, value, *args, **kw)
-
-    monkeypatch.setattr(heat_conduction, "check_range", counting_range)
+    data["lubricant"]["thermal_expansion"] = 7e-4  # given: not checked by the schema too
+    data["lubricant"]["limiting_shear_temperature_coefficient"] = 0.01
+    data["lubricant"]["thermal_conductivity"] = 0.13
+    data["lubricant"]["specific_heat"] = 2000.0
+    data["materials"]["steel"].update(
+        thermal_conductivity=40.0, density=7800.0, specific_heat=450.0
+    )
     Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
-    assert 0 < ranges["conductivity"] <= len(data["materials"])  # once each, not per set
+    for lim in (L.SOLID_CONDUCTIVITY, L.SOLID_DENSITY, L.SOLID_SPECIFIC_HEAT):
+        assert calls[lim] == len(data["materials"])  # once each, not per set
+    for lim in (L.THERMAL_EXPANSION, L.LIMITING_SHEAR_TEMPERATURE):
+        assert calls[lim] == 1
+    assert calls[L.OIL_CONDUCTIVITY] == calls[L.OIL_SPECIFIC_HEAT] == 1
+    assert calls[L.VISCOSITY_TEMPERATURE] == (1 if form == "inlet" else 0)
     for lim in (L.EYRING_STRESS, L.LIMITING_SHEAR_COEFFICIENT, L.LIMITING_SHEAR_STRESS):
         assert calls[lim] == 1
     assert calls[L.PRESSURE_VISCOSITY] == 1  # given (inlet), estimated (datasheet)
     assert calls[L.VISCOSITY] == (1 if form == "inlet" else 0)  # datasheet: μ(Tᵢ) bounds
-    assert calls[L.DENSITY] == 1
+    # the given density (inlet); the datasheet's at 15 °C and its oil's ρ(0, Tᵢ) (two values)
+    assert calls[L.DENSITY] == (1 if form == "inlet" else 2)
+
+
+L_BOUNDS = ("gt", "ge", "lt", "le")
+#: thermal keys of the paper case made thermal (inlet-form oil), with values to give
+THERMAL_KEYS = {
+    "lubricant.thermal_expansion": 7e-4,
+    "lubricant.limiting_shear_temperature_coefficient": 0.01,
+    "lubricant.thermal_conductivity": 0.13,
+    "lubricant.specific_heat": 2000.0,
+    "lubricant.viscosity_temperature_coefficient": 0.03,
+    "materials.steel.thermal_conductivity": 40.0,
+    "materials.steel.density": 7800.0,
+    "materials.steel.specific_heat": 450.0,
+}
+
+
+def _thermal_data() -> dict:
+    data = _paper_data()
+    data["numerics"]["thermal"] = True
+    data["lubricant"]["inlet_temperature_c"] = 90.0
+    for key, value in THERMAL_KEYS.items():
+        set_dotted(data, key, value)
+    return data
+
+
+def test_each_thermal_key_is_checked_once(monkeypatch):
+    """A thermal case: each thermal key given is range-checked once, by the constructor
+    that takes it (ThermalLubricant, ThermalProperties), not by the schema too."""
+    seen: Counter = Counter()  # (argument, value) of each constructor check
+    check, check_range = L.Limit.check, _validation.check_range
+
+    def counting(self, name, value):
+        seen[name, value] += 1
+        return check(self, name, value)
+
+    def counting_range(name, value, *args, **kw):
+        seen[name, value] += 1
+        return check_range(name, value, *args, **kw)
+
+    monkeypatch.setattr(L.Limit, "check", counting)
+    for module in (thermal_oil, heat_conduction):
+        if hasattr(module, "check_range"):
+            monkeypatch.setattr(module, "check_range", counting_range)
+    case = Case.from_dict(_thermal_data(), base_dir=DEFAULT_CASE.parent)
+    for key, value in THERMAL_KEYS.items():
+        section, name = key.rsplit(".", 1)
+        oil = section == "lubricant"
+        model = case.lubricant_config if oil else case.materials["steel"]
+        fi = type(model).model_fields[name]
+        by_schema = any(getattr(m, b, None) is not None for m in fi.metadata for b in L_BOUNDS)
+        arg = name if oil or name != "thermal_conductivity" else "conductivity"
+        assert seen[arg, value] + by_schema == 1, key
+
+
+@pytest.mark.parametrize("key", THERMAL_KEYS)
+def test_each_thermal_key_out_of_range_is_one_problem(key):
+    extra = _ranged(
+        schema.LubricantConfig if key.startswith("lubricant") else schema.MaterialConfig
+    )
+    bounds = extra[key.rsplit(".", 1)[1]]
+    data = _thermal_data()
+    set_dotted(data, key, _outside(bounds["range"], False))
+    with pytest.raises(InputError) as e:
+        Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    msg = str(e.value)
+    assert msg.startswith("invalid case: 1 problem\n"), msg
+    assert f"{key}: must be {_range_text(bounds['range'], bounds['unit'])} (got " in msg, msg
+
+
+def test_a_thermal_key_out_of_range_is_reported_beside_a_schema_problem():
+    """The constructors' range problems of keys whose unit has parentheses (W/(m K)) are
+    listed with the schema's problems."""
+    data = _paper_data()
+    set_dotted(data, "engine.speed_rpm", -5.0)
+    set_dotted(data, "materials.dlc.thermal_conductivity", 1e9)
+    set_dotted(data, "lubricant.specific_heat", 1.0)
+    with pytest.raises(InputError) as e:
+        Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    assert [line.split(":")[0].strip() for line in str(e.value).splitlines()] == [
+        "invalid case",
+        "engine.speed_rpm",
+        "lubricant.specific_heat",
+        "materials.dlc.thermal_conductivity",
+    ]

@@ -1,5 +1,7 @@
 """Bad input and non-convergence of the EHL solver are reported, never hidden."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -107,3 +109,16 @@ def test_a_domain_that_cannot_be_sized_is_said_in_the_users_terms(monkeypatch):
     monkeypatch.setattr(G, "_length_scale", lambda *a, **k: (float("nan"), 1e-4, 1e-6))
     with pytest.raises(InputError, match=r"^load 10000 N/m, radius 0\.01 m and entrainment"):
         solve_ehl(1e4, 0.01, 1.0, 0.5, PAIR, OIL, n=64)
+
+
+def test_capping_the_newton_iterations_checks_no_option_again(monkeypatch):
+    """The options with fewer Newton iterations (a last short attempt) are a copy of
+    checked ones: no range is checked again, and they equal a checked copy."""
+    tr = TransientEHL(PAIR, OIL, n=64)
+    calls = []
+    check = L.Limit.check
+    monkeypatch.setattr(L.Limit, "check", lambda self, *a: calls.append(a) or check(self, *a))
+    with tr._max_iter(5):
+        capped = tr.opts
+    assert calls == []
+    assert capped == dataclasses.replace(tr.opts, max_iter=5) != tr.opts

@@ -32,6 +32,7 @@ from pydantic import ValidationError
 from .._validation import InputError
 from ..contact.ehl.options import EHLOptions
 from ..physics.limits import RangeError
+from .case_thermal import MATERIAL_KEYS
 from .errors import CaseKeyError, Problems, in_file_order, out_of_range
 
 if TYPE_CHECKING:
@@ -265,11 +266,18 @@ def collect(
         thermal_lubricant = attempt(
             "lubricant", functools.partial(case._new_thermal_lubricant, lubricant)
         )
+    if thermal_lubricant is None:  # no thermal oil checked its keys (a failed one: same lines)
+        attempt("lubricant", case._check_thermal_oil_keys)
     built_materials = {
         k: attempt(f"materials.{k}", functools.partial(case._new_material, k))
         for k in case.materials
     }
     materials = {k: m for k, m in built_materials.items() if m is not None}
+    thermal_properties: dict = {}  # of each material, built once (a thermal case)
+    for k in case.materials:
+        keys = {a: f"materials.{k}.{key}" for a, key in MATERIAL_KEYS.items()}
+        built = thermal_properties if n.thermal else None
+        attempt(f"materials.{k}", functools.partial(case._check_thermal_properties, k, built), keys)
     checked: list[tuple[SurfaceSetConfig, SurfaceSet | None, EHLOptions | None]] = []
     for i, cfg in enumerate(case.surface_set_configs if materials_ok else ()):
         where = f"surface_sets[{i}]"
@@ -295,7 +303,6 @@ def collect(
         p.split(".")[0] == "lubricant" for p, _ in problems
     )
     sets: dict[str, BuiltSet] = {}
-    thermal_properties: dict = {}  # of each material, built once
     for cfg, surface, set_options in checked:
         assert surface is not None and set_options is not None
         surface = attempt(
@@ -378,8 +385,8 @@ def range_problems_beside(
     return []
 
 
-#: the message of an out-of-range value (errors.out_of_range)
-_RANGE_PROBLEM = re.compile(r"must be [^()]* \(got [^()]*\)")
+#: the message of an out-of-range value (errors.out_of_range; units such as W/(m K))
+_RANGE_PROBLEM = re.compile(r"must be (?:[^()]|\([^()]*\))* \(got [^()]*\)")
 
 
 def _drop(data: dict, loc: tuple) -> bool:

@@ -5,11 +5,14 @@ properties, the thermal bodies of a surface set and the thermal solver's options
 
 from __future__ import annotations
 
+from types import SimpleNamespace
 from typing import TYPE_CHECKING, Any
 
 from .._validation import InputError
 from ..contact.ehl.thermal import ThermalOptions
-from ..physics.heat_conduction import ThermalBody, ThermalProperties
+from ..physics import thermal_oil
+from ..physics.heat_conduction import LIMITS, ThermalBody, ThermalProperties
+from ..physics.limits import Limit, check_fields
 from ..physics.oils import OILS, THERMAL_MATERIALS
 from ..physics.thermal_oil import ThermalLubricant, kelvin
 
@@ -27,6 +30,13 @@ OIL_LAW_KEYS = {
     "compressible",
     "viscosity_model",
 }
+#: ``[materials.<name>]`` key of each argument of :class:`ThermalProperties` not named so
+MATERIAL_KEYS = {"conductivity": "thermal_conductivity"}
+
+
+def _check_given(given: dict[str, Any], limits: dict[str, Limit]) -> None:
+    """Check the ranges of the values ``given`` (by argument name; None: absent)."""
+    check_fields(SimpleNamespace(**given), {k: limits[k] for k in given}, tuple(given))
 
 
 class ThermalBuilders:
@@ -53,14 +63,9 @@ class ThermalBuilders:
                 "(the oil supply temperature, °C)"
             )
         Ti = float(kelvin(c.inlet_temperature_c))
-        common: dict[str, Any] = dict(
-            c.model_dump(include=OIL_LAW_KEYS),
-            inlet_temperature=Ti,
-            thermal_expansion=c.thermal_expansion,
-            thermal_conductivity=c.thermal_conductivity,
-            specific_heat=c.specific_heat,
-            limiting_shear_temperature_coefficient=(c.limiting_shear_temperature_coefficient),
-        )
+        # the thermal oil's own keys (β None with a datasheet) and the laws of both oils
+        common = dict(c.model_dump(include=OIL_LAW_KEYS | thermal_oil.LIMITS.keys()))
+        common["inlet_temperature"] = Ti
         given = c.model_fields_set
         if c.datasheet:
             sheet: dict[str, Any] = dict(OILS[c.oil]) if c.oil is not None else {}
@@ -83,7 +88,6 @@ class ThermalBuilders:
         return ThermalLubricant(
             **common,
             viscosity=c.viscosity,
-            viscosity_temperature_coefficient=(c.viscosity_temperature_coefficient),
             density=c.density,
             density_temperature=Ti,
             pressure_viscosity=c.pressure_viscosity,
@@ -91,24 +95,36 @@ class ThermalBuilders:
             _checked=checked,
         )
 
+    def _check_thermal_oil_keys(self) -> None:
+        """Check the ranges of the thermal oil's keys given in ``[lubricant]``: of a case
+        whose thermal oil is not built (where it is, its constructor checks them)."""
+        c, limits = self.lubricant_config, thermal_oil.LIMITS
+        _check_given(c.model_dump(include=c.model_fields_set & limits.keys()), limits)
+
+    def _thermal_properties_given(self, name: str) -> dict[str, float]:
+        """The thermal properties ``[materials.<name>]`` gives, by argument name."""
+        found = {k: getattr(self.materials[name], MATERIAL_KEYS.get(k, k)) for k in LIMITS}
+        return {k: v for k, v in found.items() if v is not None}
+
+    def _check_thermal_properties(self, name: str, built: dict | None) -> None:
+        """Check the ranges of the thermal properties of ``[materials.<name>]`` once:
+        ``built`` (a thermal case) and all three known, by building them into ``built``;
+        else the given ones."""
+        given = self._thermal_properties_given(name)
+        if built is None or {**THERMAL_MATERIALS.get(name, {}), **given}.keys() != LIMITS.keys():
+            _check_given(given, LIMITS)
+        else:
+            built[name] = self._new_thermal_properties(name)
+
     def _new_thermal_properties(self, name: str) -> ThermalProperties:
         """k, ρ, c of ``[materials.<name>]`` (steel, dlc and wcc default to the literature
         values of :mod:`tribodyn.physics.oils`)."""
-        m = self.materials[name]
-        d = dict(THERMAL_MATERIALS.get(name, {}))
-        for key, val in (
-            ("conductivity", m.thermal_conductivity),
-            ("density", m.density),
-            ("specific_heat", m.specific_heat),
-        ):
-            if val is not None:
-                d[key] = val
-        missing = [k for k in ("conductivity", "density", "specific_heat") if k not in d]
+        d = {**THERMAL_MATERIALS.get(name, {}), **self._thermal_properties_given(name)}
+        missing = [k for k in LIMITS if k not in d]
         if missing:
-            names = {"conductivity": "thermal_conductivity"}
             raise InputError(
                 "; ".join(
-                    f"materials.{name}.{names.get(k, k)}: required for the thermal model"
+                    f"materials.{name}.{MATERIAL_KEYS.get(k, k)}: required for the thermal model"
                     for k in missing
                 )
             )

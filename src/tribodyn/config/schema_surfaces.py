@@ -66,12 +66,10 @@ class LubricantConfig(Section):
     density_15: float | None = _q(
         None, "kg/m³", "density at 15 °C (datasheet)", gt=500.0, le=2000.0
     )
-    thermal_expansion: float = _q(
+    thermal_expansion: float = _arg(
         _OIL_DEFAULTS["thermal_expansion"],
-        "1/K",
+        L.THERMAL_EXPANSION,
         "thermal expansion of the density ε",
-        ge=0.0,
-        le=3e-3,
     )
     inlet_temperature_c: float | None = _q(
         None,
@@ -81,33 +79,23 @@ class LubricantConfig(Section):
         gt=-40.0,
         le=250.0,
     )
-    viscosity_temperature_coefficient: float | None = _q(
+    viscosity_temperature_coefficient: float | None = _arg(
         None,
-        "1/K",
+        L.VISCOSITY_TEMPERATURE,
         "β = −d ln μ/dT at the inlet temperature (viscosity form with numerics.thermal)",
-        gt=0.0,
-        le=0.5,
     )
-    thermal_conductivity: float | None = _q(
+    thermal_conductivity: float | None = _arg(
         None,
-        "W/(m K)",
+        L.OIL_CONDUCTIVITY,
         "oil conductivity at the inlet temperature (absent: Cragoe's estimate from the density)",
-        gt=0.01,
-        le=10.0,
     )
-    specific_heat: float | None = _q(
-        None,
-        "J/(kg K)",
-        "oil specific heat at the inlet temperature (absent: Cragoe)",
-        gt=100.0,
-        le=1e4,
+    specific_heat: float | None = _arg(
+        None, L.OIL_SPECIFIC_HEAT, "oil specific heat at the inlet temperature (absent: Cragoe)"
     )
-    limiting_shear_temperature_coefficient: float = _q(
+    limiting_shear_temperature_coefficient: float = _arg(
         _OIL_DEFAULTS["limiting_shear_temperature_coefficient"],
-        "1/K",
+        L.LIMITING_SHEAR_TEMPERATURE,
         "c_L: τ_L falls by the factor 1 − c_L (T − T_inlet) (0: temperature independent)",
-        ge=0.0,
-        le=0.05,
     )
 
     @property
@@ -162,16 +150,14 @@ class MaterialConfig(Section):
         "pressure coefficient ς of the boundary shear strength of its asperities (paper Eq. 17)",
     )
     label: str | None = _q(None, "", "display name (default: the table key)", min_length=1)
-    thermal_conductivity: float | None = _q(
+    thermal_conductivity: float | None = _arg(
         None,
-        "W/(m K)",
+        L.SOLID_CONDUCTIVITY,
         "thermal conductivity k (numerics.thermal; steel, dlc, wcc have literature defaults)",
-        ge=1e-3,
-        le=1e4,
     )
-    density: float | None = _q(None, "kg/m³", "density ρ (numerics.thermal)", ge=10.0, le=1e5)
-    specific_heat: float | None = _q(
-        None, "J/(kg K)", "specific heat c (numerics.thermal)", ge=10.0, le=1e5
+    density: float | None = _arg(None, L.SOLID_DENSITY, "density ρ (numerics.thermal)")
+    specific_heat: float | None = _arg(
+        None, L.SOLID_SPECIFIC_HEAT, "specific heat c (numerics.thermal)"
     )
 
 

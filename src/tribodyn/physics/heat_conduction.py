@@ -24,9 +24,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import InputError, check_positive, check_range
+from .._validation import InputError, check_positive
+from . import limits as L
 
-__all__ = ["ThermalProperties", "ThermalBody", "DepthGrid", "depth_grid"]
+__all__ = ["ThermalProperties", "ThermalBody", "DepthGrid", "depth_grid", "LIMITS"]
+
+#: the ranges :class:`ThermalProperties` checks, by argument
+LIMITS = {
+    "conductivity": L.SOLID_CONDUCTIVITY,
+    "density": L.SOLID_DENSITY,
+    "specific_heat": L.SOLID_SPECIFIC_HEAT,
+}
 
 
 @dataclass(frozen=True)
@@ -38,9 +46,7 @@ class ThermalProperties:
     specific_heat: float
 
     def __post_init__(self):
-        check_range("conductivity", self.conductivity, 1e-3, 1e8, unit="W/(m K)")
-        check_range("density", self.density, 10.0, 1e5, unit="kg/m³")
-        check_range("specific_heat", self.specific_heat, 10.0, 1e5, unit="J/(kg K)")
+        L.check_fields(self, LIMITS)
 
     @property
     def volumetric_heat_capacity(self) -> float:

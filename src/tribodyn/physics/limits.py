@@ -42,6 +42,14 @@ __all__ = [
     "LIMITING_SHEAR_STRESS",
     "BOUNDARY_SHEAR_COEFFICIENT",
     "BOUNDARY_SHEAR_STRENGTH",
+    "THERMAL_EXPANSION",
+    "VISCOSITY_TEMPERATURE",
+    "OIL_CONDUCTIVITY",
+    "OIL_SPECIFIC_HEAT",
+    "LIMITING_SHEAR_TEMPERATURE",
+    "SOLID_CONDUCTIVITY",
+    "SOLID_DENSITY",
+    "SOLID_SPECIFIC_HEAT",
     "MASS",
     "SPRING_RATE",
     "SPRING_PRELOAD",
@@ -229,6 +237,20 @@ BOUNDARY_SHEAR_COEFFICIENT = Limit(
     "", ge=0.0, le=2.0, why="ς (a friction coefficient of the asperity tips) below 2"
 )
 BOUNDARY_SHEAR_STRENGTH = Limit("Pa", ge=0.0, le=1e9, why="τ₀ of boundary films is ~2 MPa")
+
+# -- thermal oil and solids (thermal EHL) ----------------------------------------------
+THERMAL_EXPANSION = Limit("1/K", ge=0.0, le=3e-3, why="ε of oils is 6–9e-4 1/K (Yang & Wen 1990)")
+VISCOSITY_TEMPERATURE = Limit("1/K", gt=0.0, le=0.5, why="β = −d ln μ/dT of oils: 0.01–0.1 1/K")
+OIL_CONDUCTIVITY = Limit(
+    "W/(m K)", ge=0.01, le=1e8, why="oils 0.1–0.2 (Larsson & Andersson 2000); 1e8: isothermal film"
+)
+OIL_SPECIFIC_HEAT = Limit("J/(kg K)", ge=100.0, le=1e4, why="oils: 1.7–2.5 kJ/(kg K) (Cragoe 1929)")
+LIMITING_SHEAR_TEMPERATURE = Limit("1/K", ge=0.0, le=0.05, why="τ_L halves over ≥ 10 K")
+SOLID_CONDUCTIVITY = Limit(
+    "W/(m K)", ge=1e-3, le=1e8, why="aerogels 1e-3 to diamond ~2000; 1e8: an isothermal solid"
+)
+SOLID_DENSITY = Limit("kg/m³", ge=10.0, le=1e5, why="foams to osmium (22 600 kg/m³)")
+SOLID_SPECIFIC_HEAT = Limit("J/(kg K)", ge=10.0, le=1e5, why="solids: 0.1–2 kJ/(kg K)")
 
 # -- valvetrain ------------------------------------------------------------------------
 MASS = Limit(

@@ -63,13 +63,13 @@ Equations (T in K, p in Pa, SI unless stated):
 from __future__ import annotations
 
 import math
-from dataclasses import InitVar, dataclass, field, replace
+from dataclasses import InitVar, dataclass, field, fields, replace
 
 import numpy as np
 
-from .._validation import InputError, check_bool, check_positive, check_range
+from .._validation import InputError, check_bool, check_choice, check_positive, check_range
+from . import limits as L
 from . import typical
-from .limits import DENSITY, PRESSURE_VISCOSITY, VISCOSITY, check_fields, unchecked
 from .lubricant import LIMITS as LUBRICANT_LIMITS
 from .lubricant import (
     ROELANDS_LN_MU_INF,
@@ -99,6 +99,14 @@ ROELANDS_T_INF = 138.0
 #: Larsson & Andersson (2000) pressure law of the conductivity, k ∝ 1 + a p/(1 + b p) [1/Pa].
 CONDUCTIVITY_PRESSURE = (1.72e-9, 0.54e-9)
 _ZERO_C = 273.15
+#: the ranges of the thermal oil's own arguments (the isothermal oil's: LUBRICANT_LIMITS)
+LIMITS = {
+    "viscosity_temperature_coefficient": L.VISCOSITY_TEMPERATURE,
+    "thermal_expansion": L.THERMAL_EXPANSION,
+    "thermal_conductivity": L.OIL_CONDUCTIVITY,
+    "specific_heat": L.OIL_SPECIFIC_HEAT,
+    "limiting_shear_temperature_coefficient": L.LIMITING_SHEAR_TEMPERATURE,
+}
 
 
 def celsius(T):
@@ -198,14 +206,15 @@ class ThermalLubricant:
     _checked: InitVar[Lubricant | None] = None
 
     def __post_init__(self, _checked: Lubricant | None):
-        check_fields(  # the isothermal Lubricant's ranges (its own density range below)
+        L.check_fields(  # the isothermal Lubricant's ranges (unless it checked them) and its own
             self,
             {
                 k: lim
                 for k, lim in LUBRICANT_LIMITS.items()
-                if k != "density" and (_checked is None or getattr(self, k) != getattr(_checked, k))
-            },
-            optional=("viscosity", "pressure_viscosity"),
+                if _checked is None or getattr(self, k) != getattr(_checked, k)
+            }
+            | LIMITS,
+            optional=tuple(f.name for f in fields(self) if f.default is None),  # may be absent
         )
         object.__setattr__(self, "compressible", check_bool("compressible", self.compressible))
         Ti = check_range("inlet_temperature", self.inlet_temperature, 200.0, 600.0, unit="K")
@@ -228,11 +237,8 @@ class ThermalLubricant:
             c["form"] = "datasheet"
             c["A"], c["B"] = walther_constants(n40, n100)
         elif all(v is not None for v in inlet) and all(v is None for v in sheet):
-            mu = self.viscosity  # in range (checked above)
-            assert mu is not None
-            beta = check_range(
-                "viscosity_temperature_coefficient", inlet[1], 0.0, 0.5, lo_open=True, unit="1/K"
-            )
+            mu, beta = inlet  # in range (checked above)
+            assert mu is not None and beta is not None
             c["form"] = "inlet"
             c["S0"] = beta * (Ti - ROELANDS_T_INF) / roelands_log_factor(mu)
             c["mu_i"] = mu
@@ -242,20 +248,8 @@ class ThermalLubricant:
                 "(datasheet) or viscosity and viscosity_temperature_coefficient "
                 "(inlet form), not a mix"
             )
-        check_range("density", self.density, 300.0, 3000.0, unit="kg/m³")
         check_range("density_temperature", self.density_temperature, 200.0, 600.0, unit="K")
-        check_range("thermal_expansion", self.thermal_expansion, 0.0, 3e-3, unit="1/K")
-        check_range(
-            "limiting_shear_temperature_coefficient",
-            self.limiting_shear_temperature_coefficient,
-            0.0,
-            0.05,
-            unit="1/K",
-        )
-        if self.viscosity_model not in ("roelands", "barus"):
-            raise InputError(
-                f"viscosity_model must be 'roelands' or 'barus' (got {self.viscosity_model!r})"
-            )
+        check_choice("viscosity_model", self.viscosity_model, ("roelands", "barus"))
         object.__setattr__(self, "_c", c)
         mu_i = float(self.ambient_viscosity(Ti))
         if not mu_i > ROELANDS_MU_INF:
@@ -263,14 +257,14 @@ class ThermalLubricant:
                 f"viscosity at the inlet temperature {mu_i:.3g} Pa·s is below "
                 "Roelands' limit 6.3e-5 Pa·s (oil too thin or too hot)"
             )
-        mu_max = VISCOSITY.le
+        mu_max = L.VISCOSITY.le
         assert mu_max is not None  # the lubricant model's upper viscosity bound
         if not mu_i <= mu_max and c["form"] == "datasheet":  # the inlet form's: μ, checked
             coldest = self._temperature_where(lambda T: self.ambient_viscosity(T) - mu_max)
             raise InputError(
                 f"inlet_temperature must be >= {coldest:.5g} K ({coldest - _ZERO_C:.4g} °C) "
                 f"for this oil (got {Ti:.6g} K = {Ti - _ZERO_C:.4g} °C): its viscosity there "
-                f"is {mu_i:.3g} Pa·s, above the {VISCOSITY.le:g} Pa·s the lubricant model "
+                f"is {mu_i:.3g} Pa·s, above the {L.VISCOSITY.le:g} Pa·s the lubricant model "
                 "allows (near the pour point)"
             )
         c["mu_i"] = mu_i
@@ -295,11 +289,10 @@ class ThermalLubricant:
         )
         ti, k_i, c_i = Ti - _ZERO_C, self.thermal_conductivity, self.specific_heat
         if k_i is None:  # Cragoe's estimates from the specific gravity s at 15 °C
-            k_i = 0.1172 * (1.0 - 5.4e-4 * ti) / s
+            k_i = L.OIL_CONDUCTIVITY.check("thermal_conductivity", 0.1172 * (1 - 5.4e-4 * ti) / s)
         if c_i is None:
-            c_i = (1685.0 + 3.39 * ti) / math.sqrt(s)
-        c["k_i"] = check_range("thermal_conductivity", k_i, 0.01, 1e8, unit="W/(m K)")
-        c["cp_i"] = check_range("specific_heat", c_i, 100.0, 1e4, unit="J/(kg K)")
+            c_i = L.OIL_SPECIFIC_HEAT.check("specific_heat", (1685.0 + 3.39 * ti) / math.sqrt(s))
+        c["k_i"], c["cp_i"] = k_i, c_i
         self._check_isothermal(c, Ti, _checked)
 
     def _check_isothermal(self, c: dict, Ti: float, checked: Lubricant | None) -> None:
@@ -307,13 +300,13 @@ class ThermalLubricant:
         above), unless ``checked`` has them: an estimated α and the density ρ(0, Tᵢ); keep
         that oil (:meth:`isothermal`)."""
         iso = self._isothermal_values(Ti)
-        derived = {"density": DENSITY}
+        derived = {"density": L.DENSITY}
         if self.pressure_viscosity is None:
-            derived["pressure_viscosity"] = PRESSURE_VISCOSITY
+            derived["pressure_viscosity"] = L.PRESSURE_VISCOSITY
         for k, lim in derived.items():
             if checked is None or iso[k] != getattr(checked, k):
                 lim.check(k, iso[k])
-        c["isothermal"] = unchecked(Lubricant, **iso)
+        c["isothermal"] = L.unchecked(Lubricant, **iso)
 
     def _temperature_where(self, f) -> float:
         """The temperature in [200, 600] K where ``f`` (falling with T) crosses 0."""

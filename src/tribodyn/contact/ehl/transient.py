@@ -11,7 +11,7 @@ import numpy as np
 from ..._threads import one_blas_thread
 from ..._validation import InputError, check_positive
 from ...physics.asperity import Roughness
-from ...physics.limits import EHL_NODES_TRANSIENT, MAX_SUBSTEPS
+from ...physics.limits import EHL_NODES_TRANSIENT, MAX_SUBSTEPS, unchecked
 from ...physics.lubricant import Lubricant
 from ...physics.materials import BodyPair
 from .grid import Grid, layout
@@ -344,9 +344,10 @@ class TransientEHL:
 
     @contextmanager
     def _max_iter(self, n: int):
-        """Temporarily cap the Newton iterations of a solve."""
+        """Temporarily cap the Newton iterations of a solve (n ≥ 1: the capped options are
+        in range, not checked again)."""
         opts = self.opts
-        self.opts = replace(opts, max_iter=min(opts.max_iter, n))
+        self.opts = unchecked(EHLOptions, **{**opts.__dict__, "max_iter": min(opts.max_iter, n)})
         try:
             yield
         finally:
