@@ -6,7 +6,9 @@ case-file schema checks (a field with ``gt``/``ge``/``lt``/``le`` given in the f
 schema does not validate defaults). Each value is checked once when the number of checks
 equals the number of distinct (name, value) pairs checked (equal values of one name in
 different sections, e.g. two surface sets' ``rms``, count as one value: ``checked_twice``
-lists them too).
+lists them too). A key named otherwise than its constructor's argument
+(``numerics.thermal_x_nodes`` → ``x_nodes``) is counted under the argument's name, from
+the build's argument → key mappings.
 
 Run: ``python benchmarks/count_range_checks.py [case.toml ...]`` (default: the bundled
 paper case, its thermal variant with a datasheet oil, and the paper case made thermal with
@@ -26,11 +28,22 @@ from pathlib import Path
 from pydantic import BaseModel
 
 import tribodyn._validation as V
+from tribodyn.config.build import SET_KEYS, THERMAL_KEYS
 from tribodyn.config.case import CASES_DIR, DEFAULT_CASE, Case, load_case
+from tribodyn.config.case_thermal import MATERIAL_KEYS
 from tribodyn.config.schema_fields import Section
 from tribodyn.physics import limits as L
 
 _BOUNDS = ("gt", "ge", "lt", "le")
+#: per section, the argument name of each key named otherwise (the build's mappings)
+_ARGUMENTS = {
+    section: {key.rsplit(".", 1)[-1]: arg for arg, key in keys.items()}
+    for section, keys in (
+        ("Numerics", THERMAL_KEYS),
+        ("SurfaceSetConfig", SET_KEYS),
+        ("MaterialConfig", MATERIAL_KEYS),
+    )
+}
 
 
 def _schema_checks(model: BaseModel, out: Counter) -> None:
@@ -43,7 +56,8 @@ def _schema_checks(model: BaseModel, out: Counter) -> None:
         if value is not None and any(
             getattr(m, k, None) is not None for m in fi.metadata for k in _BOUNDS
         ):
-            out[(name, repr(value))] += 1
+            arg = _ARGUMENTS.get(type(model).__name__, {}).get(name, name)
+            out[(arg, repr(value))] += 1
     for name in type(model).model_fields:
         value = getattr(model, name)
         items = value.values() if isinstance(value, dict) else value

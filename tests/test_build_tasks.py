@@ -102,7 +102,8 @@ def test_the_built_case_holds_materials_strengths_and_wear():
     assert (dlc.wear_coefficient, dlc.wear_source) == (2.5e-17, "case [strength.dlc]")
     assert steel.wear_coefficient == TYPICAL_WEAR_COEFFICIENT["steel"]
     assert steel.wear_source.startswith("assumed")
-    assert built.thermal_lubricant is None and built.thermal_options is None
+    assert built.thermal_lubricant is None  # not thermal; its [numerics] thermal options:
+    assert built.thermal_options.x_nodes == data["numerics"]["thermal_x_nodes"]
     with pytest.raises(InputError, match="lubricant.inlet_temperature_c"):
         built.thermal_oil()
     data["lubricant"] |= {"inlet_temperature_c": 90.0, "viscosity_temperature_coefficient": 0.03}

@@ -12,8 +12,11 @@ import pytest
 
 from tribodyn import InputError, _validation
 from tribodyn.config import schema, schema_surfaces, schema_valvetrain
+from tribodyn.config.build import THERMAL_KEYS as THERMAL_ARGUMENT_KEYS
+from tribodyn.config.build import build
 from tribodyn.config.case import DEFAULT_CASE, Case, set_dotted
 from tribodyn.config.schema_fields import Section
+from tribodyn.contact.ehl import thermal_field
 from tribodyn.physics import heat_conduction, thermal_oil
 from tribodyn.physics import limits as L
 
@@ -369,3 +372,63 @@ def test_a_thermal_key_out_of_range_is_reported_beside_a_schema_problem():
         "lubricant.specific_heat",
         "materials.dlc.thermal_conductivity",
     ]
+
+
+#: the [numerics] keys of ThermalOptions, by argument (the build's mapping)
+NUMERICS_THERMAL = {arg: key.split(".", 1)[1] for arg, key in THERMAL_ARGUMENT_KEYS.items()}
+
+
+def test_the_thermal_numerics_keys_record_the_thermal_options_ranges():
+    """numerics.thermal_* record the ranges ThermalOptions checks (one Limit each), not
+    ranges of their own."""
+    ranged = _ranged(schema.Numerics)
+    assert set(NUMERICS_THERMAL.values()) <= set(ranged)
+    for arg, key in NUMERICS_THERMAL.items():
+        limit = thermal_field._LIMITS[arg]
+        assert ranged[key] == {"unit": limit.unit, "range": limit.constraints()}, key
+
+
+@pytest.mark.parametrize("arg", NUMERICS_THERMAL)
+def test_a_thermal_numerics_bound_is_accepted_by_the_case_and_the_solver(arg):
+    """The bound of each numerics.thermal_* key is inside the one range both use."""
+    limit = thermal_field._LIMITS[arg]
+    top = limit.le if limit.le is not None else limit.lt
+    value = int(top) if limit.integer else top
+    data = _paper_data()
+    set_dotted(data, f"numerics.{NUMERICS_THERMAL[arg]}", value)
+    built = build(Case.from_dict(data, base_dir=DEFAULT_CASE.parent))
+    assert getattr(built.thermal_options, arg) == value
+
+
+@pytest.mark.parametrize("thermal", [False, True], ids=["isothermal", "thermal"])
+def test_each_thermal_numerics_key_is_checked_once(monkeypatch, thermal):
+    """Each numerics.thermal_* value given is range-checked once, by ThermalOptions (not
+    by the schema too), also in a case that is not thermal."""
+    values = {"x_nodes": 80, "film_nodes": 9, "solid_nodes": 14, "step_iter": 3, "tol": 0.04}
+    data = _thermal_data() if thermal else _paper_data()
+    for arg, value in values.items():
+        data["numerics"][NUMERICS_THERMAL[arg]] = value
+    seen: Counter = Counter()
+    check = L.Limit.check
+
+    def counting(self, name, value):
+        seen[name, value] += 1
+        return check(self, name, value)
+
+    def counted(checker):
+        def counting_checker(name, value, *args, **kw):
+            seen[name, value] += 1
+            return checker(name, value, *args, **kw)
+
+        return counting_checker
+
+    monkeypatch.setattr(L.Limit, "check", counting)
+    for name in ("check_int", "check_positive", "check_range"):  # the checks of the solver
+        if hasattr(thermal_field, name):
+            monkeypatch.setattr(thermal_field, name, counted(getattr(thermal_field, name)))
+    case = Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    for arg, value in values.items():
+        fi = schema.Numerics.model_fields[NUMERICS_THERMAL[arg]]
+        by_schema = any(getattr(m, b, None) is not None for m in fi.metadata for b in L_BOUNDS)
+        assert seen[arg, value] + by_schema == 1, arg
+        assert getattr(build(case).thermal_options, arg) == value

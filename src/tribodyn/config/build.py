@@ -32,7 +32,7 @@ from pydantic import ValidationError
 from .._validation import InputError
 from ..contact.ehl.options import EHLOptions
 from ..physics.limits import RangeError
-from .case_thermal import MATERIAL_KEYS
+from .case_thermal import MATERIAL_KEYS, NUMERICS_KEYS
 from .errors import CaseKeyError, Problems, in_file_order, out_of_range
 
 if TYPE_CHECKING:
@@ -63,8 +63,8 @@ __all__ = [
 
 T = TypeVar("T")
 
-#: Constructor arguments whose case key is not ``<section>.<argument>``: of the
-#: valvetrain (absolute keys) and of a surface set's objects (keys within the set).
+#: Constructor arguments whose case key is not ``<section>.<argument>``: of the valvetrain
+#: and ThermalOptions (absolute keys) and of a surface set's objects (keys within the set).
 VALVETRAIN_KEYS = {"cam_width": "cam.width"}
 SET_KEYS = {
     "thickness": "coating_thickness",
@@ -72,6 +72,7 @@ SET_KEYS = {
     "rms": "roughness.rms",
     "summit_radius": "roughness.summit_radius",
 }
+THERMAL_KEYS = {a: f"numerics.{k}" for a, k in NUMERICS_KEYS.items()}
 
 #: The private constructors of :class:`~tribodyn.config.Case` (its own and its builder
 #: mixins'), called by :func:`collect` and the :class:`BuiltCase`. Everywhere else the
@@ -127,8 +128,9 @@ class BuiltSet:
 class BuiltCase:
     """Every object of a validated case, built once by :func:`build` (module text).
 
-    ``thermal_lubricant`` is None unless the case is thermal or its oil a datasheet,
-    ``thermal_options`` unless it is thermal;
+    ``thermal_lubricant`` is None unless the case is thermal or its oil a datasheet;
+    ``thermal_options`` are those of ``[numerics]`` (also of a case that is not thermal:
+    its single-contact studies);
     ``dynamics_options`` are the keyword arguments of
     :func:`~tribodyn.valvetrain.simulate_valvetrain` (engine speed and ``[numerics]``);
     ``materials`` the :class:`~tribodyn.Material` (E, ν) and ``material_strengths`` the
@@ -142,7 +144,7 @@ class BuiltCase:
     thermal_lubricant: ThermalLubricant | None
     valvetrain: ValvetrainParameters | FlexibleValvetrain
     options: EHLOptions
-    thermal_options: ThermalOptions | None
+    thermal_options: ThermalOptions
     tappet_rotation: TappetRotation
     dynamics_options: dict[str, Any]
     sets: dict[str, BuiltSet] = field(default_factory=dict)
@@ -180,10 +182,8 @@ class BuiltCase:
         return oil if oil is not None else self.case._new_thermal_lubricant()
 
     def thermal_solver_options(self) -> ThermalOptions:
-        """:attr:`thermal_options`, or (a case that is not thermal) built now from
-        ``[numerics]``."""
-        opts = self.thermal_options
-        return opts if opts is not None else self.case._new_thermal_options()
+        """:attr:`thermal_options`."""
+        return self.thermal_options
 
     def thermal_bodies_of(self, surface: SurfaceSet) -> tuple[ThermalBody, ThermalBody]:
         """(cam, tappet) :class:`~tribodyn.ThermalBody` of ``surface``: the built ones of
@@ -262,6 +262,7 @@ def collect(
         lubricant = attempt("lubricant", case._new_lubricant)
     valvetrain = attempt("valvetrain", case._new_valvetrain_parameters, VALVETRAIN_KEYS)
     options = attempt("numerics", case._new_ehl_options)
+    thermal_options = attempt("numerics", case._new_thermal_options, THERMAL_KEYS)
     if n.thermal and not case.lubricant_config.datasheet:  # takes the checked μ, α, τ_E, …
         thermal_lubricant = attempt(
             "lubricant", functools.partial(case._new_thermal_lubricant, lubricant)
@@ -329,14 +330,13 @@ def collect(
     material_strengths = attempt(
         "strength", lambda: {k: case._new_material_strength(k) for k in case.materials}
     )
-    thermal_options = attempt("numerics", case._new_thermal_options) if n.thermal else None
     cam = attempt("cam", case._build_cam)
     rotation = attempt("tappet_rotation", functools.partial(case._new_tappet_rotation, cam))
     if problems:
         return None, in_file_order(type(case), problems)
     assert cam is not None and lubricant is not None and valvetrain is not None
     assert rotation is not None
-    assert options is not None
+    assert options is not None and thermal_options is not None
     assert material_strengths is not None
     return (
         BuiltCase(

@@ -32,6 +32,11 @@ OIL_LAW_KEYS = {
 }
 #: ``[materials.<name>]`` key of each argument of :class:`ThermalProperties` not named so
 MATERIAL_KEYS = {"conductivity": "thermal_conductivity"}
+#: ``[numerics]`` key of each argument of :class:`ThermalOptions`
+NUMERICS_KEYS = {a: f"thermal_{a}" for a in ("x_nodes", "film_nodes", "solid_nodes")} | {
+    "step_iter": "thermal_iterations",
+    "tol": "thermal_tol",
+}
 
 
 def _check_given(given: dict[str, Any], limits: dict[str, Limit]) -> None:
@@ -157,11 +162,4 @@ class ThermalBuilders:
 
     def _new_thermal_options(self) -> ThermalOptions:
         """:class:`~tribodyn.contact.ehl.thermal.ThermalOptions` from ``[numerics]``."""
-        n = self.numerics
-        return ThermalOptions(
-            x_nodes=n.thermal_x_nodes,
-            film_nodes=n.thermal_film_nodes,
-            solid_nodes=n.thermal_solid_nodes,
-            step_iter=n.thermal_iterations,
-            tol=n.thermal_tol,
-        )
+        return ThermalOptions(**{a: getattr(self.numerics, k) for a, k in NUMERICS_KEYS.items()})

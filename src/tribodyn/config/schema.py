@@ -377,7 +377,7 @@ class Numerics(Section):
         "give the film law, needed to the coupling tolerance only; the reported EHL "
         "keeps numerics.n); at most numerics.n when that is set; 0 = as numerics.n",
         ge=0,
-        le=4096,
+        le=L.EHL_NODES_TRANSIENT.le,
     )
     coupling_supply_film: float = _q(
         SUPPLY_FILM,
@@ -402,28 +402,24 @@ class Numerics(Section):
         "solids and coatings) along the cycle, beside the "
         "isothermal one",
     )
-    thermal_x_nodes: int = _q(
-        _THERMAL_DEFAULTS["x_nodes"], "", "thermal grid nodes along the contact", ge=16, le=1024
+    thermal_x_nodes: int = _arg(
+        _THERMAL_DEFAULTS["x_nodes"], L.THERMAL_X_NODES, "thermal grid nodes along the contact"
     )
-    thermal_film_nodes: int = _q(
-        _THERMAL_DEFAULTS["film_nodes"], "", "thermal nodes across the film (odd)", ge=3, le=41
+    thermal_film_nodes: int = _arg(
+        _THERMAL_DEFAULTS["film_nodes"], L.THERMAL_FILM_NODES, "thermal nodes across the film (odd)"
     )
-    thermal_solid_nodes: int = _q(
-        _THERMAL_DEFAULTS["solid_nodes"], "", "thermal depth nodes per solid", ge=6, le=200
+    thermal_solid_nodes: int = _arg(
+        _THERMAL_DEFAULTS["solid_nodes"], L.THERMAL_SOLID_NODES, "thermal depth nodes per solid"
     )
-    thermal_iterations: int = _q(
+    thermal_iterations: int = _arg(
         _THERMAL_DEFAULTS["step_iter"],
-        "",
+        L.THERMAL_STEP_ITER,
         "pressure ↔ temperature iterations per transient step (1: staggered)",
-        ge=1,
-        le=50,
     )
-    thermal_tol: float = _q(
+    thermal_tol: float = _arg(
         _THERMAL_DEFAULTS["tol"],
-        "K",
+        L.THERMAL_TOL,
         "temperature change at which the thermal fixed-point iteration stops",
-        gt=0.0,
-        le=10.0,
     )
 
 

@@ -91,6 +91,14 @@ __all__ = [
     "NEWTON_MAX_ITER",
     "MAX_SUBSTEPS",
     "GREENWOOD_TRIPP_ORDER",
+    "THERMAL_X_NODES",
+    "THERMAL_FILM_NODES",
+    "THERMAL_SOLID_NODES",
+    "THERMAL_DEPTH",
+    "THERMAL_TOL",
+    "THERMAL_MAX_ITER",
+    "THERMAL_STEP_ITER",
+    "THERMAL_RELAXATION",
 ]
 
 #: ln μ∞ of Roelands' law, μ∞ = exp(−9.67) = 6.31e-5 Pa·s; μ₀ must exceed μ∞ (paper Eq. 3).
@@ -396,3 +404,13 @@ GREENWOOD_TRIPP_ORDER = Limit(
     le=10.0,
     why="the theory uses n = 0…5/2; orders up to 10 are verified against quadrature",
 )
+
+# -- thermal EHL (ThermalOptions) -------------------------------------------------------
+THERMAL_X_NODES = Limit("", ge=16, le=4096, integer=True, why="along x, as EHL_NODES_TRANSIENT")
+THERMAL_FILM_NODES = Limit("", ge=3, le=41, integer=True, why="across the film (made odd)")
+THERMAL_SOLID_NODES = Limit("", ge=6, le=200, integer=True, why="depth nodes per solid")
+THERMAL_DEPTH = Limit("", ge=0.05, le=20.0, why="solid depth in EHL domain lengths")
+THERMAL_TOL = Limit("K", gt=0.0, le=10.0, why="coarser misses the film's 10–100 K rise in a cam")
+THERMAL_MAX_ITER = Limit("", ge=1, le=10000, integer=True, why="steady fixed-point iterations")
+THERMAL_STEP_ITER = Limit("", ge=1, le=100, integer=True, why="iterations per transient step")
+THERMAL_RELAXATION = Limit("", gt=0.0, le=1.0, why="under-relaxation of the temperature")

@@ -12,7 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..._validation import InputError, check_bool, check_int, check_positive, check_range
+from ..._validation import check_bool
+from ...physics import limits as L
 from ...physics.asperity import Roughness
 from ...physics.film_thermal import FilmFlow, film_flow
 from ...physics.friction import boundary_shear_stress
@@ -55,21 +56,23 @@ class ThermalOptions:
     compression_heating: bool = True
 
     def __post_init__(self):
-        for name, lo, hi in (
-            ("x_nodes", 16, 4096),
-            ("film_nodes", 3, 41),
-            ("solid_nodes", 6, 200),
-            ("max_iter", 1, 10000),
-            ("step_iter", 1, 100),
-        ):
-            v = check_int(name, getattr(self, name))
-            if not lo <= v <= hi:
-                raise InputError(f"{name} must be in [{lo}, {hi}] (got {v})")
+        # the case file's [numerics] thermal_* keys are checked here
+        L.check_fields(self, _LIMITS)
         check_bool("shear_heating", self.shear_heating)
         check_bool("compression_heating", self.compression_heating)
-        check_range("depth", self.depth, 0.05, 20.0)
-        check_positive("tol", self.tol, "K")
-        check_range("relaxation", self.relaxation, 0.0, 1.0, lo_open=True)
+
+
+#: Range of every numeric field of ThermalOptions (physics.limits).
+_LIMITS = {
+    "x_nodes": L.THERMAL_X_NODES,
+    "film_nodes": L.THERMAL_FILM_NODES,
+    "solid_nodes": L.THERMAL_SOLID_NODES,
+    "depth": L.THERMAL_DEPTH,
+    "tol": L.THERMAL_TOL,
+    "max_iter": L.THERMAL_MAX_ITER,
+    "step_iter": L.THERMAL_STEP_ITER,
+    "relaxation": L.THERMAL_RELAXATION,
+}
 
 
 class FrozenTemperatureOil:
