@@ -493,13 +493,11 @@ class CompiledLumped:
             f_period=float(period or 0.0),
             film_state=1.0 if state else 0.0,
             width=trib.width if state else 0.0,
-            eta=trib.lubricant.viscosity if state else 0.0,
-            alpha=trib.lubricant.pressure_viscosity if state else 0.0,
+            eta=trib._eta if state else 0.0,
+            alpha=trib._alpha if state else 0.0,
             e_prime=trib.e_prime if state else 0.0,
             supply=trib.supply_film if state else 0.0,
-            sq=3.0 * math.sqrt(2.0) * math.pi * trib.lubricant.viscosity * trib.width
-            if state
-            else 0.0,
+            sq=trib._sq if state else 0.0,
             growth_limited=1.0 if state and trib.growth_limited else 0.0,
         )
         par = LumpedParams(*(float(v) for v in par))
