@@ -36,6 +36,7 @@ def test_coupling_converges(coupled):
     assert rms[-1] < COUPLING_RMS_TOL * peak
     assert c.history[-1].max_force_change_N < COUPLING_MAX_TOL * peak
     assert rms[-1] < rms[0] / 3  # the iteration contracts
+    assert "event_intervals" in c.implicit.stats  # its dynamics took the compiled path
 
 
 def test_coupled_dynamics_agree_with_the_explicit_run_in_the_event(coupled):

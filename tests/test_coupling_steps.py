@@ -26,6 +26,7 @@ from tribodyn.cycle.coupling import (
 )
 from tribodyn.cycle.driver import ehl_for_set
 from tribodyn.physics.materials import reduced_modulus
+from tribodyn.valvetrain import dynamics as dynamics_module
 from tribodyn.valvetrain.dynamics import simulate_valvetrain
 
 ANGLES = np.arange(0.0, 360.0, 0.5)  # cam degrees; the event starts on a node (110°)
@@ -96,7 +97,7 @@ def test_the_step_of_entrainment_is_on_an_output_sample(poly_6000):
     assert dyn.entrainment_speed[i] > 5.0 * dyn.entrainment_speed[i - 1]
 
 
-def test_the_film_grows_no_faster_than_its_oil_supply_at_the_step(poly_6000):
+def test_the_film_grows_no_faster_than_its_oil_supply_at_the_step(poly_6000, monkeypatch):
     case, s, dyn, inputs, first = poly_6000
     built = build(case)
     trib = film_state_tribology(
@@ -122,7 +123,10 @@ def test_the_film_grows_no_faster_than_its_oil_supply_at_the_step(poly_6000):
     # the step's lasting effect is kept: the film has thickened by the next sample
     h = run.tribology_report["film_thickness"]
     assert h[i + 1] > 2.0 * h[i]
-    # and the unlimited film is what spiked
+    # and the unlimited film is what spiked: on the Python path, whose cam has the step
+    # at the sample (the compiled cam table spreads it over one 0.0055° cell, so the
+    # sample on the step sees part of it: 2.0e3 N there against 2.1e5 N)
+    monkeypatch.setattr(dynamics_module, "compiled_model", lambda m: None)
     free = simulate_valvetrain(
         built.cam,
         built.valvetrain,

@@ -13,7 +13,7 @@ from tribodyn.physics.film_state_laws import limited_growth
 from tribodyn.physics.lubricant import Lubricant
 from tribodyn.physics.materials import reduced_modulus
 from tribodyn.physics.regimes import hamrock_groups, moes_central
-from tribodyn.valvetrain.compiled import compiled_model
+from tribodyn.valvetrain.compiled import _cam, compiled_model
 from tribodyn.valvetrain.dynamics import simulate_valvetrain
 from tribodyn.valvetrain.kinematics import rpm_to_cam_speed
 from tribodyn.valvetrain.system import make_system
@@ -148,7 +148,7 @@ def test_film_growth_is_limited_by_the_oil_supply_in_closed_form():
         ("andreou2023_flexible", 0.2e-6, "limited"),
     ],
 )
-def test_film_state_jacobian_matches_finite_differences(name, film, regime):
+def test_film_state_jacobian_matches_finite_differences(name, film, regime, monkeypatch):
     case = load_case(name)
     built = build(case)
     s = built.surface_sets[0]
@@ -160,7 +160,8 @@ def test_film_state_jacobian_matches_finite_differences(name, film, regime):
     )
     w = rpm_to_cam_speed(case.engine.speed_rpm)
     m = make_system(built.cam, built.valvetrain, w, ft)
-    assert m.film_state and compiled_model(m) is None  # the compiled backend hands over
+    assert m.film_state
+    cm = compiled_model(m) if m.compilable else None  # the lumped model's compiled form
     n, t = m.n, math.radians(100.0) / w  # on the opening flank
     y = m.static_state()
     y[0] = built.cam.scalar_derivatives(m.lobe_angle(t, y))[0] - 20e-6
@@ -184,6 +185,13 @@ def test_film_state_jacobian_matches_finite_differences(name, film, regime):
         ym[j] -= e
         col = (m.rhs(t, yp) - m.rhs(t, ym)) / (2 * e)
         np.testing.assert_allclose(J[:, j][[0 + n, k]], col[[0 + n, k]], rtol=1e-5, atol=1e-6)
+    if cm is not None:
+        # the compiled kernels on the same cam values (their cam table in the model's
+        # place): the same branch of the law, the same rates and Jacobian to round-off
+        table = cm.args[4:7]
+        monkeypatch.setattr(m.cam, "scalar_derivatives", lambda th: _cam(th, m.theta0, *table))
+        np.testing.assert_allclose(cm.rhs(t, y), m.rhs(t, y), rtol=1e-12, atol=1e-300)
+        np.testing.assert_allclose(cm.jac(t, y), m.jacobian(t, y), rtol=1e-12, atol=1e-300)
 
 
 @pytest.fixture(scope="module")

@@ -3,7 +3,11 @@
 The equations are those of :class:`~tribodyn.valvetrain.model.ValvetrainModel` (see its
 module docstring); this module evaluates them without Python overhead, for the model's
 common case: a periodic tribology model (friction tabulated over the cam angle,
-``_FrictionTable``) with no film or a :class:`FilmTableTribology` film law. The cam is
+``_FrictionTable``) with no film, a :class:`FilmTableTribology` film law, or the film as
+a state (:class:`FilmStateTribology`: h the last state, its entraining and squeeze laws
+and growth limit from :mod:`tribodyn.physics.film_state_laws`, the correction r(t) in
+the film table's place, the contact force through the film and the contact's spring and
+damper in series as ``CamContactModel.cam_contact``). The cam is
 tabulated over one revolution on a uniform grid of ``CAM_POINTS`` angles: s by cubic
 Hermite interpolation of (s, s'), s' by cubic Hermite interpolation of (s', s''), s''
 linearly; the table is checked against the cam at the cell midpoints (interpolation error
@@ -20,13 +24,15 @@ from __future__ import annotations
 
 import math
 import time as _time
+import types
 from typing import NamedTuple
 
 import numpy as np
 from numba import njit
 from scipy.integrate import odeint, solve_ivp
 
-from .contact_law import smooth_step
+from ..physics.film_state_laws import FILM_FLOOR, entraining_film_load, limited_growth
+from .contact_law import _film_free_rate, smooth_step
 
 __all__ = [
     "CompiledLumped",
@@ -64,18 +70,37 @@ class LumpedParams(NamedTuple):
     C: float  #: contact compliance coefficient
     ikc: float  #: 1/camshaft stiffness [m/N]
     has_film: float  #: 1.0 with a film law, else 0.0
-    f_period: float  #: period of the film table [s] (0: not periodic)
+    f_period: float  #: period of the film (or correction) table [s] (0: not periodic)
+    film_state: float  #: 1.0 with the film as a state (h = y[2n + 2]), else 0.0
+    width: float  #: cam width L [m] (film state)
+    eta: float  #: viscosity η₀ [Pa s] (film state)
+    alpha: float  #: pressure–viscosity coefficient α [1/Pa] (film state)
+    e_prime: float  #: reduced modulus E' [Pa] (film state)
+    supply: float  #: supply film h_s [m] (film state)
+    sq: float  #: squeeze coefficient 3√2 π η₀ L [Pa s m] (film state)
+    growth_limited: float  #: 1.0 if the film's growth is transport-limited, else 0.0
 
 
 #: outputs of the evaluation kernel (before the accelerations)
 _OUT = (
     "theta s s1 s2 R ue us dk P Fc Ff Fb Ftv Fs F0s FNs film cam_power diss "
-    "kc cc cb ktv ctv kst cst status"
+    "kc cc cb ktv ctv kst cst status kh hdot hdot_h hdot_F"
 ).split()
 _NO = len(_OUT)
 
 
 _step = njit(**_OPTS)(smooth_step)
+_growth = njit(**_OPTS)(limited_growth)
+_entraining = njit(**_OPTS)(entraining_film_load)
+
+
+def _jit_calling(fn, **kernels):
+    """``fn`` compiled, its global helpers replaced by their compiled ``kernels``."""
+    scope = dict(fn.__globals__, **kernels)
+    return njit(**_OPTS)(types.FunctionType(fn.__code__, scope, fn.__name__, fn.__defaults__))
+
+
+_free_rate = _jit_calling(_film_free_rate, limited_growth=_growth)
 
 
 @njit(**_OPTS)
@@ -192,6 +217,64 @@ def _contact(t, dk, par, ft, fh, fc, ff):
 
 
 @njit(**_OPTS)
+def _film_laws(t, h, ue, R, par, ft, fr, fz):
+    """The film state's laws at film h [m] (``FilmStateTribology``): (a, ∂a/∂h, 1/D,
+    ∂(1/D)/∂h, x_t, ∂x_t/∂h) with a = L w'_ent(h)/D the free rate at zero load,
+    D = 3√2 π η₀ R^(3/2) L/h^(3/2) and x_t the transport limit of the growth; r(t) the
+    correction table in the film table's place."""
+    r, _ = _film(t, 0.0, ft, fr, fz, fz, par.f_period)
+    R = max(R, 1e-9)
+    w, dw = _entraining(h, ue, R, par.eta, par.alpha, par.e_prime, par.supply, r)
+    hh = max(h, FILM_FLOOR)
+    inv_d = hh**1.5 / (par.sq * R**1.5)
+    a = par.width * w * inv_d
+    a_h = par.width * dw * inv_d + 1.5 * a / hh
+    inv_d_h = 1.5 * hh**0.5 / (par.sq * R**1.5)
+    if par.growth_limited == 0.0:
+        return a, a_h, inv_d, inv_d_h, math.inf, 0.0
+    gap = par.supply - h
+    if gap <= 0.0 or ue == 0.0:
+        return a, a_h, inv_d, inv_d_h, 0.0, 0.0
+    xt = abs(ue) * math.sqrt(gap / (2.0 * R))
+    return a, a_h, inv_d, inv_d_h, xt, -0.5 * xt / max(gap, 1e-6 * par.supply)
+
+
+@njit(**_OPTS)
+def _cam_contact(t, dk, dkd, hf, ue, R, par, ft, fh, fc, ff):
+    """(P, dP/dδ, F_c, h, ḣ, ∂ḣ/∂h, ∂ḣ/∂F_c, k_c, c_c, k_h, ok) of the cam contact:
+    F_c = max(0, P + c g(P) δ̇_kin) with the film law in series, or, with the film as a
+    state h_f, one force through the film and the contact's spring and damper,
+    F_c = P(δ_kin + h_f) + c g (δ̇_kin + ḣ), ḣ = H(a − F_c/D) (``cam_contact``)."""
+    cdamp = par.cc
+    if par.film_state == 0.0:
+        P, dPdk, h, ok = _contact(t, dk, par, ft, fh, fc, ff)
+        gc, dgc = _step(P, par.ramp)
+        Fc = P + cdamp * gc * dkd
+        if Fc <= 0.0:
+            return P, dPdk, 0.0, h, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, ok
+        kc = dPdk * (1.0 + cdamp * dgc * dkd)
+        return P, dPdk, Fc, h, 0.0, 0.0, 0.0, kc, cdamp * gc, 0.0, ok
+    P, dPdk, _, ok = _contact(t, dk + hf, par, ft, fh, fc, ff)
+    gc, dgc = _step(P, par.ramp)
+    a, a_h, inv_d, inv_d_h, xt, xt_h = _film_laws(t, hf, ue, R, par, ft, fh, fc)
+    x = _free_rate(a - inv_d * (P + cdamp * gc * dkd), cdamp * gc * inv_d, xt)
+    hd, hd_x, hd_xt = _growth(x, xt)
+    Fc = P + cdamp * gc * (dkd + hd)
+    on_c = Fc > 0.0
+    if not on_c:  # the contact is open: the film's free rate is a
+        Fc = 0.0
+        hd, hd_x, hd_xt = _growth(a, xt)
+    hd_F = -hd_x * inv_d  # ∂ḣ/∂F_c and ∂ḣ/∂h at fixed F_c
+    hd_h = hd_x * (a_h - inv_d_h * Fc) + hd_xt * xt_h
+    if not on_c:
+        return P, dPdk, 0.0, hf, hd, hd_h, hd_F, 0.0, 0.0, 0.0, ok
+    den = 1.0 - cdamp * gc * hd_F
+    kc = dPdk * (1.0 + cdamp * dgc * (dkd + hd)) / den
+    kh = kc + cdamp * gc * hd_h / den
+    return P, dPdk, Fc, hf, hd, hd_h, hd_F, kc, cdamp * gc / den, kh, ok
+
+
+@njit(**_OPTS)
 def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl, out, acc):
     """All forces of the model at (t, y) into ``out`` (order of ``_OUT``) and the
     accelerations into ``acc`` (see the equations in :mod:`.model`)."""
@@ -208,12 +291,10 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     us = w * (rb + s)
     dk = s - xt
     dkd = w * s1 - vt
-    P, dPdk, hfilm, ok = _contact(t, dk, par, ft, fh, fc, ff)
-    gc, dgc = _step(P, ramp)
-    Fc = P + par.cc * gc * dkd
-    on_c = Fc > 0.0
-    if not on_c:
-        Fc = 0.0
+    hf = y[2 * n + 2] if par.film_state != 0.0 else 0.0
+    P, _, Fc, hfilm, hd, hd_h, hd_F, kc, cc, kh, ok = _cam_contact(
+        t, dk, dkd, hf, ue, R, par, ft, fh, fc, ff
+    )
     Ff = _friction(theta, Fc, th, tab, fl) if Fc > 0.0 else 0.0
     thv = math.tanh(vt / par.vr)
     Fb = par.mub * Ff * thv
@@ -264,16 +345,18 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     out[10], out[11], out[12], out[13] = Ff, Fb, Ftv, Fs
     out[14], out[15], out[16] = F0s, FNs, hfilm
     out[17] = Fc * w * s1 + Ff * us
-    out[18] = (Fc - P) * dkd + (Ftv - Etv) * dtvd + (Fs - Es) * (-vv) + diss + Fb * vt + Ff * us
+    out[18] = (
+        (Fc - P) * dkd + (Ftv - Etv) * dtvd + (Fs - Es) * (-vv) + diss + Fb * vt + Ff * us
+    ) - P * hd  # work into the film state (0 without one)
     # local stiffness and damping (Jacobian)
-    out[19] = dPdk * (1.0 + par.cc * dgc * dkd) if on_c else 0.0
-    out[20] = par.cc * gc if on_c else 0.0
+    out[19], out[20] = kc, cc
     out[21] = par.mub * Ff * (1.0 - thv * thv) / par.vr
     out[22] = par.ktv * (1.0 + par.ctv * dgtv * dtvd) if (on_tv and dtv > 0.0) else 0.0
     out[23] = par.ctv * gtv if on_tv else 0.0
     out[24] = par.ks * (1.0 - par.cs * dgs * vv) if (on_s and ds > 0.0) else 0.0
     out[25] = par.cs * gs if on_s else 0.0
     out[26] = 0.0 if ok else 1.0
+    out[27], out[28], out[29], out[30] = kh, hd, hd_h, hd_F
     _ = kN
 
 
@@ -286,12 +369,14 @@ def _rhs(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl, flag
     if out[26] != 0.0:
         flag[0] = 1.0
         flag[1] = t
-    dy = np.empty(2 * n + 2)
+    dy = np.empty(y.size)
     for i in range(n):
         dy[i] = y[n + i]
         dy[n + i] = acc[i]
     dy[2 * n] = out[17]
     dy[2 * n + 1] = out[18]
+    if par.film_state != 0.0:
+        dy[2 * n + 2] = out[28]
     return dy
 
 
@@ -320,7 +405,8 @@ def _element(K, Cm, a, b, k, c):
 @njit(**_OPTS)
 def _jac(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl):
     """∂ẏ/∂y as ``ValvetrainModel.jacobian`` (friction's F dependence and the
-    accumulator rows omitted)."""
+    accumulator rows omitted; the film state's rows and columns as
+    ``CamContactModel.film_jacobian``, δ_kin = s − x_t)."""
     n = im.size
     N = n - 2
     out = np.empty(_NO)
@@ -344,12 +430,18 @@ def _jac(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl):
             elif fe < 0.0:
                 k = 0.0
         _element(K, Cm, j + 1, j + 2 if j < N else -1, k, c)
-    J = np.zeros((2 * n + 2, 2 * n + 2))
+    J = np.zeros((y.size, y.size))
     for i in range(n):
         J[i, n + i] = 1.0
         for j in range(n):
             J[n + i, j] = K[i, j] * im[i]
             J[n + i, n + j] = Cm[i, j] * im[i]
+    if par.film_state != 0.0:
+        k = 2 * n + 2
+        J[n, k] = im[0] * out[27]
+        J[k, k] = out[29] + out[30] * out[27]
+        J[k, 0] -= out[30] * out[19]
+        J[k, n] -= out[30] * out[20]
     return J
 
 
@@ -375,7 +467,10 @@ class CompiledLumped:
 
     def __init__(self, model, film_table, cam_table):
         p = model.p
-        has_film = film_table is not None
+        trib = model.trib
+        state = bool(model.film_state)
+        has_film = film_table is not None and not state
+        period = getattr(film_table, "period", None) if film_table is not None else None
         par = LumpedParams(
             w=model.w,
             theta0=model.theta0,
@@ -395,11 +490,22 @@ class CompiledLumped:
             C=model.C,
             ikc=model.inv_kcam,
             has_film=1.0 if has_film else 0.0,
-            f_period=float(film_table.period or 0.0) if has_film else 0.0,
+            f_period=float(period or 0.0),
+            film_state=1.0 if state else 0.0,
+            width=trib.width if state else 0.0,
+            eta=trib._eta if state else 0.0,
+            alpha=trib._alpha if state else 0.0,
+            e_prime=trib.e_prime if state else 0.0,
+            supply=trib.supply_film if state else 0.0,
+            sq=trib._sq if state else 0.0,
+            growth_limited=1.0 if state and trib.growth_limited else 0.0,
         )
         par = LumpedParams(*(float(v) for v in par))
         if film_table is None:
             film = (np.zeros(1), np.zeros(1), np.zeros(1), np.zeros(1))
+        elif state:  # the correction table r(t) in the film table's place
+            zero = np.zeros(film_table.time.size)
+            film = (film_table.time, film_table.correction, zero, zero)
         else:
             film = (film_table.time, film_table.h, film_table.c, film_table.Fk)
         fr = model.friction_fn
@@ -448,20 +554,20 @@ def _cam_table(cam, theta0: float):
 
 def compiled_model(model) -> CompiledLumped | None:
     """The compiled form of a :class:`ValvetrainModel`, or None where it does not apply
-    (a tribology model that is not periodic in the cam angle or has a film law other
-    than a :class:`FilmTableTribology`; the film as a state, :class:`FilmStateTribology`,
-    whose kernels are not written: such runs take solve_ivp's LSODA, 0.45 s against
-    0.08 s per implicit run of the paper case at 4000 rpm, small beside the EHL passes of
-    the coupling; a cam the table cannot reproduce)."""
-    from .tribology import FilmTableTribology
+    (a tribology model that is not periodic in the cam angle, has a film law other than
+    a :class:`FilmTableTribology` or a film state other than a
+    :class:`FilmStateTribology`; a cam the table cannot reproduce)."""
+    from .tribology import FilmStateTribology, FilmTableTribology
 
     trib = model.trib
     if model.friction_fn is None:  # the kernels need the friction tabulated over the cam angle
         return None
+    film: FilmStateTribology | FilmTableTribology | None = None
     if model.film_state:
-        return None
-    film = None
-    if model.has_film:
+        if type(trib) is not FilmStateTribology:  # a subclass may change its laws
+            return None
+        film = trib
+    elif model.has_film:
         if not isinstance(trib, FilmTableTribology):
             return None
         film = trib
