@@ -79,14 +79,16 @@ def _outside(bounds: dict, integer: bool):
     return int(v) if integer else float(v)
 
 
-def _range_text(bounds: dict, unit: str) -> str:
-    """'> 0 m and <= 0.01 m' (degrees as °), the form of the case-file messages."""
+def _range_text(bounds: dict, unit: str, auto=None) -> str:
+    """'> 0 m and <= 0.01 m' (degrees as °), the form of the case-file messages; a key
+    whose ``auto`` value means automatic: '0 (automatic) or >= 32 and <= 4096'."""
     u = f" {unit}" if unit and not unit.startswith("deg") else ("°" if unit else "")
     sym = {"gt": ">", "ge": ">=", "lt": "<", "le": "<="}
     num = [(k, str(v) if isinstance(v, int) else f"{v:.6g}") for k, v in bounds.items()]
-    return " and ".join(
+    text = " and ".join(
         f"{sym[k]} {v}{u}" for k, v in sorted(num, key=lambda kv: list(sym).index(kv[0]))
     )
+    return text if auto is None else f"{auto} (automatic) or {text}"
 
 
 def test_every_section_with_ranged_keys_is_placed():
@@ -118,7 +120,9 @@ def test_every_ranged_key_is_checked_and_named(key, extra, annotation):
         Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
     msg = str(e.value)
     assert msg.startswith("invalid case: 1 problem\n"), msg
-    expected = f"{key}: must be {_range_text(extra['range'], extra['unit'])} (got "
+    expected = (
+        f"{key}: must be {_range_text(extra['range'], extra['unit'], extra.get('auto'))} (got "
+    )
     assert expected in msg, msg
 
 
@@ -432,3 +436,55 @@ def test_each_thermal_numerics_key_is_checked_once(monkeypatch, thermal):
         by_schema = any(getattr(m, b, None) is not None for m in fi.metadata for b in L_BOUNDS)
         assert seen[arg, value] + by_schema == 1, arg
         assert getattr(build(case).thermal_options, arg) == value
+
+
+#: the grid keys: 0 (automatic) or a node count, one range (the cycle's transient grid)
+GRID_KEYS = ("numerics.n", "numerics.coupling_n")
+
+
+@pytest.mark.parametrize("key", GRID_KEYS)
+@pytest.mark.parametrize("value", [16, 8192, -1])
+def test_a_grid_key_out_of_range_is_one_problem_with_the_full_range(key, value):
+    """Below 32, above 4096 or negative: one line naming the key and the whole range."""
+    data = _paper_data()
+    set_dotted(data, key, value)
+    with pytest.raises(InputError) as e:
+        Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    assert str(e.value).splitlines() == [
+        "invalid case: 1 problem",
+        f"  {key}: must be 0 (automatic) or >= 32 and <= 4096 (got {value})",
+    ]
+
+
+@pytest.mark.parametrize("nodes", [0, 32, 4096])
+def test_each_grid_key_is_checked_once(monkeypatch, nodes):
+    """numerics.n and numerics.coupling_n given: each range-checked once while the case
+    loads and builds (not by the schema, not by EHLOptions again); 0 is the automatic
+    grid (EHLOptions n=None)."""
+    data = _paper_data()
+    data["numerics"].update(n=nodes, coupling_n=nodes)
+    seen: Counter = Counter()
+    check = L.Limit.check
+
+    def counting(self, name, value):
+        seen[name] += 1
+        return check(self, name, value)
+
+    monkeypatch.setattr(L.Limit, "check", counting)
+    case = Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    options = build(case).options
+    for name in ("n", "coupling_n"):
+        fi = schema.Numerics.model_fields[name]
+        by_schema = any(getattr(m, b, None) is not None for m in fi.metadata for b in L_BOUNDS)
+        assert seen[name] + by_schema == 1, name
+    assert options.n == (nodes or None)
+
+
+def test_the_transient_solver_checks_a_direct_n():
+    """Options made directly (steady range, up to 65536 nodes): the transient solver
+    names n and its range."""
+    from ehl_cases import OIL, PAIR
+    from tribodyn import EHLOptions, TransientEHL
+
+    with pytest.raises(InputError, match=r"n must be an integer >= 32 and <= 4096 \(got 8192\)"):
+        TransientEHL(PAIR, OIL, options=EHLOptions(n=8192))

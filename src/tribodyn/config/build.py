@@ -240,7 +240,7 @@ def collect(
             found = [
                 (
                     (keys or {}).get(name, f"{path}.{name}"),
-                    out_of_range(lim.constraints(), lim.unit, v),
+                    out_of_range(lim.constraints(), lim.unit, v, lim.auto),
                 )
                 for name, lim, v in exc.items
             ]

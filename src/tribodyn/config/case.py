@@ -40,7 +40,7 @@ from .._typing import PathLike
 from .._validation import InputError
 from ..contact.ehl import EHLOptions
 from ..physics.asperity import Roughness
-from ..physics.limits import RangeError
+from ..physics.limits import EHL_NODES_CYCLE, RangeError, unchecked
 from ..physics.lubricant import Lubricant
 from ..physics.materials import Body, Coating, Material
 from ..valvetrain.kinematics import rpm_to_cam_speed
@@ -419,17 +419,13 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
 
     def _new_ehl_options(self) -> EHLOptions:
         """:class:`~tribodyn.EHLOptions` from ``[numerics]`` (the surface sets' ς and τ₀:
-        :class:`~tribodyn.config.build.BuiltSet`)."""
+        :class:`~tribodyn.config.build.BuiltSet`). The grid keys ``n`` and ``coupling_n``
+        (0: automatic) are checked here, against the cycle's transient grid
+        (:data:`~tribodyn.physics.limits.EHL_NODES_CYCLE`); the options take n as checked."""
         n = self.numerics
-        if 0 < n.n < 32:
-            raise CaseKeyError("numerics.n", f"must be 0 (automatic) or >= 32 (got {n.n})")
-        if 0 < n.coupling_n < 32:
-            raise CaseKeyError(
-                "numerics.coupling_n",
-                f"must be 0 (as numerics.n) or >= 32 (got {n.coupling_n})",
-            )
-        kw: dict[str, Any] = dict(
-            n=n.n or None,
+        nodes = EHL_NODES_CYCLE.check("n", n.n)
+        EHL_NODES_CYCLE.check("coupling_n", n.coupling_n)
+        opts = EHLOptions(
             inlet=n.inlet,
             outlet=n.outlet,
             inlet_truncation=n.inlet_truncation,
@@ -441,7 +437,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             limiting_shear=n.limiting_shear,
             time_order=n.time_order,
         )
-        return EHLOptions(**kw)
+        return unchecked(type(opts), **{**vars(opts), "n": nodes or None})
 
     @property
     def surface_set_names(self) -> list[str]:

@@ -58,16 +58,18 @@ def _unit_of(fi) -> str:
     return extra.get("unit", "") if isinstance(extra, dict) else ""
 
 
-def range_text(bounds: Mapping[str, float], unit: str) -> str:
-    """'> 0 m and <= 0.01 m' of ``{"gt": 0, "le": 0.01}`` (crank or cam degrees: °)."""
+def range_text(bounds: Mapping[str, float], unit: str, auto: float | None = None) -> str:
+    """'> 0 m and <= 0.01 m' of ``{"gt": 0, "le": 0.01}`` (crank or cam degrees: °);
+    '0 (automatic) or >= 32 and <= 4096' with the value ``auto`` that means automatic."""
     u = f" {unit}" if unit and not unit.startswith("deg") else ("°" if unit else "")
     symbols = (("gt", ">"), ("ge", ">="), ("lt", "<"), ("le", "<="))
-    return " and ".join(f"{sym} {_num(bounds[k])}{u}" for k, sym in symbols if k in bounds)
+    text = " and ".join(f"{sym} {_num(bounds[k])}{u}" for k, sym in symbols if k in bounds)
+    return text if auto is None else f"{_num(auto)} (automatic) or {text}"
 
 
-def out_of_range(bounds: Mapping[str, float], unit: str, value) -> str:
+def out_of_range(bounds: Mapping[str, float], unit: str, value, auto=None) -> str:
     """The message of a case key whose value is outside its range."""
-    return f"must be {range_text(bounds, unit)} (got {_given(value)})"
+    return f"must be {range_text(bounds, unit, auto)} (got {_given(value)})"
 
 
 def _num(v) -> str:

@@ -113,7 +113,9 @@ def _allowed(info: Any) -> str:
         pattern = getattr(m, "pattern", None)
         if pattern:
             parts.append(f"matches `{pattern}`")
-    return ", ".join(parts)
+    extra = info.json_schema_extra if isinstance(info.json_schema_extra, dict) else {}
+    auto = extra.get("auto")  # the value that means automatic (numerics.n: 0)
+    return ", ".join(parts) if auto is None else f"{_fmt(auto)} (automatic) or " + ", ".join(parts)
 
 
 def _default(info: Any) -> str:

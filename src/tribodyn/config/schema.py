@@ -263,15 +263,13 @@ class Engine(Section):
 class Numerics(Section):
     """``[numerics]``: solver settings."""
 
-    n: int = _q(
+    n: int = _arg(
         0,
-        "",
+        L.EHL_NODES_CYCLE,
         f"EHL grid nodes (uniform); 0 = automatic ({N_AUTO} nodes over the "
         "domain sized from the contact; steady solves double them, up to "
         f"{N_MAX_AUTO}, while h_c, h_min change > 1 % from half the nodes); at most "
-        f"{L.EHL_NODES_TRANSIENT.le} (the transient steps factor dense matrices)",
-        ge=0,
-        le=L.EHL_NODES_TRANSIENT.le,
+        f"{L.EHL_NODES_CYCLE.le} ({L.EHL_NODES_CYCLE.why})",
     )
     min_load: float = _q(
         5.0,
@@ -370,14 +368,12 @@ class Numerics(Section):
         ge=1,
         le=100,
     )
-    coupling_n: int = _q(
+    coupling_n: int = _arg(
         192,
-        "",
+        L.EHL_NODES_CYCLE,
         "EHL grid nodes of the coupling's re-passes along the implicit dynamics (they "
         "give the film law, needed to the coupling tolerance only; the reported EHL "
         "keeps numerics.n); at most numerics.n when that is set; 0 = as numerics.n",
-        ge=0,
-        le=L.EHL_NODES_TRANSIENT.le,
     )
     coupling_supply_film: float = _q(
         SUPPLY_FILM,

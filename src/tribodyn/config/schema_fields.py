@@ -56,6 +56,8 @@ def _arg(default: Any, limit: L.Limit, doc: str, **constraints) -> Any:
     """A field whose unit and range are a shared limit, given to a physics constructor
     that checks it (the range is recorded, not checked here)."""
     extra: dict[str, Any] = {"unit": limit.unit, "range": limit.constraints()}
+    if limit.auto is not None:  # the value outside the range that means "automatic"
+        extra["auto"] = limit.auto
     return Field(default, description=doc, json_schema_extra=extra, **constraints)
 
 

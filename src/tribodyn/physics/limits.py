@@ -16,7 +16,7 @@ lists them per key.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from numbers import Real
 
 from .._validation import InputError, _fmt, check_int, check_real
@@ -79,6 +79,7 @@ __all__ = [
     "LIFT_TABLE_ROWS",
     "EHL_NODES",
     "EHL_NODES_TRANSIENT",
+    "EHL_NODES_CYCLE",
     "STRESS_NODES",
     "STRESS_DEPTHS",
     "STRESS_DEPTH",
@@ -113,7 +114,8 @@ def _num(v: float) -> str:
 @dataclass(frozen=True)
 class Limit:
     """An allowed range: bounds ``gt`` (>), ``ge`` (≥), ``lt`` (<), ``le`` (≤), a unit,
-    whether the value must be an integer, and the reason for the bounds."""
+    whether the value must be an integer, the reason for the bounds, and ``auto``: a value
+    outside the bounds that stands for an automatic choice (a case file's 0 nodes)."""
 
     unit: str = ""
     gt: float | None = None
@@ -122,6 +124,7 @@ class Limit:
     le: float | None = None
     integer: bool = False
     why: str = ""
+    auto: float | None = None
 
     def constraints(self) -> dict:
         """The bounds as pydantic ``Field`` keywords (``gt=…``, ``le=…``)."""
@@ -130,16 +133,18 @@ class Limit:
         }
 
     def describe(self, unit: bool = True) -> str:
-        """'> 0 and <= 0.0001 m' (the form the case-file messages use)."""
+        """'> 0 and <= 0.0001 m', '0 (automatic) or >= 32 and <= 4096' (the form the
+        case-file messages use)."""
         u = f" {self.unit}" if unit and self.unit else ""
-        return " and ".join(
+        text = " and ".join(
             f"{sym} {_num(v)}{u}"
             for sym, v in ((">", self.gt), (">=", self.ge), ("<", self.lt), ("<=", self.le))
             if v is not None
         )
+        return text if self.auto is None else f"{_num(self.auto)} (automatic) or {text}"
 
     def contains(self, v: float) -> bool:
-        return not (
+        return v == self.auto or not (
             (self.gt is not None and not v > self.gt)
             or (self.ge is not None and not v >= self.ge)
             or (self.lt is not None and not v < self.lt)
@@ -368,6 +373,8 @@ EHL_NODES = Limit(
 EHL_NODES_TRANSIENT = Limit(
     "", ge=32, le=4096, integer=True, why="the transient steps factor dense matrices"
 )
+#: numerics.n and numerics.coupling_n: the cycle's transient grid; 0 chooses it
+EHL_NODES_CYCLE = replace(EHL_NODES_TRANSIENT, auto=0)
 STRESS_NODES = Limit(
     "", ge=3, le=65536, integer=True, why="surface loads on at most the finest EHL grid"
 )

@@ -11,7 +11,7 @@ import numpy as np
 from ..._threads import one_blas_thread
 from ..._validation import InputError, check_positive
 from ...physics.asperity import Roughness
-from ...physics.limits import EHL_NODES_TRANSIENT, MAX_SUBSTEPS, unchecked
+from ...physics.limits import EHL_NODES_TRANSIENT, MAX_SUBSTEPS, RangeError, unchecked
 from ...physics.lubricant import Lubricant
 from ...physics.materials import BodyPair
 from .grid import Grid, layout
@@ -123,8 +123,9 @@ class TransientEHL:
         opts = options or EHLOptions()
         if option_overrides:
             opts = with_overrides(opts, option_overrides)
-        if opts.n is not None:
-            EHL_NODES_TRANSIENT.check("n", opts.n)
+        # the options checked n (an integer in the steady range): only the transient's here
+        if opts.n is not None and not EHL_NODES_TRANSIENT.contains(opts.n):
+            raise RangeError([("n", EHL_NODES_TRANSIENT, opts.n)])
         self.opts = opts
         self.max_substeps = MAX_SUBSTEPS.check("max_substeps", max_substeps)
         self.conditions_before: Conditions | None = None
