@@ -93,6 +93,9 @@ CASES_DIR = Path(__file__).resolve().parent.parent / "cases"
 DEFAULT_CASE = CASES_DIR / "andreou2023.toml"
 #: Sections an engine's ``[engine.<kind>] changes`` may not touch: the lobes share them.
 LOBE_SHARED_SECTIONS = ("engine", "case", "numerics")
+#: The ``[numerics]`` keys that are EHLOptions fields of the same name, but the grid ``n``.
+EHL_OPTION_KEYS = {f.name for f in dataclasses.fields(EHLOptions)} & set(Numerics.model_fields)
+EHL_OPTION_KEYS.discard("n")
 
 
 class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, TomlFile):
@@ -425,18 +428,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         n = self.numerics
         nodes = EHL_NODES_CYCLE.check("n", n.n)
         EHL_NODES_CYCLE.check("coupling_n", n.coupling_n)
-        opts = EHLOptions(
-            inlet=n.inlet,
-            outlet=n.outlet,
-            inlet_truncation=n.inlet_truncation,
-            inlet_rigid=n.inlet_rigid,
-            outlet_rigid=n.outlet_rigid,
-            tol=n.tol,
-            max_iter=n.max_iter,
-            viscous_model=n.viscous_model,
-            limiting_shear=n.limiting_shear,
-            time_order=n.time_order,
-        )
+        opts = EHLOptions(**n.model_dump(include=EHL_OPTION_KEYS))
         return unchecked(type(opts), **{**vars(opts), "n": nodes or None})
 
     @property
