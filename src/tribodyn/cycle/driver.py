@@ -26,7 +26,7 @@ import math
 import re
 from abc import ABC, abstractmethod
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any, ClassVar, Protocol
 
 import numpy as np
@@ -35,6 +35,7 @@ from ..config.build import as_built, options_for
 from ..contact.ehl import EHLOptions, EHLResult, TransientEHL
 from ..contact.ehl.postprocess import shear_stress
 from ..physics.asperity import Roughness
+from ..physics.limits import unchecked
 from ..physics.lubricant import Lubricant
 from .data import SAMPLE_OUTPUTS, CycleInputs, SampleConditions, SetCycleResult
 
@@ -480,7 +481,7 @@ def ehl_for_set(
     if film_law_only:
         time_tol = COUPLING_TIME_TOL
         nodes = n.coupling_n
-        if nodes:  # never finer than the study's own fixed grid
-            opts = replace(opts, n=min(nodes, n.n) if n.n else nodes)
+        if nodes:  # never finer than the study's own fixed grid (both checked at load)
+            opts = unchecked(EHLOptions, **{**opts.__dict__, "n": min(nodes, n.n or nodes)})
     method = IsothermalCycle.for_set(built, s, opts)
     return march_for_set(built, s, inputs, method, progress, time_tol=time_tol)
