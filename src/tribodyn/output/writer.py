@@ -101,6 +101,7 @@ if TYPE_CHECKING:
 __all__ = [
     "write_atomic",
     "write_results",
+    "import_writing_modules",
     "check_output_dir",
     "is_result_folder",
     "foreign_files",
@@ -270,6 +271,28 @@ def _write_case(case, folder: Path) -> None:
     atomic_write(folder / "case.toml", to_toml(data, header=head))
 
 
+def import_writing_modules() -> None:
+    """Import what :func:`write_results` imports on its first use (about a second on the
+    paper case): xarray's check for dask arrays (made at its first variable), h5netcdf,
+    the report's modules, markdown-it and Bokeh. Only a speed-up, for a caller that waits
+    anyway (the command line calls it in a thread during the study, once no more worker
+    processes will be forked: a fork during an import would leave that module locked in
+    the child); whatever is still missing is imported by the writing."""
+    import h5netcdf  # noqa: F401
+    import markdown_it  # noqa: F401
+    import numpy as np
+    import xarray as xr
+    from bokeh.core import json_encoder  # noqa: F401
+    from bokeh.document import Document  # noqa: F401
+    from bokeh.embed import util  # noqa: F401
+    from bokeh.plotting import figure  # noqa: F401
+    from bokeh.resources import Resources  # noqa: F401
+
+    from . import explorer, export, report  # noqa: F401
+
+    xr.Variable("x", np.zeros(1))
+
+
 def write_results(
     study: CycleStudy,
     out_dir: PathLike,
@@ -326,7 +349,7 @@ def write_results(
             from .report import write_report
 
             write_report(study, ds, figs, tmp / "report.md")
-            write_report_html(report_markdown(tmp), tmp)
+            write_report_html(report_markdown(tmp), tmp, ds=ds)  # results.nc not read again
         written.update(figures=figs)
 
     target = Path(out_dir).expanduser().absolute()
