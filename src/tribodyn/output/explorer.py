@@ -251,8 +251,9 @@ class _Embedder:
         from bokeh.embed.util import RenderItem
 
         doc = Document()
-        for f in self.figs:
-            doc.add_root(f)
+        with doc.models.freeze():  # its models collected once, not again at every root
+            for f in self.figs:
+                doc.add_root(f)
         roots = {f: ID(f"{self.prefix}{k}") for k, f in enumerate(self.figs)}
         item = RenderItem(docid=ID(self.prefix), roots=roots)
         data = serialize_json(
