@@ -232,17 +232,19 @@ def test_a_target_taken_meanwhile_is_rescued_too(tmp_path, monkeypatch, fake_stu
 
 # ----------------------------------------------------------------------------- SIGTERM
 # ``tribodyn run`` that prints the phase it reaches to stderr: the dynamics begun (the
-# study's progress event), the EHL or drawing processes running (the first submission to
-# the study's or the drawing pool returned: their processes are started, so the signal
-# does not meet a fork).
+# study's progress event), the EHL, drawing or results.nc-writing processes running (the
+# first submission to the study's, the drawing or the writing pool returned: their
+# processes are started, so the signal does not meet a fork).
 MARKED_RUN = """\
 import sys
 from concurrent.futures import ProcessPoolExecutor
 import tribodyn.output.figures as figures
+import tribodyn.output.writer as writer
 import tribodyn.workflow.cycle as cycle
 from tribodyn.cli import app
 
 study, draw, submit = cycle.run_cycle_study, figures.make_figures, ProcessPoolExecutor.submit
+to_dataset = writer.study_to_dataset
 phase = ["ehl"]
 
 def marked_study(case, progress=None, **kw):
@@ -256,6 +258,10 @@ def marked_draw(*args, **kw):
     phase[0] = "writing"
     return draw(*args, **kw)
 
+def marked_dataset(*args, **kw):
+    phase[0] = "writing"
+    return to_dataset(*args, **kw)
+
 def marked_submit(pool, *args, **kw):
     future = submit(pool, *args, **kw)
     if not getattr(pool, "marked", False):
@@ -264,19 +270,22 @@ def marked_submit(pool, *args, **kw):
     return future
 
 cycle.run_cycle_study, figures.make_figures = marked_study, marked_draw
+writer.study_to_dataset = marked_dataset
 ProcessPoolExecutor.submit = marked_submit
 app(prog_name="tribodyn", args=sys.argv[1:])
 """
 
 
-@pytest.mark.parametrize("phase", ["dynamics", "ehl", "writing"])
-def test_sigterm_stops_a_run_cleanly(tmp_path, phase):
-    """SIGTERM during the computation or while the results are written: workers (EHL or
-    drawing processes) stopped, nothing written, no temporary folder, exit code 143, a
-    message instead of a traceback. The signal is sent when the run reports the phase
-    (the dynamics begun, the EHL or the drawing processes running), so the test does not
-    depend on the machine's speed; two sets of the paper case at coarse resolution keep it
-    short."""
+@pytest.mark.parametrize(
+    "phase, draw", [("dynamics", True), ("ehl", True), ("writing", True), ("writing", False)]
+)
+def test_sigterm_stops_a_run_cleanly(tmp_path, phase, draw):
+    """SIGTERM during the computation or while the results are written: workers (EHL,
+    drawing or results.nc-writing processes) stopped, nothing written, no temporary
+    folder, exit code 143, a message instead of a traceback. The signal is sent when the
+    run reports the phase (the dynamics begun, the EHL, drawing or results.nc-writing
+    processes running), so the test does not depend on the machine's speed; two sets of
+    the paper case at coarse resolution keep it short."""
     case = tmp_path / "c.toml"
     base = load_case()
     small = {
@@ -292,7 +301,8 @@ def test_sigterm_stops_a_run_cleanly(tmp_path, phase):
     rescue_area.mkdir()
     (rescue_area / "marked_run.py").write_text(MARKED_RUN)
     proc = subprocess.Popen(
-        [sys.executable, "-m", "marked_run", "run", str(case), "-o", str(out), "-q", "--figures"],
+        [sys.executable, "-m", "marked_run", "run", str(case), "-o", str(out), "-q"]
+        + (["--figures"] if draw else []),
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,

@@ -6,6 +6,7 @@ import multiprocessing
 import os
 import signal
 import sys
+import threading
 from pathlib import Path
 
 import typer
@@ -156,11 +157,43 @@ def _clear_interrupt_flag() -> None:
     exec("pass")
 
 
+def _workers() -> list:
+    """The worker processes of this process (not a manager, which shuts down itself)."""
+    return [c for c in multiprocessing.active_children() if not c.name.startswith("SyncManager")]
+
+
 def _stop_workers() -> None:
     """Kill the worker processes of this process (they hold no output)."""
-    for child in multiprocessing.active_children():
-        if not child.name.startswith("SyncManager"):  # the manager shuts down
-            child.kill()
+    for child in _workers():
+        child.kill()
+
+
+class _ImportsAhead:
+    """The writing's imports (:func:`~tribodyn.output.writer.import_writing_modules`)
+    made in a thread while this process waits for its study's worker processes: started
+    at the first progress event after they were forked (an import under way in a fork
+    would stay locked in the child), so not with one worker or a Dask scheduler."""
+
+    def __init__(self) -> None:
+        self.thread: threading.Thread | None = None
+
+    def poll(self) -> None:
+        if self.thread is None and _workers():
+            self.thread = threading.Thread(target=self._run, daemon=True)
+            self.thread.start()
+
+    @staticmethod
+    def _run() -> None:
+        from ..output.writer import import_writing_modules
+
+        try:
+            import_writing_modules()
+        except Exception:  # the writing imports them again and reports the error
+            pass
+
+    def join(self) -> None:
+        if self.thread is not None:
+            self.thread.join()
 
 
 def stop_if_terminated() -> None:
@@ -251,9 +284,11 @@ def _run(
             n_dask = len(client.scheduler_info().get("workers", {}))
             bar.console.print(f"Dask scheduler {scheduler}: {n_dask} workers")
         tasks = {}
+        ahead = _ImportsAhead()
 
         def progress(event, **info):
             stop_if_terminated()
+            ahead.poll()
             if event == "dynamics":
                 tasks["dyn"] = bar.add_task("valvetrain dynamics", total=1)
             elif event == "set":
@@ -277,6 +312,7 @@ def _run(
                 raise KeyboardInterrupt from exc
             fail(console, exc, code=1, label="study failed")
         stop_if_terminated()  # a signal lost in a callback: nothing is written
+        ahead.join()
         if "dyn" in tasks:
             bar.update(tasks["dyn"], completed=1)
         t_write = bar.add_task("figures and report" if figures else "report", total=1)

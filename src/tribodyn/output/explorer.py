@@ -251,8 +251,9 @@ class _Embedder:
         from bokeh.embed.util import RenderItem
 
         doc = Document()
-        for f in self.figs:
-            doc.add_root(f)
+        with doc.models.freeze():  # its models collected once, not again at every root
+            for f in self.figs:
+                doc.add_root(f)
         roots = {f: ID(f"{self.prefix}{k}") for k, f in enumerate(self.figs)}
         item = RenderItem(docid=ID(self.prefix), roots=roots)
         data = serialize_json(
@@ -305,13 +306,14 @@ def interactive_block(results: list[Result], prefix: str = "tdv") -> tuple[str, 
     return f"{divs}\n<p class='d' id='{prefix}time'></p>\n{emb.script()}", len(figs)
 
 
-def add_interactive(page: str, folder: PathLike, label: str | None = None) -> str:
+def add_interactive(page: str, folder: PathLike, label: str | None = None, ds=None) -> str:
     """A report page (:func:`~tribodyn.output.export.report_html`) with the interactive
     traces of the result in ``folder`` (as ``tribodyn view`` draws them) before its
     figures: the Bokeh library inline in the head. The page is returned unchanged if
-    the folder has no traces to draw (or no results the explorer can read)."""
+    the folder has no traces to draw (or no results the explorer can read). ``ds``: the
+    Dataset of the folder's results.nc if it is in memory (:func:`load_result`)."""
     try:
-        r = load_result(folder, label)
+        r = load_result(folder, label, ds)
     except InputError:
         return page
     if label is None:
@@ -334,16 +336,18 @@ def write_report_html(
     folder: PathLike,
     path: PathLike | None = None,
     skipped: list[str] | None = None,
+    ds=None,
 ) -> Path:
     """Write ``path`` (default ``folder/report.html``): report.md rendered with its
     figures embedded (:func:`~tribodyn.output.export.report_html`: only regular files of
     ``folder``; the others are appended to ``skipped``) and the interactive traces of the
-    result in ``folder`` (:func:`add_interactive`, named by the case); written by
+    result in ``folder`` (:func:`add_interactive`, named by the case; ``ds``: its
+    results.nc's Dataset if in memory); written by
     :func:`~tribodyn._safe_write.atomic_write`. The same files give the same bytes."""
     from .export import report_html
 
     folder = Path(folder)
-    page = add_interactive(report_html(markdown_text, folder, skipped), folder)
+    page = add_interactive(report_html(markdown_text, folder, skipped), folder, ds=ds)
     return atomic_write(Path(path) if path is not None else folder / "report.html", page)
 
 

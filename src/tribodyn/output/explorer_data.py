@@ -106,30 +106,37 @@ def _read_text(path: Path) -> str:
         return ""
 
 
-def load_result(path: PathLike, label: str | None = None) -> Result:
+#: Variables of a run's or engine's results.nc that the explorer does not show (the
+#: profiles and the stress maps): not loaded.
+_NOT_SHOWN = ("pressure", "film", "profile_x", "stress_map_von_mises")
+
+
+def load_result(path: PathLike, label: str | None = None, ds: Any = None) -> Result:
     """The result folder ``path`` (module docstring). Raises :class:`InputError` naming
-    the folder if it holds no tribodyn result."""
+    the folder if it holds no tribodyn result. ``ds``: the Dataset of its results.nc
+    when it is already in memory (the one just written there), not read again."""
     import xarray as xr
 
     p = Path(path)
     if not p.is_dir():
         raise InputError(f"RESULT {str(p)!r}: not a folder (give a result folder of tribodyn)")
     label = label or p.resolve().name
-    if (p / "sweep.nc").is_file():
+    if ds is None and (p / "sweep.nc").is_file():
         with xr.open_dataset(p / "sweep.nc", engine="h5netcdf") as ds:
             ds = ds.load()
         text = _read_text(p / "base_case.toml") or str(ds.attrs.get("base_case_toml", ""))
         names = [str(v) for v in ds["surface_set"].values] if "surface_set" in ds.coords else []
         return Result(p, "sweep", label, ds, {}, text, set_display_names(text, names))
-    if not (p / "results.nc").is_file():
+    if ds is not None:
+        ds = ds[[v for v in ds.data_vars if v not in _NOT_SHOWN]]
+    elif not (p / "results.nc").is_file():
         raise InputError(
             f"RESULT {str(p)!r}: no results.nc or sweep.nc (give a folder written by "
             "tribodyn run, engine or sweep)"
         )
-    with xr.open_dataset(p / "results.nc", engine="h5netcdf") as ds:
-        # the profiles and the stress maps are not shown
-        skip = ("pressure", "film", "profile_x", "stress_map_von_mises")
-        ds = ds[[v for v in ds.data_vars if v not in skip]].load()
+    else:
+        with xr.open_dataset(p / "results.nc", engine="h5netcdf") as ds:
+            ds = ds[[v for v in ds.data_vars if v not in _NOT_SHOWN]].load()
     try:
         summary = json.loads(_read_text(p / "summary.json") or "{}")
     except json.JSONDecodeError:

@@ -50,9 +50,11 @@ from __future__ import annotations
 import errno
 import os
 import stat
+import sys
 import tempfile
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -101,6 +103,7 @@ if TYPE_CHECKING:
 __all__ = [
     "write_atomic",
     "write_results",
+    "import_writing_modules",
     "check_output_dir",
     "is_result_folder",
     "foreign_files",
@@ -270,6 +273,76 @@ def _write_case(case, folder: Path) -> None:
     atomic_write(folder / "case.toml", to_toml(data, header=head))
 
 
+def import_writing_modules() -> None:
+    """Import what :func:`write_results` imports on its first use (about a second on the
+    paper case): xarray's check for dask arrays (made at its first variable), h5netcdf,
+    the report's modules, markdown-it and Bokeh. Only a speed-up, for a caller that waits
+    anyway (the command line calls it in a thread during the study, once no more worker
+    processes will be forked: a fork during an import would leave that module locked in
+    the child); whatever is still missing is imported by the writing."""
+    import h5netcdf  # noqa: F401
+    import markdown_it  # noqa: F401
+    import numpy as np
+    import xarray as xr
+    from bokeh.core import json_encoder  # noqa: F401
+    from bokeh.document import Document  # noqa: F401
+    from bokeh.embed import util  # noqa: F401
+    from bokeh.plotting import figure  # noqa: F401
+    from bokeh.resources import Resources  # noqa: F401
+
+    from . import explorer, export, report  # noqa: F401
+
+    xr.Variable("x", np.zeros(1))
+
+
+def _write_netcdf(ds, path: Path, encoding: dict) -> None:
+    """results.nc, by :func:`~tribodyn._safe_write.atomic_write_with`."""
+    atomic_write_with(path, lambda tmp: write_netcdf(ds, tmp, encoding))
+
+
+_HELD: list = []  # the Dataset and encoding of the process that writes results.nc
+
+
+def _hold(ds, encoding: dict, starter: int) -> None:
+    from .._system import exit_with_parent
+
+    exit_with_parent(starter)
+    _HELD[:] = [ds, encoding]
+
+
+def _write_held(path: Path) -> None:
+    _write_netcdf(_HELD[0], path, _HELD[1])
+
+
+@contextmanager
+def _netcdf_meanwhile(ds, path: Path, encoding: dict) -> Iterator[None]:
+    """Write ``ds`` to the netCDF file ``path`` while the body of the ``with`` writes the
+    other files: in a forked process on Linux (it shares the Dataset; compressing and
+    writing results.nc takes about a second on the paper case), else first. Leaving
+    the ``with`` waits for that process (also after an error in the body, so that
+    nothing is written into a folder being removed) and raises its error."""
+    if not sys.platform.startswith("linux"):
+        _write_netcdf(ds, path, encoding)
+        yield
+        return
+    import multiprocessing as mp
+    from concurrent.futures import ProcessPoolExecutor
+
+    with ProcessPoolExecutor(
+        max_workers=1,
+        mp_context=mp.get_context("fork"),
+        initializer=_hold,
+        initargs=(ds, encoding, os.getpid()),
+    ) as pool:
+        part = pool.submit(_write_held, path)
+        try:
+            yield
+        except BaseException:
+            pool.shutdown(wait=True, cancel_futures=True)
+            raise
+        part.result()
+
+
 def write_results(
     study: CycleStudy,
     out_dir: PathLike,
@@ -301,13 +374,23 @@ def write_results(
         if v in ds
     }
 
-    def essentials(folder: Path):
+    def essentials(folder: Path, netcdf: bool = True):
         from .export import write_csv
 
-        atomic_write_with(folder / "results.nc", lambda tmp: write_netcdf(ds, tmp, enc))
+        if netcdf:
+            _write_netcdf(ds, folder / "results.nc", enc)
         atomic_write(folder / "summary.json", _json.dumps(summ, indent=2))
         _write_case(study.case, folder)
         write_csv(ds, folder)
+
+    def reports(tmp: Path, figs: dict):
+        if report:
+            from .explorer import write_report_html
+            from .export import report_markdown
+            from .report import write_report
+
+            write_report(study, ds, figs, tmp / "report.md")
+            write_report_html(report_markdown(tmp), tmp, ds=ds)  # results.nc not read again
 
     def writer(tmp: Path):
         figs = {}
@@ -318,15 +401,11 @@ def write_results(
             only = figures if isinstance(figures, list) else None
             # the data files are written while other processes draw
             figs = make_figures(ds, tmp, only=only, workers=n, meanwhile=lambda: essentials(tmp))
-        else:
-            essentials(tmp)
-        if report:
-            from .explorer import write_report_html
-            from .export import report_markdown
-            from .report import write_report
-
-            write_report(study, ds, figs, tmp / "report.md")
-            write_report_html(report_markdown(tmp), tmp)
+            reports(tmp, figs)
+        else:  # results.nc in another process while the other files are written
+            with _netcdf_meanwhile(ds, tmp / "results.nc", enc):
+                essentials(tmp, netcdf=False)
+                reports(tmp, figs)
         written.update(figures=figs)
 
     target = Path(out_dir).expanduser().absolute()
