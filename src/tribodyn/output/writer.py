@@ -317,11 +317,15 @@ def _write_held(path: Path) -> None:
 @contextmanager
 def _netcdf_meanwhile(ds, path: Path, encoding: dict) -> Iterator[None]:
     """Write ``ds`` to the netCDF file ``path`` while the body of the ``with`` writes the
-    other files: in a forked process on Linux (it shares the Dataset; compressing and
-    writing results.nc takes about a second on the paper case), else first. Leaving
-    the ``with`` waits for that process (also after an error in the body, so that
-    nothing is written into a folder being removed) and raises its error."""
-    if not sys.platform.startswith("linux"):
+    other files: in a forked process on Linux when this process runs no other thread
+    (it shares the Dataset; compressing and writing results.nc takes about a second on
+    the paper case; a fork beside another thread could leave a lock that thread holds
+    locked in the child), else first. Leaving the ``with`` waits for that process (also
+    after an error in the body, so that nothing is written into a folder being removed)
+    and raises its error."""
+    import threading
+
+    if not sys.platform.startswith("linux") or threading.active_count() > 1:
         _write_netcdf(ds, path, encoding)
         yield
         return
