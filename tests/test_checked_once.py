@@ -210,18 +210,39 @@ def test_the_second_look_builds_no_surface_law(monkeypatch):
     assert calls == []
 
 
-def test_loading_checks_each_value_once(monkeypatch):
-    """Each material's E, the tolerance, the spring rate, each set's σ and coating
-    thickness: one range check each while the paper case loads."""
-    data = _paper_data()
+def _count_checks(monkeypatch, key=lambda limit, name, value: limit) -> Counter:
+    """Count every ``Limit.check`` while the test runs, by ``key(limit, name, value)``."""
     calls: Counter = Counter()
     check = L.Limit.check
 
     def counting(self, name, value):
-        calls[self] += 1
+        calls[key(self, name, value)] += 1
         return check(self, name, value)
 
     monkeypatch.setattr(L.Limit, "check", counting)
+    return calls
+
+
+def _counted(calls: Counter, checker):
+    """``checker`` (a ``check_*`` function) counting its calls by (name, value)."""
+
+    def counting(name, value, *args, **kw):
+        calls[name, value] += 1
+        return checker(name, value, *args, **kw)
+
+    return counting
+
+
+def _checked_by_schema(field) -> bool:
+    """Whether a schema field checks a bound itself (pydantic constraints)."""
+    return any(getattr(m, b, None) is not None for m in field.metadata for b in L_BOUNDS)
+
+
+def test_loading_checks_each_value_once(monkeypatch):
+    """Each material's E, the tolerance, the spring rate, each set's σ and coating
+    thickness: one range check each while the paper case loads."""
+    data = _paper_data()
+    calls = _count_checks(monkeypatch)
     Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
     sets = data["surface_sets"]
     assert calls[L.YOUNGS_MODULUS] == len(data["materials"])
@@ -264,14 +285,7 @@ def test_a_thermal_oil_checks_the_lubricant_values_once(monkeypatch, form):
         for k in ("viscosity", "pressure_viscosity", "density"):
             data["lubricant"].pop(k, None)
         data["lubricant"]["oil"] = "5W-20"
-    calls: Counter = Counter()
-    check = L.Limit.check
-
-    def counting(self, name, value):
-        calls[self] += 1
-        return check(self, name, value)
-
-    monkeypatch.setattr(L.Limit, "check", counting)
+    calls = _count_checks(monkeypatch)
     data["lubricant"]["thermal_expansion"] = 7e-4  # given: not checked by the schema too
     data["lubricant"]["limiting_shear_temperature_coefficient"] = 0.01
     data["lubricant"]["thermal_conductivity"] = 0.13
@@ -320,28 +334,17 @@ def _thermal_data() -> dict:
 def test_each_thermal_key_is_checked_once(monkeypatch):
     """A thermal case: each thermal key given is range-checked once, by the constructor
     that takes it (ThermalLubricant, ThermalProperties), not by the schema too."""
-    seen: Counter = Counter()  # (argument, value) of each constructor check
-    check, check_range = L.Limit.check, _validation.check_range
-
-    def counting(self, name, value):
-        seen[name, value] += 1
-        return check(self, name, value)
-
-    def counting_range(name, value, *args, **kw):
-        seen[name, value] += 1
-        return check_range(name, value, *args, **kw)
-
-    monkeypatch.setattr(L.Limit, "check", counting)
+    # (argument, value) of each constructor check
+    seen = _count_checks(monkeypatch, key=lambda limit, name, value: (name, value))
     for module in (thermal_oil, heat_conduction):
         if hasattr(module, "check_range"):
-            monkeypatch.setattr(module, "check_range", counting_range)
+            monkeypatch.setattr(module, "check_range", _counted(seen, _validation.check_range))
     case = Case.from_dict(_thermal_data(), base_dir=DEFAULT_CASE.parent)
     for key, value in THERMAL_KEYS.items():
         section, name = key.rsplit(".", 1)
         oil = section == "lubricant"
         model = case.lubricant_config if oil else case.materials["steel"]
-        fi = type(model).model_fields[name]
-        by_schema = any(getattr(m, b, None) is not None for m in fi.metadata for b in L_BOUNDS)
+        by_schema = _checked_by_schema(type(model).model_fields[name])
         arg = name if oil or name != "thermal_conductivity" else "conductivity"
         assert seen[arg, value] + by_schema == 1, key
 
@@ -412,28 +415,13 @@ def test_each_thermal_numerics_key_is_checked_once(monkeypatch, thermal):
     data = _thermal_data() if thermal else _paper_data()
     for arg, value in values.items():
         data["numerics"][NUMERICS_THERMAL[arg]] = value
-    seen: Counter = Counter()
-    check = L.Limit.check
-
-    def counting(self, name, value):
-        seen[name, value] += 1
-        return check(self, name, value)
-
-    def counted(checker):
-        def counting_checker(name, value, *args, **kw):
-            seen[name, value] += 1
-            return checker(name, value, *args, **kw)
-
-        return counting_checker
-
-    monkeypatch.setattr(L.Limit, "check", counting)
+    seen = _count_checks(monkeypatch, key=lambda limit, name, value: (name, value))
     for name in ("check_int", "check_positive", "check_range"):  # the checks of the solver
         if hasattr(thermal_field, name):
-            monkeypatch.setattr(thermal_field, name, counted(getattr(thermal_field, name)))
+            monkeypatch.setattr(thermal_field, name, _counted(seen, getattr(thermal_field, name)))
     case = Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
     for arg, value in values.items():
-        fi = schema.Numerics.model_fields[NUMERICS_THERMAL[arg]]
-        by_schema = any(getattr(m, b, None) is not None for m in fi.metadata for b in L_BOUNDS)
+        by_schema = _checked_by_schema(schema.Numerics.model_fields[NUMERICS_THERMAL[arg]])
         assert seen[arg, value] + by_schema == 1, arg
         assert getattr(build(case).thermal_options, arg) == value
 
@@ -463,19 +451,11 @@ def test_each_grid_key_is_checked_once(monkeypatch, nodes):
     grid (EHLOptions n=None)."""
     data = _paper_data()
     data["numerics"].update(n=nodes, coupling_n=nodes)
-    seen: Counter = Counter()
-    check = L.Limit.check
-
-    def counting(self, name, value):
-        seen[name] += 1
-        return check(self, name, value)
-
-    monkeypatch.setattr(L.Limit, "check", counting)
+    seen = _count_checks(monkeypatch, key=lambda limit, name, value: name)
     case = Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
     options = build(case).options
     for name in ("n", "coupling_n"):
-        fi = schema.Numerics.model_fields[name]
-        by_schema = any(getattr(m, b, None) is not None for m in fi.metadata for b in L_BOUNDS)
+        by_schema = _checked_by_schema(schema.Numerics.model_fields[name])
         assert seen[name] + by_schema == 1, name
     assert options.n == (nodes or None)
 
