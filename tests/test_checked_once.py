@@ -573,3 +573,50 @@ def test_the_keys_in_another_unit_out_of_range_are_reported_together_in_their_un
         ]
     )
 
+
+def test_the_supply_film_is_checked_at_load_and_by_a_direct_caller_only(monkeypatch):
+    """numerics.coupling_supply_film: checked once, by the schema at load; the coupling's
+    film state takes it unchecked (``checked``); a film state made directly checks its
+    supply film against the same limit."""
+    from tribodyn.valvetrain.tribology import FilmStateTribology, Frictionless
+
+    field = schema.Numerics.model_fields["coupling_supply_film"]
+    assert _checked_by_schema(field)
+    assert _ranged(schema.Numerics)["coupling_supply_film"]["range"] == {"gt": 0.0, "le": 1.0}
+    oil = build(Case.from_dict(_paper_data(), base_dir=DEFAULT_CASE.parent)).lubricant
+    seen = _count_checks(monkeypatch, key=lambda limit, name, value: name)
+    kw = {"width": 0.012, "lubricant": oil, "e_prime": 2.3e11, "supply_film": 2e-5}
+    assert FilmStateTribology(Frictionless(), **kw, checked=("supply_film",)).supply_film == 2e-5
+    assert seen["supply_film"] == 0
+    FilmStateTribology(Frictionless(), **kw)
+    assert seen["supply_film"] == 1
+    with pytest.raises(InputError, match=r"supply_film must be > 0 and <= 1 \[m\] \(got 2"):
+        FilmStateTribology(Frictionless(), **(kw | {"supply_film": 2.0}))
+
+
+def test_the_coupling_takes_the_supply_film_checked_at_load(monkeypatch):
+    """The coupling passes numerics.coupling_supply_film on as checked (at load): its film
+    states do not check it again."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from tribodyn.cycle import coupling
+
+    data = _paper_data()
+    data["numerics"].update(implicit_coupling=True, coupling_supply_film=3e-5)
+    built = build(Case.from_dict(data, base_dir=DEFAULT_CASE.parent))
+    given: list[dict] = []
+
+    class Stop(Exception):
+        pass
+
+    def film_state_tribology(*args, **kw):
+        given.append(kw)
+        raise Stop
+
+    monkeypatch.setattr(coupling, "film_state_tribology", film_state_tribology)
+    dynamics = SimpleNamespace(event_mask=lambda: np.ones(3, bool), contact_force=np.ones(3))
+    with pytest.raises(Stop):
+        coupling.run_coupling(built, built.surface_sets[0], dynamics, None, None)
+    assert given == [{"supply_film": 3e-5, "checked": ("supply_film",)}]

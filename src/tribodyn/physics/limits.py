@@ -65,6 +65,7 @@ __all__ = [
     "DAMPING_FORCE_RAMP",
     "BORE_FRICTION_COEFFICIENT",
     "BORE_FRICTION_VELOCITY",
+    "SUPPLY_FILM_THICKNESS",
     "LENGTH_BELOW_1M",
     "ENGINE_SPEED",
     "ENGINE_DISPLACEMENT",
@@ -309,6 +310,9 @@ DAMPING_FORCE_RAMP = Limit("N", gt=0.0, le=1e4, why="force over which contact da
 BORE_FRICTION_COEFFICIENT = Limit("", ge=0.0, le=2.0, why="friction coefficients below 2")
 BORE_FRICTION_VELOCITY = Limit(
     "m/s", gt=0.0, le=10.0, why="regularisation below the tappet speeds (~1–10 m/s)"
+)
+SUPPLY_FILM_THICKNESS = Limit(
+    "m", gt=0.0, le=1.0, why="oil supply layer of the film state; 1 m: flooded for any contact"
 )
 LENGTH_BELOW_1M = Limit("m", gt=0.0, lt=1.0, why="valvetrain dimensions below 1 m")
 ENGINE_SPEED = Limit("rpm", gt=0.0, le=50000.0, why="engine speeds below 50 000 rpm")
