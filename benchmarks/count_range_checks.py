@@ -8,11 +8,13 @@ equals the number of distinct (name, value) pairs checked (equal values of one n
 different sections, e.g. two surface sets' ``rms``, count as one value: ``checked_twice``
 lists them too). A key named otherwise than its constructor's argument
 (``numerics.thermal_x_nodes`` → ``x_nodes``) is counted under the argument's name, from
-the build's argument → key mappings.
+the build's argument → key mappings; one in another unit (``lubricant.inlet_temperature_c``
+→ ``inlet_temperature`` in K) under the argument's name and value.
 
 Run: ``python benchmarks/count_range_checks.py [case.toml ...]`` (default: the bundled
 paper case, its thermal variant with a datasheet oil, and the paper case made thermal with
-its oil in the inlet form). Prints one JSON line per case.
+its oil in the inlet form and with a datasheet given by its keys). Prints one JSON line per
+case.
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ from tribodyn.config.build import SET_KEYS, THERMAL_KEYS
 from tribodyn.config.case import CASES_DIR, DEFAULT_CASE, Case, load_case
 from tribodyn.config.case_thermal import MATERIAL_KEYS
 from tribodyn.config.schema_fields import Section
+from tribodyn.config.schema_surfaces import OIL_KEYS
 from tribodyn.physics import limits as L
 
 _BOUNDS = ("gt", "ge", "lt", "le")
@@ -44,6 +47,17 @@ _ARGUMENTS = {
         ("MaterialConfig", MATERIAL_KEYS),
     )
 }
+#: per section, the keys in another unit than their argument (argument, conversion)
+_CONVERTED = {"LubricantConfig": OIL_KEYS}
+
+
+def _counted_as(model: BaseModel, name: str, value) -> tuple[str, str]:
+    """(argument, repr of its value) of the key ``name`` of ``model``."""
+    section = type(model).__name__
+    conv = _CONVERTED.get(section, {}).get(name)
+    if conv is not None:
+        return conv.argument, repr(conv.value(value))
+    return _ARGUMENTS.get(section, {}).get(name, name), repr(value)
 
 
 def _schema_checks(model: BaseModel, out: Counter) -> None:
@@ -56,8 +70,7 @@ def _schema_checks(model: BaseModel, out: Counter) -> None:
         if value is not None and any(
             getattr(m, k, None) is not None for m in fi.metadata for k in _BOUNDS
         ):
-            arg = _ARGUMENTS.get(type(model).__name__, {}).get(name, name)
-            out[(arg, repr(value))] += 1
+            out[_counted_as(model, name, value)] += 1
     for name in type(model).model_fields:
         value = getattr(model, name)
         items = value.values() if isinstance(value, dict) else value
@@ -66,11 +79,18 @@ def _schema_checks(model: BaseModel, out: Counter) -> None:
                 _schema_checks(v, out)
 
 
-def _inlet_form_thermal() -> Case:
+def _thermal(datasheet: bool) -> Case:
     """The paper case with the thermal model and its oil in the inlet form (μ, α at 90 °C
-    and the temperature–viscosity coefficient β)."""
+    and the temperature–viscosity coefficient β) or (``datasheet``) as datasheet keys."""
     data = tomllib.loads(DEFAULT_CASE.read_text(encoding="utf-8"))
-    data["lubricant"].update(inlet_temperature_c=90.0, viscosity_temperature_coefficient=0.03)
+    lub = data["lubricant"]
+    lub.update(inlet_temperature_c=90.0, viscosity_temperature_coefficient=0.03)
+    if datasheet:
+        for k in ("viscosity", "density", "viscosity_temperature_coefficient"):
+            lub.pop(k, None)
+        lub.update(
+            kinematic_viscosity_40_cst=48.0, kinematic_viscosity_100_cst=8.6, density_15=850.0
+        )
     data["numerics"]["thermal"] = True
     return Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
 
@@ -119,7 +139,8 @@ def main(argv: list[str]) -> None:
     for p in paths:
         print(json.dumps(count(p.name, functools.partial(load_case, p)), ensure_ascii=False))
     if not argv:
-        print(json.dumps(count("paper, thermal, inlet-form oil", _inlet_form_thermal)))
+        print(json.dumps(count("paper, thermal, inlet-form oil", lambda: _thermal(False))))
+        print(json.dumps(count("paper, thermal, datasheet keys", lambda: _thermal(True))))
 
 
 if __name__ == "__main__":

@@ -71,6 +71,37 @@ def _paper_data() -> dict:
     return tomllib.loads(DEFAULT_CASE.read_text(encoding="utf-8"))
 
 
+#: the datasheet keys of [lubricant] (valid with a datasheet only), with values to give
+DATASHEET = {
+    "kinematic_viscosity_40_cst": 48.0,
+    "kinematic_viscosity_100_cst": 8.6,
+    "density_15": 850.0,
+}
+#: [lubricant] keys in another unit than their ThermalLubricant argument: key →
+#: (argument, shared limit, argument = key × scale + offset)
+CONVERTED = {
+    "kinematic_viscosity_40_cst": ("kinematic_viscosity_40", L.KINEMATIC_VISCOSITY_40, 1e-6, 0),
+    "kinematic_viscosity_100_cst": ("kinematic_viscosity_100", L.KINEMATIC_VISCOSITY_100, 1e-6, 0),
+    "density_15": ("density", L.DENSITY, 1.0, 0.0),
+    "inlet_temperature_c": ("inlet_temperature", L.OIL_TEMPERATURE, 1.0, 273.15),
+}
+
+
+def _datasheet_data(thermal: bool = False) -> dict:
+    """The paper case with its oil given as datasheet keys at 90 °C."""
+    data = _paper_data()
+    for k in ("viscosity", "density", "pressure_viscosity"):
+        data["lubricant"].pop(k, None)
+    data["lubricant"].update(DATASHEET, inlet_temperature_c=90.0)
+    data["numerics"]["thermal"] = thermal
+    return data
+
+
+def _data_for(key: str) -> dict:
+    """The paper case, with a datasheet oil where ``key`` is one of its keys."""
+    return _datasheet_data() if key.split(".")[-1] in DATASHEET else _paper_data()
+
+
 def _outside(bounds: dict, integer: bool):
     """A value above the upper bound of ``bounds``."""
     top = bounds.get("le", bounds.get("lt"))
@@ -108,13 +139,26 @@ def test_the_ranged_keys_are_the_shared_limits():
         if isinstance(lim, L.Limit)
     }
     for key, extra, _ in KEYS:
+        if key.split(".")[-1] in CONVERTED:  # below
+            continue
         assert (extra["unit"], tuple(extra["range"].items())) in limits, key
+
+
+@pytest.mark.parametrize("key", CONVERTED)
+def test_a_key_in_another_unit_records_its_arguments_limit_in_its_unit(key):
+    """lubricant.kinematic_viscosity_*_cst (mm²/s), density_15, inlet_temperature_c (°C):
+    the range recorded is the ThermalLubricant argument's limit in the key's unit."""
+    _, limit, scale, offset = CONVERTED[key]
+    recorded = _ranged(schema.LubricantConfig)[key]["range"]
+    expected = {k: (v - offset) / scale for k, v in limit.constraints().items()}
+    assert recorded.keys() == expected.keys()
+    assert recorded == pytest.approx(expected, rel=1e-12, abs=1e-9)
 
 
 @pytest.mark.parametrize("key, extra, annotation", KEYS, ids=[k for k, _, _ in KEYS])
 def test_every_ranged_key_is_checked_and_named(key, extra, annotation):
     value = _outside(extra["range"], "int" in str(annotation))
-    data = copy.deepcopy(_paper_data())
+    data = copy.deepcopy(_data_for(key))
     set_dotted(data, key, value)
     with pytest.raises(InputError) as e:
         Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
@@ -468,3 +512,111 @@ def test_the_transient_solver_checks_a_direct_n():
 
     with pytest.raises(InputError, match=r"n must be an integer >= 32 and <= 4096 \(got 8192\)"):
         TransientEHL(PAIR, OIL, options=EHLOptions(n=8192))
+
+
+@pytest.mark.parametrize("form", ["datasheet", "datasheet-thermal", "inlet-thermal", "isothermal"])
+def test_each_key_in_another_unit_is_checked_once(monkeypatch, form):
+    """The datasheet keys and inlet_temperature_c: each value given is range-checked once,
+    under its ThermalLubricant argument's name and unit (the inlet form's density
+    reference temperature, Tᵢ, not again), also where no thermal oil is built; not by the
+    schema too."""
+    if form.startswith("datasheet"):
+        data = _datasheet_data(thermal=form == "datasheet-thermal")
+    else:
+        data = _paper_data()
+        data["lubricant"]["inlet_temperature_c"] = 90.0
+        if form == "inlet-thermal":
+            data["lubricant"]["viscosity_temperature_coefficient"] = 0.03
+            data["numerics"]["thermal"] = True
+    seen = _count_checks(monkeypatch, key=lambda limit, name, value: (name, value))
+    for name in ("check_positive", "check_range"):  # the oil's checks of other forms
+        if hasattr(thermal_oil, name):
+            monkeypatch.setattr(thermal_oil, name, _counted(seen, getattr(thermal_oil, name)))
+    Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    lub = data["lubricant"]
+    given = [k for k in CONVERTED if k in lub]
+    assert given == (list(CONVERTED) if form.startswith("datasheet") else ["inlet_temperature_c"])
+    for key in given:
+        arg, _, scale, offset = CONVERTED[key]
+        value = lub[key] * scale + offset
+        again = seen["density_temperature", value] if arg == "inlet_temperature" else 0
+        by_schema = _checked_by_schema(schema.LubricantConfig.model_fields[key])
+        assert seen[arg, value] + again + by_schema == 1, key
+
+
+@pytest.mark.parametrize("thermal", [False, True], ids=["isothermal", "thermal"])
+def test_the_keys_in_another_unit_out_of_range_are_reported_together_in_their_units(thermal):
+    """A datasheet whose keys are all out of range, beside a schema problem: one line per
+    key, naming the key and its range in the key's unit (mm²/s, °C), all in one message."""
+    data = _datasheet_data(thermal)
+    set_dotted(data, "engine.speed_rpm", -5.0)
+    data["lubricant"].update(
+        kinematic_viscosity_40_cst=1.0,
+        kinematic_viscosity_100_cst=2e4,
+        density_15=6000.0,
+        inlet_temperature_c=400.0,
+    )
+    with pytest.raises(InputError) as e:
+        Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
+    lines = str(e.value).splitlines()
+    assert lines[:2] == [
+        "invalid case: 5 problems",
+        "  engine.speed_rpm: must be > 0 rpm and <= 50000 rpm (got -5.0)",
+    ]
+    assert sorted(lines[2:]) == sorted(  # in [lubricant]: in the order the oil checks them
+        [
+            "  lubricant.kinematic_viscosity_40_cst: must be > 1.5 mm²/s and <= 100000 mm²/s (got 1.0)",
+            "  lubricant.kinematic_viscosity_100_cst: must be >= 1.5 mm²/s and <= 10000 mm²/s "
+            "(got 20000.0)",
+            "  lubricant.density_15: must be > 0 kg/m³ and <= 5000 kg/m³ (got 6000.0)",
+            "  lubricant.inlet_temperature_c: must be >= -73.15 °C and <= 326.85 °C (got 400.0)",
+        ]
+    )
+
+
+def test_the_supply_film_is_checked_at_load_and_by_a_direct_caller_only(monkeypatch):
+    """numerics.coupling_supply_film: checked once, by the schema at load; the coupling's
+    film state takes it unchecked (``checked``); a film state made directly checks its
+    supply film against the same limit."""
+    from tribodyn.valvetrain.tribology import FilmStateTribology, Frictionless
+
+    field = schema.Numerics.model_fields["coupling_supply_film"]
+    assert _checked_by_schema(field)
+    assert _ranged(schema.Numerics)["coupling_supply_film"]["range"] == {"gt": 0.0, "le": 1.0}
+    oil = build(Case.from_dict(_paper_data(), base_dir=DEFAULT_CASE.parent)).lubricant
+    seen = _count_checks(monkeypatch, key=lambda limit, name, value: name)
+    kw = {"width": 0.012, "lubricant": oil, "e_prime": 2.3e11, "supply_film": 2e-5}
+    assert FilmStateTribology(Frictionless(), **kw, checked=("supply_film",)).supply_film == 2e-5
+    assert seen["supply_film"] == 0
+    FilmStateTribology(Frictionless(), **kw)
+    assert seen["supply_film"] == 1
+    with pytest.raises(InputError, match=r"supply_film must be > 0 and <= 1 \[m\] \(got 2"):
+        FilmStateTribology(Frictionless(), **(kw | {"supply_film": 2.0}))
+
+
+def test_the_coupling_takes_the_supply_film_checked_at_load(monkeypatch):
+    """The coupling passes numerics.coupling_supply_film on as checked (at load): its film
+    states do not check it again."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from tribodyn.cycle import coupling
+
+    data = _paper_data()
+    data["numerics"].update(implicit_coupling=True, coupling_supply_film=3e-5)
+    built = build(Case.from_dict(data, base_dir=DEFAULT_CASE.parent))
+    given: list[dict] = []
+
+    class Stop(Exception):
+        pass
+
+    def film_state_tribology(*args, **kw):
+        given.append(kw)
+        raise Stop
+
+    monkeypatch.setattr(coupling, "film_state_tribology", film_state_tribology)
+    dynamics = SimpleNamespace(event_mask=lambda: np.ones(3, bool), contact_force=np.ones(3))
+    with pytest.raises(Stop):
+        coupling.run_coupling(built, built.surface_sets[0], dynamics, None, None)
+    assert given == [{"supply_film": 3e-5, "checked": ("supply_film",)}]

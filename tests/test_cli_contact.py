@@ -166,6 +166,15 @@ def test_bad_input_exits_2_naming_the_parameter(args, name):
     assert "Traceback" not in r.output
 
 
+def test_inlet_temperature_out_of_range_names_the_option_and_the_case_keys_range():
+    """--inlet-temperature has the range of lubricant.inlet_temperature_c (the thermal
+    oil's 200–600 K, in °C)."""
+    base = ["--load", "633", "--radius", "0.01", "--ue", "5", "--us", "2"]
+    r = run(*base, "--oil", "5W-30", "--inlet-temperature", "400")
+    assert r.exit_code != 0
+    assert "--inlet-temperature must be >= -73.15 and <= 326.85 [°C] (got 400)" in r.output
+
+
 def test_oil_without_thermal_sets_the_isothermal_lubricant():
     """``--oil 5W-30 --inlet-temperature 90`` without ``--thermal``: the isothermal solve
     uses the oil at 90 °C (μ₀, α, ρ₀ as the thermal solver derives them), not the given

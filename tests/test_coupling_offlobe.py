@@ -125,7 +125,7 @@ def test_force_between_samples_does_not_depend_on_their_spacing(paper_4000):
     assert rms_old > 0.01 * peak or mx_old > 0.05 * peak  # the bound can fail
 
 
-@pytest.mark.parametrize("value", [0.0, -1e-6, 2e-3])
+@pytest.mark.parametrize("value", [0.0, -1e-6, 2.0])
 def test_supply_film_out_of_range_is_an_input_error(value):
     with pytest.raises(InputError, match="coupling_supply_film"):
         load_case().updated({"numerics.coupling_supply_film": value})

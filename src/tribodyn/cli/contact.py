@@ -323,26 +323,26 @@ def _check_dry(q: ContactRequest) -> None:
 def _thermal_oil(built, oil, inlet_temperature, lub_options):
     """The oil of --oil/--inlet-temperature [°C], else the datasheet oil of the case
     (its BuiltCase ``built``)."""
+    from ..config.schema_surfaces import OIL_KEYS
     from ..physics.oils import OILS
     from ..physics.thermal_oil import ThermalLubricant
 
+    to_kelvin = OIL_KEYS["inlet_temperature_c"]  # the case key's range and unit (°C)
     clash = [k for k, v in lub_options.items() if v is not None]
     if clash:
         raise InputError(
             f"{', '.join(clash)}: not with --thermal/--oil/--inlet-temperature "
             "(the oil comes from --oil or the case's [lubricant])"
         )
-    if inlet_temperature is not None and not (-40.0 < inlet_temperature <= 250.0):
-        raise InputError(
-            f"--inlet-temperature must be in (-40, 250] °C (got {inlet_temperature:g})"
-        )
+    if inlet_temperature is not None:
+        to_kelvin.key_limit.check("--inlet-temperature", inlet_temperature)
     if oil is not None:
         if oil not in OILS:
             raise InputError(f"--oil must be one of {', '.join(OILS)} (got {oil!r})")
         if inlet_temperature is None:
             raise InputError("--oil needs --inlet-temperature [°C] (the sump temperature)")
         sheet: dict[str, Any] = {k: v for k, v in OILS[oil].items() if k != "description"}
-        return ThermalLubricant(inlet_temperature + 273.15, **sheet, name=oil)
+        return ThermalLubricant(to_kelvin.value(inlet_temperature), **sheet, name=oil)
     try:
         base = built.thermal_oil()
     except InputError:
@@ -352,7 +352,7 @@ def _thermal_oil(built, oil, inlet_temperature, lub_options):
             "inlet_temperature_c"
         ) from None
     if inlet_temperature is not None:
-        return base.with_inlet_temperature(inlet_temperature + 273.15)
+        return base.with_inlet_temperature(to_kelvin.value(inlet_temperature))
     return base
 
 

@@ -12,9 +12,10 @@ from .._validation import InputError
 from ..contact.ehl.thermal import ThermalOptions
 from ..physics import thermal_oil
 from ..physics.heat_conduction import LIMITS, ThermalBody, ThermalProperties
-from ..physics.limits import Limit, check_fields
+from ..physics.limits import Limit, RangeError, check_fields
 from ..physics.oils import OILS, THERMAL_MATERIALS
-from ..physics.thermal_oil import ThermalLubricant, kelvin
+from ..physics.thermal_oil import ThermalLubricant
+from .schema_surfaces import OIL_KEYS
 
 if TYPE_CHECKING:
     from ..physics.lubricant import Lubricant
@@ -44,6 +45,26 @@ def _check_given(given: dict[str, Any], limits: dict[str, Limit]) -> None:
     check_fields(SimpleNamespace(**given), {k: limits[k] for k in given}, tuple(given))
 
 
+def _oil_arguments(c: LubricantConfig) -> dict[str, float]:
+    """The ThermalLubricant arguments the keys of :data:`OIL_KEYS` given in ``c`` set."""
+    given = {k: getattr(c, k) for k in OIL_KEYS}
+    return {OIL_KEYS[k].argument: OIL_KEYS[k].value(v) for k, v in given.items() if v is not None}
+
+
+def _in_key_units(c: LubricantConfig, exc: RangeError) -> RangeError:
+    """``exc`` with each value a key of :data:`OIL_KEYS` set named by that key, in its
+    unit and as given."""
+    items = []
+    for name, limit, value in exc.items:
+        for key, conv in OIL_KEYS.items():
+            given = getattr(c, key)
+            if conv.argument == name and given is not None and conv.value(given) == value:
+                name, limit, value = key, conv.key_limit, given
+                break
+        items.append((name, limit, value))
+    return RangeError(items)
+
+
 class ThermalBuilders:
     """The thermal oil, thermal bodies and thermal options of a
     :class:`~tribodyn.config.case.Case`."""
@@ -67,44 +88,43 @@ class ThermalBuilders:
                 "lubricant.inlet_temperature_c: required for the thermal model "
                 "(the oil supply temperature, °C)"
             )
-        Ti = float(kelvin(c.inlet_temperature_c))
         # the thermal oil's own keys (β None with a datasheet) and the laws of both oils
         common = dict(c.model_dump(include=OIL_LAW_KEYS | thermal_oil.LIMITS.keys()))
-        common["inlet_temperature"] = Ti
+        sheet = {k: v for k, v in OILS.get(c.oil or "", {}).items() if k != "description"}
+        common |= sheet | _oil_arguments(c)  # a datasheet's keys override its oil's values
         given = c.model_fields_set
-        if c.datasheet:
-            sheet: dict[str, Any] = dict(OILS[c.oil]) if c.oil is not None else {}
-            name = c.oil or "datasheet oil"
-            sheet.pop("description", None)
-            if c.kinematic_viscosity_40_cst is not None:
-                sheet["kinematic_viscosity_40"] = c.kinematic_viscosity_40_cst * 1e-6
-            if c.kinematic_viscosity_100_cst is not None:
-                sheet["kinematic_viscosity_100"] = c.kinematic_viscosity_100_cst * 1e-6
-            if c.density_15 is not None:
-                sheet["density"] = c.density_15
-            alpha = c.pressure_viscosity if "pressure_viscosity" in given else None
-            return ThermalLubricant(**common, **sheet, pressure_viscosity=alpha, name=name)
-        if c.viscosity_temperature_coefficient is None:
-            raise InputError(
-                "lubricant.viscosity_temperature_coefficient: required for the "
-                "thermal model with a viscosity (or give a datasheet: oil, "
-                "kinematic_viscosity_40_cst/_100_cst)"
+        try:
+            if c.datasheet:
+                alpha = c.pressure_viscosity if "pressure_viscosity" in given else None
+                name = c.oil or "datasheet oil"
+                return ThermalLubricant(**common, pressure_viscosity=alpha, name=name)
+            if c.viscosity_temperature_coefficient is None:
+                raise InputError(
+                    "lubricant.viscosity_temperature_coefficient: required for the "
+                    "thermal model with a viscosity (or give a datasheet: oil, "
+                    "kinematic_viscosity_40_cst/_100_cst)"
+                )
+            return ThermalLubricant(
+                **common,
+                viscosity=c.viscosity,
+                density=c.density,
+                density_temperature=common["inlet_temperature"],
+                pressure_viscosity=c.pressure_viscosity,
+                name="lubricant",
+                _checked=checked,
             )
-        return ThermalLubricant(
-            **common,
-            viscosity=c.viscosity,
-            density=c.density,
-            density_temperature=Ti,
-            pressure_viscosity=c.pressure_viscosity,
-            name="lubricant",
-            _checked=checked,
-        )
+        except RangeError as exc:
+            raise _in_key_units(c, exc) from None
 
     def _check_thermal_oil_keys(self) -> None:
         """Check the ranges of the thermal oil's keys given in ``[lubricant]``: of a case
         whose thermal oil is not built (where it is, its constructor checks them)."""
         c, limits = self.lubricant_config, thermal_oil.LIMITS
-        _check_given(c.model_dump(include=c.model_fields_set & limits.keys()), limits)
+        given = c.model_dump(include=c.model_fields_set & limits.keys()) | _oil_arguments(c)
+        try:
+            _check_given(given, limits | {k.argument: k.limit for k in OIL_KEYS.values()})
+        except RangeError as exc:
+            raise _in_key_units(c, exc) from None
 
     def _thermal_properties_given(self, name: str) -> dict[str, float]:
         """The thermal properties ``[materials.<name>]`` gives, by argument name."""

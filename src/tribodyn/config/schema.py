@@ -27,7 +27,7 @@ from ..physics import typical_engine
 from ..physics.valvetrain_friction import BoreGeometry, GuideGeometry
 from ..valvetrain.dynamics import simulate_valvetrain
 from ..valvetrain.tappet_rotation import TappetRotation
-from ..valvetrain.tribology import SUPPLY_FILM, SUPPLY_FILM_MAX
+from ..valvetrain.tribology import SUPPLY_FILM
 from .errors import CaseKeyError, Problems
 from .schema_fields import _NAME_PATTERN, Section, _arg, _lim, _q, defaults_of
 from .schema_surfaces import (
@@ -375,13 +375,11 @@ class Numerics(Section):
         "give the film law, needed to the coupling tolerance only; the reported EHL "
         "keeps numerics.n); at most numerics.n when that is set; 0 = as numerics.n",
     )
-    coupling_supply_film: float = _q(
+    coupling_supply_film: float = _lim(
         SUPPLY_FILM,
-        "m",
+        L.SUPPLY_FILM_THICKNESS,
         "oil supply layer that bounds the film of the implicit dynamics (the tappet rides "
         "on it off the cam lobe; assumed)",
-        gt=0.0,
-        le=SUPPLY_FILM_MAX,
     )
     workers: int = _q(
         0,

@@ -14,7 +14,8 @@ from __future__ import annotations
 
 import inspect
 from collections.abc import Callable
-from typing import Any
+from dataclasses import replace
+from typing import Any, NamedTuple
 
 from pydantic import BaseModel, ConfigDict, Field
 
@@ -59,6 +60,31 @@ def _arg(default: Any, limit: L.Limit, doc: str, **constraints) -> Any:
     if limit.auto is not None:  # the value outside the range that means "automatic"
         extra["auto"] = limit.auto
     return Field(default, description=doc, json_schema_extra=extra, **constraints)
+
+
+class Converted(NamedTuple):
+    """A key in another unit or name than the constructor argument it sets: argument =
+    key × ``scale`` + ``offset`` (mm²/s: scale 1e-6; °C: offset 273.15 K); its range is the
+    argument's ``limit`` (checked by the constructor), recorded in the key's ``unit``."""
+
+    argument: str
+    limit: L.Limit
+    unit: str
+    scale: float = 1.0
+    offset: float = 0.0
+
+    def value(self, key_value: float) -> float:
+        """The argument's value of the key's."""
+        return key_value * self.scale + self.offset
+
+    @property
+    def key_limit(self) -> L.Limit:
+        """The argument's limit in the key's unit (bounds to 12 significant digits)."""
+        s, o = self.scale, self.offset
+        to: dict[str, Any] = {
+            k: float(f"{(v - o) / s:.12g}") for k, v in self.limit.constraints().items()
+        }
+        return replace(self.limit, unit=self.unit, **to)
 
 
 class Section(BaseModel):

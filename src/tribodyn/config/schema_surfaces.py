@@ -14,14 +14,28 @@ from ..physics import limits as L
 from ..physics import typical, typical_engine
 from ..physics.oils import OILS
 from ..physics.strength import TYPICAL_STRENGTH
-from ..physics.thermal_oil import ThermalLubricant
+from ..physics.thermal_oil import ThermalLubricant, kelvin
 from ..topography.load_separation import synthetic_load_separation
 from .errors import Problems
-from .schema_fields import _NAME_PATTERN, Section, _arg, _lim, _q, defaults_of
+from .schema_fields import _NAME_PATTERN, Converted, Section, _arg, _lim, _q, defaults_of
 
 #: the defaults of the constructors the sections set: the one source of theirs
 _OIL_DEFAULTS = defaults_of(ThermalLubricant)
 _SURFACE_LAW_DEFAULTS = defaults_of(synthetic_load_separation)
+#: ``[lubricant]`` keys in another unit or name than the ThermalLubricant argument they
+#: set (density_15: of a datasheet), checked there
+OIL_KEYS = {
+    "kinematic_viscosity_40_cst": Converted(
+        "kinematic_viscosity_40", L.KINEMATIC_VISCOSITY_40, "mm²/s", 1e-6
+    ),
+    "kinematic_viscosity_100_cst": Converted(
+        "kinematic_viscosity_100", L.KINEMATIC_VISCOSITY_100, "mm²/s", 1e-6
+    ),
+    "density_15": Converted("density", L.DENSITY, L.DENSITY.unit),
+    "inlet_temperature_c": Converted(
+        "inlet_temperature", L.OIL_TEMPERATURE, "°C", offset=float(kelvin(0.0))
+    ),
+}
 
 
 class LubricantConfig(Section):
@@ -57,27 +71,29 @@ class LubricantConfig(Section):
     oil: Literal[tuple(OILS)] | None = _q(  # type: ignore[valid-type]
         None, "", "bundled oil (datasheet values; the keys below override them)"
     )
-    kinematic_viscosity_40_cst: float | None = _q(
-        None, "mm²/s", "kinematic viscosity at 40 °C (datasheet, ASTM D445)", gt=1.5, le=1e5
+    kinematic_viscosity_40_cst: float | None = _arg(
+        None,
+        OIL_KEYS["kinematic_viscosity_40_cst"].key_limit,
+        "kinematic viscosity at 40 °C (datasheet, ASTM D445)",
     )
-    kinematic_viscosity_100_cst: float | None = _q(
-        None, "mm²/s", "kinematic viscosity at 100 °C (datasheet)", ge=1.5, le=1e4
+    kinematic_viscosity_100_cst: float | None = _arg(
+        None,
+        OIL_KEYS["kinematic_viscosity_100_cst"].key_limit,
+        "kinematic viscosity at 100 °C (datasheet)",
     )
-    density_15: float | None = _q(
-        None, "kg/m³", "density at 15 °C (datasheet)", gt=500.0, le=2000.0
+    density_15: float | None = _arg(
+        None, OIL_KEYS["density_15"].key_limit, "density at 15 °C (datasheet)"
     )
     thermal_expansion: float = _arg(
         _OIL_DEFAULTS["thermal_expansion"],
         L.THERMAL_EXPANSION,
         "thermal expansion of the density ε",
     )
-    inlet_temperature_c: float | None = _q(
+    inlet_temperature_c: float | None = _arg(
         None,
-        "°C",
+        OIL_KEYS["inlet_temperature_c"].key_limit,
         "oil supply (sump) temperature, also that of the solids far from the "
         "contact; required with a datasheet or numerics.thermal",
-        gt=-40.0,
-        le=250.0,
     )
     viscosity_temperature_coefficient: float | None = _arg(
         None,

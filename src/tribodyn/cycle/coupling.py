@@ -310,7 +310,9 @@ def run_coupling(
     msg = f"not converged in {n.coupling_iterations} iterations"
     changes: list[np.ndarray] = []
     for k in range(1, n.coupling_iterations + 1):
-        g = film_state_tribology(inp, ehl, lub, e_prime, period, case.width, supply_film=supply)
+        g = film_state_tribology(  # the supply film checked at load (the case file)
+            inp, ehl, lub, e_prime, period, case.width, supply_film=supply, checked=("supply_film",)
+        )
         if table is None:
             table = g
         else:

@@ -250,18 +250,19 @@ def film_state_tribology(
     width: float,
     lnr=None,
     supply_film: float | None = None,
+    checked: tuple[str, ...] = (),
 ) -> FilmStateTribology:
     """Tribology of the implicit coupling from one transient-EHL cycle: the EHL friction
     coefficient μ_k = F_f/F (:class:`FrictionCoefficientTable`) and the film as a state
     (:class:`~tribodyn.valvetrain.tribology.FilmStateTribology`, supply film h_s default
-    ``tribology.SUPPLY_FILM``) with the correction ``lnr`` (default
-    :func:`film_correction_from_ehl`)."""
+    ``tribology.SUPPLY_FILM``; ``checked`` ("supply_film") if checked where it entered) with
+    the correction ``lnr`` (default :func:`film_correction_from_ehl`)."""
     hs = _tribology.SUPPLY_FILM if supply_film is None else supply_film
     ff = _bridge(ehl.friction, ehl.loaded)
     mu = np.where(ehl.loaded & np.isfinite(ff), ff / np.maximum(inputs.contact_force, 1e-12), 0.0)
     friction = FrictionCoefficientTable(inputs.time, mu, period)
     base = FilmStateTribology(
-        friction, width=width, lubricant=lubricant, e_prime=e_prime, supply_film=hs
+        friction, width=width, lubricant=lubricant, e_prime=e_prime, supply_film=hs, checked=checked
     )
     if lnr is None:
         lnr = film_correction_from_ehl(inputs, ehl, base)
@@ -270,10 +271,11 @@ def film_state_tribology(
         width=width,
         lubricant=lubricant,
         e_prime=e_prime,
-        supply_film=hs,
+        supply_film=base.supply_film,
         time=inputs.time,
         correction=np.exp(lnr),
         period=period,
+        checked=("supply_film",),
     )
 
 
@@ -296,6 +298,7 @@ def state_from_vector(v, like: FilmStateTribology, period) -> FilmStateTribology
         lubricant=like.lubricant,
         e_prime=like.e_prime,
         supply_film=like.supply_film,
+        checked=("supply_film",),
         time=like.time,
         correction=np.exp(np.clip(v[:n], -lim, lim)),
         period=period,

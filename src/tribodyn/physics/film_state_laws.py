@@ -8,7 +8,6 @@ import math
 
 __all__ = [
     "SUPPLY_FILM",
-    "SUPPLY_FILM_MAX",
     "GROWTH_SHARPNESS",
     "FILM_FLOOR",
     "entraining_film_load",
@@ -19,9 +18,6 @@ __all__ = [
 #: ``FilmStateTribology``; assumed, see there): about the flooded EHL film of the paper
 #: case under the 5–10 N contacts of the tappet on the base circle.
 SUPPLY_FILM = 10e-6
-#: largest supply film a case file accepts [m] (1 mm: far above any film a cam contact
-#: holds)
-SUPPLY_FILM_MAX = 1e-3
 #: Martin's rigid isoviscous line contact, central film (Reynolds exit): h w' = 4.894 η u R.
 _MARTIN = 4.894
 #: smallest film the film state's laws are evaluated at [m] (the state itself is free)

@@ -47,6 +47,9 @@ __all__ = [
     "OIL_CONDUCTIVITY",
     "OIL_SPECIFIC_HEAT",
     "LIMITING_SHEAR_TEMPERATURE",
+    "KINEMATIC_VISCOSITY_40",
+    "KINEMATIC_VISCOSITY_100",
+    "OIL_TEMPERATURE",
     "SOLID_CONDUCTIVITY",
     "SOLID_DENSITY",
     "SOLID_SPECIFIC_HEAT",
@@ -62,6 +65,7 @@ __all__ = [
     "DAMPING_FORCE_RAMP",
     "BORE_FRICTION_COEFFICIENT",
     "BORE_FRICTION_VELOCITY",
+    "SUPPLY_FILM_THICKNESS",
     "LENGTH_BELOW_1M",
     "ENGINE_SPEED",
     "ENGINE_DISPLACEMENT",
@@ -259,6 +263,15 @@ OIL_CONDUCTIVITY = Limit(
 )
 OIL_SPECIFIC_HEAT = Limit("J/(kg K)", ge=100.0, le=1e4, why="oils: 1.7–2.5 kJ/(kg K) (Cragoe 1929)")
 LIMITING_SHEAR_TEMPERATURE = Limit("1/K", ge=0.0, le=0.05, why="τ_L halves over ≥ 10 K")
+KINEMATIC_VISCOSITY_40 = Limit(
+    "m²/s", gt=1.5e-6, le=0.1, why="above ν₁₀₀ (≥ 1.5 mm²/s); 1e5 mm²/s: heavy gear oils"
+)
+KINEMATIC_VISCOSITY_100 = Limit(
+    "m²/s", ge=1.5e-6, le=0.01, why="ASTM D341 (Walther) holds down to 1.5 mm²/s"
+)
+OIL_TEMPERATURE = Limit(
+    "K", ge=200.0, le=600.0, why="oil temperatures of −73 °C to 327 °C (pour point to cracking)"
+)
 SOLID_CONDUCTIVITY = Limit(
     "W/(m K)", ge=1e-3, le=1e8, why="aerogels 1e-3 to diamond ~2000; 1e8: an isothermal solid"
 )
@@ -297,6 +310,9 @@ DAMPING_FORCE_RAMP = Limit("N", gt=0.0, le=1e4, why="force over which contact da
 BORE_FRICTION_COEFFICIENT = Limit("", ge=0.0, le=2.0, why="friction coefficients below 2")
 BORE_FRICTION_VELOCITY = Limit(
     "m/s", gt=0.0, le=10.0, why="regularisation below the tappet speeds (~1–10 m/s)"
+)
+SUPPLY_FILM_THICKNESS = Limit(
+    "m", gt=0.0, le=1.0, why="oil supply layer of the film state; 1 m: flooded for any contact"
 )
 LENGTH_BELOW_1M = Limit("m", gt=0.0, lt=1.0, why="valvetrain dimensions below 1 m")
 ENGINE_SPEED = Limit("rpm", gt=0.0, le=50000.0, why="engine speeds below 50 000 rpm")

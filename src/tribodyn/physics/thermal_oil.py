@@ -67,7 +67,7 @@ from dataclasses import InitVar, dataclass, field, fields, replace
 
 import numpy as np
 
-from .._validation import InputError, check_bool, check_choice, check_positive, check_range
+from .._validation import InputError, check_bool, check_choice
 from . import limits as L
 from . import typical
 from .lubricant import LIMITS as LUBRICANT_LIMITS
@@ -101,6 +101,9 @@ CONDUCTIVITY_PRESSURE = (1.72e-9, 0.54e-9)
 _ZERO_C = 273.15
 #: the ranges of the thermal oil's own arguments (the isothermal oil's: LUBRICANT_LIMITS)
 LIMITS = {
+    "inlet_temperature": L.OIL_TEMPERATURE,
+    "kinematic_viscosity_40": L.KINEMATIC_VISCOSITY_40,
+    "kinematic_viscosity_100": L.KINEMATIC_VISCOSITY_100,
     "viscosity_temperature_coefficient": L.VISCOSITY_TEMPERATURE,
     "thermal_expansion": L.THERMAL_EXPANSION,
     "thermal_conductivity": L.OIL_CONDUCTIVITY,
@@ -217,22 +220,15 @@ class ThermalLubricant:
             optional=tuple(f.name for f in fields(self) if f.default is None),  # may be absent
         )
         object.__setattr__(self, "compressible", check_bool("compressible", self.compressible))
-        Ti = check_range("inlet_temperature", self.inlet_temperature, 200.0, 600.0, unit="K")
-        sheet = (self.kinematic_viscosity_40, self.kinematic_viscosity_100)
+        Ti = self.inlet_temperature  # in range (checked above, as ν₄₀, ν₁₀₀)
+        n40, n100 = sheet = (self.kinematic_viscosity_40, self.kinematic_viscosity_100)
         inlet = (self.viscosity, self.viscosity_temperature_coefficient)
         c: dict = {"Ti": Ti}
-        if all(v is not None for v in sheet) and all(v is None for v in inlet):
-            n40 = check_positive("kinematic_viscosity_40", sheet[0], "m²/s")
-            n100 = check_positive("kinematic_viscosity_100", sheet[1], "m²/s")
+        if n40 is not None and n100 is not None and all(v is None for v in inlet):
             if not n100 < n40:
                 raise InputError(
                     "kinematic_viscosity_100 must be below kinematic_viscosity_40 "
                     f"(got {n100 * 1e6:.4g} and {n40 * 1e6:.4g} mm²/s)"
-                )
-            if n100 * 1e6 < 1.5:
-                raise InputError(
-                    "kinematic_viscosity_100 must be >= 1.5 mm²/s for ASTM D341 "
-                    f"(got {n100 * 1e6:.4g})"
                 )
             c["form"] = "datasheet"
             c["A"], c["B"] = walther_constants(n40, n100)
@@ -248,7 +244,8 @@ class ThermalLubricant:
                 "(datasheet) or viscosity and viscosity_temperature_coefficient "
                 "(inlet form), not a mix"
             )
-        check_range("density_temperature", self.density_temperature, 200.0, 600.0, unit="K")
+        if self.density_temperature != Ti:  # the inlet form's is Tᵢ, checked
+            L.OIL_TEMPERATURE.check("density_temperature", self.density_temperature)
         check_choice("viscosity_model", self.viscosity_model, ("roelands", "barus"))
         object.__setattr__(self, "_c", c)
         mu_i = float(self.ambient_viscosity(Ti))
@@ -309,8 +306,10 @@ class ThermalLubricant:
         c["isothermal"] = L.unchecked(Lubricant, **iso)
 
     def _temperature_where(self, f) -> float:
-        """The temperature in [200, 600] K where ``f`` (falling with T) crosses 0."""
-        lo, hi = 200.0, 600.0
+        """The temperature in the range of :data:`~.limits.OIL_TEMPERATURE` where ``f``
+        (falling with T) crosses 0."""
+        lo, hi = L.OIL_TEMPERATURE.ge, L.OIL_TEMPERATURE.le
+        assert lo is not None and hi is not None
         for _ in range(60):
             mid = 0.5 * (lo + hi)
             lo, hi = (mid, hi) if float(f(mid)) > 0.0 else (lo, mid)

@@ -37,11 +37,12 @@ import numpy as np
 
 from .._typing import ArrayLike
 from .._validation import InputError, check_array, check_positive
+from ..physics import limits as L
 from ..physics import typical, typical_engine
 from ..physics.analytic_contact import analytic_contact
 from ..physics.asperity import Roughness
 from ..physics.film_state_laws import FILM_FLOOR as _FILM_FLOOR
-from ..physics.film_state_laws import SUPPLY_FILM, SUPPLY_FILM_MAX, entraining_film_load
+from ..physics.film_state_laws import SUPPLY_FILM, entraining_film_load
 from ..physics.lubricant import TYPICAL_OIL, Lubricant
 from ..physics.materials import STEEL, Body, BodyPair
 
@@ -55,7 +56,6 @@ __all__ = [
     "entraining_film_load",
     "FilmStateTribology",
     "SUPPLY_FILM",
-    "SUPPLY_FILM_MAX",
 ]
 
 #: Typical Greenwood–Tripp roughness of a ground cam on a ground tappet
@@ -394,11 +394,14 @@ class FilmStateTribology(TribologyModel):
     ----------
     friction_model : the model supplying ``friction``.
     width : cam width L [m]; lubricant : η₀, α (a :class:`Lubricant`); e_prime : E' [Pa].
-    supply_film : h_s [m] (default :data:`SUPPLY_FILM`, an assumed oil supply layer).
+    supply_film : h_s [m] (default :data:`SUPPLY_FILM`, an assumed oil supply layer; range
+        :data:`~tribodyn.physics.limits.SUPPLY_FILM_THICKNESS`).
     time, correction, period : the correction table (optional).
     growth_limited : the film thickens no faster than oil can reach it from the supply
         (:meth:`growth_limit`, :func:`~tribodyn.physics.film_state_laws.limited_growth`;
         default True).
+    checked : the arguments checked where they entered (``"supply_film"``: a case file's,
+        or a film state's it is copied from), not checked again.
     """
 
     has_film = False
@@ -417,6 +420,7 @@ class FilmStateTribology(TribologyModel):
         correction: ArrayLike | None = None,
         period: float | None = None,
         growth_limited: bool = True,
+        checked: tuple[str, ...] = (),
     ):
         self.friction_model = _checked_friction_model(friction_model)
         self.growth_limited = bool(growth_limited)
@@ -426,9 +430,9 @@ class FilmStateTribology(TribologyModel):
         self.width = check_positive("width", width, "m")
         self.lubricant = lubricant
         self.e_prime = check_positive("e_prime", e_prime, "Pa")
-        # any positive h_s (a large one is the flooded limit); case files cap it at
-        # SUPPLY_FILM_MAX
-        self.supply_film = check_positive("supply_film", supply_film, "m")
+        if "supply_film" not in checked:
+            supply_film = L.SUPPLY_FILM_THICKNESS.check("supply_film", supply_film)
+        self.supply_film = float(supply_film)
         t = np.zeros(1) if time is None else check_array("time", np.atleast_1d(time), min_size=1)
         if t.size > 1 and np.any(np.diff(t) <= 0.0):
             raise InputError("time must be strictly increasing")
