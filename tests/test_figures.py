@@ -20,6 +20,22 @@ def _hertz(x, b, ph):
     return ph * np.sqrt(np.clip(1.0 - (x / b) ** 2, 0.0, None))
 
 
+def _add_regime_map(ds) -> None:
+    """The Greenwood chart's regime map, written as a study writes it (its variables of
+    the study table, from the map of the Dataset's g_V, g_E)."""
+    from types import SimpleNamespace
+
+    from tribodyn.workflow.regime_map import regime_map
+    from tribodyn.workflow.variables_study import REGIME
+
+    m = regime_map(ds["gV"].values, ds["gE"].values)
+    source = SimpleNamespace(analysis=SimpleNamespace(regime_map=m))
+    for v in REGIME:
+        if v.name in ("chart_gE", "chart_gV", "regime_map"):
+            target = ds.coords if v.coord else ds
+            target[v.name] = v.make(source)
+
+
 def synthetic_dataset(implicit=True, failed_step=True) -> xr.Dataset:
     """A coarse stand-in for study_to_dataset's output (same names and dims)."""
     rpm, width = 3000.0, 0.012
@@ -79,6 +95,7 @@ def synthetic_dataset(implicit=True, failed_step=True) -> xr.Dataset:
     ds["gV"] = ("ehl_crank", np.where(loaded, gV, np.nan))
     ds["gE"] = ("ehl_crank", np.where(loaded, gE, np.nan))
     ds["regime"] = ("ehl_crank", np.where(loaded, 3, -1).astype(np.int8))
+    _add_regime_map(ds)
     S = len(names)
     L = np.repeat(loaded[None], S, axis=0)
     ds["loaded"] = (("surface_set", "ehl_crank"), L.astype(np.int8))

@@ -1,7 +1,9 @@
 """The output package only reads results: no module under ``tribodyn/output`` builds or
-loads a case, calls a case's builders or imports a solver. What a figure or the report
-needs is computed in the study and stored in the results (checked on the source with
-``ast``, so that a new violation fails here and not only in review)."""
+loads a case, calls a case's builders, imports a solver or a physical law (of
+``tribodyn.physics`` it may read constants, UPPER_CASE names, such as the spread of an
+assumed wear coefficient). What a figure or the report needs is computed in the study
+and stored in the results (checked on the source with ``ast``, so that a new violation
+fails here and not only in review)."""
 
 from __future__ import annotations
 
@@ -30,7 +32,12 @@ SOLVER_MODULES = (
     "tribodyn.config.build",
     "tribodyn.cycle",
     "tribodyn.workflow.stress_map",
+    # the laws the figures draw: their maps and curves are computed with the results
+    "tribodyn.physics.regimes",
+    "tribodyn.topography.height_statistics",
 )
+#: physics, of which output may read constants (UPPER_CASE names) but call no law
+PHYSICS = "tribodyn.physics"
 #: functions that compute a study's results, wherever they are imported from
 SOLVER_FUNCTIONS = frozenset(
     {
@@ -91,11 +98,13 @@ def violations(path: Path, package: str) -> list[str]:
                     bad(node, f"imports {full}")
                 elif _solver_name(a.name):
                     bad(node, f"imports the solver {full}")
+                elif _in(mod, (PHYSICS,)) and not a.name.isupper():
+                    bad(node, f"imports the physics {full}")
                 if _in(mod, ("tribodyn.config",)):
                     config_names.add(a.asname or a.name)
         elif isinstance(node, ast.Import):
             for a in node.names:
-                if _in(a.name, SOLVER_MODULES):
+                if _in(a.name, (*SOLVER_MODULES, PHYSICS)):
                     bad(node, f"imports {a.name}")
     for node in ast.walk(tree):
         if not isinstance(node, ast.Call):
@@ -140,6 +149,12 @@ def test_the_check_finds_each_kind_of_violation(tmp_path):
         "from ..config.build import build\n"
         "from ..workflow.engineering import plausibility_warnings\n"
         "import tribodyn.valvetrain.dynamics\n"
+        "from ..physics.regimes import REGIMES, lubrication_regime\n"
+        "from ..topography.height_statistics import gaussian_pdf\n"
+        "from ..physics.materials import reduced_modulus\n"
+        "from ..physics import friction\n"
+        "from ..physics.strength import WEAR_COEFFICIENT_SPREAD\n"  # a constant: fine
+        "from ..topography.results import PairAnalysis\n"  # a result type: fine
         "def f(study, ds):\n"
         "    study.case._new_lubricant()\n"
         "    case._build_set(cfg)\n"
@@ -152,7 +167,7 @@ def test_the_check_finds_each_kind_of_violation(tmp_path):
         encoding="utf-8",
     )
     found = violations(src, "tribodyn.output")
-    assert len(found) == 10, found
+    assert len(found) == 15, found
 
 
 def test_the_inputs_as_used_are_the_case_files_numbers():

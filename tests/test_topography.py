@@ -471,11 +471,23 @@ def test_height_distribution_figure(narrow_band, tmp_path):
 
 
 def test_pair_carries_its_sum_surface(narrow_band):
-    """The figure reads the sum surface h₁ + h₂ from the analysis (same grid: a plain sum)."""
+    """The figure reads the sum surface h₁ + h₂ from the analysis (same grid: a plain sum),
+    and the Gaussian with σ beside each surface's heights: the normal density on a
+    400-point grid about the mean over ±max(4.5σ, largest deviation)."""
     pair = analyse_pair(narrow_band[0], narrow_band[1], band=None)
     h = pair.first.topography.heights() + pair.second.topography.heights()
     assert np.array_equal(pair.sum_surface, np.ravel(h))
     assert pair.sum_heights.rms == pytest.approx(np.std(h), rel=1e-12)
+    for g, z in (
+        (pair.sum_gaussian, np.ravel(h)),
+        (pair.first.gaussian, np.ravel(pair.first.topography.heights())),
+    ):
+        d, sigma = z - z.mean(), np.std(z)
+        span = max(4.5 * sigma, np.abs(d).max())
+        assert g.z.size == 400 and g.span == pytest.approx(span, rel=1e-9)
+        np.testing.assert_allclose(np.diff(g.z), 2 * span / 399, rtol=1e-9)
+        expected = np.exp(-0.5 * (g.z / sigma) ** 2) / (sigma * math.sqrt(2 * math.pi))
+        np.testing.assert_allclose(g.pdf, expected, rtol=1e-9)
 
 
 def test_roughness_block_pastes_into_a_case_file(narrow_band):

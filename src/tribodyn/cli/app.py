@@ -3,6 +3,10 @@
 
 from __future__ import annotations
 
+import inspect
+from collections.abc import Callable
+from typing import Any
+
 import typer
 
 from .._version import __version__
@@ -45,16 +49,32 @@ def _main(
     """tribodyn: cam–tappet tribo-dynamics with coated surfaces."""
 
 
-app.command("run", cls=RunCommand)(run_command)
-app.command("figures", cls=FiguresCommand)(figures_command)
-app.command("export")(export_command)
-app.command("sweep")(sweep_command)
-app.command("contact", cls=ContactCommand)(contact_command)
-app.command("topography", cls=TopographyCommand)(topography_command)
-app.command("calibrate")(calibrate_command)
-app.command("warmup")(warmup_command)
-app.command("engine")(engine_command)
-app.command("view")(view_command)
+def help_text(doc: str | None) -> str:
+    """A command's docstring as ``--help`` shows it: paragraphs (separated by blank lines)
+    whose lines are joined, for the terminal to wrap at its width; an indented paragraph
+    (an example command) is kept as written."""
+    paragraphs = inspect.cleandoc(doc or "").split("\n\n")
+    return "\n\n".join(
+        p if p.startswith(" ") else " ".join(line.strip() for line in p.splitlines())
+        for p in paragraphs
+    )
+
+
+def _command(name: str, function: Callable[..., Any], cls: type | None = None) -> None:
+    """Register ``function`` as the command ``name`` with its help from its docstring."""
+    app.command(name, cls=cls, help=help_text(function.__doc__))(function)
+
+
+_command("run", run_command, RunCommand)
+_command("figures", figures_command, FiguresCommand)
+_command("export", export_command)
+_command("sweep", sweep_command)
+_command("contact", contact_command, ContactCommand)
+_command("topography", topography_command, TopographyCommand)
+_command("calibrate", calibrate_command)
+_command("warmup", warmup_command)
+_command("engine", engine_command)
+_command("view", view_command)
 
 
 def main():  # pragma: no cover

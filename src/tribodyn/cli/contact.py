@@ -564,7 +564,8 @@ def contact_command(
 
       tribodyn contact --load 633 --radius 0.01 --ue 5 --us 2
 
-      tribodyn contact --surface-set wcc_4um --load 633 --radius 0.01 --ue 5 --us 2 --json
+      tribodyn contact --surface-set wcc_4um --load 633 --radius 0.01 --ue 5
+      --us 2 --json
 
       tribodyn contact --dry --load 633 --radius 0.01 --coating-material dlc
       --coating-thickness 4e-6

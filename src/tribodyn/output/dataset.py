@@ -3,9 +3,10 @@
 Dimensions: ``crank_angle`` (dynamics output, deg), ``ehl_crank`` (transient-EHL samples,
 deg), ``surface_set``, ``k`` (profile samples), ``point`` (the six representative points
 of the paper's Fig. 13), and for the single-contact studies ``dry_ratio``/``dry_x``
-(Fig. 5), ``ehl_ratio``/``ehl_pair``/``ehl_x`` (Fig. 6). Every variable carries ``units``
-and ``long_name``. EHL quantities are NaN where the contact carries no load (``loaded``
-false: cam on the base circle) — by definition, not as a failure; steps that did not
+(Fig. 5), ``ehl_ratio``/``ehl_pair``/``ehl_x`` (Fig. 6), ``chart_gV``/``chart_gE`` (the
+regime map of Fig. 12). Every variable carries ``units`` and ``long_name``. EHL
+quantities are NaN where the contact carries no load (``loaded`` false: cam on the base
+circle) — by definition, not as a failure; steps that did not
 converge keep their last iterate and are flagged by ``converged`` false and listed in the
 ``ehl_failures`` attribute. Attributes: the case as run (``case_toml``), the roles of the
 surface sets (``reference_set``, ``surface_roles``), the coupling, warnings, and the

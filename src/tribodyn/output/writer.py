@@ -374,7 +374,7 @@ def write_results(
     written: dict[str, Any] = {}
     enc = {
         v: {"compression": "gzip", "compression_opts": 4}
-        for v in ("profile_x", "pressure", "film", "stress_map_von_mises")
+        for v in ("profile_x", "pressure", "film", "stress_map_von_mises", "regime_map")
         if v in ds
     }
 

@@ -39,7 +39,7 @@ from .._typing import PathLike
 from .composite import composite_moments, sum_on_common_grid
 from .errors import InsufficientDataError
 from .filtering import AUTO_BAND, Band, BandSpec, Sampling, input_warnings, prepare_topography
-from .height_statistics import height_statistics
+from .height_statistics import gaussian_reference, height_statistics
 from .profile import ProfileAnalysis
 from .reading import read_topography
 from .results import PairAnalysis, SurfaceAnalysis
@@ -205,7 +205,8 @@ def analyse_filtered(
     marks points that were not measured (excluded from the statistics)."""
     heights = np.asarray(topography.heights(), dtype=float)
     measured = None if filled is None or not np.any(filled) else ~np.asarray(filled)
-    hstats = height_statistics(heights if measured is None else heights[measured])
+    kept = heights if measured is None else heights[measured]
+    hstats = height_statistics(kept)
     region = analysis_region(
         heights.shape, analysis_margin(band, topography.pixel_size, topography.is_periodic)
     )
@@ -242,6 +243,7 @@ def analyse_filtered(
         source=source,
         topography=topography,
         filled=None if measured is None else ~measured,
+        gaussian=gaussian_reference(kept, hstats),
     )
     return _with_notes(result)
 
@@ -381,7 +383,7 @@ def composite_roughness(
     notes = []
     if not _same_band(first.band, second.band):
         notes.append("the two surfaces were filtered with different bands")
-    summit_stats = sum_stats = sum_surface = None
+    summit_stats = sum_stats = sum_surface = sum_gaussian = None
     ta, tb = first.topography, second.topography
     combined = None
     if ta is not None and tb is not None:
@@ -408,6 +410,7 @@ def composite_roughness(
                 filled |= np.asarray(r.filled)[:nx, :ny]
         sum_surface = h[~filled]
         sum_stats = height_statistics(sum_surface)
+        sum_gaussian = gaussian_reference(sum_surface, sum_stats)
         band = max((first.band, second.band), key=lambda b: b.short_wavelength or 0.0)
         region = analysis_region(h.shape, analysis_margin(band, (dx, dy), periodic))
         if filled.any():
@@ -424,6 +427,7 @@ def composite_roughness(
         sum_heights=sum_stats,
         notes=(),
         sum_surface=sum_surface,
+        sum_gaussian=sum_gaussian,
     )
     if pair.summits is not None:
         d_eta = _deviation(pair.summits.asperity_density, pair.spectral.asperity_density)

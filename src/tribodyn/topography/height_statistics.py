@@ -22,7 +22,18 @@ from .._typing import ArrayLike
 from .._validation import InputError, check_array, check_positive
 from .records import record_dict
 
-__all__ = ["HeightStatistics", "height_statistics", "gaussian_pdf"]
+__all__ = [
+    "HeightStatistics",
+    "GaussianReference",
+    "height_statistics",
+    "gaussian_pdf",
+    "gaussian_reference",
+]
+
+#: The Gaussian reference curve spans at least this many σ each side of the mean …
+GAUSSIAN_SPAN_SIGMA = 4.5
+#: … on this many points.
+GAUSSIAN_POINTS = 400
 
 
 @dataclass(frozen=True)
@@ -72,3 +83,30 @@ def gaussian_pdf(z, sigma: float, mean: float = 0.0):
     sigma = check_positive("sigma", sigma, "m")
     z = (np.asarray(z, dtype=float) - mean) / sigma
     return np.exp(-0.5 * z * z) / (sigma * math.sqrt(2.0 * math.pi))
+
+
+@dataclass(frozen=True)
+class GaussianReference:
+    """The Gaussian with the heights' σ beside their distribution (paper Fig. 7): ``z``
+    heights above the mean [m], uniform and symmetric over ±``span``, and ``pdf`` the
+    Gaussian density there [1/m]."""
+
+    z: np.ndarray
+    pdf: np.ndarray
+
+    @property
+    def span(self) -> float:
+        """Half-width of the grid [m]: max(GAUSSIAN_SPAN_SIGMA·σ, max |z − z̄|)."""
+        return float(self.z[-1])
+
+
+def gaussian_reference(
+    heights: ArrayLike, stats: HeightStatistics, points: int = GAUSSIAN_POINTS
+) -> GaussianReference:
+    """:func:`gaussian_pdf` with σ = ``stats.rms`` on ``points`` heights about
+    ``stats.mean`` that span every height of ``heights`` [m] and at least
+    :data:`GAUSSIAN_SPAN_SIGMA` σ each side."""
+    d = np.asarray(heights, dtype=float).ravel() - stats.mean
+    span = max(GAUSSIAN_SPAN_SIGMA * stats.rms, float(np.max(np.abs(d))))
+    z = np.linspace(-span, span, points)
+    return GaussianReference(z, gaussian_pdf(z, stats.rms))

@@ -43,7 +43,7 @@ from .filtering import (
     check_map_size,
     input_warnings,
 )
-from .height_statistics import height_statistics
+from .height_statistics import gaussian_reference, height_statistics
 from .results import ISOTROPIC_LABEL, ProfileAnalysis, ProfileSampling
 from .spectral_moments import SpectralMoments, mccool_parameters
 
@@ -159,6 +159,7 @@ def analyse_profile(
         source=source,
         profile=hf,
         filled=filled if filled.any() else None,
+        gaussian=gaussian_reference(hf[measured], hstats),
     )
     return _with_profile_notes(result)
 

@@ -15,7 +15,7 @@ import numpy as np
 from .._validation import InputError
 from ..physics.asperity import Roughness
 from .filtering import Band, Sampling, SamplingLike, _um
-from .height_statistics import HeightStatistics
+from .height_statistics import GaussianReference, HeightStatistics
 from .records import record_dict
 from .spectral_moments import McCoolParameters, SpectralMoments
 from .summits import SummitStatistics
@@ -177,6 +177,8 @@ class SurfaceAnalysis(_TomlMixin):
     warnings: tuple[str, ...] = ()
     #: points that were not measured (filled before filtering); None: all measured
     filled: object = field(default=None, repr=False, compare=False)
+    #: the Gaussian with σ beside the measured heights (paper Fig. 7)
+    gaussian: GaussianReference | None = field(default=None, repr=False, compare=False)
 
     @property
     def rms(self) -> float:
@@ -271,6 +273,8 @@ class ProfileAnalysis(_TomlMixin):
     source: dict | None = None
     profile: np.ndarray | None = field(default=None, repr=False, compare=False)
     filled: np.ndarray | None = field(default=None, repr=False, compare=False)
+    #: the Gaussian with σ beside the measured heights (paper Fig. 7)
+    gaussian: GaussianReference | None = field(default=None, repr=False, compare=False)
     topography: None = field(default=None, repr=False, compare=False)  # not a map
     summit_stats: None = None
     mccool: McCoolParameters = field(init=False)  # = isotropic
@@ -351,7 +355,8 @@ class PairAnalysis(_TomlMixin):
     (independent surfaces), then McCool. Summits: 8-neighbour analysis of the sum surface
     h₁ + h₂ on the common grid (``None`` if the two maps are sampled differently).
     ``sum_surface`` holds the measured heights of h₁ + h₂ [m] (flattened; ``None`` as for
-    the summits), ``sum_heights`` their σ, Ssk, Sku.
+    the summits), ``sum_heights`` their σ, Ssk, Sku, ``sum_gaussian`` the Gaussian with
+    that σ beside them (paper Fig. 7).
     """
 
     first: SurfaceAnalysis | ProfileAnalysis
@@ -362,6 +367,7 @@ class PairAnalysis(_TomlMixin):
     sum_heights: HeightStatistics | None
     notes: tuple[str, ...] = ()
     sum_surface: np.ndarray | None = field(default=None, repr=False, compare=False)
+    sum_gaussian: GaussianReference | None = field(default=None, repr=False, compare=False)
 
     @property
     def rms(self) -> float:

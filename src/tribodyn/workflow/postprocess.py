@@ -28,14 +28,9 @@ from .. import paper
 from ..config.build import as_built, build
 from ..cycle.coupling import implicit_vs_explicit_metrics
 from ..physics.materials import reduced_modulus
-from ..physics.regimes import (
-    REGIMES,
-    greenwood_chart_groups,
-    hamrock_groups,
-    lubrication_regime,
-    moes_central,
-)
+from ..physics.regimes import greenwood_chart_groups, hamrock_groups, moes_central
 from .conventions import CHANGE, CRANK_ANGLE, change_pct
+from .regime_map import RegimeMap, regime_code, regime_map
 from .thermal_study import thermal_summary
 
 if TYPE_CHECKING:
@@ -101,6 +96,7 @@ class Analysis:
     gV: np.ndarray  #: Greenwood-chart viscosity group (NaN unloaded)
     gE: np.ndarray  #: elasticity group (NaN unloaded)
     regime: np.ndarray  #: regime code (index into REGIMES; −1 unloaded)
+    regime_map: RegimeMap  #: the regimes on the Greenwood chart around the samples
     film_gain: dict = field(default_factory=dict)  #: set → film-gain statistics
     modulus_factor: list = field(default_factory=list)  #: GainFactor for +41 % per point
     summary: dict = field(default_factory=dict)  #: summary.json
@@ -186,7 +182,7 @@ def chart(case, inputs, loaded_any):
         e_prime,
     )
     gV, gE = greenwood_chart_groups(W, U, G)
-    code = np.array([REGIMES.index(r) for r in np.atleast_1d(lubrication_regime(gV, gE))])
+    code = regime_code(gV, gE)
     return (
         np.where(loaded_any, gV, np.nan),
         np.where(loaded_any, gE, np.nan),
@@ -340,6 +336,7 @@ def analyse(study: StudyResults) -> Analysis:
         gV=gV,
         gE=gE,
         regime=regime,
+        regime_map=regime_map(gV, gE),
         film_gain=gains,
         modulus_factor=factors,
     )

@@ -2,9 +2,10 @@
 :mod:`~tribodyn.workflow.variables`, extracted from a :class:`StudySource`.
 
 Groups, in the order written: dynamics over ``crank_angle`` (and the implicit coupling's
-curves), the transient-EHL samples over ``ehl_crank`` and ``(surface_set, ehl_crank)``,
-the pressure and film profiles, the representative points, the single-contact coating
-studies (Figs. 5, 6), the subsurface stresses and safety factors with the stress map of
+curves), the transient-EHL samples over ``ehl_crank`` and ``(surface_set, ehl_crank)``
+with the regime map of the Greenwood chart over ``(chart_gV, chart_gE)``, the pressure
+and film profiles, the representative points, the single-contact coating studies
+(Figs. 5, 6), the subsurface stresses and safety factors with the stress map of
 each set, the engineering outputs (camshaft torque, cam kinematics, lift table, spring
 surge), the oil as used and the thermal variables. EHL quantities are NaN where the
 contact carries no load.
@@ -195,6 +196,7 @@ CONDITIONS = (
         lambda s: s.inputs.sliding_speed),
     var("ehl_radius", "ehl_crank", "m", "R at the EHL samples", lambda s: s.inputs.radius),
 )  # fmt: skip
+_CODES = " ".join(str(k) for k in range(len(REGIMES)))  # the regimes' flag values
 REGIME = (
     var("gV", "ehl_crank", "1", "Greenwood-chart viscosity group g_V", lambda s: s.analysis.gV),
     var("gE", "ehl_crank", "1", "Greenwood-chart elasticity group g_E", lambda s: s.analysis.gE),
@@ -204,7 +206,7 @@ REGIME = (
         "1",
         "lubrication regime",
         lambda s: s.analysis.regime,
-        attrs={"flag_values": "-1 0 1 2 3", "flag_meanings": "unloaded " + " ".join(REGIMES)},
+        attrs={"flag_values": f"-1 {_CODES}", "flag_meanings": "unloaded " + " ".join(REGIMES)},
     ),
     var(
         "in_event",
@@ -214,7 +216,20 @@ REGIME = (
         lambda s: s.analysis.in_event,
         dtype=np.int8,
     ),
-)
+    var("chart_gE", "chart_gE", "1", "g_E axis of the Greenwood chart",
+        lambda s: s.analysis.regime_map.gE, coord=True),
+    var("chart_gV", "chart_gV", "1", "g_V axis of the Greenwood chart",
+        lambda s: s.analysis.regime_map.gV, coord=True),
+    var(
+        "regime_map",
+        ("chart_gV", "chart_gE"),
+        "1",
+        "lubrication regime on the Greenwood chart",
+        lambda s: s.analysis.regime_map.regime,
+        dtype=np.int8,
+        attrs={"flag_values": _CODES, "flag_meanings": " ".join(REGIMES)},
+    ),
+)  # fmt: skip
 LOADED = var("loaded", TWO, "1", "contact loaded (EHL solved)", _per_set("loaded"), dtype=np.int8)
 CONVERGED = var("converged", TWO, "1", "EHL step converged", _per_set("converged"), dtype=np.int8)
 _EHL = (

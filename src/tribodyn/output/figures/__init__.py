@@ -49,7 +49,10 @@ _MAKERS = {
         fig11,
         ("entrainment_speed", "sliding_speed", "radius_of_curvature", "contact_force"),
     ),
-    "fig12_greenwood_chart.png": (fig12, ("gV", "gE", "loaded", "ehl_contact_force")),
+    "fig12_greenwood_chart.png": (
+        fig12,
+        ("gV", "gE", "loaded", "ehl_contact_force", "regime_map", "chart_gE", "chart_gV"),
+    ),
     "fig13_pressure_film_points.png": (
         fig13,
         ("pressure", "film", "profile_x", "point_crank", "loaded"),

@@ -27,11 +27,11 @@ _REGIME_COLOURS = {"IR": "#dbe9f6", "PR": "#e2f0d9", "IE": "#fff2cc", "PE": "#f8
 
 
 def fig12(ds, path):
+    """The stored regime map (``regime_map`` over ``chart_gV``, ``chart_gE``) with the
+    operating points (``gV``, ``gE``) on it."""
     from matplotlib.colors import BoundaryNorm, ListedColormap
     from scipy.ndimage import distance_transform_edt, gaussian_filter
     from scipy.spatial import cKDTree
-
-    from ...physics.regimes import REGIMES, lubrication_regime
 
     e = arr(ds, "ehl_crank")
     gV, gE = arr(ds, "gV"), arr(ds, "gE")
@@ -40,20 +40,15 @@ def fig12(ds, path):
     event = loaded & (force >= EVENT_FRACTION * np.nanmax(force))
     light = loaded & ~event
     any_ = loaded.any()
-    ge_lo = min(1e-2, np.nanmin(gE[loaded]) / 3) if any_ else 1e-2
-    ge_hi = max(1e2, np.nanmax(gE[loaded]) * 3) if any_ else 1e2
-    gv_lo = min(1e-2, np.nanmin(gV[loaded]) / 3) if any_ else 1e-2
-    gv_hi = max(1e4, np.nanmax(gV[loaded]) * 3) if any_ else 1e4
-    n = 600
-    lge = np.linspace(np.log10(ge_lo), np.log10(ge_hi), n)
-    lgv = np.linspace(np.log10(gv_lo), np.log10(gv_hi), n)
-    GE, GV = np.meshgrid(10**lge, 10**lgv)
-    lab = lubrication_regime(GV, GE)
-    code = np.full(lab.shape, -1.0)
-    for k, r in enumerate(REGIMES):
-        code[lab == r] = k
+    ge_axis, gv_axis = arr(ds, "chart_gE"), arr(ds, "chart_gV")
+    regimes = ds["regime_map"].attrs["flag_meanings"].split()  # in code order
+    code = arr(ds, "regime_map")
+    ni, nj = code.shape
+    n = min(ni, nj)
+    lge, lgv = np.log10(ge_axis), np.log10(gv_axis)
+    GE, GV = np.meshgrid(ge_axis, gv_axis)
     fig, ax = plt.subplots(figsize=(10.5, 8), layout="constrained")
-    cmap = ListedColormap([_REGIME_COLOURS.get(r, "0.9") for r in REGIMES])
+    cmap = ListedColormap([_REGIME_COLOURS.get(r, "0.9") for r in regimes])
     ax.pcolormesh(
         GE,
         GV,
@@ -62,15 +57,15 @@ def fig12(ds, path):
         shading="auto",
         zorder=0,
         rasterized=True,
-        norm=BoundaryNorm(np.arange(len(REGIMES) + 1) - 0.5, cmap.N),
+        norm=BoundaryNorm(np.arange(len(regimes) + 1) - 0.5, cmap.N),
     )
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlim(ge_lo, ge_hi)
-    ax.set_ylim(gv_lo, gv_hi)
+    ax.set_xlim(ge_axis[0], ge_axis[-1])
+    ax.set_ylim(gv_axis[0], gv_axis[-1])
     # region names: at the coarse-grid cell farthest from both the region's edge and the data
     step = max(1, n // 150)
-    ci, cj = np.meshgrid(np.arange(0, n, step), np.arange(0, n, step), indexing="ij")
+    ci, cj = np.meshgrid(np.arange(0, ni, step), np.arange(0, nj, step), indexing="ij")
     if any_:
         di = (np.log10(gV[loaded]) - lgv[0]) / (lgv[1] - lgv[0])
         dj = (np.log10(gE[loaded]) - lge[0]) / (lge[1] - lge[0])
@@ -78,7 +73,7 @@ def fig12(ds, path):
         d_data = tree.query(np.c_[ci.ravel(), cj.ravel()])[0].reshape(ci.shape)
     else:
         d_data = np.full(ci.shape, np.inf)
-    for k, r in enumerate(REGIMES):
+    for k, r in enumerate(regimes):
         ind = code == k
         if not ind.any():
             continue
@@ -99,8 +94,8 @@ def fig12(ds, path):
         a, b = np.unravel_index(np.argmax(score), score.shape)
         i, j = ci[a, b], cj[a, b]
         ax.text(
-            10 ** lge[j],
-            10 ** lgv[i],
+            ge_axis[j],
+            gv_axis[i],
             _REGIME_NAMES.get(r, r),
             ha="center",
             va="center",

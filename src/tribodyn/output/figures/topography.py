@@ -8,7 +8,6 @@ from pathlib import Path
 
 import numpy as np
 
-from ...topography.height_statistics import gaussian_pdf
 from ...topography.profile import ProfileAnalysis
 from ...topography.results import PairAnalysis, SurfaceAnalysis
 from .common import plt, save_figure
@@ -17,7 +16,8 @@ __all__ = ["plot_height_distribution"]
 
 
 def _panels(results):
-    """(title, heights [m], their statistics) per surface; a pair adds its sum surface."""
+    """(title, heights [m], their statistics, their Gaussian) per surface; a pair adds its
+    sum surface."""
     if isinstance(results, (SurfaceAnalysis, PairAnalysis, ProfileAnalysis)):
         results = [results]
     panels = []
@@ -26,17 +26,17 @@ def _panels(results):
             panels += _panels([r.first, r.second])
             if r.sum_surface is not None:  # None: a profile, or different pixel sizes
                 title = f"sum surface {r.first.name} + {r.second.name}"
-                panels.append((title, r.sum_surface, r.sum_heights))
+                panels.append((title, r.sum_surface, r.sum_heights, r.sum_gaussian))
         elif isinstance(r, SurfaceAnalysis):
             if r.topography is None:
                 raise TypeError(f"analysis '{r.name}' carries no height map to plot")
             h = np.asarray(r.topography.heights(), dtype=float)
             h = h if r.filled is None else h[~np.asarray(r.filled)]
-            panels.append((r.name, h, r.heights))
+            panels.append((r.name, h, r.heights, r.gaussian))
         elif isinstance(r, ProfileAnalysis):
             h = np.asarray(r.profile, dtype=float)
             h = h if r.filled is None else h[~r.filled]
-            panels.append((f"profile {r.name}", h, r.heights))
+            panels.append((f"profile {r.name}", h, r.heights, r.gaussian))
         else:
             raise TypeError(f"expected SurfaceAnalysis or PairAnalysis (got {type(r).__name__})")
     return panels
@@ -73,14 +73,13 @@ def plot_height_distribution(results, path, *, bins: int = 80) -> Path:
         squeeze=False,
         gridspec_kw={"height_ratios": [1.3, 1.0]},
     )
-    for j, (title, h, s) in enumerate(panels):
+    for j, (title, h, s, g) in enumerate(panels):
         z = (h.ravel() - s.mean) * 1e6  # µm
         sig = s.rms * 1e6
-        lim = max(4.5 * sig, float(np.max(np.abs(z))))
+        lim = g.span * 1e6  # the Gaussian's grid covers the heights
         edges = np.linspace(-lim, lim, bins + 1)
         dens, _ = np.histogram(z, bins=edges, density=True)
-        zz = np.linspace(-lim, lim, 400)
-        gauss = gaussian_pdf(zz, sig)
+        zz, gauss = g.z * 1e6, g.pdf * 1e-6  # µm, 1/µm
         for i, ax in enumerate(axes[:, j]):
             ax.stairs(
                 dens,
