@@ -161,3 +161,21 @@ def test_writing_a_run_loads_no_plotting_library():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_results_without_a_stored_regime_map_say_why_fig12_is_missing(plain_run, tmp_path):
+    """Results written before the regime map was stored: the other figures are drawn and
+    the message says why the Greenwood chart is not."""
+    import xarray as xr
+
+    res = _copy(plain_run, tmp_path)
+    with xr.open_dataset(res / "results.nc", engine="h5netcdf") as ds:
+        keep = ["crank_angle", "gV", "gE", "loaded", "ehl_contact_force", "central_film"]
+        old = ds[keep].load()
+    (res / "results.nc").unlink()
+    old.to_netcdf(res / "results.nc", engine="h5netcdf")
+    r = runner.invoke(app, ["figures", str(res), "-j", "1"])
+    assert r.exit_code == 0, r.output
+    assert not (res / "fig12_greenwood_chart.png").exists()
+    assert (res / "fig15_central_film.png").exists()
+    assert "Fig. 12 (Greenwood chart) is not drawn" in " ".join(r.output.split())

@@ -64,6 +64,11 @@ def draw_figures(
             "changed since): move them, then draw the figures again"
         )
     figs = make_figures(ds, folder, workers=workers or figure_workers())
+    if notes is not None and "gV" in ds and "regime_map" not in ds:
+        notes.append(
+            "Fig. 12 (Greenwood chart) is not drawn: these results predate its stored "
+            "regime map; run the study again to draw it"
+        )
     written = list(figs.values())
     if "report.md" in own:
         written += _list_in_report(folder, ds, figs, "report.html" in own, notes)
