@@ -402,16 +402,15 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
             ref.surface.bodies, built.lubricant, ref.surface.roughness, options=ref.options
         )
         t0 = clock()
-        k = 0
-        for i in range(i0, min(i0 + steps, inp.crank_angle.size)):
+        timed = range(i0, min(i0 + steps, inp.crank_angle.size))
+        for i in timed:
             w = inp.contact_force[i] / case.width
             args = (max(w, 1.0), inp.radius[i], inp.entrainment_speed[i], inp.sliding_speed[i])
-            if k == 0:
+            if i == i0:
                 tr.start_steady(*args, time=inp.time[i])
             else:
                 tr.step(inp.time[i] - inp.time[i - 1], *args)
-            k += 1
-        t_step = (clock() - t0) / max(k, 1)
+        t_step = (clock() - t0) / max(len(timed), 1)
         t0 = clock()
         dry_coating_study()
         ehl_coating_study(built.lubricant, built)
