@@ -97,8 +97,7 @@ def is_result_folder(path: PathLike) -> bool:
     return (
         (p / MARKER).is_file()
         or all((p / f).is_file() for f in _LEGACY_FILES)
-        or (p / "sweep.nc").is_file()
-        or any(_POINT_FILE.fullmatch(f"points/{q.name}") for q in _iter_dir(p / "points"))
+        or folder_kind(p) == "sweep"  # sweep.nc or point files
     )
 
 

@@ -32,10 +32,6 @@ __all__ = ["write_sweep", "sweep_report_text", "check_resume", "sweep_identity"]
 _MAX_ROWS = 60
 
 
-def _atomic_text(path: Path, text: str):
-    atomic_write(path, text)
-
-
 def write_sweep(result: SweepResult, out_dir: PathLike, *, figures: bool = True) -> dict:
     """Write the files of a :class:`~tribodyn.workflow.sweep.SweepResult` into
     ``out_dir``; returns ``{"dataset": path, "report": path, "figures": {…}}``.
@@ -65,14 +61,14 @@ def write_sweep(result: SweepResult, out_dir: PathLike, *, figures: bool = True)
     make_dirs(out)
     ds = result.dataset
     atomic_write_with(out / "sweep.nc", lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf"))
-    _atomic_text(out / "sweep.toml", result.spec.to_toml())
-    _atomic_text(out / "base_case.toml", result.spec.base.to_toml(resolve_paths=True))
+    atomic_write(out / "sweep.toml", result.spec.to_toml())
+    atomic_write(out / "base_case.toml", result.spec.base.to_toml(resolve_paths=True))
     figs = {}
     if figures:
         from .figures.sweep import sweep_figures
 
         figs = sweep_figures(ds, out)
-    _atomic_text(out / "sweep_report.md", sweep_report_text(result, figs))
+    atomic_write(out / "sweep_report.md", sweep_report_text(result, figs))
     written = ["sweep.nc", "sweep.toml", "base_case.toml", "sweep_report.md"]
     written += [Path(p).name for p in figs.values()]
     listed = _marker_info(out).get("files")
@@ -99,9 +95,8 @@ def check_resume(out_dir: PathLike, spec, option: str = "--resume") -> None:
     info = _marker_info(Path(out_dir))
     if info.get("kind") != "sweep":
         return
-    had = {"sweep": info.get("sweep"), "sweep_mode": info.get("sweep_mode")}
-    had["sweep_dims"] = info.get("sweep_dims")
     now = {"sweep": spec.name, **sweep_identity(spec)}
+    had = {k: info.get(k) for k in now}
     differ = [k for k in now if had.get(k) is not None and had[k] != now[k]]
     if differ:
         what = {"sweep": "name", "sweep_mode": "mode", "sweep_dims": "dimensions"}
