@@ -266,7 +266,7 @@ def _origins_lines(case) -> list[str]:
     return lines + [""]
 
 
-def _engineering_section(study, summ) -> list[str]:
+def _engineering_section(summ) -> list[str]:
     """Camshaft torque, friction power and contact pressure per set; spring surge."""
     sets = summ["surface_sets"]
     if not any("mean_friction_torque_Nm" in v for v in sets.values()):
@@ -362,7 +362,7 @@ def report_text(study, ds, figures: dict) -> str:
 
     # what the engineer asks first: the verdict, torque and pressure, films and λ
     lines += verdict_section(summ)
-    lines += _engineering_section(study, summ)
+    lines += _engineering_section(summ)
     first = summ["reference_set"]
     ref_label = summ["surface_sets"][first]["label"]
     lines += [
