@@ -25,14 +25,10 @@ def valve_names(valves) -> list[str]:
     ``intake1a``, ``intake1b``, ``exhaust1a``, …; a single valve of its kind on its
     cylinder is ``intake1``."""
     base = [f"{v['kind']}{v['cylinder']}" for v in valves]
-    total = {b: base.count(b) for b in base}
-    seen: dict[str, int] = {}
-    out = []
-    for b in base:
-        k = seen.get(b, 0)
-        seen[b] = k + 1
-        out.append(b if total[b] == 1 else f"{b}{_letters(k)}")
-    return out
+    return [
+        b if base.count(b) == 1 else f"{b}{_letters(base[:i].count(b))}"  # k-th of its kind
+        for i, b in enumerate(base)
+    ]
 
 
 def _letters(k: int) -> str:
