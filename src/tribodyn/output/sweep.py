@@ -23,6 +23,7 @@ import numpy as np
 from .._safe_write import atomic_write, atomic_write_with, make_dirs
 from .._typing import PathLike
 from .._validation import InputError
+from .report_stress import _f  # a number in a table's format, "–" if missing
 
 if TYPE_CHECKING:
     from ..workflow.sweep import SweepResult
@@ -113,12 +114,6 @@ _MODE_TEXT = {
     "dynamics": "the valvetrain dynamics alone",
     "engine": "the whole engine's valvetrain (each lobe kind once, phase-shifted)",
 }
-
-
-def _f(v, fmt=".4g") -> str:
-    if v is None or (isinstance(v, float) and not math.isfinite(v)):
-        return "–"
-    return format(v, fmt)
 
 
 def _values_text(values) -> str:
