@@ -6,6 +6,8 @@ engine_crank)``, each valve's over ``(engine_set, valve, engine_crank)``.
 
 from __future__ import annotations
 
+from operator import attrgetter as _attr  # the study attribute of that name
+
 from .conventions import ENGINE_CRANK_ANGLE
 from .variables import Group, var
 from .variables_study import SURFACE_SET
@@ -13,10 +15,6 @@ from .variables_study import SURFACE_SET
 __all__ = ["ENGINE", "ALL", "valve_names"]
 
 DIMS = ("engine_set", "camshaft", "engine_crank")
-
-
-def _attr(k):
-    return lambda e: getattr(e, k)
 
 
 def valve_names(valves) -> list[str]:
