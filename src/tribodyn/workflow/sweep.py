@@ -443,7 +443,6 @@ def estimate_sweep(spec: SweepSpec, *, workers: int, out_dir: PathLike | None = 
     n = spec.n_points
     store = PointStore(out_dir) if out_dir is not None else None
     done_times = []
-    done = 0
     checked = n <= PLAN_CHECK_LIMIT
     if checked:
         plan = spec.points()
@@ -453,10 +452,10 @@ def estimate_sweep(spec: SweepSpec, *, workers: int, out_dir: PathLike | None = 
             for p in valid:
                 ds = store.load(p.key) if store.status(p.key) == "ok" else None
                 if ds is not None:
-                    done += 1
                     done_times.append(
                         float(ds.attrs.get("cpu_s", ds.attrs.get("runtime_s", math.nan)))
                     )
+        done = len(done_times)  # the finished points (their times, finite or not)
         todo = len(valid) - done
     else:
         ends = [spec.point(0), spec.point(n - 1)]
