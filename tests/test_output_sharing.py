@@ -159,13 +159,13 @@ def test_write_sweep_does_not_replace_a_changed_file(tmp_path):
 # ----------------------------------------------------------------------------- umask
 @pytest.mark.parametrize("mask", [0o022, 0o027])
 def test_results_follow_the_umask(tmp_path, mask):
-    from tribodyn.output.sweep import _atomic_text
+    from tribodyn._safe_write import atomic_write
     from tribodyn.workflow.sweep_store import PointStore
 
     old = os.umask(mask)
     try:
         out = write_atomic(tmp_path / "res", lambda d: (d / "x.txt").write_text("1"))
-        _atomic_text(tmp_path / "sweep.toml", "x")
+        atomic_write(tmp_path / "sweep.toml", "x")  # as write_sweep writes its text files
         point = SimpleNamespace(index=0, key="abc", values={}, changes={}, label="p", case=None)
         pfile = PointStore(tmp_path / "sw").write(point, xr.Dataset({"a": ("x", [1.0])}))
     finally:

@@ -61,17 +61,16 @@ def _prefixed(option: str, build):
         raise InputError(msg if msg.startswith(option) else f"{option}: {msg}") from None
 
 
+def _flag(name: str) -> str:  # a ContactRequest field's option: n_x → --n-x
+    return "--" + name.replace("_", "-")
+
+
+#: API argument names in error messages → the options that give them
 _OPTION_OF = {
-    "coating": "--coating",
-    "coating_material": "--coating-material",
-    "coating_thickness": "--coating-thickness",
-    "roughness": "--roughness",
-    "surface_set": "--surface-set",
-    "shear_coefficient": "--shear-coefficient",
-    "load_per_length": "--load-per-length",
+    **{n: _flag(n) for n in ("coating", "coating_material", "coating_thickness", "roughness")},
+    **{n: _flag(n) for n in ("surface_set", "shear_coefficient", "load_per_length", "width")},
     "load": "load per length (--load / --width, or --load-per-length)",
     "radius": "--radius",
-    "width": "--width",
     "entrainment_speed": "--ue",
     "sliding_speed": "--us",
 }
@@ -159,7 +158,7 @@ def _updated(case, changes: dict[str, Any]):
     try:
         return case.updated(changes)
     except InputError as exc:
-        option = {key: "--" + name.replace("_", "-") for name, key in CASE_KEYS.items()}
+        option = {key: _flag(name) for name, key in CASE_KEYS.items()}
         out = []
         for line in str(exc).splitlines():
             if line.startswith("invalid case"):
@@ -301,7 +300,7 @@ _NOT_DRY = {
     "--thermal": "thermal",
     "--oil": "oil",
     "--inlet-temperature": "inlet_temperature",
-    **{"--" + name.replace("_", "-"): name for name in CASE_KEYS if name != "n"},
+    **{_flag(name): name for name in CASE_KEYS if name != "n"},
 }
 
 

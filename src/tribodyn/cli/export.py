@@ -44,7 +44,8 @@ def _export(results: Path, out: Path) -> None:
     from ..output.dataset import load_run_results
     from ..output.explorer import write_report_html
     from ..output.export import CSV_FILES, report_markdown, write_csv
-    from ..output.writer import MARKER, _marker_info, _sha256, mark_folder, own_files
+    from ..output.result_folder import add_own_files
+    from ..output.writer import MARKER, own_files
 
     nc = results / "results.nc"
     if not nc.is_file():
@@ -88,10 +89,7 @@ def _export(results: Path, out: Path) -> None:
                     f"not embedded in report.html (missing, a link, or not a "
                     f"regular file of {results}): {', '.join(skipped)}"
                 )
-        info = _marker_info(out)
-        if isinstance(info.get("files"), dict):  # a result folder: these are its own now
-            files = {**info.pop("files"), **{p.name: _sha256(p) for p in written}}
-            mark_folder(out, files, {k: v for k, v in info.items() if k not in ("tool", "written")})
+        add_own_files(out, written)  # a result folder: these are its own now
     except OSError as exc:  # a folder without write permission, a full disk, …
         fail(console, f"-o/--out: cannot write in {str(out)!r} ({exc.strerror or exc})", code=1)
     for n in notes:

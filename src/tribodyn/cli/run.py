@@ -390,9 +390,9 @@ def summary_table(summ: dict, name: str) -> Table:
     for head, *_ in _COLUMNS:
         table.add_column(head, justify="right")
     for label, v in zip(labels, summ["surface_sets"].values()):
-        cells = []
-        for _, key, scale, fmt in _COLUMNS:
-            x = v.get(key)
-            cells.append("–" if x is None else format(x * scale + 0.0 if fmt != "d" else x, fmt))
+        cells = [
+            "–" if (x := v.get(key)) is None else format(x * scale + 0.0 if fmt != "d" else x, fmt)
+            for _, key, scale, fmt in _COLUMNS
+        ]
         table.add_row(label, *cells)
     return table

@@ -189,10 +189,7 @@ def stated_defaults() -> dict[str, Any]:
         "min_defined": analysis["min_defined_fraction"].default,
         "grid": S["nb_grid_pts"][0],
         "pixel": S["pixel_size"],
-        "rms": S["rms"],
-        "hurst": S["hurst"],
-        "short_cutoff": S["short_cutoff"],
-        "long_cutoff": S["long_cutoff"],
+        **{k: S[k] for k in ("rms", "hurst", "short_cutoff", "long_cutoff")},
     }
 
 

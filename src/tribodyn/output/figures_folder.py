@@ -52,7 +52,7 @@ def draw_figures(
     report of the user's). Raises :class:`~tribodyn._validation.InputError` for a folder
     that is not a run's, or one where a figure's name is taken by a file of the user's."""
     from .figures import figure_files, make_figures
-    from .result_folder import _marker_info, _sha256, is_result_folder, mark_folder, own_files
+    from .result_folder import add_own_files, is_result_folder, own_files
 
     folder = Path(folder)
     ds = _results(folder)
@@ -76,10 +76,7 @@ def draw_figures(
         notes.append(
             "report.md is not tribodyn's (or was changed): the figures are not listed in it"
         )
-    info = _marker_info(folder)
-    if isinstance(info.get("files"), dict):  # these are the folder's own files now
-        files = {**info.pop("files"), **{p.name: _sha256(p) for p in written}}
-        mark_folder(folder, files, {k: v for k, v in info.items() if k not in ("tool", "written")})
+    add_own_files(folder, written)  # these are the folder's own files now
     return figs
 
 

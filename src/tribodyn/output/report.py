@@ -116,16 +116,13 @@ def model_comparison_section(study) -> list[str]:
         lines.append(f"| {label} | " + " | ".join(txt) + " |")
     brackets = {m: mc.rows[m].get("jump_speed_bracket_rpm") for m in cols}
     if any(b is not None for b in brackets.values()):
-        parts = []
-        for m in cols:
-            b, r = brackets[m], mc.rows[m]
-            if b is None or not all(map(math.isfinite, b)):
-                continue
-            parts.append(
-                f"{m} {b[0]:.0f}–{b[1]:.0f} rpm in {r.get('jump_speed_runs', '?')} runs "
-                f"(rigid-train quasi-static estimate, corrected by the case-speed run: "
-                f"{r.get('quasi_static_jump_speed_rpm', math.nan):.0f} rpm)"
-            )
+        parts = [
+            f"{m} {b[0]:.0f}–{b[1]:.0f} rpm in {mc.rows[m].get('jump_speed_runs', '?')} runs "
+            f"(rigid-train quasi-static estimate, corrected by the case-speed run: "
+            f"{mc.rows[m].get('quasi_static_jump_speed_rpm', math.nan):.0f} rpm)"
+            for m in cols
+            if (b := brackets[m]) is not None and all(map(math.isfinite, b))
+        ]
         lines += [
             "",
             "Jump speed: the lowest engine speed with cam contact loss during the lift, the "
@@ -266,7 +263,7 @@ def _origins_lines(case) -> list[str]:
     return lines + [""]
 
 
-def _engineering_section(study, summ) -> list[str]:
+def _engineering_section(summ) -> list[str]:
     """Camshaft torque, friction power and contact pressure per set; spring surge."""
     sets = summ["surface_sets"]
     if not any("mean_friction_torque_Nm" in v for v in sets.values()):
@@ -362,7 +359,7 @@ def report_text(study, ds, figures: dict) -> str:
 
     # what the engineer asks first: the verdict, torque and pressure, films and λ
     lines += verdict_section(summ)
-    lines += _engineering_section(study, summ)
+    lines += _engineering_section(summ)
     first = summ["reference_set"]
     ref_label = summ["surface_sets"][first]["label"]
     lines += [

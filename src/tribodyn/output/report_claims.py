@@ -37,11 +37,8 @@ def _range(values, fmt="{:.2g}", unit=""):
     vals = [v for v in values if v is not None and math.isfinite(v)]
     if not vals:
         return "–"
-    lo, hi = min(vals), max(vals)
-    txt = (
-        fmt.format(lo) if fmt.format(lo) == fmt.format(hi) else f"{fmt.format(lo)}–{fmt.format(hi)}"
-    )
-    return txt + (f" {unit}" if unit else "")
+    lo, hi = fmt.format(min(vals)), fmt.format(max(vals))
+    return (lo if lo == hi else f"{lo}–{hi}") + (f" {unit}" if unit else "")
 
 
 def _film_row(study, summ):

@@ -5,6 +5,8 @@ paper's method comparisons last). Reads the study's summary only."""
 
 from __future__ import annotations
 
+from ..workflow.verdict import _pct as _signed  # the verdict sentence's signed percentage
+
 __all__ = ["verdict_section", "figure_rank", "METHOD_FIGURES"]
 
 #: Figures comparing methods (explicit vs implicit dynamics, coating moduli): shown last.
@@ -102,7 +104,3 @@ def verdict_section(summ: dict) -> list[str]:
         if wide:
             lines += [f"With each pair's ς varied on its own: {wide}.", ""]
     return lines
-
-
-def _signed(x: float) -> str:
-    return (f"{x:+.1f}" if abs(x) < 10.0 else f"{x:+.0f}").replace("-", "−")

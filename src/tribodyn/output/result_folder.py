@@ -97,8 +97,7 @@ def is_result_folder(path: PathLike) -> bool:
     return (
         (p / MARKER).is_file()
         or all((p / f).is_file() for f in _LEGACY_FILES)
-        or (p / "sweep.nc").is_file()
-        or any(_POINT_FILE.fullmatch(f"points/{q.name}") for q in _iter_dir(p / "points"))
+        or folder_kind(p) == "sweep"  # sweep.nc or point files
     )
 
 
@@ -436,3 +435,12 @@ def mark_folder(folder: PathLike, files: Mapping[str, str], meta: dict | None = 
         "files": dict(sorted(files.items())),
     }
     return atomic_write(folder / MARKER, _json.dumps(info, indent=1) + "\n")
+
+
+def add_own_files(folder: Path, written) -> None:
+    """Record the files ``written`` (paths in ``folder``) in the marker as tribodyn's own,
+    with their SHA-256; a folder whose marker lists no files is left as it is."""
+    info = _marker_info(folder)
+    if isinstance(info.get("files"), dict):
+        files = {**info.pop("files"), **{p.name: _sha256(p) for p in written}}
+        mark_folder(folder, files, {k: v for k, v in info.items() if k not in ("tool", "written")})

@@ -23,6 +23,7 @@ import numpy as np
 from .._safe_write import atomic_write, atomic_write_with, make_dirs
 from .._typing import PathLike
 from .._validation import InputError
+from .report_stress import _f  # a number in a table's format, "–" if missing
 
 if TYPE_CHECKING:
     from ..workflow.sweep import SweepResult
@@ -30,10 +31,6 @@ if TYPE_CHECKING:
 __all__ = ["write_sweep", "sweep_report_text", "check_resume", "sweep_identity"]
 
 _MAX_ROWS = 60
-
-
-def _atomic_text(path: Path, text: str):
-    atomic_write(path, text)
 
 
 def write_sweep(result: SweepResult, out_dir: PathLike, *, figures: bool = True) -> dict:
@@ -65,14 +62,14 @@ def write_sweep(result: SweepResult, out_dir: PathLike, *, figures: bool = True)
     make_dirs(out)
     ds = result.dataset
     atomic_write_with(out / "sweep.nc", lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf"))
-    _atomic_text(out / "sweep.toml", result.spec.to_toml())
-    _atomic_text(out / "base_case.toml", result.spec.base.to_toml(resolve_paths=True))
+    atomic_write(out / "sweep.toml", result.spec.to_toml())
+    atomic_write(out / "base_case.toml", result.spec.base.to_toml(resolve_paths=True))
     figs = {}
     if figures:
         from .figures.sweep import sweep_figures
 
         figs = sweep_figures(ds, out)
-    _atomic_text(out / "sweep_report.md", sweep_report_text(result, figs))
+    atomic_write(out / "sweep_report.md", sweep_report_text(result, figs))
     written = ["sweep.nc", "sweep.toml", "base_case.toml", "sweep_report.md"]
     written += [Path(p).name for p in figs.values()]
     listed = _marker_info(out).get("files")
@@ -99,9 +96,8 @@ def check_resume(out_dir: PathLike, spec, option: str = "--resume") -> None:
     info = _marker_info(Path(out_dir))
     if info.get("kind") != "sweep":
         return
-    had = {"sweep": info.get("sweep"), "sweep_mode": info.get("sweep_mode")}
-    had["sweep_dims"] = info.get("sweep_dims")
     now = {"sweep": spec.name, **sweep_identity(spec)}
+    had = {k: info.get(k) for k in now}
     differ = [k for k in now if had.get(k) is not None and had[k] != now[k]]
     if differ:
         what = {"sweep": "name", "sweep_mode": "mode", "sweep_dims": "dimensions"}
@@ -118,12 +114,6 @@ _MODE_TEXT = {
     "dynamics": "the valvetrain dynamics alone",
     "engine": "the whole engine's valvetrain (each lobe kind once, phase-shifted)",
 }
-
-
-def _f(v, fmt=".4g") -> str:
-    if v is None or (isinstance(v, float) and not math.isfinite(v)):
-        return "–"
-    return format(v, fmt)
 
 
 def _values_text(values) -> str:

@@ -74,9 +74,13 @@ def old_name(target: Path) -> Path:
 def prove_origin(folder: Path, name: str | None = None) -> None:
     """Write :data:`ORIGIN` into ``folder``, named ``.NAME.KIND-PID-TOKEN`` (or to be
     renamed to ``name`` of that form)."""
-    kind, pid, token = (name or folder.name).rsplit(".", 1)[1].split("-")
-    info = {"tool": "tribodyn", "kind": kind, "pid": int(pid), "token": token}
+    info = _origin(*(name or folder.name).rsplit(".", 1)[1].split("-"))
     atomic_write(folder / ORIGIN, _json.dumps(info) + "\n", fsync=False)
+
+
+def _origin(kind: str, pid: str, token: str) -> dict:
+    """The proof of origin of a folder ``.NAME.KIND-PID-TOKEN``."""
+    return {"tool": "tribodyn", "kind": kind, "pid": int(pid), "token": token}
 
 
 def _has_origin(folder: Path, kind: str, pid: str, token: str) -> bool:
@@ -93,12 +97,7 @@ def _has_origin(folder: Path, kind: str, pid: str, token: str) -> bool:
         return False
     finally:
         os.close(fd)
-    return isinstance(info, dict) and info == {
-        "tool": "tribodyn",
-        "kind": kind,
-        "pid": int(pid),
-        "token": token,
-    }
+    return info == _origin(kind, pid, token)
 
 
 def clean_stale(target: PathLike) -> list[Path]:

@@ -29,7 +29,7 @@ the film parameters the inputs give.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import replace
+from dataclasses import fields, replace
 from typing import Any
 
 import numpy as np
@@ -74,10 +74,8 @@ VISCOSITY_FACTORS = (1e-3, 1e3)
 def distinct_points(data):
     """``(data without exact repeats, 1-based numbers of the dropped points)``: of points
     equal in every column (u_e, u_s, w, μ and R if given) the first is kept."""
-    cols = [data.entrainment_speed, data.sliding_speed, data.load, data.friction_coefficient]
-    if data.radius is not None:
-        cols.append(data.radius)
-    table = np.column_stack(cols)
+    arrays = {f.name: getattr(data, f.name) for f in fields(data)}
+    table = np.column_stack([v for v in arrays.values() if v is not None])
     _, first = np.unique(table, axis=0, return_index=True)
     keep = np.sort(first)
     if keep.size == table.shape[0]:
@@ -88,14 +86,8 @@ def distinct_points(data):
             f"only {keep.size} distinct measured points ({len(dropped)} rows repeat "
             "another exactly); at least 3 are needed"
         )
-    fields = {
-        "entrainment_speed": data.entrainment_speed[keep],
-        "sliding_speed": data.sliding_speed[keep],
-        "load": data.load[keep],
-        "friction_coefficient": data.friction_coefficient[keep],
-        "radius": None if data.radius is None else data.radius[keep],
-    }
-    return replace(data, **fields), [i + 1 for i in dropped]
+    kept = {k: None if v is None else v[keep] for k, v in arrays.items()}
+    return replace(data, **kept), [i + 1 for i in dropped]
 
 
 def repeated_message(dropped: list[int]) -> str:

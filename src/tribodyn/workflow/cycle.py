@@ -411,7 +411,7 @@ def run_cycle_study(
         dry_hertz=dry_hertz_reference(coating[0]),
         ehl_coating=coating[1],
         sensitivity=coating[2],
-        nose_sets=coating[3] if len(coating) > 3 else None,
+        nose_sets=coating[3],
         timings=timings,
         isothermal_sets=isothermal,
         compare_paper=paper_cmp,
@@ -492,10 +492,10 @@ _VALIDITY_ADVICE = {
 
 
 def _validity_advice(text: str) -> str:
-    for word, advice in _VALIDITY_ADVICE.items():
-        if word in text:
-            return advice
-    return "see the validity checks in the physics documentation"
+    return next(
+        (advice for word, advice in _VALIDITY_ADVICE.items() if word in text),
+        "see the validity checks in the physics documentation",
+    )
 
 
 def _jump_warning(dyn, built: BuiltCase) -> str:

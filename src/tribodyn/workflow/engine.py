@@ -76,9 +76,6 @@ def lobe_traces(kind: str, study: CycleStudy, engine_case: Case) -> LobeTraces:
     engine's ``[engine.auxiliary]``."""
     case, dyn, inp = study.case, study.dynamics, study.inputs
     built = build(case)
-    rb = float(built.cam.base_radius)
-    s = np.interp(inp.crank_angle, dyn.crank_angle, dyn.cam_lift)
-    s1 = np.interp(inp.crank_angle, dyn.crank_angle, dyn.lift_velocity)
     nose = float(dyn.crank_angle[int(np.argmax(dyn.cam_lift))])
     w = case.cam_speed
     eta = float(built.lubricant.viscosity)
@@ -88,7 +85,7 @@ def lobe_traces(kind: str, study: CycleStudy, engine_case: Case) -> LobeTraces:
     bore, guide, _ = engine_case.engine.auxiliary_geometries(
         vt.tappet_radius, vt.bore_friction_coefficient
     )
-    ff, tf, td = set_torques(study, s, s1, rb)
+    _, s1, ff, tf, td = set_torques(study, float(built.cam.base_radius))
     tb = [vf.tappet_bore_friction(inp.contact_force, f, s1, w, eta, bore)[1] for f in ff]
     energy = {r.name: cycle_integral(t_f, inp.crank_angle) for r, t_f in zip(study.sets, tf)}
     _, t_g, _ = vf.valve_guide_friction(s1, w, eta, guide)

@@ -82,24 +82,24 @@ def camshaft_torque(
     return t_f, np.asarray(contact_force, float) * np.asarray(lift_velocity, float) + t_f
 
 
-def set_torques(study, lift, lift_velocity, base_radius: float):
-    """Per surface set of ``study`` (rows in study order, one column per EHL sample): the
+def set_torques(study, base_radius: float):
+    """The lift s [m] and s' = ds/dθ [m/rad] of the dynamics at the EHL samples of
+    ``study``, and per surface set (rows in study order, one column per EHL sample) the
     signed friction F_f = (F_v + F_b) sign(u_s) [N], T_f and T_drive [N m]
-    (:func:`camshaft_torque`) at the lift s [m] and s' = ds/dθ [m/rad] of the samples.
+    (:func:`camshaft_torque`, cam base radius r_b [m]): ``(s, s', F_f, T_f, T_drive)``.
     An unloaded sample has no friction (0); a loaded one whose EHL step failed has an
     unknown friction, so NaN torques: they are left out of the cycle integrals (as of the
     summary's friction energy, with the failed steps counted) and of the maxima."""
-    inp = study.inputs
-    ff, tf, td = [], [], []
-    for res in study.sets:
-        fr = np.where(res.loaded, res.viscous_friction + res.boundary_friction, 0.0)
-        t_f, t_d = camshaft_torque(
-            inp.contact_force, fr, lift, lift_velocity, base_radius, inp.sliding_speed
-        )
-        ff.append(fr * np.sign(inp.sliding_speed))
-        tf.append(t_f)
-        td.append(t_d)
-    return np.array(ff), np.array(tf), np.array(td)
+    dyn, inp = study.dynamics, study.inputs
+    lift = np.interp(inp.crank_angle, dyn.crank_angle, dyn.cam_lift)
+    lift_velocity = np.interp(inp.crank_angle, dyn.crank_angle, dyn.lift_velocity)
+    fr = np.array(
+        [np.where(r.loaded, r.viscous_friction + r.boundary_friction, 0.0) for r in study.sets]
+    )
+    t_f, t_d = camshaft_torque(
+        inp.contact_force, fr, lift, lift_velocity, base_radius, inp.sliding_speed
+    )
+    return lift, lift_velocity, fr * np.sign(inp.sliding_speed), t_f, t_d
 
 
 def cycle_integral(values, crank_deg) -> float:
@@ -130,10 +130,8 @@ def surge_spectrum(
     c = np.fft.rfft(np.asarray(cam.lift(theta), float)) / n
     amp = 2.0 * np.abs(c[1 : harmonics + 1])
     f_h = f_cam * np.arange(1, harmonics + 1)
-    closest = []
-    for k, f in enumerate(f_s, 1):
-        h = int(round(f / f_cam))
-        closest.append((k, h, h * f_cam, float(f)))
+    nearest = [int(round(f / f_cam)) for f in f_s]
+    closest = [(k, h, h * f_cam, float(f)) for k, (h, f) in enumerate(zip(nearest, f_s), 1)]
     return {
         "cam_frequency_Hz": f_cam,
         "harmonic_frequency_Hz": f_h,
@@ -162,15 +160,13 @@ class Engineering:
 
 def engineering_outputs(study) -> Engineering:
     """The :class:`Engineering` outputs of a :class:`~tribodyn.workflow.cycle.CycleStudy`."""
-    case, dyn, inp = study.case, study.dynamics, study.inputs
+    case, inp = study.case, study.inputs
     built = build(case)
     cam = built.cam
     rb = float(cam.base_radius)
-    s = np.interp(inp.crank_angle, dyn.crank_angle, dyn.cam_lift)
-    s1 = np.interp(inp.crank_angle, dyn.crank_angle, dyn.lift_velocity)
     w = case.cam_speed
     period = 2.0 * math.pi / w
-    _, tf, td = set_torques(study, s, s1, rb)
+    s, s1, _, tf, td = set_torques(study, rb)
     ph = []
     scalars = {}
     for res, t_f, t_d in zip(study.sets, tf, td):

@@ -54,7 +54,6 @@ def compare_lumped_flexible(
     tribology,
     flexible: ValvetrainResult,
     *,
-    jump_speeds: bool = True,
     high_factor: float = 3.0,
 ) -> ModelComparison:
     """Run the lumped companion of a flexible ``case`` (a Case or BuiltCase; same
@@ -74,8 +73,6 @@ def compare_lumped_flexible(
             out.messages.append(f"{name} dynamics failed: {r.message}")
             continue
         out.rows[name] = _row(r)
-    if not jump_speeds:
-        return out
     kw = {k: v for k, v in opts.items() if k != "engine_speed"}
     for name, (params, r) in runs.items():
         if name not in out.rows:

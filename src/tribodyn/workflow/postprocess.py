@@ -32,6 +32,7 @@ from ..physics.regimes import greenwood_chart_groups, hamrock_groups, moes_centr
 from .conventions import CHANGE, CRANK_ANGLE, change_pct
 from .regime_map import RegimeMap, regime_code, regime_map
 from .thermal_study import thermal_summary
+from .variables_sweep import COMPARISON_SCALARS
 
 if TYPE_CHECKING:
     from ..config.case import Case
@@ -193,12 +194,9 @@ def chart(case, inputs, loaded_any):
 # ----------------------------------------------------------------------------- film gain
 def _settled(loaded: np.ndarray, steps: int) -> np.ndarray:
     """Loaded samples at least ``steps`` samples after the start of their loaded run."""
-    out = np.zeros_like(loaded, dtype=bool)
-    run = 0
-    for i, on in enumerate(loaded):
-        run = run + 1 if on else 0
-        out[i] = run > steps
-    return out
+    i = np.arange(loaded.size)
+    last_off = np.maximum.accumulate(np.where(loaded, -1, i))  # latest unloaded sample
+    return i - last_off > steps
 
 
 def film_gain_mask(
@@ -484,12 +482,7 @@ def _implicit_vs_explicit(study) -> dict:
     imp = cp.implicit
     if imp is None:
         return {
-            "max_contact_force_diff_pct": None,
-            "rms_contact_force_diff_pct": None,
-            "peak_contact_force_diff_pct": None,
-            "valve_opening_shift_deg": None,
-            "valve_closing_shift_deg": None,
-            "max_velocity_diff_pct": None,
+            **dict.fromkeys(k for k in COMPARISON_SCALARS if not k.startswith("coupling_")),
             "note": "implicit coupling disabled in the case"
             if not study.case.numerics.implicit_coupling
             else cp.message,

@@ -402,16 +402,15 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
             ref.surface.bodies, built.lubricant, ref.surface.roughness, options=ref.options
         )
         t0 = clock()
-        k = 0
-        for i in range(i0, min(i0 + steps, inp.crank_angle.size)):
+        timed = range(i0, min(i0 + steps, inp.crank_angle.size))
+        for i in timed:
             w = inp.contact_force[i] / case.width
             args = (max(w, 1.0), inp.radius[i], inp.entrainment_speed[i], inp.sliding_speed[i])
-            if k == 0:
+            if i == i0:
                 tr.start_steady(*args, time=inp.time[i])
             else:
                 tr.step(inp.time[i] - inp.time[i - 1], *args)
-            k += 1
-        t_step = (clock() - t0) / max(k, 1)
+        t_step = (clock() - t0) / max(len(timed), 1)
         t0 = clock()
         dry_coating_study()
         ehl_coating_study(built.lubricant, built)
@@ -444,7 +443,6 @@ def estimate_sweep(spec: SweepSpec, *, workers: int, out_dir: PathLike | None = 
     n = spec.n_points
     store = PointStore(out_dir) if out_dir is not None else None
     done_times = []
-    done = 0
     checked = n <= PLAN_CHECK_LIMIT
     if checked:
         plan = spec.points()
@@ -454,10 +452,10 @@ def estimate_sweep(spec: SweepSpec, *, workers: int, out_dir: PathLike | None = 
             for p in valid:
                 ds = store.load(p.key) if store.status(p.key) == "ok" else None
                 if ds is not None:
-                    done += 1
                     done_times.append(
                         float(ds.attrs.get("cpu_s", ds.attrs.get("runtime_s", math.nan)))
                     )
+        done = len(done_times)  # the finished points (their times, finite or not)
         todo = len(valid) - done
     else:
         ends = [spec.point(0), spec.point(n - 1)]

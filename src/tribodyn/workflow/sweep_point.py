@@ -84,29 +84,17 @@ def failed_point(error: str, runtime_s: float = 0.0) -> xr.Dataset:
 
 
 def _dynamics_scalars(dyn) -> dict:
-    s = dyn.summary()
-    ue = s["entrainment_speed_range_m_s"]
-    return {
-        "peak_contact_force_N": s["peak_contact_force_N"],
-        "peak_contact_force_crank_deg": s["peak_contact_force_crank_deg"]
-        - float(dyn.crank_angle[0]),
-        "min_contact_force_in_event_N": s["min_contact_force_in_event_N"],
-        "min_radius_of_curvature_m": s["min_radius_of_curvature_m"],
-        "entrainment_speed_min_m_s": ue[0],
-        "entrainment_speed_max_m_s": ue[1],
-        "max_valve_lift_m": s["max_valve_lift_m"],
-        "max_seat_force_N": s["max_seat_force_N"],
-        "peak_cam_torque_Nm": s["peak_cam_torque_Nm"],
+    """The point scalars of the dynamics: the summary's, crank angles within the
+    presented cycle."""
+    s, t0 = dyn.summary(), float(dyn.crank_angle[0])
+    own = {
+        "peak_contact_force_crank_deg": s["peak_contact_force_crank_deg"] - t0,
+        "entrainment_speed_min_m_s": s["entrainment_speed_range_m_s"][0],
+        "entrainment_speed_max_m_s": s["entrainment_speed_range_m_s"][1],
         "dynamics_friction_energy_per_cycle_J": s["friction_energy_per_cycle_J"],
-        "jump": s["jump"],
-        "jump_onset_crank_deg": (
-            dyn.jumps[0][0] - float(dyn.crank_angle[0]) if dyn.jumps else math.nan
-        ),
-        "max_separation_m": s["max_separation_m"],
-        "valve_bounce": s["valve_bounce"],
-        "seating_velocity_m_s": s["seating_velocity_m_s"],
-        "energy_residual_rel": s["energy_residual_rel"],
+        "jump_onset_crank_deg": dyn.jumps[0][0] - t0 if dyn.jumps else math.nan,
     }
+    return {k: own[k] if k in own else s[k] for k in POINT_SCALARS if k in own or k in s}
 
 
 def point_dynamics(case):

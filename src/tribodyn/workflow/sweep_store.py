@@ -103,14 +103,7 @@ def _ordered_union(values_lists) -> np.ndarray:
     arrays = [np.asarray(v) for v in values_lists]
     if all(a.dtype.kind in "iuf" for a in arrays):
         return np.unique(np.concatenate(arrays))
-    out: list = []
-    seen = set()
-    for a in arrays:
-        for v in a.tolist():
-            if v not in seen:
-                seen.add(v)
-                out.append(v)
-    return np.array(out, dtype=object)
+    return np.array(list(dict.fromkeys(v for a in arrays for v in a.tolist())), dtype=object)
 
 
 def combine_points(spec, plan, results: dict) -> xr.Dataset:
@@ -130,9 +123,7 @@ def combine_points(spec, plan, results: dict) -> xr.Dataset:
         i: ds.reindex({d: v for d, v in inner.items() if d in ds.dims}) for i, ds in ok.items()
     }
     out = xr.Dataset()
-    names: list[str] = []
-    for ds in aligned.values():
-        names += [v for v in ds.data_vars if v not in names]
+    names = list(dict.fromkeys(v for ds in aligned.values() for v in ds.data_vars))
     n = len(plan)
     for name in names:
         first = next(ds[name] for ds in aligned.values() if name in ds)

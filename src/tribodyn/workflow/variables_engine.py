@@ -6,6 +6,8 @@ engine_crank)``, each valve's over ``(engine_set, valve, engine_crank)``.
 
 from __future__ import annotations
 
+from operator import attrgetter as _attr  # the study attribute of that name
+
 from .conventions import ENGINE_CRANK_ANGLE
 from .variables import Group, var
 from .variables_study import SURFACE_SET
@@ -15,24 +17,16 @@ __all__ = ["ENGINE", "ALL", "valve_names"]
 DIMS = ("engine_set", "camshaft", "engine_crank")
 
 
-def _attr(k):
-    return lambda e: getattr(e, k)
-
-
 def valve_names(valves) -> list[str]:
     """Unique names of the engine's valves (the ``valve`` coordinate of results.nc):
     kind, cylinder and, where the cylinder has several valves of that kind, a letter:
     ``intake1a``, ``intake1b``, ``exhaust1a``, …; a single valve of its kind on its
     cylinder is ``intake1``."""
     base = [f"{v['kind']}{v['cylinder']}" for v in valves]
-    total = {b: base.count(b) for b in base}
-    seen: dict[str, int] = {}
-    out = []
-    for b in base:
-        k = seen.get(b, 0)
-        seen[b] = k + 1
-        out.append(b if total[b] == 1 else f"{b}{_letters(k)}")
-    return out
+    return [
+        b if base.count(b) == 1 else f"{b}{_letters(base[:i].count(b))}"  # k-th of its kind
+        for i, b in enumerate(base)
+    ]
 
 
 def _letters(k: int) -> str:

@@ -193,10 +193,8 @@ def _engine(key, part=None):
     """Per-set values of an engine summary (source: ``{"sets": …, "names": […]}``)."""
 
     def extract(e):
-        sets = e["sets"]
-        if part is None:
-            return [number(sets[n][key]) for n in e["names"]]
-        return [number(sets[n][key][part]) for n in e["names"]]
+        sets = (e["sets"][n][key] for n in e["names"])
+        return [number(v if part is None else v[part]) for v in sets]
 
     return extract
 

@@ -90,7 +90,6 @@ def viscous_factor_bounds(case) -> tuple[float, float]:
     built = as_built(case)
     lub = built.lubricant
     n = built.case.numerics
-    r_lo = r_hi = 1.0
     k_lo = k_hi = 1.0
     if n.viscous_model == "eyring":
         r_lo, r_hi = _ratio_bounds(float(lub.eyring_stress), typical.EYRING_STRESS)
@@ -135,15 +134,11 @@ def verdict_sentence(label: str, ref_label: str, pct: float, lo: float, hi: floa
     """The engineer's sentence of a verdict (see :func:`coating_verdicts`)."""
     rng = f"{_pct(lo)} … {_pct(hi)} %"
     over = "over the published ranges of ς of both pairs, τ_E and Λ"
-    if hi < 0.0:
+    if hi < 0.0 or lo > 0.0:  # the sign is settled: the size of the change
+        word, size = ("lowers", -pct) if hi < 0.0 else ("raises", pct)
         return (
-            f"{label} lowers friction energy per cycle by {_pct(-pct)[1:]} % against {ref_label} "
-            f"({rng} {over})."
-        )
-    if lo > 0.0:
-        return (
-            f"{label} raises friction energy per cycle by {_pct(pct)[1:]} % against {ref_label} "
-            f"({rng} {over})."
+            f"{label} {word} friction energy per cycle by {_pct(size)[1:]} % against "
+            f"{ref_label} ({rng} {over})."
         )
     return (
         f"{label} changes friction energy per cycle by {_pct(pct)} % against {ref_label}, "
@@ -202,12 +197,9 @@ def verdicts_from_energies(
         ]
         ok = math.isfinite(pct) and all(math.isfinite(v) for v in together + indep)
         if not ok:
+            unknown = "friction_energy_change_pct range_pct range_independent_pct lowers_friction"
             out[name] = {
-                "friction_energy_change_pct": None,
-                "range_pct": None,
-                "range_independent_pct": None,
-                "lowers_friction": None,
-                "sign_settled": None,
+                **dict.fromkeys((*unknown.split(), "sign_settled")),
                 "sentence": f"{labels[name]}: no verdict (the friction energy is not known).",
                 "method": method,
             }

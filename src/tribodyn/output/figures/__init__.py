@@ -115,12 +115,12 @@ def _wanted(ds, only=None) -> list[str]:
     return wanted
 
 
-def figure_files(ds, only=None, paper_numbers: bool | None = None) -> list[str]:
+def figure_files(ds, only=None) -> list[str]:
     """The file names :func:`make_figures` may write for ``ds`` (a figure with nothing to
-    draw is left out when drawn, so it writes these or fewer)."""
-    if paper_numbers is None:
-        paper_numbers = compares_paper(ds)  # numbered file names (module text)
-    return [n if paper_numbers else content_name(n) for n in _wanted(ds, only)]
+    draw is left out when drawn, so it writes these or fewer): numbered (module text)
+    where the Dataset's ``compare_paper`` attribute says so (absent: numbered)."""
+    numbered = compares_paper(ds)
+    return [n if numbered else content_name(n) for n in _wanted(ds, only)]
 
 
 def make_figures(
@@ -130,7 +130,6 @@ def make_figures(
     only=None,
     workers: int = 1,
     meanwhile: Callable[[], object] | None = None,
-    paper_numbers: bool | None = None,
 ) -> dict[str, Path]:
     """Write the report figures of a cycle-study Dataset into ``out_dir``.
 
@@ -145,11 +144,8 @@ def make_figures(
     written atomically by its own process; the result is the same as drawing them in
     turn). ``meanwhile``: called in this process while the other processes draw (e.g.
     to write the data files), or before drawing when there are none.
-    ``paper_numbers``: numbered file names (module docstring); None: from the Dataset's
-    ``compare_paper`` attribute (absent: numbered). ``only`` takes either name.
+    The file names are those of :func:`figure_files`; ``only`` takes either name.
     """
-    if paper_numbers is None:
-        paper_numbers = compares_paper(ds)  # numbered file names (module text)
     out = Path(out_dir)
     make_dirs(out)
     ref = ds.attrs.get("reference_set")
@@ -163,7 +159,7 @@ def make_figures(
     if k <= 1:
         if meanwhile is not None:
             meanwhile()
-        return _draw(ds, out, wanted, paper_numbers)
+        return _draw(ds, out, wanted)
     import multiprocessing as mp
     import sys
     from concurrent.futures import ProcessPoolExecutor
@@ -177,7 +173,7 @@ def make_figures(
         max_workers=k, mp_context=ctx, initializer=_hold, initargs=(ds, os.getpid())
     ) as pool:
         order = sorted(wanted, key=lambda n: -_COST.get(n, 1.0))
-        parts = [pool.submit(_draw_held, out, n, paper_numbers) for n in order]
+        parts = [pool.submit(_draw_held, out, n) for n in order]
         try:
             if meanwhile is not None:
                 meanwhile()
@@ -186,8 +182,7 @@ def make_figures(
         except BaseException:
             pool.shutdown(wait=True, cancel_futures=True)  # no figures after a failure
             raise
-    files = [n if paper_numbers else content_name(n) for n in wanted]
-    return {f: written[f] for f in files if f in written}
+    return {f: written[f] for f in figure_files(ds, only) if f in written}
 
 
 _HELD: list = []  # the Dataset of a drawing process
@@ -198,12 +193,13 @@ def _hold(ds, starter: int) -> None:
     _HELD[:] = [ds]
 
 
-def _draw_held(out: Path, name: str, paper_numbers: bool = True) -> dict[str, Path]:
-    return _draw(_HELD[0], out, [name], paper_numbers)
+def _draw_held(out: Path, name: str) -> dict[str, Path]:
+    return _draw(_HELD[0], out, [name])
 
 
-def _draw(ds, out: Path, names, paper_numbers: bool = True) -> dict[str, Path]:
-    """Draw ``names`` in this process (file names: module docstring)."""
+def _draw(ds, out: Path, names) -> dict[str, Path]:
+    """Draw ``names`` in this process (file names: :func:`figure_files`)."""
+    paper_numbers = compares_paper(ds)
     written = {}
     with plt.rc_context(
         {"font.size": 10, "axes.titlesize": TITLE_SIZE, "figure.dpi": 100, "savefig.dpi": 150}

@@ -28,16 +28,13 @@ from .common import (
 # ----------------------------------------------------------------------------- Figs. 15–20
 
 
-def _cycle_lines(ax, ds, values, window, styles, *, label_fmt=None, floor=None):
+def _cycle_lines(ax, ds, values, window, styles, *, label_fmt=None):
     """Plot (surface_set, ehl_crank) values over the event for every set."""
     e = arr(ds, "ehl_crank")
     sel = in_window(e, window)
     for j, st in enumerate(styles):
-        y = values[j].copy()
-        if floor is not None:
-            y = np.where(y < floor, floor, y)
         lab = st["label"] if label_fmt is None else label_fmt(j, st["label"])
-        ax.plot(e[sel], y[sel], **{**st, "label": lab})
+        ax.plot(e[sel], values[j][sel], **{**st, "label": lab})
     mark_failures(ax, ds, values, window)
     crank_axis(ax, window)
 

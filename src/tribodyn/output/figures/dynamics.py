@@ -72,12 +72,12 @@ def _shade_contact_loss(ax, ds) -> None:
         right.set_ylim(bottom=0.0, top=max(1.1 * float(np.max(gap)), 1e-3))
 
 
-def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False, jumps=False):
+def _explicit_implicit(ds, path, var, ylabel, diff_unit, *, points=False, jumps=False):
     ca = arr(ds, "crank_angle")
-    y = arr(ds, var) * scale
+    y = arr(ds, var)
     imp = f"{var}_implicit"
     has_imp = imp in ds
-    yi = arr(ds, imp) * scale if has_imp else None
+    yi = arr(ds, imp) if has_imp else None
     fig = plt.figure(figsize=(12, 9.5), layout="constrained")
     gs = fig.add_gridspec(3, 2, height_ratios=(2.2, 1.0, 1.9))
     ax = fig.add_subplot(gs[0, :])
@@ -166,19 +166,17 @@ def _explicit_implicit(ds, path, var, scale, ylabel, diff_unit, *, points=False,
 
 
 def fig08(ds, path):
-    return _explicit_implicit(ds, path, "tappet_velocity", 1.0, "tappet velocity [m/s]", "m/s")
+    return _explicit_implicit(ds, path, "tappet_velocity", "tappet velocity [m/s]", "m/s")
 
 
 def fig09(ds, path):
     return _explicit_implicit(
-        ds, path, "contact_force", 1.0, "contact force W [N]", "N", points=True, jumps=True
+        ds, path, "contact_force", "contact force W [N]", "N", points=True, jumps=True
     )
 
 
 def fig10(ds, path):
-    return _explicit_implicit(
-        ds, path, "tappet_acceleration", 1.0, "tappet acceleration [m/s²]", "m/s²"
-    )
+    return _explicit_implicit(ds, path, "tappet_acceleration", "tappet acceleration [m/s²]", "m/s²")
 
 
 # ----------------------------------------------------------------------------- Fig. 11

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...workflow.engineering import cycle_integral
 from .common import (
     MM,
     TITLE_SIZE,
@@ -42,12 +43,11 @@ def fig23(ds, path):
     _lines(b, ds, "camshaft_friction_torque", win, styles=styles)
     b.set_ylabel("friction torque T_f [N m]")
     b.set_title("(b) T_f = F_f (r_b + s), F_f = viscous + boundary", fontsize=TITLE_SIZE)
-    theta = np.radians(arr(ds, "ehl_crank")) / 2.0
-    means = []
-    for k, st in enumerate(styles):
-        tf = np.nan_to_num(arr(ds, "camshaft_friction_torque")[k])
-        mean = float(np.sum(0.5 * (tf[1:] + tf[:-1]) * np.diff(theta)) / (2 * np.pi))
-        means.append(f"{st['label']} {mean:.3g} N m")
+    crank, tf = arr(ds, "ehl_crank"), arr(ds, "camshaft_friction_torque")
+    means = [  # ∮T_f dθ / 2π, as the summary's mean friction torque
+        f"{st['label']} {cycle_integral(t, crank) / (2 * np.pi):.3g} N m"
+        for st, t in zip(styles, tf)
+    ]
     return finish_numbered(fig, path, "mean friction torque: " + "; ".join(means))
 
 

@@ -44,15 +44,14 @@ def _profiles_at(ds, i, sets):
     H = ds["film"].values
     ref = next((j for j in sets if np.isfinite(X[j, i]).all()), sets[0])
     x = X[ref, i]
-    rows_p, rows_h = [], []
-    for j in sets:
+
+    def on_x(v, j):  # NaN where set j has no profile at this sample
         if not np.isfinite(X[j, i]).all():
-            rows_p.append(np.full(x.size, np.nan))
-            rows_h.append(np.full(x.size, np.nan))
-            continue
-        rows_p.append(np.interp(x, X[j, i], P[j, i], left=np.nan, right=np.nan))
-        rows_h.append(np.interp(x, X[j, i], H[j, i], left=np.nan, right=np.nan))
-    return x * UM, np.array(rows_p) * MPA, np.array(rows_h) * UM
+            return np.full(x.size, np.nan)
+        return np.interp(x, X[j, i], v[j, i], left=np.nan, right=np.nan)
+
+    p, h = (np.array([on_x(v, j) for j in sets]) for v in (P, H))
+    return x * UM, p * MPA, h * UM
 
 
 def _load_fraction(ds, p, x):

@@ -51,14 +51,9 @@ def _numeric(ds, dim) -> bool:
 def x_dim(ds) -> str | None:
     """The dimension for the x axis: that of engine.speed_rpm, else the first numeric."""
     axes = json.loads(ds.attrs.get("axes", "[]"))
-    for a in axes:
-        if a["path"] == "engine.speed_rpm":
-            return a["dim"]
-    num = [d for d in _sweep_dims(ds) if _numeric(ds, d)]
-    if num:
-        return num[0]
+    speed = next((a["dim"] for a in axes if a["path"] == "engine.speed_rpm"), None)
     dims = _sweep_dims(ds)
-    return dims[0] if dims else None
+    return speed or next((d for d in dims if _numeric(ds, d)), dims[0] if dims else None)
 
 
 def _x_values(ds, xd):
@@ -155,7 +150,7 @@ def _mark_events(ax, x, y, hit, label):
         ax.plot(x[hit], y[hit], "x", color="red", ms=9, mew=2, label=label, zorder=5)
 
 
-def _line_panel(ax, ds, name, xd, combos, scale=1.0, ylabel="", log=False):
+def _line_panel(ax, ds, name, xd, combos, scale=1.0, ylabel=""):
     x, xlabel = _x_values(ds, xd)
     order = np.argsort(x)
     for st, i, sel in _set_lines(ds, combos):
@@ -165,8 +160,6 @@ def _line_panel(ax, ds, name, xd, combos, scale=1.0, ylabel="", log=False):
         ax.plot(x[order], y[order], marker="o", ms=3.5, **st)
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
-    if log:
-        ax.set_yscale("log")
     ax.grid(alpha=0.3)
 
 
