@@ -415,3 +415,25 @@ def test_the_check_sees_a_default_written_twice():
     assert len(duplicates([(_ProbeTwice, _ProbeOptions, renames)])) == 2
     assert duplicates([(_ProbeDerived, _ProbeOptions, renames)]) == []
     assert len(duplicates([(_ProbeConstant, _ProbeOptions, {})])) == 1
+
+
+def test_the_workers_range_is_one_limit(tmp_path):
+    """``numerics.workers`` and ``-j/--workers`` of run and engine: one range
+    (:data:`tribodyn.physics.limits.WORKERS`), not restated in the commands."""
+    from pathlib import Path
+
+    from typer.testing import CliRunner
+
+    import tribodyn
+    from tribodyn.cli import app
+    from tribodyn.config.schema import Numerics
+    from tribodyn.config.schema_fields import field_bounds
+    from tribodyn.physics.limits import WORKERS
+
+    assert field_bounds(Numerics.model_fields["workers"]) == WORKERS.constraints()
+    for command in (["run"], ["engine", "engine_dohc16"]):
+        r = CliRunner().invoke(app, [*command, "-j", "5000", "-o", str(tmp_path / "out")])
+        assert r.exit_code == 2
+        assert f"-j/--workers must be an integer {WORKERS.describe()} (got 5000)" in r.output
+    cli = Path(tribodyn.__file__).parent / "cli"
+    assert not [p.name for p in cli.glob("*.py") if "4096" in p.read_text(encoding="utf-8")]

@@ -11,6 +11,7 @@ from rich.console import Console
 from rich.markup import escape
 
 from .._validation import InputError
+from ..physics.limits import WORKERS
 from .failure import fail
 
 __all__ = ["engine_command"]
@@ -49,8 +50,8 @@ def engine_command(
                 "firing_order, displacement, [engine.intake] and [engine.exhaust] "
                 "(docs: case files, [engine]) or use tribodyn run"
             )
-        if workers is not None and not 0 <= workers <= 4096:
-            raise InputError(f"-j/--workers must be an integer >= 0 and <= 4096 (got {workers})")
+        if workers is not None:
+            WORKERS.check("-j/--workers", workers)
         out = check_output_dir(out, option="-o/--out", kind="engine")
     except InputError as exc:
         fail(console, exc, label="error in the case")

@@ -17,6 +17,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from .._validation import InputError
+from ..physics.limits import WORKERS
 from .failure import dask_client, fail
 from .help_defaults import stating
 
@@ -98,11 +99,8 @@ def run_command(
             msg += f"; {_bundled_names()}"
         fail(console, msg, label="error in the case")
     try:
-        if workers is not None and not 0 <= workers <= 4096:
-            raise InputError(
-                f"-j/--workers must be an integer >= 0 and <= 4096 (0: one per "
-                f"CPU core) (got {workers})"
-            )
+        if workers is not None:
+            WORKERS.check("-j/--workers", workers)
         # before hours of computing
         out = check_output_dir(out, option="-o/--out", writes=case_inputs(c)[1], kind="run")
     except InputError as exc:

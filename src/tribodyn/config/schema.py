@@ -381,13 +381,11 @@ class Numerics(Section):
         "oil supply layer that bounds the film of the implicit dynamics (the tappet rides "
         "on it off the cam lobe; assumed)",
     )
-    workers: int = _q(
+    workers: int = _lim(
         0,
-        "",
+        L.WORKERS,
         "worker processes for the surface sets, the coupling chain and "
         "the single-contact studies (0: one per CPU core)",
-        ge=0,
-        le=4096,
     )
     thermal: bool = _q(
         False,

@@ -97,6 +97,7 @@ __all__ = [
     "MAX_SUBSTEPS",
     "GREENWOOD_TRIPP_ORDER",
     "THERMAL_X_NODES",
+    "WORKERS",
     "THERMAL_FILM_NODES",
     "THERMAL_SOLID_NODES",
     "THERMAL_DEPTH",
@@ -429,6 +430,9 @@ GREENWOOD_TRIPP_ORDER = Limit(
 )
 
 # -- thermal EHL (ThermalOptions) -------------------------------------------------------
+#: Worker processes of a study (``numerics.workers``, ``-j/--workers``): 0 means one per
+#: CPU core.
+WORKERS = Limit("", ge=0, le=4096, integer=True, why="0: one per CPU core")
 THERMAL_X_NODES = Limit("", ge=16, le=4096, integer=True, why="along x, as EHL_NODES_TRANSIENT")
 THERMAL_FILM_NODES = Limit("", ge=3, le=41, integer=True, why="across the film (made odd)")
 THERMAL_SOLID_NODES = Limit("", ge=6, le=200, integer=True, why="depth nodes per solid")
