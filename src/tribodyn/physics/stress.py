@@ -63,8 +63,10 @@ from .stress_kernels import (
     _correction_values,
     _homogeneous_transfer,
     _layer_solutions,
+    _load_spectra,
     _long_wave_limits,
     _max_principal,
+    _peak_search,
     von_mises,
 )
 
@@ -370,85 +372,81 @@ class StressOperator:
     def peaks_batch(self, pressure: np.ndarray, traction: np.ndarray, x0: np.ndarray) -> dict:
         """Peaks of many load profiles at once: ``pressure``, ``traction`` (samples, n)
         on grids starting at ``x0`` (samples,) [m]. Returns {name: (value, x, z)} of
-        arrays (samples,), NaN where a peak does not exist."""
+        arrays (samples,), NaN where a peak does not exist.
+
+        Single precision (the peaks to ~1e-6 of the load, at half the cost); the fields
+        are formed and searched by compiled loops (:func:`.stress_kernels._peak_search`)
+        without storing the von Mises and principal-stress fields."""
         n, nf = self.n, self._nfft
-        # single precision: the peaks to ~1e-6 of the load, at half the cost
         scale = max(float(np.abs(pressure).max()), float(np.abs(traction).max()), 1e-300)
         P = sp_fft.rfft((pressure / scale).astype(np.float32), n=nf, axis=-1)
         Q = sp_fft.rfft((traction / scale).astype(np.float32), n=nf, axis=-1)
         if self._transfer32 is None:
             self._transfer32 = self._transfer.astype(np.complex64)
-        T = self._transfer32
-        f = sp_fft.irfft(
-            T[None, :, :3] * P[:, None, None, :] + T[None, :, 3:] * Q[:, None, None, :],
-            n=nf,
-            axis=-1,
-        )[..., :n]  # in units of `scale`
-        sxx, szz, sxz = f[:, :, 0], f[:, :, 1], f[:, :, 2]
-        nu = np.where(self._in_coating, self.body.surface.nu, self.body.material.nu)
-        syy = nu.astype(np.float32)[None, :, None] * (sxx + szz)
+        f = sp_fft.irfft(_load_spectra(self._transfer32, P, Q), n=nf, axis=-1)  # in `scale`
         z, nd = self._z, self.depths.size
         coat = self._in_coating
+        nu = np.where(coat, self.body.surface.nu, self.body.material.nu).astype(np.float32)
+        interface = nd + 1 if self.h is not None else -1
+        val, row, col = _peak_search(f, nu, coat, n, nd, interface)
         ns = pressure.shape[0]
-        vm2 = 0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * sxz**2
-        # the largest principal stress only where it is reported: surface and coating
-        surf = np.zeros(z.size, dtype=bool)
-        surf[nd] = True
-        rows1 = surf | coat
-        sig1 = np.full(sxx.shape, -np.inf)
-        sig1[:, rows1] = _max_principal(sxx[:, rows1], szz[:, rows1], sxz[:, rows1], syy[:, rows1])
-
-        def peak(a, rows, f=None, refine=False):
-            if not np.any(rows):
+        rows_of = (
+            coat,
+            ~coat,
+            np.arange(z.size) == nd,
+            coat,
+            *(2 * (np.arange(z.size) == interface,)),
+        )
+        out = {}
+        for k, name in enumerate(PEAKS):
+            if not np.any(rows_of[k]):
                 nan = np.full(ns, np.nan)
-                return nan, nan.copy(), nan.copy()
-            sub = a[:, rows].reshape(ns, -1)
-            k = np.argmax(sub, axis=1)
-            r, c = np.divmod(k, n)
-            v = sub[np.arange(ns), k].astype(np.float64)
-            v = f(v) if f else v
-            zr = z[rows][r]
-            nr = int(np.count_nonzero(rows))
-            if refine and nr >= 3:
-                # an interior maximum between depth levels: parabola in ln z through the
-                # level and its neighbours (the levels are geometric below the coating)
-                zz = z[rows]
-                i = np.arange(ns)
-                inner = (r > 0) & (r < nr - 1) & (zz[np.clip(r - 1, 0, nr - 1)] > 0)
-                rm, rp = np.clip(r - 1, 0, nr - 1), np.clip(r + 1, 0, nr - 1)
-                a3 = a[:, rows].reshape(ns, nr, n)
-                vm_, vp_ = a3[i, rm, c].astype(np.float64), a3[i, rp, c].astype(np.float64)
-                if f:
-                    vm_, vp_ = f(vm_), f(vp_)
-                with np.errstate(divide="ignore", invalid="ignore"):
-                    lm = np.log(np.maximum(zz[rm], 1e-300)) - np.log(np.maximum(zr, 1e-300))
-                    lp = np.log(np.maximum(zz[rp], 1e-300)) - np.log(np.maximum(zr, 1e-300))
-                    # quadratic through (lm, vm_), (0, v), (lp, vp_)
-                    d1 = (vm_ - v) / lm
-                    d2 = (vp_ - v) / lp
-                    cc = (d2 - d1) / (lp - lm)
-                    bb = d1 - cc * lm
-                    s = -bb / (2.0 * cc)
-                    ok = inner & (cc < 0) & (s > lm) & (s < lp)
-                    v = np.where(ok, v - bb * bb / (4.0 * cc), v)
-                    zr = np.where(ok, zr * np.exp(np.where(ok, s, 0.0)), zr)
-            return v * scale, x0 + c * self.dx, zr
-
-        out = {
-            "max_von_mises_coating": peak(vm2, coat, np.sqrt),
-            "max_von_mises_substrate": peak(vm2, ~coat, np.sqrt, refine=True),
-            "max_tension_surface": peak(sig1, surf),
-            "max_tension_coating": peak(sig1, coat),
-        }
-        if self.h is not None:
-            ih = np.zeros(z.size, dtype=bool)
-            ih[nd + 1] = True
-            out["max_interface_shear"] = peak(np.abs(sxz), ih)
-            out["max_interface_tension"] = peak(szz, ih)
-        else:
-            out["max_interface_shear"] = peak(sxz, np.zeros(z.size, dtype=bool))
-            out["max_interface_tension"] = peak(szz, np.zeros(z.size, dtype=bool))
+                out[name] = (nan, nan.copy(), nan.copy())
+                continue
+            v = val[:, k].astype(np.float64)
+            zr = z[row[:, k]]
+            if k < 2:  # von Mises: the square root of the searched square
+                v = np.sqrt(v)
+            if k == 1:
+                v, zr = self._refine_depth(f, nu, row[:, k], col[:, k], v, zr, rows_of[k])
+            out[name] = (v * scale, x0 + col[:, k] * self.dx, zr)
         return out
+
+    def _refine_depth(self, f, nu, row, col, v, zr, rows):
+        """An interior maximum of the von Mises stress between depth levels (``rows``,
+        geometric below the coating): the parabola in ln z through the peak's level and
+        its neighbours at the peak's node, its vertex where it lies between them."""
+        idx = np.flatnonzero(rows)
+        nr = idx.size
+        if nr < 3:
+            return v, zr
+        zz = self._z[idx]
+        r = np.searchsorted(idx, row)
+        i = np.arange(row.size)
+        inner = (r > 0) & (r < nr - 1) & (zz[np.clip(r - 1, 0, nr - 1)] > 0)
+        rm, rp = np.clip(r - 1, 0, nr - 1), np.clip(r + 1, 0, nr - 1)
+
+        def vm(rr):  # von Mises at level rr of ``rows`` and the peak's node
+            g = f[i, idx[rr], :, col]
+            sxx, szz, sxz = g[:, 0], g[:, 1], g[:, 2]
+            syy = nu[idx[rr]] * (sxx + szz)
+            vm2 = 0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * sxz**2
+            return np.sqrt(vm2.astype(np.float64))
+
+        vm_, vp_ = vm(rm), vm(rp)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            lm = np.log(np.maximum(zz[rm], 1e-300)) - np.log(np.maximum(zr, 1e-300))
+            lp = np.log(np.maximum(zz[rp], 1e-300)) - np.log(np.maximum(zr, 1e-300))
+            # quadratic through (lm, vm_), (0, v), (lp, vp_)
+            d1 = (vm_ - v) / lm
+            d2 = (vp_ - v) / lp
+            cc = (d2 - d1) / (lp - lm)
+            bb = d1 - cc * lm
+            s = -bb / (2.0 * cc)
+            ok = inner & (cc < 0) & (s > lm) & (s < lp)
+            v = np.where(ok, v - bb * bb / (4.0 * cc), v)
+            zr = np.where(ok, zr * np.exp(np.where(ok, s, 0.0)), zr)
+        return v, zr
 
     def _peaks(self, sxx, szz, sxz, syy, vm, x) -> dict:
         sig1 = _max_principal(sxx, szz, sxz, syy)

@@ -10,6 +10,7 @@ import math
 from functools import lru_cache
 
 import numpy as np
+from numba import njit
 from scipy import fft as sp_fft
 
 #: alias terms are summed until m·d(z) reaches this (correction ∝ e^{−m d})
@@ -152,3 +153,77 @@ def _long_wave_limits(coating, substrate) -> tuple[float, float]:
     lp = 1.0 - (g * (1.0 - 2.0 * ns) + nc) / (1.0 - nc)
     lq = 2.0 * (g * (1.0 - ns) / (1.0 - nc) - 1.0)
     return lp, lq
+
+
+# ------------------------------------------------------------- batched peak search
+@njit(cache=True, nogil=True)
+def _load_spectra(transfer, p_hat, q_hat):
+    """Spectra of (σ_xx, σ_zz, σ_xz) at every depth for many loads: ``transfer``
+    (depth, 6, nfreq) times the load spectra (samples, nfreq), G = T_p P + T_q Q, shape
+    (samples, depth, 3, nfreq); the same single-precision products and sums as NumPy's
+    broadcast expression, without its temporaries."""
+    ns, nfq = p_hat.shape
+    nz = transfer.shape[0]
+    out = np.empty((ns, nz, 3, nfq), dtype=p_hat.dtype)
+    for s in range(ns):
+        for r in range(nz):
+            for c in range(3):
+                tp = transfer[r, c]
+                tq = transfer[r, c + 3]
+                o = out[s, r, c]
+                for j in range(nfq):
+                    o[j] = tp[j] * p_hat[s, j] + tq[j] * q_hat[s, j]
+    return out
+
+
+@njit(cache=True, nogil=True)
+def _vm2_at(sxx, szz, sxz, nu):
+    """Squared von Mises stress of one point with σ_yy = ν(σ_xx + σ_zz) (plane strain),
+    in the precision of the arguments: ½[(σx−σy)² + (σy−σz)² + (σz−σx)²] + 3τ²."""
+    syy = nu * (sxx + szz)
+    a = sxx - syy
+    b = syy - szz
+    c = szz - sxx
+    return np.float32(0.5) * ((a * a + b * b) + c * c) + np.float32(3.0) * (sxz * sxz)
+
+
+@njit(cache=True, nogil=True)
+def _peak_search(fields, nu, coat, n, surface, interface):
+    """Largest value and its (depth row, node) of each peak of :data:`.stress.PEAKS` for
+    every sample of ``fields`` (samples, depth, 3, ≥ n): squared von Mises in the coating
+    rows (``coat``) and below them, the largest principal stress (in-plane pair and
+    σ_yy = ν(σ_xx + σ_zz)) on the surface row ``surface`` and in the coating rows, |σ_xz|
+    and σ_zz on the row ``interface`` (< 0: none). The first of equal values in (row,
+    node) order wins, as ``np.argmax`` over the rows in order. Returns values (samples, 6)
+    (−inf where a peak has no rows) and rows, nodes (samples, 6)."""
+    ns, nz = fields.shape[0], fields.shape[1]
+    val = np.full((ns, 6), -np.inf, dtype=np.float32)
+    row = np.zeros((ns, 6), dtype=np.int64)
+    col = np.zeros((ns, 6), dtype=np.int64)
+    half = np.float32(0.5)
+    for s in range(ns):
+        for r in range(nz):
+            f = fields[s, r]
+            v = nu[r]
+            principal = coat[r] or r == surface
+            for i in range(n):
+                sxx, szz, sxz = f[0, i], f[1, i], f[2, i]
+                vm = _vm2_at(sxx, szz, sxz, v)
+                k = 0 if coat[r] else 1
+                if vm > val[s, k]:
+                    val[s, k], row[s, k], col[s, k] = vm, r, i
+                if principal:
+                    syy = v * (sxx + szz)
+                    s1 = half * (sxx + szz) + np.float32(math.hypot(half * (sxx - szz), sxz))
+                    if syy > s1:
+                        s1 = syy
+                    if r == surface and s1 > val[s, 2]:
+                        val[s, 2], row[s, 2], col[s, 2] = s1, r, i
+                    if coat[r] and s1 > val[s, 3]:
+                        val[s, 3], row[s, 3], col[s, 3] = s1, r, i
+                if r == interface:
+                    if abs(sxz) > val[s, 4]:
+                        val[s, 4], row[s, 4], col[s, 4] = abs(sxz), r, i
+                    if szz > val[s, 5]:
+                        val[s, 5], row[s, 5], col[s, 5] = szz, r, i
+    return val, row, col
