@@ -349,6 +349,9 @@ class StressOperator:
                 basis[deep] = (hz[:, 0] - hz[:, 1]) / (2.0 * d[deep, None])
             s = kk * zr[:, None, None]
             w = s - (k[sl] * h)[None]
+            e = np.exp(-s)
+            # the slope term's decay e^{−|m|d} is e^{−s} itself where d = z
+            cut_d = e if np.all(d == zr) else np.exp(-kk * d[:, None, None])
             cont = np.ascontiguousarray
             sums = _alias_sums(
                 cont(sol[sl]),
@@ -358,9 +361,9 @@ class StressOperator:
                 cont(cut[sl]),
                 s,
                 w,
-                np.exp(-s),
+                e,
                 np.exp(w if sd else -w),
-                np.exp(-kk * d[:, None, None]),
+                cut_d,
                 not sd,
                 np.array(lims, dtype=float),
                 slopes[rows],

@@ -165,11 +165,7 @@ def stress_along_cycle(
             opts,
         )
         loads = (xs, ld.pressure, ld.traction_cam, ld.traction_tappet)
-    for i, pk in _evaluate(samples, loads, pair, depths).items():
-        for name in names:
-            tr = traces[name]
-            for k in PEAKS:
-                tr.value[k][i], tr.x[k][i], tr.z[k][i] = pk[name][k]
+    _evaluate(samples, loads, pair, depths, traces)
     out = CycleStress(
         name=getattr(result, "name", ""),
         crank_angle=crank,
@@ -244,13 +240,14 @@ def _windows(x: np.ndarray, p: np.ndarray) -> tuple:
     return first, final, b
 
 
-def _evaluate(samples: np.ndarray, loads, pair, depths) -> dict:
-    """Peaks of both bodies for every sample {i: {"cam"|"tappet": {peak: StressPeak}}}
-    from ``loads`` (x, p, q_cam, q_tappet), arrays (len(samples), k) of the ``samples``.
-    Samples are grouped by grid spacing into classes with one operator per body, so the
-    transfer functions are built a few times per cycle, not per sample."""
+def _evaluate(samples: np.ndarray, loads, pair, depths, traces: dict) -> None:
+    """Peaks of both bodies at the ``samples`` written into their ``traces``
+    ({"cam"|"tappet": BodyStressTrace}) from ``loads`` (x, p, q_cam, q_tappet), arrays
+    (len(samples), k). Samples are grouped by grid spacing into classes with one
+    operator per body, so the transfer functions are built a few times per cycle, not
+    per sample."""
     if loads is None or not len(samples):
-        return {}
+        return
     xs, ps, qs = loads[0], loads[1], loads[2:]
     dxs = [float(v) for v in xs[:, 1] - xs[:, 0]]
     dx0 = min(dxs)
@@ -279,7 +276,6 @@ def _evaluate(samples: np.ndarray, loads, pair, depths) -> dict:
     sizes: dict = {}
     for k, _, _, m in plan.values():
         sizes[k] = max(sizes.get(k, 0), m)
-    out: dict = {int(i): {} for i in samples}
     for k in sorted(sizes):
         members = [r for r in plan if plan[r][0] == k]
         dxc = plan[members[0]][1]
@@ -304,13 +300,12 @@ def _evaluate(samples: np.ndarray, loads, pair, depths) -> dict:
                     # z = h itself is always evaluated (StressOperator: both sides)
                     z = np.concatenate([[0.5 * hc], z[z > hc]])
             op = StressOperator(n, dxc, body, z)
+            tr = traces[name]
             for c0 in range(0, len(members), _BATCH):
                 sl = slice(c0, c0 + _BATCH)
-                pk = op.peaks_batch(pr[sl], qr[j, sl], x0[sl])
-                for r, m in enumerate(members[sl]):
-                    i = int(samples[m])
-                    out[i][name] = {key: (v[0][r], v[1][r], v[2][r]) for key, v in pk.items()}
-    return out
+                at = samples[members[sl]]
+                for key, (v, xp, zp) in op.peaks_batch(pr[sl], qr[j, sl], x0[sl]).items():
+                    tr.value[key][at], tr.x[key][at], tr.z[key][at] = v, xp, zp
 
 
 def stress_for_set(case, surface_set, result, inputs, **kwargs) -> CycleStress:
