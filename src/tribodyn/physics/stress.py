@@ -60,11 +60,15 @@ from .stress_kernels import (
     _DECAY,
     _MAX_ALIAS,
     _PERIOD_H,
+    _alias_sums,
     _correction_values,
     _homogeneous_transfer,
     _layer_solutions,
+    _load_spectra,
     _long_wave_limits,
     _max_principal,
+    _peak_search,
+    _vm2_points,
     von_mises,
 )
 
@@ -143,6 +147,23 @@ class SubsurfaceStress:
         return {k: getattr(self, k) for k in PEAKS}
 
 
+#: samples of :meth:`StressOperator.peaks_batch` sharing one single-precision load scale
+#: (consecutive groups from the first)
+SCALE_GROUP = 8
+
+
+def _group_scale(pressure: np.ndarray, traction: np.ndarray) -> np.ndarray:
+    """Per sample (row) the largest |p|, |q| [Pa] of its group of :data:`SCALE_GROUP`
+    consecutive rows (at least 1e-300)."""
+    ns = pressure.shape[0]
+    out = np.empty(ns)
+    for g in range(0, ns, SCALE_GROUP):
+        sl = slice(g, g + SCALE_GROUP)
+        top = max(float(np.abs(pressure[sl]).max()), float(np.abs(traction[sl]).max()))
+        out[sl] = max(top, 1e-300)
+    return out
+
+
 def _peak(values: np.ndarray, x: np.ndarray, z: np.ndarray) -> StressPeak:
     if values.size == 0:
         return _NAN_PEAK
@@ -205,6 +226,7 @@ class StressOperator:
         self._nfft = int(sp_fft.next_fast_len(need, real=True))
         self._transfer = self._build()
         self._transfer32: np.ndarray | None = None
+        self._search: tuple | None = None  # the peak search's rows (_search_rows)
 
     def _check_size(self) -> None:
         """Refuse, before allocating, a periodic length beyond ``L.STRESS_FFT_LENGTH``
@@ -315,9 +337,8 @@ class StressOperator:
             zr = self._z[rows]
             sl = (slice(K - kz, K + kz + 1), slice(0, jm))
             lims = (lp, -lq) if sd else (0.0, 0.0)
-            terms = self._terms(sol[sl], k[sl], sg[sl], zr, h, lims, cut[sl])
-            posw = np.where(pos[sl], sinc2[sl], 0.0)[None]
             kk = k[sl][None]
+            posw = np.where(pos[sl], sinc2[sl], 0.0)
             # decay depth of the split-off slope term: 2h, or z deeper down (then it decays
             # at least as fast as the correction itself, e^{−|m|z}, and the aliases suffice)
             d = np.maximum(2.0 * h, zr)
@@ -326,13 +347,33 @@ class StressOperator:
             if np.any(deep):
                 hz = out_hom[rows[deep]]
                 basis[deep] = (hz[:, 0] - hz[:, 1]) / (2.0 * d[deep, None])
-            cut_d = np.exp(-kk * d[:, None, None])
-            for c, tr in enumerate(terms):
+            s = kk * zr[:, None, None]
+            w = s - (k[sl] * h)[None]
+            e = np.exp(-s)
+            # the slope term's decay e^{−|m|d} is e^{−s} itself where d = z
+            cut_d = e if np.all(d == zr) else np.exp(-kk * d[:, None, None])
+            cont = np.ascontiguousarray
+            sums = _alias_sums(
+                cont(sol[sl]),
+                cont(k[sl]),
+                cont(sg[sl]),
+                posw,
+                cont(cut[sl]),
+                s,
+                w,
+                e,
+                np.exp(w if sd else -w),
+                cut_d,
+                not sd,
+                np.array(lims, dtype=float),
+                slopes[rows],
+            )
+            for c in range(6):
                 if c in (0, 1, 5):
-                    sc = slopes[rows, c][:, None, None]
-                    tr = tr - sc * kk * cut_d
                     out[rows, c] += slopes[rows, c][:, None] * basis
-                out[rows, c, :jm] += np.sum(tr * posw, axis=1)
+                    out[rows, c, :jm] += sums[:, c]
+                else:  # purely imaginary
+                    out[rows, c, :jm] += 1j * sums[:, c]
 
     @staticmethod
     def _terms(sol, k, sg, z, h, lims, cut):
@@ -370,85 +411,80 @@ class StressOperator:
     def peaks_batch(self, pressure: np.ndarray, traction: np.ndarray, x0: np.ndarray) -> dict:
         """Peaks of many load profiles at once: ``pressure``, ``traction`` (samples, n)
         on grids starting at ``x0`` (samples,) [m]. Returns {name: (value, x, z)} of
-        arrays (samples,), NaN where a peak does not exist."""
+        arrays (samples,), NaN where a peak does not exist.
+
+        Single precision (the peaks to ~1e-6 of the load, at half the cost), the loads
+        scaled by the largest |p|, |q| of each group of :data:`SCALE_GROUP` samples (so
+        that a sample's result does not depend on how many are passed at once); the
+        fields are formed and searched by compiled loops
+        (:func:`.stress_kernels._peak_search`) without storing the von Mises and
+        principal-stress fields."""
         n, nf = self.n, self._nfft
-        # single precision: the peaks to ~1e-6 of the load, at half the cost
-        scale = max(float(np.abs(pressure).max()), float(np.abs(traction).max()), 1e-300)
+        scale = _group_scale(pressure, traction)[:, None]
         P = sp_fft.rfft((pressure / scale).astype(np.float32), n=nf, axis=-1)
         Q = sp_fft.rfft((traction / scale).astype(np.float32), n=nf, axis=-1)
+        scale = scale[:, 0]
         if self._transfer32 is None:
             self._transfer32 = self._transfer.astype(np.complex64)
-        T = self._transfer32
-        f = sp_fft.irfft(
-            T[None, :, :3] * P[:, None, None, :] + T[None, :, 3:] * Q[:, None, None, :],
-            n=nf,
-            axis=-1,
-        )[..., :n]  # in units of `scale`
-        sxx, szz, sxz = f[:, :, 0], f[:, :, 1], f[:, :, 2]
-        nu = np.where(self._in_coating, self.body.surface.nu, self.body.material.nu)
-        syy = nu.astype(np.float32)[None, :, None] * (sxx + szz)
-        z, nd = self._z, self.depths.size
-        coat = self._in_coating
+        f = sp_fft.irfft(_load_spectra(self._transfer32, P, Q), n=nf, axis=-1)  # in `scale`
+        if self._search is None:
+            self._search = self._search_rows()
+        nu, interface, rows_of = self._search
+        val, row, col = _peak_search(f, nu, self._in_coating, n, self.depths.size, interface)
         ns = pressure.shape[0]
-        vm2 = 0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * sxz**2
-        # the largest principal stress only where it is reported: surface and coating
-        surf = np.zeros(z.size, dtype=bool)
-        surf[nd] = True
-        rows1 = surf | coat
-        sig1 = np.full(sxx.shape, -np.inf)
-        sig1[:, rows1] = _max_principal(sxx[:, rows1], szz[:, rows1], sxz[:, rows1], syy[:, rows1])
-
-        def peak(a, rows, f=None, refine=False):
-            if not np.any(rows):
+        out = {}
+        for k, name in enumerate(PEAKS):
+            if not np.any(rows_of[k]):
                 nan = np.full(ns, np.nan)
-                return nan, nan.copy(), nan.copy()
-            sub = a[:, rows].reshape(ns, -1)
-            k = np.argmax(sub, axis=1)
-            r, c = np.divmod(k, n)
-            v = sub[np.arange(ns), k].astype(np.float64)
-            v = f(v) if f else v
-            zr = z[rows][r]
-            nr = int(np.count_nonzero(rows))
-            if refine and nr >= 3:
-                # an interior maximum between depth levels: parabola in ln z through the
-                # level and its neighbours (the levels are geometric below the coating)
-                zz = z[rows]
-                i = np.arange(ns)
-                inner = (r > 0) & (r < nr - 1) & (zz[np.clip(r - 1, 0, nr - 1)] > 0)
-                rm, rp = np.clip(r - 1, 0, nr - 1), np.clip(r + 1, 0, nr - 1)
-                a3 = a[:, rows].reshape(ns, nr, n)
-                vm_, vp_ = a3[i, rm, c].astype(np.float64), a3[i, rp, c].astype(np.float64)
-                if f:
-                    vm_, vp_ = f(vm_), f(vp_)
-                with np.errstate(divide="ignore", invalid="ignore"):
-                    lm = np.log(np.maximum(zz[rm], 1e-300)) - np.log(np.maximum(zr, 1e-300))
-                    lp = np.log(np.maximum(zz[rp], 1e-300)) - np.log(np.maximum(zr, 1e-300))
-                    # quadratic through (lm, vm_), (0, v), (lp, vp_)
-                    d1 = (vm_ - v) / lm
-                    d2 = (vp_ - v) / lp
-                    cc = (d2 - d1) / (lp - lm)
-                    bb = d1 - cc * lm
-                    s = -bb / (2.0 * cc)
-                    ok = inner & (cc < 0) & (s > lm) & (s < lp)
-                    v = np.where(ok, v - bb * bb / (4.0 * cc), v)
-                    zr = np.where(ok, zr * np.exp(np.where(ok, s, 0.0)), zr)
-            return v * scale, x0 + c * self.dx, zr
-
-        out = {
-            "max_von_mises_coating": peak(vm2, coat, np.sqrt),
-            "max_von_mises_substrate": peak(vm2, ~coat, np.sqrt, refine=True),
-            "max_tension_surface": peak(sig1, surf),
-            "max_tension_coating": peak(sig1, coat),
-        }
-        if self.h is not None:
-            ih = np.zeros(z.size, dtype=bool)
-            ih[nd + 1] = True
-            out["max_interface_shear"] = peak(np.abs(sxz), ih)
-            out["max_interface_tension"] = peak(szz, ih)
-        else:
-            out["max_interface_shear"] = peak(sxz, np.zeros(z.size, dtype=bool))
-            out["max_interface_tension"] = peak(szz, np.zeros(z.size, dtype=bool))
+                out[name] = (nan, nan.copy(), nan.copy())
+                continue
+            v = val[:, k].astype(np.float64)
+            zr = self._z[row[:, k]]
+            if k < 2:  # von Mises: the square root of the searched square
+                v = np.sqrt(v)
+            if k == 1:
+                v, zr = self._refine_depth(f, nu, row[:, k], col[:, k], v, zr, rows_of[k])
+            out[name] = (v * scale, x0 + col[:, k] * self.dx, zr)
         return out
+
+    def _search_rows(self) -> tuple:
+        """ν of each evaluated depth row (single precision), the interface row (−1: none)
+        and the rows of each peak of :data:`PEAKS` (boolean masks)."""
+        coat, nd = self._in_coating, self.depths.size
+        nu = np.where(coat, self.body.surface.nu, self.body.material.nu).astype(np.float32)
+        interface = nd + 1 if self.h is not None else -1
+        every = np.arange(self._z.size)
+        at_interface = every == interface
+        rows_of = (coat, ~coat, every == nd, coat, at_interface, at_interface)
+        return nu, interface, rows_of
+
+    def _refine_depth(self, f, nu, row, col, v, zr, rows):
+        """An interior maximum of the von Mises stress between depth levels (``rows``,
+        geometric below the coating): the parabola in ln z through the peak's level and
+        its neighbours at the peak's node, its vertex where it lies between them."""
+        idx = np.flatnonzero(rows)
+        nr = idx.size
+        if nr < 3:
+            return v, zr
+        zz = self._z[idx]
+        r = np.searchsorted(idx, row)
+        inner = (r > 0) & (r < nr - 1) & (zz[np.clip(r - 1, 0, nr - 1)] > 0)
+        rm, rp = np.clip(r - 1, 0, nr - 1), np.clip(r + 1, 0, nr - 1)
+        vm_ = np.sqrt(_vm2_points(f, nu, idx[rm], col).astype(np.float64))
+        vp_ = np.sqrt(_vm2_points(f, nu, idx[rp], col).astype(np.float64))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            lm = np.log(np.maximum(zz[rm], 1e-300)) - np.log(np.maximum(zr, 1e-300))
+            lp = np.log(np.maximum(zz[rp], 1e-300)) - np.log(np.maximum(zr, 1e-300))
+            # quadratic through (lm, vm_), (0, v), (lp, vp_)
+            d1 = (vm_ - v) / lm
+            d2 = (vp_ - v) / lp
+            cc = (d2 - d1) / (lp - lm)
+            bb = d1 - cc * lm
+            s = -bb / (2.0 * cc)
+            ok = inner & (cc < 0) & (s > lm) & (s < lp)
+            v = np.where(ok, v - bb * bb / (4.0 * cc), v)
+            zr = np.where(ok, zr * np.exp(np.where(ok, s, 0.0)), zr)
+        return v, zr
 
     def _peaks(self, sxx, szz, sxz, syy, vm, x) -> dict:
         sig1 = _max_principal(sxx, szz, sxz, syy)

@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..config.build import as_built, build, options_for
-from ..contact.stress import batch_surface_loads, loaded_half_width
+from ..contact.stress import batch_surface_loads
 from ..physics.asperity_stress import micro_contact_estimate
 from ..physics.materials import as_bodies, reduced_modulus
 from ..physics.strength import (
@@ -150,8 +150,8 @@ def stress_along_cycle(
         conv = np.asarray(getattr(result, "converged", np.ones(n, bool)), bool)
         ok = np.asarray(result.loaded, bool) & conv & np.all(np.isfinite(result.pressure), axis=1)
         samples = np.flatnonzero(ok)
-    loads = {}
     samples = np.asarray(samples, dtype=int)
+    loads = None
     if samples.size:  # all profiles at once (the recorded ones share their length)
         xs = np.asarray(result.x, float)[samples]
         ld = batch_surface_loads(
@@ -164,13 +164,8 @@ def stress_along_cycle(
             roughness,
             opts,
         )
-        for r, i in enumerate(samples):
-            loads[int(i)] = (xs[r], ld.pressure[r], ld.traction_cam[r], ld.traction_tappet[r])
-    for i, pk in _evaluate(loads, pair, depths).items():
-        for name in names:
-            tr = traces[name]
-            for k in PEAKS:
-                tr.value[k][i], tr.x[k][i], tr.z[k][i] = pk[name][k]
+        loads = (xs, ld.pressure, ld.traction_cam, ld.traction_tappet)
+    _evaluate(samples, loads, pair, depths, traces)
     out = CycleStress(
         name=getattr(result, "name", ""),
         crank_angle=crank,
@@ -212,8 +207,9 @@ def stress_along_cycle(
 _CLASS_STEP = 0.5
 #: a class with fewer samples is merged into the next finer one
 _MIN_CLASS = 8
-#: samples per batched transform (memory: batch × depths × 3 × FFT length doubles)
-_BATCH = 8
+#: samples per batched transform (memory: batch × depths × 3 × FFT length × 12 bytes of
+#: single-precision spectra and fields: ≈ 15 MB at 32 × 20 × 3 × 2000)
+_BATCH = 32
 #: depths below the coating, in units of the class spacing: geometric from 2Δ to 400Δ
 #: (the EHL profiles resolve the loaded half-width b with 50–200 points, so this reaches
 #: beyond 1.5 b with a relative step of 42 %); the substrate's von Mises peak is refined
@@ -222,46 +218,79 @@ _BATCH = 8
 _REL_DEPTHS = np.geomspace(2.0, 400.0, 16)
 
 
-def _evaluate(loads: dict, pair, depths) -> dict:
-    """Peaks of both bodies for every sample {i: {"cam"|"tappet": {peak: StressPeak}}}.
-    Samples are grouped by grid spacing into classes with one operator per body, so the
-    transfer functions are built a few times per cycle, not per sample."""
-    if not loads:
-        return {}
-    dxs = {i: float(v[0][1] - v[0][0]) for i, v in loads.items()}
-    dx0 = min(dxs.values())
-    cls = {i: int(math.floor(math.log2(d / dx0) / _CLASS_STEP + 1e-9)) for i, d in dxs.items()}
+def _windows(x: np.ndarray, p: np.ndarray) -> tuple:
+    """Per profile (rows of ``x``, ``p``): the first and last node where p > 1e-3 max p
+    (both 0 where p ≤ 0 everywhere) and the loaded half-width b of
+    :func:`~tribodyn.contact.stress.loaded_half_width` (p > 0.01 max p; at least one
+    grid step)."""
+    pmax = p.max(axis=1)
+    rows = np.arange(p.shape[0])
+    last = p.shape[1] - 1
+
+    def ends(mask):
+        return np.argmax(mask, axis=1), last - np.argmax(mask[:, ::-1], axis=1)
+
+    first, final = ends(p > 1e-3 * pmax[:, None])
+    first = np.where(pmax > 0, first, 0)
+    final = np.where(pmax > 0, final, 0)
+    lo, hi = ends(p > 0.01 * pmax[:, None])
+    step = np.abs(x[:, 1] - x[:, 0])
+    b = np.maximum(0.5 * (x[rows, hi] - x[rows, lo]), step)
+    b = np.where(np.any(p > 0, axis=1), b, step)
+    return first, final, b
+
+
+def _evaluate(samples: np.ndarray, loads, pair, depths, traces: dict) -> None:
+    """Peaks of both bodies at the ``samples`` written into their ``traces``
+    ({"cam"|"tappet": BodyStressTrace}) from ``loads`` (x, p, q_cam, q_tappet), arrays
+    (len(samples), k). Samples are grouped by grid spacing into classes with one
+    operator per body, so the transfer functions are built a few times per cycle, not
+    per sample."""
+    if loads is None or not len(samples):
+        return
+    xs, ps, qs = loads[0], loads[1], loads[2:]
+    dxs = [float(v) for v in xs[:, 1] - xs[:, 0]]
+    dx0 = min(dxs)
+    cls = [int(math.floor(math.log2(d / dx0) / _CLASS_STEP + 1e-9)) for d in dxs]
     # a class with few samples joins the next finer populated one (a build costs more
     # than the few larger transforms)
     count: dict = {}
-    for k in cls.values():
+    for k in cls:
         count[k] = count.get(k, 0) + 1
     target: dict = {}
     for k in sorted(count):
         finer = [t for t in target.values() if t < k]
         target[k] = max(finer) if count[k] < _MIN_CLASS and finer else k
+    # the window: where p > 1e-3 max p, widened by b/3 each side (the film's shear
+    # outside it, μu_s/h over a thick film, is below 1e-4 of p_max)
+    first, final, half = _windows(xs, ps)
     plan: dict = {}
-    for i, (x, p, *_) in loads.items():
-        k = target[cls[i]]
+    for r in range(len(samples)):
+        k = target[cls[r]]
         dxc = dx0 * 2.0 ** (k * _CLASS_STEP)
-        # the window: where p > 1e-3 max p, widened by b/3 each side (the film's shear
-        # outside it, μu_s/h over a thick film, is below 1e-4 of p_max)
-        on = np.flatnonzero(p > 1e-3 * p.max()) if p.max() > 0 else np.array([0])
-        b = loaded_half_width(x, p)
-        lo = max(float(x[on[0]]) - b / 3.0, float(x[0]))
-        hi = min(float(x[on[-1]]) + b / 3.0, float(x[-1]))
+        x, b = xs[r], float(half[r])
+        lo = max(float(x[first[r]]) - b / 3.0, float(x[0]))
+        hi = min(float(x[final[r]]) + b / 3.0, float(x[-1]))
         m = int(math.floor((hi - lo) / dxc)) + 1
-        plan[i] = (k, dxc, lo, m)
+        plan[r] = (k, dxc, lo, m)
     sizes: dict = {}
     for k, _, _, m in plan.values():
         sizes[k] = max(sizes.get(k, 0), m)
-    out: dict = {i: {} for i in plan}
     for k in sorted(sizes):
-        members = [i for i in plan if plan[i][0] == k]
+        members = [r for r in plan if plan[r][0] == k]
         dxc = plan[members[0]][1]
         n = 32 * math.ceil(sizes[k] / 32)
-        x0 = np.array([plan[i][2] for i in members])
-        xs = x0[:, None] + dxc * np.arange(n)[None, :]
+        x0 = np.array([plan[r][2] for r in members])
+        xg = x0[:, None] + dxc * np.arange(n)[None, :]
+        # the loads resampled onto the class grid (zero beyond the profile's end)
+        pr = np.zeros((len(members), n))
+        qr = np.zeros((2, len(members), n))
+        for j, r in enumerate(members):
+            x = xs[r]
+            inside = xg[j] <= x[-1]
+            pr[j] = np.where(inside, np.interp(xg[j], x, ps[r]), 0.0)
+            for body in range(2):
+                qr[body, j] = np.where(inside, np.interp(xg[j], x, qs[body][r]), 0.0)
         for j, (name, body) in enumerate((("cam", pair[0]), ("tappet", pair[1]))):
             z = depths
             if z is None:
@@ -271,19 +300,12 @@ def _evaluate(loads: dict, pair, depths) -> dict:
                     # z = h itself is always evaluated (StressOperator: both sides)
                     z = np.concatenate([[0.5 * hc], z[z > hc]])
             op = StressOperator(n, dxc, body, z)
-            pr = np.zeros((len(members), n))
-            qr = np.zeros((len(members), n))
-            for r, i in enumerate(members):
-                x, p, *qs = loads[i]
-                inside = xs[r] <= x[-1]
-                pr[r] = np.where(inside, np.interp(xs[r], x, p), 0.0)
-                qr[r] = np.where(inside, np.interp(xs[r], x, qs[j]), 0.0)
+            tr = traces[name]
             for c0 in range(0, len(members), _BATCH):
                 sl = slice(c0, c0 + _BATCH)
-                pk = op.peaks_batch(pr[sl], qr[sl], x0[sl])
-                for r, i in enumerate(members[sl]):
-                    out[i][name] = {key: (v[0][r], v[1][r], v[2][r]) for key, v in pk.items()}
-    return out
+                at = samples[members[sl]]
+                for key, (v, xp, zp) in op.peaks_batch(pr[sl], qr[j, sl], x0[sl]).items():
+                    tr.value[key][at], tr.x[key][at], tr.z[key][at] = v, xp, zp
 
 
 def stress_for_set(case, surface_set, result, inputs, **kwargs) -> CycleStress:
