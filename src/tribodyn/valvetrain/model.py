@@ -315,15 +315,6 @@ class ValvetrainModel(CamContactModel):
         N = self.N
         if N == 0:
             return np.zeros((0, 0)), np.zeros((0, 0))
-        K = np.zeros((N, N))
-        for j in range(N + 1):  # segment j between nodes j, j+1
-            a, b = j - 1, j  # coil indices (−1/N = fixed ends)
-            k = self.kseg[j]
-            if 0 <= a < N:
-                K[a, a] += k
-            if 0 <= b < N:
-                K[b, b] += k
-            if 0 <= a < N and 0 <= b < N:
-                K[a, b] -= k
-                K[b, a] -= k
+        k = self.kseg  # segment j joins coils j − 1 and j (−1 and N: the fixed ends)
+        K = np.diag(k[:-1] + k[1:]) - np.diag(k[1:-1], 1) - np.diag(k[1:-1], -1)
         return np.eye(N) * self.m_node, K
