@@ -233,6 +233,19 @@ class AnalyticTribology(TribologyModel):
         }
 
 
+def _bracket(tl: list, period: float | None, t: float) -> tuple[int, int, float]:
+    """(i, j, a): linear interpolation in the table of times ``tl`` [s] at t, y(t) =
+    y_i + a (y_j − y_i); the end samples outside the table; with ``period`` t is first
+    mapped to tl[0] + (t − tl[0]) mod period."""
+    if period is not None:
+        t = tl[0] + (t - tl[0]) % period
+    k = bisect.bisect_right(tl, t) - 1
+    if k < 0 or k == len(tl) - 1:
+        k = max(k, 0)
+        return k, k, 0.0
+    return k, k + 1, (t - tl[k]) / (tl[k + 1] - tl[k])
+
+
 def _checked_friction_model(friction_model: TribologyModel) -> TribologyModel:
     """``friction_model``, the model that supplies a wrapping model's friction, checked."""
     if not isinstance(friction_model, TribologyModel):
@@ -321,17 +334,7 @@ class FilmTableTribology(TribologyModel):
         return self.friction_model.friction(t, force, entrainment_speed, sliding_speed, radius)
 
     def _scalar_film(self, t: float, force: float) -> tuple[float, float]:
-        tl = self._tl
-        if self.period is not None:
-            t = self._t0 + (t - self._t0) % self.period
-        k = bisect.bisect_right(tl, t) - 1
-        if k < 0:
-            i, a = 0, 0.0
-        elif k >= len(tl) - 1:
-            i, a = len(tl) - 1, 0.0
-        else:
-            i, a = k, (t - tl[k]) / (tl[k + 1] - tl[k])
-        j = min(i + 1, len(tl) - 1)
+        i, j, a = _bracket(self._tl, self.period, t)
         hk = self._hl[i] + a * (self._hl[j] - self._hl[i])
         ck = self._cl[i] + a * (self._cl[j] - self._cl[i])
         fk = self._fl[i] + a * (self._fl[j] - self._fl[i])
@@ -443,7 +446,6 @@ class FilmStateTribology(TribologyModel):
             raise InputError("correction must be > 0 (a factor on the flooded film)")
         self.time, self.correction = t, r
         self.period = None if period is None else check_positive("period", period, "s")
-        self._t0 = float(t[0])
         self._tl, self._rl = t.tolist(), r.tolist()
         self._eta = float(lubricant.viscosity)
         self._alpha = float(lubricant.pressure_viscosity)
@@ -457,18 +459,8 @@ class FilmStateTribology(TribologyModel):
 
     def correction_at(self, t: float) -> float:
         """r(t), linear between the table's samples (periodic with ``period``)."""
-        tl = self._tl
-        if len(tl) == 1:
-            return self._rl[0]
-        if self.period is not None:
-            t = self._t0 + (t - self._t0) % self.period
-        k = bisect.bisect_right(tl, t) - 1
-        if k < 0:
-            return self._rl[0]
-        if k >= len(tl) - 1:
-            return self._rl[-1]
-        a = (t - tl[k]) / (tl[k + 1] - tl[k])
-        return self._rl[k] + a * (self._rl[k + 1] - self._rl[k])
+        i, j, a = _bracket(self._tl, self.period, t)
+        return self._rl[i] + a * (self._rl[j] - self._rl[i])
 
     def film_rate(self, t: float, h: float, force: float, ue: float, R: float):
         """(ḣ [m/s], ∂ḣ/∂h [1/s], ∂ḣ/∂F_c [m/(N s)]) of the film h [m] carrying F_c [N]."""
