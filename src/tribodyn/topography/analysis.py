@@ -42,7 +42,7 @@ from .filtering import AUTO_BAND, Band, BandSpec, Sampling, input_warnings, prep
 from .height_statistics import height_statistics
 from .profile import ProfileAnalysis
 from .reading import read_topography
-from .results import PairAnalysis, SurfaceAnalysis
+from .results import AsperityParameters, PairAnalysis, SurfaceAnalysis
 from .spectral_moments import (
     MIN_ALPHA_ISOTROPIC,
     SpectralMoments,
@@ -246,8 +246,18 @@ def analyse_filtered(
     return _with_notes(result)
 
 
-def _deviation(a: float, b: float) -> float:
-    return a / b - 1.0
+def _deviation_note(
+    summits: AsperityParameters, spectral: AsperityParameters, what: str = ""
+) -> str | None:
+    """The note where the ``summits`` and ``spectral`` η or β differ by more than
+    :data:`NOTE_DEVIATION` (relative), else None."""
+    d_eta = summits.asperity_density / spectral.asperity_density - 1.0
+    d_beta = summits.summit_radius / spectral.summit_radius - 1.0
+    if max(abs(d_eta), abs(d_beta)) > NOTE_DEVIATION:
+        return (
+            f"{what}summit vs spectral estimates differ by {d_eta:+.0%} (η) and {d_beta:+.0%} (β)"
+        )
+    return None
 
 
 def _sampling_note(band: Band, sampling: Sampling) -> str:
@@ -273,12 +283,8 @@ def _sampling_note(band: Band, sampling: Sampling) -> str:
 
 def _with_notes(r: SurfaceAnalysis) -> SurfaceAnalysis:
     notes = [_sampling_note(r.band, r.sampling)]
-    d_eta = _deviation(r.summits.asperity_density, r.spectral.asperity_density)
-    d_beta = _deviation(r.summits.summit_radius, r.spectral.summit_radius)
-    if max(abs(d_eta), abs(d_beta)) > NOTE_DEVIATION:
-        notes.append(
-            f"summit vs spectral estimates differ by {d_eta:+.0%} (η) and {d_beta:+.0%} (β)"
-        )
+    if (note := _deviation_note(r.summits, r.spectral)) is not None:
+        notes.append(note)
     if r.slope_anisotropy > 1.5:
         notes.append(
             f"anisotropic texture (mean-square slope ratio {r.slope_anisotropy:.2f} "
@@ -426,13 +432,8 @@ def composite_roughness(
         sum_surface=sum_surface,
     )
     if pair.summits is not None:
-        d_eta = _deviation(pair.summits.asperity_density, pair.spectral.asperity_density)
-        d_beta = _deviation(pair.summits.summit_radius, pair.spectral.summit_radius)
-        if max(abs(d_eta), abs(d_beta)) > NOTE_DEVIATION:
-            notes.append(
-                f"composite summit vs spectral estimates differ by {d_eta:+.0%} (η) "
-                f"and {d_beta:+.0%} (β)"
-            )
+        if (note := _deviation_note(pair.summits, pair.spectral, "composite ")) is not None:
+            notes.append(note)
     return replace(pair, notes=tuple(notes))
 
 
