@@ -38,7 +38,6 @@ __all__ = [
     "CompiledLumped",
     "compiled_model",
     "integrate_compiled",
-    "lumped_energies",
     "CAM_POINTS",
 ]
 
@@ -640,30 +639,3 @@ def integrate_compiled(cm: CompiledLumped, t_grid, rtol, atol, hmax, events, gri
     stats["wall_time_s"] = _time.perf_counter() - wall
     stats["event_intervals"] = len(todo)
     return Y, t_ev, y_ev, stats, None
-
-
-def lumped_energies(model, Y, P) -> tuple[np.ndarray, np.ndarray]:
-    """(kinetic, elastic) energy [J] at the columns of Y, contact force P [N]: the
-    vectorised ``ValvetrainModel.energy``."""
-    p, n, N = model.p, model.n, model.N
-    V = Y[n : 2 * n]
-    T = 0.5 * np.sum(model.mass[:, None] * V * V, axis=0)
-    P = np.maximum(np.asarray(P, float), 0.0)
-    if model.gamma == 1.0:
-        U = 0.5 * model.C * P * P
-    else:
-        e = 1.0 / model.gamma
-        U = model.C * e / (1.0 + e) * P ** (1.0 + e)
-    U = U + 0.5 * model.inv_kcam * P * P
-    dtv = Y[0] - Y[1] - p.lash
-    U = U + np.where(dtv > 0.0, 0.5 * p.tappet_valve_stiffness * dtv * dtv, 0.0)
-    ds = model.d_seat - Y[1]
-    U = U + 0.5 * p.seat_stiffness * (np.maximum(ds, 0.0) ** 2 - model.d_seat**2)
-    xs = np.vstack([Y[1:2], Y[2:n], np.zeros((1, Y.shape[1]))])
-    D = xs[:-1] - xs[1:]
-    F0 = p.spring_preload
-    kseg = np.asarray(model.kseg, float)[:, None]
-    Useg = F0 * D + 0.5 * kseg * D * D
-    for j in (0, N) if N > 0 else (0,):
-        Useg[j] = np.where(F0 + kseg[j] * D[j] < 0.0, -0.5 * F0 * F0 / kseg[j], Useg[j])
-    return T, U + Useg.sum(axis=0)

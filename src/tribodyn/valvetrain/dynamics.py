@@ -25,10 +25,10 @@ from .._validation import InputError, check_real
 from ..physics import limits as L
 from ..physics import typical_engine
 from .cams import CamProfile
-from .compiled import CompiledLumped, compiled_model, integrate_compiled, lumped_energies
+from .compiled import CompiledLumped, compiled_model, integrate_compiled
 from .flexible import FlexibleValvetrain
 from .kinematics import rpm_to_cam_speed
-from .model import ContactLawError
+from .model import ContactLawError, lumped_energies
 from .parameters import ValvetrainParameters
 from .system import SYSTEMS, ValvetrainSystem, make_system
 from .tribology import AnalyticTribology, Frictionless, TribologyModel

@@ -48,7 +48,13 @@ from .contact_law import (
 from .parameters import ValvetrainParameters
 from .tribology import TribologyModel
 
-__all__ = ["ValvetrainModel", "ContactLawError", "smooth_step", "check_model_inputs"]
+__all__ = [
+    "ValvetrainModel",
+    "lumped_energies",
+    "ContactLawError",
+    "smooth_step",
+    "check_model_inputs",
+]
 __all__ += ["contact_film_root"]  # re-exported from .contact_law
 
 
@@ -289,26 +295,11 @@ class ValvetrainModel(CamContactModel):
     # -- energy ------------------------------------------------------------------------
     def energy(self, t: float, y, evaluated: dict | None = None) -> tuple[float, float]:
         """(kinetic, elastic) energy [J] relative to the static equilibrium state
-        (``evaluated``: the output of :meth:`evaluate` at (t, y), if already known)."""
-        p, n, N = self.p, self.n, self.N
-        v = np.asarray(y[n : 2 * n])
-        T = 0.5 * float(np.sum(self.mass * v * v))
+        (``evaluated``: the output of :meth:`evaluate` at (t, y), if already known), by
+        :func:`lumped_energies`."""
         f = self.evaluate(t, y) if evaluated is None else evaluated
-        U = self.contact_potential(f["P"])
-        dtv = y[0] - y[1] - p.lash
-        if dtv > 0.0:
-            U += 0.5 * p.tappet_valve_stiffness * dtv * dtv
-        ds = self.d_seat - y[1]
-        U += 0.5 * p.seat_stiffness * (max(ds, 0.0) ** 2 - self.d_seat**2)
-        xs = np.concatenate([[y[1]], np.asarray(y[2:n]), [0.0]])
-        D = xs[:-1] - xs[1:]
-        F0 = p.spring_preload
-        Useg = F0 * D + 0.5 * self.kseg * D * D
-        ends = (0, N) if N > 0 else (0,)
-        for j in ends:
-            if F0 + self.kseg[j] * D[j] < 0.0:
-                Useg[j] = -0.5 * F0 * F0 / self.kseg[j]
-        return T, U + float(np.sum(Useg))
+        T, U = lumped_energies(self, np.asarray(y, dtype=float)[:, None], f["P"])
+        return float(T[0]), float(U[0])
 
     def surge_matrices(self) -> tuple[np.ndarray, np.ndarray]:
         """(M, K) of the coil masses with the valve held fixed (fixed–fixed spring)."""
@@ -318,3 +309,30 @@ class ValvetrainModel(CamContactModel):
         k = self.kseg  # segment j joins coils j − 1 and j (−1 and N: the fixed ends)
         K = np.diag(k[:-1] + k[1:]) - np.diag(k[1:-1], 1) - np.diag(k[1:-1], -1)
         return np.eye(N) * self.m_node, K
+
+
+def lumped_energies(model, Y, P) -> tuple[np.ndarray, np.ndarray]:
+    """(kinetic, elastic) energy [J] of :class:`ValvetrainModel` ``model`` relative to
+    the static equilibrium state, at the columns of Y with contact force P [N]."""
+    p, n, N = model.p, model.n, model.N
+    V = Y[n : 2 * n]
+    T = 0.5 * np.sum(model.mass[:, None] * V * V, axis=0)
+    P = np.maximum(np.asarray(P, float), 0.0)
+    if model.gamma == 1.0:
+        U = 0.5 * model.C * P * P
+    else:
+        e = 1.0 / model.gamma
+        U = model.C * e / (1.0 + e) * P ** (1.0 + e)
+    U = U + 0.5 * model.inv_kcam * P * P
+    dtv = Y[0] - Y[1] - p.lash
+    U = U + np.where(dtv > 0.0, 0.5 * p.tappet_valve_stiffness * dtv * dtv, 0.0)
+    ds = model.d_seat - Y[1]
+    U = U + 0.5 * p.seat_stiffness * (np.maximum(ds, 0.0) ** 2 - model.d_seat**2)
+    xs = np.vstack([Y[1:2], Y[2:n], np.zeros((1, Y.shape[1]))])
+    D = xs[:-1] - xs[1:]
+    F0 = p.spring_preload
+    kseg = np.asarray(model.kseg, float)[:, None]
+    Useg = F0 * D + 0.5 * kseg * D * D
+    for j in (0, N) if N > 0 else (0,):
+        Useg[j] = np.where(F0 + kseg[j] * D[j] < 0.0, -0.5 * F0 * F0 / kseg[j], Useg[j])
+    return T, U + Useg.sum(axis=0)
