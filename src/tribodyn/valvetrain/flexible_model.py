@@ -344,10 +344,7 @@ class FlexibleValvetrainModel(CamContactModel):
         e = _PALMGREN_EXP
 
         def clash_pot(ov):  # ∫ Q dδ, Q = (δ/C)^(1/e)
-            return 0.0 if ov <= 0.0 else C_pot(ov)
-
-        def C_pot(ov):
-            return (ov / c) ** (1.0 / e) * ov * e / (1.0 + e)
+            return 0.0 if ov <= 0.0 else (ov / c) ** (1.0 / e) * ov * e / (1.0 + e)
 
         for a, b, _, d0, g, _ in self.clash:
             U += clash_pot(d0 + q[a] - q[b] - g) - clash_pot(d0 - g)
