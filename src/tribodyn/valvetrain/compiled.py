@@ -317,7 +317,6 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     f_prev = 0.0
     F0s = 0.0
     FNs = 0.0
-    kN = 0.0
     for j in range(N + 1):
         d, dd = _segment(y, n, N, j)
         fe = F0 + kseg[j] * d
@@ -356,7 +355,6 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     out[25] = par.cs * gs if on_s else 0.0
     out[26] = 0.0 if ok else 1.0
     out[27], out[28], out[29], out[30] = kh, hd, hd_h, hd_F
-    _ = kN
 
 
 @njit(**_OPTS)

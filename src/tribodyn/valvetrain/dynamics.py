@@ -449,10 +449,8 @@ def _sample(
     cm = run.compiled
     if cm is not None:
         f = cm.outputs(t_eval, Y)
-        for k in _COLS:
+        for k in _COLS + ("acc_t", "acc_v", "F0s", "FNs"):
             cols[k][:] = f[k]
-        cols["acc_t"][:], cols["acc_v"][:] = f["acc_t"], f["acc_v"]
-        cols["F0s"][:], cols["FNs"][:] = f["F0s"], f["FNs"]
         cols["T"][:], cols["U"][:] = lumped_energies(model, Y, f["P"])
     else:
         for i in range(m):
