@@ -360,10 +360,10 @@ class CamContactModel:
             return P, g * z ** (g - 1.0) / C, 0.0
         return contact_film_root(self.film, t, dk, ue, R, C, g, ikc)
 
-    def contact_potential(self, P: float) -> float:
-        """Elastic energy stored in the contact at force P [J] (Palmgren/linear + camshaft)."""
-        if P <= 0.0:
-            return 0.0
+    def contact_potential(self, P):
+        """Elastic energy stored in the contact at force P [J] (Palmgren/linear + camshaft;
+        0 for P ≤ 0); P a float or an array."""
+        P = np.maximum(P, 0.0)
         if self.gamma == 1.0:
             u = 0.5 * self.contact_C * P * P
         else:

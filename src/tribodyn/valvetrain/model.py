@@ -317,13 +317,7 @@ def lumped_energies(model, Y, P) -> tuple[np.ndarray, np.ndarray]:
     p, n, N = model.p, model.n, model.N
     V = Y[n : 2 * n]
     T = 0.5 * np.sum(model.mass[:, None] * V * V, axis=0)
-    P = np.maximum(np.asarray(P, float), 0.0)
-    if model.gamma == 1.0:
-        U = 0.5 * model.C * P * P
-    else:
-        e = 1.0 / model.gamma
-        U = model.C * e / (1.0 + e) * P ** (1.0 + e)
-    U = U + 0.5 * model.inv_kcam * P * P
+    U = model.contact_potential(np.asarray(P, float))
     dtv = Y[0] - Y[1] - p.lash
     U = U + np.where(dtv > 0.0, 0.5 * p.tappet_valve_stiffness * dtv * dtv, 0.0)
     ds = model.d_seat - Y[1]
