@@ -68,12 +68,11 @@ _MAX_KRYLOV_TWO_GRID = 200
 
 
 class Factorization(NamedTuple):
-    """LU factors of a Newton matrix (``lu_factor``'s ``fac``, ``piv``) and ``prec``,
-    the factors GMRES preconditions with (``fac`` itself)."""
+    """LU factors of a Newton matrix (``lu_factor``'s ``fac``, ``piv``), also GMRES's
+    preconditioner."""
 
     fac: np.ndarray
     piv: np.ndarray
-    prec: np.ndarray
 
 
 def _factor(lin: Linearization, dtype) -> Factorization | None:
@@ -90,7 +89,7 @@ def _factor(lin: Linearization, dtype) -> Factorization | None:
             return None
     elif not np.isfinite(fac).all():
         return None
-    return Factorization(fac, piv, fac)
+    return Factorization(fac, piv)
 
 
 def _fresh_solve(lin: Linearization, rtol) -> tuple[Factorization | None, np.ndarray | None]:
@@ -111,10 +110,9 @@ def _fresh_solve(lin: Linearization, rtol) -> tuple[Factorization | None, np.nda
     return lu, _lu_solver(lu)(lin.rhs)
 
 
-def _lu_solver(lu: Factorization, precondition=False):
-    """v ↦ LU⁻¹ v (LAPACK getrs, no wrapper), with the factors ``fac`` or, as a
-    preconditioner, with ``lu.prec``."""
-    fac, piv = (lu.prec, lu.piv) if precondition else (lu.fac, lu.piv)
+def _lu_solver(lu: Factorization):
+    """v ↦ LU⁻¹ v (LAPACK getrs, no wrapper) with the factors of ``lu``."""
+    fac, piv = lu
     if fac.dtype == np.float32:
         sgetrs = _SGETRS
 
@@ -143,7 +141,7 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
     or (None, its)."""
     max_it = max_it or _MAX_KRYLOV
     if isinstance(lu, Factorization):  # compiled, dense-product grids
-        out = lin.gmres_lu(lu.prec, lu.piv, rtol, max_it)
+        out = lin.gmres_lu(lu.fac, lu.piv, rtol, max_it)
         if out is not None:
             return out
     b = lin.rhs
@@ -153,7 +151,7 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
     if hasattr(lu, "solve"):  # a preconditioner object
         prec = lu.solve
     else:  # a Factorization
-        prec = _lu_solver(lu, precondition=True)
+        prec = _lu_solver(lu)
     x0 = prec(b)
     r0 = b - lin.matvec(x0)
     beta = float(np.linalg.norm(r0))
