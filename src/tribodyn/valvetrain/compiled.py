@@ -32,7 +32,7 @@ from numba import njit
 from scipy.integrate import odeint, solve_ivp
 
 from ..physics.film_state_laws import FILM_FLOOR, entraining_film_load, limited_growth
-from .contact_law import _film_free_rate, smooth_step
+from .contact_law import _film_free_rate, joint_force, smooth_step
 
 __all__ = [
     "CompiledLumped",
@@ -100,6 +100,7 @@ def _jit_calling(fn, **kernels):
 
 
 _free_rate = _jit_calling(_film_free_rate, limited_growth=_growth)
+_joint = _jit_calling(joint_force, smooth_step=_step)
 
 
 @njit(**_OPTS)
@@ -297,21 +298,10 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     Ff = _friction(theta, Fc, th, tab, fl) if Fc > 0.0 else 0.0
     thv = math.tanh(vt / par.vr)
     Fb = par.mub * Ff * thv
-    dtv = xt - xv - par.lash
-    dtvd = vt - vv
-    Etv = par.ktv * dtv if dtv > 0.0 else 0.0
-    gtv, dgtv = _step(Etv, ramp)
-    Ftv = Etv + par.ctv * gtv * dtvd
-    on_tv = Ftv > 0.0
-    if not on_tv:
-        Ftv = 0.0
-    ds = par.d_seat - xv
-    Es = par.ks * ds if ds > 0.0 else 0.0
-    gs, dgs = _step(Es, ramp)
-    Fs = Es - par.cs * gs * vv
-    on_s = Fs > 0.0
-    if not on_s:
-        Fs = 0.0
+    dtv, dtvd, ds = xt - xv - par.lash, vt - vv, par.d_seat - xv
+    Ftv, Etv, gtv, dgtv = _joint(par.ktv, par.ctv, dtv, dtvd, ramp)
+    Fs, Es, gs, dgs = _joint(par.ks, par.cs, ds, -vv, ramp)
+    on_tv, on_s = Ftv > 0.0, Fs > 0.0
     F0 = par.f0
     diss = 0.0
     f_prev = 0.0

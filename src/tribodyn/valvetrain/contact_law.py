@@ -55,6 +55,16 @@ def smooth_step(force: float, ramp: float) -> tuple[float, float]:
     return r * r * (3.0 - 2.0 * r), 6.0 * r * (1.0 - r) / ramp
 
 
+def joint_force(k: float, c: float, d: float, dd: float, ramp: float) -> tuple:
+    """(F, E, g, dg/dE) of a compression-only joint of stiffness k [N/m] and damping c
+    [N s/m] at compression d [m] and rate dd [m/s]: F = E + c g(E) ḋ, 0 where not > 0,
+    E = k d⁺ [N], g the cubic step of :func:`smooth_step`."""
+    E = k * d if d > 0.0 else 0.0
+    g, dg = smooth_step(E, ramp)
+    F = E + c * g * dd
+    return (F if F > 0.0 else 0.0), E, g, dg
+
+
 class _FrictionTable:
     """Bilinear table of F_f(θ mod 2π, F) from a periodic tribology model (fast RHS).
 

@@ -43,6 +43,7 @@ from .contact_law import (
     ContactLawError,
     check_model_inputs,
     contact_film_root,
+    joint_force,
     smooth_step,
 )
 from .parameters import ValvetrainParameters
@@ -158,23 +159,11 @@ class ValvetrainModel(CamContactModel):
         hf = yl[2 * n + 2] if self.film_state else 0.0
         c = self.cam_contact(t, self.theta0 + w * t, w, xt, vt, hf)
         P, Fc, Ff, Fb = c.P, c.Fc, c.Ff, c.Fb
-        # tappet–valve
-        dtv = xt - xv - p.lash
-        dtvd = vt - vv
-        Etv = p.tappet_valve_stiffness * dtv if dtv > 0.0 else 0.0
-        gtv, dgtv = smooth_step(Etv, ramp)
-        Ftv = Etv + p.tappet_valve_damping * gtv * dtvd
-        on_tv = Ftv > 0.0
-        if not on_tv:
-            Ftv = 0.0
-        # valve seat
-        ds = self.d_seat - xv
-        Es = p.seat_stiffness * ds if ds > 0.0 else 0.0
-        gs, dgs = smooth_step(Es, ramp)
-        Fs = Es - p.seat_damping * gs * vv
-        on_s = Fs > 0.0
-        if not on_s:
-            Fs = 0.0
+        dtv, dtvd = xt - xv - p.lash, vt - vv  # tappet–valve
+        kv, cv = p.tappet_valve_stiffness, p.tappet_valve_damping
+        Ftv, Etv, gtv, dgtv = joint_force(kv, cv, dtv, dtvd, ramp)
+        ds = self.d_seat - xv  # valve seat
+        Fs, Es, gs, dgs = joint_force(p.seat_stiffness, p.seat_damping, ds, -vv, ramp)
         # spring chain: segment j joins node j (0 = valve) and node j+1 (N+1 = head)
         xs = [xv] + yl[2:n] + [0.0]
         vs = [vv] + yl[n + 2 : 2 * n] + [0.0]
@@ -232,14 +221,16 @@ class ValvetrainModel(CamContactModel):
             )
             ktv = (
                 p.tappet_valve_stiffness * (1.0 + p.tappet_valve_damping * dgtv * dtvd)
-                if (on_tv and dtv > 0.0)
+                if (Ftv > 0.0 and dtv > 0.0)
                 else 0.0
             )
-            ctv = p.tappet_valve_damping * gtv if on_tv else 0.0
+            ctv = p.tappet_valve_damping * gtv if Ftv > 0.0 else 0.0
             kst = (
-                p.seat_stiffness * (1.0 - p.seat_damping * dgs * vv) if (on_s and ds > 0.0) else 0.0
+                p.seat_stiffness * (1.0 - p.seat_damping * dgs * vv)
+                if (Fs > 0.0 and ds > 0.0)
+                else 0.0
             )
-            cst = p.seat_damping * gs if on_s else 0.0
+            cst = p.seat_damping * gs if Fs > 0.0 else 0.0
             kseg, cseg = list(ks), list(cs)
             for j in {0, N}:
                 if Fseg[j] <= 0.0:
