@@ -35,7 +35,7 @@ import math
 import numpy as np
 
 from .cams import CamProfile
-from .contact_law import _PALMGREN_EXP, CamContactModel, smooth_step
+from .contact_law import _PALMGREN_EXP, CamContactModel, joint_force, smooth_step
 from .flexible import FlexibleValvetrain
 from .tribology import TribologyModel
 
@@ -209,11 +209,7 @@ class FlexibleValvetrainModel(CamContactModel):
             """Compressive joint between nodes a (pushed −x) and b (pushed +x; None:
             ground) with deformation d (total) and rate dd; returns the force."""
             nonlocal diss
-            E = k * d if d > 0.0 else 0.0
-            gg, dg = smooth_step(E, ramp)
-            F = E + c * gg * dd
-            if F <= 0.0:
-                F = 0.0
+            F, E, gg, dg = joint_force(k, c, d, dd, ramp)
             df = F - static
             if a is not None:
                 fj[a] -= df
