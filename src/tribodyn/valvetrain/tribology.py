@@ -233,6 +233,22 @@ class AnalyticTribology(TribologyModel):
         }
 
 
+def _table_times(time: ArrayLike) -> np.ndarray:
+    """The sample times [s] of a table: finite, at least one, strictly increasing."""
+    t = check_array("time", np.atleast_1d(time), min_size=1)
+    if t.size > 1 and np.any(np.diff(t) <= 0.0):
+        raise InputError("time must be strictly increasing")
+    return t
+
+
+def _table_column(name: str, values: ArrayLike | None, n: int, default: float) -> np.ndarray:
+    """A table's column of n samples: ``values`` (finite; one value or n) as floats, or
+    ``default`` everywhere."""
+    if values is None:
+        return np.full(n, default)
+    return np.broadcast_to(check_array(name, np.atleast_1d(values), min_size=1), (n,)).astype(float)
+
+
 def _bracket(tl: list, period: float | None, t: float) -> tuple[int, int, float]:
     """(i, j, a): linear interpolation in the table of times ``tl`` [s] at t, y(t) =
     y_i + a (y_j − y_i); the end samples outside the table; with ``period`` t is first
@@ -295,27 +311,12 @@ class FilmTableTribology(TribologyModel):
     ):
         self.friction_model = _checked_friction_model(friction_model)
         self.periodic_in_cam_angle = friction_model.periodic_in_cam_angle
-        t = check_array("time", np.atleast_1d(time), min_size=1)
-        if t.size > 1 and np.any(np.diff(t) <= 0.0):
-            raise InputError("time must be strictly increasing")
-        n = t.size
-
-        def arr(name, v, default):
-            a = (
-                np.full(n, default)
-                if v is None
-                else np.broadcast_to(check_array(name, np.atleast_1d(v), min_size=1), (n,)).astype(
-                    float
-                )
-            )
-            return a
-
-        self.time = t
-        self.h = arr("film", film, 0.0)
-        self.c = arr("compliance", compliance, 0.0)
+        self.time = t = _table_times(time)
+        self.h = _table_column("film", film, t.size, 0.0)
+        self.c = _table_column("compliance", compliance, t.size, 0.0)
         if np.any(self.c > 0.0):
             raise InputError("compliance must be <= 0 (film thickness cannot grow with load)")
-        self.Fk = arr("reference_force", reference_force, 0.0)
+        self.Fk = _table_column("reference_force", reference_force, t.size, 0.0)
         self.period = None if period is None else check_positive("period", period, "s")
         self._t0 = float(t[0])
         self._tl, self._hl, self._cl, self._fl = (
@@ -432,16 +433,8 @@ class FilmStateTribology(TribologyModel):
         # any positive h_s (a large one is the flooded limit); case files cap it at
         # SUPPLY_FILM_MAX
         self.supply_film = check_positive("supply_film", supply_film, "m")
-        t = np.zeros(1) if time is None else check_array("time", np.atleast_1d(time), min_size=1)
-        if t.size > 1 and np.any(np.diff(t) <= 0.0):
-            raise InputError("time must be strictly increasing")
-        r = (
-            np.ones(t.size)
-            if correction is None
-            else np.broadcast_to(
-                check_array("correction", np.atleast_1d(correction), min_size=1), t.shape
-            ).astype(float)
-        )
+        t = np.zeros(1) if time is None else _table_times(time)
+        r = _table_column("correction", correction, t.size, 1.0)
         if np.any(r <= 0.0):
             raise InputError("correction must be > 0 (a factor on the flooded film)")
         self.time, self.correction = t, r
