@@ -32,7 +32,7 @@ from numba import njit
 from scipy.integrate import odeint, solve_ivp
 
 from ..physics.film_state_laws import FILM_FLOOR, entraining_film_load, limited_growth
-from .contact_law import _film_free_rate, joint_force, smooth_step
+from .contact_law import _film_free_rate, joint_force, smooth_step, stamp_element
 
 __all__ = [
     "CompiledLumped",
@@ -101,6 +101,7 @@ def _jit_calling(fn, **kernels):
 
 _free_rate = _jit_calling(_film_free_rate, limited_growth=_growth)
 _joint = _jit_calling(joint_force, smooth_step=_step)
+_element = njit(**_OPTS)(stamp_element)
 
 
 @njit(**_OPTS)
@@ -374,19 +375,6 @@ def _segment(y, n, N, j):
     xb = y[j + 2] if j < N else 0.0
     vb = y[n + j + 2] if j < N else 0.0
     return y[j + 1] - xb, y[n + j + 1] - vb
-
-
-@njit(**_OPTS)
-def _element(K, Cm, a, b, k, c):
-    K[a, a] -= k
-    Cm[a, a] -= c
-    if b >= 0:
-        K[a, b] += k
-        K[b, a] += k
-        K[b, b] -= k
-        Cm[a, b] += c
-        Cm[b, a] += c
-        Cm[b, b] -= c
 
 
 @njit(**_OPTS)

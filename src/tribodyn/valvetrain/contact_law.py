@@ -65,6 +65,21 @@ def joint_force(k: float, c: float, d: float, dd: float, ramp: float) -> tuple:
     return (F if F > 0.0 else 0.0), E, g, dg
 
 
+def stamp_element(K, Cm, a: int, b: int, k: float, c: float) -> None:
+    """Add a compressive element between bodies a and b (b = −1: ground), whose force
+    pushes a in −x and b in +x, with ∂F/∂(x_a − x_b) = k and ∂F/∂(ẋ_a − ẋ_b) = c, to the
+    force derivatives K = ∂(force)/∂q and Cm = ∂(force)/∂q̇ (in place)."""
+    K[a, a] -= k
+    Cm[a, a] -= c
+    if b >= 0:
+        K[a, b] += k
+        K[b, a] += k
+        K[b, b] -= k
+        Cm[a, b] += c
+        Cm[b, a] += c
+        Cm[b, b] -= c
+
+
 class _FrictionTable:
     """Bilinear table of F_f(θ mod 2π, F) from a periodic tribology model (fast RHS).
 

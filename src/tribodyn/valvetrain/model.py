@@ -45,6 +45,7 @@ from .contact_law import (
     contact_film_root,
     joint_force,
     smooth_step,
+    stamp_element,
 )
 from .parameters import ValvetrainParameters
 from .tribology import TribologyModel
@@ -251,27 +252,13 @@ class ValvetrainModel(CamContactModel):
         f = self.evaluate(t, y, jac=True)
         K = np.zeros((n, n))  # ∂(force)/∂q
         Cm = np.zeros((n, n))  # ∂(force)/∂q̇
-
-        def element(a, b, k, c):
-            """Compressive element between bodies a and b (b = None: ground), whose force
-            pushes a in −x and b in +x, with ∂F/∂(x_a − x_b) = k, ∂F/∂(ẋ_a − ẋ_b) = c."""
-            K[a, a] -= k
-            Cm[a, a] -= c
-            if b is not None:
-                K[a, b] += k
-                K[b, a] += k
-                K[b, b] -= k
-                Cm[a, b] += c
-                Cm[b, a] += c
-                Cm[b, b] -= c
-
         K[0, 0] -= f["kc"]  # cam contact: δ = s − x_t
         Cm[0, 0] -= f["cc"] + f["cb"]  # + bore friction
-        element(1, 0, f["ktv"], f["ctv"])  # tappet–valve: δ = x_t − x_v
-        element(1, None, f["ks"], f["cs"])  # valve seat (to ground)
+        stamp_element(K, Cm, 1, 0, f["ktv"], f["ctv"])  # tappet–valve: δ = x_t − x_v
+        stamp_element(K, Cm, 1, -1, f["ks"], f["cs"])  # valve seat (to ground)
         kseg, cseg = f["kseg"], f["cseg"]
         for j in range(N + 1):  # coil segment j: nodes j+1, j+2 (q index)
-            element(j + 1, j + 2 if j < N else None, kseg[j], cseg[j])
+            stamp_element(K, Cm, j + 1, j + 2 if j < N else -1, kseg[j], cseg[j])
         m = 2 * n + 2 + self.film_state
         J = np.zeros((m, m))
         J[:n, n : 2 * n] = np.eye(n)
