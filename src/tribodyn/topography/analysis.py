@@ -42,7 +42,7 @@ from .filtering import AUTO_BAND, Band, BandSpec, Sampling, input_warnings, prep
 from .height_statistics import height_statistics
 from .profile import ProfileAnalysis
 from .reading import read_topography
-from .results import AsperityParameters, PairAnalysis, SurfaceAnalysis
+from .results import PairAnalysis, SurfaceAnalysis
 from .spectral_moments import (
     MIN_ALPHA_ISOTROPIC,
     SpectralMoments,
@@ -246,18 +246,15 @@ def analyse_filtered(
     return _with_notes(result)
 
 
-def _deviation_note(
-    summits: AsperityParameters, spectral: AsperityParameters, what: str = ""
-) -> str | None:
-    """The note where the ``summits`` and ``spectral`` η or β differ by more than
-    :data:`NOTE_DEVIATION` (relative), else None."""
+def _note_deviation(notes: list, summits: Any, spectral: Any, what: str = "") -> None:
+    """Append to ``notes`` where the summit and spectral η or β (AsperityParameters)
+    differ by more than :data:`NOTE_DEVIATION` (relative)."""
     d_eta = summits.asperity_density / spectral.asperity_density - 1.0
     d_beta = summits.summit_radius / spectral.summit_radius - 1.0
     if max(abs(d_eta), abs(d_beta)) > NOTE_DEVIATION:
-        return (
+        notes.append(
             f"{what}summit vs spectral estimates differ by {d_eta:+.0%} (η) and {d_beta:+.0%} (β)"
         )
-    return None
 
 
 def _sampling_note(band: Band, sampling: Sampling) -> str:
@@ -283,8 +280,7 @@ def _sampling_note(band: Band, sampling: Sampling) -> str:
 
 def _with_notes(r: SurfaceAnalysis) -> SurfaceAnalysis:
     notes = [_sampling_note(r.band, r.sampling)]
-    if (note := _deviation_note(r.summits, r.spectral)) is not None:
-        notes.append(note)
+    _note_deviation(notes, r.summits, r.spectral)
     if r.slope_anisotropy > 1.5:
         notes.append(
             f"anisotropic texture (mean-square slope ratio {r.slope_anisotropy:.2f} "
@@ -432,8 +428,7 @@ def composite_roughness(
         sum_surface=sum_surface,
     )
     if pair.summits is not None:
-        if (note := _deviation_note(pair.summits, pair.spectral, "composite ")) is not None:
-            notes.append(note)
+        _note_deviation(notes, pair.summits, pair.spectral, "composite ")
     return replace(pair, notes=tuple(notes))
 
 
