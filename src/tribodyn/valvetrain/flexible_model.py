@@ -82,7 +82,6 @@ class FlexibleValvetrainModel(CamContactModel):
         self.iphi = k if cs is not None else None
         n = k + (1 if cs is not None else 0)
         self.n = n
-        self.idx = idx
         self.gmap = gmap
         M = np.zeros((n, n))
         K = np.zeros((n, n))
@@ -155,7 +154,6 @@ class FlexibleValvetrainModel(CamContactModel):
             fs[b] += Qs
         self.f_static = fs
         self._init_contact(tribology, self.c_bend)  # camshaft bending in series
-        self._Kl = K.tolist()
 
     compilable = False  # no compiled right-hand side (solve_ivp path)
 
