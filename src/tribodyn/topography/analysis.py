@@ -36,7 +36,7 @@ from typing import Any, Literal
 import numpy as np
 
 from .._typing import PathLike
-from .composite import composite_moments, sum_on_common_grid
+from .composite import sum_on_common_grid
 from .errors import InsufficientDataError
 from .filtering import AUTO_BAND, Band, BandSpec, Sampling, input_warnings, prepare_topography
 from .height_statistics import height_statistics
@@ -379,7 +379,7 @@ def composite_roughness(
     maps, or a profile with its isotropic-surface estimates)."""
     from SurfaceTopography import Topography
 
-    moments = composite_moments(first.moments, second.moments)
+    moments = first.moments + second.moments  # independent surfaces: moments add
     notes = []
     if not _same_band(first.band, second.band):
         notes.append("the two surfaces were filtered with different bands")
