@@ -4,20 +4,30 @@ import math
 
 import numpy as np
 import pytest
-from scipy import integrate
+from scipy import integrate, linalg
 
 from tribodyn import Body, Coating, DeformationOperator, Material
 from tribodyn.physics.elasticity import (
     coated_half_plane_frf,
-    dense_deformation,
     half_plane_frf,
     influence_coefficients,
     log_kernel_influence,
     pair_frf,
 )
-from tribodyn.physics.hertz import log_kernel_identity
 
 STEEL = Material(210e9, 0.3)
+
+
+def dense_deformation(coefficients, p) -> np.ndarray:
+    """Reference O(N²) deformation u = T p with the symmetric Toeplitz matrix T_ij = D_|i−j|."""
+    return linalg.toeplitz(np.asarray(coefficients)) @ np.asarray(p, dtype=float)
+
+
+def log_kernel_identity(X) -> np.ndarray:
+    """Right-hand side of the log-kernel identity (P = √(1−X²), |X| ≤ 1):
+    (1/π) ∫_{−1}^{1} ln|X − s| √(1 − s²) ds = X²/2 − (1/4 + ln 2 / 2)."""
+    X = np.asarray(X, dtype=float)
+    return 0.5 * X**2 - (0.25 + 0.5 * math.log(2.0))
 
 
 def test_coated_frf_reduces_to_half_plane_for_identical_materials():

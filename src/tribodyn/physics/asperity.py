@@ -132,7 +132,7 @@ def greenwood_tripp(n: float, lam: ArrayLike, method: str = "exact") -> np.ndarr
     check_choice("method", method, ("exact", "paper"))
     if method == "exact":
         out = _exact(n, lam_arr)
-    elif method == "paper":
+    else:  # "paper"
         coeffs: tuple[float, ...]
         if n == 2.5:
             coeffs, lam_max = _PAPER_F52, 2.5
@@ -142,8 +142,6 @@ def greenwood_tripp(n: float, lam: ArrayLike, method: str = "exact") -> np.ndarr
             raise InputError(f"method='paper' has fits for n = 2 and 2.5 only (got n = {n:g})")
         out = np.where(lam_arr <= lam_max, np.polyval(coeffs, lam_arr), 0.0)
         out = np.maximum(out, 0.0)
-    else:
-        raise InputError(f"method must be 'exact' or 'paper' (got {method!r})")
     return out if out.ndim else float(out)
 
 
@@ -161,14 +159,12 @@ def greenwood_tripp_derivative(n, lam, method: str = "exact"):
             raise InputError("the exact derivative needs n = 0 or n >= 1")
         else:
             out = -n * _exact(n - 1.0, lam_arr)
-    elif method == "paper":
+    else:  # "paper"
         coeffs, lam_max = (_PAPER_F52, 2.5) if n == 2.5 else (_PAPER_F2, 3.0)
         val = np.polyval(coeffs, lam_arr)
         out = np.where(
             (lam_arr <= lam_max) & (val > 0.0), np.polyval(np.polyder(coeffs), lam_arr), 0.0
         )
-    else:
-        raise InputError(f"method must be 'exact' or 'paper' (got {method!r})")
     return out if out.ndim else float(out)
 
 
@@ -181,15 +177,12 @@ class _LogTable:
     as :func:`greenwood_tripp_tabulated` reads it."""
 
     def __init__(self, n: float):
-        from scipy.interpolate import CubicHermiteSpline
-
         self.n = n
         lam = np.linspace(_LAM_NEG, _LAM_POS, int(round((_LAM_POS - _LAM_NEG) / 0.002)) + 1)
         f = _exact(n, lam)
         if n < 1.0:
             raise ValueError(f"the tabulated F_n needs n >= 1 (got n = {n:g})")
         slope = -n * _exact(n - 1.0, lam) / f
-        self.spline = CubicHermiteSpline(lam, np.log(f), slope)
         self.params = (
             np.log(f),
             slope * float(lam[1] - lam[0]),

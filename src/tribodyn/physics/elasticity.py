@@ -52,7 +52,6 @@ __all__ = [
     "influence_coefficients",
     "log_kernel_influence",
     "DeformationOperator",
-    "dense_deformation",
 ]
 
 
@@ -278,11 +277,6 @@ def log_kernel_influence(dx: float, n: int) -> np.ndarray:
     """Element integrals of (1/π) ln|x|: L_k = (1/π)∫_{kΔ−Δ/2}^{kΔ+Δ/2} ln|s| ds."""
     edges = (np.arange(int(n) + 1) - 0.5) * dx
     return np.diff(_xlogx_minus_x(edges)) / math.pi
-
-
-def dense_deformation(coefficients, p) -> np.ndarray:
-    """Reference O(N²) deformation u = T p with the symmetric Toeplitz matrix T_ij = D_|i−j|."""
-    return linalg.toeplitz(np.asarray(coefficients)) @ np.asarray(p, dtype=float)
 
 
 class DeformationOperator:

@@ -6,10 +6,6 @@ With E' the reduced modulus (1/E' = ½Σ(1−ν²)/E), load w per unit length an
     b   = √(8 w R / (π E'))          half-width                 [m]
     p_h = √(w E' / (2π R))           peak pressure              [Pa]
     p(x) = p_h √(1 − x²/b²)          |x| ≤ b
-
-Log-kernel identity used to validate the discrete kernel (P = √(1−X²), |X| ≤ 1)::
-
-    (1/π) ∫_{−1}^{1} ln|X − s| √(1 − s²) ds = X²/2 − (1/4 + ln 2 / 2)
 """
 
 from __future__ import annotations
@@ -21,7 +17,7 @@ import numpy as np
 
 from .._validation import check_positive
 
-__all__ = ["HertzLineContact", "hertz_line_contact", "log_kernel_identity"]
+__all__ = ["HertzLineContact", "hertz_line_contact"]
 
 
 @dataclass(frozen=True)
@@ -50,9 +46,3 @@ def hertz_line_contact(load: float, radius: float, reduced_modulus: float) -> He
     b = math.sqrt(8.0 * w * r / (math.pi * e))
     ph = math.sqrt(w * e / (2.0 * math.pi * r))
     return HertzLineContact(w, r, e, b, ph)
-
-
-def log_kernel_identity(X) -> np.ndarray:
-    """Right-hand side X²/2 − (1/4 + ln2/2) of the log-kernel identity (|X| ≤ 1)."""
-    X = np.asarray(X, dtype=float)
-    return 0.5 * X**2 - (0.25 + 0.5 * math.log(2.0))

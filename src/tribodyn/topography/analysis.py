@@ -36,7 +36,7 @@ from typing import Any, Literal
 import numpy as np
 
 from .._typing import PathLike
-from .composite import composite_moments, sum_on_common_grid
+from .composite import sum_on_common_grid
 from .errors import InsufficientDataError
 from .filtering import AUTO_BAND, Band, BandSpec, Sampling, input_warnings, prepare_topography
 from .height_statistics import gaussian_reference, height_statistics
@@ -248,8 +248,15 @@ def analyse_filtered(
     return _with_notes(result)
 
 
-def _deviation(a: float, b: float) -> float:
-    return a / b - 1.0
+def _note_deviation(notes: list, summits: Any, spectral: Any, what: str = "") -> None:
+    """Append to ``notes`` where the summit and spectral η or β (AsperityParameters)
+    differ by more than :data:`NOTE_DEVIATION` (relative)."""
+    d_eta = summits.asperity_density / spectral.asperity_density - 1.0
+    d_beta = summits.summit_radius / spectral.summit_radius - 1.0
+    if max(abs(d_eta), abs(d_beta)) > NOTE_DEVIATION:
+        notes.append(
+            f"{what}summit vs spectral estimates differ by {d_eta:+.0%} (η) and {d_beta:+.0%} (β)"
+        )
 
 
 def _sampling_note(band: Band, sampling: Sampling) -> str:
@@ -275,12 +282,7 @@ def _sampling_note(band: Band, sampling: Sampling) -> str:
 
 def _with_notes(r: SurfaceAnalysis) -> SurfaceAnalysis:
     notes = [_sampling_note(r.band, r.sampling)]
-    d_eta = _deviation(r.summits.asperity_density, r.spectral.asperity_density)
-    d_beta = _deviation(r.summits.summit_radius, r.spectral.summit_radius)
-    if max(abs(d_eta), abs(d_beta)) > NOTE_DEVIATION:
-        notes.append(
-            f"summit vs spectral estimates differ by {d_eta:+.0%} (η) and {d_beta:+.0%} (β)"
-        )
+    _note_deviation(notes, r.summits, r.spectral)
     if r.slope_anisotropy > 1.5:
         notes.append(
             f"anisotropic texture (mean-square slope ratio {r.slope_anisotropy:.2f} "
@@ -379,7 +381,7 @@ def composite_roughness(
     maps, or a profile with its isotropic-surface estimates)."""
     from SurfaceTopography import Topography
 
-    moments = composite_moments(first.moments, second.moments)
+    moments = first.moments + second.moments  # independent surfaces: moments add
     notes = []
     if not _same_band(first.band, second.band):
         notes.append("the two surfaces were filtered with different bands")
@@ -430,13 +432,7 @@ def composite_roughness(
         sum_gaussian=sum_gaussian,
     )
     if pair.summits is not None:
-        d_eta = _deviation(pair.summits.asperity_density, pair.spectral.asperity_density)
-        d_beta = _deviation(pair.summits.summit_radius, pair.spectral.summit_radius)
-        if max(abs(d_eta), abs(d_beta)) > NOTE_DEVIATION:
-            notes.append(
-                f"composite summit vs spectral estimates differ by {d_eta:+.0%} (η) "
-                f"and {d_beta:+.0%} (β)"
-            )
+        _note_deviation(notes, pair.summits, pair.spectral, "composite ")
     return replace(pair, notes=tuple(notes))
 
 

@@ -7,8 +7,8 @@ independent) surfaces. Then
     σ² = σ₁² + σ₂²                              composite RMS roughness [m²]
     m_n = m_n,1 + m_n,2   (n = 0, 2, 4)         spectra and hence spectral moments add
 
-and η, β of the pair follow from the summed moments by McCool's formulas, or from the
-summits of the sum surface h₁ + h₂ sampled on a common grid.
+(``SpectralMoments`` add so), and η, β of the pair follow from the summed moments by
+McCool's formulas, or from the summits of the sum surface h₁ + h₂ sampled on a common grid.
 
 Source: J. A. Greenwood, J. H. Tripp, "The contact of two nominally flat rough surfaces",
 Proc. Instn Mech. Engrs 185 (1970) 625–633.
@@ -18,14 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .spectral_moments import SpectralMoments
-
-__all__ = ["composite_moments", "sum_on_common_grid"]
-
-
-def composite_moments(first: SpectralMoments, second: SpectralMoments) -> SpectralMoments:
-    """Profile moments of the sum surface h₁ + h₂ (independent surfaces)."""
-    return first + second
+__all__ = ["sum_on_common_grid"]
 
 
 def sum_on_common_grid(

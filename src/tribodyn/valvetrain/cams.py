@@ -333,9 +333,6 @@ class AccelerationCam(CamProfile):
             phi0 += beta
         self._half = phi0  # = event/2
         self._starts = [sg[0] for sg in self._segs]
-        # Numerical residuals at the nose are ~1e-16 by construction; keep them honest.
-        self._nose_velocity_residual = v0
-        self._nose_lift_residual = s0 - L
         self.check(tappet_radius)
 
     def _breakpoints(self) -> np.ndarray:

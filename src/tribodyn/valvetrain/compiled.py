@@ -32,13 +32,12 @@ from numba import njit
 from scipy.integrate import odeint, solve_ivp
 
 from ..physics.film_state_laws import FILM_FLOOR, entraining_film_load, limited_growth
-from .contact_law import _film_free_rate, smooth_step
+from .contact_law import _film_free_rate, joint_force, smooth_step, stamp_element
 
 __all__ = [
     "CompiledLumped",
     "compiled_model",
     "integrate_compiled",
-    "lumped_energies",
     "CAM_POINTS",
 ]
 
@@ -101,6 +100,8 @@ def _jit_calling(fn, **kernels):
 
 
 _free_rate = _jit_calling(_film_free_rate, limited_growth=_growth)
+_joint = _jit_calling(joint_force, smooth_step=_step)
+_element = njit(**_OPTS)(stamp_element)
 
 
 @njit(**_OPTS)
@@ -298,27 +299,15 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     Ff = _friction(theta, Fc, th, tab, fl) if Fc > 0.0 else 0.0
     thv = math.tanh(vt / par.vr)
     Fb = par.mub * Ff * thv
-    dtv = xt - xv - par.lash
-    dtvd = vt - vv
-    Etv = par.ktv * dtv if dtv > 0.0 else 0.0
-    gtv, dgtv = _step(Etv, ramp)
-    Ftv = Etv + par.ctv * gtv * dtvd
-    on_tv = Ftv > 0.0
-    if not on_tv:
-        Ftv = 0.0
-    ds = par.d_seat - xv
-    Es = par.ks * ds if ds > 0.0 else 0.0
-    gs, dgs = _step(Es, ramp)
-    Fs = Es - par.cs * gs * vv
-    on_s = Fs > 0.0
-    if not on_s:
-        Fs = 0.0
+    dtv, dtvd, ds = xt - xv - par.lash, vt - vv, par.d_seat - xv
+    Ftv, Etv, gtv, dgtv = _joint(par.ktv, par.ctv, dtv, dtvd, ramp)
+    Fs, Es, gs, dgs = _joint(par.ks, par.cs, ds, -vv, ramp)
+    on_tv, on_s = Ftv > 0.0, Fs > 0.0
     F0 = par.f0
     diss = 0.0
     f_prev = 0.0
     F0s = 0.0
     FNs = 0.0
-    kN = 0.0
     for j in range(N + 1):
         d, dd = _segment(y, n, N, j)
         fe = F0 + kseg[j] * d
@@ -357,7 +346,6 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     out[25] = par.cs * gs if on_s else 0.0
     out[26] = 0.0 if ok else 1.0
     out[27], out[28], out[29], out[30] = kh, hd, hd_h, hd_F
-    _ = kN
 
 
 @njit(**_OPTS)
@@ -387,19 +375,6 @@ def _segment(y, n, N, j):
     xb = y[j + 2] if j < N else 0.0
     vb = y[n + j + 2] if j < N else 0.0
     return y[j + 1] - xb, y[n + j + 1] - vb
-
-
-@njit(**_OPTS)
-def _element(K, Cm, a, b, k, c):
-    K[a, a] -= k
-    Cm[a, a] -= c
-    if b >= 0:
-        K[a, b] += k
-        K[b, a] += k
-        K[b, b] -= k
-        Cm[a, b] += c
-        Cm[b, a] += c
-        Cm[b, b] -= c
 
 
 @njit(**_OPTS)
@@ -640,30 +615,3 @@ def integrate_compiled(cm: CompiledLumped, t_grid, rtol, atol, hmax, events, gri
     stats["wall_time_s"] = _time.perf_counter() - wall
     stats["event_intervals"] = len(todo)
     return Y, t_ev, y_ev, stats, None
-
-
-def lumped_energies(model, Y, P) -> tuple[np.ndarray, np.ndarray]:
-    """(kinetic, elastic) energy [J] at the columns of Y, contact force P [N]: the
-    vectorised ``ValvetrainModel.energy``."""
-    p, n, N = model.p, model.n, model.N
-    V = Y[n : 2 * n]
-    T = 0.5 * np.sum(model.mass[:, None] * V * V, axis=0)
-    P = np.maximum(np.asarray(P, float), 0.0)
-    if model.gamma == 1.0:
-        U = 0.5 * model.C * P * P
-    else:
-        e = 1.0 / model.gamma
-        U = model.C * e / (1.0 + e) * P ** (1.0 + e)
-    U = U + 0.5 * model.inv_kcam * P * P
-    dtv = Y[0] - Y[1] - p.lash
-    U = U + np.where(dtv > 0.0, 0.5 * p.tappet_valve_stiffness * dtv * dtv, 0.0)
-    ds = model.d_seat - Y[1]
-    U = U + 0.5 * p.seat_stiffness * (np.maximum(ds, 0.0) ** 2 - model.d_seat**2)
-    xs = np.vstack([Y[1:2], Y[2:n], np.zeros((1, Y.shape[1]))])
-    D = xs[:-1] - xs[1:]
-    F0 = p.spring_preload
-    kseg = np.asarray(model.kseg, float)[:, None]
-    Useg = F0 * D + 0.5 * kseg * D * D
-    for j in (0, N) if N > 0 else (0,):
-        Useg[j] = np.where(F0 + kseg[j] * D[j] < 0.0, -0.5 * F0 * F0 / kseg[j], Useg[j])
-    return T, U + Useg.sum(axis=0)

@@ -55,6 +55,31 @@ def smooth_step(force: float, ramp: float) -> tuple[float, float]:
     return r * r * (3.0 - 2.0 * r), 6.0 * r * (1.0 - r) / ramp
 
 
+def joint_force(k: float, c: float, d: float, dd: float, ramp: float) -> tuple:
+    """(F, E, g, dg/dE) of a compression-only joint of stiffness k [N/m] and damping c
+    [N s/m] at compression d [m] and rate dd [m/s]: F = E + c g(E) ḋ, 0 where not > 0,
+    E = k d⁺ [N], g the cubic step of :func:`smooth_step`."""
+    E = k * d if d > 0.0 else 0.0
+    g, dg = smooth_step(E, ramp)
+    F = E + c * g * dd
+    return (F if F > 0.0 else 0.0), E, g, dg
+
+
+def stamp_element(K, Cm, a: int, b: int, k: float, c: float) -> None:
+    """Add a compressive element between bodies a and b (b = −1: ground), whose force
+    pushes a in −x and b in +x, with ∂F/∂(x_a − x_b) = k and ∂F/∂(ẋ_a − ẋ_b) = c, to the
+    force derivatives K = ∂(force)/∂q and Cm = ∂(force)/∂q̇ (in place)."""
+    K[a, a] -= k
+    Cm[a, a] -= c
+    if b >= 0:
+        K[a, b] += k
+        K[b, a] += k
+        K[b, b] -= k
+        Cm[a, b] += c
+        Cm[b, a] += c
+        Cm[b, b] -= c
+
+
 class _FrictionTable:
     """Bilinear table of F_f(θ mod 2π, F) from a periodic tribology model (fast RHS).
 
@@ -360,10 +385,10 @@ class CamContactModel:
             return P, g * z ** (g - 1.0) / C, 0.0
         return contact_film_root(self.film, t, dk, ue, R, C, g, ikc)
 
-    def contact_potential(self, P: float) -> float:
-        """Elastic energy stored in the contact at force P [J] (Palmgren/linear + camshaft)."""
-        if P <= 0.0:
-            return 0.0
+    def contact_potential(self, P):
+        """Elastic energy stored in the contact at force P [J] (Palmgren/linear + camshaft;
+        0 for P ≤ 0); P a float or an array."""
+        P = np.maximum(P, 0.0)
         if self.gamma == 1.0:
             u = 0.5 * self.contact_C * P * P
         else:

@@ -25,10 +25,10 @@ from .._validation import InputError, check_real
 from ..physics import limits as L
 from ..physics import typical_engine
 from .cams import CamProfile
-from .compiled import CompiledLumped, compiled_model, integrate_compiled, lumped_energies
+from .compiled import CompiledLumped, compiled_model, integrate_compiled
 from .flexible import FlexibleValvetrain
 from .kinematics import rpm_to_cam_speed
-from .model import ContactLawError
+from .model import ContactLawError, lumped_energies
 from .parameters import ValvetrainParameters
 from .system import SYSTEMS, ValvetrainSystem, make_system
 from .tribology import AnalyticTribology, Frictionless, TribologyModel
@@ -449,10 +449,8 @@ def _sample(
     cm = run.compiled
     if cm is not None:
         f = cm.outputs(t_eval, Y)
-        for k in _COLS:
+        for k in _COLS + ("acc_t", "acc_v", "F0s", "FNs"):
             cols[k][:] = f[k]
-        cols["acc_t"][:], cols["acc_v"][:] = f["acc_t"], f["acc_v"]
-        cols["F0s"][:], cols["FNs"][:] = f["F0s"], f["FNs"]
         cols["T"][:], cols["U"][:] = lumped_energies(model, Y, f["P"])
     else:
         for i in range(m):

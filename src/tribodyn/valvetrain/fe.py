@@ -143,10 +143,7 @@ class AxialFEModel:
     def frequencies(self, fixed=(), count: int | None = None) -> np.ndarray:
         """Natural frequencies [Hz] with the DOFs ``fixed`` held (free–free: rigid-body
         modes come out as ≈ 0)."""
-        keep = [i for i in range(self._n) if i not in set(fixed)]
-        w2 = sla.eigh(self.K[np.ix_(keep, keep)], self.M[np.ix_(keep, keep)], eigvals_only=True)
-        f = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
-        return f if count is None else f[:count]
+        return _frequencies(self.K, self.M, fixed, count)
 
 
 @dataclass
@@ -173,10 +170,16 @@ class ReducedBody:
 
     def frequencies(self, fixed=(), count: int | None = None) -> np.ndarray:
         """Natural frequencies [Hz] of the reduced body with reduced coordinates held."""
-        keep = [i for i in range(self.n) if i not in set(fixed)]
-        w2 = sla.eigh(self.K[np.ix_(keep, keep)], self.M[np.ix_(keep, keep)], eigvals_only=True)
-        f = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
-        return f if count is None else f[:count]
+        return _frequencies(self.K, self.M, fixed, count)
+
+
+def _frequencies(K, M, fixed, count: int | None) -> np.ndarray:
+    """f = √ω²/2π [Hz] of K φ = ω² M φ with the DOFs ``fixed`` held, the lowest ``count``
+    (all for None)."""
+    keep = [i for i in range(K.shape[0]) if i not in set(fixed)]
+    w2 = sla.eigh(K[np.ix_(keep, keep)], M[np.ix_(keep, keep)], eigvals_only=True)
+    f = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
+    return f if count is None else f[:count]
 
 
 def craig_bampton(

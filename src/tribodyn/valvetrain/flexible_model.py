@@ -35,7 +35,7 @@ import math
 import numpy as np
 
 from .cams import CamProfile
-from .contact_law import _PALMGREN_EXP, CamContactModel, smooth_step
+from .contact_law import _PALMGREN_EXP, CamContactModel, joint_force, smooth_step
 from .flexible import FlexibleValvetrain
 from .tribology import TribologyModel
 
@@ -82,7 +82,6 @@ class FlexibleValvetrainModel(CamContactModel):
         self.iphi = k if cs is not None else None
         n = k + (1 if cs is not None else 0)
         self.n = n
-        self.idx = idx
         self.gmap = gmap
         M = np.zeros((n, n))
         K = np.zeros((n, n))
@@ -155,7 +154,6 @@ class FlexibleValvetrainModel(CamContactModel):
             fs[b] += Qs
         self.f_static = fs
         self._init_contact(tribology, self.c_bend)  # camshaft bending in series
-        self._Kl = K.tolist()
 
     compilable = False  # no compiled right-hand side (solve_ivp path)
 
@@ -209,11 +207,7 @@ class FlexibleValvetrainModel(CamContactModel):
             """Compressive joint between nodes a (pushed −x) and b (pushed +x; None:
             ground) with deformation d (total) and rate dd; returns the force."""
             nonlocal diss
-            E = k * d if d > 0.0 else 0.0
-            gg, dg = smooth_step(E, ramp)
-            F = E + c * gg * dd
-            if F <= 0.0:
-                F = 0.0
+            F, E, gg, dg = joint_force(k, c, d, dd, ramp)
             df = F - static
             if a is not None:
                 fj[a] -= df
@@ -344,10 +338,7 @@ class FlexibleValvetrainModel(CamContactModel):
         e = _PALMGREN_EXP
 
         def clash_pot(ov):  # ∫ Q dδ, Q = (δ/C)^(1/e)
-            return 0.0 if ov <= 0.0 else C_pot(ov)
-
-        def C_pot(ov):
-            return (ov / c) ** (1.0 / e) * ov * e / (1.0 + e)
+            return 0.0 if ov <= 0.0 else (ov / c) ** (1.0 / e) * ov * e / (1.0 + e)
 
         for a, b, _, d0, g, _ in self.clash:
             U += clash_pot(d0 + q[a] - q[b] - g) - clash_pot(d0 - g)

@@ -43,12 +43,20 @@ from .contact_law import (
     ContactLawError,
     check_model_inputs,
     contact_film_root,
+    joint_force,
     smooth_step,
+    stamp_element,
 )
 from .parameters import ValvetrainParameters
 from .tribology import TribologyModel
 
-__all__ = ["ValvetrainModel", "ContactLawError", "smooth_step", "check_model_inputs"]
+__all__ = [
+    "ValvetrainModel",
+    "lumped_energies",
+    "ContactLawError",
+    "smooth_step",
+    "check_model_inputs",
+]
 __all__ += ["contact_film_root"]  # re-exported from .contact_law
 
 
@@ -152,23 +160,11 @@ class ValvetrainModel(CamContactModel):
         hf = yl[2 * n + 2] if self.film_state else 0.0
         c = self.cam_contact(t, self.theta0 + w * t, w, xt, vt, hf)
         P, Fc, Ff, Fb = c.P, c.Fc, c.Ff, c.Fb
-        # tappet–valve
-        dtv = xt - xv - p.lash
-        dtvd = vt - vv
-        Etv = p.tappet_valve_stiffness * dtv if dtv > 0.0 else 0.0
-        gtv, dgtv = smooth_step(Etv, ramp)
-        Ftv = Etv + p.tappet_valve_damping * gtv * dtvd
-        on_tv = Ftv > 0.0
-        if not on_tv:
-            Ftv = 0.0
-        # valve seat
-        ds = self.d_seat - xv
-        Es = p.seat_stiffness * ds if ds > 0.0 else 0.0
-        gs, dgs = smooth_step(Es, ramp)
-        Fs = Es - p.seat_damping * gs * vv
-        on_s = Fs > 0.0
-        if not on_s:
-            Fs = 0.0
+        dtv, dtvd = xt - xv - p.lash, vt - vv  # tappet–valve
+        kv, cv = p.tappet_valve_stiffness, p.tappet_valve_damping
+        Ftv, Etv, gtv, dgtv = joint_force(kv, cv, dtv, dtvd, ramp)
+        ds = self.d_seat - xv  # valve seat
+        Fs, Es, gs, dgs = joint_force(p.seat_stiffness, p.seat_damping, ds, -vv, ramp)
         # spring chain: segment j joins node j (0 = valve) and node j+1 (N+1 = head)
         xs = [xv] + yl[2:n] + [0.0]
         vs = [vv] + yl[n + 2 : 2 * n] + [0.0]
@@ -226,14 +222,16 @@ class ValvetrainModel(CamContactModel):
             )
             ktv = (
                 p.tappet_valve_stiffness * (1.0 + p.tappet_valve_damping * dgtv * dtvd)
-                if (on_tv and dtv > 0.0)
+                if (Ftv > 0.0 and dtv > 0.0)
                 else 0.0
             )
-            ctv = p.tappet_valve_damping * gtv if on_tv else 0.0
+            ctv = p.tappet_valve_damping * gtv if Ftv > 0.0 else 0.0
             kst = (
-                p.seat_stiffness * (1.0 - p.seat_damping * dgs * vv) if (on_s and ds > 0.0) else 0.0
+                p.seat_stiffness * (1.0 - p.seat_damping * dgs * vv)
+                if (Fs > 0.0 and ds > 0.0)
+                else 0.0
             )
-            cst = p.seat_damping * gs if on_s else 0.0
+            cst = p.seat_damping * gs if Fs > 0.0 else 0.0
             kseg, cseg = list(ks), list(cs)
             for j in {0, N}:
                 if Fseg[j] <= 0.0:
@@ -254,27 +252,13 @@ class ValvetrainModel(CamContactModel):
         f = self.evaluate(t, y, jac=True)
         K = np.zeros((n, n))  # ∂(force)/∂q
         Cm = np.zeros((n, n))  # ∂(force)/∂q̇
-
-        def element(a, b, k, c):
-            """Compressive element between bodies a and b (b = None: ground), whose force
-            pushes a in −x and b in +x, with ∂F/∂(x_a − x_b) = k, ∂F/∂(ẋ_a − ẋ_b) = c."""
-            K[a, a] -= k
-            Cm[a, a] -= c
-            if b is not None:
-                K[a, b] += k
-                K[b, a] += k
-                K[b, b] -= k
-                Cm[a, b] += c
-                Cm[b, a] += c
-                Cm[b, b] -= c
-
         K[0, 0] -= f["kc"]  # cam contact: δ = s − x_t
         Cm[0, 0] -= f["cc"] + f["cb"]  # + bore friction
-        element(1, 0, f["ktv"], f["ctv"])  # tappet–valve: δ = x_t − x_v
-        element(1, None, f["ks"], f["cs"])  # valve seat (to ground)
+        stamp_element(K, Cm, 1, 0, f["ktv"], f["ctv"])  # tappet–valve: δ = x_t − x_v
+        stamp_element(K, Cm, 1, -1, f["ks"], f["cs"])  # valve seat (to ground)
         kseg, cseg = f["kseg"], f["cseg"]
         for j in range(N + 1):  # coil segment j: nodes j+1, j+2 (q index)
-            element(j + 1, j + 2 if j < N else None, kseg[j], cseg[j])
+            stamp_element(K, Cm, j + 1, j + 2 if j < N else -1, kseg[j], cseg[j])
         m = 2 * n + 2 + self.film_state
         J = np.zeros((m, m))
         J[:n, n : 2 * n] = np.eye(n)
@@ -289,41 +273,38 @@ class ValvetrainModel(CamContactModel):
     # -- energy ------------------------------------------------------------------------
     def energy(self, t: float, y, evaluated: dict | None = None) -> tuple[float, float]:
         """(kinetic, elastic) energy [J] relative to the static equilibrium state
-        (``evaluated``: the output of :meth:`evaluate` at (t, y), if already known)."""
-        p, n, N = self.p, self.n, self.N
-        v = np.asarray(y[n : 2 * n])
-        T = 0.5 * float(np.sum(self.mass * v * v))
+        (``evaluated``: the output of :meth:`evaluate` at (t, y), if already known), by
+        :func:`lumped_energies`."""
         f = self.evaluate(t, y) if evaluated is None else evaluated
-        U = self.contact_potential(f["P"])
-        dtv = y[0] - y[1] - p.lash
-        if dtv > 0.0:
-            U += 0.5 * p.tappet_valve_stiffness * dtv * dtv
-        ds = self.d_seat - y[1]
-        U += 0.5 * p.seat_stiffness * (max(ds, 0.0) ** 2 - self.d_seat**2)
-        xs = np.concatenate([[y[1]], np.asarray(y[2:n]), [0.0]])
-        D = xs[:-1] - xs[1:]
-        F0 = p.spring_preload
-        Useg = F0 * D + 0.5 * self.kseg * D * D
-        ends = (0, N) if N > 0 else (0,)
-        for j in ends:
-            if F0 + self.kseg[j] * D[j] < 0.0:
-                Useg[j] = -0.5 * F0 * F0 / self.kseg[j]
-        return T, U + float(np.sum(Useg))
+        T, U = lumped_energies(self, np.asarray(y, dtype=float)[:, None], f["P"])
+        return float(T[0]), float(U[0])
 
     def surge_matrices(self) -> tuple[np.ndarray, np.ndarray]:
         """(M, K) of the coil masses with the valve held fixed (fixed–fixed spring)."""
         N = self.N
         if N == 0:
             return np.zeros((0, 0)), np.zeros((0, 0))
-        K = np.zeros((N, N))
-        for j in range(N + 1):  # segment j between nodes j, j+1
-            a, b = j - 1, j  # coil indices (−1/N = fixed ends)
-            k = self.kseg[j]
-            if 0 <= a < N:
-                K[a, a] += k
-            if 0 <= b < N:
-                K[b, b] += k
-            if 0 <= a < N and 0 <= b < N:
-                K[a, b] -= k
-                K[b, a] -= k
+        k = self.kseg  # segment j joins coils j − 1 and j (−1 and N: the fixed ends)
+        K = np.diag(k[:-1] + k[1:]) - np.diag(k[1:-1], 1) - np.diag(k[1:-1], -1)
         return np.eye(N) * self.m_node, K
+
+
+def lumped_energies(model, Y, P) -> tuple[np.ndarray, np.ndarray]:
+    """(kinetic, elastic) energy [J] of :class:`ValvetrainModel` ``model`` relative to
+    the static equilibrium state, at the columns of Y with contact force P [N]."""
+    p, n, N = model.p, model.n, model.N
+    V = Y[n : 2 * n]
+    T = 0.5 * np.sum(model.mass[:, None] * V * V, axis=0)
+    U = model.contact_potential(np.asarray(P, float))
+    dtv = Y[0] - Y[1] - p.lash
+    U = U + np.where(dtv > 0.0, 0.5 * p.tappet_valve_stiffness * dtv * dtv, 0.0)
+    ds = model.d_seat - Y[1]
+    U = U + 0.5 * p.seat_stiffness * (np.maximum(ds, 0.0) ** 2 - model.d_seat**2)
+    xs = np.vstack([Y[1:2], Y[2:n], np.zeros((1, Y.shape[1]))])
+    D = xs[:-1] - xs[1:]
+    F0 = p.spring_preload
+    kseg = np.asarray(model.kseg, float)[:, None]
+    Useg = F0 * D + 0.5 * kseg * D * D
+    for j in (0, N) if N > 0 else (0,):
+        Useg[j] = np.where(F0 + kseg[j] * D[j] < 0.0, -0.5 * F0 * F0 / kseg[j], Useg[j])
+    return T, U + Useg.sum(axis=0)

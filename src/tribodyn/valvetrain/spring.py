@@ -210,34 +210,31 @@ class HelicalSpring(ModalBody):
             n_full = int(math.ceil(na - 1e-12))
             share = np.ones(n_full)
             share[-1] = na - (n_full - 1)  # fractional last coil
-            gaps = self.coil_gaps
-            k, m, g = [], [], []
-            for i in range(n_full):
-                for _ in range(e):
-                    frac = share[i] / e  # coils in this element
-                    k.append(self.coil_rate / frac)
-                    m.append(self.wire_mass_per_coil * frac)
-                    g.append(gaps[i] * frac)
-            length = math.pi * self.mean_diameter / e
-            self._derived["el"] = (np.array(k), np.array(m), np.array(g), length)
+            frac = np.repeat(share, e) / e  # coils in each element
+            k, m = self.coil_rate / frac, self.wire_mass_per_coil * frac
+            g = np.repeat(self.coil_gaps[:n_full], e) * frac
+            self._derived["el"] = (k, m, g, math.pi * self.mean_diameter / e)
         return self._derived["el"]
 
     @property
     def n_elements(self) -> int:
         return self._elements()[0].size
 
-    def fe_model(self) -> AxialFEModel:
-        """Axial FE model: nodes 0 (retainer end) … N (head end); the moving dead coil's
-        mass on node 0. Element masses follow the mixed mass matrix of :mod:`.fe`."""
-        k, m, _, _ = self._elements()
-        rho_a = 1.0  # bar() needs E, A, ρ: use k and m
+    def _chain(self, k) -> AxialFEModel:
+        """Axial FE chain of the elements with stiffnesses ``k`` [N/m] and the elements'
+        masses: nodes 0 (retainer end, "top") … N (head end, "bottom"); element masses
+        follow the mixed mass matrix of :mod:`.fe`."""
+        m = self._elements()[1]
         model = AxialFEModel("spring")
         a = model.node("top")
         for j in range(k.size):
-            # a bar of length 1 with E·A = k and ρ·A = m reproduces k and m exactly
-            a = model.bar(
-                a, 1.0, k[j] / rho_a, rho_a, m[j] / rho_a, 1, "bottom" if j == k.size - 1 else None
-            )
+            # a bar of length 1 with E = k, A = 1 and ρ = m reproduces k and m exactly
+            a = model.bar(a, 1.0, k[j], 1.0, m[j], 1, "bottom" if j == k.size - 1 else None)
+        return model
+
+    def fe_model(self) -> AxialFEModel:
+        """Axial FE model (:meth:`_chain`), the moving dead coil's mass on node 0."""
+        model = self._chain(self._elements()[0])
         if self.dead_coils > 0.0:
             model.mass(0, self.dead_coil_mass)
         return model
@@ -321,21 +318,7 @@ class HelicalSpring(ModalBody):
         """Surge frequencies [Hz] of the spring held at both ends at a static compression
         [m]: the tangent stiffness includes the clash contact of closed coils, so they rise
         as coils close (the dead coil's mass is left out: both ends are fixed)."""
-        import scipy.linalg as sla
-
         st = self.statics(compression)
-        k, m, g, _ = self._elements()
-        n = k.size + 1
+        k, _, g, _ = self._elements()
         kt = k + np.array([self.clash_force(st.compressions[j] - g[j])[1] for j in range(k.size)])
-        K = np.zeros((n, n))
-        M = np.zeros((n, n))
-        from .fe import MASS_MIXING
-
-        for j in range(k.size):
-            K[j : j + 2, j : j + 2] += kt[j] * np.array([[1.0, -1.0], [-1.0, 1.0]])
-            M[j : j + 2, j : j + 2] += m[j] * (
-                (1 - MASS_MIXING) / 2 * np.eye(2)
-                + MASS_MIXING / 6 * np.array([[2.0, 1.0], [1.0, 2.0]])
-            )
-        w2 = sla.eigh(K[1:-1, 1:-1], M[1:-1, 1:-1], eigvals_only=True)
-        return np.sqrt(np.clip(w2[:count], 0.0, None)) / (2.0 * math.pi)
+        return self._chain(kt).frequencies(fixed=(0, k.size), count=count)

@@ -233,6 +233,35 @@ class AnalyticTribology(TribologyModel):
         }
 
 
+def _table_times(time: ArrayLike) -> np.ndarray:
+    """The sample times [s] of a table: finite, at least one, strictly increasing."""
+    t = check_array("time", np.atleast_1d(time), min_size=1)
+    if t.size > 1 and np.any(np.diff(t) <= 0.0):
+        raise InputError("time must be strictly increasing")
+    return t
+
+
+def _table_column(name: str, values: ArrayLike | None, n: int, default: float) -> np.ndarray:
+    """A table's column of n samples: ``values`` (finite; one value or n) as floats, or
+    ``default`` everywhere."""
+    if values is None:
+        return np.full(n, default)
+    return np.broadcast_to(check_array(name, np.atleast_1d(values), min_size=1), (n,)).astype(float)
+
+
+def _bracket(tl: list, period: float | None, t: float) -> tuple[int, int, float]:
+    """(i, j, a): linear interpolation in the table of times ``tl`` [s] at t, y(t) =
+    y_i + a (y_j − y_i); the end samples outside the table; with ``period`` t is first
+    mapped to tl[0] + (t − tl[0]) mod period."""
+    if period is not None:
+        t = tl[0] + (t - tl[0]) % period
+    k = bisect.bisect_right(tl, t) - 1
+    if k < 0 or k == len(tl) - 1:
+        k = max(k, 0)
+        return k, k, 0.0
+    return k, k + 1, (t - tl[k]) / (tl[k + 1] - tl[k])
+
+
 def _checked_friction_model(friction_model: TribologyModel) -> TribologyModel:
     """``friction_model``, the model that supplies a wrapping model's friction, checked."""
     if not isinstance(friction_model, TribologyModel):
@@ -282,27 +311,12 @@ class FilmTableTribology(TribologyModel):
     ):
         self.friction_model = _checked_friction_model(friction_model)
         self.periodic_in_cam_angle = friction_model.periodic_in_cam_angle
-        t = check_array("time", np.atleast_1d(time), min_size=1)
-        if t.size > 1 and np.any(np.diff(t) <= 0.0):
-            raise InputError("time must be strictly increasing")
-        n = t.size
-
-        def arr(name, v, default):
-            a = (
-                np.full(n, default)
-                if v is None
-                else np.broadcast_to(check_array(name, np.atleast_1d(v), min_size=1), (n,)).astype(
-                    float
-                )
-            )
-            return a
-
-        self.time = t
-        self.h = arr("film", film, 0.0)
-        self.c = arr("compliance", compliance, 0.0)
+        self.time = t = _table_times(time)
+        self.h = _table_column("film", film, t.size, 0.0)
+        self.c = _table_column("compliance", compliance, t.size, 0.0)
         if np.any(self.c > 0.0):
             raise InputError("compliance must be <= 0 (film thickness cannot grow with load)")
-        self.Fk = arr("reference_force", reference_force, 0.0)
+        self.Fk = _table_column("reference_force", reference_force, t.size, 0.0)
         self.period = None if period is None else check_positive("period", period, "s")
         self._t0 = float(t[0])
         self._tl, self._hl, self._cl, self._fl = (
@@ -321,17 +335,7 @@ class FilmTableTribology(TribologyModel):
         return self.friction_model.friction(t, force, entrainment_speed, sliding_speed, radius)
 
     def _scalar_film(self, t: float, force: float) -> tuple[float, float]:
-        tl = self._tl
-        if self.period is not None:
-            t = self._t0 + (t - self._t0) % self.period
-        k = bisect.bisect_right(tl, t) - 1
-        if k < 0:
-            i, a = 0, 0.0
-        elif k >= len(tl) - 1:
-            i, a = len(tl) - 1, 0.0
-        else:
-            i, a = k, (t - tl[k]) / (tl[k + 1] - tl[k])
-        j = min(i + 1, len(tl) - 1)
+        i, j, a = _bracket(self._tl, self.period, t)
         hk = self._hl[i] + a * (self._hl[j] - self._hl[i])
         ck = self._cl[i] + a * (self._cl[j] - self._cl[i])
         fk = self._fl[i] + a * (self._fl[j] - self._fl[i])
@@ -433,21 +437,12 @@ class FilmStateTribology(TribologyModel):
         if "supply_film" not in checked:
             supply_film = L.SUPPLY_FILM_THICKNESS.check("supply_film", supply_film)
         self.supply_film = float(supply_film)
-        t = np.zeros(1) if time is None else check_array("time", np.atleast_1d(time), min_size=1)
-        if t.size > 1 and np.any(np.diff(t) <= 0.0):
-            raise InputError("time must be strictly increasing")
-        r = (
-            np.ones(t.size)
-            if correction is None
-            else np.broadcast_to(
-                check_array("correction", np.atleast_1d(correction), min_size=1), t.shape
-            ).astype(float)
-        )
+        t = np.zeros(1) if time is None else _table_times(time)
+        r = _table_column("correction", correction, t.size, 1.0)
         if np.any(r <= 0.0):
             raise InputError("correction must be > 0 (a factor on the flooded film)")
         self.time, self.correction = t, r
         self.period = None if period is None else check_positive("period", period, "s")
-        self._t0 = float(t[0])
         self._tl, self._rl = t.tolist(), r.tolist()
         self._eta = float(lubricant.viscosity)
         self._alpha = float(lubricant.pressure_viscosity)
@@ -461,18 +456,8 @@ class FilmStateTribology(TribologyModel):
 
     def correction_at(self, t: float) -> float:
         """r(t), linear between the table's samples (periodic with ``period``)."""
-        tl = self._tl
-        if len(tl) == 1:
-            return self._rl[0]
-        if self.period is not None:
-            t = self._t0 + (t - self._t0) % self.period
-        k = bisect.bisect_right(tl, t) - 1
-        if k < 0:
-            return self._rl[0]
-        if k >= len(tl) - 1:
-            return self._rl[-1]
-        a = (t - tl[k]) / (tl[k + 1] - tl[k])
-        return self._rl[k] + a * (self._rl[k + 1] - self._rl[k])
+        i, j, a = _bracket(self._tl, self.period, t)
+        return self._rl[i] + a * (self._rl[j] - self._rl[i])
 
     def film_rate(self, t: float, h: float, force: float, ue: float, R: float):
         """(ḣ [m/s], ∂ḣ/∂h [1/s], ∂ḣ/∂F_c [m/(N s)]) of the film h [m] carrying F_c [N]."""

@@ -139,7 +139,6 @@ class Grid:
         self.coef = influence_coefficients(bodies, self.dX * lay.a, n) if elastic else None
         self.elastic = bool(elastic)
         self._K = None
-        self._K_single: np.ndarray | None = None
 
     @property
     def K(self):
@@ -147,14 +146,6 @@ class Grid:
         if self.elastic and self._K is None:
             self._K = linalg.toeplitz(self.coef)
         return self._K
-
-    @property
-    def K_single(self):
-        """:attr:`K` rounded to single precision (built on first use; for GMRES's
-        products)."""
-        if self.elastic and self._K_single is None:
-            self._K_single = np.ascontiguousarray(self.K, dtype=np.float32)
-        return self._K_single
 
     @property
     def has_dense(self) -> bool:

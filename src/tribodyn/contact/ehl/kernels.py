@@ -49,7 +49,6 @@ __all__ = [
     "GETRS",
     "SGETRS",
     "SYMV",
-    "SSYMV",
     "gmres_lu",
     "flush_factors",
     "compile_fallbacks",
@@ -470,8 +469,6 @@ SGETRS = _scipy_routine("lapack", "sgetrs", 9)
 #: read from one triangle (half the memory of a general product; the influence matrix
 #: of a uniform grid is symmetric Toeplitz)
 SYMV = _scipy_routine("blas", "dsymv", 10)
-#: ssymv: the same in single precision (products with a float32 influence matrix)
-SSYMV = _scipy_routine("blas", "ssymv", 10)
 
 
 #: Single-precision triangular solves: entries of the right-hand side below this share of
@@ -543,8 +540,7 @@ def _lu_solve(getrs, fac, piv1, x, buf, ints, trans):
 @njit(**_OPTS)
 def _product(symv, uplo, ints, reals, K, x, y):
     """y = alpha·K x + beta·y by BLAS ``symv`` for the symmetric K (``uplo``: the triangle
-    read, ``ints`` = [n, n, 1], ``reals`` = [alpha, beta]); x and y of K's precision,
-    their first n entries used."""
+    read, ``ints`` = [n, n, 1], ``reals`` = [alpha, beta]); x and y of K's size."""
     symv(
         uplo.ctypes,
         ints[0:].ctypes,
@@ -563,23 +559,15 @@ def _product(symv, uplo, ints, reals, K, x, y):
 def _apply(symv, system, z, out, work):
     """Newton-matrix product out = J z for ``system`` = (AP, B, col, c, free, cav, D, K,
     kscale, elastic, dX), with δH = kscale·K v + vh (the dense symmetric K, by BLAS
-    symv); ``work`` = (dh, [n, n, 1], [1, 0], [ord("U")], zs, hs): zs, hs vectors of K's
-    precision for a float32 K."""
+    symv); ``work`` = (dh, [n, n, 1], [1, 0], [ord("U")])."""
     AP, B, col, c, free, cav, D, K, kscale, elastic, dX = system
-    dh, ints, reals, uplo, zs, hs = work
+    dh, ints, reals, uplo = work
     n = D.size
     vh = z[n]
     if elastic:
-        if K.itemsize == 4:
-            for i in range(n):
-                zs[i] = z[i]
-            _product(symv, uplo, ints, reals, K, zs, hs)
-            for i in range(n):
-                dh[i] = kscale * hs[i] + vh
-        else:
-            _product(symv, uplo, ints, reals, K, z, dh)
-            for i in range(n):
-                dh[i] = kscale * dh[i] + vh
+        _product(symv, uplo, ints, reals, K, z, dh)
+        for i in range(n):
+            dh[i] = kscale * dh[i] + vh
     else:
         dh[:] = vh
     newton_matvec(AP, B, col, c, free, cav, D, z[:n], vh, dh, dX, out)
@@ -644,9 +632,7 @@ def gmres_lu(getrs, symv, system, fac, piv1, b, rtol, max_it):
     Alg. 9.6), so that J Z = V H holds to double round-off even where M⁻¹ is applied
     inexactly. Stops when the residual estimate |g_{j+1}| ≤ rtol·|b|. The factors may
     be float32 (with ``getrs`` = :data:`SGETRS`): the preconditioner then reads half the
-    memory, and GMRES still solves the double-precision system to ``rtol``. K may be
-    float32 too (with ``symv`` = :data:`SSYMV`): GMRES then solves the system with K
-    rounded to single precision.
+    memory, and GMRES still solves the double-precision system to ``rtol``.
 
     Returns (x, iterations, ok); ok is False for a non-finite residual, a breakdown or
     no convergence within ``max_it`` iterations."""
@@ -657,14 +643,11 @@ def gmres_lu(getrs, symv, system, fac, piv1, b, rtol, max_it):
     ints = np.array([m, 1, m, m, 0], dtype=np.int32)
     trans = np.array([78], dtype=np.uint8)  # "N"
     n = m - 1
-    K = system[7]
     work = (
         np.empty(n),
         np.array([n, n, 1], dtype=np.int32),
-        np.array([1.0, 0.0], dtype=K.dtype),
+        np.array([1.0, 0.0]),
         np.array([85], dtype=np.uint8),  # "U"
-        np.empty(n, dtype=K.dtype),
-        np.empty(n, dtype=K.dtype),
     )
     buf = np.empty_like(fac[:, 0])
     x0 = b.copy()
@@ -732,24 +715,11 @@ def gmres_lu(getrs, symv, system, fac, piv1, b, rtol, max_it):
     return x0, max_it, False
 
 
-#: GMRES multiplies by the influence matrix in single precision (``Grid.K_single``): a
-#: Krylov iteration reads half the memory (the product and the float32 triangular
-#: solves then share a core's cache; ≈ 9 % of a cycle pass). GMRES then solves the
-#: Newton system with K rounded to single precision: an inexact Newton direction, while
-#: the residuals and the convergence test stay in double precision (same Newton
-#: iterations over a cycle pass, outputs within 5e-11). Off by default: with it the
-#: coupled results depend on the BLAS build's float32 kernel (e.g. OPENBLAS_CORETYPE)
-#: by more than round-off (the implicit coupling's peak-force difference by 0.02 %
-#: points, a squeeze step's energy residual past 1e-5), which the results must not.
-SINGLE_PRODUCTS = False
-
-
 def compile_fallbacks() -> None:
     """Compile (into numba's cache) the kernel variants that a cycle study reaches only
     on fallbacks, on a small system with the argument types of the solvers' calls: the
     double-precision factorisation (:func:`dense_matrix_t` into float64, GMRES with
-    float64 factors and the influence matrix in the precision of the GMRES products,
-    :data:`SINGLE_PRODUCTS`) and the dense matrix of the two-grid coarse level
+    float64 factors) and the dense matrix of the two-grid coarse level
     (:func:`dense_matrix`)."""
     from scipy import linalg
 
@@ -766,6 +736,5 @@ def compile_fallbacks() -> None:
     dense_matrix(*rows, K, 1.0, 0.1, True)
     J = dense_matrix_t(*rows, K, 1.0, 0.1, True, 0.0, np.empty((n + 1, n + 1))).T
     fac, piv = linalg.lu_factor(J, overwrite_a=True, check_finite=False)
-    Kp, symv = (K.astype(np.float32), SSYMV) if SINGLE_PRODUCTS else (K, SYMV)
-    system = (*rows, Kp, 1.0, True, 0.1)
-    gmres_lu(GETRS, symv, system, fac, piv + 1, np.ones(n + 1), 1e-6, 30)
+    system = (*rows, K, 1.0, True, 0.1)
+    gmres_lu(GETRS, SYMV, system, fac, piv + 1, np.ones(n + 1), 1e-6, 30)

@@ -53,7 +53,6 @@ ROUND_OFF_PRESSURE = 1e-12
 #: which the active set then crosses one node per Newton iteration. Elsewhere P of the
 #: predicted Q is the better guess (it carries the boundary's motion on fluid films).
 _ASPERITY_SHARE = 0.03
-_TRACE = False
 _WATCHDOG = 100.0
 #: GMRES solves a Newton system to the relative residual η_k = min(_GMRES_TOL_MAX,
 #: max(_GMRES_TOL, |F_k|)), |F_k| = √merit the scaled residual at the iterate: a forcing
@@ -66,24 +65,14 @@ _GMRES_TOL_MAX = 1e-4
 _MAX_KRYLOV = 30
 _MAX_KRYLOV_BEFORE_REFACTOR = 12
 _MAX_KRYLOV_TWO_GRID = 200
-#: GMRES with an LU preconditioner in compiled code (False: the NumPy loop below, which
-#: is kept for the two-grid preconditioner and as a cross-check in the tests)
-_COMPILED_GMRES = True
-#: The Newton matrix is factorised in single precision: the factorisation costs about half,
-#: GMRES's triangular solves read half the memory (with the dense influence matrix of the
-#: products, the working set then fits a core's cache), and GMRES still solves the
-#: double-precision system to its tolerance, also the fresh factorisation's own Newton
-#: step (False: double-precision factors, solved directly).
-_SINGLE_PRECONDITIONER = True
 
 
 class Factorization(NamedTuple):
-    """LU factors of a Newton matrix (``lu_factor``'s ``fac``, ``piv``) and ``prec``,
-    the factors GMRES preconditions with (``fac`` itself)."""
+    """LU factors of a Newton matrix (``lu_factor``'s ``fac``, ``piv``), also GMRES's
+    preconditioner."""
 
     fac: np.ndarray
     piv: np.ndarray
-    prec: np.ndarray
 
 
 def _factor(lin: Linearization, dtype) -> Factorization | None:
@@ -100,30 +89,30 @@ def _factor(lin: Linearization, dtype) -> Factorization | None:
             return None
     elif not np.isfinite(fac).all():
         return None
-    return Factorization(fac, piv, fac)
+    return Factorization(fac, piv)
 
 
 def _fresh_solve(lin: Linearization, rtol) -> tuple[Factorization | None, np.ndarray | None]:
     """(factorisation, Newton direction) with a new LU of this Newton matrix: single
-    precision factors (half the factorisation's cost; GMRES preconditioned with them
-    solves the double-precision system to ``rtol`` in one or two iterations), else, or
-    where that GMRES fails, double-precision factors and their direct solve."""
-    if _SINGLE_PRECONDITIONER:
-        lu = _factor(lin, np.float32)
-        if lu is not None:
-            delta, _ = gmres(lin, lu, rtol)
-            if delta is not None:
-                return lu, delta
+    precision factors (half the factorisation's cost; GMRES's triangular solves read half
+    the memory, so that with the dense influence matrix of the products the working set
+    fits a core's cache; GMRES preconditioned with them solves the double-precision
+    system to ``rtol`` in one or two iterations), else, where they fail or that GMRES
+    fails, double-precision factors and their direct solve."""
+    lu = _factor(lin, np.float32)
+    if lu is not None:
+        delta, _ = gmres(lin, lu, rtol)
+        if delta is not None:
+            return lu, delta
     lu = _factor(lin, np.float64)
     if lu is None:
         return None, None
     return lu, _lu_solver(lu)(lin.rhs)
 
 
-def _lu_solver(lu: Factorization, precondition=False):
-    """v ↦ LU⁻¹ v (LAPACK getrs, no wrapper), with the factors ``fac`` or, as a
-    preconditioner, with ``lu.prec``."""
-    fac, piv = (lu.prec, lu.piv) if precondition else (lu.fac, lu.piv)
+def _lu_solver(lu: Factorization):
+    """v ↦ LU⁻¹ v (LAPACK getrs, no wrapper) with the factors of ``lu``."""
+    fac, piv = lu
     if fac.dtype == np.float32:
         sgetrs = _SGETRS
 
@@ -146,10 +135,13 @@ _SGETRS = lapack.get_lapack_funcs("getrs", (np.zeros(1, dtype=np.float32),))
 def gmres(lin: Linearization, lu, rtol, max_it=None):
     """Right-preconditioned flexible GMRES for lin·x = rhs with an earlier LU (a
     :class:`Factorization`, or any object with a ``solve`` method) as preconditioner,
-    started from the preconditioned solution (see :func:`.kernels.gmres_lu`). Returns (x, iterations) or (None, its)."""
+    started from the preconditioned solution (see :func:`.kernels.gmres_lu`), in compiled
+    code where :meth:`.Linearization.gmres_lu` can (an LU on a dense-product grid), else
+    by the NumPy loop below (also the two-grid preconditioner's). Returns (x, iterations)
+    or (None, its)."""
     max_it = max_it or _MAX_KRYLOV
-    if isinstance(lu, Factorization) and _COMPILED_GMRES:  # compiled, dense-product grids
-        out = lin.gmres_lu(lu.prec, lu.piv, rtol, max_it)
+    if isinstance(lu, Factorization):  # compiled, dense-product grids
+        out = lin.gmres_lu(lu.fac, lu.piv, rtol, max_it)
         if out is not None:
             return out
     b = lin.rhs
@@ -159,7 +151,7 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
     if hasattr(lu, "solve"):  # a preconditioner object
         prec = lu.solve
     else:  # a Factorization
-        prec = _lu_solver(lu, precondition=True)
+        prec = _lu_solver(lu)
     x0 = prec(b)
     r0 = b - lin.matvec(x0)
     beta = float(np.linalg.norm(r0))
@@ -454,11 +446,6 @@ def _newton_impl(
             np.max(np.abs(dQ)) / max(np.max(np.abs(Qn)), 1e-30),
             abs(dH0) / max(abs(evn.H[g.i0]), 1e-30),
         )
-        if _TRACE:
-            print(
-                f"    it {it} step {step:.3g} merit {mn:.3e} upd {upd:.2e} "
-                f"ncav {int(cav_std.sum())} rel {release}"
-            )
         m0, c = merit_of(evn)  # re-scale at the accepted point
         Q, H0, ev = Qn, H0n, evn
         history.append(m0)

@@ -34,8 +34,6 @@ from .grid import Grid
 from .kernels import (
     GETRS,
     SGETRS,
-    SINGLE_PRODUCTS,
-    SSYMV,
     SYMV,
     assemble,
     dense_matrix,
@@ -46,7 +44,7 @@ from .kernels import (
 )
 from .options import Conditions, ContactModel
 
-__all__ = ["ReynoldsSystem", "Evaluation", "Linearization", "SINGLE_PRODUCTS"]
+__all__ = ["ReynoldsSystem", "Evaluation", "Linearization"]
 
 
 class ReynoldsSystem:
@@ -308,9 +306,7 @@ class Linearization:
 
     def gmres_lu(self, fac, piv, rtol, max_it):
         """Compiled GMRES (:func:`.kernels.gmres_lu`) for this system with the LU
-        (``fac``, ``piv``) of an earlier Newton matrix as preconditioner, its products
-        with the influence matrix in single precision where :data:`SINGLE_PRODUCTS`
-        says so; None where the
+        (``fac``, ``piv``) of an earlier Newton matrix as preconditioner; None where the
         products need the DC-FFT operator (no dense K on this grid) or the factors are not
         LAPACK's column-major double- or single-precision ones of this system's size with
         32-bit pivots (the kernel reads them by pointer)."""
@@ -326,13 +322,11 @@ class Linearization:
         if not (self.rigid or self.sysm.g.has_dense):
             return None
         K, ks = self._influence()
-        if SINGLE_PRODUCTS and not self.rigid:
-            K = self.sysm.g.K_single
         system = (*self._rows(), np.ascontiguousarray(K), ks, not self.rigid, self.dX)
         getrs = GETRS if fac.dtype == np.float64 else SGETRS
         x, its, ok = gmres_lu(
             getrs,
-            SSYMV if K.dtype == np.float32 else SYMV,
+            SYMV,
             system,
             fac,
             piv + 1,
