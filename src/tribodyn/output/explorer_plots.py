@@ -48,6 +48,9 @@ class Styles:
 
 
 def _figure(title: str, x_label: str, y_label: str, x_range=None):
+    """A figure of a page's size with its tools; hovering shows the trace's name (the
+    renderer's) and the sample's x and y (column ``x`` and the column named as the
+    trace: :class:`_Traces`)."""
     from bokeh.models import HoverTool
     from bokeh.plotting import figure
 
@@ -64,8 +67,8 @@ def _figure(title: str, x_label: str, y_label: str, x_range=None):
     )
     p.add_tools(
         HoverTool(
-            tooltips=[("", "$name"), ("x", "@x{%0.5g}"), ("y", "@y{%0.5g}")],
-            formatters={"@x": "printf", "@y": "printf"},
+            tooltips=[("", "$name"), ("x", "@x{%0.5g}"), ("y", "@$name{%0.5g}")],
+            formatters={"@x": "printf", "@$name": "printf"},
             line_policy="nearest",
         )
     )
@@ -80,46 +83,86 @@ def _title_size(p, size: str) -> None:
         p.title.text_font_size = size
 
 
-def _legend_outside(p):
-    from bokeh.models.annotations.legends import Legend
-
-    items = list(p.legend[0].items) if p.legend else []
-    if not items:
-        return p
-    p.legend.visible = False
-    p.center = [r for r in p.center if not isinstance(r, Legend)]
-    leg = Legend(items=items, click_policy="hide", label_text_font_size="11px", spacing=0)
-    p.add_layout(leg, "right")
-    p.width = WIDTH + 260
-    return p
-
-
 def _width(i: int) -> float:
     """Line width of the i-th set: the first widest, so that the sets' curves lying on
     one another stay visible."""
     return max(1.2, 2.8 - 0.6 * i)
 
 
-def _draw(p, xs, ys, name, colour, dash, width):
-    """One named line of ``xs``, ``ys`` in ``p`` (its legend entry ``name``); the source."""
-    from bokeh.models import ColumnDataSource
+class _Traces:
+    """The named traces of one figure, drawn with few Bokeh models (each model costs
+    the page's writing time, not its look): the traces sharing an x array share one
+    ColumnDataSource (column ``x`` and one column per trace, named by it); a trace is a
+    renderer with its one glyph (the not-selected and muted looks are left to BokehJS:
+    the figures have no selection tool and their legends hide, not mute); the
+    renderers' views share one filter (all samples); one legend item per name, its
+    renderers those of the name."""
 
-    src = ColumnDataSource({"x": xs, "y": ys})
-    p.line(
-        "x",
-        "y",
-        source=src,
-        name=name,
-        legend_label=name,
-        color=colour,
-        line_dash=dash,
-        line_width=width,
-    )
-    return src
+    def __init__(self):
+        self.columns: list[dict[str, np.ndarray]] = []
+        self.drawn: list[tuple[int, str, dict, bool]] = []
+
+    def add(self, x, y, name, colour, dash, width, markers=False) -> None:
+        """Trace ``name`` of float32 ``x``, ``y``: a line (``width`` px, ``dash``), with
+        markers of 6 px at the samples if ``markers``."""
+        g = next(
+            (
+                k
+                for k, c in enumerate(self.columns)
+                if name not in c and np.array_equal(c["x"], x, equal_nan=True)
+            ),
+            None,
+        )
+        if g is None:
+            g = len(self.columns)
+            self.columns.append({"x": x})
+        self.columns[g][name] = y
+        line = {"line_color": colour, "line_dash": dash, "line_width": width}
+        self.drawn.append((g, name, line, markers))
+
+    def draw(self, p) -> None:
+        """The traces in ``p``, their legend beside the plot (:func:`_legend_outside`)."""
+        from bokeh.core.properties import value
+        from bokeh.models import CDSView, ColumnDataSource, Line, Scatter
+        from bokeh.models.annotations.legends import LegendItem
+        from bokeh.models.filters import AllIndices
+        from bokeh.models.renderers import GlyphRenderer
+
+        sources = [ColumnDataSource(c) for c in self.columns]
+        every = AllIndices()
+        items: dict[str, LegendItem] = {}
+        for g, name, line, markers in self.drawn:
+            glyphs: list = [Line(x="x", y=name, **line)]
+            if markers:
+                c = line["line_color"]
+                glyphs.append(
+                    Scatter(x="x", y=name, size=6, line_color=c, fill_color=c, hatch_color=c)
+                )
+            for glyph in glyphs:
+                r = GlyphRenderer(
+                    data_source=sources[g], glyph=glyph, name=name, view=CDSView(filter=every)
+                )
+                p.renderers.append(r)
+                if name in items:
+                    items[name].renderers.append(r)
+                else:
+                    items[name] = LegendItem(label=value(name), renderers=[r])
+        _legend_outside(p, list(items.values()))
 
 
-def _line(p, x, y, name, colour, dash, width=1.6):
-    _draw(p, *decimate(x, y), name, colour, dash, width)
+def _legend_outside(p, items) -> None:
+    """The legend of ``items`` beside the plot (a click hides a trace); none without."""
+    from bokeh.models.annotations.legends import Legend
+
+    if not items:
+        return
+    leg = Legend(items=items, click_policy="hide", label_text_font_size="11px", spacing=0)
+    p.add_layout(leg, "right")
+    p.width = WIDTH + 260
+
+
+def _line(traces: _Traces, x, y, name, colour, dash, width=1.6) -> None:
+    traces.add(*decimate(x, y), name, colour, dash, width)
 
 
 # ----------------------------------------------------------------------------- runs
@@ -181,8 +224,7 @@ def run_figures(results: list[Result], styles: Styles) -> list:
     xr = Range1d(start=win[0], end=win[1]) if win else None
     figs = []
     for title, ylab, names, scale in RUN_TRACES:
-        p = _figure(title, CRANK, ylab, xr)
-        drawn = False
+        p, traces = _figure(title, CRANK, ylab, xr), _Traces()
         for k, r in enumerate(runs):
             ds = r.ds
             if not all(n in ds for n in names):
@@ -196,23 +238,26 @@ def run_figures(results: list[Result], styles: Styles) -> list:
                 y = sum(np.asarray(ds[n].values[i], float) for n in names) * scale
                 y = np.where(loaded[i], y, np.nan)
                 disp = r.labels.get(s, s)
-                _line(p, x, y, f"{r.label} · {disp}", styles.colour(disp), DASHES[k % 5], _width(i))
-                drawn = True
-        if drawn:
-            figs.append(_legend_outside(p))
+                name = f"{r.label} · {disp}"
+                _line(traces, x, y, name, styles.colour(disp), DASHES[k % 5], _width(i))
+        if traces.drawn:
+            traces.draw(p)
+            figs.append(p)
     p = _figure("Cam–tappet contact force W (explicit dynamics)", CRANK, "W [N]", xr)
+    traces = _Traces()
     for k, r in enumerate(runs):
         if "contact_force" in r.ds:
             ds = r.ds
             _line(
-                p,
+                traces,
                 ds["crank_angle"].values,
                 ds["contact_force"].values,
                 f"{r.label} · contact force",
                 "#333333",
                 DASHES[k % 5],
             )
-    figs.insert(4, _legend_outside(p))
+    traces.draw(p)
+    figs.insert(4, p)
     return figs
 
 
@@ -248,8 +293,7 @@ def engine_figures(results: list[Result], styles: Styles) -> list:
     xr = Range1d(start=0.0, end=720.0)
     figs = []
     for title, ylab, names in ENGINE_TRACES:
-        p = _figure(title, ENGINE_CRANK, ylab, xr)
-        drawn = False
+        p, traces = _figure(title, ENGINE_CRANK, ylab, xr), _Traces()
         for k, r in enumerate(engines):
             ds = r.ds
             if not all(n in ds for n in names):
@@ -261,12 +305,11 @@ def engine_figures(results: list[Result], styles: Styles) -> list:
                 disp = r.labels.get(s, s)
                 prefix = f"{r.label} · " if len(engines) > 1 else ""
                 dash = DASHES[(k * len(shafts) + j) % 5]
-                _line(
-                    p, x, y, f"{prefix}{disp} · {c} camshaft", styles.colour(disp), dash, _width(i)
-                )
-                drawn = True
-        if drawn:
-            figs.append(_legend_outside(p))
+                name = f"{prefix}{disp} · {c} camshaft"
+                _line(traces, x, y, name, styles.colour(disp), dash, _width(i))
+        if traces.drawn:
+            traces.draw(p)
+            figs.append(p)
     return figs
 
 
@@ -353,7 +396,7 @@ def sweep_figures(results: list[Result], styles: Styles) -> list:
                     if what == "loss"
                     else f"{r.label}: coatings' change of the {name} against {xd} (negative = less friction)"
                 )
-                p = _figure(title, f"{xd} [{_unit(ds, xd)}]", ylab)
+                p, traces = _figure(title, f"{xd} [{_unit(ds, xd)}]", ylab), _Traces()
                 combos = list(product(*[[(d, v) for v in ds[d].values] for d in others]))
                 for ci, combo in enumerate(combos):
                     for s in sets:
@@ -366,20 +409,14 @@ def sweep_figures(results: list[Result], styles: Styles) -> list:
                         disp = r.labels.get(s, s) if s is not None else name
                         tail = ", ".join(f"{d} = {v:g} {_unit(ds, d)}".rstrip() for d, v in combo)
                         label = disp + (f" · {tail}" if tail else "")
-                        _line_markers(
-                            p, ds[xd].values, y, label, styles.colour(disp), DASHES[ci % 5]
-                        )
-                figs.append(_legend_outside(p))
+                        xs, ys = np.asarray(ds[xd].values, np.float32), np.asarray(y, np.float32)
+                        traces.add(xs, ys, label, styles.colour(disp), DASHES[ci % 5], 1.8, True)
+                traces.draw(p)
+                figs.append(p)
         if len(axes) >= 2:
             maps = [_heatmap(r, var, name, unit, scale, axes[0], axes[1], s) for s in sets]
             figs.append(row(*maps))
     return figs
-
-
-def _line_markers(p, x, y, name, colour, dash):
-    xs, ys = np.asarray(x, np.float32), np.asarray(y, np.float32)
-    src = _draw(p, xs, ys, name, colour, dash, 1.8)
-    p.scatter("x", "y", source=src, name=name, legend_label=name, color=colour, size=6)
 
 
 def _heatmap(r: Result, var, name, unit, scale, xd, yd, s):
