@@ -1,6 +1,8 @@
 """The interactive figures of :mod:`.explorer` (Bokeh): overlays over crank angle of
 runs' and engines' traces, and a sweep's lines and heat maps. Each function returns
-Bokeh models; :mod:`.explorer` embeds them with the Bokeh library inline (no network).
+figures: a :class:`LineFigure` (its samples and styles, drawn by BokehJS in the browser)
+or Bokeh models (the heat maps); :mod:`.explorer` embeds them with the Bokeh library
+inline (no network).
 
 Styles: a colour per surface set (by display name, the same in every figure), a line
 style per result folder (or camshaft), so that overlapping curves stay visible; the
@@ -17,7 +19,7 @@ import numpy as np
 from ..workflow.conventions import EVENT_FRACTION
 from .explorer_data import Result, decimate
 
-__all__ = ["run_figures", "engine_figures", "sweep_figures", "Styles"]
+__all__ = ["run_figures", "engine_figures", "sweep_figures", "Styles", "LineFigure", "LINE_STYLE"]
 
 PALETTE = (
     "#1f77b4",
@@ -47,33 +49,27 @@ class Styles:
         return self.colours[key]
 
 
-def _figure(title: str, x_label: str, y_label: str, x_range=None):
-    """A figure of a page's size with its tools; hovering shows the trace's name (the
-    renderer's) and the sample's x and y (column ``x`` and the column named as the
-    trace: :class:`_Traces`)."""
-    from bokeh.models import HoverTool
-    from bokeh.plotting import figure
-
-    kw = {"x_range": x_range} if x_range is not None else {}
-    p = figure(
-        title=title,
-        width=WIDTH,
-        height=HEIGHT,
-        x_axis_label=x_label,
-        y_axis_label=y_label,
-        tools="pan,box_zoom,wheel_zoom,reset,save",
-        active_scroll=None,
-        **kw,
-    )
-    p.add_tools(
-        HoverTool(
-            tooltips=[("", "$name"), ("x", "@x{%0.5g}"), ("y", "@$name{%0.5g}")],
-            formatters={"@x": "printf", "@$name": "printf"},
-            line_policy="nearest",
-        )
-    )
-    _title_size(p, "13px")
-    return p
+#: How the drawing script of :mod:`.explorer` draws a :class:`LineFigure` in BokehJS:
+#: the figure's options, the hover tool (the trace's name, the sample's x and y: column
+#: ``x`` and the column named as the trace), the title's size, the legend beside the plot
+#: (a click hides a trace) and the width it adds, the markers' size.
+LINE_STYLE = {
+    "figure": {
+        "width": WIDTH,
+        "height": HEIGHT,
+        "tools": "pan,box_zoom,wheel_zoom,reset,save",
+        "active_scroll": None,
+    },
+    "hover": {
+        "tooltips": [["", "$name"], ["x", "@x{%0.5g}"], ["y", "@$name{%0.5g}"]],
+        "formatters": {"@x": "printf", "@$name": "printf"},
+        "line_policy": "nearest",
+    },
+    "title_size": "13px",
+    "legend": {"click_policy": "hide", "label_text_font_size": "11px", "spacing": 0},
+    "legend_width": 260,
+    "marker_size": 6,
+}
 
 
 def _title_size(p, size: str) -> None:
@@ -89,22 +85,34 @@ def _width(i: int) -> float:
     return max(1.2, 2.8 - 0.6 * i)
 
 
-class _Traces:
-    """The named traces of one figure, drawn with few Bokeh models (each model costs
-    the page's writing time, not its look): the traces sharing an x array share one
-    ColumnDataSource (column ``x`` and one column per trace, named by it); a trace is a
-    renderer with its one glyph (the not-selected and muted looks are left to BokehJS:
-    the figures have no selection tool and their legends hide, not mute); the
-    renderers' views share one filter (all samples); one legend item per name, its
-    renderers those of the name."""
+def _packed(a: np.ndarray) -> str:
+    """A float32 array as base64 of its gzip-compressed little-endian bytes (no time
+    stamp: the same samples give the same text)."""
+    import base64
+    import gzip
 
-    def __init__(self):
+    raw = np.ascontiguousarray(a, dtype="<f4").tobytes()
+    return base64.b64encode(gzip.compress(raw, compresslevel=6, mtime=0)).decode("ascii")
+
+
+class LineFigure:
+    """A figure of named traces over one x axis, drawn in the browser (BokehJS builds
+    its models from :meth:`spec` with :data:`LINE_STYLE`: Python builds none). The
+    traces sharing an x array share one data source (column ``x`` and one column per
+    trace, named by it); a trace is a renderer with its one glyph (the not-selected and
+    muted looks are BokehJS's defaults: no selection tool, and the legend hides, never
+    mutes); one legend item per name, its renderers those of the name. ``x_range``:
+    (key, start, end) of a zoom range shared by the page's figures of that key, or None
+    (fitted to the data)."""
+
+    def __init__(self, title: str, x_label: str, y_label: str, x_range=None):
+        self.title, self.x_label, self.y_label, self.x_range = title, x_label, y_label, x_range
         self.columns: list[dict[str, np.ndarray]] = []
-        self.drawn: list[tuple[int, str, dict, bool]] = []
+        self.drawn: list[tuple[int, str, str, str, float, bool]] = []
 
     def add(self, x, y, name, colour, dash, width, markers=False) -> None:
         """Trace ``name`` of float32 ``x``, ``y``: a line (``width`` px, ``dash``), with
-        markers of 6 px at the samples if ``markers``."""
+        markers at the samples if ``markers``."""
         g = next(
             (
                 k
@@ -117,52 +125,29 @@ class _Traces:
             g = len(self.columns)
             self.columns.append({"x": x})
         self.columns[g][name] = y
-        line = {"line_color": colour, "line_dash": dash, "line_width": width}
-        self.drawn.append((g, name, line, markers))
+        self.drawn.append((g, name, colour, dash, width, markers))
 
-    def draw(self, p) -> None:
-        """The traces in ``p``, their legend beside the plot (:func:`_legend_outside`)."""
-        from bokeh.core.properties import value
-        from bokeh.models import CDSView, ColumnDataSource, Line, Scatter
-        from bokeh.models.annotations.legends import LegendItem
-        from bokeh.models.filters import AllIndices
-        from bokeh.models.renderers import GlyphRenderer
+    def spec(self) -> dict:
+        """What BokehJS draws: titles, range key, columns (:func:`_packed`), traces (a
+        dash by name as Bokeh's Python side resolves it: BokehJS's own names differ)."""
+        from bokeh.core.property.visual import DashPattern
 
-        sources = [ColumnDataSource(c) for c in self.columns]
-        every = AllIndices()
-        items: dict[str, LegendItem] = {}
-        for g, name, line, markers in self.drawn:
-            glyphs: list = [Line(x="x", y=name, **line)]
-            if markers:
-                c = line["line_color"]
-                glyphs.append(
-                    Scatter(x="x", y=name, size=6, line_color=c, fill_color=c, hatch_color=c)
-                )
-            for glyph in glyphs:
-                r = GlyphRenderer(
-                    data_source=sources[g], glyph=glyph, name=name, view=CDSView(filter=every)
-                )
-                p.renderers.append(r)
-                if name in items:
-                    items[name].renderers.append(r)
-                else:
-                    items[name] = LegendItem(label=value(name), renderers=[r])
-        _legend_outside(p, list(items.values()))
+        dashes = DashPattern()
+        return {
+            "title": self.title,
+            "x_label": self.x_label,
+            "y_label": self.y_label,
+            "x_range": self.x_range[0] if self.x_range else None,
+            "columns": [{k: _packed(v) for k, v in c.items()} for c in self.columns],
+            "traces": [
+                [g, name, colour, dashes.transform(dash), width, markers]
+                for g, name, colour, dash, width, markers in self.drawn
+            ],
+        }
 
 
-def _legend_outside(p, items) -> None:
-    """The legend of ``items`` beside the plot (a click hides a trace); none without."""
-    from bokeh.models.annotations.legends import Legend
-
-    if not items:
-        return
-    leg = Legend(items=items, click_policy="hide", label_text_font_size="11px", spacing=0)
-    p.add_layout(leg, "right")
-    p.width = WIDTH + 260
-
-
-def _line(traces: _Traces, x, y, name, colour, dash, width=1.6) -> None:
-    traces.add(*decimate(x, y), name, colour, dash, width)
+def _line(fig: LineFigure, x, y, name, colour, dash, width=1.6) -> None:
+    fig.add(*decimate(x, y), name, colour, dash, width)
 
 
 # ----------------------------------------------------------------------------- runs
@@ -215,16 +200,14 @@ def event_window(results: list[Result]) -> tuple[float, float] | None:
 
 def run_figures(results: list[Result], styles: Styles) -> list:
     """Overlays over crank angle of every set of every run (module docstring)."""
-    from bokeh.models import Range1d
-
     runs = [r for r in results if r.kind == "run"]
     if not runs:
         return []
     win = event_window(runs)
-    xr = Range1d(start=win[0], end=win[1]) if win else None
-    figs = []
+    xr = ("runs", *win) if win else None
+    figs: list = []
     for title, ylab, names, scale in RUN_TRACES:
-        p, traces = _figure(title, CRANK, ylab, xr), _Traces()
+        p = LineFigure(title, CRANK, ylab, xr)
         for k, r in enumerate(runs):
             ds = r.ds
             if not all(n in ds for n in names):
@@ -239,24 +222,21 @@ def run_figures(results: list[Result], styles: Styles) -> list:
                 y = np.where(loaded[i], y, np.nan)
                 disp = r.labels.get(s, s)
                 name = f"{r.label} · {disp}"
-                _line(traces, x, y, name, styles.colour(disp), DASHES[k % 5], _width(i))
-        if traces.drawn:
-            traces.draw(p)
+                _line(p, x, y, name, styles.colour(disp), DASHES[k % 5], _width(i))
+        if p.drawn:
             figs.append(p)
-    p = _figure("Cam–tappet contact force W (explicit dynamics)", CRANK, "W [N]", xr)
-    traces = _Traces()
+    p = LineFigure("Cam–tappet contact force W (explicit dynamics)", CRANK, "W [N]", xr)
     for k, r in enumerate(runs):
         if "contact_force" in r.ds:
             ds = r.ds
             _line(
-                traces,
+                p,
                 ds["crank_angle"].values,
                 ds["contact_force"].values,
                 f"{r.label} · contact force",
                 "#333333",
                 DASHES[k % 5],
             )
-    traces.draw(p)
     figs.insert(4, p)
     return figs
 
@@ -285,15 +265,13 @@ ENGINE_CRANK = "crank angle of cylinder 1 from its firing TDC, 0–720° [°]"
 
 def engine_figures(results: list[Result], styles: Styles) -> list:
     """Per-camshaft traces of every set of every engine result."""
-    from bokeh.models import Range1d
-
     engines = [r for r in results if r.kind == "engine"]
     if not engines:
         return []
-    xr = Range1d(start=0.0, end=720.0)
-    figs = []
+    xr = ("engines", 0.0, 720.0)
+    figs: list = []
     for title, ylab, names in ENGINE_TRACES:
-        p, traces = _figure(title, ENGINE_CRANK, ylab, xr), _Traces()
+        p = LineFigure(title, ENGINE_CRANK, ylab, xr)
         for k, r in enumerate(engines):
             ds = r.ds
             if not all(n in ds for n in names):
@@ -306,9 +284,8 @@ def engine_figures(results: list[Result], styles: Styles) -> list:
                 prefix = f"{r.label} · " if len(engines) > 1 else ""
                 dash = DASHES[(k * len(shafts) + j) % 5]
                 name = f"{prefix}{disp} · {c} camshaft"
-                _line(traces, x, y, name, styles.colour(disp), dash, _width(i))
-        if traces.drawn:
-            traces.draw(p)
+                _line(p, x, y, name, styles.colour(disp), dash, _width(i))
+        if p.drawn:
             figs.append(p)
     return figs
 
@@ -369,7 +346,7 @@ def sweep_figures(results: list[Result], styles: Styles) -> list:
     axes), the coatings' change against the reference set, heat maps over two axes."""
     from bokeh.layouts import row
 
-    figs = []
+    figs: list = []
     for r in (r for r in results if r.kind == "sweep"):
         ds = r.ds
         spec = sweep_loss(ds)
@@ -396,7 +373,7 @@ def sweep_figures(results: list[Result], styles: Styles) -> list:
                     if what == "loss"
                     else f"{r.label}: coatings' change of the {name} against {xd} (negative = less friction)"
                 )
-                p, traces = _figure(title, f"{xd} [{_unit(ds, xd)}]", ylab), _Traces()
+                p = LineFigure(title, f"{xd} [{_unit(ds, xd)}]", ylab)
                 combos = list(product(*[[(d, v) for v in ds[d].values] for d in others]))
                 for ci, combo in enumerate(combos):
                     for s in sets:
@@ -410,8 +387,7 @@ def sweep_figures(results: list[Result], styles: Styles) -> list:
                         tail = ", ".join(f"{d} = {v:g} {_unit(ds, d)}".rstrip() for d, v in combo)
                         label = disp + (f" · {tail}" if tail else "")
                         xs, ys = np.asarray(ds[xd].values, np.float32), np.asarray(y, np.float32)
-                        traces.add(xs, ys, label, styles.colour(disp), DASHES[ci % 5], 1.8, True)
-                traces.draw(p)
+                        p.add(xs, ys, label, styles.colour(disp), DASHES[ci % 5], 1.8, True)
                 figs.append(p)
         if len(axes) >= 2:
             maps = [_heatmap(r, var, name, unit, scale, axes[0], axes[1], s) for s in sets]
