@@ -113,3 +113,38 @@ def test_default_name_is_new_and_serve_is_local(tmp_path, monkeypatch):
     finally:
         server.shutdown()
         server.server_close()
+
+
+def test_line_figures_carry_the_samples_and_the_dashes_of_the_python_pages():
+    """A figure drawn in the browser: the traces of one x array share its column, each
+    trace's column holds its float32 samples (NaN kept), a name given twice gets a source
+    of its own; dashes as Bokeh's Python side drew them ("dashed" 6 px on and off;
+    BokehJS's own "dashed" is 3–2)."""
+    import base64
+    import gzip
+
+    import numpy as np
+
+    from tribodyn.output.explorer_plots import LineFigure
+
+    x = np.linspace(0.0, 1.0, 7, dtype=np.float32)
+    y1 = x**2
+    y2 = np.where(x > 0.5, np.nan, x).astype(np.float32)
+    f = LineFigure("t", "x [m]", "y [m]", ("runs", 0.0, 1.0))
+    f.add(x, y1, "a · b", "#1f77b4", "dashed", 2.0)
+    f.add(x.copy(), y2, "c", "#d62728", "solid", 1.2, markers=True)
+    f.add(x[:3], y1[:3], "a · b", "#1f77b4", "dotted", 1.0)
+    spec = f.spec()
+
+    def unpack(text):
+        return np.frombuffer(gzip.decompress(base64.b64decode(text)), "<f4")
+
+    cols = spec["columns"]
+    assert len(cols) == 2 and sorted(cols[0]) == ["a · b", "c", "x"]
+    np.testing.assert_array_equal(unpack(cols[0]["x"]), x)
+    np.testing.assert_array_equal(unpack(cols[0]["c"]), y2)
+    np.testing.assert_array_equal(unpack(cols[1]["a · b"]), y1[:3])
+    assert [t[0] for t in spec["traces"]] == [0, 0, 1]
+    assert [t[3] for t in spec["traces"]] == [[6], [], [2, 4]]
+    assert [t[5] for t in spec["traces"]] == [False, True, False]
+    assert spec["x_range"] == "runs" and spec["title"] == "t"

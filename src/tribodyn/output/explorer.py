@@ -31,7 +31,14 @@ from .._safe_write import atomic_write
 from .._typing import PathLike
 from .._validation import InputError
 from .explorer_data import Result, load_result, unique_labels
-from .explorer_plots import Styles, engine_figures, run_figures, sweep_figures
+from .explorer_plots import (
+    LINE_STYLE,
+    LineFigure,
+    Styles,
+    engine_figures,
+    run_figures,
+    sweep_figures,
+)
 
 __all__ = [
     "add_interactive",
@@ -219,15 +226,18 @@ pre{background:#f6f6f6;padding:.6em;overflow-x:auto;font-size:82%}
 
 
 def bokeh_js() -> str:
-    """The Bokeh library as inline ``<script>`` elements (no network)."""
+    """The Bokeh library as inline ``<script>`` elements (no network): BokehJS and its
+    plotting API (which draws the :class:`~.explorer_plots.LineFigure`)."""
     from bokeh.resources import Resources
 
-    return Resources(mode="inline", components=["bokeh"]).render_js()
+    return Resources(mode="inline", components=["bokeh", "bokeh-api"]).render_js()
 
 
 class _Embedder:
-    """Collects the figures of a page into one Bokeh document (shared zoom ranges need
-    one) and writes their target divs and the script that draws them."""
+    """Collects the figures of a page and writes their target divs and the script that
+    draws them: the line figures as their samples and styles (BokehJS builds them, in
+    one document: shared zoom ranges need one), the other figures as one Bokeh
+    document."""
 
     def __init__(self, prefix: str = "tdv"):
         self.prefix = prefix
@@ -241,10 +251,23 @@ class _Embedder:
             self.figs.append(f)
         return "\n".join(out)
 
-    def script(self) -> str:
-        """The document's JSON and the drawing script (empty without figures)."""
-        if not self.figs:
-            return ""
+    def _lines(self) -> dict:
+        """The line figures: their specs, target ids, shared ranges and the styles."""
+        lines = [(k, f) for k, f in enumerate(self.figs) if isinstance(f, LineFigure)]
+        return {
+            "style": LINE_STYLE,
+            "ranges": {f.x_range[0]: list(f.x_range[1:]) for _, f in lines if f.x_range},
+            "figures": [f.spec() for _, f in lines],
+            "targets": [f"{self.prefix}{k}" for k, _ in lines],
+        }
+
+    def _models(self) -> dict:
+        """The other figures as one Bokeh document (``docs``, ``items``; empty without)."""
+        roots = {
+            f: f"{self.prefix}{k}" for k, f in enumerate(self.figs) if not isinstance(f, LineFigure)
+        }
+        if not roots:
+            return {"docs": {}, "items": []}
         from bokeh.core.json_encoder import serialize_json
         from bokeh.core.types import ID
         from bokeh.document import Document
@@ -252,16 +275,21 @@ class _Embedder:
 
         doc = Document()
         with doc.models.freeze():  # its models collected once, not again at every root
-            for f in self.figs:
+            for f in roots:
                 doc.add_root(f)
-        roots = {f: ID(f"{self.prefix}{k}") for k, f in enumerate(self.figs)}
-        item = RenderItem(docid=ID(self.prefix), roots=roots)
-        data = serialize_json(
-            {"docs": {self.prefix: doc.to_json(deferred=False)}, "items": [item.to_json()]}
-        )
-        data = _stable_ids(data).replace("</", "<\\/")
+        item = RenderItem(docid=ID(self.prefix), roots={f: ID(i) for f, i in roots.items()})
+        docs = {self.prefix: doc.to_json(deferred=False)}
+        return json.loads(_stable_ids(serialize_json({"docs": docs, "items": [item.to_json()]})))
+
+    def script(self) -> str:
+        """The figures' data and the drawing script (empty without figures)."""
+        if not self.figs:
+            return ""
+        data = {**self._models(), "lines": self._lines()}
+        text = json.dumps(data, ensure_ascii=False, separators=(",", ":"), allow_nan=False)
+        text = text.replace("</", "<\\/")
         return (
-            f"<script type='application/json' id='{self.prefix}data'>{data}</script>\n"
+            f"<script type='application/json' id='{self.prefix}data'>{text}</script>\n"
             + _DRAW
             % {"data": f"{self.prefix}data", "time": f"{self.prefix}time", "n": len(self.figs)}
         )
@@ -278,11 +306,66 @@ def _stable_ids(text: str) -> str:
     return re.sub(r'"(p\d+)"', sub, text)
 
 
+#: Draws a page's figures: the Bokeh document of the other figures, and the line
+#: figures built from their specs (``LineFigure``: columns unpacked from gzip'd float32,
+#: a renderer per trace with its one glyph, the legend beside the plot); then writes the
+#: drawing time into the page (``data-rendered``, ``data-draw-ms`` of ``<body>``).
 _DRAW = """<script>
 (function(){
   const d = JSON.parse(document.getElementById('%(data)s').textContent);
   const t0 = performance.now();
-  Bokeh.embed.embed_items(d.docs, d.items).then(() => {
+  async function column(b64) {
+    const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+    const s = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('gzip'));
+    return new Float32Array(await new Response(s).arrayBuffer());
+  }
+  async function figure(f, st, ranges) {
+    const opts = {...st.figure, title: f.title, x_axis_label: f.x_label, y_axis_label: f.y_label};
+    if (f.x_range != null) opts.x_range = ranges[f.x_range];
+    const p = Bokeh.Plotting.figure(opts);
+    p.title.text_font_size = st.title_size;
+    p.add_tools(new Bokeh.HoverTool(st.hover));
+    const sources = [];
+    for (const c of f.columns) {
+      const data = {};
+      for (const [k, v] of Object.entries(c)) data[k] = await column(v);
+      sources.push(new Bokeh.ColumnDataSource({data}));
+    }
+    const every = new Bokeh.AllIndices(), items = new Map();
+    for (const [g, name, colour, dash, width, markers] of f.traces) {
+      const line = {line_color: colour, line_dash: dash, line_width: width};
+      const glyphs = [new Bokeh.Line({x: {field: 'x'}, y: {field: name}, ...line})];
+      if (markers) glyphs.push(new Bokeh.Scatter({x: {field: 'x'}, y: {field: name},
+        size: st.marker_size, line_color: colour, fill_color: colour, hatch_color: colour}));
+      for (const glyph of glyphs) {
+        const r = new Bokeh.GlyphRenderer({data_source: sources[g], glyph, name,
+          view: new Bokeh.CDSView({filter: every})});
+        p.add_renderers(r);
+        items.set(name, [...(items.get(name) ?? []), r]);
+      }
+    }
+    if (items.size) {
+      const its = [...items].map(([label, renderers]) =>
+        new Bokeh.LegendItem({label: {value: label}, renderers}));
+      p.add_layout(new Bokeh.Legend({...st.legend, items: its}), 'right');
+      p.width = st.figure.width + st.legend_width;
+    }
+    return p;
+  }
+  async function lines(l) {
+    if (!l.figures.length) return;
+    const ranges = {};
+    for (const [k, [start, end]] of Object.entries(l.ranges)) ranges[k] = new Bokeh.Range1d({start, end});
+    const figs = [];
+    for (const f of l.figures) figs.push(await figure(f, l.style, ranges));
+    const doc = new Bokeh.Document();
+    for (const p of figs) doc.add_root(p);
+    const els = l.targets.map((id) => document.getElementById(id));
+    await Bokeh.embed.add_document_standalone(doc, els[0], els);
+  }
+  const drawn = [lines(d.lines)];
+  if (d.items.length) drawn.push(Bokeh.embed.embed_items(d.docs, d.items));
+  Promise.all(drawn).then(() => {
     requestAnimationFrame(() => setTimeout(() => {
       const ms = performance.now() - t0, b = document.body;
       b.dataset.rendered = String(Number(b.dataset.rendered || 0) + %(n)d);

@@ -1,6 +1,8 @@
 """The interactive figures of :mod:`.explorer` (Bokeh): overlays over crank angle of
 runs' and engines' traces, and a sweep's lines and heat maps. Each function returns
-Bokeh models; :mod:`.explorer` embeds them with the Bokeh library inline (no network).
+figures: a :class:`LineFigure` (its samples and styles, drawn by BokehJS in the browser)
+or Bokeh models (the heat maps); :mod:`.explorer` embeds them with the Bokeh library
+inline (no network).
 
 Styles: a colour per surface set (by display name, the same in every figure), a line
 style per result folder (or camshaft), so that overlapping curves stay visible; the
@@ -17,7 +19,7 @@ import numpy as np
 from ..workflow.conventions import EVENT_FRACTION
 from .explorer_data import Result, decimate
 
-__all__ = ["run_figures", "engine_figures", "sweep_figures", "Styles"]
+__all__ = ["run_figures", "engine_figures", "sweep_figures", "Styles", "LineFigure", "LINE_STYLE"]
 
 PALETTE = (
     "#1f77b4",
@@ -47,30 +49,27 @@ class Styles:
         return self.colours[key]
 
 
-def _figure(title: str, x_label: str, y_label: str, x_range=None):
-    from bokeh.models import HoverTool
-    from bokeh.plotting import figure
-
-    kw = {"x_range": x_range} if x_range is not None else {}
-    p = figure(
-        title=title,
-        width=WIDTH,
-        height=HEIGHT,
-        x_axis_label=x_label,
-        y_axis_label=y_label,
-        tools="pan,box_zoom,wheel_zoom,reset,save",
-        active_scroll=None,
-        **kw,
-    )
-    p.add_tools(
-        HoverTool(
-            tooltips=[("", "$name"), ("x", "@x{%0.5g}"), ("y", "@y{%0.5g}")],
-            formatters={"@x": "printf", "@y": "printf"},
-            line_policy="nearest",
-        )
-    )
-    _title_size(p, "13px")
-    return p
+#: How the drawing script of :mod:`.explorer` draws a :class:`LineFigure` in BokehJS:
+#: the figure's options, the hover tool (the trace's name, the sample's x and y: column
+#: ``x`` and the column named as the trace), the title's size, the legend beside the plot
+#: (a click hides a trace) and the width it adds, the markers' size.
+LINE_STYLE = {
+    "figure": {
+        "width": WIDTH,
+        "height": HEIGHT,
+        "tools": "pan,box_zoom,wheel_zoom,reset,save",
+        "active_scroll": None,
+    },
+    "hover": {
+        "tooltips": [["", "$name"], ["x", "@x{%0.5g}"], ["y", "@$name{%0.5g}"]],
+        "formatters": {"@x": "printf", "@$name": "printf"},
+        "line_policy": "nearest",
+    },
+    "title_size": "13px",
+    "legend": {"click_policy": "hide", "label_text_font_size": "11px", "spacing": 0},
+    "legend_width": 260,
+    "marker_size": 6,
+}
 
 
 def _title_size(p, size: str) -> None:
@@ -80,46 +79,75 @@ def _title_size(p, size: str) -> None:
         p.title.text_font_size = size
 
 
-def _legend_outside(p):
-    from bokeh.models.annotations.legends import Legend
-
-    items = list(p.legend[0].items) if p.legend else []
-    if not items:
-        return p
-    p.legend.visible = False
-    p.center = [r for r in p.center if not isinstance(r, Legend)]
-    leg = Legend(items=items, click_policy="hide", label_text_font_size="11px", spacing=0)
-    p.add_layout(leg, "right")
-    p.width = WIDTH + 260
-    return p
-
-
 def _width(i: int) -> float:
     """Line width of the i-th set: the first widest, so that the sets' curves lying on
     one another stay visible."""
     return max(1.2, 2.8 - 0.6 * i)
 
 
-def _draw(p, xs, ys, name, colour, dash, width):
-    """One named line of ``xs``, ``ys`` in ``p`` (its legend entry ``name``); the source."""
-    from bokeh.models import ColumnDataSource
+def _packed(a: np.ndarray) -> str:
+    """A float32 array as base64 of its gzip-compressed little-endian bytes (no time
+    stamp: the same samples give the same text)."""
+    import base64
+    import gzip
 
-    src = ColumnDataSource({"x": xs, "y": ys})
-    p.line(
-        "x",
-        "y",
-        source=src,
-        name=name,
-        legend_label=name,
-        color=colour,
-        line_dash=dash,
-        line_width=width,
-    )
-    return src
+    raw = np.ascontiguousarray(a, dtype="<f4").tobytes()
+    return base64.b64encode(gzip.compress(raw, compresslevel=6, mtime=0)).decode("ascii")
 
 
-def _line(p, x, y, name, colour, dash, width=1.6):
-    _draw(p, *decimate(x, y), name, colour, dash, width)
+class LineFigure:
+    """A figure of named traces over one x axis, drawn in the browser (BokehJS builds
+    its models from :meth:`spec` with :data:`LINE_STYLE`: Python builds none). The
+    traces sharing an x array share one data source (column ``x`` and one column per
+    trace, named by it); a trace is a renderer with its one glyph (the not-selected and
+    muted looks are BokehJS's defaults: no selection tool, and the legend hides, never
+    mutes); one legend item per name, its renderers those of the name. ``x_range``:
+    (key, start, end) of a zoom range shared by the page's figures of that key, or None
+    (fitted to the data)."""
+
+    def __init__(self, title: str, x_label: str, y_label: str, x_range=None):
+        self.title, self.x_label, self.y_label, self.x_range = title, x_label, y_label, x_range
+        self.columns: list[dict[str, np.ndarray]] = []
+        self.drawn: list[tuple[int, str, str, str, float, bool]] = []
+
+    def add(self, x, y, name, colour, dash, width, markers=False) -> None:
+        """Trace ``name`` of float32 ``x``, ``y``: a line (``width`` px, ``dash``), with
+        markers at the samples if ``markers``."""
+        g = next(
+            (
+                k
+                for k, c in enumerate(self.columns)
+                if name not in c and np.array_equal(c["x"], x, equal_nan=True)
+            ),
+            None,
+        )
+        if g is None:
+            g = len(self.columns)
+            self.columns.append({"x": x})
+        self.columns[g][name] = y
+        self.drawn.append((g, name, colour, dash, width, markers))
+
+    def spec(self) -> dict:
+        """What BokehJS draws: titles, range key, columns (:func:`_packed`), traces (a
+        dash by name as Bokeh's Python side resolves it: BokehJS's own names differ)."""
+        from bokeh.core.property.visual import DashPattern
+
+        dashes = DashPattern()
+        return {
+            "title": self.title,
+            "x_label": self.x_label,
+            "y_label": self.y_label,
+            "x_range": self.x_range[0] if self.x_range else None,
+            "columns": [{k: _packed(v) for k, v in c.items()} for c in self.columns],
+            "traces": [
+                [g, name, colour, dashes.transform(dash), width, markers]
+                for g, name, colour, dash, width, markers in self.drawn
+            ],
+        }
+
+
+def _line(fig: LineFigure, x, y, name, colour, dash, width=1.6) -> None:
+    fig.add(*decimate(x, y), name, colour, dash, width)
 
 
 # ----------------------------------------------------------------------------- runs
@@ -172,17 +200,14 @@ def event_window(results: list[Result]) -> tuple[float, float] | None:
 
 def run_figures(results: list[Result], styles: Styles) -> list:
     """Overlays over crank angle of every set of every run (module docstring)."""
-    from bokeh.models import Range1d
-
     runs = [r for r in results if r.kind == "run"]
     if not runs:
         return []
     win = event_window(runs)
-    xr = Range1d(start=win[0], end=win[1]) if win else None
-    figs = []
+    xr = ("runs", *win) if win else None
+    figs: list = []
     for title, ylab, names, scale in RUN_TRACES:
-        p = _figure(title, CRANK, ylab, xr)
-        drawn = False
+        p = LineFigure(title, CRANK, ylab, xr)
         for k, r in enumerate(runs):
             ds = r.ds
             if not all(n in ds for n in names):
@@ -196,11 +221,11 @@ def run_figures(results: list[Result], styles: Styles) -> list:
                 y = sum(np.asarray(ds[n].values[i], float) for n in names) * scale
                 y = np.where(loaded[i], y, np.nan)
                 disp = r.labels.get(s, s)
-                _line(p, x, y, f"{r.label} · {disp}", styles.colour(disp), DASHES[k % 5], _width(i))
-                drawn = True
-        if drawn:
-            figs.append(_legend_outside(p))
-    p = _figure("Cam–tappet contact force W (explicit dynamics)", CRANK, "W [N]", xr)
+                name = f"{r.label} · {disp}"
+                _line(p, x, y, name, styles.colour(disp), DASHES[k % 5], _width(i))
+        if p.drawn:
+            figs.append(p)
+    p = LineFigure("Cam–tappet contact force W (explicit dynamics)", CRANK, "W [N]", xr)
     for k, r in enumerate(runs):
         if "contact_force" in r.ds:
             ds = r.ds
@@ -212,7 +237,7 @@ def run_figures(results: list[Result], styles: Styles) -> list:
                 "#333333",
                 DASHES[k % 5],
             )
-    figs.insert(4, _legend_outside(p))
+    figs.insert(4, p)
     return figs
 
 
@@ -240,16 +265,13 @@ ENGINE_CRANK = "crank angle of cylinder 1 from its firing TDC, 0–720° [°]"
 
 def engine_figures(results: list[Result], styles: Styles) -> list:
     """Per-camshaft traces of every set of every engine result."""
-    from bokeh.models import Range1d
-
     engines = [r for r in results if r.kind == "engine"]
     if not engines:
         return []
-    xr = Range1d(start=0.0, end=720.0)
-    figs = []
+    xr = ("engines", 0.0, 720.0)
+    figs: list = []
     for title, ylab, names in ENGINE_TRACES:
-        p = _figure(title, ENGINE_CRANK, ylab, xr)
-        drawn = False
+        p = LineFigure(title, ENGINE_CRANK, ylab, xr)
         for k, r in enumerate(engines):
             ds = r.ds
             if not all(n in ds for n in names):
@@ -261,12 +283,10 @@ def engine_figures(results: list[Result], styles: Styles) -> list:
                 disp = r.labels.get(s, s)
                 prefix = f"{r.label} · " if len(engines) > 1 else ""
                 dash = DASHES[(k * len(shafts) + j) % 5]
-                _line(
-                    p, x, y, f"{prefix}{disp} · {c} camshaft", styles.colour(disp), dash, _width(i)
-                )
-                drawn = True
-        if drawn:
-            figs.append(_legend_outside(p))
+                name = f"{prefix}{disp} · {c} camshaft"
+                _line(p, x, y, name, styles.colour(disp), dash, _width(i))
+        if p.drawn:
+            figs.append(p)
     return figs
 
 
@@ -326,7 +346,7 @@ def sweep_figures(results: list[Result], styles: Styles) -> list:
     axes), the coatings' change against the reference set, heat maps over two axes."""
     from bokeh.layouts import row
 
-    figs = []
+    figs: list = []
     for r in (r for r in results if r.kind == "sweep"):
         ds = r.ds
         spec = sweep_loss(ds)
@@ -353,7 +373,7 @@ def sweep_figures(results: list[Result], styles: Styles) -> list:
                     if what == "loss"
                     else f"{r.label}: coatings' change of the {name} against {xd} (negative = less friction)"
                 )
-                p = _figure(title, f"{xd} [{_unit(ds, xd)}]", ylab)
+                p = LineFigure(title, f"{xd} [{_unit(ds, xd)}]", ylab)
                 combos = list(product(*[[(d, v) for v in ds[d].values] for d in others]))
                 for ci, combo in enumerate(combos):
                     for s in sets:
@@ -366,20 +386,13 @@ def sweep_figures(results: list[Result], styles: Styles) -> list:
                         disp = r.labels.get(s, s) if s is not None else name
                         tail = ", ".join(f"{d} = {v:g} {_unit(ds, d)}".rstrip() for d, v in combo)
                         label = disp + (f" · {tail}" if tail else "")
-                        _line_markers(
-                            p, ds[xd].values, y, label, styles.colour(disp), DASHES[ci % 5]
-                        )
-                figs.append(_legend_outside(p))
+                        xs, ys = np.asarray(ds[xd].values, np.float32), np.asarray(y, np.float32)
+                        p.add(xs, ys, label, styles.colour(disp), DASHES[ci % 5], 1.8, True)
+                figs.append(p)
         if len(axes) >= 2:
             maps = [_heatmap(r, var, name, unit, scale, axes[0], axes[1], s) for s in sets]
             figs.append(row(*maps))
     return figs
-
-
-def _line_markers(p, x, y, name, colour, dash):
-    xs, ys = np.asarray(x, np.float32), np.asarray(y, np.float32)
-    src = _draw(p, xs, ys, name, colour, dash, 1.8)
-    p.scatter("x", "y", source=src, name=name, legend_label=name, color=colour, size=6)
 
 
 def _heatmap(r: Result, var, name, unit, scale, xd, yd, s):
