@@ -284,10 +284,7 @@ def import_writing_modules() -> None:
     import markdown_it  # noqa: F401
     import numpy as np
     import xarray as xr
-    from bokeh.core import json_encoder  # noqa: F401
-    from bokeh.document import Document  # noqa: F401
-    from bokeh.embed import util  # noqa: F401
-    from bokeh.plotting import figure  # noqa: F401
+    from bokeh import layouts  # noqa: F401
     from bokeh.resources import Resources  # noqa: F401
 
     from . import explorer, export, report  # noqa: F401
