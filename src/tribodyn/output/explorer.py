@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._json import dumps
 from .._safe_write import atomic_write
 from .._typing import PathLike
 from .._validation import InputError
@@ -286,7 +287,7 @@ class _Embedder:
         if not self.figs:
             return ""
         data = {**self._models(), "lines": self._lines()}
-        text = json.dumps(data, ensure_ascii=False, separators=(",", ":"), allow_nan=False)
+        text = dumps(data, ensure_ascii=False, separators=(",", ":"))
         text = text.replace("</", "<\\/")
         return (
             f"<script type='application/json' id='{self.prefix}data'>{text}</script>\n"
