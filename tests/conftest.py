@@ -78,6 +78,50 @@ def reduced_results(tmp_path_factory):
     return out
 
 
+@pytest.fixture(scope="session")
+def plain_run(tmp_path_factory):
+    """``tribodyn run`` of the reduced paper case without ``--figures`` (as
+    ``reduced_results``, which has them; run once per session, tests that change files
+    must copy it)."""
+    from typer.testing import CliRunner
+
+    from tribodyn.cli import app
+    from tribodyn.config import load_case
+
+    path = tmp_path_factory.mktemp("case") / "reduced.toml"
+    load_case().updated(REDUCED).write_toml(path)
+    out = tmp_path_factory.mktemp("plain") / "results"
+    r = CliRunner().invoke(app, ["run", str(path), "-o", str(out), "--quiet"])
+    assert r.exit_code == 0, r.output
+    assert "tribodyn figures" in " ".join(r.output.split())
+    return out
+
+
+@pytest.fixture(scope="session")
+def drawn_by_a_user(plain_run, tmp_path_factory):
+    """``tribodyn figures -j 1`` (drawing in this process) into a copy of ``plain_run``
+    whose report.md the user wrote, under the umask 027: (folder, its report.html before,
+    the command's result, {figure file name: texts outside its canvas}, each figure
+    checked as it is saved). The tests read it and change nothing."""
+    from typer.testing import CliRunner
+
+    from test_figure_canvas import check_saved_figures
+    from tribodyn.cli import app
+
+    res = tmp_path_factory.mktemp("drawn") / "results"
+    shutil.copytree(plain_run, res, symlinks=True)
+    (res / "report.md").write_text("# my notes\n\n## Figures\n\nmine\n", encoding="utf-8")
+    html = (res / "report.html").read_bytes()
+    old = os.umask(0o027)
+    try:
+        with pytest.MonkeyPatch.context() as mp:
+            found = check_saved_figures(mp)
+            r = CliRunner().invoke(app, ["figures", str(res), "-j", "1"])
+    finally:
+        os.umask(old)
+    return res, html, r, found
+
+
 def explicit_run(case, set_name="uncoated"):
     """(surface set, explicit dynamics, cycle inputs) of ``case``: the valvetrain driven
     with the set's analytic tribology, sampled on the case's crank step."""

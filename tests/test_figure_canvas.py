@@ -41,9 +41,10 @@ def outside(fig) -> list[str]:
     return bad
 
 
-@pytest.fixture
-def checked(monkeypatch):
-    """Every figure saved through save_figure is checked first: {file name: problems}."""
+def check_saved_figures(mp) -> dict[str, list[str]]:
+    """Through ``mp`` (a pytest MonkeyPatch), every figure saved through save_figure is
+    checked first; returns the record {file name: problems}, filled as figures are
+    saved."""
     found: dict[str, list[str]] = {}
     original = common.save_figure
 
@@ -54,9 +55,15 @@ def checked(monkeypatch):
 
     import tribodyn.output.figures.sweep as sweep_figs
 
-    monkeypatch.setattr(common, "save_figure", check_then_save)
-    monkeypatch.setattr(sweep_figs, "save_figure", check_then_save)
+    mp.setattr(common, "save_figure", check_then_save)
+    mp.setattr(sweep_figs, "save_figure", check_then_save)
     return found
+
+
+@pytest.fixture
+def checked(monkeypatch):
+    """Every figure saved through save_figure is checked first: {file name: problems}."""
+    return check_saved_figures(monkeypatch)
 
 
 def _assert_inside(found):
@@ -65,13 +72,14 @@ def _assert_inside(found):
     assert not bad, "texts outside the canvas:\n" + "\n".join(f"{k}: {v}" for k, v in bad.items())
 
 
-def test_run_figures_stay_on_canvas(reduced_results, checked, tmp_path):
-    from tribodyn.output.figures import make_figures
-
-    with xr.open_dataset(reduced_results / "results.nc") as ds:
-        make_figures(ds.load(), tmp_path, workers=1)
-    assert "fig23_camshaft_torque.png" in checked
-    _assert_inside(checked)
+def test_run_figures_stay_on_canvas(drawn_by_a_user):
+    """The run's figures, as ``tribodyn figures`` draws them in this process (checked
+    while ``drawn_by_a_user`` draws them)."""
+    res, _, r, found = drawn_by_a_user
+    assert r.exit_code == 0, r.output
+    assert "fig23_camshaft_torque.png" in found
+    assert set(found) == {p.name for p in res.glob("*.png")}  # every figure drawn
+    _assert_inside(found)
 
 
 def test_engine_figures_stay_on_canvas(engine_results, checked, tmp_path):

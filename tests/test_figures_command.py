@@ -4,32 +4,16 @@ figures RESULTS`` draws them into a result folder afterwards: the same figures a
 files, never over a file of the user's, with the user's umask."""
 
 import json
-import os
 import shutil
 import stat
 
 import pytest
 from typer.testing import CliRunner
 
-from conftest import REDUCED
 from tribodyn.cli import app
-from tribodyn.config import load_case
 from tribodyn.output.result_folder import MARKER, own_files
 
 runner = CliRunner()
-
-
-@pytest.fixture(scope="module")
-def plain_run(tmp_path_factory):
-    """``tribodyn run`` of the reduced paper case without ``--figures`` (as
-    ``reduced_results``, which has them)."""
-    path = tmp_path_factory.mktemp("case") / "reduced.toml"
-    load_case().updated(REDUCED).write_toml(path)
-    out = tmp_path_factory.mktemp("plain") / "results"
-    r = runner.invoke(app, ["run", str(path), "-o", str(out), "--quiet"])
-    assert r.exit_code == 0, r.output
-    assert "tribodyn figures" in " ".join(r.output.split())
-    return out
 
 
 def _copy(folder, tmp_path):
@@ -93,24 +77,8 @@ def test_figures_command_never_overwrites_a_users_file(plain_run, tmp_path):
     assert (res / "report.md").read_bytes() == report
 
 
-@pytest.fixture(scope="module")
-def drawn_by_a_user(plain_run, tmp_path_factory):
-    """``tribodyn figures`` into a copy of ``plain_run`` whose report.md the user wrote,
-    under the umask 027: (folder, its report.html before, the command's result). The
-    tests read it and change nothing."""
-    res = _copy(plain_run, tmp_path_factory.mktemp("drawn"))
-    (res / "report.md").write_text("# my notes\n\n## Figures\n\nmine\n", encoding="utf-8")
-    html = (res / "report.html").read_bytes()
-    old = os.umask(0o027)
-    try:
-        r = runner.invoke(app, ["figures", str(res), "-j", "1"])
-    finally:
-        os.umask(old)
-    return res, html, r
-
-
 def test_figures_command_leaves_a_users_report_alone(drawn_by_a_user):
-    res, html, r = drawn_by_a_user
+    res, html, r, _ = drawn_by_a_user
     assert r.exit_code == 0, r.output
     assert list(res.glob("*.png"))
     assert (res / "report.md").read_text(encoding="utf-8").endswith("mine\n")
@@ -142,7 +110,7 @@ def test_figures_command_refuses_a_folder_that_is_not_a_runs(tmp_path, content):
 
 
 def test_figures_follow_the_umask(drawn_by_a_user):
-    res, _, r = drawn_by_a_user
+    res, _, r, _ = drawn_by_a_user
     assert r.exit_code == 0, r.output
     assert list(res.glob("*.png"))
     for p in res.glob("*.png"):
