@@ -42,6 +42,7 @@ __all__ = [
     "default_depths",
     "ehl_stresses",
     "loaded_half_width",
+    "loaded_ends",
     "shear_options",
 ]
 
@@ -219,13 +220,25 @@ def surface_loads(result, bodies, lubricant, roughness=None, options=None) -> Su
     )
 
 
-def loaded_half_width(x: np.ndarray, pressure: np.ndarray, share: float = 0.01) -> float:
-    """Half the extent [m] of the region where p > share · max p (≥ one grid step)."""
+def loaded_ends(pressure: np.ndarray, share: float) -> tuple[np.ndarray, np.ndarray]:
+    """(first, last) node index where p > share · max p, along the last axis of
+    ``pressure`` (one profile or rows of profiles); both 0 where p ≤ 0 everywhere."""
     p = np.asarray(pressure, float)
-    if not np.any(p > 0):
-        return float(abs(x[1] - x[0]))
-    idx = np.flatnonzero(p > share * p.max())
-    return max(0.5 * float(x[idx[-1]] - x[idx[0]]), float(abs(x[1] - x[0])))
+    on = (p > share * p.max(axis=-1, keepdims=True)) & (p.max(axis=-1, keepdims=True) > 0)
+    first = np.argmax(on, axis=-1)
+    last = np.where(on.any(axis=-1), p.shape[-1] - 1 - np.argmax(on[..., ::-1], axis=-1), 0)
+    return first, last
+
+
+def loaded_half_width(x: np.ndarray, pressure: np.ndarray, share: float = 0.01):
+    """Half the extent [m] of the region where p > share · max p (≥ one grid step): a
+    float for one profile, an array for rows of profiles (``x`` and ``pressure`` alike)."""
+    x = np.asarray(x, float)
+    first, last = loaded_ends(pressure, share)
+    step = np.abs(x[..., 1] - x[..., 0])
+    ends = np.take_along_axis(x, np.stack([first, last], axis=-1), axis=-1)
+    b = np.maximum(0.5 * (ends[..., 1] - ends[..., 0]), step)
+    return float(b) if b.ndim == 0 else b
 
 
 def default_depths(body: Body, half_width: float, n_coating: int = 8, n_substrate: int = 40):

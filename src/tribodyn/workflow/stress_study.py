@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..config.build import as_built, build, options_for
-from ..contact.stress import batch_surface_loads
+from ..contact.stress import batch_surface_loads, loaded_ends, loaded_half_width
 from ..physics.asperity_stress import micro_contact_estimate
 from ..physics.materials import as_bodies, reduced_modulus
 from ..physics.strength import (
@@ -218,28 +218,6 @@ _BATCH = 32
 _REL_DEPTHS = np.geomspace(2.0, 400.0, 16)
 
 
-def _windows(x: np.ndarray, p: np.ndarray) -> tuple:
-    """Per profile (rows of ``x``, ``p``): the first and last node where p > 1e-3 max p
-    (both 0 where p ≤ 0 everywhere) and the loaded half-width b of
-    :func:`~tribodyn.contact.stress.loaded_half_width` (p > 0.01 max p; at least one
-    grid step)."""
-    pmax = p.max(axis=1)
-    rows = np.arange(p.shape[0])
-    last = p.shape[1] - 1
-
-    def ends(mask):
-        return np.argmax(mask, axis=1), last - np.argmax(mask[:, ::-1], axis=1)
-
-    first, final = ends(p > 1e-3 * pmax[:, None])
-    first = np.where(pmax > 0, first, 0)
-    final = np.where(pmax > 0, final, 0)
-    lo, hi = ends(p > 0.01 * pmax[:, None])
-    step = np.abs(x[:, 1] - x[:, 0])
-    b = np.maximum(0.5 * (x[rows, hi] - x[rows, lo]), step)
-    b = np.where(np.any(p > 0, axis=1), b, step)
-    return first, final, b
-
-
 def _evaluate(samples: np.ndarray, loads, pair, depths, traces: dict) -> None:
     """Peaks of both bodies at the ``samples`` written into their ``traces``
     ({"cam"|"tappet": BodyStressTrace}) from ``loads`` (x, p, q_cam, q_tappet), arrays
@@ -263,7 +241,7 @@ def _evaluate(samples: np.ndarray, loads, pair, depths, traces: dict) -> None:
         target[k] = max(finer) if count[k] < _MIN_CLASS and finer else k
     # the window: where p > 1e-3 max p, widened by b/3 each side (the film's shear
     # outside it, μu_s/h over a thick film, is below 1e-4 of p_max)
-    first, final, half = _windows(xs, ps)
+    (first, final), half = loaded_ends(ps, 1e-3), loaded_half_width(xs, ps)
     plan: dict = {}
     for r in range(len(samples)):
         k = target[cls[r]]
