@@ -173,6 +173,10 @@ def test_inlet_temperature_out_of_range_names_the_option_and_the_case_keys_range
     r = run(*base, "--oil", "5W-30", "--inlet-temperature", "400")
     assert r.exit_code != 0
     assert "--inlet-temperature must be >= -73.15 and <= 326.85 [°C] (got 400)" in r.output
+    # the case's datasheet oil moved to another inlet temperature: the same message
+    r = run(*base, "--thermal", "--case", "andreou2023_thermal", "--inlet-temperature", "-100")
+    assert r.exit_code != 0
+    assert "--inlet-temperature must be >= -73.15 and <= 326.85 [°C] (got -100)" in r.output
 
 
 def test_oil_without_thermal_sets_the_isothermal_lubricant():

@@ -19,6 +19,7 @@ import dataclasses
 import math
 import re
 import sys
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -333,15 +334,14 @@ def _thermal_oil(built, oil, inlet_temperature, lub_options):
             f"{', '.join(clash)}: not with --thermal/--oil/--inlet-temperature "
             "(the oil comes from --oil or the case's [lubricant])"
         )
-    if inlet_temperature is not None:
-        to_kelvin.key_limit.check("--inlet-temperature", inlet_temperature)
     if oil is not None:
         if oil not in OILS:
             raise InputError(f"--oil must be one of {', '.join(OILS)} (got {oil!r})")
         if inlet_temperature is None:
             raise InputError("--oil needs --inlet-temperature [°C] (the sump temperature)")
         sheet: dict[str, Any] = {k: v for k, v in OILS[oil].items() if k != "description"}
-        return ThermalLubricant(to_kelvin.value(inlet_temperature), **sheet, name=oil)
+        with _inlet_temperature_named(to_kelvin, inlet_temperature):
+            return ThermalLubricant(to_kelvin.value(inlet_temperature), **sheet, name=oil)
     try:
         base = built.thermal_oil()
     except InputError:
@@ -351,8 +351,27 @@ def _thermal_oil(built, oil, inlet_temperature, lub_options):
             "inlet_temperature_c"
         ) from None
     if inlet_temperature is not None:
-        return base.with_inlet_temperature(to_kelvin.value(inlet_temperature))
+        with _inlet_temperature_named(to_kelvin, inlet_temperature):
+            return base.with_inlet_temperature(to_kelvin.value(inlet_temperature))
     return base
+
+
+@contextmanager
+def _inlet_temperature_named(key, given: float):
+    """The oil's range error of its inlet temperature (checked once, by the oil) named
+    as ``--inlet-temperature``, in °C and with the value given (``key``: the case key's
+    :class:`~tribodyn.config.schema_fields.Converted`)."""
+    from ..physics.limits import RangeError
+
+    try:
+        yield
+    except RangeError as exc:
+        items = [
+            ("--inlet-temperature", key.key_limit, given) if name == key.argument else item
+            for item in exc.items
+            for name in item[:1]
+        ]
+        raise RangeError(items) from None
 
 
 def _check_positive(option: str, value: float | None, unit: str) -> None:
