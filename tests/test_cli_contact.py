@@ -177,6 +177,8 @@ def test_inlet_temperature_out_of_range_names_the_option_and_the_case_keys_range
     r = run(*base, "--thermal", "--case", "andreou2023_thermal", "--inlet-temperature", "-100")
     assert r.exit_code != 0
     assert "--inlet-temperature must be >= -73.15 and <= 326.85 [°C] (got -100)" in r.output
+    r = run(*base, "--oil", "5W-30", "--inlet-temperature", "nan")
+    assert "--inlet-temperature must be >= -73.15 and <= 326.85 [°C] (got nan)" in r.output
 
 
 def test_oil_without_thermal_sets_the_isothermal_lubricant():

@@ -19,7 +19,6 @@ import dataclasses
 import math
 import re
 import sys
-from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -324,24 +323,35 @@ def _thermal_oil(built, oil, inlet_temperature, lub_options):
     """The oil of --oil/--inlet-temperature [°C], else the datasheet oil of the case
     (its BuiltCase ``built``)."""
     from ..config.schema_surfaces import OIL_KEYS
-    from ..physics.oils import OILS
-    from ..physics.thermal_oil import ThermalLubricant
+    from ..physics.limits import RangeError
 
-    to_kelvin = OIL_KEYS["inlet_temperature_c"]  # the case key's range and unit (°C)
     clash = [k for k, v in lub_options.items() if v is not None]
     if clash:
         raise InputError(
             f"{', '.join(clash)}: not with --thermal/--oil/--inlet-temperature "
             "(the oil comes from --oil or the case's [lubricant])"
         )
+    to_kelvin = OIL_KEYS["inlet_temperature_c"]  # the case key's range and unit (°C)
+    try:  # the oil checks the temperature; its error named as the option, in °C
+        return _oil_at(built, oil, inlet_temperature, to_kelvin)
+    except RangeError as exc:
+        if inlet_temperature is None:
+            raise
+        raise to_kelvin.renamed(exc, "--inlet-temperature", inlet_temperature) from None
+
+
+def _oil_at(built, oil, inlet_temperature, to_kelvin):
+    """The thermal oil of :func:`_thermal_oil` (``to_kelvin``: the °C key's conversion)."""
+    from ..physics.oils import OILS
+    from ..physics.thermal_oil import ThermalLubricant
+
     if oil is not None:
         if oil not in OILS:
             raise InputError(f"--oil must be one of {', '.join(OILS)} (got {oil!r})")
         if inlet_temperature is None:
             raise InputError("--oil needs --inlet-temperature [°C] (the sump temperature)")
         sheet: dict[str, Any] = {k: v for k, v in OILS[oil].items() if k != "description"}
-        with _inlet_temperature_named(to_kelvin, inlet_temperature):
-            return ThermalLubricant(to_kelvin.value(inlet_temperature), **sheet, name=oil)
+        return ThermalLubricant(to_kelvin.value(inlet_temperature), **sheet, name=oil)
     try:
         base = built.thermal_oil()
     except InputError:
@@ -351,27 +361,8 @@ def _thermal_oil(built, oil, inlet_temperature, lub_options):
             "inlet_temperature_c"
         ) from None
     if inlet_temperature is not None:
-        with _inlet_temperature_named(to_kelvin, inlet_temperature):
-            return base.with_inlet_temperature(to_kelvin.value(inlet_temperature))
+        return base.with_inlet_temperature(to_kelvin.value(inlet_temperature))
     return base
-
-
-@contextmanager
-def _inlet_temperature_named(key, given: float):
-    """The oil's range error of its inlet temperature (checked once, by the oil) named
-    as ``--inlet-temperature``, in °C and with the value given (``key``: the case key's
-    :class:`~tribodyn.config.schema_fields.Converted`)."""
-    from ..physics.limits import RangeError
-
-    try:
-        yield
-    except RangeError as exc:
-        items = [
-            ("--inlet-temperature", key.key_limit, given) if name == key.argument else item
-            for item in exc.items
-            for name in item[:1]
-        ]
-        raise RangeError(items) from None
 
 
 def _check_positive(option: str, value: float | None, unit: str) -> None:

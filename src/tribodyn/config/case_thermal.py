@@ -54,15 +54,10 @@ def _oil_arguments(c: LubricantConfig) -> dict[str, float]:
 def _in_key_units(c: LubricantConfig, exc: RangeError) -> RangeError:
     """``exc`` with each value a key of :data:`OIL_KEYS` set named by that key, in its
     unit and as given."""
-    items = []
-    for name, limit, value in exc.items:
-        for key, conv in OIL_KEYS.items():
-            given = getattr(c, key)
-            if conv.argument == name and given is not None and conv.value(given) == value:
-                name, limit, value = key, conv.key_limit, given
-                break
-        items.append((name, limit, value))
-    return RangeError(items)
+    for key, conv in OIL_KEYS.items():
+        if getattr(c, key) is not None:
+            exc = conv.renamed(exc, key, getattr(c, key))
+    return exc
 
 
 class ThermalBuilders:

@@ -86,6 +86,24 @@ class Converted(NamedTuple):
         }
         return replace(self.limit, unit=self.unit, **to)
 
+    def renamed(self, exc: L.RangeError, key: str, given: float) -> L.RangeError:
+        """``exc`` with the argument's item that came from the key's value ``given``
+        named ``key`` (a case key or a command-line option), in the key's unit and with
+        the value as given."""
+        return L.RangeError(
+            [
+                (key, self.key_limit, given)
+                if name == self.argument and _same(value, self.value(given))
+                else (name, limit, value)
+                for name, limit, value in exc.items
+            ]
+        )
+
+
+def _same(a, b) -> bool:
+    """a == b, NaN equal to NaN (a value given as NaN is refused by its range too)."""
+    return a == b or (a != a and b != b)
+
 
 class Section(BaseModel):
     """Base of all case sections: unknown keys rejected, no silent type coercion."""
