@@ -407,13 +407,6 @@ def _drop(data: dict, loc: tuple) -> bool:
 _NONE = object()
 
 
-def _with_friction(options: EHLOptions, surface: SurfaceSet) -> EHLOptions:
-    """``options`` with the boundary-friction law (ς, τ₀) of ``surface``."""
-    return options.with_boundary_friction(
-        surface.boundary_shear_coefficient, surface.boundary_shear_strength
-    )
-
-
 def options_for(built: BuiltCase, surface: SurfaceSet | str | None) -> EHLOptions:
     """The EHL options of a surface set (object or name) of ``built``: the built ones for
     one of its sets, else ``[numerics]`` with the given set's ς and τ₀."""
@@ -424,4 +417,6 @@ def options_for(built: BuiltCase, surface: SurfaceSet | str | None) -> EHLOption
     own = built.sets.get(surface.name)
     if own is not None and own.surface == surface:
         return own.options
-    return _with_friction(built.options, surface)
+    return built.options.with_boundary_friction(  # the set's ς and τ₀
+        surface.boundary_shear_coefficient, surface.boundary_shear_strength
+    )

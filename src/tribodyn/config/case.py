@@ -49,7 +49,13 @@ from .build import collect, range_problems_beside
 from .case_strength import StrengthBuilders
 from .case_thermal import OIL_LAW_KEYS, ThermalBuilders
 from .case_valvetrain import CamValvetrainBuilders
-from .errors import CaseKeyError, Problems, format_validation_error, validation_problems
+from .errors import (
+    CaseKeyError,
+    Problems,
+    format_validation_error,
+    problem_text,
+    validation_problems,
+)
 from .measured_surface import asperity_law_note, measured_map, measured_roughness
 from .origins import carried_given
 from .paths import Key, parse_path, set_path
@@ -212,10 +218,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             try:
                 self.engine_lobe_case(kind)
             except InputError as exc:
-                lines = str(exc).splitlines()
-                if len(lines) > 1 and lines[0].startswith("invalid case"):
-                    lines = lines[1:]
-                out.append((f"engine.{kind}.changes", "; ".join(x.strip() for x in lines)))
+                out.append((f"engine.{kind}.changes", problem_text(exc)))
         return out
 
     def engine_lobe_case(self, kind: str) -> Case:
@@ -242,9 +245,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
                     f"({', '.join(self.surface_set_names)}); change their other keys only"
                 )
             set_path(data, list(tokens), value)
-        new = Case.from_dict(data, base_dir=self._base_dir)
-        new._source = self._source
-        new._given = carried_given(self, new)
+        new = self._changed(data)
         if new.surface_set_names != self.surface_set_names:
             raise InputError(
                 f"the lobes must keep the case's surface sets "
@@ -286,6 +287,11 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         data = self.to_dict()
         for key, value in changes.items():
             set_dotted(data, key, value)
+        return self._changed(data)
+
+    def _changed(self, data: dict) -> Case:
+        """The case of ``data``, this case's dict with some keys changed: validated, read
+        from the same file and folder, its given keys carried over."""
         new = Case.from_dict(data, base_dir=self._base_dir)
         new._source = self._source
         new._given = carried_given(self, new)
@@ -500,15 +506,12 @@ def _collecting(bad: list, make: Callable[[], T]) -> T | None:
 def _given_keys(case: Case) -> frozenset[str]:
     """The dotted keys of the values the case file (or dict) gave (Case.input_given)."""
     top = case.model_fields_set
-    out: set[str] = set()
-    if "engine" in top:
-        out |= {f"engine.{k}" for k in case.engine.model_fields_set}
-    if "cam_config" in top:
-        out |= {f"cam.{k}" for k in case.cam_config.model_fields_set}
-    if "valvetrain" in top:
-        out |= {f"valvetrain.{k}" for k in case.valvetrain.model_fields_set}
-    if "lubricant_config" in top:
-        out |= {f"lubricant.{k}" for k in case.lubricant_config.model_fields_set}
+    out = {
+        f"{Case.model_fields[attr].alias or attr}.{k}"
+        for attr in ("engine", "cam_config", "valvetrain", "lubricant_config")
+        if attr in top
+        for k in getattr(case, attr).model_fields_set
+    }
     if "materials" in top:
         for name, m in case.materials.items():
             out |= {f"materials.{name}.{k}" for k in m.model_fields_set}

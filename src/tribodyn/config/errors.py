@@ -17,7 +17,7 @@ from pydantic import BaseModel, ValidationError
 
 from .._validation import InputError
 from .paths import keyed_fields, strip_optional
-from .schema_fields import field_bounds
+from .schema_fields import field_bounds, field_extra
 
 __all__ = [
     "Problems",
@@ -26,6 +26,7 @@ __all__ = [
     "format_validation_error",
     "in_file_order",
     "out_of_range",
+    "problem_text",
     "validation_problems",
 ]
 
@@ -51,11 +52,6 @@ class CamTableError(CaseKeyError):
 
     def __init__(self, key: str, message: str):
         super().__init__(f"cam.{key}", message)
-
-
-def _unit_of(fi) -> str:
-    extra = fi.json_schema_extra if fi is not None else None
-    return extra.get("unit", "") if isinstance(extra, dict) else ""
 
 
 def range_text(bounds: Mapping[str, float], unit: str, auto: float | None = None) -> str:
@@ -156,7 +152,7 @@ def _error_lines(err: Mapping[str, Any], root, variants) -> list[tuple[str, str]
     got = f" (got {_given(inp)})"
     if typ in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
         if fi is not None and field_bounds(fi):
-            return [(path, out_of_range(field_bounds(fi), _unit_of(fi), inp))]
+            return [(path, out_of_range(field_bounds(fi), field_extra(fi).get("unit", ""), inp))]
         return [(path, f"must be {err['msg']}{got}")]
     if typ == "extra_forbidden":
         allowed = _allowed_keys(owner)
@@ -192,7 +188,8 @@ def _error_lines(err: Mapping[str, Any], root, variants) -> list[tuple[str, str]
             )
         ]
     if typ in ("float_type", "float_parsing"):
-        return [(path, f"must be a number{_unit_hint(fi)}{got}")]
+        u = field_extra(fi).get("unit", "")
+        return [(path, f"must be a number{f' [{u}]' if u else ''}{got}")]
     if typ in _TYPE_MESSAGES:
         return [(path, f"{_TYPE_MESSAGES[typ]}{got}")]
     if typ == "string_too_long":
@@ -222,9 +219,12 @@ _TYPE_MESSAGES = {
 }
 
 
-def _unit_hint(fi) -> str:
-    u = _unit_of(fi)
-    return f" [{u}]" if u else ""
+def problem_text(exc: InputError) -> str:
+    """The problem lines of a case error joined by "; " (without its "invalid case" head)."""
+    lines = str(exc).splitlines()
+    if lines and lines[0].startswith("invalid case"):
+        lines = lines[1:]
+    return "; ".join(ln.strip() for ln in lines if ln.strip())
 
 
 def validation_problems(

@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..physics import typical, typical_engine
 from ..physics.typical import TypicalValue
+from .schema_fields import field_extra
 from .schema_surfaces import TYPICAL_MATERIALS
 
 if TYPE_CHECKING:
@@ -87,8 +88,7 @@ _DATASHEET_KEYS = ("viscosity", "pressure_viscosity", "density")
 
 
 def _unit(section, key: str) -> str:
-    extra = type(section).model_fields[key].json_schema_extra
-    return str(extra.get("unit", "")) if isinstance(extra, dict) else ""
+    return str(field_extra(type(section).model_fields[key]).get("unit", ""))
 
 
 def _lubricant_default_origin(key: str) -> str:

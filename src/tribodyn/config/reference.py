@@ -18,7 +18,7 @@ import annotated_types as at
 from pydantic import BaseModel
 from pydantic_core import PydanticUndefined
 
-from .schema_fields import field_bounds
+from .schema_fields import field_bounds, field_extra
 
 __all__ = ["KeyRow", "key_reference", "case_reference", "sweep_reference"]
 
@@ -113,8 +113,7 @@ def _allowed(info: Any) -> str:
         pattern = getattr(m, "pattern", None)
         if pattern:
             parts.append(f"matches `{pattern}`")
-    extra = info.json_schema_extra if isinstance(info.json_schema_extra, dict) else {}
-    auto = extra.get("auto")  # the value that means automatic (numerics.n: 0)
+    auto = field_extra(info).get("auto")  # the value that means automatic (numerics.n: 0)
     return ", ".join(parts) if auto is None else f"{_fmt(auto)} (automatic) or " + ", ".join(parts)
 
 
@@ -154,14 +153,13 @@ def key_reference(model: type[BaseModel], section: str = "") -> list[KeyRow]:
             many = len(models) > 1
             nested += [(f"{where} ({tag})" if many and tag else where, m) for tag, m in models]
             continue
-        extra = info.json_schema_extra if isinstance(info.json_schema_extra, dict) else {}
         rows.append(
             KeyRow(
                 section=section,
                 key=key,
                 type=_type_name(info.annotation),
                 default=_default(info),
-                unit=str(extra.get("unit", "")),
+                unit=str(field_extra(info).get("unit", "")),
                 allowed=_allowed(info),
                 description=(info.description or "").replace("\n", " "),
             )

@@ -30,14 +30,19 @@ def _q(default: Any, unit: str, doc: str, **constraints) -> Any:
     return Field(default, description=doc, json_schema_extra={"unit": unit}, **constraints)
 
 
+def field_extra(fi: Any) -> dict[str, Any]:
+    """What a field records beside its type (``unit``, ``range``, ``auto``); {} if none."""
+    extra = getattr(fi, "json_schema_extra", None)
+    return extra if isinstance(extra, dict) else {}
+
+
 def field_bounds(fi: Any) -> dict[str, float]:
     """The allowed range of a field as ``{"gt": …, "le": …}``: the bounds the schema
     checks, else those of the constructor that checks it (:func:`_arg`); {} if none."""
-    extra = fi.json_schema_extra if isinstance(fi.json_schema_extra, dict) else {}
     checked = {
         k: getattr(m, k) for m in fi.metadata for k in _BOUNDS if getattr(m, k, None) is not None
     }
-    return checked or dict(extra.get("range") or {})
+    return checked or dict(field_extra(fi).get("range") or {})
 
 
 def defaults_of(obj: Callable) -> dict[str, Any]:

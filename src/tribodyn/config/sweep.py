@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Annotated, Any, ClassVar, Literal, Optional, Union
 
+import numpy as np
 from pydantic import (
     Field,
     StrictBool,
@@ -35,10 +36,10 @@ from pydantic import (
 from .._typing import PathLike
 from .._validation import InputError
 from .case import Case, bundled_cases, load_case, to_toml
-from .errors import Problems, format_validation_error
+from .errors import Problems, format_validation_error, problem_text
 from .paths import Key, PathError, parse_path, schema_field, set_path
 from .schema import CAM_MODELS, Section, _q
-from .schema_fields import field_bounds
+from .schema_fields import field_bounds, field_extra
 from .tomlfile import TomlFile, check_nesting, file_or_bundled, is_bundled_name
 
 __all__ = [
@@ -195,10 +196,15 @@ class AxisConfig(Section):
         if self.spacing == "log" and not (start > 0 and stop > 0):
             raise Problems([("start", "a log range needs start > 0 and stop > 0")])
         if self.step is not None:
-            n = math.floor(abs(stop - start) / self.step * (1 + 1e-12)) + 1
+            n = self._step_count()
             if n > MAX_POINTS:
                 raise Problems([("step", f"gives {n} values (at most {MAX_POINTS})")])
         return self
+
+    def _step_count(self) -> int:
+        """Values of a range by step: start, start ± step, … up to stop (round-off kept)."""
+        assert self.start is not None and self.stop is not None and self.step is not None
+        return math.floor(abs(self.stop - self.start) / self.step * (1 + 1e-12)) + 1
 
     def generated(self) -> list:
         """The axis values (a range evaluated; integers stay integers when exact)."""
@@ -208,9 +214,8 @@ class AxisConfig(Section):
         assert a is not None and b is not None  # a range has both ends (validated)
         vals: list
         if self.step is not None:
-            n = math.floor(abs(b - a) / self.step * (1 + 1e-12)) + 1
             d = self.step if b >= a else -self.step
-            vals = [a + i * d for i in range(n)]
+            vals = [a + i * d for i in range(self._step_count())]
         elif self.spacing == "log":
             assert self.num is not None
             la, lb = math.log(a), math.log(b)
@@ -331,22 +336,17 @@ class SweepSpec(TomlFile):
         n = self.n_points
         if not 0 <= index < n:
             raise InputError(f"point index must be in [0, {n - 1}] (got {index})")
-        pos = []
-        rest = index
-        for length in reversed(self.shape):
-            rest, j = divmod(rest, length)
-            pos.append(j)
-        pos.reverse()
+        pos = tuple(int(j) for j in np.unravel_index(index, self.shape))
         values, changes = {}, {}
         for (_, axes), j in zip(self.dims, pos):
             for a in axes:
                 values[a.name] = a.values[j]
                 changes[a.path] = a.values[j]
-        p = SweepPoint(index=index, position=tuple(pos), values=values, changes=changes)
+        p = SweepPoint(index=index, position=pos, values=values, changes=changes)
         try:
             p.case = self.base.updated(changes)
         except InputError as exc:
-            p.error = f"invalid combination: {_problem_text(exc)}"
+            p.error = f"invalid combination: {problem_text(exc)}"
         ident = (
             p.case.to_toml(resolve_paths=True)
             if p.case is not None
@@ -410,14 +410,6 @@ def _message(problems, source) -> str:
     return head + "".join(f"\n  {p}: {m}" for p, m in problems)
 
 
-def _problem_text(exc: InputError) -> str:
-    """The problem lines of a case error, joined (without the 'invalid case' head)."""
-    lines = str(exc).splitlines()
-    if lines and lines[0].startswith("invalid case"):
-        lines = [ln.strip() for ln in lines[1:]]
-    return "; ".join(ln for ln in lines if ln)
-
-
 def _load_base(name: str, base_dir: Path, problems):
     p = Path(name).expanduser()
     cand = p if p.is_absolute() else base_dir / p
@@ -435,7 +427,7 @@ def _load_base(name: str, base_dir: Path, problems):
             )
         )
     except InputError as exc:
-        problems.append(("sweep.case", f"the base case is invalid: {_problem_text(exc)}"))
+        problems.append(("sweep.case", f"the base case is invalid: {problem_text(exc)}"))
     return None, ""
 
 
@@ -443,8 +435,7 @@ def _check_path(base: Case, path: str):
     """Schema field of a path, checked against the base case's keys and entries."""
     data = base.to_dict()
     fi = schema_field(Case, path, data, variants={"cam": CAM_MODELS})
-    probe = base.to_dict()
-    set_path(probe, path, None)  # raises if a selector matches nothing
+    set_path(data, path, None)  # raises if a selector matches nothing
     return fi
 
 
@@ -463,7 +454,7 @@ def _apply_fixed(base: Case, fixed: dict, problems):
     try:
         return base.updated(changes)
     except InputError as exc:
-        problems.append(("fixed", _problem_text(exc)))
+        problems.append(("fixed", problem_text(exc)))
         return None
 
 
@@ -497,10 +488,9 @@ def _axis(base: Case, i: int, ax: AxisConfig, problems) -> Axis | None:
                 if ax.values is not None
                 else f"{where} (range value {j + 1} of {len(values)})"
             )
-            problems.append((key, f"{_fmt(v)}: {_problem_text(exc)}"))
+            problems.append((key, f"{_fmt(v)}: {problem_text(exc)}"))
     if found > MAX_REPORTED_VALUES:
         problems.append((where, f"and {found - MAX_REPORTED_VALUES} more invalid values"))
-    extra = fi.json_schema_extra if isinstance(fi.json_schema_extra, dict) else {}
     tail = parse_path(ax.path)[-1]
     assert isinstance(tail, Key)  # checked by _check_path: a path ends at a key
     last = tail.name
@@ -509,7 +499,7 @@ def _axis(base: Case, i: int, ax: AxisConfig, problems) -> Axis | None:
         path=ax.path,
         name=name,
         values=tuple(values),
-        unit=extra.get("unit", ""),
+        unit=field_extra(fi).get("unit", ""),
         description=fi.description or "",
         dim=ax.group or name,
     )
