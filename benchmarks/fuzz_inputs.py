@@ -1060,7 +1060,8 @@ def fuzz_engine_inputs(tmp: Path) -> None:
     import shutil
 
     from tribodyn.config import SweepSpec, load_case
-    from tribodyn.config.case import CASES_DIR, set_dotted, to_toml
+    from tribodyn.config.case import CASES_DIR, to_toml
+    from tribodyn.config.paths import set_path
     from tribodyn.physics.stress import StressOperator, subsurface_stress
 
     g = "engine inputs"
@@ -1084,7 +1085,7 @@ def fuzz_engine_inputs(tmp: Path) -> None:
     def write(name: str, changes: dict, data: dict | None = None) -> Path:
         d = json.loads(json.dumps(data if data is not None else base))
         for k, v in changes.items():
-            set_dotted(d, k, v)
+            set_path(d, k, v)
         p = tmp / f"engine_{name}.toml"
         p.write_text(to_toml(d), encoding="utf-8")
         return p

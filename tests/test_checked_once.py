@@ -14,7 +14,8 @@ from tribodyn import InputError, _validation
 from tribodyn.config import schema, schema_surfaces, schema_valvetrain
 from tribodyn.config.build import THERMAL_KEYS as THERMAL_ARGUMENT_KEYS
 from tribodyn.config.build import build
-from tribodyn.config.case import DEFAULT_CASE, Case, set_dotted
+from tribodyn.config.case import DEFAULT_CASE, Case
+from tribodyn.config.paths import set_path
 from tribodyn.config.schema_fields import Section
 from tribodyn.contact.ehl import thermal_field
 from tribodyn.physics import heat_conduction, thermal_oil
@@ -159,7 +160,7 @@ def test_a_key_in_another_unit_records_its_arguments_limit_in_its_unit(key):
 def test_every_ranged_key_is_checked_and_named(key, extra, annotation):
     value = _outside(extra["range"], "int" in str(annotation))
     data = copy.deepcopy(_data_for(key))
-    set_dotted(data, key, value)
+    set_path(data, key, value)
     with pytest.raises(InputError) as e:
         Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
     msg = str(e.value)
@@ -180,7 +181,7 @@ def test_all_out_of_range_keys_of_a_file_are_reported_in_file_order():
         ("valvetrain.spring_rate", -1.0),
         ("cam.width", 2.0),
     ):
-        set_dotted(data, key, value)
+        set_path(data, key, value)
     with pytest.raises(InputError) as e:
         Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
     assert str(e.value).splitlines() == [
@@ -199,8 +200,8 @@ def test_every_value_of_a_set_out_of_range_is_reported():
     objects of one set, both problems named (the coating's error does not hide the
     roughness's)."""
     data = _paper_data()
-    set_dotted(data, "surface_sets[1].coating_thickness", 0.5)
-    set_dotted(data, "surface_sets[1].roughness.rms", 0.5)
+    set_path(data, "surface_sets[1].coating_thickness", 0.5)
+    set_path(data, "surface_sets[1].roughness.rms", 0.5)
     with pytest.raises(InputError) as e:
         Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
     assert str(e.value).splitlines() == [
@@ -220,7 +221,7 @@ def test_the_schema_problems_and_the_constructors_are_reported_together():
         ("surface_sets[0].roughness.rms", 1.0),
         ("surface_sets[0].boundary_shear_strength", -1.0),
     ):
-        set_dotted(data, key, value)
+        set_path(data, key, value)
     with pytest.raises(InputError) as e:
         Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
     lines = str(e.value).splitlines()
@@ -371,7 +372,7 @@ def _thermal_data() -> dict:
     data["numerics"]["thermal"] = True
     data["lubricant"]["inlet_temperature_c"] = 90.0
     for key, value in THERMAL_KEYS.items():
-        set_dotted(data, key, value)
+        set_path(data, key, value)
     return data
 
 
@@ -400,7 +401,7 @@ def test_each_thermal_key_out_of_range_is_one_problem(key):
     )
     bounds = extra[key.rsplit(".", 1)[1]]
     data = _thermal_data()
-    set_dotted(data, key, _outside(bounds["range"], False))
+    set_path(data, key, _outside(bounds["range"], False))
     with pytest.raises(InputError) as e:
         Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
     msg = str(e.value)
@@ -412,9 +413,9 @@ def test_a_thermal_key_out_of_range_is_reported_beside_a_schema_problem():
     """The constructors' range problems of keys whose unit has parentheses (W/(m K)) are
     listed with the schema's problems."""
     data = _paper_data()
-    set_dotted(data, "engine.speed_rpm", -5.0)
-    set_dotted(data, "materials.dlc.thermal_conductivity", 1e9)
-    set_dotted(data, "lubricant.specific_heat", 1.0)
+    set_path(data, "engine.speed_rpm", -5.0)
+    set_path(data, "materials.dlc.thermal_conductivity", 1e9)
+    set_path(data, "lubricant.specific_heat", 1.0)
     with pytest.raises(InputError) as e:
         Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
     assert [line.split(":")[0].strip() for line in str(e.value).splitlines()] == [
@@ -446,7 +447,7 @@ def test_a_thermal_numerics_bound_is_accepted_by_the_case_and_the_solver(arg):
     top = limit.le if limit.le is not None else limit.lt
     value = int(top) if limit.integer else top
     data = _paper_data()
-    set_dotted(data, f"numerics.{NUMERICS_THERMAL[arg]}", value)
+    set_path(data, f"numerics.{NUMERICS_THERMAL[arg]}", value)
     built = build(Case.from_dict(data, base_dir=DEFAULT_CASE.parent))
     assert getattr(built.thermal_options, arg) == value
 
@@ -479,7 +480,7 @@ GRID_KEYS = ("numerics.n", "numerics.coupling_n")
 def test_a_grid_key_out_of_range_is_one_problem_with_the_full_range(key, value):
     """Below 32, above 4096 or negative: one line naming the key and the whole range."""
     data = _paper_data()
-    set_dotted(data, key, value)
+    set_path(data, key, value)
     with pytest.raises(InputError) as e:
         Case.from_dict(data, base_dir=DEFAULT_CASE.parent)
     assert str(e.value).splitlines() == [
@@ -549,7 +550,7 @@ def test_the_keys_in_another_unit_out_of_range_are_reported_together_in_their_un
     """A datasheet whose keys are all out of range, beside a schema problem: one line per
     key, naming the key and its range in the key's unit (mm²/s, °C), all in one message."""
     data = _datasheet_data(thermal)
-    set_dotted(data, "engine.speed_rpm", -5.0)
+    set_path(data, "engine.speed_rpm", -5.0)
     data["lubricant"].update(
         kinematic_viscosity_40_cst=1.0,
         kinematic_viscosity_100_cst=2e4,

@@ -339,13 +339,13 @@ def test_stated_defaults_are_the_used_ones(command):
 
 def test_the_case_keys_the_help_names_exist():
     """A help text that points to "the case's <section.key>" names a key of the case."""
-    from tribodyn.config import get_path
+    from tribodyn.config.paths import find_paths
 
     data = _default_case().model_dump(by_alias=True)
     missing = []
     for (cmd, name), p in rendered_params().items():
         for key in re.findall(r"the case's ([a-z_]+\.[a-z_]+)", _help_text(p)):
-            if not get_path(data, key):
+            if not find_paths(data, key):
                 missing.append(f"{cmd} {name}: {key}")
     assert not missing
 

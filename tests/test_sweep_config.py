@@ -16,8 +16,8 @@ from tribodyn.config.paths import (
     Key,
     Match,
     PathError,
+    find_paths,
     format_path,
-    get_path,
     parse_path,
     schema_field,
     set_path,
@@ -75,6 +75,11 @@ def test_parse_and_format_round_trip():
 def test_unparsable_paths(bad):
     with pytest.raises(PathError):
         parse_path(bad)
+
+
+def get_path(data, path):
+    """The values at every place ``path`` addresses."""
+    return [value for _, value in find_paths(data, path)]
 
 
 def test_set_path_selectors(paper):

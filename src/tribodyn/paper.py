@@ -31,8 +31,6 @@ class MaterialRow(TypedDict):
 
 
 __all__ = [
-    "CITATION",
-    "DOI",
     "STEEL",
     "DLC",
     "WCC",
@@ -54,13 +52,6 @@ __all__ = [
     "ASSUMED_DENSITY",
     "ASSUMED_FIG5_RADIUS",
 ]
-
-CITATION = (
-    "P. Andreou, P. Soleimanian, M. Mohammadpour, S. R. Bewsher, G. Offner. Effects "
-    "of Diamond-like Carbon and Tungsten-Carbide Carbon Coatings on Tribological "
-    "Performance of Cam–Tappet Conjunction. Applied Sciences 13 (2023) 7815."
-)
-DOI = "10.3390/app13137815"
 
 # ----------------------------------------------------------------------------- Table 6
 # Moduli printed as "MPa" in the paper: they are GPa (erratum). ς is the pressure

@@ -369,29 +369,23 @@ def calibrate_command(
                 raise InputError("give --radius [m] or a radius column in DATA")
             radius = float(np.median(measured.radius))  # not used: each row has its own
         roughness = None
+        materials = (Material(e1, nu1), Material(e2, nu2))
         if rms is not None:
             if not (0.0 < rms_to_radius < 1.0 and roughness_parameter > 0.0):
                 raise InputError("--rms-to-radius must lie in (0, 1) and --roughness-parameter > 0")
             beta = rms / rms_to_radius
             roughness = Roughness(roughness_parameter / (beta * rms), rms, beta)
             if asperity_model == "surface":
-                roughness = _surface_law(roughness, (Material(e1, nu1), Material(e2, nu2)))
+                roughness = _surface_law(roughness, materials)
         setup = CalibrationSetup(
             radius=radius,
             lubricant=Lubricant(viscosity, pressure_viscosity),
             roughness=roughness,
-            materials=(Material(e1, nu1), Material(e2, nu2)),
+            materials=materials,
         )
         cal = calibrate_friction(measured, setup, free=free, fixed=fixed, bootstrap=bootstrap)
-        rough = (
-            None
-            if roughness is None
-            else {
-                "asperity_density": roughness.asperity_density,
-                "rms": roughness.rms,
-                "summit_radius": roughness.summit_radius,
-            }
-        )
+        keys = ("asperity_density", "rms", "summit_radius")  # the case file's roughness keys
+        rough = None if roughness is None else {k: getattr(roughness, k) for k in keys}
         text = calibration_toml(cal, data.name, label, rough, notes, asperity_model)
         if output is not None:
             from .._safe_write import atomic_write

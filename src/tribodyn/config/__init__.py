@@ -19,7 +19,7 @@ from . import case as _case
 from . import schema as _schema
 from .case import *  # noqa: F403 (the names in its __all__)
 from .errors import format_validation_error
-from .paths import PathError, get_path, parse_path, set_path
+from .paths import PathError, parse_path, set_path
 from .schema import *  # noqa: F403 (the names in its __all__)
 from .sweep import SweepPoint, SweepSpec, bundled_sweeps, load_sweep
 
@@ -31,7 +31,6 @@ __all__ = [
     "PathError",
     "parse_path",
     "set_path",
-    "get_path",
     "SweepSpec",
     "SweepPoint",
     "load_sweep",

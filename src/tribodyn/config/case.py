@@ -90,7 +90,6 @@ __all__ = [
     "DEFAULT_CASE",
     "CASES_DIR",
     "to_toml",
-    "set_dotted",
 ]
 
 #: Folder of the bundled case files.
@@ -286,7 +285,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         """
         data = self.to_dict()
         for key, value in changes.items():
-            set_dotted(data, key, value)
+            set_path(data, key, value)
         return self._changed(data)
 
     def _changed(self, data: dict) -> Case:
@@ -544,9 +543,3 @@ def to_toml(data: dict, *, header: list[str] | None = None) -> str:
     """TOML text of a case dict (``tomli-w``), with ``header`` lines as comments."""
     lines = "".join(f"# {h.lstrip('# ')}\n" for h in (header or []))
     return lines + ("\n" if lines else "") + tomli_w.dumps(data)
-
-
-def set_dotted(data: dict, key: str, value: Any) -> None:
-    """Set ``value`` at the dotted key path ``key`` of a case dict (all places it
-    addresses; selectors ``[i]``, ``[*]``, ``[name=…]``: :mod:`tribodyn.config.paths`)."""
-    set_path(data, key, value)

@@ -134,12 +134,6 @@ def _resolve_loc(root, loc, variants) -> tuple[str, Any, Any]:
     return path, fi, owner
 
 
-def _allowed_keys(model) -> list[str]:
-    if isinstance(model, type) and issubclass(model, BaseModel):
-        return list(keyed_fields(model))
-    return []
-
-
 def _error_lines(err: Mapping[str, Any], root, variants) -> list[tuple[str, str]]:
     typ, loc, ctx = err["type"], err["loc"], err.get("ctx") or {}
     inp = err.get("input")
@@ -155,7 +149,7 @@ def _error_lines(err: Mapping[str, Any], root, variants) -> list[tuple[str, str]
             return [(path, out_of_range(field_bounds(fi), field_extra(fi).get("unit", ""), inp))]
         return [(path, f"must be {err['msg']}{got}")]
     if typ == "extra_forbidden":
-        allowed = _allowed_keys(owner)
+        allowed = list(keyed_fields(owner))
         hint = difflib.get_close_matches(str(loc[-1]), allowed, n=1)
         more = f"; did you mean {hint[0]!r}?" if hint else ""
         where = ""

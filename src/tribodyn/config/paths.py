@@ -37,7 +37,6 @@ __all__ = [
     "parse_path",
     "format_path",
     "set_path",
-    "get_path",
     "find_paths",
     "schema_field",
     "FILE_KEYS",
@@ -186,8 +185,9 @@ def _kind(v) -> str:
     return kinds.get(type(v), type(v).__name__)
 
 
-def _walk(data, tokens, create: bool):
-    """Containers holding the last token's key, for each place the path addresses."""
+def _walk(data, tokens):
+    """Containers holding the last token's key, for each place the path addresses
+    (missing tables on the way created)."""
     if not tokens or not isinstance(tokens[0], Key):
         raise PathError("a key path starts with a key")
     # group tokens into (key, selectors) segments
@@ -208,7 +208,7 @@ def _walk(data, tokens, create: bool):
             if not isinstance(c, dict):
                 raise PathError(f"{format_path(done)}: is a {_kind(c)}, it has no key {key.name!r}")
             if key.name not in c:
-                if not create or sels:
+                if sels:
                     raise PathError(f"{where}: not in the case")
                 c[key.name] = {}
             items = [c[key.name]]
@@ -230,17 +230,10 @@ def set_path(data: dict, path: str | list, value: Any) -> int:
     missing tables on the way and a missing last key are created (validation of the case
     decides whether they are allowed). Returns the number of places set."""
     tokens = parse_path(path) if isinstance(path, str) else tuple(path)
-    curs, last = _walk(data, tokens, create=True)
+    curs, last = _walk(data, tokens)
     for c in curs:
         c[last] = value
     return len(curs)
-
-
-def get_path(data: dict, path: str | list) -> list:
-    """Values at every place ``path`` addresses (absent last keys are skipped)."""
-    tokens = parse_path(path) if isinstance(path, str) else tuple(path)
-    curs, last = _walk(data, tokens, create=False)
-    return [c[last] for c in curs if last in c]
 
 
 def find_paths(data: dict, path: str | list) -> list[tuple[str, Any]]:

@@ -76,15 +76,13 @@ def _type_name(tp: Any) -> str:
         return "list of " + (_type_name(args[0]) if args else "values")
     if origin is dict:
         return "table"
-    if tp is bool:
-        return "boolean"
-    if tp is int:
-        return "integer"
-    if tp is float:
-        return "number"
-    if tp is str:
-        return "string"
+    if isinstance(tp, type) and tp in _TYPE_NAMES:
+        return _TYPE_NAMES[tp]
     return getattr(tp, "__name__", str(tp))
+
+
+#: the TOML names of the scalar types
+_TYPE_NAMES = {bool: "boolean", int: "integer", float: "number", str: "string"}
 
 
 def _fmt(v: Any) -> str:
