@@ -52,12 +52,12 @@ def _token() -> str:
     return secrets.token_hex(TOKEN_CHARS // 2)
 
 
-def new_dir(parent: Path, prefix: str, mode: int = 0o777) -> Path:
-    """Create ``parent/PREFIX<random>`` (``mode`` minus the umask) and return it."""
+def new_dir(parent: Path, prefix: str) -> Path:
+    """Create ``parent/PREFIX<random>`` (mode 0o777 minus the umask) and return it."""
     for _ in range(100):
         p = Path(parent) / f"{prefix}{_token()}"
         try:
-            os.mkdir(p, mode)
+            os.mkdir(p, 0o777)
         except FileExistsError:
             continue
         return p
@@ -157,8 +157,6 @@ def atomic_write_with(
     path: os.PathLike | str,
     write: Callable[[Path], object],
     *,
-    replace: bool = True,
-    fsync: bool = True,
     keep_suffix: bool = False,
 ) -> Path:
     """Call ``write(tmp)`` on the path of a fresh, exclusively created (empty) temporary
@@ -171,23 +169,22 @@ def atomic_write_with(
     os.close(fd)
     try:
         write(tmp)
-        if fsync:
-            fd = os.open(tmp, os.O_RDONLY | _NOFOLLOW | _CLOEXEC)
-            try:
-                os.fsync(fd)
-            finally:
-                os.close(fd)
-        _commit(tmp, path, replace)
+        fd = os.open(tmp, os.O_RDONLY | _NOFOLLOW | _CLOEXEC)
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+        _commit(tmp, path, replace=True)
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise
     return path
 
 
-def copy_file(src: os.PathLike | str, dst: os.PathLike | str, *, fsync: bool = True) -> Path:
+def copy_file(src: os.PathLike | str, dst: os.PathLike | str) -> Path:
     """Copy the content of ``src`` to ``dst`` (:func:`atomic_open`; the mode follows the
     umask)."""
-    with open(src, "rb") as s, atomic_open(dst, "wb", fsync=fsync) as d:
+    with open(src, "rb") as s, atomic_open(dst, "wb") as d:
         shutil.copyfileobj(s, d, 1 << 20)
     return Path(dst)
 

@@ -326,8 +326,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             for i, sc in enumerate(self.surface_set_configs):
                 m = sc.measured_surface
                 if m is not None and m.topography is not None:
-                    p = Path(m.topography).expanduser()
-                    p = p if p.is_absolute() else self._base_dir / p
+                    p = self.resolve_path(m.topography)
                     d["surface_sets"][i]["measured_surface"]["topography"] = str(p)
         return d
 
@@ -420,8 +419,6 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
 
     def _new_material(self, name: str) -> Material:
         """The :class:`~tribodyn.Material` of ``[materials.<name>]``."""
-        if name not in self.materials:
-            raise InputError(f"unknown material {name!r} (defined: {', '.join(self.materials)})")
         m = self.materials[name]
         return Material(E=m.E, nu=m.nu)
 

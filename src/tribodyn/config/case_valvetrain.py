@@ -93,14 +93,9 @@ class CamValvetrainBuilders:
         """The valvetrain of the case: :class:`~tribodyn.valvetrain.ValvetrainParameters`
         (``model = "lumped"``) or :class:`~tribodyn.valvetrain.flexible.FlexibleValvetrain`
         (``"flexible"``); either runs in :func:`~tribodyn.valvetrain.simulate_valvetrain`."""
-        joints = self._joint_parameters()
-        if self.valvetrain.model == "lumped":
-            return joints
-        return self._flexible(joints)
-
-    def _joint_parameters(self) -> ValvetrainParameters:
         d = self.valvetrain.model_dump(exclude={"model", "valve", "tappet", "spring", "camshaft"})
-        return ValvetrainParameters(**d, cam_width=self.cam_config.width)
+        joints = ValvetrainParameters(**d, cam_width=self.cam_config.width)
+        return joints if self.valvetrain.model == "lumped" else self._flexible(joints)
 
     def _flexible(self, joints: ValvetrainParameters) -> FlexibleValvetrain:
         v = self.valvetrain
@@ -134,7 +129,7 @@ class CamValvetrainBuilders:
         from ..valvetrain.tribology import AnalyticTribology
 
         n = self.numerics
-        model = AnalyticTribology(
+        return AnalyticTribology(
             self.cam_config.width,
             bodies=s.bodies,
             lubricant=lubricant,
@@ -145,4 +140,3 @@ class CamValvetrainBuilders:
             film_formula=n.film_formula,
             limiting_shear=n.limiting_shear,
         )
-        return model

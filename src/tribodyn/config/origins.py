@@ -91,42 +91,25 @@ def _unit(section, key: str) -> str:
     return str(field_extra(type(section).model_fields[key]).get("unit", ""))
 
 
-def _lubricant_default_origin(key: str) -> str:
-    t = typical.LUBRICANT.get(key)
-    if t is not None:
-        return typical_origin(t)
-    return "assumed (tribodyn default)"
-
-
 def input_origins(case: Case) -> list[Origin]:
     """Every valvetrain, lubricant, material and surface value of ``case`` with its
     origin (module text), in case-file order."""
     given = case.input_given
     out: list[Origin] = []
 
-    def origin(key: str, default_origin: str) -> str:
-        return CASE if key in given else default_origin
+    def add(key: str, value: Any, unit: str, default_origin: str) -> None:
+        out.append((key, value, unit, CASE if key in given else default_origin))
 
-    out.append(
-        (
-            "engine.speed_rpm",
-            case.engine.speed_rpm,
-            "rpm",
-            origin("engine.speed_rpm", typical_origin(typical_engine.ENGINE_SPEED)),
-        )
-    )
-    cam = case.cam_config
+    speed = typical_origin(typical_engine.ENGINE_SPEED)
+    add("engine.speed_rpm", case.engine.speed_rpm, "rpm", speed)
     for k, t in _CAM.items():
-        value = getattr(cam, k, None)
+        value = getattr(case.cam_config, k, None)
         if value is not None:
-            out.append((f"cam.{k}", value, "m", origin(f"cam.{k}", typical_origin(t))))
+            add(f"cam.{k}", value, "m", typical_origin(t))
     vt = case.valvetrain
     for k, default in _VALVETRAIN.items():
-        if k in vt.unused_keys:
-            continue
-        out.append(
-            (f"valvetrain.{k}", getattr(vt, k), _unit(vt, k), origin(f"valvetrain.{k}", default))
-        )
+        if k not in vt.unused_keys:
+            add(f"valvetrain.{k}", getattr(vt, k), _unit(vt, k), default)
     lub = case.lubricant_config
     # the datasheet oil as built at validation (absent while the case is being validated)
     built = case._built
@@ -141,36 +124,24 @@ def input_origins(case: Case) -> list[Origin]:
             value = getattr(oil, k) if oil is not None else None
             out.append((key, value, _unit(lub, k), f"datasheet ({src}{at})"))
             continue
-        out.append((key, getattr(lub, k), _unit(lub, k), origin(key, _lubricant_default_origin(k))))
+        t = typical.LUBRICANT.get(k)
+        default = typical_origin(t) if t is not None else "assumed (tribodyn default)"
+        add(key, getattr(lub, k), _unit(lub, k), default)
     for name, m in case.materials.items():
         defaults = TYPICAL_MATERIALS.get(name, {})
         for k in ("E", "nu", "boundary_shear_coefficient"):
-            value = getattr(m, k)
-            if value is None:
-                continue
-            key = f"materials.{name}.{k}"
-            tv = defaults.get(k)
-            other = typical_origin(tv) if tv is not None else "assumed"
-            out.append((key, value, _unit(m, k), origin(key, other)))
+            if getattr(m, k) is not None:
+                tv = defaults.get(k)
+                other = typical_origin(tv) if tv is not None else "assumed"
+                add(f"materials.{name}.{k}", getattr(m, k), _unit(m, k), other)
+    tau0 = typical_origin(typical.BOUNDARY_SHEAR_STRENGTH)
     for s in case.surface_set_configs:
         p = f"surface_sets[{s.name}]"
         for k in ("asperity_density", "rms", "summit_radius"):
-            key = f"{p}.roughness.{k}"
-            out.append(
-                (key, getattr(s.roughness, k), _unit(s.roughness, k), origin(key, _ROUGHNESS[k]))
-            )
-        key = f"{p}.boundary_shear_strength"
-        out.append(
-            (
-                key,
-                s.boundary_shear_strength,
-                "Pa",
-                origin(key, typical_origin(typical.BOUNDARY_SHEAR_STRENGTH)),
-            )
-        )
+            add(f"{p}.roughness.{k}", getattr(s.roughness, k), _unit(s.roughness, k), _ROUGHNESS[k])
+        add(f"{p}.boundary_shear_strength", s.boundary_shear_strength, "Pa", tau0)
         if s.boundary_shear_coefficient is not None:  # the set's own ς (else its material's)
-            key = f"{p}.boundary_shear_coefficient"
-            out.append((key, s.boundary_shear_coefficient, "", CASE))
+            add(f"{p}.boundary_shear_coefficient", s.boundary_shear_coefficient, "", CASE)
     return out
 
 
