@@ -122,6 +122,22 @@ def drawn_by_a_user(plain_run, tmp_path_factory):
     return res, html, r, found
 
 
+def case_builders() -> frozenset[str]:
+    """The private constructors of :class:`~tribodyn.config.Case` (``_new_*``,
+    ``_build_*``: its own and its builder mixins'), called by ``config.build.collect``
+    and the ``BuiltCase``; everywhere else the code reads the built objects."""
+    import inspect
+
+    from tribodyn.config import Case
+
+    return frozenset(
+        n
+        for c in Case.__mro__
+        for n, v in vars(c).items()
+        if inspect.isfunction(v) and n.startswith(("_new_", "_build_"))
+    )
+
+
 def explicit_run(case, set_name="uncoated"):
     """(surface set, explicit dynamics, cycle inputs) of ``case``: the valvetrain driven
     with the set's analytic tribology, sampled on the case's crank step."""

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import pytest
 
+from conftest import case_builders
 from tribodyn import paper
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "tribodyn"
@@ -363,35 +364,29 @@ def _case_builder_mixins():
 
 def _builder_calls(tree) -> list[str]:
     """``line: call`` of each call of a Case's private constructor
-    (:data:`~tribodyn.config.build.CASE_BUILDERS`) in ``tree``."""
-    from tribodyn.config.build import CASE_BUILDERS
-
+    (``conftest.case_builders``) in ``tree``."""
+    builders = case_builders()
     return [
         f"{node.lineno}: {ast.unparse(node.func)}"
         for node in ast.walk(tree)
         if isinstance(node, ast.Call)
         and isinstance(node.func, ast.Attribute)
-        and node.func.attr in CASE_BUILDERS
+        and node.func.attr in builders
     ]
 
 
 def test_case_builders_are_declared():
-    """The Case has no public builders (``build(case)`` returns the objects), and
-    CASE_BUILDERS names exactly its private constructors (``_new_*``, ``_build_*``)."""
+    """The Case has no public builders (``build(case)`` returns the objects); its private
+    constructors (``_new_*``, ``_build_*``) are those the builder scans look for."""
     from tribodyn.config import Case
-    from tribodyn.config.build import CASE_BUILDERS
 
     classes = [Case, *_case_builder_mixins()]
     assert len(classes) >= 4
     public = {n for c in classes[1:] for n, v in vars(c).items() if inspect.isfunction(v)}
     assert not {n for n in public if n[0] != "_"}
-    private = {
-        n
-        for c in classes
-        for n, v in vars(c).items()
-        if inspect.isfunction(v) and n.startswith(("_new_", "_build_"))
-    }
-    assert private == set(CASE_BUILDERS)
+    assert {"_build_cam", "_build_set", "_new_lubricant", "_new_thermal_bodies"} <= (
+        case_builders()
+    )
 
 
 def test_studies_read_the_built_case():

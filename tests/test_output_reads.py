@@ -13,7 +13,9 @@ from pathlib import Path
 import pytest
 
 import tribodyn
-from tribodyn.config.build import CASE_BUILDERS  # the case's constructors
+from conftest import case_builders
+
+CASE_BUILDERS = case_builders()  # the case's constructors
 
 OUTPUT = Path(tribodyn.__file__).parent / "output"
 

@@ -54,7 +54,6 @@ if TYPE_CHECKING:
 __all__ = [
     "BuiltCase",
     "BuiltSet",
-    "CASE_BUILDERS",
     "as_built",
     "build",
     "collect",
@@ -73,28 +72,6 @@ SET_KEYS = {
     "summit_radius": "roughness.summit_radius",
 }
 THERMAL_KEYS = {a: f"numerics.{k}" for a, k in NUMERICS_KEYS.items()}
-
-#: The private constructors of :class:`~tribodyn.config.Case` (its own and its builder
-#: mixins'), called by :func:`collect` and the :class:`BuiltCase`. Everywhere else the
-#: code reads the objects from the :class:`BuiltCase` of :func:`build`.
-CASE_BUILDERS = (
-    "_build_cam",
-    "_build_set",
-    "_new_analytic_tribology",
-    "_new_dynamics_options",
-    "_new_ehl_options",
-    "_new_lubricant",
-    "_new_material",
-    "_new_material_strength",
-    "_new_strengths",
-    "_new_tappet_rotation",
-    "_new_thermal_bodies",
-    "_new_thermal_lubricant",
-    "_new_thermal_options",
-    "_new_thermal_properties",
-    "_new_valvetrain_parameters",
-    "_new_wear_coefficient",
-)
 
 
 @dataclass(frozen=True)
