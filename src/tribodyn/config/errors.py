@@ -27,6 +27,7 @@ __all__ = [
     "in_file_order",
     "out_of_range",
     "problem_text",
+    "problems_message",
     "validation_problems",
 ]
 
@@ -262,7 +263,12 @@ def format_validation_error(
     lines = validation_problems(exc, root, variants)
     if more:
         lines = in_file_order(root, more + lines)
-    n = len(lines)
+    return problems_message(lines, source, what)
+
+
+def problems_message(problems: list[tuple[str, str]], source: object, what: str) -> str:
+    """``invalid <what> <source>: <n> problems``, then one ``key: problem`` line each."""
+    n = len(problems)
     where = f" {source}" if source is not None else ""
     head = f"invalid {what}{where}: {n} problem{'s' if n != 1 else ''}"
-    return head + "".join(f"\n  {p or '(top level)'}: {m}" for p, m in lines)
+    return head + "".join(f"\n  {p or '(top level)'}: {m}" for p, m in problems)

@@ -36,7 +36,7 @@ from pydantic import (
 from .._typing import PathLike
 from .._validation import InputError
 from .case import Case, bundled_cases, load_case, to_toml
-from .errors import Problems, format_validation_error, problem_text
+from .errors import Problems, format_validation_error, problem_text, problems_message
 from .paths import Key, PathError, parse_path, schema_field, set_path
 from .schema import CAM_MODELS, Section, _q
 from .schema_fields import field_bounds, field_extra
@@ -375,10 +375,10 @@ class SweepSpec(TomlFile):
         problems: list[tuple[str, str]] = []
         base, base_source = _load_base(cfg.sweep.case, base_dir, problems)
         if base is None:
-            raise InputError(_message(problems, source))
+            raise InputError(problems_message(problems, source, "sweep"))
         base = _apply_fixed(base, cfg.fixed, problems)
         if base is None:
-            raise InputError(_message(problems, source))
+            raise InputError(problems_message(problems, source, "sweep"))
         if cfg.sweep.mode == "engine" and base.engine.cylinders is None:
             problems.append(
                 (
@@ -399,15 +399,8 @@ class SweepSpec(TomlFile):
         if not problems and spec.n_points > MAX_POINTS:
             problems.append(("axes", f"{spec.n_points} points (at most {MAX_POINTS})"))
         if problems:
-            raise InputError(_message(problems, source))
+            raise InputError(problems_message(problems, source, "sweep"))
         return spec
-
-
-def _message(problems, source) -> str:
-    n = len(problems)
-    where = f" {source}" if source is not None else ""
-    head = f"invalid sweep{where}: {n} problem{'s' if n != 1 else ''}"
-    return head + "".join(f"\n  {p}: {m}" for p, m in problems)
 
 
 def _load_base(name: str, base_dir: Path, problems):
