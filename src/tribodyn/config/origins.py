@@ -124,8 +124,8 @@ def input_origins(case: Case) -> list[Origin]:
             value = getattr(oil, k) if oil is not None else None
             out.append((key, value, _unit(lub, k), f"datasheet ({src}{at})"))
             continue
-        t = typical.LUBRICANT.get(k)
-        default = typical_origin(t) if t is not None else "assumed (tribodyn default)"
+        tl = typical.LUBRICANT.get(k)
+        default = typical_origin(tl) if tl is not None else "assumed (tribodyn default)"
         add(key, getattr(lub, k), _unit(lub, k), default)
     for name, m in case.materials.items():
         defaults = TYPICAL_MATERIALS.get(name, {})
