@@ -161,14 +161,10 @@ def _error_lines(err: Mapping[str, Any], root, variants) -> list[tuple[str, str]
         return [(path, f"unknown key{where}{more} (allowed: {', '.join(allowed)})")]
     if typ == "missing":
         return [(path, "required key is missing")]
-    if typ == "literal_error":
-        return [(path, f"must be {ctx.get('expected')}{got}")]
     if typ == "union_tag_invalid":
         return [
             (f"{path}.type", f"must be one of {ctx.get('expected_tags')} (got {ctx.get('tag')!r})")
         ]
-    if typ in ("union_tag_not_found", "model_type", "model_attributes_type", "dict_type"):
-        return [(path, f"must be a table{got}")]
     if typ == "list_type":
         item = get_args(strip_optional(fi.annotation)) if fi is not None else ()
         if item and not (isinstance(item[0], type) and issubclass(item[0], BaseModel)):
@@ -186,23 +182,14 @@ def _error_lines(err: Mapping[str, Any], root, variants) -> list[tuple[str, str]
         u = field_extra(fi).get("unit", "")
         return [(path, f"must be a number{f' [{u}]' if u else ''}{got}")]
     if typ in _TYPE_MESSAGES:
-        return [(path, f"{_TYPE_MESSAGES[typ]}{got}")]
-    if typ == "string_too_long":
-        return [(path, f"must have at most {ctx.get('max_length')} characters{got}")]
-    if typ == "string_pattern_mismatch":
-        return [
-            (
-                path,
-                "must start with a letter or digit and contain only letters, digits, "
-                f"'_', '.', '+', '-'{got}",
-            )
-        ]
+        return [(path, f"{_TYPE_MESSAGES[typ].format_map(ctx)}{got}")]
     if typ == "value_error":
         return [(path, f"{ctx.get('error', err['msg'])}")]
     return [(path, f"{err['msg']}{got}")]
 
 
-#: pydantic error types whose message is fixed text (then the value given)
+#: pydantic error types whose message is a text with the error's context values in
+#: braces (then the value given)
 _TYPE_MESSAGES = {
     "int_type": "must be an integer",
     "int_parsing": "must be an integer",
@@ -211,6 +198,14 @@ _TYPE_MESSAGES = {
     "string_type": "must be a string",
     "finite_number": "must be a finite number",
     "string_too_short": "must not be empty",
+    "literal_error": "must be {expected}",
+    "string_too_long": "must have at most {max_length} characters",
+    "string_pattern_mismatch": "must start with a letter or digit and contain only letters, "
+    "digits, '_', '.', '+', '-'",
+    **dict.fromkeys(
+        ("union_tag_not_found", "model_type", "model_attributes_type", "dict_type"),
+        "must be a table",
+    ),
 }
 
 
