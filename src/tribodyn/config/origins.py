@@ -23,8 +23,9 @@ from typing import TYPE_CHECKING, Any
 
 from ..physics import typical, typical_engine
 from ..physics.typical import TypicalValue
+from .case_thermal import OIL_LAW_KEYS
 from .schema_fields import field_extra
-from .schema_surfaces import TYPICAL_MATERIALS
+from .schema_surfaces import TYPICAL_MATERIALS, LubricantConfig
 
 if TYPE_CHECKING:
     from .case import Case
@@ -68,23 +69,16 @@ _VALVETRAIN = {
     "tappet_radius": _ASSUMED,
 }
 
-#: The keys of the isothermal oil (the datasheet gives the first three).
 _CAM = {
     "base_radius": typical_engine.CAM_BASE_RADIUS,
     "max_lift": typical_engine.CAM_MAX_LIFT,
     "width": typical_engine.CAM_WIDTH,
 }
-_LUBRICANT_KEYS = (
-    "viscosity",
-    "pressure_viscosity",
-    "density",
-    "eyring_stress",
-    "limiting_shear_coefficient",
-    "limiting_shear_stress",
-    "compressible",
-    "viscosity_model",
-)
+#: The keys of the isothermal oil in file order (a datasheet gives the first three).
 _DATASHEET_KEYS = ("viscosity", "pressure_viscosity", "density")
+_LUBRICANT_KEYS = tuple(
+    k for k in LubricantConfig.model_fields if k in {*_DATASHEET_KEYS, *OIL_LAW_KEYS}
+)
 
 
 def _unit(section, key: str) -> str:
