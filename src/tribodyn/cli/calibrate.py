@@ -338,6 +338,7 @@ def calibrate_command(
     import numpy as np
 
     from .._validation import InputError
+    from ..config.schema_surfaces import RoughnessConfig
     from ..physics.asperity import Roughness
     from ..physics.lubricant import Lubricant
     from ..physics.materials import Material
@@ -384,7 +385,7 @@ def calibrate_command(
             materials=materials,
         )
         cal = calibrate_friction(measured, setup, free=free, fixed=fixed, bootstrap=bootstrap)
-        keys = ("asperity_density", "rms", "summit_radius")  # the case file's roughness keys
+        keys = RoughnessConfig.model_fields  # the case file's roughness keys
         rough = None if roughness is None else {k: getattr(roughness, k) for k in keys}
         text = calibration_toml(cal, data.name, label, rough, notes, asperity_model)
         if output is not None:

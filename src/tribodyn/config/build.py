@@ -34,6 +34,7 @@ from ..contact.ehl.options import EHLOptions
 from ..physics.limits import RangeError
 from .case_thermal import MATERIAL_KEYS, NUMERICS_KEYS
 from .errors import CaseKeyError, Problems, in_file_order, out_of_range
+from .schema_surfaces import RoughnessConfig
 
 if TYPE_CHECKING:
     from ..contact.ehl.thermal import ThermalOptions
@@ -67,9 +68,7 @@ T = TypeVar("T")
 VALVETRAIN_KEYS = {"cam_width": "cam.width"}
 SET_KEYS = {
     "thickness": "coating_thickness",
-    "asperity_density": "roughness.asperity_density",
-    "rms": "roughness.rms",
-    "summit_radius": "roughness.summit_radius",
+    **{k: f"roughness.{k}" for k in RoughnessConfig.model_fields},  # Roughness's arguments
 }
 THERMAL_KEYS = {a: f"numerics.{k}" for a, k in NUMERICS_KEYS.items()}
 
