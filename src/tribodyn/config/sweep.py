@@ -35,6 +35,7 @@ from pydantic import (
 
 from .._typing import PathLike
 from .._validation import InputError
+from ..physics.limits import Limit
 from .case import Case, bundled_cases, load_case, to_toml
 from .errors import Problems, format_validation_error, problem_text, problems_message
 from .paths import Key, PathError, parse_path, schema_field, set_path
@@ -507,18 +508,14 @@ def _values_to_check(fi, values) -> list[int]:
     if n <= MAX_VALIDATED_VALUES:
         return list(range(n))
     spread = {round(k * (n - 1) / (MAX_VALIDATED_VALUES - 1)) for k in range(MAX_VALIDATED_VALUES)}
-    bounds = list(field_bounds(fi).items())
+    bounds = Limit(**field_bounds(fi))
     outside: list[int] = []
     for j, v in enumerate(values):
         if len(outside) > MAX_REPORTED_VALUES:
             break
-        if isinstance(v, bool) or not isinstance(v, (int, float)):
-            outside.append(j)  # the case validation says what is wrong
-            continue
-        for attr, b in bounds:
-            if not {"gt": v > b, "ge": v >= b, "lt": v < b, "le": v <= b}[attr]:
-                outside.append(j)
-                break
+        # a value that is not a number too: the case validation says what is wrong
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not bounds.contains(v):
+            outside.append(j)
     return sorted(spread.union(outside))
 
 
