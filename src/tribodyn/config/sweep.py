@@ -508,7 +508,8 @@ def _values_to_check(fi, values) -> list[int]:
     if n <= MAX_VALIDATED_VALUES:
         return list(range(n))
     spread = {round(k * (n - 1) / (MAX_VALIDATED_VALUES - 1)) for k in range(MAX_VALIDATED_VALUES)}
-    bounds = Limit(**field_bounds(fi))
+    given: dict[str, Any] = field_bounds(fi)  # gt, ge, lt, le
+    bounds = Limit(**given)
     outside: list[int] = []
     for j, v in enumerate(values):
         if len(outside) > MAX_REPORTED_VALUES:
