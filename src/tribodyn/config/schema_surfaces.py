@@ -453,38 +453,15 @@ class SurfaceSetConfig(Section):
         return self
 
 
-def _paper_sets_with(roughness, **common) -> list:
-    """The paper's five surface sets (uncoated; DLC and WC-C at 1 and 4 µm), each with
-    ``roughness(coating)`` (coating None for the uncoated set) and the keys ``common``."""
-    sets = [SurfaceSetConfig(name="uncoated", roughness=roughness(None), **common)]
-    for coat in ("dlc", "wcc"):
-        for t_um in (1, 4):
-            sets.append(
-                SurfaceSetConfig(
-                    name=f"{coat}_{t_um}um",
-                    coating=coat,
-                    coating_thickness=t_um * 1e-6,
-                    roughness=roughness(coat),
-                    **common,
-                )
-            )
-    return sets
-
-
 def typical_materials() -> dict:
     """Default ``[materials]``: typical elastic constants of steel, a-C:H DLC and WC-C
     (:data:`~tribodyn.physics.typical_engine.STEEL_MODULUS`, ``DLC_MODULUS``, ``WCC_MODULUS``)
     with ς = the typical boundary friction coefficient of each surface against steel in a
     ZDDP oil (:data:`tribodyn.physics.typical.BOUNDARY_FRICTION`, used with τ₀ = 0)."""
-    out = {}
-    for k, t in TYPICAL_MATERIALS.items():
-        out[k] = MaterialConfig(
-            E=t["E"].value,
-            nu=t["nu"].value,
-            boundary_shear_coefficient=t["boundary_shear_coefficient"].value,
-            label=_TYPICAL_LABELS[k],
-        )
-    return out
+    return {
+        k: MaterialConfig(**{key: v.value for key, v in t.items()}, label=_TYPICAL_LABELS[k])
+        for k, t in TYPICAL_MATERIALS.items()
+    }
 
 
 #: The typical value of each key of the default ``[materials]`` (typical_materials).
@@ -509,11 +486,18 @@ _TYPICAL_LABELS = {"steel": "steel", "dlc": "DLC", "wcc": "WC-C"}
 
 
 def typical_surface_sets() -> list:
-    """Default surface sets: the names of the paper's sets, each with the typical composite
-    roughness of a ground cam on a ground tappet: σ from
+    """Default surface sets: the paper's five (uncoated; DLC and WC-C at 1 and 4 µm), each
+    with the typical composite roughness of a ground cam on a ground tappet: σ from
     :data:`~tribodyn.physics.typical.COMPOSITE_RMS`, β = σ/(σ/β) and η = ηβσ/(βσ)."""
     sigma = typical.COMPOSITE_RMS["ground"].value
     beta = sigma / typical.RMS_TO_SUMMIT_RADIUS.value
     eta = typical.ROUGHNESS_PARAMETER.value / (beta * sigma)
     rough = RoughnessConfig(asperity_density=eta, rms=sigma, summit_radius=beta)
-    return _paper_sets_with(lambda coat: rough)
+    coated = [
+        SurfaceSetConfig(
+            name=f"{coat}_{t_um}um", coating=coat, coating_thickness=t_um * 1e-6, roughness=rough
+        )
+        for coat in ("dlc", "wcc")
+        for t_um in (1, 4)
+    ]
+    return [SurfaceSetConfig(name="uncoated", roughness=rough), *coated]
