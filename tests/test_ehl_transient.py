@@ -263,6 +263,29 @@ def test_compiled_gmres_with_a_single_precision_preconditioner():
     assert not k.flush_factors(np.full(16, 1e39), k.FACTOR_FLUSH)
 
 
+def test_factor_flush_and_step_motion_kernels():
+    """kernels.flush_factors zeroes entries below rel·max|f| (either sign) and refuses a
+    NaN or infinite entry wherever it sits; kernels.step_motion gives the largest |δQ|
+    and |Q| (NaN kept) and whether the cavitated set gained or released nodes."""
+    from tribodyn.contact.ehl import kernels as k
+
+    f = np.array([3e-21, -4.0, 2.0, -3e-20, 1e-19], dtype=np.float32)
+    assert k.flush_factors(f, 1e-20)
+    assert f.tolist() == pytest.approx([0.0, -4.0, 2.0, -3e-20, 1e-19])
+    for bad in (np.nan, np.inf, -np.inf):
+        for at in (0, 2, 4):
+            g = np.ones(5, dtype=np.float32)
+            g[at] = bad
+            assert not k.flush_factors(g, 1e-20)
+    dq, q = np.array([0.5, -2.0, 1.0]), np.array([1.0, 3.0, -7.0])
+    before = np.array([False, True, True, False])
+    assert k.step_motion(dq, q, before, before) == (2.0, 7.0, False, False)
+    assert k.step_motion(dq, q, before, np.array([True, True, True, False]))[2:] == (True, False)
+    assert k.step_motion(dq, q, before, np.array([False, False, True, False]))[2:] == (False, True)
+    du, qn, _, _ = k.step_motion(np.array([1.0, np.nan, 5.0]), q, before, before)
+    assert math.isnan(du) and qn == 7.0
+
+
 def test_warmup_compiles_the_fallback_variants(monkeypatch):
     """kernels.compile_fallbacks (run by ``tribodyn warmup``) compiles the argument types
     of the double-precision fallback of a transient's factorisation: after such a march

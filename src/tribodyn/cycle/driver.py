@@ -278,8 +278,14 @@ class IsothermalCycle(CycleMethod):
         return TransientEHL(self.bodies, self.lubricant, self.roughness, options=self.options)
 
     def law_shear(self, stepper, r) -> Callable[[str], np.ndarray]:
-        return lambda law: shear_stress(
-            r.pressure, r.film, r.sliding_speed, self.lubricant, law, self.options.limiting_shear
+        """The result's own law is its post-processed stress (the same call)."""
+        opts = self.options
+        return lambda law: (
+            r.shear_stress
+            if law == opts.viscous_model and r.shear_stress is not None
+            else shear_stress(
+                r.pressure, r.film, r.sliding_speed, self.lubricant, law, opts.limiting_shear
+            )
         )
 
     @classmethod

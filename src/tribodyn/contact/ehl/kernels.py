@@ -34,6 +34,7 @@ __all__ = [
     "merit",
     "cavitated_nodes",
     "newton_rows",
+    "step_motion",
     "NO_ASPERITIES",
     "TABLE_ASPERITIES",
     "LAW_ASPERITIES",
@@ -429,6 +430,28 @@ def cavitated_nodes(P, R, c):
 
 
 @njit(**_OPTS)
+def step_motion(dQ, Qn, before, after):
+    """(max |δQ|, max |Q_new|, overshoot, moved) of an accepted Newton step: the largest
+    update and iterate (NaN if an entry is), and whether the cavitated set ``after``
+    gained nodes outside ``before`` (overshoot) or released nodes of it (moved)."""
+    du = 0.0
+    q = 0.0
+    for i in range(dQ.size):
+        a = abs(dQ[i])
+        if a > du or a != a:  # NaN stays
+            du = a
+        b = abs(Qn[i])
+        if b > q or b != b:
+            q = b
+    over = False
+    moved = False
+    for i in range(after.size):
+        over |= after[i] and not before[i]
+        moved |= before[i] and not after[i]
+    return du, q, over, moved
+
+
+@njit(**_OPTS)
 def newton_rows(AP, AH, D, R, P, load, c, cav):
     """Row data of the Newton system for (δQ, δH₀) (:class:`~.reynolds.Linearization`)
     with the cavitated nodes ``cav`` (the end nodes are boundary rows): B = A_H − A_P D
@@ -482,22 +505,25 @@ FACTOR_FLUSH = 1e-20
 _SINGLE_MAX = float(np.finfo(np.float32).max)
 
 
-@njit(**_OPTS)
-def flush_factors(fac, rel):
+def flush_factors(fac, rel) -> bool:
     """Zero the entries of the contiguous vector ``fac`` (a factor matrix's storage,
     e.g. ``fac.T.ravel()`` of a column-major one) below ``rel`` times its largest
-    magnitude, in place; False if an entry is not finite or beyond single precision."""
-    big = 0.0
-    for v in fac:
-        a = abs(v)
-        if not a <= _SINGLE_MAX:  # inf, NaN, or beyond single precision
-            return False
-        big = max(big, a)
-    thr = rel * big
-    for i in range(fac.size):
-        if abs(fac[i]) < thr:
-            fac[i] = 0.0
+    magnitude, in place; False if an entry is not finite or beyond single precision.
+    The largest magnitude is max(max fac, −min fac) by NumPy's vectorised reductions
+    (NaN propagates through them)."""
+    big = max(float(fac.max()), -float(fac.min()))
+    if not big <= _SINGLE_MAX:  # inf, NaN, or beyond single precision
+        return False
+    _zero_below(fac, rel * big)
     return True
+
+
+@njit(**_OPTS)
+def _zero_below(fac, thr):
+    """fac_i ← 0 where |fac_i| < thr (finite entries), as a select that vectorises."""
+    for i in range(fac.size):
+        v = fac[i]
+        fac[i] = v if abs(v) >= thr else 0.0
 
 
 @njit(**_OPTS)

@@ -24,6 +24,7 @@ from .kernels import (
     givens_step,
     merit,
     row_scale,
+    step_motion,
 )
 from .reynolds import Linearization, ReynoldsSystem
 
@@ -211,7 +212,8 @@ def _release(cav_std, prev_cav, release):
 
 @dataclass
 class State:
-    """Scaled solution: total pressure Q = P + Pa (the unknown), h₀, and derived P, H."""
+    """Scaled solution: total pressure Q = P + Pa (the unknown), h₀, and derived P, H
+    (and Pa, where the solve's last evaluation gives it)."""
 
     Q: np.ndarray
     H0: float
@@ -219,6 +221,8 @@ class State:
     H: np.ndarray = None  # type: ignore[assignment]
     #: cavitated nodes to start from (a transient predictor's), else those of P and R
     cav: np.ndarray | None = None
+    #: asperity pressure Pa(H) at H (set by :func:`newton`; None: not evaluated)
+    Pa: np.ndarray | None = None
 
 
 def jacobi_scale(sysm, ev):
@@ -430,8 +434,9 @@ def _newton_impl(
         if not accepted:
             msg = f"line search failed (merit {m0:.2e})"
             break
-        overshoot = prev_cav is not None and bool(np.any(~prev_cav & cav_std))
-        moved = prev_cav is not None and bool(np.any(prev_cav & ~cav_std))
+        du, qn, overshoot, moved = step_motion(
+            dQ, Qn, cav_std if prev_cav is None else prev_cav, cav_std
+        )
         if overshoot:
             if release > 1:
                 # a released block overshot: later blocks at most half as large (no cycling)
@@ -442,10 +447,7 @@ def _newton_impl(
         else:
             release = 1
         prev_cav = cav_std
-        upd = step * max(
-            np.max(np.abs(dQ)) / max(np.max(np.abs(Qn)), 1e-30),
-            abs(dH0) / max(abs(evn.H[g.i0]), 1e-30),
-        )
+        upd = step * max(du / max(qn, 1e-30), abs(dH0) / max(abs(evn.H[g.i0]), 1e-30))
         m0, c = merit_of(evn)  # re-scale at the accepted point
         Q, H0, ev = Qn, H0n, evn
         history.append(m0)
@@ -468,4 +470,4 @@ def _newton_impl(
             msg = f"converged in {it} Newton iterations (update {upd:.1e}, residual {res:.1e})"
             break
     P = np.maximum(ev.P, 0.0) if ok else ev.P  # cavitated nodes are 0 up to round-off
-    return State(Q, H0, P, ev.H), ok, it, msg, lu
+    return State(Q, H0, P, ev.H, Pa=ev.pa), ok, it, msg, lu

@@ -83,8 +83,7 @@ def _postprocess(
     x = g.x
     p = st.P * sysm.p_ref
     h = st.H * sysm.h_ref
-    pa, _ = sysm.asperity(st.H)
-    pa = pa * sysm.p_ref
+    pa = (st.Pa if st.Pa is not None else sysm.asperity(st.H)[0]) * sysm.p_ref
     dx = g.dX * g.a
     tau = shear_stress(p, h, us, lub, opts.viscous_model, opts.limiting_shear)
     dpdx = np.gradient(p, dx)
