@@ -52,9 +52,7 @@ Limits (measured; docs/convergence.md):
   11.7 N (42 N) before — that includes the EHL's own time discretisation.
 
 The EHL of the presented cycle drives both simulated cycles (the tables are periodic
-in the cam angle). :func:`film_law_from_ehl` and :func:`ehl_tribology` build the
-earlier linearised film-table law (valvetrain ``FilmTableTribology``), still a public
-hook.
+in the cam angle).
 """
 
 from __future__ import annotations
@@ -76,11 +74,8 @@ from .film_laws import (
     CORRECTION_MIN_ENTRAINING_SHARE,
     CORRECTION_MIN_LOAD_SHARE,
     CORRECTION_TAPER_DEG,
-    SECANT_SHARE,
     FrictionCoefficientTable,
-    ehl_tribology,
     film_correction_from_ehl,
-    film_law_from_ehl,
     film_state_tribology,
     state_from_vector,
     state_vector,
@@ -88,8 +83,6 @@ from .film_laws import (
 
 __all__ = [
     "FrictionCoefficientTable",
-    "film_law_from_ehl",
-    "ehl_tribology",
     "film_correction_from_ehl",
     "film_state_tribology",
     "CouplingIteration",
@@ -104,7 +97,6 @@ __all__ = [
     "valve_timing",
     "diagnose_coupling",
     "implicit_vs_explicit_metrics",
-    "SECANT_SHARE",
     "CORRECTION_LIMIT",
     "CORRECTION_MAX_SUPPLY_SHARE",
     "CORRECTION_MIN_ENTRAINING_SHARE",
