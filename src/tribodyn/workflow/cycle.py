@@ -40,7 +40,7 @@ from ..cycle.methods import study_variant
 from ..cycle.tasks import InlineExecutor, Task, run_tasks
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from .coating_study import (
-    DryCoatingCase,
+    CoatingCase,
     EHLCoatingStudy,
     HertzReference,
     dry_coating_study,
@@ -83,7 +83,7 @@ class CycleStudy:
     sets: list[SetCycleResult]  #: in case order
     labels: dict[str, str]  #: set name → label
     coupling: CouplingResult = field(default_factory=CouplingResult)
-    dry: list[DryCoatingCase] = field(default_factory=list)  #: Fig. 5 cases
+    dry: list[CoatingCase] = field(default_factory=list)  #: Fig. 5 cases
     dry_hertz: HertzReference | None = None  #: Fig. 5's Hertz reference (uncoated steel)
     ehl_coating: EHLCoatingStudy | None = None  #: Fig. 6 results
     sensitivity: RoughnessSensitivity | None = None  #: at the cam nose
