@@ -270,11 +270,9 @@ def run_coupling(
     dynamics: ValvetrainResult,
     inputs: CycleInputs,
     first: SetCycleResult,
-    progress=None,
 ) -> CouplingResult:
     """Implicit coupling for one surface set of a case (Case or BuiltCase), starting
     from its EHL (``first``) on the explicit dynamics and their cycle ``inputs``.
-    ``progress(label, i, n)`` receives the EHL re-passes.
 
     Stops when the contact force changes by less than COUPLING_RMS_TOL (RMS over the
     event) and COUPLING_MAX_TOL (max) of its peak, after ``numerics.coupling_iterations``,
@@ -352,14 +350,7 @@ def run_coupling(
             break
         if k < n.coupling_iterations:
             inp = CycleInputs.from_dynamics(new, n.crank_step_deg, case.width)
-            cb = None
-            if progress is not None:
-                label = f"implicit coupling {k + 1}"
-
-                def cb(i, m, label=label):
-                    progress(label, i, m)
-
-            ehl = ehl_for_set(built, s, inp, progress=cb, film_law_only=True)
+            ehl = ehl_for_set(built, s, inp, film_law_only=True)
     if not out.converged and out.history:
         last = out.history[-1]
         msg += (

@@ -157,7 +157,6 @@ def film_state_tribology(
     e_prime: float,
     period: float,
     width: float,
-    lnr=None,
     supply_film: float | None = None,
     checked: tuple[str, ...] = (),
 ) -> FilmStateTribology:
@@ -165,7 +164,7 @@ def film_state_tribology(
     coefficient μ_k = F_f/F (:class:`FrictionCoefficientTable`) and the film as a state
     (:class:`~tribodyn.valvetrain.tribology.FilmStateTribology`, supply film h_s default
     ``tribology.SUPPLY_FILM``; ``checked`` ("supply_film") if checked where it entered) with
-    the correction ``lnr`` (default :func:`film_correction_from_ehl`)."""
+    the correction of :func:`film_correction_from_ehl`."""
     hs = _tribology.SUPPLY_FILM if supply_film is None else supply_film
     ff = _bridge(ehl.friction, ehl.loaded)
     mu = np.where(ehl.loaded & np.isfinite(ff), ff / np.maximum(inputs.contact_force, 1e-12), 0.0)
@@ -173,8 +172,7 @@ def film_state_tribology(
     base = FilmStateTribology(
         friction, width=width, lubricant=lubricant, e_prime=e_prime, supply_film=hs, checked=checked
     )
-    if lnr is None:
-        lnr = film_correction_from_ehl(inputs, ehl, base)
+    lnr = film_correction_from_ehl(inputs, ehl, base)
     return FilmStateTribology(
         friction,
         width=width,
