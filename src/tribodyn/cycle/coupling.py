@@ -68,22 +68,9 @@ from ..physics.materials import reduced_modulus
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from ..valvetrain.tribology import FilmStateTribology
 from .driver import CycleInputs, SetCycleResult, ehl_for_set
-from .film_laws import (
-    CORRECTION_LIMIT,
-    CORRECTION_MAX_SUPPLY_SHARE,
-    CORRECTION_MIN_ENTRAINING_SHARE,
-    CORRECTION_MIN_LOAD_SHARE,
-    CORRECTION_TAPER_DEG,
-    FrictionCoefficientTable,
-    film_correction_from_ehl,
-    film_state_tribology,
-    state_from_vector,
-    state_vector,
-)
+from .film_laws import film_state_tribology, state_from_vector, state_vector
 
 __all__ = [
-    "FrictionCoefficientTable",
-    "film_correction_from_ehl",
     "film_state_tribology",
     "CouplingIteration",
     "CouplingResult",
@@ -97,11 +84,6 @@ __all__ = [
     "valve_timing",
     "diagnose_coupling",
     "implicit_vs_explicit_metrics",
-    "CORRECTION_LIMIT",
-    "CORRECTION_MAX_SUPPLY_SHARE",
-    "CORRECTION_MIN_ENTRAINING_SHARE",
-    "CORRECTION_MIN_LOAD_SHARE",
-    "CORRECTION_TAPER_DEG",
 ]
 
 #: Mixing of the film/friction tables between coupling iterations (Anderson β) …
