@@ -68,7 +68,7 @@ class LobeTraces:
     bore_torque: np.ndarray  #: tappet–bore [N m] (set, sample)
     guide_torque: np.ndarray  #: valve guide [N m] (sample)
     energy: dict  #: set → ∮T_f dθ of one valve [J]
-    study: CycleStudy | None = None
+    study: CycleStudy  #: the single-valve study of the lobe kind
 
 
 def lobe_traces(kind: str, study: CycleStudy, engine_case: Case) -> LobeTraces:
@@ -174,6 +174,7 @@ class EngineStudy:
             "camshaft_journal": self.journal_torque,
         }
         e_parts = {k: self.energy(v) for k, v in parts.items()}  # (set, camshaft)
+        e_shafts = np.sum(list(e_parts.values()), axis=0)  # all parts, (set, camshaft)
         out: dict = {
             "cylinders": self.case.engine.cylinders,
             "camshafts": self.camshafts,
@@ -189,11 +190,7 @@ class EngineStudy:
             d = {
                 # transient-EHL steps that did not converge, per lobe kind: their
                 # friction is unknown and left out of the energies and sums below
-                "failed_steps": {
-                    k: len(lt.study.sets[i].failures)
-                    for k, lt in self.lobes.items()
-                    if lt.study is not None
-                },
+                "failed_steps": {k: len(lt.study.sets[i].failures) for k, lt in self.lobes.items()},
                 "engine_friction_energy_per_cycle_J": total,
                 "valvetrain_friction_mep_Pa": total / vd,
                 "mean_friction_power_W": total / period,
@@ -204,15 +201,11 @@ class EngineStudy:
                 "friction_energy_per_cycle_J": {k: float(e[i].sum()) for k, e in e_parts.items()},
                 "camshafts": {
                     c: {
-                        "friction_energy_per_cycle_J": float(
-                            sum(e[i, j] for e in e_parts.values())
-                        ),
+                        "friction_energy_per_cycle_J": float(e_shafts[i, j]),
                         "cam_tappet_friction_energy_per_cycle_J": float(
                             e_parts["cam_tappet"][i, j]
                         ),
-                        "mean_friction_torque_Nm": float(
-                            sum(e[i, j] for e in e_parts.values()) / (2.0 * math.pi)
-                        ),
+                        "mean_friction_torque_Nm": float(e_shafts[i, j] / (2.0 * math.pi)),
                         "max_friction_torque_Nm": float(
                             np.nanmax(self.friction_torque[i, j] + self.auxiliary_torque[i, j])
                         ),
@@ -229,9 +222,7 @@ class EngineStudy:
         out["conventions"] = {"crank_angle": ENGINE_CRANK_ANGLE, "change_pct": CHANGE}
         # contact loss of each lobe kind's valve (its single-valve dynamics), at the
         # engine's crank angles of that kind's valve on cylinder 1
-        out["valve_jump"] = {
-            k: self._jump_on_cylinder_1(k, lt) for k, lt in self.lobes.items() if lt.study
-        }
+        out["valve_jump"] = {k: self._jump_on_cylinder_1(k, lt) for k, lt in self.lobes.items()}
         self._verdicts(out, totals, vd)
         return out
 
@@ -240,7 +231,6 @@ class EngineStudy:
         angles moved to the engine's (:data:`~tribodyn.workflow.conventions.
         ENGINE_CRANK_ANGLE`) for the valve of that kind on cylinder 1: each start in
         0–720°, an interval keeps its length."""
-        assert lt.study is not None
         j = lt.study.dynamics.jump_summary()
         nose = next(
             (v["nose_deg"] for v in self.valves if v["kind"] == kind and v["cylinder"] == 1), None
@@ -273,9 +263,7 @@ class EngineStudy:
             viscous_factor_bounds,
         )
 
-        studies = {k: lt.study for k, lt in self.lobes.items() if lt.study is not None}
-        if not studies:
-            return
+        studies = {k: lt.study for k, lt in self.lobes.items()}
         built = build(self.case)
         energies = {}
         for i, name in enumerate(self.set_names):

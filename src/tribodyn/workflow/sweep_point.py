@@ -152,10 +152,7 @@ def _engine_point(built: BuiltCase) -> tuple[xr.Dataset, list]:
 
     study = run_engine_study(built.case, workers=1)
     summ = study.summary()
-    intake = study.lobes["intake"].study
-    if intake is None:
-        raise _PointFailure("the engine study has no intake-lobe study")
-    ds = _scalars(xr.Dataset(), _dynamics_scalars(intake.dynamics))
+    ds = _scalars(xr.Dataset(), _dynamics_scalars(study.lobes["intake"].study.dynamics))
     names = study.set_names
     sets = summ["surface_sets"]
     parts = sets[names[0]]["friction_energy_per_cycle_J"]
