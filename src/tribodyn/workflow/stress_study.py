@@ -177,7 +177,7 @@ def stress_along_cycle(
                 interface_tension=math.nan,
             )
         out.safety_factors[name] = sf
-    worst = closest_failure(out)
+    worst = closest_failure(out.safety_factors, out.maxima)
     if worst is not None:  # the map at the closest failure's sample
         trace = getattr(out, worst["body"]).value[MODE_PEAK[worst["mode"]]]
         out.map = stress_map(worst, trace, result, inputs, pair, lubricant, roughness, opts)
@@ -316,17 +316,18 @@ MODE_PEAK = {
 }
 
 
-def closest_failure(cs: CycleStress) -> dict | None:
+def closest_failure(factors: dict, maxima: dict) -> dict | None:
     """The failure mode with the smallest safety factor over both bodies: mode, body,
     safety factor (strength / cycle maximum), the stress [Pa], and where (x along the
-    contact, z depth [m]) and when (crank angle [deg]) it peaks. None when no factor is
-    finite (no strengths, or nothing loaded)."""
+    contact, z depth [m]) and when (crank angle [deg]) it peaks. ``factors`` and
+    ``maxima`` as :attr:`CycleStress.safety_factors` and :attr:`CycleStress.maxima`. None
+    when no factor is finite (no strengths, or nothing loaded)."""
     best = None
     for body in ("cam", "tappet"):
-        for mode, sf in cs.safety_factors.get(body, {}).items():
+        for mode, sf in factors.get(body, {}).items():
             if not math.isfinite(sf) or (best is not None and sf >= best["safety_factor"]):
                 continue
-            mx = cs.maxima[body][MODE_PEAK[mode]]
+            mx = maxima[body][MODE_PEAK[mode]]
             best = {
                 "mode": mode,
                 "body": body,
@@ -401,7 +402,9 @@ def set_stress_summary(study, name: str) -> dict:
     case = study.case
     own = build(case).set(name)
     s = own.surface
-    worst = closest_failure(cs)  # crank_deg: the run's crank angle (conventions.CRANK_ANGLE)
+    worst = closest_failure(
+        cs.safety_factors, cs.maxima
+    )  # crank_deg: the run's crank angle (conventions.CRANK_ANGLE)
     out: dict = {
         "stress_closest_failure": worst,
         "min_safety_factor": worst["safety_factor"] if worst else None,
