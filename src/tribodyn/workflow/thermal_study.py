@@ -86,12 +86,11 @@ def thermal_summary(study, an) -> dict:
             out["surface_sets"][th.name] = {"samples": 0}
             continue
 
-        def energy(r, key):
-            return float(np.nansum(np.where(ok, getattr(r, key) * us, 0.0) * dt))
+        def energy(power, ok=ok):
+            return float(np.nansum(np.where(ok, power, 0.0) * dt))
 
-        e_t, e_i = energy(th, "viscous_friction"), energy(i, "viscous_friction")
-        f_t = float(np.nansum(np.where(ok, th.friction_power, 0.0) * dt))
-        f_i = float(np.nansum(np.where(ok, i.friction_power, 0.0) * dt))
+        e_t, e_i = energy(th.viscous_friction * us), energy(i.viscous_friction * us)
+        f_t, f_i = energy(th.friction_power), energy(i.friction_power)
         out["surface_sets"][th.name] = {
             "max_temperature_K": finite(np.nanmax(th.max_temperature[L])),
             "max_mid_film_temperature_K": finite(np.nanmax(th.mid_film_temperature[L])),
