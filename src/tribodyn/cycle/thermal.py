@@ -113,7 +113,8 @@ class ThermalCycle(CycleMethod):
 
     def law_shear(self, stepper, r) -> Callable[[str], np.ndarray]:
         """Both laws on the same film and temperatures (the thermal Couette stress)."""
-        _, _, Tm, fl, flim = stepper.tf.factors(r.x, _cond(r))
+        cond = Conditions(r.load, r.radius, r.entrainment_speed, r.sliding_speed)
+        _, _, Tm, fl, flim = stepper.tf.factors(r.x, cond)
         return lambda law: couette_stress(
             r.pressure,
             r.film,
@@ -144,10 +145,6 @@ class ThermalCycle(CycleMethod):
             options_for(built, s),
             built.thermal_solver_options(),
         )
-
-
-def _cond(r):
-    return Conditions(r.load, r.radius, r.entrainment_speed, r.sliding_speed)
 
 
 def thermal_for_set(case, surface_set, inputs: CycleInputs, progress=None) -> ThermalSetCycleResult:

@@ -227,16 +227,12 @@ def film_gain_statistics(h_ref, h_set, mask, point_index) -> dict:
         gain = (h_set / h_ref - 1.0) * 100.0
     ok = np.asarray(mask, bool) & np.isfinite(gain)
     g = gain[ok]
-
-    def fin(v):
-        return float(v) if g.size and math.isfinite(v) else None
-
     at = [float(gain[i]) if ok[i] else None for i in point_index]
     return {
-        "max_pct": fin(g.max()) if g.size else None,
-        "mean_pct": fin(g.mean()) if g.size else None,
-        "median_abs_pct": fin(np.median(np.abs(g))) if g.size else None,
-        "p95_abs_pct": fin(np.percentile(np.abs(g), 95)) if g.size else None,
+        "max_pct": finite(g.max()) if g.size else None,
+        "mean_pct": finite(g.mean()) if g.size else None,
+        "median_abs_pct": finite(np.median(np.abs(g))) if g.size else None,
+        "p95_abs_pct": finite(np.percentile(np.abs(g), 95)) if g.size else None,
         "at_points_pct": at,
         "samples": int(g.size),
     }
