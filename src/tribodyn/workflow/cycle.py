@@ -274,6 +274,19 @@ def _study_executor(executor: Executor | None, workers: int):
 
 
 # ----------------------------------------------------------------------------- driver
+def study_dynamics(case) -> ValvetrainResult:
+    """The valvetrain dynamics of a case (Case or BuiltCase) as the study runs them: with
+    the explicit (analytic) tribology of its reference surface set; lumped or flexible
+    alike (:func:`~tribodyn.valvetrain.dynamics.simulate_valvetrain` takes either)."""
+    built = as_built(case)
+    return simulate_valvetrain(
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology(surface_roles(built)["reference"]),
+        **built.dynamics_options,
+    )
+
+
 def run_cycle_study(
     case: Case | BuiltCase,
     *,
@@ -321,12 +334,7 @@ def run_cycle_study(
     t0 = time.perf_counter()
     report("dynamics")
     with single_blas_thread():
-        dyn = simulate_valvetrain(
-            built.cam,
-            built.valvetrain,  # lumped or flexible: simulate_valvetrain takes either
-            tribology=built.analytic_tribology(ref_name),
-            **built.dynamics_options,
-        )
+        dyn = study_dynamics(built)
     timings["dynamics_explicit_s"] = time.perf_counter() - t0
     if not dyn.converged:
         raise StudyError(f"valvetrain dynamics failed: {dyn.message}")

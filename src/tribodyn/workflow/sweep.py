@@ -376,16 +376,15 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
     from ..contact.ehl import TransientEHL
     from ..cycle.driver import CycleInputs
     from .coating_study import dry_coating_study, ehl_coating_study
-    from .cycle import StudyError
+    from .cycle import StudyError, study_dynamics
     from .postprocess import surface_roles
     from .sensitivity import nose_condition, roughness_sensitivity
-    from .sweep_point import point_dynamics
 
     clock = time.process_time  # CPU time: one core, whatever the machine's load
     built = build(case)
     with threadpool_limits(1):
         t0 = clock()
-        dyn = point_dynamics(built)
+        dyn = study_dynamics(built)
         t_dyn = clock() - t0
         if mode == "dynamics" or not dyn.converged:
             return t_dyn

@@ -97,23 +97,10 @@ def _dynamics_scalars(dyn) -> dict:
     return {k: own[k] if k in own else s[k] for k in POINT_SCALARS if k in own or k in s}
 
 
-def point_dynamics(case):
-    """The valvetrain dynamics of a case (Case or BuiltCase) with the explicit tribology
-    of its reference surface set, as the study runs them."""
-    from ..valvetrain.dynamics import simulate_valvetrain
-    from .postprocess import surface_roles
-
-    built = as_built(case)
-    return simulate_valvetrain(
-        built.cam,
-        built.valvetrain,
-        tribology=built.analytic_tribology(surface_roles(built)["reference"]),
-        **built.dynamics_options,
-    )
-
-
 def _dynamics_point(built: BuiltCase, traces: bool) -> tuple[xr.Dataset, list]:
-    dyn = point_dynamics(built)
+    from .cycle import study_dynamics
+
+    dyn = study_dynamics(built)
     if not dyn.converged:
         raise _PointFailure(f"valvetrain dynamics failed: {dyn.message}")
     ds = _scalars(xr.Dataset(), {**_dynamics_scalars(dyn), "n_warnings": int(dyn.jump)})
