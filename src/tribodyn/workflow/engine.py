@@ -59,7 +59,8 @@ class LobeTraces:
     crank angle of maximum lift; per-set arrays are (set, sample)."""
 
     kind: str
-    relative_crank: np.ndarray  #: crank angle − crank angle of maximum lift [°]
+    nose: float  #: crank angle of maximum lift of its study [°]
+    relative_crank: np.ndarray  #: crank angle − nose [°]
     contact_force: np.ndarray  #: W [N]
     lift_velocity: np.ndarray  #: s' [m/rad]
     friction: np.ndarray  #: signed F_f [N] (set, sample)
@@ -91,6 +92,7 @@ def lobe_traces(kind: str, study: CycleStudy, engine_case: Case) -> LobeTraces:
     _, t_g, _ = vf.valve_guide_friction(s1, w, eta, guide)
     return LobeTraces(
         kind=kind,
+        nose=nose,
         relative_crank=np.asarray(inp.crank_angle, float) - nose,
         contact_force=np.asarray(inp.contact_force, float),
         lift_velocity=s1,
@@ -235,10 +237,9 @@ class EngineStudy:
         nose = next(
             (v["nose_deg"] for v in self.valves if v["kind"] == kind and v["cylinder"] == 1), None
         )
-        dyn = lt.study.dynamics
         if nose is None:
             return j
-        shift = nose - float(dyn.crank_angle[int(np.argmax(dyn.cam_lift))])
+        shift = nose - lt.nose
 
         def at(c):
             return None if c is None else float((c + shift) % 720.0)
@@ -393,17 +394,14 @@ def run_engine_study(
     td, tb, tg = np.zeros_like(tf), np.zeros_like(tf), np.zeros_like(tf)
     per_valve = np.zeros((ns, len(valves), crank.size))
     for m, v in enumerate(valves):
-        lt = lobes[v["kind"]]
-        j = camshafts.index(v["camshaft"])
-        per_valve[:, m] = place_trace(  # NaN where this valve's EHL failed (unknown)
-            lt.relative_crank, lt.friction_torque, v["nose_deg"], crank
-        )
-
+        lt, j = lobes[v["kind"]], camshafts.index(v["camshaft"])
         rel, nose = lt.relative_crank, v["nose_deg"]
+        # NaN where this valve's EHL failed (unknown)
+        per_valve[:, m] = place_trace(rel, lt.friction_torque, nose, crank)
         tf[:, j] += place_known(rel, lt.friction_torque, nose, crank)
         td[:, j] += place_known(rel, lt.drive_torque, nose, crank)
         tb[:, j] += place_known(rel, lt.bore_torque, nose, crank)
-        tg[:, j] += place_trace(lt.relative_crank, lt.guide_torque, v["nose_deg"], crank)
+        tg[:, j] += place_trace(rel, lt.guide_torque, nose, crank)
     w = case.cam_speed
     eta = float(built.lubricant.viscosity)
     tj = np.array(
@@ -414,9 +412,7 @@ def run_engine_study(
         if studies[k] is not studies.get("intake") or k == "intake":
             # the single-valve study's crank angles, with where its maximum lift sits on
             # the engine's clock (cylinder 1's valve of this kind)
-            dyn = studies[k].dynamics
-            own = float(dyn.crank_angle[int(np.argmax(dyn.cam_lift))])
-            on_1 = next(v["nose_deg"] for v in valves if v["kind"] == k)
+            own, on_1 = lobes[k].nose, next(v["nose_deg"] for v in valves if v["kind"] == k)
             clock = (
                 f"crank angles of its single-valve study, whose maximum lift at {own:.0f}° "
                 f"is {on_1:.0f}° of cylinder 1"
