@@ -42,7 +42,7 @@ SAE_5W20 = Lubricant(
 )
 
 _FIG5: dict[str, Any] = paper.FIG5
-#: Conditions of the dry study of Fig. 5 (the defaults of :func:`dry_coating_study`).
+#: Conditions of the dry study of Fig. 5 (:func:`dry_coating_study`).
 DRY_CONDITIONS = {k: v for k, v in _FIG5.items() if k != "ratios"}
 
 
