@@ -413,8 +413,7 @@ def set_stress_summary(study, name: str) -> dict:
     if est is not None:
         out["asperity_scale_estimate"] = est
     for mode in MODE_PEAK:
-        v = cs.safety_factors["tappet"].get(mode)
-        out[f"safety_factor_{mode}"] = finite(v) if v is not None else None
+        out[f"safety_factor_{mode}"] = finite(cs.safety_factors["tappet"].get(mode))
     out["safety_factors"] = {
         b: {m: finite(v) for m, v in sf.items()} for b, sf in cs.safety_factors.items()
     }
