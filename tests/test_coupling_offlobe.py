@@ -9,13 +9,13 @@ import numpy as np
 import pytest
 
 from conftest import explicit_run
+from film_table_law import ehl_tribology
 from tribodyn import InputError
 from tribodyn.config import load_case
 from tribodyn.config.build import build
 from tribodyn.cycle.coupling import (
     COUPLING_MAX_TOL,
     COUPLING_RMS_TOL,
-    ehl_tribology,
     film_state_tribology,
     run_coupling,
     valve_timing,

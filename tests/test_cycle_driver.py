@@ -13,7 +13,7 @@ from tribodyn.config.build import build
 from tribodyn.contact.ehl.thermal_transient import ThermalTransientEHL
 from tribodyn.cycle.driver import IsothermalCycle, march_cycle
 from tribodyn.cycle.methods import METHODS, cycle_for_set
-from tribodyn.cycle.thermal import ThermalCycle, thermal_along_cycle
+from tribodyn.cycle.thermal import ThermalCycle
 from tribodyn.physics.heat_conduction import ThermalBody, ThermalProperties
 from tribodyn.physics.thermal_oil import ThermalLubricant, kelvin
 
@@ -30,18 +30,17 @@ WIDTH = CASE.width
 
 
 def _thermal(inp):
-    s = UNCOATED
-    return thermal_along_cycle(
-        inp,
-        "u",
-        "u",
+    """The thermal march of the uncoated set (the driver with :class:`ThermalCycle`)."""
+    s, built = UNCOATED, build(CASE)
+    method = ThermalCycle(
         s.bodies,
-        build(CASE).thermal_oil(),
-        build(CASE).set(s.name).thermal_bodies,
+        built.thermal_oil(),
+        built.set(s.name).thermal_bodies,
         s.roughness,
-        build(CASE).set(s.name).options,
-        build(CASE).thermal_solver_options(),
+        built.set(s.name).options,
+        built.thermal_solver_options(),
     )
+    return march_cycle(inp, "u", "u", method)
 
 
 def _ramp_inputs(step_deg):

@@ -188,13 +188,13 @@ def test_stress_map_and_report_section(light_study, tmp_path):
 
 def test_disabled_stresses_are_not_computed(light_study):
     from tribodyn.config.build import build
-    from tribodyn.workflow.cycle import _stress_step
+    from tribodyn.workflow.cycle import _stress_task
 
     study = light_study
     off = study.case.updated({"stress.enabled": False})
-    s = build(off).set("dlc_4um").surface
-    assert _stress_step(build(off), s, study.set("dlc_4um"), study.inputs) is None
-    on = _stress_step(build(study.case), s, study.set("dlc_4um"), study.inputs)
+    first = study.set("dlc_4um")
+    assert _stress_task(build(off), "dlc_4um", study.inputs, first) is None
+    on = _stress_task(build(study.case), "dlc_4um", study.inputs, first)
     assert on.safety_factors == study.stresses["dlc_4um"].safety_factors
 
 

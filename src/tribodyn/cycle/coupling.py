@@ -52,9 +52,7 @@ Limits (measured; docs/convergence.md):
   11.7 N (42 N) before — that includes the EHL's own time discretisation.
 
 The EHL of the presented cycle drives both simulated cycles (the tables are periodic
-in the cam angle). :func:`film_law_from_ehl` and :func:`ehl_tribology` build the
-earlier linearised film-table law (valvetrain ``FilmTableTribology``), still a public
-hook.
+in the cam angle).
 """
 
 from __future__ import annotations
@@ -70,27 +68,9 @@ from ..physics.materials import reduced_modulus
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from ..valvetrain.tribology import FilmStateTribology
 from .driver import CycleInputs, SetCycleResult, ehl_for_set
-from .film_laws import (
-    CORRECTION_LIMIT,
-    CORRECTION_MAX_SUPPLY_SHARE,
-    CORRECTION_MIN_ENTRAINING_SHARE,
-    CORRECTION_MIN_LOAD_SHARE,
-    CORRECTION_TAPER_DEG,
-    SECANT_SHARE,
-    FrictionCoefficientTable,
-    ehl_tribology,
-    film_correction_from_ehl,
-    film_law_from_ehl,
-    film_state_tribology,
-    state_from_vector,
-    state_vector,
-)
+from .film_laws import film_state_tribology, state_from_vector, state_vector
 
 __all__ = [
-    "FrictionCoefficientTable",
-    "film_law_from_ehl",
-    "ehl_tribology",
-    "film_correction_from_ehl",
     "film_state_tribology",
     "CouplingIteration",
     "CouplingResult",
@@ -104,12 +84,6 @@ __all__ = [
     "valve_timing",
     "diagnose_coupling",
     "implicit_vs_explicit_metrics",
-    "SECANT_SHARE",
-    "CORRECTION_LIMIT",
-    "CORRECTION_MAX_SUPPLY_SHARE",
-    "CORRECTION_MIN_ENTRAINING_SHARE",
-    "CORRECTION_MIN_LOAD_SHARE",
-    "CORRECTION_TAPER_DEG",
 ]
 
 #: Mixing of the film/friction tables between coupling iterations (Anderson β) …
@@ -278,11 +252,9 @@ def run_coupling(
     dynamics: ValvetrainResult,
     inputs: CycleInputs,
     first: SetCycleResult,
-    progress=None,
 ) -> CouplingResult:
     """Implicit coupling for one surface set of a case (Case or BuiltCase), starting
     from its EHL (``first``) on the explicit dynamics and their cycle ``inputs``.
-    ``progress(label, i, n)`` receives the EHL re-passes.
 
     Stops when the contact force changes by less than COUPLING_RMS_TOL (RMS over the
     event) and COUPLING_MAX_TOL (max) of its peak, after ``numerics.coupling_iterations``,
@@ -360,14 +332,7 @@ def run_coupling(
             break
         if k < n.coupling_iterations:
             inp = CycleInputs.from_dynamics(new, n.crank_step_deg, case.width)
-            cb = None
-            if progress is not None:
-                label = f"implicit coupling {k + 1}"
-
-                def cb(i, m, label=label):
-                    progress(label, i, m)
-
-            ehl = ehl_for_set(built, s, inp, progress=cb, film_law_only=True)
+            ehl = ehl_for_set(built, s, inp, film_law_only=True)
     if not out.converged and out.history:
         last = out.history[-1]
         msg += (

@@ -25,21 +25,12 @@ from ..contact.ehl.thermal import ThermalOptions, couette_stress
 from ..contact.ehl.thermal_transient import ThermalTransientEHL
 from ..physics.asperity import Roughness
 from ..physics.thermal_oil import ThermalLubricant
-from .driver import (
-    TIME_TOL,
-    CycleInputs,
-    CycleMethod,
-    Recorder,
-    SetCycleResult,
-    march_cycle,
-    march_for_set,
-)
+from .driver import CycleInputs, CycleMethod, Recorder, SetCycleResult, march_for_set
 
 __all__ = [
     "ThermalSetCycleResult",
     "ThermalCycle",
     "TemperatureRecorder",
-    "thermal_along_cycle",
     "thermal_for_set",
     "thermal_task",
 ]
@@ -122,7 +113,8 @@ class ThermalCycle(CycleMethod):
 
     def law_shear(self, stepper, r) -> Callable[[str], np.ndarray]:
         """Both laws on the same film and temperatures (the thermal Couette stress)."""
-        _, _, Tm, fl, flim = stepper.tf.factors(r.x, _cond(r))
+        cond = Conditions(r.load, r.radius, r.entrainment_speed, r.sliding_speed)
+        _, _, Tm, fl, flim = stepper.tf.factors(r.x, cond)
         return lambda law: couette_stress(
             r.pressure,
             r.film,
@@ -153,41 +145,6 @@ class ThermalCycle(CycleMethod):
             options_for(built, s),
             built.thermal_solver_options(),
         )
-
-
-def thermal_along_cycle(
-    inp: CycleInputs,
-    name,
-    label,
-    bodies,
-    oil,
-    thermal_bodies,
-    roughness,
-    options,
-    thermal_options,
-    *,
-    min_load=5.0,
-    progress=None,
-    time_tol: float = TIME_TOL,
-) -> ThermalSetCycleResult:
-    """March the thermal transient EHL over the cycle for one surface set
-    (:func:`~.driver.march_cycle` with :class:`ThermalCycle`: the same samples,
-    time-error control, outputs and unloaded-sample convention as the isothermal march)."""
-    res = march_cycle(
-        inp,
-        name,
-        label,
-        ThermalCycle(bodies, oil, thermal_bodies, roughness, options, thermal_options),
-        min_load=min_load,
-        progress=progress,
-        time_tol=time_tol,
-    )
-    assert isinstance(res, ThermalSetCycleResult)
-    return res
-
-
-def _cond(r):
-    return Conditions(r.load, r.radius, r.entrainment_speed, r.sliding_speed)
 
 
 def thermal_for_set(case, surface_set, inputs: CycleInputs, progress=None) -> ThermalSetCycleResult:

@@ -8,21 +8,20 @@ not give the radius of curvature: R = 10 mm is assumed here and stated on every 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
 from .. import paper
 from ..config.build import as_built
-from ..contact.dry import DryContactResult, solve_dry_contact
+from ..contact.dry import solve_dry_contact
 from ..contact.ehl import EHLResult, solve_ehl
 from ..physics.hertz import hertz_line_contact
 from ..physics.lubricant import Lubricant
-from ..physics.materials import STEEL, Body, Coating, Material
+from ..physics.materials import STEEL, Body, Coating
 
 __all__ = [
-    "DryCoatingCase",
-    "ModulusCase",
-    "PairCase",
+    "CoatingCase",
     "EHLCoatingStudy",
     "dry_coating_study",
     "dry_grid",
@@ -42,37 +41,19 @@ SAE_5W20 = Lubricant(
     limiting_shear_coefficient=paper.LUBRICANT["limiting_shear_coefficient"],
 )
 
-_FIG5 = paper.FIG5
-#: Conditions of the dry study of Fig. 5 (the defaults of :func:`dry_coating_study`).
+_FIG5: dict[str, Any] = paper.FIG5
+#: Conditions of the dry study of Fig. 5 (:func:`dry_coating_study`).
 DRY_CONDITIONS = {k: v for k, v in _FIG5.items() if k != "ratios"}
 
 
 @dataclass
-class DryCoatingCase:
-    """One dry contact of Fig. 5: label, modulus ratio E_c/E_s, result."""
+class CoatingCase:
+    """One contact of Fig. 5 (dry) or Fig. 6 (smooth EHL): label, modulus ratio E_c/E_s
+    (None: a real pair or uncoated steel) and result."""
 
     label: str
     ratio: float | None
-    result: DryContactResult
-
-
-@dataclass
-class ModulusCase:
-    """One smooth EHL contact of Fig. 6 with a coating of modulus ratio E_c/E_s."""
-
-    label: str
-    ratio: float
-    result: EHLResult
-
-
-@dataclass
-class PairCase:
-    """One smooth EHL contact of Fig. 6 with a real pair; ``material`` is the coating's
-    key in the case's ``[materials]`` (None: uncoated steel)."""
-
-    label: str
-    material: str | None
-    result: EHLResult
+    result: Any  #: DryContactResult or EHLResult
 
 
 @dataclass
@@ -80,32 +61,25 @@ class EHLCoatingStudy:
     """Fig. 6: smooth EHL for modulus ratios and for the real pairs, with the conditions."""
 
     conditions: dict
-    ratios: list[ModulusCase] = field(default_factory=list)
-    pairs: list[PairCase] = field(default_factory=list)
+    ratios: list[CoatingCase] = field(default_factory=list)
+    pairs: list[CoatingCase] = field(default_factory=list)
 
     @property
     def results(self) -> list[EHLResult]:
         return [c.result for c in self.ratios] + [c.result for c in self.pairs]
 
 
-def dry_coating_study(
-    ratios=_FIG5["ratios"],
-    *,
-    thickness=_FIG5["thickness"],
-    load_total=_FIG5["load_total"],
-    width=_FIG5["width"],
-    radius=_FIG5["radius"],
-    substrate: Material = STEEL,
-    coating_nu: float = 0.3,
-    n: int = 1024,
-) -> list[DryCoatingCase]:
-    """Dry pressure for a steel cam on a coated steel tappet, one case per modulus ratio."""
-    w = load_total / width
+def dry_coating_study() -> list[CoatingCase]:
+    """Dry pressure for a steel cam on a steel tappet with a coating of ν = 0.3 at the
+    paper's conditions (:data:`DRY_CONDITIONS`; 1024 grid points), one case per modulus
+    ratio of Fig. 5."""
+    c = DRY_CONDITIONS
+    w, steel = c["load_total"] / c["width"], Body(STEEL)
     cases = []
-    for ratio in ratios:
-        coat = Coating(E=substrate.E * ratio, nu=coating_nu, thickness=thickness)
-        res = solve_dry_contact(w, radius, (Body(substrate), Body(substrate, coat)), n=n)
-        cases.append(DryCoatingCase(f"E_c/E_s = {ratio:g}", ratio, res))
+    for ratio in _FIG5["ratios"]:
+        coat = Coating(E=STEEL.E * ratio, nu=0.3, thickness=c["thickness"])
+        res = solve_dry_contact(w, c["radius"], (steel, Body(STEEL, coat)), n=1024)
+        cases.append(CoatingCase(f"E_c/E_s = {ratio:g}", ratio, res))
     return cases
 
 
@@ -113,7 +87,7 @@ def dry_coating_study(
 DRY_SPAN = 1.3
 
 
-def dry_grid(cases: list[DryCoatingCase], n: int = 401) -> np.ndarray:
+def dry_grid(cases: list[CoatingCase], n: int = 401) -> np.ndarray:
     """``n`` positions x [m] spanning the dry study ``cases``: ±DRY_SPAN times their
     largest half-width."""
     half = max(DRY_SPAN * c.result.half_width for c in cases)
@@ -131,75 +105,45 @@ class HertzReference:
     max_pressure: float
 
 
-def dry_hertz_reference(
-    cases: list[DryCoatingCase],
-    conditions: dict = DRY_CONDITIONS,
-    substrate: Material = STEEL,
-    n: int = 801,
-) -> HertzReference | None:
+def dry_hertz_reference(cases: list[CoatingCase], n: int = 801) -> HertzReference | None:
     """Hertz (:func:`~tribodyn.physics.hertz.hertz_line_contact`) of a steel pair,
-    E' = E/(1 − ν²), at the dry study's load per width and radius (``conditions``), on
-    :func:`dry_grid` of ``n`` points; None without dry cases."""
+    E' = E/(1 − ν²), at the dry study's load per width and radius
+    (:data:`DRY_CONDITIONS`), on :func:`dry_grid` of ``n`` points; None without dry
+    cases."""
     if not cases:
         return None
-    w = conditions["load_total"] / conditions["width"]
-    h = hertz_line_contact(w, conditions["radius"], substrate.E / (1.0 - substrate.nu**2))
+    c = DRY_CONDITIONS
+    h = hertz_line_contact(c["load_total"] / c["width"], c["radius"], STEEL.E / (1.0 - STEEL.nu**2))
     x = dry_grid(cases, n)
     return HertzReference(x, np.asarray(h.pressure(x), float), h.half_width, h.max_pressure)
 
 
-def ehl_coating_study(
-    lubricant: Lubricant = SAE_5W20,
-    case=None,
-    *,
-    ratios=_FIG5["ratios"],
-    thickness=_FIG5["thickness"],
-    load_total=_FIG5["load_total"],
-    width=_FIG5["width"],
-    radius=_FIG5["radius"],
-    entrainment_speed=_FIG5["entrainment_speed"],
-    pair_thickness: float = paper.COATING_THICKNESS,
-) -> EHLCoatingStudy:
-    """Smooth EHL line contacts of the paper's Fig. 6 conditions.
+def ehl_coating_study(lubricant: Lubricant, case) -> EHLCoatingStudy:
+    """Smooth EHL line contacts at the paper's Fig. 6 conditions in ``lubricant``.
 
-    ``ratios``: coating/steel modulus ratios with a ``thickness`` coating; ``pairs``: steel
-    and the coatings of the case's ``[materials]`` (the paper's DLC 185 GPa and WC-C 175 GPa
-    without a case), ``pair_thickness`` thick. Pure rolling (u_s = 0): the pressure and
-    film do not depend on sliding in this isothermal model.
+    ``ratios``: coating/steel modulus ratios with the Fig. 6 coating thickness; ``pairs``:
+    steel and the coatings of the ``[materials]`` of ``case`` (a Case or BuiltCase),
+    :data:`tribodyn.paper.COATING_THICKNESS` thick. Pure rolling (u_s = 0): the pressure
+    and film do not depend on sliding in this isothermal model.
     """
-    w = load_total / width
-    out = EHLCoatingStudy(
-        conditions=dict(
-            load_total=load_total,
-            width=width,
-            radius=radius,
-            thickness=thickness,
-            entrainment_speed=entrainment_speed,
-            pair_thickness=pair_thickness,
-        )
-    )
-    steel = Body(STEEL)
-    for ratio in ratios:
-        coat = Coating(E=STEEL.E * ratio, nu=STEEL.nu, thickness=thickness)
-        r = solve_ehl(w, radius, entrainment_speed, 0.0, (steel, Body(STEEL, coat)), lubricant)
-        out.ratios.append(ModulusCase(f"E_c/E_s = {ratio:g}", ratio, r))
-    if case is not None:  # a Case or BuiltCase
-        built = as_built(case)
-        coatings = [
-            (m.label or k, k, built.materials[k])
-            for k, m in built.case.materials.items()
-            if k != "steel"
-        ]
-    else:
-        coatings = [
-            (v["label"], k, Material(v["E"], v["nu"]))
-            for k, v in paper.MATERIALS.items()
-            if k != "steel"
-        ]
-    r = solve_ehl(w, radius, entrainment_speed, 0.0, (steel, steel), lubricant)
-    out.pairs.append(PairCase("steel (uncoated)", None, r))
-    for label, key, mat in coatings:
-        tappet = Body(STEEL, Coating(E=mat.E, nu=mat.nu, thickness=pair_thickness))
-        r = solve_ehl(w, radius, entrainment_speed, 0.0, (steel, tappet), lubricant)
-        out.pairs.append(PairCase(f"{label} {pair_thickness * 1e6:g} µm", key, r))
+    c = {k: _FIG5[k] for k in ("load_total", "width", "radius", "thickness", "entrainment_speed")}
+    out = EHLCoatingStudy(conditions={**c, "pair_thickness": paper.COATING_THICKNESS})
+    w, steel = c["load_total"] / c["width"], Body(STEEL)
+
+    def solve(tappet: Body) -> EHLResult:
+        return solve_ehl(w, c["radius"], c["entrainment_speed"], 0.0, (steel, tappet), lubricant)
+
+    for ratio in _FIG5["ratios"]:
+        coat = Coating(E=STEEL.E * ratio, nu=STEEL.nu, thickness=c["thickness"])
+        out.ratios.append(CoatingCase(f"E_c/E_s = {ratio:g}", ratio, solve(Body(STEEL, coat))))
+    built = as_built(case)
+    out.pairs.append(CoatingCase("steel (uncoated)", None, solve(steel)))
+    h = paper.COATING_THICKNESS
+    for key, m in built.case.materials.items():
+        if key != "steel":
+            mat = built.materials[key]
+            coat = Coating(E=mat.E, nu=mat.nu, thickness=h)
+            out.pairs.append(
+                CoatingCase(f"{m.label or key} {h * 1e6:g} µm", None, solve(Body(STEEL, coat)))
+            )
     return out

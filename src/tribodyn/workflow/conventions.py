@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["CRANK_ANGLE", "ENGINE_CRANK_ANGLE", "CHANGE", "EVENT_FRACTION", "change_pct"]
+__all__ = ["CRANK_ANGLE", "ENGINE_CRANK_ANGLE", "CHANGE", "EVENT_FRACTION", "change_pct", "finite"]
 
 #: Crank angle of a run (``tribodyn run``, sweeps in study mode).
 CRANK_ANGLE = (
@@ -29,6 +29,14 @@ CHANGE = (
 #: A sample belongs to the cam event (in the figures, static and interactive) where the
 #: contact force exceeds this share of its maximum.
 EVENT_FRACTION = 0.05
+
+
+def finite(v) -> float | None:
+    """A number of ``summary.json``: ``v`` as a float, None where unknown (None, NaN, ±inf)."""
+    if v is None:
+        return None
+    v = float(v)
+    return v if math.isfinite(v) else None
 
 
 def change_pct(value, reference) -> float | None:

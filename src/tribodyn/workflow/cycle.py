@@ -40,7 +40,7 @@ from ..cycle.methods import study_variant
 from ..cycle.tasks import InlineExecutor, Task, run_tasks
 from ..valvetrain.dynamics import ValvetrainResult, simulate_valvetrain
 from .coating_study import (
-    DryCoatingCase,
+    CoatingCase,
     EHLCoatingStudy,
     HertzReference,
     dry_coating_study,
@@ -64,7 +64,7 @@ from .sensitivity import (
 )
 
 if TYPE_CHECKING:
-    from ..config.case import Case, SurfaceSet
+    from ..config.case import Case
 
 __all__ = ["CycleStudy", "StudyError", "run_cycle_study"]
 
@@ -83,7 +83,7 @@ class CycleStudy:
     sets: list[SetCycleResult]  #: in case order
     labels: dict[str, str]  #: set name → label
     coupling: CouplingResult = field(default_factory=CouplingResult)
-    dry: list[DryCoatingCase] = field(default_factory=list)  #: Fig. 5 cases
+    dry: list[CoatingCase] = field(default_factory=list)  #: Fig. 5 cases
     dry_hertz: HertzReference | None = None  #: Fig. 5's Hertz reference (uncoated steel)
     ehl_coating: EHLCoatingStudy | None = None  #: Fig. 6 results
     sensitivity: RoughnessSensitivity | None = None  #: at the cam nose
@@ -161,33 +161,18 @@ def _local_pool(workers: int | None) -> ProcessPoolExecutor:
     )
 
 
-def _stress_step(built: BuiltCase, s: SurfaceSet, res, inputs):
-    """The set's subsurface stresses along its EHL pass (the last step of its task):
-    a CycleStress, None when ``[stress] enabled = false``, or the error text."""
-    if not built.case.stress.enabled:
-        return None
-    from .stress_study import stress_for_set
-
-    try:  # the strengths built with the case
-        return stress_for_set(built, s, res, inputs, strengths=built.set(s.name).strengths)
-    except Exception as exc:  # the EHL results stay usable; the study warns
-        return f"{type(exc).__name__}: {exc}"
+def _pass_task(built: BuiltCase, name: str, inputs):
+    """EHL along the cycle for one surface set (a picklable top-level task; the reference
+    set's pass, which the coupling and its stresses wait for)."""
+    with single_blas_thread():
+        return ehl_for_set(built, built.set(name).surface, inputs)
 
 
 def _set_task(built: BuiltCase, name: str, inputs, stresses: bool = True):
-    """EHL along the cycle for one surface set, then (with ``stresses``) its stresses (a
-    picklable top-level task). Returns (SetCycleResult, stresses or None)."""
-    with single_blas_thread():
-        s = built.set(name).surface
-        res = ehl_for_set(built, s, inputs)
-        return res, _stress_step(built, s, res, inputs) if stresses else None
-
-
-def _pass_task(built: BuiltCase, name: str, inputs):
-    """EHL along the cycle for one surface set alone (the reference set's pass, which the
-    coupling and its stresses wait for)."""
-    with single_blas_thread():
-        return ehl_for_set(built, built.set(name).surface, inputs)
+    """EHL along the cycle for one surface set, then (with ``stresses``) its stresses
+    (:func:`_stress_task`). Returns (SetCycleResult, stresses or None)."""
+    res = _pass_task(built, name, inputs)
+    return res, _stress_task(built, name, inputs, res) if stresses else None
 
 
 def _coupling_task(built: BuiltCase, name: str, dynamics, inputs, first):
@@ -198,9 +183,18 @@ def _coupling_task(built: BuiltCase, name: str, dynamics, inputs, first):
 
 
 def _stress_task(built: BuiltCase, name: str, inputs, first):
-    """The stresses along the pass ``first`` of the set ``name`` (:func:`_stress_step`)."""
+    """The subsurface stresses of the set ``name`` along its EHL pass ``first``: a
+    CycleStress, None when ``[stress] enabled = false``, or the error text."""
+    if not built.case.stress.enabled:
+        return None
+    from .stress_study import stress_for_set
+
+    own = built.set(name)
     with single_blas_thread():
-        return _stress_step(built, built.set(name).surface, first, inputs)
+        try:  # the strengths built with the case
+            return stress_for_set(built, own.surface, first, inputs, strengths=own.strengths)
+        except Exception as exc:  # the EHL results stay usable; the study warns
+            return f"{type(exc).__name__}: {exc}"
 
 
 def _coating_studies_task(built: BuiltCase, reference: str, nose, paper_studies: bool = True):
@@ -280,6 +274,19 @@ def _study_executor(executor: Executor | None, workers: int):
 
 
 # ----------------------------------------------------------------------------- driver
+def study_dynamics(case) -> ValvetrainResult:
+    """The valvetrain dynamics of a case (Case or BuiltCase) as the study runs them: with
+    the explicit (analytic) tribology of its reference surface set; lumped or flexible
+    alike (:func:`~tribodyn.valvetrain.dynamics.simulate_valvetrain` takes either)."""
+    built = as_built(case)
+    return simulate_valvetrain(
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology(surface_roles(built)["reference"]),
+        **built.dynamics_options,
+    )
+
+
 def run_cycle_study(
     case: Case | BuiltCase,
     *,
@@ -327,12 +334,7 @@ def run_cycle_study(
     t0 = time.perf_counter()
     report("dynamics")
     with single_blas_thread():
-        dyn = simulate_valvetrain(
-            built.cam,
-            built.valvetrain,  # lumped or flexible: simulate_valvetrain takes either
-            tribology=built.analytic_tribology(ref_name),
-            **built.dynamics_options,
-        )
+        dyn = study_dynamics(built)
     timings["dynamics_explicit_s"] = time.perf_counter() - t0
     if not dyn.converged:
         raise StudyError(f"valvetrain dynamics failed: {dyn.message}")

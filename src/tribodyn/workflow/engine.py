@@ -59,7 +59,8 @@ class LobeTraces:
     crank angle of maximum lift; per-set arrays are (set, sample)."""
 
     kind: str
-    relative_crank: np.ndarray  #: crank angle − crank angle of maximum lift [°]
+    nose: float  #: crank angle of maximum lift of its study [°]
+    relative_crank: np.ndarray  #: crank angle − nose [°]
     contact_force: np.ndarray  #: W [N]
     lift_velocity: np.ndarray  #: s' [m/rad]
     friction: np.ndarray  #: signed F_f [N] (set, sample)
@@ -68,7 +69,7 @@ class LobeTraces:
     bore_torque: np.ndarray  #: tappet–bore [N m] (set, sample)
     guide_torque: np.ndarray  #: valve guide [N m] (sample)
     energy: dict  #: set → ∮T_f dθ of one valve [J]
-    study: CycleStudy | None = None
+    study: CycleStudy  #: the single-valve study of the lobe kind
 
 
 def lobe_traces(kind: str, study: CycleStudy, engine_case: Case) -> LobeTraces:
@@ -91,6 +92,7 @@ def lobe_traces(kind: str, study: CycleStudy, engine_case: Case) -> LobeTraces:
     _, t_g, _ = vf.valve_guide_friction(s1, w, eta, guide)
     return LobeTraces(
         kind=kind,
+        nose=nose,
         relative_crank=np.asarray(inp.crank_angle, float) - nose,
         contact_force=np.asarray(inp.contact_force, float),
         lift_velocity=s1,
@@ -174,6 +176,7 @@ class EngineStudy:
             "camshaft_journal": self.journal_torque,
         }
         e_parts = {k: self.energy(v) for k, v in parts.items()}  # (set, camshaft)
+        e_shafts = np.sum(list(e_parts.values()), axis=0)  # all parts, (set, camshaft)
         out: dict = {
             "cylinders": self.case.engine.cylinders,
             "camshafts": self.camshafts,
@@ -189,11 +192,7 @@ class EngineStudy:
             d = {
                 # transient-EHL steps that did not converge, per lobe kind: their
                 # friction is unknown and left out of the energies and sums below
-                "failed_steps": {
-                    k: len(lt.study.sets[i].failures)
-                    for k, lt in self.lobes.items()
-                    if lt.study is not None
-                },
+                "failed_steps": {k: len(lt.study.sets[i].failures) for k, lt in self.lobes.items()},
                 "engine_friction_energy_per_cycle_J": total,
                 "valvetrain_friction_mep_Pa": total / vd,
                 "mean_friction_power_W": total / period,
@@ -204,15 +203,11 @@ class EngineStudy:
                 "friction_energy_per_cycle_J": {k: float(e[i].sum()) for k, e in e_parts.items()},
                 "camshafts": {
                     c: {
-                        "friction_energy_per_cycle_J": float(
-                            sum(e[i, j] for e in e_parts.values())
-                        ),
+                        "friction_energy_per_cycle_J": float(e_shafts[i, j]),
                         "cam_tappet_friction_energy_per_cycle_J": float(
                             e_parts["cam_tappet"][i, j]
                         ),
-                        "mean_friction_torque_Nm": float(
-                            sum(e[i, j] for e in e_parts.values()) / (2.0 * math.pi)
-                        ),
+                        "mean_friction_torque_Nm": float(e_shafts[i, j] / (2.0 * math.pi)),
                         "max_friction_torque_Nm": float(
                             np.nanmax(self.friction_torque[i, j] + self.auxiliary_torque[i, j])
                         ),
@@ -229,9 +224,7 @@ class EngineStudy:
         out["conventions"] = {"crank_angle": ENGINE_CRANK_ANGLE, "change_pct": CHANGE}
         # contact loss of each lobe kind's valve (its single-valve dynamics), at the
         # engine's crank angles of that kind's valve on cylinder 1
-        out["valve_jump"] = {
-            k: self._jump_on_cylinder_1(k, lt) for k, lt in self.lobes.items() if lt.study
-        }
+        out["valve_jump"] = {k: self._jump_on_cylinder_1(k, lt) for k, lt in self.lobes.items()}
         self._verdicts(out, totals, vd)
         return out
 
@@ -240,15 +233,13 @@ class EngineStudy:
         angles moved to the engine's (:data:`~tribodyn.workflow.conventions.
         ENGINE_CRANK_ANGLE`) for the valve of that kind on cylinder 1: each start in
         0–720°, an interval keeps its length."""
-        assert lt.study is not None
         j = lt.study.dynamics.jump_summary()
         nose = next(
             (v["nose_deg"] for v in self.valves if v["kind"] == kind and v["cylinder"] == 1), None
         )
-        dyn = lt.study.dynamics
         if nose is None:
             return j
-        shift = nose - float(dyn.crank_angle[int(np.argmax(dyn.cam_lift))])
+        shift = nose - lt.nose
 
         def at(c):
             return None if c is None else float((c + shift) % 720.0)
@@ -273,9 +264,7 @@ class EngineStudy:
             viscous_factor_bounds,
         )
 
-        studies = {k: lt.study for k, lt in self.lobes.items() if lt.study is not None}
-        if not studies:
-            return
+        studies = {k: lt.study for k, lt in self.lobes.items()}
         built = build(self.case)
         energies = {}
         for i, name in enumerate(self.set_names):
@@ -405,17 +394,14 @@ def run_engine_study(
     td, tb, tg = np.zeros_like(tf), np.zeros_like(tf), np.zeros_like(tf)
     per_valve = np.zeros((ns, len(valves), crank.size))
     for m, v in enumerate(valves):
-        lt = lobes[v["kind"]]
-        j = camshafts.index(v["camshaft"])
-        per_valve[:, m] = place_trace(  # NaN where this valve's EHL failed (unknown)
-            lt.relative_crank, lt.friction_torque, v["nose_deg"], crank
-        )
-
+        lt, j = lobes[v["kind"]], camshafts.index(v["camshaft"])
         rel, nose = lt.relative_crank, v["nose_deg"]
+        # NaN where this valve's EHL failed (unknown)
+        per_valve[:, m] = place_trace(rel, lt.friction_torque, nose, crank)
         tf[:, j] += place_known(rel, lt.friction_torque, nose, crank)
         td[:, j] += place_known(rel, lt.drive_torque, nose, crank)
         tb[:, j] += place_known(rel, lt.bore_torque, nose, crank)
-        tg[:, j] += place_trace(lt.relative_crank, lt.guide_torque, v["nose_deg"], crank)
+        tg[:, j] += place_trace(rel, lt.guide_torque, nose, crank)
     w = case.cam_speed
     eta = float(built.lubricant.viscosity)
     tj = np.array(
@@ -426,9 +412,7 @@ def run_engine_study(
         if studies[k] is not studies.get("intake") or k == "intake":
             # the single-valve study's crank angles, with where its maximum lift sits on
             # the engine's clock (cylinder 1's valve of this kind)
-            dyn = studies[k].dynamics
-            own = float(dyn.crank_angle[int(np.argmax(dyn.cam_lift))])
-            on_1 = next(v["nose_deg"] for v in valves if v["kind"] == k)
+            own, on_1 = lobes[k].nose, next(v["nose_deg"] for v in valves if v["kind"] == k)
             clock = (
                 f"crank angles of its single-valve study, whose maximum lift at {own:.0f}° "
                 f"is {on_1:.0f}° of cylinder 1"

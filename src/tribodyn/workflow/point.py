@@ -385,7 +385,7 @@ def _point_stresses(built: BuiltCase, surfaces: SurfaceSet, result, lubricant, o
 
     from ..contact.stress import ehl_stresses
     from ..physics.strength import safety_factors
-    from .stress_study import MODE_PEAK
+    from .stress_study import closest_failure
 
     cam, tappet, _ = ehl_stresses(
         result, surfaces.bodies, lubricant, surfaces.roughness, options=options
@@ -403,9 +403,13 @@ def _point_stresses(built: BuiltCase, surfaces: SurfaceSet, result, lubricant, o
         )
         strengths = {"cam": (cam_s, None), "tappet": (sub, coat)}
     out: dict = {"note": "isothermal EHL solution; elastic stresses, typical or case strengths"}
-    worst = None
+    factors, maxima = {}, {}  # as a CycleStress's, at no crank angle
     for name, st, body in (("cam", cam, surfaces.cam), ("tappet", tappet, surfaces.tappet)):
         peaks = st.peaks()
+        maxima[name] = {
+            k: {"value": pk.value, "crank_angle": math.nan, "x": pk.x, "z": pk.z}
+            for k, pk in peaks.items()
+        }
         for k, pk in peaks.items():
             fin = math.isfinite(pk.value)
             out[f"{name}_{k}_Pa"] = pk.value if fin else None
@@ -414,19 +418,12 @@ def _point_stresses(built: BuiltCase, surfaces: SurfaceSet, result, lubricant, o
         sub, coat = strengths[name]
         if sub is None:
             continue
-        sf = safety_factors(st, sub, coat if body.is_coated else None)
-        for mode, v in sf.items():
+        factors[name] = safety_factors(st, sub, coat if body.is_coated else None)
+        for mode, v in factors[name].items():
             out[f"safety_factor_{name}_{mode}"] = None if math.isnan(v) else v
-            if math.isfinite(v) and (worst is None or v < worst["safety_factor"]):
-                pk = peaks[MODE_PEAK[mode]]
-                worst = {
-                    "mode": mode,
-                    "body": name,
-                    "safety_factor": v,
-                    "stress_Pa": pk.value,
-                    "x_m": pk.x,
-                    "z_m": pk.z,
-                }
+    worst = closest_failure(factors, maxima)
+    if worst is not None:
+        del worst["crank_deg"]  # one contact: no crank angle
     out["closest_failure"] = worst
     return out
 

@@ -29,7 +29,7 @@ from ..config.build import as_built, build
 from ..cycle.coupling import implicit_vs_explicit_metrics
 from ..physics.materials import reduced_modulus
 from ..physics.regimes import greenwood_chart_groups, hamrock_groups, moes_central
-from .conventions import CHANGE, CRANK_ANGLE, change_pct
+from .conventions import CHANGE, CRANK_ANGLE, change_pct, finite
 from .regime_map import RegimeMap, regime_code, regime_map
 from .thermal_study import thermal_summary
 from .variables_sweep import COMPARISON_SCALARS
@@ -227,16 +227,12 @@ def film_gain_statistics(h_ref, h_set, mask, point_index) -> dict:
         gain = (h_set / h_ref - 1.0) * 100.0
     ok = np.asarray(mask, bool) & np.isfinite(gain)
     g = gain[ok]
-
-    def fin(v):
-        return float(v) if g.size and math.isfinite(v) else None
-
     at = [float(gain[i]) if ok[i] else None for i in point_index]
     return {
-        "max_pct": fin(g.max()) if g.size else None,
-        "mean_pct": fin(g.mean()) if g.size else None,
-        "median_abs_pct": fin(np.median(np.abs(g))) if g.size else None,
-        "p95_abs_pct": fin(np.percentile(np.abs(g), 95)) if g.size else None,
+        "max_pct": finite(g.max()) if g.size else None,
+        "mean_pct": finite(g.mean()) if g.size else None,
+        "median_abs_pct": finite(np.median(np.abs(g))) if g.size else None,
+        "p95_abs_pct": finite(np.percentile(np.abs(g), 95)) if g.size else None,
         "at_points_pct": at,
         "samples": int(g.size),
     }
@@ -293,13 +289,6 @@ def modulus_factor_for_gain(
 
 
 # ----------------------------------------------------------------------------- analysis
-def _finite(v):
-    if v is None:
-        return None
-    v = float(v)
-    return v if math.isfinite(v) else None
-
-
 def analyse(study: StudyResults) -> Analysis:
     """The :class:`Analysis` of a :class:`~tribodyn.workflow.cycle.CycleStudy`."""
     built, dyn, inp = build(study.case), study.dynamics, study.inputs
@@ -377,32 +366,30 @@ def summary(study: StudyResults, an: Analysis) -> dict:
             p_law = (getattr(s, f"viscous_friction_{law}") + s.boundary_friction) * np.abs(
                 inp.sliding_speed
             )
-            by_law[law] = _finite(np.nansum(np.where(s.loaded, p_law, 0.0) * dt))
+            by_law[law] = finite(np.nansum(np.where(s.loaded, p_law, 0.0) * dt))
         g = an.film_gain[s.name]
         out["surface_sets"][s.name] = {
             "label": study.labels[s.name],
-            "peak_contact_force_N": _finite(dyn.contact_force.max()),
-            "min_film_m": _finite(np.nanmin(s.min_film[C])) if any_c else None,
-            "max_central_film_m": _finite(np.nanmax(s.central_film[C])) if any_c else None,
+            "peak_contact_force_N": finite(dyn.contact_force.max()),
+            "min_film_m": finite(np.nanmin(s.min_film[C])) if any_c else None,
+            "max_central_film_m": finite(np.nanmax(s.central_film[C])) if any_c else None,
             "max_film_gain_vs_uncoated_pct": g["max_pct"],
             "mean_film_gain_vs_uncoated_pct": g["mean_pct"],
             "median_abs_film_gain_vs_uncoated_pct": g["median_abs_pct"],
             "p95_abs_film_gain_vs_uncoated_pct": g["p95_abs_pct"],
             "film_gain_at_points_pct": g["at_points_pct"],
-            "max_boundary_friction_N": _finite(np.nanmax(s.boundary_friction[C]))
-            if any_c
-            else None,
-            "max_viscous_friction_N": _finite(np.nanmax(s.viscous_friction[C])) if any_c else None,
+            "max_boundary_friction_N": finite(np.nanmax(s.boundary_friction[C])) if any_c else None,
+            "max_viscous_friction_N": finite(np.nanmax(s.viscous_friction[C])) if any_c else None,
             # changes against the reference set: 100 (x/x_ref − 1), negative = less
             "boundary_friction_cycle_integral_change_pct": change_pct(bf, ref_bf),
             "max_boundary_friction_change_pct": change_pct(
                 np.nanmax(s.boundary_friction[C]) if any_c else math.nan, ref_max_bf
             ),
-            "friction_energy_per_cycle_J": _finite(energy),
+            "friction_energy_per_cycle_J": finite(energy),
             "friction_energy_per_cycle_newtonian_J": by_law["newtonian"],
             "friction_energy_per_cycle_eyring_J": by_law["eyring"],
-            "mean_friction_power_W": _finite(energy / period),
-            "min_lambda": _finite(np.nanmin(s.lambda_ratio[C])) if any_c else None,
+            "mean_friction_power_W": finite(energy / period),
+            "min_lambda": finite(np.nanmin(s.lambda_ratio[C])) if any_c else None,
             "failed_steps": len(s.failures),
         }
         ref_energy = float(np.nansum(np.where(ref.loaded, ref.friction_power, 0.0) * dt))
@@ -436,11 +423,11 @@ def _valve_jump(study: StudyResults) -> dict:
     which it begins (with the lumped-vs-flexible comparison's search, else None) and the
     warning naming what to change (None without a jump)."""
     jump = study.dynamics.jump_summary()
-    jump["max_separation_crank_deg"] = _finite(jump["max_separation_crank_deg"])
+    jump["max_separation_crank_deg"] = finite(jump["max_separation_crank_deg"])
     mc = study.model_comparison
     onset = None
     if mc is not None:
-        onset = _finite(mc.rows.get(study.case.valvetrain.model, {}).get("jump_speed_rpm"))
+        onset = finite(mc.rows.get(study.case.valvetrain.model, {}).get("jump_speed_rpm"))
     jump["onset_speed_rpm"] = onset
     text = [w for w in study.warnings if "valve jump" in w]
     jump["warning"] = text[0] if jump["jump"] and text else None
@@ -456,23 +443,23 @@ def _engineering_summary(study: StudyResults, out: dict) -> None:
     out["lubricant"] = oil_as_used(study.case)
     eng = study.engineering_outputs()
     for name, v in eng.scalars.items():
-        out["surface_sets"][name].update({k: _finite(x) for k, x in v.items()})
+        out["surface_sets"][name].update({k: finite(x) for k, x in v.items()})
     k = eng.kinematics
     out["cam"] = {
-        "max_lift_m": _finite(np.max(k["lift"])),
-        "max_velocity_m_s": _finite(np.max(np.abs(k["velocity"]))),
-        "max_acceleration_m_s2": _finite(np.max(k["acceleration"])),
-        "min_acceleration_m_s2": _finite(np.min(k["acceleration"])),
-        "min_radius_of_curvature_m": _finite(np.min(k["radius"])),
+        "max_lift_m": finite(np.max(k["lift"])),
+        "max_velocity_m_s": finite(np.max(np.abs(k["velocity"]))),
+        "max_acceleration_m_s2": finite(np.max(k["acceleration"])),
+        "min_acceleration_m_s2": finite(np.min(k["acceleration"])),
+        "min_radius_of_curvature_m": finite(np.min(k["radius"])),
         "table_points": None if eng.table is None else int(eng.table["lift"].size),
         "table_fit_rms_residual_m": None
         if eng.table is None
-        else _finite(np.sqrt(np.mean(eng.table["residual"] ** 2))),
+        else finite(np.sqrt(np.mean(eng.table["residual"] ** 2))),
     }
     sg = eng.surge
     out["spring_surge"] = {
-        "cam_frequency_Hz": _finite(sg["cam_frequency_Hz"]),
-        "surge_frequencies_Hz": [_finite(f) for f in sg["surge_frequency_Hz"]],
+        "cam_frequency_Hz": finite(sg["cam_frequency_Hz"]),
+        "surge_frequencies_Hz": [finite(f) for f in sg["surge_frequency_Hz"]],
         "nearest_cam_harmonic": [int(c[1]) for c in sg["closest"]],
     }
 
@@ -490,9 +477,9 @@ def _implicit_vs_explicit(study) -> dict:
     m = implicit_vs_explicit_metrics(dyn, imp)
     last = cp.history[-1] if cp.history else None
     return {
-        **{k: _finite(v) for k, v in m.items()},
+        **{k: finite(v) for k, v in m.items()},
         "coupling_converged": bool(cp.converged),
         "coupling_iterations": len(cp.history),
-        "coupling_last_rms_force_change_N": _finite(last.rms_force_change_N) if last else None,
-        "coupling_last_max_force_change_N": _finite(last.max_force_change_N) if last else None,
+        "coupling_last_rms_force_change_N": finite(last.rms_force_change_N) if last else None,
+        "coupling_last_max_force_change_N": finite(last.max_force_change_N) if last else None,
     }

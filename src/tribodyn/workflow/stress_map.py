@@ -18,7 +18,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..contact.ehl.options import EHLOptions
 from ..contact.stress import loaded_half_width, profile_surface_loads, shear_options
 from ..physics.materials import as_bodies
 from ..physics.stress import subsurface_stress
@@ -53,17 +52,14 @@ class StressMap:
     coating_thickness: float | None
 
 
-def stress_map(
-    worst, trace, result, inputs, bodies, lubricant, roughness=None, options=None
-) -> StressMap:
+def stress_map(worst, trace, result, inputs, bodies, lubricant, roughness, options) -> StressMap:
     """The :class:`StressMap` of a set's closest failure ``worst`` (a dict of
     :func:`~tribodyn.workflow.stress_study.closest_failure`; its mode's stress ``trace``
     along the cycle picks the sample), from the cycle EHL pass ``result`` with its
     CycleInputs ``inputs``; the set's ``bodies``, ``lubricant``, ``roughness`` and EHL
-    ``options``, default the defaults."""
+    ``options``."""
     body = worst["body"]
     i = int(np.nanargmax(trace))
-    opts = options if options is not None else EHLOptions()
     x = np.asarray(result.x, float)[i]
     loads = profile_surface_loads(
         x,
@@ -73,7 +69,7 @@ def stress_map(
         bodies,
         lubricant,
         roughness,
-        **shear_options(opts),
+        **shear_options(options),
     )
     b = loaded_half_width(x, loads.pressure)
     bod = as_bodies(bodies)[0 if body == "cam" else 1]

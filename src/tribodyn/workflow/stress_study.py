@@ -33,6 +33,7 @@ from ..physics.strength import (
     safety_factors,
 )
 from ..physics.stress import PEAKS, StressOperator  # PEAKS: the peaks traced per body
+from .conventions import finite
 from .stress_map import StressMap, stress_map
 
 __all__ = [
@@ -41,7 +42,6 @@ __all__ = [
     "CycleStress",
     "stress_along_cycle",
     "stress_for_set",
-    "default_strengths",
     "wear_for_set",
     "MODE_PEAK",
     "closest_failure",
@@ -93,18 +93,6 @@ class CycleStress:
     map: StressMap | None = None
 
 
-def default_strengths(surface_set) -> dict:
-    """TYPICAL strengths (physics.strength) of a case's surface set: steel cam; steel
-    tappet with the typical values of its coating material when it is one of "dlc",
-    "wcc" (otherwise no coating strength: the coating's factors are NaN)."""
-    steel = TYPICAL_STRENGTH["steel"]
-    coat = None
-    key = getattr(surface_set, "coating_material", None)
-    if key is not None:
-        coat = TYPICAL_STRENGTH.get(str(key).lower())
-    return {"cam": (steel, None), "tappet": (steel, coat)}
-
-
 def stress_along_cycle(
     result,
     inputs,
@@ -114,8 +102,6 @@ def stress_along_cycle(
     options=None,
     *,
     strengths: dict | None = None,
-    depths=None,
-    samples=None,
 ) -> CycleStress:
     """Peak stresses of the cam and the tappet at every loaded sample of a set's cycle
     EHL pass (``result``: SetCycleResult, ``inputs``: its CycleInputs).
@@ -123,10 +109,9 @@ def stress_along_cycle(
     ``options``: the set's :class:`~tribodyn.EHLOptions` (friction laws; default the
     defaults). ``strengths``: {"cam": (substrate, coating|None), "tappet": (…)} of
     :class:`~tribodyn.physics.strength.Strength` (default: typical steel, no coating
-    strength). ``depths`` [m]: fixed depths for every sample (default: in the coating h/2
-    and h, below it geometric levels from half the grid spacing to beyond 1.5 b).
-    ``samples``: indices to evaluate (default: all loaded, converged samples with a
-    profile; the others stay NaN)."""
+    strength). Depths: in the coating h/2 and h, below it geometric levels from half the
+    grid spacing to beyond 1.5 b. Evaluated: all loaded, converged samples with a
+    profile; the others stay NaN."""
     from ..contact.ehl.options import EHLOptions
 
     t0 = _time.perf_counter()
@@ -144,13 +129,11 @@ def stress_along_cycle(
         )
         for b in names
     }
-    if samples is None:
-        # samples whose EHL did not converge are left out (NaN): their profile is the
-        # last iterate, not a solution
-        conv = np.asarray(getattr(result, "converged", np.ones(n, bool)), bool)
-        ok = np.asarray(result.loaded, bool) & conv & np.all(np.isfinite(result.pressure), axis=1)
-        samples = np.flatnonzero(ok)
-    samples = np.asarray(samples, dtype=int)
+    # samples whose EHL did not converge are left out (NaN): their profile is the last
+    # iterate, not a solution
+    conv = np.asarray(getattr(result, "converged", np.ones(n, bool)), bool)
+    ok = np.asarray(result.loaded, bool) & conv & np.all(np.isfinite(result.pressure), axis=1)
+    samples = np.flatnonzero(ok)
     loads = None
     if samples.size:  # all profiles at once (the recorded ones share their length)
         xs = np.asarray(result.x, float)[samples]
@@ -165,7 +148,7 @@ def stress_along_cycle(
             opts,
         )
         loads = (xs, ld.pressure, ld.traction_cam, ld.traction_tappet)
-    _evaluate(samples, loads, pair, depths, traces)
+    _evaluate(samples, loads, pair, traces)
     out = CycleStress(
         name=getattr(result, "name", ""),
         crank_angle=crank,
@@ -194,7 +177,7 @@ def stress_along_cycle(
                 interface_tension=math.nan,
             )
         out.safety_factors[name] = sf
-    worst = closest_failure(out)
+    worst = closest_failure(out.safety_factors, out.maxima)
     if worst is not None:  # the map at the closest failure's sample
         trace = getattr(out, worst["body"]).value[MODE_PEAK[worst["mode"]]]
         out.map = stress_map(worst, trace, result, inputs, pair, lubricant, roughness, opts)
@@ -218,7 +201,7 @@ _BATCH = 32
 _REL_DEPTHS = np.geomspace(2.0, 400.0, 16)
 
 
-def _evaluate(samples: np.ndarray, loads, pair, depths, traces: dict) -> None:
+def _evaluate(samples: np.ndarray, loads, pair, traces: dict) -> None:
     """Peaks of both bodies at the ``samples`` written into their ``traces``
     ({"cam"|"tappet": BodyStressTrace}) from ``loads`` (x, p, q_cam, q_tappet), arrays
     (len(samples), k). Samples are grouped by grid spacing into classes with one
@@ -270,13 +253,11 @@ def _evaluate(samples: np.ndarray, loads, pair, depths, traces: dict) -> None:
             for body in range(2):
                 qr[body, j] = np.where(inside, np.interp(xg[j], x, qs[body][r]), 0.0)
         for j, (name, body) in enumerate((("cam", pair[0]), ("tappet", pair[1]))):
-            z = depths
-            if z is None:
-                z = dxc * _REL_DEPTHS
-                if body.coating is not None:
-                    hc = body.coating.thickness
-                    # z = h itself is always evaluated (StressOperator: both sides)
-                    z = np.concatenate([[0.5 * hc], z[z > hc]])
+            z = dxc * _REL_DEPTHS
+            if body.coating is not None:
+                hc = body.coating.thickness
+                # z = h itself is always evaluated (StressOperator: both sides)
+                z = np.concatenate([[0.5 * hc], z[z > hc]])
             op = StressOperator(n, dxc, body, z)
             tr = traces[name]
             for c0 in range(0, len(members), _BATCH):
@@ -288,10 +269,8 @@ def _evaluate(samples: np.ndarray, loads, pair, depths, traces: dict) -> None:
 
 def stress_for_set(case, surface_set, result, inputs, **kwargs) -> CycleStress:
     """:func:`stress_along_cycle` for a surface set of a case (Case or BuiltCase; its
-    bodies, roughness and friction laws, the case's lubricant; typical strengths unless
-    ``strengths`` given)."""
+    bodies, roughness and friction laws, the case's lubricant; ``strengths`` as there)."""
     built = as_built(case)
-    kwargs.setdefault("strengths", default_strengths(surface_set))
     return stress_along_cycle(
         result,
         inputs,
@@ -337,22 +316,18 @@ MODE_PEAK = {
 }
 
 
-def _finite(v):
-    v = float(v)
-    return v if math.isfinite(v) else None
-
-
-def closest_failure(cs: CycleStress) -> dict | None:
+def closest_failure(factors: dict, maxima: dict) -> dict | None:
     """The failure mode with the smallest safety factor over both bodies: mode, body,
     safety factor (strength / cycle maximum), the stress [Pa], and where (x along the
-    contact, z depth [m]) and when (crank angle [deg]) it peaks. None when no factor is
-    finite (no strengths, or nothing loaded)."""
+    contact, z depth [m]) and when (crank angle [deg]) it peaks. ``factors`` and
+    ``maxima`` as :attr:`CycleStress.safety_factors` and :attr:`CycleStress.maxima`. None
+    when no factor is finite (no strengths, or nothing loaded)."""
     best = None
     for body in ("cam", "tappet"):
-        for mode, sf in cs.safety_factors.get(body, {}).items():
+        for mode, sf in factors.get(body, {}).items():
             if not math.isfinite(sf) or (best is not None and sf >= best["safety_factor"]):
                 continue
-            mx = cs.maxima[body][MODE_PEAK[mode]]
+            mx = maxima[body][MODE_PEAK[mode]]
             best = {
                 "mode": mode,
                 "body": body,
@@ -391,23 +366,23 @@ def asperity_estimate(result, bodies, roughness, strengths: dict | None = None) 
         mat = coat if body.is_coated else sub
         # None where no summit touches (F_2 = 0 beyond h/σ ≈ 37)
         entry = {
-            "gap_ratio": _finite(est.gap_ratio),
-            "mean_pressure_Pa": _finite(est.mean_pressure),
-            "peak_pressure_Pa": _finite(est.peak_pressure),
-            "radius_m": _finite(est.radius),
-            "radius_over_summit": _finite(est.radius_over_summit),
-            "max_von_mises_Pa": _finite(est.max_von_mises),
-            "depth_m": _finite(est.depth),
-            "edge_tension_Pa": _finite(est.edge_tension),
-            "safety_factor_yield": _finite(mat.yield_stress / est.max_von_mises)
+            "gap_ratio": finite(est.gap_ratio),
+            "mean_pressure_Pa": finite(est.mean_pressure),
+            "peak_pressure_Pa": finite(est.peak_pressure),
+            "radius_m": finite(est.radius),
+            "radius_over_summit": finite(est.radius_over_summit),
+            "max_von_mises_Pa": finite(est.max_von_mises),
+            "depth_m": finite(est.depth),
+            "edge_tension_Pa": finite(est.edge_tension),
+            "safety_factor_yield": finite(mat.yield_stress / est.max_von_mises)
             if mat is not None
             else None,
-            "safety_factor_tension": _finite(mat.tensile_strength / est.edge_tension)
+            "safety_factor_tension": finite(mat.tensile_strength / est.edge_tension)
             if mat is not None
             else None,
         }
         if body.coating is not None:
-            entry["radius_over_thickness"] = _finite(est.radius / body.coating.thickness)
+            entry["radius_over_thickness"] = finite(est.radius / body.coating.thickness)
         out[name] = entry
     return out
 
@@ -427,7 +402,9 @@ def set_stress_summary(study, name: str) -> dict:
     case = study.case
     own = build(case).set(name)
     s = own.surface
-    worst = closest_failure(cs)  # crank_deg: the run's crank angle (conventions.CRANK_ANGLE)
+    worst = closest_failure(
+        cs.safety_factors, cs.maxima
+    )  # crank_deg: the run's crank angle (conventions.CRANK_ANGLE)
     out: dict = {
         "stress_closest_failure": worst,
         "min_safety_factor": worst["safety_factor"] if worst else None,
@@ -436,13 +413,12 @@ def set_stress_summary(study, name: str) -> dict:
     if est is not None:
         out["asperity_scale_estimate"] = est
     for mode in MODE_PEAK:
-        v = cs.safety_factors["tappet"].get(mode)
-        out[f"safety_factor_{mode}"] = _finite(v) if v is not None else None
+        out[f"safety_factor_{mode}"] = finite(cs.safety_factors["tappet"].get(mode))
     out["safety_factors"] = {
-        b: {m: _finite(v) for m, v in sf.items()} for b, sf in cs.safety_factors.items()
+        b: {m: finite(v) for m, v in sf.items()} for b, sf in cs.safety_factors.items()
     }
     out["stress_maxima"] = {
-        b: {k: {kk: _finite(vv) for kk, vv in v.items()} for k, v in mx.items()}
+        b: {k: {kk: finite(vv) for kk, vv in v.items()} for k, v in mx.items()}
         for b, mx in cs.maxima.items()
     }
     k, src = own.wear_coefficient, own.wear_source
@@ -460,7 +436,7 @@ def set_stress_summary(study, name: str) -> dict:
         out["wear_depth_per_cycle_m"] = w["depth_per_cycle_m"]
         out["wear_swept_length_m"] = swept
         if "hours_to_wear_through" in w:
-            out["hours_to_wear_through"] = _finite(w["hours_to_wear_through"])
+            out["hours_to_wear_through"] = finite(w["hours_to_wear_through"])
         hours = case.stress.running_hours
         if hours is not None:
             depth = w["depth_per_cycle_m"] * cph * hours

@@ -375,17 +375,15 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
     from ..config.build import build
     from ..contact.ehl import TransientEHL
     from ..cycle.driver import CycleInputs
-    from .coating_study import dry_coating_study, ehl_coating_study
-    from .cycle import StudyError
+    from .cycle import StudyError, _coating_studies_task, study_dynamics
     from .postprocess import surface_roles
-    from .sensitivity import nose_condition, roughness_sensitivity
-    from .sweep_point import point_dynamics
+    from .sensitivity import nose_condition
 
     clock = time.process_time  # CPU time: one core, whatever the machine's load
     built = build(case)
     with threadpool_limits(1):
         t0 = clock()
-        dyn = point_dynamics(built)
+        dyn = study_dynamics(built)
         t_dyn = clock() - t0
         if mode == "dynamics" or not dyn.converged:
             return t_dyn
@@ -395,7 +393,8 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
         n_loaded = int(loaded.sum())
         if n_loaded == 0:
             raise StudyError("no EHL sample is loaded")
-        ref = built.set(surface_roles(built)["reference"])
+        ref_name = surface_roles(built)["reference"]
+        ref = built.set(ref_name)
         i0 = int(inp.contact_force.argmax())
         i0 = max(1, min(i0, inp.crank_angle.size - steps))
         tr = TransientEHL(
@@ -412,11 +411,7 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
                 tr.step(inp.time[i] - inp.time[i - 1], *args)
         t_step = (clock() - t0) / max(len(timed), 1)
         t0 = clock()
-        dry_coating_study()
-        ehl_coating_study(built.lubricant, built)
-        nose = nose_condition(inp)
-        if nose is not None:
-            roughness_sensitivity(built, ref.surface, nose)
+        _coating_studies_task(built, ref_name, nose_condition(inp))  # as the study's task
         t_single = clock() - t0
     t_ehl = n_loaded * t_step
     t = t_dyn + len(case.surface_set_names) * t_ehl + t_single

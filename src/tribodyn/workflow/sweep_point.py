@@ -97,23 +97,10 @@ def _dynamics_scalars(dyn) -> dict:
     return {k: own[k] if k in own else s[k] for k in POINT_SCALARS if k in own or k in s}
 
 
-def point_dynamics(case):
-    """The valvetrain dynamics of a case (Case or BuiltCase) with the explicit tribology
-    of its reference surface set, as the study runs them."""
-    from ..valvetrain.dynamics import simulate_valvetrain
-    from .postprocess import surface_roles
-
-    built = as_built(case)
-    return simulate_valvetrain(
-        built.cam,
-        built.valvetrain,
-        tribology=built.analytic_tribology(surface_roles(built)["reference"]),
-        **built.dynamics_options,
-    )
-
-
 def _dynamics_point(built: BuiltCase, traces: bool) -> tuple[xr.Dataset, list]:
-    dyn = point_dynamics(built)
+    from .cycle import study_dynamics
+
+    dyn = study_dynamics(built)
     if not dyn.converged:
         raise _PointFailure(f"valvetrain dynamics failed: {dyn.message}")
     ds = _scalars(xr.Dataset(), {**_dynamics_scalars(dyn), "n_warnings": int(dyn.jump)})
@@ -152,10 +139,7 @@ def _engine_point(built: BuiltCase) -> tuple[xr.Dataset, list]:
 
     study = run_engine_study(built.case, workers=1)
     summ = study.summary()
-    intake = study.lobes["intake"].study
-    if intake is None:
-        raise _PointFailure("the engine study has no intake-lobe study")
-    ds = _scalars(xr.Dataset(), _dynamics_scalars(intake.dynamics))
+    ds = _scalars(xr.Dataset(), _dynamics_scalars(study.lobes["intake"].study.dynamics))
     names = study.set_names
     sets = summ["surface_sets"]
     parts = sets[names[0]]["friction_energy_per_cycle_J"]

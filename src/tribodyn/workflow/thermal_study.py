@@ -10,6 +10,8 @@ from typing import Any
 
 import numpy as np
 
+from .conventions import finite
+
 __all__ = ["coating_thermal_effect", "thermal_summary"]
 
 
@@ -75,40 +77,37 @@ def thermal_summary(study, an) -> dict:
     out: dict[str, Any] = {"inlet_temperature_K": None, "surface_sets": {}}
     ev = an.in_event
 
-    def fin(v):
-        v = float(v)
-        return v if np.isfinite(v) else None
-
     for th in study.sets:
         i = iso[th.name]
-        out["inlet_temperature_K"] = fin(th.inlet_temperature)
+        out["inlet_temperature_K"] = finite(th.inlet_temperature)
         ok = th.loaded & th.converged & i.converged
         L = ok & ev
         if not L.any():
             out["surface_sets"][th.name] = {"samples": 0}
             continue
 
-        def energy(r, key):
-            return float(np.nansum(np.where(ok, getattr(r, key) * us, 0.0) * dt))
+        def energy(power, ok=ok):
+            return float(np.nansum(np.where(ok, power, 0.0) * dt))
 
-        e_t, e_i = energy(th, "viscous_friction"), energy(i, "viscous_friction")
-        f_t = float(np.nansum(np.where(ok, th.friction_power, 0.0) * dt))
-        f_i = float(np.nansum(np.where(ok, i.friction_power, 0.0) * dt))
+        e_t, e_i = energy(th.viscous_friction * us), energy(i.viscous_friction * us)
+        f_t, f_i = energy(th.friction_power), energy(i.friction_power)
         out["surface_sets"][th.name] = {
-            "max_temperature_K": fin(np.nanmax(th.max_temperature[L])),
-            "max_mid_film_temperature_K": fin(np.nanmax(th.mid_film_temperature[L])),
-            "max_surface_temperature_cam_K": fin(np.nanmax(th.surface_temperature_cam[L])),
-            "max_surface_temperature_tappet_K": fin(np.nanmax(th.surface_temperature_tappet[L])),
-            "viscous_friction_energy_thermal_J": fin(e_t),
-            "viscous_friction_energy_isothermal_J": fin(e_i),
-            "viscous_friction_energy_change_pct": fin(100 * (e_t / e_i - 1)) if e_i > 0 else None,
-            "friction_energy_thermal_J": fin(f_t),
-            "friction_energy_isothermal_J": fin(f_i),
-            "mean_central_film_change_pct": fin(
+            "max_temperature_K": finite(np.nanmax(th.max_temperature[L])),
+            "max_mid_film_temperature_K": finite(np.nanmax(th.mid_film_temperature[L])),
+            "max_surface_temperature_cam_K": finite(np.nanmax(th.surface_temperature_cam[L])),
+            "max_surface_temperature_tappet_K": finite(np.nanmax(th.surface_temperature_tappet[L])),
+            "viscous_friction_energy_thermal_J": finite(e_t),
+            "viscous_friction_energy_isothermal_J": finite(e_i),
+            "viscous_friction_energy_change_pct": finite(100 * (e_t / e_i - 1))
+            if e_i > 0
+            else None,
+            "friction_energy_thermal_J": finite(f_t),
+            "friction_energy_isothermal_J": finite(f_i),
+            "mean_central_film_change_pct": finite(
                 100 * (np.mean(th.central_film[L]) / np.mean(i.central_film[L]) - 1)
             ),
-            "min_film_thermal_m": fin(np.nanmin(th.min_film[L])),
-            "min_film_isothermal_m": fin(np.nanmin(i.min_film[L])),
+            "min_film_thermal_m": finite(np.nanmin(th.min_film[L])),
+            "min_film_isothermal_m": finite(np.nanmin(i.min_film[L])),
             "samples": int(L.sum()),
         }
     out["coating_thermal_effect"] = coating_thermal_effect(

@@ -7,6 +7,7 @@ engine_crank)``, each valve's over ``(engine_set, valve, engine_crank)``.
 from __future__ import annotations
 
 from operator import attrgetter as _attr  # the study attribute of that name
+from string import ascii_lowercase
 
 from .conventions import ENGINE_CRANK_ANGLE
 from .variables import Group, var
@@ -24,19 +25,9 @@ def valve_names(valves) -> list[str]:
     cylinder is ``intake1``."""
     base = [f"{v['kind']}{v['cylinder']}" for v in valves]
     return [
-        b if base.count(b) == 1 else f"{b}{_letters(base[:i].count(b))}"  # k-th of its kind
+        b if base.count(b) == 1 else f"{b}{ascii_lowercase[base[:i].count(b)]}"  # k-th of its kind
         for i, b in enumerate(base)
     ]
-
-
-def _letters(k: int) -> str:
-    """a, b, …, z, aa, ab, … for k = 0, 1, …"""
-    s = ""
-    k += 1
-    while k:
-        k, r = divmod(k - 1, 26)
-        s = chr(97 + r) + s
-    return s
 
 
 ENGINE = Group(

@@ -57,10 +57,6 @@ class StudySource:
         return self.study.analyse()
 
     @cached_property
-    def set_config(self) -> dict:
-        return {s.name: s for s in self.built.surface_sets}
-
-    @cached_property
     def engineering(self):
         s = self.study
         return s.engineering_outputs() if hasattr(s, "engineering_outputs") else None
@@ -164,7 +160,7 @@ SET_DESCRIPTION = (
         "surface_set",
         None,
         "coating material key ('' = uncoated)",
-        lambda s: [s.set_config[n].coating_material or "" for n in _names(s)],
+        lambda s: [s.built.set(n).surface.coating_material or "" for n in _names(s)],
     ),
     var(
         "coating_thickness",
@@ -172,7 +168,8 @@ SET_DESCRIPTION = (
         "m",
         "coating thickness (0 = uncoated)",
         lambda s: [
-            c.thickness if (c := s.set_config[n].coating) is not None else 0.0 for n in _names(s)
+            c.thickness if (c := s.built.set(n).surface.coating) is not None else 0.0
+            for n in _names(s)
         ],
     ),
 )
@@ -312,17 +309,13 @@ DRY_HERTZ = (
 )  # fmt: skip
 
 
-def _coating_results(dim):
-    def results(s: S):
-        e = s.study.ehl_coating
-        return [c.result for c in (e.ratios if dim == "ehl_ratio" else e.pairs)]
-
-    return results
-
-
 def _ehl_coating(dim) -> tuple[Variable, ...]:
-    r = _coating_results(dim)
+    cases = "ratios" if dim == "ehl_ratio" else "pairs"  # of the EHLCoatingStudy
     what = "modulus ratio" if dim == "ehl_ratio" else "surface pair"
+
+    def r(s: S):
+        return [c.result for c in getattr(s.study.ehl_coating, cases)]
+
     return (
         var(f"{dim}_pressure", (dim, "ehl_x"), "Pa", "EHL pressure (Fig. 6)",
             lambda s: np.array([np.interp(s.ehl_x, q.x, q.pressure) for q in r(s)])),
