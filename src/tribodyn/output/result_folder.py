@@ -14,6 +14,7 @@ import json
 import os
 import re
 import shutil
+import stat
 import time
 from collections.abc import Mapping
 from pathlib import Path
@@ -150,6 +151,29 @@ def _dirs(folder: Path) -> list[str]:
     first."""
     out = [r for _, entries in _walk(folder) for r, e in entries if e.is_dir(follow_symlinks=False)]
     return sorted(out, key=lambda r: r.count("/"))
+
+
+def regular_file_bytes(folder: Path, name: str, limit: int = -1) -> bytes | None:
+    """The content (at most ``limit`` bytes) of the regular file ``folder/name`` (a plain
+    name: no folder part), or None if it is missing, a link, not a regular file (a
+    folder, a FIFO, a device) or not in ``folder``: a result folder received from
+    someone else may hold a link to a private file, which must not end up in a shared
+    report, and a temporary folder's proof of origin is never read through a link."""
+    if not name or "/" in name or os.sep in name or name in (".", ".."):
+        return None
+    p = Path(folder) / name
+    flags = os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0)
+    try:
+        fd = os.open(p, flags)
+    except OSError:  # missing, a link (ELOOP), unreadable
+        return None
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            return None
+        with os.fdopen(fd, "rb", closefd=False) as f:
+            return f.read(limit)
+    finally:
+        os.close(fd)
 
 
 def _marker_info(folder: Path) -> dict:

@@ -38,6 +38,7 @@ from .result_folder import (
     is_result_folder,
     mark_folder,
     own_files,
+    regular_file_bytes,
 )
 
 __all__ = [
@@ -86,17 +87,9 @@ def _origin(kind: str, pid: str, token: str) -> dict:
 def _has_origin(folder: Path, kind: str, pid: str, token: str) -> bool:
     """True if ``folder`` holds tribodyn's proof of origin with this PID and token."""
     try:
-        fd = os.open(folder / ORIGIN, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0))
-    except OSError:
-        return False
-    try:
-        if not stat.S_ISREG(os.fstat(fd).st_mode):
-            return False
-        info = json.loads(os.read(fd, 4096).decode("utf-8"))
+        info = json.loads((regular_file_bytes(folder, ORIGIN, 4096) or b"").decode("utf-8"))
     except (OSError, ValueError):
         return False
-    finally:
-        os.close(fd)
     return info == _origin(kind, pid, token)
 
 
