@@ -20,10 +20,12 @@ _MODES = {
 }
 
 
-def _f(v, fmt, scale=1.0, none="–"):
+def _f(v, fmt, scale=1.0, unit=""):
+    """``v`` × ``scale`` in the format ``fmt`` with its ``unit``; "–" if missing or not
+    finite."""
     if v is None or (isinstance(v, float) and not math.isfinite(v)):
-        return none
-    return format(v * scale, fmt)
+        return "–"
+    return format(v * scale, fmt) + (f" {unit}" if unit else "")
 
 
 def _cycle_range(summary: dict) -> str:
