@@ -25,8 +25,6 @@ import re
 from collections.abc import Sequence
 from pathlib import Path
 
-import numpy as np
-
 from .._json import dumps
 from .._safe_write import atomic_write
 from .._typing import PathLike
@@ -40,6 +38,7 @@ from .explorer_plots import (
     run_figures,
     sweep_figures,
 )
+from .report_engine import shaft_peaks
 
 __all__ = [
     "add_interactive",
@@ -133,16 +132,12 @@ def verdicts(r: Result) -> list[str]:
 
 
 def _engine_peaks(r: Result) -> dict[str, dict[str, float]]:
-    """Peak |drive torque| per camshaft and set, from the stored traces."""
-    ds = r.ds
-    out: dict[str, dict[str, float]] = {}
-    if "camshaft_drive_torque" not in ds:
-        return out
-    t = np.asarray(ds["camshaft_drive_torque"].values, float)
-    shafts = [str(c) for c in ds["camshaft"].values]
-    for i, s in enumerate(r.sets):
-        out[s] = {c: float(np.nanmax(np.abs(t[i, j]))) for j, c in enumerate(shafts)}
-    return out
+    """Peak |drive torque| per camshaft and set (:func:`~.report_engine.shaft_peaks`)."""
+    peaks = shaft_peaks(r.ds)
+    if peaks is None:
+        return {}
+    shafts = [str(c) for c in r.ds["camshaft"].values]
+    return {s: dict(zip(shafts, map(float, peaks[i]))) for i, s in enumerate(r.sets)}
 
 
 def summary_rows(results: list[Result], kind: str) -> tuple[list[str], list[list]]:

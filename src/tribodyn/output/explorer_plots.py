@@ -72,13 +72,6 @@ LINE_STYLE = {
 }
 
 
-def _title_size(p, size: str) -> None:
-    from bokeh.models.annotations.labels import Title
-
-    if isinstance(p.title, Title):
-        p.title.text_font_size = size
-
-
 def _width(i: int) -> float:
     """Line width of the i-th set: the first widest, so that the sets' curves lying on
     one another stay visible."""
@@ -451,5 +444,5 @@ def _heatmap(r: Result, var, name, unit, scale, xd, yd, s):
         )
     )
     p.add_layout(ColorBar(color_mapper=cmap, width=10), "right")
-    _title_size(p, "12px")
+    p.title.text_font_size = "12px"
     return p

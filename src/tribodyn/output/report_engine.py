@@ -73,7 +73,7 @@ def verdict_lines(eng: dict, labels: dict) -> list[str]:
     return out
 
 
-def _shaft_peaks(ds) -> np.ndarray | None:
+def shaft_peaks(ds) -> np.ndarray | None:
     """Peak |drive torque| (set, camshaft) of the stored traces."""
     if ds is None or "camshaft_drive_torque" not in ds:
         return None
@@ -144,7 +144,7 @@ def engine_report_text(study, ds, summ: dict, figures, labels: dict | None = Non
             f"{_fmt(d['mean_friction_power_W'], 'W', 4)} | "
             f"{_fmt(d['mean_friction_torque_Nm'], 'N·m', 4)} | {failed or '–'} |"
         )
-    peaks = _shaft_peaks(ds)
+    peaks = shaft_peaks(ds)
     lines += [
         "",
         "## Camshaft torque per camshaft",
