@@ -226,14 +226,13 @@ def crank_axis(ax, window=None):
     ax.grid(alpha=0.3)
 
 
-def mark_failures(ax, ds, values, window=None, label=True) -> int:
+def mark_failures(ax, ds, values, window) -> int:
     """Red crosses at loaded, non-converged EHL steps; returns how many were drawn."""
     if "converged" not in ds:
         return 0
     e = arr(ds, "ehl_crank")
     bad = (np.asarray(ds["converged"].values) == 0) & loaded_mask(ds)
-    if window is not None:
-        bad &= in_window(e, window)[None, :]
+    bad &= in_window(e, window)[None, :]
     idx = np.nonzero(bad & np.isfinite(values))
     if idx[0].size == 0:
         return 0
@@ -245,7 +244,7 @@ def mark_failures(ax, ds, values, window=None, label=True) -> int:
         ms=7,
         mew=1.8,
         ls="none",
-        label="EHL step not converged" if label else None,
+        label="EHL step not converged",
         zorder=5,
     )
     return int(idx[0].size)
@@ -258,9 +257,7 @@ def failure_note(ds) -> str:
     return f"{n} non-converged EHL step(s) marked ×" if n else "all EHL steps converged"
 
 
-def place_labels(
-    ax, xs, ys, texts, *, avoid=None, radius_pt=20.0, fontsize=9, marker=True, color="k"
-):
+def place_labels(ax, xs, ys, texts, *, avoid=None, radius_pt=20.0, fontsize=9):
     """Annotate points with short labels, choosing for each label the offset direction
     farthest from the other points, the labels already placed and ``avoid`` (x, y).
     Points closer than a marker size share one label ("3,4")."""
@@ -308,8 +305,7 @@ def place_labels(
         if best is None:
             best = (radius_pt * 0.7, radius_pt * 0.7)
         placed.append((px + best[0], py + best[1]))
-        if marker:
-            ax.plot(xs[grp], ys[grp], "o", ms=6, mfc="white", mec=color, mew=1.5, zorder=6)
+        ax.plot(xs[grp], ys[grp], "o", ms=6, mfc="white", mec="k", mew=1.5, zorder=6)
         box = "circle,pad=0.15" if len(grp) == 1 else "round,pad=0.2"
         ax.annotate(
             text,
@@ -320,10 +316,10 @@ def place_labels(
             va="center",
             fontsize=fontsize,
             fontweight="bold",
-            color=color,
+            color="k",
             zorder=7,
-            bbox=dict(boxstyle=box, fc="white", ec=color, lw=0.8),
-            arrowprops=dict(arrowstyle="-", color=color, lw=0.8, shrinkA=0, shrinkB=3),
+            bbox=dict(boxstyle=box, fc="white", ec="k", lw=0.8),
+            arrowprops=dict(arrowstyle="-", color="k", lw=0.8, shrinkA=0, shrinkB=3),
         )
 
 
@@ -341,11 +337,11 @@ def signed(v, digits) -> str:
     return f"{v:+.{digits}f}".replace("-", "−")
 
 
-def log_ticks(ax, axis="y"):
-    """Plain-number labels (0.1, 0.2, 0.5, 1, …) on a logarithmic axis."""
+def log_ticks(ax):
+    """Plain-number labels (0.1, 0.2, 0.5, 1, …) on a logarithmic y axis."""
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
-    a = ax.yaxis if axis == "y" else ax.xaxis
+    a = ax.yaxis
     a.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
     a.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     a.set_minor_formatter(NullFormatter())

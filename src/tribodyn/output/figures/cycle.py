@@ -40,15 +40,9 @@ def _cycle_lines(ax, ds, values, window, styles, *, label_fmt=None):
 
 
 def _groups(values, tol):
-    """Group sorted positions closer than ``tol``: list of index lists."""
+    """Group sorted positions closer than ``tol``: list of index arrays."""
     order = np.argsort(values)
-    groups: list[list[int]] = []
-    for k in order:
-        if groups and values[k] - values[groups[-1][-1]] < tol:
-            groups[-1].append(int(k))
-        else:
-            groups.append([int(k)])
-    return groups
+    return np.split(order, np.flatnonzero(np.diff(values[order]) >= tol) + 1)
 
 
 def _point_ticks(ax, ds):
