@@ -11,14 +11,11 @@ Built from the study's summaries and the results Dataset (reading, no solver cal
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
-from .._safe_write import atomic_write
 from .report_claims import _fmt
 
-__all__ = ["engine_report_text", "write_engine_report"]
+__all__ = ["engine_report_text"]
 
 _PARTS = (
     ("cam_tappet", "cam–tappet contacts"),
@@ -245,11 +242,3 @@ def _inputs(study) -> list[str]:
         return []
     lines = _inputs_section(lt.study, lt.study.analyse().summary)
     return [ln.replace("## Inputs as used", "## Inputs as used (intake lobe)") for ln in lines]
-
-
-def write_engine_report(study, ds, summ, figures, folder, labels=None) -> Path:
-    """Write report.md into ``folder`` (:func:`~tribodyn._safe_write.atomic_write`);
-    returns its path."""
-    return atomic_write(
-        Path(folder) / "report.md", engine_report_text(study, ds, summ, figures, labels)
-    )
