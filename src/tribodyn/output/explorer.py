@@ -155,14 +155,14 @@ def summary_rows(results: list[Result], kind: str) -> tuple[list[str], list[list
     if kind == "engine":
         peaks = {id(r): _engine_peaks(r) for r, _ in cols}
         shafts = sorted({c for r, s in cols for c in peaks[id(r)].get(s, {})}, reverse=True)
-        for c in shafts:
-            rows.append(
-                [
-                    f"peak drive torque, {c} camshaft",
-                    "N·m",
-                    *[peaks[id(r)].get(s, {}).get(c) for r, s in cols],
-                ]
-            )
+        rows += [
+            [
+                f"peak drive torque, {c} camshaft",
+                "N·m",
+                *[peaks[id(r)].get(s, {}).get(c) for r, s in cols],
+            ]
+            for c in shafts
+        ]
         for part in _ENGINE_PARTS:
             vals = [
                 _num(r.set_summary(s).get("friction_energy_per_cycle_J", {}).get(part))
@@ -241,11 +241,10 @@ class _Embedder:
 
     def divs(self, figs) -> str:
         """Target divs of ``figs`` (in the order they are added)."""
-        out = []
-        for f in figs:
-            out.append(f"<div class='fig' id='{self.prefix}{len(self.figs)}'></div>")
-            self.figs.append(f)
-        return "\n".join(out)
+        start = len(self.figs)
+        self.figs += figs
+        ids = range(start, len(self.figs))
+        return "\n".join(f"<div class='fig' id='{self.prefix}{k}'></div>" for k in ids)
 
     def _lines(self) -> dict:
         """The line figures: their specs, target ids, shared ranges and the styles."""

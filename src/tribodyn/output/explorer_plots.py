@@ -292,11 +292,6 @@ SWEEP_LOSS = (
 )
 
 
-def sweep_loss(ds):
-    """(variable, label, unit, scale) of the friction loss a sweep holds, or None."""
-    return next((s for s in SWEEP_LOSS if s[0] in ds), None)
-
-
 def axes_of(ds) -> list[str]:
     """The sweep's numeric axes (dimensions other than ``surface_set``)."""
     return (
@@ -328,10 +323,8 @@ def coating_delta(ds, loss: str, ref: str | None):
 def _unit(ds, dim):
     import json
 
-    for a in json.loads(ds.attrs.get("axes", "[]") or "[]"):
-        if a.get("dim") == dim:
-            return a.get("unit") or ""
-    return ""
+    axes = json.loads(ds.attrs.get("axes", "[]") or "[]")
+    return next((a.get("unit") or "" for a in axes if a.get("dim") == dim), "")
 
 
 def sweep_figures(results: list[Result], styles: Styles) -> list:
@@ -342,7 +335,7 @@ def sweep_figures(results: list[Result], styles: Styles) -> list:
     figs: list = []
     for r in (r for r in results if r.kind == "sweep"):
         ds = r.ds
-        spec = sweep_loss(ds)
+        spec = next((s for s in SWEEP_LOSS if s[0] in ds), None)  # the loss it holds
         axes = axes_of(ds)
         if spec is None or not axes:
             continue

@@ -73,17 +73,13 @@ _DYNAMICS = (
 )
 
 
-def _head(ds, name, prefix=""):
-    u = ds[name].attrs.get("units", "")
-    return f"{prefix}{name} [{u}]" if u else f"{prefix}{name}"
-
-
 def _add_columns(ds, names, header: list[str], cols: list[np.ndarray], prefix="", row=None):
     """Append the variables ``names`` present in ``ds`` (their row ``row`` for a per-set
     variable) to a table's header and columns."""
     for name in names:
         if name in ds:
-            header.append(_head(ds, name, prefix))
+            u = ds[name].attrs.get("units", "")
+            header.append(f"{prefix}{name} [{u}]" if u else f"{prefix}{name}")
             v = ds[name].values
             cols.append(np.asarray(v if row is None else v[row], float))
 

@@ -29,18 +29,17 @@ def thermal_claim_row(study, summ) -> tuple[str, str, str, str]:
     eff = th.get("coating_thermal_effect", {})
     ref = summ["reference_set"]
     t_ref = th["surface_sets"].get(ref, {}).get("max_surface_temperature_tappet_K")
-    parts = []
-    for name, v in eff.items():
-        parts.append(
-            f"{study.labels[name]}: viscous friction energy "
-            f"{_f(v['viscous_energy_vs_reference_thermal_pct'], '+.1f', unit='%')} vs "
-            f"{study.labels.get(ref, ref)} "
-            f"(isothermal {_f(v['viscous_energy_vs_reference_isothermal_pct'], '+.1f', unit='%')}"
-            f"), mean film {_f(v['mean_film_vs_reference_thermal_pct'], '+.1f', unit='%')} "
-            f"(isothermal {_f(v['mean_film_vs_reference_isothermal_pct'], '+.2f', unit='%')}); "
-            f"tappet surface up to "
-            f"{_f(v['max_tappet_surface_temperature_K'] - _C, '.0f', unit='°C')}"
-        )
+    parts = [
+        f"{study.labels[name]}: viscous friction energy "
+        f"{_f(v['viscous_energy_vs_reference_thermal_pct'], '+.1f', unit='%')} vs "
+        f"{study.labels.get(ref, ref)} "
+        f"(isothermal {_f(v['viscous_energy_vs_reference_isothermal_pct'], '+.1f', unit='%')}"
+        f"), mean film {_f(v['mean_film_vs_reference_thermal_pct'], '+.1f', unit='%')} "
+        f"(isothermal {_f(v['mean_film_vs_reference_isothermal_pct'], '+.2f', unit='%')}); "
+        f"tappet surface up to "
+        f"{_f(v['max_tappet_surface_temperature_K'] - _C, '.0f', unit='°C')}"
+        for name, v in eff.items()
+    ]
     ours = "; ".join(parts) if parts else "no coated surface set converged in all runs"
     if t_ref is not None:
         ours += f" (uncoated tappet surface up to {t_ref - _C:.0f} °C)"

@@ -125,12 +125,6 @@ def _values_text(values) -> str:
     )
 
 
-def _point_rows(result):
-    """(label, index into the flat dataset) of the points, capped at _MAX_ROWS."""
-    pts = result.points
-    return [(p.label, p.position) for p in pts[:_MAX_ROWS]], len(pts) > _MAX_ROWS
-
-
 def _at(da, spec, pos):
     sel = {d: i for (d, _), i in zip(spec.dims, pos)}
     return da.isel(sel)
@@ -159,9 +153,11 @@ def sweep_report_text(result, figures: dict | None = None) -> str:
         "",
     ]
     lines += ["## Axes", "", "| dimension | key path | unit | values |", "|---|---|---|---|"]
-    for dim, axes in spec.dims:
-        for a in axes:
-            lines.append(f"| {dim} | `{a.path}` | {a.unit or '–'} | {_values_text(a.values)} |")
+    lines += [
+        f"| {dim} | `{a.path}` | {a.unit or '–'} | {_values_text(a.values)} |"
+        for dim, axes in spec.dims
+        for a in axes
+    ]
     lines += [
         "",
         f"Combination: {spec.config.sweep.combine}"
@@ -198,9 +194,9 @@ def sweep_report_text(result, figures: dict | None = None) -> str:
 
 def _results_tables(result) -> list[str]:
     spec, ds = result.spec, result.dataset
-    rows, capped = _point_rows(result)
+    rows = [(p.label, p.position) for p in result.points[:_MAX_ROWS]]  # capped
     out = ["## Results", ""]
-    if capped:
+    if len(result.points) > _MAX_ROWS:
         out += [f"The first {_MAX_ROWS} of {len(result.points)} points; all are in `sweep.nc`.", ""]
     dyn_cols = [
         ("peak_contact_force_N", "peak F [N]", ".4g"),
@@ -318,17 +314,18 @@ def _failures_and_warnings(result) -> list[str]:
             "| point | error |",
             "|---|---|",
         ]
-        for p, err in result.failed[:_MAX_ROWS]:
-            out.append(
-                f"| {p.label} | {str(err).replace('|', '/').splitlines()[0] if err else ''} |"
-            )
+        out += [
+            f"| {p.label} | {str(err).replace('|', '/').splitlines()[0] if err else ''} |"
+            for p, err in result.failed[:_MAX_ROWS]
+        ]
         out.append("")
     ds = result.dataset
-    bad = []
-    for p in result.points:
-        w = str(_at(ds["warnings"], result.spec, p.position).values) if "warnings" in ds else ""
-        if w:
-            bad.append(f"* {p.label}: {w}")
+    warnings = ds["warnings"] if "warnings" in ds else None
+    bad = [
+        f"* {p.label}: {w}"
+        for p in result.points
+        if warnings is not None and (w := str(_at(warnings, result.spec, p.position).values))
+    ]
     if bad:
         out += [
             "## Warnings",
