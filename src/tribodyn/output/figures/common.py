@@ -205,6 +205,23 @@ def in_window(x, window) -> np.ndarray:
     return (x >= window[0]) & (x <= window[1])
 
 
+def event_samples(ds):
+    """(the cam event's crank window :func:`event_window`, the sets' styles
+    :func:`set_styles`, the EHL crank angles, which of them lie in the window)."""
+    win = event_window(ds)
+    e = arr(ds, "ehl_crank")
+    return win, set_styles(ds), e, in_window(e, win)
+
+
+def set_lines(ax, e, values, sel, styles, label_fmt=None, **kw):
+    """Each set's row of ``values`` (surface_set, ehl_crank) over the samples ``sel`` of
+    the crank angles ``e``, in its style (``kw`` overrides it; ``label_fmt(j, label)``
+    gives the legend label of set ``j``)."""
+    for j, st in enumerate(styles):
+        lab = st["label"] if label_fmt is None else label_fmt(j, st["label"])
+        ax.plot(e[sel], values[j][sel], **{**st, "label": lab, **kw})
+
+
 def dynamics_event(ds) -> tuple[float, float]:
     """Engagement and disengagement crank angles [deg] of the dynamics output."""
     ca = arr(ds, "crank_angle")
@@ -359,11 +376,9 @@ def fitted_suptitle(fig, text: str, fontsize=12):
     import textwrap
 
     width = fig.get_figwidth() * 72.0 * 0.96  # points, a margin either side
-    out = []
-    for line in text.split("\n"):
-        # a conservative estimate of the text's width: 0.6 em per character
-        chars = max(20, int(width / (0.6 * fontsize)))
-        out.append(textwrap.fill(line, chars) if len(line) > chars else line)
+    # a conservative estimate of the text's width: 0.6 em per character
+    chars = max(20, int(width / (0.6 * fontsize)))
+    out = [textwrap.fill(ln, chars) if len(ln) > chars else ln for ln in text.split("\n")]
     return fig.suptitle("\n".join(out), fontsize=fontsize)
 
 
