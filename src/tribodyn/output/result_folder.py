@@ -24,6 +24,7 @@ from .._safe_write import TOKEN_CHARS, atomic_write, new_file
 from .._typing import PathLike
 from .._user_files import MAX_MARKER_BYTES, read_user_bytes
 from .._validation import InputError
+from .figure_names import FIGURES, content_name
 
 #: File that marks a folder as written by tribodyn (JSON: tool, version, case, time).
 MARKER = ".tribodyn-results"
@@ -43,21 +44,13 @@ MAX_FOREIGN = 2000
 _LEGACY_FILES = ("results.nc", "summary.json", "case.toml")
 
 
-#: Figures of a case other than the paper's, named by content (without ``figNN_``).
-_CONTENT_FIGURES = (
-    "dry_pressure|ehl_pressure_film|tappet_velocity|contact_force|tappet_acceleration"
-    "|entrainment_speed|greenwood_chart|pressure_film_points|coatings_pressure_film"
-    "|central_film|boundary_load|boundary_friction|viscous_friction|friction_power"
-    "|min_film_lambda|temperatures|thermal_vs_isothermal|camshaft_torque"
-    "|contact_pressure|cam_kinematics|spring_surge|stress_map",
-)
-
-
 #: Names of the files tribodyn writes in a result folder (cycle study and sweep); in a
 #: folder whose marker does not list its files, these are tribodyn's own.
 _OWN_NAMES = re.compile(
     r"results\.nc|summary\.json|case\.toml|report\.md|fig\d\d_[A-Za-z0-9_-]+\.png"
-    r"|report\.html|traces\.csv|dynamics\.csv|(?:" + "|".join(_CONTENT_FIGURES) + r")\.png"
+    r"|report\.html|traces\.csv|dynamics\.csv|(?:"
+    + "|".join(re.escape(content_name(n)) for n in FIGURES)  # a case other than the paper's
+    + r")"
     r"|sweep\.nc|sweep\.toml|sweep_report\.md|base_case\.toml|sweep_[A-Za-z0-9_-]+\.png"
 )
 
