@@ -24,6 +24,14 @@ from .._safe_write import atomic_write, atomic_write_with, make_dirs
 from .._typing import PathLike
 from .._validation import InputError
 from .report_stress import _f  # a number in a table's format, "–" if missing
+from .result_folder import (
+    _clashes,
+    _marker_info,
+    _sha256,
+    folder_kind,
+    is_result_folder,
+    mark_folder,
+)
 
 if TYPE_CHECKING:
     from ..workflow.sweep import SweepResult
@@ -38,8 +46,6 @@ def write_sweep(result: SweepResult, out_dir: PathLike, *, figures: bool = True)
     ``out_dir``; returns ``{"dataset": path, "report": path, "figures": {…}}``.
     Raises :class:`~tribodyn.InputError`, before writing, if the user's files in
     ``out_dir`` have the names of files it writes (module docstring)."""
-    from .writer import _clashes, _marker_info, _sha256, folder_kind, is_result_folder, mark_folder
-
     out = Path(out_dir)
     if out.is_dir() and any(out.iterdir()):
         if not is_result_folder(out):
@@ -91,8 +97,6 @@ def check_resume(out_dir: PathLike, spec, option: str = "--resume") -> None:
     """Raise :class:`~tribodyn.InputError` if ``out_dir`` holds the results of another
     sweep than ``spec``: another name, mode or set of dimensions (the marker's record;
     :func:`sweep_identity`). A sweep whose values changed (extended) may resume."""
-    from .writer import _marker_info
-
     info = _marker_info(Path(out_dir))
     if info.get("kind") != "sweep":
         return
