@@ -93,11 +93,11 @@ def study_to_dataset(study: CycleStudy) -> xr.Dataset:
     ds.attrs["compare_paper"] = int(bool(getattr(study, "compare_paper", False)))
     # a thermal study (numerics.thermal): the temperatures along the cycle [K] and the
     # isothermal run's film and friction (suffix _isothermal) on (surface_set, ehl_crank)
-    thermal = getattr(study, "isothermal_sets", None) is not None
+    thermal = source.isothermal_sets is not None
     ds.attrs["thermal"] = int(thermal)
     if thermal:
         build(ds, [THERMAL_GROUP], source)
-        ds.attrs["inlet_temperature_K"] = float(sets[0].inlet_temperature)
+        ds.attrs["inlet_temperature_K"] = float(source.study.sets[0].inlet_temperature)
     failures = {s.name: [[c, m] for c, m in s.failures] for s in sets}
     ds.attrs.update(
         {

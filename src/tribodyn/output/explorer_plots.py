@@ -385,6 +385,7 @@ def _heatmap(r: Result, var, name, unit, scale, xd, yd, s):
     """Heat map of ``var`` over the axes ``xd`` × ``yd`` (other axes: their first
     value) of set ``s``; the colour scale is shared by the sets."""
     from bokeh.models import ColumnDataSource, HoverTool, LinearColorMapper
+    from bokeh.models.annotations.labels import Title
     from bokeh.models.annotations.legends import ColorBar
     from bokeh.palettes import Viridis256
     from bokeh.plotting import figure
@@ -437,5 +438,6 @@ def _heatmap(r: Result, var, name, unit, scale, xd, yd, s):
         )
     )
     p.add_layout(ColorBar(color_mapper=cmap, width=10), "right")
-    p.title.text_font_size = "12px"
+    if isinstance(p.title, Title):
+        p.title.text_font_size = "12px"
     return p
