@@ -17,6 +17,7 @@ import shutil
 import stat
 import time
 from collections.abc import Mapping
+from contextlib import suppress
 from pathlib import Path
 
 from .. import _json
@@ -256,11 +257,9 @@ def resolve_target(path: PathLike) -> Path:
     """The absolute path of an output folder; a symbolic link to a folder is replaced by
     the folder it points to (the results go there, the link stays)."""
     target = Path(path).expanduser().absolute()
-    try:
+    with suppress(OSError):  # a name too long: the checks say so
         if target.is_symlink() and target.is_dir():
             target = Path(os.path.realpath(target))
-    except OSError:  # a name too long: the checks say so
-        pass
     return target
 
 
@@ -426,10 +425,8 @@ def _probe(folder: Path, target: Path, option: str) -> None:
         ) from None
     finally:
         if probe is not None:
-            try:
+            with suppress(OSError):
                 probe.unlink()
-            except OSError:
-                pass
     free = shutil.disk_usage(folder).free
     if free < MIN_FREE_BYTES:
         raise InputError(

@@ -324,7 +324,7 @@ def _failures_and_warnings(result) -> list[str]:
         ]
         out.append("")
     ds = result.dataset
-    warnings = ds["warnings"] if "warnings" in ds else None
+    warnings = ds.get("warnings")
     bad = [
         f"* {p.label}: {w}"
         for p in result.points

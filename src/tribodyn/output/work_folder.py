@@ -20,6 +20,7 @@ import re
 import secrets
 import shutil
 import stat
+from contextlib import suppress
 from pathlib import Path
 
 from .. import _json
@@ -160,10 +161,8 @@ def adopt_attributes(folder: Path, like: os.stat_result, mode: int | None = None
     A group or owner that cannot be set leaves the folder's own; the mode is set in any
     case, so it is never wider than the one asked for."""
     uid = like.st_uid if os.geteuid() == 0 else -1
-    try:
+    with suppress(OSError):
         os.chown(folder, uid, like.st_gid, follow_symlinks=False)
-    except OSError:
-        pass
     os.chmod(folder, stat.S_IMODE(like.st_mode) if mode is None else mode)
 
 

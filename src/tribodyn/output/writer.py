@@ -54,7 +54,7 @@ import sys
 import tempfile
 import time
 from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -176,10 +176,10 @@ def write_atomic(
     try:
         if target.exists():
             old = old_name(target)
-            try:  # before the rename, so that the .old folder is always proven
+            # before the rename, so that the .old folder is always proven (a folder without
+            # write permission: left unproven)
+            with suppress(OSError):
                 prove_origin(target, old.name)
-            except OSError:  # a folder without write permission: left unproven
-                pass
             try:
                 target.rename(old)
             except BaseException:
