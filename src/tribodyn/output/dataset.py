@@ -57,15 +57,12 @@ def load_run_results(nc: PathLike) -> xr.Dataset:
 
 
 def write_netcdf(ds: xr.Dataset, path: PathLike, encoding: dict | None = None) -> None:
-    """Write ``ds`` to the netCDF-4 file ``path`` with h5netcdf: the file of
-    ``ds.to_netcdf(path, engine="h5netcdf", encoding=encoding)``. A dataset held in
-    memory (no dask chunks) goes straight to xarray's h5netcdf store, under the HDF5
-    library's lock: ``to_netcdf`` first asks dask for its scheduler (for its choice of
-    file closing and write lock), which imports ``dask.distributed`` (about a second), a
-    choice that only matters for chunked data."""
-    if any(v.chunks is not None for v in ds.variables.values()):
-        ds.to_netcdf(path, engine="h5netcdf", encoding=encoding)
-        return
+    """Write ``ds``, held in memory (no dask chunks, as a study's Dataset), to the
+    netCDF-4 file ``path`` with h5netcdf: the file of ``ds.to_netcdf(path,
+    engine="h5netcdf", encoding=encoding)``, straight through xarray's h5netcdf store
+    under the HDF5 library's lock: ``to_netcdf`` first asks dask for its scheduler (for
+    its choice of file closing and write lock), which imports ``dask.distributed`` (about
+    a second), a choice that only matters for chunked data."""
     from xarray.backends import H5NetCDFStore
     from xarray.backends.locks import HDF5_LOCK
 
