@@ -19,7 +19,7 @@ import numpy as np
 
 from .report_claims import _fmt, claims
 
-__all__ = ["report_text", "claims", "figures_section", "with_figures"]
+__all__ = ["write_report", "report_text", "claims", "figures_section", "with_figures"]
 
 _CAPTIONS = {
     "fig05": "Dry pressure for coating/steel modulus ratios (paper Fig. 5; R = 10 mm assumed).",
@@ -560,3 +560,10 @@ def with_figures(text: str, ds, figures: dict) -> str:
         raise ValueError("report.md has no figure section") from None
     end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith("## ")), len(lines))
     return "\n".join(lines[:start] + figures_section(ds, figures) + lines[end:])
+
+
+def write_report(study, ds, figures: dict, path) -> Path:
+    """Write report.md (:func:`~tribodyn._safe_write.atomic_write`); returns its path."""
+    from .._safe_write import atomic_write
+
+    return atomic_write(Path(path), report_text(study, ds, figures))

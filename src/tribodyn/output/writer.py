@@ -386,9 +386,9 @@ def write_results(
         if report:
             from .explorer import write_report_html
             from .export import report_markdown
-            from .report import report_text
+            from .report import write_report
 
-            atomic_write(tmp / "report.md", report_text(study, ds, figs))
+            write_report(study, ds, figs, tmp / "report.md")
             write_report_html(report_markdown(tmp), tmp, ds=ds)  # results.nc not read again
 
     def writer(tmp: Path):
