@@ -9,8 +9,9 @@ quantities are NaN where the contact carries no load (``loaded`` false: cam on t
 circle) — by definition, not as a failure; steps that did not
 converge keep their last iterate and are flagged by ``converged`` false and listed in the
 ``ehl_failures`` attribute. Attributes: the case as run (``case_toml``), the roles of the
-surface sets (``reference_set``, ``surface_roles``), the coupling, warnings, and the
-single-contact studies' conditions.
+surface sets (``reference_set``, ``surface_roles``), the coupling, warnings, the
+single-contact studies' conditions, and ``thermal`` (1 in a thermal study, with
+``inlet_temperature_K``; 0 else).
 
 The variables, their units and descriptions are the table of
 :mod:`tribodyn.workflow.variables_study`; this module writes them and the attributes.
@@ -27,12 +28,10 @@ from .._typing import PathLike
 from .._validation import InputError
 from ..workflow.coating_study import DRY_CONDITIONS
 from ..workflow.variables import build
-from ..workflow.variables_study import STUDY, StudySource
+from ..workflow.variables_study import STUDY, THERMAL_GROUP, StudySource
 
 if TYPE_CHECKING:
     from ..workflow.cycle import CycleStudy
-
-from .thermal import add_thermal
 
 __all__ = ["RUN_VARIABLES", "load_run_results", "study_to_dataset", "write_netcdf"]
 
@@ -58,15 +57,12 @@ def load_run_results(nc: PathLike) -> xr.Dataset:
 
 
 def write_netcdf(ds: xr.Dataset, path: PathLike, encoding: dict | None = None) -> None:
-    """Write ``ds`` to the netCDF-4 file ``path`` with h5netcdf: the file of
-    ``ds.to_netcdf(path, engine="h5netcdf", encoding=encoding)``. A dataset held in
-    memory (no dask chunks) goes straight to xarray's h5netcdf store, under the HDF5
-    library's lock: ``to_netcdf`` first asks dask for its scheduler (for its choice of
-    file closing and write lock), which imports ``dask.distributed`` (about a second), a
-    choice that only matters for chunked data."""
-    if any(v.chunks is not None for v in ds.variables.values()):
-        ds.to_netcdf(path, engine="h5netcdf", encoding=encoding)
-        return
+    """Write ``ds``, held in memory (no dask chunks, as a study's Dataset), to the
+    netCDF-4 file ``path`` with h5netcdf: the file of ``ds.to_netcdf(path,
+    engine="h5netcdf", encoding=encoding)``, straight through xarray's h5netcdf store
+    under the HDF5 library's lock: ``to_netcdf`` first asks dask for its scheduler (for
+    its choice of file closing and write lock), which imports ``dask.distributed`` (about
+    a second), a choice that only matters for chunked data."""
     from xarray.backends import H5NetCDFStore
     from xarray.backends.locks import HDF5_LOCK
 
@@ -92,7 +88,13 @@ def study_to_dataset(study: CycleStudy) -> xr.Dataset:
         ds.attrs["ehl_coating_conditions"] = _json.dumps(e.conditions)
     ds.attrs["lubricant_as_used"] = _json.dumps(source.oil)
     ds.attrs["compare_paper"] = int(bool(getattr(study, "compare_paper", False)))
-    add_thermal(ds, study)
+    # a thermal study (numerics.thermal): the temperatures along the cycle [K] and the
+    # isothermal run's film and friction (suffix _isothermal) on (surface_set, ehl_crank)
+    thermal = source.isothermal_sets is not None
+    ds.attrs["thermal"] = int(thermal)
+    if thermal:
+        build(ds, [THERMAL_GROUP], source)
+        ds.attrs["inlet_temperature_K"] = float(source.study.sets[0].inlet_temperature)
     failures = {s.name: [[c, m] for c, m in s.failures] for s in sets}
     ds.attrs.update(
         {

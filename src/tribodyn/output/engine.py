@@ -14,18 +14,7 @@ from .._safe_write import atomic_write, atomic_write_with
 from .._typing import PathLike
 from .writer import _write_case, write_atomic
 
-__all__ = ["engine_summary", "write_engine_results"]
-
-
-def engine_summary(study) -> dict:
-    """summary.json of an :class:`~tribodyn.workflow.engine.EngineStudy`."""
-    return {
-        "case": study.case.name,
-        "engine": study.summary(),
-        "warnings": list(study.warnings),
-        "runtime_s": study.runtime_s,
-        "timings": study.timings,
-    }
+__all__ = ["write_engine_results"]
 
 
 def write_engine_results(
@@ -35,7 +24,13 @@ def write_engine_results(
     ``out_dir`` (the rules of :func:`~tribodyn.output.writer.write_atomic`). Returns
     ``{"summary": …, "figures": [names], "path": out_dir}``."""
     ds = study.to_dataset()
-    summ = engine_summary(study)
+    summ = {  # summary.json
+        "case": study.case.name,
+        "engine": study.summary(),
+        "warnings": list(study.warnings),
+        "runtime_s": study.runtime_s,
+        "timings": study.timings,
+    }
     names: list[str] = []
     labels = dict(study.labels)  # display names of the sets (``DLC 4 µm``, ``uncoated``)
 
@@ -49,10 +44,11 @@ def write_engine_results(
             names.extend(p.name for p in engine_figures(ds, tmp, labels=labels))
         if report:
             from .explorer import write_report_html
-            from .report_engine import write_engine_report
+            from .report_engine import engine_report_text
 
-            md = write_engine_report(study, ds, summ, names, tmp, labels)
-            write_report_html(md.read_text(encoding="utf-8"), tmp)
+            text = engine_report_text(study, ds, summ, names, labels)
+            atomic_write(tmp / "report.md", text)
+            write_report_html(text, tmp)
 
     path = write_atomic(Path(out_dir), writer, meta={"kind": "engine", "case": study.case.name})
     return {"summary": summ, "figures": names, "path": path}

@@ -25,8 +25,6 @@ import re
 from collections.abc import Sequence
 from pathlib import Path
 
-import numpy as np
-
 from .._json import dumps
 from .._safe_write import atomic_write
 from .._typing import PathLike
@@ -40,6 +38,7 @@ from .explorer_plots import (
     run_figures,
     sweep_figures,
 )
+from .report_engine import shaft_peaks
 
 __all__ = [
     "add_interactive",
@@ -133,16 +132,12 @@ def verdicts(r: Result) -> list[str]:
 
 
 def _engine_peaks(r: Result) -> dict[str, dict[str, float]]:
-    """Peak |drive torque| per camshaft and set, from the stored traces."""
-    ds = r.ds
-    out: dict[str, dict[str, float]] = {}
-    if "camshaft_drive_torque" not in ds:
-        return out
-    t = np.asarray(ds["camshaft_drive_torque"].values, float)
-    shafts = [str(c) for c in ds["camshaft"].values]
-    for i, s in enumerate(r.sets):
-        out[s] = {c: float(np.nanmax(np.abs(t[i, j]))) for j, c in enumerate(shafts)}
-    return out
+    """Peak |drive torque| per camshaft and set (:func:`~.report_engine.shaft_peaks`)."""
+    peaks = shaft_peaks(r.ds)
+    if peaks is None:
+        return {}
+    shafts = [str(c) for c in r.ds["camshaft"].values]
+    return {s: dict(zip(shafts, map(float, peaks[i]))) for i, s in enumerate(r.sets)}
 
 
 def summary_rows(results: list[Result], kind: str) -> tuple[list[str], list[list]]:
@@ -160,14 +155,14 @@ def summary_rows(results: list[Result], kind: str) -> tuple[list[str], list[list
     if kind == "engine":
         peaks = {id(r): _engine_peaks(r) for r, _ in cols}
         shafts = sorted({c for r, s in cols for c in peaks[id(r)].get(s, {})}, reverse=True)
-        for c in shafts:
-            rows.append(
-                [
-                    f"peak drive torque, {c} camshaft",
-                    "N·m",
-                    *[peaks[id(r)].get(s, {}).get(c) for r, s in cols],
-                ]
-            )
+        rows += [
+            [
+                f"peak drive torque, {c} camshaft",
+                "N·m",
+                *[peaks[id(r)].get(s, {}).get(c) for r, s in cols],
+            ]
+            for c in shafts
+        ]
         for part in _ENGINE_PARTS:
             vals = [
                 _num(r.set_summary(s).get("friction_energy_per_cycle_J", {}).get(part))
@@ -246,11 +241,10 @@ class _Embedder:
 
     def divs(self, figs) -> str:
         """Target divs of ``figs`` (in the order they are added)."""
-        out = []
-        for f in figs:
-            out.append(f"<div class='fig' id='{self.prefix}{len(self.figs)}'></div>")
-            self.figs.append(f)
-        return "\n".join(out)
+        start = len(self.figs)
+        self.figs += figs
+        ids = range(start, len(self.figs))
+        return "\n".join(f"<div class='fig' id='{self.prefix}{k}'></div>" for k in ids)
 
     def _lines(self) -> dict:
         """The line figures: their specs, target ids, shared ranges and the styles."""

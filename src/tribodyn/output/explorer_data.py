@@ -125,8 +125,7 @@ def load_result(path: PathLike, label: str | None = None, ds: Any = None) -> Res
         with xr.open_dataset(p / "sweep.nc", engine="h5netcdf") as ds:
             ds = ds.load()
         text = _read_text(p / "base_case.toml") or str(ds.attrs.get("base_case_toml", ""))
-        names = [str(v) for v in ds["surface_set"].values] if "surface_set" in ds.coords else []
-        return Result(p, "sweep", label, ds, {}, text, set_display_names(text, names))
+        return _labelled(Result(p, "sweep", label, ds, {}, text))
     if ds is not None:
         ds = ds[[v for v in ds.data_vars if v not in _NOT_SHOWN]]
     elif not (p / "results.nc").is_file():
@@ -143,15 +142,19 @@ def load_result(path: PathLike, label: str | None = None, ds: Any = None) -> Res
         summary = {}
     text = _read_text(p / "case.toml") or str(ds.attrs.get("case_toml", ""))
     if "engine_crank" in ds.coords:
-        names = [str(v) for v in ds["engine_set"].values]
-        return Result(p, "engine", label, ds, summary, text, set_display_names(text, names))
+        return _labelled(Result(p, "engine", label, ds, summary, text))
     if "crank_angle" not in ds.coords:
         raise InputError(f"RESULT {str(p)!r}: results.nc holds neither a run nor an engine")
-    names = [str(v) for v in ds["surface_set"].values] if "surface_set" in ds.coords else []
-    labels = set_display_names(text, names)
+    r = _labelled(Result(p, "run", label, ds, summary, text))
     if "surface_label" in ds:
-        labels.update(zip(names, (str(v) for v in ds["surface_label"].values)))
-    return Result(p, "run", label, ds, summary, text, labels)
+        r.labels.update(zip(r.sets, (str(v) for v in ds["surface_label"].values)))
+    return r
+
+
+def _labelled(r: Result) -> Result:
+    """``r`` with the display names of its sets from its case (:func:`set_display_names`)."""
+    r.labels = set_display_names(r.case_text, r.sets)
+    return r
 
 
 def unique_labels(paths: Iterable[PathLike]) -> list[str]:

@@ -72,13 +72,6 @@ LINE_STYLE = {
 }
 
 
-def _title_size(p, size: str) -> None:
-    from bokeh.models.annotations.labels import Title
-
-    if isinstance(p.title, Title):
-        p.title.text_font_size = size
-
-
 def _width(i: int) -> float:
     """Line width of the i-th set: the first widest, so that the sets' curves lying on
     one another stay visible."""
@@ -299,11 +292,6 @@ SWEEP_LOSS = (
 )
 
 
-def sweep_loss(ds):
-    """(variable, label, unit, scale) of the friction loss a sweep holds, or None."""
-    return next((s for s in SWEEP_LOSS if s[0] in ds), None)
-
-
 def axes_of(ds) -> list[str]:
     """The sweep's numeric axes (dimensions other than ``surface_set``)."""
     return (
@@ -335,10 +323,8 @@ def coating_delta(ds, loss: str, ref: str | None):
 def _unit(ds, dim):
     import json
 
-    for a in json.loads(ds.attrs.get("axes", "[]") or "[]"):
-        if a.get("dim") == dim:
-            return a.get("unit") or ""
-    return ""
+    axes = json.loads(ds.attrs.get("axes", "[]") or "[]")
+    return next((a.get("unit") or "" for a in axes if a.get("dim") == dim), "")
 
 
 def sweep_figures(results: list[Result], styles: Styles) -> list:
@@ -349,7 +335,7 @@ def sweep_figures(results: list[Result], styles: Styles) -> list:
     figs: list = []
     for r in (r for r in results if r.kind == "sweep"):
         ds = r.ds
-        spec = sweep_loss(ds)
+        spec = next((s for s in SWEEP_LOSS if s[0] in ds), None)  # the loss it holds
         axes = axes_of(ds)
         if spec is None or not axes:
             continue
@@ -399,6 +385,7 @@ def _heatmap(r: Result, var, name, unit, scale, xd, yd, s):
     """Heat map of ``var`` over the axes ``xd`` × ``yd`` (other axes: their first
     value) of set ``s``; the colour scale is shared by the sets."""
     from bokeh.models import ColumnDataSource, HoverTool, LinearColorMapper
+    from bokeh.models.annotations.labels import Title
     from bokeh.models.annotations.legends import ColorBar
     from bokeh.palettes import Viridis256
     from bokeh.plotting import figure
@@ -451,5 +438,6 @@ def _heatmap(r: Result, var, name, unit, scale, xd, yd, s):
         )
     )
     p.add_layout(ColorBar(color_mapper=cmap, width=10), "right")
-    _title_size(p, "12px")
+    if isinstance(p.title, Title):
+        p.title.text_font_size = "12px"
     return p

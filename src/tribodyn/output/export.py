@@ -21,18 +21,15 @@ from __future__ import annotations
 import base64
 import csv
 import html
-import os
 import re
-import stat
 from pathlib import Path
 
 import numpy as np
 
 from .._safe_write import atomic_open
+from .result_folder import regular_file_bytes
 
 __all__ = ["CSV_FILES", "write_csv", "report_html", "report_markdown"]
-
-_NOFOLLOW = getattr(os, "O_NOFOLLOW", 0)
 
 #: The CSV files :func:`write_csv` writes.
 CSV_FILES = ("traces.csv", "dynamics.csv")
@@ -76,17 +73,13 @@ _DYNAMICS = (
 )
 
 
-def _head(ds, name, prefix=""):
-    u = ds[name].attrs.get("units", "")
-    return f"{prefix}{name} [{u}]" if u else f"{prefix}{name}"
-
-
 def _add_columns(ds, names, header: list[str], cols: list[np.ndarray], prefix="", row=None):
     """Append the variables ``names`` present in ``ds`` (their row ``row`` for a per-set
     variable) to a table's header and columns."""
     for name in names:
         if name in ds:
-            header.append(_head(ds, name, prefix))
+            u = ds[name].attrs.get("units", "")
+            header.append(f"{prefix}{name} [{u}]" if u else f"{prefix}{name}")
             v = ds[name].values
             cols.append(np.asarray(v if row is None else v[row], float))
 
@@ -132,32 +125,11 @@ code{background:#f6f6f6}
 """
 
 
-def _own_file_bytes(folder: Path, name: str) -> bytes | None:
-    """The content of the regular file ``folder/name`` (a plain name: no folder part),
-    or None if it is missing, a link, not a regular file (a folder, a FIFO, a device) or
-    not in ``folder``: a result folder received from someone else may hold a link to a
-    private file, which must not end up in a shared report."""
-    if not name or "/" in name or os.sep in name or name in (".", ".."):
-        return None
-    p = Path(folder) / name
-    try:
-        fd = os.open(p, os.O_RDONLY | _NOFOLLOW | getattr(os, "O_NONBLOCK", 0))
-    except OSError:  # missing, a link (ELOOP), unreadable
-        return None
-    try:
-        if not stat.S_ISREG(os.fstat(fd).st_mode):
-            return None
-        with os.fdopen(fd, "rb", closefd=False) as f:
-            return f.read()
-    finally:
-        os.close(fd)
-
-
 def report_markdown(folder, warnings: list[str] | None = None) -> str:
     """The text of ``folder/report.md`` (a regular file in the folder, not a link);
     bytes that are not UTF-8 are replaced by U+FFFD and a line is added to
     ``warnings``. Raises :class:`FileNotFoundError` if there is no such file."""
-    data = _own_file_bytes(Path(folder), "report.md")
+    data = regular_file_bytes(Path(folder), "report.md")
     if data is None:
         raise FileNotFoundError(f"{folder}/report.md is missing, a link or not a regular file")
     try:
@@ -184,7 +156,7 @@ def report_html(markdown_text: str, folder, skipped: list[str] | None = None) ->
 
     def embed(m: re.Match) -> str:
         name = html.unescape(m.group(1))
-        data = _own_file_bytes(folder, name) if name.endswith(".png") else None
+        data = regular_file_bytes(folder, name) if name.endswith(".png") else None
         if data is None:
             if skipped is not None:
                 skipped.append(name)

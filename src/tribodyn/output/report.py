@@ -152,8 +152,7 @@ def valve_jump_section(summ) -> list[str]:
         "| contact lost from | to | duration |",
         "|---|---|---|",
     ]
-    for a, b in iv[:10]:
-        lines.append(f"| {a:.1f}° | {b:.1f}° | {b - a:.1f}° |")
+    lines += [f"| {a:.1f}° | {b:.1f}° | {b - a:.1f}° |" for a, b in iv[:10]]
     if len(iv) > 10:
         lines.append(f"| … {len(iv) - 10} more | | |")
     lines.append("")
@@ -331,13 +330,13 @@ def _nose_section(study) -> list[str]:
     ref = study.labels.get(sens.surface_set, sens.surface_set)
     rows = [(k, c) for k, c in (own.cases.items() if own is not None else [])]
     rows += [(f"{ref}: {k}", c) for k, c in sens.cases.items() if k != "case roughness"]
-    for k, c in rows:
-        lines.append(
-            f"| {k}{'' if c.converged else ' (not converged)'} | "
-            f"{_fmt(c.central_film_m * 1e6, 'µm')} | {_fmt(c.min_film_m * 1e6, 'µm')} | "
-            f"{c.friction_coefficient:.3f} | {c.asperity_load_share * 100:.2g} % | "
-            f"{_fmt(c.viscous_friction_N, 'N')} | {_fmt(c.boundary_friction_N, 'N')} |"
-        )
+    lines += [
+        f"| {k}{'' if c.converged else ' (not converged)'} | "
+        f"{_fmt(c.central_film_m * 1e6, 'µm')} | {_fmt(c.min_film_m * 1e6, 'µm')} | "
+        f"{c.friction_coefficient:.3f} | {c.asperity_load_share * 100:.2g} % | "
+        f"{_fmt(c.viscous_friction_N, 'N')} | {_fmt(c.boundary_friction_N, 'N')} |"
+        for k, c in rows
+    ]
     return lines + [""]
 
 
@@ -377,20 +376,20 @@ def report_text(study, ds, figures: dict) -> str:
         "min λ | failed steps |",
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
-    for name, v in summ["surface_sets"].items():
-        lines.append(
-            f"| {v['label']} | {_fmt(v['min_film_m'] and v['min_film_m'] * 1e6, 'µm')} | "
-            f"{_fmt(v['max_central_film_m'] and v['max_central_film_m'] * 1e6, 'µm')} | "
-            f"{_fmt(v['max_film_gain_vs_uncoated_pct'], '%')} | "
-            f"{_fmt(v['median_abs_film_gain_vs_uncoated_pct'], '%')} | "
-            f"{_fmt(v['max_boundary_friction_N'], 'N')} | "
-            f"{_pct_change(v.get('max_boundary_friction_change_pct'), name == first)} | "
-            f"{_fmt(v['max_viscous_friction_N'], 'N')} | "
-            f"{_pct_change(v['boundary_friction_cycle_integral_change_pct'], name == first)} | "
-            f"{_fmt(v['friction_energy_per_cycle_J'], 'J')} | "
-            f"{_fmt(v['mean_friction_power_W'], 'W')} | {_fmt(v['min_lambda'])} | "
-            f"{v['failed_steps']} |"
-        )
+    lines += [
+        f"| {v['label']} | {_fmt(v['min_film_m'] and v['min_film_m'] * 1e6, 'µm')} | "
+        f"{_fmt(v['max_central_film_m'] and v['max_central_film_m'] * 1e6, 'µm')} | "
+        f"{_fmt(v['max_film_gain_vs_uncoated_pct'], '%')} | "
+        f"{_fmt(v['median_abs_film_gain_vs_uncoated_pct'], '%')} | "
+        f"{_fmt(v['max_boundary_friction_N'], 'N')} | "
+        f"{_pct_change(v.get('max_boundary_friction_change_pct'), name == first)} | "
+        f"{_fmt(v['max_viscous_friction_N'], 'N')} | "
+        f"{_pct_change(v['boundary_friction_cycle_integral_change_pct'], name == first)} | "
+        f"{_fmt(v['friction_energy_per_cycle_J'], 'J')} | "
+        f"{_fmt(v['mean_friction_power_W'], 'W')} | {_fmt(v['min_lambda'])} | "
+        f"{v['failed_steps']} |"
+        for name, v in summ["surface_sets"].items()
+    ]
     lines += ["", f"Film-gain rule: {summ['film_gain_rule']}.", ""]
     d = summ.get("dynamics", {})
     ue = d.get("entrainment_speed_range_m_s") or [None, None]
@@ -428,8 +427,9 @@ def report_text(study, ds, figures: dict) -> str:
             "| claim | paper | tribodyn | why |",
             "|---|---|---|---|",
         ]
-        for claim, pap, ours, why in claims(study, summ):
-            lines.append(f"| {claim} | {pap} | {ours} | {why} |")
+        lines += [
+            f"| {claim} | {pap} | {ours} | {why} |" for claim, pap, ours, why in claims(study, summ)
+        ]
         lines.append("")
 
     lines += figures_section(ds, figures)

@@ -10,12 +10,11 @@ import math
 import numpy as np
 
 from .. import paper
+from .report_stress import _f
 
 
 def _fmt(v, unit="", digits=3):
-    if v is None or (isinstance(v, float) and not math.isfinite(v)):
-        return "–"
-    return f"{v:.{digits}g}{(' ' + unit) if unit else ''}"
+    return _f(v, f".{digits}g", unit=unit)
 
 
 def _boundary_factor(surfaces, name, with_coefficient=False):

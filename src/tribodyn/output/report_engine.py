@@ -11,14 +11,11 @@ Built from the study's summaries and the results Dataset (reading, no solver cal
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
-from .._safe_write import atomic_write
 from .report_claims import _fmt
 
-__all__ = ["engine_report_text", "write_engine_report"]
+__all__ = ["engine_report_text"]
 
 _PARTS = (
     ("cam_tappet", "cam–tappet contacts"),
@@ -73,7 +70,7 @@ def verdict_lines(eng: dict, labels: dict) -> list[str]:
     return out
 
 
-def _shaft_peaks(ds) -> np.ndarray | None:
+def shaft_peaks(ds) -> np.ndarray | None:
     """Peak |drive torque| (set, camshaft) of the stored traces."""
     if ds is None or "camshaft_drive_torque" not in ds:
         return None
@@ -144,7 +141,7 @@ def engine_report_text(study, ds, summ: dict, figures, labels: dict | None = Non
             f"{_fmt(d['mean_friction_power_W'], 'W', 4)} | "
             f"{_fmt(d['mean_friction_torque_Nm'], 'N·m', 4)} | {failed or '–'} |"
         )
-    peaks = _shaft_peaks(ds)
+    peaks = shaft_peaks(ds)
     lines += [
         "",
         "## Camshaft torque per camshaft",
@@ -245,11 +242,3 @@ def _inputs(study) -> list[str]:
         return []
     lines = _inputs_section(lt.study, lt.study.analyse().summary)
     return [ln.replace("## Inputs as used", "## Inputs as used (intake lobe)") for ln in lines]
-
-
-def write_engine_report(study, ds, summ, figures, folder, labels=None) -> Path:
-    """Write report.md into ``folder`` (:func:`~tribodyn._safe_write.atomic_write`);
-    returns its path."""
-    return atomic_write(
-        Path(folder) / "report.md", engine_report_text(study, ds, summ, figures, labels)
-    )

@@ -20,28 +20,25 @@ _MODES = {
 }
 
 
-def _f(v, fmt, scale=1.0, none="–"):
+def _f(v, fmt, scale=1.0, unit=""):
+    """``v`` × ``scale`` in the format ``fmt`` with its ``unit``; "–" if missing or not
+    finite."""
     if v is None or (isinstance(v, float) and not math.isfinite(v)):
-        return none
-    return format(v * scale, fmt)
+        return "–"
+    return format(v * scale, fmt) + (f" {unit}" if unit else "")
 
 
-def _cycle_range(summary: dict) -> str:
-    """The presented cycle's crank-angle range, as the summary states it."""
-    a, b = summary.get("presented_cycle_crank_deg") or (720.0, 1440.0)
-    return f"{a:g}–{b:g}°"
-
-
-def stress_section(summary: dict, heading: str = "## Coating integrity") -> list[str]:
+def stress_section(summary: dict) -> list[str]:
     """Markdown lines of the section (empty list when no set has stress results). Crank
     angles are the run's (``crank_deg`` in summary.json: the presented cycle, 720–1440°
     with the default two cycles), as in every other table, figure and warning."""
     sets = {n: e for n, e in summary.get("surface_sets", {}).items() if "min_safety_factor" in e}
     if not sets:
         return []
-    cycle = _cycle_range(summary)
+    a, b = summary.get("presented_cycle_crank_deg") or (720.0, 1440.0)  # as the summary says
+    cycle = f"{a:g}–{b:g}°"
     out = [
-        heading,
+        "## Coating integrity",
         "",
         "Subsurface stresses of the cam and the tappet at every loaded EHL sample (EHL "
         "pressure with the mean asperity pressure, viscous and boundary shear), against "

@@ -14,8 +14,10 @@ import json
 import os
 import re
 import shutil
+import stat
 import time
 from collections.abc import Mapping
+from contextlib import suppress
 from pathlib import Path
 
 from .. import _json
@@ -23,6 +25,7 @@ from .._safe_write import TOKEN_CHARS, atomic_write, new_file
 from .._typing import PathLike
 from .._user_files import MAX_MARKER_BYTES, read_user_bytes
 from .._validation import InputError
+from .figure_names import FIGURES, content_name
 
 #: File that marks a folder as written by tribodyn (JSON: tool, version, case, time).
 MARKER = ".tribodyn-results"
@@ -42,21 +45,13 @@ MAX_FOREIGN = 2000
 _LEGACY_FILES = ("results.nc", "summary.json", "case.toml")
 
 
-#: Figures of a case other than the paper's, named by content (without ``figNN_``).
-_CONTENT_FIGURES = (
-    "dry_pressure|ehl_pressure_film|tappet_velocity|contact_force|tappet_acceleration"
-    "|entrainment_speed|greenwood_chart|pressure_film_points|coatings_pressure_film"
-    "|central_film|boundary_load|boundary_friction|viscous_friction|friction_power"
-    "|min_film_lambda|temperatures|thermal_vs_isothermal|camshaft_torque"
-    "|contact_pressure|cam_kinematics|spring_surge|stress_map",
-)
-
-
 #: Names of the files tribodyn writes in a result folder (cycle study and sweep); in a
 #: folder whose marker does not list its files, these are tribodyn's own.
 _OWN_NAMES = re.compile(
     r"results\.nc|summary\.json|case\.toml|report\.md|fig\d\d_[A-Za-z0-9_-]+\.png"
-    r"|report\.html|traces\.csv|dynamics\.csv|(?:" + "|".join(_CONTENT_FIGURES) + r")\.png"
+    r"|report\.html|traces\.csv|dynamics\.csv|(?:"
+    + "|".join(re.escape(content_name(n)) for n in FIGURES)  # a case other than the paper's
+    + r")"
     r"|sweep\.nc|sweep\.toml|sweep_report\.md|base_case\.toml|sweep_[A-Za-z0-9_-]+\.png"
 )
 
@@ -109,11 +104,8 @@ def _iter_dir(p: Path):
 
 
 def _sha256(path: Path) -> str:
-    h = hashlib.sha256()
     with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
+        return hashlib.file_digest(f, "sha256").hexdigest()
 
 
 def _walk(folder: Path):
@@ -150,6 +142,29 @@ def _dirs(folder: Path) -> list[str]:
     first."""
     out = [r for _, entries in _walk(folder) for r, e in entries if e.is_dir(follow_symlinks=False)]
     return sorted(out, key=lambda r: r.count("/"))
+
+
+def regular_file_bytes(folder: Path, name: str, limit: int = -1) -> bytes | None:
+    """The content (at most ``limit`` bytes) of the regular file ``folder/name`` (a plain
+    name: no folder part), or None if it is missing, a link, not a regular file (a
+    folder, a FIFO, a device) or not in ``folder``: a result folder received from
+    someone else may hold a link to a private file, which must not end up in a shared
+    report, and a temporary folder's proof of origin is never read through a link."""
+    if not name or "/" in name or os.sep in name or name in (".", ".."):
+        return None
+    p = Path(folder) / name
+    flags = os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0)
+    try:
+        fd = os.open(p, flags)
+    except OSError:  # missing, a link (ELOOP), unreadable
+        return None
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            return None
+        with os.fdopen(fd, "rb", closefd=False) as f:
+            return f.read(limit)
+    finally:
+        os.close(fd)
 
 
 def _marker_info(folder: Path) -> dict:
@@ -242,11 +257,9 @@ def resolve_target(path: PathLike) -> Path:
     """The absolute path of an output folder; a symbolic link to a folder is replaced by
     the folder it points to (the results go there, the link stays)."""
     target = Path(path).expanduser().absolute()
-    try:
+    with suppress(OSError):  # a name too long: the checks say so
         if target.is_symlink() and target.is_dir():
             target = Path(os.path.realpath(target))
-    except OSError:  # a name too long: the checks say so
-        pass
     return target
 
 
@@ -412,10 +425,8 @@ def _probe(folder: Path, target: Path, option: str) -> None:
         ) from None
     finally:
         if probe is not None:
-            try:
+            with suppress(OSError):
                 probe.unlink()
-            except OSError:
-                pass
     free = shutil.disk_usage(folder).free
     if free < MIN_FREE_BYTES:
         raise InputError(

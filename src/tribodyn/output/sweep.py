@@ -24,6 +24,14 @@ from .._safe_write import atomic_write, atomic_write_with, make_dirs
 from .._typing import PathLike
 from .._validation import InputError
 from .report_stress import _f  # a number in a table's format, "–" if missing
+from .result_folder import (
+    _clashes,
+    _marker_info,
+    _sha256,
+    folder_kind,
+    is_result_folder,
+    mark_folder,
+)
 
 if TYPE_CHECKING:
     from ..workflow.sweep import SweepResult
@@ -38,8 +46,6 @@ def write_sweep(result: SweepResult, out_dir: PathLike, *, figures: bool = True)
     ``out_dir``; returns ``{"dataset": path, "report": path, "figures": {…}}``.
     Raises :class:`~tribodyn.InputError`, before writing, if the user's files in
     ``out_dir`` have the names of files it writes (module docstring)."""
-    from .writer import _clashes, _marker_info, _sha256, folder_kind, is_result_folder, mark_folder
-
     out = Path(out_dir)
     if out.is_dir() and any(out.iterdir()):
         if not is_result_folder(out):
@@ -91,8 +97,6 @@ def check_resume(out_dir: PathLike, spec, option: str = "--resume") -> None:
     """Raise :class:`~tribodyn.InputError` if ``out_dir`` holds the results of another
     sweep than ``spec``: another name, mode or set of dimensions (the marker's record;
     :func:`sweep_identity`). A sweep whose values changed (extended) may resume."""
-    from .writer import _marker_info
-
     info = _marker_info(Path(out_dir))
     if info.get("kind") != "sweep":
         return
@@ -125,12 +129,6 @@ def _values_text(values) -> str:
     )
 
 
-def _point_rows(result):
-    """(label, index into the flat dataset) of the points, capped at _MAX_ROWS."""
-    pts = result.points
-    return [(p.label, p.position) for p in pts[:_MAX_ROWS]], len(pts) > _MAX_ROWS
-
-
 def _at(da, spec, pos):
     sel = {d: i for (d, _), i in zip(spec.dims, pos)}
     return da.isel(sel)
@@ -159,9 +157,11 @@ def sweep_report_text(result, figures: dict | None = None) -> str:
         "",
     ]
     lines += ["## Axes", "", "| dimension | key path | unit | values |", "|---|---|---|---|"]
-    for dim, axes in spec.dims:
-        for a in axes:
-            lines.append(f"| {dim} | `{a.path}` | {a.unit or '–'} | {_values_text(a.values)} |")
+    lines += [
+        f"| {dim} | `{a.path}` | {a.unit or '–'} | {_values_text(a.values)} |"
+        for dim, axes in spec.dims
+        for a in axes
+    ]
     lines += [
         "",
         f"Combination: {spec.config.sweep.combine}"
@@ -198,9 +198,9 @@ def sweep_report_text(result, figures: dict | None = None) -> str:
 
 def _results_tables(result) -> list[str]:
     spec, ds = result.spec, result.dataset
-    rows, capped = _point_rows(result)
+    rows = [(p.label, p.position) for p in result.points[:_MAX_ROWS]]  # capped
     out = ["## Results", ""]
-    if capped:
+    if len(result.points) > _MAX_ROWS:
         out += [f"The first {_MAX_ROWS} of {len(result.points)} points; all are in `sweep.nc`.", ""]
     dyn_cols = [
         ("peak_contact_force_N", "peak F [N]", ".4g"),
@@ -318,17 +318,18 @@ def _failures_and_warnings(result) -> list[str]:
             "| point | error |",
             "|---|---|",
         ]
-        for p, err in result.failed[:_MAX_ROWS]:
-            out.append(
-                f"| {p.label} | {str(err).replace('|', '/').splitlines()[0] if err else ''} |"
-            )
+        out += [
+            f"| {p.label} | {str(err).replace('|', '/').splitlines()[0] if err else ''} |"
+            for p, err in result.failed[:_MAX_ROWS]
+        ]
         out.append("")
     ds = result.dataset
-    bad = []
-    for p in result.points:
-        w = str(_at(ds["warnings"], result.spec, p.position).values) if "warnings" in ds else ""
-        if w:
-            bad.append(f"* {p.label}: {w}")
+    warnings = ds.get("warnings")
+    bad = [
+        f"* {p.label}: {w}"
+        for p in result.points
+        if warnings is not None and (w := str(_at(warnings, result.spec, p.position).values))
+    ]
     if bad:
         out += [
             "## Warnings",

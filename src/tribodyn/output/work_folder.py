@@ -20,6 +20,7 @@ import re
 import secrets
 import shutil
 import stat
+from contextlib import suppress
 from pathlib import Path
 
 from .. import _json
@@ -38,6 +39,7 @@ from .result_folder import (
     is_result_folder,
     mark_folder,
     own_files,
+    regular_file_bytes,
 )
 
 __all__ = [
@@ -86,17 +88,9 @@ def _origin(kind: str, pid: str, token: str) -> dict:
 def _has_origin(folder: Path, kind: str, pid: str, token: str) -> bool:
     """True if ``folder`` holds tribodyn's proof of origin with this PID and token."""
     try:
-        fd = os.open(folder / ORIGIN, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0))
-    except OSError:
-        return False
-    try:
-        if not stat.S_ISREG(os.fstat(fd).st_mode):
-            return False
-        info = json.loads(os.read(fd, 4096).decode("utf-8"))
+        info = json.loads((regular_file_bytes(folder, ORIGIN, 4096) or b"").decode("utf-8"))
     except (OSError, ValueError):
         return False
-    finally:
-        os.close(fd)
     return info == _origin(kind, pid, token)
 
 
@@ -167,10 +161,8 @@ def adopt_attributes(folder: Path, like: os.stat_result, mode: int | None = None
     A group or owner that cannot be set leaves the folder's own; the mode is set in any
     case, so it is never wider than the one asked for."""
     uid = like.st_uid if os.geteuid() == 0 else -1
-    try:
+    with suppress(OSError):
         os.chown(folder, uid, like.st_gid, follow_symlinks=False)
-    except OSError:
-        pass
     os.chmod(folder, stat.S_IMODE(like.st_mode) if mode is None else mode)
 
 

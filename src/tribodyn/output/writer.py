@@ -54,7 +54,7 @@ import sys
 import tempfile
 import time
 from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -64,7 +64,7 @@ from .._typing import PathLike
 from .dataset import study_to_dataset, write_netcdf
 from .figures_folder import figure_workers
 
-# the `x as x` imports are re-exports (output.sweep, cli.export and tests import them here)
+# the `x as x` import is a re-export (tests import it here)
 from .result_folder import _NAME_OVERHEAD as _NAME_OVERHEAD
 from .result_folder import (
     INPUTS,
@@ -82,8 +82,6 @@ from .result_folder import (
     own_files,
     resolve_target,
 )
-from .result_folder import _clashes as _clashes
-from .result_folder import _marker_info as _marker_info
 from .work_folder import (
     _keep_foreign,
     _salvage,
@@ -178,10 +176,10 @@ def write_atomic(
     try:
         if target.exists():
             old = old_name(target)
-            try:  # before the rename, so that the .old folder is always proven
+            # before the rename, so that the .old folder is always proven (a folder without
+            # write permission: left unproven)
+            with suppress(OSError):
                 prove_origin(target, old.name)
-            except OSError:  # a folder without write permission: left unproven
-                pass
             try:
                 target.rename(old)
             except BaseException:

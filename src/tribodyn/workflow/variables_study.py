@@ -562,7 +562,7 @@ ITERATIONS = var(
     "iterations", TWO, "1", "Newton iterations", _per_set("iterations"), dtype=np.int32
 )
 #: the study Dataset, group by group in the order written (the thermal group is written by
-#: tribodyn.output.thermal)
+#: tribodyn.output.dataset)
 STUDY = (
     Group((CRANK, *DYNAMICS.values())),
     Group(IMPLICIT, when=lambda s: s.study.implicit is not None),

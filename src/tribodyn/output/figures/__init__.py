@@ -24,8 +24,9 @@ from pathlib import Path
 from ..._safe_write import make_dirs
 from ..._system import exit_with_parent
 from ..._validation import InputError
+from ..figure_names import FIGURES, content_name
 from .coating import fig05, fig06
-from .common import EVENT_FRACTION, FIGURES, TITLE_SIZE, compares_paper, content_name, has, plt
+from .common import EVENT_FRACTION, TITLE_SIZE, compares_paper, has, plt
 from .cycle import fig15, fig16, fig17, fig18, fig19, fig20
 from .dynamics import fig08, fig09, fig10, fig11
 from .engineering import fig23, fig24, fig25, fig26

@@ -9,7 +9,6 @@ margin); EHL steps that did not converge are marked with red crosses.
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 import matplotlib
@@ -22,54 +21,10 @@ from PIL.PngImagePlugin import PngInfo
 
 from ..._safe_write import atomic_open, make_dirs
 from ...workflow.conventions import EVENT_FRACTION
+from ..figure_names import FIGURES
 
 __all__ = ["plt", "save_figure", "FIGURES", "EVENT_FRACTION"]
 
-#: File names and titles of the figures :func:`make_figures` writes, in order.
-FIGURES = {
-    "fig05_dry_pressure.png": "Dry contact pressure for coating/steel modulus ratios (paper Fig. 5)",
-    "fig06_ehl_pressure_film.png": "EHL pressure and film for coating moduli and real pairs (paper Fig. 6)",
-    "fig08_tappet_velocity.png": "Tappet velocity, explicit vs implicit EHL (paper Fig. 8)",
-    "fig09_contact_force.png": "Cam–tappet contact force, explicit vs implicit EHL (paper Fig. 9)",
-    "fig10_tappet_acceleration.png": "Tappet acceleration, explicit vs implicit EHL (paper Fig. 10)",
-    "fig11_entrainment_speed.png": "Entraining speed, sliding speed and radius of curvature (paper Fig. 11)",
-    "fig12_greenwood_chart.png": "Greenwood chart of the operating points (paper Fig. 12)",
-    "fig13_pressure_film_points.png": "Pressure and film at the six representative points (paper Fig. 13)",
-    "fig14_coatings_pressure_film.png": "Pressure and film of the coated surfaces (paper Fig. 14)",
-    "fig15_central_film.png": "Central film thickness over the cycle (paper Fig. 15)",
-    "fig16_boundary_load.png": "Asperity (boundary) load over the cycle (paper Fig. 16)",
-    "fig17_boundary_friction.png": "Boundary friction over the cycle (paper Fig. 17)",
-    "fig18_viscous_friction.png": "Viscous friction over the cycle (paper Fig. 18)",
-    "fig19_friction_power.png": "Friction power and friction energy per cycle",
-    "fig20_min_film_lambda.png": "Minimum film thickness and λ = h_min/σ over the cycle",
-    "fig21_temperatures.png": "Temperatures over the cycle (thermal EHL)",
-    "fig22_thermal_vs_isothermal.png": "Film and viscous friction, thermal vs isothermal",
-    "fig23_camshaft_torque.png": "Camshaft drive and friction torque over the cycle",
-    "fig24_contact_pressure.png": "Contact pressure over the cycle: Hertz and EHL peak",
-    "fig25_cam_kinematics.png": "Cam kinematics as used (fitted profile)",
-    "fig26_spring_surge.png": "Valve-spring surge modes against the cam's excitation harmonics",
-    "fig27_stress_map.png": "Subsurface von Mises stress at the instant of greatest risk",
-}
-
-
-def content_name(name: str) -> str:
-    """The file name of a figure named by its content: ``fig23_camshaft_torque.png`` →
-    ``camshaft_torque.png`` (a case other than the paper's gets these names)."""
-    return re.sub(r"^fig\d\d_", "", name)
-
-
-class _Titles(dict):
-    """Figure titles by file name; a content name (:func:`content_name`) gets its
-    numbered figure's title without the paper's figure number."""
-
-    def __missing__(self, key):
-        for name, title in self.items():
-            if content_name(name) == key:
-                return re.sub(r" \(paper Fig\. \d+\)", "", title)
-        raise KeyError(key)
-
-
-FIGURES = _Titles(FIGURES)
 
 EVENT_MARGIN_DEG = 5.0
 UM, MPA, MM = 1e6, 1e-6, 1e3
@@ -205,6 +160,23 @@ def in_window(x, window) -> np.ndarray:
     return (x >= window[0]) & (x <= window[1])
 
 
+def event_samples(ds):
+    """(the cam event's crank window :func:`event_window`, the sets' styles
+    :func:`set_styles`, the EHL crank angles, which of them lie in the window)."""
+    win = event_window(ds)
+    e = arr(ds, "ehl_crank")
+    return win, set_styles(ds), e, in_window(e, win)
+
+
+def set_lines(ax, e, values, sel, styles, label_fmt=None, **kw):
+    """Each set's row of ``values`` (surface_set, ehl_crank) over the samples ``sel`` of
+    the crank angles ``e``, in its style (``kw`` overrides it; ``label_fmt(j, label)``
+    gives the legend label of set ``j``)."""
+    for j, st in enumerate(styles):
+        lab = st["label"] if label_fmt is None else label_fmt(j, st["label"])
+        ax.plot(e[sel], values[j][sel], **{**st, "label": lab, **kw})
+
+
 def dynamics_event(ds) -> tuple[float, float]:
     """Engagement and disengagement crank angles [deg] of the dynamics output."""
     ca = arr(ds, "crank_angle")
@@ -226,14 +198,13 @@ def crank_axis(ax, window=None):
     ax.grid(alpha=0.3)
 
 
-def mark_failures(ax, ds, values, window=None, label=True) -> int:
+def mark_failures(ax, ds, values, window) -> int:
     """Red crosses at loaded, non-converged EHL steps; returns how many were drawn."""
     if "converged" not in ds:
         return 0
     e = arr(ds, "ehl_crank")
     bad = (np.asarray(ds["converged"].values) == 0) & loaded_mask(ds)
-    if window is not None:
-        bad &= in_window(e, window)[None, :]
+    bad &= in_window(e, window)[None, :]
     idx = np.nonzero(bad & np.isfinite(values))
     if idx[0].size == 0:
         return 0
@@ -245,7 +216,7 @@ def mark_failures(ax, ds, values, window=None, label=True) -> int:
         ms=7,
         mew=1.8,
         ls="none",
-        label="EHL step not converged" if label else None,
+        label="EHL step not converged",
         zorder=5,
     )
     return int(idx[0].size)
@@ -258,9 +229,7 @@ def failure_note(ds) -> str:
     return f"{n} non-converged EHL step(s) marked ×" if n else "all EHL steps converged"
 
 
-def place_labels(
-    ax, xs, ys, texts, *, avoid=None, radius_pt=20.0, fontsize=9, marker=True, color="k"
-):
+def place_labels(ax, xs, ys, texts, *, avoid=None, radius_pt=20.0, fontsize=9):
     """Annotate points with short labels, choosing for each label the offset direction
     farthest from the other points, the labels already placed and ``avoid`` (x, y).
     Points closer than a marker size share one label ("3,4")."""
@@ -308,8 +277,7 @@ def place_labels(
         if best is None:
             best = (radius_pt * 0.7, radius_pt * 0.7)
         placed.append((px + best[0], py + best[1]))
-        if marker:
-            ax.plot(xs[grp], ys[grp], "o", ms=6, mfc="white", mec=color, mew=1.5, zorder=6)
+        ax.plot(xs[grp], ys[grp], "o", ms=6, mfc="white", mec="k", mew=1.5, zorder=6)
         box = "circle,pad=0.15" if len(grp) == 1 else "round,pad=0.2"
         ax.annotate(
             text,
@@ -320,10 +288,10 @@ def place_labels(
             va="center",
             fontsize=fontsize,
             fontweight="bold",
-            color=color,
+            color="k",
             zorder=7,
-            bbox=dict(boxstyle=box, fc="white", ec=color, lw=0.8),
-            arrowprops=dict(arrowstyle="-", color=color, lw=0.8, shrinkA=0, shrinkB=3),
+            bbox=dict(boxstyle=box, fc="white", ec="k", lw=0.8),
+            arrowprops=dict(arrowstyle="-", color="k", lw=0.8, shrinkA=0, shrinkB=3),
         )
 
 
@@ -341,11 +309,11 @@ def signed(v, digits) -> str:
     return f"{v:+.{digits}f}".replace("-", "−")
 
 
-def log_ticks(ax, axis="y"):
-    """Plain-number labels (0.1, 0.2, 0.5, 1, …) on a logarithmic axis."""
+def log_ticks(ax):
+    """Plain-number labels (0.1, 0.2, 0.5, 1, …) on a logarithmic y axis."""
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
-    a = ax.yaxis if axis == "y" else ax.xaxis
+    a = ax.yaxis
     a.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
     a.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     a.set_minor_formatter(NullFormatter())
@@ -363,11 +331,9 @@ def fitted_suptitle(fig, text: str, fontsize=12):
     import textwrap
 
     width = fig.get_figwidth() * 72.0 * 0.96  # points, a margin either side
-    out = []
-    for line in text.split("\n"):
-        # a conservative estimate of the text's width: 0.6 em per character
-        chars = max(20, int(width / (0.6 * fontsize)))
-        out.append(textwrap.fill(line, chars) if len(line) > chars else line)
+    # a conservative estimate of the text's width: 0.6 em per character
+    chars = max(20, int(width / (0.6 * fontsize)))
+    out = [textwrap.fill(ln, chars) if len(ln) > chars else ln for ln in text.split("\n")]
     return fig.suptitle("\n".join(out), fontsize=fontsize)
 
 

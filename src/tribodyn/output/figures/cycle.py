@@ -11,7 +11,7 @@ from .common import (
     compares_paper,
     crank_axis,
     cycle_seconds_per_deg,
-    event_window,
+    event_samples,
     failure_note,
     finish_numbered,
     in_window,
@@ -21,7 +21,7 @@ from .common import (
     masked,
     plt,
     set_labels,
-    set_styles,
+    set_lines,
     signed,
 )
 
@@ -31,24 +31,15 @@ from .common import (
 def _cycle_lines(ax, ds, values, window, styles, *, label_fmt=None):
     """Plot (surface_set, ehl_crank) values over the event for every set."""
     e = arr(ds, "ehl_crank")
-    sel = in_window(e, window)
-    for j, st in enumerate(styles):
-        lab = st["label"] if label_fmt is None else label_fmt(j, st["label"])
-        ax.plot(e[sel], values[j][sel], **{**st, "label": lab})
+    set_lines(ax, e, values, in_window(e, window), styles, label_fmt)
     mark_failures(ax, ds, values, window)
     crank_axis(ax, window)
 
 
 def _groups(values, tol):
-    """Group sorted positions closer than ``tol``: list of index lists."""
+    """Group sorted positions closer than ``tol``: list of index arrays."""
     order = np.argsort(values)
-    groups: list[list[int]] = []
-    for k in order:
-        if groups and values[k] - values[groups[-1][-1]] < tol:
-            groups[-1].append(int(k))
-        else:
-            groups.append([int(k)])
-    return groups
+    return np.split(order, np.flatnonzero(np.diff(values[order]) >= tol) + 1)
 
 
 def _point_ticks(ax, ds):
@@ -82,7 +73,7 @@ def _point_ticks(ax, ds):
 def _cycle_figure(ds, height_ratios=None):
     """Two panels over the crank angle of the cam event (shared axis): (fig, (a, b),
     event window, set styles, EHL samples inside the window)."""
-    win = event_window(ds)
+    win, styles, _, sel = event_samples(ds)
     fig, (a, b) = plt.subplots(
         2,
         1,
@@ -91,7 +82,7 @@ def _cycle_figure(ds, height_ratios=None):
         layout="constrained",
         gridspec_kw=None if height_ratios is None else dict(height_ratios=height_ratios),
     )
-    return fig, (a, b), win, set_styles(ds), in_window(arr(ds, "ehl_crank"), win)
+    return fig, (a, b), win, styles, sel
 
 
 def _top_panel(ax, ds, title, *, ncol):
@@ -243,8 +234,7 @@ def fig18(ds, path):
 
 
 def fig19(ds, path):
-    win = event_window(ds)
-    styles = set_styles(ds)
+    win, styles, _, _ = event_samples(ds)
     pw = masked(ds, "friction_power")
     energy = _energy(ds, arr(ds, "friction_power"))
     fig = plt.figure(figsize=(14, 6.5), layout="constrained")

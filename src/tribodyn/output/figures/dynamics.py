@@ -75,9 +75,7 @@ def _shade_contact_loss(ax, ds) -> None:
 def _explicit_implicit(ds, path, var, ylabel, diff_unit, *, points=False, jumps=False):
     ca = arr(ds, "crank_angle")
     y = arr(ds, var)
-    imp = f"{var}_implicit"
-    has_imp = imp in ds
-    yi = arr(ds, imp) if has_imp else None
+    yi = arr(ds, f"{var}_implicit") if f"{var}_implicit" in ds else None
     fig = plt.figure(figsize=(12, 9.5), layout="constrained")
     gs = fig.add_gridspec(3, 2, height_ratios=(2.2, 1.0, 1.9))
     ax = fig.add_subplot(gs[0, :])
@@ -161,7 +159,7 @@ def _explicit_implicit(ds, path, var, ylabel, diff_unit, *, points=False, jumps=
         )
         point_legend_entry(ax, ds)
     ax.legend(fontsize=9, loc="upper left")
-    sub = None if has_imp else "implicit run not in the results: explicit only"
+    sub = None if yi is not None else "implicit run not in the results: explicit only"
     return finish_numbered(fig, path, sub)
 
 

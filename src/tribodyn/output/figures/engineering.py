@@ -11,36 +11,32 @@ from .common import (
     TITLE_SIZE,
     arr,
     crank_axis,
-    event_window,
+    event_samples,
     finish_numbered,
     in_window,
     plt,
-    set_styles,
+    set_lines,
 )
 
 __all__ = ["fig23", "fig24", "fig25", "fig26"]
 
 
-def _lines(ax, ds, name, win, scale=1.0, styles=None):
+def _lines(ax, ds, name, win, styles):
     x = arr(ds, "ehl_crank")
-    m = in_window(x, win)
-    for k, st in enumerate(styles or set_styles(ds)):
-        v = arr(ds, name)[k] * scale
-        ax.plot(x[m], v[m], color=st["color"], ls=st.get("ls", "-"), label=st["label"], lw=1.4)
+    set_lines(ax, x, arr(ds, name), in_window(x, win), styles, lw=1.4)
     crank_axis(ax, win)
 
 
 def fig23(ds, path):
     """Camshaft drive and friction torque over crank angle, per surface set."""
-    win = event_window(ds)
-    styles = set_styles(ds)
+    win, styles, _, _ = event_samples(ds)
     fig, (a, b) = plt.subplots(2, 1, figsize=(11, 8), layout="constrained", sharex=True)
-    _lines(a, ds, "camshaft_drive_torque", win, styles=styles)
+    _lines(a, ds, "camshaft_drive_torque", win, styles)
     a.axhline(0.0, color="k", lw=0.6)
     a.set_ylabel("drive torque T [N m]")
     a.set_title("(a) T = W s' + F_f (r_b + s)", fontsize=TITLE_SIZE)
     a.legend(fontsize=9)
-    _lines(b, ds, "camshaft_friction_torque", win, styles=styles)
+    _lines(b, ds, "camshaft_friction_torque", win, styles)
     b.set_ylabel("friction torque T_f [N m]")
     b.set_title("(b) T_f = F_f (r_b + s), F_f = viscous + boundary", fontsize=TITLE_SIZE)
     crank, tf = arr(ds, "ehl_crank"), arr(ds, "camshaft_friction_torque")
@@ -53,11 +49,8 @@ def fig23(ds, path):
 
 def fig24(ds, path):
     """Hertz maximum pressure and the EHL peak pressure along the cycle."""
-    win = event_window(ds)
-    styles = set_styles(ds)
+    win, styles, x, m = event_samples(ds)
     fig, ax = plt.subplots(figsize=(11, 5.5), layout="constrained")
-    x = arr(ds, "ehl_crank")
-    m = in_window(x, win)
     for k, st in enumerate(styles):
         ax.plot(x[m], arr(ds, "hertz_pressure")[k][m] / 1e9, color=st["color"], ls="--", lw=1.0)
         ax.plot(x[m], arr(ds, "max_pressure")[k][m] / 1e9, color=st["color"], label=st["label"])

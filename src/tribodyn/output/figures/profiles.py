@@ -146,18 +146,8 @@ def fig13(ds, path):
             fontsize=8,
             bbox=dict(fc="white", ec="none", alpha=0.8),
         )
-    handles = [
-        Line2D([], [], **pst[0]),
-        Line2D([], [], **pst[1]),
-        Line2D([], [], **hst[0]),
-        Line2D([], [], **hst[1]),
-    ]
-    names = [
-        f"pressure, {labels[sets[0]]}",
-        f"pressure, {labels[sets[1]]}",
-        f"film, {labels[sets[0]]}",
-        f"film, {labels[sets[1]]}",
-    ]
+    handles = [Line2D([], [], **st) for st in (*pst, *hst)]
+    names = [f"{q}, {labels[s]}" for q in ("pressure", "film") for s in sets]
     legend_below(fig, handles, names, ncol=4, fontsize=10)
     sub = (
         f"{labels[sets[0]]} solid, {labels[sets[1]]} dashed"
@@ -220,14 +210,10 @@ def fig14(ds, path):
     titles = [
         [
             "(a) complete distribution",
-            "(b) zoom: pressure peak (dots: grid points)",
+            f"(b) zoom: {z} (dots: grid points)",
             "(c) difference to uncoated",
-        ],
-        [
-            "(a) complete distribution",
-            "(b) zoom: film minimum (dots: grid points)",
-            "(c) difference to uncoated",
-        ],
+        ]
+        for z in ("pressure peak", "film minimum")
     ]
     ylabels = [
         ["pressure p [MPa]", "pressure p [MPa]", "p − p(uncoated) [MPa]"],

@@ -58,11 +58,11 @@ def stored_map(ds, name: str):
     return x[kx], z[kz], vm[np.ix_(kz, kx)], (hc if hc > 0 else None)
 
 
-def stress_maps(ds, path, sets=None):
-    """One panel per surface set (default: all with stress results): von Mises [MPa]
+def stress_maps(ds, path):
+    """One panel per surface set with stress results: von Mises [MPa]
     over x and depth z [µm] of the body closest to failure at its riskiest crank angle,
     the interface (dashed) and the peak of the governing mode (cross)."""
-    names = [str(n) for n in ds["surface_set"].values] if sets is None else list(sets)
+    names = [str(n) for n in ds["surface_set"].values]
     risks = [(n, r) for n in names if (r := greatest_risk(ds, n)) is not None]
     if not risks:
         raise ValueError(NO_MAP)

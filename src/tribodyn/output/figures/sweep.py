@@ -72,11 +72,13 @@ def other_combinations(ds, xd) -> list[tuple[dict, str]]:
     """Index selections and labels of every combination of the dimensions other than
     ``xd``."""
     dims = [d for d in _sweep_dims(ds) if d != xd]
-    out = []
-    for pos in itertools.product(*(range(ds.sizes[d]) for d in dims)):
-        sel = dict(zip(dims, pos))
-        label = ", ".join(f"{d} = {_fmt(ds[d].values[i])}" for d, i in sel.items())
-        out.append((sel, label))
+    out = [
+        (
+            dict(zip(dims, pos)),
+            ", ".join(f"{d} = {_fmt(ds[d].values[i])}" for d, i in zip(dims, pos)),
+        )
+        for pos in itertools.product(*(range(ds.sizes[d]) for d in dims))
+    ]
     return out or [({}, "")]
 
 
@@ -92,11 +94,11 @@ def onset_speeds(ds, var="jump") -> list[tuple[str, float, float]]:
     if xd is None or var not in ds:
         return []
     x, _ = _x_values(ds, xd)
+    order = np.argsort(x)
+    xs = x[order]
     out = []
     for sel, label in other_combinations(ds, xd):
-        v = np.asarray(ds[var].isel(sel).transpose(xd, ...).values, float)
-        order = np.argsort(x)
-        xs, vs = x[order], v[order]
+        vs = np.asarray(ds[var].isel(sel).transpose(xd, ...).values, float)[order]
         hit = np.flatnonzero(vs == 1)
         if hit.size == 0:
             out.append((label, np.nan, np.nan))

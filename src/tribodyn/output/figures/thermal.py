@@ -8,30 +8,20 @@ import numpy as np
 from .common import (
     TITLE_SIZE,
     UM,
-    arr,
     crank_axis,
-    event_window,
+    event_samples,
     failure_note,
     finish_numbered,
-    in_window,
     masked,
     plt,
-    set_styles,
+    set_lines,
 )
-
-
-def _lines(ax, e, values, sel, styles, **kw):
-    for j, st in enumerate(styles):
-        ax.plot(e[sel], values[j][sel], **{**st, **kw})
 
 
 def fig21(ds, path):
     """(a) maximum tappet surface temperature, (b) maximum cam surface temperature,
     (c) mid-film temperature at the centre and maximum temperature, per set [°C]."""
-    win = event_window(ds)
-    styles = set_styles(ds)
-    e = arr(ds, "ehl_crank")
-    sel = in_window(e, win)
+    win, styles, e, sel = event_samples(ds)
     c = 273.15
     t_in = float(ds.attrs.get("inlet_temperature_K", np.nan)) - c
     fig, axes = plt.subplots(3, 1, figsize=(11, 11), sharex=True, layout="constrained")
@@ -44,9 +34,9 @@ def fig21(ds, path):
         ),
     )
     for ax, (key, title) in zip(axes, panels):
-        _lines(ax, e, masked(ds, key) - c, sel, styles)
+        set_lines(ax, e, masked(ds, key) - c, sel, styles)
         if key == "mid_film_temperature":
-            _lines(
+            set_lines(
                 ax, e, masked(ds, "max_temperature") - c, sel, styles, lw=0.7, alpha=0.7, label=None
             )
         ax.axhline(t_in, color="0.5", ls=":", lw=1)
@@ -66,29 +56,26 @@ def fig21(ds, path):
 def fig22(ds, path):
     """(a) central film thermal (solid) and isothermal (dotted) [µm]; (b) viscous friction
     thermal and isothermal [N]; (c) their ratios thermal/isothermal."""
-    win = event_window(ds)
-    styles = set_styles(ds)
-    e = arr(ds, "ehl_crank")
-    sel = in_window(e, win)
+    win, styles, e, sel = event_samples(ds)
     hc, hci = masked(ds, "central_film"), masked(ds, "central_film_isothermal")
     fv, fvi = masked(ds, "viscous_friction"), masked(ds, "viscous_friction_isothermal")
     fig, (a, b, c) = plt.subplots(3, 1, figsize=(11, 11), sharex=True, layout="constrained")
-    _lines(a, e, hc * UM, sel, styles)
-    _lines(a, e, hci * UM, sel, styles, ls=":", label=None)
+    set_lines(a, e, hc * UM, sel, styles)
+    set_lines(a, e, hci * UM, sel, styles, ls=":", label=None)
     a.set_yscale("log")
     a.set_ylabel("central film h_c [µm]")
     a.set_title(
         "(a) central film: thermal (solid), isothermal at the inlet temperature (dotted)",
         fontsize=TITLE_SIZE,
     )
-    _lines(b, e, fv, sel, styles)
-    _lines(b, e, fvi, sel, styles, ls=":", label=None)
+    set_lines(b, e, fv, sel, styles)
+    set_lines(b, e, fvi, sel, styles, ls=":", label=None)
     b.set_ylim(bottom=0)
     b.set_ylabel("viscous friction F_v [N]")
     b.set_title("(b) viscous friction: thermal (solid), isothermal (dotted)", fontsize=TITLE_SIZE)
     with np.errstate(divide="ignore", invalid="ignore"):
-        _lines(c, e, hc / hci, sel, styles)
-        _lines(c, e, fv / fvi, sel, styles, ls="--", label=None)
+        set_lines(c, e, hc / hci, sel, styles)
+        set_lines(c, e, fv / fvi, sel, styles, ls="--", label=None)
     c.axhline(1.0, color="0.5", lw=0.8)
     c.set_ylabel("thermal / isothermal")
     c.set_title("(c) ratios: central film (solid), viscous friction (dashed)", fontsize=TITLE_SIZE)

@@ -44,9 +44,9 @@ def _panels(results):
 
 def _conditions(results) -> str:
     items = results if isinstance(results, (list, tuple)) else [results]
-    surfaces = []
-    for r in items:
-        surfaces += [r.first, r.second] if isinstance(r, PairAnalysis) else [r]
+    surfaces = [
+        s for r in items for s in ((r.first, r.second) if isinstance(r, PairAnalysis) else (r,))
+    ]
     lines = []
     for attr in ("band", "sampling"):
         values = [getattr(r, attr) for r in surfaces]
