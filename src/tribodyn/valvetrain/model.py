@@ -279,15 +279,6 @@ class ValvetrainModel(CamContactModel):
         T, U = lumped_energies(self, np.asarray(y, dtype=float)[:, None], f["P"])
         return float(T[0]), float(U[0])
 
-    def surge_matrices(self) -> tuple[np.ndarray, np.ndarray]:
-        """(M, K) of the coil masses with the valve held fixed (fixed–fixed spring)."""
-        N = self.N
-        if N == 0:
-            return np.zeros((0, 0)), np.zeros((0, 0))
-        k = self.kseg  # segment j joins coils j − 1 and j (−1 and N: the fixed ends)
-        K = np.diag(k[:-1] + k[1:]) - np.diag(k[1:-1], 1) - np.diag(k[1:-1], -1)
-        return np.eye(N) * self.m_node, K
-
 
 def lumped_energies(model, Y, P) -> tuple[np.ndarray, np.ndarray]:
     """(kinetic, elastic) energy [J] of :class:`ValvetrainModel` ``model`` relative to
