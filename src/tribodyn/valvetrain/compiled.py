@@ -31,7 +31,7 @@ import numpy as np
 from numba import njit
 from scipy.integrate import odeint, solve_ivp
 
-from ..physics.film_state_laws import FILM_FLOOR, entraining_film_load, limited_growth
+from ..physics import film_state_laws as laws
 from .contact_law import _film_free_rate, joint_force, smooth_step, stamp_element
 
 __all__ = [
@@ -89,8 +89,8 @@ _NO = len(_OUT)
 
 
 _step = njit(**_OPTS)(smooth_step)
-_growth = njit(**_OPTS)(limited_growth)
-_entraining = njit(**_OPTS)(entraining_film_load)
+_growth = njit(**_OPTS)(laws.limited_growth)
+_entraining = njit(**_OPTS)(laws.entraining_film_load)
 
 
 def _jit_calling(fn, **kernels):
@@ -100,6 +100,9 @@ def _jit_calling(fn, **kernels):
 
 
 _free_rate = _jit_calling(_film_free_rate, limited_growth=_growth)
+_film_rate = _jit_calling(laws.film_rate, entraining_film_load=_entraining)
+_squeeze_slope = njit(**_OPTS)(laws.squeeze_compliance_slope)
+_growth_limit = njit(**_OPTS)(laws.growth_limit)
 _joint = _jit_calling(joint_force, smooth_step=_step)
 _element = njit(**_OPTS)(stamp_element)
 
@@ -224,20 +227,10 @@ def _film_laws(t, h, ue, R, par, ft, fr, fz):
     D = 3√2 π η₀ R^(3/2) L/h^(3/2) and x_t the transport limit of the growth; r(t) the
     correction table in the film table's place."""
     r, _ = _film(t, 0.0, ft, fr, fz, fz, par.f_period)
-    R = max(R, 1e-9)
-    w, dw = _entraining(h, ue, R, par.eta, par.alpha, par.e_prime, par.supply, r)
-    hh = max(h, FILM_FLOOR)
-    inv_d = hh**1.5 / (par.sq * R**1.5)
-    a = par.width * w * inv_d
-    a_h = par.width * dw * inv_d + 1.5 * a / hh
-    inv_d_h = 1.5 * hh**0.5 / (par.sq * R**1.5)
-    if par.growth_limited == 0.0:
-        return a, a_h, inv_d, inv_d_h, math.inf, 0.0
-    gap = par.supply - h
-    if gap <= 0.0 or ue == 0.0:
-        return a, a_h, inv_d, inv_d_h, 0.0, 0.0
-    xt = abs(ue) * math.sqrt(gap / (2.0 * R))
-    return a, a_h, inv_d, inv_d_h, xt, -0.5 * xt / max(gap, 1e-6 * par.supply)
+    args = (par.eta, par.alpha, par.e_prime, par.supply, r, par.width, par.sq)
+    a, a_h, m_inv = _film_rate(h, 0.0, ue, R, *args)
+    xt, xt_h = _growth_limit(h, ue, R, par.supply, par.growth_limited != 0.0)
+    return a, a_h, -m_inv, _squeeze_slope(h, R, par.sq), xt, xt_h
 
 
 @njit(**_OPTS)

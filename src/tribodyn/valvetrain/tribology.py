@@ -37,11 +37,11 @@ import numpy as np
 
 from .._typing import ArrayLike
 from .._validation import InputError, check_array, check_positive
+from ..physics import film_state_laws as laws
 from ..physics import limits as L
 from ..physics import typical, typical_engine
 from ..physics.analytic_contact import analytic_contact
 from ..physics.asperity import Roughness
-from ..physics.film_state_laws import FILM_FLOOR as _FILM_FLOOR
 from ..physics.film_state_laws import SUPPLY_FILM, entraining_film_load
 from ..physics.lubricant import TYPICAL_OIL, Lubricant
 from ..physics.materials import STEEL, Body, BodyPair
@@ -460,49 +460,22 @@ class FilmStateTribology(TribologyModel):
         return self._rl[i] + a * (self._rl[j] - self._rl[i])
 
     def film_rate(self, t: float, h: float, force: float, ue: float, R: float):
-        """(ḣ [m/s], ∂ḣ/∂h [1/s], ∂ḣ/∂F_c [m/(N s)]) of the film h [m] carrying F_c [N]."""
-        r = self.correction_at(t)
-        R = max(R, 1e-9)  # a flat face's radius is positive; guard the powers below
-        w, dw = entraining_film_load(
-            h, ue, R, self._eta, self._alpha, self.e_prime, self.supply_film, r
-        )
-        hh = max(h, _FILM_FLOOR)
-        inv_d = hh**1.5 / (self._sq * R**1.5)
-        rate = (self.width * w - force) * inv_d
-        return rate, self.width * dw * inv_d + 1.5 * rate / hh, -inv_d
+        """(ḣ [m/s], ∂ḣ/∂h [1/s], ∂ḣ/∂F_c [m/(N s)]) of the film h [m] carrying F_c [N]
+        (:func:`~tribodyn.physics.film_state_laws.film_rate`, r = r(t))."""
+        args = (self._eta, self._alpha, self.e_prime, self.supply_film)
+        return laws.film_rate(h, force, ue, R, *args, self.correction_at(t), self.width, self._sq)
 
     def squeeze_compliance_slope(self, h: float, ue: float, R: float) -> float:
-        """∂(1/D)/∂h [1/(N s)] of the squeeze film's 1/D = h^(3/2)/(3√2π η₀ R^(3/2) L)
-        at h [m] (the mixed derivative −∂²ḣ/∂h∂F_c of :meth:`film_rate`): 1.5/(D h), with
-        h held at the floor below it as there."""
-        hh = max(h, _FILM_FLOOR)
-        return 1.5 * hh**0.5 / (self._sq * max(R, 1e-9) ** 1.5)
+        """∂(1/D)/∂h [1/(N s)] of the squeeze film at h [m] (the mixed derivative
+        −∂²ḣ/∂h∂F_c of :meth:`film_rate`; :func:`~tribodyn.physics.film_state_laws.
+        squeeze_compliance_slope`)."""
+        return laws.squeeze_compliance_slope(h, R, self._sq)
 
     def growth_limit(self, h: float, ue: float, R: float) -> tuple[float, float]:
-        """(x_t [m/s], ∂x_t/∂h [1/s]): the fastest the film can thicken. A thicker film
-        needs oil from the supply layer h_s, carried at u_e from the inlet meniscus, where
-        the gap h + x²/2R opens to h_s, x_m = √(2R(h_s − h)), to the contact; over that
-        transit x_m/|u_e| the film can grow by at most h_s − h:
-
-            x_t = |u_e| (h_s − h)/x_m = |u_e| √((h_s − h)/(2R))
-
-        (0 for h ≥ h_s or u_e = 0; infinite with ``growth_limited`` False). The film's
-        free rate (entraining load against the squeeze film) exceeds it only where u_e
-        or R step (a ramp-less cam's step of acceleration: 413 m/s against 0.16 m/s at
-        6000 rpm, 9 mm / 140° cam); elsewhere it is far slower (an unloaded
-        rigid-isoviscous film recovers at c√h (1 − h/h_s) ≤ 0.26 x_t, where the smooth
-        minimum slows it by at most 0.11 %; a piezoviscous film near u_e = 0 reaches
-        0.45 x_t in the paper case, slowed by at most 1 %, 0.5 N of force). x_m is far
-        longer than the Hertz width, so x_t errs on the slow side; it scales with
-        √(h_s − h), with the assumed supply."""
-        if not self.growth_limited:
-            return math.inf, 0.0
-        gap = self.supply_film - h
-        if gap <= 0.0 or ue == 0.0:
-            return 0.0, 0.0
-        R = max(R, 1e-9)
-        xt = abs(ue) * math.sqrt(gap / (2.0 * R))
-        return xt, -0.5 * xt / max(gap, 1e-6 * self.supply_film)
+        """(x_t [m/s], ∂x_t/∂h [1/s]): the fastest the film can thicken
+        (:func:`~tribodyn.physics.film_state_laws.growth_limit`; infinite with
+        ``growth_limited`` False)."""
+        return laws.growth_limit(h, ue, R, self.supply_film, self.growth_limited)
 
     def steady_film(self, t, force, entrainment_speed, radius, correction=None):
         """Film h [m] whose entraining load equals ``force`` [N] (no squeeze), by
