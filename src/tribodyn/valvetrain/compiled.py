@@ -32,7 +32,15 @@ from numba import njit
 from scipy.integrate import odeint, solve_ivp
 
 from ..physics import film_state_laws as laws
-from .contact_law import _film_free_rate, joint_force, smooth_step, stamp_element
+from .contact_law import (
+    _film_free_rate,
+    coil_segment,
+    contact_film_root,
+    damped_contact,
+    joint_force,
+    smooth_step,
+    stamp_element,
+)
 
 __all__ = [
     "CompiledLumped",
@@ -100,11 +108,15 @@ def _jit_calling(fn, **kernels):
 
 
 _free_rate = _jit_calling(_film_free_rate, limited_growth=_growth)
+_damped = _jit_calling(
+    damped_contact, smooth_step=_step, _film_free_rate=_free_rate, limited_growth=_growth
+)
 _film_rate = _jit_calling(laws.film_rate, entraining_film_load=_entraining)
 _squeeze_slope = njit(**_OPTS)(laws.squeeze_compliance_slope)
 _growth_limit = njit(**_OPTS)(laws.growth_limit)
 _joint = _jit_calling(joint_force, smooth_step=_step)
 _element = njit(**_OPTS)(stamp_element)
+_coil = njit(**_OPTS)(coil_segment)
 
 
 @njit(**_OPTS)
@@ -168,56 +180,24 @@ def _friction(theta, force, th, tab, fl):
 
 
 @njit(**_OPTS)
-def _power_slope(z, g):
-    """dP/dz of P = z^γ (1 at z = 0 for the linear law)."""
-    if z > 0.0:
-        return g * z ** (g - 1.0)
-    return 1.0 if g == 1.0 else 0.0
+def _table_film(t, force, where):
+    """(h, dh/dF) of the film table ``where`` = (its columns, period, has_film) as the
+    series film of :func:`~.contact_law.contact_film_root` (0, 0 without a film law)."""
+    ft, fh, fc, ff, period, has_film = where
+    if has_film == 0.0:
+        return 0.0, 0.0
+    return _film(t, force, ft, fh, fc, ff, period)
+
+
+_root = _jit_calling(contact_film_root, _series_film=_table_film)
 
 
 @njit(**_OPTS)
 def _contact(t, dk, par, ft, fh, fc, ff):
-    """(P, dP/dδ_kin, h, ok) of the elastic contact with the film in series (the Newton
-    iteration of ``ValvetrainModel.elastic_contact``)."""
-    C, g, ikc = par.C, par.gamma, par.ikc
-    per = par.f_period
-    if par.has_film == 0.0 and ikc == 0.0:
-        if dk <= 0.0:
-            return 0.0, 0.0, 0.0, True
-        z = dk / C
-        return z**g, g * z ** (g - 1.0) / C, 0.0, True
-    h0 = 0.0
-    if par.has_film != 0.0:
-        h0, _ = _film(t, 0.0, ft, fh, fc, ff, per)
-    if dk + h0 <= 0.0:
-        return 0.0, 0.0, h0, True
-    lo, hi = 0.0, (dk + h0) / C
-    z = hi
-    tol = 1e-13 * max(dk + h0, abs(dk), abs(h0), 1e-9)
-    for _ in range(80):
-        P = z**g
-        h, hF = 0.0, 0.0
-        if par.has_film != 0.0:
-            h, hF = _film(t, P, ft, fh, fc, ff, per)
-        phi = C * z + P * ikc - h - dk
-        if phi > 0.0:
-            hi = z
-        else:
-            lo = z
-        dPdz = _power_slope(z, g)
-        dphi = C + dPdz * (ikc - hF)
-        if abs(phi) <= tol:
-            return P, dPdz / dphi, h, True
-        zn = z - phi / dphi
-        z = zn if (lo < zn < hi) else 0.5 * (lo + hi)
-        if hi - lo <= 1e-14 * hi:
-            P = z**g
-            h, hF = 0.0, 0.0
-            if par.has_film != 0.0:
-                h, hF = _film(t, P, ft, fh, fc, ff, per)
-            dPdz = _power_slope(z, g)
-            return P, dPdz / (C + dPdz * (ikc - hF)), h, True
-    return 0.0, 0.0, h0, False
+    """(P, dP/dδ_kin, h, ok) of the elastic contact with the film in series
+    (``contact_film_root``, as ``CamContactModel.elastic_contact``)."""
+    where = (ft, fh, fc, ff, par.f_period, par.has_film)
+    return _root(where, t, dk, par.C, par.gamma, par.ikc, par.has_film != 0.0)
 
 
 @njit(**_OPTS)
@@ -239,33 +219,17 @@ def _cam_contact(t, dk, dkd, hf, ue, R, par, ft, fh, fc, ff):
     F_c = max(0, P + c g(P) δ̇_kin) with the film law in series, or, with the film as a
     state h_f, one force through the film and the contact's spring and damper,
     F_c = P(δ_kin + h_f) + c g (δ̇_kin + ḣ), ḣ = H(a − F_c/D) (``cam_contact``)."""
-    cdamp = par.cc
-    if par.film_state == 0.0:
+    state = par.film_state != 0.0
+    if state:
+        P, dPdk, _, ok = _contact(t, dk + hf, par, ft, fh, fc, ff)
+        h = hf
+        laws = _film_laws(t, hf, ue, R, par, ft, fh, fc)
+    else:
         P, dPdk, h, ok = _contact(t, dk, par, ft, fh, fc, ff)
-        gc, dgc = _step(P, par.ramp)
-        Fc = P + cdamp * gc * dkd
-        if Fc <= 0.0:
-            return P, dPdk, 0.0, h, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, ok
-        kc = dPdk * (1.0 + cdamp * dgc * dkd)
-        return P, dPdk, Fc, h, 0.0, 0.0, 0.0, kc, cdamp * gc, 0.0, ok
-    P, dPdk, _, ok = _contact(t, dk + hf, par, ft, fh, fc, ff)
-    gc, dgc = _step(P, par.ramp)
-    a, a_h, inv_d, inv_d_h, xt, xt_h = _film_laws(t, hf, ue, R, par, ft, fh, fc)
-    x = _free_rate(a - inv_d * (P + cdamp * gc * dkd), cdamp * gc * inv_d, xt)
-    hd, hd_x, hd_xt = _growth(x, xt)
-    Fc = P + cdamp * gc * (dkd + hd)
-    on_c = Fc > 0.0
-    if not on_c:  # the contact is open: the film's free rate is a
-        Fc = 0.0
-        hd, hd_x, hd_xt = _growth(a, xt)
-    hd_F = -hd_x * inv_d  # ∂ḣ/∂F_c and ∂ḣ/∂h at fixed F_c
-    hd_h = hd_x * (a_h - inv_d_h * Fc) + hd_xt * xt_h
-    if not on_c:
-        return P, dPdk, 0.0, hf, hd, hd_h, hd_F, 0.0, 0.0, 0.0, ok
-    den = 1.0 - cdamp * gc * hd_F
-    kc = dPdk * (1.0 + cdamp * dgc * (dkd + hd)) / den
-    kh = kc + cdamp * gc * hd_h / den
-    return P, dPdk, Fc, hf, hd, hd_h, hd_F, kc, cdamp * gc / den, kh, ok
+        laws = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    force = _damped(P, dPdk, dkd, par.cc, par.ramp, state, laws)
+    Fc, hd, hd_h, hd_F, kc, cc, kh = force[2:]
+    return P, dPdk, Fc, h, hd, hd_h, hd_F, kc, cc, kh, ok
 
 
 @njit(**_OPTS)
@@ -303,16 +267,8 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     FNs = 0.0
     for j in range(N + 1):
         d, dd = _segment(y, n, N, j)
-        fe = F0 + kseg[j] * d
-        f = fe + cseg[j] * dd
-        if j == 0 or j == N:
-            if fe < 0.0:
-                fe = 0.0
-            if f < 0.0:
-                f = 0.0
-            diss += (f - fe) * dd
-        else:
-            diss += cseg[j] * dd * dd
+        f, dj = _coil(j == 0 or j == N, F0, kseg[j], cseg[j], d, dd)
+        diss += dj
         if j == 0:
             F0s = f
             acc[1] = (Ftv - f + Fs) * im[1]

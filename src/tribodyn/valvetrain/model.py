@@ -38,26 +38,11 @@ import math
 import numpy as np
 
 from .cams import CamProfile
-from .contact_law import (
-    CamContactModel,
-    ContactLawError,
-    check_model_inputs,
-    contact_film_root,
-    joint_force,
-    smooth_step,
-    stamp_element,
-)
+from .contact_law import CamContactModel, ContactLawError, coil_segment, joint_force, stamp_element
 from .parameters import ValvetrainParameters
 from .tribology import TribologyModel
 
-__all__ = [
-    "ValvetrainModel",
-    "lumped_energies",
-    "ContactLawError",
-    "smooth_step",
-    "check_model_inputs",
-]
-__all__ += ["contact_film_root"]  # re-exported from .contact_law
+__all__ = ["ValvetrainModel", "lumped_energies", "ContactLawError"]
 
 
 class ValvetrainModel(CamContactModel):
@@ -171,24 +156,14 @@ class ValvetrainModel(CamContactModel):
         F0 = p.spring_preload
         ks, cs = self.kseg_l, self.cseg_l
         Fseg = [0.0] * (N + 1)
-        Fel = [0.0] * (N + 1)
-        Dd = [0.0] * (N + 1)
         D = [0.0] * (N + 1)
         diss = 0.0
         for j in range(N + 1):
             d = xs[j] - xs[j + 1]
             dd = vs[j] - vs[j + 1]
-            fe = F0 + ks[j] * d
-            f = fe + cs[j] * dd
-            if j == 0 or j == N:  # compression-only end seatings
-                if fe < 0.0:
-                    fe = 0.0
-                if f < 0.0:
-                    f = 0.0
-                diss += (f - fe) * dd
-            else:
-                diss += cs[j] * dd * dd
-            D[j], Dd[j], Fel[j], Fseg[j] = d, dd, fe, f
+            Fseg[j], dj = coil_segment(j == 0 or j == N, F0, ks[j], cs[j], d, dd)
+            diss += dj
+            D[j] = d
         im = self.inv_mass_l
         acc = [0.0] * n
         acc[0] = (Fc - Ftv - Fb) * im[0]
