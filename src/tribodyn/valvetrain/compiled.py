@@ -38,9 +38,12 @@ from .contact_law import (
     contact_film_root,
     damped_contact,
     joint_force,
+    joint_slopes,
     smooth_step,
     stamp_element,
+    table_friction,
 )
+from .tribology import table_film
 
 __all__ = [
     "CompiledLumped",
@@ -116,6 +119,7 @@ _squeeze_slope = njit(**_OPTS)(laws.squeeze_compliance_slope)
 _growth_limit = njit(**_OPTS)(laws.growth_limit)
 _joint = _jit_calling(joint_force, smooth_step=_step)
 _element = njit(**_OPTS)(stamp_element)
+_slopes = njit(**_OPTS)(joint_slopes)
 _coil = njit(**_OPTS)(coil_segment)
 
 
@@ -140,53 +144,13 @@ def _cam(theta, th0, S, S1, S2):
 
 
 @njit(**_OPTS)
-def _film(t, force, ft, fh, fc, ff, period):
-    """h = h_k + c_k (F − F_k), dh/dF = c_k: linear interpolation in t (periodic)."""
-    n = ft.size
-    if period > 0.0:
-        t = ft[0] + (t - ft[0]) % period
-    k = np.searchsorted(ft, t, side="right") - 1
-    if k < 0:
-        i, a = 0, 0.0
-    elif k >= n - 1:
-        i, a = n - 1, 0.0
-    else:
-        i, a = k, (t - ft[k]) / (ft[k + 1] - ft[k])
-    j = min(i + 1, n - 1)
-    hk = fh[i] + a * (fh[j] - fh[i])
-    ck = fc[i] + a * (fc[j] - fc[i])
-    fk = ff[i] + a * (ff[j] - ff[i])
-    return hk + ck * (force - fk), ck
-
-
-@njit(**_OPTS)
-def _friction(theta, force, th, tab, fl):
-    """Bilinear F_f(θ, F) of ``_FrictionTable`` (constant coefficient beyond the table)."""
-    if force <= 0.0:
-        return 0.0
-    u = (theta - th[0]) % _TWO_PI + th[0]
-    i = np.searchsorted(th, u, side="right") - 1
-    i = min(max(i, 0), th.size - 2)
-    a = (u - th[i]) / (th[i + 1] - th[i])
-    nf = fl.size
-    if force >= fl[nf - 1]:
-        return ((1.0 - a) * tab[i, nf - 1] + a * tab[i + 1, nf - 1]) * force / fl[nf - 1]
-    lo = np.searchsorted(fl, force, side="right") - 1
-    hi = lo + 1
-    b = (force - fl[lo]) / (fl[hi] - fl[lo])
-    return (1.0 - a) * ((1.0 - b) * tab[i, lo] + b * tab[i, hi]) + a * (
-        (1.0 - b) * tab[i + 1, lo] + b * tab[i + 1, hi]
-    )
-
-
-@njit(**_OPTS)
 def _table_film(t, force, where):
     """(h, dh/dF) of the film table ``where`` = (its columns, period, has_film) as the
     series film of :func:`~.contact_law.contact_film_root` (0, 0 without a film law)."""
     ft, fh, fc, ff, period, has_film = where
     if has_film == 0.0:
         return 0.0, 0.0
-    return _film(t, force, ft, fh, fc, ff, period)
+    return table_film(t, force, ft, fh, fc, ff, period)
 
 
 _root = _jit_calling(contact_film_root, _series_film=_table_film)
@@ -206,7 +170,7 @@ def _film_laws(t, h, ue, R, par, ft, fr, fz):
     ∂(1/D)/∂h, x_t, ∂x_t/∂h) with a = L w'_ent(h)/D the free rate at zero load,
     D = 3√2 π η₀ R^(3/2) L/h^(3/2) and x_t the transport limit of the growth; r(t) the
     correction table in the film table's place."""
-    r, _ = _film(t, 0.0, ft, fr, fz, fz, par.f_period)
+    r, _ = table_film(t, 0.0, ft, fr, fz, fz, par.f_period)
     args = (par.eta, par.alpha, par.e_prime, par.supply, r, par.width, par.sq)
     a, a_h, m_inv = _film_rate(h, 0.0, ue, R, *args)
     xt, xt_h = _growth_limit(h, ue, R, par.supply, par.growth_limited != 0.0)
@@ -253,13 +217,12 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     P, _, Fc, hfilm, hd, hd_h, hd_F, kc, cc, kh, ok = _cam_contact(
         t, dk, dkd, hf, ue, R, par, ft, fh, fc, ff
     )
-    Ff = _friction(theta, Fc, th, tab, fl) if Fc > 0.0 else 0.0
+    Ff = table_friction(theta, Fc, th, tab, fl) if Fc > 0.0 else 0.0
     thv = math.tanh(vt / par.vr)
     Fb = par.mub * Ff * thv
     dtv, dtvd, ds = xt - xv - par.lash, vt - vv, par.d_seat - xv
     Ftv, Etv, gtv, dgtv = _joint(par.ktv, par.ctv, dtv, dtvd, ramp)
     Fs, Es, gs, dgs = _joint(par.ks, par.cs, ds, -vv, ramp)
-    on_tv, on_s = Ftv > 0.0, Fs > 0.0
     F0 = par.f0
     diss = 0.0
     f_prev = 0.0
@@ -289,10 +252,8 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     # local stiffness and damping (Jacobian)
     out[19], out[20] = kc, cc
     out[21] = par.mub * Ff * (1.0 - thv * thv) / par.vr
-    out[22] = par.ktv * (1.0 + par.ctv * dgtv * dtvd) if (on_tv and dtv > 0.0) else 0.0
-    out[23] = par.ctv * gtv if on_tv else 0.0
-    out[24] = par.ks * (1.0 - par.cs * dgs * vv) if (on_s and ds > 0.0) else 0.0
-    out[25] = par.cs * gs if on_s else 0.0
+    out[22], out[23] = _slopes(par.ktv, par.ctv, dtv, dtvd, Ftv, gtv, dgtv)
+    out[24], out[25] = _slopes(par.ks, par.cs, ds, -vv, Fs, gs, dgs)
     out[26] = 0.0 if ok else 1.0
     out[27], out[28], out[29], out[30] = kh, hd, hd_h, hd_F
 
@@ -445,7 +406,7 @@ class CompiledLumped:
             *(np.ascontiguousarray(a, dtype=float) for a in film),
             np.asarray(fr.th, float),
             np.asarray(fr.tab, float),
-            np.asarray(fr.Fl, float),
+            np.asarray(fr.F, float),
         )
 
     def rhs(self, t, y):

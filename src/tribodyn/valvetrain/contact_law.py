@@ -16,11 +16,11 @@ Units SI (m, N, s, rad).
 
 from __future__ import annotations
 
-import bisect
 import math
 from typing import Any, NamedTuple
 
 import numpy as np
+from numba import njit
 
 from .._validation import InputError, check_real
 from ..physics import limits as L
@@ -63,6 +63,14 @@ def joint_force(k: float, c: float, d: float, dd: float, ramp: float) -> tuple:
     g, dg = smooth_step(E, ramp)
     F = E + c * g * dd
     return (F if F > 0.0 else 0.0), E, g, dg
+
+
+def joint_slopes(k: float, c: float, d: float, dd: float, F: float, g: float, dg: float):
+    """(∂F/∂d, ∂F/∂ḋ) of a :func:`joint_force` joint from its force F and step g, dg/dE
+    there: k (1 + c dg ḋ) where d > 0 (else 0) and c g; both 0 where F = 0."""
+    if F <= 0.0:
+        return 0.0, 0.0
+    return (k * (1.0 + c * dg * dd) if d > 0.0 else 0.0), c * g
 
 
 def coil_segment(end: bool, F0: float, k: float, c: float, d: float, dd: float) -> tuple:
@@ -149,27 +157,31 @@ class _FrictionTable:
         tab = np.asarray(model.friction(TT, FF, ue[:, None], us[:, None], R[:, None]), dtype=float)
         if not np.all(np.isfinite(tab)) or np.any(tab < 0.0):
             raise InputError("tribology model returned negative or non-finite friction")
-        self.th = th.tolist()
-        self.th0 = float(th[0])
-        self.tab = tab.tolist()
-        self.Fl = self.F.tolist()
-        self.Fmax = float(self.F[-1])
+        self.th, self.tab = th, np.ascontiguousarray(tab)
 
     def __call__(self, theta: float, force: float) -> float:
-        if force <= 0.0:
-            return 0.0
-        th = self.th
-        u = (theta - self.th0) % (2.0 * math.pi) + self.th0
-        i = min(max(bisect.bisect_right(th, u) - 1, 0), len(th) - 2)
-        a = (u - th[i]) / (th[i + 1] - th[i])
-        ti, tj = self.tab[i], self.tab[i + 1]
-        Fl = self.Fl
-        if force >= self.Fmax:  # beyond the table: constant coefficient
-            return ((1.0 - a) * ti[-1] + a * tj[-1]) * force / self.Fmax
-        lo = bisect.bisect_right(Fl, force) - 1
-        hi = lo + 1
-        b = (force - Fl[lo]) / (Fl[hi] - Fl[lo])
-        return (1.0 - a) * ((1.0 - b) * ti[lo] + b * ti[hi]) + a * ((1.0 - b) * tj[lo] + b * tj[hi])
+        return table_friction(theta, force, self.th, self.tab, self.F)
+
+
+@njit(cache=True, nogil=True)
+def table_friction(theta, force, th, tab, fl):
+    """Bilinear F_f(θ, F) [N] of a :class:`_FrictionTable` (angles ``th``, forces ``fl``,
+    values ``tab``; 0 for F ≤ 0, constant coefficient beyond the largest force)."""
+    if force <= 0.0:
+        return 0.0
+    u = (theta - th[0]) % (2.0 * math.pi) + th[0]
+    i = np.searchsorted(th, u, side="right") - 1
+    i = min(max(i, 0), th.size - 2)
+    a = (u - th[i]) / (th[i + 1] - th[i])
+    nf = fl.size
+    if force >= fl[nf - 1]:
+        return ((1.0 - a) * tab[i, nf - 1] + a * tab[i + 1, nf - 1]) * force / fl[nf - 1]
+    lo = np.searchsorted(fl, force, side="right") - 1
+    hi = lo + 1
+    b = (force - fl[lo]) / (fl[hi] - fl[lo])
+    return (1.0 - a) * ((1.0 - b) * tab[i, lo] + b * tab[i, hi]) + a * (
+        (1.0 - b) * tab[i + 1, lo] + b * tab[i + 1, hi]
+    )
 
 
 def _series_film(t: float, force: float, where: tuple) -> tuple[float, float]:

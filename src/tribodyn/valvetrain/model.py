@@ -38,7 +38,14 @@ import math
 import numpy as np
 
 from .cams import CamProfile
-from .contact_law import CamContactModel, ContactLawError, coil_segment, joint_force, stamp_element
+from .contact_law import (
+    CamContactModel,
+    ContactLawError,
+    coil_segment,
+    joint_force,
+    joint_slopes,
+    stamp_element,
+)
 from .parameters import ValvetrainParameters
 from .tribology import TribologyModel
 
@@ -195,18 +202,8 @@ class ValvetrainModel(CamContactModel):
                 * (1.0 - c.th_v * c.th_v)
                 / p.bore_friction_velocity
             )
-            ktv = (
-                p.tappet_valve_stiffness * (1.0 + p.tappet_valve_damping * dgtv * dtvd)
-                if (Ftv > 0.0 and dtv > 0.0)
-                else 0.0
-            )
-            ctv = p.tappet_valve_damping * gtv if Ftv > 0.0 else 0.0
-            kst = (
-                p.seat_stiffness * (1.0 - p.seat_damping * dgs * vv)
-                if (Fs > 0.0 and ds > 0.0)
-                else 0.0
-            )
-            cst = p.seat_damping * gs if Fs > 0.0 else 0.0
+            ktv, ctv = joint_slopes(kv, cv, dtv, dtvd, Ftv, gtv, dgtv)
+            kst, cst = joint_slopes(p.seat_stiffness, p.seat_damping, ds, -vv, Fs, gs, dgs)
             kseg, cseg = list(ks), list(cs)
             for j in {0, N}:
                 if Fseg[j] <= 0.0:

@@ -28,12 +28,12 @@ dynamics (entraining film + squeeze film, in series with the contact; see
 
 from __future__ import annotations
 
-import bisect
 import math
 from abc import ABC, abstractmethod
 from types import MappingProxyType
 
 import numpy as np
+from numba import njit
 
 from .._typing import ArrayLike
 from .._validation import InputError, check_array, check_positive
@@ -249,17 +249,27 @@ def _table_column(name: str, values: ArrayLike | None, n: int, default: float) -
     return np.broadcast_to(check_array(name, np.atleast_1d(values), min_size=1), (n,)).astype(float)
 
 
-def _bracket(tl: list, period: float | None, t: float) -> tuple[int, int, float]:
-    """(i, j, a): linear interpolation in the table of times ``tl`` [s] at t, y(t) =
-    y_i + a (y_j − y_i); the end samples outside the table; with ``period`` t is first
-    mapped to tl[0] + (t − tl[0]) mod period."""
-    if period is not None:
-        t = tl[0] + (t - tl[0]) % period
-    k = bisect.bisect_right(tl, t) - 1
-    if k < 0 or k == len(tl) - 1:
-        k = max(k, 0)
-        return k, k, 0.0
-    return k, k + 1, (t - tl[k]) / (tl[k + 1] - tl[k])
+@njit(cache=True, nogil=True)
+def table_film(t, force, ft, fh, fc, ff, period):
+    """(h, dh/dF) = (h_k + c_k (F − F_k), c_k) of a film table at one time t [s] and force
+    F [N]: the columns h_k, c_k, F_k (``fh``, ``fc``, ``ff``) linear between the sample
+    times ``ft`` (strictly increasing), the end samples outside them; with ``period``
+    > 0 t is first mapped to ft[0] + (t − ft[0]) mod period."""
+    n = ft.size
+    if period > 0.0:
+        t = ft[0] + (t - ft[0]) % period
+    k = np.searchsorted(ft, t, side="right") - 1
+    if k < 0:
+        i, a = 0, 0.0
+    elif k >= n - 1:
+        i, a = n - 1, 0.0
+    else:
+        i, a = k, (t - ft[k]) / (ft[k + 1] - ft[k])
+    j = min(i + 1, n - 1)
+    hk = fh[i] + a * (fh[j] - fh[i])
+    ck = fc[i] + a * (fc[j] - fc[i])
+    fk = ff[i] + a * (ff[j] - ff[i])
+    return hk + ck * (force - fk), ck
 
 
 def _checked_friction_model(friction_model: TribologyModel) -> TribologyModel:
@@ -319,12 +329,6 @@ class FilmTableTribology(TribologyModel):
         self.Fk = _table_column("reference_force", reference_force, t.size, 0.0)
         self.period = None if period is None else check_positive("period", period, "s")
         self._t0 = float(t[0])
-        self._tl, self._hl, self._cl, self._fl = (
-            t.tolist(),
-            self.h.tolist(),
-            self.c.tolist(),
-            self.Fk.tolist(),
-        )
 
     def _wrap(self, t):
         if self.period is None:
@@ -335,11 +339,7 @@ class FilmTableTribology(TribologyModel):
         return self.friction_model.friction(t, force, entrainment_speed, sliding_speed, radius)
 
     def _scalar_film(self, t: float, force: float) -> tuple[float, float]:
-        i, j, a = _bracket(self._tl, self.period, t)
-        hk = self._hl[i] + a * (self._hl[j] - self._hl[i])
-        ck = self._cl[i] + a * (self._cl[j] - self._cl[i])
-        fk = self._fl[i] + a * (self._fl[j] - self._fl[i])
-        return hk + ck * (force - fk), ck
+        return table_film(t, force, self.time, self.h, self.c, self.Fk, self.period or 0.0)
 
     def film(self, t, force, entrainment_speed, radius):
         if type(t) is float and type(force) is float:  # the dynamics' hot path
@@ -443,7 +443,7 @@ class FilmStateTribology(TribologyModel):
             raise InputError("correction must be > 0 (a factor on the flooded film)")
         self.time, self.correction = t, r
         self.period = None if period is None else check_positive("period", period, "s")
-        self._tl, self._rl = t.tolist(), r.tolist()
+        self._zero = np.zeros(t.size)
         self._eta = float(lubricant.viscosity)
         self._alpha = float(lubricant.pressure_viscosity)
         self._sq = 3.0 * np.sqrt(2.0) * np.pi * self._eta * self.width
@@ -456,8 +456,8 @@ class FilmStateTribology(TribologyModel):
 
     def correction_at(self, t: float) -> float:
         """r(t), linear between the table's samples (periodic with ``period``)."""
-        i, j, a = _bracket(self._tl, self.period, t)
-        return self._rl[i] + a * (self._rl[j] - self._rl[i])
+        zero, period = self._zero, self.period or 0.0
+        return table_film(t, 0.0, self.time, self.correction, zero, zero, period)[0]
 
     def film_rate(self, t: float, h: float, force: float, ue: float, R: float):
         """(ḣ [m/s], ∂ḣ/∂h [1/s], ∂ḣ/∂F_c [m/(N s)]) of the film h [m] carrying F_c [N]
