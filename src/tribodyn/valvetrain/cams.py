@@ -321,9 +321,6 @@ class AccelerationCam(CamProfile):
             )
         segs.append(("sine", b1, (A1,)))
         segs.append(("neg", b2, (N, A2)))
-        self.pulse_amplitude = float(A1)
-        self.negative_shape_amplitude = float(A2)
-        self.nose_acceleration = float(-N)
         self.ramp_velocity = float(vr)
 
         # Segment start angles, lift and velocity (cumulative, from the event start).
