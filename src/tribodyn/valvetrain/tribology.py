@@ -338,14 +338,11 @@ class FilmTableTribology(TribologyModel):
     def friction(self, t, force, entrainment_speed, sliding_speed, radius):
         return self.friction_model.friction(t, force, entrainment_speed, sliding_speed, radius)
 
-    def _scalar_film(self, t: float, force: float) -> tuple[float, float]:
-        return table_film(t, force, self.time, self.h, self.c, self.Fk, self.period or 0.0)
-
     def film(self, t, force, entrainment_speed, radius):
-        if type(t) is float and type(force) is float:  # the dynamics' hot path
-            return self._scalar_film(t, force)
-        if np.ndim(t) == 0 and np.ndim(force) == 0:
-            return self._scalar_film(float(t), float(force))
+        # one instant (the dynamics' hot path: floats, tested first)
+        if (type(t) is float and type(force) is float) or np.ndim(t) == np.ndim(force) == 0:
+            columns = (self.time, self.h, self.c, self.Fk, self.period or 0.0)
+            return table_film(float(t), float(force), *columns)
         tt = self._wrap(t)
         if self.time.size == 1:
             hk, ck, fk = self.h[0], self.c[0], self.Fk[0]
