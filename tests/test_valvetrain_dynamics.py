@@ -310,7 +310,7 @@ def test_film_law_where_the_film_cancels_the_interference():
     P, dP, h = model.elastic_contact(t, dk)
     assert P > 0.0 and dP > 0.0
     # Palmgren δ_el(P) = C P^0.9 equals δ_kin + h(P) at the returned force
-    assert model.C * P**0.9 == pytest.approx(dk + h, abs=1e-18)
+    assert model.contact_C * P**0.9 == pytest.approx(dk + h, abs=1e-18)
     assert h == pytest.approx(film.film(t, P, 0.0, 0.0)[0], abs=1e-18)
 
 

@@ -119,16 +119,6 @@ class ValvetrainModel(CamContactModel):
 
     PARAMS = ValvetrainParameters
 
-    @property
-    def C(self) -> float:
-        """Contact compliance coefficient C [m/N^(1/γ)] (δ_el = C P^(1/γ))."""
-        return self.contact_C
-
-    @property
-    def inv_kcam(self) -> float:
-        """Camshaft bending compliance 1/k_cam [m/N] (0: rigid)."""
-        return self.contact_ikc
-
     def lobe_angle(self, t: float, y) -> float:
         """Cam angle at the contact [rad]: θ₀ + ωt (rigid camshaft)."""
         return self.theta0 + self.w * t
