@@ -155,6 +155,14 @@ def explicit_run(case, set_name="uncoated"):
     return s, dyn, CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
 
 
+def asperity_pressure_derivative(roughness, gap, reduced_modulus):
+    """dp_a/dh [Pa/m] of a Roughness as the solvers take it: K/σ · dF/dλ from its
+    ``load_function`` (K its ``pressure_scale``)."""
+    lam = np.asarray(gap, dtype=float) / roughness.rms
+    scale = roughness.pressure_scale(reduced_modulus) / roughness.rms
+    return scale * roughness.load_function(lam)[1]
+
+
 def cycle_inputs(crank, force, ue, us, radius, width):
     """Cycle inputs at the crank angles ``crank`` [deg] of a crankshaft at 3000 rpm
     (t = crank/(360° · 50 Hz)): contact force ``force`` [N] (array or constant), constant

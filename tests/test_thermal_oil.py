@@ -144,7 +144,7 @@ def test_cold_datasheet_oil_has_a_rising_positive_alpha(grade):
     def so_klaus_at(T):  # the correlation along the oil's line, computed here
         o = oils[-1]
         nu = float(o.kinematic_viscosity(T))
-        return so_klaus_alpha(nu, float(o.density_at(0.0, T)), o.walther_slope)
+        return so_klaus_alpha(nu, float(o.density_at(0.0, T)), o._c.get("B"))
 
     peak = minimize_scalar(lambda T: -so_klaus_at(T), bounds=(225.0, 300.0), method="bounded")
     assert ts == pytest.approx(peak.x, abs=0.05)

@@ -372,17 +372,6 @@ class Roughness:
             return out if out.ndim else float(out)
         return self.pressure_scale(reduced_modulus) * greenwood_tripp(2.5, lam, self.method)
 
-    def asperity_pressure_derivative(self, gap, reduced_modulus: float) -> np.ndarray:
-        """dp_a/dh [Pa/m] (negative: more gap, fewer contacts)."""
-        lam = np.asarray(gap, dtype=float) / self.rms
-        if self.law is not None:
-            return reduced_modulus / self.rms * self.law.pressure_ratio(lam)[1]
-        return (
-            self.pressure_scale(reduced_modulus)
-            / self.rms
-            * greenwood_tripp_derivative(2.5, lam, self.method)
-        )
-
     def contact_area_fraction(self, gap: ArrayLike, tabulated: bool = False) -> np.ndarray | float:
         """Real-contact-area fraction A_a/A = π²(ηβσ)² F₂(h/σ) (Eq. 18 per unit area), or
         the law's A/A₀(h/σ).

@@ -209,7 +209,7 @@ class StressOperator:
         self.n, self.dx, self.body = int(n), float(dx), body
         self.depths = depths
         self.h = body.coating.thickness if body.coating is not None else None
-        self._check_size()
+        need = self._periodic_length()
         # evaluated depths: the user's, the surface and both sides of the interface
         extra = [0.0]
         if self.h is not None:
@@ -218,22 +218,19 @@ class StressOperator:
         self._in_coating = (
             self._z <= self.h if self.h is not None else np.zeros(self._z.size, dtype=bool)
         )
-        # periodic length of the layered correction: ≥ 2× the grid (zero padding) and
-        # ≥ 32 h (its tail, on the scale h, then sees images only from ≥ 32 h away)
-        need = 2 * self.n
-        if self.h is not None:
-            need = max(need, self.n + int(math.ceil(_PERIOD_H * self.h / self.dx)))
         self._nfft = int(sp_fft.next_fast_len(need, real=True))
         self._transfer = self._build()
         self._transfer32: np.ndarray | None = None
         self._search: tuple | None = None  # the peak search's rows (_search_rows)
 
-    def _check_size(self) -> None:
-        """Refuse, before allocating, a periodic length beyond ``L.STRESS_FFT_LENGTH``
-        (2n, and n + 32 h/dx on a coated body: the layered correction's tail)."""
+    def _periodic_length(self) -> int:
+        """The least periodic length of the transforms: ≥ 2× the grid (zero padding) and,
+        on a coated body, n + 32 h/dx (the layered correction's tail, on the scale h, then
+        sees images only from ≥ 32 h away). Refused, before allocating, beyond
+        ``L.STRESS_FFT_LENGTH``."""
         lim = L.STRESS_FFT_LENGTH.le
         assert lim is not None
-        need = 2.0 * self.n
+        need = 2 * self.n
         if self.h is not None:
             need = max(need, self.n + math.ceil(_PERIOD_H * self.h / self.dx))
         if need > lim:
@@ -256,6 +253,7 @@ class StressOperator:
                 f"{self.n} nodes need {size / 2**30:.3g} GiB of transfer functions (at most "
                 f"{MAX_TRANSFER_BYTES / 2**30:g} GiB); evaluate fewer depths or nodes"
             )
+        return need
 
     def _build(self) -> np.ndarray:
         """Transfer (depth, 6, nfreq): DFT of the hat-load influence (homogeneous, linear

@@ -351,11 +351,6 @@ class ThermalLubricant:
         return self._c["form"]
 
     @property
-    def walther_slope(self) -> float | None:
-        """ASTM D341 slope B (datasheet form)."""
-        return self._c.get("B")
-
-    @property
     def roelands_z(self) -> float:
         return self._c["Z"]
 

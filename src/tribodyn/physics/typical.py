@@ -33,29 +33,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = [
-    "TypicalValue",
-    "STATUSES",
-    "VISCOSITY",
-    "PRESSURE_VISCOSITY",
-    "DENSITY",
-    "LUBRICANT",
-    "EYRING_STRESS",
-    "LIMITING_SHEAR_COEFFICIENT",
-    "LIMITING_SHEAR_STRESS",
-    "BOUNDARY_SHEAR_STRENGTH",
-    "BOUNDARY_FRICTION",
-    "ROUGHNESS_PARAMETER",
-    "RMS_TO_SUMMIT_RADIUS",
-    "COMPOSITE_RMS",
-    "SURFACE_HURST",
-    "SURFACE_SHORT_CUTOFF",
-    "SURFACE_LONG_CUTOFF",
-    "FILTER_SHORT_WAVELENGTH",
-    "FILTER_LONG_WAVELENGTH",
-    "boundary_friction",
-    "boundary_friction_range",
-]
+#: the class and functions; the typical values and their tables are appended at the end
+__all__ = ["TypicalValue", "STATUSES", "boundary_friction", "boundary_friction_range"]
 
 
 #: How far the source of a typical value was checked (module text).
@@ -82,6 +61,18 @@ class TypicalValue:
             raise ValueError(
                 f"typical value {self.value} outside its range [{self.low}, {self.high}]"
             )
+
+
+def typical_names(namespace: dict) -> list[str]:
+    """The public names of ``namespace`` bound to a :class:`TypicalValue` or to a table
+    (dict) of them, in definition order (a module's ``__all__``)."""
+
+    def typical(v) -> bool:
+        if isinstance(v, dict):
+            return bool(v) and all(isinstance(t, TypicalValue) for t in v.values())
+        return isinstance(v, TypicalValue)
+
+    return [k for k, v in namespace.items() if not k.startswith("_") and typical(v)]
 
 
 # ----------------------------------------------------------------------------- oil
@@ -462,3 +453,5 @@ FILTER_LONG_WAVELENGTH = TypicalValue(
     "far smaller: the band is then cut at the field of view.",
     status="verified",
 )
+
+__all__ += typical_names(dict(globals()))

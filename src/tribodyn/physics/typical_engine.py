@@ -11,27 +11,7 @@ SI units throughout.
 
 from __future__ import annotations
 
-from .typical import TypicalValue
-
-__all__ = [
-    "STEEL_MODULUS",
-    "STEEL_POISSON",
-    "STEEL_DENSITY",
-    "DLC_MODULUS",
-    "WCC_MODULUS",
-    "COATING_POISSON",
-    "VALVE_MASS",
-    "TAPPET_MASS",
-    "SPRING_MASS",
-    "SPRING_RATE",
-    "SPRING_PRELOAD",
-    "VALVETRAIN",
-    "ENGINE_SPEED",
-    "CAM_BASE_RADIUS",
-    "CAM_MAX_LIFT",
-    "CAM_WIDTH",
-]
-
+from .typical import TypicalValue, typical_names
 
 # ----------------------------------------------------------------------------- steel
 _STEEL_HANDBOOK = (
@@ -226,3 +206,6 @@ CAM_WIDTH = TypicalValue(
     "and so the film and the pressure, scale with it.",
     status="assumed",
 )
+
+#: every typical value and table above
+__all__ = typical_names(dict(globals()))

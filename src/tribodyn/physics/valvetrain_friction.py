@@ -74,12 +74,7 @@ __all__ = [
     "short_bearing_torque",
     "journal_bearing_loads",
     "valve_guide_friction",
-    "TAPPET_BORE_SHARE_MEASURED",
 ]
-
-#: Tappet/bore share of the cam/tappet/bore friction torque measured on a direct-acting
-#: bucket at 250 cam rpm (Pieprzak, Willermet & Dailey, SAE 902086, 1990).
-TAPPET_BORE_SHARE_MEASURED = 0.13
 
 
 def _check_part(part: str, geometry, lengths, thin_film_of: str | None = None) -> None:

@@ -40,9 +40,8 @@ from .composite import sum_on_common_grid
 from .errors import InsufficientDataError
 from .filtering import AUTO_BAND, Band, BandSpec, Sampling, input_warnings, prepare_topography
 from .height_statistics import gaussian_reference, height_statistics
-from .profile import ProfileAnalysis
 from .reading import read_topography
-from .results import PairAnalysis, SurfaceAnalysis
+from .results import PairAnalysis, ProfileAnalysis, SurfaceAnalysis
 from .spectral_moments import (
     MIN_ALPHA_ISOTROPIC,
     SpectralMoments,
@@ -75,8 +74,9 @@ NOTE_DEVIATION = 0.10
 MIN_ETA_BETA_SIGMA = 0.375 / (6.0 * np.sqrt(3.0 * np.pi)) * np.sqrt(MIN_ALPHA_ISOTROPIC)
 
 
-def analysis_margin(band: Band | None, pixel_size, periodic: bool) -> tuple[int, int]:
-    """Pixels excluded along each edge of a map before summits and moments are evaluated.
+def analysis_margin(band: Band | None, pixel_size, periodic: bool) -> tuple[int, ...]:
+    """Points excluded along each edge of a map (or profile) before summits (peaks) and
+    moments are evaluated, one number per axis of ``pixel_size``.
 
     Periodic maps: none. Non-periodic maps: the curvature stencil's border (1) or, after
     band-pass filtering, one short-wavelength cutoff λ_s, the reach of the filter's end
@@ -85,11 +85,10 @@ def analysis_margin(band: Band | None, pixel_size, periodic: bool) -> tuple[int,
     biased by O(λ_s/L).
     """
     if periodic:
-        return 0, 0
+        return (0,) * len(pixel_size)
     if band is None or band.kind == "none":
-        return 1, 1
-    wx, wy = (max(1, int(np.ceil(band.wavelengths[0] / p - 1e-9))) for p in pixel_size)
-    return wx, wy
+        return (1,) * len(pixel_size)
+    return tuple(max(1, int(np.ceil(band.wavelengths[0] / p - 1e-9))) for p in pixel_size)
 
 
 def analysis_region(shape, margin) -> np.ndarray:
@@ -207,17 +206,7 @@ def analyse_filtered(
     measured = None if filled is None or not np.any(filled) else ~np.asarray(filled)
     kept = heights if measured is None else heights[measured]
     hstats = height_statistics(kept)
-    region = analysis_region(
-        heights.shape, analysis_margin(band, topography.pixel_size, topography.is_periodic)
-    )
-    if measured is not None:
-        region &= reliable_points(measured, band, topography.pixel_size, topography.is_periodic)
-    sstats = summit_statistics(
-        heights,
-        mean_curvature_field(topography, region),
-        topography.pixel_size,
-        topography.is_periodic,
-    )
+    region, sstats = _summits(topography, heights, band, topography.pixel_size, measured)
     if sstats.count < MIN_SUMMITS:
         share = (
             ""
@@ -246,6 +235,18 @@ def analyse_filtered(
         gaussian=gaussian_reference(kept, hstats),
     )
     return _with_notes(result)
+
+
+def _summits(topography, h, band: Band, pixel_size, measured) -> tuple:
+    """(analysed region, summit statistics) of the filtered map ``topography`` with
+    heights h: the interior inside :func:`analysis_margin`, less the points near holes
+    (:func:`reliable_points`) when ``measured`` (a mask; None: all measured) is given."""
+    periodic = topography.is_periodic
+    region = analysis_region(h.shape, analysis_margin(band, pixel_size, periodic))
+    if measured is not None:
+        region &= reliable_points(measured, band, pixel_size, periodic)
+    curvature = mean_curvature_field(topography, region)
+    return region, summit_statistics(h, curvature, pixel_size, periodic)
 
 
 def _note_deviation(notes: list, summits: Any, spectral: Any, what: str = "") -> None:
@@ -414,10 +415,7 @@ def composite_roughness(
         sum_stats = height_statistics(sum_surface)
         sum_gaussian = gaussian_reference(sum_surface, sum_stats)
         band = max((first.band, second.band), key=lambda b: b.short_wavelength or 0.0)
-        region = analysis_region(h.shape, analysis_margin(band, (dx, dy), periodic))
-        if filled.any():
-            region &= reliable_points(~filled, band, (dx, dy), periodic)
-        summit_stats = summit_statistics(h, mean_curvature_field(t, region), (dx, dy), periodic)
+        _, summit_stats = _summits(t, h, band, (dx, dy), ~filled if filled.any() else None)
         if (nx, ny) != tuple(ta.nb_grid_pts) or (nx, ny) != tuple(tb.nb_grid_pts):
             notes.append(f"sum surface h₁ + h₂ on the common {nx} × {ny} grid")
     pair = PairAnalysis(

@@ -121,14 +121,14 @@ class SamplingLike(ABC):
     UNITS = {"pixel_size": "m", "physical_sizes": "m"}
 
     @property
-    @abstractmethod
     def nyquist_wavelength(self) -> float:
-        """Shortest wavelength resolved in every direction [m]."""
+        """2·max(Δx, Δy): shortest wavelength resolved in every direction [m]."""
+        return 2.0 * max(self.pixel_size)
 
     @property
-    @abstractmethod
     def longest_wavelength(self) -> float:
-        """Longest wavelength contained in every direction [m]."""
+        """min(L_x, L_y): longest wavelength contained in every direction [m]."""
+        return min(self.physical_sizes)
 
     @abstractmethod
     def _layout(self) -> str:
@@ -177,16 +177,6 @@ class Sampling(SamplingLike):
             bool(topography.is_periodic),
             float(undefined_fraction),
         )
-
-    @property
-    def nyquist_wavelength(self) -> float:
-        """2·max(Δx, Δy): shortest wavelength resolved in every direction [m]."""
-        return 2.0 * max(self.pixel_size)
-
-    @property
-    def longest_wavelength(self) -> float:
-        """min(L_x, L_y): longest wavelength contained in every direction [m]."""
-        return min(self.physical_sizes)
 
     def _layout(self) -> str:
         (nx, ny), (dx, dy), (lx, ly) = self.nb_grid_pts, self.pixel_size, self.physical_sizes

@@ -33,6 +33,7 @@ from typing import Any
 
 import numpy as np
 
+from .analysis import analysis_margin
 from .errors import InsufficientDataError
 from .filtering import (
     AUTO_BAND,
@@ -112,13 +113,9 @@ def analyse_profile(
     if applied.kind == "none" and not periodic:  # unfiltered: finite differences
         hf = h
         d1, d2 = np.gradient(h, dx), np.gradient(np.gradient(h, dx), dx)
-        margin = 1
     else:
         hf, d1, d2 = _filter_profile(h, dx, applied, periodic)
-        if periodic:
-            margin = 0
-        else:  # one λ_s at each end (a filtered, non-periodic profile)
-            margin = max(1, int(math.ceil(applied.wavelengths[0] / dx - 1e-9)))
+    (margin,) = analysis_margin(applied, (dx,), periodic)
     region = np.zeros(n, dtype=bool)
     region[margin : n - margin] = True
     ok = measured & np.roll(measured, 1) & np.roll(measured, -1)  # with measured neighbours

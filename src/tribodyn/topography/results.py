@@ -238,14 +238,6 @@ class ProfileSampling(SamplingLike):
     periodic: bool = False
     undefined_fraction: float = 0.0
 
-    @property
-    def nyquist_wavelength(self) -> float:
-        return 2.0 * self.pixel_size[0]
-
-    @property
-    def longest_wavelength(self) -> float:
-        return self.physical_sizes[0]
-
     def _layout(self) -> str:
         return (
             f"profile of {self.nb_grid_pts[0]} points, spacing {_um(self.pixel_size[0])} "

@@ -122,7 +122,6 @@ class TabulatedCam(CamProfile):
         self.lift_table = s
         fit = fit_periodic_lift(th, s, self.base_radius, self.smoothing, quantum)
         self.precision = fit.precision
-        self.fit_rms = fit.rms_residual
         self.base_circle = fit.base_circle  # (from, to) [rad] where s ≡ 0, or None
         self._x = fit.breaks
         self._c = fit.coeffs  # (6, pieces), highest power first

@@ -35,7 +35,9 @@ from ..physics import typical_engine
 __all__ = ["CamProfile", "AccelerationCam", "CircularArcCam"]
 
 TWO_PI = 2.0 * math.pi
-_CHECK_POINTS = 36000  # 0.01° grid for the curvature / offset checks
+#: 0.01° grid for the curvature / offset checks and the event
+_CHECK_GRID = np.linspace(0.0, TWO_PI, 36000, endpoint=False)
+_CHECK_GRID.flags.writeable = False
 
 
 class CamProfile(ABC):
@@ -66,25 +68,26 @@ class CamProfile(ABC):
         s, _, s2 = self.derivatives(angle)
         return self.base_radius + s + s2
 
-    def _check_grid(self) -> np.ndarray:
-        return np.linspace(0.0, TWO_PI, _CHECK_POINTS, endpoint=False)
+    def _check_angles(self) -> np.ndarray:
+        """The 0.01° grid plus the profile's breakpoints."""
+        return np.concatenate([_CHECK_GRID, self._breakpoints()])
 
     @property
     def min_radius_of_curvature(self) -> float:
         """min R over the revolution [m] (0.01° grid plus the profile's breakpoints)."""
-        th = np.concatenate([self._check_grid(), self._breakpoints()])
+        th = self._check_angles()
         return float(np.min(self.radius_of_curvature(th)))
 
     @property
     def max_contact_offset(self) -> float:
         """max |e| = max |s'| over the revolution [m]."""
-        th = np.concatenate([self._check_grid(), self._breakpoints()])
+        th = self._check_angles()
         return float(np.max(np.abs(self.derivatives(th)[1])))
 
     @property
     def max_lift(self) -> float:
         """Largest lift over the revolution [m]."""
-        th = np.concatenate([self._check_grid(), self._breakpoints()])
+        th = self._check_angles()
         return float(np.max(self.lift(th)))
 
     def _breakpoints(self) -> np.ndarray:
@@ -93,12 +96,12 @@ class CamProfile(ABC):
 
     def check(self, tappet_radius: float | None = None) -> None:
         """Raise :class:`InputError` if R ≤ 0 anywhere or max |e| ≥ tappet radius."""
-        th = np.concatenate([self._check_grid(), self._breakpoints()])
+        th = self._check_angles()
         s, s1, s2 = self.derivatives(th)
         R = self.base_radius + s + s2
         k = int(np.argmin(R))
         if not R[k] > 0.0:
-            g = self._check_grid()
+            g = _CHECK_GRID
             Rg = self.radius_of_curvature(g)
             bad = Rg <= 0.0
             i = int(np.argmin(Rg))
@@ -135,7 +138,7 @@ class CamProfile(ABC):
         The angles are in [0, 2π) on a 0.01° grid; the closing angle may be numerically
         smaller than the opening one if the event wraps through θ = 0.
         """
-        th = self._check_grid()
+        th = _CHECK_GRID
         on = self.lift(th) > threshold
         if not on.any():
             return (float("nan"), float("nan"))
@@ -153,7 +156,7 @@ class CamProfile(ABC):
     def event_angle(self) -> float:
         """Cam-angle duration [rad] of the lift event (lift > 1 nm)."""
         a, b = self.event()
-        return float((b - a) % TWO_PI + TWO_PI / _CHECK_POINTS)
+        return float((b - a) % TWO_PI + TWO_PI / _CHECK_GRID.size)
 
     def table(self, n: int = 720) -> tuple[np.ndarray, np.ndarray]:
         """(θ, s) on n equally spaced angles over one revolution (θ in rad, s in m)."""
@@ -318,9 +321,6 @@ class AccelerationCam(CamProfile):
             )
         segs.append(("sine", b1, (A1,)))
         segs.append(("neg", b2, (N, A2)))
-        self.pulse_amplitude = float(A1)
-        self.negative_shape_amplitude = float(A2)
-        self.nose_acceleration = float(-N)
         self.ramp_velocity = float(vr)
 
         # Segment start angles, lift and velocity (cumulative, from the event start).

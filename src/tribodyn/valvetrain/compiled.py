@@ -31,8 +31,19 @@ import numpy as np
 from numba import njit
 from scipy.integrate import odeint, solve_ivp
 
-from ..physics.film_state_laws import FILM_FLOOR, entraining_film_load, limited_growth
-from .contact_law import _film_free_rate, joint_force, smooth_step, stamp_element
+from ..physics import film_state_laws as laws
+from .contact_law import (
+    _film_free_rate,
+    coil_segment,
+    contact_film_root,
+    damped_contact,
+    joint_force,
+    joint_slopes,
+    smooth_step,
+    stamp_element,
+    table_friction,
+)
+from .tribology import table_film
 
 __all__ = [
     "CompiledLumped",
@@ -89,8 +100,8 @@ _NO = len(_OUT)
 
 
 _step = njit(**_OPTS)(smooth_step)
-_growth = njit(**_OPTS)(limited_growth)
-_entraining = njit(**_OPTS)(entraining_film_load)
+_growth = njit(**_OPTS)(laws.limited_growth)
+_entraining = njit(**_OPTS)(laws.entraining_film_load)
 
 
 def _jit_calling(fn, **kernels):
@@ -100,8 +111,16 @@ def _jit_calling(fn, **kernels):
 
 
 _free_rate = _jit_calling(_film_free_rate, limited_growth=_growth)
+_damped = _jit_calling(
+    damped_contact, smooth_step=_step, _film_free_rate=_free_rate, limited_growth=_growth
+)
+_film_rate = _jit_calling(laws.film_rate, entraining_film_load=_entraining)
+_squeeze_slope = njit(**_OPTS)(laws.squeeze_compliance_slope)
+_growth_limit = njit(**_OPTS)(laws.growth_limit)
 _joint = _jit_calling(joint_force, smooth_step=_step)
 _element = njit(**_OPTS)(stamp_element)
+_slopes = njit(**_OPTS)(joint_slopes)
+_coil = njit(**_OPTS)(coil_segment)
 
 
 @njit(**_OPTS)
@@ -125,96 +144,24 @@ def _cam(theta, th0, S, S1, S2):
 
 
 @njit(**_OPTS)
-def _film(t, force, ft, fh, fc, ff, period):
-    """h = h_k + c_k (F − F_k), dh/dF = c_k: linear interpolation in t (periodic)."""
-    n = ft.size
-    if period > 0.0:
-        t = ft[0] + (t - ft[0]) % period
-    k = np.searchsorted(ft, t, side="right") - 1
-    if k < 0:
-        i, a = 0, 0.0
-    elif k >= n - 1:
-        i, a = n - 1, 0.0
-    else:
-        i, a = k, (t - ft[k]) / (ft[k + 1] - ft[k])
-    j = min(i + 1, n - 1)
-    hk = fh[i] + a * (fh[j] - fh[i])
-    ck = fc[i] + a * (fc[j] - fc[i])
-    fk = ff[i] + a * (ff[j] - ff[i])
-    return hk + ck * (force - fk), ck
+def _table_film(t, force, where):
+    """(h, dh/dF) of the film table ``where`` = (its columns, period, has_film) as the
+    series film of :func:`~.contact_law.contact_film_root` (0, 0 without a film law)."""
+    ft, fh, fc, ff, period, has_film = where
+    if has_film == 0.0:
+        return 0.0, 0.0
+    return table_film(t, force, ft, fh, fc, ff, period)
 
 
-@njit(**_OPTS)
-def _friction(theta, force, th, tab, fl):
-    """Bilinear F_f(θ, F) of ``_FrictionTable`` (constant coefficient beyond the table)."""
-    if force <= 0.0:
-        return 0.0
-    u = (theta - th[0]) % _TWO_PI + th[0]
-    i = np.searchsorted(th, u, side="right") - 1
-    i = min(max(i, 0), th.size - 2)
-    a = (u - th[i]) / (th[i + 1] - th[i])
-    nf = fl.size
-    if force >= fl[nf - 1]:
-        return ((1.0 - a) * tab[i, nf - 1] + a * tab[i + 1, nf - 1]) * force / fl[nf - 1]
-    lo = np.searchsorted(fl, force, side="right") - 1
-    hi = lo + 1
-    b = (force - fl[lo]) / (fl[hi] - fl[lo])
-    return (1.0 - a) * ((1.0 - b) * tab[i, lo] + b * tab[i, hi]) + a * (
-        (1.0 - b) * tab[i + 1, lo] + b * tab[i + 1, hi]
-    )
-
-
-@njit(**_OPTS)
-def _power_slope(z, g):
-    """dP/dz of P = z^γ (1 at z = 0 for the linear law)."""
-    if z > 0.0:
-        return g * z ** (g - 1.0)
-    return 1.0 if g == 1.0 else 0.0
+_root = _jit_calling(contact_film_root, _series_film=_table_film)
 
 
 @njit(**_OPTS)
 def _contact(t, dk, par, ft, fh, fc, ff):
-    """(P, dP/dδ_kin, h, ok) of the elastic contact with the film in series (the Newton
-    iteration of ``ValvetrainModel.elastic_contact``)."""
-    C, g, ikc = par.C, par.gamma, par.ikc
-    per = par.f_period
-    if par.has_film == 0.0 and ikc == 0.0:
-        if dk <= 0.0:
-            return 0.0, 0.0, 0.0, True
-        z = dk / C
-        return z**g, g * z ** (g - 1.0) / C, 0.0, True
-    h0 = 0.0
-    if par.has_film != 0.0:
-        h0, _ = _film(t, 0.0, ft, fh, fc, ff, per)
-    if dk + h0 <= 0.0:
-        return 0.0, 0.0, h0, True
-    lo, hi = 0.0, (dk + h0) / C
-    z = hi
-    tol = 1e-13 * max(dk + h0, abs(dk), abs(h0), 1e-9)
-    for _ in range(80):
-        P = z**g
-        h, hF = 0.0, 0.0
-        if par.has_film != 0.0:
-            h, hF = _film(t, P, ft, fh, fc, ff, per)
-        phi = C * z + P * ikc - h - dk
-        if phi > 0.0:
-            hi = z
-        else:
-            lo = z
-        dPdz = _power_slope(z, g)
-        dphi = C + dPdz * (ikc - hF)
-        if abs(phi) <= tol:
-            return P, dPdz / dphi, h, True
-        zn = z - phi / dphi
-        z = zn if (lo < zn < hi) else 0.5 * (lo + hi)
-        if hi - lo <= 1e-14 * hi:
-            P = z**g
-            h, hF = 0.0, 0.0
-            if par.has_film != 0.0:
-                h, hF = _film(t, P, ft, fh, fc, ff, per)
-            dPdz = _power_slope(z, g)
-            return P, dPdz / (C + dPdz * (ikc - hF)), h, True
-    return 0.0, 0.0, h0, False
+    """(P, dP/dδ_kin, h, ok) of the elastic contact with the film in series
+    (``contact_film_root``, as ``CamContactModel.elastic_contact``)."""
+    where = (ft, fh, fc, ff, par.f_period, par.has_film)
+    return _root(where, t, dk, par.C, par.gamma, par.ikc, par.has_film != 0.0)
 
 
 @njit(**_OPTS)
@@ -223,21 +170,11 @@ def _film_laws(t, h, ue, R, par, ft, fr, fz):
     ∂(1/D)/∂h, x_t, ∂x_t/∂h) with a = L w'_ent(h)/D the free rate at zero load,
     D = 3√2 π η₀ R^(3/2) L/h^(3/2) and x_t the transport limit of the growth; r(t) the
     correction table in the film table's place."""
-    r, _ = _film(t, 0.0, ft, fr, fz, fz, par.f_period)
-    R = max(R, 1e-9)
-    w, dw = _entraining(h, ue, R, par.eta, par.alpha, par.e_prime, par.supply, r)
-    hh = max(h, FILM_FLOOR)
-    inv_d = hh**1.5 / (par.sq * R**1.5)
-    a = par.width * w * inv_d
-    a_h = par.width * dw * inv_d + 1.5 * a / hh
-    inv_d_h = 1.5 * hh**0.5 / (par.sq * R**1.5)
-    if par.growth_limited == 0.0:
-        return a, a_h, inv_d, inv_d_h, math.inf, 0.0
-    gap = par.supply - h
-    if gap <= 0.0 or ue == 0.0:
-        return a, a_h, inv_d, inv_d_h, 0.0, 0.0
-    xt = abs(ue) * math.sqrt(gap / (2.0 * R))
-    return a, a_h, inv_d, inv_d_h, xt, -0.5 * xt / max(gap, 1e-6 * par.supply)
+    r, _ = table_film(t, 0.0, ft, fr, fz, fz, par.f_period)
+    args = (par.eta, par.alpha, par.e_prime, par.supply, r, par.width, par.sq)
+    a, a_h, m_inv = _film_rate(h, 0.0, ue, R, *args)
+    xt, xt_h = _growth_limit(h, ue, R, par.supply, par.growth_limited != 0.0)
+    return a, a_h, -m_inv, _squeeze_slope(h, R, par.sq), xt, xt_h
 
 
 @njit(**_OPTS)
@@ -246,33 +183,17 @@ def _cam_contact(t, dk, dkd, hf, ue, R, par, ft, fh, fc, ff):
     F_c = max(0, P + c g(P) δ̇_kin) with the film law in series, or, with the film as a
     state h_f, one force through the film and the contact's spring and damper,
     F_c = P(δ_kin + h_f) + c g (δ̇_kin + ḣ), ḣ = H(a − F_c/D) (``cam_contact``)."""
-    cdamp = par.cc
-    if par.film_state == 0.0:
+    state = par.film_state != 0.0
+    if state:
+        P, dPdk, _, ok = _contact(t, dk + hf, par, ft, fh, fc, ff)
+        h = hf
+        laws = _film_laws(t, hf, ue, R, par, ft, fh, fc)
+    else:
         P, dPdk, h, ok = _contact(t, dk, par, ft, fh, fc, ff)
-        gc, dgc = _step(P, par.ramp)
-        Fc = P + cdamp * gc * dkd
-        if Fc <= 0.0:
-            return P, dPdk, 0.0, h, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, ok
-        kc = dPdk * (1.0 + cdamp * dgc * dkd)
-        return P, dPdk, Fc, h, 0.0, 0.0, 0.0, kc, cdamp * gc, 0.0, ok
-    P, dPdk, _, ok = _contact(t, dk + hf, par, ft, fh, fc, ff)
-    gc, dgc = _step(P, par.ramp)
-    a, a_h, inv_d, inv_d_h, xt, xt_h = _film_laws(t, hf, ue, R, par, ft, fh, fc)
-    x = _free_rate(a - inv_d * (P + cdamp * gc * dkd), cdamp * gc * inv_d, xt)
-    hd, hd_x, hd_xt = _growth(x, xt)
-    Fc = P + cdamp * gc * (dkd + hd)
-    on_c = Fc > 0.0
-    if not on_c:  # the contact is open: the film's free rate is a
-        Fc = 0.0
-        hd, hd_x, hd_xt = _growth(a, xt)
-    hd_F = -hd_x * inv_d  # ∂ḣ/∂F_c and ∂ḣ/∂h at fixed F_c
-    hd_h = hd_x * (a_h - inv_d_h * Fc) + hd_xt * xt_h
-    if not on_c:
-        return P, dPdk, 0.0, hf, hd, hd_h, hd_F, 0.0, 0.0, 0.0, ok
-    den = 1.0 - cdamp * gc * hd_F
-    kc = dPdk * (1.0 + cdamp * dgc * (dkd + hd)) / den
-    kh = kc + cdamp * gc * hd_h / den
-    return P, dPdk, Fc, hf, hd, hd_h, hd_F, kc, cdamp * gc / den, kh, ok
+        laws = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    force = _damped(P, dPdk, dkd, par.cc, par.ramp, state, laws)
+    Fc, hd, hd_h, hd_F, kc, cc, kh = force[2:]
+    return P, dPdk, Fc, h, hd, hd_h, hd_F, kc, cc, kh, ok
 
 
 @njit(**_OPTS)
@@ -296,13 +217,12 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     P, _, Fc, hfilm, hd, hd_h, hd_F, kc, cc, kh, ok = _cam_contact(
         t, dk, dkd, hf, ue, R, par, ft, fh, fc, ff
     )
-    Ff = _friction(theta, Fc, th, tab, fl) if Fc > 0.0 else 0.0
+    Ff = table_friction(theta, Fc, th, tab, fl) if Fc > 0.0 else 0.0
     thv = math.tanh(vt / par.vr)
     Fb = par.mub * Ff * thv
     dtv, dtvd, ds = xt - xv - par.lash, vt - vv, par.d_seat - xv
     Ftv, Etv, gtv, dgtv = _joint(par.ktv, par.ctv, dtv, dtvd, ramp)
     Fs, Es, gs, dgs = _joint(par.ks, par.cs, ds, -vv, ramp)
-    on_tv, on_s = Ftv > 0.0, Fs > 0.0
     F0 = par.f0
     diss = 0.0
     f_prev = 0.0
@@ -310,16 +230,8 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     FNs = 0.0
     for j in range(N + 1):
         d, dd = _segment(y, n, N, j)
-        fe = F0 + kseg[j] * d
-        f = fe + cseg[j] * dd
-        if j == 0 or j == N:
-            if fe < 0.0:
-                fe = 0.0
-            if f < 0.0:
-                f = 0.0
-            diss += (f - fe) * dd
-        else:
-            diss += cseg[j] * dd * dd
+        f, dj = _coil(j == 0 or j == N, F0, kseg[j], cseg[j], d, dd)
+        diss += dj
         if j == 0:
             F0s = f
             acc[1] = (Ftv - f + Fs) * im[1]
@@ -340,10 +252,8 @@ def _evaluate(t, y, par, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab, fl,
     # local stiffness and damping (Jacobian)
     out[19], out[20] = kc, cc
     out[21] = par.mub * Ff * (1.0 - thv * thv) / par.vr
-    out[22] = par.ktv * (1.0 + par.ctv * dgtv * dtvd) if (on_tv and dtv > 0.0) else 0.0
-    out[23] = par.ctv * gtv if on_tv else 0.0
-    out[24] = par.ks * (1.0 - par.cs * dgs * vv) if (on_s and ds > 0.0) else 0.0
-    out[25] = par.cs * gs if on_s else 0.0
+    out[22], out[23] = _slopes(par.ktv, par.ctv, dtv, dtvd, Ftv, gtv, dgtv)
+    out[24], out[25] = _slopes(par.ks, par.cs, ds, -vv, Fs, gs, dgs)
     out[26] = 0.0 if ok else 1.0
     out[27], out[28], out[29], out[30] = kh, hd, hd_h, hd_F
 
@@ -462,8 +372,8 @@ class CompiledLumped:
             f0=p.spring_preload,
             d_seat=model.d_seat,
             gamma=model.gamma,
-            C=model.C,
-            ikc=model.inv_kcam,
+            C=model.contact_C,
+            ikc=model.contact_ikc,
             has_film=1.0 if has_film else 0.0,
             f_period=float(period or 0.0),
             film_state=1.0 if state else 0.0,
@@ -496,7 +406,7 @@ class CompiledLumped:
             *(np.ascontiguousarray(a, dtype=float) for a in film),
             np.asarray(fr.th, float),
             np.asarray(fr.tab, float),
-            np.asarray(fr.Fl, float),
+            np.asarray(fr.F, float),
         )
 
     def rhs(self, t, y):

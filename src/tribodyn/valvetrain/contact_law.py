@@ -16,11 +16,11 @@ Units SI (m, N, s, rad).
 
 from __future__ import annotations
 
-import bisect
 import math
 from typing import Any, NamedTuple
 
 import numpy as np
+from numba import njit
 
 from .._validation import InputError, check_real
 from ..physics import limits as L
@@ -63,6 +63,30 @@ def joint_force(k: float, c: float, d: float, dd: float, ramp: float) -> tuple:
     g, dg = smooth_step(E, ramp)
     F = E + c * g * dd
     return (F if F > 0.0 else 0.0), E, g, dg
+
+
+def joint_slopes(k: float, c: float, d: float, dd: float, F: float, g: float, dg: float):
+    """(∂F/∂d, ∂F/∂ḋ) of a :func:`joint_force` joint from its force F and step g, dg/dE
+    there: k (1 + c dg ḋ) where d > 0 (else 0) and c g; both 0 where F = 0."""
+    if F <= 0.0:
+        return 0.0, 0.0
+    return (k * (1.0 + c * dg * dd) if d > 0.0 else 0.0), c * g
+
+
+def coil_segment(end: bool, F0: float, k: float, c: float, d: float, dd: float) -> tuple:
+    """(F, dissipation rate) of a coil segment of the lumped spring: F_el = F₀ + k Δ,
+    F = F_el + c Δ̇ at compression Δ = ``d`` [m] and rate ``dd`` [m/s]; an ``end`` segment
+    (seated on the valve or the head) is compression-only (both forces ≥ 0, dissipating
+    (F − F_el) Δ̇), an inner one dissipates c Δ̇²."""
+    fe = F0 + k * d
+    f = fe + c * dd
+    if not end:
+        return f, c * dd * dd
+    if fe < 0.0:
+        fe = 0.0
+    if f < 0.0:
+        f = 0.0
+    return f, (f - fe) * dd
 
 
 def stamp_element(K, Cm, a: int, b: int, k: float, c: float) -> None:
@@ -133,38 +157,59 @@ class _FrictionTable:
         tab = np.asarray(model.friction(TT, FF, ue[:, None], us[:, None], R[:, None]), dtype=float)
         if not np.all(np.isfinite(tab)) or np.any(tab < 0.0):
             raise InputError("tribology model returned negative or non-finite friction")
-        self.th = th.tolist()
-        self.th0 = float(th[0])
-        self.tab = tab.tolist()
-        self.Fl = self.F.tolist()
-        self.Fmax = float(self.F[-1])
+        self.th, self.tab = th, np.ascontiguousarray(tab)
 
     def __call__(self, theta: float, force: float) -> float:
-        if force <= 0.0:
-            return 0.0
-        th = self.th
-        u = (theta - self.th0) % (2.0 * math.pi) + self.th0
-        i = min(max(bisect.bisect_right(th, u) - 1, 0), len(th) - 2)
-        a = (u - th[i]) / (th[i + 1] - th[i])
-        ti, tj = self.tab[i], self.tab[i + 1]
-        Fl = self.Fl
-        if force >= self.Fmax:  # beyond the table: constant coefficient
-            return ((1.0 - a) * ti[-1] + a * tj[-1]) * force / self.Fmax
-        lo = bisect.bisect_right(Fl, force) - 1
-        hi = lo + 1
-        b = (force - Fl[lo]) / (Fl[hi] - Fl[lo])
-        return (1.0 - a) * ((1.0 - b) * ti[lo] + b * ti[hi]) + a * ((1.0 - b) * tj[lo] + b * tj[hi])
+        return table_friction(theta, force, self.th, self.tab, self.F)
 
 
-def contact_film_root(film, t, dk, ue, R, C, g, ikc) -> tuple[float, float, float]:
+@njit(cache=True, nogil=True)
+def table_friction(theta, force, th, tab, fl):
+    """Bilinear F_f(θ, F) [N] of a :class:`_FrictionTable` (angles ``th``, forces ``fl``,
+    values ``tab``; 0 for F ≤ 0, constant coefficient beyond the largest force)."""
+    if force <= 0.0:
+        return 0.0
+    u = (theta - th[0]) % (2.0 * math.pi) + th[0]
+    i = np.searchsorted(th, u, side="right") - 1
+    i = min(max(i, 0), th.size - 2)
+    a = (u - th[i]) / (th[i + 1] - th[i])
+    nf = fl.size
+    if force >= fl[nf - 1]:
+        return ((1.0 - a) * tab[i, nf - 1] + a * tab[i + 1, nf - 1]) * force / fl[nf - 1]
+    lo = np.searchsorted(fl, force, side="right") - 1
+    hi = lo + 1
+    b = (force - fl[lo]) / (fl[hi] - fl[lo])
+    return (1.0 - a) * ((1.0 - b) * tab[i, lo] + b * tab[i, hi]) + a * (
+        (1.0 - b) * tab[i + 1, lo] + b * tab[i + 1, hi]
+    )
+
+
+def _series_film(t: float, force: float, where: tuple) -> tuple[float, float]:
+    """(h [m], dh/dP [m/N]) of the film in series at time t [s] and force P [N]:
+    ``where`` = (model, u_e, R), the film law of a :class:`CamContactModel`."""
+    model, ue, R = where
+    return model.film(t, force, ue, R)
+
+
+def contact_film_root(where, t, dk, C, g, ikc, has_film) -> tuple:
     """Solve the cam contact in series with the film for P = z^g [N]:
-    φ(z) = C z + P/k_cam − h(t, P) − δ_kin = 0, with ``film(t, P, ue, R) -> (h, dh/dP)``,
-    C the contact compliance coefficient, g the contact exponent and ``ikc`` = 1/k_cam.
+    φ(z) = C z + P/k_cam − h(t, P) − δ_kin = 0, with (h, dh/dP) from
+    ``_series_film(t, P, where)`` (the compiled kernels substitute their film table's),
+    C the contact compliance coefficient, g the contact exponent and ``ikc`` = 1/k_cam;
+    without a film (``has_film`` False) and with a rigid camshaft P = (δ_kin/C)^g in
+    closed form.
     Safeguarded Newton from the upper bracket (monotone for convex φ) with bisection;
-    returns (P [N], dP/dδ_kin [N/m], h [m]). Shared by the lumped and flexible models."""
-    h0, _ = film(t, 0.0, ue, R)
+    returns (P [N], dP/dδ_kin [N/m], h [m], converged), (0, 0, h(t, 0), False) when 80
+    steps do not converge. Shared by the lumped and flexible models and compiled (numba)
+    by the lumped model's kernels."""
+    if not has_film and ikc == 0.0:
+        if dk <= 0.0:
+            return 0.0, 0.0, 0.0, True
+        z = dk / C
+        return z**g, g * z ** (g - 1.0) / C, 0.0, True
+    h0, _ = _series_film(t, 0.0, where)
     if dk + h0 <= 0.0:
-        return 0.0, 0.0, h0
+        return 0.0, 0.0, h0, True
     lo, hi = 0.0, (dk + h0) / C  # bracket in z (see module docstring)
     z = hi
     # φ is a difference of terms of size |δ_kin| and |h|: its round-off scales with them,
@@ -172,7 +217,7 @@ def contact_film_root(film, t, dk, ue, R, C, g, ikc) -> tuple[float, float, floa
     tol = 1e-13 * max(dk + h0, abs(dk), abs(h0), 1e-9)
     for _ in range(80):
         P = z**g
-        h, hF = film(t, P, ue, R)
+        h, hF = _series_film(t, P, where)
         phi = C * z + P * ikc - h - dk
         if phi > 0.0:
             hi = z
@@ -181,18 +226,15 @@ def contact_film_root(film, t, dk, ue, R, C, g, ikc) -> tuple[float, float, floa
         dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
         dphi = C + dPdz * (ikc - hF)
         if abs(phi) <= tol:
-            return P, dPdz / dphi, h
+            return P, dPdz / dphi, h, True
         zn = z - phi / dphi
         z = zn if lo < zn < hi else 0.5 * (lo + hi)
         if hi - lo <= 1e-14 * hi:  # bracket collapsed onto the root
             P = z**g
-            h, hF = film(t, P, ue, R)
+            h, hF = _series_film(t, P, where)
             dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
-            return P, dPdz / (C + dPdz * (ikc - hF)), h
-    raise ContactLawError(
-        f"contact/film law did not converge at t = {t:.6g} s "
-        f"(δ_kin = {dk:.4g} m, h(0) = {h0:.4g} m)"
-    )
+            return P, dPdz / (C + dPdz * (ikc - hF)), h, True
+    return 0.0, 0.0, h0, False
 
 
 def check_model_inputs(cam, params, params_type, cam_speed, tribology, start_angle) -> None:
@@ -297,6 +339,39 @@ def _film_free_rate(K: float, m: float, xt: float) -> float:
     return x
 
 
+def damped_contact(P, dPdk, dkd, c, ramp, film_state, laws) -> tuple:
+    """The damped contact force from the elastic force P [N] (dP/dδ_kin [N/m]), δ̇_kin
+    [m/s], the damping c [N s/m] and its ramp [N] (:func:`smooth_step` g):
+    F_c = max(0, P + c g(P) δ̇_kin); with the film as a state (``film_state``; ``laws`` =
+    (a, ∂a/∂h, 1/D, ∂(1/D)/∂h, x_t, ∂x_t/∂h) of the film, else unused) one force through
+    the film and the contact's spring and damper, F_c = P + c g (δ̇_kin + ḣ),
+    ḣ = H(a − F_c/D) (:func:`_film_free_rate`, H = ``limited_growth``; an open contact's
+    film grows at H(a)). Returns (g, dg/dP, F_c, ḣ, ∂ḣ/∂h, ∂ḣ/∂F_c, k_c, c_c, k_h) with
+    k_c = ∂F_c/∂δ_kin, c_c = ∂F_c/∂δ̇_kin, k_h = ∂F_c/∂h (the forces and slopes 0 where the
+    contact is open). Compiled (numba) by the lumped model's kernels too."""
+    gc, dgc = smooth_step(P, ramp)
+    if not film_state:
+        Fc = P + c * gc * dkd
+        if Fc <= 0.0:
+            return gc, dgc, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        return gc, dgc, Fc, 0.0, 0.0, 0.0, dPdk * (1.0 + c * dgc * dkd), c * gc, 0.0
+    a, a_h, inv_d, inv_d_h, xt, xt_h = laws
+    x = _film_free_rate(a - inv_d * (P + c * gc * dkd), c * gc * inv_d, xt)
+    hd, hd_x, hd_xt = limited_growth(x, xt)
+    Fc = P + c * gc * (dkd + hd)
+    on_c = Fc > 0.0
+    if not on_c:  # the contact is open: the film's free rate is a
+        Fc = 0.0
+        hd, hd_x, hd_xt = limited_growth(a, xt)
+    hd_F = -hd_x * inv_d  # ∂ḣ/∂F_c and ∂ḣ/∂h at fixed F_c
+    hd_h = hd_x * (a_h - inv_d_h * Fc) + hd_xt * xt_h
+    if not on_c:
+        return gc, dgc, 0.0, hd, hd_h, hd_F, 0.0, 0.0, 0.0
+    den = 1.0 - c * gc * hd_F
+    kc = dPdk * (1.0 + c * dgc * (dkd + hd)) / den
+    return gc, dgc, Fc, hd, hd_h, hd_F, kc, c * gc / den, kc + c * gc * hd_h / den
+
+
 class CamContactModel:
     """What the lumped and flexible valvetrain models share: the contact law (``gamma``,
     compliance ``contact_C``, camshaft compliance ``contact_ikc``), the film in series,
@@ -375,15 +450,23 @@ class CamContactModel:
     def elastic_contact(
         self, t: float, dk: float, ue: float = 0.0, R: float = 1.0
     ) -> tuple[float, float, float]:
-        """Elastic contact force P [N], dP/dδ_kin [N/m] and film h [m] at interference dk."""
-        C, g, ikc = self.contact_C, self.gamma, self.contact_ikc
-        if not self.has_film and ikc == 0.0:
-            if dk <= 0.0:
-                return 0.0, 0.0, 0.0
-            z = dk / C
-            P = z**g
-            return P, g * z ** (g - 1.0) / C, 0.0
-        return contact_film_root(self.film, t, dk, ue, R, C, g, ikc)
+        """Elastic contact force P [N], dP/dδ_kin [N/m] and film h [m] at interference dk
+        (:func:`contact_film_root`)."""
+        P, dPdk, h, ok = contact_film_root(
+            (self, ue, R),
+            t,
+            dk,
+            self.contact_C,
+            self.gamma,
+            self.contact_ikc,
+            self.has_film,
+        )
+        if not ok:
+            raise ContactLawError(
+                f"contact/film law did not converge at t = {t:.6g} s "
+                f"(δ_kin = {dk:.4g} m, h(0) = {h:.4g} m)"
+            )
+        return P, dPdk, h
 
     def contact_potential(self, P):
         """Elastic energy stored in the contact at force P [J] (Palmgren/linear + camshaft;
@@ -439,41 +522,21 @@ class CamContactModel:
         us = wl * (rb + s)
         dk = s - x
         dkd = wl * s1 - v
-        c = p.contact_damping
         if self.film_state:
-            # the film in series with the contact's spring and damper: one force F_c
-            # through both, F_c = P(δ_el) + c g(P) δ̇_el with δ̇_el = δ̇_kin + ḣ and
-            # ḣ = H(a(h) − F_c/D(h)) (a = L w'_ent/D; H limits the film's growth to its
-            # transport rate x_t, ``limited_growth``)
+            # the film in series with the contact's spring and damper (damped_contact)
             P, dPdk, _ = self.elastic_contact(t, dk + hf, ue, R)
             hfilm = hf
-            gc, dgc = smooth_step(P, p.damping_force_ramp)
             trib = self.trib
             a, a_h, m_inv = trib.film_rate(t, hf, 0.0, ue, R)  # type: ignore[attr-defined]
-            inv_d = -m_inv
-            inv_d_h = trib.squeeze_compliance_slope(hf, ue, R)  # type: ignore[attr-defined]
-            xt, xt_h = trib.growth_limit(hf, ue, R)  # type: ignore[attr-defined]
-            x = _film_free_rate(a - inv_d * (P + c * gc * dkd), c * gc * inv_d, xt)
-            hd, hd_x, hd_xt = limited_growth(x, xt)
-            Fc = P + c * gc * (dkd + hd)
+            slope = trib.squeeze_compliance_slope(hf, ue, R)  # type: ignore[attr-defined]
+            limit = trib.growth_limit(hf, ue, R)  # type: ignore[attr-defined]
+            laws: tuple = (a, a_h, -m_inv, slope, *limit)
         else:
             P, dPdk, hfilm = self.elastic_contact(t, dk, ue, R)
-            gc, dgc = smooth_step(P, p.damping_force_ramp)
-            Fc = P + c * gc * dkd
-            kc, cc, kh = dPdk * (1.0 + c * dgc * dkd), c * gc, 0.0
-        on_c = Fc > 0.0
-        if self.film_state:
-            if not on_c:  # the contact is open: the film's free rate is a
-                Fc = 0.0
-                hd, hd_x, hd_xt = limited_growth(a, xt)
-            hd_F = -hd_x * inv_d  # ∂ḣ/∂F_c and ∂ḣ/∂h at fixed F_c
-            hd_h = hd_x * (a_h - inv_d_h * Fc) + hd_xt * xt_h
-            den = 1.0 - c * gc * hd_F
-            kc = dPdk * (1.0 + c * dgc * (dkd + hd)) / den
-            cc = c * gc / den
-            kh = kc + c * gc * hd_h / den
-        if not on_c:
-            Fc = kc = cc = kh = 0.0
+            laws = (0.0,) * 6
+        gc, dgc, Fc, hd, hd_h, hd_F, kc, cc, kh = damped_contact(
+            P, dPdk, dkd, p.contact_damping, p.damping_force_ramp, self.film_state, laws
+        )
         if Fc > 0.0:
             Ff = (
                 self.friction_fn(th, Fc)
@@ -484,14 +547,9 @@ class CamContactModel:
             Ff = 0.0
         th_v = math.tanh(v / p.bore_friction_velocity)
         Fb = p.bore_friction_coefficient * Ff * th_v
-        if self.film_state:
-            return CamContact(
-                th, s, s1, s2, R, ue, us, dk, dkd, P, dPdk, hfilm, gc, dgc, Fc, on_c, Ff,
-                th_v, Fb, hdot=hd, dhdot_dh=hd_h, dhdot_dF=hd_F, kc=kc, cc=cc, kh=kh,
-            )  # fmt: skip
         return CamContact(
-            th, s, s1, s2, R, ue, us, dk, dkd, P, dPdk, hfilm, gc, dgc, Fc, on_c, Ff, th_v, Fb,
-            kc=kc, cc=cc, kh=kh,
+            th, s, s1, s2, R, ue, us, dk, dkd, P, dPdk, hfilm, gc, dgc, Fc, Fc > 0.0, Ff,
+            th_v, Fb, hdot=hd, dhdot_dh=hd_h, dhdot_dF=hd_F, kc=kc, cc=cc, kh=kh,
         )  # fmt: skip
 
     def evaluate(self, t: float, y, jac: bool = False) -> dict:

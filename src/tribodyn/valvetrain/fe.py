@@ -191,14 +191,12 @@ def craig_bampton(
     cutoff: float | None = None,
     damping_ratio: float = 0.0,
     name: str = "body",
-    extra_damping: np.ndarray | None = None,
 ) -> ReducedBody:
     """Craig–Bampton reduction of (M, K) keeping the DOFs ``boundary`` (in that order).
 
     modes : number of fixed-interface modes kept; or ``cutoff`` [Hz]: all modes up to it
         (default: all modes when neither is given).
     damping_ratio : modal ζ of the kept modes (and β = 2ζ/ω₁ on the constraint block).
-    extra_damping : optional full damping matrix, reduced with T and added.
     """
     M = np.asarray(M, float)
     K = np.asarray(K, float)
@@ -247,8 +245,6 @@ def craig_bampton(
             Cr[:nb, :nb] = (2.0 * zeta / w1) * Kr[:nb, :nb]
         wk = 2.0 * np.pi * f_all[:kk]
         Cr[nb:, nb:] = np.diag(2.0 * zeta * wk)
-    if extra_damping is not None:
-        Cr += T.T @ np.asarray(extra_damping, float) @ T
     return ReducedBody(
         name=name,
         boundary=b,

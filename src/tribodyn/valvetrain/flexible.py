@@ -271,15 +271,6 @@ class FlexibleValvetrain:
     def replace(self, **changes) -> FlexibleValvetrain:
         return replace(self, **changes)
 
-    def with_modes(self, k: int | None) -> FlexibleValvetrain:
-        """The same valvetrain with k fixed-interface modes in every FE body (None: all)."""
-        return replace(
-            self,
-            valve=replace(self.valve, modes=k, cutoff=None),
-            tappet=replace(self.tappet, modes=k, cutoff=None),
-            spring=replace(self.spring, modes=k, cutoff=None),
-        )
-
     # -- reduced bodies -------------------------------------------------------------------
     def max_spring_force(self, max_lift: float) -> float:
         """Static spring force at the largest valve lift [N]."""

@@ -35,7 +35,7 @@ import math
 import numpy as np
 
 from .cams import CamProfile
-from .contact_law import _PALMGREN_EXP, CamContactModel, joint_force, smooth_step
+from .contact_law import _PALMGREN_EXP, CamContactModel, joint_force, joint_slopes, smooth_step
 from .flexible import FlexibleValvetrain
 from .tribology import TribologyModel
 
@@ -220,7 +220,7 @@ class FlexibleValvetrainModel(CamContactModel):
                     gv[a] = 1.0
                 if b is not None:
                     gv[b] = gv.get(b, 0.0) - 1.0
-                elems.append((gv, (k * (1.0 + c * dg * dd) if d > 0.0 else 0.0), c * gg))
+                elems.append((gv, *joint_slopes(k, c, d, dd, F, gg, dg)))
             return F
 
         i_u, i_t, i_s, i_g = self.i_under, self.i_tip, self.i_seat, self.i_groove

@@ -41,23 +41,15 @@ from .cams import CamProfile
 from .contact_law import (
     CamContactModel,
     ContactLawError,
-    check_model_inputs,
-    contact_film_root,
+    coil_segment,
     joint_force,
-    smooth_step,
+    joint_slopes,
     stamp_element,
 )
 from .parameters import ValvetrainParameters
 from .tribology import TribologyModel
 
-__all__ = [
-    "ValvetrainModel",
-    "lumped_energies",
-    "ContactLawError",
-    "smooth_step",
-    "check_model_inputs",
-]
-__all__ += ["contact_film_root"]  # re-exported from .contact_law
+__all__ = ["ValvetrainModel", "lumped_energies", "ContactLawError"]
 
 
 class ValvetrainModel(CamContactModel):
@@ -127,16 +119,6 @@ class ValvetrainModel(CamContactModel):
 
     PARAMS = ValvetrainParameters
 
-    @property
-    def C(self) -> float:
-        """Contact compliance coefficient C [m/N^(1/γ)] (δ_el = C P^(1/γ))."""
-        return self.contact_C
-
-    @property
-    def inv_kcam(self) -> float:
-        """Camshaft bending compliance 1/k_cam [m/N] (0: rigid)."""
-        return self.contact_ikc
-
     def lobe_angle(self, t: float, y) -> float:
         """Cam angle at the contact [rad]: θ₀ + ωt (rigid camshaft)."""
         return self.theta0 + self.w * t
@@ -171,24 +153,14 @@ class ValvetrainModel(CamContactModel):
         F0 = p.spring_preload
         ks, cs = self.kseg_l, self.cseg_l
         Fseg = [0.0] * (N + 1)
-        Fel = [0.0] * (N + 1)
-        Dd = [0.0] * (N + 1)
         D = [0.0] * (N + 1)
         diss = 0.0
         for j in range(N + 1):
             d = xs[j] - xs[j + 1]
             dd = vs[j] - vs[j + 1]
-            fe = F0 + ks[j] * d
-            f = fe + cs[j] * dd
-            if j == 0 or j == N:  # compression-only end seatings
-                if fe < 0.0:
-                    fe = 0.0
-                if f < 0.0:
-                    f = 0.0
-                diss += (f - fe) * dd
-            else:
-                diss += cs[j] * dd * dd
-            D[j], Dd[j], Fel[j], Fseg[j] = d, dd, fe, f
+            Fseg[j], dj = coil_segment(j == 0 or j == N, F0, ks[j], cs[j], d, dd)
+            diss += dj
+            D[j] = d
         im = self.inv_mass_l
         acc = [0.0] * n
         acc[0] = (Fc - Ftv - Fb) * im[0]
@@ -220,18 +192,8 @@ class ValvetrainModel(CamContactModel):
                 * (1.0 - c.th_v * c.th_v)
                 / p.bore_friction_velocity
             )
-            ktv = (
-                p.tappet_valve_stiffness * (1.0 + p.tappet_valve_damping * dgtv * dtvd)
-                if (Ftv > 0.0 and dtv > 0.0)
-                else 0.0
-            )
-            ctv = p.tappet_valve_damping * gtv if Ftv > 0.0 else 0.0
-            kst = (
-                p.seat_stiffness * (1.0 - p.seat_damping * dgs * vv)
-                if (Fs > 0.0 and ds > 0.0)
-                else 0.0
-            )
-            cst = p.seat_damping * gs if Fs > 0.0 else 0.0
+            ktv, ctv = joint_slopes(kv, cv, dtv, dtvd, Ftv, gtv, dgtv)
+            kst, cst = joint_slopes(p.seat_stiffness, p.seat_damping, ds, -vv, Fs, gs, dgs)
             kseg, cseg = list(ks), list(cs)
             for j in {0, N}:
                 if Fseg[j] <= 0.0:
@@ -278,15 +240,6 @@ class ValvetrainModel(CamContactModel):
         f = self.evaluate(t, y) if evaluated is None else evaluated
         T, U = lumped_energies(self, np.asarray(y, dtype=float)[:, None], f["P"])
         return float(T[0]), float(U[0])
-
-    def surge_matrices(self) -> tuple[np.ndarray, np.ndarray]:
-        """(M, K) of the coil masses with the valve held fixed (fixed–fixed spring)."""
-        N = self.N
-        if N == 0:
-            return np.zeros((0, 0)), np.zeros((0, 0))
-        k = self.kseg  # segment j joins coils j − 1 and j (−1 and N: the fixed ends)
-        K = np.diag(k[:-1] + k[1:]) - np.diag(k[1:-1], 1) - np.diag(k[1:-1], -1)
-        return np.eye(N) * self.m_node, K
 
 
 def lumped_energies(model, Y, P) -> tuple[np.ndarray, np.ndarray]:

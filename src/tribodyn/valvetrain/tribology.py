@@ -28,20 +28,20 @@ dynamics (entraining film + squeeze film, in series with the contact; see
 
 from __future__ import annotations
 
-import bisect
 import math
 from abc import ABC, abstractmethod
 from types import MappingProxyType
 
 import numpy as np
+from numba import njit
 
 from .._typing import ArrayLike
 from .._validation import InputError, check_array, check_positive
+from ..physics import film_state_laws as laws
 from ..physics import limits as L
 from ..physics import typical, typical_engine
 from ..physics.analytic_contact import analytic_contact
 from ..physics.asperity import Roughness
-from ..physics.film_state_laws import FILM_FLOOR as _FILM_FLOOR
 from ..physics.film_state_laws import SUPPLY_FILM, entraining_film_load
 from ..physics.lubricant import TYPICAL_OIL, Lubricant
 from ..physics.materials import STEEL, Body, BodyPair
@@ -249,17 +249,27 @@ def _table_column(name: str, values: ArrayLike | None, n: int, default: float) -
     return np.broadcast_to(check_array(name, np.atleast_1d(values), min_size=1), (n,)).astype(float)
 
 
-def _bracket(tl: list, period: float | None, t: float) -> tuple[int, int, float]:
-    """(i, j, a): linear interpolation in the table of times ``tl`` [s] at t, y(t) =
-    y_i + a (y_j − y_i); the end samples outside the table; with ``period`` t is first
-    mapped to tl[0] + (t − tl[0]) mod period."""
-    if period is not None:
-        t = tl[0] + (t - tl[0]) % period
-    k = bisect.bisect_right(tl, t) - 1
-    if k < 0 or k == len(tl) - 1:
-        k = max(k, 0)
-        return k, k, 0.0
-    return k, k + 1, (t - tl[k]) / (tl[k + 1] - tl[k])
+@njit(cache=True, nogil=True)
+def table_film(t, force, ft, fh, fc, ff, period):
+    """(h, dh/dF) = (h_k + c_k (F − F_k), c_k) of a film table at one time t [s] and force
+    F [N]: the columns h_k, c_k, F_k (``fh``, ``fc``, ``ff``) linear between the sample
+    times ``ft`` (strictly increasing), the end samples outside them; with ``period``
+    > 0 t is first mapped to ft[0] + (t − ft[0]) mod period."""
+    n = ft.size
+    if period > 0.0:
+        t = ft[0] + (t - ft[0]) % period
+    k = np.searchsorted(ft, t, side="right") - 1
+    if k < 0:
+        i, a = 0, 0.0
+    elif k >= n - 1:
+        i, a = n - 1, 0.0
+    else:
+        i, a = k, (t - ft[k]) / (ft[k + 1] - ft[k])
+    j = min(i + 1, n - 1)
+    hk = fh[i] + a * (fh[j] - fh[i])
+    ck = fc[i] + a * (fc[j] - fc[i])
+    fk = ff[i] + a * (ff[j] - ff[i])
+    return hk + ck * (force - fk), ck
 
 
 def _checked_friction_model(friction_model: TribologyModel) -> TribologyModel:
@@ -319,12 +329,6 @@ class FilmTableTribology(TribologyModel):
         self.Fk = _table_column("reference_force", reference_force, t.size, 0.0)
         self.period = None if period is None else check_positive("period", period, "s")
         self._t0 = float(t[0])
-        self._tl, self._hl, self._cl, self._fl = (
-            t.tolist(),
-            self.h.tolist(),
-            self.c.tolist(),
-            self.Fk.tolist(),
-        )
 
     def _wrap(self, t):
         if self.period is None:
@@ -334,18 +338,11 @@ class FilmTableTribology(TribologyModel):
     def friction(self, t, force, entrainment_speed, sliding_speed, radius):
         return self.friction_model.friction(t, force, entrainment_speed, sliding_speed, radius)
 
-    def _scalar_film(self, t: float, force: float) -> tuple[float, float]:
-        i, j, a = _bracket(self._tl, self.period, t)
-        hk = self._hl[i] + a * (self._hl[j] - self._hl[i])
-        ck = self._cl[i] + a * (self._cl[j] - self._cl[i])
-        fk = self._fl[i] + a * (self._fl[j] - self._fl[i])
-        return hk + ck * (force - fk), ck
-
     def film(self, t, force, entrainment_speed, radius):
-        if type(t) is float and type(force) is float:  # the dynamics' hot path
-            return self._scalar_film(t, force)
-        if np.ndim(t) == 0 and np.ndim(force) == 0:
-            return self._scalar_film(float(t), float(force))
+        # one instant (the dynamics' hot path: floats, tested first)
+        if (type(t) is float and type(force) is float) or np.ndim(t) == np.ndim(force) == 0:
+            columns = (self.time, self.h, self.c, self.Fk, self.period or 0.0)
+            return table_film(float(t), float(force), *columns)
         tt = self._wrap(t)
         if self.time.size == 1:
             hk, ck, fk = self.h[0], self.c[0], self.Fk[0]
@@ -443,7 +440,7 @@ class FilmStateTribology(TribologyModel):
             raise InputError("correction must be > 0 (a factor on the flooded film)")
         self.time, self.correction = t, r
         self.period = None if period is None else check_positive("period", period, "s")
-        self._tl, self._rl = t.tolist(), r.tolist()
+        self._zero = np.zeros(t.size)
         self._eta = float(lubricant.viscosity)
         self._alpha = float(lubricant.pressure_viscosity)
         self._sq = 3.0 * np.sqrt(2.0) * np.pi * self._eta * self.width
@@ -456,53 +453,26 @@ class FilmStateTribology(TribologyModel):
 
     def correction_at(self, t: float) -> float:
         """r(t), linear between the table's samples (periodic with ``period``)."""
-        i, j, a = _bracket(self._tl, self.period, t)
-        return self._rl[i] + a * (self._rl[j] - self._rl[i])
+        zero, period = self._zero, self.period or 0.0
+        return table_film(t, 0.0, self.time, self.correction, zero, zero, period)[0]
 
     def film_rate(self, t: float, h: float, force: float, ue: float, R: float):
-        """(ḣ [m/s], ∂ḣ/∂h [1/s], ∂ḣ/∂F_c [m/(N s)]) of the film h [m] carrying F_c [N]."""
-        r = self.correction_at(t)
-        R = max(R, 1e-9)  # a flat face's radius is positive; guard the powers below
-        w, dw = entraining_film_load(
-            h, ue, R, self._eta, self._alpha, self.e_prime, self.supply_film, r
-        )
-        hh = max(h, _FILM_FLOOR)
-        inv_d = hh**1.5 / (self._sq * R**1.5)
-        rate = (self.width * w - force) * inv_d
-        return rate, self.width * dw * inv_d + 1.5 * rate / hh, -inv_d
+        """(ḣ [m/s], ∂ḣ/∂h [1/s], ∂ḣ/∂F_c [m/(N s)]) of the film h [m] carrying F_c [N]
+        (:func:`~tribodyn.physics.film_state_laws.film_rate`, r = r(t))."""
+        args = (self._eta, self._alpha, self.e_prime, self.supply_film)
+        return laws.film_rate(h, force, ue, R, *args, self.correction_at(t), self.width, self._sq)
 
     def squeeze_compliance_slope(self, h: float, ue: float, R: float) -> float:
-        """∂(1/D)/∂h [1/(N s)] of the squeeze film's 1/D = h^(3/2)/(3√2π η₀ R^(3/2) L)
-        at h [m] (the mixed derivative −∂²ḣ/∂h∂F_c of :meth:`film_rate`): 1.5/(D h), with
-        h held at the floor below it as there."""
-        hh = max(h, _FILM_FLOOR)
-        return 1.5 * hh**0.5 / (self._sq * max(R, 1e-9) ** 1.5)
+        """∂(1/D)/∂h [1/(N s)] of the squeeze film at h [m] (the mixed derivative
+        −∂²ḣ/∂h∂F_c of :meth:`film_rate`; :func:`~tribodyn.physics.film_state_laws.
+        squeeze_compliance_slope`)."""
+        return laws.squeeze_compliance_slope(h, R, self._sq)
 
     def growth_limit(self, h: float, ue: float, R: float) -> tuple[float, float]:
-        """(x_t [m/s], ∂x_t/∂h [1/s]): the fastest the film can thicken. A thicker film
-        needs oil from the supply layer h_s, carried at u_e from the inlet meniscus, where
-        the gap h + x²/2R opens to h_s, x_m = √(2R(h_s − h)), to the contact; over that
-        transit x_m/|u_e| the film can grow by at most h_s − h:
-
-            x_t = |u_e| (h_s − h)/x_m = |u_e| √((h_s − h)/(2R))
-
-        (0 for h ≥ h_s or u_e = 0; infinite with ``growth_limited`` False). The film's
-        free rate (entraining load against the squeeze film) exceeds it only where u_e
-        or R step (a ramp-less cam's step of acceleration: 413 m/s against 0.16 m/s at
-        6000 rpm, 9 mm / 140° cam); elsewhere it is far slower (an unloaded
-        rigid-isoviscous film recovers at c√h (1 − h/h_s) ≤ 0.26 x_t, where the smooth
-        minimum slows it by at most 0.11 %; a piezoviscous film near u_e = 0 reaches
-        0.45 x_t in the paper case, slowed by at most 1 %, 0.5 N of force). x_m is far
-        longer than the Hertz width, so x_t errs on the slow side; it scales with
-        √(h_s − h), with the assumed supply."""
-        if not self.growth_limited:
-            return math.inf, 0.0
-        gap = self.supply_film - h
-        if gap <= 0.0 or ue == 0.0:
-            return 0.0, 0.0
-        R = max(R, 1e-9)
-        xt = abs(ue) * math.sqrt(gap / (2.0 * R))
-        return xt, -0.5 * xt / max(gap, 1e-6 * self.supply_film)
+        """(x_t [m/s], ∂x_t/∂h [1/s]): the fastest the film can thicken
+        (:func:`~tribodyn.physics.film_state_laws.growth_limit`; infinite with
+        ``growth_limited`` False)."""
+        return laws.growth_limit(h, ue, R, self.supply_film, self.growth_limited)
 
     def steady_film(self, t, force, entrainment_speed, radius, correction=None):
         """Film h [m] whose entraining load equals ``force`` [N] (no squeeze), by
