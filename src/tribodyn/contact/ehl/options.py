@@ -217,6 +217,13 @@ class Conditions:
     entrainment_speed: float
     sliding_speed: float
 
+    @property
+    def surface_speeds(self) -> tuple[float, float]:
+        """(u₁, u₂) [m/s] of surface 1 (the cam), u₁ = u_e + u_s/2, and surface 2 (the
+        tappet), u₂ = u₁ − u_s."""
+        u1 = self.entrainment_speed + 0.5 * self.sliding_speed
+        return u1, u1 - self.sliding_speed
+
     @classmethod
     def checked(cls, load, radius, entrainment_speed, sliding_speed) -> Conditions:
         """Validated conditions: load, radius and speeds inside

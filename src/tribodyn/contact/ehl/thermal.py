@@ -183,8 +183,7 @@ def solve_thermal_ehl(
     )
     ev = sysm.evaluate(st.Q, st.H0)
     st.P, st.H = ev.P, ev.H
-    u1 = cond.entrainment_speed + 0.5 * cond.sliding_speed
-    tf = ThermalField(grid.x, oil, tb, topts, (u1, u1 - cond.sliding_speed))
+    tf = ThermalField(grid.x, oil, tb, topts, cond.surface_speeds)
     out, ok, msg, it = None, False, "", 0
     hc_prev = iso.central_film
     relax = topts.relaxation

@@ -205,8 +205,7 @@ class ThermalField:
         Tm = T @ self.w
         P = pt[:, None]
         eta, rho = oil.viscosity_at(P, T), oil.density_at(P, T)
-        u1 = cond.entrainment_speed + 0.5 * cond.sliding_speed
-        u2 = cond.entrainment_speed - 0.5 * cond.sliding_speed
+        u1, u2 = cond.surface_speeds
         ff = film_flow(
             np.maximum(ht, 1e-10),
             px,

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from contextlib import contextmanager
-from dataclasses import dataclass, replace
+from dataclasses import astuple, dataclass, replace
 
 import numpy as np
 
@@ -340,7 +340,7 @@ class TransientEHL:
         res = self._advance(dt, cond)
         if res.converged or self.max_substeps == 0:
             return res
-        self._restore(saved)
+        self._set_state(saved)
         return self._substep(dt, c0, cond, marks, depth=1)  # the full step failed
 
     @contextmanager
@@ -371,15 +371,7 @@ class TransientEHL:
         1/2^depth of the way to the first mark."""
 
         def at(f):
-            return Conditions(
-                *(
-                    a + f * (b - a)
-                    for a, b in zip(
-                        (c0.load, c0.radius, c0.entrainment_speed, c0.sliding_speed),
-                        (c1.load, c1.radius, c1.entrainment_speed, c1.sliding_speed),
-                    )
-                )
-            )
+            return Conditions(*(a + f * (b - a) for a, b in zip(astuple(c0), astuple(c1))))
 
         k = self.max_substeps
         done, failures, n_ok = 0.0, 0, 0
@@ -451,9 +443,6 @@ class TransientEHL:
         )
         return self._state()
 
-    def _restore(self, snap):
-        self._set_state(snap)
-
     def checkpoint(self):
         """An opaque copy of the marching state (for :meth:`rollback`), e.g. to redo a step
         with sub-steps when a time-error estimate is too large."""
@@ -461,7 +450,7 @@ class TransientEHL:
 
     def rollback(self, checkpoint):
         """Return to a state saved by :meth:`checkpoint`."""
-        self._restore(checkpoint)
+        self._set_state(checkpoint)
 
     def _advance(self, dt, cond: Conditions) -> EHLResult:
         """One implicit time level: grid, BDF coefficients, predictor, then the
