@@ -43,7 +43,6 @@ __all__ = [
     "NO_CURVE",
     "coupling_bands",
     "newton_matvec",
-    "dense_matrix",
     "dense_matrix_t",
     "jacobi_diagonal",
     "givens_step",
@@ -270,39 +269,11 @@ def newton_matvec(AP, B, col, c, free, cav, D, v, vh, dh, dX, out):
 
 
 @njit(**_OPTS)
-def dense_matrix(AP, B, col, c, free, cav, D, K, kscale, dX, elastic):
-    """Dense (n+1)² Newton matrix with the scaled influence matrix kscale·K: free rows
-    c_i[A_P + B K | B·1], cavitated rows [e_i − D_i K_i | −D_i], boundary rows e_i, load
-    row [ΔX … | 0]."""
-    n = D.size
-    J = np.zeros((n + 1, n + 1))
-    for i in range(n):
-        if free[i]:
-            ci = c[i]
-            for k in range(5):
-                j = i + k - 2
-                if 0 <= j < n:
-                    b = B[k, i] * ci * kscale
-                    if elastic and b != 0.0:
-                        J[i, :n] += b * K[j, :]
-                    J[i, j] += ci * AP[k, i]
-            J[i, n] = ci * col[i]
-        elif cav[i]:
-            di = D[i]
-            if elastic and di != 0.0:
-                J[i, :n] = -di * kscale * K[i, :]
-            J[i, i] += 1.0
-            J[i, n] = -di
-        else:
-            J[i, i] = 1.0
-    J[n, :n] = dX
-    return J
-
-
-@njit(**_OPTS)
 def dense_matrix_t(AP, B, col, c, free, cav, D, K, kscale, dX, elastic, flush, out):
-    """The dense Newton matrix of :func:`dense_matrix` transposed, written into ``out``
-    ((n+1)², C order, float32 or float64): ``out.T`` is J in column-major order, as
+    """The dense (n+1)² Newton matrix J with the scaled influence matrix kscale·K (free
+    rows c_i[A_P + B K | B·1], cavitated rows [e_i − D_i K_i | −D_i], boundary rows e_i,
+    load row [ΔX … | 0]) transposed, written into ``out`` ((n+1)², C order, float32 or
+    float64): ``out.T`` is J in column-major order, as
     LAPACK's getrf takes it, without a copy. Column k of J's elastic part is
     Σ_d w_d,i K_k,i+d over the rows i (K symmetric: K_i+d,k = K_k,i+d) with the row
     weights w = c_i kscale B (free rows) or −D_i kscale (d = 0, cavitated rows), a
@@ -744,9 +715,8 @@ def gmres_lu(getrs, symv, system, fac, piv1, b, rtol, max_it):
 def compile_fallbacks() -> None:
     """Compile (into numba's cache) the kernel variants that a cycle study reaches only
     on fallbacks, on a small system with the argument types of the solvers' calls: the
-    double-precision factorisation (:func:`dense_matrix_t` into float64, GMRES with
-    float64 factors) and the dense matrix of the two-grid coarse level
-    (:func:`dense_matrix`)."""
+    double-precision factorisation (:func:`dense_matrix_t` into float64, as the two-grid
+    coarse level also builds it, GMRES with float64 factors)."""
     from scipy import linalg
 
     n = 8
@@ -759,7 +729,6 @@ def compile_fallbacks() -> None:
     free[0] = free[-1] = False
     K = np.eye(n)
     rows = (AP, B, col, c, free, cav, D)
-    dense_matrix(*rows, K, 1.0, 0.1, True)
     J = dense_matrix_t(*rows, K, 1.0, 0.1, True, 0.0, np.empty((n + 1, n + 1))).T
     fac, piv = linalg.lu_factor(J, overwrite_a=True, check_finite=False)
     system = (*rows, K, 1.0, True, 0.1)

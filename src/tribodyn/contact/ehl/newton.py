@@ -248,7 +248,7 @@ class CoarseLevel:
         ev = sysm.evaluate(st.Q, st.H0)
         c = jacobi_scale(sysm, ev)
         self.lin = Linearization(sysm, c, cavitated(ev, c), ev)
-        self.lu = linalg.lu_factor(self.lin.dense(), check_finite=False)
+        self.lu = linalg.lu_factor(self.lin.dense_column_major(), check_finite=False)
         self.X = sysm.g.X
         self._transfer: dict = {}
 

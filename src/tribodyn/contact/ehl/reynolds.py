@@ -36,7 +36,6 @@ from .kernels import (
     SGETRS,
     SYMV,
     assemble,
-    dense_matrix,
     dense_matrix_t,
     gmres_lu,
     newton_matvec,
@@ -307,10 +306,6 @@ class Linearization:
             int(max_it),
         )  # piv + 1: LAPACK's 1-based pivots
         return (x if ok else None), its
-
-    def dense(self):
-        K, ks = self._influence()
-        return dense_matrix(*self._rows(), K, ks, self.dX, not self.rigid)
 
     def dense_column_major(self, dtype=np.float64):
         """The dense Newton matrix in ``dtype`` and column-major order, as LAPACK
