@@ -19,7 +19,7 @@ from ...physics.film_thermal import FilmFlow, film_flow
 from ...physics.friction import boundary_shear_stress
 from ...physics.heat_conduction import depth_grid
 from ...physics.thermal_oil import ThermalLubricant
-from .energy import EnergyInputs, chain_size, solve_energy
+from .energy import EnergyInputs, chain_size, solid_chain, solve_energy
 from .options import Conditions, EHLOptions
 from .reynolds import ReynoldsSystem
 
@@ -335,10 +335,7 @@ class ThermalField:
 
     def body_theta(self, body: int) -> np.ndarray:
         """θ of one solid (n_T, ns) with column 0 the surface."""
-        ns = self.grids[body].s.size - 1
-        f0 = self.n1
-        idx = [f0 - k for k in range(ns)] if body == 0 else [f0 + self.m - 1 + k for k in range(ns)]
-        return self.theta[:, idx]
+        return self.theta[:, solid_chain(body, self.n1, self.m, self.grids[body].s.size - 1)]
 
     def regridded(self, x_ehl, speeds) -> ThermalField:
         """A field on a new EHL grid with θ interpolated (film in x, solids in x and
