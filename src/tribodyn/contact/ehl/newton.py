@@ -37,7 +37,6 @@ __all__ = [
     "CoarseLevel",
     "TwoGridPreconditioner",
     "jacobi_scale",
-    "cavitated",
 ]
 
 _NONMONOTONE = 6
@@ -234,12 +233,6 @@ def jacobi_scale(sysm, ev):
 _NO_COEF = np.zeros(3)
 
 
-def cavitated(ev, c):
-    """Cavitated nodes of the evaluation ``ev`` for the row scaling ``c``
-    (:func:`.kernels.cavitated_nodes`)."""
-    return cavitated_nodes(ev.P, ev.R, c)
-
-
 class CoarseLevel:
     """Dense LU of the Newton matrix at a coarse-grid solution, for preconditioning the
     same problem on finer grids (two-grid)."""
@@ -247,7 +240,7 @@ class CoarseLevel:
     def __init__(self, sysm, st: State):
         ev = sysm.evaluate(st.Q, st.H0)
         c = jacobi_scale(sysm, ev)
-        self.lin = Linearization(sysm, c, cavitated(ev, c), ev)
+        self.lin = Linearization(sysm, c, cavitated_nodes(ev.P, ev.R, c), ev)
         self.lu = linalg.lu_factor(self.lin.dense_column_major(), check_finite=False)
         self.X = sysm.g.X
         self._transfer: dict = {}
@@ -320,20 +313,13 @@ class NewtonOutcome:
     lu: object = None
 
 
+# trial points of the line search may overflow (e.g. exp(αp)); they are rejected by their
+# non-finite merit, and the accepted solution is checked for finiteness
+@np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore")
 def newton(
     sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None, release_blocks=True
 ) -> NewtonOutcome:
-    """Solve ``sysm`` from ``st`` (see :func:`_newton_impl`)."""
-    # trial points of the line search may overflow (e.g. exp(αp)); they are rejected by
-    # their non-finite merit, and the accepted solution is checked for finiteness
-    with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
-        return NewtonOutcome(*_newton_impl(sysm, st, tol, max_iter, lu, coarse, release_blocks))
-
-
-def _newton_impl(
-    sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None, release_blocks=True
-):
-    """Semismooth Newton on min(P_i, −c_i R_i) = 0 and the load balance, unknowns (Q, H₀),
+    """Solve ``sysm`` from ``st``: semismooth Newton on min(P_i, −c_i R_i) = 0 and the load balance, unknowns (Q, H₀),
     with a non-monotone Armijo line search on |Φ|² + load residual² (c frozen within a
     search) and a small budget of full steps that may raise it (watchdog). Iterates may
     dip below zero pressure; the min-function clamps them on the next iteration.
@@ -375,7 +361,7 @@ def _newton_impl(
     upd_prev = None
     it = 0
     for it in range(1, max_iter + 1):
-        cav_std = cavitated(ev, c)
+        cav_std = cavitated_nodes(ev.P, ev.R, c)
         first: tuple = ()  # active sets tried before the standard one
         if release > 1:
             first = (_release(cav_std, prev_cav, release),)
@@ -470,4 +456,4 @@ def _newton_impl(
             msg = f"converged in {it} Newton iterations (update {upd:.1e}, residual {res:.1e})"
             break
     P = np.maximum(ev.P, 0.0) if ok else ev.P  # cavitated nodes are 0 up to round-off
-    return State(Q, H0, P, ev.H, Pa=ev.pa), ok, it, msg, lu
+    return NewtonOutcome(State(Q, H0, P, ev.H, Pa=ev.pa), ok, it, msg, lu)
