@@ -113,19 +113,8 @@ def _fresh_solve(lin: Linearization, rtol) -> tuple[Factorization | None, np.nda
 def _lu_solver(lu: Factorization):
     """v ↦ LU⁻¹ v (LAPACK getrs, no wrapper) with the factors of ``lu``."""
     fac, piv = lu
-    if fac.dtype == np.float32:
-        sgetrs = _SGETRS
-
-        def solve32(v):
-            return sgetrs(fac, piv, v.astype(np.float32))[0].astype(float)
-
-        return solve32
-    getrs = _GETRS
-
-    def solve(v):
-        return getrs(fac, piv, v)[0]
-
-    return solve
+    getrs = _SGETRS if fac.dtype == np.float32 else _GETRS
+    return lambda v: getrs(fac, piv, v.astype(fac.dtype))[0].astype(float)
 
 
 _GETRS = lapack.get_lapack_funcs("getrs", (np.zeros(1),))

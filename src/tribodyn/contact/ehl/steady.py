@@ -18,6 +18,7 @@ from ..._validation import InputError
 from ...physics.asperity import Roughness
 from ...physics.lubricant import Lubricant
 from ...physics.materials import BodyPair
+from .grid import N_DENSE as _N_DENSE  # finer grids: the two-grid preconditioner
 from .grid import N_MAX_AUTO, Grid, Layout, layout
 from .newton import CoarseLevel, NewtonOutcome, State, newton
 from .options import Conditions, ContactModel, EHLOptions, EHLResult, with_overrides
@@ -29,8 +30,6 @@ __all__ = ["solve_ehl", "initial_state", "state_from_dimensional"]
 _COARSEST = 128
 #: automatic grid: refine while h_c or h_min change by more than this from n/2 to n
 _GRID_REFINE_CHANGE = 0.01
-#: finer grids are solved with the two-grid preconditioner
-_N_DENSE = 1024
 
 
 def initial_state(sysm: ReynoldsSystem, b, h_est) -> State:

@@ -166,10 +166,6 @@ class ThermalField:
         self.flow: FilmFlow | None = None
 
     # -- views
-    @property
-    def film_theta(self):
-        return self.theta[:, self.n1 : self.n1 + self.m]
-
     def film_T(self, theta=None):
         th = self.theta if theta is None else theta
         return self.Ti + th[:, self.n1 : self.n1 + self.m]
@@ -348,7 +344,9 @@ class ThermalField:
         th = np.zeros_like(new.theta)
         xn = new.x
         for j in range(self.m):
-            th[:, new.n1 + j] = np.interp(xn, self.x, self.film_theta[:, j], left=0.0, right=0.0)
+            th[:, new.n1 + j] = np.interp(
+                xn, self.x, self.theta[:, self.n1 + j], left=0.0, right=0.0
+            )
         for body in (0, 1):
             old = self.body_theta(body)
             so, sn = self.grids[body].s[:-1], new.grids[body].s[:-1]
