@@ -269,6 +269,18 @@ def newton_matvec(AP, B, col, c, free, cav, D, v, vh, dh, dX, out):
 
 
 @njit(**_OPTS)
+def _edge_stencil(W, Kk, i):
+    """Σ_d W_d,i Kk_i+d over the offsets d = −2…2 inside the grid (rows near its ends)."""
+    n = Kk.size
+    acc = 0.0
+    for d in range(5):
+        j = i + d - 2
+        if 0 <= j < n:
+            acc += W[d, i] * Kk[j]
+    return acc
+
+
+@njit(**_OPTS)
 def dense_matrix_t(AP, B, col, c, free, cav, D, K, kscale, dX, elastic, flush, out):
     """The dense (n+1)² Newton matrix J with the scaled influence matrix kscale·K (free
     rows c_i[A_P + B K | B·1], cavitated rows [e_i − D_i K_i | −D_i], boundary rows e_i,
@@ -302,12 +314,7 @@ def dense_matrix_t(AP, B, col, c, free, cav, D, K, kscale, dX, elastic, flush, o
             Kk = K[k]
             row = out[k]
             for i in range(min(2, n)):
-                acc = 0.0
-                for d in range(5):
-                    j = i + d - 2
-                    if 0 <= j < n:
-                        acc += W[d, i] * Kk[j]
-                row[i] = acc
+                row[i] = _edge_stencil(W, Kk, i)
             for i in range(2, n - 2):
                 row[i] = (
                     W[0, i] * Kk[i - 2]
@@ -317,12 +324,7 @@ def dense_matrix_t(AP, B, col, c, free, cav, D, K, kscale, dX, elastic, flush, o
                     + W[4, i] * Kk[i + 2]
                 )
             for i in range(max(2, n - 2), n):
-                acc = 0.0
-                for d in range(5):
-                    j = i + d - 2
-                    if 0 <= j < n:
-                        acc += W[d, i] * Kk[j]
-                row[i] = acc
+                row[i] = _edge_stencil(W, Kk, i)
     for i in range(n):
         if free[i]:
             for d in range(5):
