@@ -198,8 +198,12 @@ class EHLResult:
 # ----------------------------------------------------------------------------- helpers
 
 
-def with_overrides(opts: EHLOptions, overrides: dict) -> EHLOptions:
-    """A copy of ``opts`` with some fields replaced; unknown names are an error."""
+def with_overrides(opts: EHLOptions | None, overrides: dict) -> EHLOptions:
+    """``opts`` (None: the defaults) with the fields ``overrides`` names replaced (a copy);
+    unknown names are an error."""
+    opts = opts or EHLOptions()
+    if not overrides:
+        return opts
     unknown = sorted(set(overrides) - set(opts.__dict__))
     if unknown:
         raise InputError(

@@ -86,9 +86,7 @@ def solve_ehl(
     """
     cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
     model = ContactModel.checked(bodies, lubricant, roughness)
-    opts = options or EHLOptions()
-    if option_overrides:
-        opts = with_overrides(opts, option_overrides)
+    opts = with_overrides(options, option_overrides)
     if cond.entrainment_speed == 0.0:
         raise InputError(
             "entrainment_speed must be non-zero for a steady film (pure squeeze needs TransientEHL)"

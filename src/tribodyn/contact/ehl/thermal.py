@@ -154,9 +154,7 @@ def solve_thermal_ehl(
     """
     if not isinstance(oil, ThermalLubricant):
         raise InputError(f"oil must be a ThermalLubricant (got {type(oil).__name__})")
-    opts = options or EHLOptions()
-    if option_overrides:
-        opts = with_overrides(opts, option_overrides)
+    opts = with_overrides(options, option_overrides)
     topts = thermal_options or ThermalOptions()
     cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
     iso_model = ContactModel.checked(bodies, oil.isothermal(), roughness)

@@ -120,9 +120,7 @@ class TransientEHL:
         self.bodies = self.model.bodies
         self.lub = lubricant
         self.rough = roughness
-        opts = options or EHLOptions()
-        if option_overrides:
-            opts = with_overrides(opts, option_overrides)
+        opts = with_overrides(options, option_overrides)
         # the options checked n (an integer in the steady range): only the transient's here
         if opts.n is not None and not EHL_NODES_TRANSIENT.contains(opts.n):
             raise RangeError([("n", EHL_NODES_TRANSIENT, opts.n)])
@@ -168,11 +166,8 @@ class TransientEHL:
         self._grid, self._n_event = None, None
         grid = self._make_grid(cond, h0)
         sysm = ReynoldsSystem(grid, cond, self.model)
-        st = State(np.zeros(grid.n), h0 / sysm.h_ref)
-        ev = sysm.evaluate(st.Q, st.H0)
-        st.P, st.H = ev.P, ev.H
         self._reset(grid)
-        self._commit(sysm, st, None, time)
+        self._commit(sysm, State(np.zeros(grid.n), h0 / sysm.h_ref), None, time)  # evaluated there
         self.result = None
 
     # -- hooks of a variant (the thermal one: :mod:`.thermal_transient`)
