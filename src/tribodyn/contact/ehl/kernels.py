@@ -343,7 +343,7 @@ def dense_matrix_t(AP, B, col, c, free, cav, D, K, kscale, dX, elastic, flush, o
 
 @njit(**_OPTS)
 def jacobi_diagonal(AP, AH, D, kcoef, elastic):
-    """|diag(A_P + (A_H − A_P D) K)| with K_ij = kcoef[|i − j|]."""
+    """diag(A_P + (A_H − A_P D) K) with K_ij = kcoef[|i − j|]."""
     n = D.size
     diag = AP[2].copy()
     if elastic:
@@ -352,16 +352,16 @@ def jacobi_diagonal(AP, AH, D, kcoef, elastic):
             kd = kcoef[abs(d)]
             for i in range(max(0, -d), min(n, n - d)):
                 diag[i] += (AH[k, i] - AP[k, i] * D[i + d]) * kd
-    return np.abs(diag)
+    return diag
 
 
 @njit(**_OPTS)
 def row_scale(AP, AH, D, kcoef, elastic):
     """Row scaling of the Newton system, c_i = 1/max(d_i, 1e-300 + 1e-14 max d) with
-    d = :func:`jacobi_diagonal` (the end rows take their neighbours' d); NaN throughout
+    d = |:func:`jacobi_diagonal`| (the end rows take their neighbours' d); NaN throughout
     if a d is NaN."""
     n = D.size
-    d = jacobi_diagonal(AP, AH, D, kcoef, elastic)
+    d = np.abs(jacobi_diagonal(AP, AH, D, kcoef, elastic))
     d[0], d[n - 1] = d[1], d[n - 2]
     big = -np.inf
     for v in d:

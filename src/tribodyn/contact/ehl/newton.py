@@ -22,6 +22,7 @@ from .kernels import (
     cavitated_nodes,
     flush_factors,
     givens_step,
+    jacobi_diagonal,
     merit,
     row_scale,
     step_motion,
@@ -263,13 +264,8 @@ class TwoGridPreconditioner:
     def __init__(self, coarse: CoarseLevel, lin: Linearization, sysm):
         self.coarse, self.lin = coarse, lin
         self.P, self.R = coarse.transfer(sysm.g.X)
-        diag = lin.AP[2].copy()
-        if sysm.kcoef is not None:
-            diag += sysm.kcoef[0] * lin.B[2]
-            diag[1:] += sysm.kcoef[1] * lin.B[1, 1:]
-            diag[:-1] += sysm.kcoef[1] * lin.B[3, :-1]
-            diag[2:] += sysm.kcoef[2] * lin.B[0, 2:]
-            diag[:-2] += sysm.kcoef[2] * lin.B[4, :-2]
+        kc = sysm.kcoef if sysm.kcoef is not None else _NO_COEF
+        diag = jacobi_diagonal(lin.AP, lin.AH, lin.D, kc, sysm.kcoef is not None)
         dsc = np.where(lin.free, lin.c * diag, 1.0)
         if sysm.kcoef is not None:
             dsc[lin.cav] = 1.0 - lin.D[lin.cav] * sysm.kcoef[0]

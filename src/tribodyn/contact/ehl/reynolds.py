@@ -258,7 +258,7 @@ class Linearization:
         n = g.n
         self.n, self.dX, self.sysm = n, g.dX, sysm
         self.rigid = not sysm.elastic
-        self.AP = ev.AP
+        self.AP, self.AH = ev.AP, ev.AH
         self.D = ev.dpa
         self.c = c
         self.B, self.col, self.cav, self.bnd, self.free, self.rhs = newton_rows(
