@@ -353,12 +353,7 @@ class ThermalField:
             f = RegularGridInterpolator((self.x, so), old, bounds_error=False, fill_value=0.0)
             X, S = np.meshgrid(xn, sn, indexing="ij")
             vals = f(np.stack([X, np.minimum(S, so[-1])], axis=-1))
-            f0 = new.n1
-            idx = (
-                [f0 - k for k in range(sn.size)]
-                if body == 0
-                else [f0 + new.m - 1 + k for k in range(sn.size)]
-            )
+            idx = solid_chain(body, new.n1, new.m, sn.size)
             surf = th[:, idx[0]].copy()
             th[:, idx] = vals
             th[:, idx[0]] = surf  # the surface node is the film's wall
