@@ -45,7 +45,7 @@ class Level:
     central_film: float  #: h(0) [m]
     dt: float | None  #: the step that reached this level [s]; None: a start
     radius: float  #: radius of curvature [m]
-    p: np.ndarray | None = None  #: fluid pressure [Pa] (the predictor's cavitated nodes)
+    p: np.ndarray  #: fluid pressure [Pa] (the predictor's cavitated nodes)
 
 
 @dataclass
@@ -295,7 +295,7 @@ class TransientEHL:
             q * (sysm.cond.load / w) / sysm.p_ref if w > 0.0 else st.Q * (sysm.cond.load / r.load)
         )
         p1, p0 = lv[0].p, lv[1].p
-        if p1 is not None and p0 is not None and all(np.array_equal(v.x, xg) for v in lv[:2]):
+        if all(np.array_equal(v.x, xg) for v in lv[:2]):
             # … and Newton starts from the cavitated nodes of the fluid pressure
             # extrapolated alike on the same grid (zero up to round-off of the total
             # pressure): Q − Pa(H) of the predicted Q is the small difference of two large
