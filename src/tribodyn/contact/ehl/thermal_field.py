@@ -166,12 +166,11 @@ class ThermalField:
         self.flow: FilmFlow | None = None
 
     # -- views
-    def film_T(self, theta=None):
-        th = self.theta if theta is None else theta
-        return self.Ti + th[:, self.n1 : self.n1 + self.m]
+    def film_T(self):
+        return self.Ti + self.theta[:, self.n1 : self.n1 + self.m]
 
-    def mean_T(self, theta=None):
-        return self.film_T(theta) @ self.w
+    def mean_T(self):
+        return self.film_T() @ self.w
 
     # -- physics on the thermal grid
     def fields(
@@ -183,7 +182,6 @@ class ThermalField:
         cond: Conditions,
         rough: Roughness | None,
         opts: EHLOptions,
-        theta=None,
         p_old=None,
         dt=None,
     ):
@@ -197,7 +195,7 @@ class ThermalField:
         faces = np.clip(np.r_[xs - 0.5 * self.dx, xs[-1] + 0.5 * self.dx], x[0], x[-1])
         pf = np.interp(faces, x, p)
         px = np.diff(pf) / np.diff(faces)
-        T = self.film_T(theta)
+        T = self.film_T()
         Tm = T @ self.w
         P = pt[:, None]
         eta, rho = oil.viscosity_at(P, T), oil.density_at(P, T)
