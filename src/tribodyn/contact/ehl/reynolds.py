@@ -49,9 +49,7 @@ __all__ = ["ReynoldsSystem", "Evaluation", "Linearization"]
 class ReynoldsSystem:
     """Scaled discrete system for one solve (one time level)."""
 
-    def __init__(
-        self, grid: Grid, cond: Conditions, model: ContactModel, time_coef=0.0, f_old=None
-    ):
+    def __init__(self, grid: Grid, cond: Conditions, model: ContactModel, time_coef=0.0):
         w, R, ue = cond.load, cond.radius, cond.entrainment_speed
         lub, roughness = model.lubricant, model.roughness
         self.g = grid
@@ -76,7 +74,7 @@ class ReynoldsSystem:
         self.geom = 0.5 * grid.X**2
         # time term: c_t (f − f_old) with f = ρ̄H, c_t = a/(U Δt)·α₀
         self.time_coef = time_coef * a / self.u_scale
-        self.f_old = f_old
+        self.f_old: np.ndarray | None = None  # set by the transient driver
         # optional per-node factors of the generalized (thermal) Reynolds equation: the
         # Poiseuille coefficient ε and the Couette flux ū ρ̄H are multiplied by them
         # (None: isothermal Reynolds; see contact.ehl.thermal)
