@@ -10,7 +10,7 @@ from scipy import integrate, special
 
 from ehl_cases import murch_wilson_oil
 from tribodyn import Body, Coating, InputError, Material, TransientEHL, solve_ehl
-from tribodyn.contact.ehl.energy import solve_solid
+from tribodyn.contact.ehl.energy import _solid, _solve
 from tribodyn.contact.ehl.thermal import ThermalEHLResult, ThermalOptions, solve_thermal_ehl
 from tribodyn.contact.ehl.thermal_transient import ThermalTransientEHL
 from tribodyn.physics.heat_conduction import ThermalBody, ThermalProperties, depth_grid
@@ -33,6 +33,17 @@ Q = 1e8  # its heat flux [W/m²]
 
 def band(x):
     return np.where(np.abs(x) <= B, Q, 0.0)
+
+
+def solve_solid(q, dx, grid, speed) -> np.ndarray:
+    """Steady temperature rise θ (n, ns) of one moving solid under a surface heat flux q(x)
+    [W/m²] on a uniform x grid (spacing dx [m]), column 0 the surface: the discretisation
+    of the solids in energy.solve_energy, alone."""
+    n, ns = q.size, grid.s.size - 1
+    mats = tuple(np.zeros((n, ns)) for _ in range(6))
+    _solid(mats, grid, float(speed), np.arange(ns), True, dx, None, None)
+    mats[5][:, 0] += q
+    return _solve(mats, ns)
 
 
 def solid_surface(body, u, lo=-6 * B, hi=4 * B, n=400, first=None):

@@ -40,85 +40,12 @@ import math
 from functools import lru_cache
 
 import numpy as np
-from scipy import integrate, interpolate, linalg
+from scipy import integrate, interpolate
 
 from .._validation import InputError, check_positive
-from .materials import Body, BodyPair, Coating, Material, as_bodies
+from .materials import BodyPair, Material, as_bodies
 
-__all__ = [
-    "half_plane_frf",
-    "coated_half_plane_frf",
-    "pair_frf",
-    "influence_coefficients",
-    "log_kernel_influence",
-    "DeformationOperator",
-]
-
-
-# ----------------------------------------------------------------------------- FRFs
-def half_plane_frf(m, material: Material) -> np.ndarray:
-    """g̃(m) = 2(1 − ν²)/(E m) [m/Pa per rad/m] for a homogeneous half-plane (Eq. 12)."""
-    m = np.abs(np.asarray(m, dtype=float))
-    with np.errstate(divide="ignore"):
-        return 2.0 * material.compliance / m
-
-
-def _layer_constants(coating: Material, substrate: Material):
-    zeta = coating.shear_modulus / substrate.shear_modulus
-    lam = 1.0 - 4.0 * (1.0 - coating.nu) / (1.0 + zeta * (3.0 - 4.0 * substrate.nu))
-    kap = (zeta - 1.0) / (zeta + 3.0 - 4.0 * coating.nu)
-    return lam, kap
-
-
-def _coated_G(t, coating: Material, substrate: Material) -> np.ndarray:
-    """G(t) = m g̃_coated(m) − C_s at t = m h, evaluated without cancellation near t = 0.
-
-    With θ = 1 + e₁ (e₁ = expm1(−2t)) the constant terms of numerator − (C_s/C_c)·denominator
-    cancel identically; what remains is O(t) and computed to full relative precision.
-    """
-    t = np.asarray(t, dtype=float)
-    lam, kap = _layer_constants(coating, substrate)
-    cc, cs = 2.0 * coating.compliance, 2.0 * substrate.compliance
-    r = cs / cc
-    e1 = np.expm1(-2.0 * t)
-    th = 1.0 + e1
-    q = 2.0 * e1 + e1 * e1  # θ² − 1
-    den = (1.0 - lam) * (1.0 - kap) - (lam + kap) * e1 - 4.0 * kap * t * t * th + lam * kap * q
-    const = (1.0 - lam * kap) - r * (1.0 - lam) * (1.0 - kap)  # 0 up to round-off
-    num_minus = (
-        const
-        + 4.0 * t * kap * th
-        - lam * kap * q
-        - r * (-(lam + kap) * e1 - 4.0 * kap * t * t * th + lam * kap * q)
-    )
-    return cc * num_minus / den
-
-
-def coated_half_plane_frf(
-    m, coating: Coating | Material, substrate: Material, thickness: float | None = None
-) -> np.ndarray:
-    """Coated half-plane FRF g̃(m) [m/Pa per rad/m] (paper Eqs. 13–14)."""
-    if thickness is not None:
-        h: float | None = thickness
-    else:
-        h = coating.thickness if isinstance(coating, Coating) else None
-    if h is None:
-        raise InputError("thickness must be given for a coated half-plane")
-    h = check_positive("thickness", h, "m")
-    m = np.abs(np.asarray(m, dtype=float))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return (2.0 * substrate.compliance + _coated_G(m * h, coating, substrate)) / m
-
-
-def pair_frf(m, bodies) -> np.ndarray:
-    """Total FRF of a body pair: sum of the two bodies' surface FRFs."""
-    total: np.ndarray | float = 0.0
-    for b in as_bodies(bodies):
-        if b.coating is None:
-            total = total + half_plane_frf(m, b.material)
-        else:
-            total = total + coated_half_plane_frf(m, b.coating, b.material)
-    return np.asarray(total)
+__all__ = ["influence_coefficients", "DeformationOperator"]
 
 
 # ------------------------------------------------------------- tabulated remainder Q₂
@@ -128,8 +55,14 @@ _T_MAX = 40.0  # G₂ ~ t² e^{−2t}: negligible beyond t = 40
 
 def _remainder_integrand(coating: Material, substrate: Material):
     """f(t) = [G(t) + g∞ expm1(−2t)]/t for scalar t > 0 (math-module floats: quadrature
-    calls it ~10⁵ times per table), the same arithmetic as :func:`_coated_G`."""
-    lam, kap = _layer_constants(coating, substrate)
+    calls it ~10⁵ times per table), G(t) = m g̃_coated(m) − C_s at t = m h.
+
+    G is evaluated without cancellation near t = 0: with θ = 1 + e₁ (e₁ = expm1(−2t)) the
+    constant terms of numerator − (C_s/C_c)·denominator cancel identically; what remains
+    is O(t) and computed to full relative precision."""
+    zeta = coating.shear_modulus / substrate.shear_modulus
+    lam = 1.0 - 4.0 * (1.0 - coating.nu) / (1.0 + zeta * (3.0 - 4.0 * substrate.nu))
+    kap = (zeta - 1.0) / (zeta + 3.0 - 4.0 * coating.nu)
     cc, cs = 2.0 * coating.compliance, 2.0 * substrate.compliance
     r = cs / cc
     g_inf = 2.0 * (coating.compliance - substrate.compliance)
@@ -162,9 +95,7 @@ class _RemainderTable:
     """
 
     def __init__(self, coating: Material, substrate: Material):
-        self.g_inf = 2.0 * (coating.compliance - substrate.compliance)
-        g_inf = self.g_inf
-
+        g_inf = 2.0 * (coating.compliance - substrate.compliance)
         f = _remainder_integrand(coating, substrate)
 
         self.q_inf = 0.5 * float(f(1e-8))  # Q₂(ξ → ∞) = f(0)/2
@@ -273,12 +204,6 @@ def influence_coefficients(bodies, dx: float, n: int) -> np.ndarray:
     return np.diff(a)
 
 
-def log_kernel_influence(dx: float, n: int) -> np.ndarray:
-    """Element integrals of (1/π) ln|x|: L_k = (1/π)∫_{kΔ−Δ/2}^{kΔ+Δ/2} ln|s| ds."""
-    edges = (np.arange(int(n) + 1) - 0.5) * dx
-    return np.diff(_xlogx_minus_x(edges)) / math.pi
-
-
 class DeformationOperator:
     """O(N log N) surface deformation of a body pair on a uniform grid (DC-FFT).
 
@@ -292,34 +217,24 @@ class DeformationOperator:
     ``p`` [Pa] (last axis of length n; leading axes are batched).
     """
 
-    def __init__(self, bodies: BodyPair, dx: float, n: int, coefficients: np.ndarray | None = None):
-        self.bodies: tuple[Body, Body] | None = as_bodies(bodies)
-        self.dx = check_positive("dx", dx, "m")
-        self.n = int(n)
-        self.coefficients = (
-            influence_coefficients(self.bodies, self.dx, self.n)
-            if coefficients is None
-            else np.asarray(coefficients, dtype=float)
-        )
-        self._kernel_hat = np.fft.rfft(self._wraparound(self.coefficients))
+    def __init__(self, bodies: BodyPair, dx: float, n: int):
+        self._use(influence_coefficients(bodies, dx, n))
 
     @classmethod
-    def from_coefficients(cls, coefficients, dx: float = 1.0):
+    def from_coefficients(cls, coefficients) -> DeformationOperator:
+        """The operator of given influence coefficients D_k (k = 0…n−1)."""
         obj = cls.__new__(cls)
-        obj.bodies = None
-        obj.dx = dx
-        obj.coefficients = np.asarray(coefficients, dtype=float)
-        obj.n = obj.coefficients.size
-        obj._kernel_hat = np.fft.rfft(cls._wraparound(obj.coefficients))
+        obj._use(np.asarray(coefficients, dtype=float))
         return obj
 
-    @staticmethod
-    def _wraparound(c: np.ndarray) -> np.ndarray:
-        n = c.size
+    def _use(self, c: np.ndarray) -> None:
+        """Keep the coefficients and the spectrum of their wrap-around kernel (2n long)."""
+        n = self.n = c.size
+        self.coefficients = c
         k = np.zeros(2 * n)
         k[:n] = c
         k[n + 1 :] = c[:0:-1]
-        return k
+        self._kernel_hat = np.fft.rfft(k)
 
     def __call__(self, p) -> np.ndarray:
         p = np.asarray(p, dtype=float)
@@ -327,11 +242,3 @@ class DeformationOperator:
             raise InputError(f"pressure must have {self.n} nodes on its last axis (got {p.shape})")
         ph = np.fft.rfft(p, 2 * self.n, axis=-1)
         return np.fft.irfft(ph * self._kernel_hat, 2 * self.n, axis=-1)[..., : self.n]
-
-    def matrix(self) -> np.ndarray:
-        """Dense N×N influence matrix (for Newton Jacobians and tests)."""
-        return linalg.toeplitz(self.coefficients)
-
-    def scaled(self, factor: float) -> DeformationOperator:
-        """The same operator with coefficients multiplied by ``factor`` (non-dimensionalisation)."""
-        return DeformationOperator.from_coefficients(self.coefficients * factor, self.dx)

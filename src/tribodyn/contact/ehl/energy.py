@@ -33,11 +33,18 @@ from scipy.sparse import linalg as splinalg
 
 from ...physics.heat_conduction import DepthGrid
 
-__all__ = ["EnergyInputs", "solve_energy", "solve_solid", "chain_size"]
+__all__ = ["EnergyInputs", "solve_energy", "chain_size", "solid_chain"]
 
 
 def chain_size(m: int, g1: DepthGrid, g2: DepthGrid) -> int:
     return (g1.s.size - 2) + m + (g2.s.size - 2)
+
+
+def solid_chain(body: int, f0: int, m: int, ns: int) -> np.ndarray:
+    """Chain positions of the depth nodes 0 (the surface) … ns−1 of solid ``body`` (0, 1)
+    with the film's node j = 0 at ``f0``: body 1 runs down the chain from film node 0,
+    body 2 up from film node m − 1."""
+    return f0 - np.arange(ns) if body == 0 else f0 + m - 1 + np.arange(ns)
 
 
 @dataclass
@@ -144,11 +151,7 @@ def solve_energy(e: EnergyInputs) -> np.ndarray:
 
     # ---- solids
     for body, (g, u_b) in enumerate(zip(e.grids, e.speeds)):
-        ns = g.s.size - 1
-        if body == 0:
-            idx = np.array([f0] + [f0 - k for k in range(1, ns)])  # node k → chain
-        else:
-            idx = np.array([f0 + m - 1] + [f0 + m - 1 + k for k in range(1, ns)])
+        idx = solid_chain(body, f0, m, g.s.size - 1)  # node k → chain
         _solid(mats, g, u_b, idx, body == 1, dx, e.dt, e.theta_old)
     return _solve(mats, Nz)
 
@@ -199,15 +202,3 @@ def _solve(mats, Nz):
     A = sparse.diags([diag, up, down, east, west], [0, 1, -1, Nz, -Nz], shape=(N, N), format="csc")
     theta = splinalg.splu(A, permc_spec="COLAMD").solve(b.ravel())
     return theta.reshape(n, Nz)
-
-
-def solve_solid(q, dx, grid: DepthGrid, speed, *, dt=None, theta_old=None) -> np.ndarray:
-    """Temperature rise θ (n, ns) of one moving solid under a surface heat flux q(x)
-    [W/m²] on a uniform x grid (spacing dx [m]); column 0 is the surface. The same
-    discretisation as the solids of :func:`solve_energy` (used to validate it)."""
-    q = np.asarray(q, dtype=float)
-    n, ns = q.size, grid.s.size - 1
-    mats = tuple(np.zeros((n, ns)) for _ in range(6))
-    _solid(mats, grid, float(speed), np.arange(ns), True, dx, dt, theta_old)
-    mats[5][:, 0] += q
-    return _solve(mats, ns)

@@ -164,13 +164,3 @@ class Grid:
             and self.x[-1] >= hi
             and self.x[-1] - self.x[0] <= slack * (hi - lo)
         )
-
-    def same_as(self, lay: Layout, direction: int) -> bool:
-        """Same node count and orientation, extents within 2 %."""
-        lo, hi = _extent(lay, direction)
-        return (
-            self.n == lay.n
-            and self.direction == direction
-            and abs(lo * lay.a / self.x[0] - 1.0) < 0.02
-            and abs(hi * lay.a / self.x[-1] - 1.0) < 0.02
-        )

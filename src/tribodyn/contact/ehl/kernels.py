@@ -43,7 +43,6 @@ __all__ = [
     "NO_CURVE",
     "coupling_bands",
     "newton_matvec",
-    "dense_matrix",
     "dense_matrix_t",
     "jacobi_diagonal",
     "givens_step",
@@ -270,39 +269,23 @@ def newton_matvec(AP, B, col, c, free, cav, D, v, vh, dh, dX, out):
 
 
 @njit(**_OPTS)
-def dense_matrix(AP, B, col, c, free, cav, D, K, kscale, dX, elastic):
-    """Dense (n+1)² Newton matrix with the scaled influence matrix kscale·K: free rows
-    c_i[A_P + B K | B·1], cavitated rows [e_i − D_i K_i | −D_i], boundary rows e_i, load
-    row [ΔX … | 0]."""
-    n = D.size
-    J = np.zeros((n + 1, n + 1))
-    for i in range(n):
-        if free[i]:
-            ci = c[i]
-            for k in range(5):
-                j = i + k - 2
-                if 0 <= j < n:
-                    b = B[k, i] * ci * kscale
-                    if elastic and b != 0.0:
-                        J[i, :n] += b * K[j, :]
-                    J[i, j] += ci * AP[k, i]
-            J[i, n] = ci * col[i]
-        elif cav[i]:
-            di = D[i]
-            if elastic and di != 0.0:
-                J[i, :n] = -di * kscale * K[i, :]
-            J[i, i] += 1.0
-            J[i, n] = -di
-        else:
-            J[i, i] = 1.0
-    J[n, :n] = dX
-    return J
+def _edge_stencil(W, Kk, i):
+    """Σ_d W_d,i Kk_i+d over the offsets d = −2…2 inside the grid (rows near its ends)."""
+    n = Kk.size
+    acc = 0.0
+    for d in range(5):
+        j = i + d - 2
+        if 0 <= j < n:
+            acc += W[d, i] * Kk[j]
+    return acc
 
 
 @njit(**_OPTS)
 def dense_matrix_t(AP, B, col, c, free, cav, D, K, kscale, dX, elastic, flush, out):
-    """The dense Newton matrix of :func:`dense_matrix` transposed, written into ``out``
-    ((n+1)², C order, float32 or float64): ``out.T`` is J in column-major order, as
+    """The dense (n+1)² Newton matrix J with the scaled influence matrix kscale·K (free
+    rows c_i[A_P + B K | B·1], cavitated rows [e_i − D_i K_i | −D_i], boundary rows e_i,
+    load row [ΔX … | 0]) transposed, written into ``out`` ((n+1)², C order, float32 or
+    float64): ``out.T`` is J in column-major order, as
     LAPACK's getrf takes it, without a copy. Column k of J's elastic part is
     Σ_d w_d,i K_k,i+d over the rows i (K symmetric: K_i+d,k = K_k,i+d) with the row
     weights w = c_i kscale B (free rows) or −D_i kscale (d = 0, cavitated rows), a
@@ -331,12 +314,7 @@ def dense_matrix_t(AP, B, col, c, free, cav, D, K, kscale, dX, elastic, flush, o
             Kk = K[k]
             row = out[k]
             for i in range(min(2, n)):
-                acc = 0.0
-                for d in range(5):
-                    j = i + d - 2
-                    if 0 <= j < n:
-                        acc += W[d, i] * Kk[j]
-                row[i] = acc
+                row[i] = _edge_stencil(W, Kk, i)
             for i in range(2, n - 2):
                 row[i] = (
                     W[0, i] * Kk[i - 2]
@@ -346,12 +324,7 @@ def dense_matrix_t(AP, B, col, c, free, cav, D, K, kscale, dX, elastic, flush, o
                     + W[4, i] * Kk[i + 2]
                 )
             for i in range(max(2, n - 2), n):
-                acc = 0.0
-                for d in range(5):
-                    j = i + d - 2
-                    if 0 <= j < n:
-                        acc += W[d, i] * Kk[j]
-                row[i] = acc
+                row[i] = _edge_stencil(W, Kk, i)
     for i in range(n):
         if free[i]:
             for d in range(5):
@@ -370,7 +343,7 @@ def dense_matrix_t(AP, B, col, c, free, cav, D, K, kscale, dX, elastic, flush, o
 
 @njit(**_OPTS)
 def jacobi_diagonal(AP, AH, D, kcoef, elastic):
-    """|diag(A_P + (A_H − A_P D) K)| with K_ij = kcoef[|i − j|]."""
+    """diag(A_P + (A_H − A_P D) K) with K_ij = kcoef[|i − j|]."""
     n = D.size
     diag = AP[2].copy()
     if elastic:
@@ -379,16 +352,16 @@ def jacobi_diagonal(AP, AH, D, kcoef, elastic):
             kd = kcoef[abs(d)]
             for i in range(max(0, -d), min(n, n - d)):
                 diag[i] += (AH[k, i] - AP[k, i] * D[i + d]) * kd
-    return np.abs(diag)
+    return diag
 
 
 @njit(**_OPTS)
 def row_scale(AP, AH, D, kcoef, elastic):
     """Row scaling of the Newton system, c_i = 1/max(d_i, 1e-300 + 1e-14 max d) with
-    d = :func:`jacobi_diagonal` (the end rows take their neighbours' d); NaN throughout
+    d = |:func:`jacobi_diagonal`| (the end rows take their neighbours' d); NaN throughout
     if a d is NaN."""
     n = D.size
-    d = jacobi_diagonal(AP, AH, D, kcoef, elastic)
+    d = np.abs(jacobi_diagonal(AP, AH, D, kcoef, elastic))
     d[0], d[n - 1] = d[1], d[n - 2]
     big = -np.inf
     for v in d:
@@ -744,9 +717,8 @@ def gmres_lu(getrs, symv, system, fac, piv1, b, rtol, max_it):
 def compile_fallbacks() -> None:
     """Compile (into numba's cache) the kernel variants that a cycle study reaches only
     on fallbacks, on a small system with the argument types of the solvers' calls: the
-    double-precision factorisation (:func:`dense_matrix_t` into float64, GMRES with
-    float64 factors) and the dense matrix of the two-grid coarse level
-    (:func:`dense_matrix`)."""
+    double-precision factorisation (:func:`dense_matrix_t` into float64, as the two-grid
+    coarse level also builds it, GMRES with float64 factors)."""
     from scipy import linalg
 
     n = 8
@@ -759,7 +731,6 @@ def compile_fallbacks() -> None:
     free[0] = free[-1] = False
     K = np.eye(n)
     rows = (AP, B, col, c, free, cav, D)
-    dense_matrix(*rows, K, 1.0, 0.1, True)
     J = dense_matrix_t(*rows, K, 1.0, 0.1, True, 0.0, np.empty((n + 1, n + 1))).T
     fac, piv = linalg.lu_factor(J, overwrite_a=True, check_finite=False)
     system = (*rows, K, 1.0, True, 0.1)

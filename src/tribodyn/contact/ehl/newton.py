@@ -22,6 +22,7 @@ from .kernels import (
     cavitated_nodes,
     flush_factors,
     givens_step,
+    jacobi_diagonal,
     merit,
     row_scale,
     step_motion,
@@ -37,7 +38,6 @@ __all__ = [
     "CoarseLevel",
     "TwoGridPreconditioner",
     "jacobi_scale",
-    "cavitated",
 ]
 
 _NONMONOTONE = 6
@@ -114,19 +114,8 @@ def _fresh_solve(lin: Linearization, rtol) -> tuple[Factorization | None, np.nda
 def _lu_solver(lu: Factorization):
     """v ↦ LU⁻¹ v (LAPACK getrs, no wrapper) with the factors of ``lu``."""
     fac, piv = lu
-    if fac.dtype == np.float32:
-        sgetrs = _SGETRS
-
-        def solve32(v):
-            return sgetrs(fac, piv, v.astype(np.float32))[0].astype(float)
-
-        return solve32
-    getrs = _GETRS
-
-    def solve(v):
-        return getrs(fac, piv, v)[0]
-
-    return solve
+    getrs = _SGETRS if fac.dtype == np.float32 else _GETRS
+    return lambda v: getrs(fac, piv, v.astype(fac.dtype))[0].astype(float)
 
 
 _GETRS = lapack.get_lapack_funcs("getrs", (np.zeros(1),))
@@ -234,12 +223,6 @@ def jacobi_scale(sysm, ev):
 _NO_COEF = np.zeros(3)
 
 
-def cavitated(ev, c):
-    """Cavitated nodes of the evaluation ``ev`` for the row scaling ``c``
-    (:func:`.kernels.cavitated_nodes`)."""
-    return cavitated_nodes(ev.P, ev.R, c)
-
-
 class CoarseLevel:
     """Dense LU of the Newton matrix at a coarse-grid solution, for preconditioning the
     same problem on finer grids (two-grid)."""
@@ -247,8 +230,8 @@ class CoarseLevel:
     def __init__(self, sysm, st: State):
         ev = sysm.evaluate(st.Q, st.H0)
         c = jacobi_scale(sysm, ev)
-        self.lin = Linearization(sysm, c, cavitated(ev, c), ev)
-        self.lu = linalg.lu_factor(self.lin.dense(), check_finite=False)
+        self.lin = Linearization(sysm, c, cavitated_nodes(ev.P, ev.R, c), ev)
+        self.lu = linalg.lu_factor(self.lin.dense_column_major(), check_finite=False)
         self.X = sysm.g.X
         self._transfer: dict = {}
 
@@ -281,13 +264,8 @@ class TwoGridPreconditioner:
     def __init__(self, coarse: CoarseLevel, lin: Linearization, sysm):
         self.coarse, self.lin = coarse, lin
         self.P, self.R = coarse.transfer(sysm.g.X)
-        diag = lin.AP[2].copy()
-        if sysm.kcoef is not None:
-            diag += sysm.kcoef[0] * lin.B[2]
-            diag[1:] += sysm.kcoef[1] * lin.B[1, 1:]
-            diag[:-1] += sysm.kcoef[1] * lin.B[3, :-1]
-            diag[2:] += sysm.kcoef[2] * lin.B[0, 2:]
-            diag[:-2] += sysm.kcoef[2] * lin.B[4, :-2]
+        kc = sysm.kcoef if sysm.kcoef is not None else _NO_COEF
+        diag = jacobi_diagonal(lin.AP, lin.AH, lin.D, kc, sysm.kcoef is not None)
         dsc = np.where(lin.free, lin.c * diag, 1.0)
         if sysm.kcoef is not None:
             dsc[lin.cav] = 1.0 - lin.D[lin.cav] * sysm.kcoef[0]
@@ -320,20 +298,13 @@ class NewtonOutcome:
     lu: object = None
 
 
+# trial points of the line search may overflow (e.g. exp(αp)); they are rejected by their
+# non-finite merit, and the accepted solution is checked for finiteness
+@np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore")
 def newton(
     sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None, release_blocks=True
 ) -> NewtonOutcome:
-    """Solve ``sysm`` from ``st`` (see :func:`_newton_impl`)."""
-    # trial points of the line search may overflow (e.g. exp(αp)); they are rejected by
-    # their non-finite merit, and the accepted solution is checked for finiteness
-    with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
-        return NewtonOutcome(*_newton_impl(sysm, st, tol, max_iter, lu, coarse, release_blocks))
-
-
-def _newton_impl(
-    sysm: ReynoldsSystem, st: State, tol, max_iter, lu=None, coarse=None, release_blocks=True
-):
-    """Semismooth Newton on min(P_i, −c_i R_i) = 0 and the load balance, unknowns (Q, H₀),
+    """Solve ``sysm`` from ``st``: semismooth Newton on min(P_i, −c_i R_i) = 0 and the load balance, unknowns (Q, H₀),
     with a non-monotone Armijo line search on |Φ|² + load residual² (c frozen within a
     search) and a small budget of full steps that may raise it (watchdog). Iterates may
     dip below zero pressure; the min-function clamps them on the next iteration.
@@ -375,7 +346,7 @@ def _newton_impl(
     upd_prev = None
     it = 0
     for it in range(1, max_iter + 1):
-        cav_std = cavitated(ev, c)
+        cav_std = cavitated_nodes(ev.P, ev.R, c)
         first: tuple = ()  # active sets tried before the standard one
         if release > 1:
             first = (_release(cav_std, prev_cav, release),)
@@ -470,4 +441,4 @@ def _newton_impl(
             msg = f"converged in {it} Newton iterations (update {upd:.1e}, residual {res:.1e})"
             break
     P = np.maximum(ev.P, 0.0) if ok else ev.P  # cavitated nodes are 0 up to round-off
-    return State(Q, H0, P, ev.H, Pa=ev.pa), ok, it, msg, lu
+    return NewtonOutcome(State(Q, H0, P, ev.H, Pa=ev.pa), ok, it, msg, lu)

@@ -198,8 +198,12 @@ class EHLResult:
 # ----------------------------------------------------------------------------- helpers
 
 
-def with_overrides(opts: EHLOptions, overrides: dict) -> EHLOptions:
-    """A copy of ``opts`` with some fields replaced; unknown names are an error."""
+def with_overrides(opts: EHLOptions | None, overrides: dict) -> EHLOptions:
+    """``opts`` (None: the defaults) with the fields ``overrides`` names replaced (a copy);
+    unknown names are an error."""
+    opts = opts or EHLOptions()
+    if not overrides:
+        return opts
     unknown = sorted(set(overrides) - set(opts.__dict__))
     if unknown:
         raise InputError(
@@ -216,6 +220,13 @@ class Conditions:
     radius: float
     entrainment_speed: float
     sliding_speed: float
+
+    @property
+    def surface_speeds(self) -> tuple[float, float]:
+        """(u₁, u₂) [m/s] of surface 1 (the cam), u₁ = u_e + u_s/2, and surface 2 (the
+        tappet), u₂ = u₁ − u_s."""
+        u1 = self.entrainment_speed + 0.5 * self.sliding_speed
+        return u1, u1 - self.sliding_speed
 
     @classmethod
     def checked(cls, load, radius, entrainment_speed, sliding_speed) -> Conditions:

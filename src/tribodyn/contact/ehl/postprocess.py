@@ -62,19 +62,13 @@ def shear_stress(
     return tau
 
 
+# a non-converged last iterate may hold extreme pressures: evaluated quietly, flagged below
+@np.errstate(over="ignore", invalid="ignore", under="ignore")
 def postprocess(
     sysm: ReynoldsSystem, out: NewtonOutcome, opts: EHLOptions, time=0.0, squeeze_velocity=0.0
 ) -> EHLResult:
     """:class:`EHLResult` of a Newton outcome on ``sysm`` (friction, loads, films,
     meniscus, inlet-truncation estimate, warnings)."""
-    # a non-converged last iterate may hold extreme pressures: evaluate quietly, flag below
-    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
-        return _postprocess(sysm, out, opts, time, squeeze_velocity)
-
-
-def _postprocess(
-    sysm: ReynoldsSystem, out: NewtonOutcome, opts: EHLOptions, time, squeeze_velocity
-) -> EHLResult:
     st, ok, it, msg = out.state, out.converged, out.iterations, out.message
     w, R = sysm.cond.load, sysm.cond.radius
     ue, us = sysm.cond.entrainment_speed, sysm.cond.sliding_speed

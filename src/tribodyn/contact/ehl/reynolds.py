@@ -36,7 +36,6 @@ from .kernels import (
     SGETRS,
     SYMV,
     assemble,
-    dense_matrix,
     dense_matrix_t,
     gmres_lu,
     newton_matvec,
@@ -50,9 +49,7 @@ __all__ = ["ReynoldsSystem", "Evaluation", "Linearization"]
 class ReynoldsSystem:
     """Scaled discrete system for one solve (one time level)."""
 
-    def __init__(
-        self, grid: Grid, cond: Conditions, model: ContactModel, time_coef=0.0, f_old=None
-    ):
+    def __init__(self, grid: Grid, cond: Conditions, model: ContactModel, time_coef=0.0):
         w, R, ue = cond.load, cond.radius, cond.entrainment_speed
         lub, roughness = model.lubricant, model.roughness
         self.g = grid
@@ -64,7 +61,6 @@ class ReynoldsSystem:
         self.p_ref = p_ref = w / a  # P = p a / w
         self.h_ref = h_ref = a * a / R  # H = h R / a²
         self.elastic = grid.elastic
-        self._K = None
         self.kcoef: np.ndarray | None
         if grid.elastic:
             assert grid.coef is not None  # an elastic grid carries its influence coefficients
@@ -78,7 +74,7 @@ class ReynoldsSystem:
         self.geom = 0.5 * grid.X**2
         # time term: c_t (f − f_old) with f = ρ̄H, c_t = a/(U Δt)·α₀
         self.time_coef = time_coef * a / self.u_scale
-        self.f_old = f_old
+        self.f_old: np.ndarray | None = None  # set by the transient driver
         # optional per-node factors of the generalized (thermal) Reynolds equation: the
         # Poiseuille coefficient ε and the Couette flux ū ρ̄H are multiplied by them
         # (None: isothermal Reynolds; see contact.ehl.thermal)
@@ -112,13 +108,6 @@ class ReynoldsSystem:
         if self.kcoef is None:
             return None
         return DeformationOperator.from_coefficients(self.kcoef)
-
-    @property
-    def K(self):
-        """Scaled dense influence matrix (built on first use)."""
-        if self.elastic and self._K is None:
-            self._K = self.g.K * self.kscale
-        return self._K
 
     def deform(self, v):
         """Scaled deformation K v: a dense product on grids that keep the dense matrix
@@ -178,7 +167,7 @@ class ReynoldsSystem:
             pa, dpa = self.asperity(H0 + self.geom + defo if self.elastic else H0 + self.geom)
         H, P, R = np.empty(n), np.empty(n), np.empty(n)
         AP, AH = np.empty((5, n)), np.empty((5, n))
-        ff, cf = self._factors()
+        rough = self.rough is not None
         load = kernels.evaluate(
             Q,
             H0,
@@ -187,19 +176,11 @@ class ReynoldsSystem:
             self._asperities,
             self._table,
             self._curve,
-            self.ka if self.rough is not None else 0.0,
-            self.sig if self.rough is not None else 1.0,
+            self.ka if rough else 0.0,
+            self.sig if rough else 1.0,
             self._law,
             self.p_ref,
-            self.lam,
-            self.h_floor,
-            abs(self.ubar),
-            self.s,
-            self.g.dX,
-            float(self.time_coef),
-            self.f_old if self.time_coef else _EMPTY,
-            ff,
-            cf,
+            *self._stencil(),
             H,
             pa,
             dpa,
@@ -210,47 +191,35 @@ class ReynoldsSystem:
         )
         return Evaluation(R, load, P, H, pa, dpa, AP, AH)
 
-    def _factors(self):
-        """The per-node factors φ_f, φ_c of the generalized Reynolds equation (1: none)."""
+    def _stencil(self):
+        """The arguments of :func:`.kernels.assemble` between the rheology and the outputs:
+        λ, the film floor, |ū|, the upwind direction, ΔX, the time term (c_t, f_old) and
+        the per-node factors φ_f, φ_c of the generalized Reynolds equation (1: none)."""
         ff = self._ones if self.flow_factor is None else np.asarray(self.flow_factor, float)
         cf = self._ones if self.couette_factor is None else np.asarray(self.couette_factor, float)
-        return ff, cf
-
-    def _evaluate_per_node(self, Q, H0):
-        """:meth:`evaluate` for a lubricant read through its methods (per-node
-        properties): film, asperities and rheology by NumPy, then the compiled stencil."""
-        g = self.g
-        n, dX = g.n, g.dX
-        H = self.film(Q, H0)
-        pa, dpa = self.asperity(H)
-        P = Q - pa
-        rho, drho, lnmu, dlnmu = self.rheology(P)
-        R = np.empty(n)
-        AP = np.empty((5, n))
-        AH = np.empty((5, n))
         f_old = self.f_old if self.time_coef else _EMPTY
-        ff, cf = self._factors()
-        assemble(
-            P,
-            H,
-            rho,
-            drho,
-            lnmu,
-            dlnmu,
+        return (
             self.lam,
             self.h_floor,
             abs(self.ubar),
             self.s,
-            dX,
+            self.g.dX,
             float(self.time_coef),
             f_old,
             ff,
             cf,
-            R,
-            AP,
-            AH,
         )
-        load = dX * float(np.sum(Q)) - 1.0
+
+    def _evaluate_per_node(self, Q, H0):
+        """:meth:`evaluate` for a lubricant read through its methods (per-node
+        properties): film, asperities and rheology by NumPy, then the compiled stencil."""
+        n = self.g.n
+        H = self.film(Q, H0)
+        pa, dpa = self.asperity(H)
+        P = Q - pa
+        R, AP, AH = np.empty(n), np.empty((5, n)), np.empty((5, n))
+        assemble(P, H, *self.rheology(P), *self._stencil(), R, AP, AH)
+        load = self.g.dX * float(np.sum(Q)) - 1.0
         return Evaluation(R, load, P, H, pa, dpa, AP, AH)
 
 
@@ -287,7 +256,7 @@ class Linearization:
         n = g.n
         self.n, self.dX, self.sysm = n, g.dX, sysm
         self.rigid = not sysm.elastic
-        self.AP = ev.AP
+        self.AP, self.AH = ev.AP, ev.AH
         self.D = ev.dpa
         self.c = c
         self.B, self.col, self.cav, self.bnd, self.free, self.rhs = newton_rows(
@@ -335,10 +304,6 @@ class Linearization:
             int(max_it),
         )  # piv + 1: LAPACK's 1-based pivots
         return (x if ok else None), its
-
-    def dense(self):
-        K, ks = self._influence()
-        return dense_matrix(*self._rows(), K, ks, self.dX, not self.rigid)
 
     def dense_column_major(self, dtype=np.float64):
         """The dense Newton matrix in ``dtype`` and column-major order, as LAPACK

@@ -18,6 +18,7 @@ from ..._validation import InputError
 from ...physics.asperity import Roughness
 from ...physics.lubricant import Lubricant
 from ...physics.materials import BodyPair
+from .grid import N_DENSE as _N_DENSE  # finer grids: the two-grid preconditioner
 from .grid import N_MAX_AUTO, Grid, Layout, layout
 from .newton import CoarseLevel, NewtonOutcome, State, newton
 from .options import Conditions, ContactModel, EHLOptions, EHLResult, with_overrides
@@ -29,8 +30,6 @@ __all__ = ["solve_ehl", "initial_state", "state_from_dimensional"]
 _COARSEST = 128
 #: automatic grid: refine while h_c or h_min change by more than this from n/2 to n
 _GRID_REFINE_CHANGE = 0.01
-#: finer grids are solved with the two-grid preconditioner
-_N_DENSE = 1024
 
 
 def initial_state(sysm: ReynoldsSystem, b, h_est) -> State:
@@ -87,9 +86,7 @@ def solve_ehl(
     """
     cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
     model = ContactModel.checked(bodies, lubricant, roughness)
-    opts = options or EHLOptions()
-    if option_overrides:
-        opts = with_overrides(opts, option_overrides)
+    opts = with_overrides(options, option_overrides)
     if cond.entrainment_speed == 0.0:
         raise InputError(
             "entrainment_speed must be non-zero for a steady film (pure squeeze needs TransientEHL)"

@@ -154,9 +154,7 @@ def solve_thermal_ehl(
     """
     if not isinstance(oil, ThermalLubricant):
         raise InputError(f"oil must be a ThermalLubricant (got {type(oil).__name__})")
-    opts = options or EHLOptions()
-    if option_overrides:
-        opts = with_overrides(opts, option_overrides)
+    opts = with_overrides(options, option_overrides)
     topts = thermal_options or ThermalOptions()
     cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
     iso_model = ContactModel.checked(bodies, oil.isothermal(), roughness)
@@ -183,8 +181,7 @@ def solve_thermal_ehl(
     )
     ev = sysm.evaluate(st.Q, st.H0)
     st.P, st.H = ev.P, ev.H
-    u1 = cond.entrainment_speed + 0.5 * cond.sliding_speed
-    tf = ThermalField(grid.x, oil, tb, topts, (u1, u1 - cond.sliding_speed))
+    tf = ThermalField(grid.x, oil, tb, topts, cond.surface_speeds)
     out, ok, msg, it = None, False, "", 0
     hc_prev = iso.central_film
     relax = topts.relaxation

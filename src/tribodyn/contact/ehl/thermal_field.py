@@ -19,7 +19,7 @@ from ...physics.film_thermal import FilmFlow, film_flow
 from ...physics.friction import boundary_shear_stress
 from ...physics.heat_conduction import depth_grid
 from ...physics.thermal_oil import ThermalLubricant
-from .energy import EnergyInputs, chain_size, solve_energy
+from .energy import EnergyInputs, chain_size, solid_chain, solve_energy
 from .options import Conditions, EHLOptions
 from .reynolds import ReynoldsSystem
 
@@ -166,16 +166,11 @@ class ThermalField:
         self.flow: FilmFlow | None = None
 
     # -- views
-    @property
-    def film_theta(self):
-        return self.theta[:, self.n1 : self.n1 + self.m]
+    def film_T(self):
+        return self.Ti + self.theta[:, self.n1 : self.n1 + self.m]
 
-    def film_T(self, theta=None):
-        th = self.theta if theta is None else theta
-        return self.Ti + th[:, self.n1 : self.n1 + self.m]
-
-    def mean_T(self, theta=None):
-        return self.film_T(theta) @ self.w
+    def mean_T(self):
+        return self.film_T() @ self.w
 
     # -- physics on the thermal grid
     def fields(
@@ -187,7 +182,6 @@ class ThermalField:
         cond: Conditions,
         rough: Roughness | None,
         opts: EHLOptions,
-        theta=None,
         p_old=None,
         dt=None,
     ):
@@ -201,12 +195,11 @@ class ThermalField:
         faces = np.clip(np.r_[xs - 0.5 * self.dx, xs[-1] + 0.5 * self.dx], x[0], x[-1])
         pf = np.interp(faces, x, p)
         px = np.diff(pf) / np.diff(faces)
-        T = self.film_T(theta)
+        T = self.film_T()
         Tm = T @ self.w
         P = pt[:, None]
         eta, rho = oil.viscosity_at(P, T), oil.density_at(P, T)
-        u1 = cond.entrainment_speed + 0.5 * cond.sliding_speed
-        u2 = cond.entrainment_speed - 0.5 * cond.sliding_speed
+        u1, u2 = cond.surface_speeds
         ff = film_flow(
             np.maximum(ht, 1e-10),
             px,
@@ -336,10 +329,7 @@ class ThermalField:
 
     def body_theta(self, body: int) -> np.ndarray:
         """θ of one solid (n_T, ns) with column 0 the surface."""
-        ns = self.grids[body].s.size - 1
-        f0 = self.n1
-        idx = [f0 - k for k in range(ns)] if body == 0 else [f0 + self.m - 1 + k for k in range(ns)]
-        return self.theta[:, idx]
+        return self.theta[:, solid_chain(body, self.n1, self.m, self.grids[body].s.size - 1)]
 
     def regridded(self, x_ehl, speeds) -> ThermalField:
         """A field on a new EHL grid with θ interpolated (film in x, solids in x and
@@ -352,19 +342,16 @@ class ThermalField:
         th = np.zeros_like(new.theta)
         xn = new.x
         for j in range(self.m):
-            th[:, new.n1 + j] = np.interp(xn, self.x, self.film_theta[:, j], left=0.0, right=0.0)
+            th[:, new.n1 + j] = np.interp(
+                xn, self.x, self.theta[:, self.n1 + j], left=0.0, right=0.0
+            )
         for body in (0, 1):
             old = self.body_theta(body)
             so, sn = self.grids[body].s[:-1], new.grids[body].s[:-1]
             f = RegularGridInterpolator((self.x, so), old, bounds_error=False, fill_value=0.0)
             X, S = np.meshgrid(xn, sn, indexing="ij")
             vals = f(np.stack([X, np.minimum(S, so[-1])], axis=-1))
-            f0 = new.n1
-            idx = (
-                [f0 - k for k in range(sn.size)]
-                if body == 0
-                else [f0 + new.m - 1 + k for k in range(sn.size)]
-            )
+            idx = solid_chain(body, new.n1, new.m, sn.size)
             surf = th[:, idx[0]].copy()
             th[:, idx] = vals
             th[:, idx[0]] = surf  # the surface node is the film's wall

@@ -124,11 +124,10 @@ class ThermalTransientEHL(TransientEHL):
     def _steady_on_grid(self, grid: Grid, cond: Conditions, res):
         """The steady thermal solution's temperatures carried to ``grid``, and its
         pressure re-solved there at those temperatures."""
-        speeds = self._speeds(cond)
         steady_field = res.temperature_field
         assert isinstance(steady_field, ThermalField)  # set by solve_thermal_ehl
         tf = (
-            steady_field.regridded(grid.x, speeds)
+            steady_field.regridded(grid.x, cond.surface_speeds)
             if grid.x.size != res.x.size or abs(grid.x[0] / res.x[0] - 1) > 1e-12
             else steady_field
         )
@@ -162,7 +161,7 @@ class ThermalTransientEHL(TransientEHL):
         during each Newton solve), and that level's thermal data."""
         tf_old = self.tf
         assert tf_old is not None and self._p_T is not None and self._rho_h_T is not None
-        tf = tf_old if grid is self._grid else tf_old.regridded(grid.x, self._speeds(cond))
+        tf = tf_old if grid is self._grid else tf_old.regridded(grid.x, cond.surface_speeds)
         lvl = _Level(
             tf,
             tf.theta.copy(),
@@ -244,12 +243,6 @@ class ThermalTransientEHL(TransientEHL):
         )
 
     # -- internals
-    @staticmethod
-    def _speeds(cond: Conditions) -> tuple[float, float]:
-        """Surface speeds (u₁, u₂) [m/s] of cam and tappet."""
-        u1 = cond.entrainment_speed + 0.5 * cond.sliding_speed
-        return u1, u1 - cond.sliding_speed
-
     def _frozen_system(self, grid, cond, T_nodes, time_coef=0.0):
         oil = FrozenTemperatureOil(self.oil, T_nodes)
         self._T_nodes = T_nodes

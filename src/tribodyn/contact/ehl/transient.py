@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from contextlib import contextmanager
-from dataclasses import dataclass, replace
+from dataclasses import astuple, dataclass, replace
 
 import numpy as np
 
@@ -45,7 +45,7 @@ class Level:
     central_film: float  #: h(0) [m]
     dt: float | None  #: the step that reached this level [s]; None: a start
     radius: float  #: radius of curvature [m]
-    p: np.ndarray | None = None  #: fluid pressure [Pa] (the predictor's cavitated nodes)
+    p: np.ndarray  #: fluid pressure [Pa] (the predictor's cavitated nodes)
 
 
 @dataclass
@@ -120,9 +120,7 @@ class TransientEHL:
         self.bodies = self.model.bodies
         self.lub = lubricant
         self.rough = roughness
-        opts = options or EHLOptions()
-        if option_overrides:
-            opts = with_overrides(opts, option_overrides)
+        opts = with_overrides(options, option_overrides)
         # the options checked n (an integer in the steady range): only the transient's here
         if opts.n is not None and not EHL_NODES_TRANSIENT.contains(opts.n):
             raise RangeError([("n", EHL_NODES_TRANSIENT, opts.n)])
@@ -168,11 +166,8 @@ class TransientEHL:
         self._grid, self._n_event = None, None
         grid = self._make_grid(cond, h0)
         sysm = ReynoldsSystem(grid, cond, self.model)
-        st = State(np.zeros(grid.n), h0 / sysm.h_ref)
-        ev = sysm.evaluate(st.Q, st.H0)
-        st.P, st.H = ev.P, ev.H
         self._reset(grid)
-        self._commit(sysm, st, None, time)
+        self._commit(sysm, State(np.zeros(grid.n), h0 / sysm.h_ref), None, time)  # evaluated there
         self.result = None
 
     # -- hooks of a variant (the thermal one: :mod:`.thermal_transient`)
@@ -300,7 +295,7 @@ class TransientEHL:
             q * (sysm.cond.load / w) / sysm.p_ref if w > 0.0 else st.Q * (sysm.cond.load / r.load)
         )
         p1, p0 = lv[0].p, lv[1].p
-        if p1 is not None and p0 is not None and all(np.array_equal(v.x, xg) for v in lv[:2]):
+        if all(np.array_equal(v.x, xg) for v in lv[:2]):
             # … and Newton starts from the cavitated nodes of the fluid pressure
             # extrapolated alike on the same grid (zero up to round-off of the total
             # pressure): Q − Pa(H) of the predicted Q is the small difference of two large
@@ -340,7 +335,7 @@ class TransientEHL:
         res = self._advance(dt, cond)
         if res.converged or self.max_substeps == 0:
             return res
-        self._restore(saved)
+        self._set_state(saved)
         return self._substep(dt, c0, cond, marks, depth=1)  # the full step failed
 
     @contextmanager
@@ -371,15 +366,7 @@ class TransientEHL:
         1/2^depth of the way to the first mark."""
 
         def at(f):
-            return Conditions(
-                *(
-                    a + f * (b - a)
-                    for a, b in zip(
-                        (c0.load, c0.radius, c0.entrainment_speed, c0.sliding_speed),
-                        (c1.load, c1.radius, c1.entrainment_speed, c1.sliding_speed),
-                    )
-                )
-            )
+            return Conditions(*(a + f * (b - a) for a, b in zip(astuple(c0), astuple(c1))))
 
         k = self.max_substeps
         done, failures, n_ok = 0.0, 0, 0
@@ -451,9 +438,6 @@ class TransientEHL:
         )
         return self._state()
 
-    def _restore(self, snap):
-        self._set_state(snap)
-
     def checkpoint(self):
         """An opaque copy of the marching state (for :meth:`rollback`), e.g. to redo a step
         with sub-steps when a time-error estimate is too large."""
@@ -461,7 +445,7 @@ class TransientEHL:
 
     def rollback(self, checkpoint):
         """Return to a state saved by :meth:`checkpoint`."""
-        self._restore(checkpoint)
+        self._set_state(checkpoint)
 
     def _advance(self, dt, cond: Conditions) -> EHLResult:
         """One implicit time level: grid, BDF coefficients, predictor, then the
