@@ -11,7 +11,10 @@ uncoated and coated (DLC, WC-C) tappets. Method after Andreou et al., Appl. Sci.
 import importlib as _importlib
 from typing import TYPE_CHECKING
 
+from ._kernel_cache import refresh as _refresh_kernel_cache
 from ._version import __version__
+
+_refresh_kernel_cache()  # before any compiled kernel loads from numba's cache
 
 #: public name → module that defines it
 _EXPORTS = {

@@ -35,7 +35,7 @@ of a ground surface, λ_s = 2.5 µm and λ_c = 0.8 mm (ISO 3274, ISO 4288:
 clipped to the measurement: λ_s = max(2.5 µm, 2Δ, reliability cutoff) and
 λ_L = min(0.8 mm, min(L_x, L_y) − 2λ_s), i.e. at most the length that remains after the
 analysis drops one λ_s along each edge (filter end effects, see
-``analysis.analysis_margin``). Optical maps (fields of 10–70 µm) hold far less than
+``analysis_margin``). Optical maps (fields of 10–70 µm) hold far less than
 0.8 mm, so the band actually used is reported with a warning. Andreou et al. (2023)
 filtered 0.25–250 µm: pass ``band=tribodyn.paper.TOPOGRAPHY_BAND`` (with ``clip_band``)
 to reproduce their analysis.
@@ -56,6 +56,7 @@ from .errors import BandLimitError, InsufficientDataError, TopographyError
 
 __all__ = [
     "MAX_MAP_POINTS",
+    "analysis_margin",
     "check_map_size",
     "TYPICAL_BAND",
     "AUTO_BAND",
@@ -500,3 +501,20 @@ def prepare_topography(
         topography = topography.interpolate_undefined_data("harmonic")
     topography = topography.detrend(detrend_mode="center" if topography.is_periodic else detrend)
     return band_pass(topography, applied), applied, sampling, filled
+
+
+def analysis_margin(band: Band | None, pixel_size, periodic: bool) -> tuple[int, ...]:
+    """Points excluded along each edge of a map (or profile) before summits (peaks) and
+    moments are evaluated, one number per axis of ``pixel_size``.
+
+    Periodic maps: none. Non-periodic maps: the curvature stencil's border (1) or, after
+    band-pass filtering, one short-wavelength cutoff λ_s, the reach of the filter's end
+    effects at the mirror-stitched edges (the Gaussian S-filter kernel has a standard
+    deviation of 0.19 λ_s). Without the margin, summits and curvature near the edges are
+    biased by O(λ_s/L).
+    """
+    if periodic:
+        return (0,) * len(pixel_size)
+    if band is None or band.kind == "none":
+        return (1,) * len(pixel_size)
+    return tuple(max(1, int(np.ceil(band.wavelengths[0] / p - 1e-9))) for p in pixel_size)

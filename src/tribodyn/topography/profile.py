@@ -33,12 +33,12 @@ from typing import Any
 
 import numpy as np
 
-from .analysis import analysis_margin
 from .errors import InsufficientDataError
 from .filtering import (
     AUTO_BAND,
     Band,
     BandSpec,
+    analysis_margin,
     applied_band,
     check_filtering,
     check_map_size,

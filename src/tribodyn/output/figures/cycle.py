@@ -38,8 +38,9 @@ def _cycle_lines(ax, ds, values, window, styles, *, label_fmt=None):
 
 def _groups(values, tol):
     """Group sorted positions closer than ``tol``: list of index arrays."""
-    order = np.argsort(values)
-    return np.split(order, np.flatnonzero(np.diff(values[order]) >= tol) + 1)
+    order = np.argsort(values)  # a NaN sorts last and stands alone
+    cuts = np.flatnonzero(~(np.diff(values[order]) < tol)) + 1
+    return np.split(order, cuts) if order.size else []
 
 
 def _point_ticks(ax, ds):
