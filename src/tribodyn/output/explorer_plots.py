@@ -18,6 +18,7 @@ import numpy as np
 
 from ..workflow.conventions import EVENT_FRACTION
 from .explorer_data import Result, decimate
+from .report_engine import ENGINE_PARTS
 
 __all__ = ["run_figures", "engine_figures", "sweep_figures", "Styles", "LineFigure", "LINE_STYLE"]
 
@@ -245,7 +246,7 @@ ENGINE_TRACES = (
     (
         "Auxiliary friction torque per camshaft: tappet bores + valve guides + journals",
         "T_aux [N·m]",
-        ("tappet_bore_torque", "valve_guide_torque", "camshaft_journal_torque"),
+        tuple(f"{k}_torque" for k, _ in ENGINE_PARTS[1:]),
     ),
     (
         "Valvetrain friction power per camshaft (contacts + auxiliary)",

@@ -17,7 +17,8 @@ from .report_claims import _fmt
 
 __all__ = ["engine_report_text"]
 
-#: The parts of the valvetrain friction (summary key, name in the report).
+#: The parts of the valvetrain friction (summary key, name in the report): the cam–tappet
+#: contacts, then the auxiliary friction.
 ENGINE_PARTS = (
     ("cam_tappet", "cam–tappet contacts"),
     ("tappet_bore", "tappet bores"),
