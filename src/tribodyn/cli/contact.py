@@ -256,12 +256,7 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
             built,
             q.oil,
             q.inlet_temperature,
-            {
-                "--viscosity": q.viscosity,
-                "--pressure-viscosity": q.pressure_viscosity,
-                "--density": q.density,
-                "--viscosity-model": q.viscosity_model,
-            },
+            {_flag(k): getattr(q, k) for k in _THERMAL_OIL_OPTIONS},
         )
     if not q.dry:  # the lubricant and numerics options: case updates, built once
         built = build(_updated(case, q.case_changes()))
@@ -292,6 +287,8 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
     return r
 
 
+#: lubricant options refused with a --thermal/--oil oil (it brings its μ₀, α, ρ₀ and law)
+_THERMAL_OIL_OPTIONS = ("viscosity", "pressure_viscosity", "density", "viscosity_model")
 #: options that set the shear law of the --thermal/--oil oil (τ_E, Λ)
 _OIL_SHEAR = ("eyring_stress", "limiting_shear_coefficient")
 

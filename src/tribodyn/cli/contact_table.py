@@ -168,18 +168,11 @@ def _table(r: dict) -> Table:
     return t
 
 
-_MODE_NAMES = {
-    "substrate_yield": "substrate yield",
-    "surface_tension": "surface tension",
-    "coating_tension": "coating tension",
-    "coating_yield": "coating yield",
-    "interface_shear": "interface shear",
-    "interface_tension": "interface tension",
-}
-
-
 def _stress_rows(t: Table, sec, st: dict | None) -> None:
-    """Rows of ``--stress``: the peaks of each body and the safety factors."""
+    """Rows of ``--stress``: the peaks of each body and the safety factors (a mode's
+    name: its key, spaced)."""
+    from ..output.report_stress import MODES
+
     sec("subsurface stress (peak; x, z)")
     if st is None:
         t.add_row("stresses", "–", "no EHL solution")
@@ -199,14 +192,18 @@ def _stress_rows(t: Table, sec, st: dict | None) -> None:
             t.add_row(f"{body}: {label}", f"{v * 1e-6:.4g}", f"MPa at {x:.3g}, {z:.3g} µm")
     sec("safety factors (strength / peak)")
     for body in ("cam", "tappet"):
-        for mode, label in _MODE_NAMES.items():
+        for mode in MODES:
             v = st.get(f"safety_factor_{body}_{mode}")
             if v is not None:
-                t.add_row(f"{body}: {label}", "∞" if v == float("inf") else f"{v:.3g}", "")
+                t.add_row(
+                    f"{body}: {mode.replace('_', ' ')}",
+                    "∞" if v == float("inf") else f"{v:.3g}",
+                    "",
+                )
     w = st.get("closest_failure")
     if w:
         t.add_row(
             "closest to failure",
             f"{w['safety_factor']:.3g}",
-            f"{w['body']}, {_MODE_NAMES[w['mode']]}",
+            f"{w['body']}, {w['mode'].replace('_', ' ')}",
         )

@@ -7,6 +7,7 @@ import os
 import signal
 import sys
 import threading
+from contextlib import suppress
 from pathlib import Path
 
 import typer
@@ -184,10 +185,8 @@ class _ImportsAhead:
     def _run() -> None:
         from ..output.writer import import_writing_modules
 
-        try:
+        with suppress(Exception):  # the writing imports them again and reports the error
             import_writing_modules()
-        except Exception:  # the writing imports them again and reports the error
-            pass
 
     def join(self) -> None:
         if self.thread is not None:

@@ -38,7 +38,7 @@ from .explorer_plots import (
     run_figures,
     sweep_figures,
 )
-from .report_engine import shaft_peaks
+from .report_engine import ENGINE_PARTS, shaft_peaks
 
 __all__ = [
     "add_interactive",
@@ -74,7 +74,6 @@ ENGINE_ROWS = (
     ("mean_friction_torque_Nm", "mean friction torque, sum of the camshafts", "N·m", 1.0),
     ("peak_camshaft_drive_torque_Nm", "peak drive torque of the camshafts summed", "N·m", 1.0),
 )
-_ENGINE_PARTS = ("cam_tappet", "tappet_bore", "valve_guide", "camshaft_journal")
 
 
 def _num(v) -> float | None:
@@ -163,7 +162,7 @@ def summary_rows(results: list[Result], kind: str) -> tuple[list[str], list[list
             ]
             for c in shafts
         ]
-        for part in _ENGINE_PARTS:
+        for part, _ in ENGINE_PARTS:
             vals = [
                 _num(r.set_summary(s).get("friction_energy_per_cycle_J", {}).get(part))
                 for r, s in cols

@@ -18,6 +18,7 @@ import numpy as np
 
 from ..workflow.conventions import EVENT_FRACTION
 from .explorer_data import Result, decimate
+from .report_engine import ENGINE_PARTS
 
 __all__ = ["run_figures", "engine_figures", "sweep_figures", "Styles", "LineFigure", "LINE_STYLE"]
 
@@ -245,7 +246,7 @@ ENGINE_TRACES = (
     (
         "Auxiliary friction torque per camshaft: tappet bores + valve guides + journals",
         "T_aux [N·m]",
-        ("tappet_bore_torque", "valve_guide_torque", "camshaft_journal_torque"),
+        tuple(f"{k}_torque" for k, _ in ENGINE_PARTS[1:]),
     ),
     (
         "Valvetrain friction power per camshaft (contacts + auxiliary)",
@@ -343,27 +344,28 @@ def sweep_figures(results: list[Result], styles: Styles) -> list:
         sets: list[str | None] = list(r.sets) or [None]
         has_sets = "surface_set" in ds[var].dims
         ref = r.reference
+        # (values, y label, title's what, reference drawn): the loss, the coatings' change
+        shown = [(ds[var] * scale, f"{name} [{unit}]", name, True)]
+        if has_sets and ref is not None and len(sets) >= 2:
+            shown.append(
+                (
+                    coating_delta(ds, var, ref),
+                    f"change vs {r.labels.get(str(ref), str(ref))} [%]",
+                    f"coatings' change of the {name}",
+                    False,
+                )
+            )
         for xd in axes:
             others = [d for d in axes if d != xd]
-            for what in ("loss", "delta"):
-                if what == "delta" and (not has_sets or ref is None or len(sets) < 2):
-                    continue
-                da = ds[var] * scale if what == "loss" else coating_delta(ds, var, ref)
-                ylab = (
-                    f"{name} [{unit}]"
-                    if what == "loss"
-                    else f"change vs {r.labels.get(str(ref), str(ref))} [%]"
-                )
-                title = (
-                    f"{r.label}: {name} against {xd}"
-                    if what == "loss"
-                    else f"{r.label}: coatings' change of the {name} against {xd} (negative = less friction)"
+            for da, ylab, what, with_ref in shown:
+                title = f"{r.label}: {what} against {xd}" + (
+                    "" if with_ref else " (negative = less friction)"
                 )
                 p = LineFigure(title, f"{xd} [{_unit(ds, xd)}]", ylab)
                 combos = list(product(*[[(d, v) for v in ds[d].values] for d in others]))
                 for ci, combo in enumerate(combos):
                     for s in sets:
-                        if what == "delta" and s == ref:
+                        if not with_ref and s == ref:
                             continue
                         sel = dict(combo)
                         if s is not None and has_sets:

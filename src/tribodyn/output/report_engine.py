@@ -17,7 +17,9 @@ from .report_claims import _fmt
 
 __all__ = ["engine_report_text"]
 
-_PARTS = (
+#: The parts of the valvetrain friction (summary key, name in the report): the cam–tappet
+#: contacts, then the auxiliary friction.
+ENGINE_PARTS = (
     ("cam_tappet", "cam–tappet contacts"),
     ("tappet_bore", "tappet bores"),
     ("valve_guide", "valve guides"),
@@ -178,15 +180,15 @@ def engine_report_text(study, ds, summ: dict, figures, labels: dict | None = Non
         "",
         "## Where the friction goes",
         "",
-        "| surface set | " + " | ".join(p for _, p in _PARTS) + " | total |",
-        "|---" * (len(_PARTS) + 2) + "|",
+        "| surface set | " + " | ".join(p for _, p in ENGINE_PARTS) + " | total |",
+        "|---" * (len(ENGINE_PARTS) + 2) + "|",
     ]
     for name, d in sets.items():
         parts = d["friction_energy_per_cycle_J"]
         tot = d["engine_friction_energy_per_cycle_J"]
         cells = [
             f"{_fmt(parts.get(k), 'J', 3)} ({100 * parts.get(k, 0) / tot:.0f} %)" if tot else "–"
-            for k, _ in _PARTS
+            for k, _ in ENGINE_PARTS
         ]
         lines.append(f"| {lab(name)} | " + " | ".join(cells) + f" | {_fmt(tot, 'J', 4)} |")
     lobe = _lobe_rows(study, labels)

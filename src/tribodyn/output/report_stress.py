@@ -10,7 +10,8 @@ import math
 
 __all__ = ["stress_section"]
 
-_MODES = {
+#: The failure modes of the safety factors, in order, with their names in the report.
+MODES = {
     "substrate_yield": "substrate yield (von Mises / Tabor H/3)",
     "surface_tension": "surface cracking (tension)",
     "coating_tension": "coating cracking (tension)",
@@ -56,7 +57,7 @@ def stress_section(summary: dict) -> list[str]:
         out.append(
             "| {label} | {mode} | {body} | {x} | {z} | {c} | {s} | {sf} |".format(
                 label=e.get("label", name),
-                mode=_MODES.get(str(w.get("mode")), "–"),
+                mode=MODES.get(str(w.get("mode")), "–"),
                 body=w.get("body", "–"),
                 x=_f(w.get("x_m"), ".1f", 1e6),
                 z=_f(w.get("z_m"), ".2f", 1e6),
@@ -71,7 +72,7 @@ def stress_section(summary: dict) -> list[str]:
         out += [
             "",
             f"Closest to failure: **{worst[1].get('label', worst[0])}**, "
-            f"{_MODES[w['mode']]} of the {w['body']} at "
+            f"{MODES[w['mode']]} of the {w['body']} at "
             f"{w['crank_deg']:.0f}° crank (presented cycle {cycle}), "
             f"x = {w['x_m'] * 1e6:.1f} µm, z = {w['z_m'] * 1e6:.2f} µm, "
             f"safety factor {w['safety_factor']:.2f}.",

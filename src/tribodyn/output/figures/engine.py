@@ -13,6 +13,7 @@ from collections import Counter
 
 import numpy as np
 
+from ..report_engine import ENGINE_PARTS
 from .common import finish as _finish
 from .common import plt
 
@@ -71,11 +72,7 @@ def engine_torque_figure(ds, path, labels=None):
             lab = labels.get(name, name)
             a.plot(x, ds["camshaft_drive_torque"].values[i, j], label=lab, **st)
             b.plot(x, ds["camshaft_friction_torque"].values[i, j], label=f"{lab}: cam–tappet", **st)
-        aux = (
-            ds["tappet_bore_torque"].values[0, j]
-            + ds["valve_guide_torque"].values[0, j]
-            + ds["camshaft_journal_torque"].values[0, j]
-        )
+        aux = sum(ds[f"{k}_torque"].values[0, j] for k, _ in ENGINE_PARTS[1:])  # auxiliary
         ref = labels.get(sets[0], sets[0])
         b.plot(
             x,
