@@ -10,11 +10,11 @@ import math
 import numpy as np
 
 from .. import paper
-from .report_stress import _f
+from .report_stress import table_number
 
 
 def _fmt(v, unit="", digits=3):
-    return _f(v, f".{digits}g", unit=unit)
+    return table_number(v, f".{digits}g", unit=unit)
 
 
 def _boundary_factor(surfaces, name, with_coefficient=False):

@@ -21,7 +21,7 @@ MODES = {
 }
 
 
-def _f(v, fmt, scale=1.0, unit=""):
+def table_number(v, fmt, scale=1.0, unit=""):
     """``v`` × ``scale`` in the format ``fmt`` with its ``unit``; "–" if missing or not
     finite."""
     if v is None or (isinstance(v, float) and not math.isfinite(v)):
@@ -59,11 +59,11 @@ def stress_section(summary: dict) -> list[str]:
                 label=e.get("label", name),
                 mode=MODES.get(str(w.get("mode")), "–"),
                 body=w.get("body", "–"),
-                x=_f(w.get("x_m"), ".1f", 1e6),
-                z=_f(w.get("z_m"), ".2f", 1e6),
-                c=_f(w.get("crank_deg"), ".0f"),
-                s=_f(w.get("stress_Pa"), ".0f", 1e-6),
-                sf=_f(w.get("safety_factor"), ".2f"),
+                x=table_number(w.get("x_m"), ".1f", 1e6),
+                z=table_number(w.get("z_m"), ".2f", 1e6),
+                c=table_number(w.get("crank_deg"), ".0f"),
+                s=table_number(w.get("stress_Pa"), ".0f", 1e-6),
+                sf=table_number(w.get("safety_factor"), ".2f"),
             )
         )
     worst = min(sets.items(), key=lambda kv: kv[1]["min_safety_factor"] or math.inf)
@@ -129,7 +129,7 @@ def _wear_lines(sets: dict) -> list[str]:
         d = e["wear_depth_per_cycle_m"] * 1e9
         depth = f"{d / f:.2e} … {d * f:.2e}" if assumed else f"{d:.2e}"
         rows.append(
-            f"| {e.get('label', name)} | {_f(e.get('wear_coefficient_m3_per_Nm'), '.2g')} "
+            f"| {e.get('label', name)} | {table_number(e.get('wear_coefficient_m3_per_Nm'), '.2g')} "
             f"| {'assumed' if assumed else 'case'} | {depth} | "
             f"{_hours_range(e.get('hours_to_wear_through'), assumed)} |"
         )
@@ -166,23 +166,23 @@ def _asperity_lines(sets: dict) -> list[str]:
             outside += beyond
             if beyond:  # Hertz does not hold: no stress numbers, only the limit
                 rows.append(
-                    f"| {body} | {e.get('label', name)} | {_f(b.get('gap_ratio'), '.2f')} "
-                    f"| beyond Hertz | {_f(b.get('radius_m'), '.2f', 1e6)} "
-                    f"| {_f(b.get('radius_over_summit'), '.2f')} | beyond Hertz | – | – | – |"
+                    f"| {body} | {e.get('label', name)} | {table_number(b.get('gap_ratio'), '.2f')} "
+                    f"| beyond Hertz | {table_number(b.get('radius_m'), '.2f', 1e6)} "
+                    f"| {table_number(b.get('radius_over_summit'), '.2f')} | beyond Hertz | – | – | – |"
                 )
                 continue
             rows.append(
                 "| {body} | {label} | {lam} | {pm} | {rad} | {ab} | {vm} | {z} | {sfy} | {sft} |".format(
                     label=e.get("label", name),
                     body=body,
-                    lam=_f(b.get("gap_ratio"), ".2f"),
-                    pm=_f(b.get("mean_pressure_Pa"), ".0f", 1e-6),
-                    rad=_f(b.get("radius_m"), ".2f", 1e6),
-                    ab=_f(b.get("radius_over_summit"), ".2f"),
-                    vm=_f(b.get("max_von_mises_Pa"), ".0f", 1e-6),
-                    z=_f(b.get("depth_m"), ".2f", 1e6),
-                    sfy=_f(b.get("safety_factor_yield"), ".2f"),
-                    sft=_f(b.get("safety_factor_tension"), ".2f"),
+                    lam=table_number(b.get("gap_ratio"), ".2f"),
+                    pm=table_number(b.get("mean_pressure_Pa"), ".0f", 1e-6),
+                    rad=table_number(b.get("radius_m"), ".2f", 1e6),
+                    ab=table_number(b.get("radius_over_summit"), ".2f"),
+                    vm=table_number(b.get("max_von_mises_Pa"), ".0f", 1e-6),
+                    z=table_number(b.get("depth_m"), ".2f", 1e6),
+                    sfy=table_number(b.get("safety_factor_yield"), ".2f"),
+                    sft=table_number(b.get("safety_factor_tension"), ".2f"),
                 )
             )
     if not rows:

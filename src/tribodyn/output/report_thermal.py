@@ -4,7 +4,7 @@ effect (what the paper's isothermal model cannot see)."""
 
 from __future__ import annotations
 
-from .report_stress import _f
+from .report_stress import table_number
 
 __all__ = ["thermal_claim_row", "thermal_section"]
 
@@ -31,13 +31,13 @@ def thermal_claim_row(study, summ) -> tuple[str, str, str, str]:
     t_ref = th["surface_sets"].get(ref, {}).get("max_surface_temperature_tappet_K")
     parts = [
         f"{study.labels[name]}: viscous friction energy "
-        f"{_f(v['viscous_energy_vs_reference_thermal_pct'], '+.1f', unit='%')} vs "
+        f"{table_number(v['viscous_energy_vs_reference_thermal_pct'], '+.1f', unit='%')} vs "
         f"{study.labels.get(ref, ref)} "
-        f"(isothermal {_f(v['viscous_energy_vs_reference_isothermal_pct'], '+.1f', unit='%')}"
-        f"), mean film {_f(v['mean_film_vs_reference_thermal_pct'], '+.1f', unit='%')} "
-        f"(isothermal {_f(v['mean_film_vs_reference_isothermal_pct'], '+.2f', unit='%')}); "
+        f"(isothermal {table_number(v['viscous_energy_vs_reference_isothermal_pct'], '+.1f', unit='%')}"
+        f"), mean film {table_number(v['mean_film_vs_reference_thermal_pct'], '+.1f', unit='%')} "
+        f"(isothermal {table_number(v['mean_film_vs_reference_isothermal_pct'], '+.2f', unit='%')}); "
         f"tappet surface up to "
-        f"{_f(v['max_tappet_surface_temperature_K'] - _C, '.0f', unit='°C')}"
+        f"{table_number(v['max_tappet_surface_temperature_K'] - _C, '.0f', unit='°C')}"
         for name, v in eff.items()
     ]
     ours = "; ".join(parts) if parts else "no coated surface set converged in all runs"
@@ -66,7 +66,7 @@ def thermal_section(study, summ) -> list[str]:
     lines = [
         "## Thermal EHL",
         "",
-        f"Oil {oil['name'] or 'from the case'} supplied at {_f(t_in - _C, '.0f', unit='°C')}"
+        f"Oil {oil['name'] or 'from the case'} supplied at {table_number(t_in - _C, '.0f', unit='°C')}"
         f" (μ = {oil['viscosity_Pa_s'] * 1e3:.3g} mPa·s, α = "
         f"{oil['pressure_viscosity_1_Pa'] * 1e9:.3g} 1/GPa, β = "
         f"{oil['temperature_viscosity_1_K']:.3g} 1/K there); the cam and the "
@@ -90,15 +90,15 @@ def thermal_section(study, summ) -> list[str]:
             continue
         lines.append(
             f"| {study.labels[name]} | "
-            f"{_f(v['max_surface_temperature_tappet_K'] - _C, '.0f', unit='°C')} | "
-            f"{_f(v['max_surface_temperature_cam_K'] - _C, '.0f', unit='°C')} | "
-            f"{_f(v['max_mid_film_temperature_K'] - _C, '.0f', unit='°C')} | "
-            f"{_f(v['max_temperature_K'] - _C, '.0f', unit='°C')} | "
-            f"{_f(v['mean_central_film_change_pct'], '+.1f', unit='%')} | "
-            f"{_f(v['viscous_friction_energy_thermal_J'], '.3g')} / "
-            f"{_f(v['viscous_friction_energy_isothermal_J'], '.3g', unit='J')} | "
-            f"{_f(v['friction_energy_thermal_J'], '.3g')} / "
-            f"{_f(v['friction_energy_isothermal_J'], '.3g', unit='J')} |"
+            f"{table_number(v['max_surface_temperature_tappet_K'] - _C, '.0f', unit='°C')} | "
+            f"{table_number(v['max_surface_temperature_cam_K'] - _C, '.0f', unit='°C')} | "
+            f"{table_number(v['max_mid_film_temperature_K'] - _C, '.0f', unit='°C')} | "
+            f"{table_number(v['max_temperature_K'] - _C, '.0f', unit='°C')} | "
+            f"{table_number(v['mean_central_film_change_pct'], '+.1f', unit='%')} | "
+            f"{table_number(v['viscous_friction_energy_thermal_J'], '.3g')} / "
+            f"{table_number(v['viscous_friction_energy_isothermal_J'], '.3g', unit='J')} | "
+            f"{table_number(v['friction_energy_thermal_J'], '.3g')} / "
+            f"{table_number(v['friction_energy_isothermal_J'], '.3g', unit='J')} |"
         )
     lines += [
         "",

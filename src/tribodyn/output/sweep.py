@@ -23,7 +23,7 @@ import numpy as np
 from .._safe_write import atomic_write, atomic_write_with, make_dirs
 from .._typing import PathLike
 from .._validation import InputError
-from .report_stress import _f  # a number in a table's format, "–" if missing
+from .report_stress import table_number
 from .result_folder import (
     _clashes,
     _marker_info,
@@ -224,7 +224,9 @@ def _results_tables(result) -> list[str]:
             for name, _, fmt in dyn_cols:
                 v = float(_at(ds[name], spec, pos).values)
                 cells.append(
-                    ("yes" if v == 1 else "no" if v == 0 else "–") if fmt is None else _f(v, fmt)
+                    ("yes" if v == 1 else "no" if v == 0 else "–")
+                    if fmt is None
+                    else table_number(v, fmt)
                 )
             out.append(f"| {label} | " + " | ".join(cells) + " |")
         out.append("")
@@ -276,7 +278,9 @@ def _results_tables(result) -> list[str]:
         ]
         for label, pos in rows:
             vals = np.asarray(_at(ds[name], spec, pos).values, float) * scale
-            out.append(f"| {label} | " + " | ".join(_f(float(x), fmt) for x in vals) + " |")
+            out.append(
+                f"| {label} | " + " | ".join(table_number(float(x), fmt) for x in vals) + " |"
+            )
         out.append("")
     return out
 
