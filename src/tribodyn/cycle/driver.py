@@ -13,8 +13,7 @@ control (:class:`_Marcher`), the sub-steps, the validity warnings and the per-sa
 outputs are written once. A variant is a :class:`CycleMethod` — a transient solver that
 satisfies :class:`EHLStepper` (:class:`~tribodyn.TransientEHL` or a subclass using its
 hooks), the viscous friction of both shear laws on its film, and optional extra
-:class:`Recorder` s (the thermal variant's temperatures) — listed by name in
-:data:`tribodyn.cycle.methods.METHODS`.
+:class:`Recorder` s (the thermal variant's temperatures).
 
 Outputs are totals over the cam width: loads and friction forces [N], friction power
 P = (F_v + F_b) u_s [W]; films [m]; pressures [Pa].
@@ -49,7 +48,6 @@ __all__ = [
     "IsothermalCycle",
     "march_cycle",
     "march_for_set",
-    "ehl_along_cycle",
     "ehl_for_set",
     "PROFILE_POINTS",
 ]
@@ -416,32 +414,6 @@ def march_cycle(
         substeps=substeps,
         **fields,
         **method.result_fields(),
-    )
-
-
-def ehl_along_cycle(
-    inp: CycleInputs,
-    name: str,
-    label: str,
-    bodies,
-    lubricant: Lubricant,
-    roughness,
-    options: EHLOptions,
-    *,
-    min_load: float = 5.0,
-    progress=None,
-    time_tol: float = TIME_TOL,
-) -> SetCycleResult:
-    """March the isothermal transient EHL over the cycle for one surface set
-    (:func:`march_cycle` with :class:`IsothermalCycle`)."""
-    return march_cycle(
-        inp,
-        name,
-        label,
-        IsothermalCycle(bodies, lubricant, roughness, options),
-        min_load=min_load,
-        progress=progress,
-        time_tol=time_tol,
     )
 
 
