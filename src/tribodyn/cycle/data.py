@@ -63,6 +63,12 @@ class CycleInputs:
             )
         return SampleConditions(*(float(np.interp(t, tt, c)) for c in cols))
 
+    def integral(self, values, where) -> float:
+        """∫ v dt over the samples ``where``: Σ v_i Δt_i, Δt_i the central difference of
+        the sample times (``np.gradient``, one-sided at the ends); a NaN value counts
+        as 0 (e.g. friction power [W] → energy [J])."""
+        return float(np.nansum(np.where(where, values, 0.0) * np.gradient(self.time)))
+
     @classmethod
     def from_dynamics(cls, res, crank_step_deg: float, width: float) -> CycleInputs:
         """Sample a :class:`~tribodyn.valvetrain.ValvetrainResult` every crank_step_deg."""
