@@ -140,16 +140,10 @@ def _engine_point(built: BuiltCase) -> tuple[xr.Dataset, list]:
     study = run_engine_study(built.case, workers=1)
     summ = study.summary()
     ds = _scalars(xr.Dataset(), _dynamics_scalars(study.lobes["intake"].study.dynamics))
-    names = study.set_names
-    sets = summ["surface_sets"]
-    parts = sets[names[0]]["friction_energy_per_cycle_J"]
-    source = {"sets": sets, "names": names}
+    source = {"sets": summ["surface_sets"], "names": study.set_names}
     ds.coords["surface_set"] = ENGINE_SETS.make(source)
     for k, v in ENGINE_SCALARS.items():
-        if not k.endswith("_energy_J"):
-            ds[k] = v.make(source)
-    for part in parts:
-        ds[f"{part}_energy_J"] = ENGINE_SCALARS[f"{part}_energy_J"].make(source)
+        ds[k] = v.make(source)
     ds.attrs["reference_set"] = summ["reference_set"]
     return ds, list(study.warnings)
 
