@@ -19,6 +19,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from .._threads import single_blas_thread
 from ..config.build import BuiltCase, as_built, options_for
 from ..contact.ehl.options import Conditions, EHLOptions
 from ..contact.ehl.thermal import ThermalOptions, couette_stress
@@ -149,8 +150,6 @@ class ThermalCycle(CycleMethod):
 def thermal_task(built: BuiltCase, name, inputs):
     """The thermal march of one surface set of a built case (:func:`~.driver.march_for_set`
     with :class:`ThermalCycle`), as a task of the study's executor."""
-    from threadpoolctl import threadpool_limits
-
     s = built.set(name).surface
-    with threadpool_limits(1):
+    with single_blas_thread():
         return march_for_set(built, s, inputs, ThermalCycle.for_set(built, s))

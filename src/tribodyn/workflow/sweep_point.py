@@ -35,6 +35,7 @@ import traceback
 import xarray as xr
 
 from .. import _json
+from .._threads import single_blas_thread
 from ..config.build import BuiltCase, as_built
 from .variables import Group, build
 from .variables_study import StudySource
@@ -159,13 +160,11 @@ def run_point(case, mode: str = "study", traces: bool = False) -> xr.Dataset:
 
     The study runs serially in this process (one BLAS thread): a sweep's parallelism is
     over points. Failures are returned as :func:`failed_point`, never raised."""
-    from threadpoolctl import threadpool_limits
-
     from .cycle import StudyError
 
     t0, c0 = time.perf_counter(), time.process_time()
     try:
-        with threadpool_limits(1):
+        with single_blas_thread():
             built = as_built(case)
             if mode == "dynamics":
                 ds, warnings = _dynamics_point(built, traces)
