@@ -8,7 +8,7 @@ P = (F_v + F_b) u_s [W]; films [m]; pressures [Pa].
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
 import numpy as np
@@ -176,18 +176,7 @@ class SetCycleResult:
         return self.viscous_friction + self.boundary_friction
 
 
-#: The per-sample scalar outputs of a :class:`SetCycleResult` (NaN where unloaded).
-SAMPLE_OUTPUTS = (
-    "central_film",
-    "min_film",
-    "max_pressure",
-    "hydrodynamic_load",
-    "asperity_load",
-    "viscous_friction",
-    "viscous_friction_newtonian",
-    "viscous_friction_eyring",
-    "boundary_friction",
-    "rolling_friction",
-    "friction_power",
-    "lambda_ratio",
-)
+#: The per-sample scalar outputs of a :class:`SetCycleResult` (NaN where unloaded): its
+#: fields from ``central_film`` to ``lambda_ratio``.
+_FIELDS = [f.name for f in fields(SetCycleResult)]
+SAMPLE_OUTPUTS = tuple(_FIELDS[_FIELDS.index("central_film") : _FIELDS.index("lambda_ratio") + 1])
