@@ -23,8 +23,8 @@ from tribodyn import solve_ehl
 from tribodyn.config import load_case
 from tribodyn.config.build import build
 from tribodyn.contact.ehl.thermal import solve_thermal_ehl
-from tribodyn.cycle.driver import CycleInputs, ehl_for_set
-from tribodyn.cycle.thermal import thermal_for_set
+from tribodyn.cycle.driver import CycleInputs, ehl_for_set, march_for_set
+from tribodyn.cycle.thermal import ThermalCycle
 from tribodyn.valvetrain import simulate_valvetrain
 
 
@@ -56,6 +56,10 @@ def cycle(set_name, repeat, model=None):
         **built.dynamics_options,
     )
     inp = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
+
+    def thermal_for_set(case, s, inp):
+        return march_for_set(case, s, inp, ThermalCycle.for_set(case, s))
+
     if model == "isothermal":
         t, r = best_of(lambda: ehl_for_set(case, s, inp), repeat)
         return {"isothermal_s": t, "loaded_steps": int(r.loaded.sum())}

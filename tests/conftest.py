@@ -187,20 +187,16 @@ def ramp_inputs(step_deg, end_deg, width):
 
 
 def isothermal_cycle(case, surface_set, inputs):
-    """The isothermal EHL march (``ehl_along_cycle``) of ``inputs`` on ``surface_set`` of
-    ``case``: its bodies, roughness and EHL options, the case's lubricant."""
-    from tribodyn.cycle.driver import ehl_along_cycle
+    """The isothermal EHL march (``march_cycle`` with ``IsothermalCycle``) of ``inputs``
+    on ``surface_set`` of ``case``: its bodies, roughness and EHL options, the case's
+    lubricant."""
+    from tribodyn.cycle.driver import IsothermalCycle, march_cycle
 
     s = surface_set
-    return ehl_along_cycle(
-        inputs,
-        "u",
-        "u",
-        s.bodies,
-        build(case).lubricant,
-        s.roughness,
-        build(case).set(s.name).options,
+    method = IsothermalCycle(
+        s.bodies, build(case).lubricant, s.roughness, build(case).set(s.name).options
     )
+    return march_cycle(inputs, "u", "u", method)
 
 
 @pytest.fixture(scope="session")

@@ -7,12 +7,12 @@ import numpy as np
 import pytest
 
 from conftest import cycle_inputs, isothermal_cycle, ramp_inputs
-from tribodyn import Body, InputError, Material, TransientEHL
+from tribodyn import Body, Material, TransientEHL
 from tribodyn.config import load_case
 from tribodyn.config.build import build
 from tribodyn.contact.ehl.thermal_transient import ThermalTransientEHL
 from tribodyn.cycle.driver import IsothermalCycle, march_cycle
-from tribodyn.cycle.methods import METHODS, cycle_for_set
+from tribodyn.cycle.methods import IsothermalStudy, ThermalStudy, study_variant
 from tribodyn.cycle.thermal import ThermalCycle
 from tribodyn.physics.heat_conduction import ThermalBody, ThermalProperties
 from tribodyn.physics.thermal_oil import ThermalLubricant, kelvin
@@ -81,13 +81,18 @@ def test_thermal_march_reports_validity_warnings():
     assert text.startswith("the load-carrying zone reaches 0.2")
 
 
-def test_methods_table():
-    """Both variants are reached by name through the one driver; an unknown name is an
-    input error."""
-    assert isinstance(METHODS["isothermal"](CASE, UNCOATED), IsothermalCycle)
-    assert isinstance(METHODS["thermal"](CASE, UNCOATED), ThermalCycle)
-    with pytest.raises(InputError, match="method must be one of"):
-        cycle_for_set(CASE, UNCOATED, _ramp_inputs(1.0), "viscoelastic")
+def test_study_variant():
+    """``numerics.thermal`` chooses the study's variant: the thermal one adds a thermal
+    pass per set with the case's thermal oil; the isothermal one adds none."""
+    thermal = study_variant(build(CASE))
+    assert isinstance(thermal, ThermalStudy) and thermal.kinds == ("thermal",)
+    assert thermal.oil(build(CASE)) is not None
+    assert [t.key for t in thermal.tasks(build(CASE), _ramp_inputs(1.0))] == [
+        f"thermal:{n}" for n in build(CASE).sets
+    ]
+    iso = build(CASE.updated({"numerics.thermal": False}))
+    assert type(study_variant(iso)) is IsothermalStudy
+    assert study_variant(iso).oil(iso) is None and study_variant(iso).tasks(iso, None) == []
 
 
 # ----------------------------------------------------------------------------- the stepper

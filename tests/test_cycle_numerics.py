@@ -13,7 +13,7 @@ from tribodyn import solve_ehl
 from tribodyn.config import load_case
 from tribodyn.config.build import build
 from tribodyn.cycle.coupling import AndersonMixer
-from tribodyn.cycle.driver import ehl_along_cycle, ehl_for_set
+from tribodyn.cycle.driver import IsothermalCycle, ehl_for_set, march_cycle
 from tribodyn.workflow.cycle import run_cycle_study
 
 CASE = load_case()
@@ -64,7 +64,9 @@ def test_time_error_control_resolves_the_engagement():
         inp = _ramp_inputs(step)
         res[step] = (
             inp,
-            ehl_along_cycle(inp, "u", "u", UNCOATED.bodies, lub, UNCOATED.roughness, opts),
+            march_cycle(
+                inp, "u", "u", IsothermalCycle(UNCOATED.bodies, lub, UNCOATED.roughness, opts)
+            ),
         )
     (ia, a), (ib, b) = res[1.0], res[0.25]
     assert a.converged[a.loaded].all() and b.converged[b.loaded].all()

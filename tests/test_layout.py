@@ -251,7 +251,7 @@ def _import_circle(graph: dict[str, set[str]]) -> list[str]:
 
 
 def test_the_cycle_modules_import_each_other_without_a_circle():
-    """The method table (cycle.methods) imports the variants; no module of tribodyn.cycle
+    """The study variants (cycle.methods) import the thermal one; no module of tribodyn.cycle
     imports another that imports it back, not even inside a function."""
     graph = {
         f"tribodyn.cycle.{p.stem}": {

@@ -8,7 +8,7 @@ P = (F_v + F_b) u_s [W]; films [m]; pressures [Pa].
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
 import numpy as np
@@ -62,6 +62,12 @@ class CycleInputs:
                 [self.contact_force, self.entrainment_speed, self.sliding_speed, self.radius],
             )
         return SampleConditions(*(float(np.interp(t, tt, c)) for c in cols))
+
+    def integral(self, values, where) -> float:
+        """∫ v dt over the samples ``where``: Σ v_i Δt_i, Δt_i the central difference of
+        the sample times (``np.gradient``, one-sided at the ends); a NaN value counts
+        as 0 (e.g. friction power [W] → energy [J])."""
+        return float(np.nansum(np.where(where, values, 0.0) * np.gradient(self.time)))
 
     @classmethod
     def from_dynamics(cls, res, crank_step_deg: float, width: float) -> CycleInputs:
@@ -170,18 +176,7 @@ class SetCycleResult:
         return self.viscous_friction + self.boundary_friction
 
 
-#: The per-sample scalar outputs of a :class:`SetCycleResult` (NaN where unloaded).
-SAMPLE_OUTPUTS = (
-    "central_film",
-    "min_film",
-    "max_pressure",
-    "hydrodynamic_load",
-    "asperity_load",
-    "viscous_friction",
-    "viscous_friction_newtonian",
-    "viscous_friction_eyring",
-    "boundary_friction",
-    "rolling_friction",
-    "friction_power",
-    "lambda_ratio",
-)
+#: The per-sample scalar outputs of a :class:`SetCycleResult` (NaN where unloaded): its
+#: fields from ``central_film`` to ``lambda_ratio``.
+_FIELDS = [f.name for f in fields(SetCycleResult)]
+SAMPLE_OUTPUTS = tuple(_FIELDS[_FIELDS.index("central_film") : _FIELDS.index("lambda_ratio") + 1])

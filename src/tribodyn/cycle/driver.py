@@ -13,8 +13,7 @@ control (:class:`_Marcher`), the sub-steps, the validity warnings and the per-sa
 outputs are written once. A variant is a :class:`CycleMethod` — a transient solver that
 satisfies :class:`EHLStepper` (:class:`~tribodyn.TransientEHL` or a subclass using its
 hooks), the viscous friction of both shear laws on its film, and optional extra
-:class:`Recorder` s (the thermal variant's temperatures) — listed by name in
-:data:`tribodyn.cycle.methods.METHODS`.
+:class:`Recorder` s (the thermal variant's temperatures).
 
 Outputs are totals over the cam width: loads and friction forces [N], friction power
 P = (F_v + F_b) u_s [W]; films [m]; pressures [Pa].
@@ -49,7 +48,6 @@ __all__ = [
     "IsothermalCycle",
     "march_cycle",
     "march_for_set",
-    "ehl_along_cycle",
     "ehl_for_set",
     "PROFILE_POINTS",
 ]
@@ -342,17 +340,13 @@ def march_cycle(
     method: CycleMethod,
     *,
     min_load: float = 5.0,
-    progress=None,
     time_tol: float = TIME_TOL,
 ) -> SetCycleResult:
     """March an EHL variant (``method``) over the cycle for one surface set: each loaded
     event (F ≥ ``min_load``) from the steady solution at its first sample, with the
     time-error control of :class:`_Marcher` (``time_tol``: the local time error of h_c
     above which a step is sub-stepped). A step that raises or does not converge is
-    reported in ``failures``; validity warnings are counted by kind.
-
-    ``progress(i, n)`` is called after each sample (for progress bars).
-    """
+    reported in ``failures``; validity warnings are counted by kind."""
     import time as _time
 
     t_start = _time.perf_counter()
@@ -369,8 +363,6 @@ def march_cycle(
     for i in range(n):
         if not loaded[i]:
             tr = None  # the event ended: the next one starts afresh
-            if progress:
-                progress(i + 1, n)
             continue
         try:
             if tr is None:
@@ -384,8 +376,6 @@ def march_cycle(
             converged[i] = False
             failures.append((float(inp.crank_angle[i]), f"{type(exc).__name__}: {exc}"))
             tr = None
-            if progress:
-                progress(i + 1, n)
             continue
         substeps[i] = march.substeps
         converged[i] = r.converged
@@ -398,8 +388,6 @@ def march_cycle(
             validity[kind] = (count + 1, first, example)
         for rec in recorders:
             rec.record(i, tr, r)
-        if progress:
-            progress(i + 1, n)
     fields: dict = {}
     for rec in recorders:
         fields.update(rec.fields())
@@ -419,38 +407,11 @@ def march_cycle(
     )
 
 
-def ehl_along_cycle(
-    inp: CycleInputs,
-    name: str,
-    label: str,
-    bodies,
-    lubricant: Lubricant,
-    roughness,
-    options: EHLOptions,
-    *,
-    min_load: float = 5.0,
-    progress=None,
-    time_tol: float = TIME_TOL,
-) -> SetCycleResult:
-    """March the isothermal transient EHL over the cycle for one surface set
-    (:func:`march_cycle` with :class:`IsothermalCycle`)."""
-    return march_cycle(
-        inp,
-        name,
-        label,
-        IsothermalCycle(bodies, lubricant, roughness, options),
-        min_load=min_load,
-        progress=progress,
-        time_tol=time_tol,
-    )
-
-
 def march_for_set(
     case,
     surface_set,
     inputs: CycleInputs,
     method: CycleMethod,
-    progress=None,
     *,
     time_tol: float = TIME_TOL,
 ) -> SetCycleResult:
@@ -464,13 +425,12 @@ def march_for_set(
         s.coating_label,
         method,
         min_load=built.case.numerics.min_load,
-        progress=progress,
         time_tol=time_tol,
     )
 
 
 def ehl_for_set(
-    case, surface_set, inputs: CycleInputs, progress=None, *, film_law_only: bool = False
+    case, surface_set, inputs: CycleInputs, *, film_law_only: bool = False
 ) -> SetCycleResult:
     """The isothermal march (:class:`IsothermalCycle`, :func:`march_for_set`) of one
     surface set of a case (Case or BuiltCase; its bodies, roughness and friction law; the
@@ -490,4 +450,4 @@ def ehl_for_set(
         if nodes:  # never finer than the study's own fixed grid (both checked at load)
             opts = unchecked(EHLOptions, **{**opts.__dict__, "n": min(nodes, n.n or nodes)})
     method = IsothermalCycle.for_set(built, s, opts)
-    return march_for_set(built, s, inputs, method, progress, time_tol=time_tol)
+    return march_for_set(built, s, inputs, method, time_tol=time_tol)

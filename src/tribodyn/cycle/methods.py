@@ -1,49 +1,20 @@
-"""The EHL methods along the cycle by name: the one place a variant is chosen.
+"""The EHL variants of a cycle study: the one place a variant is chosen.
 
-Each entry builds the :class:`~.driver.CycleMethod` of one surface set of a case; the
-method carries everything in which the variants differ (its stepper, its Couette stress,
-its extra recorders, its result class), so the driver (:func:`~.driver.march_cycle`)
-never branches on the variant. A new variant is one :class:`~.driver.CycleMethod`
-subclass and one entry here.
+A variant is a :class:`~.driver.CycleMethod` (its stepper, its Couette stress, its extra
+recorders, its result class), so the driver (:func:`~.driver.march_cycle`) never branches
+on it; the study's side of a variant (the passes it adds, the oil they run with, the
+results it presents) is a study class here, chosen once by :func:`study_variant`.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import Any
-
-from .._validation import InputError
 from ..config.build import BuiltCase
 from ..physics.thermal_oil import ThermalLubricant
-from .data import CycleInputs, SetCycleResult
-from .driver import CycleMethod, IsothermalCycle, march_for_set
+from .data import CycleInputs
 from .tasks import Task
-from .thermal import ThermalCycle, thermal_task
+from .thermal import thermal_task
 
-__all__ = ["METHODS", "cycle_for_set", "IsothermalStudy", "ThermalStudy", "study_variant"]
-
-#: The EHL variants by name: ``METHODS[name](case, surface_set)`` is the
-#: :class:`~.driver.CycleMethod` of a surface set of a case (Case or BuiltCase).
-METHODS: dict[str, Callable[[Any, Any], CycleMethod]] = {
-    "isothermal": IsothermalCycle.for_set,
-    "thermal": ThermalCycle.for_set,
-}
-
-
-def cycle_for_set(
-    case: Any,
-    surface_set: Any,
-    inputs: CycleInputs,
-    method: str = "isothermal",
-    progress: Callable[[int, int], None] | None = None,
-) -> SetCycleResult:
-    """The march of one surface set of a case (Case or BuiltCase) along the cycle with
-    the variant ``method`` (a key of :data:`METHODS`) at the case's numerics
-    (:func:`~.driver.march_for_set`); an unknown name is an input error."""
-    if method not in METHODS:
-        raise InputError(f"method must be one of {sorted(METHODS)} (got {method!r})")
-    chosen = METHODS[method](case, surface_set)
-    return march_for_set(case, surface_set, inputs, chosen, progress)
+__all__ = ["IsothermalStudy", "ThermalStudy", "study_variant"]
 
 
 class IsothermalStudy:

@@ -19,19 +19,19 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from .._threads import single_blas_thread
 from ..config.build import BuiltCase, as_built, options_for
 from ..contact.ehl.options import Conditions, EHLOptions
 from ..contact.ehl.thermal import ThermalOptions, couette_stress
 from ..contact.ehl.thermal_transient import ThermalTransientEHL
 from ..physics.asperity import Roughness
 from ..physics.thermal_oil import ThermalLubricant
-from .driver import CycleInputs, CycleMethod, Recorder, SetCycleResult, march_for_set
+from .driver import CycleMethod, Recorder, SetCycleResult, march_for_set
 
 __all__ = [
     "ThermalSetCycleResult",
     "ThermalCycle",
     "TemperatureRecorder",
-    "thermal_for_set",
     "thermal_task",
 ]
 
@@ -147,19 +147,9 @@ class ThermalCycle(CycleMethod):
         )
 
 
-def thermal_for_set(case, surface_set, inputs: CycleInputs, progress=None) -> ThermalSetCycleResult:
-    """The thermal march of one surface set of a case (Case or BuiltCase;
-    :func:`~.driver.march_for_set` with :class:`ThermalCycle`)."""
-    res = march_for_set(
-        case, surface_set, inputs, ThermalCycle.for_set(case, surface_set), progress
-    )
-    assert isinstance(res, ThermalSetCycleResult)
-    return res
-
-
 def thermal_task(built: BuiltCase, name, inputs):
-    """The thermal cycle of one surface set, as a task of the study's executor."""
-    from threadpoolctl import threadpool_limits
-
-    with threadpool_limits(1):
-        return thermal_for_set(built, built.set(name).surface, inputs)
+    """The thermal march of one surface set of a built case (:func:`~.driver.march_for_set`
+    with :class:`ThermalCycle`), as a task of the study's executor."""
+    s = built.set(name).surface
+    with single_blas_thread():
+        return march_for_set(built, s, inputs, ThermalCycle.for_set(built, s))

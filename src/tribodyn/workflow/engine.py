@@ -151,10 +151,7 @@ class EngineStudy:
 
     def energy(self, torque) -> np.ndarray:
         """∮ torque dθ_cam over the cycle [J] for each leading index."""
-        t = np.asarray(torque, float)
-        flat = t.reshape(-1, t.shape[-1])
-        e = [cycle_integral(row, self.crank_angle) for row in flat]
-        return np.array(e).reshape(t.shape[:-1])
+        return cycle_integral(torque, self.crank_angle)
 
     def summary(self) -> dict:
         """The ``engine`` block of summary.json (:meth:`_summary`), computed once: at the

@@ -102,12 +102,14 @@ def set_torques(study, base_radius: float):
     return lift, lift_velocity, fr * np.sign(inp.sliding_speed), t_f, t_d
 
 
-def cycle_integral(values, crank_deg) -> float:
-    """∮ values dθ over the cam angle θ = crank/2 [rad] (trapezoids on the samples) —
-    with a torque in N m: the work per cam revolution [J]."""
+def cycle_integral(values, crank_deg):
+    """∮ values dθ over the cam angle θ = crank/2 [rad] (trapezoids on the samples, along
+    the last axis; a float for one trace) — with a torque in N m: the work per cam
+    revolution [J]."""
     theta = np.radians(np.asarray(crank_deg, float)) / 2.0
-    v = np.nan_to_num(np.asarray(values, float))
-    return float(np.sum(0.5 * (v[1:] + v[:-1]) * np.diff(theta)))
+    v = np.nan_to_num(np.ascontiguousarray(values, float))  # rows summed as one trace
+    e = np.sum(0.5 * (v[..., 1:] + v[..., :-1]) * np.diff(theta), axis=-1)
+    return float(e) if e.ndim == 0 else e
 
 
 def surge_spectrum(

@@ -335,10 +335,9 @@ def summary(study: StudyResults, an: Analysis) -> dict:
     """The numbers users and scripts read (``summary.json``); totals over the cam width."""
     dyn, inp = study.dynamics, study.inputs
     period = 2.0 * math.pi / study.case.cam_speed  # one engine cycle = one cam rev
-    dt = np.gradient(inp.time)
     ref = study.set(an.roles["reference"])
     ev = an.in_event
-    ref_bf = np.nansum(np.where(ref.loaded & ev, ref.boundary_friction, 0.0) * dt)
+    ref_bf = inp.integral(ref.boundary_friction, ref.loaded & ev)
     ref_c = ref.loaded & ev & ref.converged
     ref_max_bf = np.nanmax(ref.boundary_friction[ref_c]) if ref_c.any() else math.nan
     out: dict[str, Any] = {
@@ -359,14 +358,18 @@ def summary(study: StudyResults, an: Analysis) -> dict:
         L = s.loaded & ev
         C = L & s.converged  # films and maxima: converged samples only
         any_c = bool(C.any())
-        bf = np.nansum(np.where(L, s.boundary_friction, 0.0) * dt)
-        energy = float(np.nansum(np.where(s.loaded, s.friction_power, 0.0) * dt))
-        by_law = {}
-        for law in ("newtonian", "eyring"):
-            p_law = (getattr(s, f"viscous_friction_{law}") + s.boundary_friction) * np.abs(
-                inp.sliding_speed
+        bf = inp.integral(s.boundary_friction, L)
+        energy = inp.integral(s.friction_power, s.loaded)
+        by_law = {
+            law: finite(
+                inp.integral(
+                    (getattr(s, f"viscous_friction_{law}") + s.boundary_friction)
+                    * np.abs(inp.sliding_speed),
+                    s.loaded,
+                )
             )
-            by_law[law] = finite(np.nansum(np.where(s.loaded, p_law, 0.0) * dt))
+            for law in ("newtonian", "eyring")
+        }
         g = an.film_gain[s.name]
         out["surface_sets"][s.name] = {
             "label": study.labels[s.name],
@@ -392,8 +395,9 @@ def summary(study: StudyResults, an: Analysis) -> dict:
             "min_lambda": finite(np.nanmin(s.lambda_ratio[C])) if any_c else None,
             "failed_steps": len(s.failures),
         }
-        ref_energy = float(np.nansum(np.where(ref.loaded, ref.friction_power, 0.0) * dt))
-        out["surface_sets"][s.name]["friction_energy_change_pct"] = change_pct(energy, ref_energy)
+        out["surface_sets"][s.name]["friction_energy_change_pct"] = change_pct(
+            energy, inp.integral(ref.friction_power, ref.loaded)
+        )
         if study.stresses:  # subsurface stresses, margins and wear
             from .stress_study import set_stress_summary
 

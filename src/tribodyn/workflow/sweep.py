@@ -370,8 +370,7 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
     loaded samples for every surface set + (implicit coupling) ``coupling_iterations`` ×
     (dynamics + reference-set EHL) + the single-contact studies (timed). The coupling
     term is an upper bound (iterations stop once converged)."""
-    from threadpoolctl import threadpool_limits
-
+    from .._threads import single_blas_thread
     from ..config.build import build
     from ..contact.ehl import TransientEHL
     from ..cycle.driver import CycleInputs
@@ -381,7 +380,7 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
 
     clock = time.process_time  # CPU time: one core, whatever the machine's load
     built = build(case)
-    with threadpool_limits(1):
+    with single_blas_thread():
         t0 = clock()
         dyn = study_dynamics(built)
         t_dyn = clock() - t0

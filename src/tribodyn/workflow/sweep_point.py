@@ -35,6 +35,7 @@ import traceback
 import xarray as xr
 
 from .. import _json
+from .._threads import single_blas_thread
 from ..config.build import BuiltCase, as_built
 from .variables import Group, build
 from .variables_study import StudySource
@@ -140,16 +141,10 @@ def _engine_point(built: BuiltCase) -> tuple[xr.Dataset, list]:
     study = run_engine_study(built.case, workers=1)
     summ = study.summary()
     ds = _scalars(xr.Dataset(), _dynamics_scalars(study.lobes["intake"].study.dynamics))
-    names = study.set_names
-    sets = summ["surface_sets"]
-    parts = sets[names[0]]["friction_energy_per_cycle_J"]
-    source = {"sets": sets, "names": names}
+    source = {"sets": summ["surface_sets"], "names": study.set_names}
     ds.coords["surface_set"] = ENGINE_SETS.make(source)
     for k, v in ENGINE_SCALARS.items():
-        if not k.endswith("_energy_J"):
-            ds[k] = v.make(source)
-    for part in parts:
-        ds[f"{part}_energy_J"] = ENGINE_SCALARS[f"{part}_energy_J"].make(source)
+        ds[k] = v.make(source)
     ds.attrs["reference_set"] = summ["reference_set"]
     return ds, list(study.warnings)
 
@@ -165,13 +160,11 @@ def run_point(case, mode: str = "study", traces: bool = False) -> xr.Dataset:
 
     The study runs serially in this process (one BLAS thread): a sweep's parallelism is
     over points. Failures are returned as :func:`failed_point`, never raised."""
-    from threadpoolctl import threadpool_limits
-
     from .cycle import StudyError
 
     t0, c0 = time.perf_counter(), time.process_time()
     try:
-        with threadpool_limits(1):
+        with single_blas_thread():
             built = as_built(case)
             if mode == "dynamics":
                 ds, warnings = _dynamics_point(built, traces)

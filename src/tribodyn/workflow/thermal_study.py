@@ -15,16 +15,13 @@ from .conventions import finite
 __all__ = ["coating_thermal_effect", "thermal_summary"]
 
 
-def coating_thermal_effect(
-    thermal: dict, isothermal: dict, reference: str, mask, time, sliding_speed
-) -> dict:
+def coating_thermal_effect(thermal: dict, isothermal: dict, reference: str, mask, inputs) -> dict:
     """Per coated set: the change of its viscous-friction energy and of its mean central
     film relative to the reference (uncoated) set, thermal and isothermal, over the
     samples in ``mask`` that converged in all four runs; and the peak tappet surface
     temperature. The thermal effect of a coating is the thermal change minus the
     isothermal one (what an isothermal model misses)."""
-    dt = np.gradient(np.asarray(time, dtype=float))
-    us = np.abs(np.asarray(sliding_speed, dtype=float))
+    us = np.abs(inputs.sliding_speed)
     ref_t, ref_i = thermal[reference], isothermal[reference]
     res = {}
     for name, th in thermal.items():
@@ -37,7 +34,7 @@ def coating_thermal_effect(
             continue
 
         def energy(r):
-            return float(np.sum(np.where(ok, r.viscous_friction * us, 0.0) * dt))
+            return inputs.integral(r.viscous_friction * us, ok)
 
         def film(r):
             return float(np.mean(r.central_film[ok]))
@@ -71,7 +68,6 @@ def thermal_summary(study, an) -> dict:
     film and friction of the thermal model against the isothermal one (same inlet
     temperature), and the coatings' thermal effect (:func:`coating_thermal_effect`)."""
     inp = study.inputs
-    dt = np.gradient(inp.time)
     us = np.abs(inp.sliding_speed)
     iso = {s.name: s for s in study.isothermal_sets}
     out: dict[str, Any] = {"inlet_temperature_K": None, "surface_sets": {}}
@@ -86,11 +82,8 @@ def thermal_summary(study, an) -> dict:
             out["surface_sets"][th.name] = {"samples": 0}
             continue
 
-        def energy(power, ok=ok):
-            return float(np.nansum(np.where(ok, power, 0.0) * dt))
-
-        e_t, e_i = energy(th.viscous_friction * us), energy(i.viscous_friction * us)
-        f_t, f_i = energy(th.friction_power), energy(i.friction_power)
+        e_t, e_i = (inp.integral(r.viscous_friction * us, ok) for r in (th, i))
+        f_t, f_i = (inp.integral(r.friction_power, ok) for r in (th, i))
         out["surface_sets"][th.name] = {
             "max_temperature_K": finite(np.nanmax(th.max_temperature[L])),
             "max_mid_film_temperature_K": finite(np.nanmax(th.mid_film_temperature[L])),
@@ -111,6 +104,6 @@ def thermal_summary(study, an) -> dict:
             "samples": int(L.sum()),
         }
     out["coating_thermal_effect"] = coating_thermal_effect(
-        {s.name: s for s in study.sets}, iso, an.roles["reference"], ev, inp.time, inp.sliding_speed
+        {s.name: s for s in study.sets}, iso, an.roles["reference"], ev, inp
     )
     return out

@@ -35,22 +35,16 @@ class StudySource:
         self.study = study
         self.dynamics = study.dynamics if study is not None else dynamics
 
-    @property
-    def case(self):
-        return self.study.case
+    def __getattr__(self, name: str):
+        """The study's own fields (case, inputs, sets, stresses, isothermal_sets, …)."""
+        if name.startswith("__") or "study" not in self.__dict__:
+            raise AttributeError(name)
+        return getattr(self.study, name)
 
     @cached_property
     def built(self):
         """The study's :class:`~tribodyn.config.build.BuiltCase`."""
-        return build(self.case)
-
-    @property
-    def inputs(self):
-        return self.study.inputs
-
-    @property
-    def sets(self):
-        return self.study.sets
+        return build(self.study.case)
 
     @cached_property
     def analysis(self):
@@ -58,22 +52,13 @@ class StudySource:
 
     @cached_property
     def engineering(self):
-        s = self.study
-        return s.engineering_outputs() if hasattr(s, "engineering_outputs") else None
+        return self.study.engineering_outputs()
 
     @cached_property
     def oil(self) -> dict:
         from .engineering import oil_as_used
 
         return oil_as_used(self.built)
-
-    @property
-    def stresses(self) -> dict:
-        return getattr(self.study, "stresses", None) or {}
-
-    @property
-    def isothermal_sets(self):
-        return getattr(self.study, "isothermal_sets", None)
 
     @cached_property
     def dry_x(self) -> np.ndarray:
