@@ -134,7 +134,7 @@ def test_study_runs_through_any_executor():
         case, executor=ex, progress=lambda e, **i: events.append((e, i.get("name"), i.get("done")))
     )
     assert sorted(ex.calls) == sorted(
-        ["_pass_task", "_coupling_task", "_stress_task", "_coating_studies_task"]
+        ["_pass_task", "_coupling_task", "_stress_task", "coating_studies_task"]
         + ["_set_task"] * (len(case.surface_set_names) - 1)  # the reference's is the pass
     )
     assert [s.name for s in study.sets] == case.surface_set_names

@@ -100,7 +100,7 @@ def thermal_run(tmp_path_factory):
     from tribodyn.workflow import cycle
 
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(cycle, "_coating_studies_task", lambda *a: ([], None, None, None))
+        mp.setattr(cycle, "coating_studies_task", lambda *a: ([], None, None, None))
         r = runner.invoke(app, ["run", str(path), "-o", str(out), "--quiet", "--figures"])
     assert r.exit_code == 0, r.output
     return out

@@ -197,7 +197,7 @@ def _stress_task(built: BuiltCase, name: str, inputs, first):
             return f"{type(exc).__name__}: {exc}"
 
 
-def _coating_studies_task(built: BuiltCase, reference: str, nose, paper_studies: bool = True):
+def coating_studies_task(built: BuiltCase, reference: str, nose, paper_studies: bool = True):
     """The sensitivity study at the case's nose; with ``paper_studies`` also the
     paper's Figs. 5/6 single-contact studies (at the paper's conditions), without them
     every surface set of the case at its own nose."""
@@ -248,9 +248,7 @@ def study_tasks(
             if name != reference
         ]
         tasks.append(Task(f"stress:{reference}", _stress_task, (built, reference, inputs), first))
-        tasks.append(
-            Task("coating", _coating_studies_task, (built, reference, nose, paper_studies))
-        )
+        tasks.append(Task("coating", coating_studies_task, (built, reference, nose, paper_studies)))
     return tasks + study_variant(built).tasks(built, inputs)
 
 

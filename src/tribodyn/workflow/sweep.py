@@ -374,7 +374,7 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
     from ..config.build import build
     from ..contact.ehl import TransientEHL
     from ..cycle.driver import CycleInputs
-    from .cycle import StudyError, _coating_studies_task, study_dynamics
+    from .cycle import StudyError, coating_studies_task, study_dynamics
     from .postprocess import surface_roles
     from .sensitivity import nose_condition
 
@@ -410,7 +410,7 @@ def estimate_point_seconds(case: Case, mode: str = "study", steps: int = 8) -> f
                 tr.step(inp.time[i] - inp.time[i - 1], *args)
         t_step = (clock() - t0) / max(len(timed), 1)
         t0 = clock()
-        _coating_studies_task(built, ref_name, nose_condition(inp))  # as the study's task
+        coating_studies_task(built, ref_name, nose_condition(inp))  # as the study's task
         t_single = clock() - t0
     t_ehl = n_loaded * t_step
     t = t_dyn + len(case.surface_set_names) * t_ehl + t_single
