@@ -260,16 +260,11 @@ class StressOperator:
         convolution in wrap-around order) plus the aliased layered correction."""
         nfreq = self._nfft // 2 + 1
         out = np.empty((self._z.size, 6, nfreq), dtype=complex)
-        for i, z in enumerate(self._z):
-            out[i] = self._homogeneous_transfer(float(z))
+        for i, z in enumerate(self._z):  # homogeneous kernels (cached by n, nfft, z/Δ)
+            out[i] = _homogeneous_transfer(self.n, self._nfft, float(z) / self.dx)
         if self.h is not None:
             self._add_correction(out)
         return out
-
-    def _homogeneous_transfer(self, z: float) -> np.ndarray:
-        """DFT (6, nfreq) of the homogeneous hat-load kernels at depth z, wrap-around
-        (a function of n, the FFT length and z/Δ only: cached)."""
-        return _homogeneous_transfer(self.n, self._nfft, float(z) / self.dx).copy()
 
     def _add_correction(self, out: np.ndarray) -> None:
         coating = self.body.coating
@@ -298,7 +293,7 @@ class StressOperator:
         # L e^{−2|m|h}, whose field is exact in space (homogeneous kernels at depth 2h)
         lp, lq = _long_wave_limits(coat, sub)
         cut = np.exp(-2.0 * k * h)
-        hom2 = self._homogeneous_transfer(2.0 * h)
+        hom2 = _homogeneous_transfer(self.n, nf, 2.0 * h / dx)
         lim_p = -0.5 * lp * (hom2[0] + hom2[1])
         lim_q = 0.5 * lq * (hom2[3] + hom2[4])
         slope_basis = (hom2[0] - hom2[1]) / (4.0 * h)  # transfer |m| e^{−2|m|h}

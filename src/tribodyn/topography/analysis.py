@@ -442,10 +442,8 @@ def analyse_pair(
     ``first``/``second``: file names or ``Topography`` objects; other arguments as
     :func:`analyse_surface` (``name`` is not accepted; file names label the surfaces).
     """
-    a = analyse_surface(
-        first, band, **kwargs, name=None if isinstance(first, (str, Path)) else "surface 1"
-    )
-    b = analyse_surface(
-        second, band, **kwargs, name=None if isinstance(second, (str, Path)) else "surface 2"
+    a, b = (
+        analyse_surface(s, band, **kwargs, name=None if isinstance(s, (str, Path)) else label)
+        for s, label in ((first, "surface 1"), (second, "surface 2"))
     )
     return composite_roughness(a, b)

@@ -302,8 +302,6 @@ def check_band(
 
     Raises :class:`BandLimitError` naming the violated limit unless ``clip`` is true.
     """
-    if kind not in FILTER_KINDS:
-        raise InputError(f"filter kind must be one of {FILTER_KINDS} (got {kind!r})")
     if band is None:
         return Band(None, None, "none")
     try:
@@ -351,8 +349,6 @@ def default_band(
 
     Raises :class:`InsufficientDataError` if fewer than a factor MIN_BAND_RATIO of
     wavelengths remain."""
-    if kind not in FILTER_KINDS:
-        raise InputError(f"filter kind must be one of {FILTER_KINDS} (got {kind!r})")
     lo0, hi0 = TYPICAL_BAND
     lo, why_lo = lo0, ""
     lo_min, why = _shortest_wavelength(sampling, reliability_cutoff)
@@ -421,7 +417,10 @@ def applied_band(
     reliability_cutoff: float | None = None,
 ) -> Band:
     """The band a filter applies: :func:`default_band` for ``"auto"``, else the given
-    band checked against the sampling (:func:`check_band`)."""
+    band checked against the sampling (:func:`check_band`); ``kind`` one of
+    :data:`FILTER_KINDS`."""
+    if kind not in FILTER_KINDS:
+        raise InputError(f"filter kind must be one of {FILTER_KINDS} (got {kind!r})")
     if isinstance(band, str) and band == AUTO_BAND:
         return default_band(sampling, kind=kind, reliability_cutoff=reliability_cutoff)
     return check_band(band, sampling, kind=kind, clip=clip, reliability_cutoff=reliability_cutoff)

@@ -68,25 +68,17 @@ class AsperityParameters:
         return record_dict(self, "roughness_parameter")
 
 
-def _summit_parameters(s: SummitStatistics, rms: float) -> AsperityParameters:
+def _parameters(
+    method: str, stats: SummitStatistics | McCoolParameters, rms: float
+) -> AsperityParameters:
+    """The estimator ``method``'s η, β and summit heights (``stats``) with σ = ``rms``."""
     return AsperityParameters(
-        "summits",
-        s.asperity_density,
+        method,
+        stats.asperity_density,
         rms,
-        s.summit_radius,
-        s.summit_height_mean,
-        s.summit_height_std,
-    )
-
-
-def _spectral_parameters(m: McCoolParameters, rms: float | None = None) -> AsperityParameters:
-    return AsperityParameters(
-        "spectral",
-        m.asperity_density,
-        m.rms if rms is None else rms,
-        m.summit_radius,
-        m.summit_height_mean,
-        m.summit_height_std,
+        stats.summit_radius,
+        stats.summit_height_mean,
+        stats.summit_height_std,
     )
 
 
@@ -115,6 +107,9 @@ class HeightMap(Protocol):
 class _TomlMixin(ABC):
     """Roughness block and ``Roughness`` from a result's estimators."""
 
+    band: Band
+    sampling: SamplingLike
+
     @abstractmethod
     def parameters(self, method: str = "summits") -> AsperityParameters:
         """η, σ, β of one estimator (:data:`METHODS`)."""
@@ -123,9 +118,10 @@ class _TomlMixin(ABC):
     def describe_source(self) -> str:
         """What was analysed (one line)."""
 
-    @abstractmethod
     def describe_conditions(self) -> list[str]:
-        """Band, sampling and notes (one line each)."""
+        """Band, sampling and notes (one line each); here those of one analysis (a
+        surface or a profile)."""
+        return [f"band {self.band.describe()}", f"sampling {self.sampling.describe()}"]
 
     def to_roughness(self, method: str = "summits") -> Roughness:
         """tribodyn ``Roughness`` (η, σ, β) from the chosen estimator."""
@@ -187,20 +183,17 @@ class SurfaceAnalysis(_TomlMixin):
 
     @property
     def summits(self) -> AsperityParameters:
-        return _summit_parameters(self.summit_stats, self.heights.rms)
+        return _parameters("summits", self.summit_stats, self.heights.rms)
 
     @property
     def spectral(self) -> AsperityParameters:
-        return _spectral_parameters(self.mccool)
+        return _parameters("spectral", self.mccool, self.mccool.rms)
 
     def parameters(self, method: str = "summits") -> AsperityParameters:
         return self.summits if _check_method(method) == "summits" else self.spectral
 
     def describe_source(self) -> str:
         return f"surface '{self.name}'"
-
-    def describe_conditions(self) -> list[str]:
-        return [f"band {self.band.describe()}", f"sampling {self.sampling.describe()}"]
 
     def to_dict(self) -> dict:
         return {
@@ -286,7 +279,7 @@ class ProfileAnalysis(_TomlMixin):
 
     @property
     def spectral(self) -> AsperityParameters:
-        return _spectral_parameters(self.isotropic, self.heights.rms)
+        return _parameters("spectral", self.isotropic, self.heights.rms)
 
     @property
     def slope_anisotropy(self) -> float:
@@ -311,9 +304,6 @@ class ProfileAnalysis(_TomlMixin):
 
     def describe_source(self) -> str:
         return f"profile '{self.name}'"
-
-    def describe_conditions(self) -> list[str]:
-        return [f"band {self.band.describe()}", f"sampling {self.sampling.describe()}"]
 
     def to_dict(self) -> dict:
         iso = self.spectral.to_dict()
@@ -370,11 +360,11 @@ class PairAnalysis(_TomlMixin):
     def summits(self) -> AsperityParameters | None:
         if self.summit_stats is None:
             return None
-        return _summit_parameters(self.summit_stats, self.rms)
+        return _parameters("summits", self.summit_stats, self.rms)
 
     @property
     def spectral(self) -> AsperityParameters:
-        return _spectral_parameters(self.mccool, self.rms)
+        return _parameters("spectral", self.mccool, self.rms)
 
     def parameters(self, method: str = "summits") -> AsperityParameters:
         if _check_method(method) == "spectral":
