@@ -23,6 +23,7 @@ off at λ = 2.5; both are clipped at zero here.
 from __future__ import annotations
 
 import copy
+import functools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -241,14 +242,9 @@ def _tabulated(lam, table):
     return f, df
 
 
-_TABLES: dict = {}
-
-
+@functools.cache
 def _table(n: float) -> _LogTable:
-    t = _TABLES.get(n)
-    if t is None:
-        t = _TABLES[n] = _LogTable(float(n))
-    return t
+    return _LogTable(float(n))
 
 
 def greenwood_tripp_table(n: float, lam):

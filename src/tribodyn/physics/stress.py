@@ -137,11 +137,6 @@ class SubsurfaceStress:
     interface_sxz: np.ndarray | None = None  #: σ_xz at z = h [Pa] (coated only)
     interface_szz: np.ndarray | None = None  #: σ_zz at z = h [Pa] (coated only)
 
-    @property
-    def principal_shear(self) -> np.ndarray:
-        """In-plane principal shear stress √(((σ_xx − σ_zz)/2)² + σ_xz²) [Pa]."""
-        return np.hypot(0.5 * (self.sxx - self.szz), self.sxz)
-
     def peaks(self) -> dict[str, StressPeak]:
         """The six peaks by name (:data:`PEAKS`)."""
         return {k: getattr(self, k) for k in PEAKS}

@@ -388,17 +388,16 @@ def composite_roughness(
         notes.append("the two surfaces were filtered with different bands")
     summit_stats = sum_stats = sum_surface = sum_gaussian = None
     ta, tb = first.topography, second.topography
-    combined = None
-    if ta is not None and tb is not None:
-        combined = sum_on_common_grid(
-            ta.heights(), ta.pixel_size, ta.is_periodic, tb.heights(), tb.pixel_size, tb.is_periodic
-        )
     if ta is None or tb is None:
         notes.append(
             "no composite summit analysis: a profile has no summits (the spectral "
             "composite is an isotropic-surface estimate)"
         )
-    elif combined is None:
+    elif (
+        combined := sum_on_common_grid(
+            ta.heights(), ta.pixel_size, ta.is_periodic, tb.heights(), tb.pixel_size, tb.is_periodic
+        )
+    ) is None:
         notes.append(
             "no composite summit analysis: the maps have different pixel sizes "
             "(the spectral composite is used)"
