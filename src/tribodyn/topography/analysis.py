@@ -38,7 +38,15 @@ import numpy as np
 from .._typing import PathLike
 from .composite import sum_on_common_grid
 from .errors import InsufficientDataError
-from .filtering import AUTO_BAND, Band, BandSpec, Sampling, input_warnings, prepare_topography
+from .filtering import (
+    AUTO_BAND,
+    Band,
+    BandSpec,
+    Sampling,
+    analysis_margin,
+    input_warnings,
+    prepare_topography,
+)
 from .height_statistics import gaussian_reference, height_statistics
 from .reading import read_topography
 from .results import PairAnalysis, ProfileAnalysis, SurfaceAnalysis
@@ -72,23 +80,6 @@ MIN_SUMMITS = 25
 NOTE_DEVIATION = 0.10
 #: ηβσ of an isotropic Gaussian surface is at least 0.0204·√1.5 (McCool).
 MIN_ETA_BETA_SIGMA = 0.375 / (6.0 * np.sqrt(3.0 * np.pi)) * np.sqrt(MIN_ALPHA_ISOTROPIC)
-
-
-def analysis_margin(band: Band | None, pixel_size, periodic: bool) -> tuple[int, ...]:
-    """Points excluded along each edge of a map (or profile) before summits (peaks) and
-    moments are evaluated, one number per axis of ``pixel_size``.
-
-    Periodic maps: none. Non-periodic maps: the curvature stencil's border (1) or, after
-    band-pass filtering, one short-wavelength cutoff λ_s, the reach of the filter's end
-    effects at the mirror-stitched edges (the Gaussian S-filter kernel has a standard
-    deviation of 0.19 λ_s). Without the margin, summits and curvature near the edges are
-    biased by O(λ_s/L).
-    """
-    if periodic:
-        return (0,) * len(pixel_size)
-    if band is None or band.kind == "none":
-        return (1,) * len(pixel_size)
-    return tuple(max(1, int(np.ceil(band.wavelengths[0] / p - 1e-9))) for p in pixel_size)
 
 
 def analysis_region(shape, margin) -> np.ndarray:

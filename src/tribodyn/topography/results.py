@@ -14,7 +14,7 @@ import numpy as np
 
 from .._validation import InputError
 from ..physics.asperity import Roughness
-from .filtering import Band, Sampling, SamplingLike, _um
+from .filtering import Band, Sampling
 from .height_statistics import GaussianReference, HeightStatistics
 from .records import record_dict
 from .spectral_moments import McCoolParameters, SpectralMoments
@@ -25,7 +25,6 @@ __all__ = [
     "AsperityParameters",
     "SurfaceAnalysis",
     "PairAnalysis",
-    "ProfileSampling",
     "ProfileAnalysis",
 ]
 
@@ -108,7 +107,7 @@ class _TomlMixin(ABC):
     """Roughness block and ``Roughness`` from a result's estimators."""
 
     band: Band
-    sampling: SamplingLike
+    sampling: Sampling
 
     @abstractmethod
     def parameters(self, method: str = "summits") -> AsperityParameters:
@@ -222,30 +221,13 @@ ISOTROPIC_LABEL = (
 
 
 @dataclass(frozen=True)
-class ProfileSampling(SamplingLike):
-    """Sampling of a profile: points, spacing Δ [m], length L [m], filled share."""
-
-    nb_grid_pts: tuple[int]
-    pixel_size: tuple[float]
-    physical_sizes: tuple[float]
-    periodic: bool = False
-    undefined_fraction: float = 0.0
-
-    def _layout(self) -> str:
-        return (
-            f"profile of {self.nb_grid_pts[0]} points, spacing {_um(self.pixel_size[0])} "
-            f"µm, length {_um(self.physical_sizes[0])} µm"
-        )
-
-
-@dataclass(frozen=True)
 class ProfileAnalysis(_TomlMixin):
     """Roughness of one profile (SI units). ``isotropic`` holds the isotropic-surface
     estimates of η and β (McCool from the profile moments); ``summits`` is None (a
     profile has no summits)."""
 
     name: str
-    sampling: ProfileSampling
+    sampling: Sampling
     band: Band
     heights: HeightStatistics
     moments: SpectralMoments
