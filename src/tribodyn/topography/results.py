@@ -108,6 +108,12 @@ class _TomlMixin(ABC):
 
     band: Band
     sampling: Sampling
+    heights: HeightStatistics
+
+    @property
+    def rms(self) -> float:
+        """σ, RMS height of the filtered heights [m]."""
+        return self.heights.rms
 
     @abstractmethod
     def parameters(self, method: str = "summits") -> AsperityParameters:
@@ -174,11 +180,6 @@ class SurfaceAnalysis(_TomlMixin):
     filled: object = field(default=None, repr=False, compare=False)
     #: the Gaussian with σ beside the measured heights (paper Fig. 7)
     gaussian: GaussianReference | None = field(default=None, repr=False, compare=False)
-
-    @property
-    def rms(self) -> float:
-        """σ, RMS height of the filtered map [m]."""
-        return self.heights.rms
 
     @property
     def summits(self) -> AsperityParameters:
@@ -250,10 +251,6 @@ class ProfileAnalysis(_TomlMixin):
 
     def __post_init__(self):
         object.__setattr__(self, "mccool", self.isotropic)
-
-    @property
-    def rms(self) -> float:
-        return self.heights.rms
 
     @property
     def summits(self):
