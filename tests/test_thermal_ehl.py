@@ -94,7 +94,8 @@ def layered_reference(xs, u, coat, sub, d, terms=80):
     the band source, depth conduction only (Pe ≫ 1): θ = ∫ q G(τ) dτ with the image
     series G(τ) = [1 + 2 Σ Rⁿ exp(−n²d²/(κ_c τ))]/(e_c √(πτ)), R = (e_c − e_s)/(e_c + e_s)
     (Carslaw & Jaeger §12.8, composite solid by Laplace transform)."""
-    e1, e2, k1 = coat.effusivity, sub.effusivity, coat.diffusivity
+    e1, e2 = (math.sqrt(m.conductivity * m.volumetric_heat_capacity) for m in (coat, sub))
+    k1 = coat.diffusivity
     R = (e1 - e2) / (e1 + e2)
     out = []
     for x in xs:

@@ -93,12 +93,8 @@ def analytic_contact(
     ue_eff = np.maximum(np.abs(ue), _U_FLOOR)
     W, U, G = hamrock_groups(w, R, ue_eff, lubricant.viscosity, lubricant.pressure_viscosity, e)
     hc_ph, hm_ph = pan_hamrock(W, U, G, R)
-    if film_formula == "moes":
-        hc = moes_central(W, U, G, R)
-    elif film_formula == "pan_hamrock":
-        hc = hc_ph
-    else:
-        hc = dowson_toyoda_central(W, U, G, R)
+    central = {"moes": moes_central, "dowson_toyoda": dowson_toyoda_central}
+    hc = hc_ph if film_formula == "pan_hamrock" else central[film_formula](W, U, G, R)
     # Pan–Hamrock's h_min/h_c is a piezoviscous-elastic fit (∝ G^0.098 → 0 as α → 0); for
     # an isoviscous lubricant (G = 0) the film is taken flat, h_min = h_c (rigid limit)
     with np.errstate(invalid="ignore", divide="ignore"):

@@ -23,6 +23,7 @@ off at λ = 2.5; both are clipped at zero here.
 from __future__ import annotations
 
 import copy
+import functools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -54,6 +55,8 @@ _SQRT_2PI = math.sqrt(2.0 * math.pi)
 # Paper Eq. 7 (F_5/2, λ ≤ 2.5) and Eq. 19 (F_2, λ ≤ 3); highest power first.
 _PAPER_F52 = (0.000421, -0.008538, 0.07162, -0.3193, 0.802, -1.082, 0.6166)
 _PAPER_F2 = (-0.002, 0.028, -0.173, 0.526, -0.804, 0.5)
+#: The paper's fits by order n: (coefficients, λ above which the fit is 0).
+_PAPER_FITS = {2.5: (_PAPER_F52, 2.5), 2.0: (_PAPER_F2, 3.0)}
 
 
 _LAM_NEG = -12.0  # below: asymptotic series (exp(−λ²/4)·D_{−n−1}(λ) is 0·∞ for λ ≲ −38)
@@ -132,14 +135,10 @@ def greenwood_tripp(n: float, lam: ArrayLike, method: str = "exact") -> np.ndarr
     check_choice("method", method, ("exact", "paper"))
     if method == "exact":
         out = _exact(n, lam_arr)
-    else:  # "paper"
-        coeffs: tuple[float, ...]
-        if n == 2.5:
-            coeffs, lam_max = _PAPER_F52, 2.5
-        elif n == 2.0:
-            coeffs, lam_max = _PAPER_F2, 3.0
-        else:
-            raise InputError(f"method='paper' has fits for n = 2 and 2.5 only (got n = {n:g})")
+    elif n not in _PAPER_FITS:
+        raise InputError(f"method='paper' has fits for n = 2 and 2.5 only (got n = {n:g})")
+    else:
+        coeffs, lam_max = _PAPER_FITS[n]
         out = np.where(lam_arr <= lam_max, np.polyval(coeffs, lam_arr), 0.0)
         out = np.maximum(out, 0.0)
     return out if out.ndim else float(out)
@@ -150,7 +149,7 @@ def greenwood_tripp_derivative(n, lam, method: str = "exact"):
     n = GREENWOOD_TRIPP_ORDER.check("n", n)
     lam_arr = _lambda_array(lam)
     check_choice("method", method, ("exact", "paper"))
-    if method == "paper" and n not in (2.0, 2.5):
+    if method == "paper" and n not in _PAPER_FITS:
         raise InputError(f"method='paper' has fits for n = 2 and 2.5 only (got n = {n:g})")
     if method == "exact":
         if n == 0.0:
@@ -160,7 +159,7 @@ def greenwood_tripp_derivative(n, lam, method: str = "exact"):
         else:
             out = -n * _exact(n - 1.0, lam_arr)
     else:  # "paper"
-        coeffs, lam_max = (_PAPER_F52, 2.5) if n == 2.5 else (_PAPER_F2, 3.0)
+        coeffs, lam_max = _PAPER_FITS[n]
         val = np.polyval(coeffs, lam_arr)
         out = np.where(
             (lam_arr <= lam_max) & (val > 0.0), np.polyval(np.polyder(coeffs), lam_arr), 0.0
@@ -241,14 +240,9 @@ def _tabulated(lam, table):
     return f, df
 
 
-_TABLES: dict = {}
-
-
+@functools.cache
 def _table(n: float) -> _LogTable:
-    t = _TABLES.get(n)
-    if t is None:
-        t = _TABLES[n] = _LogTable(float(n))
-    return t
+    return _LogTable(float(n))
 
 
 def greenwood_tripp_table(n: float, lam):

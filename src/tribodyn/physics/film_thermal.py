@@ -36,6 +36,8 @@ quadrature at uniform properties, so they are exactly 1 for an isothermal film.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 __all__ = ["FilmFlow", "film_flow", "cumtrapz"]
@@ -52,25 +54,9 @@ def _trapz(f, dz):
     return (np.sum(f, axis=-1) - 0.5 * (f[..., 0] + f[..., -1])) * dz
 
 
+@dataclass(slots=True, init=False, repr=False, eq=False)
 class FilmFlow:
     """Across-film quantities at every x (arrays (n,) or (n, m)); see :func:`film_flow`."""
-
-    __slots__ = (
-        "F0",
-        "F1",
-        "C",
-        "D",
-        "rho_e",
-        "u",
-        "gamma_c",
-        "gamma_p",
-        "tau_c",
-        "dissipation",
-        "C_ref",
-        "D_ref",
-        "flow_factor",
-        "couette_factor",
-    )
 
     F0: np.ndarray
     F1: np.ndarray

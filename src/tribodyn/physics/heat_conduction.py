@@ -58,11 +58,6 @@ class ThermalProperties:
         """κ = k/(ρc) [m²/s]."""
         return self.conductivity / self.volumetric_heat_capacity
 
-    @property
-    def effusivity(self) -> float:
-        """e = √(kρc) [W s^½/(m² K)]."""
-        return math.sqrt(self.conductivity * self.volumetric_heat_capacity)
-
 
 @dataclass(frozen=True)
 class ThermalBody:

@@ -15,21 +15,12 @@ from typing import TypeAlias
 
 from .._validation import InputError
 from . import typical_engine
-from .limits import COATING_THICKNESS, POISSON_RATIO, YOUNGS_MODULUS, check_fields
+from .limits import COATING_THICKNESS, POISSON_RATIO, YOUNGS_MODULUS, check_fields, unchecked
 
 __all__ = ["Material", "Coating", "Body", "as_bodies", "reduced_modulus", "STEEL", "DLC", "WCC"]
 
 
 _ELASTIC_LIMITS = {"E": YOUNGS_MODULUS, "nu": POISSON_RATIO}
-
-
-def _of_checked(cls, **values):
-    """An instance of the frozen dataclass ``cls`` with ``values`` that were checked
-    already (by the object they come from): not checked again."""
-    obj = object.__new__(cls)
-    for name, value in values.items():
-        object.__setattr__(obj, name, value)
-    return obj
 
 
 @dataclass(frozen=True)
@@ -78,13 +69,13 @@ class Coating(Material):
     def of(cls, material: Material, thickness: float) -> Coating:
         """A layer of ``material`` (E, ν checked when it was built), ``thickness`` [m]
         thick: only the thickness is checked."""
-        layer = _of_checked(cls, E=material.E, nu=material.nu, thickness=thickness)
+        layer = unchecked(cls, E=material.E, nu=material.nu, thickness=thickness)
         check_fields(layer, {"thickness": COATING_THICKNESS})
         return layer
 
     @property
     def material(self) -> Material:
-        return _of_checked(Material, E=self.E, nu=self.nu)
+        return unchecked(Material, E=self.E, nu=self.nu)
 
 
 @dataclass(frozen=True)

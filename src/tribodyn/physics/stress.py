@@ -48,6 +48,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy import fft as sp_fft
@@ -137,11 +138,6 @@ class SubsurfaceStress:
     interface_sxz: np.ndarray | None = None  #: σ_xz at z = h [Pa] (coated only)
     interface_szz: np.ndarray | None = None  #: σ_zz at z = h [Pa] (coated only)
 
-    @property
-    def principal_shear(self) -> np.ndarray:
-        """In-plane principal shear stress √(((σ_xx − σ_zz)/2)² + σ_xz²) [Pa]."""
-        return np.hypot(0.5 * (self.sxx - self.szz), self.sxz)
-
     def peaks(self) -> dict[str, StressPeak]:
         """The six peaks by name (:data:`PEAKS`)."""
         return {k: getattr(self, k) for k in PEAKS}
@@ -221,7 +217,6 @@ class StressOperator:
         self._nfft = int(sp_fft.next_fast_len(need, real=True))
         self._transfer = self._build()
         self._transfer32: np.ndarray | None = None
-        self._search: tuple | None = None  # the peak search's rows (_search_rows)
 
     def _periodic_length(self) -> int:
         """The least periodic length of the transforms: ≥ 2× the grid (zero padding) and,
@@ -260,16 +255,11 @@ class StressOperator:
         convolution in wrap-around order) plus the aliased layered correction."""
         nfreq = self._nfft // 2 + 1
         out = np.empty((self._z.size, 6, nfreq), dtype=complex)
-        for i, z in enumerate(self._z):
-            out[i] = self._homogeneous_transfer(float(z))
+        for i, z in enumerate(self._z):  # homogeneous kernels (cached by n, nfft, z/Δ)
+            out[i] = _homogeneous_transfer(self.n, self._nfft, float(z) / self.dx)
         if self.h is not None:
             self._add_correction(out)
         return out
-
-    def _homogeneous_transfer(self, z: float) -> np.ndarray:
-        """DFT (6, nfreq) of the homogeneous hat-load kernels at depth z, wrap-around
-        (a function of n, the FFT length and z/Δ only: cached)."""
-        return _homogeneous_transfer(self.n, self._nfft, float(z) / self.dx).copy()
 
     def _add_correction(self, out: np.ndarray) -> None:
         coating = self.body.coating
@@ -298,7 +288,7 @@ class StressOperator:
         # L e^{−2|m|h}, whose field is exact in space (homogeneous kernels at depth 2h)
         lp, lq = _long_wave_limits(coat, sub)
         cut = np.exp(-2.0 * k * h)
-        hom2 = self._homogeneous_transfer(2.0 * h)
+        hom2 = _homogeneous_transfer(self.n, nf, 2.0 * h / dx)
         lim_p = -0.5 * lp * (hom2[0] + hom2[1])
         lim_q = 0.5 * lq * (hom2[3] + hom2[4])
         slope_basis = (hom2[0] - hom2[1]) / (4.0 * h)  # transfer |m| e^{−2|m|h}
@@ -425,9 +415,7 @@ class StressOperator:
         if self._transfer32 is None:
             self._transfer32 = self._transfer.astype(np.complex64)
         f = sp_fft.irfft(_load_spectra(self._transfer32, P, Q), n=nf, axis=-1)  # in `scale`
-        if self._search is None:
-            self._search = self._search_rows()
-        nu, interface, rows_of = self._search
+        nu, interface, rows_of = self._search_rows
         val, row, col = _peak_search(f, nu, self._in_coating, n, self.depths.size, interface)
         ns = pressure.shape[0]
         out = {}
@@ -445,6 +433,7 @@ class StressOperator:
             out[name] = (v * scale, x0 + col[:, k] * self.dx, zr)
         return out
 
+    @cached_property
     def _search_rows(self) -> tuple:
         """ν of each evaluated depth row (single precision), the interface row (−1: none)
         and the rows of each peak of :data:`PEAKS` (boolean masks)."""
@@ -485,23 +474,15 @@ class StressOperator:
         return v, zr
 
     def _peaks(self, sxx, szz, sxz, syy, vm, x) -> dict:
+        """The peaks {name: StressPeak} of :data:`PEAKS`: von Mises, the tensile principal
+        stress, |σ_xz| and σ_zz over the rows of each (:attr:`_search_rows`)."""
         sig1 = _max_principal(sxx, szz, sxz, syy)
-        z, nu_user = self._z, self.depths.size
-        coat = self._in_coating
-        i0 = nu_user  # surface row
-        res = dict(
-            max_von_mises_coating=_peak(vm[coat], x, z[coat]),
-            max_von_mises_substrate=_peak(vm[~coat], x, z[~coat]),
-            max_tension_surface=_peak(sig1[i0 : i0 + 1], x, z[i0 : i0 + 1]),
-            max_tension_coating=_peak(sig1[coat], x, z[coat]),
-            max_interface_shear=_NAN_PEAK,
-            max_interface_tension=_NAN_PEAK,
-        )
-        if self.h is not None:
-            ih = nu_user + 1
-            res["max_interface_shear"] = _peak(np.abs(sxz[ih : ih + 1]), x, z[ih : ih + 1])
-            res["max_interface_tension"] = _peak(szz[ih : ih + 1], x, z[ih : ih + 1])
-        return res
+        searched = (vm, vm, sig1, sig1, np.abs(sxz), szz)
+        _, _, rows_of = self._search_rows
+        return {
+            name: _peak(f[rows], x, self._z[rows])
+            for name, f, rows in zip(PEAKS, searched, rows_of, strict=True)
+        }
 
     def apply(
         self, pressure: ArrayLike, traction: ArrayLike, x: ArrayLike | None = None

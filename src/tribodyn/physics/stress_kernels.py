@@ -51,23 +51,18 @@ def _second_antiderivatives(u, z):
     return f1, f2, f3, f4
 
 
-def _homogeneous_kernels(n: int, dx: float, z: float) -> np.ndarray:
-    """Influence of unit hat loads at offsets d = kΔ, k = −(n−1)…(n−1), on (σ_xx, σ_zz,
-    σ_xz) for p and for q: array (6, 2n − 1) in the order (xx_p, zz_p, xz_p, xx_q, zz_q,
-    xz_q). Offsets are scaled by Δ (the kernels are homogeneous of degree 0)."""
-    k = np.arange(-(n - 1), n, dtype=float)
-    zz = z / dx
-    fp = _second_antiderivatives(k + 1.0, zz)
-    f0 = _second_antiderivatives(k, zz)
-    fm = _second_antiderivatives(k - 1.0, zz)
-    i1, i2, i3, i4 = (a - 2.0 * b + c for a, b, c in zip(fp, f0, fm, strict=True))
-    c = -2.0 / math.pi
-    return c * np.array([i3, i1, i2, i4, i2, i3])
-
-
 @lru_cache(maxsize=2048)
 def _homogeneous_transfer(n: int, nf: int, z_rel: float) -> np.ndarray:
-    ker = _homogeneous_kernels(n, 1.0, z_rel)
+    """DFT (6, nf/2 + 1), read-only (cached), of the influence of unit hat loads at
+    offsets d = kΔ, k = −(n−1)…(n−1), in wrap-around order, on (σ_xx, σ_zz, σ_xz) for p
+    and for q, in the order (xx_p, zz_p, xz_p, xx_q, zz_q, xz_q), at depth z = z_rel Δ.
+    Offsets are scaled by Δ (the kernels are homogeneous of degree 0)."""
+    k = np.arange(-(n - 1), n, dtype=float)
+    fp = _second_antiderivatives(k + 1.0, z_rel)
+    f0 = _second_antiderivatives(k, z_rel)
+    fm = _second_antiderivatives(k - 1.0, z_rel)
+    i1, i2, i3, i4 = (a - 2.0 * b + c for a, b, c in zip(fp, f0, fm, strict=True))
+    ker = -2.0 / math.pi * np.array([i3, i1, i2, i4, i2, i3])
     wrap = np.zeros((6, nf))
     wrap[:, :n] = ker[:, n - 1 :]
     wrap[:, nf - n + 1 :] = ker[:, : n - 1]

@@ -450,14 +450,14 @@ class ThermalLubricant:
         """τ_E(T) = τ_E(Tᵢ) T/Tᵢ [Pa]."""
         return self.eyring_stress * np.asarray(T, dtype=float) / self._c["Ti"]
 
+    def _limiting_shear_factor(self, T):
+        """max(0.1, 1 − c_L (T − Tᵢ)) [-], the temperature factor of τ_L."""
+        dT = np.asarray(T, dtype=float) - self._c["Ti"]
+        return np.maximum(0.1, 1.0 - self.limiting_shear_temperature_coefficient * dT)
+
     def limiting_shear_stress_at(self, p, T):
         """τ_L(p, T) [Pa]."""
-        f = np.maximum(
-            0.1,
-            1.0
-            - self.limiting_shear_temperature_coefficient
-            * (np.asarray(T, dtype=float) - self._c["Ti"]),
-        )
+        f = self._limiting_shear_factor(T)
         return (
             self.limiting_shear_stress
             + self.limiting_shear_coefficient * np.maximum(np.asarray(p, dtype=float), 0.0)
@@ -476,7 +476,7 @@ class ThermalLubricant:
             alpha = self._c["alpha_i"]
         else:
             alpha = roelands_alpha(self._c["Z"], mu)
-        f = max(0.1, 1.0 - self.limiting_shear_temperature_coefficient * (T - self._c["Ti"]))
+        f = float(self._limiting_shear_factor(T))
         return dict(
             viscosity=mu,
             pressure_viscosity=alpha,

@@ -379,17 +379,16 @@ def composite_roughness(
         notes.append("the two surfaces were filtered with different bands")
     summit_stats = sum_stats = sum_surface = sum_gaussian = None
     ta, tb = first.topography, second.topography
-    combined = None
-    if ta is not None and tb is not None:
-        combined = sum_on_common_grid(
-            ta.heights(), ta.pixel_size, ta.is_periodic, tb.heights(), tb.pixel_size, tb.is_periodic
-        )
     if ta is None or tb is None:
         notes.append(
             "no composite summit analysis: a profile has no summits (the spectral "
             "composite is an isotropic-surface estimate)"
         )
-    elif combined is None:
+    elif (
+        combined := sum_on_common_grid(
+            ta.heights(), ta.pixel_size, ta.is_periodic, tb.heights(), tb.pixel_size, tb.is_periodic
+        )
+    ) is None:
         notes.append(
             "no composite summit analysis: the maps have different pixel sizes "
             "(the spectral composite is used)"
@@ -433,10 +432,8 @@ def analyse_pair(
     ``first``/``second``: file names or ``Topography`` objects; other arguments as
     :func:`analyse_surface` (``name`` is not accepted; file names label the surfaces).
     """
-    a = analyse_surface(
-        first, band, **kwargs, name=None if isinstance(first, (str, Path)) else "surface 1"
-    )
-    b = analyse_surface(
-        second, band, **kwargs, name=None if isinstance(second, (str, Path)) else "surface 2"
+    a, b = (
+        analyse_surface(s, band, **kwargs, name=None if isinstance(s, (str, Path)) else label)
+        for s, label in ((first, "surface 1"), (second, "surface 2"))
     )
     return composite_roughness(a, b)

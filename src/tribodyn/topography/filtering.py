@@ -44,7 +44,6 @@ to reproduce their analysis.
 from __future__ import annotations
 
 import math
-from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from typing import Any
 
@@ -56,7 +55,6 @@ from .errors import BandLimitError, InsufficientDataError, TopographyError
 
 __all__ = [
     "MAX_MAP_POINTS",
-    "analysis_margin",
     "check_map_size",
     "TYPICAL_BAND",
     "AUTO_BAND",
@@ -64,9 +62,9 @@ __all__ = [
     "DETREND_MODES",
     "Band",
     "Sampling",
-    "SamplingLike",
     "check_band",
     "check_filtering",
+    "analysis_margin",
     "applied_band",
     "default_band",
     "band_pass",
@@ -107,19 +105,30 @@ def check_map_size(shape, what: str = "the map") -> None:
 _LN2 = math.log(2.0)
 
 
-class SamplingLike(ABC):
-    """A map's :class:`Sampling` or a profile's
-    :class:`~tribodyn.topography.profile.ProfileSampling` (lengths in m): what the band
-    checks read, and the description and dict the two share. ``undefined_fraction`` is the
-    share of points that were undefined in the file and filled before the analysis."""
+@dataclass(frozen=True)
+class Sampling:
+    """Sampling of a topography map (two axes) or a profile (one axis), lengths in m:
+    what the band checks read. ``undefined_fraction`` is the share of points that were
+    undefined in the file and filled before the analysis."""
 
     nb_grid_pts: tuple[int, ...]
     pixel_size: tuple[float, ...]
     physical_sizes: tuple[float, ...]
-    periodic: bool
-    undefined_fraction: float
+    periodic: bool = False
+    undefined_fraction: float = 0.0
 
     UNITS = {"pixel_size": "m", "physical_sizes": "m"}
+
+    @classmethod
+    def of(cls, topography, undefined_fraction: float = 0.0) -> Sampling:
+        """The sampling of a SurfaceTopography map (lengths in m)."""
+        return cls(
+            tuple(int(k) for k in topography.nb_grid_pts),
+            tuple(float(d) for d in topography.pixel_size),
+            tuple(float(length) for length in topography.physical_sizes),
+            bool(topography.is_periodic),
+            float(undefined_fraction),
+        )
 
     @property
     def nyquist_wavelength(self) -> float:
@@ -131,9 +140,18 @@ class SamplingLike(ABC):
         """min(L_x, L_y): longest wavelength contained in every direction [m]."""
         return min(self.physical_sizes)
 
-    @abstractmethod
     def _layout(self) -> str:
         """Points, spacing and extent, in words."""
+        if len(self.nb_grid_pts) == 1:
+            return (
+                f"profile of {self.nb_grid_pts[0]} points, spacing {_um(self.pixel_size[0])} "
+                f"µm, length {_um(self.physical_sizes[0])} µm"
+            )
+        (nx, ny), (dx, dy), (lx, ly) = self.nb_grid_pts, self.pixel_size, self.physical_sizes
+        return (
+            f"{nx} × {ny} points, pixel {_um(dx)} × {_um(dy)} µm, "
+            f"area {_um(lx)} × {_um(ly)} µm, {'periodic' if self.periodic else 'non-periodic'}"
+        )
 
     def describe(self) -> str:
         """The layout, with the share of filled points if any."""
@@ -152,39 +170,6 @@ class SamplingLike(ABC):
             "undefined_fraction": self.undefined_fraction,
             "units": dict(self.UNITS),
         }
-
-
-@dataclass(frozen=True)
-class Sampling(SamplingLike):
-    """Sampling of a topography map. Lengths in m (:class:`SamplingLike`)."""
-
-    nb_grid_pts: tuple[int, int]
-    pixel_size: tuple[float, float]
-    physical_sizes: tuple[float, float]
-    periodic: bool
-    undefined_fraction: float = 0.0
-
-    @classmethod
-    def of(cls, topography, undefined_fraction: float = 0.0) -> Sampling:
-        (nx, ny), (dx, dy), (lx, ly) = (
-            topography.nb_grid_pts,
-            topography.pixel_size,
-            topography.physical_sizes,
-        )
-        return cls(
-            (int(nx), int(ny)),
-            (float(dx), float(dy)),
-            (float(lx), float(ly)),
-            bool(topography.is_periodic),
-            float(undefined_fraction),
-        )
-
-    def _layout(self) -> str:
-        (nx, ny), (dx, dy), (lx, ly) = self.nb_grid_pts, self.pixel_size, self.physical_sizes
-        return (
-            f"{nx} × {ny} points, pixel {_um(dx)} × {_um(dy)} µm, "
-            f"area {_um(lx)} × {_um(ly)} µm, {'periodic' if self.periodic else 'non-periodic'}"
-        )
 
 
 @dataclass(frozen=True)
@@ -256,7 +241,24 @@ def _um(x: float) -> str:
     return f"{x * 1e6:.4g}"
 
 
-def input_warnings(band: Band, sampling: SamplingLike) -> tuple[str, ...]:
+def analysis_margin(band: Band | None, pixel_size, periodic: bool) -> tuple[int, ...]:
+    """Points excluded along each edge of a map (or profile) before summits (peaks) and
+    moments are evaluated, one number per axis of ``pixel_size``.
+
+    Periodic maps: none. Non-periodic maps: the curvature stencil's border (1) or, after
+    band-pass filtering, one short-wavelength cutoff λ_s, the reach of the filter's end
+    effects at the mirror-stitched edges (the Gaussian S-filter kernel has a standard
+    deviation of 0.19 λ_s). Without the margin, summits and curvature near the edges are
+    biased by O(λ_s/L).
+    """
+    if periodic:
+        return (0,) * len(pixel_size)
+    if band is None or band.kind == "none":
+        return (1,) * len(pixel_size)
+    return tuple(max(1, int(np.ceil(band.wavelengths[0] / p - 1e-9))) for p in pixel_size)
+
+
+def input_warnings(band: Band, sampling: Sampling) -> tuple[str, ...]:
     """Warnings about what was done to the input: band clipped, dropouts filled."""
     out = []
     if band.requested is not None:
@@ -275,9 +277,7 @@ def input_warnings(band: Band, sampling: SamplingLike) -> tuple[str, ...]:
     return tuple(out)
 
 
-def _shortest_wavelength(
-    sampling: SamplingLike, reliability_cutoff: float | None
-) -> tuple[float, str]:
+def _shortest_wavelength(sampling: Sampling, reliability_cutoff: float | None) -> tuple[float, str]:
     """The shortest wavelength the measurement resolves [m] and why: its Nyquist
     wavelength 2Δ, or the instrument's reliability cutoff where that is longer."""
     if reliability_cutoff is not None and reliability_cutoff > sampling.nyquist_wavelength:
@@ -293,7 +293,7 @@ def _shortest_wavelength(
 
 def check_band(
     band,
-    sampling: SamplingLike,
+    sampling: Sampling,
     *,
     kind: str = "gaussian",
     clip: bool = False,
@@ -303,8 +303,6 @@ def check_band(
 
     Raises :class:`BandLimitError` naming the violated limit unless ``clip`` is true.
     """
-    if kind not in FILTER_KINDS:
-        raise InputError(f"filter kind must be one of {FILTER_KINDS} (got {kind!r})")
     if band is None:
         return Band(None, None, "none")
     try:
@@ -346,14 +344,12 @@ def check_band(
 
 
 def default_band(
-    sampling: SamplingLike, *, kind: str = "gaussian", reliability_cutoff: float | None = None
+    sampling: Sampling, *, kind: str = "gaussian", reliability_cutoff: float | None = None
 ) -> Band:
     """The typical band clipped to what the measurement resolves (module docstring).
 
     Raises :class:`InsufficientDataError` if fewer than a factor MIN_BAND_RATIO of
     wavelengths remain."""
-    if kind not in FILTER_KINDS:
-        raise InputError(f"filter kind must be one of {FILTER_KINDS} (got {kind!r})")
     lo0, hi0 = TYPICAL_BAND
     lo, why_lo = lo0, ""
     lo_min, why = _shortest_wavelength(sampling, reliability_cutoff)
@@ -415,14 +411,17 @@ def check_filtering(detrend: str, min_defined_fraction: float) -> float:
 
 def applied_band(
     band: BandSpec,
-    sampling: SamplingLike,
+    sampling: Sampling,
     *,
     kind: str,
     clip: bool,
     reliability_cutoff: float | None = None,
 ) -> Band:
     """The band a filter applies: :func:`default_band` for ``"auto"``, else the given
-    band checked against the sampling (:func:`check_band`)."""
+    band checked against the sampling (:func:`check_band`); ``kind`` one of
+    :data:`FILTER_KINDS`."""
+    if kind not in FILTER_KINDS:
+        raise InputError(f"filter kind must be one of {FILTER_KINDS} (got {kind!r})")
     if isinstance(band, str) and band == AUTO_BAND:
         return default_band(sampling, kind=kind, reliability_cutoff=reliability_cutoff)
     return check_band(band, sampling, kind=kind, clip=clip, reliability_cutoff=reliability_cutoff)
@@ -501,20 +500,3 @@ def prepare_topography(
         topography = topography.interpolate_undefined_data("harmonic")
     topography = topography.detrend(detrend_mode="center" if topography.is_periodic else detrend)
     return band_pass(topography, applied), applied, sampling, filled
-
-
-def analysis_margin(band: Band | None, pixel_size, periodic: bool) -> tuple[int, ...]:
-    """Points excluded along each edge of a map (or profile) before summits (peaks) and
-    moments are evaluated, one number per axis of ``pixel_size``.
-
-    Periodic maps: none. Non-periodic maps: the curvature stencil's border (1) or, after
-    band-pass filtering, one short-wavelength cutoff λ_s, the reach of the filter's end
-    effects at the mirror-stitched edges (the Gaussian S-filter kernel has a standard
-    deviation of 0.19 λ_s). Without the margin, summits and curvature near the edges are
-    biased by O(λ_s/L).
-    """
-    if periodic:
-        return (0,) * len(pixel_size)
-    if band is None or band.kind == "none":
-        return (1,) * len(pixel_size)
-    return tuple(max(1, int(np.ceil(band.wavelengths[0] / p - 1e-9))) for p in pixel_size)

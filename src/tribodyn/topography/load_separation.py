@@ -125,12 +125,12 @@ _SYNTHETIC_LAW_DISTRIBUTIONS = ("SurfaceTopography", "numpy")
 
 
 @lru_cache(maxsize=32)
-def _synthetic_law(rms, hurst, short_cutoff, long_cutoff, reduced_modulus, hardness, grid, seed):
-    """The law of :func:`synthetic_load_separation`, kept in memory and in the user's
-    cache folder (:func:`tribodyn._cache.cached_arrays`: the same bits as computed)."""
+def _synthetic_law(rms, hurst, short_cutoff, long_cutoff, reduced_modulus, hardness, n, seed):
+    """The law of :func:`synthetic_load_separation` (``n`` its ``grid``), kept in memory
+    and in the user's cache folder (:func:`tribodyn._cache.cached_arrays`: the same bits
+    as computed)."""
     from .._cache import cached_arrays
 
-    n = check_int("grid", grid)
     if not 32 <= n <= 512:
         raise InputError(f"grid must be within 32–512 points per side (got {n})")
     size = 2.0 * check_positive("long_cutoff", long_cutoff, "m")

@@ -38,6 +38,7 @@ from .filtering import (
     AUTO_BAND,
     Band,
     BandSpec,
+    Sampling,
     analysis_margin,
     applied_band,
     check_filtering,
@@ -45,10 +46,10 @@ from .filtering import (
     input_warnings,
 )
 from .height_statistics import gaussian_reference, height_statistics
-from .results import ISOTROPIC_LABEL, ProfileAnalysis, ProfileSampling
+from .results import ISOTROPIC_LABEL, ProfileAnalysis
 from .spectral_moments import SpectralMoments, mccool_parameters
 
-__all__ = ["ProfileSampling", "ProfileAnalysis", "analyse_profile", "MIN_PEAKS", "ISOTROPIC_LABEL"]
+__all__ = ["ProfileAnalysis", "analyse_profile", "MIN_PEAKS", "ISOTROPIC_LABEL"]
 
 #: Fewest peaks (measured interior) for a meaningful analysis.
 MIN_PEAKS = 25
@@ -102,7 +103,7 @@ def analyse_profile(
         raise InsufficientDataError(
             f"only {int(measured.sum())} of {n} points ({share:.1%}) are measured"
         )
-    sampling = ProfileSampling((n,), (dx,), (n * dx,), periodic, float(1.0 - share))
+    sampling = Sampling((n,), (dx,), (n * dx,), periodic, float(1.0 - share))
     applied = applied_band(band, sampling, kind=kind, clip=clip_band)
     x = np.arange(n) * dx
     if filled.any():  # 1-D harmonic interpolation = linear

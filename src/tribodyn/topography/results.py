@@ -14,7 +14,7 @@ import numpy as np
 
 from .._validation import InputError
 from ..physics.asperity import Roughness
-from .filtering import Band, Sampling, SamplingLike, _um
+from .filtering import Band, Sampling
 from .height_statistics import GaussianReference, HeightStatistics
 from .records import record_dict
 from .spectral_moments import McCoolParameters, SpectralMoments
@@ -25,7 +25,6 @@ __all__ = [
     "AsperityParameters",
     "SurfaceAnalysis",
     "PairAnalysis",
-    "ProfileSampling",
     "ProfileAnalysis",
 ]
 
@@ -68,25 +67,17 @@ class AsperityParameters:
         return record_dict(self, "roughness_parameter")
 
 
-def _summit_parameters(s: SummitStatistics, rms: float) -> AsperityParameters:
+def _parameters(
+    method: str, stats: SummitStatistics | McCoolParameters, rms: float
+) -> AsperityParameters:
+    """The estimator ``method``'s η, β and summit heights (``stats``) with σ = ``rms``."""
     return AsperityParameters(
-        "summits",
-        s.asperity_density,
+        method,
+        stats.asperity_density,
         rms,
-        s.summit_radius,
-        s.summit_height_mean,
-        s.summit_height_std,
-    )
-
-
-def _spectral_parameters(m: McCoolParameters, rms: float | None = None) -> AsperityParameters:
-    return AsperityParameters(
-        "spectral",
-        m.asperity_density,
-        m.rms if rms is None else rms,
-        m.summit_radius,
-        m.summit_height_mean,
-        m.summit_height_std,
+        stats.summit_radius,
+        stats.summit_height_mean,
+        stats.summit_height_std,
     )
 
 
@@ -115,6 +106,15 @@ class HeightMap(Protocol):
 class _TomlMixin(ABC):
     """Roughness block and ``Roughness`` from a result's estimators."""
 
+    band: Band
+    sampling: Sampling
+    heights: HeightStatistics
+
+    @property
+    def rms(self) -> float:
+        """σ, RMS height of the filtered heights [m]."""
+        return self.heights.rms
+
     @abstractmethod
     def parameters(self, method: str = "summits") -> AsperityParameters:
         """η, σ, β of one estimator (:data:`METHODS`)."""
@@ -123,9 +123,10 @@ class _TomlMixin(ABC):
     def describe_source(self) -> str:
         """What was analysed (one line)."""
 
-    @abstractmethod
     def describe_conditions(self) -> list[str]:
-        """Band, sampling and notes (one line each)."""
+        """Band, sampling and notes (one line each); here those of one analysis (a
+        surface or a profile)."""
+        return [f"band {self.band.describe()}", f"sampling {self.sampling.describe()}"]
 
     def to_roughness(self, method: str = "summits") -> Roughness:
         """tribodyn ``Roughness`` (η, σ, β) from the chosen estimator."""
@@ -181,26 +182,18 @@ class SurfaceAnalysis(_TomlMixin):
     gaussian: GaussianReference | None = field(default=None, repr=False, compare=False)
 
     @property
-    def rms(self) -> float:
-        """σ, RMS height of the filtered map [m]."""
-        return self.heights.rms
-
-    @property
     def summits(self) -> AsperityParameters:
-        return _summit_parameters(self.summit_stats, self.heights.rms)
+        return _parameters("summits", self.summit_stats, self.heights.rms)
 
     @property
     def spectral(self) -> AsperityParameters:
-        return _spectral_parameters(self.mccool)
+        return _parameters("spectral", self.mccool, self.mccool.rms)
 
     def parameters(self, method: str = "summits") -> AsperityParameters:
         return self.summits if _check_method(method) == "summits" else self.spectral
 
     def describe_source(self) -> str:
         return f"surface '{self.name}'"
-
-    def describe_conditions(self) -> list[str]:
-        return [f"band {self.band.describe()}", f"sampling {self.sampling.describe()}"]
 
     def to_dict(self) -> dict:
         return {
@@ -229,30 +222,13 @@ ISOTROPIC_LABEL = (
 
 
 @dataclass(frozen=True)
-class ProfileSampling(SamplingLike):
-    """Sampling of a profile: points, spacing Δ [m], length L [m], filled share."""
-
-    nb_grid_pts: tuple[int]
-    pixel_size: tuple[float]
-    physical_sizes: tuple[float]
-    periodic: bool = False
-    undefined_fraction: float = 0.0
-
-    def _layout(self) -> str:
-        return (
-            f"profile of {self.nb_grid_pts[0]} points, spacing {_um(self.pixel_size[0])} "
-            f"µm, length {_um(self.physical_sizes[0])} µm"
-        )
-
-
-@dataclass(frozen=True)
 class ProfileAnalysis(_TomlMixin):
     """Roughness of one profile (SI units). ``isotropic`` holds the isotropic-surface
     estimates of η and β (McCool from the profile moments); ``summits`` is None (a
     profile has no summits)."""
 
     name: str
-    sampling: ProfileSampling
+    sampling: Sampling
     band: Band
     heights: HeightStatistics
     moments: SpectralMoments
@@ -277,16 +253,12 @@ class ProfileAnalysis(_TomlMixin):
         object.__setattr__(self, "mccool", self.isotropic)
 
     @property
-    def rms(self) -> float:
-        return self.heights.rms
-
-    @property
     def summits(self):
         return None
 
     @property
     def spectral(self) -> AsperityParameters:
-        return _spectral_parameters(self.isotropic, self.heights.rms)
+        return _parameters("spectral", self.isotropic, self.heights.rms)
 
     @property
     def slope_anisotropy(self) -> float:
@@ -311,9 +283,6 @@ class ProfileAnalysis(_TomlMixin):
 
     def describe_source(self) -> str:
         return f"profile '{self.name}'"
-
-    def describe_conditions(self) -> list[str]:
-        return [f"band {self.band.describe()}", f"sampling {self.sampling.describe()}"]
 
     def to_dict(self) -> dict:
         iso = self.spectral.to_dict()
@@ -370,11 +339,11 @@ class PairAnalysis(_TomlMixin):
     def summits(self) -> AsperityParameters | None:
         if self.summit_stats is None:
             return None
-        return _summit_parameters(self.summit_stats, self.rms)
+        return _parameters("summits", self.summit_stats, self.rms)
 
     @property
     def spectral(self) -> AsperityParameters:
-        return _spectral_parameters(self.mccool, self.rms)
+        return _parameters("spectral", self.mccool, self.rms)
 
     def parameters(self, method: str = "summits") -> AsperityParameters:
         if _check_method(method) == "spectral":
