@@ -5,6 +5,7 @@ a validated case (:class:`~tribodyn.config.case.Case` inherits them).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from .._validation import InputError
@@ -14,7 +15,7 @@ from ..valvetrain.camshaft import Camshaft
 from ..valvetrain.flexible import FlexibleValvetrain, TappetGeometry, ValveGeometry
 from ..valvetrain.parameters import ValvetrainParameters
 from ..valvetrain.spring import HelicalSpring
-from .errors import CamTableError
+from .errors import CaseKeyError
 from .schema import SpringConfig, TappetConfig, ValveConfig
 
 if TYPE_CHECKING:
@@ -24,6 +25,14 @@ if TYPE_CHECKING:
     from ..valvetrain.tribology import AnalyticTribology
     from .schema import CamConfig, Engine, Numerics, Valvetrain
     from .surface_set import SurfaceSet
+
+
+#: The cam of each analytic ``[cam] type``: its keys are the constructor's arguments (those
+#: ending in ``_deg`` in degrees, the argument in radians), but material and width.
+_ANALYTIC_CAMS: dict[str, Callable[..., CamProfile]] = {
+    "acceleration": AccelerationCam,
+    "circular_arc": CircularArcCam,
+}
 
 
 class CamValvetrainBuilders:
@@ -42,28 +51,13 @@ class CamValvetrainBuilders:
     def _build_cam(self) -> CamProfile:
         c = self.cam_config
         tr = self.valvetrain.tappet_radius
-        if c.type == "acceleration":
-            return AccelerationCam(
-                c.base_radius,
-                c.max_lift,
-                event_angle=math.radians(c.event_angle_deg),
-                nose_radius=c.nose_radius,
-                ramp_height=c.ramp_height,
-                ramp_angle=math.radians(c.ramp_angle_deg),
-                pulse_share=c.pulse_share,
-                ramp_pulse_share=c.ramp_pulse_share,
-                nose_angle=math.radians(c.nose_angle_deg),
-                tappet_radius=tr,
-            )
-        if c.type == "circular_arc":
-            return CircularArcCam(
-                c.base_radius,
-                c.max_lift,
-                flank_radius=c.flank_radius,
-                nose_radius=c.nose_radius,
-                nose_angle=math.radians(c.nose_angle_deg),
-                tappet_radius=tr,
-            )
+        if c.type != "table":
+            keys = c.model_dump(exclude={"type", "material", "width"})
+            args = {
+                k.removesuffix("_deg"): math.radians(v) if k.endswith("_deg") else v
+                for k, v in keys.items()
+            }
+            return _ANALYTIC_CAMS[c.type](**args, tappet_radius=tr)
         try:
             cam = TabulatedCam.from_csv(
                 self.cam_table_path,
@@ -79,10 +73,10 @@ class CamValvetrainBuilders:
             msg = str(exc)
             if str(self.cam_table_path) not in msg:
                 msg = f"{self.cam_table_path}: {msg}"
-            raise CamTableError("path", msg) from None
+            raise CaseKeyError("cam.path", msg) from None
         if c.max_lift is not None and abs(cam.max_lift / c.max_lift - 1.0) > 0.01:
-            raise CamTableError(
-                "max_lift",
+            raise CaseKeyError(
+                "cam.max_lift",
                 f"{c.max_lift:g} m disagrees with the lift "
                 f"table's maximum {cam.max_lift:g} m by more "
                 "than 1 %",

@@ -21,7 +21,6 @@ from .schema_fields import field_bounds, field_extra
 
 __all__ = [
     "Problems",
-    "CamTableError",
     "CaseKeyError",
     "format_validation_error",
     "in_file_order",
@@ -48,13 +47,6 @@ class CaseKeyError(InputError):
         self.key = key
 
 
-class CamTableError(CaseKeyError):
-    """A lift-table problem, with the ``[cam]`` key it belongs to."""
-
-    def __init__(self, key: str, message: str):
-        super().__init__(f"cam.{key}", message)
-
-
 def range_text(bounds: Mapping[str, float], unit: str, auto: float | None = None) -> str:
     """'> 0 m and <= 0.01 m' of ``{"gt": 0, "le": 0.01}`` (crank or cam degrees: °);
     '0 (automatic) or >= 32 and <= 4096' with the value ``auto`` that means automatic."""
@@ -78,13 +70,11 @@ def _num(v) -> str:
 
 
 def _given(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
     if isinstance(v, float):
         g = f"{v:.6g}"
         return g if any(c in g for c in ".eni") else g + ".0"
-    if isinstance(v, int):
-        return str(v)
+    if isinstance(v, int):  # bool too
+        return _num(v)
     if isinstance(v, str):
         return repr(v)
     if isinstance(v, dict):
