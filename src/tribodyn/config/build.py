@@ -293,8 +293,8 @@ def collect(
                 "materials",
                 functools.partial(case._new_thermal_bodies, surface, thermal_properties),
             )
-        strengths = attempt("strength", functools.partial(case._new_strengths, surface))
-        wear = attempt("strength", functools.partial(case._new_wear_coefficient, surface))
+        strengths = attempt("strength", functools.partial(case._new_strengths, cfg))
+        wear = attempt("strength", functools.partial(case._new_wear_coefficient, cfg))
         sets[cfg.name] = BuiltSet(
             surface=surface,
             options=set_options,
