@@ -47,7 +47,7 @@ from ..valvetrain.kinematics import rpm_to_cam_speed
 from ..valvetrain.tappet_rotation import TappetRotation
 from .build import collect, range_problems_beside
 from .case_strength import StrengthBuilders
-from .case_thermal import OIL_LAW_KEYS, ThermalBuilders
+from .case_thermal import DATASHEET_KEYS, OIL_LAW_KEYS, ThermalBuilders
 from .case_valvetrain import CamValvetrainBuilders
 from .errors import (
     CaseKeyError,
@@ -58,7 +58,7 @@ from .errors import (
 )
 from .measured_surface import asperity_law_note, measured_map, measured_roughness
 from .origins import carried_given
-from .paths import Key, parse_path, set_path
+from .paths import FILE_KEYS, Key, find_paths, parse_path, set_path
 from .schema import (
     CAM_MODELS,
     AccelerationCamConfig,
@@ -317,17 +317,13 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             d["valvetrain"].pop(k, None)
         lub = self.lubricant_config
         if lub.datasheet:  # follow from the datasheet (α: So–Klaus unless given)
-            for k in ("viscosity", "density", "pressure_viscosity"):
+            for k in DATASHEET_KEYS:
                 if k not in lub.model_fields_set:
                     d["lubricant"].pop(k, None)
-        if resolve_paths and self.cam_config.type == "table":
-            d["cam"]["path"] = str(self.cam_table_path)
-        if resolve_paths:  # measured maps of the surface sets, absolute
-            for i, sc in enumerate(self.surface_set_configs):
-                m = sc.measured_surface
-                if m is not None and m.topography is not None:
-                    p = self.resolve_path(m.topography)
-                    d["surface_sets"][i]["measured_surface"]["topography"] = str(p)
+        if resolve_paths:  # the files the case names (cam table, measured maps), absolute
+            for key in FILE_KEYS:
+                for where, name in find_paths(d, key):
+                    set_path(d, where, str(self.resolve_path(name)))
         return d
 
     def to_toml(self, *, resolve_paths: bool = False) -> str:
@@ -410,12 +406,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         c = self.lubricant_config
         if c.datasheet:
             return self._new_thermal_lubricant().isothermal()
-        return Lubricant(
-            viscosity=c.viscosity,
-            pressure_viscosity=c.pressure_viscosity,
-            density=c.density,
-            **c.model_dump(include=OIL_LAW_KEYS),
-        )
+        return Lubricant(**c.model_dump(include={*DATASHEET_KEYS, *OIL_LAW_KEYS}))
 
     def _new_material(self, name: str) -> Material:
         """The :class:`~tribodyn.Material` of ``[materials.<name>]``."""
@@ -456,16 +447,8 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             label = f"{cm.label or s.coating} {thickness * 1e6:.3g} µm"
         sigma, _ = s.boundary_friction(self.materials)
         assert sigma is not None  # required by the case cross-check
-        r = s.roughness
-        rough = _collecting(
-            bad,
-            lambda: Roughness(
-                asperity_density=r.asperity_density,
-                rms=r.rms,
-                summit_radius=r.summit_radius,
-                method=self.numerics.greenwood_tripp,
-            ),
-        )
+        method = self.numerics.greenwood_tripp  # the roughness keys are Roughness's arguments
+        rough = _collecting(bad, lambda: Roughness(**s.roughness.model_dump(), method=method))
         if bad:
             raise RangeError(bad)
         return SurfaceSet(
