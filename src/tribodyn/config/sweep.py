@@ -375,9 +375,8 @@ class SweepSpec(TomlFile):
             ) from None
         problems: list[tuple[str, str]] = []
         base, base_source = _load_base(cfg.sweep.case, base_dir, problems)
-        if base is None:
-            raise InputError(problems_message(problems, source, "sweep"))
-        base = _apply_fixed(base, cfg.fixed, problems)
+        if base is not None:
+            base = _apply_fixed(base, cfg.fixed, problems)
         if base is None:
             raise InputError(problems_message(problems, source, "sweep"))
         if cfg.sweep.mode == "engine" and base.engine.cylinders is None:
@@ -487,8 +486,7 @@ def _axis(base: Case, i: int, ax: AxisConfig, problems) -> Axis | None:
         problems.append((where, f"and {found - MAX_REPORTED_VALUES} more invalid values"))
     tail = parse_path(ax.path)[-1]
     assert isinstance(tail, Key)  # checked by _check_path: a path ends at a key
-    last = tail.name
-    name = ax.name or last
+    name = ax.name or tail.name
     return Axis(
         path=ax.path,
         name=name,
