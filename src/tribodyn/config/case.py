@@ -54,7 +54,6 @@ from .errors import (
     Problems,
     format_validation_error,
     problem_text,
-    validation_problems,
 )
 from .measured_surface import asperity_law_note, measured_map, measured_roughness
 from .origins import carried_given
@@ -268,12 +267,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         try:
             return cls.model_validate(data, context=ctx)
         except ValidationError as exc:
-            more = range_problems_beside(
-                data,
-                exc,
-                lambda rest: cls.model_validate(rest, context={**ctx, "ranges_only": True}),
-                lambda e: validation_problems(e, cls, variants),
-            )
+            more = range_problems_beside(cls, data, exc, ctx, variants)
             msg = format_validation_error(exc, cls, source, variants=variants, more=more)
             raise InputError(msg) from None
 
