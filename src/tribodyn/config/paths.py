@@ -187,9 +187,8 @@ def _kind(v) -> str:
 
 def _walk(data, tokens):
     """Containers holding the last token's key, for each place the path addresses
-    (missing tables on the way created)."""
-    if not tokens or not isinstance(tokens[0], Key):
-        raise PathError("a key path starts with a key")
+    (missing tables on the way created); ``tokens`` of :func:`parse_path`, which start
+    with a key."""
     # group tokens into (key, selectors) segments
     segs: list[tuple[Key, list]] = []
     for t in tokens:
@@ -236,14 +235,14 @@ def set_path(data: dict, path: str | list, value: Any) -> int:
     return len(curs)
 
 
-def find_paths(data: dict, path: str | list) -> list[tuple[str, Any]]:
+def find_paths(data: dict, path: str) -> list[tuple[str, Any]]:
     """``(address, value)`` of every place ``path`` addresses that holds a value, each
     address a path of its own (``[*]`` and ``[key=value]`` replaced by the index or key
     they select), e.g. ``surface_sets[*].measured_surface.topography`` →
     ``[("surface_sets[1].measured_surface.topography", "pair.x3p")]``. Places where a
     key is absent are skipped."""
-    tokens = parse_path(path) if isinstance(path, str) else tuple(path)
-    if not tokens or not isinstance(tokens[0], Key) or not isinstance(tokens[-1], Key):
+    tokens = parse_path(path)
+    if not isinstance(tokens[-1], Key):
         raise PathError(f"{format_path(tokens)}: a key path starts and ends with a key")
     out: list[tuple[str, Any]] = []
 
@@ -289,14 +288,14 @@ def keyed_fields(model) -> dict:
     return {(fi.alias or name): fi for name, fi in model.model_fields.items()}
 
 
-def schema_field(root, path, data: dict | None = None, variants: dict | None = None):
+def schema_field(root, path: str, data: dict | None = None, variants: dict | None = None):
     """The pydantic ``FieldInfo`` a path ends on, checked key by key against the models.
 
     root : the model class of the whole file (``Case``); data : the file's dict, to pick
     the variant of a tagged union (the ``[cam]`` type) from its ``type`` key; variants :
     ``{key: {tag: model}}``. Raises :class:`PathError` naming the first unknown key with
     the allowed keys (and a close match)."""
-    tokens = parse_path(path) if isinstance(path, str) else tuple(path)
+    tokens = parse_path(path)
     variants = variants or {}
     cur: Any = root
     fi = None
