@@ -16,7 +16,7 @@ from typing import Any, get_args, get_origin
 from pydantic import BaseModel, ValidationError
 
 from .._validation import InputError
-from .paths import keyed_fields, strip_optional
+from .paths import Key, format_path, keyed_fields, strip_optional
 from .schema_fields import field_bounds, field_extra
 
 __all__ = [
@@ -113,8 +113,7 @@ def _resolve_loc(root, loc, variants) -> tuple[str, Any, Any]:
             cur = get_args(cur)[0]
             fi = None
         elif get_origin(cur) is dict:
-            key = str(item)
-            path = f"{path}.{key}" if re.fullmatch(r"[A-Za-z0-9_\-]+", key) else f'{path}."{key}"'
+            path = f"{path}.{format_path([Key(str(item))])}"  # quoted unless bare
             cur = get_args(cur)[1]
             fi = None
         else:
