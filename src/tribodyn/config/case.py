@@ -185,7 +185,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             m = s.measured_surface
             if m is not None and m.topography is not None and not ctx.get("ranges_only"):
                 try:  # cheap checks before any computing: the map reads, its σ matches
-                    measured_map(s, self._base_dir)
+                    measured_map(s, self.resolve_path)
                 except InputError as exc:
                     problems.append((f"{p}.measured_surface.topography", str(exc)))
         # every object built once, its constructor's errors filed under the case keys;
@@ -462,7 +462,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         if s.asperity_model == "greenwood_tripp":
             return surface
         assert surface.roughness is not None  # Greenwood–Tripp from _build_set
-        rough = measured_roughness(s, surface.roughness, surface.bodies, self._base_dir)
+        rough = measured_roughness(s, surface.roughness, surface.bodies, self.resolve_path)
         return dataclasses.replace(surface, roughness=rough)
 
 

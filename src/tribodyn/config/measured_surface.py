@@ -5,6 +5,7 @@ or a self-affine spectrum; absent: the typical spectrum of :mod:`tribodyn.physic
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -22,14 +23,10 @@ __all__ = [
 ]
 
 
-def _map_path(m, base_dir: Path) -> Path:
-    path = Path(m.topography).expanduser()
-    return path if path.is_absolute() else Path(base_dir) / path
-
-
-def measured_map(s, base_dir: Path) -> tuple[np.ndarray, float]:
-    """(heights, pixel) of a surface set's measured map (relative paths against
-    ``base_dir``; ``unit`` and ``physical_sizes`` for files without them), periodic and
+def measured_map(s, resolve: Callable[[str], Path]) -> tuple[np.ndarray, float]:
+    """(heights, pixel) of a surface set's measured map (its path made absolute by
+    ``resolve``, the case's :meth:`~tribodyn.config.Case.resolve_path`; ``unit`` and
+    ``physical_sizes`` for files without them), periodic and
     with zero mean (read-only: cached per process). Its RMS must match ``roughness.rms``
     within 10 %: the law is in h/σ of the map."""
     from ..topography.load_separation import read_periodic_heights
@@ -37,7 +34,7 @@ def measured_map(s, base_dir: Path) -> tuple[np.ndarray, float]:
     m = s.measured_surface
     assert m is not None and m.topography is not None
     z, dx = read_periodic_heights(
-        _map_path(m, base_dir), unit=m.unit, physical_sizes=m.physical_sizes
+        resolve(m.topography), unit=m.unit, physical_sizes=m.physical_sizes
     )
     sigma = float(z.std())
     rms = s.roughness.rms
@@ -110,7 +107,7 @@ def asperity_law_note(s) -> str:
     )
 
 
-def measured_roughness(s, rough: Roughness, bodies, base_dir: Path) -> Roughness:
+def measured_roughness(s, rough: Roughness, bodies, resolve: Callable[[str], Path]) -> Roughness:
     """``rough`` with the load–separation law of the set's ``measured_surface`` (absent:
     the typical spectrum, :func:`default_spectrum`), computed at the pair's surface E'
     and the given hardness. Laws are cached per process by the surface's parameters (a
@@ -124,9 +121,9 @@ def measured_roughness(s, rough: Roughness, bodies, base_dir: Path) -> Roughness
     where = f"surface_sets.{s.name}.measured_surface"
     try:
         if m.topography is not None:
-            z, _ = measured_map(s, base_dir)
+            z, _ = measured_map(s, resolve)
             law = measured_load_separation(
-                _map_path(m, base_dir),
+                resolve(m.topography),
                 e_s,
                 m.hardness,
                 unit=m.unit,
