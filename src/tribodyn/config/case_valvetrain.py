@@ -5,7 +5,6 @@ a validated case (:class:`~tribodyn.config.case.Case` inherits them).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from .._validation import InputError
@@ -27,14 +26,6 @@ if TYPE_CHECKING:
     from .surface_set import SurfaceSet
 
 
-#: The cam of each analytic ``[cam] type``: its keys are the constructor's arguments (those
-#: ending in ``_deg`` in degrees, the argument in radians), but material and width.
-_ANALYTIC_CAMS: dict[str, Callable[..., CamProfile]] = {
-    "acceleration": AccelerationCam,
-    "circular_arc": CircularArcCam,
-}
-
-
 class CamValvetrainBuilders:
     """The cam profile, valvetrain parameters (lumped or flexible), dynamics options and
     explicit tribology of a :class:`~tribodyn.config.case.Case`."""
@@ -51,13 +42,14 @@ class CamValvetrainBuilders:
     def _build_cam(self) -> CamProfile:
         c = self.cam_config
         tr = self.valvetrain.tappet_radius
-        if c.type != "table":
+        if c.type != "table":  # its keys are the cam's arguments (*_deg: in degrees)
+            cam_type = AccelerationCam if c.type == "acceleration" else CircularArcCam
             keys = c.model_dump(exclude={"type", "material", "width"})
             args = {
                 k.removesuffix("_deg"): math.radians(v) if k.endswith("_deg") else v
                 for k, v in keys.items()
             }
-            return _ANALYTIC_CAMS[c.type](**args, tappet_radius=tr)
+            return cam_type(**args, tappet_radius=tr)
         try:
             cam = TabulatedCam.from_csv(
                 self.cam_table_path,
