@@ -20,7 +20,6 @@ loaded case returns the objects built at validation.
 from __future__ import annotations
 
 import copy
-import difflib
 import functools
 import re
 from collections.abc import Callable
@@ -34,6 +33,7 @@ from ..contact.ehl.options import EHLOptions
 from ..physics.limits import RangeError
 from .case_thermal import MATERIAL_KEYS, NUMERICS_KEYS
 from .errors import CaseKeyError, Problems, in_file_order, out_of_range, validation_problems
+from .paths import did_you_mean
 from .schema_surfaces import RoughnessConfig
 
 if TYPE_CHECKING:
@@ -132,8 +132,7 @@ class BuiltCase:
         if name in self.sets:
             return self.sets[name]
         names = list(self.sets)
-        hint = difflib.get_close_matches(name, names, n=1)
-        more = f"; did you mean {hint[0]!r}?" if hint else ""
+        more = did_you_mean(name, names)
         raise InputError(f"unknown surface set {name!r} (defined: {', '.join(names)}){more}")
 
     @property

@@ -21,7 +21,6 @@ objects (the builders below are private: ``build(case).cam``, ``.lubricant``, â€
 from __future__ import annotations
 
 import dataclasses
-import difflib
 from collections.abc import Callable
 from pathlib import Path
 from typing import Annotated, Any, ClassVar, TypeVar
@@ -57,7 +56,7 @@ from .errors import (
 )
 from .measured_surface import asperity_law_note, measured_map, measured_roughness
 from .origins import carried_given
-from .paths import FILE_KEYS, Key, find_paths, parse_path, set_path
+from .paths import FILE_KEYS, Key, did_you_mean, find_paths, parse_path, set_path
 from .schema import (
     CAM_MODELS,
     AccelerationCamConfig,
@@ -147,8 +146,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
 
         def check_material(path, name):
             if name not in self.materials:
-                hint = difflib.get_close_matches(name, list(self.materials), n=1)
-                more = f"; did you mean {hint[0]!r}?" if hint else ""
+                more = did_you_mean(name, self.materials)
                 problems.append(
                     (path, f"unknown material {name!r} (defined in [materials]: {known}){more}")
                 )

@@ -8,7 +8,6 @@ raised as :class:`Problems` with their own key paths.
 
 from __future__ import annotations
 
-import difflib
 import re
 from collections.abc import Mapping
 from typing import Any, get_args, get_origin
@@ -16,7 +15,7 @@ from typing import Any, get_args, get_origin
 from pydantic import BaseModel, ValidationError
 
 from .._validation import InputError
-from .paths import Key, format_path, keyed_fields, strip_optional
+from .paths import Key, did_you_mean, format_path, keyed_fields, strip_optional
 from .schema_fields import field_bounds, field_extra
 
 __all__ = [
@@ -140,8 +139,7 @@ def _error_lines(err: Mapping[str, Any], root, variants) -> list[tuple[str, str]
         return [(path, f"must be {err['msg']}{got}")]
     if typ == "extra_forbidden":
         allowed = list(keyed_fields(owner))
-        hint = difflib.get_close_matches(str(loc[-1]), allowed, n=1)
-        more = f"; did you mean {hint[0]!r}?" if hint else ""
+        more = did_you_mean(str(loc[-1]), allowed)
         where = ""
         for key, models in variants.items():
             if owner in models.values():

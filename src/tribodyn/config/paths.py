@@ -165,13 +165,19 @@ def _select(cur, tok, where: str) -> list:
     ]
     if not hits:
         have = [_text(e[tok.field]) for e in cur if isinstance(e, dict) and tok.field in e]
-        hint = difflib.get_close_matches(tok.value, have, n=1)
-        more = f"; did you mean {hint[0]!r}?" if hint else ""
+        more = did_you_mean(tok.value, have)
         raise PathError(
             f"{where}[{tok.field}={tok.value}]: no entry has {tok.field} = "
             f"{tok.value!r} ({tok.field}s: {', '.join(have) or 'none'}){more}"
         )
     return hits
+
+
+def did_you_mean(word: str, choices) -> str:
+    """``"; did you mean 'x'?"`` with the closest of ``choices`` to ``word`` (difflib), or
+    "" if none is close."""
+    hint = difflib.get_close_matches(word, list(choices), n=1)
+    return f"; did you mean {hint[0]!r}?" if hint else ""
 
 
 def _text(v) -> str:
@@ -306,8 +312,7 @@ def schema_field(root, path: str, data: dict | None = None, variants: dict | Non
             if isinstance(cur, type) and issubclass(cur, BaseModel):
                 fields = keyed_fields(cur)
                 if t.name not in fields:
-                    hint = difflib.get_close_matches(t.name, list(fields), n=1)
-                    more = f"; did you mean {hint[0]!r}?" if hint else ""
+                    more = did_you_mean(t.name, fields)
                     where = format_path(done + [t])
                     raise PathError(f"{where}: unknown key{more} (allowed: {', '.join(fields)})")
                 fi = fields[t.name]
