@@ -14,9 +14,11 @@ from __future__ import annotations
 from docutils import nodes
 from sphinx.util.docutils import SphinxDirective
 
-from tribodyn.config.reference import case_reference, sweep_reference
+from tribodyn.config import Case
+from tribodyn.config.reference import key_reference
+from tribodyn.config.sweep import SweepFile
 
-_SOURCES = {"case": case_reference, "sweep": sweep_reference}
+_SOURCES = {"case": Case, "sweep": SweepFile}
 
 
 _HEADER = ("key", "type", "default", "unit", "allowed", "description")
@@ -63,7 +65,7 @@ class KeyReference(SphinxDirective):
         if which not in _SOURCES:
             raise self.error(f"key-reference: unknown file kind {which!r} (case, sweep)")
         sections: dict[str, list] = {}
-        for row in _SOURCES[which]():
+        for row in key_reference(_SOURCES[which]):
             sections.setdefault(row.section, []).append(row)
         out: list[nodes.Node] = []
         for section, rows in sections.items():

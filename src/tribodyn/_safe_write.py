@@ -106,12 +106,11 @@ def atomic_open(
     path: os.PathLike | str,
     mode: str = "w",
     *,
-    encoding: str | None = "utf-8",
     newline: str | None = None,
     replace: bool = True,
     fsync: bool = True,
 ) -> Iterator[IO[Any]]:
-    """A file object open for writing (``mode`` ``"w"`` or ``"wb"``) on a fresh
+    """A file object open for writing (``mode`` ``"w"``, UTF-8 text, or ``"wb"``) on a fresh
     temporary file next to ``path``, renamed onto ``path`` when the block ends without
     an exception (module docstring); on an exception the temporary file is removed and
     ``path`` is left as it was."""
@@ -124,7 +123,7 @@ def atomic_open(
         if mode == "wb":
             f = os.fdopen(fd, "wb")
         else:
-            f = os.fdopen(fd, "w", encoding=encoding, newline=newline)
+            f = os.fdopen(fd, "w", encoding="utf-8", newline=newline)
         with f:
             yield f
             f.flush()
@@ -140,15 +139,12 @@ def atomic_write(
     path: os.PathLike | str,
     data: str | bytes,
     *,
-    encoding: str = "utf-8",
     replace: bool = True,
     fsync: bool = True,
 ) -> Path:
-    """Write ``data`` (text in ``encoding``, or bytes) to ``path`` (:func:`atomic_open`)."""
-    binary = isinstance(data, bytes)
-    with atomic_open(
-        path, "wb" if binary else "w", encoding=encoding, replace=replace, fsync=fsync
-    ) as f:
+    """Write ``data`` (text as UTF-8, or bytes) to ``path`` (:func:`atomic_open`)."""
+    mode = "wb" if isinstance(data, bytes) else "w"
+    with atomic_open(path, mode, replace=replace, fsync=fsync) as f:
         f.write(data)
     return Path(path)
 

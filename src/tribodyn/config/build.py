@@ -20,7 +20,6 @@ loaded case returns the objects built at validation.
 from __future__ import annotations
 
 import copy
-import difflib
 import functools
 import re
 from collections.abc import Callable
@@ -33,7 +32,8 @@ from .._validation import InputError
 from ..contact.ehl.options import EHLOptions
 from ..physics.limits import RangeError
 from .case_thermal import MATERIAL_KEYS, NUMERICS_KEYS
-from .errors import CaseKeyError, Problems, in_file_order, out_of_range
+from .errors import CaseKeyError, Problems, in_file_order, out_of_range, validation_problems
+from .paths import did_you_mean
 from .schema_surfaces import RoughnessConfig
 
 if TYPE_CHECKING:
@@ -132,8 +132,7 @@ class BuiltCase:
         if name in self.sets:
             return self.sets[name]
         names = list(self.sets)
-        hint = difflib.get_close_matches(name, names, n=1)
-        more = f"; did you mean {hint[0]!r}?" if hint else ""
+        more = did_you_mean(name, names)
         raise InputError(f"unknown surface set {name!r} (defined: {', '.join(names)}){more}")
 
     @property
@@ -293,8 +292,8 @@ def collect(
                 "materials",
                 functools.partial(case._new_thermal_bodies, surface, thermal_properties),
             )
-        strengths = attempt("strength", functools.partial(case._new_strengths, surface))
-        wear = attempt("strength", functools.partial(case._new_wear_coefficient, surface))
+        strengths = attempt("strength", functools.partial(case._new_strengths, cfg))
+        wear = attempt("strength", functools.partial(case._new_wear_coefficient, cfg))
         sets[cfg.name] = BuiltSet(
             surface=surface,
             options=set_options,
@@ -334,28 +333,26 @@ def collect(
 
 
 def range_problems_beside(
-    data: dict,
-    exc: ValidationError,
-    validate: Callable[[dict], object],
-    problems_of: Callable[[ValidationError], list[tuple[str, str]]],
+    root: type[Case], data: dict, exc: ValidationError, context: dict, variants: dict
 ) -> list[tuple[str, str]]:
     """The out-of-range values the build finds in ``data`` beside the schema's errors
     ``exc`` (so that a file's problems are reported together): ``data`` without the
-    values the schema rejected (their defaults apply) is validated again (``validate``),
-    and the range problems (:func:`~tribodyn.config.errors.out_of_range`) of the keys it
-    kept are returned; a value's range does not depend on the other keys. ``problems_of``
-    turns a ValidationError into (key, problem) lines."""
+    values the schema rejected (their defaults apply) is validated again as ``root``
+    (with ``context`` and ``"ranges_only"``), and the range problems
+    (:func:`~tribodyn.config.errors.out_of_range`) of the keys it kept are returned; a
+    value's range does not depend on the other keys. ``variants``: the tagged unions
+    (:func:`~tribodyn.config.errors.validation_problems`)."""
     rest = copy.deepcopy(data)
     dropped = [_drop(rest, err["loc"]) for err in exc.errors(include_url=False)]
     if not any(dropped):  # the same data again: nothing new
         return []
     try:
-        validate(rest)
+        root.model_validate(rest, context={**context, "ranges_only": True})
     except ValidationError as again:
-        rejected = {key for key, _ in problems_of(exc)}
+        rejected = {key for key, _ in validation_problems(exc, root, variants)}
         return [
             (key, msg)
-            for key, msg in problems_of(again)
+            for key, msg in validation_problems(again, root, variants)
             if key not in rejected and _RANGE_PROBLEM.fullmatch(msg)
         ]
     return []

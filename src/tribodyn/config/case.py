@@ -21,7 +21,6 @@ objects (the builders below are private: ``build(case).cam``, ``.lubricant``, �
 from __future__ import annotations
 
 import dataclasses
-import difflib
 from collections.abc import Callable
 from pathlib import Path
 from typing import Annotated, Any, ClassVar, TypeVar
@@ -47,18 +46,17 @@ from ..valvetrain.kinematics import rpm_to_cam_speed
 from ..valvetrain.tappet_rotation import TappetRotation
 from .build import collect, range_problems_beside
 from .case_strength import StrengthBuilders
-from .case_thermal import OIL_LAW_KEYS, ThermalBuilders
+from .case_thermal import DATASHEET_KEYS, OIL_LAW_KEYS, ThermalBuilders
 from .case_valvetrain import CamValvetrainBuilders
 from .errors import (
     CaseKeyError,
     Problems,
     format_validation_error,
     problem_text,
-    validation_problems,
 )
 from .measured_surface import asperity_law_note, measured_map, measured_roughness
 from .origins import carried_given
-from .paths import Key, parse_path, set_path
+from .paths import FILE_KEYS, Key, did_you_mean, find_paths, parse_path, set_path
 from .schema import (
     CAM_MODELS,
     AccelerationCamConfig,
@@ -148,8 +146,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
 
         def check_material(path, name):
             if name not in self.materials:
-                hint = difflib.get_close_matches(name, list(self.materials), n=1)
-                more = f"; did you mean {hint[0]!r}?" if hint else ""
+                more = did_you_mean(name, self.materials)
                 problems.append(
                     (path, f"unknown material {name!r} (defined in [materials]: {known}){more}")
                 )
@@ -186,7 +183,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             m = s.measured_surface
             if m is not None and m.topography is not None and not ctx.get("ranges_only"):
                 try:  # cheap checks before any computing: the map reads, its σ matches
-                    measured_map(s, self._base_dir)
+                    measured_map(s, self.resolve_path)
                 except InputError as exc:
                     problems.append((f"{p}.measured_surface.topography", str(exc)))
         # every object built once, its constructor's errors filed under the case keys;
@@ -268,12 +265,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         try:
             return cls.model_validate(data, context=ctx)
         except ValidationError as exc:
-            more = range_problems_beside(
-                data,
-                exc,
-                lambda rest: cls.model_validate(rest, context={**ctx, "ranges_only": True}),
-                lambda e: validation_problems(e, cls, variants),
-            )
+            more = range_problems_beside(cls, data, exc, ctx, variants)
             msg = format_validation_error(exc, cls, source, variants=variants, more=more)
             raise InputError(msg) from None
 
@@ -317,17 +309,13 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             d["valvetrain"].pop(k, None)
         lub = self.lubricant_config
         if lub.datasheet:  # follow from the datasheet (α: So–Klaus unless given)
-            for k in ("viscosity", "density", "pressure_viscosity"):
+            for k in DATASHEET_KEYS:
                 if k not in lub.model_fields_set:
                     d["lubricant"].pop(k, None)
-        if resolve_paths and self.cam_config.type == "table":
-            d["cam"]["path"] = str(self.cam_table_path)
-        if resolve_paths:  # measured maps of the surface sets, absolute
-            for i, sc in enumerate(self.surface_set_configs):
-                m = sc.measured_surface
-                if m is not None and m.topography is not None:
-                    p = self.resolve_path(m.topography)
-                    d["surface_sets"][i]["measured_surface"]["topography"] = str(p)
+        if resolve_paths:  # the files the case names (cam table, measured maps), absolute
+            for key in FILE_KEYS:
+                for where, name in find_paths(d, key):
+                    set_path(d, where, str(self.resolve_path(name)))
         return d
 
     def to_toml(self, *, resolve_paths: bool = False) -> str:
@@ -410,12 +398,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         c = self.lubricant_config
         if c.datasheet:
             return self._new_thermal_lubricant().isothermal()
-        return Lubricant(
-            viscosity=c.viscosity,
-            pressure_viscosity=c.pressure_viscosity,
-            density=c.density,
-            **c.model_dump(include=OIL_LAW_KEYS),
-        )
+        return Lubricant(**c.model_dump(include={*DATASHEET_KEYS, *OIL_LAW_KEYS}))
 
     def _new_material(self, name: str) -> Material:
         """The :class:`~tribodyn.Material` of ``[materials.<name>]``."""
@@ -456,16 +439,8 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
             label = f"{cm.label or s.coating} {thickness * 1e6:.3g} µm"
         sigma, _ = s.boundary_friction(self.materials)
         assert sigma is not None  # required by the case cross-check
-        r = s.roughness
-        rough = _collecting(
-            bad,
-            lambda: Roughness(
-                asperity_density=r.asperity_density,
-                rms=r.rms,
-                summit_radius=r.summit_radius,
-                method=self.numerics.greenwood_tripp,
-            ),
-        )
+        method = self.numerics.greenwood_tripp  # the roughness keys are Roughness's arguments
+        rough = _collecting(bad, lambda: Roughness(**s.roughness.model_dump(), method=method))
         if bad:
             raise RangeError(bad)
         return SurfaceSet(
@@ -485,7 +460,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         if s.asperity_model == "greenwood_tripp":
             return surface
         assert surface.roughness is not None  # Greenwood–Tripp from _build_set
-        rough = measured_roughness(s, surface.roughness, surface.bodies, self._base_dir)
+        rough = measured_roughness(s, surface.roughness, surface.bodies, self.resolve_path)
         return dataclasses.replace(surface, roughness=rough)
 
 

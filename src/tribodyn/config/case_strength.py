@@ -10,7 +10,6 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from .schema import CamConfig, StrengthConfig, SurfaceSetConfig
-    from .surface_set import SurfaceSet
 
 
 class StrengthBuilders:
@@ -19,7 +18,6 @@ class StrengthBuilders:
 
     if TYPE_CHECKING:  # the fields and methods of Case these builders use
         strength_configs: dict[str, StrengthConfig]
-        surface_set_configs: list[SurfaceSetConfig]
         cam_config: CamConfig
 
     def _new_material_strength(self, name: str):
@@ -43,23 +41,21 @@ class StrengthBuilders:
             return None
         return Strength(**vals)
 
-    def _new_strengths(self, s: SurfaceSet) -> dict:
+    def _new_strengths(self, cfg: SurfaceSetConfig) -> dict:
         """{"cam": (substrate, None), "tappet": (substrate, coating)} strengths of a
         surface set for :func:`~tribodyn.workflow.stress_study.stress_along_cycle`."""
-        cfg = next(c for c in self.surface_set_configs if c.name == s.name)
         cam = self._new_material_strength(self.cam_config.material)
         sub = self._new_material_strength(cfg.substrate)
         coat = self._new_material_strength(cfg.coating) if cfg.coating is not None else None
         return {"cam": (cam, None), "tappet": (sub, coat)}
 
-    def _new_wear_coefficient(self, s: SurfaceSet) -> tuple[float | None, str]:
+    def _new_wear_coefficient(self, cfg: SurfaceSetConfig) -> tuple[float | None, str]:
         """Archard coefficient k [m³/(N m)] of the tappet's surface material (coating, or
         substrate if uncoated) and where it comes from: the case's ``[strength.<m>]``,
         else the ASSUMED typical value of physics.strength for steel, dlc, wcc (labelled
         so), else None."""
         from ..physics.strength import TYPICAL_WEAR_COEFFICIENT
 
-        cfg = next(c for c in self.surface_set_configs if c.name == s.name)
         mat = cfg.coating if cfg.coating is not None else cfg.substrate
         sc = self.strength_configs.get(mat)
         if sc is not None and sc.wear_coefficient is not None:

@@ -23,6 +23,9 @@ if TYPE_CHECKING:
     from .surface_set import SurfaceSet
 
 
+#: ``[lubricant]`` keys of the isothermal oil that a datasheet gives (at its inlet
+#: temperature; α by So–Klaus unless given), in this order
+DATASHEET_KEYS = ("viscosity", "pressure_viscosity", "density")
 #: ``[lubricant]`` keys that the isothermal and the thermal oil take unchanged
 OIL_LAW_KEYS = {
     "eyring_stress",

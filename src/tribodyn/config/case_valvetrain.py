@@ -14,7 +14,7 @@ from ..valvetrain.camshaft import Camshaft
 from ..valvetrain.flexible import FlexibleValvetrain, TappetGeometry, ValveGeometry
 from ..valvetrain.parameters import ValvetrainParameters
 from ..valvetrain.spring import HelicalSpring
-from .errors import CamTableError
+from .errors import CaseKeyError
 from .schema import SpringConfig, TappetConfig, ValveConfig
 
 if TYPE_CHECKING:
@@ -42,28 +42,14 @@ class CamValvetrainBuilders:
     def _build_cam(self) -> CamProfile:
         c = self.cam_config
         tr = self.valvetrain.tappet_radius
-        if c.type == "acceleration":
-            return AccelerationCam(
-                c.base_radius,
-                c.max_lift,
-                event_angle=math.radians(c.event_angle_deg),
-                nose_radius=c.nose_radius,
-                ramp_height=c.ramp_height,
-                ramp_angle=math.radians(c.ramp_angle_deg),
-                pulse_share=c.pulse_share,
-                ramp_pulse_share=c.ramp_pulse_share,
-                nose_angle=math.radians(c.nose_angle_deg),
-                tappet_radius=tr,
-            )
-        if c.type == "circular_arc":
-            return CircularArcCam(
-                c.base_radius,
-                c.max_lift,
-                flank_radius=c.flank_radius,
-                nose_radius=c.nose_radius,
-                nose_angle=math.radians(c.nose_angle_deg),
-                tappet_radius=tr,
-            )
+        if c.type != "table":  # its keys are the cam's arguments (*_deg: in degrees)
+            cam_type = AccelerationCam if c.type == "acceleration" else CircularArcCam
+            keys = c.model_dump(exclude={"type", "material", "width"})
+            args = {
+                k.removesuffix("_deg"): math.radians(v) if k.endswith("_deg") else v
+                for k, v in keys.items()
+            }
+            return cam_type(**args, tappet_radius=tr)
         try:
             cam = TabulatedCam.from_csv(
                 self.cam_table_path,
@@ -79,10 +65,10 @@ class CamValvetrainBuilders:
             msg = str(exc)
             if str(self.cam_table_path) not in msg:
                 msg = f"{self.cam_table_path}: {msg}"
-            raise CamTableError("path", msg) from None
+            raise CaseKeyError("cam.path", msg) from None
         if c.max_lift is not None and abs(cam.max_lift / c.max_lift - 1.0) > 0.01:
-            raise CamTableError(
-                "max_lift",
+            raise CaseKeyError(
+                "cam.max_lift",
                 f"{c.max_lift:g} m disagrees with the lift "
                 f"table's maximum {cam.max_lift:g} m by more "
                 "than 1 %",

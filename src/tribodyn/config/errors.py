@@ -8,7 +8,6 @@ raised as :class:`Problems` with their own key paths.
 
 from __future__ import annotations
 
-import difflib
 import re
 from collections.abc import Mapping
 from typing import Any, get_args, get_origin
@@ -16,12 +15,11 @@ from typing import Any, get_args, get_origin
 from pydantic import BaseModel, ValidationError
 
 from .._validation import InputError
-from .paths import keyed_fields, strip_optional
+from .paths import Key, did_you_mean, format_path, keyed_fields, strip_optional
 from .schema_fields import field_bounds, field_extra
 
 __all__ = [
     "Problems",
-    "CamTableError",
     "CaseKeyError",
     "format_validation_error",
     "in_file_order",
@@ -48,13 +46,6 @@ class CaseKeyError(InputError):
         self.key = key
 
 
-class CamTableError(CaseKeyError):
-    """A lift-table problem, with the ``[cam]`` key it belongs to."""
-
-    def __init__(self, key: str, message: str):
-        super().__init__(f"cam.{key}", message)
-
-
 def range_text(bounds: Mapping[str, float], unit: str, auto: float | None = None) -> str:
     """'> 0 m and <= 0.01 m' of ``{"gt": 0, "le": 0.01}`` (crank or cam degrees: °);
     '0 (automatic) or >= 32 and <= 4096' with the value ``auto`` that means automatic."""
@@ -78,13 +69,11 @@ def _num(v) -> str:
 
 
 def _given(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
     if isinstance(v, float):
         g = f"{v:.6g}"
         return g if any(c in g for c in ".eni") else g + ".0"
-    if isinstance(v, int):
-        return str(v)
+    if isinstance(v, int):  # bool too
+        return _num(v)
     if isinstance(v, str):
         return repr(v)
     if isinstance(v, dict):
@@ -123,8 +112,7 @@ def _resolve_loc(root, loc, variants) -> tuple[str, Any, Any]:
             cur = get_args(cur)[0]
             fi = None
         elif get_origin(cur) is dict:
-            key = str(item)
-            path = f"{path}.{key}" if re.fullmatch(r"[A-Za-z0-9_\-]+", key) else f'{path}."{key}"'
+            path = f"{path}.{format_path([Key(str(item))])}"  # quoted unless bare
             cur = get_args(cur)[1]
             fi = None
         else:
@@ -151,8 +139,7 @@ def _error_lines(err: Mapping[str, Any], root, variants) -> list[tuple[str, str]
         return [(path, f"must be {err['msg']}{got}")]
     if typ == "extra_forbidden":
         allowed = list(keyed_fields(owner))
-        hint = difflib.get_close_matches(str(loc[-1]), allowed, n=1)
-        more = f"; did you mean {hint[0]!r}?" if hint else ""
+        more = did_you_mean(str(loc[-1]), allowed)
         where = ""
         for key, models in variants.items():
             if owner in models.values():

@@ -5,6 +5,7 @@ or a self-affine spectrum; absent: the typical spectrum of :mod:`tribodyn.physic
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -22,14 +23,10 @@ __all__ = [
 ]
 
 
-def _map_path(m, base_dir: Path) -> Path:
-    path = Path(m.topography).expanduser()
-    return path if path.is_absolute() else Path(base_dir) / path
-
-
-def measured_map(s, base_dir: Path) -> tuple[np.ndarray, float]:
-    """(heights, pixel) of a surface set's measured map (relative paths against
-    ``base_dir``; ``unit`` and ``physical_sizes`` for files without them), periodic and
+def measured_map(s, resolve: Callable[[str], Path]) -> tuple[np.ndarray, float]:
+    """(heights, pixel) of a surface set's measured map (its path made absolute by
+    ``resolve``, the case's :meth:`~tribodyn.config.Case.resolve_path`; ``unit`` and
+    ``physical_sizes`` for files without them), periodic and
     with zero mean (read-only: cached per process). Its RMS must match ``roughness.rms``
     within 10 %: the law is in h/σ of the map."""
     from ..topography.load_separation import read_periodic_heights
@@ -37,7 +34,7 @@ def measured_map(s, base_dir: Path) -> tuple[np.ndarray, float]:
     m = s.measured_surface
     assert m is not None and m.topography is not None
     z, dx = read_periodic_heights(
-        _map_path(m, base_dir), unit=m.unit, physical_sizes=m.physical_sizes
+        resolve(m.topography), unit=m.unit, physical_sizes=m.physical_sizes
     )
     sigma = float(z.std())
     rms = s.roughness.rms
@@ -49,10 +46,9 @@ def measured_map(s, base_dir: Path) -> tuple[np.ndarray, float]:
     return z, dx
 
 
-def default_spectrum() -> dict:
-    """The spectrum of the default surface law (a set without ``measured_surface``):
-    typical Hurst exponent and cutoffs (:mod:`tribodyn.physics.typical`), with the
-    schema's grid, seed and hardness."""
+def _default_surface():
+    """The ``measured_surface`` of a set without one: typical Hurst exponent and cutoffs
+    (:mod:`tribodyn.physics.typical`), with the schema's grid, seed and hardness."""
     from ..physics import typical
     from .schema_surfaces import MeasuredSurfaceConfig
 
@@ -60,26 +56,33 @@ def default_spectrum() -> dict:
         hurst=typical.SURFACE_HURST.value,
         short_cutoff=typical.SURFACE_SHORT_CUTOFF.value,
         long_cutoff=typical.SURFACE_LONG_CUTOFF.value,
-    ).model_dump()
+    )
+
+
+def default_spectrum() -> dict:
+    """The spectrum of the default surface law (a set without ``measured_surface``):
+    typical Hurst exponent and cutoffs (:mod:`tribodyn.physics.typical`), with the
+    schema's grid, seed and hardness."""
+    return _default_surface().model_dump()
+
+
+def _synthetic_law(rms: float, m, e_s: float):
+    """The load–separation law of a self-affine surface of composite RMS ``rms`` [m] with
+    the spectrum, hardness, grid and seed of the ``measured_surface`` ``m``, at the pair's
+    surface E' ``e_s`` [Pa] (cached by these parameters)."""
+    from ..topography.load_separation import synthetic_load_separation
+
+    assert m.hurst is not None and m.short_cutoff is not None and m.long_cutoff is not None
+    return synthetic_load_separation(
+        rms, m.hurst, m.short_cutoff, m.long_cutoff, e_s, m.hardness, m.grid, m.seed
+    )
 
 
 def typical_surface_law(rms: float, bodies):
     """The default surface law of a pair of ``bodies`` with composite RMS ``rms`` [m]: a
     self-affine surface with the typical spectrum (:func:`default_spectrum`) at the
     pair's surface E' (cached by these parameters)."""
-    from ..topography.load_separation import synthetic_load_separation
-
-    d = default_spectrum()
-    return synthetic_load_separation(
-        rms,
-        d["hurst"],
-        d["short_cutoff"],
-        d["long_cutoff"],
-        reduced_modulus(bodies, surface=True),
-        d["hardness"],
-        d["grid"],
-        d["seed"],
-    )
+    return _synthetic_law(rms, _default_surface(), reduced_modulus(bodies, surface=True))
 
 
 def asperity_law_note(s) -> str:
@@ -104,40 +107,29 @@ def asperity_law_note(s) -> str:
     )
 
 
-def measured_roughness(s, rough: Roughness, bodies, base_dir: Path) -> Roughness:
+def measured_roughness(s, rough: Roughness, bodies, resolve: Callable[[str], Path]) -> Roughness:
     """``rough`` with the load–separation law of the set's ``measured_surface`` (absent:
     the typical spectrum, :func:`default_spectrum`), computed at the pair's surface E'
     and the given hardness. Laws are cached per process by the surface's parameters (a
     map by its file's path, modification time and size), so sets, sweep points and
     engine lobes with the same surface and E' share one table. Errors name the set's
     field."""
-    from ..topography.load_separation import (
-        measured_load_separation,
-        synthetic_load_separation,
-    )
-    from .schema_surfaces import MeasuredSurfaceConfig
+    from ..topography.load_separation import measured_load_separation
 
-    m = s.measured_surface
-    if m is None:
-        m = MeasuredSurfaceConfig(**default_spectrum())
+    m = s.measured_surface or _default_surface()
     e_s = reduced_modulus(bodies, surface=True)
     where = f"surface_sets.{s.name}.measured_surface"
     try:
         if m.topography is not None:
-            z, _ = measured_map(s, base_dir)
+            z, _ = measured_map(s, resolve)
             law = measured_load_separation(
-                _map_path(m, base_dir),
+                resolve(m.topography),
                 e_s,
                 m.hardness,
                 unit=m.unit,
                 physical_sizes=m.physical_sizes,
             )
             return rough.with_law(law, rms=float(z.std()))
-        assert m.hurst is not None and m.short_cutoff is not None
-        assert m.long_cutoff is not None
-        law = synthetic_load_separation(
-            rough.rms, m.hurst, m.short_cutoff, m.long_cutoff, e_s, m.hardness, m.grid, m.seed
-        )
-        return rough.with_law(law)
+        return rough.with_law(_synthetic_law(rough.rms, m, e_s))
     except InputError as e:
         raise InputError(f"{where}: {e}") from None

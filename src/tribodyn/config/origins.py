@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..physics import typical, typical_engine
 from ..physics.typical import TypicalValue
-from .case_thermal import OIL_LAW_KEYS
+from .case_thermal import DATASHEET_KEYS, OIL_LAW_KEYS
 from .schema_fields import field_extra
 from .schema_surfaces import TYPICAL_MATERIALS, LubricantConfig
 
@@ -74,10 +74,9 @@ _CAM = {
     "max_lift": typical_engine.CAM_MAX_LIFT,
     "width": typical_engine.CAM_WIDTH,
 }
-#: The keys of the isothermal oil in file order (a datasheet gives the first three).
-_DATASHEET_KEYS = ("viscosity", "pressure_viscosity", "density")
+#: The keys of the isothermal oil in file order.
 _LUBRICANT_KEYS = tuple(
-    k for k in LubricantConfig.model_fields if k in {*_DATASHEET_KEYS, *OIL_LAW_KEYS}
+    k for k in LubricantConfig.model_fields if k in {*DATASHEET_KEYS, *OIL_LAW_KEYS}
 )
 
 
@@ -110,7 +109,7 @@ def input_origins(case: Case) -> list[Origin]:
     oil = built.lubricant if built is not None else None
     for k in _LUBRICANT_KEYS:
         key = f"lubricant.{k}"
-        if lub.datasheet and k in _DATASHEET_KEYS and key not in given:
+        if lub.datasheet and k in DATASHEET_KEYS and key not in given:
             src = f"oil {lub.oil}" if lub.oil else "kinematic viscosities"
             at = (
                 f" at {lub.inlet_temperature_c:g} °C" if lub.inlet_temperature_c is not None else ""
@@ -152,7 +151,7 @@ def default_warnings(case: Case) -> list[str]:
     typical value it runs on instead."""
     out = []
     lub = case.lubricant_config
-    oil = [k for k in _DATASHEET_KEYS[:2] if f"lubricant.{k}" not in case.input_given]
+    oil = [k for k in DATASHEET_KEYS[:2] if f"lubricant.{k}" not in case.input_given]
     if oil and not lub.datasheet:
         vals = ", ".join(f"{k} = {getattr(lub, k):g} {typical.LUBRICANT[k].unit}" for k in oil)
         out.append(

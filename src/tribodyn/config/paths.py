@@ -165,13 +165,19 @@ def _select(cur, tok, where: str) -> list:
     ]
     if not hits:
         have = [_text(e[tok.field]) for e in cur if isinstance(e, dict) and tok.field in e]
-        hint = difflib.get_close_matches(tok.value, have, n=1)
-        more = f"; did you mean {hint[0]!r}?" if hint else ""
+        more = did_you_mean(tok.value, have)
         raise PathError(
             f"{where}[{tok.field}={tok.value}]: no entry has {tok.field} = "
             f"{tok.value!r} ({tok.field}s: {', '.join(have) or 'none'}){more}"
         )
     return hits
+
+
+def did_you_mean(word: str, choices) -> str:
+    """``"; did you mean 'x'?"`` with the closest of ``choices`` to ``word`` (difflib), or
+    "" if none is close."""
+    hint = difflib.get_close_matches(word, list(choices), n=1)
+    return f"; did you mean {hint[0]!r}?" if hint else ""
 
 
 def _text(v) -> str:
@@ -187,9 +193,8 @@ def _kind(v) -> str:
 
 def _walk(data, tokens):
     """Containers holding the last token's key, for each place the path addresses
-    (missing tables on the way created)."""
-    if not tokens or not isinstance(tokens[0], Key):
-        raise PathError("a key path starts with a key")
+    (missing tables on the way created); ``tokens`` of :func:`parse_path`, which start
+    with a key."""
     # group tokens into (key, selectors) segments
     segs: list[tuple[Key, list]] = []
     for t in tokens:
@@ -236,14 +241,14 @@ def set_path(data: dict, path: str | list, value: Any) -> int:
     return len(curs)
 
 
-def find_paths(data: dict, path: str | list) -> list[tuple[str, Any]]:
+def find_paths(data: dict, path: str) -> list[tuple[str, Any]]:
     """``(address, value)`` of every place ``path`` addresses that holds a value, each
     address a path of its own (``[*]`` and ``[key=value]`` replaced by the index or key
     they select), e.g. ``surface_sets[*].measured_surface.topography`` →
     ``[("surface_sets[1].measured_surface.topography", "pair.x3p")]``. Places where a
     key is absent are skipped."""
-    tokens = parse_path(path) if isinstance(path, str) else tuple(path)
-    if not tokens or not isinstance(tokens[0], Key) or not isinstance(tokens[-1], Key):
+    tokens = parse_path(path)
+    if not isinstance(tokens[-1], Key):
         raise PathError(f"{format_path(tokens)}: a key path starts and ends with a key")
     out: list[tuple[str, Any]] = []
 
@@ -289,14 +294,14 @@ def keyed_fields(model) -> dict:
     return {(fi.alias or name): fi for name, fi in model.model_fields.items()}
 
 
-def schema_field(root, path, data: dict | None = None, variants: dict | None = None):
+def schema_field(root, path: str, data: dict | None = None, variants: dict | None = None):
     """The pydantic ``FieldInfo`` a path ends on, checked key by key against the models.
 
     root : the model class of the whole file (``Case``); data : the file's dict, to pick
     the variant of a tagged union (the ``[cam]`` type) from its ``type`` key; variants :
     ``{key: {tag: model}}``. Raises :class:`PathError` naming the first unknown key with
     the allowed keys (and a close match)."""
-    tokens = parse_path(path) if isinstance(path, str) else tuple(path)
+    tokens = parse_path(path)
     variants = variants or {}
     cur: Any = root
     fi = None
@@ -307,8 +312,7 @@ def schema_field(root, path, data: dict | None = None, variants: dict | None = N
             if isinstance(cur, type) and issubclass(cur, BaseModel):
                 fields = keyed_fields(cur)
                 if t.name not in fields:
-                    hint = difflib.get_close_matches(t.name, list(fields), n=1)
-                    more = f"; did you mean {hint[0]!r}?" if hint else ""
+                    more = did_you_mean(t.name, fields)
                     where = format_path(done + [t])
                     raise PathError(f"{where}: unknown key{more} (allowed: {', '.join(fields)})")
                 fi = fields[t.name]

@@ -20,7 +20,7 @@ from pydantic_core import PydanticUndefined
 
 from .schema_fields import field_bounds, field_extra
 
-__all__ = ["KeyRow", "key_reference", "case_reference", "sweep_reference"]
+__all__ = ["KeyRow", "key_reference"]
 
 
 @dataclass(frozen=True)
@@ -165,17 +165,3 @@ def key_reference(model: type[BaseModel], section: str = "") -> list[KeyRow]:
     for where, m in nested:
         rows += key_reference(m, where)
     return rows
-
-
-def case_reference() -> list[KeyRow]:
-    """The rows of a case file (:class:`tribodyn.config.Case`)."""
-    from .case import Case
-
-    return key_reference(Case)
-
-
-def sweep_reference() -> list[KeyRow]:
-    """The rows of a sweep file (:class:`tribodyn.config.sweep.SweepFile`)."""
-    from .sweep import SweepFile
-
-    return key_reference(SweepFile)

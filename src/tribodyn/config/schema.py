@@ -214,40 +214,21 @@ class Engine(Section):
                 f"must be >= 2 × valvetrain.tappet_radius = {2e3 * tappet_radius:.4g} mm "
                 f"(got {d * 1e3:.4g} mm): the tappet face slides in its bore",
             )
-        parts = (
-            (
-                "bore",
-                lambda: vf.BoreGeometry(
-                    diameter=d,
-                    guided_length=a.bore_guided_length,
-                    clearance=a.bore_clearance,
-                    edge_offset=a.bore_edge_offset,
-                    friction_coefficient=(
-                        a.bore_friction_coefficient
-                        if a.bore_friction_coefficient is not None
-                        else bore_friction_coefficient
-                    ),
-                ),
-            ),
-            (
-                "guide",
-                lambda: vf.GuideGeometry(
-                    stem_diameter=a.guide_stem_diameter,
-                    length=a.guide_length,
-                    clearance=a.guide_clearance,
-                    friction_coefficient=a.guide_friction_coefficient,
-                    side_load=a.guide_side_load,
-                ),
-            ),
-            (
-                "journal",
-                lambda: vf.JournalGeometry(a.journal_radius, a.journal_length, a.journal_clearance),
-            ),
-        )
+        # each part's keys are "<part>_<argument>" of its geometry
+        keys = a.model_dump() | {"bore_diameter": d}
+        if a.bore_friction_coefficient is None:
+            keys["bore_friction_coefficient"] = bore_friction_coefficient
+        geometries = {
+            "bore": vf.BoreGeometry,
+            "guide": vf.GuideGeometry,
+            "journal": vf.JournalGeometry,
+        }
         out = []
-        for part, make in parts:
+        for part, geometry in geometries.items():
+            prefix = f"{part}_"
+            args = {k.removeprefix(prefix): v for k, v in keys.items() if k.startswith(prefix)}
             try:
-                out.append(make())
+                out.append(geometry(**args))
             except InputError as exc:
                 raise CaseKeyError(f"engine.auxiliary.{part}_clearance", str(exc)) from None
         return tuple(out)

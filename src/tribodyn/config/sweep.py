@@ -20,7 +20,7 @@ import hashlib
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Annotated, Any, ClassVar, Literal, Optional, Union
+from typing import Annotated, Any, ClassVar, Literal, Union
 
 import numpy as np
 from pydantic import (
@@ -38,7 +38,7 @@ from .._validation import InputError
 from ..physics.limits import Limit
 from .case import Case, bundled_cases, load_case, to_toml
 from .errors import Problems, format_validation_error, problem_text, problems_message
-from .paths import Key, PathError, parse_path, schema_field, set_path
+from .paths import Key, PathError, parse_path, schema_field, set_path, strip_optional
 from .schema import CAM_MODELS, Section, _q
 from .schema_fields import field_bounds, field_extra
 from .tomlfile import TomlFile, check_nesting, file_or_bundled, is_bundled_name
@@ -375,9 +375,8 @@ class SweepSpec(TomlFile):
             ) from None
         problems: list[tuple[str, str]] = []
         base, base_source = _load_base(cfg.sweep.case, base_dir, problems)
-        if base is None:
-            raise InputError(problems_message(problems, source, "sweep"))
-        base = _apply_fixed(base, cfg.fixed, problems)
+        if base is not None:
+            base = _apply_fixed(base, cfg.fixed, problems)
         if base is None:
             raise InputError(problems_message(problems, source, "sweep"))
         if cfg.sweep.mode == "engine" and base.engine.cylinders is None:
@@ -460,9 +459,7 @@ def _axis(base: Case, i: int, ax: AxisConfig, problems) -> Axis | None:
         problems.append((f"{where}.path", str(exc)))
         return None
     values = ax.generated()
-    ann = fi.annotation
-    is_int = ann is int or ann == Optional[int]  # noqa: UP045  (compares with pydantic's own annotation)
-    if is_int:
+    if strip_optional(fi.annotation) is int:
         bad = [v for v in values if isinstance(v, float)]
         if bad:
             problems.append((f"{where}.values", f"{ax.path} takes integers (got {_fmt(bad[0])})"))
@@ -487,8 +484,7 @@ def _axis(base: Case, i: int, ax: AxisConfig, problems) -> Axis | None:
         problems.append((where, f"and {found - MAX_REPORTED_VALUES} more invalid values"))
     tail = parse_path(ax.path)[-1]
     assert isinstance(tail, Key)  # checked by _check_path: a path ends at a key
-    last = tail.name
-    name = ax.name or last
+    name = ax.name or tail.name
     return Axis(
         path=ax.path,
         name=name,

@@ -85,8 +85,9 @@ def _depth(data) -> int:
 
 
 def parse_toml(text: str, source=None) -> dict:
-    """TOML text → dict, with the syntax error, or a nesting beyond :data:`MAX_NESTING`,
-    as :class:`~tribodyn.InputError` (``source`` names the file in the message)."""
+    """TOML text → dict, with the syntax error, or a nesting too deep to parse, as
+    :class:`~tribodyn.InputError` (``source`` names the file in the message); the nesting
+    of what parses is checked by ``from_dict`` (:func:`check_nesting`)."""
     where = f"{source}: " if source is not None else ""
     if not isinstance(text, str):
         raise InputError(f"{where}TOML text must be a string (got {type(text).__name__})")
@@ -98,7 +99,6 @@ def parse_toml(text: str, source=None) -> dict:
         raise InputError(f"{where}TOML syntax error: {exc}") from None
     except RecursionError:
         _too_deep(where)
-    check_nesting(data, source)
     return data
 
 
