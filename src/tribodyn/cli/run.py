@@ -225,8 +225,10 @@ class _terminate_as_interrupt:
         def unraisable(info):
             # the interrupt raised inside a callback (a weakref's, a finaliser, an
             # after-fork hook) is lost there; the stopped workers then fail the run, or
-            # the next progress event stops it (stop_if_terminated): it ends as interrupted
-            if not (_terminated and isinstance(info.exc_value, KeyboardInterrupt)):
+            # the next progress event stops it (stop_if_terminated): it ends as
+            # interrupted. After the signal, the finalisers of objects the interrupt cut
+            # short (e.g. a results.nc file half opened) fail too: the run ends, quietly
+            if not _terminated:
                 self._old_hook(info)
 
         try:
@@ -240,7 +242,8 @@ class _terminate_as_interrupt:
     def __exit__(self, *exc):
         if self._old is not None:
             signal.signal(signal.SIGTERM, self._old)
-        sys.unraisablehook = self._old_hook
+        if not _terminated:  # else kept until the process ends (see unraisable)
+            sys.unraisablehook = self._old_hook
         return False
 
 
