@@ -443,7 +443,8 @@ class FilmStateTribology(TribologyModel):
         self._zero = np.zeros(t.size)
         self._eta = float(lubricant.viscosity)
         self._alpha = float(lubricant.pressure_viscosity)
-        self._sq = 3.0 * np.sqrt(2.0) * np.pi * self._eta * self.width
+        # squeeze coefficient 3√2 π η₀ L = D h^1.5/R^1.5 (squeeze_film_load at h = V = R = 1)
+        self._sq = float(squeeze_film_load(1.0, 1.0, 1.0, self._eta)) * self.width
 
     def friction(self, t, force, entrainment_speed, sliding_speed, radius):
         return self.friction_model.friction(t, force, entrainment_speed, sliding_speed, radius)
