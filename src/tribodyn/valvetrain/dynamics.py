@@ -16,7 +16,7 @@ import math
 import time as _time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Protocol, TypedDict, runtime_checkable
+from typing import TypedDict
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -173,13 +173,6 @@ class ValvetrainResult:
         }
 
 
-@runtime_checkable
-class _HasWidth(Protocol):
-    """A tribology law for a given contact width [m] (checked against the cam's)."""
-
-    width: float
-
-
 def resolve_tribology(
     tribology, params: ValvetrainParameters | FlexibleValvetrain
 ) -> TribologyModel:
@@ -197,7 +190,7 @@ def resolve_tribology(
             f"tribology must be 'explicit', None or a TribologyModel (got "
             f"{type(tribology).__name__})"
         )
-    w = tribology.width if isinstance(tribology, _HasWidth) else None
+    w = getattr(tribology, "width", None)  # a law for a given contact width [m]
     if w is not None and abs(w - params.cam_width) > 1e-12:
         raise InputError(f"tribology width {w:g} m differs from cam_width {params.cam_width:g} m")
     return tribology
