@@ -141,11 +141,8 @@ class FlexibleValvetrainModel(CamContactModel):
         self.internal_clash = [j for j in range(kel.size) if not (j in pos and j + 1 in pos)]
         self.static_compressions = st.compressions
         self.spring_gaps = gel
-        fs = np.zeros(n)  # static joint forces on the nodes
-        fs[self.i_seat] += F0
-        fs[self.i_groove] -= F0
-        fs[self.i_top] += F0
-        fs[self.i_bot] -= F0
+        fs = np.zeros(n)  # static joint forces on the nodes (seat, groove, spring ends)
+        fs[[self.i_seat, self.i_groove, self.i_top, self.i_bot]] = [F0, -F0, F0, -F0]
         for a, b, _, _, Qs in self.clash:
             fs[a] -= Qs
             fs[b] += Qs
