@@ -33,7 +33,7 @@ from ..physics.friction import boundary_shear_stress
 from ..physics.materials import Body, as_bodies, reduced_modulus
 from ..physics.stress import StressOperator, SubsurfaceStress
 from .ehl.options import EHLOptions
-from .ehl.postprocess import shear_stress
+from .ehl.postprocess import _H_FLOOR, shear_stress  # films floored as the solver does
 
 __all__ = [
     "SurfaceLoads",
@@ -46,8 +46,6 @@ __all__ = [
     "shear_options",
 ]
 
-#: films below this [m] are taken at this value in the viscous shear (as the solver does)
-_H_FLOOR = 1e-10
 #: the EHL options' defaults, which the surface-shear keywords default to
 _DEFAULTS = EHLOptions()
 
