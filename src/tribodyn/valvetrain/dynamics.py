@@ -30,7 +30,7 @@ from .flexible import FlexibleValvetrain
 from .kinematics import rpm_to_cam_speed
 from .model import ContactLawError, lumped_energies
 from .parameters import ValvetrainParameters
-from .system import SYSTEMS, ValvetrainSystem, make_system
+from .system import ValvetrainSystem, system_class
 from .tribology import AnalyticTribology, Frictionless, TribologyModel
 
 __all__ = ["ValvetrainResult", "simulate_valvetrain", "resolve_tribology"]
@@ -256,9 +256,7 @@ def simulate_valvetrain(
     if not isinstance(cam, CamProfile):
         raise InputError(f"cam must be a CamProfile (got {type(cam).__name__})")
     params = ValvetrainParameters() if params is None else params
-    if not any(cls.handles(params) for cls in SYSTEMS):
-        names = " or a ".join(c.PARAMS.__name__ for c in SYSTEMS)
-        raise InputError(f"params must be a {names} (got {type(params).__name__})")
+    system = system_class(params)
     # the case file's ranges (physics.limits), checked before any work is done
     w = rpm_to_cam_speed(engine_speed)
     cycles = L.DYNAMICS_CYCLES.check("cycles", cycles)
@@ -272,7 +270,7 @@ def simulate_valvetrain(
     cam.check(params.tappet_radius)
     trib = resolve_tribology(tribology, params)
 
-    model = make_system(cam, params, w, trib, start_angle=start_angle)
+    model = system(cam, params, w, trib, start_angle=start_angle)
     n = model.n
     T_cycle = 2.0 * math.pi / w  # one engine cycle = one cam revolution
     t_end = cycles * T_cycle
