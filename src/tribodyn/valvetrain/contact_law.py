@@ -32,7 +32,6 @@ __all__ = [
     "ContactLawError",
     "smooth_step",
     "contact_film_root",
-    "check_model_inputs",
     "CamContact",
     "CamContactModel",
 ]
@@ -237,19 +236,6 @@ def contact_film_root(where, t, dk, C, g, ikc, has_film) -> tuple:
     return 0.0, 0.0, h0, False
 
 
-def check_model_inputs(cam, params, params_type, cam_speed, tribology, start_angle) -> None:
-    """Types and ranges of a valvetrain model's arguments (the case file's ranges,
-    :mod:`tribodyn.physics.limits`): :class:`InputError` naming the argument."""
-    if not isinstance(cam, CamProfile):
-        raise InputError(f"cam must be a CamProfile (got {type(cam).__name__})")
-    if not isinstance(params, params_type):
-        raise InputError(f"params must be a {params_type.__name__} (got {type(params).__name__})")
-    L.CAM_SPEED.check("cam_speed", cam_speed)
-    if not isinstance(tribology, TribologyModel):
-        raise InputError(f"tribology must be a TribologyModel (got {type(tribology).__name__})")
-    check_real("start_angle", start_angle, "rad")
-
-
 class CamContact(NamedTuple):
     """The cam–tappet contact at one instant: lobe angle θ [rad], lift s [m] and its
     derivatives s' [m/rad], s'' [m/rad²], radius of curvature R [m], entrainment and
@@ -399,10 +385,20 @@ class CamContactModel:
     def _bind(
         self, cam: CamProfile, params: Any, cam_speed: float, tribology, start_angle: float
     ) -> None:
-        """Check a model's arguments (:func:`check_model_inputs`, ``params`` of class
-        ``PARAMS``) and keep the cam, ω [rad/s], the tribology and θ₀ [rad]; θ₀ must lie
-        on the base circle, where the models start from static equilibrium."""
-        check_model_inputs(cam, params, self.PARAMS, cam_speed, tribology, start_angle)
+        """Check a model's arguments (types, ``params`` of class ``PARAMS``, and the case
+        file's ranges, :mod:`tribodyn.physics.limits`: :class:`InputError` naming the
+        argument) and keep the cam, ω [rad/s], the tribology and θ₀ [rad]; θ₀ must lie on
+        the base circle, where the models start from static equilibrium."""
+        if not isinstance(cam, CamProfile):
+            raise InputError(f"cam must be a CamProfile (got {type(cam).__name__})")
+        if not isinstance(params, self.PARAMS):
+            raise InputError(
+                f"params must be a {self.PARAMS.__name__} (got {type(params).__name__})"
+            )
+        L.CAM_SPEED.check("cam_speed", cam_speed)
+        if not isinstance(tribology, TribologyModel):
+            raise InputError(f"tribology must be a TribologyModel (got {type(tribology).__name__})")
+        check_real("start_angle", start_angle, "rad")
         self.cam, self.w, self.trib = cam, float(cam_speed), tribology
         self.theta0 = float(start_angle)
         s0 = cam.scalar_derivatives(self.theta0)[0]
