@@ -97,10 +97,8 @@ class FlexibleValvetrainModel(CamContactModel):
             M[k, k], K[k, k] = J, kt
             C[k, k] = 2.0 * cs.torsional_damping_ratio * math.sqrt(kt * J)
             self.J, self.kt, self.ct = J, kt, C[k, k]
-            self.c_bend = cs.bending_compliance
         else:
             self.J = self.kt = self.ct = 0.0
-            self.c_bend = 0.0
         self.M, self.K, self.C = M, K, C
         self.Minv = np.linalg.inv(M)
         self.MinvK = self.Minv @ K
@@ -123,31 +121,24 @@ class FlexibleValvetrainModel(CamContactModel):
             )
         )
         self.beta_s = 2.0 * spring.damping_ratio / w1
-        kel, _, gel, _ = spring._elements()
-        self.clash = []  # (global a, global b, Δ_static, g, Q_s)
-        pos = {j: i for i, j in enumerate(spring_nodes)}
-        for j in range(kel.size):
-            if j in pos and j + 1 in pos:
+        gel = spring._elements()[2]
+        self.clash = []  # elements between boundary nodes: (global a, global b, Δ_static, g, Q_s)
+        self.internal_clash = []  # elements reduced into the modes: (j, Δ_static, g)
+        for j in range(gel.size):
+            d0, gap = float(st.compressions[j]), float(gel[j])
+            if j in spring_nodes and j + 1 in spring_nodes:
                 Qs = spring.clash_force(st.compressions[j] - gel[j])[0]
-                self.clash.append(
-                    (
-                        idx[f"s{j}"],
-                        idx[f"s{j + 1}"],
-                        float(st.compressions[j]),
-                        float(gel[j]),
-                        Qs,
-                    )
-                )
-        self.internal_clash = [j for j in range(kel.size) if not (j in pos and j + 1 in pos)]
-        self.static_compressions = st.compressions
-        self.spring_gaps = gel
+                self.clash.append((idx[f"s{j}"], idx[f"s{j + 1}"], d0, gap, Qs))
+            else:
+                self.internal_clash.append((j, d0, gap))
         fs = np.zeros(n)  # static joint forces on the nodes (seat, groove, spring ends)
         fs[[self.i_seat, self.i_groove, self.i_top, self.i_bot]] = [F0, -F0, F0, -F0]
         for a, b, _, _, Qs in self.clash:
             fs[a] -= Qs
             fs[b] += Qs
         self.f_static = fs
-        self._init_contact(tribology, self.c_bend)  # camshaft bending in series
+        # camshaft bending in series with the contact
+        self._init_contact(tribology, 0.0 if cs is None else cs.bending_compliance)
 
     compilable = False  # no compiled right-hand side (solve_ivp path)
 
@@ -346,7 +337,7 @@ class FlexibleValvetrainModel(CamContactModel):
             return -math.inf
         U = self.bodies["spring"].T @ np.asarray(Y)[self.gmap["spring"]]
         worst = -math.inf
-        for j in self.internal_clash:
-            ov = self.static_compressions[j] + U[j] - U[j + 1] - self.spring_gaps[j]
+        for j, d0, g in self.internal_clash:
+            ov = d0 + U[j] - U[j + 1] - g
             worst = max(worst, float(np.max(ov)))
         return worst
