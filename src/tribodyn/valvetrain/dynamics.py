@@ -542,9 +542,7 @@ def _events(
         return float(math.degrees(2.0 * w * t))
 
     in_win = lambda t: t0_pres - 1e-12 <= t <= t_end + 1e-12  # noqa: E731
-    seat_ev = []  # (t, v_valve)
-    for t, y in zip(run.t_seat, run.y_seat):
-        seat_ev.append((t, y[n + 1]))
+    seat_ev = [(t, y[n + 1]) for t, y in zip(run.t_seat, run.y_seat)]  # (t, v_valve)
     seatings = [(crank_of(t), v) for t, v in seat_ev if in_win(t) and v < 0.0]
     res.seatings = seatings
     # First closing seating after the valve's peak in the presented cycle.
