@@ -26,6 +26,7 @@ from .._validation import InputError, check_real
 from ..physics import limits as L
 from ..physics.film_state_laws import limited_growth
 from .cams import CamProfile
+from .kinematics import flat_follower_kinematics
 from .tribology import TribologyModel
 
 __all__ = [
@@ -146,10 +147,8 @@ class _FrictionTable:
         th = np.unique(np.concatenate(pieces) % two_pi)
         th = np.append(th, th[0] + two_pi)  # wrap point
         self.F = np.asarray(self.FORCES)
-        s, _, s2 = cam.derivatives(th)
-        R = rb + s + s2
-        ue = 0.5 * cam_speed * (rb + s + 2.0 * s2)
-        us = cam_speed * (rb + s)
+        kin = flat_follower_kinematics(cam, cam_speed, th)
+        R, ue, us = kin.radius_of_curvature, kin.entrainment_speed, kin.sliding_speed
         # simulation time of cam angle θ in the first revolution: t = (θ − θ₀)/ω mod 2π/ω
         t_of = np.mod(th - start_angle, two_pi) / cam_speed
         TT, FF = np.meshgrid(t_of, self.F, indexing="ij")
