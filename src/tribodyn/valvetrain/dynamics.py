@@ -470,7 +470,7 @@ def _sample(
             f"coil clash in a spring segment reduced to modes (overlap "
             f"{unresolved * 1e6:.3g} µm): raise the spring's clash_margin"
         )
-    res = ValvetrainResult(
+    return ValvetrainResult(
         **base,
         converged=True,
         message="ok" if note is None else f"ok; warning: {note}",
@@ -503,10 +503,9 @@ def _sample(
         bore_friction_force=-cols["Fb"],
         cam_torque=cols["Fc"] * cols["s1"] + Ff * (rb + cols["s"]),
         friction_power=Ff * cols["us"],
+        kinetic_energy=cols["T"],
+        elastic_energy=cols["U"],
     )
-    res.kinetic_energy = cols["T"]
-    res.elastic_energy = cols["U"]
-    return res
 
 
 def _energy_balance(res: ValvetrainResult, Y: np.ndarray, n: int, w: float) -> None:
@@ -543,14 +542,12 @@ def _events(
 
     in_win = lambda t: t0_pres - 1e-12 <= t <= t_end + 1e-12  # noqa: E731
     seat_ev = [(t, y[n + 1]) for t, y in zip(run.t_seat, run.y_seat)]  # (t, v_valve)
-    seatings = [(crank_of(t), v) for t, v in seat_ev if in_win(t) and v < 0.0]
-    res.seatings = seatings
-    # First closing seating after the valve's peak in the presented cycle.
-    k_peak = int(np.argmax(res.valve_lift))
-    t_peak = t_eval[k_peak]
-    closing = [(t, v) for t, v in seat_ev if in_win(t) and v < 0.0 and t > t_peak]
-    if not closing:  # event wraps past the cycle end: take the first one in the window
-        closing = [(t, v) for t, v in seat_ev if in_win(t) and v < 0.0]
+    impacts = [(t, v) for t, v in seat_ev if in_win(t) and v < 0.0]
+    res.seatings = [(crank_of(t), v) for t, v in impacts]
+    # First closing seating after the valve's peak in the presented cycle (none: the event
+    # wraps past the cycle end, take the first one in the window).
+    t_peak = t_eval[int(np.argmax(res.valve_lift))]
+    closing = [(t, v) for t, v in impacts if t > t_peak] or impacts
     if closing:
         res.seating_velocity = float(abs(closing[0][1]))
     # Bounces: lift-offs while the cam is not on its opening flank.
