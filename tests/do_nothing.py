@@ -23,7 +23,7 @@ _calls = {"n": 0}
 def _dry_nothing(op, geom, w, dx, p, tol, max_iter):
     """The CGM of contact/dry.py, doing nothing: the starting pressure, 'converged'."""
     _calls["n"] += 1
-    return p, None, True, 0, "converged (do-nothing)"
+    return p, True, 0, "converged (do-nothing)"
 
 
 def _newton_nothing(sysm, st, tol, max_iter, lu=None, coarse=None, release_blocks=True):

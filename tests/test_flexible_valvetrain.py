@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 import pytest
+import scipy.linalg as sla
 
 from tribodyn import InputError
 from tribodyn.config import Case, load_case
@@ -19,6 +20,12 @@ from tribodyn.valvetrain.tribology import Frictionless
 
 E, RHO, L, A = 210e9, 7850.0, 0.1, 2.4e-5
 C = math.sqrt(E / RHO)
+
+
+def _reduced_frequencies(r):
+    """Natural frequencies f = √ω²/2π [Hz] of a reduced body's K φ = ω² M φ, free–free."""
+    w2 = sla.eigh(r.K, r.M, eigvals_only=True)
+    return np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
 
 
 @pytest.fixture(scope="module")
@@ -39,7 +46,7 @@ def test_bar_frequencies_match_the_analytic_ones(elements):
     fixed = m.frequencies(fixed=[0])[:3]
     np.testing.assert_allclose(free, n * C / (2 * L), rtol=5e-3)
     np.testing.assert_allclose(fixed, (2 * n - 1) * C / (4 * L), rtol=5e-3)
-    assert m.total_mass == pytest.approx(RHO * A * L, rel=1e-12)
+    assert float(m.M.sum()) == pytest.approx(RHO * A * L, rel=1e-12)
 
 
 def test_bar_check_can_fail():
@@ -70,7 +77,7 @@ def test_craig_bampton_reduced_vs_full():
     for k in (0, 1, 2, 4, 8):
         r = craig_bampton(fe.M, fe.K, [fe.labels["seat"], fe.labels["retainer"]], modes=k)
         assert r.n == 2 + k
-        f = r.frequencies()[1:4] if r.n >= 4 else r.frequencies()[1:]
+        f = _reduced_frequencies(r)[1:4]
         assert np.all(f >= full[: f.size] * (1 - 1e-9))  # Rayleigh–Ritz: from above
         errs.append(float(np.max(f / full[: f.size] - 1)))
         if k >= 4:

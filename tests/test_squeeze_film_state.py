@@ -16,7 +16,7 @@ from tribodyn.physics.regimes import hamrock_groups, moes_central
 from tribodyn.valvetrain.compiled import _cam, compiled_model
 from tribodyn.valvetrain.dynamics import simulate_valvetrain
 from tribodyn.valvetrain.kinematics import rpm_to_cam_speed
-from tribodyn.valvetrain.system import make_system
+from tribodyn.valvetrain.system import system_class
 from tribodyn.valvetrain.tribology import FilmStateTribology, Frictionless
 
 ETA, R, L, E = 0.05, 0.015, 0.012, 2.3e11
@@ -159,7 +159,7 @@ def test_film_state_jacobian_matches_finite_differences(name, film, regime, monk
         e_prime=reduced_modulus(s.bodies),
     )
     w = rpm_to_cam_speed(case.engine.speed_rpm)
-    m = make_system(built.cam, built.valvetrain, w, ft)
+    m = system_class(built.valvetrain)(built.cam, built.valvetrain, w, ft)
     assert m.film_state
     cm = compiled_model(m) if m.compilable else None  # the lumped model's compiled form
     n, t = m.n, math.radians(100.0) / w  # on the opening flank

@@ -70,13 +70,6 @@ def contact_edges(x: np.ndarray, p: np.ndarray) -> tuple[float, float]:
     return edge(idx[0], idx[0] + 1, -1.0), edge(idx[-1], idx[-1] - 1, +1.0)
 
 
-def _estimate_half_width(load, radius, bodies) -> float:
-    """Largest of the Hertz half-widths with bulk and with surface (coating) moduli."""
-    b_bulk = hertz_line_contact(load, radius, reduced_modulus(bodies)).half_width
-    b_surf = hertz_line_contact(load, radius, reduced_modulus(bodies, surface=True)).half_width
-    return max(b_bulk, b_surf)
-
-
 def _cgm(
     op: DeformationOperator,
     geom: np.ndarray,
@@ -94,7 +87,7 @@ def _cgm(
         g = op(p) + geom
         ic = p > 0.0
         if not np.any(ic):
-            return p, g, False, it, "pressure vanished everywhere"
+            return p, False, it, "pressure vanished everywhere"
         g = g - g[ic].mean()
         gg = float(np.dot(g[ic], g[ic]))
         t = np.where(ic, g + delta * (gg / g_old) * t, 0.0)
@@ -117,8 +110,8 @@ def _cgm(
         p *= w / (p.sum() * dx)
         err = dx * np.abs(p - p_old).sum() / w
         if err < tol:
-            return p, None, True, it, f"converged: pressure change {err:.1e} < tol"
-    return p, None, False, it, f"not converged after {max_iter} iterations (change {err:.1e})"
+            return p, True, it, f"converged: pressure change {err:.1e} < tol"
+    return p, False, it, f"not converged after {max_iter} iterations (change {err:.1e})"
 
 
 @one_blas_thread
@@ -166,7 +159,9 @@ def solve_dry_contact(
     if domain <= 1.0:
         raise InputError(f"domain must be > 1 half-width (got {domain:g})")
     hz = hertz_line_contact(w, r, reduced_modulus(bodies))
-    b_est = _estimate_half_width(w, r, bodies)
+    # the larger of the Hertz half-widths with bulk and with surface (coating) moduli
+    b_surf = hertz_line_contact(w, r, reduced_modulus(bodies, surface=True)).half_width
+    b_est = max(hz.half_width, b_surf)
 
     for growth in range(max_domain_growth + 1):
         half = domain * b_est * 1.5**growth
@@ -183,7 +178,7 @@ def solve_dry_contact(
         if p0.sum() <= 0.0:
             p0 = np.ones(n)
         p0 *= w / (p0.sum() * dx)
-        p, _, ok, iters, msg = _cgm(op, geom, w, dx, p0, tol, max_iter)
+        p, ok, iters, msg = _cgm(op, geom, w, dx, p0, tol, max_iter)
         at_edge = p[0] > 0.0 or p[-1] > 0.0
         if not at_edge:
             break

@@ -33,7 +33,7 @@ from ..physics.friction import boundary_shear_stress
 from ..physics.materials import Body, as_bodies, reduced_modulus
 from ..physics.stress import StressOperator, SubsurfaceStress
 from .ehl.options import EHLOptions
-from .ehl.postprocess import shear_stress
+from .ehl.postprocess import _H_FLOOR, shear_stress  # films floored as the solver does
 
 __all__ = [
     "SurfaceLoads",
@@ -46,8 +46,8 @@ __all__ = [
     "shear_options",
 ]
 
-#: films below this [m] are taken at this value in the viscous shear (as the solver does)
-_H_FLOOR = 1e-10
+#: the EHL options' defaults, which the surface-shear keywords default to
+_DEFAULTS = EHLOptions()
 
 
 @dataclass
@@ -65,9 +65,10 @@ class SurfaceLoads:
     traction_tappet: np.ndarray  #: q on the tappet in +x
 
 
-def shear_options(options: EHLOptions) -> dict:
+def shear_options(options: EHLOptions | None) -> dict:
     """The surface-shear keywords of :func:`profile_surface_loads` taken from an
-    :class:`~tribodyn.EHLOptions`."""
+    :class:`~tribodyn.EHLOptions` (None: the defaults)."""
+    options = options or _DEFAULTS
     return {
         "viscous_model": options.viscous_model,
         "limiting_shear": options.limiting_shear,
@@ -85,15 +86,15 @@ def profile_surface_loads(
     lubricant,
     roughness=None,
     *,
-    viscous_model: str = "eyring",
-    limiting_shear: bool = True,
-    boundary_shear_coefficient: float | None = None,
-    boundary_shear_strength: float | None = None,
+    viscous_model: str = _DEFAULTS.viscous_model,
+    limiting_shear: bool = _DEFAULTS.limiting_shear,
+    boundary_shear_coefficient: float = _DEFAULTS.boundary_shear_coefficient,
+    boundary_shear_strength: float = _DEFAULTS.boundary_shear_strength,
 ) -> SurfaceLoads:
     """Surface loads from a film and pressure profile (see the module docstring).
 
-    ``roughness`` None: no asperity contact (p_a = τ_b = 0). The boundary-shear
-    parameters default to those of :class:`~tribodyn.EHLOptions`."""
+    ``roughness`` None: no asperity contact (p_a = τ_b = 0). The shear laws default to
+    those of :class:`~tribodyn.EHLOptions`."""
     x = check_array("x", x)
     p = check_array("pressure", pressure)
     h = check_array("film", film)
@@ -140,7 +141,7 @@ def batch_surface_loads(
         bodies,
         lubricant,
         roughness,
-        **shear_options(options if options is not None else EHLOptions()),
+        **shear_options(options),
     )
 
 
@@ -159,17 +160,6 @@ def _loads(
     boundary_shear_strength,
 ) -> SurfaceLoads:
     cam, tappet = as_bodies(bodies)
-    defaults = EHLOptions()
-    coef = (
-        defaults.boundary_shear_coefficient
-        if boundary_shear_coefficient is None
-        else boundary_shear_coefficient
-    )
-    tau0 = (
-        defaults.boundary_shear_strength
-        if boundary_shear_strength is None
-        else boundary_shear_strength
-    )
     hf = np.maximum(h, _H_FLOOR)
     tau_c = shear_stress(p, h, us, lubricant, viscous_model, limiting_shear)
     if p.ndim == 1:
@@ -185,7 +175,7 @@ def _loads(
         else:
             pa = np.asarray(roughness.asperity_pressure(h, e_s), float)
         area = np.asarray(roughness.contact_area_fraction(h, tabulated=True), float)
-        tau_b = boundary_shear_stress(pa, area, coef, tau0)
+        tau_b = boundary_shear_stress(pa, area, boundary_shear_coefficient, boundary_shear_strength)
     else:
         pa = np.zeros_like(p)
         tau_b = np.zeros_like(p)
@@ -207,7 +197,6 @@ def surface_loads(result, bodies, lubricant, roughness=None, options=None) -> Su
     """:func:`profile_surface_loads` of an :class:`~tribodyn.EHLResult` (its p, h, u_s)
     with the friction laws of ``options`` (an :class:`~tribodyn.EHLOptions`, default
     the defaults)."""
-    opts = options if options is not None else EHLOptions()
     return profile_surface_loads(
         result.x,
         result.pressure,
@@ -216,7 +205,7 @@ def surface_loads(result, bodies, lubricant, roughness=None, options=None) -> Su
         bodies,
         lubricant,
         roughness,
-        **shear_options(opts),
+        **shear_options(options),
     )
 
 
@@ -262,15 +251,11 @@ def ehl_stresses(
     ``depths`` [m]: one array for both bodies, or None for :func:`default_depths` of each
     (from the loaded half-width). The solution grid must be uniform (the solvers' is)."""
     loads = surface_loads(result, bodies, lubricant, roughness, options)
-    return _stresses(loads, as_bodies(bodies), depths)
-
-
-def _stresses(loads: SurfaceLoads, bodies, depths):
     x = loads.x
     dx = float(x[1] - x[0])
     b = loaded_half_width(x, loads.pressure)
     out = []
-    for body, q in zip(bodies, (loads.traction_cam, loads.traction_tappet), strict=True):
+    for body, q in zip(as_bodies(bodies), (loads.traction_cam, loads.traction_tappet), strict=True):
         z = default_depths(body, b) if depths is None else depths
         op = StressOperator(x.size, dx, body, z)
         out.append(op.apply(loads.pressure, q, x))

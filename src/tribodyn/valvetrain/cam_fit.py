@@ -225,14 +225,13 @@ def _deriv(t, k, n):
 @dataclass
 class LiftFit:
     """Result of :func:`fit_periodic_lift`: piecewise quintic (``breaks``, ``coeffs``
-    highest power first, on [x₀, x₀ + 2π)), jumps [(angle, Δs'')], precision used, RMS
-    residual [m] and the base circle (from, to) [rad] where s ≡ 0 (None if none)."""
+    highest power first, on [x₀, x₀ + 2π)), jumps [(angle, Δs'')], precision used [m] and
+    the base circle (from, to) [rad] where s ≡ 0 (None if none)."""
 
     breaks: np.ndarray
     coeffs: np.ndarray
     jumps: list
     precision: float
-    rms_residual: float
     base_circle: tuple[float, float] | None = None
 
 
@@ -240,7 +239,7 @@ def _penalised_fit(xs, ys, x0, tau, base, precision):
     """Periodic quintic spline on knots ``tau`` (sorted, in [x₀, x₀ + 2π)) minimising
     Σ(y − s)² + λ∫(s‴)², λ by the discrepancy principle; B-splines inside the base
     circle ``base`` = (closing edge, opening edge) [rad, in x₀'s period] are removed.
-    Returns (PPoly breaks, coefficients, RMS residual, fitted values at xs)."""
+    Returns (PPoly breaks, coefficients, fitted values at xs)."""
     P = TWO_PI
     m = tau.size
     t = np.concatenate([tau[m - _K :] - P, tau, tau[: _K + 1] + P])
@@ -300,7 +299,7 @@ def _penalised_fit(xs, ys, x0, tau, base, precision):
     if base is not None:  # pieces inside the base circle: exactly zero
         inside = (breaks[1:] <= base[1] + 1e-12) | (breaks[:-1] >= base[0] - 1e-12)
         coeffs[:, inside] = 0.0
-    return breaks, coeffs, r, A @ c
+    return breaks, coeffs, A @ c
 
 
 def _knots(xs, x0, stride, h, special):
@@ -347,7 +346,7 @@ def fit_periodic_lift(
     xs, ys = xs[order], y[order]
     special = [(x0 + (a - x0) % P, 4) for a, _ in jumps]
     tau = _knots(xs, x0, stride, h, special)
-    breaks, coeffs, r, yfit = _penalised_fit(xs, ys, x0, tau, None, precision)
+    breaks, coeffs, yfit = _penalised_fit(xs, ys, x0, tau, None, precision)
     base = None
     if bc is not None:
         # the base circle around x0: from x0 to the first event point, and back
@@ -376,12 +375,11 @@ def fit_periodic_lift(
             base = (hi_edge, lo_edge)
             special += [(e, 4) for e in (lo_edge, hi_edge) if all(e != a for a, _ in special)]
             tau = _knots(xs, x0, stride, h, special)
-            breaks, coeffs, r, _ = _penalised_fit(xs, ys, x0, tau, base, precision)
+            breaks, coeffs, _ = _penalised_fit(xs, ys, x0, tau, base, precision)
     return LiftFit(
         breaks,
         coeffs,
         jumps,
         float(precision),
-        r,
         None if base is None else (float(base[0] % P), float(base[1] % P)),
     )

@@ -50,10 +50,6 @@ class LiftTable:
     quantum: float
 
 
-def _decode(p: Path) -> str:
-    return read_user_text(p, "lift table", limit=MAX_TABLE_BYTES).text
-
-
 def _split(line: str, sep: str | None) -> list[str]:
     if sep is None:
         return line.split()
@@ -90,7 +86,7 @@ def load_lift_table(
             f"lift_unit must be 'auto' or one of {sorted(LIFT_UNITS)} (got {lift_unit!r})"
         )
     p = Path(path)
-    text = _decode(p)
+    text = read_user_text(p, "lift table", limit=MAX_TABLE_BYTES).text
     lines = [(i, ln.strip()) for i, ln in enumerate(text.splitlines(), start=1)]
     lines = [(i, ln) for i, ln in lines if ln and not ln.startswith("#")]
     max_rows = int(L.LIFT_TABLE_ROWS.le or 0)

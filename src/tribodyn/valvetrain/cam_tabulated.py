@@ -128,14 +128,10 @@ class TabulatedCam(CamProfile):
         self._x0 = float(self._x[0])
         self._xlist = self._x[:-1].tolist()
         self._clist = [tuple(col) for col in self._c.T]
-        rb = self.base_radius
         self.curvature_jumps = []
         for a, _ in fit.jumps:
-            lo = self.derivatives(np.array([a - 1e-7]))
-            hi = self.derivatives(np.array([a + 1e-7]))
-            self.curvature_jumps.append(
-                (a, float(rb + lo[0][0] + lo[2][0]), float(rb + hi[0][0] + hi[2][0]))
-            )
+            lo, hi = self.radius_of_curvature(np.array([a - 1e-7, a + 1e-7]))
+            self.curvature_jumps.append((a, float(lo), float(hi)))
         self.check(tappet_radius)
 
     @classmethod

@@ -339,13 +339,9 @@ class AccelerationCam(CamProfile):
         b = self._half - np.array(self._starts + [self._half])  # distance from the nose
         return np.concatenate([self.nose_angle - b, self.nose_angle + b]) % TWO_PI
 
-    def _local(self, angle):
-        # Signed angle from the nose in (−π, π]; mirror so φ runs from the event start.
-        d = (np.asarray(angle, dtype=float) - self.nose_angle + math.pi) % TWO_PI - math.pi
-        return d
-
     def derivatives(self, angle):
-        d = self._local(angle)
+        # signed angle from the nose in (−π, π]; mirrored so φ runs from the event start
+        d = (np.asarray(angle, dtype=float) - self.nose_angle + math.pi) % TWO_PI - math.pi
         sign = np.where(d < 0.0, 1.0, -1.0)  # opening side: s' > 0
         phi = self._half - np.abs(d)  # angle from the event start
         s = np.zeros_like(phi)

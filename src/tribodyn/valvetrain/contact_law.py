@@ -26,13 +26,13 @@ from .._validation import InputError, check_real
 from ..physics import limits as L
 from ..physics.film_state_laws import limited_growth
 from .cams import CamProfile
+from .kinematics import flat_follower_kinematics
 from .tribology import TribologyModel
 
 __all__ = [
     "ContactLawError",
     "smooth_step",
     "contact_film_root",
-    "check_model_inputs",
     "CamContact",
     "CamContactModel",
 ]
@@ -147,10 +147,8 @@ class _FrictionTable:
         th = np.unique(np.concatenate(pieces) % two_pi)
         th = np.append(th, th[0] + two_pi)  # wrap point
         self.F = np.asarray(self.FORCES)
-        s, _, s2 = cam.derivatives(th)
-        R = rb + s + s2
-        ue = 0.5 * cam_speed * (rb + s + 2.0 * s2)
-        us = cam_speed * (rb + s)
+        kin = flat_follower_kinematics(cam, cam_speed, th)
+        R, ue, us = kin.radius_of_curvature, kin.entrainment_speed, kin.sliding_speed
         # simulation time of cam angle θ in the first revolution: t = (θ − θ₀)/ω mod 2π/ω
         t_of = np.mod(th - start_angle, two_pi) / cam_speed
         TT, FF = np.meshgrid(t_of, self.F, indexing="ij")
@@ -235,19 +233,6 @@ def contact_film_root(where, t, dk, C, g, ikc, has_film) -> tuple:
             dPdz = g * z ** (g - 1.0) if z > 0.0 else (1.0 if g == 1.0 else 0.0)
             return P, dPdz / (C + dPdz * (ikc - hF)), h, True
     return 0.0, 0.0, h0, False
-
-
-def check_model_inputs(cam, params, params_type, cam_speed, tribology, start_angle) -> None:
-    """Types and ranges of a valvetrain model's arguments (the case file's ranges,
-    :mod:`tribodyn.physics.limits`): :class:`InputError` naming the argument."""
-    if not isinstance(cam, CamProfile):
-        raise InputError(f"cam must be a CamProfile (got {type(cam).__name__})")
-    if not isinstance(params, params_type):
-        raise InputError(f"params must be a {params_type.__name__} (got {type(params).__name__})")
-    L.CAM_SPEED.check("cam_speed", cam_speed)
-    if not isinstance(tribology, TribologyModel):
-        raise InputError(f"tribology must be a TribologyModel (got {type(tribology).__name__})")
-    check_real("start_angle", start_angle, "rad")
 
 
 class CamContact(NamedTuple):
@@ -399,10 +384,20 @@ class CamContactModel:
     def _bind(
         self, cam: CamProfile, params: Any, cam_speed: float, tribology, start_angle: float
     ) -> None:
-        """Check a model's arguments (:func:`check_model_inputs`, ``params`` of class
-        ``PARAMS``) and keep the cam, ω [rad/s], the tribology and θ₀ [rad]; θ₀ must lie
-        on the base circle, where the models start from static equilibrium."""
-        check_model_inputs(cam, params, self.PARAMS, cam_speed, tribology, start_angle)
+        """Check a model's arguments (types, ``params`` of class ``PARAMS``, and the case
+        file's ranges, :mod:`tribodyn.physics.limits`: :class:`InputError` naming the
+        argument) and keep the cam, ω [rad/s], the tribology and θ₀ [rad]; θ₀ must lie on
+        the base circle, where the models start from static equilibrium."""
+        if not isinstance(cam, CamProfile):
+            raise InputError(f"cam must be a CamProfile (got {type(cam).__name__})")
+        if not isinstance(params, self.PARAMS):
+            raise InputError(
+                f"params must be a {self.PARAMS.__name__} (got {type(params).__name__})"
+            )
+        L.CAM_SPEED.check("cam_speed", cam_speed)
+        if not isinstance(tribology, TribologyModel):
+            raise InputError(f"tribology must be a TribologyModel (got {type(tribology).__name__})")
+        check_real("start_angle", start_angle, "rad")
         self.cam, self.w, self.trib = cam, float(cam_speed), tribology
         self.theta0 = float(start_angle)
         s0 = cam.scalar_derivatives(self.theta0)[0]

@@ -16,7 +16,7 @@ import math
 import time as _time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Protocol, TypedDict, runtime_checkable
+from typing import TypedDict
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -30,7 +30,7 @@ from .flexible import FlexibleValvetrain
 from .kinematics import rpm_to_cam_speed
 from .model import ContactLawError, lumped_energies
 from .parameters import ValvetrainParameters
-from .system import SYSTEMS, ValvetrainSystem, make_system
+from .system import ValvetrainSystem, system_class
 from .tribology import AnalyticTribology, Frictionless, TribologyModel
 
 __all__ = ["ValvetrainResult", "simulate_valvetrain", "resolve_tribology"]
@@ -173,13 +173,6 @@ class ValvetrainResult:
         }
 
 
-@runtime_checkable
-class _HasWidth(Protocol):
-    """A tribology law for a given contact width [m] (checked against the cam's)."""
-
-    width: float
-
-
 def resolve_tribology(
     tribology, params: ValvetrainParameters | FlexibleValvetrain
 ) -> TribologyModel:
@@ -197,7 +190,7 @@ def resolve_tribology(
             f"tribology must be 'explicit', None or a TribologyModel (got "
             f"{type(tribology).__name__})"
         )
-    w = tribology.width if isinstance(tribology, _HasWidth) else None
+    w = getattr(tribology, "width", None)  # a law for a given contact width [m]
     if w is not None and abs(w - params.cam_width) > 1e-12:
         raise InputError(f"tribology width {w:g} m differs from cam_width {params.cam_width:g} m")
     return tribology
@@ -263,9 +256,7 @@ def simulate_valvetrain(
     if not isinstance(cam, CamProfile):
         raise InputError(f"cam must be a CamProfile (got {type(cam).__name__})")
     params = ValvetrainParameters() if params is None else params
-    if not any(cls.handles(params) for cls in SYSTEMS):
-        names = " or a ".join(c.PARAMS.__name__ for c in SYSTEMS)
-        raise InputError(f"params must be a {names} (got {type(params).__name__})")
+    system = system_class(params)
     # the case file's ranges (physics.limits), checked before any work is done
     w = rpm_to_cam_speed(engine_speed)
     cycles = L.DYNAMICS_CYCLES.check("cycles", cycles)
@@ -279,7 +270,7 @@ def simulate_valvetrain(
     cam.check(params.tappet_radius)
     trib = resolve_tribology(tribology, params)
 
-    model = make_system(cam, params, w, trib, start_angle=start_angle)
+    model = system(cam, params, w, trib, start_angle=start_angle)
     n = model.n
     T_cycle = 2.0 * math.pi / w  # one engine cycle = one cam revolution
     t_end = cycles * T_cycle
@@ -479,7 +470,7 @@ def _sample(
             f"coil clash in a spring segment reduced to modes (overlap "
             f"{unresolved * 1e6:.3g} µm): raise the spring's clash_margin"
         )
-    res = ValvetrainResult(
+    return ValvetrainResult(
         **base,
         converged=True,
         message="ok" if note is None else f"ok; warning: {note}",
@@ -512,10 +503,9 @@ def _sample(
         bore_friction_force=-cols["Fb"],
         cam_torque=cols["Fc"] * cols["s1"] + Ff * (rb + cols["s"]),
         friction_power=Ff * cols["us"],
+        kinetic_energy=cols["T"],
+        elastic_energy=cols["U"],
     )
-    res.kinetic_energy = cols["T"]
-    res.elastic_energy = cols["U"]
-    return res
 
 
 def _energy_balance(res: ValvetrainResult, Y: np.ndarray, n: int, w: float) -> None:
@@ -551,17 +541,13 @@ def _events(
         return float(math.degrees(2.0 * w * t))
 
     in_win = lambda t: t0_pres - 1e-12 <= t <= t_end + 1e-12  # noqa: E731
-    seat_ev = []  # (t, v_valve)
-    for t, y in zip(run.t_seat, run.y_seat):
-        seat_ev.append((t, y[n + 1]))
-    seatings = [(crank_of(t), v) for t, v in seat_ev if in_win(t) and v < 0.0]
-    res.seatings = seatings
-    # First closing seating after the valve's peak in the presented cycle.
-    k_peak = int(np.argmax(res.valve_lift))
-    t_peak = t_eval[k_peak]
-    closing = [(t, v) for t, v in seat_ev if in_win(t) and v < 0.0 and t > t_peak]
-    if not closing:  # event wraps past the cycle end: take the first one in the window
-        closing = [(t, v) for t, v in seat_ev if in_win(t) and v < 0.0]
+    seat_ev = [(t, y[n + 1]) for t, y in zip(run.t_seat, run.y_seat)]  # (t, v_valve)
+    impacts = [(t, v) for t, v in seat_ev if in_win(t) and v < 0.0]
+    res.seatings = [(crank_of(t), v) for t, v in impacts]
+    # First closing seating after the valve's peak in the presented cycle (none: the event
+    # wraps past the cycle end, take the first one in the window).
+    t_peak = t_eval[int(np.argmax(res.valve_lift))]
+    closing = [(t, v) for t, v in impacts if t > t_peak] or impacts
     if closing:
         res.seating_velocity = float(abs(closing[0][1]))
     # Bounces: lift-offs while the cam is not on its opening flank.

@@ -136,14 +136,14 @@ class AxialFEModel:
                 K[j, i] -= k
         return K
 
-    @property
-    def total_mass(self) -> float:
-        return float(self.M.sum())
-
     def frequencies(self, fixed=(), count: int | None = None) -> np.ndarray:
-        """Natural frequencies [Hz] with the DOFs ``fixed`` held (free–free: rigid-body
-        modes come out as ≈ 0)."""
-        return _frequencies(self.K, self.M, fixed, count)
+        """Natural frequencies f = √ω²/2π [Hz] of K φ = ω² M φ with the DOFs ``fixed`` held
+        (free–free: rigid-body modes come out as ≈ 0), the lowest ``count`` (all for None)."""
+        K, M = self.K, self.M
+        keep = [i for i in range(K.shape[0]) if i not in set(fixed)]
+        w2 = sla.eigh(K[np.ix_(keep, keep)], M[np.ix_(keep, keep)], eigvals_only=True)
+        f = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
+        return f if count is None else f[:count]
 
 
 @dataclass
@@ -167,19 +167,6 @@ class ReducedBody:
     @property
     def n(self) -> int:
         return self.M.shape[0]
-
-    def frequencies(self, fixed=(), count: int | None = None) -> np.ndarray:
-        """Natural frequencies [Hz] of the reduced body with reduced coordinates held."""
-        return _frequencies(self.K, self.M, fixed, count)
-
-
-def _frequencies(K, M, fixed, count: int | None) -> np.ndarray:
-    """f = √ω²/2π [Hz] of K φ = ω² M φ with the DOFs ``fixed`` held, the lowest ``count``
-    (all for None)."""
-    keep = [i for i in range(K.shape[0]) if i not in set(fixed)]
-    w2 = sla.eigh(K[np.ix_(keep, keep)], M[np.ix_(keep, keep)], eigvals_only=True)
-    f = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
-    return f if count is None else f[:count]
 
 
 def craig_bampton(

@@ -88,13 +88,11 @@ class ValveGeometry(ModalBody):
         return 0.25 * math.pi * self.stem_diameter**2
 
     @property
-    def stem_mass(self) -> float:
-        return self.density * self.stem_area * self.stem_length
-
-    @property
     def mass(self) -> float:
         """Valve + retainer + collets [kg]."""
-        return self.stem_mass + self.head_mass + self.retainer_mass
+        return (
+            self.density * self.stem_area * self.stem_length + self.head_mass + self.retainer_mass
+        )
 
     def fe_model(self) -> AxialFEModel:
         """Stem from the collet groove to the stem end as ``elements`` bars, retainer,
@@ -173,17 +171,11 @@ class TappetGeometry(ModalBody):
     @property
     def total_mass(self) -> float:
         if self.model == "lumped":
-            return self._lumped_mass()
+            return float(self.mass)  # type: ignore[arg-type]  # required there (__post_init__)
         r, t = self.radius, self.skirt_thickness
         crown = math.pi * r * r * self.crown_thickness
         skirt = math.pi * (r * r - (r - t) ** 2) * self.skirt_length
         return self.density * (crown + skirt)
-
-    def _lumped_mass(self) -> float:
-        """The one mass of ``model = "lumped"`` [kg] (required there)."""
-        if self.mass is None:
-            raise InputError("tappet mass is required with model = 'lumped'")
-        return float(self.mass)
 
     def fe_model(self) -> AxialFEModel:
         """The crown as a rigid disc on the face node, the skirt as ``elements`` bars
@@ -193,7 +185,7 @@ class TappetGeometry(ModalBody):
         m = AxialFEModel("tappet")
         face = m.node("face")
         if self.model == "lumped":
-            m.mass(face, self._lumped_mass())
+            m.mass(face, self.total_mass)
             return m
         r, t = self.radius, self.skirt_thickness
         m.mass(face, self.density * math.pi * r * r * self.crown_thickness)
@@ -272,10 +264,6 @@ class FlexibleValvetrain:
         return replace(self, **changes)
 
     # -- reduced bodies -------------------------------------------------------------------
-    def max_spring_force(self, max_lift: float) -> float:
-        """Static spring force at the largest valve lift [N]."""
-        return self.spring.statics(self.spring.installed_compression + max_lift).force
-
     def reduced_bodies(self, max_lift: float) -> dict[str, ReducedBody]:
         """Craig–Bampton reduction of valve, tappet and spring (boundary order: valve
         [seat, groove], tappet [face], spring [top, clash…, bottom])."""
@@ -286,7 +274,7 @@ class FlexibleValvetrain:
         ft = t.fe_model()
         out["tappet"] = t.reduce(ft, [ft.labels["face"]], "tappet")
         fs = s.fe_model()
-        clash = s.clash_nodes(self.max_spring_force(max_lift))
+        clash = s.clash_nodes(s.statics(s.installed_compression + max_lift).force)  # at peak lift
         bs = [0] + [j for j in clash if 0 < j < fs.n - 1] + [fs.n - 1]
         out["spring"] = s.reduce(fs, bs, "spring")
         return out

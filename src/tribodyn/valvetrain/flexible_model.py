@@ -97,17 +97,13 @@ class FlexibleValvetrainModel(CamContactModel):
             M[k, k], K[k, k] = J, kt
             C[k, k] = 2.0 * cs.torsional_damping_ratio * math.sqrt(kt * J)
             self.J, self.kt, self.ct = J, kt, C[k, k]
-            self.c_bend = cs.bending_compliance
         else:
             self.J = self.kt = self.ct = 0.0
-            self.c_bend = 0.0
         self.M, self.K, self.C = M, K, C
         self.Minv = np.linalg.inv(M)
         self.MinvK = self.Minv @ K
         self.MinvC = self.Minv @ C
-        self.i_face, self.i_seat = idx["face"], idx["seat"]
-        self.i_under, self.i_tip = idx["face"], idx["groove"]
-        self.i_groove = idx["groove"]
+        self.i_face, self.i_seat, self.i_groove = idx["face"], idx["seat"], idx["groove"]
         self.k_tv = flex.tappet_valve_stiffness
         self.i_top = idx[f"s{spring_nodes[0]}"]
         self.i_bot = idx[f"s{spring_nodes[-1]}"]
@@ -125,35 +121,24 @@ class FlexibleValvetrainModel(CamContactModel):
             )
         )
         self.beta_s = 2.0 * spring.damping_ratio / w1
-        kel, _, gel, _ = spring._elements()
-        self.clash = []  # (global a, global b, element j, Δ_static, g, Q_s)
-        pos = {j: i for i, j in enumerate(spring_nodes)}
-        for j in range(kel.size):
-            if j in pos and j + 1 in pos:
+        gel = spring._elements()[2]
+        self.clash = []  # elements between boundary nodes: (global a, global b, Δ_static, g, Q_s)
+        self.internal_clash = []  # elements reduced into the modes: (j, Δ_static, g)
+        for j in range(gel.size):
+            d0, gap = float(st.compressions[j]), float(gel[j])
+            if j in spring_nodes and j + 1 in spring_nodes:
                 Qs = spring.clash_force(st.compressions[j] - gel[j])[0]
-                self.clash.append(
-                    (
-                        idx[f"s{j}"],
-                        idx[f"s{j + 1}"],
-                        j,
-                        float(st.compressions[j]),
-                        float(gel[j]),
-                        Qs,
-                    )
-                )
-        self.internal_clash = [j for j in range(kel.size) if not (j in pos and j + 1 in pos)]
-        self.static_compressions = st.compressions
-        self.spring_gaps = gel
-        fs = np.zeros(n)  # static joint forces on the nodes
-        fs[self.i_seat] += F0
-        fs[self.i_groove] -= F0
-        fs[self.i_top] += F0
-        fs[self.i_bot] -= F0
-        for a, b, _, _, _, Qs in self.clash:
+                self.clash.append((idx[f"s{j}"], idx[f"s{j + 1}"], d0, gap, Qs))
+            else:
+                self.internal_clash.append((j, d0, gap))
+        fs = np.zeros(n)  # static joint forces on the nodes (seat, groove, spring ends)
+        fs[[self.i_seat, self.i_groove, self.i_top, self.i_bot]] = [F0, -F0, F0, -F0]
+        for a, b, _, _, Qs in self.clash:
             fs[a] -= Qs
             fs[b] += Qs
         self.f_static = fs
-        self._init_contact(tribology, self.c_bend)  # camshaft bending in series
+        # camshaft bending in series with the contact
+        self._init_contact(tribology, 0.0 if cs is None else cs.bending_compliance)
 
     compilable = False  # no compiled right-hand side (solve_ivp path)
 
@@ -223,12 +208,12 @@ class FlexibleValvetrainModel(CamContactModel):
                 elems.append((gv, *joint_slopes(k, c, d, dd, F, gg, dg)))
             return F
 
-        i_u, i_t, i_s, i_g = self.i_under, self.i_tip, self.i_seat, self.i_groove
-        Ftv = joint(
-            i_u,
-            i_t,
-            ql[i_u] - ql[i_t] - p.lash,
-            vl[i_u] - vl[i_t],
+        i_s, i_g = self.i_seat, self.i_groove
+        Ftv = joint(  # tappet face – valve groove
+            i_f,
+            i_g,
+            ql[i_f] - ql[i_g] - p.lash,
+            vl[i_f] - vl[i_g],
             self.k_tv,
             p.tappet_valve_damping,
             0.0,
@@ -256,7 +241,7 @@ class FlexibleValvetrainModel(CamContactModel):
         Fsp = joint(i_bot, None, ql[i_bot] + self.d_sp, vl[i_bot], ksp, self.beta_s * ksp, self.F0)
         sp = self.flex.spring
         cdamp = sp.clash_damping
-        for a, b, _, d0, g, Qs in self.clash:
+        for a, b, d0, g, Qs in self.clash:
             ov = d0 + ql[a] - ql[b] - g
             Q, dQ = sp.clash_force(ov)
             dd = vl[a] - vl[b]
@@ -329,7 +314,7 @@ class FlexibleValvetrainModel(CamContactModel):
         def pot(k, d, d0):
             return 0.5 * k * (max(d, 0.0) ** 2 - max(d0, 0.0) ** 2)
 
-        U += pot(self.k_tv, q[self.i_under] - q[self.i_tip] - p.lash, -p.lash)
+        U += pot(self.k_tv, q[self.i_face] - q[self.i_groove] - p.lash, -p.lash)
         U += pot(self.flex.valve.seat_stiffness, self.d_seat - q[self.i_seat], self.d_seat)
         U += pot(p.spring_seat_stiffness, q[self.i_groove] - q[self.i_top] + self.d_ss, self.d_ss)
         U += pot(p.spring_support_stiffness, q[self.i_bot] + self.d_sp, self.d_sp)
@@ -340,7 +325,7 @@ class FlexibleValvetrainModel(CamContactModel):
         def clash_pot(ov):  # ∫ Q dδ, Q = (δ/C)^(1/e)
             return 0.0 if ov <= 0.0 else (ov / c) ** (1.0 / e) * ov * e / (1.0 + e)
 
-        for a, b, _, d0, g, _ in self.clash:
+        for a, b, d0, g, _ in self.clash:
             U += clash_pot(d0 + q[a] - q[b] - g) - clash_pot(d0 - g)
         return T, U
 
@@ -352,7 +337,7 @@ class FlexibleValvetrainModel(CamContactModel):
             return -math.inf
         U = self.bodies["spring"].T @ np.asarray(Y)[self.gmap["spring"]]
         worst = -math.inf
-        for j in self.internal_clash:
-            ov = self.static_compressions[j] + U[j] - U[j + 1] - self.spring_gaps[j]
+        for j, d0, g in self.internal_clash:
+            ov = d0 + U[j] - U[j + 1] - g
             worst = max(worst, float(np.max(ov)))
         return worst

@@ -162,11 +162,6 @@ class HelicalSpring(ModalBody):
         """Mass of the active coils [kg]."""
         return self.wire_mass_per_coil * self.active_coils
 
-    @property
-    def dead_coil_mass(self) -> float:
-        """Mass of the dead coils at one end [kg]."""
-        return self.wire_mass_per_coil * self.dead_coils
-
     def surge_frequency(self, n: int = 1) -> float:
         """Continuum surge frequency (n/2)√(k/m) of the fixed–fixed spring [Hz]."""
         return 0.5 * n * math.sqrt(self.rate / self.active_mass)
@@ -216,10 +211,6 @@ class HelicalSpring(ModalBody):
             self._derived["el"] = (k, m, g, math.pi * self.mean_diameter / e)
         return self._derived["el"]
 
-    @property
-    def n_elements(self) -> int:
-        return self._elements()[0].size
-
     def _chain(self, k) -> AxialFEModel:
         """Axial FE chain of the elements with stiffnesses ``k`` [N/m] and the elements'
         masses: nodes 0 (retainer end, "top") … N (head end, "bottom"); element masses
@@ -233,10 +224,10 @@ class HelicalSpring(ModalBody):
         return model
 
     def fe_model(self) -> AxialFEModel:
-        """Axial FE model (:meth:`_chain`), the moving dead coil's mass on node 0."""
+        """Axial FE model (:meth:`_chain`), the moving dead coils' mass (one end) on node 0."""
         model = self._chain(self._elements()[0])
         if self.dead_coils > 0.0:
-            model.mass(0, self.dead_coil_mass)
+            model.mass(0, self.wire_mass_per_coil * self.dead_coils)
         return model
 
     def clash_force(self, overlap: float) -> tuple[float, float]:
@@ -272,7 +263,7 @@ class HelicalSpring(ModalBody):
     def statics(self, compression: float) -> SpringStatics:
         """Static force and element compressions at a total compression [m]."""
         if compression <= 0.0:
-            n = self.n_elements
+            n = self._elements()[0].size
             return SpringStatics(0.0, np.zeros(n), np.zeros(n, bool))
         k, _, g, _ = self._elements()
         n = k.size
@@ -304,14 +295,11 @@ class HelicalSpring(ModalBody):
         """Installed force F₀ [N]."""
         return self.statics(self.installed_compression).force
 
-    def closing_forces(self) -> np.ndarray:
-        """Static spring force at which each element closes [N] (k_e g_e)."""
-        k, _, g, _ = self._elements()
-        return k * g
-
     def clash_nodes(self, max_force: float) -> list[int]:
-        """Nodes of the elements that may close up to clash_margin × max_force."""
-        close = np.nonzero(self.closing_forces() <= self.clash_margin * max_force)[0]
+        """Nodes of the elements that may close up to clash_margin × max_force (an element
+        closes at the static spring force k_e g_e)."""
+        k, _, g, _ = self._elements()
+        close = np.nonzero(k * g <= self.clash_margin * max_force)[0]
         return sorted({int(j) for j in close} | {int(j) + 1 for j in close})
 
     def surge_frequencies(self, compression: float, count: int = 3) -> np.ndarray:

@@ -182,7 +182,7 @@ def corrected_jump_speed_estimate(
     ev = s > 10e-6
     if not ev.any():
         raise InputError("the cam has no lift event")
-    m_e = params.tappet_mass + params.valve_mass + params.spring_mass / 3.0
+    m_e = params.effective_mass
     spring = params.spring_preload + params.spring_rate * s[ev]
     dec = np.clip(-s2[ev], 0.0, None)  # |s''| where the cam decelerates the follower
 

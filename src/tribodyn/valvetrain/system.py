@@ -8,7 +8,7 @@ integrates, samples, balances and scans for events without knowing which model i
 Implementations: :class:`~tribodyn.valvetrain.model.ValvetrainModel` (lumped masses,
 :class:`~tribodyn.valvetrain.parameters.ValvetrainParameters`) and
 :class:`~tribodyn.valvetrain.flexible_model.FlexibleValvetrainModel` (Craig–Bampton
-bodies, :class:`~tribodyn.valvetrain.flexible.FlexibleValvetrain`). :func:`make_system`
+bodies, :class:`~tribodyn.valvetrain.flexible.FlexibleValvetrain`). :func:`system_class`
 asks each registered class whether it ``handles`` the parameter object, so a new model is
 one class plus one entry in :data:`SYSTEMS`.
 """
@@ -25,7 +25,7 @@ from .flexible_model import FlexibleValvetrainModel
 from .model import ValvetrainModel
 from .tribology import TribologyModel
 
-__all__ = ["ValvetrainSystem", "SystemClass", "SYSTEMS", "make_system"]
+__all__ = ["ValvetrainSystem", "SystemClass", "SYSTEMS", "system_class"]
 
 
 @runtime_checkable
@@ -96,7 +96,7 @@ class ValvetrainSystem(Protocol):
 
 
 class SystemClass(Protocol):
-    """A valvetrain model class as :func:`make_system` uses it: ``PARAMS`` (the parameter
+    """A valvetrain model class as :func:`system_class` returns it: ``PARAMS`` (the parameter
     class it is built from), ``handles(params)`` and the constructor."""
 
     @property
@@ -115,20 +115,15 @@ class SystemClass(Protocol):
     ) -> ValvetrainSystem: ...
 
 
-#: The valvetrain models, asked in this order by :func:`make_system`.
+#: The valvetrain models, asked in this order by :func:`system_class`.
 SYSTEMS: list[SystemClass] = [ValvetrainModel, FlexibleValvetrainModel]
 
 
-def make_system(
-    cam: CamProfile,
-    params: Any,
-    cam_speed: float,
-    tribology: TribologyModel,
-    start_angle: float = 0.0,
-) -> ValvetrainSystem:
-    """The valvetrain model that handles ``params`` (see :data:`SYSTEMS`)."""
+def system_class(params: Any) -> SystemClass:
+    """The valvetrain model class that handles ``params`` (see :data:`SYSTEMS`), called
+    as ``cls(cam, params, cam_speed, tribology, start_angle=…)``."""
     for cls in SYSTEMS:
         if cls.handles(params):
-            return cls(cam, params, cam_speed, tribology, start_angle=start_angle)
+            return cls
     names = " or a ".join(c.PARAMS.__name__ for c in SYSTEMS)
     raise InputError(f"params must be a {names} (got {type(params).__name__})")

@@ -31,6 +31,7 @@ from __future__ import annotations
 import math
 from abc import ABC, abstractmethod
 from types import MappingProxyType
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -177,7 +178,7 @@ class AnalyticTribology(TribologyModel):
         self.limiting_shear = limiting_shear
 
     @property
-    def kwargs(self) -> MappingProxyType[str, object]:
+    def kwargs(self) -> MappingProxyType[str, Any]:
         """The keyword arguments passed to ``analytic_contact`` (read-only)."""
         return MappingProxyType(
             {
@@ -202,11 +203,7 @@ class AnalyticTribology(TribologyModel):
                 self.bodies,
                 self.lubricant,
                 self.roughness,
-                boundary_shear_coefficient=self.boundary_shear_coefficient,
-                boundary_shear_strength=self.boundary_shear_strength,
-                viscous_model=self.viscous_model,
-                limiting_shear=self.limiting_shear,
-                film_formula=self.film_formula,
+                **self.kwargs,
             )
         if self.roughness is not None:
             far = np.asarray(c.central_film) > 38.0 * self.roughness.rms
@@ -443,7 +440,8 @@ class FilmStateTribology(TribologyModel):
         self._zero = np.zeros(t.size)
         self._eta = float(lubricant.viscosity)
         self._alpha = float(lubricant.pressure_viscosity)
-        self._sq = 3.0 * np.sqrt(2.0) * np.pi * self._eta * self.width
+        # squeeze coefficient 3√2 π η₀ L = D h^1.5/R^1.5 (squeeze_film_load at h = V = R = 1)
+        self._sq = float(squeeze_film_load(1.0, 1.0, 1.0, self._eta)) * self.width
 
     def friction(self, t, force, entrainment_speed, sliding_speed, radius):
         return self.friction_model.friction(t, force, entrainment_speed, sliding_speed, radius)

@@ -17,6 +17,7 @@ from scipy import linalg
 
 from ..._validation import InputError
 from ...physics.elasticity import influence_coefficients
+from ...physics.hertz import hertz_line_contact
 from ...physics.regimes import hamrock_groups, moes_central
 from .options import Conditions, ContactModel, EHLOptions
 
@@ -54,7 +55,7 @@ def _length_scale(cond: Conditions, model: ContactModel, squeeze_film=None):
     when u_e ≈ 0)."""
     w, R, e = cond.load, cond.radius, model.e_bulk
     lub = model.lubricant
-    b = math.sqrt(8.0 * w * R / (math.pi * e))
+    b = hertz_line_contact(w, R, e).half_width
     u = max(abs(cond.entrainment_speed), 1e-3)
     W, U, G = hamrock_groups(w, R, u, lub.viscosity, lub.pressure_viscosity, e)
     h_est = float(moes_central(W, U, G, R))

@@ -318,7 +318,7 @@ class TransientEHL:
         if self._grid is None:
             raise InputError("TransientEHL needs start_steady() or start_film() before step()")
         cond = Conditions.checked(load, radius, entrainment_speed, sliding_speed)
-        saved = self._snapshot()
+        saved = self.checkpoint()
         c0 = self.conditions_before if self.conditions_before is not None else cond
         marks = self._load_marks(c0.load, cond.load)
         if len(marks) > 1:  # a large load change: follow its ramp
@@ -428,8 +428,10 @@ class TransientEHL:
         self._h0, self._levels, self.time = snap.h0, snap.levels, snap.time
         self._lu, self.result = snap.lu, snap.result
 
-    def _snapshot(self) -> MarchState:
-        """The state before a step, remembering that step's starting conditions."""
+    def checkpoint(self) -> MarchState:
+        """An opaque copy of the marching state (for :meth:`rollback`), e.g. to redo a step
+        with sub-steps when a time-error estimate is too large; the state before a step,
+        remembering that step's starting conditions (``conditions_before``)."""
         r = self.result
         self.conditions_before = (
             None
@@ -437,11 +439,6 @@ class TransientEHL:
             else Conditions(r.load, r.radius, r.entrainment_speed, r.sliding_speed)
         )
         return self._state()
-
-    def checkpoint(self):
-        """An opaque copy of the marching state (for :meth:`rollback`), e.g. to redo a step
-        with sub-steps when a time-error estimate is too large."""
-        return self._snapshot()
 
     def rollback(self, checkpoint):
         """Return to a state saved by :meth:`checkpoint`."""

@@ -39,6 +39,7 @@ import math
 
 import numpy as np
 
+from ...physics.hertz import hertz_line_contact
 from .options import ContactModel, EHLResult
 
 __all__ = [
@@ -90,7 +91,7 @@ def check_solution(res: EHLResult, model: ContactModel) -> EHLResult:
         return res
     R, w, hc = res.radius, res.load, res.central_film
     lub = model.lubricant
-    b = math.sqrt(8.0 * w * R / (math.pi * model.e_bulk))
+    b = hertz_line_contact(w, R, model.e_bulk).half_width
     ell = max(b, math.sqrt(2.0 * R * max(hc, 0.0)))
     found = []
     eps = hc / ell if ell > 0 else math.inf
