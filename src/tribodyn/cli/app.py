@@ -15,6 +15,7 @@ from .contact import ContactCommand, contact_command
 from .engine import engine_command
 from .export import export_command
 from .figures import FiguresCommand, figures_command
+from .heap import skip_collections_at_exit
 from .run import RunCommand, run_command
 from .sweep import sweep_command
 from .topography import TopographyCommand, topography_command
@@ -77,5 +78,9 @@ _command("engine", engine_command)
 _command("view", view_command)
 
 
-def main():  # pragma: no cover
-    app()
+def main() -> None:
+    """The ``tribodyn`` command (console script, ``python -m tribodyn``): the application,
+    in a process that skips the interpreter's collections at exit
+    (:func:`~tribodyn.cli.heap.skip_collections_at_exit`)."""
+    skip_collections_at_exit()
+    app(prog_name="tribodyn")

@@ -20,6 +20,7 @@ from rich.table import Table
 from .._validation import InputError
 from ..physics.limits import WORKERS
 from .failure import dask_client, fail
+from .heap import long_lived_heap
 from .help_defaults import stating
 
 __all__ = ["run_command", "RunCommand"]
@@ -277,6 +278,7 @@ def _run(
             disable=quiet,
             transient=False,
         ) as bar,
+        long_lived_heap() as keep,  # the imports and the case: out of full collections
     ):
         executor = None
         if client is not None:
@@ -313,6 +315,7 @@ def _run(
             fail(console, exc, code=1, label="study failed")
         stop_if_terminated()  # a signal lost in a callback: nothing is written
         ahead.join()
+        keep()  # the writing's modules too
         if "dyn" in tasks:
             bar.update(tasks["dyn"], completed=1)
         t_write = bar.add_task("figures and report" if figures else "report", total=1)
