@@ -162,17 +162,10 @@ def _local_pool(workers: int | None) -> ProcessPoolExecutor:
 
 
 def _pass_task(built: BuiltCase, name: str, inputs):
-    """EHL along the cycle for one surface set (a picklable top-level task; the reference
-    set's pass, which the coupling and its stresses wait for)."""
+    """EHL along the cycle for one surface set (a picklable top-level task, which the
+    set's stresses and, for the reference set, the coupling wait for)."""
     with single_blas_thread():
         return ehl_for_set(built, built.set(name).surface, inputs)
-
-
-def _set_task(built: BuiltCase, name: str, inputs, stresses: bool = True):
-    """EHL along the cycle for one surface set, then (with ``stresses``) its stresses
-    (:func:`_stress_task`). Returns (SetCycleResult, stresses or None)."""
-    res = _pass_task(built, name, inputs)
-    return res, _stress_task(built, name, inputs, res) if stresses else None
 
 
 def _coupling_task(built: BuiltCase, name: str, dynamics, inputs, first):
@@ -224,30 +217,29 @@ def study_tasks(
 ) -> list[Task]:
     """The study's task graph, declared once, in order of priority: the coupling chain of
     the reference set (its EHL pass, then the implicit iterations on it: the longest
-    chain, so first), the EHL pass and stresses of every other set, the reference set's
-    stresses (on its pass, beside the iterations), the single-contact studies and the
-    passes of the EHL variant (:func:`~tribodyn.cycle.methods.study_variant`). Given the dynamics and the
-    cycle's samples only the coupling and the reference's stresses wait for a result
-    (the reference pass, ``Task.after``). Keys: ``"pass:<reference>"``, ``"coupling"``,
-    ``"set:<name>"``, ``"stress:<reference>"``, ``"coating"``, ``"thermal:<name>"``.
-    ``friction_only``: the EHL passes (and the variant's) of every set alone,
-    ``"set:<name>"`` for the reference set too."""
+    chain, so first), the EHL passes of the other sets, the stresses of every set (each
+    waiting for its pass, ``Task.after``: the short tasks last, so that the workers end
+    together), the single-contact studies and the passes of the EHL variant
+    (:func:`~tribodyn.cycle.methods.study_variant`). Keys: ``"pass:<reference>"``,
+    ``"coupling"``, ``"set:<name>"`` (the other sets' passes), ``"stress:<name>"``,
+    ``"coating"``, ``"thermal:<name>"``. ``friction_only``: the EHL passes (and the
+    variant's) of every set alone, ``"set:<name>"`` for the reference set too."""
     if friction_only:
-        tasks = [
-            Task(f"set:{name}", _set_task, (built, name, inputs, False)) for name in built.sets
-        ]
+        tasks = [Task(f"set:{name}", _pass_task, (built, name, inputs)) for name in built.sets]
     else:
-        first = f"pass:{reference}"
-        tasks = [
-            Task(first, _pass_task, (built, reference, inputs)),
-            Task("coupling", _coupling_task, (built, reference, dynamics, inputs), after=first),
-        ]
+        passes = {reference: f"pass:{reference}"}  # the pass's key of each set
+        passes.update({name: f"set:{name}" for name in built.sets if name != reference})
+        tasks = [Task(key, _pass_task, (built, name, inputs)) for name, key in passes.items()]
+        tasks.insert(
+            1,
+            Task(
+                "coupling", _coupling_task, (built, reference, dynamics, inputs), passes[reference]
+            ),
+        )
         tasks += [
-            Task(f"set:{name}", _set_task, (built, name, inputs))
-            for name in built.sets
-            if name != reference
+            Task(f"stress:{name}", _stress_task, (built, name, inputs), key)
+            for name, key in passes.items()
         ]
-        tasks.append(Task(f"stress:{reference}", _stress_task, (built, reference, inputs), first))
         tasks.append(Task("coating", coating_studies_task, (built, reference, nose, paper_studies)))
     return tasks + study_variant(built).tasks(built, inputs)
 
@@ -374,12 +366,10 @@ def run_cycle_study(
         kind, _, name = key.partition(":")
         if kind == "coupling":
             coupling = result
-        elif kind == "pass":
+        elif kind in ("pass", "set"):
             results[name] = result
         elif kind == "stress":
             stresses[name] = result
-        elif kind == "set":
-            results[name], stresses[name] = result
         elif kind in variant.kinds:
             own[key] = result
         else:
