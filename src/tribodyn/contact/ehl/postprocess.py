@@ -21,6 +21,10 @@ against their relative sliding) plus F_R against the entrainment. F_R converges 
 slowly with the inlet extent than the load (the integrand decays as x⁻², the pressure as
 |x|⁻³), so the part beyond the cut inlet is added from the far field,
 (h/2)|dp/dx| |x_in| at the inlet node.
+
+The stresses are those of ``physics.friction``'s laws; the integrals (pairwise sums, as
+NumPy's), extrema, meniscus and inlet estimates are one compiled pass over the nodes
+(:func:`.post_kernels.solution_integrals`).
 """
 
 from __future__ import annotations
@@ -90,7 +94,7 @@ def postprocess(
         )
     else:
         tau_b = _NONE
-    direction = int(np.sign(g.direction))
+    direction = (g.direction > 0) - (g.direction < 0)  # the sign
     # one pass over the nodes: the sums, the extrema, the outlet meniscus (first
     # zero-pressure node, up to round-off, downstream of the peak; p ∝ (x_c − x)² near a
     # Reynolds boundary, so √p is extrapolated linearly to zero) and the inlet's shares
