@@ -158,9 +158,9 @@ def solution_integrals(x, p, h, pa, tau, tau_b, dx, direction, zero_share):
     """One pass over a solution on a uniform grid (spacing ``dx`` [m]; ``direction`` of
     the entrainment ±1, 0 for a symmetric domain): (Σ|τ|, Σ(h/2) dp/dx, Σp, Σp_a, Σ τ_b
     [sums, times dx the integrals], the far-field rolling share (h/2)|dp/dx| |x_in| at
-    the inlet node (0 if ``direction`` is 0), index of h_min, index of the peak pressure, the outlet
-    meniscus x_c (NaN if none), whether p and h are finite, and the inlet load deficit
-    |dp/dx| x_e²/2 summed over the inlet ends [N/m]).
+    the inlet node (0 if ``direction`` is 0), index of h_min, index of the peak
+    pressure, the outlet meniscus x_c (NaN if none), whether p and h are finite, and the
+    inlet load deficit |dp/dx| x_e²/2 summed over the inlet ends [N/m]).
 
     dp/dx: central differences, one-sided at the ends (as ``np.gradient``). The meniscus
     is searched downstream of the peak (``direction`` ≥ 0: towards +x) for the first
