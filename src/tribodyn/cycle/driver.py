@@ -32,6 +32,7 @@ import numpy as np
 
 from ..config.build import as_built, options_for
 from ..contact.ehl import EHLOptions, EHLResult, TransientEHL
+from ..contact.ehl.post_kernels import abs_sum
 from ..contact.ehl.postprocess import shear_stress
 from ..physics.asperity import Roughness
 from ..physics.limits import unchecked
@@ -247,7 +248,10 @@ class CycleMethod(ABC):
         them), on the uniform grid of ``r``."""
         shear = self.law_shear(stepper, r)
         dx = r.x[1] - r.x[0]
-        return {law: float(np.sum(np.abs(shear(law)))) * dx for law in ("newtonian", "eyring")}
+        return {
+            law: abs_sum(np.asarray(shear(law), dtype=float)) * dx
+            for law in ("newtonian", "eyring")
+        }
 
     @abstractmethod
     def law_shear(self, stepper: Any, r: EHLResult) -> Callable[[str], np.ndarray]:

@@ -21,6 +21,10 @@ against their relative sliding) plus F_R against the entrainment. F_R converges 
 slowly with the inlet extent than the load (the integrand decays as x⁻², the pressure as
 |x|⁻³), so the part beyond the cut inlet is added from the far field,
 (h/2)|dp/dx| |x_in| at the inlet node.
+
+The stresses are those of ``physics.friction``'s laws; the integrals (pairwise sums, as
+NumPy's), extrema, meniscus and inlet estimates are one compiled pass over the nodes
+(:func:`.post_kernels.solution_integrals`).
 """
 
 from __future__ import annotations
@@ -36,6 +40,7 @@ from ...physics.friction import (
 )
 from .newton import ROUND_OFF_PRESSURE, NewtonOutcome
 from .options import EHLOptions, EHLResult
+from .post_kernels import solution_integrals
 from .reynolds import ReynoldsSystem
 from .validity import check_solution
 
@@ -43,6 +48,8 @@ __all__ = ["postprocess", "shear_stress"]
 
 #: films below this [m] are taken at this value in the friction integrals
 _H_FLOOR = 1e-10
+#: the boundary shear stress of a contact without roughness (no nodes)
+_NONE = np.empty(0)
 
 
 def shear_stress(
@@ -80,57 +87,34 @@ def postprocess(
     pa = (st.Pa if st.Pa is not None else sysm.asperity(st.H)[0]) * sysm.p_ref
     dx = g.dX * g.a
     tau = shear_stress(p, h, us, lub, opts.viscous_model, opts.limiting_shear)
-    dpdx = np.gradient(p, dx)
-    f_visc = float(np.sum(np.abs(tau)) * dx)
-    # signed: the Hertzian rise and fall cancel (not ∫(h/2)|dp/dx|, 3–11× too large)
-    f_roll = float(np.sum(0.5 * h * dpdx) * dx) * (-1.0 if ue < 0.0 else 1.0)
-    if g.direction != 0:
-        # the cut inlet's share: far upstream h ≈ x²/2R and p ∝ |x|⁻³, so (h/2)dp/dx ∝ x⁻²
-        # and ∫ beyond x_in = (h/2)|dp/dx| |x_in| at the inlet node (8 % of F_R on the
-        # rigid isoviscous cylinder at the default domain, against 0.5 % of the load)
-        e = 0 if g.direction > 0 else g.n - 1
-        nb = e + 1 if e == 0 else e - 1
-        f_roll += 0.5 * h[e] * abs(p[nb] - p[e]) / dx * abs(x[e])
     if rough is not None:
         area = rough.contact_area_fraction(h, tabulated=True)
-        f_b = float(
-            np.sum(
-                boundary_shear_stress(
-                    pa, area, opts.boundary_shear_coefficient, opts.boundary_shear_strength
-                )
-            )
-            * dx
+        tau_b = boundary_shear_stress(
+            pa, area, opts.boundary_shear_coefficient, opts.boundary_shear_strength
         )
     else:
-        f_b = 0.0
-    i_min = int(np.argmin(h))
-    # outlet meniscus: first zero-pressure node (up to round-off) downstream of the peak;
-    # p ∝ (x_c − x)² near a Reynolds boundary, so √p is extrapolated linearly to zero
-    direction = 1 if g.direction >= 0 else -1
-    ipk = int(np.argmax(p))
-    zero = ROUND_OFF_PRESSURE * float(p[ipk])
-    x_cav = float("nan")
-    idx = np.arange(ipk, g.n) if direction > 0 else np.arange(ipk, -1, -1)
-    zeros = np.flatnonzero(p[idx[1:]] <= zero)
-    if zeros.size:
-        k = int(zeros[0]) + 1
-        j1, j2 = idx[k - 1], idx[k - 2] if k >= 2 else idx[k - 1]
-        s1, s2 = math.sqrt(p[j1]), math.sqrt(max(p[j2], 0.0))
-        if s2 > s1 > 0 and j1 != j2:
-            x_cav = float(x[j1] + (x[j1] - x[j2]) * s1 / (s2 - s1))
-        else:
-            x_cav = float(x[idx[k]])
-    if not (np.all(np.isfinite(p)) and np.all(np.isfinite(h)) and np.isfinite(f_visc)):
+        tau_b = _NONE
+    direction = (g.direction > 0) - (g.direction < 0)  # the sign
+    # one pass over the nodes: the sums, the extrema, the outlet meniscus (first
+    # zero-pressure node, up to round-off, downstream of the peak; p ∝ (x_c − x)² near a
+    # Reynolds boundary, so √p is extrapolated linearly to zero) and the inlet's shares
+    s_tau, s_roll, s_p, s_pa, s_b, roll_in, i_min, ipk, x_cav, finite, deficit = solution_integrals(
+        x, p, h, pa, tau, tau_b, dx, direction, ROUND_OFF_PRESSURE
+    )
+    f_visc = float(s_tau * dx)
+    # signed: the Hertzian rise and fall cancel (not ∫(h/2)|dp/dx|, 3–11× too large)
+    f_roll = float(s_roll * dx) * (-1.0 if ue < 0.0 else 1.0)
+    # the cut inlet's share (roll_in): far upstream h ≈ x²/2R and p ∝ |x|⁻³, so
+    # (h/2)dp/dx ∝ x⁻² and ∫ beyond x_in = (h/2)|dp/dx| |x_in| at the inlet node (8 % of
+    # F_R on the rigid isoviscous cylinder at the default domain, against 0.5 % of the load)
+    f_roll += roll_in
+    f_b = float(s_b * dx) if rough is not None else 0.0
+    if not (finite and math.isfinite(f_visc)):
         ok = False
         msg = "non-finite solution: " + msg
-    # load lost to the truncated inlet: |dp/dx| x_in²/2 at the inlet node (exact for the
-    # far field p ∝ |x|⁻³; on the rigid isoviscous cylinder it predicts the loss within
-    # 5 %); warn at twice the tolerance the domain was sized for
-    deficit = 0.0
-    ends = {1: [0], -1: [g.n - 1], 0: [0, g.n - 1]}[int(np.sign(g.direction))]
-    for e in ends:
-        nb = e + 1 if e == 0 else e - 1
-        deficit += abs(p[nb] - p[e]) / dx * x[e] ** 2 / 2.0
+    # load lost to the truncated inlet (deficit): |dp/dx| x_in²/2 at the inlet node (exact
+    # for the far field p ∝ |x|⁻³; on the rigid isoviscous cylinder it predicts the loss
+    # within 5 %); warn at twice the tolerance the domain was sized for
     deficit /= w
     warns = []
     if ok and deficit > 2.0 * opts.inlet_truncation:
@@ -139,7 +123,7 @@ def postprocess(
             "(lower inlet_truncation or increase inlet)"
         )
     out_end = g.n - 2 if g.direction > 0 else 1
-    if ok and g.direction != 0 and p[out_end] > 1e-3 * p.max():
+    if ok and g.direction != 0 and p[out_end] > 1e-3 * p[ipk]:
         warns.append("pressure not negligible at the outlet (increase outlet)")
     msg += "".join(f"; warning: {t}" for t in warns)
     res = EHLResult(
@@ -153,8 +137,8 @@ def postprocess(
         cavitation_position=x_cav,
         rigid_approach=float(st.H0 * sysm.h_ref),
         load=w,
-        hydrodynamic_load=float(np.sum(p) * dx),
-        asperity_load=float(np.sum(pa) * dx),
+        hydrodynamic_load=float(s_p * dx),
+        asperity_load=float(s_pa * dx),
         viscous_friction=f_visc,
         rolling_friction=f_roll,
         boundary_friction=f_b,

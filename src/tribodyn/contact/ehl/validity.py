@@ -41,6 +41,7 @@ import numpy as np
 
 from ...physics.hertz import hertz_line_contact
 from .options import ContactModel, EHLResult
+from .post_kernels import validity_stats
 
 __all__ = [
     "check_solution",
@@ -61,26 +62,29 @@ MAX_MODIFIED_REYNOLDS = 0.1
 MAX_PRESSURE = 4e9
 
 
-def _load_zone(x: np.ndarray, q: np.ndarray) -> float:
-    """Largest |x| of the zone holding the central 98 % of ∫q dx [m]."""
-    c = np.cumsum(np.clip(q, 0.0, None))
-    if c[-1] <= 0.0 or not np.isfinite(c[-1]):
-        return 0.0
-    lo, hi = np.searchsorted(c, [0.01 * c[-1], 0.99 * c[-1]])
-    hi = min(hi, x.size - 1)
-    return float(max(abs(x[lo]), abs(x[hi])))
+#: the load-carrying zone holds the central 98 % of ∫(p + p_a) dx
+_ZONE_SHARES = (0.01, 0.99)
+
+
+def _array(a) -> np.ndarray:
+    return np.ascontiguousarray(a, dtype=float)
 
 
 def check_solution(res: EHLResult, model: ContactModel) -> EHLResult:
     """Flag ``res`` (in place, and returned): non-positive or non-finite film →
     ``converged=False``; outside the model's validity → a warning (module docstring)."""
-    h = np.asarray(res.film, dtype=float)
-    if not np.all(np.isfinite(h)):
+    finite, h_min, zone, p_max = validity_stats(
+        _array(res.x),
+        _array(res.film),
+        _array(res.pressure),
+        _array(res.asperity_pressure),
+        *_ZONE_SHARES,
+    )
+    if not finite:
         if res.converged:
             res.message = "non-finite film: " + res.message
         res.converged = False
         return res
-    h_min = float(h.min())
     if h_min <= 0.0:
         res.converged = False
         res.message = (
@@ -101,7 +105,6 @@ def check_solution(res: EHLResult, model: ContactModel) -> EHLResult:
             f"over which it varies (ℓ = {ell:.3g} m): Reynolds' thin-film "
             f"approximation needs h/ℓ ≪ 1 (flagged above {MAX_ASPECT_RATIO:g})"
         )
-    zone = _load_zone(res.x, res.pressure + res.asperity_pressure)
     size = max(zone, b)
     if size > MAX_ZONE_TO_RADIUS * R:
         found.append(
@@ -116,7 +119,6 @@ def check_solution(res: EHLResult, model: ContactModel) -> EHLResult:
             "inertia, neglected by the Reynolds equation, is not negligible "
             f"(flagged above {MAX_MODIFIED_REYNOLDS:g})"
         )
-    p_max = float(np.max(res.pressure + res.asperity_pressure))
     if p_max > MAX_PRESSURE:
         found.append(
             f"peak contact pressure {p_max / 1e9:.3g} GPa exceeds "
