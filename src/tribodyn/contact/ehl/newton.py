@@ -27,7 +27,7 @@ from .kernels import (
     row_scale,
     step_motion,
 )
-from .newton_kernels import all_finite, given_active_set, iterate_terms
+from .newton_kernels import all_finite, given_active_set, iterate_terms, trial_point
 from .reynolds import Linearization, ReynoldsSystem
 
 __all__ = [
@@ -384,7 +384,7 @@ def newton(
             step = 1.0
             ref = max(history[-_NONMONOTONE:])
             for _ in range(30):
-                Qn = Q + step * dQ
+                Qn = trial_point(Q, dQ, step)
                 H0n = H0 + step * dH0
                 evn = sysm.evaluate(Qn, H0n)
                 mn = merit(evn.P, evn.R, evn.load, c)

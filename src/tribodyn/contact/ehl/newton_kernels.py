@@ -12,7 +12,7 @@ from numba import njit
 
 from .kernels import cavitated_nodes, merit, row_scale
 
-__all__ = ["iterate_terms", "given_active_set", "all_finite"]
+__all__ = ["iterate_terms", "given_active_set", "all_finite", "trial_point"]
 
 _OPTS = dict(cache=True, nogil=True, fastmath=False)
 
@@ -57,3 +57,13 @@ def all_finite(v):
         if not np.isfinite(x):
             return False
     return True
+
+
+@njit(**_OPTS)
+def trial_point(Q, dQ, step):
+    """Q + step·δQ (a line search's trial iterate), as NumPy forms it: the product, then
+    the sum."""
+    out = np.empty(Q.size)
+    for i in range(Q.size):
+        out[i] = Q[i] + step * dQ[i]
+    return out
