@@ -70,11 +70,13 @@ _MAX_KRYLOV_TWO_GRID = 200
 
 
 class Factorization(NamedTuple):
-    """LU factors of a Newton matrix (``lu_factor``'s ``fac``, ``piv``), also GMRES's
+    """LU factors of a Newton matrix (``lu_factor``'s ``fac``, ``piv``, and ``piv1`` =
+    piv + 1, LAPACK's 1-based pivots as the compiled GMRES reads them), also GMRES's
     preconditioner."""
 
     fac: np.ndarray
     piv: np.ndarray
+    piv1: np.ndarray
 
 
 def _factor(lin: Linearization, dtype) -> Factorization | None:
@@ -91,7 +93,7 @@ def _factor(lin: Linearization, dtype) -> Factorization | None:
             return None
     elif not np.isfinite(fac).all():
         return None
-    return Factorization(fac, piv)
+    return Factorization(fac, piv, piv + 1)
 
 
 def _fresh_solve(lin: Linearization, rtol) -> tuple[Factorization | None, np.ndarray | None]:
@@ -114,7 +116,7 @@ def _fresh_solve(lin: Linearization, rtol) -> tuple[Factorization | None, np.nda
 
 def _lu_solver(lu: Factorization):
     """v ↦ LU⁻¹ v (LAPACK getrs, no wrapper) with the factors of ``lu``."""
-    fac, piv = lu
+    fac, piv = lu.fac, lu.piv
     getrs = _SGETRS if fac.dtype == np.float32 else _GETRS
     return lambda v: getrs(fac, piv, v.astype(fac.dtype))[0].astype(float)
 
@@ -132,7 +134,7 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
     or (None, its)."""
     max_it = max_it or _MAX_KRYLOV
     if isinstance(lu, Factorization):  # compiled, dense-product grids
-        out = lin.gmres_lu(lu.fac, lu.piv, rtol, max_it)
+        out = lin.gmres_lu(lu.fac, lu.piv1, rtol, max_it)
         if out is not None:
             return out
     b = lin.rhs
