@@ -27,6 +27,7 @@ from .kernels import (
     row_scale,
     step_motion,
 )
+from .newton_kernels import all_finite, given_active_set, iterate_terms, trial_point
 from .reynolds import Linearization, ReynoldsSystem
 
 __all__ = [
@@ -69,11 +70,13 @@ _MAX_KRYLOV_TWO_GRID = 200
 
 
 class Factorization(NamedTuple):
-    """LU factors of a Newton matrix (``lu_factor``'s ``fac``, ``piv``), also GMRES's
+    """LU factors of a Newton matrix (``lu_factor``'s ``fac``, ``piv``, and ``piv1`` =
+    piv + 1, LAPACK's 1-based pivots as the compiled GMRES reads them), also GMRES's
     preconditioner."""
 
     fac: np.ndarray
     piv: np.ndarray
+    piv1: np.ndarray
 
 
 def _factor(lin: Linearization, dtype) -> Factorization | None:
@@ -90,7 +93,7 @@ def _factor(lin: Linearization, dtype) -> Factorization | None:
             return None
     elif not np.isfinite(fac).all():
         return None
-    return Factorization(fac, piv)
+    return Factorization(fac, piv, piv + 1)
 
 
 def _fresh_solve(lin: Linearization, rtol) -> tuple[Factorization | None, np.ndarray | None]:
@@ -113,7 +116,7 @@ def _fresh_solve(lin: Linearization, rtol) -> tuple[Factorization | None, np.nda
 
 def _lu_solver(lu: Factorization):
     """v ↦ LU⁻¹ v (LAPACK getrs, no wrapper) with the factors of ``lu``."""
-    fac, piv = lu
+    fac, piv = lu.fac, lu.piv
     getrs = _SGETRS if fac.dtype == np.float32 else _GETRS
     return lambda v: getrs(fac, piv, v.astype(fac.dtype))[0].astype(float)
 
@@ -131,7 +134,7 @@ def gmres(lin: Linearization, lu, rtol, max_it=None):
     or (None, its)."""
     max_it = max_it or _MAX_KRYLOV
     if isinstance(lu, Factorization):  # compiled, dense-product grids
-        out = lin.gmres_lu(lu.fac, lu.piv, rtol, max_it)
+        out = lin.gmres_lu(lu.fac, lu.piv1, rtol, max_it)
         if out is not None:
             return out
     b = lin.rhs
@@ -328,16 +331,17 @@ def newton(
     (the usual a-posteriori estimate of a quadratically converging Newton iteration, cf.
     Deuflhard, *Newton Methods for Nonlinear Problems*, Springer 2004; it saves the
     iteration that would only confirm convergence)."""
-    g = sysm.g
+    i0 = sysm.g.i0
+    elastic = sysm.kcoef is not None
+    kc = sysm.kcoef if elastic else _NO_COEF
 
-    def merit_of(ev, c=None):
-        """|Φ|² + load²; the scale c is frozen within a line search (c=given)."""
-        c = jacobi_scale(sysm, ev) if c is None else c
-        return merit(ev.P, ev.R, ev.load, c), c
+    def terms(ev):
+        """(c, |Φ|² + load², cavitated set) at an iterate (c frozen within a line search)."""
+        return iterate_terms(ev.AP, ev.AH, ev.dpa, kc, elastic, ev.P, ev.R, ev.load)
 
     Q, H0 = st.Q.copy(), st.H0
     ev = sysm.evaluate(Q, H0)
-    m0, c = merit_of(ev)
+    c, m0, cav_std = terms(ev)
     msg = "maximum iterations reached"
     ok = False
     prev_cav, release, release_cap = None, 1, 1 << 30
@@ -346,15 +350,13 @@ def newton(
     upd_prev = None
     it = 0
     for it in range(1, max_iter + 1):
-        cav_std = cavitated_nodes(ev.P, ev.R, c)
         first: tuple = ()  # active sets tried before the standard one
         if release > 1:
             first = (_release(cav_std, prev_cav, release),)
         elif it == 1 and st.cav is not None and st.cav.shape == cav_std.shape:
             # the given set where the asperities carry the pressure (_ASPERITY_SHARE)
-            given = np.where(ev.pa > _ASPERITY_SHARE * np.max(Q), st.cav, cav_std)
-            given[0] = given[-1] = False
-            if np.any(given != cav_std):
+            given, differs = given_active_set(ev.pa, Q, _ASPERITY_SHARE, st.cav, cav_std)
+            if differs:
                 first = (given,)
         gmres_tol = min(_GMRES_TOL_MAX, max(_GMRES_TOL, math.sqrt(max(m0, 0.0))))
         accepted = False
@@ -377,18 +379,18 @@ def newton(
                 if lu is None or delta is None:
                     continue
                 fresh_lu = True
-            if not np.all(np.isfinite(delta)):
+            if not all_finite(delta):
                 lu = None
                 continue
             dQ, dH0 = delta[:-1], delta[-1]
             step = 1.0
+            ref = max(history[-_NONMONOTONE:])
             for _ in range(30):
-                Qn = Q + step * dQ
+                Qn = trial_point(Q, dQ, step)
                 H0n = H0 + step * dH0
                 evn = sysm.evaluate(Qn, H0n)
-                mn, _ = merit_of(evn, c)
-                ref = max(history[-_NONMONOTONE:])
-                if np.isfinite(mn) and (
+                mn = merit(evn.P, evn.R, evn.load, c)
+                if math.isfinite(mn) and (
                     mn <= (1.0 - 1e-4 * step) * ref
                     or (step == 1.0 and watchdog > 0 and mn <= _WATCHDOG * ref)
                 ):
@@ -418,8 +420,8 @@ def newton(
         else:
             release = 1
         prev_cav = cav_std
-        upd = step * max(du / max(qn, 1e-30), abs(dH0) / max(abs(evn.H[g.i0]), 1e-30))
-        m0, c = merit_of(evn)  # re-scale at the accepted point
+        upd = step * max(du / max(qn, 1e-30), abs(dH0) / max(abs(evn.H[i0]), 1e-30))
+        c, m0, cav_std = terms(evn)  # re-scale at the accepted point
         Q, H0, ev = Qn, H0n, evn
         history.append(m0)
         res = math.sqrt(max(m0, 0.0))

@@ -273,19 +273,20 @@ class Linearization:
         )
         return out
 
-    def gmres_lu(self, fac, piv, rtol, max_it):
+    def gmres_lu(self, fac, piv1, rtol, max_it):
         """Compiled GMRES (:func:`.kernels.gmres_lu`) for this system with the LU
-        (``fac``, ``piv``) of an earlier Newton matrix as preconditioner; None where the
-        products need the DC-FFT operator (no dense K on this grid) or the factors are not
-        LAPACK's column-major double- or single-precision ones of this system's size with
-        32-bit pivots (the kernel reads them by pointer)."""
+        (``fac``, ``piv1``: ``lu_factor``'s factors and its pivots + 1, LAPACK's 1-based
+        ones) of an earlier Newton matrix as preconditioner; None where the products need
+        the DC-FFT operator (no dense K on this grid) or the factors are not LAPACK's
+        column-major double- or single-precision ones of this system's size with 32-bit
+        pivots (the kernel reads them by pointer)."""
         m = self.n + 1
         if not (
             fac.dtype in (np.float64, np.float32)
             and fac.shape == (m, m)
             and fac.flags.f_contiguous
-            and piv.dtype == np.int32
-            and piv.shape == (m,)
+            and piv1.dtype == np.int32
+            and piv1.shape == (m,)
         ):
             return None
         if not (self.rigid or self.sysm.g.has_dense):
@@ -298,11 +299,11 @@ class Linearization:
             SYMV,
             system,
             fac,
-            piv + 1,
+            piv1,
             self.rhs,
             float(rtol),
             int(max_it),
-        )  # piv + 1: LAPACK's 1-based pivots
+        )
         return (x if ok else None), its
 
     def dense_column_major(self, dtype=np.float64):
