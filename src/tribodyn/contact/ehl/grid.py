@@ -82,9 +82,12 @@ def auto_nodes(length=None, s=None) -> int:
     return N_AUTO
 
 
-def layout(cond: Conditions, model: ContactModel, opts: EHLOptions, squeeze_film=None) -> Layout:
+def layout(
+    cond: Conditions, model: ContactModel, opts: EHLOptions, squeeze_film=None, n=None
+) -> Layout:
     """The grid :class:`Layout` for these conditions (``squeeze_film``: a film [m] the
-    estimate must not fall below, for squeeze films near u_e = 0)."""
+    estimate must not fall below, for squeeze films near u_e = 0; ``n``: the node count,
+    None: the options' or the automatic one)."""
     try:
         a, b, h_est = _length_scale(cond, model, squeeze_film)
         s = math.sqrt(2.0 * cond.radius * h_est)
@@ -99,7 +102,8 @@ def layout(cond: Conditions, model: ContactModel, opts: EHLOptions, squeeze_film
             "lubricant and these bodies; use values nearer an ordinary contact"
         )
     length = up + (down if cond.entrainment_speed != 0.0 else up)
-    n = int(opts.n) if opts.n is not None else auto_nodes(length, s)
+    if n is None:
+        n = int(opts.n) if opts.n is not None else auto_nodes(length, s)
     return Layout(a, b, h_est, up / a, down / a, n)
 
 
