@@ -134,3 +134,14 @@ def test_committed_level_equals_the_lubricants_methods(oil):
     for got, ref in zip(out, (q, p, h, oil.density_at(p) * h)):
         np.testing.assert_array_equal(got, ref, strict=True)
     assert hc == float(np.interp(0.0, x, h))
+
+
+def test_bdf_history_equals_numpy():
+    n = 385
+    f1, f2 = 850.0 * RNG.uniform(1e-7, 1e-5, n), 850.0 * RNG.uniform(1e-7, 1e-5, n)
+    for r in (1.0, 0.37, 2.9):
+        a0, a1, a2 = (1 + 2 * r) / (1 + r), -(1 + r), r * r / (1 + r)
+        scale = 850.0 * 3.1e-7
+        ref = -(a1 * f1 + a2 * f2) / a0 / scale
+        out = mk.bdf_history(f1, f2, a0, a1, a2, scale, np.empty(n))
+        np.testing.assert_array_equal(out, ref, strict=True)

@@ -20,6 +20,7 @@ __all__ = [
     "interp_sorted",
     "committed_level",
     "rebased_history",
+    "bdf_history",
     "extrapolated_pressure",
     "predicted_cavitation",
 ]
@@ -106,6 +107,16 @@ def rebased_history(x, x_old, f_old, rho0, r_old, xe2_lo, xe2_hi, rebase, out):
         elif v > hi:
             out[i] = f_old[f_old.size - 1] + rho0 * (x2 - xe2_hi) / two_r
         out[i] = out[i] + rho0 * x2 * rebase
+    return out
+
+
+@njit(**_OPTS)
+def bdf_history(f1, f2, a0, a1, a2, scale, out):
+    """The old levels' term of the variable-step BDF2 derivative, in place:
+    f_old = −(a₁ f₁ + a₂ f₂)/a₀ / ``scale`` (f₁, f₂ the last two levels' ρh on the new
+    grid; ``scale`` ρ₀ h_ref makes it the scaled ρ̄H of :mod:`.reynolds`)."""
+    for i in range(f1.size):
+        out[i] = -(a1 * f1[i] + a2 * f2[i]) / a0 / scale
     return out
 
 

@@ -16,6 +16,7 @@ from ...physics.lubricant import Lubricant
 from ...physics.materials import BodyPair
 from .grid import Grid, layout
 from .march_kernels import (
+    bdf_history,
     committed_level,
     extrapolated_pressure,
     interp_point,
@@ -463,14 +464,19 @@ class TransientEHL:
         R = cond.radius
         f1 = self._old_on(grid, 0, R)
         lv = self._levels
-        if self.opts.time_order == 2 and len(lv) == 2 and lv[0].dt is not None:
+        bdf2 = self.opts.time_order == 2 and len(lv) == 2 and lv[0].dt is not None
+        if bdf2:
             r = dt / lv[0].dt
             a0, a1, a2 = (1 + 2 * r) / (1 + r), -(1 + r), r * r / (1 + r)
-            f_eff = -(a1 * f1 + a2 * self._old_on(grid, 1, R)) / a0
         else:
-            a0, f_eff = 1.0, f1
+            a0 = 1.0
         sysm, ctx = self._prepare(grid, cond, a0 / dt)
-        sysm.f_old = f_eff / (sysm.lub.density * sysm.h_ref)
+        scale = sysm.lub.density * sysm.h_ref  # ρh → scaled ρ̄H
+        if bdf2:
+            f2 = self._old_on(grid, 1, R)
+            sysm.f_old = bdf_history(f1, f2, a0, a1, a2, scale, f1)
+        else:
+            sysm.f_old = f1 / scale
         st0 = self._predict(sysm, dt)
         sol = self._solve(sysm, ctx, st0, dt, self._lu if same else None)
         self._lu = sol.lu
