@@ -145,3 +145,13 @@ def test_bdf_history_equals_numpy():
         ref = -(a1 * f1 + a2 * f2) / a0 / scale
         out = mk.bdf_history(f1, f2, a0, a1, a2, scale, np.empty(n))
         np.testing.assert_array_equal(out, ref, strict=True)
+
+
+def test_symmetric_toeplitz_equals_scipy():
+    from scipy import linalg
+
+    for n in (1, 2, 7, 385):
+        c = RNG.normal(size=n)
+        K = mk.symmetric_toeplitz(c, np.empty((n, n)))
+        np.testing.assert_array_equal(K, linalg.toeplitz(c), strict=True)
+        assert K.flags.c_contiguous

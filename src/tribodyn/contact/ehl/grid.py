@@ -13,12 +13,12 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import linalg
 
 from ..._validation import InputError
 from ...physics.elasticity import influence_coefficients
 from ...physics.hertz import hertz_line_contact
 from ...physics.regimes import hamrock_groups, moes_central
+from .march_kernels import symmetric_toeplitz
 from .options import Conditions, ContactModel, EHLOptions
 
 __all__ = ["Layout", "Grid", "layout", "N_MAX_AUTO", "N_AUTO", "N_DENSE"]
@@ -149,7 +149,8 @@ class Grid:
     def K(self):
         """Dense influence matrix [m/Pa] (built on first use: only LU paths need it)."""
         if self.elastic and self._K is None:
-            self._K = linalg.toeplitz(self.coef)
+            assert self.coef is not None  # an elastic grid has its coefficients
+            self._K = symmetric_toeplitz(self.coef, np.empty((self.n, self.n)))
         return self._K
 
     @property

@@ -1,6 +1,7 @@
 """Compiled kernels of the transient march between its Newton solves (numba): the
-committed level's arrays, the BDF history moved onto a new grid and the predictor's
-extrapolated pressure and cavitated set (:mod:`.transient`).
+committed level's arrays, the BDF history moved onto a new grid, the predictor's
+extrapolated pressure and cavitated set (:mod:`.transient`) and a new grid's dense
+influence matrix (:mod:`.grid`).
 
 Each kernel performs, node by node, the same floating-point operations in the same order
 as the NumPy expressions it replaces (linear interpolation as ``numpy.interp``, the
@@ -23,6 +24,7 @@ __all__ = [
     "bdf_history",
     "extrapolated_pressure",
     "predicted_cavitation",
+    "symmetric_toeplitz",
 ]
 
 _OPTS = dict(cache=True, nogil=True, fastmath=False)
@@ -148,4 +150,17 @@ def predicted_cavitation(p1, p0, q1, ratio, share, out):
     limit = share * peak
     for i in range(p1.size):
         out[i] = p1[i] + ratio * (p1[i] - p0[i]) <= limit
+    return out
+
+
+@njit(**_OPTS)
+def symmetric_toeplitz(c, out):
+    """The symmetric Toeplitz matrix K[i, j] = c[|i − j|] into ``out`` (n × n, n = c.size):
+    the dense influence matrix of a uniform grid from its coefficients."""
+    n = c.size
+    for i in range(n):
+        for j in range(i):
+            out[i, j] = c[i - j]
+        for j in range(i, n):
+            out[i, j] = c[j - i]
     return out
