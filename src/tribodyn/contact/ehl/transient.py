@@ -288,9 +288,9 @@ class TransientEHL:
         r = self.result
         lv = self._levels
         assert self._grid is not None and self._q is not None  # started
-        last = state_from_dimensional  # the last level on the new grid, where needed
+        last = (self._grid.x, self._q, self._h0)  # the last level (on the new grid if used)
         if r is None or not r.converged or len(lv) < 2 or lv[0].dt is None:
-            return last(sysm, self._grid.x, self._q, self._h0)
+            return state_from_dimensional(sysm, *last)
         ratio = dt / lv[0].dt
         # the total pressure extrapolated linearly in time …
         xg = sysm.g.x
@@ -302,7 +302,7 @@ class TransientEHL:
             q /= sysm.p_ref
             st = State(q, self._h0 / sysm.h_ref)
         else:
-            st = last(sysm, self._grid.x, self._q, self._h0)
+            st = state_from_dimensional(sysm, *last)
             st.Q = st.Q * (sysm.cond.load / r.load)
         if all(v.x is xg or np.array_equal(v.x, xg) for v in lv[:2]):
             # … and Newton starts from the cavitated nodes of the fluid pressure
