@@ -26,7 +26,7 @@ import re
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, ClassVar, Protocol
+from typing import Any, ClassVar, NamedTuple, Protocol
 
 import numpy as np
 
@@ -75,8 +75,7 @@ _GUESS_KEEP = 1.5
 COUPLING_TIME_TOL = 5e-3
 
 
-@dataclass(frozen=True)
-class _FilmLevel:
+class _FilmLevel(NamedTuple):
     """An accepted level of the march for the time-error estimate."""
 
     time: float  #: [s]
@@ -149,11 +148,11 @@ class _Marcher:
         return r
 
     def _error(self, t, h) -> float:
-        lv = [(v.time, v.central_film) for v in self.levels]
-        if not (np.isfinite(h) and h > 0.0):
-            return np.inf
+        if not (math.isfinite(h) and h > 0.0):
+            return math.inf
+        lv = self.levels
         if len(lv) == 1:
-            return abs(h - lv[0][1]) / (2.0 * h)
+            return abs(h - lv[0].central_film) / (2.0 * h)
         if len(lv) == 2:
             (t1, h1), (t0, h0) = lv
             pred = h1 + (t - t1) / (t1 - t0) * (h1 - h0)

@@ -13,12 +13,12 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import linalg
 
 from ..._validation import InputError
 from ...physics.elasticity import influence_coefficients
 from ...physics.hertz import hertz_line_contact
 from ...physics.regimes import hamrock_groups, moes_central
+from .march_kernels import symmetric_toeplitz
 from .options import Conditions, ContactModel, EHLOptions
 
 __all__ = ["Layout", "Grid", "layout", "N_MAX_AUTO", "N_AUTO", "N_DENSE"]
@@ -82,9 +82,12 @@ def auto_nodes(length=None, s=None) -> int:
     return N_AUTO
 
 
-def layout(cond: Conditions, model: ContactModel, opts: EHLOptions, squeeze_film=None) -> Layout:
+def layout(
+    cond: Conditions, model: ContactModel, opts: EHLOptions, squeeze_film=None, n=None
+) -> Layout:
     """The grid :class:`Layout` for these conditions (``squeeze_film``: a film [m] the
-    estimate must not fall below, for squeeze films near u_e = 0)."""
+    estimate must not fall below, for squeeze films near u_e = 0; ``n``: the node count,
+    None: the options' or the automatic one)."""
     try:
         a, b, h_est = _length_scale(cond, model, squeeze_film)
         s = math.sqrt(2.0 * cond.radius * h_est)
@@ -99,7 +102,8 @@ def layout(cond: Conditions, model: ContactModel, opts: EHLOptions, squeeze_film
             "lubricant and these bodies; use values nearer an ordinary contact"
         )
     length = up + (down if cond.entrainment_speed != 0.0 else up)
-    n = int(opts.n) if opts.n is not None else auto_nodes(length, s)
+    if n is None:
+        n = int(opts.n) if opts.n is not None else auto_nodes(length, s)
     return Layout(a, b, h_est, up / a, down / a, n)
 
 
@@ -145,7 +149,8 @@ class Grid:
     def K(self):
         """Dense influence matrix [m/Pa] (built on first use: only LU paths need it)."""
         if self.elastic and self._K is None:
-            self._K = linalg.toeplitz(self.coef)
+            assert self.coef is not None  # an elastic grid has its coefficients
+            self._K = symmetric_toeplitz(self.coef, np.empty((self.n, self.n)))
         return self._K
 
     @property

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from contextlib import contextmanager
-from dataclasses import astuple, dataclass, replace
+from dataclasses import astuple, dataclass
 
 import numpy as np
 
@@ -15,6 +15,14 @@ from ...physics.limits import EHL_NODES_TRANSIENT, MAX_SUBSTEPS, RangeError, unc
 from ...physics.lubricant import Lubricant
 from ...physics.materials import BodyPair
 from .grid import Grid, layout
+from .march_kernels import (
+    bdf_history,
+    committed_level,
+    extrapolated_pressure,
+    interp_point,
+    predicted_cavitation,
+    rebased_history,
+)
 from .newton import ROUND_OFF_PRESSURE, NewtonOutcome, State, newton
 from .options import Conditions, ContactModel, EHLOptions, EHLResult, with_overrides
 from .postprocess import postprocess
@@ -222,10 +230,9 @@ class TransientEHL:
     def _make_grid(self, cond: Conditions, film) -> Grid:
         """The current grid while it still fits the contact (see :data:`GRID_SLACK`), else
         a new one with :data:`GRID_MARGIN` (keeping a grid keeps its factorisation)."""
-        lay = layout(cond, self.model, self.opts, squeeze_film=film)
-        if self._n_event is not None:
-            lay = replace(lay, n=self._n_event)
-        direction = int(np.sign(cond.entrainment_speed))
+        lay = layout(cond, self.model, self.opts, squeeze_film=film, n=self._n_event)
+        ue = cond.entrainment_speed
+        direction = (ue > 0.0) - (ue < 0.0)
         g = self._grid
         if g is not None and g.covers(lay, direction, GRID_SLACK):
             return g
@@ -235,18 +242,21 @@ class TransientEHL:
         if st.P is None:
             ev = sysm.evaluate(st.Q, st.H0)
             st.P, st.H = ev.P, ev.H
-        self._q = st.Q * sysm.p_ref
-        self._p = st.P * sysm.p_ref
-        self._h = st.H * sysm.h_ref
+        x, lub, n = sysm.g.x, sysm.lub, sysm.g.n
+        self._q, self._p, self._h, rho_h = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+        if isinstance(lub, Lubricant):  # ρ(p) through the compiled law
+            law = lub.rheology_law
+            args = (sysm.p_ref, sysm.h_ref, x, law, lub.density, self._q, self._p, self._h)
+            hc = committed_level(st.Q, st.P, st.H, *args, rho_h)
+        else:  # a lubricant with per-node properties
+            np.multiply(st.Q, sysm.p_ref, out=self._q)
+            np.multiply(st.P, sysm.p_ref, out=self._p)
+            np.multiply(st.H, sysm.h_ref, out=self._h)
+            np.multiply(lub.density_at(self._p), self._h, out=rho_h)
+            hc = interp_point(0.0, x, self._h)
         self._h0 = st.H0 * sysm.h_ref
         level = Level(
-            x=sysm.g.x,
-            rho_h=sysm.lub.density_at(self._p) * self._h,
-            q=self._q,
-            central_film=float(np.interp(0.0, sysm.g.x, self._h)),
-            dt=dt,
-            radius=sysm.cond.radius,
-            p=self._p,
+            x=x, rho_h=rho_h, q=self._q, central_film=hc, dt=dt, radius=sysm.cond.radius, p=self._p
         )
         self._levels = (level, *self._levels[:1])
         self._grid = sysm.g
@@ -263,52 +273,51 @@ class TransientEHL:
         and elastic deformation but gets the new parabola. Outside the old domain the old
         film is continued with that parabola (ambient density)."""
         lv = self._levels[k]
-        x_old, f_old, R_old = lv.x, lv.rho_h, lv.radius
-        x = grid.x
-        f = np.interp(x, x_old, f_old)
-        rho0 = self.lub.density
-        for side, idx in ((x < x_old[0], 0), (x > x_old[-1], -1)):
-            if np.any(side):
-                xe = x_old[idx]
-                f[side] = f_old[idx] + rho0 * (x[side] ** 2 - xe**2) / (2.0 * R_old)
+        x_old, R_old = lv.x, lv.radius
         # the density varies little where the parabola matters (low pressure): use ρ₀
-        return f + rho0 * x**2 * (0.5 / R_new - 0.5 / R_old)
+        xe2 = (x_old[0] ** 2, x_old[-1] ** 2)
+        rebase = 0.5 / R_new - 0.5 / R_old
+        args = (self.lub.density, R_old, *xe2, rebase, np.empty(grid.n))
+        return rebased_history(grid.x, x_old, lv.rho_h, *args)
 
-    def _predict(self, sysm: ReynoldsSystem, st: State, dt) -> State:
+    def _predict(self, sysm: ReynoldsSystem, dt) -> State:
         """Newton start for the next level: the total pressure extrapolated linearly from
         the last two levels and scaled to the new load (after a start: the last pressure
         scaled), and h₀ such that the central film continues linearly from the last two
-        levels."""
+        levels; else (no history) the last level as it is."""
         r = self.result
         lv = self._levels
+        assert self._grid is not None and self._q is not None  # started
+        last = (self._grid.x, self._q, self._h0)  # the last level (on the new grid if used)
         if r is None or not r.converged or len(lv) < 2 or lv[0].dt is None:
-            return st
+            return state_from_dimensional(sysm, *last)
         ratio = dt / lv[0].dt
         # the total pressure extrapolated linearly in time …
         xg = sysm.g.x
-        a1 = np.interp(xg, lv[0].x, lv[0].q, 0.0, 0.0)
-        a0 = np.interp(xg, lv[1].x, lv[1].q, 0.0, 0.0)
-        q = np.maximum(a1 + ratio * (a1 - a0), 0.0)
+        q = extrapolated_pressure(xg, lv[0].x, lv[0].q, lv[1].x, lv[1].q, ratio, np.empty(xg.size))
         w = float(np.sum(q) * (xg[1] - xg[0]))
         # … carrying the new load (else the last pressure scaled)
-        st.Q = (
-            q * (sysm.cond.load / w) / sysm.p_ref if w > 0.0 else st.Q * (sysm.cond.load / r.load)
-        )
-        p1, p0 = lv[0].p, lv[1].p
-        if all(np.array_equal(v.x, xg) for v in lv[:2]):
+        if w > 0.0:
+            q *= sysm.cond.load / w
+            q /= sysm.p_ref
+            st = State(q, self._h0 / sysm.h_ref)
+        else:
+            st = state_from_dimensional(sysm, *last)
+            st.Q = st.Q * (sysm.cond.load / r.load)
+        if all(v.x is xg or np.array_equal(v.x, xg) for v in lv[:2]):
             # … and Newton starts from the cavitated nodes of the fluid pressure
             # extrapolated alike on the same grid (zero up to round-off of the total
             # pressure): Q − Pa(H) of the predicted Q is the small difference of two large
             # ones where the asperities carry the load, its cavitation boundary far from
             # the solution's (see docs/convergence.md)
-            peak = float(np.max(np.abs(lv[0].q)))
-            st.cav = p1 + ratio * (p1 - p0) <= ROUND_OFF_PRESSURE * peak
+            cav = np.empty(xg.size, dtype=np.bool_)
+            st.cav = predicted_cavitation(lv[0].p, lv[1].p, lv[0].q, ratio, ROUND_OFF_PRESSURE, cav)
         hc1, hc0 = lv[0].central_film, lv[1].central_film
         hc = hc1 + ratio * (hc1 - hc0)
         if not hc > 0.0:
             return st
         H = sysm.film(st.Q, 0.0)
-        st.H0 = hc / sysm.h_ref - float(np.interp(0.0, sysm.g.X, H))
+        st.H0 = hc / sysm.h_ref - interp_point(0.0, sysm.g.X, H)
         return st
 
     @one_blas_thread
@@ -447,29 +456,32 @@ class TransientEHL:
     def _advance(self, dt, cond: Conditions) -> EHLResult:
         """One implicit time level: grid, BDF coefficients, predictor, then the
         variant's hooks :meth:`_prepare`, :meth:`_solve`, :meth:`_result`."""
-        prev_grid = self._grid
-        assert prev_grid is not None and self._h is not None and self._q is not None  # started
-        hc_prev = float(np.interp(0.0, prev_grid.x, self._h))
+        assert self._grid is not None and self._levels  # started
+        hc_prev = self._levels[0].central_film
         grid = self._make_grid(cond, hc_prev)
-        same = grid is prev_grid
+        same = grid is self._grid
         # variable-step BDF for d(ρh)/dt: (a0 f_n + a1 f_{n-1} + a2 f_{n-2})/dt
         R = cond.radius
         f1 = self._old_on(grid, 0, R)
         lv = self._levels
-        if self.opts.time_order == 2 and len(lv) == 2 and lv[0].dt is not None:
+        bdf2 = self.opts.time_order == 2 and len(lv) == 2 and lv[0].dt is not None
+        if bdf2:
             r = dt / lv[0].dt
             a0, a1, a2 = (1 + 2 * r) / (1 + r), -(1 + r), r * r / (1 + r)
-            f_eff = -(a1 * f1 + a2 * self._old_on(grid, 1, R)) / a0
         else:
-            a0, f_eff = 1.0, f1
+            a0 = 1.0
         sysm, ctx = self._prepare(grid, cond, a0 / dt)
-        sysm.f_old = f_eff / (sysm.lub.density * sysm.h_ref)
-        st0 = self._predict(sysm, state_from_dimensional(sysm, prev_grid.x, self._q, self._h0), dt)
+        scale = sysm.lub.density * sysm.h_ref  # ρh → scaled ρ̄H
+        if bdf2:
+            f2 = self._old_on(grid, 1, R)
+            sysm.f_old = bdf_history(f1, f2, a0, a1, a2, scale, f1)
+        else:
+            sysm.f_old = f1 / scale
+        st0 = self._predict(sysm, dt)
         sol = self._solve(sysm, ctx, st0, dt, self._lu if same else None)
         self._lu = sol.lu
         self._commit(sysm, sol.state, dt, self.time + dt)
-        assert self._h is not None  # set by _commit
-        hc_new = float(np.interp(0.0, grid.x, self._h))
+        hc_new = self._levels[0].central_film
         res = self._result(sysm, ctx, sol, -(hc_new - hc_prev) / dt)
         self.result = res
         return res
