@@ -147,6 +147,11 @@ class SubsurfaceStress:
 #: (consecutive groups from the first)
 SCALE_GROUP = 8
 
+#: largest single-precision spectra of the samples that :meth:`StressOperator.peaks_batch`
+#: transforms and searches together [bytes] (with their fields, a few MB: within the
+#: processor's cache; the results do not depend on it)
+CHUNK_BYTES = 2**20
+
 
 def _group_scale(pressure: np.ndarray, traction: np.ndarray) -> np.ndarray:
     """Per sample (row) the largest |p|, |q| [Pa] of its group of :data:`SCALE_GROUP`
@@ -406,18 +411,26 @@ class StressOperator:
         that a sample's result does not depend on how many are passed at once); the
         fields are formed and searched by compiled loops
         (:func:`.stress_kernels._peak_search`) without storing the von Mises and
-        principal-stress fields."""
-        n, nf = self.n, self._nfft
+        principal-stress fields, a few samples at a time (:meth:`_chunk`), so that their
+        spectra and fields stay in the processor's cache between the steps."""
+        nf = self._nfft
         scale = _group_scale(pressure, traction)[:, None]
         P = sp_fft.rfft((pressure / scale).astype(np.float32), n=nf, axis=-1)
         Q = sp_fft.rfft((traction / scale).astype(np.float32), n=nf, axis=-1)
         scale = scale[:, 0]
         if self._transfer32 is None:
             self._transfer32 = self._transfer.astype(np.complex64)
-        f = sp_fft.irfft(_load_spectra(self._transfer32, P, Q), n=nf, axis=-1)  # in `scale`
-        nu, interface, rows_of = self._search_rows
-        val, row, col = _peak_search(f, nu, self._in_coating, n, self.depths.size, interface)
         ns = pressure.shape[0]
+        val = np.empty((ns, 6), dtype=np.float32)
+        row = np.empty((ns, 6), dtype=np.int64)
+        col = np.empty((ns, 6), dtype=np.int64)
+        # (σ_xx, σ_zz, σ_xz) of every depth row at the node of the substrate's peak
+        column = np.empty((ns, self._z.size, 3, 1), dtype=np.float32)
+        step = self._chunk
+        for c0 in range(0, ns, step):
+            sl = slice(c0, c0 + step)
+            val[sl], row[sl], col[sl], column[sl, ..., 0] = self._search_chunk(P[sl], Q[sl])
+        _, _, rows_of = self._search_rows
         out = {}
         for k, name in enumerate(PEAKS):
             if not np.any(rows_of[k]):
@@ -429,7 +442,7 @@ class StressOperator:
             if k < 2:  # von Mises: the square root of the searched square
                 v = np.sqrt(v)
             if k == 1:
-                v, zr = self._refine_depth(f, nu, row[:, k], col[:, k], v, zr, rows_of[k])
+                v, zr = self._refine_depth(column, row[:, k], v, zr, rows_of[k])
             out[name] = (v * scale, x0 + col[:, k] * self.dx, zr)
         return out
 
@@ -445,20 +458,42 @@ class StressOperator:
         rows_of = (coat, ~coat, every == nd, coat, at_interface, at_interface)
         return nu, interface, rows_of
 
-    def _refine_depth(self, f, nu, row, col, v, zr, rows):
+    @cached_property
+    def _chunk(self) -> int:
+        """Samples searched together by :meth:`peaks_batch`: their single-precision
+        spectra (depths × 3 × (nfft/2 + 1) × 8 bytes each) within :data:`CHUNK_BYTES`."""
+        per = self._z.size * 3 * (self._nfft // 2 + 1) * 8
+        return max(1, CHUNK_BYTES // per)
+
+    def _search_chunk(self, p_hat: np.ndarray, q_hat: np.ndarray) -> tuple:
+        """The peaks' values (squared for von Mises), depth rows and nodes (samples, 6)
+        of the load spectra ``p_hat``, ``q_hat`` (samples, nfft/2 + 1; scaled, single
+        precision), and the fields (samples, depth, 3) at the node of the substrate's
+        von Mises peak (for :meth:`_refine_depth`)."""
+        assert self._transfer32 is not None
+        g = _load_spectra(self._transfer32, p_hat, q_hat)
+        f = sp_fft.irfft(g, n=self._nfft, axis=-1, overwrite_x=True)
+        nu, interface, _ = self._search_rows
+        val, row, col = _peak_search(f, nu, self._in_coating, self.n, self.depths.size, interface)
+        return val, row, col, f[np.arange(f.shape[0]), :, :, col[:, 1]]
+
+    def _refine_depth(self, column, row, v, zr, rows):
         """An interior maximum of the von Mises stress between depth levels (``rows``,
         geometric below the coating): the parabola in ln z through the peak's level and
-        its neighbours at the peak's node, its vertex where it lies between them."""
+        its neighbours at the peak's node (``column``: the fields (samples, depth, 3, 1)
+        at that node), its vertex where it lies between them."""
         idx = np.flatnonzero(rows)
         nr = idx.size
         if nr < 3:
             return v, zr
+        nu = self._search_rows[0]
         zz = self._z[idx]
         r = np.searchsorted(idx, row)
         inner = (r > 0) & (r < nr - 1) & (zz[np.clip(r - 1, 0, nr - 1)] > 0)
         rm, rp = np.clip(r - 1, 0, nr - 1), np.clip(r + 1, 0, nr - 1)
-        vm_ = np.sqrt(_vm2_points(f, nu, idx[rm], col).astype(np.float64))
-        vp_ = np.sqrt(_vm2_points(f, nu, idx[rp], col).astype(np.float64))
+        at = np.zeros(row.size, dtype=np.int64)
+        vm_ = np.sqrt(_vm2_points(column, nu, idx[rm], at).astype(np.float64))
+        vp_ = np.sqrt(_vm2_points(column, nu, idx[rp], at).astype(np.float64))
         with np.errstate(divide="ignore", invalid="ignore"):
             lm = np.log(np.maximum(zz[rm], 1e-300)) - np.log(np.maximum(zr, 1e-300))
             lp = np.log(np.maximum(zz[rp], 1e-300)) - np.log(np.maximum(zr, 1e-300))
