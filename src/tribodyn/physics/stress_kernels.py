@@ -57,11 +57,9 @@ def _homogeneous_transfer(n: int, nf: int, z_rel: float) -> np.ndarray:
     offsets d = kΔ, k = −(n−1)…(n−1), in wrap-around order, on (σ_xx, σ_zz, σ_xz) for p
     and for q, in the order (xx_p, zz_p, xz_p, xx_q, zz_q, xz_q), at depth z = z_rel Δ.
     Offsets are scaled by Δ (the kernels are homogeneous of degree 0)."""
-    k = np.arange(-(n - 1), n, dtype=float)
-    fp = _second_antiderivatives(k + 1.0, z_rel)
-    f0 = _second_antiderivatives(k, z_rel)
-    fm = _second_antiderivatives(k - 1.0, z_rel)
-    i1, i2, i3, i4 = (a - 2.0 * b + c for a, b, c in zip(fp, f0, fm, strict=True))
+    # F at the integer offsets −n…n once; F(k + 1), F(k), F(k − 1) are its shifted slices
+    every = _second_antiderivatives(np.arange(-n, n + 1, dtype=float), z_rel)
+    i1, i2, i3, i4 = (f[2:] - 2.0 * f[1:-1] + f[:-2] for f in every)
     ker = -2.0 / math.pi * np.array([i3, i1, i2, i4, i2, i3])
     wrap = np.zeros((6, nf))
     wrap[:, :n] = ker[:, n - 1 :]
