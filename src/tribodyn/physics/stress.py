@@ -223,6 +223,11 @@ class StressOperator:
         self._transfer = self._build()
         self._transfer32: np.ndarray | None = None
 
+    @property
+    def transfer_bytes(self) -> int:
+        """Memory of the double-precision transfer functions [bytes]."""
+        return int(self._transfer.nbytes)
+
     def _periodic_length(self) -> int:
         """The least periodic length of the transforms: ≥ 2× the grid (zero padding) and,
         on a coated body, n + 32 h/dx (the layered correction's tail, on the scale h, then

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 import time as _time
+from collections import OrderedDict
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -201,6 +202,32 @@ _BATCH = 32
 _REL_DEPTHS = np.geomspace(2.0, 400.0, 16)
 
 
+#: stress operators kept in a process [bytes of transfer functions]: the surface sets of a
+#: case share bodies (the uncoated cam) and their class grids, so one set's operators serve
+#: the next (least recently used dropped first)
+_KEEP_BYTES = 2**27
+_OPERATORS: OrderedDict = OrderedDict()
+
+
+def _operator(n: int, dx: float, body, depths: np.ndarray) -> StressOperator:
+    """The :class:`StressOperator` of ``n`` nodes of spacing ``dx`` [m] for ``body`` at
+    ``depths`` [m], reused while kept (:data:`_KEEP_BYTES`)."""
+    key = (n, dx, body, depths.tobytes())
+    op = _OPERATORS.get(key)
+    if op is not None:
+        _OPERATORS.move_to_end(key)
+        return op
+    op = StressOperator(n, dx, body, depths)
+    _OPERATORS[key] = op
+    # the double- and single-precision transfers of each
+    while (
+        len(_OPERATORS) > 1
+        and 1.5 * sum(o.transfer_bytes for o in _OPERATORS.values()) > _KEEP_BYTES
+    ):
+        _OPERATORS.popitem(last=False)
+    return op
+
+
 def _evaluate(samples: np.ndarray, loads, pair, traces: dict) -> None:
     """Peaks of both bodies at the ``samples`` written into their ``traces``
     ({"cam"|"tappet": BodyStressTrace}) from ``loads`` (x, p, q_cam, q_tappet), arrays
@@ -258,7 +285,7 @@ def _evaluate(samples: np.ndarray, loads, pair, traces: dict) -> None:
                 hc = body.coating.thickness
                 # z = h itself is always evaluated (StressOperator: both sides)
                 z = np.concatenate([[0.5 * hc], z[z > hc]])
-            op = StressOperator(n, dxc, body, z)
+            op = _operator(n, dxc, body, z)
             tr = traces[name]
             for c0 in range(0, len(members), _BATCH):
                 sl = slice(c0, c0 + _BATCH)
