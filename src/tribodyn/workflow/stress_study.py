@@ -275,10 +275,9 @@ def _evaluate(samples: np.ndarray, loads, pair, traces: dict) -> None:
         qr = np.zeros((2, len(members), n))
         for j, r in enumerate(members):
             x = xs[r]
-            inside = xg[j] <= x[-1]
-            pr[j] = np.where(inside, np.interp(xg[j], x, ps[r]), 0.0)
+            pr[j] = np.interp(xg[j], x, ps[r], right=0.0)
             for body in range(2):
-                qr[body, j] = np.where(inside, np.interp(xg[j], x, qs[body][r]), 0.0)
+                qr[body, j] = np.interp(xg[j], x, qs[body][r], right=0.0)
         for j, (name, body) in enumerate((("cam", pair[0]), ("tappet", pair[1]))):
             z = dxc * _REL_DEPTHS
             if body.coating is not None:
