@@ -143,3 +143,37 @@ def test_layer_solutions_meet_the_boundary_conditions():
     np.testing.assert_allclose(ux_c / scale, ux_s / scale, atol=1e-11)
     np.testing.assert_allclose(uz_c / scale, uz_s / scale, atol=1e-11)
     assert np.all(np.isfinite(et))
+
+
+def test_a_sample_does_not_depend_on_the_chunk_it_is_searched_in(operator, monkeypatch):
+    import tribodyn.physics.stress as stress
+
+    p, q = loads(2 * SCALE_GROUP + 3, seed=3)
+    x0 = np.zeros(p.shape[0])
+    out = []
+    for size in (1, 2**40):  # one sample at a time, all at once
+        monkeypatch.setattr(stress, "CHUNK_BYTES", size)
+        op = StressOperator(N, DX, operator.body, operator.depths)
+        assert op._chunk == 1 if size == 1 else op._chunk >= p.shape[0]
+        out.append(op.peaks_batch(p, q, x0))
+    for name in PEAKS:
+        for a, b in zip(out[0][name], out[1][name], strict=True):
+            np.testing.assert_array_equal(a, b)
+
+
+def test_operators_are_kept_by_grid_body_and_depths(operator, monkeypatch):
+    import tribodyn.workflow.stress_study as study
+
+    monkeypatch.setattr(study, "_OPERATORS", type(study._OPERATORS)())
+    z = operator.depths
+    first = study._operator(N, DX, operator.body, z)
+    assert study._operator(N, DX, Body(STEEL, operator.body.coating), z.copy()) is first
+    other = study._operator(N, DX, operator.body, z[:-1])
+    assert other is not first and other.depths.size == z.size - 1
+    assert study._operator(N, 1.5 * DX, operator.body, z) is not first
+    # beyond the budget the least recently used goes first
+    monkeypatch.setattr(study, "_KEEP_BYTES", 2.5 * 1.5 * first.transfer_bytes)
+    study._operator(N, DX, operator.body, z)  # the first, now the most recent
+    study._operator(N, 2.0 * DX, operator.body, z)
+    kept = list(study._OPERATORS.values())
+    assert first in kept and other not in kept
