@@ -43,6 +43,7 @@ from .contact_law import (
     stamp_element,
     table_friction,
 )
+from .film_kernels import entraining_film_load as _entraining
 from .tribology import table_film
 
 __all__ = [
@@ -101,7 +102,6 @@ _NO = len(_OUT)
 
 _step = njit(**_OPTS)(smooth_step)
 _growth = njit(**_OPTS)(laws.limited_growth)
-_entraining = njit(**_OPTS)(laws.entraining_film_load)
 
 
 def _jit_calling(fn, **kernels):
