@@ -358,6 +358,17 @@ def _evaluate_many(T, Y, pa, kseg, cseg, im, S, S1, S2, ft, fh, fc, ff, th, tab,
     return res
 
 
+@njit(**_OPTS)
+def _lift_many(T, pa, S, S1, S2):
+    """The cam lift s [m] at the times T [s], as :func:`_evaluate` has it (θ = θ₀ + ωt);
+    ``pa`` as in :func:`_rhs`, (S, S1, S2) the cam table."""
+    par = pa[0]
+    s = np.empty(T.size)
+    for i in range(T.size):
+        s[i] = _cam(par.theta0 + par.w * T[i], par.theta0, S, S1, S2)[0]
+    return s
+
+
 class CompiledLumped:
     """The compiled form of one :class:`ValvetrainModel` (same equations and tables)."""
 
@@ -408,12 +419,13 @@ class CompiledLumped:
         self.model = model
         self.n = model.n
         self.flag = np.zeros(2)
+        self.cam_table = cam_table
         self.args = (
             np.array([par], dtype=_PARAMS),
             np.asarray(model.kseg, float),
             np.asarray(model.cseg, float),
             np.asarray(model.inv_mass, float),
-            *cam_table,
+            *self.cam_table,
             *(np.ascontiguousarray(a, dtype=float) for a in film),
             np.asarray(fr.th, float),
             np.asarray(fr.tab, float),
@@ -425,6 +437,10 @@ class CompiledLumped:
 
     def jac(self, t, y):
         return _jac(t, y, *self.args)
+
+    def lift(self, T) -> np.ndarray:
+        """The cam lift s [m] at times T [s] (the output ``s`` without the rest)."""
+        return _lift_many(np.asarray(T, float), self.args[0], *self.cam_table)
 
     def outputs(self, T, Y) -> dict:
         """Named outputs at times T [s] and states Y (columns)."""
