@@ -9,7 +9,7 @@ from scipy.integrate import solve_ivp
 
 from tribodyn.config import load_case
 from tribodyn.config.build import build
-from tribodyn.physics.film_state_laws import limited_growth
+from tribodyn.physics.film_state_laws import entraining_film_load, limited_growth
 from tribodyn.physics.lubricant import Lubricant
 from tribodyn.physics.materials import reduced_modulus
 from tribodyn.physics.regimes import hamrock_groups, moes_central
@@ -64,6 +64,29 @@ def test_unloaded_film_recovers_towards_the_supply_in_closed_form():
     exact = hs * np.tanh(math.atanh(math.sqrt(h0 / hs)) + c * t / (2.0 * math.sqrt(hs))) ** 2
     assert h[-1] > 0.9 * hs and np.all(np.diff(h) > 0.0)
     np.testing.assert_allclose(h, exact, rtol=1e-6)
+
+
+def test_steady_film_carries_the_force_by_the_entraining_law():
+    # the compiled bisection against the Python law it inverts: L w'_ent(h) = F to the
+    # bisection's resolution, h_s where F ≤ 0 or u_e = 0, and the input's shape kept
+    lub = Lubricant(viscosity=0.055, pressure_viscosity=1.05e-8)
+    hs = 10e-6
+    m = _film(lub=lub, hs=hs)
+    rng = np.random.default_rng(3)
+    F = 10.0 ** rng.uniform(0.0, 3.5, 60)
+    u = rng.uniform(-6.0, 6.0, 60)
+    radius = 10.0 ** rng.uniform(-3.0, -1.0, 60)
+    r = np.exp(rng.uniform(-0.6, 0.6, 60))
+    h = m.steady_film(0.0, F, u, radius, correction=r)
+    args = (lub.viscosity, lub.pressure_viscosity, E, hs)
+    for k in range(F.size):
+        w, _ = entraining_film_load(h[k], u[k], radius[k], *args, r[k])
+        assert L * w == pytest.approx(F[k], rel=1e-12)
+    assert m.steady_film(0.0, 0.0, 1.0, R) == hs and m.steady_film(0.0, 50.0, 0.0, R) == hs
+    grid = m.steady_film(0.0, F[:6].reshape(2, 3), u[:6].reshape(2, 3), R)
+    assert grid.shape == (2, 3)
+    assert np.array_equal(grid.ravel(), m.steady_film(0.0, F[:6], u[:6], R))
+    assert isinstance(m.steady_film(0.0, F[0], u[0], R), float)
 
 
 def test_steady_film_inverts_to_the_moes_film_in_the_elastic_piezoviscous_regime():
@@ -188,7 +211,7 @@ def test_film_state_jacobian_matches_finite_differences(name, film, regime, monk
     if cm is not None:
         # the compiled kernels on the same cam values (their cam table in the model's
         # place): the same branch of the law, the same rates and Jacobian to round-off
-        table = cm.args[4:7]
+        table = cm.cam_table
         monkeypatch.setattr(m.cam, "scalar_derivatives", lambda th: _cam(th, m.theta0, *table))
         np.testing.assert_allclose(cm.rhs(t, y), m.rhs(t, y), rtol=1e-12, atol=1e-300)
         np.testing.assert_allclose(cm.jac(t, y), m.jacobian(t, y), rtol=1e-12, atol=1e-300)

@@ -48,6 +48,19 @@ def test_compiled_equations_equal_the_python_model(film):
         assert np.allclose(ja, jb, rtol=1e-6, atol=1e-6 * np.abs(jb).max())
 
 
+def test_compiled_lift_is_the_cam_lift_of_the_outputs():
+    # the event search's lift alone: the outputs' s at any state, and the cam's own lift
+    w = rpm_to_cam_speed(3000.0)
+    model = ValvetrainModel(AccelerationCam(), ValvetrainParameters(), w, AnalyticTribology())
+    cm = compiled_model(model)
+    assert cm is not None
+    T = np.linspace(0.0, 4.0 * math.pi / w, 3001)
+    Y = np.random.default_rng(2).normal(0.0, 1e-5, (2 * model.n + 2, T.size))
+    s = cm.lift(T)
+    assert np.array_equal(s, cm.outputs(T, Y)["s"])
+    np.testing.assert_allclose(s, AccelerationCam().lift(model.theta0 + w * T), rtol=0, atol=1e-10)
+
+
 def test_compiled_motion_equals_the_solve_ivp_path(monkeypatch):
     """Same LSODA algorithm and tolerances, two implementations: compare what the
     integration error defines, not the chaotic details of the small impacts where the

@@ -380,7 +380,7 @@ def _integrate(
         t_grid[-t_eval.size :] = t_eval  # the presented cycle on the same points
 
         def grid_events(T, Y):
-            s = cm.outputs(T, Y)["s"]
+            s = cm.lift(T)
             if model.film_state:
                 h0 = Y[2 * model.n + 2]
             else:

@@ -28,7 +28,6 @@ dynamics (entraining film + squeeze film, in series with the contact; see
 
 from __future__ import annotations
 
-import math
 from abc import ABC, abstractmethod
 from types import MappingProxyType
 from typing import Any
@@ -46,6 +45,7 @@ from ..physics.asperity import Roughness
 from ..physics.film_state_laws import SUPPLY_FILM, entraining_film_load
 from ..physics.lubricant import TYPICAL_OIL, Lubricant
 from ..physics.materials import STEEL, Body, BodyPair
+from .film_kernels import steady_films
 
 __all__ = [
     "TribologyModel",
@@ -474,8 +474,8 @@ class FilmStateTribology(TribologyModel):
 
     def steady_film(self, t, force, entrainment_speed, radius, correction=None):
         """Film h [m] whose entraining load equals ``force`` [N] (no squeeze), by
-        bisection in ln h (vectorised; h_s where the force is ≤ 0 or u_e = 0 … the film
-        carries no steady load then)."""
+        bisection in ln h (vectorised, compiled: :func:`~.film_kernels.steady_films`; h_s
+        where the force is ≤ 0 or u_e = 0 … the film carries no steady load then)."""
         F, u, R = np.broadcast_arrays(
             *(np.asarray(v, dtype=float) for v in (force, entrainment_speed, radius))
         )
@@ -484,26 +484,7 @@ class FilmStateTribology(TribologyModel):
             if correction is None
             else np.broadcast_to(np.asarray(correction, dtype=float), F.shape)
         )
-        out = np.full(F.shape, self.supply_film)
-        for i in np.ndindex(F.shape):
-            if not (F[i] > 0.0 and u[i] != 0.0):
-                continue
-            lo, hi = math.log(1e-12), math.log(self.supply_film)
-            for _ in range(80):
-                mid = 0.5 * (lo + hi)
-                w, _ = entraining_film_load(
-                    math.exp(mid),
-                    float(u[i]),
-                    float(R[i]),
-                    self._eta,
-                    self._alpha,
-                    self.e_prime,
-                    self.supply_film,
-                    float(r[i]),
-                )
-                if self.width * w > F[i]:
-                    lo = mid
-                else:
-                    hi = mid
-            out[i] = math.exp(0.5 * (lo + hi))
+        args = (self._eta, self._alpha, self.e_prime, self.supply_film, self.width)
+        flat = (np.ascontiguousarray(v, dtype=float).ravel() for v in (F, u, R, r))
+        out = steady_films(*flat, *args).reshape(F.shape)
         return out[()] if out.ndim == 0 else out
