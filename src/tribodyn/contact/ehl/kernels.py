@@ -161,12 +161,14 @@ def evaluate(
     pa,
     dpa,
     P,
+    lnmu,
     R,
     AP,
     AH,
 ):
     """One residual evaluation of :class:`~.reynolds.ReynoldsSystem` at (Q, H₀), in
-    place; returns the load residual ΔX ΣQ − 1.
+    place (``lnmu``: ln μ/μ₀ at the nodes, kept for the post-processing); returns the
+    load residual ΔX ΣQ − 1.
 
     Film H = H₀ + X²/2 + ``defo`` (``defo`` = K Q, empty for rigid surfaces); asperity
     pressure Pa = k_a F(H/σ̄), dPa/dH = (k_a/σ̄) dF/dλ from the Greenwood–Tripp
@@ -179,7 +181,6 @@ def evaluate(
     n = Q.size
     rho = np.empty(n)
     drho = np.empty(n)
-    lnmu = np.empty(n)
     dlnmu = np.empty(n)
     elastic = defo.size > 0
     for i in range(n):
