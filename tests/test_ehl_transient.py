@@ -410,9 +410,9 @@ def test_compiled_evaluation_equals_the_lubricants_methods(monkeypatch, oil, asp
     seen = []
     evaluate = reynolds.ReynoldsSystem.evaluate
 
-    def kept(self, Q, H0):
+    def kept(self, Q, H0, defo=None):
         seen.append((self, np.array(Q), H0))
-        return evaluate(self, Q, H0)
+        return evaluate(self, Q, H0, defo)
 
     tr = TransientEHL(PAIR, oil, roughness=rough)
     tr.start_steady(1e5, 0.01, 0.5, 0.5)

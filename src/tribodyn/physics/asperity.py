@@ -197,6 +197,13 @@ class _LogTable:
             return f[0], df[0]
         return f.reshape(lam.shape), df.reshape(lam.shape)
 
+    def values(self, lam) -> np.ndarray:
+        """F_n(λ) alone (the same numbers as :meth:`__call__`'s first) on an array."""
+        lam = np.asarray(lam, dtype=float)
+        return _tabulated_values(np.ascontiguousarray(lam).reshape(-1), self.params).reshape(
+            lam.shape
+        )
+
 
 @njit(cache=True, nogil=True)
 def _hermite_at(lm, y, dy, lam0, step):
@@ -238,6 +245,16 @@ def _tabulated(lam, table):
     for i in range(lam.size):
         f[i], df[i] = greenwood_tripp_tabulated(lam[i], table)
     return f, df
+
+
+@njit(cache=True, nogil=True)
+def _tabulated_values(lam, table):
+    """The F_n of :func:`greenwood_tripp_tabulated` at every entry of the 1-D array
+    ``lam`` (its derivative is not formed)."""
+    f = np.empty(lam.size)
+    for i in range(lam.size):
+        f[i] = greenwood_tripp_tabulated(lam[i], table)[0]
+    return f
 
 
 @functools.cache
@@ -376,8 +393,9 @@ class Roughness:
         if self.law is not None:
             out = self.law.area_fraction(lam)
             return out if out.ndim else float(out)
+        f2: np.ndarray | float
         if tabulated and self.method == "exact":
-            f2 = greenwood_tripp_table(2.0, lam)[0]
+            f2 = _table(2.0).values(lam)
         else:
             f2 = greenwood_tripp(2.0, lam, self.method)
         return math.pi**2 * self.roughness_parameter**2 * f2

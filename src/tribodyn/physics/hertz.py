@@ -17,7 +17,7 @@ import numpy as np
 
 from .._validation import check_positive
 
-__all__ = ["HertzLineContact", "hertz_line_contact"]
+__all__ = ["HertzLineContact", "hertz_line_contact", "hertz_half_width"]
 
 
 @dataclass(frozen=True)
@@ -38,11 +38,16 @@ class HertzLineContact:
         return self.max_pressure * np.sqrt(np.clip(r, 0.0, None))
 
 
+def hertz_half_width(w: float, r: float, e: float) -> float:
+    """b = √(8 w R / (π E')) [m], inputs not checked (positive floats: for solvers whose
+    inputs were checked once upstream; :func:`hertz_line_contact` checks them)."""
+    return math.sqrt(8.0 * w * r / (math.pi * e))
+
+
 def hertz_line_contact(load: float, radius: float, reduced_modulus: float) -> HertzLineContact:
     """Hertz solution for load per unit length [N/m], radius [m], reduced modulus E' [Pa]."""
     w = check_positive("load", load, "N/m")
     r = check_positive("radius", radius, "m")
     e = check_positive("reduced_modulus", reduced_modulus, "Pa")
-    b = math.sqrt(8.0 * w * r / (math.pi * e))
     ph = math.sqrt(w * e / (2.0 * math.pi * r))
-    return HertzLineContact(w, r, e, b, ph)
+    return HertzLineContact(w, r, e, hertz_half_width(w, r, e), ph)

@@ -200,7 +200,12 @@ class Lubricant:
 
     def viscosity_at(self, p) -> np.ndarray:
         """Viscosity μ(p) [Pa·s] for pressure p [Pa] (Roelands or Barus)."""
-        return self.viscosity * np.exp(self.log_viscosity_ratio(p))
+        return self.viscosity_from_log_ratio(self.log_viscosity_ratio(p))
+
+    def viscosity_from_log_ratio(self, log_ratio) -> np.ndarray:
+        """μ = μ₀ exp(ln μ/μ₀) [Pa·s] from ln μ/μ₀ (:meth:`log_viscosity_ratio`, or
+        a solver's evaluation of :func:`viscosity_terms`)."""
+        return self.viscosity * np.exp(log_ratio)
 
     def log_viscosity_ratio(self, p) -> np.ndarray:
         """ln(μ/μ₀) = (ln μ₀ + 9.67)[(1 + p/p₀)^Z − 1] (:func:`viscosity_terms`)."""

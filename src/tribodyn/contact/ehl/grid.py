@@ -11,12 +11,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
 from ..._validation import InputError
 from ...physics.elasticity import influence_coefficients
-from ...physics.hertz import hertz_line_contact
+from ...physics.hertz import hertz_half_width
 from ...physics.regimes import hamrock_groups, moes_central
 from .march_kernels import symmetric_toeplitz
 from .options import Conditions, ContactModel, EHLOptions
@@ -55,7 +56,7 @@ def _length_scale(cond: Conditions, model: ContactModel, squeeze_film=None):
     when u_e ≈ 0)."""
     w, R, e = cond.load, cond.radius, model.e_bulk
     lub = model.lubricant
-    b = hertz_line_contact(w, R, e).half_width
+    b = hertz_half_width(w, R, e)  # checked conditions and model
     u = max(abs(cond.entrainment_speed), 1e-3)
     W, U, G = hamrock_groups(w, R, u, lub.viscosity, lub.pressure_viscosity, e)
     h_est = float(moes_central(W, U, G, R))
@@ -152,6 +153,18 @@ class Grid:
             assert self.coef is not None  # an elastic grid has its coefficients
             self._K = symmetric_toeplitz(self.coef, np.empty((self.n, self.n)))
         return self._K
+
+    @cached_property
+    def rigid_gap(self) -> np.ndarray:
+        """X²/2 at the nodes: the undeformed parabolic gap x²/(2R) in the film scale a²/R
+        of every solve on this grid (shared by them: never written)."""
+        return 0.5 * self.X**2
+
+    @cached_property
+    def ones(self) -> np.ndarray:
+        """Ones at the nodes, the neutral per-node factors of the solves on this grid
+        (shared by them: never written)."""
+        return np.ones(self.n)
 
     @property
     def has_dense(self) -> bool:

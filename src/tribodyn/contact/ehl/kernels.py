@@ -21,7 +21,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from llvmlite import ir
+from numba import njit, types
+from numba.extending import get_cython_function_address, intrinsic
 
 from ...physics.asperity import greenwood_tripp_tabulated
 from ...physics.asperity_law import log_curve_at
@@ -161,12 +163,14 @@ def evaluate(
     pa,
     dpa,
     P,
+    lnmu,
     R,
     AP,
     AH,
 ):
     """One residual evaluation of :class:`~.reynolds.ReynoldsSystem` at (Q, H₀), in
-    place; returns the load residual ΔX ΣQ − 1.
+    place (``lnmu``: ln μ/μ₀ at the nodes, kept for the post-processing); returns the
+    load residual ΔX ΣQ − 1.
 
     Film H = H₀ + X²/2 + ``defo`` (``defo`` = K Q, empty for rigid surfaces); asperity
     pressure Pa = k_a F(H/σ̄), dPa/dH = (k_a/σ̄) dF/dλ from the Greenwood–Tripp
@@ -179,7 +183,6 @@ def evaluate(
     n = Q.size
     rho = np.empty(n)
     drho = np.empty(n)
-    lnmu = np.empty(n)
     dlnmu = np.empty(n)
     elastic = defo.size > 0
     for i in range(n):
@@ -445,26 +448,47 @@ def newton_rows(AP, AH, D, R, P, load, c, cav):
     return B, col, cv, bnd, free, rhs
 
 
-def _scipy_routine(module: str, name: str, nargs: int):
-    """A LAPACK/BLAS routine of SciPy's Cython exports as a ctypes function (all
-    arguments by pointer) that compiled code can call; it is passed to the kernels as an
-    argument, which keeps them cacheable."""
-    import ctypes
+def _scipy_routine(module: str, name: str) -> int:
+    """The address of a LAPACK/BLAS routine of SciPy's Cython exports (all arguments by
+    pointer, no result), which compiled code calls through :func:`_call_address`; it is
+    passed to the kernels as an integer argument, which keeps them cacheable (and, unlike
+    a ctypes function, costs nothing to pass)."""
+    return int(get_cython_function_address(f"scipy.linalg.cython_{module}", name))
 
-    from numba.extending import get_cython_function_address
 
-    addr = get_cython_function_address(f"scipy.linalg.cython_{module}", name)
-    return ctypes.CFUNCTYPE(None, *([ctypes.c_void_p] * nargs))(addr)
+@intrinsic
+def _call_address(typingctx, address, pointers):
+    """Call the C function ``void f(void *, …)`` at ``address`` with the addresses
+    ``pointers`` (a tuple of integers, e.g. ``a.ctypes.data``) as its arguments."""
+    if not (
+        isinstance(address, types.Integer)
+        and isinstance(pointers, types.UniTuple)
+        and isinstance(pointers.dtype, types.Integer)
+    ):
+        return None
+
+    def codegen(context, builder, sig, args):
+        ptr = ir.IntType(8).as_pointer()
+        fnty = ir.FunctionType(ir.VoidType(), [ptr] * pointers.count)
+        fn = builder.inttoptr(args[0], fnty.as_pointer())
+        tup = args[1]
+        builder.call(
+            fn,
+            [builder.inttoptr(builder.extract_value(tup, i), ptr) for i in range(pointers.count)],
+        )
+        return context.get_dummy_value()
+
+    return types.none(address, pointers), codegen
 
 
 #: dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
-GETRS = _scipy_routine("lapack", "dgetrs", 9)
+GETRS = _scipy_routine("lapack", "dgetrs")
 #: sgetrs: the same in single precision (a preconditioner's factors stored as float32)
-SGETRS = _scipy_routine("lapack", "sgetrs", 9)
+SGETRS = _scipy_routine("lapack", "sgetrs")
 #: dsymv(uplo, n, alpha, a, lda, x, incx, beta, y, incy): y = αAx + βy for a symmetric A,
 #: read from one triangle (half the memory of a general product; the influence matrix
 #: of a uniform grid is symmetric Toeplitz)
-SYMV = _scipy_routine("blas", "dsymv", 10)
+SYMV = _scipy_routine("blas", "dsymv")
 
 
 #: Single-precision triangular solves: entries of the right-hand side below this share of
@@ -521,16 +545,19 @@ def _lu_solve(getrs, fac, piv1, x, buf, ints, trans):
     else:
         for i in range(x.size):
             buf[i] = x[i]
-    getrs(
-        trans.ctypes,
-        ints[0:].ctypes,
-        ints[1:].ctypes,
-        fac.ctypes,
-        ints[2:].ctypes,
-        piv1.ctypes,
-        buf.ctypes,
-        ints[3:].ctypes,
-        ints[4:].ctypes,
+    _call_address(
+        getrs,
+        (
+            trans.ctypes.data,
+            ints[0:].ctypes.data,
+            ints[1:].ctypes.data,
+            fac.ctypes.data,
+            ints[2:].ctypes.data,
+            piv1.ctypes.data,
+            buf.ctypes.data,
+            ints[3:].ctypes.data,
+            ints[4:].ctypes.data,
+        ),
     )
     for i in range(x.size):
         x[i] = buf[i] * scale
@@ -540,17 +567,20 @@ def _lu_solve(getrs, fac, piv1, x, buf, ints, trans):
 def _product(symv, uplo, ints, reals, K, x, y):
     """y = alpha·K x + beta·y by BLAS ``symv`` for the symmetric K (``uplo``: the triangle
     read, ``ints`` = [n, n, 1], ``reals`` = [alpha, beta]); x and y of K's size."""
-    symv(
-        uplo.ctypes,
-        ints[0:].ctypes,
-        reals[0:].ctypes,
-        K.ctypes,
-        ints[1:].ctypes,
-        x.ctypes,
-        ints[2:].ctypes,
-        reals[1:].ctypes,
-        y.ctypes,
-        ints[2:].ctypes,
+    _call_address(
+        symv,
+        (
+            uplo.ctypes.data,
+            ints[0:].ctypes.data,
+            reals[0:].ctypes.data,
+            K.ctypes.data,
+            ints[1:].ctypes.data,
+            x.ctypes.data,
+            ints[2:].ctypes.data,
+            reals[1:].ctypes.data,
+            y.ctypes.data,
+            ints[2:].ctypes.data,
+        ),
     )
 
 

@@ -215,6 +215,12 @@ class State:
     cav: np.ndarray | None = None
     #: asperity pressure Pa(H) at H (set by :func:`newton`; None: not evaluated)
     Pa: np.ndarray | None = None
+    #: ln μ/μ₀ at P by the lubricant's law (set by :func:`newton` from its last
+    #: evaluation; None: not evaluated, or a lubricant with per-node properties)
+    lnmu: np.ndarray | None = None
+    #: the scaled deformation K Q of this Q where its maker computed it (a transient
+    #: predictor's film), for the solve's first evaluation; None: not computed
+    KQ: np.ndarray | None = None
 
 
 def jacobi_scale(sysm, ev):
@@ -340,7 +346,7 @@ def newton(
         return iterate_terms(ev.AP, ev.AH, ev.dpa, kc, elastic, ev.P, ev.R, ev.load)
 
     Q, H0 = st.Q.copy(), st.H0
-    ev = sysm.evaluate(Q, H0)
+    ev = sysm.evaluate(Q, H0, st.KQ)
     c, m0, cav_std = terms(ev)
     msg = "maximum iterations reached"
     ok = False
@@ -443,4 +449,5 @@ def newton(
             msg = f"converged in {it} Newton iterations (update {upd:.1e}, residual {res:.1e})"
             break
     P = np.maximum(ev.P, 0.0) if ok else ev.P  # cavitated nodes are 0 up to round-off
-    return NewtonOutcome(State(Q, H0, P, ev.H, Pa=ev.pa), ok, it, msg, lu)
+    # ln μ(P) = ln μ(max(P, 0)): the laws hold μ₀ below zero pressure
+    return NewtonOutcome(State(Q, H0, P, ev.H, Pa=ev.pa, lnmu=ev.lnmu), ok, it, msg, lu)

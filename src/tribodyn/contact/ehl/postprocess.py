@@ -53,12 +53,17 @@ _NONE = np.empty(0)
 
 
 def shear_stress(
-    pressure, film, sliding_speed, lubricant, model: str, limiting_shear: bool
+    pressure, film, sliding_speed, lubricant, model: str, limiting_shear: bool, log_ratio=None
 ) -> np.ndarray:
     """Couette shear stress τ(x) [Pa] of a solution: Newtonian μu_s/h or Eyring
-    τ_E asinh(μu_s/(τ_E h)) with μ = μ(p), capped at τ_L0 + Λp when ``limiting_shear``."""
+    τ_E asinh(μu_s/(τ_E h)) with μ = μ(p), capped at τ_L0 + Λp when ``limiting_shear``
+    (``log_ratio``: ln μ/μ₀ at p where the caller has it, e.g. the solve's last
+    evaluation; else from p)."""
     p = np.asarray(pressure, dtype=float)
-    mu = lubricant.viscosity_at(p)
+    if log_ratio is None:
+        mu = lubricant.viscosity_at(p)
+    else:
+        mu = lubricant.viscosity_from_log_ratio(log_ratio)
     tau = couette_shear_stress(
         mu, sliding_speed, np.maximum(film, _H_FLOOR), model, lubricant.eyring_stress
     )
@@ -86,7 +91,7 @@ def postprocess(
     h = st.H * sysm.h_ref
     pa = (st.Pa if st.Pa is not None else sysm.asperity(st.H)[0]) * sysm.p_ref
     dx = g.dX * g.a
-    tau = shear_stress(p, h, us, lub, opts.viscous_model, opts.limiting_shear)
+    tau = shear_stress(p, h, us, lub, opts.viscous_model, opts.limiting_shear, st.lnmu)
     if rough is not None:
         area = rough.contact_area_fraction(h, tabulated=True)
         tau_b = boundary_shear_stress(

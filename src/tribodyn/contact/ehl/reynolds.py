@@ -71,7 +71,7 @@ class ReynoldsSystem:
         self.u_scale = max(abs(ue), 1e-3)
         self.ubar = ue / self.u_scale
         self.lam = h_ref**2 * p_ref / (12.0 * lub.viscosity * a * self.u_scale)
-        self.geom = 0.5 * grid.X**2
+        self.geom = grid.rigid_gap  # X²/2, kept by the grid
         # time term: c_t (f − f_old) with f = ρ̄H, c_t = a/(U Δt)·α₀
         self.time_coef = time_coef * a / self.u_scale
         self.f_old: np.ndarray | None = None  # set by the transient driver
@@ -99,7 +99,7 @@ class ReynoldsSystem:
                 self._asperities = kernels.LAW_ASPERITIES
             elif table is not None:
                 self._table, self._asperities = table, kernels.TABLE_ASPERITIES
-        self._ones = np.ones(grid.n)
+        self._ones = grid.ones
 
     @cached_property
     def Kop(self) -> DeformationOperator | None:
@@ -128,11 +128,12 @@ class ReynoldsSystem:
         f, df = self.rough.load_function(H / self.sig)
         return self.ka * f, self.ka / self.sig * df
 
-    def film(self, Q, H0):
-        """H = H0 + X²/2 + K Q: the surfaces deform under the total pressure Q = P + Pa."""
+    def film(self, Q, H0, defo=None):
+        """H = H0 + X²/2 + K Q: the surfaces deform under the total pressure Q = P + Pa
+        (``defo``: K Q where the caller has it, else computed)."""
         if not self.elastic:
             return H0 + self.geom
-        return H0 + self.geom + self.deform(Q)
+        return H0 + self.geom + (self.deform(Q) if defo is None else defo)
 
     # -- rheology
     def rheology(self, P):
@@ -149,23 +150,28 @@ class ReynoldsSystem:
         )
 
     # -- residual and banded derivatives
-    def evaluate(self, Q, H0):
-        """Residuals and banded derivatives at (Q, H0).
+    def evaluate(self, Q, H0, defo=None):
+        """Residuals and banded derivatives at (Q, H0) (``defo``: the deformation K Q
+        where the caller has it, e.g. from the predictor of the start; else computed).
 
         Returns an :class:`Evaluation` with the Reynolds residual R (interior rows), the load
-        residual ΔX ΣQ − 1, the fluid pressure P = Q − Pa(H), the film H, D = dPa/dH and
+        residual ΔX ΣQ − 1, the fluid pressure P = Q − Pa(H), the film H, D = dPa/dH,
         the diagonals of A_P = ∂R/∂P, A_H = ∂R/∂H (offsets −2…2; compiled stencil in
-        :func:`.kernels.assemble`)."""
+        :func:`.kernels.assemble`) and ln μ/μ₀ at P (a :class:`~tribodyn.Lubricant`'s
+        law; None with per-node properties)."""
         if self._law is None:
-            return self._evaluate_per_node(Q, H0)
+            return self._evaluate_per_node(Q, H0, defo)
         n = self.g.n
         Q = np.ascontiguousarray(Q, dtype=float)
         H0 = float(H0)
-        defo = self.deform(Q) if self.elastic else _EMPTY
+        if not self.elastic:
+            defo = _EMPTY
+        elif defo is None:
+            defo = self.deform(Q)
         pa, dpa = np.empty(n), np.empty(n)
         if self._asperities == kernels.GIVEN_ASPERITIES:  # the paper's fits
             pa, dpa = self.asperity(H0 + self.geom + defo if self.elastic else H0 + self.geom)
-        H, P, R = np.empty(n), np.empty(n), np.empty(n)
+        H, P, lnmu, R = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
         AP, AH = np.empty((5, n)), np.empty((5, n))
         rough = self.rough is not None
         load = kernels.evaluate(
@@ -185,11 +191,12 @@ class ReynoldsSystem:
             pa,
             dpa,
             P,
+            lnmu,
             R,
             AP,
             AH,
         )
-        return Evaluation(R, load, P, H, pa, dpa, AP, AH)
+        return Evaluation(R, load, P, H, pa, dpa, AP, AH, lnmu)
 
     def _stencil(self):
         """The arguments of :func:`.kernels.assemble` between the rheology and the outputs:
@@ -210,11 +217,11 @@ class ReynoldsSystem:
             cf,
         )
 
-    def _evaluate_per_node(self, Q, H0):
+    def _evaluate_per_node(self, Q, H0, defo=None):
         """:meth:`evaluate` for a lubricant read through its methods (per-node
         properties): film, asperities and rheology by NumPy, then the compiled stencil."""
         n = self.g.n
-        H = self.film(Q, H0)
+        H = self.film(Q, H0, defo)
         pa, dpa = self.asperity(H)
         P = Q - pa
         R, AP, AH = np.empty(n), np.empty((5, n)), np.empty((5, n))
@@ -229,7 +236,7 @@ _EMPTY = np.zeros(0)
 @dataclass
 class Evaluation:
     """Residuals at one iterate; AP, AH hold the bands as (5, n) arrays (row d + 2 is
-    offset d)."""
+    offset d); ``lnmu``: ln μ/μ₀ at P by the lubricant's law (None: per-node lubricant)."""
 
     R: np.ndarray
     load: float
@@ -239,6 +246,7 @@ class Evaluation:
     dpa: np.ndarray
     AP: np.ndarray
     AH: np.ndarray
+    lnmu: np.ndarray | None = None
 
 
 class Linearization:

@@ -316,7 +316,9 @@ class TransientEHL:
         hc = hc1 + ratio * (hc1 - hc0)
         if not hc > 0.0:
             return st
-        H = sysm.film(st.Q, 0.0)
+        if sysm.elastic:  # K Q of the predicted Q, handed to the solve's first evaluation
+            st.KQ = sysm.deform(st.Q)
+        H = sysm.film(st.Q, 0.0, st.KQ)
         st.H0 = hc / sysm.h_ref - interp_point(0.0, sysm.g.X, H)
         return st
 

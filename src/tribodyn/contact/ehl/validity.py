@@ -39,7 +39,7 @@ import math
 
 import numpy as np
 
-from ...physics.hertz import hertz_line_contact
+from ...physics.hertz import hertz_half_width
 from .options import ContactModel, EHLResult
 from .post_kernels import validity_stats
 
@@ -95,7 +95,7 @@ def check_solution(res: EHLResult, model: ContactModel) -> EHLResult:
         return res
     R, w, hc = res.radius, res.load, res.central_film
     lub = model.lubricant
-    b = hertz_line_contact(w, R, model.e_bulk).half_width
+    b = hertz_half_width(w, R, model.e_bulk)  # checked upstream
     ell = max(b, math.sqrt(2.0 * R * max(hc, 0.0)))
     found = []
     eps = hc / ell if ell > 0 else math.inf
