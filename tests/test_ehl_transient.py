@@ -120,7 +120,7 @@ def test_transient_requires_a_start_and_positive_dt():
 
 
 def test_compiled_gmres_matches_the_numpy_loop(monkeypatch):
-    """The compiled LU-preconditioned GMRES (kernels.gmres_lu) solves the Newton systems
+    """The compiled LU-preconditioned GMRES (gmres_kernels.gmres_lu) solves the Newton systems
     of a rough-surface load and entrainment transient to its tolerance (true residual,
     by the NumPy matrix-free product), and gives the same films, loads and Newton
     iterations as the NumPy loop in newton.gmres."""
@@ -190,11 +190,12 @@ def newton_matrix(AP, B, col, c, free, cav, D, K, ks, dX) -> np.ndarray:
 
 @pytest.mark.parametrize("elastic", [True, False])
 def test_compiled_gmres_solves_a_random_newton_system(elastic):
-    """kernels.gmres_lu on a random banded Newton system with a symmetric Toeplitz K and
-    a perturbed LU as preconditioner: the solution of the assembled dense matrix (LAPACK
+    """gmres_kernels.gmres_lu on a random banded Newton system with a symmetric Toeplitz K
+    and a perturbed LU as preconditioner: the solution of the assembled dense matrix (LAPACK
     solve), and a clean failure (ok = False) when the system holds a NaN."""
     from scipy import linalg
 
+    from tribodyn.contact.ehl import gmres_kernels as g
     from tribodyn.contact.ehl import kernels as k
 
     rng = np.random.default_rng(7)
@@ -215,24 +216,25 @@ def test_compiled_gmres_solves_a_random_newton_system(elastic):
     fac, piv = linalg.lu_factor(J * (1.0 + 0.05 * rng.random(J.shape)))  # an earlier matrix
     b = rng.normal(size=n + 1)
     system = (AP, B, col, c, free, cav, D, K, ks, elastic, dX)
-    x, its, ok = k.gmres_lu(k.GETRS, k.SYMV, system, fac, piv + 1, b, 1e-12, 30)
+    x, its, ok = g.gmres_lu(g.GETRS, g.SYMV, system, fac, piv + 1, b, 1e-12, 30)
     assert ok and 0 < its <= 30
     exact = np.linalg.solve(J, b)
     assert np.linalg.norm(x - exact) <= 1e-9 * np.linalg.norm(exact)
     bad = AP.copy()
     bad[2, 40] = np.nan
-    _, _, ok = k.gmres_lu(k.GETRS, k.SYMV, (bad, *system[1:]), fac, piv + 1, b, 1e-12, 30)
+    _, _, ok = g.gmres_lu(g.GETRS, g.SYMV, (bad, *system[1:]), fac, piv + 1, b, 1e-12, 30)
     assert not ok
 
 
 def test_compiled_gmres_with_a_single_precision_preconditioner():
-    """Flexible GMRES with float32 LU factors (kernels.SGETRS) of the matrix assembled in
+    """Flexible GMRES with float32 LU factors (gmres_kernels.SGETRS) of the matrix assembled in
     single precision (kernels.dense_matrix_t, tiny entries flushed) solves the
     double-precision Newton system to its tolerance (checked against LAPACK's dense solve
     of the double-precision matrix assembled from its definition); factors beyond single
     precision's range are refused (newton then factorises in double precision)."""
     from scipy import linalg
 
+    from tribodyn.contact.ehl import gmres_kernels as g
     from tribodyn.contact.ehl import kernels as k
     from tribodyn.contact.ehl import reynolds
 
@@ -275,32 +277,33 @@ def test_compiled_gmres_with_a_single_precision_preconditioner():
     tiny = np.finfo(np.float32).tiny
     assert not np.any((J32 != 0.0) & (np.abs(J32) < tiny))  # no subnormal entries
     fac, piv = linalg.lu_factor(J32, overwrite_a=True, check_finite=False)
-    assert fac.dtype == np.float32 and k.flush_factors(fac.T.reshape(-1), k.FACTOR_FLUSH)
+    assert fac.dtype == np.float32 and g.flush_factors(fac.T.reshape(-1), g.FACTOR_FLUSH)
     b = rng.normal(size=n + 1)
     b[5] = 1e-300  # a subnormal entry in single precision
     system = (*rows, K, ks, True, dX)
-    x, its, ok = k.gmres_lu(k.SGETRS, k.SYMV, system, fac, piv + 1, b, 1e-12, 30)
+    x, its, ok = g.gmres_lu(g.SGETRS, g.SYMV, system, fac, piv + 1, b, 1e-12, 30)
     assert ok and 0 < its <= 30
     exact = np.linalg.solve(J, b)
     assert np.linalg.norm(x - exact) <= 1e-9 * np.linalg.norm(exact)
-    assert not k.flush_factors(np.full(16, 1e39), k.FACTOR_FLUSH)
+    assert not g.flush_factors(np.full(16, 1e39), g.FACTOR_FLUSH)
 
 
 def test_factor_flush_and_step_motion_kernels():
-    """kernels.flush_factors zeroes entries below rel·max|f| (either sign) and refuses a
+    """gmres_kernels.flush_factors zeroes entries below rel·max|f| (either sign) and refuses a
     NaN or infinite entry wherever it sits; kernels.step_motion gives the largest |δQ|
     and |Q| (NaN kept) and whether the cavitated set gained or released nodes."""
+    from tribodyn.contact.ehl import gmres_kernels as g
     from tribodyn.contact.ehl import kernels as k
 
     f = np.array([3e-21, -4.0, 2.0, -3e-20, 1e-19], dtype=np.float32)
-    assert k.flush_factors(f, 1e-20)
+    assert g.flush_factors(f, 1e-20)
     # threshold 1e-20 * 4 = 4e-20: 3e-21 and -3e-20 go, 1e-19 stays (exact float32)
     assert np.array_equal(f, np.array([0.0, -4.0, 2.0, 0.0, 1e-19], dtype=np.float32))
     for bad in (np.nan, np.inf, -np.inf):
         for at in (0, 2, 4):
-            g = np.ones(5, dtype=np.float32)
-            g[at] = bad
-            assert not k.flush_factors(g, 1e-20)
+            f = np.ones(5, dtype=np.float32)
+            f[at] = bad
+            assert not g.flush_factors(f, 1e-20)
     dq, q = np.array([0.5, -2.0, 1.0]), np.array([1.0, 3.0, -7.0])
     before = np.array([False, True, True, False])
     assert k.step_motion(dq, q, before, before) == (2.0, 7.0, False, False)
@@ -311,10 +314,11 @@ def test_factor_flush_and_step_motion_kernels():
 
 
 def test_warmup_compiles_the_fallback_variants(monkeypatch):
-    """kernels.compile_fallbacks (run by ``tribodyn warmup``) compiles the argument types
+    """gmres_kernels.compile_fallbacks (run by ``tribodyn warmup``) compiles the argument types
     of the double-precision fallback of a transient's factorisation: after such a march
     it adds no new compiled variant."""
     from tribodyn import Roughness
+    from tribodyn.contact.ehl import gmres_kernels as g
     from tribodyn.contact.ehl import kernels as k
     from tribodyn.contact.ehl import newton
 
@@ -329,10 +333,10 @@ def test_warmup_compiles_the_fallback_variants(monkeypatch):
     tr.start_steady(4e4, 0.005, 1.0, 3.0)
     for j in range(3):
         assert tr.step(2.5e-5, 4e4 * (1 + 0.02 * j), 0.005, 1.0, 3.0).converged
-    kernels = (k.dense_matrix_t, k.gmres_lu)  # called from Python (the rest inside)
+    kernels = (k.dense_matrix_t, g.gmres_lu)  # called from Python (the rest inside)
     before = [set(map(str, f.signatures)) for f in kernels]
     assert all(before)
-    k.compile_fallbacks()
+    g.compile_fallbacks()
     assert [set(map(str, f.signatures)) for f in kernels] == before
 
 

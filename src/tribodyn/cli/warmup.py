@@ -31,7 +31,7 @@ WARMUP_NUMERICS = {
 def warm_up() -> float:
     """Run the warm-up study in this process; returns its wall time [s]."""
     from ..config import load_case
-    from ..contact.ehl.kernels import compile_fallbacks
+    from ..contact.ehl.gmres_kernels import compile_fallbacks
     from ..physics.asperity import greenwood_tripp
     from ..workflow.cycle import run_cycle_study
     from ..workflow.engineering import typical_surface_laws

@@ -17,17 +17,16 @@ import numpy as np
 from scipy import linalg
 from scipy.linalg import lapack
 
+from .gmres_kernels import FACTOR_FLUSH, flush_factors, givens_step
 from .kernels import (
-    FACTOR_FLUSH,
+    all_finite,
     cavitated_nodes,
-    flush_factors,
-    givens_step,
     jacobi_diagonal,
     merit,
     row_scale,
     step_motion,
 )
-from .newton_kernels import all_finite, given_active_set, iterate_terms, trial_point
+from .newton_kernels import given_active_set, iterate_terms, trial_point
 from .reynolds import Linearization, ReynoldsSystem
 
 __all__ = [
@@ -128,7 +127,7 @@ _SGETRS = lapack.get_lapack_funcs("getrs", (np.zeros(1, dtype=np.float32),))
 def gmres(lin: Linearization, lu, rtol, max_it=None):
     """Right-preconditioned flexible GMRES for lin·x = rhs with an earlier LU (a
     :class:`Factorization`, or any object with a ``solve`` method) as preconditioner,
-    started from the preconditioned solution (see :func:`.kernels.gmres_lu`), in compiled
+    started from the preconditioned solution (see :func:`.gmres_kernels.gmres_lu`), in compiled
     code where :meth:`.Linearization.gmres_lu` can (an LU on a dense-product grid), else
     by the NumPy loop below (also the two-grid preconditioner's). Returns (x, iterations)
     or (None, its)."""

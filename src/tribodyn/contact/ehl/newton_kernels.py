@@ -12,7 +12,7 @@ from numba import njit
 
 from .kernels import cavitated_nodes, merit, row_scale
 
-__all__ = ["iterate_terms", "given_active_set", "all_finite", "trial_point"]
+__all__ = ["iterate_terms", "given_active_set", "trial_point"]
 
 _OPTS = dict(cache=True, nogil=True, fastmath=False)
 
@@ -48,15 +48,6 @@ def given_active_set(pa, Q, share, given, standard):
     for i in range(n):
         differs |= out[i] != standard[i]
     return out, differs
-
-
-@njit(**_OPTS)
-def all_finite(v):
-    """Whether every entry of ``v`` is finite."""
-    for x in v:
-        if not np.isfinite(x):
-            return False
-    return True
 
 
 @njit(**_OPTS)

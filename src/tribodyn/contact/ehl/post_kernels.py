@@ -16,6 +16,8 @@ import math
 import numpy as np
 from numba import njit
 
+from .kernels import all_finite
+
 __all__ = ["pairwise_sum", "abs_sum", "solution_integrals", "validity_stats"]
 
 _OPTS = dict(cache=True, nogil=True, fastmath=False)
@@ -139,14 +141,6 @@ def _meniscus(x, p, ipk, zero, direction):
 
 
 @njit(**_OPTS)
-def _all_finite(a):
-    for v in a:
-        if not math.isfinite(v):
-            return False
-    return True
-
-
-@njit(**_OPTS)
 def _end_slope(p, e, dx):
     """|dp/dx| [Pa/m] at the end node ``e`` (one-sided, to its neighbour)."""
     nb = e + 1 if e == 0 else e - 1
@@ -184,7 +178,7 @@ def solution_integrals(x, p, h, pa, tau, tau_b, dx, direction, zero_share):
     i_min = _first_extreme(h, False)
     ipk = _first_extreme(p, True)
     x_cav = _meniscus(x, p, ipk, zero_share * p[ipk], 1 if direction >= 0 else -1)
-    finite = _all_finite(p) and _all_finite(h)
+    finite = all_finite(p) and all_finite(h)
     deficit = 0.0
     for e in (0, n - 1):
         if e == inlet or direction == 0:
@@ -199,7 +193,7 @@ def validity_stats(x, h, p, pa, low, high):
     not positive and finite), peak of p + p_a [Pa]).
 
     The zone's ends are the first nodes where the running sum of q reaches each share."""
-    finite = _all_finite(h)
+    finite = all_finite(h)
     h_min = h[_first_extreme(h, False)]
     q = p + pa
     p_max = q[_first_extreme(q, True)]

@@ -30,17 +30,9 @@ from scipy.linalg.blas import dsymv
 from ...physics.elasticity import DeformationOperator
 from ...physics.lubricant import Lubricant
 from . import kernels
+from .gmres_kernels import GETRS, SGETRS, SYMV, gmres_lu
 from .grid import Grid
-from .kernels import (
-    GETRS,
-    SGETRS,
-    SYMV,
-    assemble,
-    dense_matrix_t,
-    gmres_lu,
-    newton_matvec,
-    newton_rows,
-)
+from .kernels import assemble, dense_matrix_t, newton_matvec, newton_rows
 from .options import Conditions, ContactModel
 
 __all__ = ["ReynoldsSystem", "Evaluation", "Linearization"]
@@ -282,7 +274,7 @@ class Linearization:
         return out
 
     def gmres_lu(self, fac, piv1, rtol, max_it):
-        """Compiled GMRES (:func:`.kernels.gmres_lu`) for this system with the LU
+        """Compiled GMRES (:func:`.gmres_kernels.gmres_lu`) for this system with the LU
         (``fac``, ``piv1``: ``lu_factor``'s factors and its pivots + 1, LAPACK's 1-based
         ones) of an earlier Newton matrix as preconditioner; None where the products need
         the DC-FFT operator (no dense K on this grid) or the factors are not LAPACK's
