@@ -77,7 +77,11 @@ class StartHook:
         transient.TransientEHL._solve = solve
 
 
-def timed_pass(case, s, inputs, repeat=2):
+#: timed passes per row (after a warm-up)
+REPEAT = 2
+
+
+def timed_pass(case, s, inputs, repeat=REPEAT):
     """(result of the last run, median CPU seconds, counts of the last run)."""
     cpu = []
     for _ in range(repeat):
@@ -155,7 +159,7 @@ def main():
             "cpu_s": cpu,
             "cpu_ratio": cpu / cpu0,
             **counts,
-            "levels_started_exactly": hook.hits // 2,
+            "levels_started_exactly": hook.hits // REPEAT,
             "levels": len(hook.guide),
             **_moved(r, base),
         }
@@ -171,7 +175,7 @@ def main():
                 "cpu_s": cpu,
                 "cpu_ratio": cpu / cpu_p,
                 **counts,
-                "levels_corrected": hook.hits // 2,
+                "levels_corrected": hook.hits // REPEAT,
                 **_moved(r, plain),
             }
     print(json.dumps(out, indent=2))
