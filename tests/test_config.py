@@ -482,6 +482,32 @@ def test_updated_validates(paper):
         paper.updated({"surface_sets[2].coating_thickness": -1e-6})
 
 
+def test_greenwood_tripp_needs_the_summits_the_surface_law_does_not():
+    gt = '[[surface_sets]]\nname = "a"\nasperity_model = "greenwood_tripp"\n'
+    msg = reject(
+        gt + "roughness = { rms = 0.3e-6 }\n",
+        "surface_sets[0].roughness.asperity_density: required with asperity_model = "
+        '"greenwood_tripp"',
+        "surface_sets[0].roughness.summit_radius: required with",
+        "surface law, which needs only rms",
+    )
+    assert "2 problems" in msg
+    reject(
+        gt + "roughness = { rms = 0.3e-6, summit_radius = 1e-4 }\n",
+        "surface_sets[0].roughness.asperity_density: required",
+    )
+    # the surface law takes σ alone; a σ whose typical β leaves β's range needs β given
+    Case.from_toml_string('[[surface_sets]]\nname = "a"\nroughness = { rms = 0.3e-6 }\n')
+    reject(
+        '[[surface_sets]]\nname = "a"\nroughness = { rms = 5e-5 }\n',
+        "surface_sets[0].roughness.summit_radius: required for rms = 5e-05 m",
+        "< 0.01 m",
+    )
+    # σ out of its own range is reported as σ, not as the summits derived from it
+    msg = reject('[[surface_sets]]\nname = "a"\nroughness = { rms = 0.0 }\n', "roughness.rms")
+    assert "summit_radius" not in msg and "asperity_density" not in msg
+
+
 def test_to_toml_writer_handles_keys_and_floats():
     text = to_toml({"a b": {"x": 1e-300, "y": float("inf"), "z": [1, 2.5], "s": "é"}})
     assert tomllib.loads(text) == {"a b": {"x": 1e-300, "y": float("inf"), "z": [1, 2.5], "s": "é"}}

@@ -117,3 +117,32 @@ def test_the_report_lists_every_value_with_its_origin():
     assert any(ln.startswith("| valvetrain.spring_rate | 35000 N/m | typical (") for ln in table)
     assert "| lubricant.viscosity | 0.012 Pa·s | case |" in table
     assert "| valvetrain.contact_stiffness | absent | assumed" in "\n".join(table)
+
+
+#: A set that gives only σ, all the default surface law needs.
+RMS_ONLY = """
+[[surface_sets]]
+name = "ground"
+roughness = { rms = 0.25e-6 }
+"""
+
+
+def test_summits_not_given_follow_from_rms_with_the_typical_ratios():
+    # σ/β = 1e-3 and ηβσ = 0.04 (physics.typical, ASSUMED): β = 250 µm, η = 6.4e8 1/m²
+    case = Case.from_toml_string(RMS_ONLY)
+    rough = build(case).set("ground").surface.roughness
+    assert rough.summit_radius == pytest.approx(0.25e-6 / 1e-3, rel=1e-12)
+    assert rough.asperity_density == pytest.approx(0.04 / (250e-6 * 0.25e-6), rel=1e-12)
+    assert rough.law is not None  # the surface law, which uses σ alone
+    o = _origins(case)
+    assert o["surface_sets[ground].roughness.rms"] == (0.25e-6, "case")
+    beta, origin = o["surface_sets[ground].roughness.summit_radius"]
+    assert beta == pytest.approx(250e-6, rel=1e-12)
+    assert origin.startswith("typical (") and origin.endswith("β = σ/(σ/β)")
+    eta, origin = o["surface_sets[ground].roughness.asperity_density"]
+    assert eta == pytest.approx(6.4e8, rel=1e-12)
+    assert origin.endswith("η = ηβσ/(βσ)")
+    # the case file keeps what was given: re-read, the same case
+    again = Case.from_toml_string(case.to_toml())
+    assert again == case
+    assert again.surface_set_configs[0].roughness.summit_radius is None

@@ -440,7 +440,7 @@ class Case(CamValvetrainBuilders, ThermalBuilders, StrengthBuilders, Section, To
         sigma, _ = s.boundary_friction(self.materials)
         assert sigma is not None  # required by the case cross-check
         method = self.numerics.greenwood_tripp  # the roughness keys are Roughness's arguments
-        rough = _collecting(bad, lambda: Roughness(**s.roughness.model_dump(), method=method))
+        rough = _collecting(bad, lambda: Roughness(**s.roughness.arguments(), method=method))
         if bad:
             raise RangeError(bad)
         return SurfaceSet(

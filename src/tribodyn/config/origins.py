@@ -130,8 +130,8 @@ def input_origins(case: Case) -> list[Origin]:
     tau0 = typical_origin(typical.BOUNDARY_SHEAR_STRENGTH)
     for s in case.surface_set_configs:
         p = f"surface_sets[{s.name}]"
-        for k in type(s.roughness).model_fields:
-            add(f"{p}.roughness.{k}", getattr(s.roughness, k), _unit(s.roughness, k), _ROUGHNESS[k])
+        for k, v in s.roughness.arguments().items():  # η, β: from σ where absent
+            add(f"{p}.roughness.{k}", v, _unit(s.roughness, k), _ROUGHNESS[k])
         add(f"{p}.boundary_shear_strength", s.boundary_shear_strength, "Pa", tau0)
         if s.boundary_shear_coefficient is not None:  # the set's own ς (else its material's)
             add(f"{p}.boundary_shear_coefficient", s.boundary_shear_coefficient, "", CASE)

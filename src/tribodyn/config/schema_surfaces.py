@@ -225,14 +225,42 @@ class StressConfig(Section):
     )
 
 
+#: σ of the typical ground cam on a ground tappet [m]
+_GROUND_RMS = typical.COMPOSITE_RMS["ground"].value
+
+
 class RoughnessConfig(Section):
     """``roughness = {…}``: composite roughness of the pair (paper Table 4). σ (``rms``)
     scales every asperity law; η and β are Greenwood–Tripp's (``asperity_model =
-    "greenwood_tripp"``) and otherwise only describe the summits."""
+    "greenwood_tripp"``, which requires them) and otherwise only describe the summits
+    (the asperity-scale stress estimate's β); absent, they follow from σ with the typical
+    ratios (:func:`~tribodyn.physics.typical.typical_summits`)."""
 
-    asperity_density: float = _arg(..., L.ASPERITY_DENSITY, "summit density η (the paper's ζ)")
+    asperity_density: float | None = _arg(
+        None,
+        L.ASPERITY_DENSITY,
+        "summit density η (the paper's ζ); absent: ηβσ/(βσ) with the typical ηβσ "
+        "(required with Greenwood–Tripp)",
+    )
     rms: float = _arg(..., L.ROUGHNESS_RMS, "composite RMS roughness σ")
-    summit_radius: float = _arg(..., L.SUMMIT_RADIUS, "mean summit radius β")
+    summit_radius: float | None = _arg(
+        None,
+        L.SUMMIT_RADIUS,
+        "mean summit radius β; absent: σ/(σ/β) with the typical σ/β (required with "
+        "Greenwood–Tripp)",
+    )
+
+    def arguments(self) -> dict[str, float]:
+        """The arguments of :class:`~tribodyn.Roughness`: the keys given, and η and β
+        from σ with the typical ratios where absent (from the typical ground σ where σ is
+        outside its range, so that Roughness reports σ alone)."""
+        sigma = self.rms if L.ROUGHNESS_RMS.contains(self.rms) else _GROUND_RMS
+        eta, beta = typical.typical_summits(sigma)
+        return {
+            "asperity_density": eta if self.asperity_density is None else self.asperity_density,
+            "rms": self.rms,
+            "summit_radius": beta if self.summit_radius is None else self.summit_radius,
+        }
 
 
 #: Length units of ``measured_surface.unit`` (all are SurfaceTopography length units).
@@ -417,6 +445,36 @@ class SurfaceSetConfig(Section):
                     )
                 ]
             )
+        rough = self.roughness
+        absent = [k for k in ("asperity_density", "summit_radius") if getattr(rough, k) is None]
+        if self.asperity_model == "greenwood_tripp" and absent:
+            raise Problems(
+                [
+                    (
+                        f"roughness.{k}",
+                        'required with asperity_model = "greenwood_tripp", whose asperity '
+                        "load depends on η and β (from a profile: tribodyn topography); or use "
+                        "the surface law, which needs only rms",
+                    )
+                    for k in absent
+                ]
+            )
+        derived = rough.arguments()
+        limits = {"asperity_density": L.ASPERITY_DENSITY, "summit_radius": L.SUMMIT_RADIUS}
+        checked = L.ROUGHNESS_RMS.contains(rough.rms)  # else Roughness reports σ
+        if bad := [k for k in absent if checked and not limits[k].contains(derived[k])]:
+            raise Problems(
+                [
+                    (
+                        f"roughness.{k}",
+                        f"required for rms = {rough.rms:.3g} m: the typical ratios "
+                        f"(ηβσ = {typical.ROUGHNESS_PARAMETER.value:g}, σ/β = "
+                        f"{typical.RMS_TO_SUMMIT_RADIUS.value:g}) give {derived[k]:.3g} "
+                        f"{limits[k].unit}, outside {limits[k].describe()}; give it",
+                    )
+                    for k in bad
+                ]
+            )
         if self.asperity_model == "greenwood_tripp" and self.measured_surface is not None:
             raise Problems(
                 [
@@ -489,10 +547,8 @@ def typical_surface_sets() -> list:
     """Default surface sets: the paper's five (uncoated; DLC and WC-C at 1 and 4 µm), each
     with the typical composite roughness of a ground cam on a ground tappet: σ from
     :data:`~tribodyn.physics.typical.COMPOSITE_RMS`, β = σ/(σ/β) and η = ηβσ/(βσ)."""
-    sigma = typical.COMPOSITE_RMS["ground"].value
-    beta = sigma / typical.RMS_TO_SUMMIT_RADIUS.value
-    eta = typical.ROUGHNESS_PARAMETER.value / (beta * sigma)
-    rough = RoughnessConfig(asperity_density=eta, rms=sigma, summit_radius=beta)
+    eta, beta = typical.typical_summits(_GROUND_RMS)
+    rough = RoughnessConfig(asperity_density=eta, rms=_GROUND_RMS, summit_radius=beta)
     coated = [
         SurfaceSetConfig(
             name=f"{coat}_{t_um}um", coating=coat, coating_thickness=t_um * 1e-6, roughness=rough

@@ -34,7 +34,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 #: the class and functions; the typical values and their tables are appended at the end
-__all__ = ["TypicalValue", "STATUSES", "boundary_friction", "boundary_friction_range"]
+__all__ = [
+    "TypicalValue",
+    "STATUSES",
+    "boundary_friction",
+    "boundary_friction_range",
+    "typical_summits",
+]
 
 
 #: How far the source of a typical value was checked (module text).
@@ -339,6 +345,17 @@ RMS_TO_SUMMIT_RADIUS = TypicalValue(
     "ASSUMED (cited sources not found). With σ = 0.2 µm: β = 200 µm, η = ηβσ/(βσ) = 1e9 1/m².",
     status="assumed",
 )
+
+
+def typical_summits(rms: float) -> tuple[float, float]:
+    """(η [1/m²], β [m]): the summit density and mean summit radius of a surface of
+    composite RMS roughness σ = ``rms`` [m] with the typical ratios above,
+    β = σ/(σ/β) (:data:`RMS_TO_SUMMIT_RADIUS`) and η = ηβσ/(βσ)
+    (:data:`ROUGHNESS_PARAMETER`). ASSUMED values, as those ratios are."""
+    beta = rms / RMS_TO_SUMMIT_RADIUS.value
+    return ROUGHNESS_PARAMETER.value / (beta * rms), beta
+
+
 #: Composite RMS roughness σ of a cam against a flat tappet, by finish of the tappet.
 #: σ ≈ 1.25 R_a for a Gaussian profile; composite σ = √(σ_cam² + σ_tappet²).
 COMPOSITE_RMS: dict[str, TypicalValue] = {

@@ -60,13 +60,12 @@ __all__ = [
 ]
 
 #: Typical Greenwood–Tripp roughness of a ground cam on a ground tappet
-#: (:mod:`tribodyn.physics.typical`: σ = COMPOSITE_RMS["ground"], β = σ/(σ/β),
-#: η = ηβσ/(βσ)); the paper's Table 4 is stated in its case file.
+#: (:mod:`tribodyn.physics.typical`: σ = COMPOSITE_RMS["ground"], η and β from
+#: ``typical_summits``); the paper's Table 4 is stated in its case file.
+_GROUND_RMS = typical.COMPOSITE_RMS["ground"].value
+_GROUND_ETA, _GROUND_BETA = typical.typical_summits(_GROUND_RMS)
 TYPICAL_ROUGHNESS = Roughness(
-    asperity_density=typical.ROUGHNESS_PARAMETER.value
-    / (typical.COMPOSITE_RMS["ground"].value ** 2 / typical.RMS_TO_SUMMIT_RADIUS.value),
-    rms=typical.COMPOSITE_RMS["ground"].value,
-    summit_radius=typical.COMPOSITE_RMS["ground"].value / typical.RMS_TO_SUMMIT_RADIUS.value,
+    asperity_density=_GROUND_ETA, rms=_GROUND_RMS, summit_radius=_GROUND_BETA
 )
 
 
