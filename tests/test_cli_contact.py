@@ -70,6 +70,26 @@ def test_roughness_follows_the_default_surface_law_unless_greenwood_tripp_is_ask
     assert r.exit_code == 2 and "--asperity-model" in r.output
 
 
+def test_roughness_sigma_alone_takes_the_typical_summits_as_a_case_file_does():
+    """--roughness SIGMA: the surface law needs σ alone; η and β follow from the typical
+    σ/β = 1e-3 and ηβσ = 0.04 (physics.typical), so it equals the three numbers."""
+    base = ["--load", "600", "--radius", "0.005", "--ue", "0.5", "--us", "1", "--json"]
+    base += ["--n", "128"]
+    alone = json.loads(run(*base, "--roughness", "0.2e-6").stdout)
+    beta = 0.2e-6 / 1e-3
+    three = json.loads(
+        run(*base, "--roughness", f"{0.04 / (beta * 0.2e-6)!r},0.2e-6,{beta!r}").stdout
+    )
+    assert alone["summit_radius_m"] == pytest.approx(200e-6, rel=1e-12)
+    assert alone["asperity_density_per_m2"] == pytest.approx(1e9, rel=1e-12)
+    assert alone["central_film_m"] == pytest.approx(three["central_film_m"], rel=1e-12)
+    assert alone["asperity_load_N"] == pytest.approx(three["asperity_load_N"], rel=1e-12)
+    r = run(*base, "--roughness", "0.2e-6", "--asperity-model", "greenwood_tripp")
+    assert r.exit_code == 2 and "--roughness" in r.output and "needs all three" in r.output
+    r = run(*base, "--roughness", "-1e-7")
+    assert r.exit_code == 2 and "--roughness: sigma must be > 0" in r.output
+
+
 def test_json_film_matches_pan_hamrock():
     load, width, radius, ue = 2400.0, 0.012, 0.01, 1.0  # w = 2e5 N/m
     r = run(

@@ -39,17 +39,42 @@ _SURF = "Surfaces (cam: steel; tappet: coated or not)"
 _NUM = "Numerics (default: the \\[numerics] of --case, else of {case})"
 
 
-def _triple(text: str, option: str, names: str) -> tuple[float, float, float]:
+def _numbers(text: str, option: str, names: str, counts=(3,)) -> tuple[float, ...]:
+    """The finite numbers of ``text`` (separated by commas, semicolons or spaces), as many
+    as one of ``counts``; else an InputError naming ``option``."""
     parts = [p for p in re.split(r"[,;\s]+", text.strip()) if p]
     try:
         vals = tuple(float(p) for p in parts)
     except ValueError:
         vals = ()
-    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
-        raise InputError(
-            f"{option}: expected three numbers {names} separated by commas (got {text!r})"
-        )
+    if len(vals) not in counts or not all(math.isfinite(v) for v in vals):
+        raise InputError(f"{option}: expected {names} separated by commas (got {text!r})")
     return vals
+
+
+def _triple(text: str, option: str, names: str) -> tuple[float, float, float]:
+    a, b, c = _numbers(text, option, f"three numbers {names}")
+    return a, b, c
+
+
+def _roughness(text: str, model: str) -> tuple[float, float, float]:
+    """(η, σ, β) of ``--roughness``: ``ETA,SIGMA,BETA``, or ``SIGMA`` alone for the
+    surface law, with η and β from σ by the typical ratios (as a case file's set that
+    gives only ``rms``; :func:`~tribodyn.physics.typical.typical_summits`)."""
+    from ..physics import limits, typical
+
+    gt = model == "greenwood_tripp"
+    names = "three numbers eta [1/m²], sigma [m], beta [m]"
+    if gt:
+        names += " (greenwood_tripp needs all three)"
+    else:
+        names = f"sigma [m] (the surface law's one input) or {names}"
+    vals = _numbers(text, "--roughness", names, (3,) if gt else (1, 3))
+    if len(vals) == 3:
+        return vals[0], vals[1], vals[2]
+    sig = _prefixed("--roughness", lambda: limits.ROUGHNESS_RMS.check("sigma", vals[0]))
+    eta, beta = typical.typical_summits(sig)
+    return eta, sig, beta
 
 
 def _prefixed(option: str, build):
@@ -90,7 +115,7 @@ class ContactRequest:
     from the command line or by a Python caller; :func:`compute_contact` solves it.
 
     ``coating`` and ``roughness`` are the option strings ``"E,NU,THICKNESS"`` and
-    ``"ETA,SIGMA,BETA"``. The lubricant options (``viscosity`` … ``viscosity_model``) and
+    ``"ETA,SIGMA,BETA"`` (or ``"SIGMA"`` alone for the surface law). The lubricant options (``viscosity`` … ``viscosity_model``) and
     the numerics options (``n``, ``viscous_model``, ``limiting_shear``) of an EHL contact
     change the case's keys (:data:`CASE_KEYS`) through
     :meth:`~tribodyn.config.Case.updated`, so they are validated as in a case file;
@@ -191,8 +216,13 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
     if q.coating is not None:
         E, nu, t = _triple(q.coating, "--coating", "E [Pa], nu [-], thickness [m]")
         coat = _prefixed("--coating", lambda: Coating(E=E, nu=nu, thickness=t))
+    model = q.asperity_model or "surface"
+    if model not in ("surface", "greenwood_tripp"):
+        raise InputError(
+            f"--asperity-model must be surface or greenwood_tripp (got {q.asperity_model!r})"
+        )
     if q.roughness is not None:
-        eta, sig, beta = _triple(q.roughness, "--roughness", "eta [1/m²], sigma [m], beta [m]")
+        eta, sig, beta = _roughness(q.roughness, model)
         rough = _prefixed(
             "--roughness",
             lambda: Roughness(
@@ -214,11 +244,6 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
         )
     except InputError as exc:
         raise _as_option(exc) from None
-    model = q.asperity_model or "surface"
-    if model not in ("surface", "greenwood_tripp"):
-        raise InputError(
-            f"--asperity-model must be surface or greenwood_tripp (got {q.asperity_model!r})"
-        )
     if q.asperity_model is not None and rough is None:
         raise InputError("--asperity-model needs --roughness (a case's set carries its own law)")
     if rough is not None and model == "surface":  # the default law, as in a case file
@@ -459,9 +484,10 @@ def contact_command(
     roughness: str | None = _option(
         "--roughness",
         panel=_SURF,
-        metavar="ETA,SIGMA,BETA",
-        help="Composite roughness: summit density "
-        "[1/m²], RMS \\[m], summit radius \\[m] "
+        metavar="[ETA,]SIGMA[,BETA]",
+        help="Composite roughness: RMS \\[m] alone (summit density and radius from the "
+        "typical ratios, as a case file's set with only rms), or summit density "
+        "[1/m²], RMS \\[m], summit radius \\[m] (needed with greenwood_tripp) "
         "(default: smooth). The asperities follow --asperity-model.",
     ),
     asperity_model: str | None = _option(
