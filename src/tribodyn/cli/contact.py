@@ -115,9 +115,10 @@ class ContactRequest:
     from the command line or by a Python caller; :func:`compute_contact` solves it.
 
     ``coating`` and ``roughness`` are the option strings ``"E,NU,THICKNESS"`` and
-    ``"ETA,SIGMA,BETA"`` (or ``"SIGMA"`` alone for the surface law). The lubricant options (``viscosity`` … ``viscosity_model``) and
-    the numerics options (``n``, ``viscous_model``, ``limiting_shear``) of an EHL contact
-    change the case's keys (:data:`CASE_KEYS`) through
+    ``"ETA,SIGMA,BETA"`` (or ``"SIGMA"`` alone for the surface law). The lubricant
+    options (``viscosity`` … ``viscosity_model``) and the numerics options (``n``,
+    ``viscous_model``, ``limiting_shear``) of an EHL contact change the case's keys
+    (:data:`CASE_KEYS`) through
     :meth:`~tribodyn.config.Case.updated`, so they are validated as in a case file;
     ``eyring_stress`` and ``limiting_shear_coefficient`` also set τ_E and Λ of the
     ``thermal``/``oil`` oil. A ``dry`` contact takes none of them (``n`` is its grid).
