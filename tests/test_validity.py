@@ -202,6 +202,47 @@ def test_compiled_dynamics_failure_is_reported_not_raised(monkeypatch):
     assert r.contact_force.size == 0
 
 
+def test_valve_jump_off_the_lobe_is_told_apart_from_the_event():
+    """A weak spring at high speed: the tappet leaves the cam in the event and keeps
+    bouncing on the base circle. The warning splits the lost crank angle between the two,
+    as counted independently on the dynamics' samples."""
+    import re
+
+    from tribodyn.valvetrain import simulate_valvetrain
+    from tribodyn.workflow.cycle import _jump_warning
+
+    case = load_case().updated(
+        {
+            "engine.speed_rpm": 6000.0,
+            "valvetrain.spring_preload": 60.0,
+            "valvetrain.spring_rate": 12000.0,
+        }
+    )
+    built = build(case)
+    dyn = simulate_valvetrain(
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology("uncoated"),
+        **built.dynamics_options,
+    )
+    assert dyn.converged and dyn.jump
+    text = _jump_warning(dyn, built)
+    m = re.search(r"for ([\d.]+)° crank, (\d+)° of the (\d+)° cam event and (\d+)° outside", text)
+    assert m, text
+    lost, inside, _, outside = map(float, m.groups())
+    crank = dyn.crank_angle
+    step = crank[1] - crank[0]
+    off = np.zeros(crank.size, dtype=bool)
+    for a, b in dyn.jumps:
+        off |= (crank >= a) & (crank <= b)
+    ev = dyn.event_mask()
+    slack = (len(dyn.jumps) + 2) * step + 1.0  # sample edges of each interval, rounding
+    assert inside == pytest.approx((off & ev).sum() * step, abs=slack)
+    assert outside == pytest.approx((off & ~ev).sum() * step, abs=slack)
+    assert outside > 100.0  # it bounces on the base circle for a long stretch
+    assert inside + outside == pytest.approx(lost, abs=1.0)
+
+
 def test_valve_jump_is_reported_clearly():
     """A 1 kg valve (allowed, heavy) on the paper's spring leaves the cam: the study warns
     with the share of the event lost."""

@@ -489,19 +489,30 @@ def _validity_advice(text: str) -> str:
 
 
 def _jump_warning(dyn, built: BuiltCase) -> str:
-    """The contact-loss (valve jump) warning: its intervals and share of the cam event,
-    the maximum separation, and what to change (the built valvetrain's spring keys)."""
+    """The contact-loss (valve jump) warning: its intervals, how much of them falls in the
+    cam event (cam lift above the jump threshold) and how much outside it, the maximum
+    separation, and what to change (the built valvetrain's spring keys)."""
     js = dyn.jump_summary()
     lost = js["contact_lost_deg"]
     ev = dyn.event_mask()
-    step = float(dyn.crank_angle[1] - dyn.crank_angle[0]) if dyn.crank_angle.size > 1 else 0.0
+    crank = dyn.crank_angle
+    step = float(crank[1] - crank[0]) if crank.size > 1 else 0.0
     event = float(ev.sum()) * step
+    edges = np.flatnonzero(np.diff(np.r_[0, ev.astype(np.int8), 0]))
+    runs = list(zip(crank[edges[0::2]], crank[edges[1::2] - 1], strict=True))  # the event
+    in_event = sum(max(0.0, min(b, e1) - max(a, e0)) for a, b in dyn.jumps for e0, e1 in runs)
     first = ", ".join(f"{a:.1f}–{b:.1f}°" for a, b in dyn.jumps[:3])
     more = f" and {len(dyn.jumps) - 3} more" if len(dyn.jumps) > 3 else ""
+    where = f" of the {event:.0f}° cam event"
+    if round(lost - in_event) >= 1:  # some of it off the lobe (bouncing on the base circle)
+        where = (
+            f", {in_event:.0f}° of the {event:.0f}° cam event and {lost - in_event:.0f}° "
+            "outside it (base circle and the lowest lift)"
+        )
     text = (
-        f"the tappet loses contact with the cam (valve jump) for {lost:.1f}° crank of the "
-        f"{event:.0f}° cam event ({first}{more}); maximum separation (tappet lift − cam "
-        f"lift) {js['max_separation_m'] * 1e3:.3g} mm at {js['max_separation_crank_deg']:.1f}°"
+        f"the tappet loses contact with the cam (valve jump) for {lost:.1f}° crank{where} "
+        f"({first}{more}); maximum separation (tappet lift − cam lift) "
+        f"{js['max_separation_m'] * 1e3:.3g} mm at {js['max_separation_crank_deg']:.1f}°"
     )
     if event > 0 and lost > 0.1 * event:
         text += (
