@@ -404,7 +404,12 @@ def test_warmup_numerics_are_a_valid_case():
             "(ℓ = 5e-05 m): Reynolds' thin-film approximation needs h/ℓ ≪ 1",
             "light load",
         ),
-        ("the load-carrying zone reaches 0.2 R (Hertz b = 0.1 R): the parabolic", "minimum radius"),
+        ("the Hertz half-width b = 0.2 R: half-space elasticity needs", "minimum radius"),
+        (
+            "the load-carrying zone reaches 0.3 R (Hertz b = 0.001 R), where the parabolic "
+            "gap x²/(2R) falls short of the circle by 2.2 %",
+            "long inlet",
+        ),
         ("modified Reynolds number ρu_e h_c²/(μ₀ℓ) = 0.3: fluid inertia", "uncertain by Re*"),
         ("peak contact pressure 5 GPa exceeds 4 GPa: beyond the elastic limit", "beyond 4 GPa"),
         # before, the word "pressure" sent this to the 4 GPa advice

@@ -119,9 +119,10 @@ def test_thermal_run_outputs(thermal_run):
     assert dlc["max_surface_temperature_tappet_K"] > unc["max_surface_temperature_tappet_K"] + 5
     eff = th["coating_thermal_effect"]["dlc_4um"]
     assert eff["viscous_energy_thermal_effect_pct"] < -1.0
-    # the thermal march reports its steps outside the model's validity (early in the
-    # event the load-carrying zone exceeds 0.1 R) as the isothermal one does
-    assert any("outside the model's validity" in w for w in s["warnings"]), s["warnings"]
+    # (that the thermal march counts its steps outside the model's validity as the
+    # isothermal one does, which the study reports alike, is
+    # test_cycle_driver.test_thermal_march_reports_validity_warnings: this reduced case
+    # has none since the contact-size check flags the parabolic gap's error, not 0.1 R)
     assert abs(eff["viscous_energy_vs_reference_isothermal_pct"]) < 2.0
     ds = xr.open_dataset(thermal_run / "results.nc", engine="h5netcdf")
     for v in (

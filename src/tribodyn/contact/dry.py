@@ -21,7 +21,7 @@ from ..physics.elasticity import DeformationOperator
 from ..physics.hertz import HertzLineContact, hertz_line_contact
 from ..physics.limits import CONTACT_RADIUS, EHL_NODES, LINE_LOAD, NEWTON_TOL
 from ..physics.materials import BodyPair, as_bodies, reduced_modulus
-from .ehl.validity import MAX_PRESSURE, MAX_ZONE_TO_RADIUS
+from .ehl.validity import MAX_HALF_WIDTH_TO_RADIUS, MAX_PRESSURE
 
 __all__ = ["DryContactResult", "solve_dry_contact", "contact_edges"]
 
@@ -209,11 +209,11 @@ def _check_validity(res: DryContactResult, radius: float) -> DryContactResult:
     """Warn where Hertz's idealisation fails: contact not small against R, or a pressure
     beyond the elastic limit (thresholds and sources in :mod:`.ehl.validity`)."""
     size = max(res.half_width, res.hertz.half_width)
-    if size > MAX_ZONE_TO_RADIUS * radius:
+    if size > MAX_HALF_WIDTH_TO_RADIUS * radius:
         res.warnings.append(
             f"contact half-width {size / radius:.3g} R: the parabolic gap "
             "and half-space elasticity need a contact much smaller than R "
-            f"(flagged above {MAX_ZONE_TO_RADIUS:g} R)"
+            f"(flagged above {MAX_HALF_WIDTH_TO_RADIUS:g} R)"
         )
     if res.max_pressure > MAX_PRESSURE:
         res.warnings.append(

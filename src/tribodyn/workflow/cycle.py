@@ -469,8 +469,12 @@ def run_cycle_study(
 _VALIDITY_ADVICE = {
     "thin-film": "thick films relative to the contact length occur at light load: "
     "they carry little friction; nothing to change unless those samples matter",
-    "load-carrying zone": "the contact is wide against the radius of curvature: check the "
+    "Hertz half-width": "the contact is wide against the radius of curvature: check the "
     "cam's minimum radius (nose) and the load",
+    "load-carrying zone": "at light load a thick film carries the load over a long inlet, "
+    "where the parabolic gap is short of the circle by the share given: the film and "
+    "friction there are off by less than about that share; nothing to change unless "
+    "those samples matter",
     "Reynolds number": "fluid inertia matters at high speed and thick film: the pressure there "
     "is uncertain by Re*",
     "at the outlet": "the EHL domain ends before the pressure has fallen: raise "
