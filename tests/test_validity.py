@@ -4,6 +4,7 @@ absurd valvetrains are reported with the key named."""
 
 import json
 import math
+import re
 import time
 
 import numpy as np
@@ -42,6 +43,36 @@ def test_film_much_larger_than_the_radius_is_flagged():
     assert any("thin-film approximation" in w for w in r.warnings)
     assert any("load-carrying zone" in w for w in r.warnings)
     assert "; warning: film h_c" in r.message
+
+
+def _zone(r) -> float:
+    """max |x| of the zone carrying the central 98 % of ∫(p + p_a) dx (trapezoids)."""
+    q = r.pressure + (r.asperity_pressure if r.asperity_pressure is not None else 0.0)
+    c = np.concatenate([[0.0], np.cumsum(0.5 * (q[1:] + q[:-1]) * np.diff(r.x))])
+    c /= c[-1]
+    return max(abs(np.interp(0.01, c, r.x)), abs(np.interp(0.99, c, r.x)))
+
+
+@pytest.mark.parametrize("load, speed", [(5000.0, 5.0), (3000.0, 8.0)])
+def test_the_parabolic_gap_is_flagged_by_its_error_at_the_zone_edge(load, speed):
+    """A light load on R = 17 mm (a base circle): b ≪ R, and the inlet carries the load
+    over a zone of 0.1–0.3 R. The circle exceeds the parabola x²/(2R) by x⁴/(8R³), i.e.
+    (x/R)²/4 of it: flagged only beyond 1 %, with that error quoted."""
+    R = 0.017
+    r = solve_ehl(load, R, speed, 1.0, PAIR, OIL)
+    assert r.converged
+    zone = _zone(r) / R
+    error = 0.25 * zone**2
+    b = math.sqrt(8.0 * load * R / (math.pi * 210e9 / (1.0 - 0.3**2)))  # Hertz, steel
+    assert zone > 0.1 and b < 0.01 * R
+    flagged = [w for w in r.warnings if "load-carrying zone" in w]
+    assert bool(flagged) == (error > 0.01)
+    assert not any("Hertz half-width" in w for w in r.warnings)
+    if flagged:
+        m = re.search(r"reaches ([\d.]+) R .* falls short of the circle by ([\d.]+) %", flagged[0])
+        assert m, flagged[0]
+        assert float(m.group(1)) == pytest.approx(zone, rel=0.01)
+        assert float(m.group(2)) == pytest.approx(100 * error, rel=0.03)
 
 
 def test_inertia_is_flagged_at_absurd_speeds():
