@@ -254,6 +254,24 @@ def test_noisy_smooth_and_ramped_tables(name):
     assert np.all(cam.lift(X[(sa == 0) & (_dist(X, ref.breaks) > 4.0)]) == 0.0)
 
 
+@pytest.mark.parametrize("name", ["3-4-5", "three-arc"])
+def test_a_table_too_coarse_for_its_cam_is_flagged(name):
+    """The reference cams tabulated at 30° (four or five points above the base circle):
+    the fit smooths the profile away and says so; at 1° (exact) and 0.25° with ±1 µm
+    noise the fit stays within 1 % of the lift and says nothing. The deviation is
+    measured here from the table and the fit's lift."""
+    ref = CAMS[name]
+    for step, noise, flagged in ((30.0, 0.0, True), (1.0, 0.0, False), (0.25, 1e-6, False)):
+        th = np.radians(np.arange(0.0, 360.0, step))
+        table = ref(th)[0] + np.random.default_rng(3).uniform(-noise, noise, th.size)
+        cam = TabulatedCam(th, table, ref.rb)
+        rms = np.sqrt(np.mean((table - cam.lift(th)) ** 2))
+        text = cam.fit_warning()
+        assert (text is not None) == flagged == (rms > 0.01 * table.max()), (step, rms)
+        if flagged:
+            assert f"{rms * 1e6:.3g} µm RMS" in text and "(30° steps" in text
+
+
 def test_large_table_scales():
     """A 100 000-row (0.0036°) exact three-arc table: jump detection on bin means and at
     most 7200 knots keep the cost O(n) (≈ 5 s here, about as long for 10⁶ rows; before,

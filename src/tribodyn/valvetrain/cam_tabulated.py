@@ -16,7 +16,12 @@ from .._validation import InputError, check_array, check_nonnegative, check_posi
 from ..physics import limits as L
 from .cams import TWO_PI, CamProfile
 
-__all__ = ["TabulatedCam"]
+__all__ = ["TabulatedCam", "MAX_FIT_DEVIATION"]
+
+#: A fit deviating from its table by more than this share of the maximum lift (RMS) is
+#: flagged by :meth:`TabulatedCam.fit_warning`: far beyond a measurement's noise (≲ 1 µm
+#: on a lift of millimetres), so the fitted profile is not the table's cam.
+MAX_FIT_DEVIATION = 0.01
 
 
 class TabulatedCam(CamProfile):
@@ -133,6 +138,30 @@ class TabulatedCam(CamProfile):
             lo, hi = self.radius_of_curvature(np.array([a - 1e-7, a + 1e-7]))
             self.curvature_jumps.append((a, float(lo), float(hi)))
         self.check(tappet_radius)
+
+    def fit_warning(self) -> str | None:
+        """None, or what to tell the user when the fit deviates from the table by more
+        than :data:`MAX_FIT_DEVIATION` of the maximum lift (RMS over the table's points):
+        a table too coarse or too noisy to define the curvature and acceleration, which the
+        fit then smooths away."""
+        table = np.asarray(self.lift_table)
+        fitted = self.derivatives(np.asarray(self.angle))[0]
+        rms = float(np.sqrt(np.mean((table - fitted) ** 2)))
+        top = float(table.max())
+        if not rms > MAX_FIT_DEVIATION * top:
+            return None
+        step = math.degrees(float(np.median(np.diff(self.angle))))
+        lifted = int(np.count_nonzero(table > rms))
+        return (
+            f"cam table: the fitted profile differs from the table by {rms * 1e6:.3g} µm "
+            f"RMS, {100 * rms / top:.2g} % of the {top * 1e3:.3g} mm lift (flagged above "
+            f"{100 * MAX_FIT_DEVIATION:g} %): the table is too coarse ({step:.3g}° steps, "
+            f"{lifted} points clearly above the base circle) or too noisy to define the "
+            "cam's curvature and acceleration, so the dynamics and the EHL follow a "
+            f"smoothed profile (max lift {float(fitted.max()) * 1e3:.4g} mm), not your "
+            "table; give the lift at finer steps (measured tables have 0.1–1°), or "
+            "cam.smoothing if you know the table's noise"
+        )
 
     @classmethod
     def from_csv(

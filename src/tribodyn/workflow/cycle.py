@@ -409,6 +409,9 @@ def run_cycle_study(
     )
     # the force- and film-deciding values the case left to typical ones, named first
     study.warnings += default_warnings(case)
+    fit = getattr(built.cam, "fit_warning", None)  # a lift table's cam
+    if fit is not None and (text := fit()) is not None:
+        study.warnings.append(text)
     for s in sets:
         st = stresses.get(s.name)
         if isinstance(st, str):
