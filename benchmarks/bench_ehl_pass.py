@@ -71,24 +71,32 @@ def count_work():
         module.newton = counted_newton
 
 
+def pass_setup(case_arg, set_name):
+    """(case, built case, the surface set to march, explicit dynamics, cycle inputs): the
+    case's dynamics with the reference set's tribology, once (call under one BLAS
+    thread)."""
+    case = load_case(case_arg)
+    built = build(case)
+    ref = built.set(surface_roles(case)["reference"]).surface
+    s = built.set(set_name).surface if set_name else ref
+    dyn = simulate_valvetrain(
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology(ref.name),
+        **built.dynamics_options,
+    )
+    inputs = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
+    return case, built, s, dyn, inputs
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--case", default=None)
     ap.add_argument("--set", default=None, help="surface set (default: the reference set)")
     ap.add_argument("--repeat", type=int, default=1)
     args = ap.parse_args()
-    case = load_case(args.case)
-    built = build(case)
-    ref = built.set(surface_roles(case)["reference"]).surface
-    s = built.set(args.set).surface if args.set else ref
     with single_blas_thread():
-        dyn = simulate_valvetrain(
-            built.cam,
-            built.valvetrain,
-            tribology=built.analytic_tribology(ref.name),
-            **built.dynamics_options,
-        )
-        inputs = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
+        case, _, s, _, inputs = pass_setup(args.case, args.set)
         count_work()
         ehl_for_set(case, s, inputs)  # compile and warm
         runs = []

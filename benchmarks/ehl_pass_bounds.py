@@ -29,14 +29,11 @@ import time
 import numpy as np
 
 import tribodyn  # noqa: F401  (one BLAS thread, before numpy loads)
-from bench_ehl_pass import COUNTS, count_work
+from bench_ehl_pass import COUNTS, count_work, pass_setup
 from tribodyn._threads import single_blas_thread
-from tribodyn.config import load_case
-from tribodyn.config.build import build
 from tribodyn.contact.ehl import transient
-from tribodyn.cycle.driver import CycleInputs, ehl_for_set
-from tribodyn.valvetrain.dynamics import simulate_valvetrain
-from tribodyn.workflow.postprocess import representative_points, surface_roles
+from tribodyn.cycle.driver import ehl_for_set
+from tribodyn.workflow.postprocess import representative_points
 
 
 class StartHook:
@@ -111,19 +108,9 @@ def main():
     ap.add_argument("--nodes", type=int, nargs="*", default=[192, 256, 320, 384, 768])
     ap.add_argument("--companion", default=None, help="a second set started from the first")
     args = ap.parse_args()
-    case = load_case(args.case)
-    built = build(case)
-    ref = built.set(surface_roles(case)["reference"]).surface
-    s = built.set(args.set).surface if args.set else ref
-    out = {"set": s.name, "nodes": [], "perfect_start": None, "companion_start": None}
     with single_blas_thread():
-        dyn = simulate_valvetrain(
-            built.cam,
-            built.valvetrain,
-            tribology=built.analytic_tribology(ref.name),
-            **built.dynamics_options,
-        )
-        inputs = CycleInputs.from_dynamics(dyn, case.numerics.crank_step_deg, case.width)
+        case, built, s, dyn, inputs = pass_setup(args.case, args.set)
+        out = {"set": s.name, "nodes": [], "perfect_start": None, "companion_start": None}
         count_work()
         rows = []
         for n in sorted(args.nodes):

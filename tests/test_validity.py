@@ -233,28 +233,35 @@ def test_compiled_dynamics_failure_is_reported_not_raised(monkeypatch):
     assert r.contact_force.size == 0
 
 
+def _explicit_dynamics(changes: dict):
+    """(built case, explicit dynamics with the uncoated set's tribology) of the bundled
+    case with ``changes``."""
+    from tribodyn.valvetrain import simulate_valvetrain
+
+    built = build(load_case().updated(changes))
+    dyn = simulate_valvetrain(
+        built.cam,
+        built.valvetrain,
+        tribology=built.analytic_tribology("uncoated"),
+        **built.dynamics_options,
+    )
+    return built, dyn
+
+
 def test_valve_jump_off_the_lobe_is_told_apart_from_the_event():
     """A weak spring at high speed: the tappet leaves the cam in the event and keeps
     bouncing on the base circle. The warning splits the lost crank angle between the two,
     as counted independently on the dynamics' samples."""
     import re
 
-    from tribodyn.valvetrain import simulate_valvetrain
     from tribodyn.workflow.cycle import _jump_warning
 
-    case = load_case().updated(
+    built, dyn = _explicit_dynamics(
         {
             "engine.speed_rpm": 6000.0,
             "valvetrain.spring_preload": 60.0,
             "valvetrain.spring_rate": 12000.0,
         }
-    )
-    built = build(case)
-    dyn = simulate_valvetrain(
-        built.cam,
-        built.valvetrain,
-        tribology=built.analytic_tribology("uncoated"),
-        **built.dynamics_options,
     )
     assert dyn.converged and dyn.jump
     text = _jump_warning(dyn, built)
@@ -277,17 +284,9 @@ def test_valve_jump_off_the_lobe_is_told_apart_from_the_event():
 def test_valve_jump_is_reported_clearly():
     """A 1 kg valve (allowed, heavy) on the paper's spring leaves the cam: the study warns
     with the share of the event lost."""
-    from tribodyn.valvetrain import simulate_valvetrain
     from tribodyn.workflow.cycle import _jump_warning
 
-    case = load_case().updated({"valvetrain.valve_mass": 1.0})
-    built = build(case)
-    dyn = simulate_valvetrain(
-        built.cam,
-        built.valvetrain,
-        tribology=built.analytic_tribology("uncoated"),
-        **built.dynamics_options,
-    )
+    built, dyn = _explicit_dynamics({"valvetrain.valve_mass": 1.0})
     assert dyn.converged and dyn.jump
     text = _jump_warning(dyn, built)
     assert "loses contact with the cam (valve jump)" in text

@@ -28,6 +28,7 @@ from rich.console import Console
 
 from .. import _json
 from .._validation import InputError
+from .contact_options import prefixed, roughness_numbers, three_numbers
 from .contact_table import _table
 from .failure import fail
 from .help_defaults import stating
@@ -37,53 +38,6 @@ __all__ = ["ContactRequest", "contact_command", "compute_contact", "stated_defau
 _LUB = "Lubricant (default: the \\[lubricant] of --case, else of the bundled case {case})"
 _SURF = "Surfaces (cam: steel; tappet: coated or not)"
 _NUM = "Numerics (default: the \\[numerics] of --case, else of {case})"
-
-
-def _numbers(text: str, option: str, names: str, counts=(3,)) -> tuple[float, ...]:
-    """The finite numbers of ``text`` (separated by commas, semicolons or spaces), as many
-    as one of ``counts``; else an InputError naming ``option``."""
-    parts = [p for p in re.split(r"[,;\s]+", text.strip()) if p]
-    try:
-        vals = tuple(float(p) for p in parts)
-    except ValueError:
-        vals = ()
-    if len(vals) not in counts or not all(math.isfinite(v) for v in vals):
-        raise InputError(f"{option}: expected {names} separated by commas (got {text!r})")
-    return vals
-
-
-def _triple(text: str, option: str, names: str) -> tuple[float, float, float]:
-    a, b, c = _numbers(text, option, f"three numbers {names}")
-    return a, b, c
-
-
-def _roughness(text: str, model: str) -> tuple[float, float, float]:
-    """(η, σ, β) of ``--roughness``: ``ETA,SIGMA,BETA``, or ``SIGMA`` alone for the
-    surface law, with η and β from σ by the typical ratios (as a case file's set that
-    gives only ``rms``; :func:`~tribodyn.physics.typical.typical_summits`)."""
-    from ..physics import limits, typical
-
-    gt = model == "greenwood_tripp"
-    names = "three numbers eta [1/m²], sigma [m], beta [m]"
-    if gt:
-        names += " (greenwood_tripp needs all three)"
-    else:
-        names = f"sigma [m] (the surface law's one input) or {names}"
-    vals = _numbers(text, "--roughness", names, (3,) if gt else (1, 3))
-    if len(vals) == 3:
-        return vals[0], vals[1], vals[2]
-    sig = _prefixed("--roughness", lambda: limits.ROUGHNESS_RMS.check("sigma", vals[0]))
-    eta, beta = typical.typical_summits(sig)
-    return eta, sig, beta
-
-
-def _prefixed(option: str, build):
-    """Run ``build()``; re-raise an InputError with the option name in front."""
-    try:
-        return build()
-    except InputError as exc:
-        msg = str(exc)
-        raise InputError(msg if msg.startswith(option) else f"{option}: {msg}") from None
 
 
 def _flag(name: str) -> str:  # a ContactRequest field's option: n_x → --n-x
@@ -215,16 +169,16 @@ def compute_contact(request: ContactRequest | None = None, /, **options: Any) ->
     case = built.case
     coat = rough = None
     if q.coating is not None:
-        E, nu, t = _triple(q.coating, "--coating", "E [Pa], nu [-], thickness [m]")
-        coat = _prefixed("--coating", lambda: Coating(E=E, nu=nu, thickness=t))
+        E, nu, t = three_numbers(q.coating, "--coating", "E [Pa], nu [-], thickness [m]")
+        coat = prefixed("--coating", lambda: Coating(E=E, nu=nu, thickness=t))
     model = q.asperity_model or "surface"
     if model not in ("surface", "greenwood_tripp"):
         raise InputError(
             f"--asperity-model must be surface or greenwood_tripp (got {q.asperity_model!r})"
         )
     if q.roughness is not None:
-        eta, sig, beta = _roughness(q.roughness, model)
-        rough = _prefixed(
+        eta, sig, beta = roughness_numbers(q.roughness, model)
+        rough = prefixed(
             "--roughness",
             lambda: Roughness(
                 asperity_density=eta,
